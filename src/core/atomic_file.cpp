@@ -1,0 +1,79 @@
+#include "core/atomic_file.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "core/error.h"
+
+namespace surrogate {
+
+namespace fs = std::filesystem;
+
+namespace {
+fs::path temporaryNameFor(const fs::path& finalPath) {
+  static std::atomic<unsigned> counter{0};
+  std::ostringstream name;
+  name << "." << finalPath.filename().string() << ".part-" << ::getpid() << "-" << counter++;
+  return finalPath.parent_path() / name.str();
+}
+
+void syncFile(const fs::path& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY);
+  if (fd < 0) return;
+  ::fsync(fd);
+  ::close(fd);
+}
+}  // namespace
+
+AtomicFile::AtomicFile(fs::path finalPath)
+    : final_(std::move(finalPath)), temp_(temporaryNameFor(final_)) {}
+
+AtomicFile::~AtomicFile() {
+  if (!committed_) {
+    std::error_code ec;
+    fs::remove_all(temp_, ec);
+  }
+}
+
+void AtomicFile::commit() {
+  if (fs::is_regular_file(temp_)) syncFile(temp_);
+  std::error_code ec;
+  fs::rename(temp_, final_, ec);
+  if (ec) {
+    throw Error(ErrorKind::Internal, final_.string(), "write",
+                "could not move the finished file into place: " + ec.message());
+  }
+  committed_ = true;
+}
+
+void writeFileAtomically(const fs::path& path, const std::string& content) {
+  AtomicFile out(path);
+  {
+    std::ofstream f(out.tempPath(), std::ios::binary);
+    f.write(content.data(), static_cast<std::streamsize>(content.size()));
+    f.flush();
+    if (!f) {
+      throw Error(ErrorKind::Internal, path.string(), "write",
+                  std::string("could not write the file (") + std::strerror(errno) +
+                      "); check free disk space and permissions");
+    }
+  }
+  out.commit();
+}
+
+std::string readFile(const fs::path& path, const std::string& step) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) throwInputError(path.string(), step, "cannot open the file for reading");
+  std::ostringstream s;
+  s << f.rdbuf();
+  if (f.bad()) throwInputError(path.string(), step, "reading the file failed");
+  return s.str();
+}
+
+}  // namespace surrogate

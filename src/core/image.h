@@ -1,0 +1,43 @@
+// surrogate::Image: a decoded photograph, independent of any imaging library.
+//
+// Pixels are 16-bit, interleaved (RGBRGB... or a single grey channel), rows top to bottom,
+// no padding: sample (x, y, c) is pixels[(y * width + x) * channels + c].
+// 8-bit sources are widened by *257 so that 255 -> 65535 exactly; `bitsPerSample` keeps the
+// source depth. `transfer` says how values relate to light: Linear (camera raw decoded with
+// gamma 1) or Srgb (display-encoded JPEG/TIFF/PNG exports).
+// Public headers of other folders use this type, never cv::Mat (see STYLE.md).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace surrogate {
+
+enum class Transfer { Linear, Srgb };
+
+struct Image {
+  int width = 0;
+  int height = 0;
+  int channels = 0;         // 1 or 3
+  int bitsPerSample = 16;   // depth of the source: 8 or 16
+  Transfer transfer = Transfer::Srgb;
+  std::vector<std::uint16_t> pixels;
+
+  Image() = default;
+  Image(int w, int h, int c) : width(w), height(h), channels(c),
+        pixels(static_cast<std::size_t>(w) * h * c, 0) {}
+
+  bool empty() const { return pixels.empty(); }
+  std::size_t index(int x, int y, int c = 0) const {
+    return (static_cast<std::size_t>(y) * width + x) * channels + c;
+  }
+  std::uint16_t at(int x, int y, int c = 0) const { return pixels[index(x, y, c)]; }
+  std::uint16_t& at(int x, int y, int c = 0) { return pixels[index(x, y, c)]; }
+};
+
+// Rec. 709 luminance of an RGB image (or a copy of a grey one), same 16-bit encoding,
+// rounded to nearest. Deterministic: integer arithmetic only.
+Image luminance(const Image& rgb);
+
+}  // namespace surrogate

@@ -1,0 +1,55 @@
+// ImageStack: read access to the N same-sized photographs of a capture by row bands.
+//
+// Sphere detection (per-pixel median) and fitting (per-pixel least squares) need every image's
+// value at a pixel, but never all N full images at once: they stream over bands of rows.
+//
+//   for (int y0 = 0; y0 < stack.height(); y0 += band) {
+//     int y1 = std::min(stack.height(), y0 + band);
+//     for (int i = 0; i < stack.size(); ++i) stack.readRows(i, y0, y1, buffer[i].data());
+//     ... per-pixel work on the band ...
+//   }
+//
+// Implementations: MemoryImageStack (tests, small captures) and the pipeline's decoded stack
+// (images decoded once and spilled to a temporary file). readRows must be safe to call from
+// several threads at once.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/image.h"
+
+namespace surrogate {
+
+class ImageStack {
+ public:
+  virtual ~ImageStack() = default;
+  virtual int size() const = 0;      // number of images
+  virtual int width() const = 0;
+  virtual int height() const = 0;
+  virtual int channels() const = 0;  // 1 (luminance) or 3 (RGB)
+  virtual Transfer transfer() const = 0;
+  // Copies rows [y0, y1) of image `index` into `out`, interleaved like Image::pixels:
+  // (y1 - y0) * width() * channels() samples.
+  virtual void readRows(int index, int y0, int y1, std::uint16_t* out) const = 0;
+};
+
+// An ImageStack over images held in memory. All images must have the same size and channels.
+class MemoryImageStack : public ImageStack {
+ public:
+  explicit MemoryImageStack(std::vector<Image> images);
+  int size() const override { return static_cast<int>(images_.size()); }
+  int width() const override { return images_.empty() ? 0 : images_[0].width; }
+  int height() const override { return images_.empty() ? 0 : images_[0].height; }
+  int channels() const override { return images_.empty() ? 0 : images_[0].channels; }
+  Transfer transfer() const override {
+    return images_.empty() ? Transfer::Srgb : images_[0].transfer;
+  }
+  void readRows(int index, int y0, int y1, std::uint16_t* out) const override;
+  const Image& image(int index) const { return images_[index]; }
+
+ private:
+  std::vector<Image> images_;
+};
+
+}  // namespace surrogate
