@@ -1,0 +1,62 @@
+// Message digests of files and streams (OpenSSL EVP), computed in one pass.
+//
+// Fixity is the first promise of an archival package: every file is recorded with its
+// SHA-256 (carrier, manifests) and SHA-512 (manifests). A file is read once and both digests
+// are fed from the same buffer.
+//
+//   MultiDigest d({DigestAlgorithm::Sha256, DigestAlgorithm::Sha512});
+//   d.update(buffer, n);  ...
+//   std::string hex256 = d.hex(DigestAlgorithm::Sha256);
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace surrogate::archive {
+
+enum class DigestAlgorithm { Sha256, Sha512 };
+
+// The BagIt name of an algorithm: "sha256", "sha512".
+const char* bagitName(DigestAlgorithm algorithm);
+
+class MultiDigest {
+ public:
+  explicit MultiDigest(std::vector<DigestAlgorithm> algorithms);
+  ~MultiDigest();
+  MultiDigest(MultiDigest&&) noexcept;
+  MultiDigest& operator=(MultiDigest&&) noexcept;
+  MultiDigest(const MultiDigest&) = delete;
+  MultiDigest& operator=(const MultiDigest&) = delete;
+
+  void update(const void* data, std::size_t size);
+  // Finishes (once) and returns the lower-case hex digest of `algorithm`, which must be one
+  // of those given to the constructor.
+  std::string hex(DigestAlgorithm algorithm);
+  std::uint64_t bytes() const { return bytes_; }
+
+ private:
+  struct State;
+  std::vector<std::unique_ptr<State>> states_;
+  std::uint64_t bytes_ = 0;
+};
+
+struct FileDigests {
+  std::uint64_t size = 0;
+  std::string sha256;
+  std::string sha512;  // empty unless asked for
+};
+
+// Reads `path` once and returns its size and digests. Throws Error(Input) naming the file if
+// it cannot be read.
+FileDigests digestFile(const std::filesystem::path& path, bool withSha512 = false);
+
+// SHA-256 of a byte string, hex.
+std::string sha256Hex(const std::string& bytes);
+
+std::string opensslVersion();
+
+}  // namespace surrogate::archive

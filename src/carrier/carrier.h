@@ -1,0 +1,176 @@
+// The carrier: the provenance document of one capture (schema: xsd/carrier.xsd).
+//
+// One XML document in five sections (header, files, process, data, log), after RTIBuilder's
+// XMLcarrier. It is both the record a scholar audits and the way pipeline stages talk to each
+// other: a stage reads its parameters and interventions from its `Step`, reads the results of
+// earlier steps from `data`, and appends its own `Result` and log entries.
+//
+//   Carrier c = newCarrier("Stela 12", {{"A. Photographer", "photographer"}});
+//   c.files.push_back(...);
+//   Step& s = c.addStep("SphereDetection", "1");
+//   s.setParam("minRadius", "20");
+//   saveCarrier(c, "assembly-files/carrier.xml");   // validated against the XSD, atomic
+//   Carrier again = loadCarrier("assembly-files/carrier.xml");
+//
+// Numbers are written with formatNumber() (17 significant digits), so a value read back is the
+// same double and re-execution can compare results exactly.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace surrogate::carrier {
+
+// The carrier's XML namespace and format version.
+inline constexpr const char* kNamespace = "urn:surrogate:carrier:1";
+inline constexpr const char* kFormatVersion = "1.0";
+
+using Attributes = std::vector<std::pair<std::string, std::string>>;
+
+// Round-trip exact text of a double ("%.17g", with "inf"/"nan" never produced: callers must
+// not record non-finite numbers).
+std::string formatNumber(double value);
+// UTC now as xs:dateTime ("2026-11-24T15:04:05Z").
+std::string timestampNow();
+
+struct Creator {
+  std::string name;
+  std::string role = "creator";
+};
+
+struct Machine {
+  std::string hostname, os, architecture, cpu;
+  int cores = 0;
+  std::uint64_t memoryBytes = 0;
+};
+// Reads the machine this process runs on (uname, /proc/cpuinfo, /proc/meminfo).
+Machine currentMachine();
+
+struct Software {
+  std::string name, version, role;
+};
+
+struct Header {
+  std::string title;
+  std::vector<Creator> creators;
+  std::string created, modified;  // xs:dateTime
+  std::vector<std::pair<std::string, std::string>> meta;  // user metadata, in given order
+  Machine machine;
+  std::vector<Software> software;
+};
+
+struct FileRecord {
+  std::string id;    // f1, f2, ...
+  std::string path;  // relative to the capture folder, '/' separated
+  std::string role;  // original, export, lp, sidecar, assembly, result
+  std::uint64_t size = 0;
+  std::string sha256;
+  std::string format;     // e.g. "DNG", "JPEG", "PTM_FORMAT_LRGB"
+  std::string mediaType;  // optional
+  std::string puid;       // optional PRONOM identifier
+  std::string createdBy;  // optional: step id
+  std::string pairedWith; // optional: file id of the other file of the same shot
+  bool unrecordedProcessing = false;
+  std::optional<std::pair<int, int>> imageSize;  // width, height
+  Attributes camera;      // attributes of <camera>, empty when none
+  std::string xmp;        // the XMP packet, verbatim; empty when none
+};
+
+struct Param {
+  std::string name, value;
+};
+
+struct Intervention {
+  std::string kind;    // exclude-image, manual-sphere, manual-highlight
+  std::string target;  // file path, sphere index, "path:sphere"
+  std::string value;   // optional: the value chosen by hand
+  std::string who, time, reason;
+};
+
+struct Step {
+  std::string id;         // s1, s2, ...
+  std::string component;  // registered stage name
+  std::string version;
+  std::string algorithm;  // optional
+  std::string description;
+  std::vector<Param> params;
+  std::vector<Intervention> interventions;
+
+  // The value of a parameter, or `fallback` when absent.
+  std::string param(const std::string& name, const std::string& fallback = "") const;
+  bool hasParam(const std::string& name) const;
+  void setParam(const std::string& name, const std::string& value);
+  std::vector<const Intervention*> interventionsOfKind(const std::string& kind) const;
+};
+
+// One element inside a <result>: `element` is its name in the schema (input, output, value,
+// decoded, sphere, highlight, light, lightPosition, imageValue), attributes in order.
+struct DataItem {
+  std::string element;
+  Attributes attributes;
+
+  DataItem& set(const std::string& name, const std::string& value);
+  DataItem& set(const std::string& name, double value);
+  DataItem& set(const std::string& name, int value);
+  std::optional<std::string> get(const std::string& name) const;
+  // The attribute as a number; throws Error(Input) naming the attribute if absent or not one.
+  double number(const std::string& name) const;
+};
+
+struct Result {
+  std::string step;
+  std::string status = "completed";  // completed, failed
+  std::string started, ended;
+  double seconds = 0;
+  std::vector<DataItem> items;
+
+  DataItem& add(const std::string& element);
+  std::vector<const DataItem*> itemsOf(const std::string& element) const;
+};
+
+struct LogEntry {
+  std::string time, level, step, who, text;
+};
+
+struct Carrier {
+  Header header;
+  std::vector<FileRecord> files;
+  std::vector<Step> process;
+  std::vector<Result> data;
+  std::vector<LogEntry> log;
+
+  const FileRecord* findFile(const std::string& id) const;
+  const FileRecord* findFileByPath(const std::string& path) const;
+  // Adds or replaces (same path) a file record and returns its id.
+  std::string putFile(FileRecord record);
+  Step& addStep(const std::string& component, const std::string& version);
+  Step* findStep(const std::string& id);
+  const Step* findStep(const std::string& id) const;
+  const Result* findResult(const std::string& stepId) const;
+  // Removes the result of a step (before running it again), keeping the others.
+  void clearResult(const std::string& stepId);
+  void addLog(const std::string& level, const std::string& step, const std::string& text,
+              const std::string& who = "");
+};
+
+// A new carrier with the header filled in: title, creators, timestamps, this machine, and
+// Surrogate's own version. Library versions are added by the caller (software list).
+Carrier newCarrier(const std::string& title, const std::vector<Creator>& creators);
+
+// XML text of the carrier (UTF-8, indented, deterministic for the same content).
+std::string toXml(const Carrier& carrier);
+// Parses and validates carrier XML; `source` names the file in errors.
+Carrier parseCarrier(const std::string& xml, const std::string& source);
+
+// Serialises, validates against xsd/carrier.xsd (a failure is a bug: Error(Internal)) and
+// writes atomically.
+void saveCarrier(const Carrier& carrier, const std::filesystem::path& path);
+// Reads and validates a carrier file; an invalid one gives Error(Input) with the schema's
+// complaint and line number.
+Carrier loadCarrier(const std::filesystem::path& path);
+
+}  // namespace surrogate::carrier

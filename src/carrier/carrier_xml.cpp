@@ -1,0 +1,320 @@
+// Serialising the carrier model to XML and back (libxml2 tree API).
+#include <libxml/parser.h>
+#include <libxml/tree.h>
+
+#include <cstring>
+#include <memory>
+
+#include "carrier/carrier.h"
+#include "carrier/xml.h"
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "core/resources.h"
+
+namespace surrogate::carrier {
+
+namespace {
+
+const xmlChar* X(const char* s) { return reinterpret_cast<const xmlChar*>(s); }
+const xmlChar* X(const std::string& s) { return X(s.c_str()); }
+
+struct DocDeleter {
+  void operator()(xmlDoc* d) const { xmlFreeDoc(d); }
+};
+using DocPtr = std::unique_ptr<xmlDoc, DocDeleter>;
+
+// ---- writing ----------------------------------------------------------------------------
+
+xmlNodePtr child(xmlNodePtr parent, const char* name) {
+  return xmlNewChild(parent, parent->ns, X(name), nullptr);
+}
+
+xmlNodePtr textChild(xmlNodePtr parent, const char* name, const std::string& text) {
+  // xmlNewTextChild escapes the text (xmlNewChild would not).
+  return xmlNewTextChild(parent, parent->ns, X(name), X(text));
+}
+
+void attr(xmlNodePtr node, const char* name, const std::string& value) {
+  xmlNewProp(node, X(name), X(value));
+}
+
+void optionalAttr(xmlNodePtr node, const char* name, const std::string& value) {
+  if (!value.empty()) attr(node, name, value);
+}
+
+void writeHeader(xmlNodePtr root, const Header& h) {
+  xmlNodePtr header = child(root, "header");
+  textChild(header, "title", h.title);
+  for (const Creator& c : h.creators) {
+    xmlNodePtr n = textChild(header, "creator", c.name);
+    attr(n, "role", c.role);
+  }
+  textChild(header, "created", h.created);
+  textChild(header, "modified", h.modified);
+  for (const auto& [key, value] : h.meta) attr(textChild(header, "meta", value), "key", key);
+  xmlNodePtr m = child(header, "machine");
+  attr(m, "hostname", h.machine.hostname);
+  attr(m, "os", h.machine.os);
+  attr(m, "architecture", h.machine.architecture);
+  optionalAttr(m, "cpu", h.machine.cpu);
+  if (h.machine.cores > 0) attr(m, "cores", std::to_string(h.machine.cores));
+  if (h.machine.memoryBytes > 0) attr(m, "memoryBytes", std::to_string(h.machine.memoryBytes));
+  for (const Software& s : h.software) {
+    xmlNodePtr n = child(header, "software");
+    attr(n, "name", s.name);
+    attr(n, "version", s.version);
+    optionalAttr(n, "role", s.role);
+  }
+}
+
+void writeFiles(xmlNodePtr root, const std::vector<FileRecord>& files) {
+  xmlNodePtr list = child(root, "files");
+  for (const FileRecord& f : files) {
+    xmlNodePtr n = child(list, "file");
+    attr(n, "id", f.id);
+    attr(n, "path", f.path);
+    attr(n, "role", f.role);
+    attr(n, "size", std::to_string(f.size));
+    attr(n, "sha256", f.sha256);
+    attr(n, "format", f.format);
+    optionalAttr(n, "mediaType", f.mediaType);
+    optionalAttr(n, "puid", f.puid);
+    optionalAttr(n, "createdBy", f.createdBy);
+    optionalAttr(n, "pairedWith", f.pairedWith);
+    if (f.unrecordedProcessing) attr(n, "unrecordedProcessing", "true");
+    if (f.imageSize) {
+      xmlNodePtr im = child(n, "image");
+      attr(im, "width", std::to_string(f.imageSize->first));
+      attr(im, "height", std::to_string(f.imageSize->second));
+    }
+    if (!f.camera.empty()) {
+      xmlNodePtr cam = child(n, "camera");
+      for (const auto& [k, v] : f.camera) attr(cam, k.c_str(), v);
+    }
+    if (!f.xmp.empty()) textChild(n, "xmp", f.xmp);
+  }
+}
+
+void writeProcess(xmlNodePtr root, const std::vector<Step>& steps) {
+  xmlNodePtr list = child(root, "process");
+  for (const Step& s : steps) {
+    xmlNodePtr n = child(list, "step");
+    attr(n, "id", s.id);
+    attr(n, "component", s.component);
+    attr(n, "version", s.version);
+    optionalAttr(n, "algorithm", s.algorithm);
+    if (!s.description.empty()) textChild(n, "description", s.description);
+    for (const Param& p : s.params) {
+      xmlNodePtr pn = child(n, "param");
+      attr(pn, "name", p.name);
+      attr(pn, "value", p.value);
+    }
+    for (const Intervention& i : s.interventions) {
+      xmlNodePtr in = textChild(n, "intervention", i.reason);
+      attr(in, "kind", i.kind);
+      attr(in, "target", i.target);
+      optionalAttr(in, "value", i.value);
+      attr(in, "who", i.who);
+      attr(in, "time", i.time);
+    }
+  }
+}
+
+void writeData(xmlNodePtr root, const std::vector<Result>& results) {
+  xmlNodePtr list = child(root, "data");
+  for (const Result& r : results) {
+    xmlNodePtr n = child(list, "result");
+    attr(n, "step", r.step);
+    attr(n, "status", r.status);
+    attr(n, "started", r.started);
+    attr(n, "ended", r.ended);
+    attr(n, "seconds", formatNumber(r.seconds));
+    for (const DataItem& item : r.items) {
+      xmlNodePtr in = child(n, item.element.c_str());
+      for (const auto& [k, v] : item.attributes) attr(in, k.c_str(), v);
+    }
+  }
+}
+
+void writeLog(xmlNodePtr root, const std::vector<LogEntry>& log) {
+  xmlNodePtr list = child(root, "log");
+  for (const LogEntry& e : log) {
+    xmlNodePtr n = textChild(list, "entry", e.text);
+    attr(n, "time", e.time);
+    attr(n, "level", e.level);
+    optionalAttr(n, "step", e.step);
+    optionalAttr(n, "who", e.who);
+  }
+}
+
+// ---- reading ----------------------------------------------------------------------------
+
+std::string prop(xmlNodePtr n, const char* name) {
+  xmlChar* v = xmlGetProp(n, X(name));
+  if (!v) return "";
+  std::string s(reinterpret_cast<const char*>(v));
+  xmlFree(v);
+  return s;
+}
+
+std::string text(xmlNodePtr n) {
+  xmlChar* v = xmlNodeGetContent(n);
+  if (!v) return "";
+  std::string s(reinterpret_cast<const char*>(v));
+  xmlFree(v);
+  return s;
+}
+
+bool is(xmlNodePtr n, const char* name) {
+  return n->type == XML_ELEMENT_NODE && std::strcmp(reinterpret_cast<const char*>(n->name), name) == 0;
+}
+
+template <typename F>
+void forChildren(xmlNodePtr parent, F f) {
+  for (xmlNodePtr c = parent->children; c; c = c->next)
+    if (c->type == XML_ELEMENT_NODE) f(c);
+}
+
+Attributes allProps(xmlNodePtr n) {
+  Attributes out;
+  for (xmlAttrPtr a = n->properties; a; a = a->next) {
+    const char* name = reinterpret_cast<const char*>(a->name);
+    out.emplace_back(name, prop(n, name));
+  }
+  return out;
+}
+
+Header readHeader(xmlNodePtr node) {
+  Header h;
+  forChildren(node, [&](xmlNodePtr c) {
+    if (is(c, "title")) h.title = text(c);
+    else if (is(c, "creator")) h.creators.push_back({text(c), prop(c, "role")});
+    else if (is(c, "created")) h.created = text(c);
+    else if (is(c, "modified")) h.modified = text(c);
+    else if (is(c, "meta")) h.meta.emplace_back(prop(c, "key"), text(c));
+    else if (is(c, "machine")) {
+      h.machine.hostname = prop(c, "hostname");
+      h.machine.os = prop(c, "os");
+      h.machine.architecture = prop(c, "architecture");
+      h.machine.cpu = prop(c, "cpu");
+      const std::string cores = prop(c, "cores"), mem = prop(c, "memoryBytes");
+      if (!cores.empty()) h.machine.cores = std::stoi(cores);
+      if (!mem.empty()) h.machine.memoryBytes = std::stoull(mem);
+    } else if (is(c, "software")) {
+      h.software.push_back({prop(c, "name"), prop(c, "version"), prop(c, "role")});
+    }
+  });
+  return h;
+}
+
+FileRecord readFileRecord(xmlNodePtr n) {
+  FileRecord f;
+  f.id = prop(n, "id");
+  f.path = prop(n, "path");
+  f.role = prop(n, "role");
+  f.size = std::stoull(prop(n, "size"));
+  f.sha256 = prop(n, "sha256");
+  f.format = prop(n, "format");
+  f.mediaType = prop(n, "mediaType");
+  f.puid = prop(n, "puid");
+  f.createdBy = prop(n, "createdBy");
+  f.pairedWith = prop(n, "pairedWith");
+  const std::string unrecorded = prop(n, "unrecordedProcessing");
+  f.unrecordedProcessing = unrecorded == "true" || unrecorded == "1";
+  forChildren(n, [&](xmlNodePtr c) {
+    if (is(c, "image")) f.imageSize = {std::stoi(prop(c, "width")), std::stoi(prop(c, "height"))};
+    else if (is(c, "camera")) f.camera = allProps(c);
+    else if (is(c, "xmp")) f.xmp = text(c);
+  });
+  return f;
+}
+
+Step readStep(xmlNodePtr n) {
+  Step s;
+  s.id = prop(n, "id");
+  s.component = prop(n, "component");
+  s.version = prop(n, "version");
+  s.algorithm = prop(n, "algorithm");
+  forChildren(n, [&](xmlNodePtr c) {
+    if (is(c, "description")) s.description = text(c);
+    else if (is(c, "param")) s.params.push_back({prop(c, "name"), prop(c, "value")});
+    else if (is(c, "intervention"))
+      s.interventions.push_back({prop(c, "kind"), prop(c, "target"), prop(c, "value"),
+                                 prop(c, "who"), prop(c, "time"), text(c)});
+  });
+  return s;
+}
+
+Result readResult(xmlNodePtr n) {
+  Result r;
+  r.step = prop(n, "step");
+  r.status = prop(n, "status");
+  r.started = prop(n, "started");
+  r.ended = prop(n, "ended");
+  const std::string seconds = prop(n, "seconds");
+  r.seconds = seconds.empty() ? 0 : std::stod(seconds);
+  forChildren(n, [&](xmlNodePtr c) {
+    r.items.push_back(DataItem{reinterpret_cast<const char*>(c->name), allProps(c)});
+  });
+  return r;
+}
+
+}  // namespace
+
+std::string toXml(const Carrier& carrier) {
+  DocPtr doc(xmlNewDoc(X("1.0")));
+  xmlNodePtr root = xmlNewDocNode(doc.get(), nullptr, X("carrier"), nullptr);
+  xmlDocSetRootElement(doc.get(), root);
+  xmlNsPtr ns = xmlNewNs(root, X(kNamespace), nullptr);
+  xmlSetNs(root, ns);
+  attr(root, "version", kFormatVersion);
+  writeHeader(root, carrier.header);
+  writeFiles(root, carrier.files);
+  writeProcess(root, carrier.process);
+  writeData(root, carrier.data);
+  writeLog(root, carrier.log);
+  xmlChar* buffer = nullptr;
+  int size = 0;
+  xmlDocDumpFormatMemoryEnc(doc.get(), &buffer, &size, "UTF-8", 1);
+  std::string out(reinterpret_cast<const char*>(buffer), static_cast<std::size_t>(size));
+  xmlFree(buffer);
+  return out;
+}
+
+Carrier parseCarrier(const std::string& xmlText, const std::string& source) {
+  xml::validateAgainstSchema(xmlText, source, resourcePath("xsd/carrier.xsd"));
+  DocPtr doc(xmlReadMemory(xmlText.data(), static_cast<int>(xmlText.size()), source.c_str(),
+                           nullptr, XML_PARSE_NONET | XML_PARSE_NOWARNING | XML_PARSE_NOERROR));
+  if (!doc) throwInputError(source, "carrier", "is not well-formed XML");
+  Carrier c;
+  forChildren(xmlDocGetRootElement(doc.get()), [&](xmlNodePtr section) {
+    if (is(section, "header")) c.header = readHeader(section);
+    else if (is(section, "files")) forChildren(section, [&](xmlNodePtr n) { c.files.push_back(readFileRecord(n)); });
+    else if (is(section, "process")) forChildren(section, [&](xmlNodePtr n) { c.process.push_back(readStep(n)); });
+    else if (is(section, "data")) forChildren(section, [&](xmlNodePtr n) { c.data.push_back(readResult(n)); });
+    else if (is(section, "log"))
+      forChildren(section, [&](xmlNodePtr n) {
+        c.log.push_back({prop(n, "time"), prop(n, "level"), prop(n, "step"), prop(n, "who"), text(n)});
+      });
+  });
+  return c;
+}
+
+void saveCarrier(const Carrier& carrier, const std::filesystem::path& path) {
+  const std::string text = toXml(carrier);
+  try {
+    xml::validateAgainstSchema(text, path.string(), resourcePath("xsd/carrier.xsd"));
+  } catch (const Error& e) {
+    // The program built this document: an invalid one is a bug, not the user's fault.
+    throw Error(ErrorKind::Internal, path.string(), "carrier",
+                "Surrogate produced a carrier that does not validate; please report this bug: " +
+                    e.message());
+  }
+  writeFileAtomically(path, text);
+}
+
+Carrier loadCarrier(const std::filesystem::path& path) {
+  return parseCarrier(readFile(path, "carrier"), path.string());
+}
+
+}  // namespace surrogate::carrier

@@ -1,0 +1,112 @@
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+
+#include "carrier/carrier.h"
+#include "core/atomic_file.h"
+#include "core/error.h"
+
+using namespace surrogate;
+using namespace surrogate::carrier;
+namespace fs = std::filesystem;
+
+namespace {
+Carrier sampleCarrier() {
+  Carrier c = newCarrier("Stela <12> & \"friends\"", {{"A. Photographer", "photographer"}});
+  c.header.meta.emplace_back("Source-Organization", "Museu D. Diogo de Sousa");
+  c.header.software.push_back({"LibRaw", "0.20.2", "decoder"});
+  FileRecord f;
+  f.path = "original-captures/IMG_0001.dng";
+  f.role = "original";
+  f.size = 1234;
+  f.sha256 = std::string(64, 'a');
+  f.format = "DNG";
+  f.imageSize = std::make_pair(1200, 800);
+  f.camera = {{"make", "Surrogate"}, {"model", "Synthetic HRTI"}, {"iso", "100"}};
+  f.xmp = "<?xpacket begin='' id='W5M0MpCehiHzreSzNTczkc9d'?><x:xmpmeta xmlns:x='adobe:ns:meta/'/>";
+  const std::string id = c.putFile(f);
+  Step& s = c.addStep("SphereDetection", "1");
+  s.setParam("minRadius", "20");
+  s.interventions.push_back({"manual-sphere", "0", "512.5,300,80", "tester", timestampNow(),
+                             "the automatic detection picked the lens cap"});
+  Result r;
+  r.step = s.id;
+  r.started = r.ended = timestampNow();
+  r.add("sphere").set("index", 0).set("cx", 512.5).set("cy", 1.0 / 3.0).set("r", 80.0)
+      .set("source", "manual");
+  r.add("input").set("file", id);
+  c.data.push_back(r);
+  c.addLog("intervention", s.id, "sphere set by hand", "tester");
+  return c;
+}
+}  // namespace
+
+TEST_CASE("a carrier round-trips through XML with numbers exact and text escaped") {
+  const Carrier c = sampleCarrier();
+  const std::string text = toXml(c);
+  const Carrier back = parseCarrier(text, "memory");
+  CHECK(back.header.title == c.header.title);
+  CHECK(back.header.meta == c.header.meta);
+  REQUIRE(back.files.size() == 1);
+  CHECK(back.files[0].id == "f1");
+  CHECK(back.files[0].camera == c.files[0].camera);
+  CHECK(back.files[0].xmp == c.files[0].xmp);
+  CHECK(back.files[0].imageSize == c.files[0].imageSize);
+  REQUIRE(back.process.size() == 1);
+  CHECK(back.process[0].param("minRadius") == "20");
+  REQUIRE(back.process[0].interventions.size() == 1);
+  CHECK(back.process[0].interventions[0].reason == "the automatic detection picked the lens cap");
+  const Result* r = back.findResult("s1");
+  REQUIRE(r != nullptr);
+  CHECK(r->itemsOf("sphere")[0]->number("cy") == 1.0 / 3.0);  // exact, not approximately
+  CHECK(toXml(back) == text);
+}
+
+TEST_CASE("saveCarrier writes a file that loadCarrier validates and reads") {
+  const fs::path dir = fs::temp_directory_path() / "surrogate-test-carrier";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  saveCarrier(sampleCarrier(), dir / "carrier.xml");
+  const Carrier back = loadCarrier(dir / "carrier.xml");
+  CHECK(back.files.size() == 1);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("saving an invalid carrier is refused and leaves no file") {
+  const fs::path dir = fs::temp_directory_path() / "surrogate-test-carrier-invalid";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  Carrier c = sampleCarrier();
+  c.files[0].sha256 = "not-a-hash";
+  CHECK_THROWS_AS(saveCarrier(c, dir / "carrier.xml"), Error);
+  CHECK_FALSE(fs::exists(dir / "carrier.xml"));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a carrier that breaks the schema is rejected with the line number") {
+  std::string text = toXml(sampleCarrier());
+  const auto at = text.find("role=\"original\"");
+  text.replace(at, 15, "role=\"mystery\"");
+  try {
+    parseCarrier(text, "edited.xml");
+    FAIL("accepted an invalid carrier");
+  } catch (const Error& e) {
+    CHECK(e.file() == "edited.xml");
+    CHECK_THAT(e.message(), Catch::Contains("line"));
+    CHECK_THAT(e.message(), Catch::Contains("carrier.xsd"));
+  }
+}
+
+TEST_CASE("putFile gives new ids and replaces a record with the same path") {
+  Carrier c;
+  FileRecord a;
+  a.path = "a.jpg";
+  FileRecord b;
+  b.path = "b.jpg";
+  CHECK(c.putFile(a) == "f1");
+  CHECK(c.putFile(b) == "f2");
+  a.size = 9;
+  CHECK(c.putFile(a) == "f1");
+  CHECK(c.files.size() == 2);
+  CHECK(c.findFileByPath("a.jpg")->size == 9);
+}
