@@ -1,0 +1,262 @@
+#include "capture/capture.h"
+
+#include <algorithm>
+#include <map>
+#include <mutex>
+
+#include "core/error.h"
+#include "core/parallel.h"
+#include "formats/lp.h"
+#include "image/decode.h"
+
+namespace surrogate::capture {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kStep = "capture ingest";
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
+bool isHidden(const fs::path& p) {
+  const std::string name = p.filename().string();
+  return !name.empty() && name[0] == '.';
+}
+
+bool looksLikeImage(const fs::path& p) {
+  static const char* kExtensions[] = {".jpg", ".jpeg", ".tif", ".tiff", ".png"};
+  const std::string ext = lower(p.extension().string());
+  for (const char* e : kExtensions)
+    if (ext == e) return true;
+  return image::isCameraRawExtension(p);
+}
+
+const char* formatName(image::SourceKind kind, const fs::path& p) {
+  switch (kind) {
+    case image::SourceKind::CameraRaw:
+      return lower(p.extension().string()) == ".dng" ? "DNG" : "camera raw";
+    case image::SourceKind::Jpeg: return "JPEG";
+    case image::SourceKind::Tiff: return "TIFF";
+    case image::SourceKind::Png: return "PNG";
+  }
+  return "image";
+}
+
+struct FolderScan {
+  std::vector<fs::path> images;  // absolute
+};
+
+// Lists the image files of one folder, sorted, refusing two files with the same stem.
+FolderScan scanFolder(const fs::path& dir, CaptureLayout& layout) {
+  FolderScan scan;
+  std::map<std::string, fs::path> byStem;
+  std::vector<fs::path> entries;
+  for (const auto& entry : fs::directory_iterator(dir)) entries.push_back(entry.path());
+  std::sort(entries.begin(), entries.end());
+  for (const fs::path& p : entries) {
+    const std::string rel = fs::relative(p, layout.root).generic_string();
+    if (isHidden(p)) continue;
+    if (fs::is_directory(p)) {
+      layout.ignored.push_back(rel + "/");
+      continue;
+    }
+    if (lower(p.extension().string()) == ".xmp") {
+      layout.sidecars.push_back(rel);
+      continue;
+    }
+    if (!fs::is_regular_file(p) || !looksLikeImage(p)) {
+      layout.ignored.push_back(rel);
+      continue;
+    }
+    const std::string stem = p.stem().string();
+    if (auto it = byStem.find(stem); it != byStem.end()) {
+      throwInputError(rel, kStep,
+                      "has the same name as " + fs::relative(it->second, layout.root).generic_string() +
+                          " (file stem \"" + stem + "\"): one shot can have only one file per "
+                          "folder; move the extra file (e.g. a camera's RAW+JPEG twin) out of the "
+                          "capture");
+    }
+    byStem[stem] = p;
+    scan.images.push_back(p);
+  }
+  return scan;
+}
+
+// Reads the header of every image (in parallel) and fills in format and size.
+std::vector<ImageFile> probeAll(const std::vector<fs::path>& files, const fs::path& root,
+                                int threads) {
+  std::vector<ImageFile> out(files.size());
+  parallelFor(files.size(), 1, threads, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) {
+      const image::ImageProbe probe = image::probeImage(files[i]);
+      ImageFile& f = out[i];
+      f.relativePath = fs::relative(files[i], root).generic_string();
+      f.format = formatName(probe.kind, files[i]);
+      f.cameraRaw = probe.kind == image::SourceKind::CameraRaw;
+      f.width = probe.width;
+      f.height = probe.height;
+    }
+  });
+  return out;
+}
+
+void requireSameSize(const std::vector<ImageFile>& set, const std::string& folder) {
+  for (const ImageFile& f : set) {
+    if (f.width != set[0].width || f.height != set[0].height) {
+      throwInputError(f.relativePath, kStep,
+                      "is " + std::to_string(f.width) + "x" + std::to_string(f.height) +
+                          " pixels but " + set[0].relativePath + " is " +
+                          std::to_string(set[0].width) + "x" + std::to_string(set[0].height) +
+                          ": all images in " + folder + "/ must have the same size (the camera "
+                          "must not move or change settings during an RTI capture)");
+    }
+  }
+}
+
+std::string baseName(const std::string& name) {
+  // .lp files often hold Windows paths from RTIBuilder: split on both separators.
+  const auto slash = name.find_last_of("/\\");
+  return slash == std::string::npos ? name : name.substr(slash + 1);
+}
+
+}  // namespace
+
+bool CaptureLayout::hasExports() const {
+  for (const Shot& s : shots)
+    if (s.exported) return true;
+  return false;
+}
+
+std::optional<std::string> findShotStem(const CaptureLayout& layout, const std::string& name) {
+  const std::string base = baseName(name);
+  const std::string stem = fs::path(base).stem().string();
+  for (const Shot& s : layout.shots) {
+    if (s.stem == base || s.stem == stem) return s.stem;
+  }
+  return std::nullopt;
+}
+
+CaptureLayout scanCapture(const fs::path& root, int threads) {
+  if (!fs::exists(root)) throwInputError(root.string(), kStep, "the capture folder does not exist");
+  if (!fs::is_directory(root))
+    throwInputError(root.string(), kStep, "is not a folder; give the capture folder");
+  CaptureLayout layout;
+  layout.root = fs::absolute(root).lexically_normal();
+
+  for (const char* candidate : {"original-captures", "raw-images"}) {
+    if (fs::is_directory(layout.root / candidate)) {
+      if (!layout.originalsDir.empty()) {
+        throwInputError(root.string(), kStep,
+                        "has both original-captures/ and raw-images/; keep the originals in one "
+                        "of them");
+      }
+      layout.originalsDir = candidate;
+    }
+  }
+  const bool exportsDir = fs::is_directory(layout.root / kExportsDir);
+  if (layout.originalsDir.empty() && !exportsDir) {
+    throwInputError(root.string(), kStep,
+                    "has no original-captures/ (or raw-images/) and no jpeg-exports/ folder; put "
+                    "the camera files in original-captures/");
+  }
+
+  std::vector<ImageFile> originals, exports;
+  if (!layout.originalsDir.empty()) {
+    const FolderScan scan = scanFolder(layout.root / layout.originalsDir, layout);
+    if (scan.images.empty())
+      throwInputError((layout.root / layout.originalsDir).string(), kStep,
+                      "contains no images; copy the camera files of the capture into it");
+    originals = probeAll(scan.images, layout.root, threads);
+    requireSameSize(originals, layout.originalsDir);
+  }
+  if (exportsDir) {
+    const FolderScan scan = scanFolder(layout.root / kExportsDir, layout);
+    if (scan.images.empty() && layout.originalsDir.empty())
+      throwInputError((layout.root / kExportsDir).string(), kStep, "contains no images");
+    exports = probeAll(scan.images, layout.root, threads);
+    if (!exports.empty()) requireSameSize(exports, kExportsDir);
+  }
+
+  std::map<std::string, Shot> shots;
+  for (ImageFile& f : originals) {
+    const std::string stem = fs::path(f.relativePath).stem().string();
+    shots[stem].stem = stem;
+    shots[stem].original = std::move(f);
+  }
+  for (ImageFile& f : exports) {
+    const std::string stem = fs::path(f.relativePath).stem().string();
+    shots[stem].stem = stem;
+    shots[stem].exported = std::move(f);
+  }
+  for (auto& [stem, shot] : shots) layout.shots.push_back(std::move(shot));
+
+  std::vector<fs::path> lps;
+  for (const auto& entry : fs::directory_iterator(layout.root)) {
+    if (entry.is_regular_file() && lower(entry.path().extension().string()) == ".lp")
+      lps.push_back(entry.path());
+  }
+  std::sort(lps.begin(), lps.end());
+  if (lps.size() > 1) {
+    throwInputError(root.string(), kStep,
+                    "has several .lp files (" + lps[0].filename().string() + ", " +
+                        lps[1].filename().string() + "); keep only the one that belongs to this "
+                        "capture");
+  }
+  if (lps.size() == 1) {
+    layout.lp = fs::relative(lps[0], layout.root).generic_string();
+    for (const formats::LightEntry& e : formats::readLp(lps[0])) {
+      if (!findShotStem(layout, e.filename)) {
+        throwInputError(lps[0].string(), kStep,
+                        "names the image \"" + e.filename + "\", which is not in the capture; "
+                        "fix the .lp file or add the missing image");
+      }
+    }
+  }
+  return layout;
+}
+
+Source parseSource(const std::string& text) {
+  if (text == "auto") return Source::Auto;
+  if (text == "original" || text == "raw") return Source::Original;
+  if (text == "export" || text == "jpeg") return Source::Export;
+  throw Error(ErrorKind::Usage, "--source", "options",
+              "unknown image source \"" + text + "\"; use auto, original or export");
+}
+
+const char* sourceName(Source source) {
+  switch (source) {
+    case Source::Auto: return "auto";
+    case Source::Original: return "original";
+    case Source::Export: return "export";
+  }
+  return "auto";
+}
+
+std::vector<ImageFile> selectImages(const CaptureLayout& layout, Source source) {
+  if (source == Source::Auto) {
+    const bool allOriginals = std::all_of(layout.shots.begin(), layout.shots.end(),
+                                          [](const Shot& s) { return s.original.has_value(); });
+    source = allOriginals ? Source::Original : Source::Export;
+  }
+  std::vector<ImageFile> out;
+  for (const Shot& s : layout.shots) {
+    const auto& chosen = source == Source::Original ? s.original : s.exported;
+    if (!chosen) {
+      const auto& other = source == Source::Original ? s.exported : s.original;
+      throwInputError(other ? other->relativePath : s.stem, kStep,
+                      std::string("has no ") +
+                          (source == Source::Original ? "original in " + layout.originalsDir + "/"
+                                                      : std::string("export in jpeg-exports/")) +
+                          " with the same name; every shot needs one, or choose the other "
+                          "source with --source");
+    }
+    out.push_back(*chosen);
+  }
+  return out;
+}
+
+}  // namespace surrogate::capture

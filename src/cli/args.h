@@ -1,0 +1,54 @@
+// A small command-line parser: positional arguments and --options, each option declared with
+// whether it takes a value and whether it may repeat. Unknown or malformed options are usage
+// errors (exit code 2) that name the option.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace surrogate::cli {
+
+struct OptionSpec {
+  std::string name;  // without the leading "--"
+  bool takesValue = true;
+  bool repeatable = false;
+  std::string help;  // one line, for --help
+  std::string valueName = "VALUE";
+};
+
+class Args {
+ public:
+  // Parses argv[first..argc) against `specs`. `--help` is always accepted.
+  Args(int argc, char** argv, int first, std::vector<OptionSpec> specs);
+
+  bool helpRequested() const { return help_; }
+  const std::vector<std::string>& positional() const { return positional_; }
+  bool has(const std::string& name) const;
+  std::optional<std::string> value(const std::string& name) const;
+  std::string value(const std::string& name, const std::string& fallback) const;
+  std::vector<std::string> values(const std::string& name) const;
+  // Options in the order given, for options whose meaning depends on order (--exclude X
+  // --reason Y).
+  const std::vector<std::pair<std::string, std::string>>& ordered() const { return ordered_; }
+  int intValue(const std::string& name, int fallback) const;
+  double doubleValue(const std::string& name, double fallback) const;
+
+  // The options block of a command's --help.
+  static std::string describe(const std::vector<OptionSpec>& specs);
+
+ private:
+  bool help_ = false;
+  std::vector<std::string> positional_;
+  std::vector<std::pair<std::string, std::string>> ordered_;
+  std::map<std::string, std::vector<std::string>> values_;
+};
+
+// Parses "1.5G", "512M", "2048" (bytes) for --memory.
+std::size_t parseByteSize(const std::string& text, const std::string& option);
+// Parses "a,b,c" numbers for --light x,y,z, --sphere cx,cy,r, --sphere-roi x,y,w,h.
+std::vector<double> parseNumberList(const std::string& text, std::size_t count,
+                                    const std::string& option);
+
+}  // namespace surrogate::cli

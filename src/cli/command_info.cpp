@@ -1,0 +1,151 @@
+// surrogate info FILE: what a carrier, capture folder, image, .ptm, .rti or .lp holds.
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+
+#include "capture/capture.h"
+#include "carrier/carrier.h"
+#include "cli/args.h"
+#include "cli/commands.h"
+#include "core/error.h"
+#include "core/json.h"
+#include "image/decode.h"
+#include "meta/metadata.h"
+#include "formats/summary.h"
+
+namespace surrogate::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+void printCarrier(const fs::path& path, bool json) {
+  const carrier::Carrier c = carrier::loadCarrier(path);
+  int images = 0;
+  for (const carrier::FileRecord& f : c.files) images += f.imageSize.has_value();
+  if (json) {
+    JsonWriter j;
+    j.beginObject().key("kind").value("carrier").key("title").value(c.header.title)
+        .key("created").value(c.header.created).key("files").value(static_cast<int>(c.files.size()))
+        .key("images").value(images).key("steps").beginArray();
+    for (const carrier::Step& s : c.process) {
+      const carrier::Result* r = c.findResult(s.id);
+      j.beginObject().key("id").value(s.id).key("component").value(s.component)
+          .key("version").value(s.version).key("status").value(r ? r->status : "not run")
+          .key("interventions").value(static_cast<int>(s.interventions.size())).endObject();
+    }
+    j.endArray().endObject();
+    std::cout << j.str() << "\n";
+    return;
+  }
+  std::cout << path.string() << ": Surrogate carrier\n"
+            << "  title:   " << c.header.title << "\n"
+            << "  created: " << c.header.created << " on " << c.header.machine.hostname << "\n";
+  for (const carrier::Creator& cr : c.header.creators)
+    std::cout << "  " << cr.role << ": " << cr.name << "\n";
+  std::cout << "  files:   " << c.files.size() << " (" << images << " images)\n  steps:\n";
+  for (const carrier::Step& s : c.process) {
+    const carrier::Result* r = c.findResult(s.id);
+    std::cout << "    " << s.id << " " << s.component << " v" << s.version << ": "
+              << (r ? r->status : "not run");
+    if (!s.interventions.empty()) std::cout << ", " << s.interventions.size() << " intervention(s)";
+    std::cout << "\n";
+  }
+}
+
+void printCapture(const fs::path& path, bool json) {
+  const capture::CaptureLayout layout = capture::scanCapture(path, 0);
+  int originals = 0, exports = 0;
+  for (const capture::Shot& s : layout.shots) {
+    originals += s.original.has_value();
+    exports += s.exported.has_value();
+  }
+  const capture::Shot& first = layout.shots.front();
+  const capture::ImageFile& sample = first.original ? *first.original : *first.exported;
+  if (json) {
+    JsonWriter j;
+    j.beginObject().key("kind").value("capture").key("shots").value(static_cast<int>(layout.shots.size()))
+        .key("originals").value(originals).key("exports").value(exports)
+        .key("width").value(sample.width).key("height").value(sample.height)
+        .key("lp").value(layout.lp.value_or("")).endObject();
+    std::cout << j.str() << "\n";
+    return;
+  }
+  std::cout << path.string() << ": capture folder\n"
+            << "  shots:     " << layout.shots.size() << " (" << originals << " originals in "
+            << (layout.originalsDir.empty() ? "-" : layout.originalsDir + "/") << ", " << exports
+            << " exports)\n"
+            << "  image:     " << sample.width << "x" << sample.height << " " << sample.format << "\n"
+            << "  lights:    " << (layout.lp ? "given by " + *layout.lp : "to be detected from the spheres")
+            << "\n";
+}
+
+void printImage(const fs::path& path, bool json) {
+  const image::ImageProbe probe = image::probeImage(path);
+  const meta::CameraMetadata m = meta::readMetadata(path);
+  auto opt = [](const auto& v) {
+    std::ostringstream s;
+    if (v) s << *v;
+    return s.str();
+  };
+  if (json) {
+    JsonWriter j;
+    j.beginObject().key("kind").value("image").key("width").value(probe.width)
+        .key("height").value(probe.height).key("make").value(opt(m.make))
+        .key("model").value(opt(m.model)).key("serial").value(opt(m.bodySerial))
+        .key("lens").value(opt(m.lens)).key("exposureTime").value(opt(m.exposureTime))
+        .key("iso").value(opt(m.iso)).key("dateTimeOriginal").value(opt(m.dateTimeOriginal))
+        .key("xmp").value(!m.xmpPacket.empty()).endObject();
+    std::cout << j.str() << "\n";
+    return;
+  }
+  std::cout << path.string() << ": image " << probe.width << "x" << probe.height << "\n"
+            << "  camera:   " << opt(m.make) << " " << opt(m.model) << "  serial " << opt(m.bodySerial) << "\n"
+            << "  lens:     " << opt(m.lens) << "  " << opt(m.focalLengthMm) << " mm  f/" << opt(m.fNumber) << "\n"
+            << "  exposure: " << opt(m.exposureTime) << "  ISO " << opt(m.iso) << "\n"
+            << "  taken:    " << opt(m.dateTimeOriginal) << "\n"
+            << "  XMP:      " << (m.xmpPacket.empty() ? "none" : std::to_string(m.xmpPacket.size()) + " bytes") << "\n";
+}
+
+}  // namespace
+
+int runCommandInfo(int argc, char** argv) {
+  const std::vector<OptionSpec> specs = {{"json", false, false, "print as JSON"}};
+  Args args(argc, argv, 1, specs);
+  if (args.helpRequested()) {
+    std::cout << usageHeader("surrogate info FILE",
+                             "Describe a carrier (carrier.xml), a capture folder, an image, or a "
+                             ".ptm, .rti or .lp file.")
+              << Args::describe(specs);
+    return 0;
+  }
+  if (args.positional().size() != 1)
+    throw Error(ErrorKind::Usage, "", "command line", "give one file or folder: surrogate info FILE");
+  const fs::path path = args.positional()[0];
+  const bool json = args.has("json");
+  if (!fs::exists(path)) throwInputError(path.string(), "info", "does not exist");
+  const std::string ext = lower(path.extension().string());
+  if (fs::is_directory(path)) {
+    if (fs::exists(path / capture::kAssemblyDir / "carrier.xml") && !json) {
+      printCapture(path, false);
+      printCarrier(path / capture::kAssemblyDir / "carrier.xml", false);
+    } else {
+      printCapture(path, json);
+    }
+  } else if (ext == ".xml") {
+    printCarrier(path, json);
+  } else if (ext == ".ptm" || ext == ".rti" || ext == ".lp") {
+    const formats::FileSummary s = formats::summarize(path);
+    std::cout << (json ? s.toJson() : s.toText()) << "\n";
+  } else {
+    printImage(path, json);
+  }
+  return 0;
+}
+
+}  // namespace surrogate::cli

@@ -1,0 +1,98 @@
+// PtmFit and HshFit: per-pixel least-squares fits of a capture's photographs against their
+// light directions, quantised into .ptm / .rti objects (src/formats).
+//
+// For N photographs with unit light vectors l_i and a basis w(l) of T terms (fit/basis.h):
+//
+//     A = [ w(l_1); ...; w(l_N) ]            N x T, one row per light
+//     P = (A^T A)^-1 A^T                     T x N, once per light set (SVD, double)
+//     a = P s                                per pixel and channel, s = the N samples
+//
+// Units: samples are 16-bit (Image convention); the fit treats value/257 as 0..255 units
+// (PTM coefficients, 0..255) or value/65535 as 0..1 units (HSH). The values are fitted as
+// encoded (display-referred sRGB exports, formats.md section 8); no linearisation.
+// LRGB (formats.md 1.6, relight's definition): chroma = mean colour weighted by
+// w_i = max(0, 0.25 - (asin(lz_i)/(pi/2) - 0.5)^2) (uniform weights if all are 0), stored as
+// bytes C; luminance samples L_i = 255 (R_i + G_i + B_i) / (C_R + C_G + C_B) using the STORED
+// bytes, so colour * L / 255 reproduces each photograph's R+G+B exactly before quantisation.
+// A pixel whose stored chroma is black (0, 0, 0) renders black whatever L is: its L
+// coefficients are set to 0 so that it does not widen the quantisation range.
+//
+// Streaming and memory: the photographs are read in row bands (ImageStack::readRows), all N
+// images' rows of a band at once. The band height is the largest that keeps the band buffers
+// and the per-thread scratch within FitOptions::memoryBudgetBytes (at least one row). The
+// quantisation needs each coefficient's range over the whole image before any byte can be
+// written, so the fit makes TWO passes: pass 1 fits every pixel and keeps only the per-row
+// minima and maxima; pass 2 reads the bands again, fits again (the same code on the same
+// samples gives the same doubles), quantises into the result and measures the fit error.
+// Trade: the stack is read twice (when the whole stack fits in one band it is read once)
+// instead of spilling 4-8 bytes per coefficient to a temporary file (1.7 GB of floats for an
+// RGB PTM of 24 Mpx); fitting itself is cheap next to decoding. The result object (9 or 18
+// bytes per pixel for PTM, 3*T for HSH) and O(height * N) statistics come on top of the budget.
+//
+// Determinism: every pixel is computed by the same sequence of floating-point operations
+// whatever the band height or thread count; reductions are kept per row and combined in row
+// order, so results (bytes and statistics) are bit-identical for any threads/budget.
+//
+//   FitOptions options;
+//   options.basis = Basis::PtmLrgb;
+//   FitStatistics stats;
+//   formats::PtmFile ptm = fitPtm(stack, lights, options, &stats);
+//   formats::writePtm("object.ptm", ptm);
+//   log(stats.psnr);
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/stack.h"
+#include "fit/basis.h"
+#include "formats/ptm.h"
+#include "formats/rti_hsh.h"
+
+namespace surrogate::fit {
+
+using Parameters = std::vector<std::pair<std::string, std::string>>;
+
+struct FitOptions {
+  // Recorded in the carrier (they change the result):
+  Basis basis = Basis::PtmLrgb;  // which model and which file (.ptm or .rti)
+
+  // Not recorded (the result is bit-identical whatever their value):
+  std::size_t memoryBudgetBytes = 2ull << 30;  // working memory; smaller = more, thinner bands
+  int threads = 0;                             // 0 = all cores
+  std::function<void(double fraction)> progress;  // called from the calling thread, 0..1
+
+  // Name/value pairs for the carrier's step parameters: {"basis", "ptm-lrgb"}.
+  Parameters toParameters() const;
+  // The inverse; missing names keep their defaults. Throws Error(Input) for an unknown name or
+  // value (a carrier written by a newer version, or edited by hand).
+  static FitOptions fromParameters(const Parameters& parameters);
+};
+
+// How well the QUANTISED model reproduces the photographs: each photograph is re-rendered at
+// its own light from the stored bytes (clamped to 0..255, not rounded) and compared with the
+// captured image, on Rec. 709 luminance in 0..255 units, over every pixel.
+struct FitStatistics {
+  double rmse = 0;                  // over all pixels of all photographs
+  double psnr = 0;                  // 20 log10(255 / rmse), capped at 100 dB (rmse ~ 0)
+  std::vector<double> perImageRmse; // one per photograph, in stack order
+  int rank = 0;                     // rank of the light matrix; < terms = degenerate lights
+  int passes = 0;                   // times the stack was read (1 or 2); not a result
+};
+
+// Fits a .ptm (options.basis PtmLrgb or PtmRgb). `lights` are the N light directions in
+// stack order (x right, y up, z towards the camera; normalised here). Throws Error(Input)
+// when the light count differs from the stack's, a light is not a direction, there are fewer
+// photographs than terms, or the stack is empty; Error(Usage) for an HSH basis.
+formats::PtmFile fitPtm(const ImageStack& stack, const std::vector<std::array<double, 3>>& lights,
+                        const FitOptions& options, FitStatistics* stats = nullptr);
+
+// Fits an .rti HSH file (options.basis Hsh2 or Hsh3), same rules.
+formats::HshFile fitHsh(const ImageStack& stack, const std::vector<std::array<double, 3>>& lights,
+                        const FitOptions& options, FitStatistics* stats = nullptr);
+
+}  // namespace surrogate::fit

@@ -1,0 +1,70 @@
+// HshFit: .rti HSH from an ImageStack (the method is described in fit.h).
+#include "core/error.h"
+#include "fit/channel_fit.h"
+#include "fit/fit.h"
+#include "fit/pseudo_inverse.h"
+#include "fit/quantise.h"
+
+namespace surrogate::fit {
+
+namespace {
+
+class HshFitter : public internal::ChannelFitter {
+ public:
+  HshFitter(std::vector<double> p, std::vector<double> basis, int n, int terms,
+            formats::HshFile* out)
+      : ChannelFitter(std::move(p), std::move(basis), n, terms, 255.0), out_(out), q_(terms) {}
+  void setRanges(const std::vector<double>& lo, const std::vector<double>& hi) override {
+    for (std::size_t k = 0; k < q_.size(); ++k) {
+      q_[k] = chooseHshQuantisation(lo[k], hi[k]);
+      out_->scale[k] = q_[k].scale;
+      out_->bias[k] = q_[k].bias;
+    }
+  }
+
+ protected:
+  std::uint8_t quantiseValue(int k, double a) const override { return q_[k].quantise(a); }
+  double decodeValue(int k, std::uint8_t b) const override { return q_[k].decode(b); }
+  void store(int x, int y, int c, int k, std::uint8_t b) const override {
+    out_->coefficients[((static_cast<std::size_t>(y) * out_->width + x) * 3 + c) * out_->terms +
+                       k] = b;
+  }
+
+ private:
+  formats::HshFile* out_;
+  std::vector<HshQuantisation> q_;
+};
+
+}  // namespace
+
+formats::HshFile fitHsh(const ImageStack& stack, const std::vector<std::array<double, 3>>& lights,
+                        const FitOptions& options, FitStatistics* stats) {
+  if (isPtm(options.basis)) {
+    throw Error(ErrorKind::Usage, "--basis", "fit",
+                std::string("the basis ") + basisName(options.basis) +
+                    " makes a .ptm file, not an .rti");
+  }
+  const int terms = basisTerms(options.basis);
+  const auto l = internal::checkedLights(stack, lights, terms);
+  const int n = static_cast<int>(l.size());
+  std::vector<double> design(static_cast<std::size_t>(n) * terms);
+  for (int i = 0; i < n; ++i) hshBasis(l[i][0], l[i][1], l[i][2], terms, &design[i * terms]);
+  const internal::PseudoInverse pinv = internal::pseudoInverse(design, n, terms);
+
+  formats::HshFile hsh;
+  hsh.width = stack.width();
+  hsh.height = stack.height();
+  hsh.terms = terms;
+  hsh.scale.assign(terms, 0.0f);
+  hsh.bias.assign(terms, 0.0f);
+  hsh.coefficients.resize(hsh.texels() * 3 * terms);
+  std::vector<double> p = pinv.matrix;
+  for (double& v : p) v /= 65535.0;  // 16-bit samples -> 0..1 units
+  HshFitter fitter(std::move(p), design, n, terms, &hsh);
+  int passes = 0;
+  const std::vector<double> sqErr = internal::streamFit(stack, fitter, options, &passes);
+  internal::finishStatistics(sqErr, hsh.texels(), pinv.rank, passes, stats);
+  return hsh;
+}
+
+}  // namespace surrogate::fit

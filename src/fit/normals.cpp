@@ -1,0 +1,139 @@
+#include "fit/normals.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <vector>
+
+#include "core/parallel.h"
+#include "fit/lambert.h"
+#include "fit/texel.h"
+
+namespace surrogate::fit {
+
+namespace {
+
+std::uint16_t encodeUnit(double v) {
+  return static_cast<std::uint16_t>(std::lround(std::clamp((v + 1.0) / 2.0, 0.0, 1.0) * 65535.0));
+}
+
+std::uint16_t encodeByte(double v) {
+  return static_cast<std::uint16_t>(std::lround(std::clamp(v, 0.0, 255.0)) * 257);
+}
+
+// Runs fn(x, y) over every texel, rows split over threads; returns the sum of fn's results
+// (per-row counts added in row order).
+int forEachTexel(int width, int height, int threads, const std::function<int(int, int)>& fn) {
+  std::vector<int> rowCounts(height, 0);
+  parallelFor(static_cast<std::size_t>(height), 8, effectiveThreads(threads),
+              [&](std::size_t b, std::size_t e) {
+                for (std::size_t y = b; y < e; ++y)
+                  for (int x = 0; x < width; ++x) rowCounts[y] += fn(x, static_cast<int>(y));
+              });
+  int total = 0;
+  for (int c : rowCounts) total += c;
+  return total;
+}
+
+Image normalImage(int w, int h) {
+  Image out(w, h, 3);
+  out.bitsPerSample = 16;
+  out.transfer = Transfer::Linear;
+  return out;
+}
+
+Image albedoImage(int w, int h) {
+  Image out(w, h, 3);
+  out.bitsPerSample = 8;
+  out.transfer = Transfer::Srgb;
+  return out;
+}
+
+double length(const std::array<double, 3>& b) {
+  return std::sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
+}
+
+std::array<double, 3> ptmLambert(const PtmCoefficients& a) {
+  const auto& dirs = internal::lambertDirections().directions;
+  std::vector<double> values(dirs.size());
+  for (std::size_t j = 0; j < dirs.size(); ++j) values[j] = evaluatePtm(a, dirs[j][0], dirs[j][1]);
+  return internal::lambertFit(values.data());
+}
+
+}  // namespace
+
+std::array<double, 3> ptmNormal(const PtmCoefficients& a, bool* usedFallback) {
+  double lu0 = 0, lv0 = 0;
+  if (ptmMaximum(a, &lu0, &lv0)) {
+    const double r2 = lu0 * lu0 + lv0 * lv0;
+    if (r2 > 1) {
+      const double r = std::sqrt(r2);
+      lu0 /= r;
+      lv0 /= r;
+    }
+    if (usedFallback) *usedFallback = false;
+    return {lu0, lv0, std::sqrt(std::max(0.0, 1 - lu0 * lu0 - lv0 * lv0))};
+  }
+  std::array<double, 3> n;
+  internal::normalFromLambert(ptmLambert(a), &n);
+  if (usedFallback) *usedFallback = true;
+  return n;
+}
+
+Image normalMap(const formats::PtmFile& ptm, int* fallbackCount, int threads) {
+  Image out = normalImage(ptm.width, ptm.height);
+  const int fallbacks = forEachTexel(ptm.width, ptm.height, threads, [&](int x, int y) {
+    bool fallback = false;
+    const auto n = ptmNormal(internal::ptmLuminance(ptm, x, y), &fallback);
+    for (int c = 0; c < 3; ++c) out.at(x, y, c) = encodeUnit(n[c]);
+    return fallback ? 1 : 0;
+  });
+  if (fallbackCount) *fallbackCount = fallbacks;
+  return out;
+}
+
+Image normalMap(const formats::HshFile& hsh, int* fallbackCount, int threads) {
+  Image out = normalImage(hsh.width, hsh.height);
+  const int fallbacks = forEachTexel(hsh.width, hsh.height, threads, [&](int x, int y) {
+    std::array<double, 3> b[3];
+    internal::hshLambert(hsh, x, y, b);
+    std::array<double, 3> sum{}, n;
+    for (int c = 0; c < 3; ++c)
+      for (int r = 0; r < 3; ++r) sum[r] += b[c][r] / 3.0;
+    const bool ok = internal::normalFromLambert(sum, &n);
+    for (int c = 0; c < 3; ++c) out.at(x, y, c) = encodeUnit(n[c]);
+    return ok ? 0 : 1;
+  });
+  if (fallbackCount) *fallbackCount = fallbacks;
+  return out;
+}
+
+Image albedoMap(const formats::PtmFile& ptm, int threads) {
+  Image out = albedoImage(ptm.width, ptm.height);
+  forEachTexel(ptm.width, ptm.height, threads, [&](int x, int y) {
+    if (ptm.format == formats::PtmFile::Format::Lrgb) {
+      const double rho = length(ptmLambert(internal::ptmChannel(ptm, x, y, 0)));
+      for (int c = 0; c < 3; ++c)
+        out.at(x, y, c) = encodeByte(ptm.rgb[(static_cast<std::size_t>(y) * ptm.width + x) * 3 + c] *
+                                     rho / 255.0);
+    } else {
+      for (int c = 0; c < 3; ++c)
+        out.at(x, y, c) = encodeByte(length(ptmLambert(internal::ptmChannel(ptm, x, y, c))));
+    }
+    return 0;
+  });
+  return out;
+}
+
+Image albedoMap(const formats::HshFile& hsh, int threads) {
+  Image out = albedoImage(hsh.width, hsh.height);
+  forEachTexel(hsh.width, hsh.height, threads, [&](int x, int y) {
+    std::array<double, 3> b[3];
+    internal::hshLambert(hsh, x, y, b);
+    for (int c = 0; c < 3; ++c) out.at(x, y, c) = encodeByte(length(b[c]));
+    return 0;
+  });
+  return out;
+}
+
+}  // namespace surrogate::fit

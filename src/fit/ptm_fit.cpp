@@ -1,0 +1,219 @@
+// PtmFit: LRGB and RGB .ptm from an ImageStack (the method is described in fit.h).
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+#include "fit/channel_fit.h"
+#include "fit/fit.h"
+#include "fit/pseudo_inverse.h"
+#include "fit/quantise.h"
+#include "fit/stream_fit.h"
+
+namespace surrogate::fit {
+
+namespace {
+
+using internal::RowView;
+
+std::vector<double> ptmDesign(const std::vector<std::array<double, 3>>& lights) {
+  std::vector<double> a;
+  for (const auto& l : lights) {
+    const auto w = ptmBasis(l[0], l[1]);
+    a.insert(a.end(), w.begin(), w.end());
+  }
+  return a;
+}
+
+std::uint8_t chromaByte(double v) {
+  return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 255.0)));
+}
+
+// LRGB (formats.md 1.6): weighted mean colour, luminance polynomial relative to it.
+class LrgbFitter : public internal::RowFitter {
+ public:
+  LrgbFitter(const std::vector<double>& p, const std::vector<std::array<double, 3>>& lights,
+             formats::PtmFile* out)
+      : n_(static_cast<int>(lights.size())), out_(out) {
+    // a_k = 255 / S * sum_i P[k][i] * (R_i + G_i + B_i) / 257: fold 255/257 into P.
+    for (double v : p) p_.push_back(v * (255.0 / 257.0));
+    double total = 0;
+    for (const auto& l : lights) {
+      const double e = std::asin(std::clamp(l[2], -1.0, 1.0)) / (M_PI / 2) - 0.5;
+      weight_.push_back(std::max(0.0, 0.25 - e * e));
+      total += weight_.back();
+    }
+    if (!(total > 0)) {  // every light grazing or overhead: plain mean
+      std::fill(weight_.begin(), weight_.end(), 1.0);
+      total = n_;
+    }
+    for (double& w : weight_) w /= total * 257.0;  // mean in 0..255 units
+    for (const auto& l : lights) {
+      const auto w = ptmBasis(l[0], l[1]);
+      basis_.insert(basis_.end(), w.begin(), w.end());
+    }
+  }
+
+  int ranges() const override { return 6; }
+  // Scratch layout (doubles): acc 6w | chroma 3w | mean 3w | sum w | decoded 6w | lum w.
+  std::size_t scratchDoubles(int width) const override { return 20 * std::size_t(width); }
+
+  void measure(const RowView& row, double* scratch, double* lo, double* hi) const override {
+    fitRow(row, scratch);
+    for (int k = 0; k < 6; ++k) {
+      const double* a = scratch + k * row.width;
+      lo[k] = *std::min_element(a, a + row.width);
+      hi[k] = *std::max_element(a, a + row.width);
+    }
+  }
+
+  void setRanges(const std::vector<double>& lo, const std::vector<double>& hi) override {
+    for (int k = 0; k < 6; ++k) {
+      q_[k] = choosePtmQuantisation(lo[k], hi[k]);
+      out_->scale[k] = q_[k].scale;
+      out_->bias[k] = q_[k].bias;
+    }
+  }
+
+  void quantise(const RowView& row, double* scratch, double* sqErr) const override {
+    const int w = row.width;
+    const double* acc = scratch;
+    const double* chroma = scratch + 6 * w;
+    double* decoded = scratch + 13 * w;
+    double* lum = scratch + 19 * w;
+    fitRow(row, scratch);
+    const std::size_t base = static_cast<std::size_t>(row.y) * w;
+    for (int x = 0; x < w; ++x) {
+      for (int k = 0; k < 6; ++k) {
+        const std::uint8_t b = q_[k].quantise(acc[k * w + x]);
+        out_->coefficients[(base + x) * 6 + k] = b;
+        decoded[k * w + x] = q_[k].decode(b);
+      }
+      for (int c = 0; c < 3; ++c)
+        out_->rgb[(base + x) * 3 + c] = static_cast<std::uint8_t>(chroma[3 * x + c]);
+    }
+    const double lr[3] = {internal::kLumR, internal::kLumG, internal::kLumB};
+    for (int i = 0; i < n_; ++i) {
+      std::fill(lum, lum + w, 0.0);
+      for (int k = 0; k < 6; ++k) {
+        const double wk = basis_[static_cast<std::size_t>(i) * 6 + k];
+        for (int x = 0; x < w; ++x) lum[x] += wk * decoded[k * w + x];
+      }
+      const std::uint16_t* s = row.images[i];
+      double err = 0;
+      for (int x = 0; x < w; ++x) {
+        double model = 0;
+        for (int c = 0; c < 3; ++c)
+          model += lr[c] * std::clamp(chroma[3 * x + c] * lum[x] / 255.0, 0.0, 255.0);
+        const double captured =
+            (lr[0] * s[3 * x] + lr[1] * s[3 * x + 1] + lr[2] * s[3 * x + 2]) / 257.0;
+        err += (model - captured) * (model - captured);
+      }
+      sqErr[i] = err;
+    }
+  }
+
+ private:
+  // Fills acc (6 x w, the luminance coefficients) and chroma (3w, the stored colour bytes as
+  // doubles) at the start of `scratch`.
+  void fitRow(const RowView& row, double* scratch) const {
+    const int w = row.width;
+    const std::size_t m = static_cast<std::size_t>(w) * 3;
+    double* acc = scratch;
+    double* chroma = scratch + 6 * w;
+    double* mean = scratch + 9 * w;
+    double* sum = scratch + 12 * w;
+    std::fill(acc, acc + 6 * w, 0.0);
+    std::fill(mean, mean + m, 0.0);
+    for (int i = 0; i < n_; ++i) {
+      const std::uint16_t* s = row.images[i];
+      for (int x = 0; x < w; ++x)
+        sum[x] = static_cast<double>(s[3 * x] + s[3 * x + 1] + s[3 * x + 2]);
+      for (int k = 0; k < 6; ++k) {
+        const double p = p_[static_cast<std::size_t>(k) * n_ + i];
+        double* a = acc + k * w;
+        for (int x = 0; x < w; ++x) a[x] += p * sum[x];
+      }
+      const double wi = weight_[i];
+      if (wi != 0)
+        for (std::size_t j = 0; j < m; ++j) mean[j] += wi * s[j];
+    }
+    for (int x = 0; x < w; ++x) {
+      double total = 0;
+      for (int c = 0; c < 3; ++c) {
+        chroma[3 * x + c] = chromaByte(mean[3 * x + c]);
+        total += chroma[3 * x + c];
+      }
+      for (int k = 0; k < 6; ++k) acc[k * w + x] = total > 0 ? acc[k * w + x] / total : 0.0;
+    }
+  }
+
+  int n_;
+  formats::PtmFile* out_;
+  std::vector<double> p_, weight_, basis_;
+  PtmQuantisation q_[6];
+};
+
+// RGB: one polynomial per channel, coefficients in 0..255 units, scale/bias shared.
+class RgbPtmFitter : public internal::ChannelFitter {
+ public:
+  RgbPtmFitter(std::vector<double> p, std::vector<double> basis, int n, formats::PtmFile* out)
+      : ChannelFitter(std::move(p), std::move(basis), n, 6, 1.0), out_(out) {}
+  void setRanges(const std::vector<double>& lo, const std::vector<double>& hi) override {
+    for (int k = 0; k < 6; ++k) {
+      q_[k] = choosePtmQuantisation(lo[k], hi[k]);
+      out_->scale[k] = q_[k].scale;
+      out_->bias[k] = q_[k].bias;
+    }
+  }
+
+ protected:
+  std::uint8_t quantiseValue(int k, double a) const override { return q_[k].quantise(a); }
+  double decodeValue(int k, std::uint8_t b) const override { return q_[k].decode(b); }
+  void store(int x, int y, int c, int k, std::uint8_t b) const override {
+    out_->coefficients[((static_cast<std::size_t>(c) * out_->height + y) * out_->width + x) * 6 +
+                       k] = b;
+  }
+
+ private:
+  formats::PtmFile* out_;
+  PtmQuantisation q_[6];
+};
+
+}  // namespace
+
+formats::PtmFile fitPtm(const ImageStack& stack, const std::vector<std::array<double, 3>>& lights,
+                        const FitOptions& options, FitStatistics* stats) {
+  if (!isPtm(options.basis)) {
+    throw Error(ErrorKind::Usage, "--basis", "fit",
+                std::string("the basis ") + basisName(options.basis) +
+                    " makes an .rti file, not a .ptm");
+  }
+  const auto l = internal::checkedLights(stack, lights, 6);
+  const int n = static_cast<int>(l.size());
+  const std::vector<double> design = ptmDesign(l);
+  const internal::PseudoInverse pinv = internal::pseudoInverse(design, n, 6);
+
+  formats::PtmFile ptm;
+  ptm.width = stack.width();
+  ptm.height = stack.height();
+  int passes = 0;
+  std::vector<double> sqErr;
+  if (options.basis == Basis::PtmLrgb) {
+    ptm.format = formats::PtmFile::Format::Lrgb;
+    ptm.coefficients.resize(ptm.texels() * 6);
+    ptm.rgb.resize(ptm.texels() * 3);
+    LrgbFitter fitter(pinv.matrix, l, &ptm);
+    sqErr = internal::streamFit(stack, fitter, options, &passes);
+  } else {
+    ptm.format = formats::PtmFile::Format::Rgb;
+    ptm.coefficients.resize(ptm.texels() * 18);
+    std::vector<double> p = pinv.matrix;
+    for (double& v : p) v /= 257.0;  // 16-bit samples -> 0..255 units
+    RgbPtmFitter fitter(std::move(p), design, n, &ptm);
+    sqErr = internal::streamFit(stack, fitter, options, &passes);
+  }
+  internal::finishStatistics(sqErr, ptm.texels(), pinv.rank, passes, stats);
+  return ptm;
+}
+
+}  // namespace surrogate::fit

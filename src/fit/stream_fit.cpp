@@ -1,0 +1,152 @@
+#include "fit/stream_fit.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/error.h"
+#include "core/parallel.h"
+
+namespace surrogate::fit::internal {
+
+namespace {
+const char* const kStep = "fit";
+}
+
+std::vector<std::array<double, 3>> checkedLights(const ImageStack& stack,
+                                                 const std::vector<std::array<double, 3>>& lights,
+                                                 int terms) {
+  if (stack.size() == 0 || stack.width() <= 0 || stack.height() <= 0) {
+    throw Error(ErrorKind::Input, "", kStep, "there are no photographs to fit");
+  }
+  if (stack.channels() != 1 && stack.channels() != 3) {
+    throw Error(ErrorKind::Input, "", kStep, "the photographs must be RGB or grey images");
+  }
+  if (static_cast<int>(lights.size()) != stack.size()) {
+    throw Error(ErrorKind::Input, "", kStep,
+                "there are " + std::to_string(stack.size()) + " photographs but " +
+                    std::to_string(lights.size()) + " light directions; they must pair up");
+  }
+  if (stack.size() < terms) {
+    throw Error(ErrorKind::Input, "", kStep,
+                "this basis needs at least " + std::to_string(terms) + " photographs, the "
+                "capture has " + std::to_string(stack.size()));
+  }
+  std::vector<std::array<double, 3>> out;
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    const auto& l = lights[i];
+    const double n = std::sqrt(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
+    if (!std::isfinite(n) || n < 1e-4) {
+      throw Error(ErrorKind::Input, "", kStep,
+                  "light " + std::to_string(i + 1) + " is not a direction (zero or invalid)");
+    }
+    out.push_back({l[0] / n, l[1] / n, l[2] / n});
+  }
+  return out;
+}
+
+std::vector<double> streamFit(const ImageStack& stack, RowFitter& fitter,
+                              const FitOptions& options, int* passes) {
+  const int n = stack.size(), w = stack.width(), h = stack.height(), ch = stack.channels();
+  const int threads = effectiveThreads(options.threads);
+  const std::size_t rowSamples = static_cast<std::size_t>(w) * 3;
+  const std::size_t bandRowBytes = static_cast<std::size_t>(n) * rowSamples * 2;
+  const std::size_t scratchBytes =
+      static_cast<std::size_t>(threads) * (fitter.scratchDoubles(w) * sizeof(double) +
+                                           (ch == 1 ? rowSamples * 2 : 0));
+  const std::size_t available =
+      options.memoryBudgetBytes > scratchBytes ? options.memoryBudgetBytes - scratchBytes : 0;
+  const int band = static_cast<int>(
+      std::clamp<std::size_t>(available / bandRowBytes, 1, static_cast<std::size_t>(h)));
+  const int bands = (h + band - 1) / band;
+  std::vector<std::uint16_t> buffer(static_cast<std::size_t>(n) * band * rowSamples);
+
+  auto readBand = [&](int y0, int y1) {
+    parallelFor(static_cast<std::size_t>(n), 1, threads, [&](std::size_t b, std::size_t e) {
+      std::vector<std::uint16_t> grey;
+      for (std::size_t i = b; i < e; ++i) {
+        std::uint16_t* dst = buffer.data() + i * band * rowSamples;
+        if (ch == 3) {
+          stack.readRows(static_cast<int>(i), y0, y1, dst);
+        } else {  // grey: R = G = B
+          grey.resize(static_cast<std::size_t>(y1 - y0) * w);
+          stack.readRows(static_cast<int>(i), y0, y1, grey.data());
+          for (std::size_t p = 0; p < grey.size(); ++p)
+            dst[3 * p] = dst[3 * p + 1] = dst[3 * p + 2] = grey[p];
+        }
+      }
+    });
+  };
+  // Runs fn(row, scratch) for rows [y0, y1) of the band in memory, on the workers.
+  auto forRows = [&](int y0, int y1, const std::function<void(const RowView&, double*)>& fn) {
+    const std::size_t rows = static_cast<std::size_t>(y1 - y0);
+    const std::size_t chunk = std::max<std::size_t>(1, rows / (4 * threads));
+    parallelFor(rows, chunk, threads, [&](std::size_t b, std::size_t e) {
+      std::vector<double> scratch(fitter.scratchDoubles(w));
+      std::vector<const std::uint16_t*> images(n);
+      for (std::size_t r = b; r < e; ++r) {
+        for (int i = 0; i < n; ++i)
+          images[i] = buffer.data() + (static_cast<std::size_t>(i) * band + r) * rowSamples;
+        fn(RowView{images.data(), w, y0 + static_cast<int>(r)}, scratch.data());
+      }
+    });
+  };
+  auto report = [&](double fraction) {
+    if (options.progress) options.progress(fraction);
+  };
+
+  // Pass 1: ranges, kept per row and combined afterwards (min/max are exact in any order).
+  const int r = fitter.ranges();
+  std::vector<double> rowLo(static_cast<std::size_t>(h) * r), rowHi(rowLo.size());
+  for (int bi = 0; bi < bands; ++bi) {
+    const int y0 = bi * band, y1 = std::min(h, y0 + band);
+    readBand(y0, y1);
+    forRows(y0, y1, [&](const RowView& row, double* scratch) {
+      fitter.measure(row, scratch, &rowLo[static_cast<std::size_t>(row.y) * r],
+                     &rowHi[static_cast<std::size_t>(row.y) * r]);
+    });
+    report(0.5 * (bi + 1) / bands);
+  }
+  std::vector<double> lo(r, std::numeric_limits<double>::infinity());
+  std::vector<double> hi(r, -std::numeric_limits<double>::infinity());
+  for (int y = 0; y < h; ++y) {
+    for (int k = 0; k < r; ++k) {
+      lo[k] = std::min(lo[k], rowLo[static_cast<std::size_t>(y) * r + k]);
+      hi[k] = std::max(hi[k], rowHi[static_cast<std::size_t>(y) * r + k]);
+    }
+  }
+  fitter.setRanges(lo, hi);
+
+  // Pass 2: quantise and measure; a single band is still in memory and is not read again.
+  std::vector<double> rowErr(static_cast<std::size_t>(h) * n);
+  for (int bi = 0; bi < bands; ++bi) {
+    const int y0 = bi * band, y1 = std::min(h, y0 + band);
+    if (bands > 1) readBand(y0, y1);
+    forRows(y0, y1, [&](const RowView& row, double* scratch) {
+      fitter.quantise(row, scratch, &rowErr[static_cast<std::size_t>(row.y) * n]);
+    });
+    report(0.5 + 0.5 * (bi + 1) / bands);
+  }
+  if (passes) *passes = bands > 1 ? 2 : 1;
+  std::vector<double> sqErr(n, 0.0);
+  for (int y = 0; y < h; ++y)
+    for (int i = 0; i < n; ++i) sqErr[i] += rowErr[static_cast<std::size_t>(y) * n + i];
+  return sqErr;
+}
+
+void finishStatistics(const std::vector<double>& sqErr, std::size_t pixels, int rank, int passes,
+                      FitStatistics* stats) {
+  if (!stats) return;
+  stats->perImageRmse.clear();
+  double total = 0;
+  for (double e : sqErr) {
+    stats->perImageRmse.push_back(std::sqrt(e / static_cast<double>(pixels)));
+    total += e;
+  }
+  stats->rmse = std::sqrt(total / (static_cast<double>(pixels) * sqErr.size()));
+  stats->psnr = 20.0 * std::log10(255.0 / std::max(stats->rmse, 255e-5));
+  stats->rank = rank;
+  stats->passes = passes;
+}
+
+}  // namespace surrogate::fit::internal

@@ -1,0 +1,53 @@
+// Internal to src/fit: the two-pass, band-streaming driver shared by the PTM and HSH fits
+// (the plan is described in fit.h). A RowFitter does the per-row maths; the driver reads the
+// bands, runs rows on the workers and keeps the per-row reductions in row order.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/stack.h"
+#include "fit/fit.h"
+
+namespace surrogate::fit::internal {
+
+// One image row of every photograph: images[i] points at width*3 interleaved RGB samples
+// (16-bit; grey stacks are expanded to RGB by the driver).
+struct RowView {
+  const std::uint16_t* const* images;
+  int width;
+  int y;
+};
+
+class RowFitter {
+ public:
+  virtual ~RowFitter() = default;
+  virtual int ranges() const = 0;                            // coefficient ranges tracked
+  virtual std::size_t scratchDoubles(int width) const = 0;   // per worker
+  // Pass 1: fits the row; lo/hi (ranges() each) receive the row's minima and maxima.
+  virtual void measure(const RowView& row, double* scratch, double* lo, double* hi) const = 0;
+  // Between the passes: the whole image's ranges.
+  virtual void setRanges(const std::vector<double>& lo, const std::vector<double>& hi) = 0;
+  // Pass 2: fits the row again, stores the quantised bytes of row `row.y` into the result and
+  // writes sqErr[i] = sum over the row of the squared luminance error at light i.
+  virtual void quantise(const RowView& row, double* scratch, double* sqErr) const = 0;
+};
+
+// Validated light vectors, normalised. Throws Error(Input) (see fitPtm).
+std::vector<std::array<double, 3>> checkedLights(const ImageStack& stack,
+                                                 const std::vector<std::array<double, 3>>& lights,
+                                                 int terms);
+
+// Runs both passes; returns the per-image squared luminance errors (summed over pixels in
+// row order) and sets stats->passes.
+std::vector<double> streamFit(const ImageStack& stack, RowFitter& fitter,
+                              const FitOptions& options, int* passes);
+
+void finishStatistics(const std::vector<double>& sqErr, std::size_t pixels, int rank, int passes,
+                      FitStatistics* stats);
+
+// Rec. 709 luminance weights (core/image.h luminance() uses the same).
+constexpr double kLumR = 0.2126, kLumG = 0.7152, kLumB = 0.0722;
+
+}  // namespace surrogate::fit::internal

@@ -1,0 +1,131 @@
+#include "formats/lp.h"
+
+#include <cmath>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "formats/text_parse.h"
+
+namespace surrogate::formats {
+
+namespace {
+const char* const kReadStep = "read light positions";
+const char* const kWriteStep = "write light positions";
+constexpr long long kMaxLights = 1000;  // relight's limit (formats.md section 3)
+}  // namespace
+
+std::vector<LightEntry> parseLp(const std::string& text, const std::string& name) {
+  using detail::tokens;
+  std::size_t pos = 0;
+  if (text.compare(0, 3, "\xEF\xBB\xBF") == 0) pos = 3;  // UTF-8 BOM from Windows editors
+  int lineNumber = 0;
+  auto fail = [&](const std::string& message) {
+    throw Error(ErrorKind::Input, name, kReadStep,
+                "line " + std::to_string(lineNumber) + ": " + message);
+  };
+  // Next non-blank line, or false at the end of the text.
+  auto nextLine = [&](std::string_view* line) {
+    while (pos < text.size()) {
+      std::size_t end = text.find('\n', pos);
+      if (end == std::string::npos) end = text.size();
+      ++lineNumber;
+      *line = std::string_view(text).substr(pos, end - pos);
+      pos = end + 1;
+      if (!detail::trim(*line).empty()) return true;
+    }
+    return false;
+  };
+
+  std::string_view line;
+  if (!nextLine(&line)) {
+    throw Error(ErrorKind::Input, name, kReadStep,
+                "the file is empty; a .lp file starts with the number of lights");
+  }
+  long long count = 0;
+  const auto head = tokens(line);
+  if (head.size() != 1 || !detail::parseInt(head[0], &count)) {
+    fail("expected the number of lights alone on the first line, found \"" +
+         std::string(detail::trim(line).substr(0, 60)) + "\"");
+  }
+  if (count < 1 || count > kMaxLights) {
+    fail("the number of lights must be between 1 and " + std::to_string(kMaxLights) +
+         ", found " + std::to_string(count));
+  }
+
+  std::vector<LightEntry> out;
+  out.reserve(static_cast<std::size_t>(count));
+  while (nextLine(&line)) {
+    if (static_cast<long long>(out.size()) == count) {
+      fail("the file announces " + std::to_string(count) +
+           " lights on line 1 but has more light lines; fix the count or remove the extra lines");
+    }
+    const auto t = tokens(line);
+    if (t.size() < 4) {
+      fail("expected \"<image file> <x> <y> <z>\", found only " + std::to_string(t.size()) +
+           " item(s)");
+    }
+    LightEntry e;
+    double v[3];
+    for (int k = 0; k < 3; ++k) {
+      if (!detail::parseDouble(t[t.size() - 3 + k], &v[k])) {
+        fail("the light direction component \"" + std::string(t[t.size() - 3 + k].substr(0, 40)) +
+             "\" is not a number");
+      }
+    }
+    for (std::size_t k = 0; k + 3 < t.size(); ++k) {
+      if (k) e.filename += ' ';
+      e.filename.append(t[k].data(), t[k].size());
+    }
+    const double norm = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    if (!(norm >= 1e-4)) {
+      fail("the light direction of \"" + e.filename +
+           "\" has (almost) zero length; it cannot be a direction");
+    }
+    e.x = v[0] / norm;
+    e.y = v[1] / norm;
+    e.z = v[2] / norm;
+    out.push_back(std::move(e));
+  }
+  if (static_cast<long long>(out.size()) != count) {
+    throw Error(ErrorKind::Input, name, kReadStep,
+                "line 1 announces " + std::to_string(count) + " lights but the file lists " +
+                    std::to_string(out.size()) + "; the file is truncated or the count is wrong");
+  }
+  return out;
+}
+
+std::vector<LightEntry> readLp(const std::filesystem::path& path) {
+  return parseLp(readFile(path, kReadStep), path.string());
+}
+
+std::string formatLp(const std::vector<LightEntry>& entries, const std::string& name) {
+  auto fail = [&](const std::string& message) {
+    throw Error(ErrorKind::Input, name, kWriteStep, message);
+  };
+  if (entries.empty() || static_cast<long long>(entries.size()) > kMaxLights) {
+    fail("a .lp file holds 1 to " + std::to_string(kMaxLights) + " lights, not " +
+         std::to_string(entries.size()));
+  }
+  std::string out = std::to_string(entries.size()) + "\n";
+  for (const LightEntry& e : entries) {
+    const std::string& f = e.filename;
+    if (f.empty() || f.find_first_of("\t\r\n") != std::string::npos || f.front() == ' ' ||
+        f.back() == ' ' || f.find("  ") != std::string::npos) {
+      fail("the image name \"" + f +
+           "\" cannot be written to a .lp file (empty, or with tabs, line breaks, or leading, "
+           "trailing or doubled spaces)");
+    }
+    if (!std::isfinite(e.x) || !std::isfinite(e.y) || !std::isfinite(e.z)) {
+      fail("the light direction of \"" + f + "\" is not a finite vector");
+    }
+    out += f + ' ' + detail::formatDecimals(e.x, 6) + ' ' + detail::formatDecimals(e.y, 6) +
+           ' ' + detail::formatDecimals(e.z, 6) + '\n';
+  }
+  return out;
+}
+
+void writeLp(const std::filesystem::path& path, const std::vector<LightEntry>& entries) {
+  writeFileAtomically(path, formatLp(entries, path.string()));
+}
+
+}  // namespace surrogate::formats

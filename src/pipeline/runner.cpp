@@ -1,0 +1,56 @@
+#include "pipeline/runner.h"
+
+#include <chrono>
+#include <cstdio>
+
+#include "carrier/carrier.h"
+#include "pipeline/stage.h"
+
+namespace surrogate::pipeline {
+
+namespace fs = std::filesystem;
+
+fs::path Context::pathOf(const std::string& fileId) const {
+  const carrier::FileRecord* f = carrier.findFile(fileId);
+  if (!f) throwInputError("carrier", "pipeline", "refers to file id " + fileId + ", which it does not list");
+  return capture / f->path;
+}
+
+void runProcess(Context& context, const fs::path& carrierPath) {
+  carrier::Carrier& c = context.carrier;
+  auto save = [&] {
+    if (carrierPath.empty()) return;
+    c.header.modified = carrier::timestampNow();
+    carrier::saveCarrier(c, carrierPath);
+  };
+  // Copy the list: a stage may append files, never steps, but the reference must stay valid.
+  const std::vector<carrier::Step> steps = c.process;
+  for (const carrier::Step& step : steps) {
+    std::unique_ptr<Stage> stage = StageRegistry::instance().create(step.component);
+    c.clearResult(step.id);
+    carrier::Result result;
+    result.step = step.id;
+    result.started = carrier::timestampNow();
+    const auto t0 = std::chrono::steady_clock::now();
+    try {
+      stage->run(step, context, result);
+    } catch (const Error& e) {
+      result.status = "failed";
+      result.ended = carrier::timestampNow();
+      result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      c.data.push_back(result);
+      c.addLog("error", step.id, e.what());
+      save();
+      throw;
+    }
+    result.ended = carrier::timestampNow();
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    c.data.push_back(std::move(result));
+    char seconds[32];
+    std::snprintf(seconds, sizeof seconds, "%.3f", c.data.back().seconds);
+    c.addLog("timing", step.id, step.component + " completed in " + seconds + " s");
+    save();
+  }
+}
+
+}  // namespace surrogate::pipeline

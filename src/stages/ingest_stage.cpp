@@ -1,0 +1,206 @@
+#include "stages/ingest_stage.h"
+
+#include <algorithm>
+#include <atomic>
+#include <set>
+
+#include "archive/digest.h"
+#include "capture/capture.h"
+#include "core/parallel.h"
+#include "meta/metadata.h"
+#include "pipeline/context.h"
+#include "stages/inputs.h"
+
+namespace surrogate::stages {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kStep = "capture ingest";
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
+// Media type and PRONOM identifier, only where the identifier is certain for every file of
+// that kind (DNG and JPEG identifiers depend on the version inside the file: left out).
+void setFormatIdentifiers(carrier::FileRecord& f) {
+  const std::string ext = lower(fs::path(f.path).extension().string());
+  struct Known { const char* ext; const char* mediaType; const char* puid; };
+  static const Known kKnown[] = {
+      {".cr2", "image/x-canon-cr2", "fmt/592"}, {".crw", "image/x-canon-crw", "fmt/593"},
+      {".cr3", "image/x-canon-cr3", "fmt/1595"}, {".nef", "image/x-nikon-nef", "fmt/202"},
+      {".dng", "image/x-adobe-dng", ""},          {".jpg", "image/jpeg", ""},
+      {".jpeg", "image/jpeg", ""},                {".tif", "image/tiff", "fmt/353"},
+      {".tiff", "image/tiff", "fmt/353"},         {".png", "image/png", ""},
+      {".lp", "text/plain", ""},                  {".xmp", "application/rdf+xml", ""},
+  };
+  for (const Known& k : kKnown) {
+    if (ext == k.ext) {
+      f.mediaType = k.mediaType;
+      f.puid = k.puid;
+      return;
+    }
+  }
+}
+
+carrier::Attributes cameraAttributes(const meta::CameraMetadata& m) {
+  carrier::Attributes a;
+  auto text = [&](const char* name, const std::optional<std::string>& v) {
+    if (v && !v->empty()) a.emplace_back(name, *v);
+  };
+  auto number = [&](const char* name, const auto& v) {
+    if (v) a.emplace_back(name, carrier::formatNumber(static_cast<double>(*v)));
+  };
+  auto integer = [&](const char* name, const auto& v) {
+    if (v) a.emplace_back(name, std::to_string(*v));
+  };
+  text("make", m.make);
+  text("model", m.model);
+  text("serial", m.bodySerial);
+  text("lens", m.lens);
+  number("focalLengthMm", m.focalLengthMm);
+  number("fNumber", m.fNumber);
+  text("exposureTime", m.exposureTime);
+  number("exposureSeconds", m.exposureSeconds);
+  integer("iso", m.iso);
+  text("dateTimeOriginal", m.dateTimeOriginal);
+  integer("orientation", m.orientation);
+  integer("pixelWidth", m.pixelWidth);
+  integer("pixelHeight", m.pixelHeight);
+  number("focalPlaneXResolution", m.focalPlaneXResolution);
+  number("focalPlaneYResolution", m.focalPlaneYResolution);
+  integer("focalPlaneResolutionUnit", m.focalPlaneResolutionUnit);
+  return a;
+}
+
+struct PendingFile {
+  std::string path;
+  std::string role;
+  std::string format;
+  bool isImage = false;
+  int width = 0, height = 0;
+  std::string pairedPath;
+  bool unrecorded = false;
+};
+
+}  // namespace
+
+void IngestStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier::Result& result) {
+  const int threads = effectiveThreads(ctx.settings.threads);
+  const capture::Source source = capture::parseSource(step.param("source", "auto"));
+  ctx.progress("Reading the capture", 0);
+  const capture::CaptureLayout layout = capture::scanCapture(ctx.capture, threads);
+
+  // Every file the capture brings, in a fixed order: shots (original, export), .lp, sidecars.
+  std::vector<PendingFile> pending;
+  const bool exportsAreOriginals = !layout.hasOriginals();
+  for (const capture::Shot& shot : layout.shots) {
+    if (shot.original) {
+      pending.push_back({shot.original->relativePath, "original", shot.original->format, true,
+                         shot.original->width, shot.original->height,
+                         shot.exported ? shot.exported->relativePath : "", false});
+    }
+    if (shot.exported) {
+      pending.push_back({shot.exported->relativePath, exportsAreOriginals ? "original" : "export",
+                         shot.exported->format, true, shot.exported->width,
+                         shot.exported->height,
+                         shot.original ? shot.original->relativePath : "",
+                         !exportsAreOriginals});
+    }
+  }
+  if (layout.lp) pending.push_back({*layout.lp, "lp", "LP", false, 0, 0, "", false});
+  for (const std::string& s : layout.sidecars)
+    pending.push_back({s, "sidecar", "XMP", false, 0, 0, "", false});
+
+  // Hash and read metadata in parallel; the records are assembled in order afterwards.
+  std::vector<carrier::FileRecord> records(pending.size());
+  std::vector<std::string> metadataWarnings(pending.size());
+  std::atomic<std::size_t> done{0};
+  parallelFor(pending.size(), 1, threads, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) {
+      const PendingFile& p = pending[i];
+      const fs::path abs = ctx.capture / p.path;
+      const archive::FileDigests d = archive::digestFile(abs);
+      carrier::FileRecord& f = records[i];
+      f.path = p.path;
+      f.role = p.role;
+      f.size = d.size;
+      f.sha256 = d.sha256;
+      f.format = p.format;
+      f.unrecordedProcessing = p.unrecorded;
+      setFormatIdentifiers(f);
+      if (p.isImage) {
+        f.imageSize = std::make_pair(p.width, p.height);
+        try {
+          const meta::CameraMetadata m = meta::readMetadata(abs);
+          f.camera = cameraAttributes(m);
+          f.xmp = m.xmpPacket;
+        } catch (const Error& e) {
+          metadataWarnings[i] = e.what();
+        }
+      } else if (p.role == "sidecar") {
+        f.xmp = meta::readXmpSidecar(abs);
+      }
+      ctx.progress("Hashing and reading metadata", double(++done) / pending.size());
+    }
+  });
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    ctx.carrier.putFile(records[i]);
+    if (!metadataWarnings[i].empty())
+      ctx.carrier.addLog("warning", step.id, "no camera metadata: " + metadataWarnings[i]);
+  }
+  for (const PendingFile& p : pending) {
+    if (p.pairedPath.empty()) continue;
+    for (carrier::FileRecord& f : ctx.carrier.files)
+      if (f.path == p.path) f.pairedWith = ctx.carrier.findFileByPath(p.pairedPath)->id;
+  }
+  for (const std::string& ignored : layout.ignored)
+    ctx.carrier.addLog("warning", step.id, "ignored " + ignored + ": not an image of the capture");
+  if (layout.hasOriginals() && layout.hasExports()) {
+    ctx.carrier.addLog("info", step.id,
+                       "the files in jpeg-exports/ were made by other software: their processing "
+                       "is not recorded (flagged unrecordedProcessing in the files section)");
+  }
+
+  // Exclusions: each must name a shot of this capture.
+  std::set<std::string> excluded;
+  for (const carrier::Intervention* i : step.interventionsOfKind("exclude-image")) {
+    const auto stem = capture::findShotStem(layout, i->target);
+    if (!stem) {
+      throw Error(ErrorKind::Usage, i->target, kStep,
+                  "is excluded but no image of the capture has that name; give the file name "
+                  "as it is in original-captures/ or jpeg-exports/");
+    }
+    excluded.insert(*stem);
+    ctx.carrier.addLog("intervention", step.id,
+                       "excluded " + *stem + " from processing: " + i->reason, i->who);
+  }
+
+  const std::vector<capture::ImageFile> chosen = capture::selectImages(layout, source);
+  auto inputs = std::make_shared<InputImages>();
+  for (const capture::ImageFile& image : chosen) {
+    const std::string stem = fs::path(image.relativePath).stem().string();
+    const std::string id = ctx.carrier.findFileByPath(image.relativePath)->id;
+    if (excluded.count(stem)) {
+      result.add("imageValue").set("image", id).set("name", "excluded").set("value", "true");
+      continue;
+    }
+    result.add("input").set("file", id).set("kind", "image");
+    inputs->push_back({id, image.relativePath, stem});
+  }
+  const bool usesOriginals = !chosen.empty() && layout.hasOriginals() &&
+                             chosen.front().relativePath.rfind(layout.originalsDir + "/", 0) == 0;
+  result.add("value").set("name", "source").set("value", usesOriginals ? "original" : "export");
+  result.add("value").set("name", "images").set("value", std::to_string(inputs->size()));
+  if (layout.lp) {
+    result.add("input").set("file", ctx.carrier.findFileByPath(*layout.lp)->id).set("kind", "lp");
+  }
+  if (inputs->empty())
+    throwInputError(ctx.capture.string(), kStep, "every image is excluded: nothing to process");
+  ctx.put(kInputImages, inputs);
+}
+
+}  // namespace surrogate::stages

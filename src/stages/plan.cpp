@@ -1,0 +1,129 @@
+#include "stages/plan.h"
+
+#include <cstdlib>
+#include <mutex>
+
+#include <Eigen/Core>
+
+#include "archive/digest.h"
+#include "capture/capture.h"
+#include "carrier/xml.h"
+#include "core/error.h"
+#include "image/decode.h"
+#include "meta/metadata.h"
+#include "pipeline/runner.h"
+#include "pipeline/stage.h"
+#include "stages/decode_stage.h"
+#include "stages/ingest_stage.h"
+#include "stages/registry.h"
+
+namespace surrogate::stages {
+
+namespace fs = std::filesystem;
+
+void registerBuiltinStages() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    auto& r = pipeline::StageRegistry::instance();
+    r.add("CaptureIngest", [] { return std::make_unique<IngestStage>(); });
+    r.add("ImageDecode", [] { return std::make_unique<DecodeStage>(); });
+    registerAnalysisStages(r);
+  });
+}
+
+std::vector<carrier::Software> softwareVersions() {
+  return {
+      {"LibRaw", image::librawVersion(), "camera raw decoding"},
+      {"OpenCV", image::opencvVersion(), "image decoding and filtering"},
+      {"Exiv2", meta::exiv2Version(), "EXIF/XMP metadata"},
+      {"libxml2", xml::libxml2Version(), "XML and schema validation"},
+      {"OpenSSL", archive::opensslVersion(), "message digests"},
+      {"Eigen", std::to_string(EIGEN_WORLD_VERSION) + "." + std::to_string(EIGEN_MAJOR_VERSION) +
+                    "." + std::to_string(EIGEN_MINOR_VERSION),
+       "linear algebra"},
+  };
+}
+
+namespace {
+std::string defaultWho() {
+  if (const char* user = std::getenv("USER"); user && *user) return user;
+  return "unknown";
+}
+}  // namespace
+
+carrier::Carrier planRun(const fs::path& capture, const RunRequest& request) {
+  registerBuiltinStages();
+  const std::string who = request.who.empty() ? defaultWho() : request.who;
+  carrier::Carrier c = carrier::newCarrier(
+      request.title.empty() ? fs::absolute(capture).lexically_normal().filename().string()
+                            : request.title,
+      request.creators);
+  c.header.meta = request.meta;
+  for (const carrier::Software& s : softwareVersions()) c.header.software.push_back(s);
+
+  carrier::Step& ingest = c.addStep("CaptureIngest", IngestStage().version());
+  ingest.description = "Read the capture folder, hash every file, read EXIF/XMP";
+  ingest.setParam("source", capture::sourceName(capture::parseSource(request.source)));
+  for (const Exclusion& e : request.exclusions) {
+    if (e.reason.empty())
+      throw Error(ErrorKind::Usage, "--exclude " + e.image, "options",
+                  "an excluded image needs a reason: add --reason \"...\" after it");
+    ingest.interventions.push_back(
+        {"exclude-image", e.image, "", who, carrier::timestampNow(), e.reason});
+  }
+
+  carrier::Step& decode = c.addStep("ImageDecode", DecodeStage().version());
+  decode.description = "Decode each image once (LibRaw for raw/DNG, OpenCV for exports)";
+  image::RawDecodeSettings settings = image::RawDecodeSettings::fromParameters(request.decodeSettings);
+  for (const auto& [name, value] : settings.toParameters()) decode.setParam(name, value);
+
+  bool hasLp = false;
+  for (const auto& entry : fs::directory_iterator(capture)) {
+    std::string ext = entry.path().extension().string();
+    for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    if (entry.is_regular_file() && ext == ".lp") hasLp = true;
+  }
+  const std::vector<std::string> stageNames =
+      request.stages.empty() ? defaultStages(hasLp) : request.stages;
+  auto& registry = pipeline::StageRegistry::instance();
+  for (const std::string& name : stageNames) {
+    auto stage = registry.create(name);
+    carrier::Step& s = c.addStep(name, stage->version());
+    for (const auto& [pname, pvalue] : defaultParameters(name)) s.setParam(pname, pvalue);
+    for (const RunRequest::StageParam& p : request.stageParams)
+      if (p.component == name) s.setParam(p.name, p.value);
+    for (const RunRequest::StageIntervention& i : request.stageInterventions) {
+      if (i.component != name) continue;
+      carrier::Intervention in = i.intervention;
+      if (in.who.empty()) in.who = who;
+      if (in.time.empty()) in.time = carrier::timestampNow();
+      s.interventions.push_back(in);
+    }
+  }
+  // Stage parameters addressed to a stage that is not in the plan are a usage error (a typo
+  // in a component name must not silently do nothing).
+  for (const RunRequest::StageParam& p : request.stageParams) {
+    bool found = false;
+    for (const carrier::Step& s : c.process) found = found || s.component == p.component;
+    if (!found)
+      throw Error(ErrorKind::Usage, p.name, "options",
+                  "is an option of " + p.component + ", which this run does not include");
+  }
+  return c;
+}
+
+carrier::Carrier runCapture(const fs::path& capture, const RunRequest& request,
+                            const pipeline::RunSettings& settings) {
+  carrier::Carrier c = planRun(capture, request);
+  const fs::path assembly = capture / capture::kAssemblyDir;
+  const fs::path finished = capture / capture::kFinishedDir;
+  fs::create_directories(assembly);
+  fs::create_directories(finished);
+  pipeline::RunSettings s = settings;
+  if (s.who.empty()) s.who = request.who.empty() ? defaultWho() : request.who;
+  pipeline::Context ctx(fs::absolute(capture).lexically_normal(), c, s);
+  pipeline::runProcess(ctx, assembly / "carrier.xml");
+  return c;
+}
+
+}  // namespace surrogate::stages

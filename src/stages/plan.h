@@ -1,0 +1,76 @@
+// From what the user asked to a carrier's process list, and running it.
+//
+// `surrogate run` does not hard-code a sequence of calls: it writes the steps it will run,
+// with all their parameters and the user's interventions, into a new carrier, then executes
+// that list. Re-execution (the verifier) executes the same list from the recorded carrier.
+//
+//   RunRequest request;
+//   request.title = "Stela 12";
+//   request.exclusions.push_back({"IMG_0007", "the flash did not fire"});
+//   carrier::Carrier c = runCapture("/data/stela12", request, settings);
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "carrier/carrier.h"
+#include "pipeline/context.h"
+
+namespace surrogate::stages {
+
+struct Exclusion {
+  std::string image;   // shot name, file name or path
+  std::string reason;  // mandatory
+};
+
+struct RunRequest {
+  // Header.
+  std::string title;
+  std::vector<carrier::Creator> creators;
+  std::vector<std::pair<std::string, std::string>> meta;
+  std::string who;  // the person running Surrogate (interventions); default: $USER
+
+  // CaptureIngest.
+  std::string source = "auto";  // auto, original, export
+  std::vector<Exclusion> exclusions;
+
+  // ImageDecode: LibRaw settings as name=value pairs (see image::RawDecodeSettings); empty
+  // means the defaults.
+  std::vector<std::pair<std::string, std::string>> decodeSettings;
+
+  // Stage parameters given on the command line, by stage component: {component, name, value}.
+  struct StageParam {
+    std::string component, name, value;
+  };
+  std::vector<StageParam> stageParams;
+  // Interventions given on the command line for later stages (manual spheres, highlights).
+  struct StageIntervention {
+    std::string component;
+    carrier::Intervention intervention;
+  };
+  std::vector<StageIntervention> stageInterventions;
+
+  // Which stages after decoding to run, in order (components registered by
+  // registerBuiltinStages). Empty: the default pipeline for the capture.
+  std::vector<std::string> stages;
+};
+
+// Registers every stage this build of Surrogate has with the pipeline's registry (once).
+void registerBuiltinStages();
+
+// The default stages after ImageDecode for a capture (with or without a .lp file).
+std::vector<std::string> defaultStages(bool captureHasLp);
+
+// Builds a new carrier whose process list is what `request` asks for.
+carrier::Carrier planRun(const std::filesystem::path& capture, const RunRequest& request);
+
+// Plans and runs; the carrier is saved to CAPTURE/assembly-files/carrier.xml after each step.
+carrier::Carrier runCapture(const std::filesystem::path& capture, const RunRequest& request,
+                            const pipeline::RunSettings& settings);
+
+// The name, version and role of every library whose behaviour can change results.
+std::vector<carrier::Software> softwareVersions();
+
+}  // namespace surrogate::stages

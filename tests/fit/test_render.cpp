@@ -1,0 +1,239 @@
+#include <catch2/catch.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+
+#include "core/error.h"
+#include "fit/fit.h"
+#include "fit/normals.h"
+#include "fit/ptm_math.h"
+#include "fit/render.h"
+#include "formats/ptm.h"
+#include "formats/rti_hsh.h"
+#include "synthetic.h"
+
+using namespace surrogate;
+using namespace surrogate::fit;
+using test::Light;
+namespace fs = std::filesystem;
+
+namespace {
+double maxDiff(const Image& rendered, const Image& captured) {
+  double worst = 0;
+  for (std::size_t i = 0; i < rendered.pixels.size(); ++i)
+    worst = std::max(worst, std::fabs(rendered.pixels[i] / 257.0 - captured.pixels[i] / 257.0));
+  return worst;
+}
+
+std::array<double, 3> decodeNormal(const Image& im, int x, int y) {
+  return {im.at(x, y, 0) / 65535.0 * 2 - 1, im.at(x, y, 1) / 65535.0 * 2 - 1,
+          im.at(x, y, 2) / 65535.0 * 2 - 1};
+}
+
+// A bump of luminance whose maximum is at the normal's (nx, ny):
+// L = c - k ((lu - nx)^2 + (lv - ny)^2).
+std::array<double, 6> bump(double nx, double ny, double c = 200, double k = 40) {
+  return {-k, -k, 0, 2 * k * nx, 2 * k * ny, c - k * (nx * nx + ny * ny)};
+}
+}  // namespace
+
+TEST_CASE("render: a PTM and an HSH re-rendered at a captured light reproduce the photograph") {
+  const auto lights = test::spreadLights(30);
+  const auto truth = test::randomPtm(20, 12, 4);
+  const auto stack = test::ptmImages(truth, lights);
+  FitOptions o;
+  o.basis = Basis::PtmRgb;
+  const auto ptm = fitPtm(stack, lights, o);
+  const auto htruth = test::randomHsh(20, 12, 9, 8);
+  const auto hstack = test::hshImages(htruth, lights);
+  o.basis = Basis::Hsh3;
+  const auto hsh = fitHsh(hstack, lights, o);
+  for (int i : {0, 7, 29}) {
+    CHECK(maxDiff(render(ptm, lights[i]), stack.image(i)) <= 1.5);
+    CHECK(maxDiff(render(hsh, lights[i]), hstack.image(i)) <= 1.5);
+  }
+  const Image r = render(ptm, lights[0]);
+  CHECK(r.bitsPerSample == 8);
+  CHECK(r.channels == 3);
+  CHECK(r.pixels[5] % 257 == 0);
+}
+
+TEST_CASE("render: gain 1 equals no gain; the gain keeps the maximum's position and value") {
+  const auto a = bump(0.3, -0.2);
+  double lu0, lv0;
+  REQUIRE(ptmMaximum(a, &lu0, &lv0));
+  CHECK(lu0 == Approx(0.3));
+  CHECK(lv0 == Approx(-0.2));
+  CHECK(applyDiffuseGain(a, 1.0, lu0, lv0) == a);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int t = 0; t < 200; ++t) {
+    const PtmCoefficients p = {-20 + 15 * u(rng), -20 + 15 * u(rng), 4 * u(rng), 30 * u(rng),
+                               30 * u(rng), 150 + 50 * u(rng)};
+    double x0, y0;
+    if (!ptmMaximum(p, &x0, &y0)) continue;
+    for (double g : {0.5, 2.0, 4.0}) {
+      const auto q = applyDiffuseGain(p, g, x0, y0);
+      double x1, y1;
+      CHECK(ptmMaximum(q, &x1, &y1) == (g > 0));
+      CHECK(x1 == Approx(x0).margin(1e-9));
+      CHECK(y1 == Approx(y0).margin(1e-9));
+      CHECK(evaluatePtm(q, x0, y0) == Approx(evaluatePtm(p, x0, y0)));
+      CHECK(q[0] == Approx(g * p[0]));
+    }
+  }
+  const auto lights = test::spreadLights(20);
+  const auto stack = test::ptmImages(test::randomPtm(8, 6, 5), lights);
+  const auto ptm = fitPtm(stack, lights, FitOptions{});
+  RenderOptions one;
+  one.diffuseGain = 1.0;
+  CHECK(render(ptm, {0.3, 0.2, 0.9}, one).pixels == render(ptm, {0.3, 0.2, 0.9}).pixels);
+  RenderOptions two;
+  two.diffuseGain = 2.0;
+  CHECK(render(ptm, {0.3, 0.2, 0.9}, two).pixels != render(ptm, {0.3, 0.2, 0.9}).pixels);
+  two.threads = 1;
+  RenderOptions twoThreads = two;
+  twoThreads.threads = 2;
+  CHECK(render(ptm, {0.9, 0, 0.4}, two).pixels == render(ptm, {0.9, 0, 0.4}, twoThreads).pixels);
+}
+
+TEST_CASE("render: options are validated; HSH has no diffuse gain; extrapolation moves the light") {
+  const auto lights = test::spreadLights(20);
+  const auto stack = test::ptmImages(test::randomPtm(4, 3, 6), lights);
+  const auto ptm = fitPtm(stack, lights, FitOptions{});
+  CHECK_THROWS_AS(render(ptm, {0, 0, 0}), Error);
+  RenderOptions bad;
+  bad.diffuseGain = -1;
+  CHECK_THROWS_AS(render(ptm, {0, 0, 1}, bad), Error);
+  FitOptions h;
+  h.basis = Basis::Hsh2;
+  const auto hsh = fitHsh(stack, lights, h);
+  RenderOptions gain;
+  gain.diffuseGain = 2;
+  CHECK_THROWS_AS(render(hsh, {0, 0, 1}, gain), Error);
+  RenderOptions far;
+  far.extrapolation = 1.8;
+  CHECK(render(ptm, {1, 0, 0.2}, far).pixels != render(ptm, {1, 0, 0.2}).pixels);
+  RenderOptions spec;
+  spec.specular = true;
+  CHECK(render(ptm, {0, 0, 1}, spec).pixels != render(ptm, {0, 0, 1}).pixels);
+  CHECK(render(hsh, {0, 0, 1}, spec).pixels.size() == 4 * 3 * 3);
+}
+
+TEST_CASE("normals: a PTM's maximum gives the normal; no maximum falls back and is counted") {
+  const auto lights = test::spreadLights(30);
+  const int w = 6, h = 5;
+  std::vector<std::array<double, 2>> tilt;
+  std::vector<Image> images;
+  for (int p = 0; p < w * h; ++p) tilt.push_back({-0.4 + 0.8 * (p % w) / (w - 1), 0.5 - 0.2 * (p / w)});
+  for (const Light& l : lights) {
+    Image im(w, h, 3);
+    for (int p = 0; p < w * h; ++p) {
+      const double v = test::evalPtm(bump(tilt[p][0], tilt[p][1]), l);
+      for (int c = 0; c < 3; ++c) im.pixels[p * 3 + c] = test::sample255(v);
+    }
+    images.push_back(std::move(im));
+  }
+  const MemoryImageStack stack(std::move(images));
+  for (Basis b : {Basis::PtmLrgb, Basis::PtmRgb}) {
+    FitOptions o;
+    o.basis = b;
+    const auto ptm = fitPtm(stack, lights, o);
+    int fallback = -1;
+    const Image n = normalMap(ptm, &fallback);
+    CHECK(fallback == 0);
+    CHECK(n.bitsPerSample == 16);
+    for (int p = 0; p < w * h; ++p) {
+      const auto v = decodeNormal(n, p % w, p / w);
+      CHECK(v[0] == Approx(tilt[p][0]).margin(0.02));
+      CHECK(v[1] == Approx(tilt[p][1]).margin(0.02));
+      CHECK(v[2] == Approx(std::sqrt(1 - tilt[p][0] * tilt[p][0] - tilt[p][1] * tilt[p][1])).margin(0.02));
+    }
+    const Image albedo = albedoMap(ptm);
+    CHECK(albedo.bitsPerSample == 8);
+    CHECK(albedo.at(0, 0, 0) > 0);
+  }
+  // A polynomial without a maximum (a0 > 0) uses the Lambertian fallback.
+  bool fallback = false;
+  const auto nf = ptmNormal({10, -20, 0, 30, 0, 100}, &fallback);
+  CHECK(fallback);
+  CHECK(nf[0] > 0.15);  // brighter towards +x
+  CHECK(nf[2] > 0);
+}
+
+TEST_CASE("normals: HSH of a Lambertian surface gives its normal") {
+  const auto lights = test::spreadLights(40);
+  const std::array<double, 3> n0 = {0.25, -0.15, std::sqrt(1 - 0.25 * 0.25 - 0.15 * 0.15)};
+  std::vector<Image> images;
+  for (const Light& l : lights) {
+    Image im(3, 2, 3);
+    const double v = 200 * std::max(0.0, n0[0] * l[0] + n0[1] * l[1] + n0[2] * l[2]);
+    for (auto& s : im.pixels) s = test::sample255(v);
+    images.push_back(std::move(im));
+  }
+  const MemoryImageStack stack(std::move(images));
+  FitOptions o;
+  o.basis = Basis::Hsh3;
+  const auto hsh = fitHsh(stack, lights, o);
+  int fallback = -1;
+  const Image n = normalMap(hsh, &fallback);
+  CHECK(fallback == 0);
+  const auto v = decodeNormal(n, 1, 1);
+  CHECK(v[0] == Approx(n0[0]).margin(0.08));
+  CHECK(v[1] == Approx(n0[1]).margin(0.08));
+  const Image albedo = albedoMap(hsh);
+  CHECK(albedo.at(1, 1, 0) / 257 == Approx(200).margin(25));
+}
+
+TEST_CASE("relightable: files written and reopened render like the objects") {
+  const fs::path dir = fs::temp_directory_path() / "surrogate-test-relight";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const auto lights = test::spreadLights(20);
+  const auto stack = test::ptmImages(test::randomPtm(7, 5, 7), lights);
+  const auto ptm = fitPtm(stack, lights, FitOptions{});
+  FitOptions h;
+  h.basis = Basis::Hsh3;
+  const auto hsh = fitHsh(stack, lights, h);
+  formats::writePtm(dir / "a.ptm", ptm);
+  formats::writeRti(dir / "a.rti", hsh);
+  const auto p = openRelightable(dir / "a.ptm");
+  const auto r = openRelightable(dir / "a.rti");
+  CHECK(p->basis() == "ptm-lrgb");
+  CHECK(r->basis() == "hsh3");
+  CHECK(p->width() == 7);
+  CHECK(p->render({0.2, 0.3, 0.9}, {}).pixels == render(ptm, {0.2, 0.3, 0.9}).pixels);
+  CHECK(r->render({0.2, 0.3, 0.9}, {}).pixels == render(hsh, {0.2, 0.3, 0.9}).pixels);
+  CHECK(r->normalMap().pixels == normalMap(hsh).pixels);
+  CHECK_THROWS_AS(openRelightable(dir / "missing.ptm"), Error);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("fit throughput (prints Mpixel-images/s)", "[.][bench]") {
+  const int w = 1000, h = 1000, n = 60;
+  const auto lights = test::spreadLights(n);
+  std::vector<Image> images;
+  for (int i = 0; i < n; ++i) {
+    Image im(w, h, 3);
+    for (std::size_t p = 0; p < im.pixels.size(); ++p)
+      im.pixels[p] = static_cast<std::uint16_t>((p * 2654435761u + i * 40503u) & 0xFFFF);
+    images.push_back(std::move(im));
+  }
+  const MemoryImageStack stack(std::move(images));
+  for (Basis b : {Basis::PtmLrgb, Basis::PtmRgb, Basis::Hsh3}) {
+    for (int threads : {1, 2}) {
+      FitOptions o;
+      o.basis = b;
+      o.threads = threads;
+      o.memoryBudgetBytes = 64ull << 20;  // forces two passes (the stack is 360 MB)
+      FitStatistics s;
+      const auto t0 = std::chrono::steady_clock::now();
+      if (isPtm(b)) fitPtm(stack, lights, o, &s); else fitHsh(stack, lights, o, &s);
+      const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      std::cout << basisName(b) << " threads=" << threads << " passes=" << s.passes << ": "
+                << sec << " s, " << (double(w) * h * n / 1e6) / sec << " Mpixel-images/s\n";
+    }
+  }
+}
