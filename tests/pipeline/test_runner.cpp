@@ -1,0 +1,93 @@
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+
+#include "pipeline/context.h"
+#include "pipeline/runner.h"
+#include "pipeline/stage.h"
+
+using namespace surrogate;
+using namespace surrogate::pipeline;
+namespace fs = std::filesystem;
+
+namespace {
+
+// Doubles the "value" parameter and passes it on through the blackboard.
+class DoublingStage : public Stage {
+ public:
+  std::string component() const override { return "TestDoubling"; }
+  std::string version() const override { return "1"; }
+  void run(const carrier::Step& step, Context& ctx, carrier::Result& result) override {
+    double v = std::stod(step.param("value", "1"));
+    if (ctx.has("last")) v += *ctx.get<double>("last");
+    result.add("value").set("name", "doubled").set("value", carrier::formatNumber(2 * v));
+    ctx.put("last", std::make_shared<double>(2 * v));
+  }
+};
+
+class FailingStage : public Stage {
+ public:
+  std::string component() const override { return "TestFailing"; }
+  std::string version() const override { return "1"; }
+  void run(const carrier::Step&, Context&, carrier::Result&) override {
+    throwInputError("IMG_0001.jpg", "test", "is broken");
+  }
+};
+
+void registerTestStages() {
+  static bool done = false;
+  if (done) return;
+  done = true;
+  StageRegistry::instance().add("TestDoubling", [] { return std::make_unique<DoublingStage>(); });
+  StageRegistry::instance().add("TestFailing", [] { return std::make_unique<FailingStage>(); });
+}
+
+}  // namespace
+
+TEST_CASE("the runner executes the process list in order, steps sharing the blackboard") {
+  registerTestStages();
+  carrier::Carrier c = carrier::newCarrier("runner", {});
+  c.addStep("TestDoubling", "1").setParam("value", "3");
+  c.addStep("TestDoubling", "1").setParam("value", "1");
+  Context ctx(fs::temp_directory_path(), c, RunSettings{});
+  runProcess(ctx, {});
+  REQUIRE(c.data.size() == 2);
+  CHECK(c.findResult("s1")->items[0].number("value") == 6);
+  CHECK(c.findResult("s2")->items[0].number("value") == 14);  // (1 + 6) * 2
+  CHECK(c.findResult("s2")->status == "completed");
+  int timings = 0;
+  for (const carrier::LogEntry& e : c.log) timings += e.level == "timing";
+  CHECK(timings == 2);
+}
+
+TEST_CASE("a failing step is recorded as failed in the saved carrier, and the error propagates") {
+  registerTestStages();
+  const fs::path dir = fs::temp_directory_path() / "surrogate-test-runner";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  carrier::Carrier c = carrier::newCarrier("runner", {});
+  c.addStep("TestDoubling", "1");
+  c.addStep("TestFailing", "1");
+  c.addStep("TestDoubling", "1");
+  Context ctx(dir, c, RunSettings{});
+  CHECK_THROWS_AS(runProcess(ctx, dir / "carrier.xml"), Error);
+  const carrier::Carrier saved = carrier::loadCarrier(dir / "carrier.xml");
+  REQUIRE(saved.data.size() == 2);
+  CHECK(saved.data[1].status == "failed");
+  CHECK(saved.findResult("s3") == nullptr);
+  CHECK(saved.log.back().level == "error");
+  CHECK(saved.log.back().text.find("IMG_0001.jpg") != std::string::npos);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("an unknown component in a carrier is refused by name") {
+  carrier::Carrier c = carrier::newCarrier("runner", {});
+  c.addStep("NoSuchStage", "1");
+  Context ctx(fs::temp_directory_path(), c, RunSettings{});
+  try {
+    runProcess(ctx, {});
+    FAIL("ran an unknown stage");
+  } catch (const Error& e) {
+    CHECK(e.message().find("NoSuchStage") != std::string::npos);
+  }
+}
