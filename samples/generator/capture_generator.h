@@ -1,0 +1,82 @@
+// A synthetic Highlight-RTI capture with known truth, for tests, benchmarks and the demo.
+//
+// Scene (orthographic camera; image x right, y down; camera frame X right, Y up, Z towards the
+// camera): a textured relief (smooth bumps, engraved strokes, fine noise) lit Lambertian by a
+// distant light, with cast shadows, and one or two glossy black spheres standing on it whose
+// specular highlight peaks exactly at the mirror point N = normalize(L + V), V = (0, 0, 1):
+//
+//     highlight centre (pixels) = (cx + r Nx, cy - r Ny)
+//
+// Each shot is written twice, as a photographer's card and export would hold it:
+//   original-captures/IMG_0001.dng   uncompressed 16-bit RGGB Bayer mosaic (libtiff), with the
+//                                    DNG and EXIF tags LibRaw and Exiv2 need
+//   jpeg-exports/IMG_0001.jpg        the sRGB-encoded 8-bit export
+// and the truth beside them in truth/ (lights.lp, spheres.txt, generator.txt): never inside
+// the folders a tool reads.
+//
+//   GeneratorOptions o;  o.images = 24;  o.seed = 7;
+//   writeCapture(o, "/tmp/capture");          // identical bytes for identical options
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/image.h"
+
+namespace surrogate::generator {
+
+enum class OutputFormats { Both, Dng, Jpeg };
+
+struct GeneratorOptions {
+  int images = 24;               // number of shots (lights)
+  int width = 1200;              // pixels
+  int height = 800;
+  int spheres = 1;               // 1 or 2
+  double sphereRadius = 80;      // pixels
+  double noise = 100;            // read noise, 16-bit DN (shot noise is added on top)
+  int jpegQuality = 95;          // of the exports
+  std::uint64_t seed = 1;        // everything random derives from it
+  bool strongTexture = false;    // high-contrast albedo pattern: a hard case for detection
+  bool shadows = true;           // cast shadows of the relief and the spheres
+  OutputFormats formats = OutputFormats::Both;
+  int threads = 0;               // 0 = all cores; output is identical at any count
+};
+
+struct SphereTruth {
+  double cx, cy, r;  // pixels, origin at the centre of the top-left pixel
+};
+
+struct CaptureTruth {
+  std::vector<std::array<double, 3>> lights;  // unit vectors, one per shot
+  std::vector<SphereTruth> spheres;
+};
+
+// The lights and spheres the options give (deterministic in the seed).
+CaptureTruth planCapture(const GeneratorOptions& options);
+
+// Linear 16-bit RGB of shot `index` (0-based) after exposure and noise: what the DNG's
+// mosaic samples (before its black level is added).
+Image renderShot(const GeneratorOptions& options, const CaptureTruth& truth, int index);
+
+// DNG tags that vary per shot.
+struct DngInfo {
+  std::string make = "Surrogate";
+  std::string model = "Synthetic HRTI";
+  std::string serial = "SYN-0001";
+  std::string dateTimeOriginal = "2026:01:01 12:00:00";
+  double exposureSeconds = 1.0 / 125;
+  double fNumber = 8;
+  int iso = 100;
+  double focalLengthMm = 50;
+};
+
+// Writes a linear RGB image as a DNG holding its RGGB mosaic (atomic).
+void writeDng(const Image& linearRgb, const DngInfo& info, const std::filesystem::path& path);
+
+// Writes the whole capture into `dir` (created; must be empty or absent).
+void writeCapture(const GeneratorOptions& options, const std::filesystem::path& dir);
+
+}  // namespace surrogate::generator
