@@ -1,0 +1,90 @@
+#include "hrti/drawing.h"
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace surrogate::hrti {
+
+namespace {
+
+constexpr int kShift = 4;  // sub-pixel drawing: coordinates in 1/16 pixel
+constexpr double kUnit = 1 << kShift;
+
+cv::Mat greyToBgr8(const Image& grey) {
+  cv::Mat m(grey.height, grey.width, CV_8U);
+  for (int y = 0; y < grey.height; ++y)
+    for (int x = 0; x < grey.width; ++x) m.at<std::uint8_t>(y, x) = static_cast<std::uint8_t>((grey.at(x, y) + 128) / 257);
+  cv::Mat bgr;
+  cv::cvtColor(m, bgr, cv::COLOR_GRAY2BGR);
+  return bgr;
+}
+
+Image toImage(const cv::Mat& bgr) {
+  Image out(bgr.cols, bgr.rows, 3);
+  out.bitsPerSample = 8;
+  out.transfer = Transfer::Srgb;
+  for (int y = 0; y < bgr.rows; ++y)
+    for (int x = 0; x < bgr.cols; ++x) {
+      const cv::Vec3b p = bgr.at<cv::Vec3b>(y, x);
+      for (int c = 0; c < 3; ++c) out.at(x, y, c) = static_cast<std::uint16_t>(p[2 - c] * 257);
+    }
+  return out;
+}
+
+cv::Point sub(double x, double y) { return {static_cast<int>(std::lround(x * kUnit)), static_cast<int>(std::lround(y * kUnit))}; }
+
+}  // namespace
+
+Image drawSphereOverlay(const Image& median, const std::vector<DetectedSphere>& spheres) {
+  cv::Mat bgr = greyToBgr8(median);
+  const int thickness = std::max(1, median.width / 600);
+  for (std::size_t k = 0; k < spheres.size(); ++k) {
+    const DetectedSphere& s = spheres[k];
+    cv::circle(bgr, sub(s.cx, s.cy), static_cast<int>(std::lround(s.r * kUnit)), cv::Scalar(0, 220, 0), thickness, cv::LINE_AA, kShift);
+    const double arm = std::max(4.0, s.r / 8);
+    cv::line(bgr, sub(s.cx - arm, s.cy), sub(s.cx + arm, s.cy), cv::Scalar(0, 220, 0), thickness, cv::LINE_AA, kShift);
+    cv::line(bgr, sub(s.cx, s.cy - arm), sub(s.cx, s.cy + arm), cv::Scalar(0, 220, 0), thickness, cv::LINE_AA, kShift);
+    char label[64];
+    std::snprintf(label, sizeof label, "sphere %zu  r=%.2f  conf %.2f", k, s.r, s.confidence);
+    const double scale = std::max(0.4, median.width / 2000.0);
+    const int ty = static_cast<int>(s.cy + s.r + 20 * scale) < median.height ? static_cast<int>(s.cy + s.r + 20 * scale)
+                                                                             : static_cast<int>(s.cy - s.r - 6);
+    cv::putText(bgr, label, cv::Point(static_cast<int>(std::max(0.0, s.cx - s.r)), ty), cv::FONT_HERSHEY_SIMPLEX,
+                scale, cv::Scalar(0, 220, 0), thickness, cv::LINE_AA);
+  }
+  return toImage(bgr);
+}
+
+Image drawHighlightOverview(const Image& median, const DetectedSphere& s, const std::vector<Highlight>& perImage) {
+  const double margin = s.r * 0.15;
+  const int x0 = std::max(0, static_cast<int>(std::floor(s.cx - s.r - margin)));
+  const int y0 = std::max(0, static_cast<int>(std::floor(s.cy - s.r - margin)));
+  const int x1 = std::min(median.width, static_cast<int>(std::ceil(s.cx + s.r + margin)) + 1);
+  const int y1 = std::min(median.height, static_cast<int>(std::ceil(s.cy + s.r + margin)) + 1);
+  cv::Mat crop = greyToBgr8(median)(cv::Rect(x0, y0, x1 - x0, y1 - y0)).clone();
+  // Brighten the dark sphere so the marks read against it.
+  crop.convertTo(crop, -1, 1.0, 40);
+  const double zoom = 600.0 / std::max(crop.cols, crop.rows);
+  cv::Mat big;
+  cv::resize(crop, big, cv::Size(), zoom, zoom, cv::INTER_LINEAR);
+  auto map = [&](double x, double y) { return sub((x - x0 + 0.5) * zoom - 0.5, (y - y0 + 0.5) * zoom - 0.5); };
+  cv::circle(big, map(s.cx, s.cy), static_cast<int>(std::lround(s.r * zoom * kUnit)), cv::Scalar(0, 200, 0), 2, cv::LINE_AA, kShift);
+  for (std::size_t i = 0; i < perImage.size(); ++i) {
+    const Highlight& h = perImage[i];
+    if (h.flag == HighlightFlag::None) continue;
+    const cv::Scalar colour = h.flag == HighlightFlag::Ok ? cv::Scalar(40, 40, 255) : cv::Scalar(0, 230, 255);
+    cv::circle(big, map(h.x, h.y), static_cast<int>(4 * kUnit), colour, -1, cv::LINE_AA, kShift);
+    char label[16];
+    std::snprintf(label, sizeof label, "%zu", i + 1);
+    const cv::Point at = map(h.x, h.y);
+    cv::putText(big, label, cv::Point(at.x / static_cast<int>(kUnit) + 6, at.y / static_cast<int>(kUnit) - 4),
+                cv::FONT_HERSHEY_SIMPLEX, 0.4, colour, 1, cv::LINE_AA);
+  }
+  return toImage(big);
+}
+
+}  // namespace surrogate::hrti

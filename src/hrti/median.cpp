@@ -1,0 +1,39 @@
+#include "hrti/median.h"
+
+#include <algorithm>
+#include <vector>
+
+#include "core/error.h"
+#include "core/parallel.h"
+
+namespace surrogate::hrti {
+
+Image medianImage(const ImageStack& stack, int bandRows, int threads) {
+  if (stack.channels() != 1 || stack.size() == 0)
+    throw Error(ErrorKind::Internal, "", "median", "the median needs a non-empty one-channel stack");
+  const int n = stack.size(), w = stack.width(), h = stack.height();
+  Image out(w, h, 1);
+  out.transfer = stack.transfer();
+  bandRows = std::clamp(bandRows, 1, h);
+  std::vector<std::uint16_t> band(std::size_t(n) * bandRows * w);
+  for (int y0 = 0; y0 < h; y0 += bandRows) {
+    const int rows = std::min(bandRows, h - y0);
+    const std::size_t plane = std::size_t(rows) * w;
+    parallelFor(n, 1, effectiveThreads(threads), [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i)
+        stack.readRows(static_cast<int>(i), y0, y0 + rows, &band[i * plane]);
+    });
+    parallelFor(plane, 4096, effectiveThreads(threads), [&](std::size_t b, std::size_t e) {
+      std::vector<std::uint16_t> samples(n);
+      for (std::size_t p = b; p < e; ++p) {
+        for (int i = 0; i < n; ++i) samples[i] = band[i * plane + p];
+        const auto mid = samples.begin() + (n - 1) / 2;
+        std::nth_element(samples.begin(), mid, samples.end());
+        out.pixels[std::size_t(y0) * w + p] = *mid;
+      }
+    });
+  }
+  return out;
+}
+
+}  // namespace surrogate::hrti

@@ -1,0 +1,63 @@
+// Finding the reflective spheres in the median image (hrti-math.md, sphere detection).
+//
+//   1. 7x7 median filter: flattens texture, keeps the sphere's outline sharp
+//   2. Sobel gradient, magnitude and direction
+//   3. circle Hough transform accumulated from the gradient magnitude itself (no binarisation):
+//      each edge pixel p with gradient direction g votes, for every candidate radius r, along
+//      an arc of +-pi/12 around the point
+//            c = p - r (cos(g + phi), sin(g + phi)),   |phi| <= pi/12
+//      i.e. into the dark sphere. Radii are independent and run in parallel; the best
+//      (x, y, r), score normalised by the circumference, wins.
+//   4. sub-pixel refinement: along 360 rays from the centre, the sub-pixel maximum of the
+//      radial gradient (parabola through 3 samples) gives an edge point; a least-squares
+//      circle fit (algebraic, then geometric Gauss-Newton) with outlier rejection gives
+//      (cx, cy, r).
+// Steps 1-3 run on a copy downscaled to about `coarseWidth` pixels (the Hough transform is
+// the expensive part), step 4 at full resolution.
+//
+// Confidence (0..1): the fraction of 360 rays from the centre whose strongest outward edge is
+// strong (above a quarter of the median edge strength) and lies on the fitted circle (an
+// inlier of the fit): a whole, clean sphere scores near 1. A candidate is kept only if its
+// confidence reaches minConfidence, its inside is much darker than its surroundings (mean
+// inside 0.8 r below 0.6 times the mean of the ring 1.15 r to 1.4 r: the sphere is black),
+// and, after the first sphere, its Hough score is at least a third of the first one's.
+//
+//   SphereDetectionOptions o;                     // whole frame, up to 4 spheres
+//   o.regions.push_back({900, 0, 300, 250});      // or: one sphere in this region
+//   std::vector<DetectedSphere> s = detectSpheres(median, o);
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/image.h"
+
+namespace surrogate::hrti {
+
+struct Rect {
+  int x = 0, y = 0, w = 0, h = 0;
+};
+
+struct DetectedSphere {
+  double cx = 0, cy = 0, r = 0;  // pixels; origin at the centre of the top-left pixel, y down
+  double confidence = 0;
+};
+
+struct SphereDetectionOptions {
+  double minRadius = 20;        // pixels; smaller spheres give poor light directions anyway
+  double maxRadius = 0;         // pixels; 0 = a quarter of the image's smaller side
+  std::vector<Rect> regions;    // user regions, one sphere each; empty = search the frame
+  int maxSpheres = 4;           // when searching the whole frame
+  double minConfidence = 0.5;   // weaker candidates are not spheres
+  int coarseWidth = 800;        // width of the copy the Hough transform runs on
+  int threads = 0;              // not recorded: results are identical at any count
+
+  std::vector<std::pair<std::string, std::string>> toParameters() const;
+  static SphereDetectionOptions fromParameters(const std::vector<std::pair<std::string, std::string>>& p);
+};
+
+// Throws Error(Input) when no sphere is found, suggesting --sphere-roi or --sphere.
+std::vector<DetectedSphere> detectSpheres(const Image& median, const SphereDetectionOptions& options);
+
+}  // namespace surrogate::hrti
