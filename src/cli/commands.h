@@ -17,6 +17,9 @@ const std::vector<Command>& commands();
 
 int runCommandRun(int argc, char** argv);
 int runCommandInfo(int argc, char** argv);
+int runCommandLights(int argc, char** argv);
+int runCommandFit(int argc, char** argv);
+int runCommandRender(int argc, char** argv);
 
 // Shared by commands: prints `help` and returns 0 if --help was given.
 std::string usageHeader(const std::string& synopsis, const std::string& description);

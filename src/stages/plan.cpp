@@ -9,6 +9,7 @@
 #include "capture/capture.h"
 #include "carrier/xml.h"
 #include "core/error.h"
+#include "core/version.h"
 #include "image/decode.h"
 #include "meta/metadata.h"
 #include "pipeline/runner.h"
@@ -53,6 +54,9 @@ std::string defaultWho() {
 
 carrier::Carrier planRun(const fs::path& capture, const RunRequest& request) {
   registerBuiltinStages();
+  if (!fs::is_directory(capture))
+    throwInputError(capture.string(), "plan", fs::exists(capture) ? "is not a folder; give the capture folder"
+                                                                   : "the capture folder does not exist");
   const std::string who = request.who.empty() ? defaultWho() : request.who;
   carrier::Carrier c = carrier::newCarrier(
       request.title.empty() ? fs::absolute(capture).lexically_normal().filename().string()
@@ -83,15 +87,16 @@ carrier::Carrier planRun(const fs::path& capture, const RunRequest& request) {
     for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
     if (entry.is_regular_file() && ext == ".lp") hasLp = true;
   }
-  const std::vector<std::string> stageNames =
-      request.stages.empty() ? defaultStages(hasLp) : request.stages;
   auto& registry = pipeline::StageRegistry::instance();
-  for (const std::string& name : stageNames) {
+  for (const PlannedStage& planned : analysisStages(hasLp, request)) {
+    const std::string& name = planned.component;
     auto stage = registry.create(name);
     carrier::Step& s = c.addStep(name, stage->version());
+    s.description = describeStage(name);
     for (const auto& [pname, pvalue] : defaultParameters(name)) s.setParam(pname, pvalue);
     for (const RunRequest::StageParam& p : request.stageParams)
       if (p.component == name) s.setParam(p.name, p.value);
+    for (const auto& [pname, pvalue] : planned.params) s.setParam(pname, pvalue);
     for (const RunRequest::StageIntervention& i : request.stageInterventions) {
       if (i.component != name) continue;
       carrier::Intervention in = i.intervention;
@@ -123,6 +128,30 @@ carrier::Carrier runCapture(const fs::path& capture, const RunRequest& request,
   if (s.who.empty()) s.who = request.who.empty() ? defaultWho() : request.who;
   pipeline::Context ctx(fs::absolute(capture).lexically_normal(), c, s);
   pipeline::runProcess(ctx, assembly / "carrier.xml");
+  return c;
+}
+
+carrier::Carrier replayCarrier(const fs::path& captureRoot, const carrier::Carrier& recorded,
+                               const pipeline::RunSettings& settings, const fs::path& carrierPath) {
+  registerBuiltinStages();
+  carrier::Carrier c;
+  c.header = recorded.header;
+  c.header.machine = carrier::currentMachine();
+  c.header.modified = carrier::timestampNow();
+  c.header.software = {{"Surrogate", surrogateVersion(), "pipeline"}};
+  for (const carrier::Software& s : softwareVersions()) c.header.software.push_back(s);
+  c.process = recorded.process;
+  for (const carrier::Step& s : c.process) {
+    auto stage = pipeline::StageRegistry::instance().create(s.component);
+    if (stage->version() != s.version)
+      c.addLog("warning", s.id, s.component + " is version " + stage->version() +
+                                    " here but the carrier records version " + s.version +
+                                    ": its results may differ");
+  }
+  fs::create_directories(captureRoot / capture::kAssemblyDir);
+  fs::create_directories(captureRoot / capture::kFinishedDir);
+  pipeline::Context ctx(fs::absolute(captureRoot).lexically_normal(), c, settings);
+  pipeline::runProcess(ctx, carrierPath);
   return c;
 }
 

@@ -52,16 +52,23 @@ struct RunRequest {
   };
   std::vector<StageIntervention> stageInterventions;
 
-  // Which stages after decoding to run, in order (components registered by
-  // registerBuiltinStages). Empty: the default pipeline for the capture.
-  std::vector<std::string> stages;
+  // Models to fit (RtiFit steps, in order): ptm-lrgb, ptm-rgb, hsh2, hsh3.
+  std::vector<std::string> bases = {"ptm-lrgb", "hsh2"};
+  // Stop after light estimation (surrogate lights): no fitting, no derived maps.
+  bool lightsOnly = false;
+};
+
+// A step to plan: its component and the parameters that differ from the stage's defaults.
+struct PlannedStage {
+  std::string component;
+  std::vector<std::pair<std::string, std::string>> params;
 };
 
 // Registers every stage this build of Surrogate has with the pipeline's registry (once).
 void registerBuiltinStages();
 
-// The default stages after ImageDecode for a capture (with or without a .lp file).
-std::vector<std::string> defaultStages(bool captureHasLp);
+// The stages after ImageDecode for a capture (with or without a .lp file) and a request.
+std::vector<PlannedStage> analysisStages(bool captureHasLp, const RunRequest& request);
 
 // Builds a new carrier whose process list is what `request` asks for.
 carrier::Carrier planRun(const std::filesystem::path& capture, const RunRequest& request);
@@ -69,6 +76,16 @@ carrier::Carrier planRun(const std::filesystem::path& capture, const RunRequest&
 // Plans and runs; the carrier is saved to CAPTURE/assembly-files/carrier.xml after each step.
 carrier::Carrier runCapture(const std::filesystem::path& capture, const RunRequest& request,
                             const pipeline::RunSettings& settings);
+
+// Re-execution: runs `recorded`'s process list again (same steps, parameters and
+// interventions) on the files under `captureRoot` (a capture folder, or a bag's data/ folder),
+// writing outputs there. Returns the new carrier: same header and process list, fresh files,
+// data and log, with this build's software versions. The carrier is saved to `carrierPath`
+// when that is not empty. Steps naming unknown components are an Error(Input).
+carrier::Carrier replayCarrier(const std::filesystem::path& captureRoot,
+                               const carrier::Carrier& recorded,
+                               const pipeline::RunSettings& settings,
+                               const std::filesystem::path& carrierPath = {});
 
 // The name, version and role of every library whose behaviour can change results.
 std::vector<carrier::Software> softwareVersions();

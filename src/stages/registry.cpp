@@ -1,15 +1,66 @@
 #include "stages/registry.h"
 
+#include "fit/fit.h"
+#include "hrti/highlight_detection.h"
+#include "hrti/sphere_detection.h"
+#include "stages/fit_stages.h"
+#include "stages/light_stages.h"
 #include "stages/plan.h"
 
 namespace surrogate::stages {
 
-void registerAnalysisStages(pipeline::StageRegistry&) {}
+void registerAnalysisStages(pipeline::StageRegistry& r) {
+  r.add("SphereDetection", [] { return std::make_unique<SphereDetectionStage>(); });
+  r.add("HighlightDetection", [] { return std::make_unique<HighlightDetectionStage>(); });
+  r.add("LightDirections", [] { return std::make_unique<LightDirectionsStage>(); });
+  r.add("LightsFromFile", [] { return std::make_unique<LightsFromFileStage>(); });
+  r.add("RtiFit", [] { return std::make_unique<RtiFitStage>(); });
+  r.add("DerivedMaps", [] { return std::make_unique<DerivedMapsStage>(); });
+}
 
-std::vector<std::pair<std::string, std::string>> defaultParameters(const std::string&) {
+std::vector<std::pair<std::string, std::string>> defaultParameters(const std::string& component) {
+  if (component == "SphereDetection") return hrti::SphereDetectionOptions().toParameters();
+  if (component == "HighlightDetection") return hrti::HighlightOptions().toParameters();
+  if (component == "LightDirections")
+    return {{"model", "orthographic"}, {"focalLengthMm", "0"}, {"pixelPitchMm", "0"},
+            {"sphereDiameterMm", "0"}};
+  if (component == "RtiFit") return fit::FitOptions().toParameters();
+  if (component == "DerivedMaps") return {{"model", "ptm-lrgb"}};
   return {};
 }
 
-std::vector<std::string> defaultStages(bool) { return {}; }
+std::string describeStage(const std::string& component) {
+  if (component == "SphereDetection")
+    return "Find the reflective spheres: per-pixel median of the stack, circle Hough transform on "
+           "the gradient, sub-pixel circle fit";
+  if (component == "HighlightDetection")
+    return "Find the specular highlight on each sphere in each image: threshold, 8-connected "
+           "components, value-weighted centroid nearest the sphere centre";
+  if (component == "LightDirections")
+    return "Light direction of each image from its highlights by the law of reflection";
+  if (component == "LightsFromFile") return "Light directions given by the capture's .lp file";
+  if (component == "RtiFit")
+    return "Least-squares fit of a per-pixel reflectance model over the light directions";
+  if (component == "DerivedMaps") return "Surface normals, albedo and relit previews from a model";
+  return "";
+}
+
+std::vector<PlannedStage> analysisStages(bool captureHasLp, const RunRequest& request) {
+  std::vector<PlannedStage> out;
+  if (captureHasLp) {
+    out.push_back({"LightsFromFile", {}});
+  } else {
+    out.push_back({"SphereDetection", {}});
+    out.push_back({"HighlightDetection", {}});
+    out.push_back({"LightDirections", {}});
+  }
+  if (request.lightsOnly) return out;
+  for (const std::string& basis : request.bases) {
+    const fit::Basis b = fit::parseBasis(basis);
+    out.push_back({"RtiFit", {{"basis", fit::basisName(b)}, {"output", defaultFitOutput(basis)}}});
+  }
+  if (!request.bases.empty()) out.push_back({"DerivedMaps", {{"model", fit::basisName(fit::parseBasis(request.bases.front()))}}});
+  return out;
+}
 
 }  // namespace surrogate::stages

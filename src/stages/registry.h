@@ -1,5 +1,5 @@
 // The analysis stages after decoding (light estimation, fitting, derived maps): their
-// registration, their default parameters, and the default order of a run.
+// registration, default parameters and descriptions, and the default plan of a run.
 #pragma once
 
 #include <string>
@@ -15,5 +15,8 @@ void registerAnalysisStages(pipeline::StageRegistry& registry);
 // The parameters a step of `component` gets when the user gives none (its options struct's
 // defaults), so the carrier records every value that was used.
 std::vector<std::pair<std::string, std::string>> defaultParameters(const std::string& component);
+
+// One sentence for the carrier's <description>.
+std::string describeStage(const std::string& component);
 
 }  // namespace surrogate::stages

@@ -1,0 +1,115 @@
+// surrogate fit --lp FILE.lp -o OUT.ptm|OUT.rti [--basis B]: fit a model from a light file and
+// its images, outside any capture folder or carrier (a tool for people who already have an
+// .lp from elsewhere, e.g. a dome).
+#include <iostream>
+
+#include "cli/args.h"
+#include "cli/commands.h"
+#include "cli/progress.h"
+#include "core/error.h"
+#include "core/json.h"
+#include "fit/fit.h"
+#include "formats/lp.h"
+#include "stages/decode_images.h"
+
+namespace surrogate::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// An .lp names images relative to its own folder, to the capture above it (Surrogate writes
+// CAPTURE/assembly-files/lights.lp with names relative to CAPTURE), or by a path from another
+// machine (RTIBuilder writes absolute Windows paths): try each, then the base name.
+fs::path resolveImage(const fs::path& lpFile, const std::string& name) {
+  const fs::path dir = lpFile.parent_path();
+  const std::string base = name.substr(name.find_last_of("/\\") + 1);
+  for (const fs::path& candidate : {dir / name, dir.parent_path() / name, dir / base,
+                                    dir / "jpeg-exports" / base, dir.parent_path() / "jpeg-exports" / base}) {
+    if (fs::is_regular_file(candidate)) return candidate;
+  }
+  throwInputError(lpFile.string(), "fit",
+                  "names the image \"" + name + "\", which was not found next to the .lp file or "
+                  "in the capture folder above it");
+}
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+}  // namespace
+
+int runCommandFit(int argc, char** argv) {
+  const std::vector<OptionSpec> specs = {
+      {"lp", true, false, "the light file naming the images and their light directions", "FILE.lp"},
+      {"o", true, false, "output: .ptm (PTM) or .rti (HSH)", "OUT"},
+      {"output", true, false, "same as -o", "OUT"},
+      {"basis", true, false, "ptm-lrgb, ptm-rgb (for .ptm), hsh2, hsh3 (for .rti)", "BASIS"},
+      {"threads", true, false, "worker threads (default: all cores)", "N"},
+      {"memory", true, false, "memory budget (default 2G)", "SIZE"},
+      {"quiet", false, false, "no progress bar"},
+      {"json", false, false, "print the fit quality as JSON"},
+  };
+  // Accept the short "-o" as well as "--o"/"--output".
+  std::vector<char*> rewritten(argv, argv + argc);
+  std::string longO = "--o";
+  for (char*& a : rewritten)
+    if (std::string(a) == "-o") a = longO.data();
+  Args args(argc, rewritten.data(), 1, specs);
+  if (args.helpRequested()) {
+    std::cout << usageHeader("surrogate fit --lp FILE.lp -o OUT.ptm|OUT.rti [--basis BASIS]",
+                             "Fit a PTM or HSH model to the images an .lp file names, with its light "
+                             "directions. (surrogate run does this for a capture, with provenance.)")
+              << Args::describe(specs);
+    return 0;
+  }
+  const auto lp = args.value("lp");
+  const auto out = args.has("o") ? args.value("o") : args.value("output");
+  if (!lp || !out)
+    throw Error(ErrorKind::Usage, "", "command line", "give the light file and the output: --lp FILE.lp -o OUT.ptm");
+  const std::string ext = lower(fs::path(*out).extension().string());
+  if (ext != ".ptm" && ext != ".rti")
+    throw Error(ErrorKind::Usage, *out, "command line", "the output must end in .ptm or .rti");
+  const fit::Basis basis = fit::parseBasis(args.value("basis", ext == ".ptm" ? "ptm-lrgb" : "hsh2"));
+  const bool ptm = basis == fit::Basis::PtmLrgb || basis == fit::Basis::PtmRgb;
+  if (ptm != (ext == ".ptm"))
+    throw Error(ErrorKind::Usage, *out, "command line",
+                std::string("basis ") + fit::basisName(basis) + " is written as " + (ptm ? ".ptm" : ".rti"));
+
+  std::vector<fs::path> files;
+  std::vector<std::array<double, 3>> lights;
+  for (const formats::LightEntry& e : formats::readLp(*lp)) {
+    files.push_back(resolveImage(*lp, e.filename));
+    lights.push_back({e.x, e.y, e.z});
+  }
+  ProgressBar bar(args.has("quiet") || args.has("json"));
+  pipeline::RunSettings run;
+  run.threads = args.intValue("threads", 0);
+  if (const auto m = args.value("memory")) run.memoryBudget = parseByteSize(*m, "--memory");
+  run.progress = [&bar](const std::string& label, double f) { bar.update(label, f); };
+  const stages::DecodedStacks decoded = stages::decodeImages(files, image::RawDecodeSettings(), run);
+
+  fit::FitOptions options;
+  options.basis = basis;
+  options.threads = run.threads;
+  options.memoryBudgetBytes = run.memoryBudget;
+  options.progress = [&bar](double f) { bar.update("Fitting", f); };
+  fit::FitStatistics stats;
+  if (ptm) formats::writePtm(*out, fit::fitPtm(*decoded.rgb, lights, options, &stats));
+  else formats::writeRti(*out, fit::fitHsh(*decoded.rgb, lights, options, &stats));
+  bar.finish();
+  if (args.has("json")) {
+    JsonWriter j;
+    j.beginObject().key("output").value(*out).key("basis").value(fit::basisName(basis))
+        .key("images").value(static_cast<int>(files.size())).key("rmse").value(stats.rmse)
+        .key("psnr").value(stats.psnr).endObject();
+    std::cout << j.str() << "\n";
+  } else {
+    std::cout << "wrote " << *out << " (" << fit::basisName(basis) << ", " << files.size()
+              << " images): RMSE " << stats.rmse << ", PSNR " << stats.psnr << " dB\n";
+  }
+  return 0;
+}
+
+}  // namespace surrogate::cli

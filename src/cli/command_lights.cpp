@@ -1,0 +1,71 @@
+// surrogate lights CAPTURE -o FILE.lp: light estimation only (ingest, decode, spheres,
+// highlights, light directions), recorded in the capture's carrier like a run.
+#include <filesystem>
+#include <iostream>
+
+#include "capture/capture.h"
+#include "cli/args.h"
+#include "cli/commands.h"
+#include "cli/pipeline_options.h"
+#include "cli/progress.h"
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "core/json.h"
+
+namespace surrogate::cli {
+
+namespace fs = std::filesystem;
+
+int runCommandLights(int argc, char** argv) {
+  std::vector<OptionSpec> specs = pipelineOptions(false);
+  specs.push_back({"o", true, false, "the .lp file to write", "FILE.lp"});
+  specs.push_back({"output", true, false, "same as -o", "FILE.lp"});
+  for (const OptionSpec& o : runtimeOptions()) specs.push_back(o);
+  std::vector<char*> rewritten(argv, argv + argc);
+  std::string longO = "--o";
+  for (char*& a : rewritten)
+    if (std::string(a) == "-o") a = longO.data();
+  Args args(argc, rewritten.data(), 1, specs);
+  if (args.helpRequested()) {
+    std::cout << usageHeader("surrogate lights CAPTURE -o FILE.lp [options]",
+                             "Estimate the light direction of every image from the highlights on "
+                             "the spheres and write them as an .lp file. Also writes the sphere "
+                             "overlay, the highlight overviews and the carrier in "
+                             "CAPTURE/assembly-files/.")
+              << Args::describe(specs);
+    return 0;
+  }
+  const auto out = args.has("o") ? args.value("o") : args.value("output");
+  if (args.positional().size() != 1 || !out)
+    throw Error(ErrorKind::Usage, "", "command line", "give the capture and the output: surrogate lights CAPTURE -o FILE.lp");
+  const fs::path capture = args.positional()[0];
+  stages::RunRequest request = requestFrom(args);
+  request.lightsOnly = true;
+  ProgressBar bar(args.has("quiet") || args.has("json"));
+  pipeline::RunSettings settings = settingsFrom(args);
+  settings.progress = [&bar](const std::string& label, double f) { bar.update(label, f); };
+  const carrier::Carrier c = stages::runCapture(capture, request, settings);
+  bar.finish();
+
+  const fs::path written = capture / capture::kAssemblyDir / "lights.lp";
+  writeFileAtomically(*out, readFile(written, "lights"));
+  int lights = 0, flagged = 0;
+  for (const carrier::Result& r : c.data) {
+    lights += static_cast<int>(r.itemsOf("light").size());
+    for (const carrier::DataItem* h : r.itemsOf("highlight")) flagged += h->get("flag") != "ok";
+  }
+  if (args.has("json")) {
+    JsonWriter j;
+    j.beginObject().key("output").value(*out).key("lights").value(lights)
+        .key("flaggedHighlights").value(flagged)
+        .key("carrier").value((capture / capture::kAssemblyDir / "carrier.xml").string()).endObject();
+    std::cout << j.str() << "\n";
+  } else {
+    std::cout << "wrote " << *out << " (" << lights << " lights";
+    if (flagged) std::cout << ", " << flagged << " highlight(s) flagged: see the carrier's log";
+    std::cout << ")\n  sphere overlay and highlight overviews: " << (capture / capture::kAssemblyDir).string() << "/\n";
+  }
+  return 0;
+}
+
+}  // namespace surrogate::cli

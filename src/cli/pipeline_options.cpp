@@ -1,0 +1,150 @@
+#include "cli/pipeline_options.h"
+
+#include "carrier/carrier.h"
+#include "core/error.h"
+
+namespace surrogate::cli {
+
+std::vector<OptionSpec> pipelineOptions(bool withFit) {
+  std::vector<OptionSpec> specs = {
+      {"title", true, false, "title of the project (default: the folder name)", "TEXT"},
+      {"creator", true, true, "a creator, e.g. \"Ana Silva\" or \"Ana Silva:photographer\"", "NAME"},
+      {"meta", true, true, "user metadata recorded in the carrier and the bag", "KEY=VALUE"},
+      {"operator", true, false, "who runs this (recorded with interventions; default $USER)", "NAME"},
+      {"exclude", true, true, "leave an image out (needs --reason after it)", "IMAGE"},
+      {"reason", true, true, "why: follows --exclude, --sphere or --highlight", "TEXT"},
+      {"source", true, false, "images to use: auto (raw if present), original, export", "WHICH"},
+      {"raw", true, true, "LibRaw setting, e.g. demosaic=AHD, whiteBalance=camera", "NAME=VALUE"},
+      {"sphere-roi", true, true, "search a sphere only in this region (one per sphere)", "X,Y,W,H"},
+      {"sphere", true, true, "give a sphere's circle by hand instead of detecting it", "CX,CY,R"},
+      {"highlight", true, true, "give a highlight by hand: IMAGE:SPHERE=X,Y (sphere from 0)", "SPEC"},
+      {"highlight-threshold", true, false, "fraction of the brightest pixel (default 0.8)", "T"},
+      {"light-model", true, false, "orthographic (default) or perspective", "MODEL"},
+      {"focal-length", true, false, "lens focal length for the perspective model (default: EXIF)", "MM"},
+      {"pixel-pitch", true, false, "sensor pixel pitch for the perspective model (default: EXIF)", "MM"},
+      {"sphere-diameter", true, false, "real sphere diameter: with 2 spheres, gives light positions", "MM"},
+  };
+  if (withFit)
+    specs.push_back({"basis", true, true, "model to fit: ptm-lrgb, ptm-rgb, hsh2, hsh3 (default: ptm-lrgb and hsh2)", "BASIS"});
+  return specs;
+}
+
+std::vector<OptionSpec> runtimeOptions() {
+  return {
+      {"threads", true, false, "worker threads (default: all cores); results do not depend on it", "N"},
+      {"memory", true, false, "memory budget for streaming work (default 2G)", "SIZE"},
+      {"quiet", false, false, "no progress bar"},
+      {"json", false, false, "print the summary as JSON"},
+  };
+}
+
+namespace {
+
+std::pair<std::string, std::string> splitKeyValue(const std::string& text, const std::string& option) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw Error(ErrorKind::Usage, option + " " + text, "command line", "needs the form KEY=VALUE");
+  return {text.substr(0, eq), text.substr(eq + 1)};
+}
+
+void param(stages::RunRequest& r, const char* component, const char* name, const std::string& value) {
+  r.stageParams.push_back({component, name, value});
+}
+
+}  // namespace
+
+stages::RunRequest requestFrom(const Args& args) {
+  stages::RunRequest r;
+  r.title = args.value("title", "");
+  for (const std::string& c : args.values("creator")) {
+    const auto colon = c.rfind(':');
+    if (colon != std::string::npos && colon > 0 && colon + 1 < c.size())
+      r.creators.push_back({c.substr(0, colon), c.substr(colon + 1)});
+    else
+      r.creators.push_back({c, "creator"});
+  }
+  for (const std::string& m : args.values("meta")) r.meta.push_back(splitKeyValue(m, "--meta"));
+  r.who = args.value("operator", "");
+  r.source = args.value("source", "auto");
+  for (const std::string& s : args.values("raw")) r.decodeSettings.push_back(splitKeyValue(s, "--raw"));
+
+  std::string regions;
+  for (const std::string& roi : args.values("sphere-roi")) {
+    parseNumberList(roi, 4, "--sphere-roi");
+    regions += (regions.empty() ? "" : ";") + roi;
+  }
+  if (!regions.empty()) param(r, "SphereDetection", "regions", regions);
+  if (const auto t = args.value("highlight-threshold")) {
+    const double v = parseNumberList(*t, 1, "--highlight-threshold")[0];
+    if (!(v > 0 && v < 1))
+      throw Error(ErrorKind::Usage, "--highlight-threshold", "command line", "needs a fraction between 0 and 1");
+    param(r, "HighlightDetection", "threshold", carrier::formatNumber(v));
+  }
+  if (const auto m = args.value("light-model")) param(r, "LightDirections", "model", *m);
+  if (const auto f = args.value("focal-length"))
+    param(r, "LightDirections", "focalLengthMm", carrier::formatNumber(parseNumberList(*f, 1, "--focal-length")[0]));
+  if (const auto p = args.value("pixel-pitch"))
+    param(r, "LightDirections", "pixelPitchMm", carrier::formatNumber(parseNumberList(*p, 1, "--pixel-pitch")[0]));
+  if (const auto d = args.value("sphere-diameter"))
+    param(r, "LightDirections", "sphereDiameterMm", carrier::formatNumber(parseNumberList(*d, 1, "--sphere-diameter")[0]));
+  if (args.has("basis")) r.bases = args.values("basis");
+
+  // Interventions, in the order given; a --reason belongs to the one just before it.
+  int spheres = 0;
+  carrier::Intervention* last = nullptr;
+  bool lastIsExclusion = false;
+  for (const auto& [name, value] : args.ordered()) {
+    if (name == "exclude") {
+      r.exclusions.push_back({value, ""});
+      lastIsExclusion = true;
+      last = nullptr;
+    } else if (name == "sphere") {
+      parseNumberList(value, 3, "--sphere");
+      r.stageInterventions.push_back({"SphereDetection",
+                                      {"manual-sphere", std::to_string(spheres++), value, "", "", ""}});
+      last = &r.stageInterventions.back().intervention;
+      lastIsExclusion = false;
+    } else if (name == "highlight") {
+      const auto eq = value.find('=');
+      if (eq == std::string::npos)
+        throw Error(ErrorKind::Usage, "--highlight " + value, "command line", "needs the form IMAGE:SPHERE=X,Y");
+      parseNumberList(value.substr(eq + 1), 2, "--highlight");
+      std::string target = value.substr(0, eq);
+      if (target.find(':') == std::string::npos) target += ":0";
+      r.stageInterventions.push_back({"HighlightDetection",
+                                      {"manual-highlight", target, value.substr(eq + 1), "", "", ""}});
+      last = &r.stageInterventions.back().intervention;
+      lastIsExclusion = false;
+    } else if (name == "reason") {
+      if (lastIsExclusion && r.exclusions.back().reason.empty()) {
+        r.exclusions.back().reason = value;
+      } else if (last && last->reason.empty()) {
+        last->reason = value;
+      } else {
+        throw Error(ErrorKind::Usage, "--reason", "command line",
+                    "must follow the --exclude, --sphere or --highlight it explains");
+      }
+    }
+  }
+  for (const stages::Exclusion& e : r.exclusions)
+    if (e.reason.empty())
+      throw Error(ErrorKind::Usage, "--exclude " + e.image, "command line",
+                  "every excluded image needs a reason: add --reason \"why\" after it; the "
+                  "reason is recorded as a human intervention");
+  // A circle or highlight set by hand is an intervention too; when no reason is given, the
+  // record says so plainly rather than inventing one.
+  for (auto& i : r.stageInterventions)
+    if (i.intervention.reason.empty()) i.intervention.reason = "given on the command line (no reason stated)";
+  return r;
+}
+
+pipeline::RunSettings settingsFrom(const Args& args) {
+  pipeline::RunSettings s;
+  s.threads = args.intValue("threads", 0);
+  if (s.threads < 0) throw Error(ErrorKind::Usage, "--threads", "command line", "needs a number >= 0");
+  if (const auto m = args.value("memory")) s.memoryBudget = parseByteSize(*m, "--memory");
+  s.who = args.value("operator", "");
+  return s;
+}
+
+}  // namespace surrogate::cli

@@ -1,0 +1,21 @@
+// The options of `surrogate run` (also accepted by `lights` and `pack`), and their
+// translation into a RunRequest: stage parameters and recorded human interventions.
+#pragma once
+
+#include <vector>
+
+#include "cli/args.h"
+#include "pipeline/context.h"
+#include "stages/plan.h"
+
+namespace surrogate::cli {
+
+// Options that shape what the pipeline does (recorded in the carrier). `withFit` adds --basis.
+std::vector<OptionSpec> pipelineOptions(bool withFit);
+// Options that shape how it runs (not recorded): --threads, --memory, --quiet, --json.
+std::vector<OptionSpec> runtimeOptions();
+
+stages::RunRequest requestFrom(const Args& args);
+pipeline::RunSettings settingsFrom(const Args& args);
+
+}  // namespace surrogate::cli

@@ -1,0 +1,146 @@
+#include "stages/fit_stages.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <numeric>
+
+#include "capture/capture.h"
+#include "core/error.h"
+#include "fit/fit.h"
+#include "fit/render.h"
+#include "image/decode.h"
+#include "pipeline/context.h"
+#include "stages/inputs.h"
+#include "stages/light_stages.h"
+#include "stages/outputs.h"
+
+namespace surrogate::stages {
+
+using Lights = std::vector<std::array<double, 3>>;
+
+std::string modelKey(const std::string& basis) { return "model:" + basis; }
+
+namespace {
+
+std::string fixed(double v, int digits) {
+  char buffer[40];
+  std::snprintf(buffer, sizeof buffer, "%.*f", digits, v);
+  return buffer;
+}
+
+}  // namespace
+
+std::string defaultFitOutput(const std::string& basisText) {
+  const fit::Basis basis = fit::parseBasis(basisText);
+  const bool ptm = basis == fit::Basis::PtmLrgb || basis == fit::Basis::PtmRgb;
+  return std::string(capture::kFinishedDir) + "/" + fit::basisName(basis) + (ptm ? ".ptm" : ".rti");
+}
+
+void RtiFitStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier::Result& result) {
+  const auto rgb = ctx.get<ImageStack>(kRgbStack);
+  const auto lights = ctx.get<Lights>(kLights);
+  const auto inputs = ctx.get<InputImages>(kInputImages);
+  auto params = parametersOf(step);
+  params.erase(std::remove_if(params.begin(), params.end(),
+                              [](const auto& p) { return p.first == "output"; }),
+               params.end());
+  fit::FitOptions options = fit::FitOptions::fromParameters(params);
+  options.threads = ctx.settings.threads;
+  options.memoryBudgetBytes = ctx.settings.memoryBudget;
+  const std::string basis = fit::basisName(options.basis);
+  const std::string label = "Fitting " + basis;
+  options.progress = [&](double f) { ctx.progress(label, f); };
+  const std::string output =
+      checkedOutputPath(step.param("output", defaultFitOutput(fit::basisName(options.basis))));
+
+  fit::FitStatistics stats;
+  std::shared_ptr<fit::Relightable> model;
+  std::string format;
+  if (options.basis == fit::Basis::PtmLrgb || options.basis == fit::Basis::PtmRgb) {
+    formats::PtmFile ptm = fit::fitPtm(*rgb, *lights, options, &stats);
+    formats::writePtm(ctx.capture / output, ptm);
+    format = formats::formatName(ptm.format);
+    model = fit::makeRelightable(std::move(ptm));
+  } else {
+    formats::HshFile hsh = fit::fitHsh(*rgb, *lights, options, &stats);
+    formats::writeRti(ctx.capture / output, hsh);
+    format = "RTI_HSH";
+    model = fit::makeRelightable(std::move(hsh));
+  }
+  recordOutput(ctx, step, result, output, "result", format, basis,
+               output.size() > 4 && output.substr(output.size() - 4) == ".ptm" ? "application/x-ptm"
+                                                                             : "application/x-rti");
+
+  result.add("value").set("name", "rmse").set("value", carrier::formatNumber(stats.rmse)).set("unit", "8-bit levels");
+  result.add("value").set("name", "psnr").set("value", carrier::formatNumber(stats.psnr)).set("unit", "dB");
+  result.add("value").set("name", "lightMatrixRank").set("value", std::to_string(stats.rank));
+  for (std::size_t n = 0; n < inputs->size() && n < stats.perImageRmse.size(); ++n) {
+    result.add("imageValue").set("image", (*inputs)[n].fileId).set("name", "rmse")
+        .set("value", carrier::formatNumber(stats.perImageRmse[n])).set("unit", "8-bit levels");
+  }
+  // The images the model fits worst: where a moved object, a missed flash or a wrong light
+  // direction shows first.
+  std::vector<std::size_t> order(stats.perImageRmse.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return stats.perImageRmse[a] > stats.perImageRmse[b];
+  });
+  std::string worst;
+  for (std::size_t k = 0; k < std::min<std::size_t>(3, order.size()); ++k) {
+    worst += (worst.empty() ? "" : ", ") + (*inputs)[order[k]].stem + " (" +
+             fixed(stats.perImageRmse[order[k]], 2) + ")";
+  }
+  ctx.carrier.addLog("info", step.id, basis + " fit: RMSE " + fixed(stats.rmse, 3) + ", PSNR " +
+                                          fixed(stats.psnr, 2) + " dB; worst images: " + worst);
+  if (stats.rank < fit::basisTerms(options.basis))
+    ctx.carrier.addLog("warning", step.id, "the light directions do not determine all " +
+                                               std::to_string(fit::basisTerms(options.basis)) +
+                                               " terms of " + basis + " (rank " + std::to_string(stats.rank) +
+                                               "): add lights at other elevations and azimuths");
+  ctx.put(modelKey(basis), model);
+}
+
+void DerivedMapsStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier::Result& result) {
+  const std::string basis = step.param("model", "ptm-lrgb");
+  const auto model = ctx.get<fit::Relightable>(modelKey(basis));
+  const std::string dir = capture::kFinishedDir;
+  ctx.progress("Normals, albedo and previews", 0);
+
+  int fallback = 0;
+  const Image normals = model->normalMap(&fallback, ctx.settings.threads);
+  image::writePng(normals, ctx.capture / (dir + "/normals.png"));
+  recordOutput(ctx, step, result, dir + "/normals.png", "result", "PNG", "normals", "image/png");
+  result.add("value").set("name", "normalFallbackPixels").set("value", std::to_string(fallback));
+  const double fraction = double(fallback) / (double(model->width()) * model->height());
+  ctx.carrier.addLog(fraction > 0.05 ? "warning" : "info", step.id,
+                     std::to_string(fallback) + " pixels (" + fixed(100 * fraction, 2) +
+                         " %) had no valid PTM maximum and took the least-squares Lambertian normal");
+
+  image::writePng(model->albedoMap(ctx.settings.threads), ctx.capture / (dir + "/albedo.png"));
+  recordOutput(ctx, step, result, dir + "/albedo.png", "result", "PNG", "albedo", "image/png");
+
+  // Previews: a raking light from the upper left (elevation 20 deg, azimuth 135 deg), from the
+  // top, and a specular-enhanced view, as photographers look at RTI first.
+  struct Preview {
+    const char* name;
+    double elevationDeg, azimuthDeg;
+    bool specular;
+  };
+  const Preview previews[] = {{"preview-raking.png", 20, 135, false},
+                              {"preview-top.png", 70, 90, false},
+                              {"preview-specular.png", 45, 135, true}};
+  for (const Preview& p : previews) {
+    const double e = p.elevationDeg * M_PI / 180, a = p.azimuthDeg * M_PI / 180;
+    fit::RenderOptions options;
+    options.specular = p.specular && basis.rfind("ptm", 0) == 0;
+    options.threads = ctx.settings.threads;
+    const std::array<double, 3> light{std::cos(e) * std::cos(a), std::cos(e) * std::sin(a), std::sin(e)};
+    image::writePng(model->render(light, options), ctx.capture / (dir + "/" + p.name));
+    recordOutput(ctx, step, result, dir + "/" + p.name, "result", "PNG", "preview", "image/png");
+  }
+  ctx.progress("Normals, albedo and previews", 1);
+}
+
+}  // namespace surrogate::stages

@@ -1,0 +1,316 @@
+#include "stages/light_stages.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+
+#include "capture/capture.h"
+#include "core/error.h"
+#include "formats/lp.h"
+#include "hrti/highlight_detection.h"
+#include "hrti/light_direction.h"
+#include "hrti/light_position.h"
+#include "hrti/median.h"
+#include "hrti/drawing.h"
+#include "hrti/sphere_detection.h"
+#include "image/decode.h"
+#include "pipeline/context.h"
+#include "stages/inputs.h"
+#include "stages/outputs.h"
+
+namespace surrogate::stages {
+
+namespace fs = std::filesystem;
+
+using Spheres = std::vector<hrti::DetectedSphere>;
+using Highlights = std::vector<std::vector<hrti::Highlight>>;  // [image][sphere]
+using Lights = std::vector<std::array<double, 3>>;
+
+namespace {
+
+std::vector<double> numbers(const std::string& text, std::size_t count, const std::string& what) {
+  std::vector<double> out;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = text.find(',', start);
+    const std::string item = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    try {
+      std::size_t used = 0;
+      out.push_back(std::stod(item, &used));
+      if (used != item.size()) throw std::invalid_argument(item);
+    } catch (const std::exception&) {
+      throwInputError("carrier", what, "\"" + text + "\" is not a list of " + std::to_string(count) + " numbers");
+    }
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  if (out.size() != count)
+    throwInputError("carrier", what, "\"" + text + "\" is not a list of " + std::to_string(count) + " numbers");
+  return out;
+}
+
+// Rows per band so that one band of every image fits in a quarter of the memory budget.
+int bandRowsFor(const ImageStack& stack, std::size_t budget) {
+  const std::size_t perRow = std::size_t(stack.size()) * stack.width() * stack.channels() * 2;
+  return static_cast<int>(std::clamp<std::size_t>(budget / 4 / std::max<std::size_t>(perRow, 1), 1,
+                                                  static_cast<std::size_t>(stack.height())));
+}
+
+const char* flagName(hrti::HighlightFlag f) {
+  switch (f) {
+    case hrti::HighlightFlag::Ok: return "ok";
+    case hrti::HighlightFlag::None: return "none";
+    case hrti::HighlightFlag::Multiple: return "multiple";
+    case hrti::HighlightFlag::Manual: return "manual";
+  }
+  return "ok";
+}
+
+// The median image made viewable: camera-raw luminance is linear and would look black.
+Image displayable(const Image& median, const ImageStack& lum) {
+  return lum.transfer() == Transfer::Linear ? image::srgbEncode(median) : median;
+}
+
+}  // namespace
+
+// ---- SphereDetection ----------------------------------------------------------------------
+
+void SphereDetectionStage::run(const carrier::Step& step, pipeline::Context& ctx,
+                               carrier::Result& result) {
+  const auto lum = ctx.get<ImageStack>(kLuminanceStack);
+  hrti::SphereDetectionOptions options = hrti::SphereDetectionOptions::fromParameters(parametersOf(step));
+  options.threads = ctx.settings.threads;
+  ctx.progress("Sphere detection: median of the stack", 0);
+  auto median = std::make_shared<Image>(
+      hrti::medianImage(*lum, bandRowsFor(*lum, ctx.settings.memoryBudget), ctx.settings.threads));
+
+  auto spheres = std::make_shared<Spheres>();
+  const auto manual = step.interventionsOfKind("manual-sphere");
+  if (!manual.empty()) {
+    for (const carrier::Intervention* i : manual) {
+      const std::vector<double> v = numbers(i->value, 3, "manual sphere");
+      spheres->push_back(hrti::DetectedSphere{v[0], v[1], v[2], 1.0});
+      ctx.carrier.addLog("intervention", step.id,
+                         "sphere " + i->target + " set by hand to " + i->value + ": " + i->reason, i->who);
+    }
+  } else {
+    ctx.progress("Sphere detection: circle search", 0.5);
+    *spheres = hrti::detectSpheres(*median, options);
+  }
+  for (std::size_t k = 0; k < spheres->size(); ++k) {
+    const hrti::DetectedSphere& s = (*spheres)[k];
+    result.add("sphere").set("index", static_cast<int>(k)).set("cx", s.cx).set("cy", s.cy)
+        .set("r", s.r).set("confidence", s.confidence)
+        .set("source", manual.empty() ? "detected" : "manual");
+  }
+  result.add("value").set("name", "spheres").set("value", std::to_string(spheres->size()));
+
+  const std::string overlay = std::string(capture::kAssemblyDir) + "/spheres.png";
+  image::writePng(hrti::drawSphereOverlay(displayable(*median, *lum), *spheres), ctx.capture / overlay);
+  recordOutput(ctx, step, result, overlay, "assembly", "PNG", "sphere-overlay", "image/png");
+  ctx.put(kSpheres, spheres);
+  ctx.put(kMedianImage, median);
+  ctx.progress("Sphere detection", 1);
+}
+
+// ---- HighlightDetection -------------------------------------------------------------------
+
+void HighlightDetectionStage::run(const carrier::Step& step, pipeline::Context& ctx,
+                                  carrier::Result& result) {
+  const auto lum = ctx.get<ImageStack>(kLuminanceStack);
+  const auto inputs = ctx.get<InputImages>(kInputImages);
+  const auto spheres = ctx.get<Spheres>(kSpheres);
+  const auto median = ctx.get<Image>(kMedianImage);
+  const hrti::HighlightOptions options = hrti::HighlightOptions::fromParameters(parametersOf(step));
+  ctx.progress("Highlight detection", 0);
+  auto highlights = std::make_shared<Highlights>(
+      hrti::detectHighlights(*lum, *spheres, options, ctx.settings.threads));
+
+  // Manual highlights: target "IMAGE:SPHERE" (sphere index from 0), value "x,y".
+  for (const carrier::Intervention* i : step.interventionsOfKind("manual-highlight")) {
+    const auto colon = i->target.rfind(':');
+    const std::string name = colon == std::string::npos ? i->target : i->target.substr(0, colon);
+    const int sphere = colon == std::string::npos ? 0 : std::atoi(i->target.c_str() + colon + 1);
+    const std::string stem = fs::path(name).stem().string();
+    auto it = std::find_if(inputs->begin(), inputs->end(),
+                           [&](const InputImage& in) { return in.stem == stem || in.stem == name; });
+    if (it == inputs->end() || sphere < 0 || sphere >= static_cast<int>(spheres->size()))
+      throw Error(ErrorKind::Usage, i->target, "highlight detection",
+                  "a manual highlight names an image or sphere that is not processed");
+    const std::vector<double> v = numbers(i->value, 2, "manual highlight");
+    hrti::Highlight& h = (*highlights)[it - inputs->begin()][sphere];
+    h.x = v[0];
+    h.y = v[1];
+    h.flag = hrti::HighlightFlag::Manual;
+    ctx.carrier.addLog("intervention", step.id,
+                       "highlight of " + i->target + " set by hand to " + i->value + ": " + i->reason, i->who);
+  }
+
+  for (std::size_t n = 0; n < inputs->size(); ++n) {
+    for (std::size_t k = 0; k < spheres->size(); ++k) {
+      const hrti::Highlight& h = (*highlights)[n][k];
+      result.add("highlight").set("image", (*inputs)[n].fileId).set("sphere", static_cast<int>(k))
+          .set("x", h.x).set("y", h.y).set("flag", flagName(h.flag)).set("peak", h.peak)
+          .set("components", h.components);
+      if (h.flag == hrti::HighlightFlag::None)
+        ctx.carrier.addLog("warning", step.id, (*inputs)[n].relativePath + ": no highlight on sphere " +
+                           std::to_string(k) + "; the image gets its light from the other spheres, or "
+                           "exclude it (--exclude) or give the highlight by hand (--highlight)");
+      else if (h.flag == hrti::HighlightFlag::Multiple)
+        ctx.carrier.addLog("warning", step.id, (*inputs)[n].relativePath + ": several strong highlights on sphere " +
+                           std::to_string(k) + "; the one nearest the centre was used, check the highlight overview");
+    }
+  }
+  for (std::size_t k = 0; k < spheres->size(); ++k) {
+    std::vector<hrti::Highlight> perImage;
+    for (const auto& row : *highlights) perImage.push_back(row[k]);
+    const std::string overview = std::string(capture::kAssemblyDir) + "/highlights-sphere" +
+                                 std::to_string(k + 1) + ".png";
+    image::writePng(hrti::drawHighlightOverview(displayable(*median, *lum), (*spheres)[k], perImage),
+                    ctx.capture / overview);
+    recordOutput(ctx, step, result, overview, "assembly", "PNG", "highlight-overview", "image/png");
+  }
+  ctx.put(kHighlights, highlights);
+  ctx.progress("Highlight detection", 1);
+}
+
+// ---- LightDirections ----------------------------------------------------------------------
+
+namespace {
+
+// Camera intrinsics from the step's parameters, else from the first image's EXIF.
+std::optional<hrti::CameraIntrinsics> intrinsicsFor(const carrier::Step& step, pipeline::Context& ctx,
+                                                    const InputImages& inputs, const ImageStack& stack) {
+  double focal = std::stod(step.param("focalLengthMm", "0"));
+  double pitch = std::stod(step.param("pixelPitchMm", "0"));
+  const carrier::FileRecord* f = ctx.carrier.findFile(inputs.front().fileId);
+  auto cam = [&](const char* key) -> std::optional<double> {
+    for (const auto& [k, v] : f->camera)
+      if (k == key) return std::stod(v);
+    return std::nullopt;
+  };
+  if (focal <= 0) focal = cam("focalLengthMm").value_or(0);
+  if (pitch <= 0) {
+    const auto resolution = cam("focalPlaneXResolution");
+    const auto unit = cam("focalPlaneResolutionUnit").value_or(2);  // EXIF: 2 inch, 3 cm, 4 mm
+    const double unitMm = unit == 3 ? 10.0 : unit == 4 ? 1.0 : 25.4;
+    if (resolution && *resolution > 0) pitch = unitMm / *resolution;
+  }
+  if (focal <= 0 || pitch <= 0) return std::nullopt;
+  return hrti::CameraIntrinsics{focal, pitch, (stack.width() - 1) / 2.0, (stack.height() - 1) / 2.0};
+}
+
+void writeLights(pipeline::Context& ctx, const carrier::Step& step, carrier::Result& result,
+                 const InputImages& inputs, const Lights& lights) {
+  std::vector<formats::LightEntry> entries;
+  for (std::size_t n = 0; n < inputs.size(); ++n)
+    entries.push_back({inputs[n].relativePath, lights[n][0], lights[n][1], lights[n][2]});
+  const std::string lp = std::string(capture::kAssemblyDir) + "/lights.lp";
+  formats::writeLp(ctx.capture / lp, entries);
+  recordOutput(ctx, step, result, lp, "assembly", "LP", "lp", "text/plain");
+}
+
+void addLightItem(carrier::Result& result, const std::string& fileId, const std::array<double, 3>& l,
+                  const std::string& source) {
+  const double elevation = std::asin(std::clamp(l[2], -1.0, 1.0)) * 180.0 / M_PI;
+  const double azimuth = std::atan2(l[1], l[0]) * 180.0 / M_PI;
+  result.add("light").set("image", fileId).set("x", l[0]).set("y", l[1]).set("z", l[2])
+      .set("elevationDeg", elevation).set("azimuthDeg", azimuth).set("source", source);
+}
+
+}  // namespace
+
+void LightDirectionsStage::run(const carrier::Step& step, pipeline::Context& ctx,
+                               carrier::Result& result) {
+  const auto lum = ctx.get<ImageStack>(kLuminanceStack);
+  const auto inputs = ctx.get<InputImages>(kInputImages);
+  const auto spheres = ctx.get<Spheres>(kSpheres);
+  const auto highlights = ctx.get<Highlights>(kHighlights);
+  const std::string model = step.param("model", "orthographic");
+  if (model != "orthographic" && model != "perspective")
+    throw Error(ErrorKind::Usage, model, "light directions", "unknown light model; use orthographic or perspective");
+  const auto intrinsics = intrinsicsFor(step, ctx, *inputs, *lum);
+  if (model == "perspective" && !intrinsics)
+    throw Error(ErrorKind::Usage, ctx.carrier.findFile(inputs->front().fileId)->path, "light directions",
+                "the perspective light model needs the focal length and the sensor's pixel pitch, and "
+                "the image's EXIF does not give them; add --focal-length MM and --pixel-pitch MM");
+  result.add("value").set("name", "model").set("value", model);
+  const double diameter = std::stod(step.param("sphereDiameterMm", "0"));
+
+  auto lights = std::make_shared<Lights>();
+  for (std::size_t n = 0; n < inputs->size(); ++n) {
+    std::array<double, 3> sum{0, 0, 0};
+    std::string from;
+    for (std::size_t k = 0; k < spheres->size(); ++k) {
+      const hrti::Highlight& h = (*highlights)[n][k];
+      if (h.flag == hrti::HighlightFlag::None) continue;
+      const hrti::LightDirection l =
+          model == "perspective" ? hrti::lightFromHighlightPerspective((*spheres)[k], h.x, h.y, *intrinsics)
+                                 : hrti::lightFromHighlight((*spheres)[k], h.x, h.y);
+      sum[0] += l.x;
+      sum[1] += l.y;
+      sum[2] += l.z;
+      from += (from.empty() ? "sphere " : ",") + std::to_string(k);
+    }
+    const double norm = std::sqrt(sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]);
+    if (from.empty() || norm == 0) {
+      throwInputError((*inputs)[n].relativePath, "light directions",
+                      "has no usable highlight on any sphere, so its light direction is unknown; "
+                      "exclude it (--exclude " + (*inputs)[n].stem + " --reason ...) or give its "
+                      "highlight by hand (--highlight " + (*inputs)[n].stem + ":0=x,y --reason ...)");
+    }
+    lights->push_back({sum[0] / norm, sum[1] / norm, sum[2] / norm});
+    addLightItem(result, (*inputs)[n].fileId, lights->back(), from);
+
+    if (spheres->size() >= 2 && diameter > 0 && intrinsics) {
+      std::vector<hrti::SphereGeometry> geometry;
+      std::vector<hrti::Highlight> perSphere;
+      for (std::size_t k = 0; k < spheres->size(); ++k) {
+        if ((*highlights)[n][k].flag == hrti::HighlightFlag::None) continue;
+        geometry.push_back({(*spheres)[k], diameter});
+        perSphere.push_back((*highlights)[n][k]);
+      }
+      if (geometry.size() >= 2) {
+        const hrti::LightPosition p = hrti::lightPositionFromSpheres(geometry, perSphere, *intrinsics);
+        result.add("lightPosition").set("image", (*inputs)[n].fileId).set("x", p.x).set("y", p.y)
+            .set("z", p.z).set("residualMm", p.residualMm).set("nearParallel", p.nearParallel ? "true" : "false");
+      }
+    }
+  }
+  writeLights(ctx, step, result, *inputs, *lights);
+  ctx.put(kLights, lights);
+}
+
+// ---- LightsFromFile -----------------------------------------------------------------------
+
+void LightsFromFileStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier::Result& result) {
+  const auto inputs = ctx.get<InputImages>(kInputImages);
+  const carrier::FileRecord* lpRecord = nullptr;
+  for (const carrier::FileRecord& f : ctx.carrier.files)
+    if (f.role == "lp") lpRecord = &f;
+  if (!lpRecord)
+    throwInputError(ctx.capture.string(), "lights from file", "has no .lp file to read the lights from");
+  const fs::path lpPath = ctx.capture / lpRecord->path;
+  std::map<std::string, std::array<double, 3>> byStem;
+  for (const formats::LightEntry& e : formats::readLp(lpPath)) {
+    std::string base = e.filename.substr(e.filename.find_last_of("/\\") + 1);
+    byStem[fs::path(base).stem().string()] = {e.x, e.y, e.z};
+  }
+  result.add("input").set("file", lpRecord->id).set("kind", "lp");
+  auto lights = std::make_shared<Lights>();
+  for (const InputImage& in : *inputs) {
+    auto it = byStem.find(in.stem);
+    if (it == byStem.end())
+      throwInputError(lpPath.string(), "lights from file",
+                      "gives no light for " + in.relativePath + "; add a line for it or exclude the image");
+    lights->push_back(it->second);
+    addLightItem(result, in.fileId, it->second, "lp");
+  }
+  ctx.carrier.addLog("info", step.id, "light directions read from " + lpRecord->path +
+                     " (dome capture): sphere and highlight detection skipped");
+  writeLights(ctx, step, result, *inputs, *lights);
+  ctx.put(kLights, lights);
+}
+
+}  // namespace surrogate::stages

@@ -1,0 +1,27 @@
+// Writing a stage's output file and recording it in the carrier (role, hash, the step that
+// made it) and in the step's result.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "carrier/carrier.h"
+#include "pipeline/context.h"
+
+namespace surrogate::stages {
+
+// Records the already written file `relativePath` (relative to the capture) as an output of
+// `step`: hashes it, adds or replaces its <file> record, and adds <output kind=...>.
+std::string recordOutput(pipeline::Context& ctx, const carrier::Step& step,
+                         carrier::Result& result, const std::string& relativePath,
+                         const std::string& role, const std::string& format,
+                         const std::string& kind, const std::string& mediaType = "");
+
+// A file name from the carrier, checked before writing: relative, inside assembly-files/ or
+// finished-files/, no ".." (a re-executed carrier from elsewhere must not write anywhere else).
+std::string checkedOutputPath(const std::string& relativePath);
+
+// The step's parameters as name/value pairs, for the option structs' fromParameters().
+std::vector<std::pair<std::string, std::string>> parametersOf(const carrier::Step& step);
+
+}  // namespace surrogate::stages

@@ -1,0 +1,76 @@
+#include "e2e_support.h"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <stdexcept>
+
+#include "archive/digest.h"
+
+namespace fs = std::filesystem;
+
+namespace e2e {
+
+std::string quote(const fs::path& p) {
+  std::string out = "'";
+  for (char c : p.string()) {
+    if (c == '\'') out += "'\\''";
+    else out += c;
+  }
+  return out + "'";
+}
+
+CommandResult runShell(const std::string& commandLine) {
+  CommandResult r;
+  FILE* pipe = ::popen((commandLine + " 2>&1").c_str(), "r");
+  if (!pipe) throw std::runtime_error("popen failed");
+  std::array<char, 4096> buffer;
+  while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) r.output.append(buffer.data(), n);
+  const int status = ::pclose(pipe);
+  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+CommandResult surrogate(const std::string& args) {
+  return runShell(std::string(SURROGATE_EXE) + " " + args);
+}
+
+fs::path freshDir(const std::string& name) {
+  static int counter = 0;
+  const fs::path dir = fs::temp_directory_path() /
+                       ("surrogate-e2e-" + std::to_string(::getpid()) + "-" + name + "-" +
+                        std::to_string(counter++));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+fs::path smallCapture(const fs::path& dir, int images) {
+  static std::map<int, fs::path> made;
+  if (!made.count(images)) {
+    const fs::path source = freshDir("generated-" + std::to_string(images)) / "capture";
+    const CommandResult r = runShell(std::string(GENERATOR_EXE) + " --out " + quote(source) +
+                                     " --images " + std::to_string(images) +
+                                     " --width 400 --height 300 --sphere-radius 45 --seed 7");
+    if (r.exitCode != 0) throw std::runtime_error("generator failed: " + r.output);
+    made[images] = source;
+  }
+  const fs::path target = dir / "capture";
+  fs::copy(made[images], target, fs::copy_options::recursive);
+  fs::remove_all(target / "truth");  // the truth is for the tests, not part of a capture
+  return target;
+}
+
+std::map<std::string, std::string> snapshot(const fs::path& root) {
+  std::map<std::string, std::string> out;
+  for (const auto& entry : fs::recursive_directory_iterator(root)) {
+    if (!entry.is_regular_file()) continue;
+    out[fs::relative(entry.path(), root).generic_string()] =
+        surrogate::archive::digestFile(entry.path()).sha256;
+  }
+  return out;
+}
+
+}  // namespace e2e

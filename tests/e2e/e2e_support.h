@@ -1,0 +1,34 @@
+// Support for end-to-end tests: running the programs, making generated captures, and
+// snapshotting a folder's files to prove nothing was modified.
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <string>
+
+namespace e2e {
+
+struct CommandResult {
+  int exitCode = -1;
+  std::string output;  // stdout and stderr together
+};
+
+// Runs a shell command line, capturing its output.
+CommandResult runShell(const std::string& commandLine);
+// Runs `surrogate ARGS`.
+CommandResult surrogate(const std::string& args);
+
+// A fresh, empty temporary folder for one test (removed at process exit is not needed: the
+// system's /tmp is fine; each call gets a new name).
+std::filesystem::path freshDir(const std::string& name);
+
+// A small generated capture (DNG originals + JPEG exports), made once per test process and
+// copied to `dir` for each test that wants to change it.
+std::filesystem::path smallCapture(const std::filesystem::path& dir, int images = 8);
+
+// SHA-256 of every regular file under `root`, by relative path.
+std::map<std::string, std::string> snapshot(const std::filesystem::path& root);
+
+std::string quote(const std::filesystem::path& p);
+
+}  // namespace e2e

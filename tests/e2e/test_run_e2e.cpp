@@ -1,0 +1,135 @@
+#include <catch2/catch.hpp>
+
+#include "archive/digest.h"
+#include "carrier/carrier.h"
+#include "e2e_support.h"
+
+namespace fs = std::filesystem;
+using namespace surrogate;
+
+TEST_CASE("surrogate run records every file with its hash, metadata and decode parameters") {
+  const fs::path capture = e2e::smallCapture(e2e::freshDir("run"));
+  const auto before = e2e::snapshot(capture);
+
+  const e2e::CommandResult r = e2e::surrogate("run " + e2e::quote(capture) + " --title Test --quiet");
+  INFO(r.output);
+  REQUIRE(r.exitCode == 0);
+
+  const carrier::Carrier c = carrier::loadCarrier(capture / "assembly-files/carrier.xml");  // validates
+  CHECK(c.header.title == "Test");
+  int originals = 0, exports = 0;
+  for (const carrier::FileRecord& f : c.files) {
+    if (f.role != "original" && f.role != "export") continue;
+    originals += f.role == "original";
+    exports += f.role == "export";
+    CHECK(f.sha256 == archive::digestFile(capture / f.path).sha256);
+    CHECK(f.size == fs::file_size(capture / f.path));
+    REQUIRE(f.imageSize.has_value());
+    CHECK(f.imageSize->first == 400);
+    CHECK_FALSE(f.pairedWith.empty());
+    bool hasMake = false;
+    for (const auto& [k, v] : f.camera) hasMake = hasMake || (k == "make" && v == "Surrogate");
+    if (f.role == "original") CHECK(hasMake);
+    if (f.role == "export") CHECK(f.unrecordedProcessing);
+  }
+  CHECK(originals == 8);
+  CHECK(exports == 8);
+
+  const carrier::Step& decode = c.process.at(1);
+  CHECK(decode.component == "ImageDecode");
+  CHECK(decode.hasParam("demosaic"));
+  CHECK(decode.hasParam("whiteBalance"));
+  const carrier::Result* decoded = c.findResult(decode.id);
+  REQUIRE(decoded != nullptr);
+  CHECK(decoded->status == "completed");
+  const auto items = decoded->itemsOf("decoded");
+  REQUIRE(items.size() == 8);
+  CHECK_THAT(*items[0]->get("decoder"), Catch::Contains("LibRaw"));
+  CHECK(*items[0]->get("transfer") == "linear");
+
+  // Nothing in the capture's own folders changed; Surrogate only added its two folders.
+  auto after = e2e::snapshot(capture);
+  for (const auto& [path, hash] : before) {
+    INFO(path);
+    REQUIRE(after.count(path) == 1);
+    CHECK(after[path] == hash);
+  }
+  for (const auto& [path, hash] : after) {
+    if (before.count(path)) continue;
+    const bool ours = path.rfind("assembly-files/", 0) == 0 || path.rfind("finished-files/", 0) == 0;
+    INFO(path);
+    CHECK(ours);
+  }
+}
+
+TEST_CASE("decoding is deterministic: two runs decode identical pixels") {
+  const fs::path a = e2e::smallCapture(e2e::freshDir("det-a"));
+  const fs::path b = e2e::smallCapture(e2e::freshDir("det-b"));
+  REQUIRE(e2e::surrogate("run " + e2e::quote(a) + " --quiet --threads 1").exitCode == 0);
+  REQUIRE(e2e::surrogate("run " + e2e::quote(b) + " --quiet --threads 2").exitCode == 0);
+  const carrier::Carrier ca = carrier::loadCarrier(a / "assembly-files/carrier.xml");
+  const carrier::Carrier cb = carrier::loadCarrier(b / "assembly-files/carrier.xml");
+  const auto da = ca.findResult("s2")->itemsOf("decoded");
+  const auto db = cb.findResult("s2")->itemsOf("decoded");
+  REQUIRE(da.size() == db.size());
+  for (std::size_t i = 0; i < da.size(); ++i) CHECK(*da[i]->get("pixelSha256") == *db[i]->get("pixelSha256"));
+}
+
+TEST_CASE("an excluded image needs a reason and is recorded as a human intervention") {
+  const fs::path capture = e2e::smallCapture(e2e::freshDir("exclude"));
+  const e2e::CommandResult missing = e2e::surrogate("run " + e2e::quote(capture) + " --exclude IMG_0003");
+  CHECK(missing.exitCode == 2);
+  CHECK_THAT(missing.output, Catch::Contains("--reason"));
+
+  const e2e::CommandResult r = e2e::surrogate("run " + e2e::quote(capture) +
+                                              " --quiet --operator Tester --exclude IMG_0003 "
+                                              "--reason 'the flash did not fire'");
+  INFO(r.output);
+  REQUIRE(r.exitCode == 0);
+  const carrier::Carrier c = carrier::loadCarrier(capture / "assembly-files/carrier.xml");
+  const auto interventions = c.process.at(0).interventionsOfKind("exclude-image");
+  REQUIRE(interventions.size() == 1);
+  CHECK(interventions[0]->reason == "the flash did not fire");
+  CHECK(interventions[0]->who == "Tester");
+  CHECK(c.findResult("s1")->itemsOf("input").size() == 7);
+  bool logged = false;
+  for (const carrier::LogEntry& e : c.log)
+    logged = logged || (e.level == "intervention" && e.who == "Tester" &&
+                        e.text.find("the flash did not fire") != std::string::npos);
+  CHECK(logged);
+
+  const e2e::CommandResult unknown = e2e::surrogate("run " + e2e::quote(capture) +
+                                                    " --quiet --exclude IMG_9999 --reason typo");
+  CHECK(unknown.exitCode == 2);
+  CHECK_THAT(unknown.output, Catch::Contains("IMG_9999"));
+}
+
+TEST_CASE("user metadata and creators go into the carrier's header") {
+  const fs::path capture = e2e::smallCapture(e2e::freshDir("meta"));
+  const e2e::CommandResult r = e2e::surrogate(
+      "run " + e2e::quote(capture) +
+      " --quiet --creator 'Ana Silva:photographer' --meta Source-Organization=Museum --meta 'Object=Stela 12'");
+  INFO(r.output);
+  REQUIRE(r.exitCode == 0);
+  const carrier::Carrier c = carrier::loadCarrier(capture / "assembly-files/carrier.xml");
+  REQUIRE(c.header.creators.size() == 1);
+  CHECK(c.header.creators[0].name == "Ana Silva");
+  CHECK(c.header.creators[0].role == "photographer");
+  REQUIRE(c.header.meta.size() == 2);
+  CHECK(c.header.meta[1].second == "Stela 12");
+  bool hasLibRaw = false;
+  for (const carrier::Software& s : c.header.software) hasLibRaw = hasLibRaw || s.name == "LibRaw";
+  CHECK(hasLibRaw);
+}
+
+TEST_CASE("surrogate info describes a capture and its carrier") {
+  const fs::path capture = e2e::smallCapture(e2e::freshDir("info"));
+  const e2e::CommandResult before = e2e::surrogate("info " + e2e::quote(capture));
+  INFO(before.output);
+  CHECK(before.exitCode == 0);
+  CHECK_THAT(before.output, Catch::Contains("8 originals"));
+  REQUIRE(e2e::surrogate("run " + e2e::quote(capture) + " --quiet").exitCode == 0);
+  const e2e::CommandResult json = e2e::surrogate("info --json " + e2e::quote(capture / "assembly-files/carrier.xml"));
+  CHECK(json.exitCode == 0);
+  CHECK_THAT(json.output, Catch::Contains("\"component\":\"ImageDecode\""));
+}
