@@ -42,11 +42,12 @@ Gradients gradients(const cv::Mat& coarse8) {
   return g;
 }
 
-// The circle Hough transform over radii [r0, r1] (coarse pixels) inside `area`, with votes
-// from edge pixels outside `excluded` circles. Each radius gets its own accumulator; the
-// per-radius winners are compared in radius order, so the result is thread-count independent.
-Candidate hough(const Gradients& g, cv::Rect area, int r0, int r1, const std::vector<Candidate>& excluded,
-                int threads) {
+// The circle Hough transform over radii [r0, r1] (coarse pixels) inside `area`. Each radius
+// gets its own accumulator and yields its `perRadius` strongest local maxima (each found
+// maximum's neighbourhood of r/2 is cleared before the next). The candidates are returned
+// sorted by score (normalised by the circumference), ties in radius order, so the result is
+// identical at any thread count.
+std::vector<Candidate> hough(const Gradients& g, cv::Rect area, int r0, int r1, int perRadius, int threads) {
   double maxMag = 0;
   cv::minMaxLoc(g.mag(area), nullptr, &maxMag);
   struct Edge {
@@ -57,9 +58,6 @@ Candidate hough(const Gradients& g, cv::Rect area, int r0, int r1, const std::ve
     for (int x = area.x; x < area.x + area.width; ++x) {
       const float m = g.mag.at<float>(y, x);
       if (m < 0.1 * maxMag) continue;  // faint gradients cost time and add only noise
-      bool skip = false;
-      for (const Candidate& c : excluded) skip = skip || std::hypot(x - c.x, y - c.y) < c.r + 4;
-      if (skip) continue;
       edges.push_back({float(x), float(y), g.gx.at<float>(y, x) / m, g.gy.at<float>(y, x) / m, m});
     }
   }
@@ -71,7 +69,7 @@ Candidate hough(const Gradients& g, cv::Rect area, int r0, int r1, const std::ve
     sinArc[k] = std::sin(kArc[k]);
   }
   const int radii = r1 - r0 + 1;
-  std::vector<Candidate> best(radii);
+  std::vector<std::vector<Candidate>> perR(radii);
   parallelFor(radii, 1, effectiveThreads(threads), [&](std::size_t b, std::size_t e) {
     cv::Mat acc(area.height, area.width, CV_32F);
     for (std::size_t ri = b; ri < e; ++ri) {
@@ -88,16 +86,20 @@ Candidate hough(const Gradients& g, cv::Rect area, int r0, int r1, const std::ve
         }
       }
       cv::GaussianBlur(acc, acc, cv::Size(5, 5), 1.0);
-      double value = 0;
-      cv::Point at;
-      cv::minMaxLoc(acc, nullptr, &value, nullptr, &at);
-      best[ri] = {double(at.x + area.x), double(at.y + area.y), double(r), value / (2 * M_PI * r)};
+      for (int m = 0; m < perRadius; ++m) {
+        double value = 0;
+        cv::Point at;
+        cv::minMaxLoc(acc, nullptr, &value, nullptr, &at);
+        if (value <= 0) break;
+        perR[ri].push_back({double(at.x + area.x), double(at.y + area.y), double(r), value / (2 * M_PI * r)});
+        cv::circle(acc, at, std::max(2, r / 2), cv::Scalar(0), -1);
+      }
     }
   });
-  Candidate winner;
-  for (const Candidate& c : best)
-    if (c.score > winner.score) winner = c;
-  return winner;
+  std::vector<Candidate> all;
+  for (const auto& list : perR) all.insert(all.end(), list.begin(), list.end());
+  std::stable_sort(all.begin(), all.end(), [](const Candidate& a, const Candidate& b) { return a.score > b.score; });
+  return all;
 }
 
 // Sub-pixel edge points along rays from the centre, and the circle through them.
@@ -267,6 +269,31 @@ std::vector<DetectedSphere> detectSpheres(const Image& median, const SphereDetec
   };
   const double margin = 2 * scale + 4;
 
+  // Candidates in order of Hough score; each is refined and must pass the tests below. A
+  // candidate overlapping an accepted sphere is the same sphere at another radius.
+  auto accept = [&](const std::vector<Candidate>& candidates, std::size_t wanted,
+                    std::vector<DetectedSphere>& into) {
+    constexpr std::size_t kMaxTried = 40;
+    double firstScore = 0;
+    std::size_t tried = 0;
+    for (const Candidate& c : candidates) {
+      if (into.size() >= wanted || tried >= kMaxTried) break;
+      if (firstScore > 0 && c.score < firstScore / 3) break;
+      const Candidate f = toFull(c);
+      bool overlaps = false;
+      for (const DetectedSphere& s : into) overlaps = overlaps || std::hypot(s.cx - f.x, s.cy - f.y) < s.r + f.r;
+      if (overlaps) continue;
+      ++tried;
+      const DetectedSphere s = refine(full, f, margin);
+      if (s.confidence < o.minConfidence || !isDarkDisc(full, s)) continue;
+      bool duplicate = false;
+      for (const DetectedSphere& q : into) duplicate = duplicate || std::hypot(s.cx - q.cx, s.cy - q.cy) < q.r;
+      if (duplicate) continue;
+      if (into.empty()) firstScore = c.score;
+      into.push_back(s);
+    }
+  };
+
   std::vector<DetectedSphere> found;
   if (!o.regions.empty()) {
     for (const Rect& region : o.regions) {
@@ -276,30 +303,14 @@ std::vector<DetectedSphere> detectSpheres(const Image& median, const SphereDetec
       if (area.width < 8 || area.height < 8)
         throw Error(ErrorKind::Usage, "--sphere-roi", kStep, "the region is outside the image or too small");
       const int r1 = std::min(static_cast<int>(maxRadius / scale), std::max(area.width, area.height) / 2);
-      const Candidate c = hough(g, area, r0, r1, {}, o.threads);
-      if (c.score <= 0) continue;
-      DetectedSphere sphere = refine(full, toFull(c), margin);
-      if (!isDarkDisc(full, sphere)) sphere.confidence = 0;
-      found.push_back(sphere);
+      std::vector<DetectedSphere> one;
+      accept(hough(g, area, r0, r1, 3, o.threads), 1, one);
+      found.insert(found.end(), one.begin(), one.end());
     }
   } else {
-    // Candidates one after another, the edges of those found taken out of the vote. A later
-    // sphere must score at least a third of the first (same kind of object, same contrast).
-    std::vector<Candidate> excluded;
     const int r1 = static_cast<int>(maxRadius / scale);
-    double firstScore = 0;
-    for (int k = 0; k < o.maxSpheres; ++k) {
-      const Candidate c = hough(g, cv::Rect(0, 0, coarse.cols, coarse.rows), r0, r1, excluded, o.threads);
-      if (c.score <= 0 || c.score < firstScore / 3) break;
-      DetectedSphere s = refine(full, toFull(c), margin);
-      excluded.push_back({(s.cx + 0.5) / scale - 0.5, (s.cy + 0.5) / scale - 0.5, s.r / scale, 0});
-      if (s.confidence < o.minConfidence || !isDarkDisc(full, s)) {
-        if (found.empty()) continue;  // the strongest circle was texture: look further
-        break;
-      }
-      if (found.empty()) firstScore = c.score;
-      found.push_back(s);
-    }
+    accept(hough(g, cv::Rect(0, 0, coarse.cols, coarse.rows), r0, r1, 4, o.threads),
+           static_cast<std::size_t>(o.maxSpheres), found);
   }
   found.erase(std::remove_if(found.begin(), found.end(),
                              [&](const DetectedSphere& s) { return s.confidence < o.minConfidence; }),

@@ -132,8 +132,11 @@ Image decodeRaw(const fs::path& path, const RawDecodeSettings& s, DecodeReport* 
   std::memcpy(im.pixels.data(), processed->data, im.pixels.size() * sizeof(std::uint16_t));
   if (report) {
     report->decoder = "LibRaw " + librawVersion();
-    report->blackLevel = static_cast<int>(raw->imgdata.color.black);
-    report->whiteLevel = static_cast<int>(raw->imgdata.color.maximum);
+    // The levels as read from the file (processing subtracts the black level and resets it):
+    // the common black plus the first per-channel offset, and the white level.
+    const auto& levels = raw->imgdata.rawdata.color;
+    report->blackLevel = static_cast<int>(levels.black + levels.cblack[0]);
+    report->whiteLevel = static_cast<int>(levels.maximum);
     report->whiteBalanceMultipliers.clear();
     for (int i = 0; i < 4; ++i) report->whiteBalanceMultipliers.push_back(raw->imgdata.color.pre_mul[i]);
     if (s.whiteBalance == "camera") {

@@ -1,0 +1,143 @@
+// Sphere and highlight detection on generated shots with known truth. The bounds here are
+// looser than the accuracy targets (see bench/hrti_accuracy for the figures): they catch
+// regressions, not tune the method.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "core/error.h"
+#include "core/stack.h"
+#include "generator/capture_generator.h"
+#include "hrti/highlight_detection.h"
+#include "hrti/light_direction.h"
+#include "hrti/median.h"
+#include "hrti/sphere_detection.h"
+
+using namespace surrogate;
+using namespace surrogate::hrti;
+
+namespace {
+
+struct Shots {
+  generator::GeneratorOptions options;
+  generator::CaptureTruth truth;
+  MemoryImageStack luminanceStack;
+};
+
+Shots render(int spheres, bool strongTexture, int images = 12) {
+  generator::GeneratorOptions o;
+  o.images = images;
+  o.width = 480;
+  o.height = 360;
+  o.spheres = spheres;
+  o.sphereRadius = 60;
+  o.seed = 5;
+  o.strongTexture = strongTexture;
+  const generator::CaptureTruth t = generator::planCapture(o);
+  std::vector<Image> lum;
+  for (int i = 0; i < o.images; ++i) lum.push_back(luminance(generator::renderShot(o, t, i)));
+  return {o, t, MemoryImageStack(std::move(lum))};
+}
+
+double angleDeg(const std::array<double, 3>& a, const LightDirection& b) {
+  return std::acos(std::min(1.0, a[0] * b.x + a[1] * b.y + a[2] * b.z)) * 180 / M_PI;
+}
+
+}  // namespace
+
+TEST_CASE("one sphere on a textured, shadowed relief: centre, radius and lights") {
+  const Shots s = render(1, false);
+  const Image median = medianImage(s.luminanceStack, 16, 2);
+  const auto spheres = detectSpheres(median, SphereDetectionOptions());
+  REQUIRE(spheres.size() == 1);
+  const auto& truth = s.truth.spheres[0];
+  CHECK(std::hypot(spheres[0].cx - truth.cx, spheres[0].cy - truth.cy) < 0.3);
+  CHECK(std::abs(spheres[0].r - truth.r) < 0.5);
+  CHECK(spheres[0].confidence > 0.8);
+
+  const auto highlights = detectHighlights(s.luminanceStack, spheres, HighlightOptions(), 2);
+  double worst = 0;
+  for (std::size_t i = 0; i < highlights.size(); ++i) {
+    REQUIRE(highlights[i][0].flag == HighlightFlag::Ok);
+    worst = std::max(worst, angleDeg(s.truth.lights[i], lightFromHighlight(spheres[0], highlights[i][0].x, highlights[i][0].y)));
+  }
+  CHECK(worst < 1.5);
+}
+
+TEST_CASE("two spheres and strong background texture are both found") {
+  const Shots s = render(2, true);
+  const Image median = medianImage(s.luminanceStack, 1000, 1);
+  const auto spheres = detectSpheres(median, SphereDetectionOptions());
+  REQUIRE(spheres.size() == 2);
+  for (const auto& truth : s.truth.spheres) {
+    double nearest = 1e9;
+    for (const auto& d : spheres) nearest = std::min(nearest, std::hypot(d.cx - truth.cx, d.cy - truth.cy));
+    CHECK(nearest < 0.5);
+  }
+}
+
+TEST_CASE("a user region limits the search to one sphere") {
+  const Shots s = render(2, false, 12);
+  const Image median = medianImage(s.luminanceStack, 64, 2);
+  SphereDetectionOptions o;
+  const auto& t = s.truth.spheres[1];
+  o.regions.push_back({static_cast<int>(t.cx - t.r - 20), static_cast<int>(t.cy - t.r - 20),
+                       static_cast<int>(2 * t.r + 40), static_cast<int>(2 * t.r + 40)});
+  const auto spheres = detectSpheres(median, o);
+  REQUIRE(spheres.size() == 1);
+  CHECK(std::hypot(spheres[0].cx - t.cx, spheres[0].cy - t.cy) < 0.5);
+  CHECK(SphereDetectionOptions::fromParameters(o.toParameters()).regions.size() == 1);
+}
+
+TEST_CASE("no sphere: a clear error that suggests giving a region") {
+  Image flat(300, 200, 1);
+  for (std::size_t i = 0; i < flat.pixels.size(); ++i) flat.pixels[i] = static_cast<std::uint16_t>(30000 + (i * 7919) % 2000);
+  try {
+    detectSpheres(flat, SphereDetectionOptions());
+    FAIL("found a sphere in noise");
+  } catch (const Error& e) {
+    CHECK_THAT(e.message(), Catch::Contains("--sphere-roi"));
+  }
+}
+
+TEST_CASE("median, spheres and highlights are bit-identical with 1 and 2 threads") {
+  const Shots s = render(2, false, 8);
+  const Image m1 = medianImage(s.luminanceStack, 7, 1), m2 = medianImage(s.luminanceStack, 50, 2);
+  REQUIRE(m1.pixels == m2.pixels);
+  SphereDetectionOptions o1, o2;
+  o1.threads = 1;
+  o2.threads = 2;
+  const auto s1 = detectSpheres(m1, o1), s2 = detectSpheres(m2, o2);
+  REQUIRE(s1.size() == s2.size());
+  for (std::size_t k = 0; k < s1.size(); ++k) {
+    CHECK(s1[k].cx == s2[k].cx);
+    CHECK(s1[k].cy == s2[k].cy);
+    CHECK(s1[k].r == s2[k].r);
+  }
+  const auto h1 = detectHighlights(s.luminanceStack, s1, HighlightOptions(), 1);
+  const auto h2 = detectHighlights(s.luminanceStack, s1, HighlightOptions(), 2);
+  for (std::size_t i = 0; i < h1.size(); ++i)
+    for (std::size_t k = 0; k < h1[i].size(); ++k) {
+      CHECK(h1[i][k].x == h2[i][k].x);
+      CHECK(h1[i][k].y == h2[i][k].y);
+    }
+}
+
+TEST_CASE("highlight flags: none on a dark sphere, multiple for two equal spots") {
+  const DetectedSphere sphere{50, 50, 40, 1};
+  Image dark(100, 100, 1);
+  for (auto& v : dark.pixels) v = 1000;
+  CHECK(detectHighlight(dark, 0, 0, sphere, HighlightOptions()).flag == HighlightFlag::None);
+
+  Image two = dark;
+  for (int y = 40; y < 44; ++y)
+    for (int x = 40; x < 44; ++x) {
+      two.at(x, y) = 60000;
+      two.at(x + 25, y + 20) = 60000;
+    }
+  const Highlight h = detectHighlight(two, 0, 0, sphere, HighlightOptions());
+  CHECK(h.flag == HighlightFlag::Multiple);
+  CHECK(h.components == 2);
+  CHECK(h.x == Approx(41.5));  // the spot nearer the centre, its exact centroid
+  CHECK(h.y == Approx(41.5));
+}
