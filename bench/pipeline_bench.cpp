@@ -1,0 +1,135 @@
+// Speed and memory of the whole pipeline at full size (issues 3 and 4): 60 images of 24 Mpx.
+//
+// 1. Generates the capture once (JPEG exports only by default; --dng for DNG originals too),
+//    kept in DIR between runs.
+// 2. Decodes every image once, in this process, into the streaming stacks: the floor.
+// 3. Runs `surrogate lights` (decode + light estimation) and `surrogate run` (decode, lights,
+//    PTM LRGB, HSH order 2, derived maps) as child processes, measuring wall time and peak
+//    resident memory (getrusage of the child).
+// Prints each time and its ratio to the decode floor. Targets: lights below 2x decode (light
+// estimation itself below 1x decode), the whole run within 1.5x of decode on JPEG input, peak
+// memory under 2 GiB.
+//
+//   pipeline_bench --surrogate PATH [--dir DIR] [--images N] [--width W] [--height H]
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "generator/capture_generator.h"
+#include "stages/decode_images.h"
+
+namespace fs = std::filesystem;
+using namespace surrogate;
+
+namespace {
+
+struct ChildRun {
+  double seconds = 0;
+  double peakMiB = 0;
+  int status = -1;
+};
+
+ChildRun runChild(const std::vector<std::string>& args) {
+  std::vector<char*> argv;
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  const auto t0 = std::chrono::steady_clock::now();
+  const pid_t pid = fork();
+  if (pid == 0) {
+    execv(argv[0], argv.data());
+    _exit(127);
+  }
+  int status = 0;
+  rusage usage{};
+  wait4(pid, &status, 0, &usage);
+  ChildRun r;
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.peakMiB = usage.ru_maxrss / 1024.0;
+  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string surrogate;
+  fs::path dir = fs::temp_directory_path() / "surrogate-pipeline-bench";
+  generator::GeneratorOptions o;
+  o.images = 60;
+  o.width = 6000;
+  o.height = 4000;
+  o.sphereRadius = 300;
+  o.formats = generator::OutputFormats::Jpeg;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--dng") { o.formats = generator::OutputFormats::Both; continue; }
+    if (i + 1 >= argc) break;
+    if (a == "--surrogate") surrogate = argv[++i];
+    else if (a == "--dir") dir = argv[++i];
+    else if (a == "--images") o.images = std::atoi(argv[++i]);
+    else if (a == "--width") o.width = std::atoi(argv[++i]);
+    else if (a == "--height") o.height = std::atoi(argv[++i]);
+  }
+  if (surrogate.empty()) {
+    std::fprintf(stderr, "usage: pipeline_bench --surrogate PATH [--dir DIR] [--images N] [--width W] [--height H] [--dng]\n");
+    return 2;
+  }
+  o.sphereRadius = std::min(o.width, o.height) / 13.0;
+  const fs::path capture = dir / "capture";
+  const fs::path stamp = dir / "generated.txt";
+  const std::string want = std::to_string(o.images) + " " + std::to_string(o.width) + "x" + std::to_string(o.height) +
+                           (o.formats == generator::OutputFormats::Jpeg ? " jpeg" : " both");
+  std::string have;
+  if (FILE* f = std::fopen(stamp.c_str(), "r")) {
+    char buffer[128] = {0};
+    if (std::fgets(buffer, sizeof buffer, f)) have = buffer;
+    std::fclose(f);
+  }
+  if (have != want) {
+    fs::remove_all(dir);
+    std::printf("generating %s in %s ...\n", want.c_str(), capture.c_str());
+    std::fflush(stdout);
+    const auto t0 = std::chrono::steady_clock::now();
+    generator::writeCapture(o, capture);
+    std::printf("  generated in %.1f s\n", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    FILE* f = std::fopen(stamp.c_str(), "w");
+    std::fputs(want.c_str(), f);
+    std::fclose(f);
+  }
+  std::vector<fs::path> files;
+  for (const auto& e : fs::directory_iterator(capture / "jpeg-exports")) files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+
+  const auto t0 = std::chrono::steady_clock::now();
+  { const auto stacks = stages::decodeImages(files, image::RawDecodeSettings(), pipeline::RunSettings()); }
+  const double decode = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  rusage self{};
+  getrusage(RUSAGE_SELF, &self);
+  const double mpx = double(o.width) * o.height / 1e6;
+  std::printf("%d JPEG images of %.1f Mpx\n", o.images, mpx);
+  std::printf("  decode once into the stacks: %8.1f s  (%.0f Mpixel-images/s, peak %.0f MiB)\n", decode,
+              mpx * o.images / decode, self.ru_maxrss / 1024.0);
+  std::fflush(stdout);
+
+  fs::remove_all(capture / "assembly-files");
+  fs::remove_all(capture / "finished-files");
+  const ChildRun lights = runChild({surrogate, "lights", capture.string(), "-o", (dir / "lights.lp").string(), "--quiet", "--source", "export"});
+  std::printf("  surrogate lights:            %8.1f s  (%.2fx decode; light estimation alone %.2fx) peak %.0f MiB%s\n",
+              lights.seconds, lights.seconds / decode, (lights.seconds - decode) / decode, lights.peakMiB,
+              lights.status == 0 ? "" : "  FAILED");
+  std::fflush(stdout);
+  fs::remove_all(capture / "assembly-files");
+  fs::remove_all(capture / "finished-files");
+  const ChildRun run = runChild({surrogate, "run", capture.string(), "--quiet", "--source", "export"});
+  std::printf("  surrogate run (ptm-lrgb, hsh2): %5.1f s  (%.2fx decode) peak %.0f MiB%s\n", run.seconds,
+              run.seconds / decode, run.peakMiB, run.status == 0 ? "" : "  FAILED");
+  return run.status == 0 && lights.status == 0 ? 0 : 1;
+}
