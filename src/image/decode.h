@@ -1,81 +1,61 @@
 // Decoding photographs: camera raw and DNG through LibRaw, JPEG/TIFF/PNG through OpenCV.
 //
+// The folder's front door: including it gives the whole public interface of src/image.
+//
+//   camera raw, DNG --LibRaw, RawDecodeSettings--> linear 16-bit RGB      (Transfer::Linear)
+//   JPEG, TIFF, PNG --OpenCV, pixels as stored---> 8/16-bit grey or RGB   (Transfer::Srgb)
+//
 // Every LibRaw setting that changes pixels is fixed by RawDecodeSettings, which the pipeline
 // records in the carrier and re-applies on re-execution, so decoding is deterministic:
 //
-//   RawDecodeSettings settings;                 // AHD demosaic, as-shot white balance, sRGB
-//   DecodeReport report;                        // primaries, linear gamma, no auto-brightening
+//   RawDecodeSettings settings;                   // AHD, as-shot white balance, linear sRGB
+//   DecodeReport report;
 //   Image im = decodeImage("IMG_0001.dng", settings, &report);
+//   // report.decoder == "LibRaw 0.20.2-Release", report.blackLevel, report.whiteLevel, ...
 //
-// Errors name the file and say what is wrong in a photographer's words.
+// Errors are surrogate::Error(Input) naming the file, with a sentence a photographer can act
+// on ("the file is truncated ..."). No library prints to the terminal.
 #pragma once
 
 #include <filesystem>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "core/image.h"
+#include "image/raw_settings.h"
+#include "image/source_kind.h"
+#include "image/srgb.h"
+#include "image/write.h"
 
 namespace surrogate::image {
 
-enum class SourceKind { CameraRaw, Jpeg, Tiff, Png };
-
-// True for the extensions of camera raw formats (.cr2, .nef, .dng, ...), case-insensitive.
-bool isCameraRawExtension(const std::filesystem::path& path);
-
-// What the file is, by its first bytes (then its extension for raw formats built on TIFF).
-// Throws Error(Input) naming the file when it is not an image Surrogate reads.
-SourceKind classifyImageFile(const std::filesystem::path& path);
-
-struct RawDecodeSettings {
-  std::string demosaic = "AHD";          // linear, VNG, PPG, AHD, DCB: quality against time
-  std::string whiteBalance = "camera";   // camera (as shot), daylight, none (unity)
-  std::string outputColorSpace = "srgb"; // srgb (linear sRGB primaries) or raw (camera space)
-  int highlightMode = 0;                 // 0 clip, 1 unclip, 2 blend, 3+ rebuild
-  int outputBits = 16;                   // always 16: the precision the fit works in
-  bool noAutoBright = true;              // never rescale by a histogram (not deterministic
-                                         // across captures, and changes the data)
-  bool halfSize = false;                 // half resolution without demosaicing (fast preview)
-
-  std::vector<std::pair<std::string, std::string>> toParameters() const;
-  // Missing names keep their defaults; unknown names or values are Error(Usage).
-  static RawDecodeSettings fromParameters(const std::vector<std::pair<std::string, std::string>>& p);
-};
-
 struct ImageProbe {
-  int width = 0;
+  int width = 0;   // as decodeImage returns it with default settings
   int height = 0;
   SourceKind kind = SourceKind::Jpeg;
 };
 
-// Checks that the file is a readable, complete image and returns its size, without decoding
-// the pixels where the format allows. Truncated or unreadable files are Error(Input).
+// Checks that the file is a readable, complete image and returns its size without decoding
+// pixels: JPEG markers up to end-of-image, PNG header and end chunk, TIFF strip table, LibRaw's
+// header parse for raw. Missing, empty, truncated or unsupported files are Error(Input).
+// (A raw whose pixel data is damaged inside an intact container is found by decodeImage.)
 ImageProbe probeImage(const std::filesystem::path& path);
 
 struct DecodeReport {
-  std::string decoder;  // "LibRaw 0.20.2" or "OpenCV 4.6.0"
-  int blackLevel = -1;  // camera raw only: the levels LibRaw used
-  int whiteLevel = -1;
-  std::vector<double> whiteBalanceMultipliers;  // camera raw only: R, G, B, G2
+  std::string decoder;  // "LibRaw 0.20.2-Release" or "OpenCV 4.6.0"
+  int blackLevel = -1;  // camera raw only: the black level subtracted (file's, or the override)
+  int whiteLevel = -1;  // camera raw only: the white (saturation) level scaled to 65535
+  std::vector<double> whiteBalanceMultipliers;  // camera raw only: applied R, G, B, G2 (G = 1)
+  std::vector<std::string> warnings;            // e.g. no as-shot white balance in the file
 };
 
-// Decodes the whole image. Camera raw: linear 16-bit RGB (Transfer::Linear). Others: as stored
-// (Transfer::Srgb; 8-bit widened by 257; grey stays one channel; alpha dropped). Safe to call
-// from several threads at once.
+// Decodes the whole image. Camera raw: linear 16-bit RGB (or grey for monochrome sensors).
+// Others: as stored (8-bit widened by 257, bitsPerSample kept; grey stays one channel; alpha
+// dropped; the EXIF orientation tag is not applied). Safe to call from several threads at once.
 Image decodeImage(const std::filesystem::path& path, const RawDecodeSettings& settings,
                   DecodeReport* report = nullptr);
 
-// Writes an 8-bit (bitsPerSample 8) or 16-bit PNG, atomically, with fixed compression so the
-// bytes are the same for the same image.
-void writePng(const Image& image, const std::filesystem::path& path);
-// Writes an 8-bit JPEG, atomically.
-void writeJpeg(const Image& image, const std::filesystem::path& path, int quality);
-
-// Linear 16-bit values to sRGB-encoded 16-bit (the sRGB transfer function), any channel count.
-Image srgbEncode(const Image& linear);
-
-std::string librawVersion();
-std::string opencvVersion();
+std::string librawVersion();  // "0.20.2-Release" (LibRaw::version())
+std::string opencvVersion();  // "4.6.0"
 
 }  // namespace surrogate::image

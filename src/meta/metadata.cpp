@@ -2,11 +2,14 @@
 
 #include <exiv2/exiv2.hpp>
 
-#include <mutex>
+#include <cstdlib>
+#include <initializer_list>
 #include <sstream>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "meta/exiv2_setup.h"
+#include "meta/xmp_packet_scan.h"
 
 namespace surrogate::meta {
 
@@ -14,19 +17,9 @@ namespace {
 
 constexpr const char* kStep = "metadata";
 
-// Exiv2 writes warnings about odd maker notes to stderr; a user cannot act on them, and the
-// values Surrogate needs are read regardless. Silence them once per process.
-void initialiseExiv2() {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    Exiv2::LogMsg::setLevel(Exiv2::LogMsg::mute);
-#ifdef EXV_ENABLE_BMFF
-    Exiv2::enableBMFF(true);
-#endif
-  });
-}
+using ExifFinder = Exiv2::ExifData::const_iterator (*)(const Exiv2::ExifData&);
 
-// Keys are fixed strings of this file; a key this Exiv2 version does not know reads as absent.
+// A key this Exiv2 version does not know reads as absent, as does an empty value.
 const Exiv2::Exifdatum* findExif(const Exiv2::ExifData& data, const char* key) {
   Exiv2::ExifData::const_iterator it;
   try {
@@ -34,104 +27,162 @@ const Exiv2::Exifdatum* findExif(const Exiv2::ExifData& data, const char* key) {
   } catch (const Exiv2::AnyError&) {
     return nullptr;
   }
-  if (it == data.end() || it->count() == 0) return nullptr;
-  return &*it;
+  return it == data.end() || it->count() == 0 ? nullptr : &*it;
 }
 
-const Exiv2::Xmpdatum* findXmp(const Exiv2::XmpData& data, const char* key) {
-  auto it = data.findKey(Exiv2::XmpKey(key));
-  if (it == data.end() || it->count() == 0) return nullptr;
-  return &*it;
+std::string trimmed(std::string s) {
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\0')) s.pop_back();
+  return s;
 }
 
-std::optional<std::string> text(const Exiv2::ExifData& exif, std::initializer_list<const char*> keys) {
-  for (const char* k : keys) {
-    if (const auto* d = findExif(exif, k)) {
-      std::string s = d->toString();
-      while (!s.empty() && (s.back() == ' ' || s.back() == '\0')) s.pop_back();
-      if (!s.empty()) return s;
-    }
-  }
-  return std::nullopt;
+// The value as exiv2 prints it (`exiv2 -pa`): maker-note codes decoded ("Canon RF 70-200mm"),
+// rationals as photographers write them ("1/125 s").
+std::string printed(const Exiv2::Exifdatum& d, const Exiv2::ExifData& exif) {
+  std::ostringstream s;
+  d.write(s, &exif);
+  return trimmed(s.str());
 }
 
-std::optional<std::string> xmpText(const Exiv2::XmpData& xmp, const char* key) {
-  if (const auto* d = findXmp(xmp, key)) {
-    const std::string s = d->toString();
-    if (!s.empty()) return s;
-  }
-  return std::nullopt;
+// Exiv2 prints maker-note values it cannot decode as "n/a", "Unknown" or "(code)".
+bool meaningful(const std::string& s) {
+  return !s.empty() && s != "n/a" && s != "Unknown" && s.front() != '(';
 }
 
-std::optional<double> number(const Exiv2::ExifData& exif, std::initializer_list<const char*> keys) {
+std::optional<std::string> exifText(const Exiv2::ExifData& exif, std::initializer_list<const char*> keys) {
   for (const char* k : keys)
-    if (const auto* d = findExif(exif, k)) return d->toFloat(0);
+    if (const auto* d = findExif(exif, k))
+      if (std::string s = trimmed(d->toString()); !s.empty()) return s;
   return std::nullopt;
 }
 
-std::optional<long> integer(const Exiv2::ExifData& exif, std::initializer_list<const char*> keys) {
+std::optional<std::string> xmpText(const Exiv2::XmpData& xmp, std::initializer_list<const char*> keys) {
+  for (const char* k : keys) {
+    const auto it = xmp.findKey(Exiv2::XmpKey(k));
+    if (it != xmp.end() && it->count() > 0)
+      if (std::string s = trimmed(it->toString()); !s.empty()) return s;
+  }
+  return std::nullopt;
+}
+
+// Exiv2's "easy access" search across maker notes, as printed.
+std::optional<std::string> makerNote(const Exiv2::ExifData& exif, ExifFinder find) {
+  const auto it = find(exif);
+  if (it == exif.end() || it->count() == 0) return std::nullopt;
+  std::string s = printed(*it, exif);
+  return meaningful(s) ? std::optional<std::string>(s) : std::nullopt;
+}
+
+std::optional<double> exifNumber(const Exiv2::ExifData& exif, std::initializer_list<const char*> keys) {
+  for (const char* k : keys)
+    if (const auto* d = findExif(exif, k)) return static_cast<double>(d->toFloat(0));
+  return std::nullopt;
+}
+
+std::optional<long> exifInteger(const Exiv2::ExifData& exif, std::initializer_list<const char*> keys) {
   for (const char* k : keys)
     if (const auto* d = findExif(exif, k)) return d->toLong(0);
   return std::nullopt;
 }
 
-std::optional<std::string> printed(const Exiv2::ExifData& exif, const char* key) {
-  if (const auto* d = findExif(exif, key)) {
-    std::ostringstream s;
-    d->write(s, &exif);
-    return s.str();
+// The leading number of a printed value ("7.1 mm" -> 7.1, "200" -> 200); maker notes store
+// encoded values whose printed form is the only reliable one.
+std::optional<double> leadingNumber(const std::optional<std::string>& s) {
+  if (!s) return std::nullopt;
+  char* end = nullptr;
+  const double v = std::strtod(s->c_str(), &end);
+  if (end == s->c_str() || !(v > 0)) return std::nullopt;
+  return v;
+}
+
+void readExif(const Exiv2::ExifData& exif, const Exiv2::XmpData& xmp, CameraMetadata& m) {
+  m.make = exifText(exif, {"Exif.Image.Make"});
+  if (!m.make) m.make = xmpText(xmp, {"Xmp.tiff.Make"});
+  m.model = exifText(exif, {"Exif.Image.Model"});
+  if (!m.model) m.model = xmpText(xmp, {"Xmp.tiff.Model"});
+
+  m.bodySerial = exifText(exif, {"Exif.Photo.BodySerialNumber", "Exif.Image.CameraSerialNumber"});
+  if (!m.bodySerial) m.bodySerial = xmpText(xmp, {"Xmp.exifEX.BodySerialNumber", "Xmp.aux.SerialNumber"});
+  if (!m.bodySerial) m.bodySerial = makerNote(exif, Exiv2::serialNumber);
+
+  m.lens = exifText(exif, {"Exif.Photo.LensModel"});
+  if (!m.lens) m.lens = xmpText(xmp, {"Xmp.exifEX.LensModel", "Xmp.aux.Lens"});
+  if (!m.lens) m.lens = makerNote(exif, Exiv2::lensName);
+
+  m.focalLengthMm = exifNumber(exif, {"Exif.Photo.FocalLength", "Exif.Image.FocalLength"});
+  if (!m.focalLengthMm) m.focalLengthMm = leadingNumber(makerNote(exif, Exiv2::focalLength));
+  m.fNumber = exifNumber(exif, {"Exif.Photo.FNumber", "Exif.Image.FNumber"});
+
+  for (const char* key : {"Exif.Photo.ExposureTime", "Exif.Image.ExposureTime"}) {
+    if (const auto* d = findExif(exif, key)) {
+      m.exposureTime = printed(*d, exif);
+      m.exposureSeconds = d->toFloat(0);
+      break;
+    }
   }
-  return std::nullopt;
+
+  m.iso = exifInteger(exif, {"Exif.Photo.ISOSpeedRatings", "Exif.Image.ISOSpeedRatings"});
+  if (!m.iso)
+    if (const auto v = leadingNumber(xmpText(xmp, {"Xmp.exifEX.PhotographicSensitivity", "Xmp.exif.ISOSpeedRatings"})))
+      m.iso = static_cast<long>(*v);
+  if (!m.iso)
+    if (const auto v = leadingNumber(makerNote(exif, Exiv2::isoSpeed))) m.iso = static_cast<long>(*v);
+
+  // Exif.Image.DateTime is when the file was last changed, not when the photograph was taken.
+  m.dateTimeOriginal = exifText(exif, {"Exif.Photo.DateTimeOriginal", "Exif.Image.DateTimeOriginal"});
+  m.orientation = exifInteger(exif, {"Exif.Image.Orientation"});
+  if (m.orientation && (*m.orientation < 1 || *m.orientation > 8)) m.orientation.reset();
+
+  m.pixelWidth = exifInteger(exif, {"Exif.Photo.PixelXDimension"});
+  m.pixelHeight = exifInteger(exif, {"Exif.Photo.PixelYDimension"});
+  m.focalPlaneXResolution = exifNumber(exif, {"Exif.Photo.FocalPlaneXResolution"});
+  m.focalPlaneYResolution = exifNumber(exif, {"Exif.Photo.FocalPlaneYResolution"});
+  m.focalPlaneResolutionUnit = exifInteger(exif, {"Exif.Photo.FocalPlaneResolutionUnit"});
+}
+
+// The stored bytes of the packet Exiv2 parsed but did not keep (BMFF): the scanned packet
+// that parses to as many properties.
+std::string storedPacket(const std::filesystem::path& path, long properties) {
+  for (const std::string& packet : scanXmpPackets(readFile(path, kStep))) {
+    Exiv2::XmpData parsed;
+    if (Exiv2::XmpParser::decode(parsed, packet) == 0 && parsed.count() == properties) return packet;
+  }
+  return {};
 }
 
 }  // namespace
 
 CameraMetadata readMetadata(const std::filesystem::path& path) {
-  initialiseExiv2();
+  ensureExiv2Ready();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throwInputError(path.string(), kStep, "does not exist or is not a regular file");
   CameraMetadata m;
   try {
     Exiv2::Image::AutoPtr image = Exiv2::ImageFactory::open(path.string());
     if (!image.get()) throwInputError(path.string(), kStep, "Exiv2 cannot open the file");
     image->readMetadata();
-    const Exiv2::ExifData& exif = image->exifData();
-    const Exiv2::XmpData& xmp = image->xmpData();
-    m.make = text(exif, {"Exif.Image.Make"});
-    m.model = text(exif, {"Exif.Image.Model"});
-    m.bodySerial = text(exif, {"Exif.Photo.BodySerialNumber", "Exif.Image.CameraSerialNumber",
-                               "Exif.Canon.SerialNumber", "Exif.Nikon3.SerialNumber"});
-    if (!m.bodySerial) m.bodySerial = xmpText(xmp, "Xmp.aux.SerialNumber");
-    m.lens = text(exif, {"Exif.Photo.LensModel"});
-    if (!m.lens) m.lens = xmpText(xmp, "Xmp.aux.Lens");
-    m.focalLengthMm = number(exif, {"Exif.Photo.FocalLength", "Exif.Image.FocalLength"});
-    m.fNumber = number(exif, {"Exif.Photo.FNumber", "Exif.Image.FNumber"});
-    m.exposureTime = printed(exif, "Exif.Photo.ExposureTime");
-    if (!m.exposureTime) m.exposureTime = printed(exif, "Exif.Image.ExposureTime");
-    m.exposureSeconds = number(exif, {"Exif.Photo.ExposureTime", "Exif.Image.ExposureTime"});
-    m.iso = integer(exif, {"Exif.Photo.ISOSpeedRatings", "Exif.Image.ISOSpeedRatings"});
-  if (!m.iso) {
-    if (const auto v = xmpText(xmp, "Xmp.exifEX.PhotographicSensitivity")) m.iso = std::atol(v->c_str());
-  }
-    m.dateTimeOriginal = text(exif, {"Exif.Photo.DateTimeOriginal", "Exif.Image.DateTimeOriginal",
-                                     "Exif.Image.DateTime"});
-    m.orientation = integer(exif, {"Exif.Image.Orientation"});
-    m.pixelWidth = integer(exif, {"Exif.Photo.PixelXDimension"});
-    m.pixelHeight = integer(exif, {"Exif.Photo.PixelYDimension"});
+    // Without this, xmpPacket() re-serialises the parsed XMP: a different packet from the
+    // stored one, whose namespace prefixes even depend on what the process parsed before.
+    // (readMetadata clears the flag, so it is set afterwards.)
+    image->writeXmpFromPacket(true);
+    readExif(image->exifData(), image->xmpData(), m);
     if (!m.pixelWidth && image->pixelWidth() > 0) m.pixelWidth = image->pixelWidth();
     if (!m.pixelHeight && image->pixelHeight() > 0) m.pixelHeight = image->pixelHeight();
-    m.focalPlaneXResolution = number(exif, {"Exif.Photo.FocalPlaneXResolution"});
-    m.focalPlaneYResolution = number(exif, {"Exif.Photo.FocalPlaneYResolution"});
-    m.focalPlaneResolutionUnit = integer(exif, {"Exif.Photo.FocalPlaneResolutionUnit"});
     m.xmpPacket = image->xmpPacket();
+    if (m.xmpPacket.empty() && image->xmpData().count() > 0)
+      m.xmpPacket = storedPacket(path, image->xmpData().count());
   } catch (const Exiv2::AnyError& e) {
     throwInputError(path.string(), kStep, std::string("Exiv2 cannot read its metadata: ") + e.what());
   } catch (const std::bad_alloc&) {
-    throwInputError(path.string(), kStep, "Exiv2 ran out of memory reading it (damaged metadata)");
+    throwInputError(path.string(), kStep, "Exiv2 ran out of memory reading it (the metadata is damaged)");
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    // Exiv2 0.27 lets some standard exceptions (std::out_of_range, std::overflow_error) escape
+    // from damaged files.
+    throwInputError(path.string(), kStep, std::string("the metadata is damaged (Exiv2: ") + e.what() + ")");
   }
   return m;
-}
-
-std::string readXmpSidecar(const std::filesystem::path& path) {
-  return readFile(path, kStep);
 }
 
 std::string exiv2Version() { return Exiv2::versionString(); }

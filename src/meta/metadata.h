@@ -1,9 +1,21 @@
 // Camera metadata of an original: the EXIF summary a scholar needs to judge a capture (which
-// camera and lens, exposure, when) and the whole XMP packet, where Lightroom and Photoshop
+// camera and lens, how exposed, when) and the whole XMP packet, where Lightroom and Photoshop
 // keep the editing history of exported files.
 //
+// Each field comes from the standard EXIF tag first, then the XMP equivalent, then the camera
+// maker's private notes (as Exiv2 decodes them); a field no source holds stays empty:
+//
+//   bodySerial  Exif.Photo.BodySerialNumber, Exif.Image.CameraSerialNumber, maker notes
+//               (Exif.Canon.SerialNumber, Exif.Nikon3.SerialNO, ...), Xmp.aux.SerialNumber
+//   lens        Exif.Photo.LensModel, Xmp.aux.Lens, maker notes (Exif.CanonCs.LensType, ...)
+//   iso         Exif.Photo.ISOSpeedRatings (PhotographicSensitivity), Xmp.exifEX, maker notes
+//
 //   CameraMetadata m = readMetadata("original-captures/IMG_0001.CR2");
-//   if (m.model) ... *m.model ...
+//   if (m.model) std::cout << *m.model;          // "Canon EOS R6"
+//
+// Exiv2 0.27 reads every format here, CR3 included (BMFF support is switched on). Its warnings
+// are silenced: the user cannot act on an odd maker-note entry, and the values needed are read
+// regardless. Safe to call from several threads at once.
 #pragma once
 
 #include <filesystem>
@@ -14,25 +26,27 @@ namespace surrogate::meta {
 
 struct CameraMetadata {
   std::optional<std::string> make, model, bodySerial, lens;
-  std::optional<double> focalLengthMm;
+  std::optional<double> focalLengthMm;          // actual focal length, not 35 mm equivalent
   std::optional<double> fNumber;
-  std::optional<std::string> exposureTime;  // as Exiv2 prints it, e.g. "1/125 s"
+  std::optional<std::string> exposureTime;      // as Exiv2 prints it, e.g. "1/125 s"
   std::optional<double> exposureSeconds;
   std::optional<long> iso;
   std::optional<std::string> dateTimeOriginal;  // "YYYY:MM:DD HH:MM:SS" as stored
-  std::optional<long> orientation;              // EXIF 1..8
-  std::optional<long> pixelWidth, pixelHeight;
-  std::optional<double> focalPlaneXResolution, focalPlaneYResolution;
+  std::optional<long> orientation;              // EXIF 1..8 (1 = as stored, 6 = rotate 90 CW)
+  std::optional<long> pixelWidth, pixelHeight;  // EXIF pixel dimensions, else the file's
+  std::optional<double> focalPlaneXResolution, focalPlaneYResolution;  // sensor pixels per unit
   std::optional<long> focalPlaneResolutionUnit;  // EXIF: 2 inch, 3 cm, 4 mm
-  std::string xmpPacket;                         // verbatim; empty when none
+  std::string xmpPacket;                         // verbatim as stored; empty when none
 };
 
-// Reads EXIF and XMP with Exiv2. Throws Error(Input) naming the file when Exiv2 cannot read it.
+// Reads EXIF and XMP with Exiv2. Throws Error(Input) naming the file when it is missing or
+// Exiv2 cannot read it (unknown format, damaged metadata).
 CameraMetadata readMetadata(const std::filesystem::path& path);
 
-// The XMP packet of an .xmp sidecar file, verbatim.
+// The XMP packet of an .xmp sidecar file, verbatim. Throws Error(Input) naming the file when it
+// cannot be read or is not a well-formed XMP packet.
 std::string readXmpSidecar(const std::filesystem::path& path);
 
-std::string exiv2Version();
+std::string exiv2Version();  // "0.27.6"
 
 }  // namespace surrogate::meta

@@ -1,0 +1,211 @@
+#include "image/libraw_decoder.h"
+
+#include <libraw/libraw.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cstring>
+#include <memory>
+#include <string>
+
+#include "core/error.h"
+#include "image/raw_signature.h"
+#include "image/tiff_structure.h"
+
+namespace surrogate::image {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kStep = "image decode";
+
+// What LibRaw reported through its data-error callback while reading pixel data.
+struct DataErrors {
+  bool endOfFile = false;
+  bool corrupt = false;
+  bool any() const { return endOfFile || corrupt; }
+};
+
+void collectDataError(void* data, const char* /*file*/, const int offset) {
+  auto* errors = static_cast<DataErrors*>(data);
+  (offset < 0 ? errors->endOfFile : errors->corrupt) = true;  // offset -1 means end of file
+}
+
+std::string lowerExtension(const fs::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+// LibRaw's code as a sentence the photographer can act on.
+std::string describe(int code, const fs::path& path) {
+  const std::string libraw = "LibRaw " + std::string(LibRaw::version());
+  switch (code) {
+    case LIBRAW_FILE_UNSUPPORTED: {
+      const RawContainer container = rawContainerOf(path);
+      if (container == RawContainer::Cr3 || lowerExtension(path) == ".cr3")
+        return libraw + " cannot decode this camera format (CR3 needs LibRaw >= 0.21); convert "
+                        "it to DNG with Adobe DNG Converter, or use the camera's JPEG/TIFF exports";
+      if (container != RawContainer::None)
+        return libraw + " cannot read it: the file is truncated or damaged, or its camera is "
+                        "newer than this LibRaw; copy it from the card again, or convert it to "
+                        "DNG with Adobe DNG Converter";
+      return libraw + " cannot decode this camera format; convert it to DNG with Adobe DNG "
+                      "Converter, or use the camera's JPEG/TIFF exports";
+    }
+    case LIBRAW_IO_ERROR:
+    case LIBRAW_DATA_ERROR:
+      return "the file is truncated or its raw data is damaged (" + libraw + ": " +
+             libraw_strerror(code) + "); copy it from the card again";
+    case LIBRAW_REQUEST_FOR_NONEXISTENT_IMAGE:
+      return "the raw file holds no image";
+    case LIBRAW_TOO_BIG:
+      return "the image is larger than " + libraw + " accepts";
+    case LIBRAW_UNSUFFICIENT_MEMORY:
+    case LIBRAW_MEMPOOL_OVERFLOW:
+      return "there is not enough memory to decode it (" + std::string(libraw_strerror(code)) + ")";
+    default:
+      return libraw + " cannot decode it: " + libraw_strerror(code);
+  }
+}
+
+void check(int code, const fs::path& path, const DataErrors& errors) {
+  if (code != LIBRAW_SUCCESS) throwInputError(path.string(), kStep, describe(code, path));
+  if (errors.endOfFile)
+    throwInputError(path.string(), kStep,
+                    "the file is truncated: LibRaw reached its end while reading the raw data; "
+                    "copy it from the card again");
+  if (errors.corrupt)
+    throwInputError(path.string(), kStep,
+                    "the raw data is damaged (LibRaw found corrupt data); copy it from the card again");
+}
+
+// LibRaw 0.20 decodes a DNG whose tiles lie past the end of the file (a pruned or truncated
+// copy) to a black image without any error; the TIFF tables tell.
+void refuseTruncatedTiff(const fs::path& path) {
+  if (rawContainerOf(path) == RawContainer::Tiff && readTiffStructure(path).truncated)
+    throwInputError(path.string(), kStep,
+                    "the file is truncated: its raw image data extends past the end of the file; "
+                    "copy it from the card again");
+}
+
+struct Decoder {
+  std::unique_ptr<LibRaw> raw = std::make_unique<LibRaw>(LIBRAW_OPTIONS_NONE);
+  DataErrors errors;
+
+  explicit Decoder(const fs::path& path) {
+    refuseTruncatedTiff(path);
+    raw->set_dataerror_handler(collectDataError, &errors);
+    check(raw->open_file(path.c_str()), path, errors);
+  }
+};
+
+int demosaicCode(const std::string& name) {
+  static const char* kNames[] = {"linear", "VNG", "PPG", "AHD", "DCB"};  // LibRaw user_qual 0..4
+  for (int i = 0; i < 5; ++i)
+    if (name == kNames[i]) return i;
+  throw Error(ErrorKind::Usage, "demosaic=" + name, "raw decode settings",
+              "unknown demosaic algorithm; use linear, VNG, PPG, AHD or DCB");
+}
+
+// Every field of libraw_output_params_t that shapes pixels, set explicitly rather than left
+// at LibRaw's defaults, so a future LibRaw changing a default cannot change the result silently.
+void apply(const RawDecodeSettings& s, libraw_output_params_t& p) {
+  p.user_qual = demosaicCode(s.demosaic);
+  p.dcb_iterations = s.dcbIterations;
+  p.dcb_enhance_fl = s.dcbEnhance ? 1 : 0;
+  p.med_passes = s.medianPasses;
+  p.four_color_rgb = s.fourColorRgb ? 1 : 0;
+  p.green_matching = s.greenMatching ? 1 : 0;
+  p.threshold = static_cast<float>(s.noiseThreshold);
+
+  p.use_auto_wb = 0;
+  p.use_camera_wb = s.whiteBalance == "camera" ? 1 : 0;
+  for (float& m : p.user_mul) m = s.whiteBalance == "none" ? 1.0f : 0.0f;  // 0: not set
+  p.output_color = s.outputColorSpace == "raw" ? 0 : 1;
+  p.use_camera_matrix = s.colorMatrix == "embedded" ? 3 : s.colorMatrix == "builtin" ? 0 : 1;
+  p.highlight = s.highlightMode;
+
+  p.user_black = s.blackLevel;
+  p.user_sat = s.whiteLevel;
+  p.adjust_maximum_thr = static_cast<float>(s.adjustMaximumThreshold);
+  p.no_auto_bright = s.noAutoBright ? 1 : 0;
+  p.bright = 1.0f;
+
+  p.user_flip = s.orientation == "camera" ? -1 : 0;
+  p.half_size = s.halfSize ? 1 : 0;
+  p.use_fuji_rotate = 1;
+
+  p.output_bps = 16;
+  p.gamm[0] = 1.0;  // linear: values proportional to light
+  p.gamm[1] = 1.0;
+  for (double& a : p.aber) a = 1.0;  // no chromatic-aberration scaling
+  p.exp_correc = 0;
+  p.fbdd_noiserd = 0;
+  p.no_auto_scale = 0;
+  p.no_interpolation = 0;
+  p.use_rawspeed = 0;
+  p.use_dngsdk = 0;
+}
+
+void fillReport(const LibRaw& raw, const RawDecodeSettings& s, DecodeReport& report) {
+  report = DecodeReport{};
+  report.decoder = "LibRaw " + std::string(LibRaw::version());
+  // rawdata.color keeps the levels as read (processing subtracts the black and resets it):
+  // the common black plus the first per-channel offset, and the white level.
+  const auto& asRead = raw.imgdata.rawdata.color;
+  report.blackLevel = s.blackLevel >= 0 ? s.blackLevel : static_cast<int>(asRead.black + asRead.cblack[0]);
+  report.whiteLevel = s.whiteLevel >= 0 ? s.whiteLevel : static_cast<int>(asRead.maximum);
+  // After processing, pre_mul holds the multipliers applied, normalised to the smallest.
+  const float* applied = raw.imgdata.color.pre_mul;
+  const float smallest = *std::min_element(applied, applied + 3);
+  for (int c = 0; c < 4; ++c)
+    report.whiteBalanceMultipliers.push_back(smallest > 0 ? applied[c] / smallest : applied[c]);
+  if (raw.imgdata.process_warnings & LIBRAW_WARN_BAD_CAMERA_WB)
+    report.warnings.push_back("the file has no usable as-shot white balance; LibRaw used the "
+                              "camera's daylight multipliers");
+  if (raw.imgdata.process_warnings & LIBRAW_WARN_FALLBACK_TO_AHD)
+    report.warnings.push_back("LibRaw does not offer the requested demosaic for this sensor; AHD was used");
+}
+
+}  // namespace
+
+Image decodeCameraRaw(const fs::path& path, const RawDecodeSettings& settings, DecodeReport* report) {
+  Decoder d(path);
+  apply(settings, d.raw->imgdata.params);
+  check(d.raw->unpack(), path, d.errors);
+  check(d.raw->dcraw_process(), path, d.errors);
+  int code = LIBRAW_SUCCESS;
+  std::unique_ptr<libraw_processed_image_t, void (*)(libraw_processed_image_t*)> processed(
+      d.raw->dcraw_make_mem_image(&code), LibRaw::dcraw_clear_mem);
+  if (!processed) check(code == LIBRAW_SUCCESS ? LIBRAW_UNSPECIFIED_ERROR : code, path, d.errors);
+  if (processed->type != LIBRAW_IMAGE_BITMAP || processed->bits != 16 ||
+      (processed->colors != 3 && processed->colors != 1))
+    throwInputError(path.string(), kStep,
+                    "LibRaw returned an image layout Surrogate does not handle (" +
+                        std::to_string(processed->colors) + " colours, " +
+                        std::to_string(processed->bits) + " bits)");
+  Image im(processed->width, processed->height, processed->colors);
+  im.bitsPerSample = 16;
+  im.transfer = Transfer::Linear;
+  std::memcpy(im.pixels.data(), processed->data, im.pixels.size() * sizeof(std::uint16_t));
+  if (report) fillReport(*d.raw, settings, *report);
+  return im;
+}
+
+ImageProbe probeCameraRaw(const fs::path& path) {
+  Decoder d(path);
+  const auto& sizes = d.raw->imgdata.sizes;
+  if (sizes.width == 0 || sizes.height == 0 || d.raw->imgdata.idata.colors <= 0)
+    throwInputError(path.string(), "image probe", "the raw file holds no decodable image");
+  ImageProbe probe;
+  probe.kind = SourceKind::CameraRaw;
+  probe.width = sizes.width;
+  probe.height = sizes.height;
+  return probe;
+}
+
+std::string librawVersion() { return LibRaw::version(); }
+
+}  // namespace surrogate::image

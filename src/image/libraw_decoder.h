@@ -1,0 +1,25 @@
+// Private to src/image: camera raw and DNG through LibRaw (the thread-safe libraw_r build).
+//
+//   open_file (parse headers) -> unpack (read the mosaic) -> dcraw_process (black, white balance,
+//   demosaic, colour matrix) -> dcraw_make_mem_image (16-bit RGB, linear gamma)
+//
+// One LibRaw object per call, on the heap (it is several hundred kilobytes), so calls from
+// several threads never share state. LibRaw's data-error messages ("Unexpected end of file")
+// are collected rather than printed, and turn the decode into an Error.
+#pragma once
+
+#include <filesystem>
+
+#include "image/decode.h"
+
+namespace surrogate::image {
+
+Image decodeCameraRaw(const std::filesystem::path& path, const RawDecodeSettings& settings,
+                      DecodeReport* report);
+
+// Header parse only (open_file): the size decodeCameraRaw gives with default settings.
+// Reading the mosaic (unpack) would find damaged pixel data, but costs about 0.2 s per 24 Mpx
+// file; decodeCameraRaw finds it instead, with the same message.
+ImageProbe probeCameraRaw(const std::filesystem::path& path);
+
+}  // namespace surrogate::image

@@ -1,0 +1,24 @@
+// Writing images for people to look at: PNG for results (normal maps, overlays, relit
+// previews), JPEG for small previews. Atomic (temporary file, then rename), so a failed
+// write never leaves a half file under the final name.
+//
+//   Image overlay = ...;                 // bitsPerSample 8 -> 8-bit PNG, 16 -> 16-bit PNG
+//   writePng(overlay, "assembly-files/sphere-overlay.png");
+//
+// PNG bytes are deterministic for a given image and zlib version: fixed compression level
+// and strategy, no timestamp chunk. 16 -> 8 bits rounds to nearest: v8 = (v16 + 128) / 257.
+#pragma once
+
+#include <filesystem>
+
+#include "core/image.h"
+
+namespace surrogate::image {
+
+// 8-bit PNG when image.bitsPerSample <= 8, else 16-bit; 1 or 3 channels.
+void writePng(const Image& image, const std::filesystem::path& path);
+
+// 8-bit JPEG (always; 16-bit values are rounded to 8), quality 1..100.
+void writeJpeg(const Image& image, const std::filesystem::path& path, int quality);
+
+}  // namespace surrogate::image
