@@ -142,7 +142,12 @@ void IngestStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
           metadataWarnings[i] = e.what();
         }
       } else if (p.role == "sidecar") {
-        f.xmp = meta::readXmpSidecar(abs);
+        // A damaged sidecar is still an original to keep and hash; only its reading fails.
+        try {
+          f.xmp = meta::readXmpSidecar(abs);
+        } catch (const Error& e) {
+          metadataWarnings[i] = e.what();
+        }
       }
       ctx.progress("Hashing and reading metadata", double(++done) / pending.size());
     }
@@ -150,7 +155,9 @@ void IngestStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
   for (std::size_t i = 0; i < records.size(); ++i) {
     ctx.carrier.putFile(records[i]);
     if (!metadataWarnings[i].empty())
-      ctx.carrier.addLog("warning", step.id, "no camera metadata: " + metadataWarnings[i]);
+      ctx.carrier.addLog("warning", step.id,
+                         (records[i].role == "sidecar" ? "unreadable XMP sidecar: " : "no camera metadata: ") +
+                             metadataWarnings[i]);
   }
   for (const PendingFile& p : pending) {
     if (p.pairedPath.empty()) continue;

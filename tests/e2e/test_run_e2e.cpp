@@ -1,5 +1,7 @@
 #include <catch2/catch.hpp>
 
+#include <fstream>
+
 #include "archive/digest.h"
 #include "carrier/carrier.h"
 #include "e2e_support.h"
@@ -132,4 +134,31 @@ TEST_CASE("surrogate info describes a capture and its carrier") {
   const e2e::CommandResult json = e2e::surrogate("info --json " + e2e::quote(capture / "assembly-files/carrier.xml"));
   CHECK(json.exitCode == 0);
   CHECK_THAT(json.output, Catch::Contains("\"component\":\"ImageDecode\""));
+}
+
+TEST_CASE("XMP sidecars are kept verbatim and a damaged one is a warning, not a failed run") {
+  const fs::path capture = e2e::smallCapture(e2e::freshDir("sidecar"));
+  const std::string packet =
+      "<x:xmpmeta xmlns:x=\"adobe:ns:meta/\"><rdf:RDF "
+      "xmlns:rdf=\"http://www.w3.org/1999/02/22-rdf-syntax-ns#\"><rdf:Description "
+      "xmlns:crs=\"http://ns.adobe.com/camera-raw-settings/1.0/\" crs:Exposure2012=\"+0.35\"/>"
+      "</rdf:RDF></x:xmpmeta>";
+  { std::ofstream(capture / "original-captures/IMG_0001.xmp", std::ios::binary) << packet; }
+  { std::ofstream(capture / "original-captures/IMG_0002.xmp", std::ios::binary) << "<x:xmpmeta"; }
+
+  const e2e::CommandResult r = e2e::surrogate("run " + e2e::quote(capture) + " --quiet");
+  INFO(r.output);
+  REQUIRE(r.exitCode == 0);
+  const carrier::Carrier c = carrier::loadCarrier(capture / "assembly-files/carrier.xml");
+  const carrier::FileRecord* good = c.findFileByPath("original-captures/IMG_0001.xmp");
+  const carrier::FileRecord* bad = c.findFileByPath("original-captures/IMG_0002.xmp");
+  REQUIRE(good != nullptr);
+  REQUIRE(bad != nullptr);
+  CHECK(good->role == "sidecar");
+  CHECK_THAT(good->xmp, Catch::Contains("crs:Exposure2012=\"+0.35\""));
+  CHECK(bad->sha256 == archive::digestFile(capture / bad->path).sha256);
+  bool warned = false;
+  for (const carrier::LogEntry& e : c.log)
+    warned = warned || (e.level == "warning" && e.text.find("IMG_0002.xmp") != std::string::npos);
+  CHECK(warned);
 }
