@@ -11,7 +11,7 @@
 using namespace surrogate;
 using namespace surrogate::fit;
 
-TEST_CASE("basis: names print and parse; unknown names are a usage error") {
+TEST_CASE("basis: names print and parse, unknown names are a usage error") {
   for (Basis b : {Basis::PtmLrgb, Basis::PtmRgb, Basis::Hsh2, Basis::Hsh3})
     CHECK(parseBasis(basisName(b)) == b);
   CHECK(basisTerms(Basis::Hsh3) == 9);
@@ -57,7 +57,7 @@ TEST_CASE("basis: HSH terms follow formats.md 2.3 and clamp theta at pi/2 - 0.01
   for (int k = 0; k < 9; ++k) CHECK(grazing[k] == Approx(clamped[k]).margin(1e-12));
 }
 
-TEST_CASE("fit options: parameters round trip; unknown ones are rejected") {
+TEST_CASE("fit options: parameters round trip, unknown ones are rejected") {
   FitOptions o;
   o.basis = Basis::Hsh3;
   const Parameters p = o.toParameters();
@@ -69,7 +69,7 @@ TEST_CASE("fit options: parameters round trip; unknown ones are rejected") {
   CHECK_THROWS_AS(FitOptions::fromParameters({{"colour", "x"}}), Error);
 }
 
-TEST_CASE("quantise: no value of the range clips; error at most half a step") {
+TEST_CASE("quantise: no value of the range clips, error at most half a step") {
   for (auto [lo, hi] : {std::pair{-3.2, 140.7}, std::pair{5.0, 9.0}, std::pair{-50.0, -1.0},
                         std::pair{0.0, 0.0}}) {
     const PtmQuantisation q = choosePtmQuantisation(lo, hi);
@@ -87,7 +87,7 @@ TEST_CASE("quantise: no value of the range clips; error at most half a step") {
   }
 }
 
-TEST_CASE("pseudo-inverse: recovers an exact linear model; reports rank deficiency") {
+TEST_CASE("pseudo-inverse: recovers an exact linear model, reports rank deficiency") {
   // Lights all at one elevation: lu^2 + lv^2 is constant, so the PTM matrix has rank 5.
   std::vector<double> a;
   for (int i = 0; i < 12; ++i) {

@@ -172,7 +172,7 @@ TEST_CASE("fit: results are bit-identical for 1 or 2 threads and any memory budg
   }
 }
 
-TEST_CASE("fit: progress is reported up to 1; grey stacks are fitted as R = G = B") {
+TEST_CASE("fit: progress is reported up to 1, grey stacks are fitted as R = G = B") {
   const auto lights = test::spreadLights(12);
   std::vector<Image> grey;
   for (const Light& l : lights) {

@@ -60,7 +60,7 @@ TEST_CASE("render: a PTM and an HSH re-rendered at a captured light reproduce th
   CHECK(r.pixels[5] % 257 == 0);
 }
 
-TEST_CASE("render: gain 1 equals no gain; the gain keeps the maximum's position and value") {
+TEST_CASE("render: gain 1 equals no gain, the gain keeps the maximum's position and value") {
   const auto a = bump(0.3, -0.2);
   double lu0, lv0;
   REQUIRE(ptmMaximum(a, &lu0, &lv0));
@@ -99,7 +99,7 @@ TEST_CASE("render: gain 1 equals no gain; the gain keeps the maximum's position 
   CHECK(render(ptm, {0.9, 0, 0.4}, two).pixels == render(ptm, {0.9, 0, 0.4}, twoThreads).pixels);
 }
 
-TEST_CASE("render: options are validated; HSH has no diffuse gain; extrapolation moves the light") {
+TEST_CASE("render: options are validated, HSH has no diffuse gain, extrapolation moves the light") {
   const auto lights = test::spreadLights(20);
   const auto stack = test::ptmImages(test::randomPtm(4, 3, 6), lights);
   const auto ptm = fitPtm(stack, lights, FitOptions{});
@@ -122,7 +122,7 @@ TEST_CASE("render: options are validated; HSH has no diffuse gain; extrapolation
   CHECK(render(hsh, {0, 0, 1}, spec).pixels.size() == 4 * 3 * 3);
 }
 
-TEST_CASE("normals: a PTM's maximum gives the normal; no maximum falls back and is counted") {
+TEST_CASE("normals: a PTM's maximum gives the normal, no maximum falls back and is counted") {
   const auto lights = test::spreadLights(30);
   const int w = 6, h = 5;
   std::vector<std::array<double, 2>> tilt;

@@ -65,7 +65,7 @@ TEST_CASE("ptm: header is byte-exact: separate size lines, plain decimals, no tr
   CHECK(bytes.find('e', 0) > kHeader.size());  // no exponent in the header
 }
 
-TEST_CASE("ptm: rows are stored bottom-up; LRGB is a 6-byte block then a 3-byte block") {
+TEST_CASE("ptm: rows are stored bottom-up, LRGB is a 6-byte block then a 3-byte block") {
   PtmFile p = makePtm(PtmFile::Format::Lrgb, 2, 3);
   std::fill(p.coefficients.begin(), p.coefficients.end(), 0);
   std::fill(p.rgb.begin(), p.rgb.end(), 0);

@@ -48,7 +48,7 @@ TEST_CASE("the perspective model tends to the orthographic one as the focal leng
   CHECK(previous < 1e-3);  // about (offset * pitch / f): 6e-5 rad here
 }
 
-TEST_CASE("two spheres of known size locate a near light; parallel rays are flagged") {
+TEST_CASE("two spheres of known size locate a near light, parallel rays are flagged") {
   // Build the scene forward: a light at X, spheres of 25 mm diameter at known 3D centres;
   // project the spheres and their highlights, then recover X.
   const CameraIntrinsics cam{50, 0.006, 1000, 750};
