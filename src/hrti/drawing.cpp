@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 namespace surrogate::hrti {
 
@@ -78,8 +79,7 @@ Image drawHighlightOverview(const Image& median, const DetectedSphere& s, const 
     if (h.flag == HighlightFlag::None) continue;
     const cv::Scalar colour = h.flag == HighlightFlag::Ok ? cv::Scalar(40, 40, 255) : cv::Scalar(0, 230, 255);
     cv::circle(big, map(h.x, h.y), static_cast<int>(4 * kUnit), colour, -1, cv::LINE_AA, kShift);
-    char label[16];
-    std::snprintf(label, sizeof label, "%zu", i + 1);
+    const std::string label = std::to_string(i + 1);
     const cv::Point at = map(h.x, h.y);
     cv::putText(big, label, cv::Point(at.x / static_cast<int>(kUnit) + 6, at.y / static_cast<int>(kUnit) - 4),
                 cv::FONT_HERSHEY_SIMPLEX, 0.4, colour, 1, cv::LINE_AA);

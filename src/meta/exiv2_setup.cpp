@@ -18,6 +18,11 @@ void lockXmpToolkit(void* data, bool lock) {
 
 }  // namespace
 
+std::mutex& exiv2Mutex() {
+  static std::mutex m;
+  return m;
+}
+
 void ensureExiv2Ready() {
   static std::once_flag once;
   std::call_once(once, [] {

@@ -157,6 +157,7 @@ CameraMetadata readMetadata(const std::filesystem::path& path) {
   if (!std::filesystem::is_regular_file(path, ec))
     throwInputError(path.string(), kStep, "does not exist or is not a regular file");
   CameraMetadata m;
+  const std::lock_guard<std::mutex> lock(exiv2Mutex());
   try {
     Exiv2::Image::AutoPtr image = Exiv2::ImageFactory::open(path.string());
     if (!image.get()) throwInputError(path.string(), kStep, "Exiv2 cannot open the file");

@@ -14,6 +14,7 @@ std::string readXmpSidecar(const std::filesystem::path& path) {
   std::string packet = readFile(path, "metadata");
   Exiv2::XmpData parsed;
   int failed = 1;
+  const std::lock_guard<std::mutex> lock(exiv2Mutex());
   try {
     failed = Exiv2::XmpParser::decode(parsed, packet);
   } catch (const std::exception&) {
