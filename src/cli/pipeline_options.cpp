@@ -1,7 +1,10 @@
 #include "cli/pipeline_options.h"
 
+#include <optional>
+
 #include "carrier/carrier.h"
 #include "core/error.h"
+#include "stages/preprocess.h"
 
 namespace surrogate::cli {
 
@@ -24,8 +27,17 @@ std::vector<OptionSpec> pipelineOptions(bool withFit) {
       {"pixel-pitch", true, false, "sensor pixel pitch for the perspective model (default: EXIF)", "MM"},
       {"sphere-diameter", true, false, "real sphere diameter: with 2 spheres, gives light positions", "MM"},
   };
-  if (withFit)
+  if (withFit) {
     specs.push_back({"basis", true, true, "model to fit: ptm-lrgb, ptm-rgb, hsh2, hsh3 (default: ptm-lrgb and hsh2)", "BASIS"});
+    // Pre-processing of the images the fit reads (recorded steps WhiteBalance, Crop, Resize,
+    // planned in that order after light estimation, which always reads the full frame).
+    specs.push_back({"wb", true, false, "white balance for the fit: as-shot, region:X,Y,W,H (a grey area, full-frame pixels) or multipliers:R,G,B", "MODE"});
+    specs.push_back({"wb-region", true, false, "white balance from this grey area (same as --wb region:X,Y,W,H)", "X,Y,W,H"});
+    specs.push_back({"output-space", true, false, "values the fit reads: srgb (default) or linear (proportional to light)", "SPACE"});
+    specs.push_back({"crop", true, false, "fit only this rectangle of the frame (pixels), or auto: the largest one clear of the spheres", "X,Y,W,H|auto"});
+    specs.push_back({"crop-margin", true, false, "with --crop auto: clearance around each sphere, fraction of its radius (default 0.25)", "F"});
+    specs.push_back({"resize", true, false, "reduce the fitted result: a factor (0.5) or a size (WxH), area averaging", "FACTOR|WxH"});
+  }
   return specs;
 }
 
@@ -49,6 +61,43 @@ std::pair<std::string, std::string> splitKeyValue(const std::string& text, const
 
 void param(stages::RunRequest& r, const char* component, const char* name, const std::string& value) {
   r.stageParams.push_back({component, name, value});
+}
+
+// --wb, --wb-region, --output-space, --crop, --crop-margin, --resize: the pre-processing steps,
+// each with its full parameters, in the order WhiteBalance, Crop, Resize.
+void preprocessing(stages::RunRequest& r, const Args& args) {
+  if (args.has("wb") && args.has("wb-region"))
+    throw Error(ErrorKind::Usage, "--wb-region", "command line",
+                "give either --wb or --wb-region, not both (--wb-region X,Y,W,H is --wb region:X,Y,W,H)");
+  std::optional<stages::WhiteBalanceOptions> wb;
+  if (const auto text = args.value("wb")) wb = stages::WhiteBalanceOptions::fromText(*text, "--wb");
+  if (const auto text = args.value("wb-region"))
+    wb = stages::WhiteBalanceOptions::fromText("region:" + *text, "--wb-region");
+  if (const auto space = args.value("output-space")) {
+    if (*space != "srgb" && *space != "linear")
+      throw Error(ErrorKind::Usage, "--output-space " + *space, "command line", "use srgb or linear");
+    if (!wb) wb = stages::WhiteBalanceOptions{};
+    wb->outputSpace = *space;
+  }
+  if (wb) r.preprocessing.push_back({"WhiteBalance", wb->toParameters()});
+
+  if (args.has("crop-margin") && args.value("crop", "") != "auto")
+    throw Error(ErrorKind::Usage, "--crop-margin", "command line", "only applies with --crop auto");
+  if (const auto text = args.value("crop")) {
+    stages::CropOptions crop = stages::CropOptions::fromText(*text, "--crop");
+    if (const auto m = args.value("crop-margin")) {
+      const double v = parseNumberList(*m, 1, "--crop-margin")[0];
+      if (!(v >= 0 && v <= 10))
+        throw Error(ErrorKind::Usage, "--crop-margin " + *m, "command line",
+                    "needs a fraction of the sphere radius from 0 to 10");
+      crop.margin = v;
+    }
+    r.preprocessing.push_back({"Crop", crop.toParameters()});
+  }
+  if (const auto text = args.value("resize"))
+    r.preprocessing.push_back({"Resize", stages::ResizeOptions::fromText(*text, "--resize").toParameters()});
+  if (!r.preprocessing.empty() && r.bases.empty())
+    throw Error(ErrorKind::Usage, "--crop/--resize/--wb", "command line", "pre-processing needs a fit (--basis)");
 }
 
 }  // namespace
@@ -88,6 +137,7 @@ stages::RunRequest requestFrom(const Args& args) {
   if (const auto d = args.value("sphere-diameter"))
     param(r, "LightDirections", "sphereDiameterMm", carrier::formatNumber(parseNumberList(*d, 1, "--sphere-diameter")[0]));
   if (args.has("basis")) r.bases = args.values("basis");
+  preprocessing(r, args);
 
   // Interventions, in the order given; a --reason belongs to the one just before it.
   int spheres = 0;

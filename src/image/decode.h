@@ -45,6 +45,9 @@ struct DecodeReport {
   std::string decoder;  // "LibRaw 0.20.2-Release" or "OpenCV 4.6.0"
   int blackLevel = -1;  // camera raw only: the black level subtracted (file's, or the override)
   int whiteLevel = -1;  // camera raw only: the white (saturation) level scaled to 65535
+  // Camera raw only: the black level subtracted from each channel (R, G, B, G2): the common
+  // level plus the file's per-channel offsets (all equal to blackLevel when overridden).
+  std::vector<int> channelBlackLevels;
   std::vector<double> whiteBalanceMultipliers;  // camera raw only: applied R, G, B, G2 (G = 1)
   std::vector<std::string> warnings;            // e.g. no as-shot white balance in the file
 };

@@ -136,6 +136,10 @@ void apply(const RawDecodeSettings& s, libraw_output_params_t& p) {
   p.user_flip = s.orientation == "camera" ? -1 : 0;
   p.half_size = s.halfSize ? 1 : 0;
   p.use_fuji_rotate = 1;
+  p.shot_select = 0;
+  p.auto_bright_thr = 0.01f;
+  p.dark_frame = nullptr;
+  p.bad_pixels = nullptr;
 
   p.output_bps = 16;
   p.gamm[0] = 1.0;  // linear: values proportional to light
@@ -157,6 +161,26 @@ void fillReport(const LibRaw& raw, const RawDecodeSettings& s, DecodeReport& rep
   const auto& asRead = raw.imgdata.rawdata.color;
   report.blackLevel = s.blackLevel >= 0 ? s.blackLevel : static_cast<int>(asRead.black + asRead.cblack[0]);
   report.whiteLevel = s.whiteLevel >= 0 ? s.whiteLevel : static_cast<int>(asRead.maximum);
+  // Per channel: the common level, the per-channel offsets, and a black pattern of at most
+  // 2x2 cells (DNG BlackLevelRepeatDim) folded onto the Bayer colours as LibRaw does.
+  unsigned channel[4];
+  for (int c = 0; c < 4; ++c) channel[c] = asRead.black + asRead.cblack[c];
+  const unsigned ph = asRead.cblack[4], pw = asRead.cblack[5];
+  const unsigned filters = raw.imgdata.idata.filters;
+  if (ph == 1 && pw == 1) {
+    for (unsigned& c : channel) c += asRead.cblack[6];
+  } else if (ph >= 1 && ph <= 2 && pw >= 1 && pw <= 2 && filters >= 1000) {
+    bool done[4] = {false, false, false, false};
+    for (unsigned r = 0; r < 2; ++r)
+      for (unsigned c = 0; c < 2; ++c) {
+        const unsigned colour = filters >> ((((r << 1) & 14) | (c & 1)) << 1) & 3;  // LibRaw FC()
+        if (done[colour]) continue;
+        done[colour] = true;
+        channel[colour] += asRead.cblack[6 + (r % ph) * pw + (c % pw)];
+      }
+  }
+  for (int c = 0; c < 4; ++c)
+    report.channelBlackLevels.push_back(s.blackLevel >= 0 ? s.blackLevel : static_cast<int>(channel[c]));
   // After processing, pre_mul holds the multipliers applied, normalised to the smallest.
   const float* applied = raw.imgdata.color.pre_mul;
   const float smallest = *std::min_element(applied, applied + 3);

@@ -23,6 +23,12 @@ const Parameters& fixedParameters() {
       {"exposureCorrection", "none"},      // exp_correc = 0
       {"fbddNoiseReduction", "none"},      // fbdd_noiserd = 0
       {"fujiRotate", "true"},              // use_fuji_rotate = 1 (SuperCCD sensors only)
+      {"shotSelect", "0"},                 // shot_select = 0: the file's first image
+      {"autoBrightThreshold", "0.01"},     // auto_bright_thr (only used with noAutoBright=false)
+      {"cropBeforeProcessing", "none"},    // cropbox left at LibRaw's default: the whole image
+      {"channelBlackOverride", "none"},    // user_cblack unset: the file's per-channel blacks
+      {"darkFrame", "none"},               // dark_frame = NULL: no dark-frame subtraction
+      {"badPixels", "none"},               // bad_pixels = NULL: no bad-pixel map
   };
   return fixed;
 }

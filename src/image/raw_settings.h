@@ -10,8 +10,9 @@
 //   RawDecodeSettings again = RawDecodeSettings::fromParameters(recorded);
 //
 // Settings that Surrogate never varies (linear gamma, 16-bit output, brightness 1, no
-// chromatic-aberration or exposure correction) are recorded too, as fixed values, so the
-// record is complete; fromParameters refuses any other value for them.
+// chromatic-aberration or exposure correction, the file's first image, no dark frame or
+// bad-pixel map) are recorded too, as fixed values, so the record is complete; fromParameters
+// refuses any other value for them.
 #pragma once
 
 #include <string>

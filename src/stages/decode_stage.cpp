@@ -34,7 +34,36 @@ void DecodeStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
       item.set("whiteBalance", wb);
     }
     item.set("pixelSha256", d.pixelSha256);
+    if (!d.report.channelBlackLevels.empty()) {
+      std::string levels;
+      for (int b : d.report.channelBlackLevels) levels += (levels.empty() ? "" : " ") + std::to_string(b);
+      result.add("imageValue").set("image", (*inputs)[i].fileId).set("name", "channelBlackLevels")
+          .set("value", levels).set("unit", "raw levels R G B G2");
+    }
+    for (const std::string& w : d.report.warnings)
+      ctx.carrier.addLog("warning", step.id, (*inputs)[i].relativePath + ": " + w);
   }
+  // Inputs processed by other software before Surrogate saw them (exports, or files whose XMP
+  // holds an editing history): the auditor must see that part of the processing is unrecorded.
+  std::vector<std::string> outside;
+  bool originalsExist = false;
+  for (const InputImage& in : *inputs) {
+    const carrier::FileRecord* f = ctx.carrier.findFile(in.fileId);
+    if (!f || !f->unrecordedProcessing) continue;
+    originalsExist = originalsExist || !f->pairedWith.empty();
+    result.add("imageValue").set("image", in.fileId).set("name", "unrecordedProcessing").set("value", "true");
+    outside.push_back(in.relativePath);
+  }
+  if (!outside.empty())
+    ctx.carrier.addLog("warning", step.id,
+                       std::to_string(outside.size()) + " of the " + std::to_string(inputs->size()) +
+                           " images decoded (e.g. " + outside.front() +
+                           ") were processed by other software (raw development, white balance, "
+                           "edits) outside any record; their XMP, where present, is kept in the "
+                           "files section" +
+                           (originalsExist ? ". Use the camera originals (--source original) for "
+                                             "a fully recorded result"
+                                           : ""));
   result.add("value").set("name", "fitInputTransfer").set("value", "srgb");
   result.add("value").set("name", "detectionInputTransfer")
       .set("value", decoded.luminance->transfer() == Transfer::Linear ? "linear" : "srgb");

@@ -76,6 +76,21 @@ carrier::Attributes cameraAttributes(const meta::CameraMetadata& m) {
   return a;
 }
 
+bool isExportFormat(const std::string& format) {
+  return format == "JPEG" || format == "TIFF" || format == "PNG";
+}
+
+// An XMP packet that records processing by other software: an editing history (Photoshop,
+// Lightroom, Bridge write xmpMM:History or photoshop:History) or Camera Raw development
+// settings (crs:). A JPEG/TIFF/PNG "original" carrying one was made by that software, not by
+// the camera, so its processing is not in Surrogate's record.
+bool editedOutside(const std::string& xmp) {
+  for (const char* marker : {"xmpMM:History", "photoshop:History", "crs:Version", "crs:ProcessVersion",
+                             "crs:RawFileName"})
+    if (xmp.find(marker) != std::string::npos) return true;
+  return false;
+}
+
 struct PendingFile {
   std::string path;
   std::string role;
@@ -138,6 +153,8 @@ void IngestStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
           const meta::CameraMetadata m = meta::readMetadata(abs);
           f.camera = cameraAttributes(m);
           f.xmp = m.xmpPacket;
+          if (p.role == "original" && isExportFormat(p.format) && editedOutside(f.xmp))
+            f.unrecordedProcessing = true;
         } catch (const Error& e) {
           metadataWarnings[i] = e.what();
         }
@@ -166,6 +183,12 @@ void IngestStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
   }
   for (const std::string& ignored : layout.ignored)
     ctx.carrier.addLog("warning", step.id, "ignored " + ignored + ": not an image of the capture");
+  for (const carrier::FileRecord& f : ctx.carrier.files)
+    if (f.role == "original" && f.unrecordedProcessing)
+      ctx.carrier.addLog("warning", step.id,
+                         f.path + " is a " + f.format + " whose XMP records processing by other "
+                         "software (editing history or raw development settings): that processing "
+                         "is not recorded here (flagged unrecordedProcessing; its XMP is kept)");
   if (layout.hasOriginals() && layout.hasExports()) {
     ctx.carrier.addLog("info", step.id,
                        "the files in jpeg-exports/ were made by other software: their processing "

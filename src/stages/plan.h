@@ -25,6 +25,12 @@ struct Exclusion {
   std::string reason;  // mandatory
 };
 
+// A step to plan: its component and the parameters that differ from the stage's defaults.
+struct PlannedStage {
+  std::string component;
+  std::vector<std::pair<std::string, std::string>> params;
+};
+
 struct RunRequest {
   // Header.
   std::string title;
@@ -52,16 +58,16 @@ struct RunRequest {
   };
   std::vector<StageIntervention> stageInterventions;
 
+  // Pre-processing of the images the fit reads (WhiteBalance, Crop, Resize with their
+  // full parameters, see stages/preprocess.h), planned in the order given after light
+  // estimation and before fitting (`surrogate run` gives WhiteBalance, Crop, Resize). Empty:
+  // the fit reads the decoded images as they are.
+  std::vector<PlannedStage> preprocessing;
+
   // Models to fit (RtiFit steps, in order): ptm-lrgb, ptm-rgb, hsh2, hsh3.
   std::vector<std::string> bases = {"ptm-lrgb", "hsh2"};
   // Stop after light estimation (surrogate lights): no fitting, no derived maps.
   bool lightsOnly = false;
-};
-
-// A step to plan: its component and the parameters that differ from the stage's defaults.
-struct PlannedStage {
-  std::string component;
-  std::vector<std::pair<std::string, std::string>> params;
 };
 
 // Registers every stage this build of Surrogate has with the pipeline's registry (once).

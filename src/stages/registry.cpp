@@ -6,6 +6,8 @@
 #include "stages/fit_stages.h"
 #include "stages/light_stages.h"
 #include "stages/plan.h"
+#include "stages/preprocess.h"
+#include "stages/preprocess_stages.h"
 
 namespace surrogate::stages {
 
@@ -14,6 +16,9 @@ void registerAnalysisStages(pipeline::StageRegistry& r) {
   r.add("HighlightDetection", [] { return std::make_unique<HighlightDetectionStage>(); });
   r.add("LightDirections", [] { return std::make_unique<LightDirectionsStage>(); });
   r.add("LightsFromFile", [] { return std::make_unique<LightsFromFileStage>(); });
+  r.add("WhiteBalance", [] { return std::make_unique<WhiteBalanceStage>(); });
+  r.add("Crop", [] { return std::make_unique<CropStage>(); });
+  r.add("Resize", [] { return std::make_unique<ResizeStage>(); });
   r.add("RtiFit", [] { return std::make_unique<RtiFitStage>(); });
   r.add("DerivedMaps", [] { return std::make_unique<DerivedMapsStage>(); });
 }
@@ -25,6 +30,8 @@ std::vector<std::pair<std::string, std::string>> defaultParameters(const std::st
     return {{"model", "orthographic"}, {"focalLengthMm", "0"}, {"pixelPitchMm", "0"},
             {"sphereDiameterMm", "0"}};
   if (component == "RtiFit") return fit::FitOptions().toParameters();
+  // Crop and Resize have no defaults: their plan gives every parameter.
+  if (component == "WhiteBalance") return WhiteBalanceOptions().toParameters();
   if (component == "DerivedMaps") return {{"model", "ptm-lrgb"}};
   return {};
 }
@@ -39,6 +46,15 @@ std::string describeStage(const std::string& component) {
   if (component == "LightDirections")
     return "Light direction of each image from its highlights by the law of reflection";
   if (component == "LightsFromFile") return "Light directions given by the capture's .lp file";
+  if (component == "WhiteBalance")
+    return "White balance of the images the fit reads: per-channel gains in linear light (as "
+           "shot, from a grey region, or given), and the encoding the fit reads (sRGB or linear)";
+  if (component == "Crop")
+    return "Crop the images the fit reads to a rectangle (given, or the largest clear of the "
+           "spheres); light estimation keeps the full frame";
+  if (component == "Resize")
+    return "Reduce the images the fit reads: area-weighted mean in linear light, exact integer "
+           "weights";
   if (component == "RtiFit")
     return "Least-squares fit of a per-pixel reflectance model over the light directions";
   if (component == "DerivedMaps") return "Surface normals, albedo and relit previews from a model";
@@ -55,6 +71,7 @@ std::vector<PlannedStage> analysisStages(bool captureHasLp, const RunRequest& re
     out.push_back({"LightDirections", {}});
   }
   if (request.lightsOnly) return out;
+  for (const PlannedStage& p : request.preprocessing) out.push_back(p);
   for (const std::string& basis : request.bases) {
     const fit::Basis b = fit::parseBasis(basis);
     out.push_back({"RtiFit", {{"basis", fit::basisName(b)}, {"output", defaultFitOutput(basis)}}});

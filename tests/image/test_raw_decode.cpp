@@ -25,6 +25,9 @@ TEST_CASE("a real Canon EOS D30 raw decodes to linear 16-bit RGB with its levels
   CHECK(report.decoder == "LibRaw " + image::librawVersion());
   CHECK(report.blackLevel == 127);
   CHECK(report.whiteLevel == 4095);  // 12-bit sensor
+  // The level subtracted per channel (R, G, B, G2): LibRaw measures this camera's masked
+  // pixels per channel, and its greens and blue sit one level above red.
+  CHECK(report.channelBlackLevels == std::vector<int>{127, 128, 128, 128});
   REQUIRE(report.whiteBalanceMultipliers.size() == 4);
   CHECK(report.whiteBalanceMultipliers[0] == Approx(1.0));  // normalised to the smallest
   CHECK(report.whiteBalanceMultipliers[2] > report.whiteBalanceMultipliers[1]);  // blue gain, daylight-ish
