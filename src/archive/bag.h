@@ -1,0 +1,133 @@
+// A BagIt 1.0 bag (RFC 8493) written as a directory, a .tar or a .zip (libarchive).
+//
+// A bag is a payload (data/...) and tag files describing it:
+//
+//   bag-info.txt          Payload-Oxum = <bytes>.<files>, Bagging-Date, Bag-Size (of the payload,
+//                         decimal units), Bag-Software-Agent, and the user's labels
+//                         (Source-Organization, External-Identifier, Contact-Name, ...)
+//   bagit.txt             "BagIt-Version: 1.0" / "Tag-File-Character-Encoding: UTF-8"
+//   data/...              the payload, byte-identical to its sources
+//   manifest-sha256.txt   "<hex>  data/<path>" for every payload file (and -sha512)
+//   metadata/...          other tag files (given by the caller, may depend on the digests)
+//   tagmanifest-sha256.txt the same for every tag file above (and -sha512)
+//
+// Every payload file is read once: the same buffer feeds SHA-256, SHA-512 and the output. On a
+// machine with two cores or more the two digests run on worker threads beside the write, so
+// packing costs about one SHA-512 pass (bench/pack_bench measures it against sha512sum).
+// Entries are written in byte order of their paths, with fixed owner (0/0, "root"), fixed
+// permissions (0644) and a fixed modification time (SOURCE_DATE_EPOCH when set, else
+// 2000-01-01T00:00:00Z), so the same inputs give a byte-identical .tar or .zip. In an archive,
+// every entry sits under one top-level folder named after the archive ("pkg.tar" -> "pkg/"), as
+// RFC 8493 section 4 asks. The output is written under a temporary name and renamed when
+// complete: a partial bag never appears under the final name.
+//
+//   BagInput in;
+//   in.payload = {{"data/original-captures/IMG_1.dng", "/cap/original-captures/IMG_1.dng"}};
+//   in.info = {{"Source-Organization", "Museum"}};
+//   in.softwareAgent = "Surrogate 0.1.0";
+//   in.tagFiles = [](const std::vector<PayloadDigest>& d) { return std::vector<TagFile>{...}; };
+//   BagResult r = writeBag(in, "out/capture.zip");
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace surrogate::archive {
+
+enum class BagFormat { Directory, Tar, Zip };
+
+// By the output's name: *.tar -> Tar, *.zip -> Zip (any case), anything else a directory.
+BagFormat bagFormatFor(const std::filesystem::path& out);
+const char* bagFormatName(BagFormat format);  // "directory", "tar", "zip"
+
+struct PayloadSource {
+  std::string bagPath;             // "data/..." ('/' separated, UTF-8)
+  std::filesystem::path source;    // the file to copy
+  std::string expectedSha256;      // optional: must match, else PayloadChanged is thrown
+};
+
+struct PayloadDigest {
+  std::string bagPath;
+  std::uint64_t size = 0;
+  std::string sha256, sha512;
+};
+
+struct TagFile {
+  std::string bagPath;  // e.g. "metadata/mets.xml" (outside data/)
+  std::string content;
+};
+
+struct BagInput {
+  std::vector<PayloadSource> payload;
+  // bag-info.txt labels after the computed ones, in the given order. Labels Surrogate computes
+  // (Payload-Oxum, Bagging-Date, Bag-Size, Bag-Software-Agent) may not be given here.
+  std::vector<std::pair<std::string, std::string>> info;
+  std::string softwareAgent = "Surrogate";
+  // Seconds since 1970 for every entry's time and for Bagging-Date. Default: SOURCE_DATE_EPOCH
+  // when set, else kDefaultEpoch (see sourceDateEpoch()).
+  std::optional<std::int64_t> epoch;
+  // Bagging-Date (YYYY-MM-DD). Default: the day of SOURCE_DATE_EPOCH when set, else today (UTC).
+  std::string baggingDate;
+  // Called once the payload is hashed; returns the other tag files (metadata/...).
+  std::function<std::vector<TagFile>(const std::vector<PayloadDigest>&)> tagFiles;
+  // Progress: payload bytes done, payload bytes in all.
+  std::function<void(std::uint64_t, std::uint64_t)> progress;
+};
+
+struct BagResult {
+  std::filesystem::path path;
+  BagFormat format = BagFormat::Directory;
+  std::uint64_t payloadBytes = 0, payloadFiles = 0;
+  std::vector<PayloadDigest> payload;  // sorted by bagPath
+  std::vector<std::string> tagFiles;   // bag paths of every tag file, sorted
+  double seconds = 0;
+};
+
+// 2000-01-01T00:00:00Z: the entries' time when SOURCE_DATE_EPOCH is not set. A fixed instant
+// (not "now") keeps repeated packs identical; the real packaging time is in bag-info.txt only
+// if the caller puts it there.
+inline constexpr std::int64_t kDefaultEpoch = 946684800;
+// SOURCE_DATE_EPOCH if set (and a valid number), else kDefaultEpoch.
+std::int64_t sourceDateEpoch();
+// True when SOURCE_DATE_EPOCH is set to a valid number.
+bool sourceDateEpochSet();
+// The packaging instant: SOURCE_DATE_EPOCH when set, else now.
+std::int64_t packagingEpoch();
+
+// Thrown when a payload file's SHA-256 differs from PayloadSource::expectedSha256 (the file
+// changed since it was recorded). Nothing is left under the output name.
+class PayloadChanged : public std::runtime_error {
+ public:
+  PayloadChanged(std::string bagPath, std::string source)
+      : std::runtime_error(source + ": changed since it was recorded"),
+        bagPath_(std::move(bagPath)), source_(std::move(source)) {}
+  const std::string& bagPath() const { return bagPath_; }
+  const std::string& source() const { return source_; }
+
+ private:
+  std::string bagPath_, source_;
+};
+
+// Checks, before any work, that `out` can be the bag's name: its folder exists, and it is not
+// an existing non-empty folder (directory bags) or a folder (archives). Throws Error(Usage).
+void checkOutput(const std::filesystem::path& out);
+
+// Writes the bag. Throws Error(Input) naming an unreadable or changing source file,
+// Error(Internal) naming the output when it cannot be written (disk full, no permission),
+// Error(Usage) when the output exists as a non-empty directory or an input is malformed.
+BagResult writeBag(const BagInput& input, const std::filesystem::path& out);
+
+// RFC 8493 2.1.3 manifest path encoding: '%' -> %25, CR -> %0D, LF -> %0A.
+std::string escapeManifestPath(const std::string& path);
+// Human-readable size for Bag-Size, e.g. "1.5 GB" (decimal units), "512 bytes".
+std::string humanSize(std::uint64_t bytes);
+// "YYYY-MM-DD" and "YYYY-MM-DDTHH:MM:SSZ" of seconds since 1970 (UTC).
+std::string utcDate(std::int64_t epoch);
+std::string utcDateTime(std::int64_t epoch);
+
+}  // namespace surrogate::archive

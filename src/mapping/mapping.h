@@ -1,0 +1,86 @@
+// Standard metadata derived from the carrier by stylesheets (libxslt): CIDOC-CRM + CRMdig as
+// RDF/XML, and METS 1.12.1 with PREMIS 3 in its administrative sections.
+//
+// Every piece of package metadata is a function of the carrier (data/assembly-files/carrier.xml)
+// and of a few package-level facts the carrier cannot hold (its own digest, the packaging
+// time). The stylesheets ship inside the package (metadata/xslt/), so a reader can re-derive
+// crm.rdf and mets.xml in 50 years with any XSLT 1.0 processor:
+//
+//   xsltproc --stringparam package-id ID --stringparam packaging-time T
+//            --stringparam payload-uri /abs/payload.xml xslt/carrier-to-mets.xsl carrier.xml
+//
+// In code (the packer writes them, the verifier re-derives and compares):
+//
+//   std::string crm  = mapping::deriveCrm(carrierXml);
+//   std::string mets = mapping::deriveMets(carrierXml, facts);
+//   mapping::validateMets(mets, "metadata/mets.xml");          // METS + PREMIS XSDs, offline
+//   mapping::checkRdfWellFormed(crm, "metadata/crm.rdf");
+//
+// Safety: the carrier and the stylesheets are parsed without network, DTDs or entity
+// substitution; the XSLT processor may not read or write files or the network (the one
+// document a stylesheet may load is the in-memory payload list, URI "surrogate:payload").
+// Schema imports of remote URLs (METS -> xlink) are mapped to the vendored copies in xsd/;
+// libxml2 never touches the network.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace surrogate::mapping {
+
+// One file of the bag's payload (under data/), as it is in the manifests.
+struct PayloadFile {
+  std::string path;  // relative to the bag root, '/' separated, starting with "data/"
+  std::uint64_t size = 0;
+  std::string sha256, sha512;  // lower-case hex
+};
+
+// Facts about the package that the carrier cannot hold. The packer records them in
+// bag-info.txt so a verifier can rebuild the same PackageFacts from a bag:
+//   packageId      <- bag-info "Surrogate-Package-Identifier"
+//   packagingTime  <- bag-info "Surrogate-Packaging-Time"
+//   softwareAgent  <- bag-info "Bag-Software-Agent"
+//   payload        <- manifest-sha256.txt + manifest-sha512.txt (+ sizes of the files),
+//                     sorted by path (byte order)
+struct PackageFacts {
+  std::string packageId;      // e.g. External-Identifier, else "urn:sha256:<carrier sha256>"
+  std::string packagingTime;  // xs:dateTime (UTC, "...Z") of the packaging event
+  std::string softwareAgent;  // "Surrogate <version>"
+  std::vector<PayloadFile> payload;
+};
+
+// Carrier XML -> CIDOC-CRM + CRMdig RDF/XML (xslt/carrier-to-crm.xsl). Deterministic: the
+// same carrier gives the same bytes. Throws Error(Input) naming `source` if the carrier is
+// not well-formed, Error(Internal) if the stylesheet fails.
+std::string deriveCrm(const std::string& carrierXml,
+                      const std::string& source = "assembly-files/carrier.xml");
+
+// Carrier XML + package facts -> METS 1.12.1 with PREMIS 3 (xslt/carrier-to-mets.xsl).
+// Deterministic for the same inputs.
+std::string deriveMets(const std::string& carrierXml, const PackageFacts& facts,
+                       const std::string& source = "assembly-files/carrier.xml");
+
+// Validates METS (and the PREMIS inside its mdWrap/xmlData) against the vendored schemas
+// (xsd/mets-1.12.1.xsd, xsd/premis-3.0.xsd, xsd/xlink.xsd), offline. Throws Error(Input)
+// naming `source` with the first errors and their line numbers.
+void validateMets(const std::string& metsXml, const std::string& source);
+
+// Checks that `rdfXml` is well-formed XML whose root is rdf:RDF; throws Error(Input) naming
+// `source` otherwise. (Full RDF parsing is left to rapper in the tests.)
+void checkRdfWellFormed(const std::string& rdfXml, const std::string& source);
+
+// Where the stylesheets and schemas are (via core resourcePath; Error(Internal) if missing).
+std::filesystem::path crmStylesheetPath();   // xslt/carrier-to-crm.xsl
+std::filesystem::path metsStylesheetPath();  // xslt/carrier-to-mets.xsl
+
+// The resources (relative to the resource root, e.g. "xslt/carrier-to-crm.xsl",
+// "xsd/mets-1.12.1.xsd") that explain a package; the packer copies each to
+// metadata/<relative> in the bag. Sorted.
+std::vector<std::string> packagedResources();
+
+// libxslt's version, e.g. "1.1.35".
+std::string libxsltVersion();
+
+}  // namespace surrogate::mapping

@@ -1,0 +1,145 @@
+// A capture packed as an archival package: layout per DESIGN.md, the carrier's hashes checked
+// while packing, metadata derived and valid, the package explains itself.
+#include <catch2/catch.hpp>
+
+#include <unistd.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <fstream>
+
+#include "archive/package.h"
+#include "bag_check.h"
+#include "carrier/carrier.h"
+#include "core/error.h"
+#include "mapping/mapping.h"
+#include "sample_capture.h"
+#include "test_files.h"
+
+namespace fs = std::filesystem;
+using namespace surrogate;
+using namespace surrogate::archive;
+using testfiles::freshDir;
+using testfiles::slurp;
+
+TEST_CASE("a packed capture has the DESIGN.md layout and is a valid bag", "[archive][package]") {
+  const fs::path dir = freshDir("layout");
+  const fs::path capture = samplecapture::make(dir);
+  const PackResult r = packCapture(capture, dir / "pkg.zip");
+  const bagcheck::BagFiles bag = bagcheck::readBag(dir / "pkg.zip");
+  const auto problems = bagcheck::validate(bag);
+  INFO((problems.empty() ? std::string() : problems.front()));
+  CHECK(problems.empty());
+  for (const char* p : {"data/original-captures/IMG_0001.dng", "data/original-captures/IMG_0001.xmp",
+                        "data/jpeg-exports/IMG_0003.jpg", "data/assembly-files/carrier.xml",
+                        "data/assembly-files/lights.lp", "data/assembly-files/spheres.png",
+                        "data/finished-files/ptm-lrgb.ptm", "data/finished-files/report.html",
+                        "metadata/crm.rdf", "metadata/mets.xml", "metadata/xslt/carrier-to-crm.xsl",
+                        "metadata/xslt/carrier-to-mets.xsl", "metadata/xsd/mets-1.12.1.xsd",
+                        "metadata/xsd/premis-3.0.xsd", "metadata/xsd/xlink.xsd", "metadata/xsd/carrier.xsd",
+                        "metadata/mappings/carrier-to-crm.md", "metadata/mappings/carrier-to-mets.md"}) {
+    INFO(p);
+    CHECK(bag.files.count(p) == 1);
+  }
+  // Originals byte-identical; the carrier included as it is.
+  CHECK(bag.files.at("data/original-captures/IMG_0002.dng") == slurp(capture / "original-captures/IMG_0002.dng"));
+  CHECK(bag.files.at("data/assembly-files/carrier.xml") == slurp(capture / "assembly-files/carrier.xml"));
+  CHECK(r.bag.payloadFiles == 12);
+  CHECK(r.packageId == "urn:sha256:" + bagcheck::sha256(slurp(capture / "assembly-files/carrier.xml")));
+
+  // bag-info carries the user's metadata and what a verifier needs to re-derive mets.xml.
+  const auto info = bagcheck::parseBagInfo(bag.files.at("bag-info.txt"));
+  CHECK(info.find("Source-Organization")->second == "Museum of Tests");
+  CHECK(info.find("External-Identifier")->second == "INV-42");
+  CHECK(info.find("Contact-Name")->second == "Ana Silva");
+  CHECK(info.find("Surrogate-Package-Identifier")->second == r.packageId);
+  CHECK(info.find("Surrogate-Packaging-Time")->second == r.packagingTime);
+
+  // The metadata is what the stylesheets give, and METS is valid.
+  const std::string carrierXml = bag.files.at("data/assembly-files/carrier.xml");
+  CHECK(bag.files.at("metadata/crm.rdf") == mapping::deriveCrm(carrierXml));
+  mapping::PackageFacts facts;
+  facts.packageId = info.find("Surrogate-Package-Identifier")->second;
+  facts.packagingTime = info.find("Surrogate-Packaging-Time")->second;
+  facts.softwareAgent = info.find("Bag-Software-Agent")->second;
+  const auto m256 = bagcheck::parseManifest(bag.files.at("manifest-sha256.txt"));
+  const auto m512 = bagcheck::parseManifest(bag.files.at("manifest-sha512.txt"));
+  REQUIRE(m256.size() == m512.size());
+  for (std::size_t i = 0; i < m256.size(); ++i)
+    facts.payload.push_back({m256[i].second, bag.files.at(m256[i].second).size(), m256[i].first, m512[i].first});
+  CHECK(bag.files.at("metadata/mets.xml") == mapping::deriveMets(carrierXml, facts));
+  CHECK_NOTHROW(mapping::validateMets(bag.files.at("metadata/mets.xml"), "mets.xml"));
+  // The shipped stylesheets are the ones used.
+  CHECK(bag.files.at("metadata/xslt/carrier-to-mets.xsl") == slurp(mapping::metsStylesheetPath()));
+}
+
+TEST_CASE("two packs of a capture with SOURCE_DATE_EPOCH set are byte-identical", "[archive][package]") {
+  ::setenv("SOURCE_DATE_EPOCH", "1700000000", 1);
+  const fs::path dir = freshDir("repro");
+  const fs::path capture = samplecapture::make(dir);
+  fs::create_directories(dir / "a");
+  fs::create_directories(dir / "b");
+  for (const char* name : {"pkg.tar", "pkg.zip"}) {
+    const PackResult r = packCapture(capture, dir / "a" / name);
+    CHECK(r.packagingTime == "2023-11-14T22:13:20Z");
+    packCapture(capture, dir / "b" / name);
+    CHECK(slurp(dir / "a" / name) == slurp(dir / "b" / name));
+  }
+  ::unsetenv("SOURCE_DATE_EPOCH");
+}
+
+TEST_CASE("checkCarrier tells a complete carrier from a missing, failed or stale one", "[archive][package]") {
+  const fs::path dir = freshDir("state");
+  const fs::path capture = samplecapture::make(dir);
+  CHECK(checkCarrier(capture).complete);
+
+  SECTION("a recorded file changed size") {
+    std::ofstream(capture / "finished-files/ptm-lrgb.ptm", std::ios::app) << "x";
+    const CarrierState s = checkCarrier(capture);
+    CHECK_FALSE(s.complete);
+    CHECK(s.reason.find("ptm-lrgb.ptm") != std::string::npos);
+  }
+  SECTION("a step failed") {
+    carrier::Carrier c = carrier::loadCarrier(capture / "assembly-files/carrier.xml");
+    c.data.back().status = "failed";
+    carrier::saveCarrier(c, capture / "assembly-files/carrier.xml");
+    CHECK_FALSE(checkCarrier(capture).complete);
+  }
+  SECTION("no carrier") {
+    fs::remove(capture / "assembly-files/carrier.xml");
+    CHECK_FALSE(checkCarrier(capture).complete);
+  }
+}
+
+TEST_CASE("a file whose content changed but not its size is caught while packing", "[archive][package]") {
+  const fs::path dir = freshDir("stale");
+  const fs::path capture = samplecapture::make(dir);
+  {
+    std::fstream f(capture / "original-captures/IMG_0002.dng", std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(100);
+    f.put('\x42');
+  }
+  CHECK(checkCarrier(capture).complete);  // cheap check: sizes only
+  try {
+    packCapture(capture, dir / "pkg.tar");
+    FAIL("no error");
+  } catch (const PayloadChanged& e) {
+    CHECK(e.bagPath() == "data/original-captures/IMG_0002.dng");
+  }
+  CHECK_FALSE(fs::exists(dir / "pkg.tar"));
+}
+
+TEST_CASE("the payload takes the capture folders whole, and nothing outside them", "[archive][package]") {
+  const fs::path dir = freshDir("payload");
+  const fs::path capture = samplecapture::make(dir);
+  std::ofstream(capture / "dome.lp") << "0\n";
+  fs::create_directories(capture / "truth");
+  std::ofstream(capture / "truth/secret.txt") << "not payload";
+  std::ofstream(capture / "finished-files/.report.html.part-1-0") << "interrupted write";
+  std::vector<std::string> paths;
+  for (const PayloadSource& p : capturePayload(capture)) paths.push_back(p.bagPath);
+  CHECK(std::find(paths.begin(), paths.end(), "data/dome.lp") != paths.end());
+  CHECK(std::find(paths.begin(), paths.end(), "data/truth/secret.txt") == paths.end());
+  CHECK(std::find(paths.begin(), paths.end(), "data/finished-files/.report.html.part-1-0") == paths.end());
+  CHECK(std::find(paths.begin(), paths.end(), "data/finished-files/report.html") != paths.end());
+}

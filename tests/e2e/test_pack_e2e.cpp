@@ -1,0 +1,117 @@
+// `surrogate pack` on a generated capture, as a user runs it: the pipeline runs when needed,
+// the bag checks out (RFC 8493 validation with recomputed digests), the originals are
+// byte-identical inside it, the metadata is valid, and two packs are byte-identical.
+#include <catch2/catch.hpp>
+
+#include <cstdlib>
+#include <fstream>
+
+#include "bag_check.h"
+#include "e2e_support.h"
+#include "mapping/mapping.h"
+#include "test_files.h"
+
+namespace fs = std::filesystem;
+using namespace surrogate;
+using testfiles::slurp;
+
+namespace {
+struct Epoch {
+  Epoch() { ::setenv("SOURCE_DATE_EPOCH", "1700000000", 1); }
+  ~Epoch() { ::unsetenv("SOURCE_DATE_EPOCH"); }
+};
+}  // namespace
+
+TEST_CASE("surrogate pack runs the pipeline when needed and writes a valid bag", "[e2e][pack]") {
+  Epoch epoch;
+  const fs::path dir = e2e::freshDir("pack");
+  const fs::path capture = e2e::smallCapture(dir);
+  const auto originalsBefore = e2e::snapshot(capture / "original-captures");
+  const auto exportsBefore = e2e::snapshot(capture / "jpeg-exports");
+
+  e2e::CommandResult r = e2e::surrogate("pack " + e2e::quote(capture) + " -o " + e2e::quote(dir / "pkg.zip") +
+                                        " --meta Source-Organization=Museum --meta External-Identifier=INV-7 --json");
+  INFO(r.output);
+  REQUIRE(r.exitCode == 0);
+  CHECK(r.output.find("\"pipelineRan\":true") != std::string::npos);
+  CHECK(fs::exists(capture / "assembly-files/carrier.xml"));
+
+  const bagcheck::BagFiles bag = bagcheck::readBag(dir / "pkg.zip");
+  const auto problems = bagcheck::validate(bag);
+  INFO((problems.empty() ? std::string() : problems.front()));
+  CHECK(problems.empty());
+  // The originals are untouched in the capture and byte-identical in the bag.
+  CHECK(e2e::snapshot(capture / "original-captures") == originalsBefore);
+  CHECK(e2e::snapshot(capture / "jpeg-exports") == exportsBefore);
+  for (const auto& [rel, sha] : originalsBefore) {
+    INFO(rel);
+    REQUIRE(bag.files.count("data/original-captures/" + rel) == 1);
+    CHECK(bagcheck::sha256(bag.files.at("data/original-captures/" + rel)) == sha);
+  }
+  CHECK(bag.files.at("data/assembly-files/carrier.xml") == slurp(capture / "assembly-files/carrier.xml"));
+  CHECK(bag.files.count("data/assembly-files/lights.lp") == 1);
+  CHECK(bag.files.count("data/finished-files/ptm-lrgb.ptm") == 1);
+  CHECK(bag.files.count("data/finished-files/report.html") == 1);
+  const auto info = bagcheck::parseBagInfo(bag.files.at("bag-info.txt"));
+  CHECK(info.find("Source-Organization")->second == "Museum");
+  CHECK(info.find("External-Identifier")->second == "INV-7");
+  CHECK(info.find("Bagging-Date")->second == "2023-11-14");
+
+  // Metadata: METS+PREMIS valid offline; crm.rdf parses with rapper.
+  CHECK_NOTHROW(mapping::validateMets(bag.files.at("metadata/mets.xml"), "metadata/mets.xml"));
+  std::ofstream(dir / "crm.rdf", std::ios::binary) << bag.files.at("metadata/crm.rdf");
+  const e2e::CommandResult rapper = e2e::runShell("rapper -i rdfxml -c " + e2e::quote(dir / "crm.rdf"));
+  INFO(rapper.output);
+  CHECK(rapper.exitCode == 0);
+  CHECK(rapper.output.find("returned 0 triples") == std::string::npos);
+
+  // Again: the carrier is complete now, the pipeline does not run, and the bytes are the same.
+  fs::create_directories(dir / "again");
+  r = e2e::surrogate("pack " + e2e::quote(capture) + " -o " + e2e::quote(dir / "again/pkg.zip") + " --json");
+  INFO(r.output);
+  REQUIRE(r.exitCode == 0);
+  CHECK(r.output.find("\"pipelineRan\":false") != std::string::npos);
+  CHECK(slurp(dir / "pkg.zip") == slurp(dir / "again/pkg.zip"));
+
+  // As a tar and as a folder: the same files.
+  REQUIRE(e2e::surrogate("pack " + e2e::quote(capture) + " -o " + e2e::quote(dir / "pkg.tar") + " --quiet").exitCode == 0);
+  REQUIRE(e2e::surrogate("pack " + e2e::quote(capture) + " -o " + e2e::quote(dir / "pkg") + " --quiet").exitCode == 0);
+  CHECK(bagcheck::readBag(dir / "pkg.tar").files == bag.files);
+  CHECK(bagcheck::readBag(dir / "pkg").files == bag.files);
+}
+
+TEST_CASE("surrogate pack re-runs the pipeline when a result no longer matches the carrier", "[e2e][pack]") {
+  const fs::path dir = e2e::freshDir("pack-stale");
+  const fs::path capture = e2e::smallCapture(dir);
+  REQUIRE(e2e::surrogate("run " + e2e::quote(capture) + " --quiet").exitCode == 0);
+  // Same size, other content: only the digest computed while packing can tell.
+  {
+    std::fstream f(capture / "finished-files/ptm-lrgb.ptm", std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(-1, std::ios::end);
+    f.put('\x5a');
+  }
+  const e2e::CommandResult r =
+      e2e::surrogate("pack " + e2e::quote(capture) + " -o " + e2e::quote(dir / "pkg.tar") + " --json");
+  INFO(r.output);
+  REQUIRE(r.exitCode == 0);
+  CHECK(r.output.find("\"pipelineRan\":true") != std::string::npos);
+  CHECK(r.output.find("ptm-lrgb.ptm no longer matches the carrier") != std::string::npos);
+  CHECK(bagcheck::validate(bagcheck::readBag(dir / "pkg.tar")).empty());
+}
+
+TEST_CASE("surrogate pack explains a bad command line or an unwritable output", "[e2e][pack]") {
+  const fs::path dir = e2e::freshDir("pack-errors");
+  const fs::path capture = e2e::smallCapture(dir);
+  e2e::CommandResult r = e2e::surrogate("pack " + e2e::quote(capture));
+  CHECK(r.exitCode == 2);
+  CHECK(r.output.find("-o OUT") != std::string::npos);
+  r = e2e::surrogate("pack " + e2e::quote(dir / "nothing") + " -o " + e2e::quote(dir / "x.zip"));
+  CHECK(r.exitCode == 2);
+  r = e2e::surrogate("pack " + e2e::quote(capture) + " -o " + e2e::quote(dir / "missing/folder/pkg.zip") + " --quiet");
+  CHECK(r.exitCode == 2);
+  CHECK(r.output.find("pkg.zip") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "missing"));
+  r = e2e::surrogate("pack --help");
+  CHECK(r.exitCode == 0);
+  CHECK(r.output.find("BagIt") != std::string::npos);
+}

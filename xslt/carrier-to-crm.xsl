@@ -1,0 +1,426 @@
+<?xml version="1.0" encoding="UTF-8"?>
+<!--
+  Surrogate carrier -> CIDOC-CRM 7.1.3 + CRMdig 5.0, as RDF/XML (metadata/crm.rdf).
+
+  Input: a carrier (namespace urn:surrogate:carrier:1, schema xsd/carrier.xsd).
+  What it says:
+    the capture session (E7) consists of the digitization (crmdig:D2) of the object (E22,
+      the carrier's title) on the camera(s) (crmdig:D8: make, model, serial, lens), carried out
+      by the creators (E21), which created the original images (crmdig:D9);
+    each pipeline step is a software execution (crmdig:D10) that used software (crmdig:L23,
+      crmdig:D14 with name and version), read inputs (crmdig:L10), wrote outputs (crmdig:L11),
+      used parameters (crmdig:L13), ran on the workstation (crmdig:L12, a D8) within a time-span
+      (P4, E52), continued the step before it (P134), and was steered by human interventions
+      (E7 carried out by an E21, with the reason as a note);
+    each file is a data object (crmdig:D9) identified by its path and its SHA-256 (E42), with its
+      size (E54, bytes) and format (E55).
+  Parameters:
+    crmdig-ns  the CRMdig namespace (default the current one, of versions 4 and 5; older data
+               uses http://www.ics.forth.gr/isl/CRMdig/)
+    base-uri   prefix of the URIs minted for this capture (default urn:surrogate:capture:
+               followed by the SHA-256 of the carrier's first file, and "/")
+  The mapping is explained, element by element, in mappings/carrier-to-crm.md.
+  Re-derive by hand: xsltproc carrier-to-crm.xsl data/assembly-files/carrier.xml
+  Output is deterministic: the same carrier gives the same bytes.
+-->
+<xsl:stylesheet version="1.0"
+    xmlns:xsl="http://www.w3.org/1999/XSL/Transform"
+    xmlns:c="urn:surrogate:carrier:1"
+    xmlns:rdf="http://www.w3.org/1999/02/22-rdf-syntax-ns#"
+    xmlns:rdfs="http://www.w3.org/2000/01/rdf-schema#"
+    xmlns:crm="http://www.cidoc-crm.org/cidoc-crm/"
+    xmlns:crmdig="http://www.cidoc-crm.org/extensions/crmdig/"
+    exclude-result-prefixes="c">
+
+  <xsl:output method="xml" encoding="UTF-8" indent="yes"/>
+
+  <xsl:param name="crmdig-ns" select="'http://www.cidoc-crm.org/extensions/crmdig/'"/>
+  <xsl:param name="base-uri" select="''"/>
+
+  <xsl:variable name="crm-ns" select="'http://www.cidoc-crm.org/cidoc-crm/'"/>
+  <xsl:variable name="xsd" select="'http://www.w3.org/2001/XMLSchema#'"/>
+  <xsl:variable name="carrier" select="/c:carrier"/>
+  <xsl:variable name="base">
+    <xsl:choose>
+      <xsl:when test="$base-uri != ''"><xsl:value-of select="$base-uri"/></xsl:when>
+      <xsl:when test="$carrier/c:files/c:file"><xsl:value-of select="concat('urn:surrogate:capture:', $carrier/c:files/c:file[1]/@sha256, '/')"/></xsl:when>
+      <xsl:otherwise>urn:surrogate:capture:unidentified/</xsl:otherwise>
+    </xsl:choose>
+  </xsl:variable>
+  <!-- Characters not allowed in IRIs, replaced by '_' when a name becomes part of a URI. -->
+  <xsl:variable name="unsafe" select="' &quot;#%&lt;&gt;[\]^`{|}/?&amp;'"/>
+  <xsl:variable name="safe"   select="'_______________'"/>
+
+  <xsl:key name="person" match="c:creator" use="normalize-space(.)"/>
+  <xsl:key name="person" match="c:intervention/@who" use="normalize-space(.)"/>
+  <xsl:key name="camera" match="c:file[@role = 'original']/c:camera"
+           use="concat(@make, '|', @model, '|', @serial)"/>
+
+  <!-- URIs -->
+  <xsl:template name="person-uri">
+    <xsl:param name="name"/>
+    <xsl:value-of select="concat($base, 'person/', translate(normalize-space($name), $unsafe, $safe))"/>
+  </xsl:template>
+  <xsl:template name="camera-uri">
+    <xsl:param name="camera"/>
+    <xsl:value-of select="concat($base, 'device/', translate(concat($camera/@make, '_', $camera/@model, '_', $camera/@serial), $unsafe, $safe))"/>
+  </xsl:template>
+
+  <!-- A CRMdig property element (namespace from the crmdig-ns parameter). -->
+  <xsl:template name="dig">
+    <xsl:param name="p"/>
+    <xsl:param name="to"/>
+    <xsl:element name="crmdig:{$p}" namespace="{$crmdig-ns}">
+      <xsl:attribute name="rdf:resource"><xsl:value-of select="$to"/></xsl:attribute>
+    </xsl:element>
+  </xsl:template>
+  <xsl:template name="dig-type">
+    <xsl:param name="class"/>
+    <rdf:type rdf:resource="{concat($crmdig-ns, $class)}"/>
+  </xsl:template>
+
+  <xsl:template name="time-span">
+    <xsl:param name="uri"/>
+    <xsl:param name="begin"/>
+    <xsl:param name="end"/>
+    <crm:P4_has_time-span>
+      <crm:E52_Time-Span rdf:about="{$uri}">
+        <crm:P82a_begin_of_the_begin rdf:datatype="{$xsd}dateTime"><xsl:value-of select="$begin"/></crm:P82a_begin_of_the_begin>
+        <crm:P82b_end_of_the_end rdf:datatype="{$xsd}dateTime"><xsl:value-of select="$end"/></crm:P82b_end_of_the_end>
+      </crm:E52_Time-Span>
+    </crm:P4_has_time-span>
+  </xsl:template>
+
+  <!-- EXIF "YYYY:MM:DD HH:MM:SS" -> "YYYY-MM-DDTHH:MM:SS"; other forms unchanged. -->
+  <xsl:template name="exif-date">
+    <xsl:param name="d"/>
+    <xsl:choose>
+      <xsl:when test="string-length($d) &gt;= 19 and substring($d, 5, 1) = ':' and substring($d, 8, 1) = ':'">
+        <xsl:value-of select="concat(substring($d, 1, 4), '-', substring($d, 6, 2), '-', substring($d, 9, 2), 'T', substring($d, 12, 8))"/>
+      </xsl:when>
+      <xsl:otherwise><xsl:value-of select="$d"/></xsl:otherwise>
+    </xsl:choose>
+  </xsl:template>
+
+  <xsl:template match="/">
+    <rdf:RDF>
+      <xsl:apply-templates select="c:carrier"/>
+    </rdf:RDF>
+  </xsl:template>
+
+  <xsl:template match="c:carrier">
+    <xsl:variable name="originals" select="c:files/c:file[@role = 'original']"/>
+    <xsl:variable name="cameras" select="$originals/c:camera[count(. | key('camera', concat(@make, '|', @model, '|', @serial))[1]) = 1]"/>
+
+    <!-- the object -->
+    <crm:E22_Human-Made_Object rdf:about="{$base}object">
+      <rdfs:label><xsl:value-of select="c:header/c:title"/></rdfs:label>
+      <crm:P1_is_identified_by>
+        <crm:E41_Appellation rdf:about="{$base}object/title">
+          <crm:P190_has_symbolic_content><xsl:value-of select="c:header/c:title"/></crm:P190_has_symbolic_content>
+        </crm:E41_Appellation>
+      </crm:P1_is_identified_by>
+      <xsl:for-each select="c:header/c:meta[@key = 'External-Identifier' or @key = 'Object-Identifier']">
+        <crm:P1_is_identified_by>
+          <crm:E42_Identifier rdf:about="{$base}object/identifier/{position()}">
+            <crm:P190_has_symbolic_content><xsl:value-of select="."/></crm:P190_has_symbolic_content>
+            <crm:P2_has_type><crm:E55_Type rdf:about="{$base}type/{translate(@key, $unsafe, $safe)}"><rdfs:label><xsl:value-of select="@key"/></rdfs:label></crm:E55_Type></crm:P2_has_type>
+          </crm:E42_Identifier>
+        </crm:P1_is_identified_by>
+      </xsl:for-each>
+      <xsl:for-each select="c:header/c:meta[@key != 'External-Identifier' and @key != 'Object-Identifier']">
+        <crm:P3_has_note><xsl:value-of select="concat(@key, ': ', .)"/></crm:P3_has_note>
+      </xsl:for-each>
+    </crm:E22_Human-Made_Object>
+
+    <!-- the session -->
+    <crm:E7_Activity rdf:about="{$base}session">
+      <rdfs:label><xsl:value-of select="concat('RTI capture and processing: ', c:header/c:title)"/></rdfs:label>
+      <crm:P9_consists_of rdf:resource="{$base}capture"/>
+      <xsl:for-each select="c:process/c:step">
+        <crm:P9_consists_of rdf:resource="{$base}step/{@id}"/>
+      </xsl:for-each>
+      <xsl:call-template name="time-span">
+        <xsl:with-param name="uri" select="concat($base, 'session/time')"/>
+        <xsl:with-param name="begin" select="c:header/c:created"/>
+        <xsl:with-param name="end" select="c:header/c:modified"/>
+      </xsl:call-template>
+    </crm:E7_Activity>
+
+    <!-- the digitization -->
+    <rdf:Description rdf:about="{$base}capture">
+      <xsl:call-template name="dig-type"><xsl:with-param name="class" select="'D2_Digitization_Process'"/></xsl:call-template>
+      <rdfs:label><xsl:value-of select="concat('Highlight-RTI capture of ', c:header/c:title, ' (', count($originals), ' images)')"/></rdfs:label>
+      <crm:P32_used_general_technique>
+        <crm:E55_Type rdf:about="{$base}type/highlight-rti">
+          <rdfs:label>Highlight Reflectance Transformation Imaging (H-RTI)</rdfs:label>
+        </crm:E55_Type>
+      </crm:P32_used_general_technique>
+      <xsl:call-template name="dig"><xsl:with-param name="p" select="'L1_digitized'"/><xsl:with-param name="to" select="concat($base, 'object')"/></xsl:call-template>
+      <xsl:for-each select="$cameras">
+        <xsl:call-template name="dig">
+          <xsl:with-param name="p" select="'L12_happened_on_device'"/>
+          <xsl:with-param name="to"><xsl:call-template name="camera-uri"><xsl:with-param name="camera" select="."/></xsl:call-template></xsl:with-param>
+        </xsl:call-template>
+      </xsl:for-each>
+      <xsl:for-each select="c:header/c:creator">
+        <crm:P14_carried_out_by>
+          <xsl:attribute name="rdf:resource"><xsl:call-template name="person-uri"><xsl:with-param name="name" select="."/></xsl:call-template></xsl:attribute>
+        </crm:P14_carried_out_by>
+      </xsl:for-each>
+      <xsl:for-each select="$originals">
+        <xsl:call-template name="dig"><xsl:with-param name="p" select="'L11_had_output'"/><xsl:with-param name="to" select="concat($base, 'file/', @id)"/></xsl:call-template>
+      </xsl:for-each>
+      <xsl:if test="$originals/c:camera/@dateTimeOriginal">
+        <xsl:variable name="first">
+          <xsl:for-each select="$originals/c:camera/@dateTimeOriginal"><xsl:sort select="."/><xsl:if test="position() = 1"><xsl:call-template name="exif-date"><xsl:with-param name="d" select="."/></xsl:call-template></xsl:if></xsl:for-each>
+        </xsl:variable>
+        <xsl:variable name="last">
+          <xsl:for-each select="$originals/c:camera/@dateTimeOriginal"><xsl:sort select="."/><xsl:if test="position() = last()"><xsl:call-template name="exif-date"><xsl:with-param name="d" select="."/></xsl:call-template></xsl:if></xsl:for-each>
+        </xsl:variable>
+        <xsl:call-template name="time-span">
+          <xsl:with-param name="uri" select="concat($base, 'capture/time')"/>
+          <xsl:with-param name="begin" select="$first"/>
+          <xsl:with-param name="end" select="$last"/>
+        </xsl:call-template>
+      </xsl:if>
+    </rdf:Description>
+
+    <!-- the camera(s) -->
+    <xsl:for-each select="$cameras">
+      <rdf:Description>
+        <xsl:attribute name="rdf:about"><xsl:call-template name="camera-uri"><xsl:with-param name="camera" select="."/></xsl:call-template></xsl:attribute>
+        <xsl:call-template name="dig-type"><xsl:with-param name="class" select="'D8_Digital_Device'"/></xsl:call-template>
+        <rdfs:label><xsl:value-of select="normalize-space(concat(@make, ' ', @model))"/></rdfs:label>
+        <xsl:if test="@make != ''">
+          <crm:P108i_was_produced_by>
+            <crm:E12_Production rdf:about="{$base}device/{translate(concat(@make, '_', @model, '_', @serial), $unsafe, $safe)}/production">
+              <crm:P14_carried_out_by>
+                <crm:E74_Group rdf:about="{$base}maker/{translate(@make, $unsafe, $safe)}"><rdfs:label><xsl:value-of select="@make"/></rdfs:label></crm:E74_Group>
+              </crm:P14_carried_out_by>
+            </crm:E12_Production>
+          </crm:P108i_was_produced_by>
+        </xsl:if>
+        <xsl:if test="@model != ''">
+          <crm:P2_has_type>
+            <crm:E55_Type rdf:about="{$base}type/camera-model/{translate(concat(@make, '_', @model), $unsafe, $safe)}"><rdfs:label><xsl:value-of select="normalize-space(concat(@make, ' ', @model))"/></rdfs:label></crm:E55_Type>
+          </crm:P2_has_type>
+        </xsl:if>
+        <xsl:if test="@serial != ''">
+          <crm:P1_is_identified_by>
+            <crm:E42_Identifier rdf:about="{$base}device/{translate(concat(@make, '_', @model, '_', @serial), $unsafe, $safe)}/serial">
+              <crm:P190_has_symbolic_content><xsl:value-of select="@serial"/></crm:P190_has_symbolic_content>
+              <crm:P2_has_type><crm:E55_Type rdf:about="{$base}type/serial-number"><rdfs:label>serial number</rdfs:label></crm:E55_Type></crm:P2_has_type>
+            </crm:E42_Identifier>
+          </crm:P1_is_identified_by>
+        </xsl:if>
+        <xsl:if test="@lens != ''">
+          <crm:P3_has_note><xsl:value-of select="concat('lens: ', @lens)"/></crm:P3_has_note>
+        </xsl:if>
+      </rdf:Description>
+    </xsl:for-each>
+
+    <!-- the workstation -->
+    <rdf:Description rdf:about="{$base}machine">
+      <xsl:call-template name="dig-type"><xsl:with-param name="class" select="'D8_Digital_Device'"/></xsl:call-template>
+      <rdfs:label><xsl:value-of select="c:header/c:machine/@hostname"/></rdfs:label>
+      <crm:P3_has_note><xsl:value-of select="normalize-space(concat(c:header/c:machine/@os, ', ', c:header/c:machine/@architecture, ', ', c:header/c:machine/@cpu, ', ', c:header/c:machine/@cores, ' cores, ', c:header/c:machine/@memoryBytes, ' bytes of memory'))"/></crm:P3_has_note>
+    </rdf:Description>
+
+    <!-- people -->
+    <xsl:for-each select="(c:header/c:creator | c:process/c:step/c:intervention/@who)[count(. | key('person', normalize-space(.))[1]) = 1]">
+      <crm:E21_Person>
+        <xsl:attribute name="rdf:about"><xsl:call-template name="person-uri"><xsl:with-param name="name" select="."/></xsl:call-template></xsl:attribute>
+        <rdfs:label><xsl:value-of select="normalize-space(.)"/></rdfs:label>
+        <crm:P1_is_identified_by>
+          <crm:E41_Appellation>
+            <xsl:attribute name="rdf:about"><xsl:call-template name="person-uri"><xsl:with-param name="name" select="."/></xsl:call-template>/name</xsl:attribute>
+            <crm:P190_has_symbolic_content><xsl:value-of select="normalize-space(.)"/></crm:P190_has_symbolic_content>
+          </crm:E41_Appellation>
+        </crm:P1_is_identified_by>
+        <xsl:for-each select="self::c:creator/@role">
+          <crm:P3_has_note><xsl:value-of select="concat('role in the capture: ', .)"/></crm:P3_has_note>
+        </xsl:for-each>
+      </crm:E21_Person>
+    </xsl:for-each>
+
+    <!-- software -->
+    <xsl:for-each select="c:header/c:software">
+      <rdf:Description rdf:about="{$base}software/{translate(concat(@name, '/', @version), $unsafe, $safe)}">
+        <xsl:call-template name="dig-type"><xsl:with-param name="class" select="'D14_Software'"/></xsl:call-template>
+        <rdfs:label><xsl:value-of select="concat(@name, ' ', @version)"/></rdfs:label>
+        <crm:P1_is_identified_by>
+          <crm:E41_Appellation rdf:about="{$base}software/{translate(concat(@name, '/', @version), $unsafe, $safe)}/name">
+            <crm:P190_has_symbolic_content><xsl:value-of select="@name"/></crm:P190_has_symbolic_content>
+          </crm:E41_Appellation>
+        </crm:P1_is_identified_by>
+        <crm:P2_has_type>
+          <crm:E55_Type rdf:about="{$base}software/{translate(concat(@name, '/', @version), $unsafe, $safe)}/version"><rdfs:label><xsl:value-of select="concat('version ', @version)"/></rdfs:label></crm:E55_Type>
+        </crm:P2_has_type>
+        <xsl:if test="@role != ''"><crm:P3_has_note><xsl:value-of select="@role"/></crm:P3_has_note></xsl:if>
+      </rdf:Description>
+    </xsl:for-each>
+
+    <xsl:apply-templates select="c:process/c:step"/>
+    <xsl:apply-templates select="c:files/c:file"/>
+  </xsl:template>
+
+  <!-- a pipeline step -->
+  <xsl:template match="c:step">
+    <xsl:variable name="step" select="."/>
+    <xsl:variable name="uri" select="concat($base, 'step/', @id)"/>
+    <xsl:variable name="result" select="$carrier/c:data/c:result[@step = $step/@id]"/>
+    <rdf:Description rdf:about="{$uri}">
+      <xsl:call-template name="dig-type"><xsl:with-param name="class" select="'D10_Software_Execution'"/></xsl:call-template>
+      <rdfs:label><xsl:value-of select="concat(@id, ': ', @component, ' ', @version)"/></rdfs:label>
+      <xsl:if test="c:description != ''"><crm:P3_has_note><xsl:value-of select="normalize-space(c:description)"/></crm:P3_has_note></xsl:if>
+      <xsl:if test="@algorithm != ''">
+        <crm:P33_used_specific_technique>
+          <crm:E29_Design_or_Procedure rdf:about="{$base}technique/{translate(@algorithm, $unsafe, $safe)}"><rdfs:label><xsl:value-of select="@algorithm"/></rdfs:label></crm:E29_Design_or_Procedure>
+        </crm:P33_used_specific_technique>
+      </xsl:if>
+      <xsl:call-template name="dig"><xsl:with-param name="p" select="'L23_used_software_or_firmware'"/><xsl:with-param name="to" select="concat($uri, '/software')"/></xsl:call-template>
+      <xsl:for-each select="$carrier/c:header/c:software">
+        <xsl:call-template name="dig"><xsl:with-param name="p" select="'L23_used_software_or_firmware'"/><xsl:with-param name="to" select="concat($base, 'software/', translate(concat(@name, '/', @version), $unsafe, $safe))"/></xsl:call-template>
+      </xsl:for-each>
+      <xsl:call-template name="dig"><xsl:with-param name="p" select="'L12_happened_on_device'"/><xsl:with-param name="to" select="concat($base, 'machine')"/></xsl:call-template>
+      <xsl:if test="c:param">
+        <xsl:call-template name="dig"><xsl:with-param name="p" select="'L13_used_parameters'"/><xsl:with-param name="to" select="concat($uri, '/parameters')"/></xsl:call-template>
+      </xsl:if>
+      <xsl:for-each select="$result/c:input">
+        <xsl:call-template name="dig"><xsl:with-param name="p" select="'L10_had_input'"/><xsl:with-param name="to" select="concat($base, 'file/', @file)"/></xsl:call-template>
+      </xsl:for-each>
+      <xsl:for-each select="$result/c:output">
+        <xsl:call-template name="dig"><xsl:with-param name="p" select="'L11_had_output'"/><xsl:with-param name="to" select="concat($base, 'file/', @file)"/></xsl:call-template>
+      </xsl:for-each>
+      <xsl:for-each select="preceding-sibling::c:step[1]">
+        <crm:P134_continued rdf:resource="{$base}step/{@id}"/>
+      </xsl:for-each>
+      <xsl:for-each select="c:intervention">
+        <crm:P9_consists_of rdf:resource="{$uri}/intervention/{position()}"/>
+      </xsl:for-each>
+      <xsl:if test="$result">
+        <crm:P3_has_note><xsl:value-of select="concat('status: ', $result/@status, '; seconds: ', $result/@seconds)"/></crm:P3_has_note>
+        <xsl:call-template name="time-span">
+          <xsl:with-param name="uri" select="concat($uri, '/time')"/>
+          <xsl:with-param name="begin" select="$result/@started"/>
+          <xsl:with-param name="end" select="$result/@ended"/>
+        </xsl:call-template>
+        <xsl:for-each select="$result/c:value">
+          <crm:P3_has_note><xsl:value-of select="normalize-space(concat('result ', @name, ' = ', @value, ' ', @unit))"/></crm:P3_has_note>
+        </xsl:for-each>
+      </xsl:if>
+    </rdf:Description>
+
+    <!-- the component as software -->
+    <rdf:Description rdf:about="{$uri}/software">
+      <xsl:call-template name="dig-type"><xsl:with-param name="class" select="'D14_Software'"/></xsl:call-template>
+      <rdfs:label><xsl:value-of select="concat('Surrogate ', @component, ' ', @version)"/></rdfs:label>
+      <crm:P1_is_identified_by>
+        <crm:E41_Appellation rdf:about="{$uri}/software/name">
+          <crm:P190_has_symbolic_content><xsl:value-of select="@component"/></crm:P190_has_symbolic_content>
+        </crm:E41_Appellation>
+      </crm:P1_is_identified_by>
+      <crm:P2_has_type>
+        <crm:E55_Type rdf:about="{$uri}/software/version"><rdfs:label><xsl:value-of select="concat('version ', @version)"/></rdfs:label></crm:E55_Type>
+      </crm:P2_has_type>
+    </rdf:Description>
+
+    <!-- its parameters -->
+    <xsl:if test="c:param">
+      <rdf:Description rdf:about="{$uri}/parameters">
+        <xsl:call-template name="dig-type"><xsl:with-param name="class" select="'D1_Digital_Object'"/></xsl:call-template>
+        <rdfs:label><xsl:value-of select="concat('parameters of ', @id, ' (', @component, ')')"/></rdfs:label>
+        <xsl:for-each select="c:param">
+          <crm:P106_is_composed_of>
+            <rdf:Description rdf:about="{$uri}/parameter/{translate(@name, $unsafe, $safe)}">
+              <xsl:call-template name="dig-type"><xsl:with-param name="class" select="'D1_Digital_Object'"/></xsl:call-template>
+              <rdfs:label><xsl:value-of select="@name"/></rdfs:label>
+              <crm:P190_has_symbolic_content><xsl:value-of select="concat(@name, '=', @value)"/></crm:P190_has_symbolic_content>
+            </rdf:Description>
+          </crm:P106_is_composed_of>
+        </xsl:for-each>
+      </rdf:Description>
+    </xsl:if>
+
+    <!-- human interventions -->
+    <xsl:for-each select="c:intervention">
+      <crm:E7_Activity rdf:about="{$uri}/intervention/{position()}">
+        <rdfs:label><xsl:value-of select="concat(@kind, ' on ', @target)"/></rdfs:label>
+        <crm:P2_has_type>
+          <crm:E55_Type rdf:about="{$base}type/intervention/{translate(@kind, $unsafe, $safe)}"><rdfs:label><xsl:value-of select="@kind"/></rdfs:label></crm:E55_Type>
+        </crm:P2_has_type>
+        <crm:P14_carried_out_by>
+          <xsl:attribute name="rdf:resource"><xsl:call-template name="person-uri"><xsl:with-param name="name" select="@who"/></xsl:call-template></xsl:attribute>
+        </crm:P14_carried_out_by>
+        <crm:P3_has_note><xsl:value-of select="concat('reason: ', normalize-space(.))"/></crm:P3_has_note>
+        <xsl:if test="@value != ''"><crm:P3_has_note><xsl:value-of select="concat('value chosen: ', @value)"/></crm:P3_has_note></xsl:if>
+        <xsl:call-template name="time-span">
+          <xsl:with-param name="uri" select="concat($uri, '/intervention/', position(), '/time')"/>
+          <xsl:with-param name="begin" select="@time"/>
+          <xsl:with-param name="end" select="@time"/>
+        </xsl:call-template>
+      </crm:E7_Activity>
+    </xsl:for-each>
+  </xsl:template>
+
+  <!-- a file -->
+  <xsl:template match="c:file">
+    <xsl:variable name="uri" select="concat($base, 'file/', @id)"/>
+    <rdf:Description rdf:about="{$uri}">
+      <xsl:call-template name="dig-type"><xsl:with-param name="class" select="'D9_Data_Object'"/></xsl:call-template>
+      <rdfs:label><xsl:value-of select="@path"/></rdfs:label>
+      <crm:P1_is_identified_by>
+        <crm:E42_Identifier rdf:about="{$uri}/path">
+          <crm:P190_has_symbolic_content><xsl:value-of select="concat('data/', @path)"/></crm:P190_has_symbolic_content>
+          <crm:P2_has_type><crm:E55_Type rdf:about="{$base}type/bag-path"><rdfs:label>path in the BagIt package</rdfs:label></crm:E55_Type></crm:P2_has_type>
+        </crm:E42_Identifier>
+      </crm:P1_is_identified_by>
+      <crm:P1_is_identified_by>
+        <crm:E42_Identifier rdf:about="{$uri}/sha256">
+          <crm:P190_has_symbolic_content><xsl:value-of select="@sha256"/></crm:P190_has_symbolic_content>
+          <crm:P2_has_type><crm:E55_Type rdf:about="{$base}type/sha256"><rdfs:label>SHA-256 checksum</rdfs:label></crm:E55_Type></crm:P2_has_type>
+        </crm:E42_Identifier>
+      </crm:P1_is_identified_by>
+      <crm:P43_has_dimension>
+        <crm:E54_Dimension rdf:about="{$uri}/size">
+          <crm:P2_has_type><crm:E55_Type rdf:about="{$base}type/file-size"><rdfs:label>file size</rdfs:label></crm:E55_Type></crm:P2_has_type>
+          <crm:P90_has_value rdf:datatype="{$xsd}decimal"><xsl:value-of select="@size"/></crm:P90_has_value>
+          <crm:P91_has_unit><crm:E58_Measurement_Unit rdf:about="{$base}unit/byte"><rdfs:label>byte</rdfs:label></crm:E58_Measurement_Unit></crm:P91_has_unit>
+        </crm:E54_Dimension>
+      </crm:P43_has_dimension>
+      <crm:P2_has_type>
+        <crm:E55_Type rdf:about="{$base}type/format/{translate(@format, $unsafe, $safe)}">
+          <rdfs:label><xsl:value-of select="@format"/></rdfs:label>
+          <xsl:if test="@puid != ''"><crm:P3_has_note><xsl:value-of select="concat('PRONOM ', @puid)"/></crm:P3_has_note></xsl:if>
+          <xsl:if test="@mediaType != ''"><crm:P3_has_note><xsl:value-of select="concat('media type ', @mediaType)"/></crm:P3_has_note></xsl:if>
+        </crm:E55_Type>
+      </crm:P2_has_type>
+      <crm:P2_has_type>
+        <crm:E55_Type rdf:about="{$base}type/role/{@role}"><rdfs:label><xsl:value-of select="concat('file role: ', @role)"/></rdfs:label></crm:E55_Type>
+      </crm:P2_has_type>
+      <xsl:if test="@role = 'result'">
+        <crm:P138_represents rdf:resource="{$base}object"/>
+      </xsl:if>
+      <xsl:for-each select="@pairedWith">
+        <crm:P130_shows_features_of rdf:resource="{$base}file/{.}"/>
+      </xsl:for-each>
+      <xsl:if test="@unrecordedProcessing = 'true' or @unrecordedProcessing = '1'">
+        <crm:P3_has_note>made by other software; its processing is not recorded in the carrier</crm:P3_has_note>
+      </xsl:if>
+      <xsl:for-each select="c:image">
+        <crm:P3_has_note><xsl:value-of select="concat('image ', @width, ' x ', @height, ' pixels')"/></crm:P3_has_note>
+      </xsl:for-each>
+      <xsl:for-each select="c:camera">
+        <crm:P3_has_note>
+          <xsl:text>camera settings:</xsl:text>
+          <xsl:for-each select="@*"><xsl:value-of select="concat(' ', local-name(), '=', .)"/></xsl:for-each>
+        </crm:P3_has_note>
+      </xsl:for-each>
+      <xsl:if test="c:xmp != ''">
+        <crm:P3_has_note><xsl:value-of select="concat('XMP packet of ', string-length(c:xmp), ' characters, kept verbatim in the carrier')"/></crm:P3_has_note>
+      </xsl:if>
+    </rdf:Description>
+  </xsl:template>
+
+</xsl:stylesheet>

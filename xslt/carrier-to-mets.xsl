@@ -1,0 +1,699 @@
+<?xml version="1.0" encoding="UTF-8"?>
+<!--
+  Surrogate carrier -> METS 1.12.1 with PREMIS 3 (metadata/mets.xml of a Surrogate package).
+
+  Input: a carrier (namespace urn:surrogate:carrier:1, schema xsd/carrier.xsd).
+  Parameters (package facts the carrier cannot hold; Surrogate records them in bag-info.txt):
+    package-id      the package identifier (bag-info Surrogate-Package-Identifier)
+    packaging-time  xs:dateTime of packaging (bag-info Surrogate-Packaging-Time)
+    software-agent  the packing software, e.g. "Surrogate 0.1.0" (bag-info Bag-Software-Agent)
+    payload-uri     URI of a payload list, one element per payload file of the bag:
+                      <payload><file path="data/..." size="N" sha256="hex" sha512="hex"/></payload>
+                    (Surrogate builds it from manifest-sha256.txt and manifest-sha512.txt). When
+                    the list has no file, the carrier's own file list is used instead (without
+                    SHA-512). Give an absolute path or URI: a relative one is resolved against
+                    this stylesheet's location.
+  The mapping is explained, element by element, in mappings/carrier-to-mets.md.
+  Re-derive by hand:
+    xsltproc -\-stringparam package-id ID -\-stringparam packaging-time T \
+             -\-stringparam software-agent "Surrogate X" -\-stringparam payload-uri payload.xml \
+             carrier-to-mets.xsl data/assembly-files/carrier.xml
+  Output is deterministic: the same carrier and parameters give the same bytes.
+-->
+<xsl:stylesheet version="1.0"
+    xmlns:xsl="http://www.w3.org/1999/XSL/Transform"
+    xmlns:c="urn:surrogate:carrier:1"
+    xmlns:mets="http://www.loc.gov/METS/"
+    xmlns:premis="http://www.loc.gov/premis/v3"
+    xmlns:xlink="http://www.w3.org/1999/xlink"
+    xmlns:xsi="http://www.w3.org/2001/XMLSchema-instance"
+    exclude-result-prefixes="c">
+
+  <xsl:output method="xml" encoding="UTF-8" indent="yes"/>
+
+  <xsl:param name="package-id" select="''"/>
+  <xsl:param name="packaging-time" select="''"/>
+  <xsl:param name="software-agent" select="'Surrogate'"/>
+  <xsl:param name="payload-uri" select="''"/>
+
+  <xsl:variable name="carrier" select="/c:carrier"/>
+  <xsl:variable name="payload" select="document($payload-uri)/payload/file"/>
+  <xsl:variable name="objid">
+    <xsl:choose>
+      <xsl:when test="$package-id != ''"><xsl:value-of select="$package-id"/></xsl:when>
+      <xsl:otherwise><xsl:value-of select="concat('urn:sha256:', $carrier/c:files/c:file[1]/@sha256)"/></xsl:otherwise>
+    </xsl:choose>
+  </xsl:variable>
+  <xsl:variable name="pack-time">
+    <xsl:choose>
+      <xsl:when test="$packaging-time != ''"><xsl:value-of select="$packaging-time"/></xsl:when>
+      <xsl:otherwise><xsl:value-of select="$carrier/c:header/c:modified"/></xsl:otherwise>
+    </xsl:choose>
+  </xsl:variable>
+  <xsl:variable name="surrogate" select="$carrier/c:header/c:software[@name = 'Surrogate'][1]"/>
+
+  <!-- Persons: creators, people who intervened or logged; grouped by name (Muenchian). -->
+  <xsl:key name="person" match="c:creator" use="normalize-space(.)"/>
+  <xsl:key name="person" match="c:intervention/@who | c:entry/@who" use="normalize-space(.)"/>
+  <xsl:key name="camera" match="c:file[@role = 'original']/c:camera"
+           use="concat(@make, '|', @model, '|', @serial)"/>
+
+  <xsl:template match="/">
+    <xsl:apply-templates select="c:carrier"/>
+  </xsl:template>
+
+  <xsl:template match="c:carrier">
+    <mets:mets OBJID="{$objid}" LABEL="{c:header/c:title}" TYPE="RTI capture"
+               PROFILE="urn:surrogate:package:1"
+               xsi:schemaLocation="http://www.loc.gov/METS/ http://www.loc.gov/standards/mets/version1121/mets.xsd http://www.loc.gov/premis/v3 http://www.loc.gov/standards/premis/v3/premis.xsd">
+      <mets:metsHdr CREATEDATE="{$pack-time}" RECORDSTATUS="complete">
+        <mets:agent ROLE="CREATOR" TYPE="OTHER" OTHERTYPE="SOFTWARE">
+          <mets:name><xsl:value-of select="$software-agent"/></mets:name>
+          <mets:note>METS and PREMIS derived from the carrier by xslt/carrier-to-mets.xsl</mets:note>
+        </mets:agent>
+        <xsl:for-each select="c:header/c:creator">
+          <mets:agent ROLE="OTHER" OTHERROLE="{@role}" TYPE="INDIVIDUAL">
+            <mets:name><xsl:value-of select="normalize-space(.)"/></mets:name>
+          </mets:agent>
+        </xsl:for-each>
+        <xsl:for-each select="c:header/c:meta[@key = 'Source-Organization']">
+          <mets:agent ROLE="IPOWNER" TYPE="ORGANIZATION">
+            <mets:name><xsl:value-of select="."/></mets:name>
+          </mets:agent>
+        </xsl:for-each>
+        <xsl:for-each select="c:header/c:meta[@key = 'External-Identifier']">
+          <mets:altRecordID TYPE="External-Identifier"><xsl:value-of select="."/></mets:altRecordID>
+        </xsl:for-each>
+      </mets:metsHdr>
+
+      <mets:dmdSec ID="dmd-crm">
+        <mets:mdRef LOCTYPE="URL" xlink:href="crm.rdf" MDTYPE="OTHER"
+                    OTHERMDTYPE="CIDOC-CRM+CRMdig" MIMETYPE="application/rdf+xml"
+                    LABEL="CIDOC-CRM description of the object, the capture and its processing"/>
+      </mets:dmdSec>
+
+      <mets:amdSec ID="amd">
+        <xsl:call-template name="objects"/>
+        <xsl:call-template name="events"/>
+        <xsl:call-template name="agents"/>
+      </mets:amdSec>
+
+      <mets:fileSec>
+        <xsl:call-template name="file-group"><xsl:with-param name="use" select="'original'"/></xsl:call-template>
+        <xsl:call-template name="file-group"><xsl:with-param name="use" select="'export'"/></xsl:call-template>
+        <xsl:call-template name="file-group"><xsl:with-param name="use" select="'lp'"/></xsl:call-template>
+        <xsl:call-template name="file-group"><xsl:with-param name="use" select="'sidecar'"/></xsl:call-template>
+        <xsl:call-template name="file-group"><xsl:with-param name="use" select="'assembly'"/></xsl:call-template>
+        <xsl:call-template name="file-group"><xsl:with-param name="use" select="'result'"/></xsl:call-template>
+        <xsl:call-template name="file-group"><xsl:with-param name="use" select="'other'"/></xsl:call-template>
+      </mets:fileSec>
+
+      <mets:structMap TYPE="physical" LABEL="Package layout">
+        <mets:div TYPE="RTI capture" LABEL="{c:header/c:title}" DMDID="dmd-crm">
+          <xsl:call-template name="struct-div"><xsl:with-param name="use" select="'original'"/></xsl:call-template>
+          <xsl:call-template name="struct-div"><xsl:with-param name="use" select="'export'"/></xsl:call-template>
+          <xsl:call-template name="struct-div"><xsl:with-param name="use" select="'lp'"/></xsl:call-template>
+          <xsl:call-template name="struct-div"><xsl:with-param name="use" select="'sidecar'"/></xsl:call-template>
+          <xsl:call-template name="struct-div"><xsl:with-param name="use" select="'assembly'"/></xsl:call-template>
+          <xsl:call-template name="struct-div"><xsl:with-param name="use" select="'result'"/></xsl:call-template>
+          <xsl:call-template name="struct-div"><xsl:with-param name="use" select="'other'"/></xsl:call-template>
+        </mets:div>
+      </mets:structMap>
+    </mets:mets>
+  </xsl:template>
+
+  <!-- The payload files as (path, size, sha256, sha512) nodes: the payload list when given,
+       else the carrier's files (paths under data/). Each file's number is its position here. -->
+  <xsl:variable name="use-payload" select="count($payload) &gt; 0"/>
+
+  <!-- The carrier file record of a payload path ("data/" + carrier path). -->
+  <xsl:template name="role-of">
+    <xsl:param name="path"/>
+    <xsl:variable name="rec" select="$carrier/c:files/c:file[concat('data/', @path) = $path]"/>
+    <xsl:choose>
+      <xsl:when test="$rec"><xsl:value-of select="$rec/@role"/></xsl:when>
+      <xsl:otherwise>other</xsl:otherwise>
+    </xsl:choose>
+  </xsl:template>
+
+  <xsl:template name="file-group">
+    <xsl:param name="use"/>
+    <xsl:variable name="members">
+      <xsl:choose>
+        <xsl:when test="$use-payload">
+          <xsl:for-each select="$payload">
+            <xsl:variable name="role"><xsl:call-template name="role-of"><xsl:with-param name="path" select="@path"/></xsl:call-template></xsl:variable>
+            <xsl:if test="$role = $use">x</xsl:if>
+          </xsl:for-each>
+        </xsl:when>
+        <xsl:otherwise>
+          <xsl:if test="$carrier/c:files/c:file[@role = $use]">x</xsl:if>
+        </xsl:otherwise>
+      </xsl:choose>
+    </xsl:variable>
+    <xsl:if test="string($members) != ''">
+      <mets:fileGrp USE="{$use}">
+        <xsl:choose>
+          <xsl:when test="$use-payload">
+            <xsl:for-each select="$payload">
+              <xsl:variable name="role"><xsl:call-template name="role-of"><xsl:with-param name="path" select="@path"/></xsl:call-template></xsl:variable>
+              <xsl:if test="$role = $use">
+                <xsl:call-template name="mets-file">
+                  <xsl:with-param name="n" select="position()"/>
+                  <xsl:with-param name="path" select="@path"/>
+                  <xsl:with-param name="size" select="@size"/>
+                  <xsl:with-param name="sha256" select="@sha256"/>
+                </xsl:call-template>
+              </xsl:if>
+            </xsl:for-each>
+          </xsl:when>
+          <xsl:otherwise>
+            <xsl:for-each select="$carrier/c:files/c:file">
+              <xsl:if test="@role = $use">
+                <xsl:call-template name="mets-file">
+                  <xsl:with-param name="n" select="position()"/>
+                  <xsl:with-param name="path" select="concat('data/', @path)"/>
+                  <xsl:with-param name="size" select="@size"/>
+                  <xsl:with-param name="sha256" select="@sha256"/>
+                </xsl:call-template>
+              </xsl:if>
+            </xsl:for-each>
+          </xsl:otherwise>
+        </xsl:choose>
+      </mets:fileGrp>
+    </xsl:if>
+  </xsl:template>
+
+  <xsl:template name="mets-file">
+    <xsl:param name="n"/>
+    <xsl:param name="path"/>
+    <xsl:param name="size"/>
+    <xsl:param name="sha256"/>
+    <xsl:variable name="rec" select="$carrier/c:files/c:file[concat('data/', @path) = $path]"/>
+    <mets:file ID="file-{$n}" SIZE="{$size}" CHECKSUM="{$sha256}" CHECKSUMTYPE="SHA-256"
+               ADMID="object-{$n}">
+      <xsl:if test="$rec/@mediaType != ''">
+        <xsl:attribute name="MIMETYPE"><xsl:value-of select="$rec/@mediaType"/></xsl:attribute>
+      </xsl:if>
+      <xsl:if test="$rec/@createdBy">
+        <xsl:attribute name="CREATED"><xsl:value-of select="$carrier/c:data/c:result[@step = $rec/@createdBy]/@ended"/></xsl:attribute>
+      </xsl:if>
+      <mets:FLocat LOCTYPE="OTHER" OTHERLOCTYPE="BagIt payload path" xlink:href="{$path}"/>
+    </mets:file>
+  </xsl:template>
+
+  <xsl:template name="struct-div">
+    <xsl:param name="use"/>
+    <xsl:choose>
+      <xsl:when test="$use-payload">
+        <xsl:for-each select="$payload">
+          <xsl:variable name="role"><xsl:call-template name="role-of"><xsl:with-param name="path" select="@path"/></xsl:call-template></xsl:variable>
+          <xsl:if test="$role = $use">
+            <mets:div TYPE="{$use}" LABEL="{@path}"><mets:fptr FILEID="file-{position()}"/></mets:div>
+          </xsl:if>
+        </xsl:for-each>
+      </xsl:when>
+      <xsl:otherwise>
+        <xsl:for-each select="$carrier/c:files/c:file">
+          <xsl:if test="@role = $use">
+            <mets:div TYPE="{$use}" LABEL="data/{@path}"><mets:fptr FILEID="file-{position()}"/></mets:div>
+          </xsl:if>
+        </xsl:for-each>
+      </xsl:otherwise>
+    </xsl:choose>
+  </xsl:template>
+
+  <!-- PREMIS objects ==================================================================== -->
+  <xsl:template name="objects">
+    <xsl:choose>
+      <xsl:when test="$use-payload">
+        <xsl:for-each select="$payload">
+          <xsl:call-template name="premis-object">
+            <xsl:with-param name="n" select="position()"/>
+            <xsl:with-param name="path" select="@path"/>
+            <xsl:with-param name="size" select="@size"/>
+            <xsl:with-param name="sha256" select="@sha256"/>
+            <xsl:with-param name="sha512" select="@sha512"/>
+          </xsl:call-template>
+        </xsl:for-each>
+      </xsl:when>
+      <xsl:otherwise>
+        <xsl:for-each select="$carrier/c:files/c:file">
+          <xsl:call-template name="premis-object">
+            <xsl:with-param name="n" select="position()"/>
+            <xsl:with-param name="path" select="concat('data/', @path)"/>
+            <xsl:with-param name="size" select="@size"/>
+            <xsl:with-param name="sha256" select="@sha256"/>
+            <xsl:with-param name="sha512" select="''"/>
+          </xsl:call-template>
+        </xsl:for-each>
+      </xsl:otherwise>
+    </xsl:choose>
+  </xsl:template>
+
+  <xsl:template name="premis-object">
+    <xsl:param name="n"/>
+    <xsl:param name="path"/>
+    <xsl:param name="size"/>
+    <xsl:param name="sha256"/>
+    <xsl:param name="sha512"/>
+    <xsl:variable name="rec" select="$carrier/c:files/c:file[concat('data/', @path) = $path]"/>
+    <mets:techMD ID="object-{$n}">
+      <mets:mdWrap MDTYPE="PREMIS:OBJECT">
+        <mets:xmlData>
+          <premis:object xsi:type="premis:file" version="3.0">
+            <premis:objectIdentifier>
+              <premis:objectIdentifierType>BagIt payload path</premis:objectIdentifierType>
+              <premis:objectIdentifierValue><xsl:value-of select="$path"/></premis:objectIdentifierValue>
+            </premis:objectIdentifier>
+            <xsl:if test="$rec">
+              <premis:objectIdentifier>
+                <premis:objectIdentifierType>Surrogate carrier file id</premis:objectIdentifierType>
+                <premis:objectIdentifierValue><xsl:value-of select="$rec/@id"/></premis:objectIdentifierValue>
+              </premis:objectIdentifier>
+            </xsl:if>
+            <premis:objectCharacteristics>
+              <premis:compositionLevel>0</premis:compositionLevel>
+              <premis:fixity>
+                <premis:messageDigestAlgorithm>SHA-256</premis:messageDigestAlgorithm>
+                <premis:messageDigest><xsl:value-of select="$sha256"/></premis:messageDigest>
+                <premis:messageDigestOriginator><xsl:value-of select="$software-agent"/></premis:messageDigestOriginator>
+              </premis:fixity>
+              <xsl:if test="$sha512 != ''">
+                <premis:fixity>
+                  <premis:messageDigestAlgorithm>SHA-512</premis:messageDigestAlgorithm>
+                  <premis:messageDigest><xsl:value-of select="$sha512"/></premis:messageDigest>
+                  <premis:messageDigestOriginator><xsl:value-of select="$software-agent"/></premis:messageDigestOriginator>
+                </premis:fixity>
+              </xsl:if>
+              <premis:size><xsl:value-of select="$size"/></premis:size>
+              <xsl:call-template name="premis-format">
+                <xsl:with-param name="rec" select="$rec"/>
+                <xsl:with-param name="path" select="$path"/>
+              </xsl:call-template>
+              <xsl:call-template name="creating-application">
+                <xsl:with-param name="rec" select="$rec"/>
+                <xsl:with-param name="path" select="$path"/>
+              </xsl:call-template>
+            </premis:objectCharacteristics>
+            <premis:originalName><xsl:value-of select="substring-after($path, 'data/')"/></premis:originalName>
+            <xsl:for-each select="$rec/@pairedWith">
+              <xsl:variable name="other" select="$carrier/c:files/c:file[@id = current()]"/>
+              <premis:relationship>
+                <premis:relationshipType>structural</premis:relationshipType>
+                <premis:relationshipSubType>is sibling of (same shot)</premis:relationshipSubType>
+                <premis:relatedObjectIdentifier>
+                  <premis:relatedObjectIdentifierType>BagIt payload path</premis:relatedObjectIdentifierType>
+                  <premis:relatedObjectIdentifierValue><xsl:value-of select="concat('data/', $other/@path)"/></premis:relatedObjectIdentifierValue>
+                </premis:relatedObjectIdentifier>
+              </premis:relationship>
+            </xsl:for-each>
+            <xsl:for-each select="$rec/@createdBy">
+              <premis:linkingEventIdentifier>
+                <premis:linkingEventIdentifierType>Surrogate event</premis:linkingEventIdentifierType>
+                <premis:linkingEventIdentifierValue><xsl:value-of select="concat('event-', .)"/></premis:linkingEventIdentifierValue>
+              </premis:linkingEventIdentifier>
+            </xsl:for-each>
+            <xsl:if test="$rec/@role = 'original'">
+              <premis:linkingEventIdentifier>
+                <premis:linkingEventIdentifierType>Surrogate event</premis:linkingEventIdentifierType>
+                <premis:linkingEventIdentifierValue>event-capture</premis:linkingEventIdentifierValue>
+              </premis:linkingEventIdentifier>
+            </xsl:if>
+            <premis:linkingEventIdentifier>
+              <premis:linkingEventIdentifierType>Surrogate event</premis:linkingEventIdentifierType>
+              <premis:linkingEventIdentifierValue>event-message-digest</premis:linkingEventIdentifierValue>
+            </premis:linkingEventIdentifier>
+          </premis:object>
+        </mets:xmlData>
+      </mets:mdWrap>
+    </mets:techMD>
+  </xsl:template>
+
+  <!-- Format: the carrier's format name and PRONOM id; for files the carrier does not list,
+       by extension (PRONOM ids only where they are certain). -->
+  <xsl:template name="premis-format">
+    <xsl:param name="rec"/>
+    <xsl:param name="path"/>
+    <xsl:variable name="lower" select="translate($path, 'ABCDEFGHIJKLMNOPQRSTUVWXYZ', 'abcdefghijklmnopqrstuvwxyz')"/>
+    <premis:format>
+      <premis:formatDesignation>
+        <premis:formatName>
+          <xsl:choose>
+            <xsl:when test="$rec"><xsl:value-of select="$rec/@format"/></xsl:when>
+            <xsl:when test="substring($lower, string-length($lower) - 3) = '.xml'">XML</xsl:when>
+            <xsl:when test="substring($lower, string-length($lower) - 4) = '.html'">HTML</xsl:when>
+            <xsl:when test="substring($lower, string-length($lower) - 3) = '.png'">PNG</xsl:when>
+            <xsl:when test="substring($lower, string-length($lower) - 3) = '.jpg'">JPEG</xsl:when>
+            <xsl:when test="substring($lower, string-length($lower) - 3) = '.ptm'">PTM</xsl:when>
+            <xsl:when test="substring($lower, string-length($lower) - 3) = '.rti'">RTI</xsl:when>
+            <xsl:when test="substring($lower, string-length($lower) - 2) = '.lp'">LP</xsl:when>
+            <xsl:otherwise>unknown</xsl:otherwise>
+          </xsl:choose>
+        </premis:formatName>
+      </premis:formatDesignation>
+      <xsl:if test="$rec/@puid != ''">
+        <premis:formatRegistry>
+          <premis:formatRegistryName>PRONOM</premis:formatRegistryName>
+          <premis:formatRegistryKey><xsl:value-of select="$rec/@puid"/></premis:formatRegistryKey>
+          <premis:formatRegistryRole>specification</premis:formatRegistryRole>
+        </premis:formatRegistry>
+      </xsl:if>
+      <xsl:if test="$rec/@mediaType != ''">
+        <premis:formatNote><xsl:value-of select="concat('media type ', $rec/@mediaType)"/></premis:formatNote>
+      </xsl:if>
+    </premis:format>
+  </xsl:template>
+
+  <xsl:template name="creating-application">
+    <xsl:param name="rec"/>
+    <xsl:param name="path"/>
+    <xsl:choose>
+      <xsl:when test="$rec/@createdBy">
+        <xsl:variable name="step" select="$carrier/c:process/c:step[@id = $rec/@createdBy]"/>
+        <premis:creatingApplication>
+          <premis:creatingApplicationName><xsl:value-of select="concat('Surrogate ', $step/@component)"/></premis:creatingApplicationName>
+          <premis:creatingApplicationVersion><xsl:value-of select="concat($step/@version, ' (Surrogate ', $surrogate/@version, ')')"/></premis:creatingApplicationVersion>
+          <xsl:for-each select="$carrier/c:data/c:result[@step = $rec/@createdBy]/@ended">
+            <premis:dateCreatedByApplication><xsl:value-of select="."/></premis:dateCreatedByApplication>
+          </xsl:for-each>
+        </premis:creatingApplication>
+      </xsl:when>
+      <xsl:when test="$rec/c:camera[@make or @model]">
+        <premis:creatingApplication>
+          <premis:creatingApplicationName><xsl:value-of select="normalize-space(concat($rec/c:camera/@make, ' ', $rec/c:camera/@model))"/></premis:creatingApplicationName>
+          <xsl:if test="$rec/c:camera/@dateTimeOriginal != ''">
+            <premis:dateCreatedByApplication><xsl:call-template name="exif-date"><xsl:with-param name="d" select="$rec/c:camera/@dateTimeOriginal"/></xsl:call-template></premis:dateCreatedByApplication>
+          </xsl:if>
+        </premis:creatingApplication>
+      </xsl:when>
+      <xsl:when test="$path = 'data/assembly-files/carrier.xml'">
+        <premis:creatingApplication>
+          <premis:creatingApplicationName>Surrogate</premis:creatingApplicationName>
+          <premis:creatingApplicationVersion><xsl:value-of select="$surrogate/@version"/></premis:creatingApplicationVersion>
+          <premis:dateCreatedByApplication><xsl:value-of select="$carrier/c:header/c:modified"/></premis:dateCreatedByApplication>
+        </premis:creatingApplication>
+      </xsl:when>
+    </xsl:choose>
+  </xsl:template>
+
+  <!-- EXIF "YYYY:MM:DD HH:MM:SS" -> "YYYY-MM-DDTHH:MM:SS"; other forms unchanged. -->
+  <xsl:template name="exif-date">
+    <xsl:param name="d"/>
+    <xsl:choose>
+      <xsl:when test="string-length($d) &gt;= 19 and substring($d, 5, 1) = ':' and substring($d, 8, 1) = ':'">
+        <xsl:value-of select="concat(substring($d, 1, 4), '-', substring($d, 6, 2), '-', substring($d, 9, 2), 'T', substring($d, 12))"/>
+      </xsl:when>
+      <xsl:otherwise><xsl:value-of select="$d"/></xsl:otherwise>
+    </xsl:choose>
+  </xsl:template>
+
+  <!-- PREMIS events ===================================================================== -->
+  <xsl:template name="linking-agent">
+    <xsl:param name="type"/>
+    <xsl:param name="value"/>
+    <xsl:param name="role"/>
+    <premis:linkingAgentIdentifier>
+      <premis:linkingAgentIdentifierType><xsl:value-of select="$type"/></premis:linkingAgentIdentifierType>
+      <premis:linkingAgentIdentifierValue><xsl:value-of select="$value"/></premis:linkingAgentIdentifierValue>
+      <premis:linkingAgentRole><xsl:value-of select="$role"/></premis:linkingAgentRole>
+    </premis:linkingAgentIdentifier>
+  </xsl:template>
+
+  <xsl:template name="linking-object">
+    <xsl:param name="file"/>
+    <xsl:param name="role"/>
+    <premis:linkingObjectIdentifier>
+      <premis:linkingObjectIdentifierType>BagIt payload path</premis:linkingObjectIdentifierType>
+      <premis:linkingObjectIdentifierValue><xsl:value-of select="concat('data/', $file/@path)"/></premis:linkingObjectIdentifierValue>
+      <premis:linkingObjectRole><xsl:value-of select="$role"/></premis:linkingObjectRole>
+    </premis:linkingObjectIdentifier>
+  </xsl:template>
+
+  <xsl:template name="events">
+    <xsl:variable name="originals" select="c:files/c:file[@role = 'original']"/>
+    <!-- capture -->
+    <mets:digiprovMD ID="event-capture">
+      <mets:mdWrap MDTYPE="PREMIS:EVENT">
+        <mets:xmlData>
+          <premis:event version="3.0">
+            <premis:eventIdentifier>
+              <premis:eventIdentifierType>Surrogate event</premis:eventIdentifierType>
+              <premis:eventIdentifierValue>event-capture</premis:eventIdentifierValue>
+            </premis:eventIdentifier>
+            <premis:eventType>capture</premis:eventType>
+            <premis:eventDateTime>
+              <xsl:for-each select="$originals/c:camera/@dateTimeOriginal">
+                <xsl:sort select="."/>
+                <xsl:if test="position() = 1"><xsl:call-template name="exif-date"><xsl:with-param name="d" select="."/></xsl:call-template></xsl:if>
+              </xsl:for-each>
+              <xsl:if test="not($originals/c:camera/@dateTimeOriginal)"><xsl:value-of select="c:header/c:created"/></xsl:if>
+            </premis:eventDateTime>
+            <premis:eventDetailInformation>
+              <premis:eventDetail><xsl:value-of select="concat('Highlight-RTI capture of ', count($originals), ' images: ', c:header/c:title)"/></premis:eventDetail>
+            </premis:eventDetailInformation>
+            <premis:eventOutcomeInformation>
+              <premis:eventOutcome>success</premis:eventOutcome>
+            </premis:eventOutcomeInformation>
+            <xsl:for-each select="c:header/c:creator">
+              <xsl:call-template name="linking-agent">
+                <xsl:with-param name="type" select="'person'"/>
+                <xsl:with-param name="value" select="normalize-space(.)"/>
+                <xsl:with-param name="role" select="@role"/>
+              </xsl:call-template>
+            </xsl:for-each>
+            <xsl:for-each select="$originals/c:camera[count(. | key('camera', concat(@make, '|', @model, '|', @serial))[1]) = 1]">
+              <xsl:call-template name="linking-agent">
+                <xsl:with-param name="type" select="'camera'"/>
+                <xsl:with-param name="value" select="normalize-space(concat(@make, ' ', @model, ' ', @serial))"/>
+                <xsl:with-param name="role" select="'capture device'"/>
+              </xsl:call-template>
+            </xsl:for-each>
+            <xsl:for-each select="$originals">
+              <xsl:call-template name="linking-object">
+                <xsl:with-param name="file" select="."/>
+                <xsl:with-param name="role" select="'outcome'"/>
+              </xsl:call-template>
+            </xsl:for-each>
+          </premis:event>
+        </mets:xmlData>
+      </mets:mdWrap>
+    </mets:digiprovMD>
+
+    <!-- each pipeline step -->
+    <xsl:for-each select="c:process/c:step">
+      <xsl:variable name="step" select="."/>
+      <xsl:variable name="result" select="$carrier/c:data/c:result[@step = $step/@id]"/>
+      <mets:digiprovMD ID="event-{@id}">
+        <mets:mdWrap MDTYPE="PREMIS:EVENT">
+          <mets:xmlData>
+            <premis:event version="3.0">
+              <premis:eventIdentifier>
+                <premis:eventIdentifierType>Surrogate event</premis:eventIdentifierType>
+                <premis:eventIdentifierValue><xsl:value-of select="concat('event-', @id)"/></premis:eventIdentifierValue>
+              </premis:eventIdentifier>
+              <premis:eventType>
+                <xsl:choose>
+                  <xsl:when test="$result/c:output">creation</xsl:when>
+                  <xsl:otherwise>metadata extraction</xsl:otherwise>
+                </xsl:choose>
+              </premis:eventType>
+              <premis:eventDateTime>
+                <xsl:choose>
+                  <xsl:when test="$result"><xsl:value-of select="$result/@started"/></xsl:when>
+                  <xsl:otherwise><xsl:value-of select="$carrier/c:header/c:modified"/></xsl:otherwise>
+                </xsl:choose>
+              </premis:eventDateTime>
+              <premis:eventDetailInformation>
+                <premis:eventDetail>
+                  <xsl:value-of select="concat('Pipeline step ', @id, ': ', @component, ' ', @version)"/>
+                  <xsl:if test="@algorithm != ''"><xsl:value-of select="concat(' (', @algorithm, ')')"/></xsl:if>
+                  <xsl:if test="c:description != ''"><xsl:value-of select="concat(': ', normalize-space(c:description))"/></xsl:if>
+                  <xsl:if test="$result/@ended"><xsl:value-of select="concat('; ended ', $result/@ended)"/></xsl:if>
+                  <xsl:if test="c:param">
+                    <xsl:text>; parameters:</xsl:text>
+                    <xsl:for-each select="c:param"><xsl:value-of select="concat(' ', @name, '=', @value)"/></xsl:for-each>
+                  </xsl:if>
+                </premis:eventDetail>
+              </premis:eventDetailInformation>
+              <premis:eventOutcomeInformation>
+                <premis:eventOutcome>
+                  <xsl:choose>
+                    <xsl:when test="$result/@status = 'completed'">success</xsl:when>
+                    <xsl:when test="$result/@status = 'failed'">failure</xsl:when>
+                    <xsl:otherwise>not run</xsl:otherwise>
+                  </xsl:choose>
+                </premis:eventOutcome>
+                <xsl:for-each select="$result/c:value">
+                  <premis:eventOutcomeDetail>
+                    <premis:eventOutcomeDetailNote><xsl:value-of select="normalize-space(concat(@name, ' = ', @value, ' ', @unit))"/></premis:eventOutcomeDetailNote>
+                  </premis:eventOutcomeDetail>
+                </xsl:for-each>
+                <xsl:for-each select="$carrier/c:log/c:entry[@step = $step/@id][@level = 'warning' or @level = 'error']">
+                  <premis:eventOutcomeDetail>
+                    <premis:eventOutcomeDetailNote><xsl:value-of select="concat(@level, ': ', normalize-space(.))"/></premis:eventOutcomeDetailNote>
+                  </premis:eventOutcomeDetail>
+                </xsl:for-each>
+                <xsl:for-each select="c:intervention">
+                  <premis:eventOutcomeDetail>
+                    <premis:eventOutcomeDetailNote><xsl:value-of select="concat('intervention ', @kind, ' on ', @target, ' by ', @who, ' at ', @time, ': ', normalize-space(.))"/></premis:eventOutcomeDetailNote>
+                  </premis:eventOutcomeDetail>
+                </xsl:for-each>
+              </premis:eventOutcomeInformation>
+              <xsl:call-template name="linking-agent">
+                <xsl:with-param name="type" select="'software'"/>
+                <xsl:with-param name="value" select="concat('Surrogate ', @component, ' ', @version)"/>
+                <xsl:with-param name="role" select="'executing program'"/>
+              </xsl:call-template>
+              <xsl:for-each select="c:intervention">
+                <xsl:if test="not(preceding-sibling::c:intervention[normalize-space(@who) = normalize-space(current()/@who)])">
+                  <xsl:call-template name="linking-agent">
+                    <xsl:with-param name="type" select="'person'"/>
+                    <xsl:with-param name="value" select="normalize-space(@who)"/>
+                    <xsl:with-param name="role" select="'intervened'"/>
+                  </xsl:call-template>
+                </xsl:if>
+              </xsl:for-each>
+              <xsl:for-each select="$result/c:input">
+                <xsl:call-template name="linking-object">
+                  <xsl:with-param name="file" select="$carrier/c:files/c:file[@id = current()/@file]"/>
+                  <xsl:with-param name="role" select="'source'"/>
+                </xsl:call-template>
+              </xsl:for-each>
+              <xsl:for-each select="$result/c:output">
+                <xsl:call-template name="linking-object">
+                  <xsl:with-param name="file" select="$carrier/c:files/c:file[@id = current()/@file]"/>
+                  <xsl:with-param name="role" select="'outcome'"/>
+                </xsl:call-template>
+              </xsl:for-each>
+            </premis:event>
+          </mets:xmlData>
+        </mets:mdWrap>
+      </mets:digiprovMD>
+    </xsl:for-each>
+
+    <!-- message digest calculation and packaging -->
+    <xsl:call-template name="package-event">
+      <xsl:with-param name="id" select="'event-message-digest'"/>
+      <xsl:with-param name="type" select="'message digest calculation'"/>
+      <xsl:with-param name="detail" select="'SHA-256 and SHA-512 of every payload and tag file, computed in one read while packing (BagIt manifests)'"/>
+    </xsl:call-template>
+    <xsl:call-template name="package-event">
+      <xsl:with-param name="id" select="'event-packaging'"/>
+      <xsl:with-param name="type" select="'information package creation'"/>
+      <xsl:with-param name="detail" select="concat('BagIt 1.0 package ', $objid, ' written; metadata derived from the carrier by carrier-to-mets.xsl and carrier-to-crm.xsl')"/>
+    </xsl:call-template>
+  </xsl:template>
+
+  <xsl:template name="package-event">
+    <xsl:param name="id"/>
+    <xsl:param name="type"/>
+    <xsl:param name="detail"/>
+    <mets:digiprovMD ID="{$id}">
+      <mets:mdWrap MDTYPE="PREMIS:EVENT">
+        <mets:xmlData>
+          <premis:event version="3.0">
+            <premis:eventIdentifier>
+              <premis:eventIdentifierType>Surrogate event</premis:eventIdentifierType>
+              <premis:eventIdentifierValue><xsl:value-of select="$id"/></premis:eventIdentifierValue>
+            </premis:eventIdentifier>
+            <premis:eventType><xsl:value-of select="$type"/></premis:eventType>
+            <premis:eventDateTime><xsl:value-of select="$pack-time"/></premis:eventDateTime>
+            <premis:eventDetailInformation>
+              <premis:eventDetail><xsl:value-of select="$detail"/></premis:eventDetail>
+            </premis:eventDetailInformation>
+            <premis:eventOutcomeInformation>
+              <premis:eventOutcome>success</premis:eventOutcome>
+            </premis:eventOutcomeInformation>
+            <xsl:call-template name="linking-agent">
+              <xsl:with-param name="type" select="'software'"/>
+              <xsl:with-param name="value" select="$software-agent"/>
+              <xsl:with-param name="role" select="'executing program'"/>
+            </xsl:call-template>
+          </premis:event>
+        </mets:xmlData>
+      </mets:mdWrap>
+    </mets:digiprovMD>
+  </xsl:template>
+
+  <!-- PREMIS agents ===================================================================== -->
+  <xsl:template name="agent">
+    <xsl:param name="id"/>
+    <xsl:param name="type"/>
+    <xsl:param name="value"/>
+    <xsl:param name="name"/>
+    <xsl:param name="agent-type"/>
+    <xsl:param name="version" select="''"/>
+    <xsl:param name="note" select="''"/>
+    <mets:digiprovMD ID="{$id}">
+      <mets:mdWrap MDTYPE="PREMIS:AGENT">
+        <mets:xmlData>
+          <premis:agent version="3.0">
+            <premis:agentIdentifier>
+              <premis:agentIdentifierType><xsl:value-of select="$type"/></premis:agentIdentifierType>
+              <premis:agentIdentifierValue><xsl:value-of select="$value"/></premis:agentIdentifierValue>
+            </premis:agentIdentifier>
+            <premis:agentName><xsl:value-of select="$name"/></premis:agentName>
+            <premis:agentType><xsl:value-of select="$agent-type"/></premis:agentType>
+            <xsl:if test="$version != ''"><premis:agentVersion><xsl:value-of select="$version"/></premis:agentVersion></xsl:if>
+            <xsl:if test="$note != ''"><premis:agentNote><xsl:value-of select="$note"/></premis:agentNote></xsl:if>
+          </premis:agent>
+        </mets:xmlData>
+      </mets:mdWrap>
+    </mets:digiprovMD>
+  </xsl:template>
+
+  <xsl:template name="agents">
+    <xsl:call-template name="agent">
+      <xsl:with-param name="id" select="'agent-packer'"/>
+      <xsl:with-param name="type" select="'software'"/>
+      <xsl:with-param name="value" select="$software-agent"/>
+      <xsl:with-param name="name" select="$software-agent"/>
+      <xsl:with-param name="agent-type" select="'software'"/>
+      <xsl:with-param name="note" select="'wrote the BagIt package and its manifests'"/>
+    </xsl:call-template>
+    <xsl:for-each select="c:header/c:software">
+      <xsl:call-template name="agent">
+        <xsl:with-param name="id" select="concat('agent-software-', position())"/>
+        <xsl:with-param name="type" select="'software'"/>
+        <xsl:with-param name="value" select="concat(@name, ' ', @version)"/>
+        <xsl:with-param name="name" select="@name"/>
+        <xsl:with-param name="agent-type" select="'software'"/>
+        <xsl:with-param name="version" select="@version"/>
+        <xsl:with-param name="note" select="@role"/>
+      </xsl:call-template>
+    </xsl:for-each>
+    <xsl:for-each select="c:process/c:step">
+      <xsl:call-template name="agent">
+        <xsl:with-param name="id" select="concat('agent-', @id)"/>
+        <xsl:with-param name="type" select="'software'"/>
+        <xsl:with-param name="value" select="concat('Surrogate ', @component, ' ', @version)"/>
+        <xsl:with-param name="name" select="concat('Surrogate ', @component)"/>
+        <xsl:with-param name="agent-type" select="'software'"/>
+        <xsl:with-param name="version" select="@version"/>
+        <xsl:with-param name="note" select="concat('pipeline stage of Surrogate ', $surrogate/@version, ' run on ', $carrier/c:header/c:machine/@hostname, ' (', $carrier/c:header/c:machine/@os, ', ', $carrier/c:header/c:machine/@architecture, ')')"/>
+      </xsl:call-template>
+    </xsl:for-each>
+    <xsl:for-each select="(c:header/c:creator | c:process/c:step/c:intervention/@who | c:log/c:entry/@who)[count(. | key('person', normalize-space(.))[1]) = 1][normalize-space(.) != '']">
+      <xsl:call-template name="agent">
+        <xsl:with-param name="id" select="concat('agent-person-', position())"/>
+        <xsl:with-param name="type" select="'person'"/>
+        <xsl:with-param name="value" select="normalize-space(.)"/>
+        <xsl:with-param name="name" select="normalize-space(.)"/>
+        <xsl:with-param name="agent-type" select="'person'"/>
+        <xsl:with-param name="note" select="self::c:creator/@role"/>
+      </xsl:call-template>
+    </xsl:for-each>
+    <xsl:for-each select="c:files/c:file[@role = 'original']/c:camera[count(. | key('camera', concat(@make, '|', @model, '|', @serial))[1]) = 1]">
+      <xsl:call-template name="agent">
+        <xsl:with-param name="id" select="concat('agent-camera-', position())"/>
+        <xsl:with-param name="type" select="'camera'"/>
+        <xsl:with-param name="value" select="normalize-space(concat(@make, ' ', @model, ' ', @serial))"/>
+        <xsl:with-param name="name" select="normalize-space(concat(@make, ' ', @model))"/>
+        <xsl:with-param name="agent-type" select="'hardware'"/>
+        <xsl:with-param name="note" select="normalize-space(concat('serial ', @serial, '; lens ', @lens))"/>
+      </xsl:call-template>
+    </xsl:for-each>
+  </xsl:template>
+
+</xsl:stylesheet>
