@@ -1,0 +1,26 @@
+// libFuzzer target: bagit.txt, bag-info.txt and manifest parsing, and path checks.
+#include <cstdint>
+#include <string>
+
+#include "verify/bag_text.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  using namespace surrogate::verify;
+  const std::string text(reinterpret_cast<const char*>(data), size);
+  parseDeclaration(text);
+  const BagInfo info = parseBagInfo(text);
+  for (const auto& [label, value] : info.fields) parseOxum(value);
+  for (const ManifestEntry& e : parseManifest(text, "sha256", 64).entries) {
+    // Every accepted path must stay inside the bag.
+    std::string why;
+    const std::string& p = e.path;
+    const bool escapes = p == ".." || p.compare(0, 3, "../") == 0 ||
+                         p.find("/../") != std::string::npos ||
+                         (p.size() >= 3 && p.compare(p.size() - 3, 3, "/..") == 0);
+    if (!safeBagPath(p, &why) || escapes || p[0] == '/') __builtin_trap();
+  }
+  std::string why;
+  safeBagPath(percentDecode(text), &why);
+  caseFoldKey(text);
+  return 0;
+}

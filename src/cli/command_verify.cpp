@@ -1,0 +1,119 @@
+// surrogate verify PACKAGE [--reexecute] [--json]
+#include <iostream>
+
+#include "cli/args.h"
+#include "cli/commands.h"
+#include "cli/progress.h"
+#include "core/error.h"
+#include "core/json.h"
+#include "verify/verify.h"
+
+namespace surrogate::cli {
+
+namespace {
+
+const char* verdict(int code) {
+  switch (code) {
+    case 0: return "sound";
+    case 2: return "invalid package";
+    case 3: return "fixity failure";
+    case 4: return "not reproduced";
+    default: return "error";
+  }
+}
+
+void printJson(const verify::Report& report) {
+  JsonWriter j;
+  j.beginObject().key("package").value(report.package).key("kind").value(report.kind)
+      .key("sound").value(report.sound()).key("exitCode").value(report.exitCode())
+      .key("verdict").value(verdict(report.exitCode()))
+      .key("reexecuted").value(report.reexecuted);
+  j.key("softwareDifferences").beginArray();
+  for (const std::string& s : report.softwareDifferences) j.value(s);
+  j.endArray().key("checks").beginArray();
+  for (const verify::Check& c : report.checks) {
+    j.beginObject().key("name").value(c.name).key("passed").value(c.passed)
+        .key("severity").value(static_cast<int>(c.severity)).key("what").value(c.what);
+    j.key("where").beginArray();
+    for (const std::string& w : c.where) j.value(w);
+    j.endArray().endObject();
+  }
+  j.endArray().endObject();
+  std::cout << j.str() << "\n";
+}
+
+void printText(const verify::Report& report) {
+  std::cout << "Verifying " << report.package
+            << (report.kind.empty() ? "" : " (" + report.kind + ")") << "\n";
+  std::size_t width = 0;
+  for (const verify::Check& c : report.checks) width = std::max(width, c.name.size());
+  for (const verify::Check& c : report.checks) {
+    std::string name = c.name;
+    name.resize(width, ' ');
+    std::cout << (c.passed ? "  ok    " : "  FAIL  ") << name << "  " << c.what << "\n";
+    for (const std::string& w : c.where) std::cout << "          " << w << "\n";
+  }
+  if (!report.softwareDifferences.empty()) {
+    std::cout << "Software versions differ from the carrier's:\n";
+    for (const std::string& s : report.softwareDifferences) std::cout << "  " << s << "\n";
+  }
+  const int code = report.exitCode();
+  if (code == 0)
+    std::cout << "SOUND: all " << report.checks.size() << " checks passed"
+              << (report.reexecuted ? ", including re-execution" : "") << ".\n";
+  else
+    std::cout << "NOT SOUND (" << verdict(code) << ", exit " << code << "): "
+              << report.failures() << " of " << report.checks.size() << " checks failed.\n";
+}
+
+}  // namespace
+
+int runCommandVerify(int argc, char** argv) {
+  const std::vector<OptionSpec> specs = {
+      {"reexecute", false, false,
+       "also run the recorded steps again on the bagged originals and compare the results"},
+      {"tolerance", true, false,
+       "relative tolerance for recorded numbers when re-executing (default 0: exactly equal)", "REL"},
+      {"threads", true, false, "threads for re-execution (default: all cores)", "N"},
+      {"json", false, false, "print the report as JSON"},
+      {"quiet", false, false, "no progress bar"},
+  };
+  Args args(argc, argv, 1, specs);
+  if (args.helpRequested()) {
+    std::cout << usageHeader(
+                     "surrogate verify PACKAGE [--reexecute] [options]",
+                     "Check that an archival package (a bag directory, .tar or .zip) is sound: "
+                     "BagIt fixity and completeness, the carrier against its schema and the "
+                     "files it lists, METS/PREMIS and CIDOC-CRM metadata against what the "
+                     "bundled stylesheets derive from the carrier; with --reexecute, the "
+                     "recorded steps are run again on the bagged originals in a temporary "
+                     "folder ($TMPDIR) and every recorded result is compared. Archives are "
+                     "read without extracting; unsafe entries (.., absolute paths, links, "
+                     "devices, duplicates, decompression bombs) refuse the package.\n\n"
+                     "exit codes: 0 sound; 1 the package cannot be read (missing file); "
+                     "2 invalid or refused package, or bad usage; 3 fixity failure (a file "
+                     "changed, is missing or unlisted, or the archive is truncated); "
+                     "4 re-execution did not reproduce the recorded results; 5 internal error")
+              << Args::describe(specs);
+    return 0;
+  }
+  if (args.positional().size() != 1)
+    throw Error(ErrorKind::Usage, "", "command line",
+                "give exactly one package: surrogate verify PACKAGE [--reexecute] (see --help)");
+  verify::VerifyOptions options;
+  options.reexecute = args.has("reexecute");
+  options.tolerance = args.doubleValue("tolerance", 0.0);
+  if (!(options.tolerance >= 0 && options.tolerance < 1))
+    throw Error(ErrorKind::Usage, "--tolerance", "command line",
+                "give a relative tolerance between 0 and 1, e.g. 1e-9");
+  options.threads = args.intValue("threads", 0);
+  ProgressBar bar(args.has("quiet") || args.has("json"));
+  options.progress = [&bar](const std::string& label, double f) { bar.update(label, f); };
+  const verify::Report report = verify::verifyPackage(args.positional()[0], options);
+  bar.finish();
+  if (args.has("json")) printJson(report);
+  else printText(report);
+  return report.exitCode();
+}
+
+}  // namespace surrogate::cli

@@ -1,0 +1,314 @@
+#include "verify/bag_text.h"
+
+#include <algorithm>
+#include <cctype>
+#include <set>
+
+#include <unicode/ucasemap.h>
+#include <unicode/unorm2.h>
+#include <unicode/ustring.h>
+
+namespace surrogate::verify {
+
+namespace {
+
+bool validUtf8(const std::string& s) {
+  std::size_t i = 0;
+  while (i < s.size()) {
+    const unsigned char c = static_cast<unsigned char>(s[i]);
+    int extra = 0;
+    unsigned int code = 0;
+    if (c < 0x80) { ++i; continue; }
+    if ((c & 0xE0) == 0xC0) { extra = 1; code = c & 0x1F; }
+    else if ((c & 0xF0) == 0xE0) { extra = 2; code = c & 0x0F; }
+    else if ((c & 0xF8) == 0xF0) { extra = 3; code = c & 0x07; }
+    else return false;
+    if (i + extra >= s.size()) return false;
+    for (int k = 1; k <= extra; ++k) {
+      const unsigned char d = static_cast<unsigned char>(s[i + k]);
+      if ((d & 0xC0) != 0x80) return false;
+      code = (code << 6) | (d & 0x3F);
+    }
+    if ((extra == 1 && code < 0x80) || (extra == 2 && code < 0x800) ||
+        (extra == 3 && (code < 0x10000 || code > 0x10FFFF)) || (code >= 0xD800 && code <= 0xDFFF))
+      return false;
+    i += extra + 1;
+  }
+  return true;
+}
+
+std::string trim(const std::string& s) {
+  std::size_t b = 0, e = s.size();
+  while (b < e && (s[b] == ' ' || s[b] == '\t')) ++b;
+  while (e > b && (s[e - 1] == ' ' || s[e - 1] == '\t')) --e;
+  return s.substr(b, e - b);
+}
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+}  // namespace
+
+std::optional<std::string> safeBagPath(const std::string& raw, std::string* why,
+                                       std::size_t maxLength) {
+  auto fail = [&](const std::string& reason) -> std::optional<std::string> {
+    if (why) *why = reason;
+    return std::nullopt;
+  };
+  if (raw.empty()) return fail("the path is empty");
+  if (raw.size() > maxLength)
+    return fail("the path is longer than " + std::to_string(maxLength) + " bytes");
+  for (char c : raw) {
+    const unsigned char u = static_cast<unsigned char>(c);
+    if (u < 0x20 || u == 0x7F) return fail("the path contains a control character");
+    if (c == '\\') return fail("the path contains a backslash (a Windows path)");
+  }
+  if (!validUtf8(raw)) return fail("the path is not valid UTF-8");
+  if (raw[0] == '/') return fail("the path is absolute");
+  if (raw[0] == '~') return fail("the path starts with '~' (a home directory)");
+  if (raw.size() >= 2 && std::isalpha(static_cast<unsigned char>(raw[0])) && raw[1] == ':')
+    return fail("the path starts with a drive letter");
+  std::string path = raw;
+  while (path.size() >= 2 && path.compare(0, 2, "./") == 0) path.erase(0, 2);
+  if (path.empty()) return fail("the path names the bag itself");
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t slash = path.find('/', start);
+    const std::string segment =
+        path.substr(start, slash == std::string::npos ? std::string::npos : slash - start);
+    if (segment == "..") return fail("the path contains \"..\" (it would leave the bag)");
+    if (segment == ".") return fail("the path contains a \".\" segment");
+    if (segment.empty()) return fail("the path contains an empty segment (\"//\")");
+    if (slash == std::string::npos) break;
+    start = slash + 1;
+  }
+  return path;
+}
+
+std::string percentDecode(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (text[i] == '%' && i + 2 < text.size()) {
+      const std::string code = lower(text.substr(i + 1, 2));
+      if (code == "0d") { out += '\r'; i += 2; continue; }
+      if (code == "0a") { out += '\n'; i += 2; continue; }
+      if (code == "25") { out += '%'; i += 2; continue; }
+    }
+    out += text[i];
+  }
+  return out;
+}
+
+std::string caseFoldKey(const std::string& path) {
+  // NFC then Unicode case folding (ICU): "Ä.DNG" (precomposed), "A\u0308.dng" (decomposed,
+  // as macOS writes it) and "ä.dng" share one key. Text that is not UTF-8 folds ASCII only.
+  UErrorCode status = U_ZERO_ERROR;
+  const UNormalizer2* nfc = unorm2_getNFCInstance(&status);
+  if (U_FAILURE(status) || path.size() > (1u << 20)) return lower(path);
+  int32_t length = 0;
+  u_strFromUTF8(nullptr, 0, &length, path.data(), static_cast<int32_t>(path.size()), &status);
+  if (status != U_BUFFER_OVERFLOW_ERROR && U_FAILURE(status)) return lower(path);
+  status = U_ZERO_ERROR;
+  std::u16string utf16(static_cast<std::size_t>(length), u'\0');
+  u_strFromUTF8(reinterpret_cast<UChar*>(utf16.data()), length, nullptr, path.data(),
+                static_cast<int32_t>(path.size()), &status);
+  if (U_FAILURE(status)) return lower(path);
+  std::u16string normal(utf16.size() * 4 + 16, u'\0');
+  const int32_t n = unorm2_normalize(nfc, reinterpret_cast<const UChar*>(utf16.data()), length,
+                                     reinterpret_cast<UChar*>(normal.data()),
+                                     static_cast<int32_t>(normal.size()), &status);
+  if (U_FAILURE(status)) return lower(path);
+  std::u16string folded(static_cast<std::size_t>(n) * 3 + 16, u'\0');
+  const int32_t f = u_strFoldCase(reinterpret_cast<UChar*>(folded.data()),
+                                  static_cast<int32_t>(folded.size()),
+                                  reinterpret_cast<const UChar*>(normal.data()), n,
+                                  U_FOLD_CASE_DEFAULT, &status);
+  if (U_FAILURE(status)) return lower(path);
+  std::string out(static_cast<std::size_t>(f) * 3 + 16, '\0');
+  int32_t written = 0;
+  u_strToUTF8(out.data(), static_cast<int32_t>(out.size()), &written,
+              reinterpret_cast<const UChar*>(folded.data()), f, &status);
+  if (U_FAILURE(status)) return lower(path);
+  out.resize(static_cast<std::size_t>(written));
+  return out;
+}
+
+std::vector<std::string> splitLines(const std::string& text) {
+  std::vector<std::string> lines;
+  std::string current;
+  bool pending = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '\n' || c == '\r') {
+      lines.push_back(current);
+      current.clear();
+      pending = false;
+      if (c == '\r' && i + 1 < text.size() && text[i + 1] == '\n') ++i;
+    } else {
+      current += c;
+      pending = true;
+    }
+  }
+  if (pending) lines.push_back(current);
+  return lines;
+}
+
+Declaration parseDeclaration(const std::string& text) {
+  Declaration d;
+  if (text.size() >= 3 && text.compare(0, 3, "\xEF\xBB\xBF") == 0)
+    d.problems.push_back("starts with a byte-order mark, which RFC 8493 forbids");
+  const std::vector<std::string> lines = splitLines(text);
+  if (lines.size() != 2) {
+    d.problems.push_back("must have exactly two lines (BagIt-Version and "
+                         "Tag-File-Character-Encoding), has " + std::to_string(lines.size()));
+  }
+  if (!lines.empty()) {
+    const std::string prefix = "BagIt-Version: ";
+    if (lines[0].compare(0, prefix.size(), prefix) != 0)
+      d.problems.push_back("line 1 must be \"BagIt-Version: 1.0\"");
+    else
+      d.version = lines[0].substr(prefix.size());
+    if (!d.version.empty() && d.version != "1.0" && d.version != "0.97")
+      d.problems.push_back("BagIt-Version " + d.version + " is not 1.0 (or 0.97)");
+  }
+  if (lines.size() >= 2) {
+    const std::string prefix = "Tag-File-Character-Encoding: ";
+    if (lines[1].compare(0, prefix.size(), prefix) != 0)
+      d.problems.push_back("line 2 must be \"Tag-File-Character-Encoding: UTF-8\"");
+    else
+      d.encoding = lines[1].substr(prefix.size());
+    if (!d.encoding.empty() && lower(d.encoding) != "utf-8")
+      d.problems.push_back("tag files are encoded in " + d.encoding +
+                           "; this verifier reads UTF-8 tag files only");
+  }
+  return d;
+}
+
+std::vector<std::string> BagInfo::values(const std::string& label) const {
+  std::vector<std::string> out;
+  for (const auto& [k, v] : fields)
+    if (lower(k) == lower(label)) out.push_back(v);
+  return out;
+}
+
+BagInfo parseBagInfo(const std::string& text) {
+  BagInfo info;
+  if (!validUtf8(text)) info.problems.push_back("is not valid UTF-8");
+  if (text.size() >= 3 && text.compare(0, 3, "\xEF\xBB\xBF") == 0)
+    info.problems.push_back("starts with a byte-order mark");
+  int number = 0;
+  for (const std::string& line : splitLines(text)) {
+    ++number;
+    if (line.empty()) continue;
+    if (line[0] == ' ' || line[0] == '\t') {
+      if (info.fields.empty()) {
+        info.problems.push_back("line " + std::to_string(number) +
+                                ": a continuation line with no label before it");
+        continue;
+      }
+      info.fields.back().second += " " + trim(line);
+      continue;
+    }
+    const std::size_t colon = line.find(':');
+    if (colon == std::string::npos || colon == 0) {
+      info.problems.push_back("line " + std::to_string(number) + ": not \"Label: value\"");
+      continue;
+    }
+    const std::string label = line.substr(0, colon);
+    if (trim(label) != label) {
+      info.problems.push_back("line " + std::to_string(number) + ": whitespace around the "
+                              "label \"" + trim(label) + "\"");
+    }
+    info.fields.emplace_back(trim(label), trim(line.substr(colon + 1)));
+  }
+  for (const char* once : {"Payload-Oxum", "Bagging-Date", "Bag-Size", "Bag-Count"}) {
+    if (info.values(once).size() > 1)
+      info.problems.push_back(std::string(once) + " is repeated; RFC 8493 allows it once");
+  }
+  return info;
+}
+
+std::optional<std::pair<std::uint64_t, std::uint64_t>> parseOxum(const std::string& value) {
+  const std::size_t dot = value.find('.');
+  if (dot == std::string::npos || dot == 0 || dot + 1 >= value.size()) return std::nullopt;
+  auto number = [](const std::string& s) -> std::optional<std::uint64_t> {
+    if (s.empty() || s.size() > 19) return std::nullopt;
+    std::uint64_t n = 0;
+    for (char c : s) {
+      if (c < '0' || c > '9') return std::nullopt;
+      n = n * 10 + static_cast<std::uint64_t>(c - '0');
+    }
+    return n;
+  };
+  const auto octets = number(value.substr(0, dot));
+  const auto streams = number(value.substr(dot + 1));
+  if (!octets || !streams) return std::nullopt;
+  return std::make_pair(*octets, *streams);
+}
+
+Manifest parseManifest(const std::string& text, const std::string& algorithm,
+                       std::size_t hexLength) {
+  Manifest m;
+  m.algorithm = algorithm;
+  if (!validUtf8(text)) m.problems.push_back("is not valid UTF-8");
+  std::set<std::string> seen;
+  int number = 0;
+  for (const std::string& line : splitLines(text)) {
+    ++number;
+    const std::string where = "line " + std::to_string(number) + ": ";
+    if (trim(line).empty()) continue;
+    std::size_t gap = 0;
+    while (gap < line.size() && line[gap] != ' ' && line[gap] != '\t') ++gap;
+    std::size_t pathStart = gap;
+    while (pathStart < line.size() && (line[pathStart] == ' ' || line[pathStart] == '\t'))
+      ++pathStart;
+    if (gap == line.size() || pathStart == line.size()) {
+      m.problems.push_back(where + "not \"<checksum> <path>\"");
+      continue;
+    }
+    std::string checksum = lower(line.substr(0, gap));
+    const bool hex = std::all_of(checksum.begin(), checksum.end(), [](char c) {
+      return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f');
+    });
+    if (!hex || (hexLength != 0 && checksum.size() != hexLength)) {
+      m.problems.push_back(where + "\"" + checksum.substr(0, 140) + "\" is not a " +
+                           algorithm + " checksum");
+      continue;
+    }
+    std::string why;
+    const std::string decoded = percentDecode(line.substr(pathStart));
+    const auto path = safeBagPath(decoded, &why);
+    if (!path) {
+      m.problems.push_back(where + "\"" + decoded.substr(0, 200) + "\": " + why);
+      continue;
+    }
+    if (!seen.insert(*path).second) {
+      m.problems.push_back(where + *path + " is listed twice (invalid in BagIt 1.0)");
+      continue;
+    }
+    m.entries.push_back({checksum, *path, number});
+  }
+  return m;
+}
+
+std::optional<std::pair<std::string, std::string>> manifestName(const std::string& path) {
+  for (const std::string kind : {"tagmanifest", "manifest"}) {
+    const std::string prefix = kind + "-";
+    if (path.size() > prefix.size() + 4 && path.compare(0, prefix.size(), prefix) == 0 &&
+        path.compare(path.size() - 4, 4, ".txt") == 0 && path.find('/') == std::string::npos) {
+      return std::make_pair(kind, path.substr(prefix.size(), path.size() - prefix.size() - 4));
+    }
+  }
+  return std::nullopt;
+}
+
+std::size_t digestHexLength(const std::string& algorithm) {
+  if (algorithm == "sha256") return 64;
+  if (algorithm == "sha512") return 128;
+  return 0;
+}
+
+}  // namespace surrogate::verify

@@ -1,0 +1,80 @@
+// The text formats of a BagIt bag (RFC 8493), parsed from untrusted bytes with no trust in
+// any path: bagit.txt, bag-info.txt and manifest lines, and the rules for paths inside a bag.
+//
+//   std::string why;
+//   auto path = safeBagPath("data/a%25b.dng", &why);        // "data/a%b.dng" once decoded
+//   auto lines = parseManifest(text, "manifest-sha256.txt"); // entries + problems, no throw
+//
+// These functions never throw on bad input: they return what was wrong, so the verifier can
+// report each problem as a failed check. They are the fuzzing targets (fuzz/).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace surrogate::verify {
+
+// A path inside a bag or archive, checked: relative, '/' separated, no "..", no "." or empty
+// segments (a leading "./" is tolerated and removed), no backslash, drive letter, "~", control
+// characters, or invalid UTF-8, at most `maxLength` bytes. Returns the normalised path, or
+// nullopt with the reason in `why`.
+std::optional<std::string> safeBagPath(const std::string& raw, std::string* why,
+                                       std::size_t maxLength = 1024);
+
+// Decodes the manifest escapes %0D, %0A and %25 (case-insensitive hex); any other '%' is kept
+// as it is (RFC 8493 section 2.1.3).
+std::string percentDecode(const std::string& text);
+
+// The key two names share when they would collide on a case-insensitive or normalising file
+// system (Windows, macOS): Unicode NFC, then case folding.
+std::string caseFoldKey(const std::string& path);
+
+// Splits text into lines at LF, CRLF or CR.
+std::vector<std::string> splitLines(const std::string& text);
+
+// bagit.txt: exactly "BagIt-Version: 1.0" (or 0.97) and "Tag-File-Character-Encoding: UTF-8".
+struct Declaration {
+  std::string version, encoding;
+  std::vector<std::string> problems;  // empty when valid
+};
+Declaration parseDeclaration(const std::string& text);
+
+// bag-info.txt: "Label: value" lines, continuation lines start with a space or tab.
+struct BagInfo {
+  std::vector<std::pair<std::string, std::string>> fields;  // in order, labels as written
+  std::vector<std::string> problems;
+  // Values of a label (case-insensitive).
+  std::vector<std::string> values(const std::string& label) const;
+};
+BagInfo parseBagInfo(const std::string& text);
+
+// Payload-Oxum "<octets>.<streams>".
+std::optional<std::pair<std::uint64_t, std::uint64_t>> parseOxum(const std::string& value);
+
+// One manifest: checksum + path per line; paths decoded and checked with safeBagPath.
+struct ManifestEntry {
+  std::string checksum;  // lower-case hex
+  std::string path;      // decoded, normalised
+  int line = 0;
+};
+struct Manifest {
+  std::string algorithm;  // "sha256", from the file name
+  std::vector<ManifestEntry> entries;
+  std::vector<std::string> problems;  // "line 3: ..." for malformed lines, duplicates, bad paths
+};
+// `hexLength` is the expected digest length in hex characters (64 for sha256).
+Manifest parseManifest(const std::string& text, const std::string& algorithm,
+                       std::size_t hexLength);
+
+// "manifest-sha256.txt" -> {"manifest", "sha256"}; "tagmanifest-sha512.txt" -> {"tagmanifest",
+// "sha512"}; nullopt for other names.
+std::optional<std::pair<std::string, std::string>> manifestName(const std::string& path);
+
+// Hex digest length of an algorithm this verifier computes (sha256: 64, sha512: 128), 0 if it
+// does not compute it.
+std::size_t digestHexLength(const std::string& algorithm);
+
+}  // namespace surrogate::verify

@@ -1,0 +1,189 @@
+#include <algorithm>
+#include <functional>
+#include <map>
+
+#include "carrier/xml.h"
+#include "core/error.h"
+#include "verify/bag_text.h"
+#include "verify/checks.h"
+#ifdef SURROGATE_HAVE_MAPPING
+#include "mapping/mapping.h"
+#endif
+
+namespace surrogate::verify::internal {
+
+namespace {
+
+const std::string* contentOf(const Inventory& inv, const std::string& path) {
+  const auto it = inv.files.find(path);
+  if (it == inv.files.end() || !it->second.content) return nullptr;
+  return &*it->second.content;
+}
+
+// The first difference between two texts, as "line N: expected ... found ...".
+std::string firstDifference(const std::string& expected, const std::string& found) {
+  const std::vector<std::string> a = splitLines(expected), b = splitLines(found);
+  for (std::size_t i = 0; i < std::max(a.size(), b.size()); ++i) {
+    const std::string x = i < a.size() ? a[i] : "(end of file)";
+    const std::string y = i < b.size() ? b[i] : "(end of file)";
+    if (x != y)
+      return "line " + std::to_string(i + 1) + ": derived \"" + x.substr(0, 160) +
+             "\", the bag has \"" + y.substr(0, 160) + "\"";
+  }
+  return "the texts differ in line endings";
+}
+
+}  // namespace
+
+std::optional<carrier::Carrier> checkCarrier(const Inventory& inv, std::vector<Check>& checks) {
+  std::optional<carrier::Carrier> parsed;
+  std::vector<std::string> problems;
+  const std::string* text = contentOf(inv, kCarrierPath);
+  if (!text) {
+    problems.push_back(std::string(kCarrierPath) + ": missing; a Surrogate package holds its "
+                       "provenance carrier there");
+  } else {
+    try {
+      parsed = carrier::parseCarrier(*text, kCarrierPath);
+    } catch (const Error& e) {
+      problems.push_back(e.what());
+    }
+  }
+  checks.push_back(makeCheck("carrier.schema", Severity::Invalid,
+                             "the carrier validates against xsd/carrier.xsd",
+                             "the carrier is missing or not valid", problems));
+  if (!parsed) return parsed;
+
+  std::vector<std::string> pathProblems, fixity;
+  for (const carrier::FileRecord& f : parsed->files) {
+    std::string why;
+    const auto safe = safeBagPath(f.path, &why);
+    if (!safe) {
+      pathProblems.push_back("file " + f.id + " \"" + f.path.substr(0, 200) + "\": " + why);
+      continue;
+    }
+    const std::string inBag = "data/" + *safe;
+    const auto it = inv.files.find(inBag);
+    if (it == inv.files.end()) {
+      fixity.push_back(inBag + ": listed in the carrier (" + f.id + ", " + f.role +
+                       ") but not in the bag");
+    } else if (it->second.size != f.size || it->second.sha256 != f.sha256) {
+      fixity.push_back(inBag + ": the carrier records " + std::to_string(f.size) + " bytes, SHA-256 " +
+                       f.sha256.substr(0, 16) + "...; the bag holds " +
+                       std::to_string(it->second.size) + " bytes, " +
+                       it->second.sha256.substr(0, 16) + "...");
+    }
+  }
+  // Every input in the payload (originals, exports, a given .lp: anything outside
+  // assembly-files/ and finished-files/) is one the carrier recorded, so an image added with
+  // the manifests redone is still found. Outputs may include files made after the carrier was
+  // final (the HTML report written by `surrogate pack`).
+  for (const auto& [path, file] : inv.files) {
+    if (!pathProblems.empty()) break;  // one cause, one failure: the unsafe path
+    if (path.compare(0, 5, "data/") != 0) continue;
+    const std::string relative = path.substr(5);
+    if (relative.compare(0, 15, "assembly-files/") == 0 ||
+        relative.compare(0, 15, "finished-files/") == 0)
+      continue;
+    if (!parsed->findFileByPath(relative))
+      fixity.push_back(path + ": an input in the payload that the carrier does not record");
+  }
+  checks.push_back(makeCheck("carrier.paths", Severity::Invalid,
+                             "every file the carrier lists has a safe relative path",
+                             "the carrier names unsafe paths", pathProblems));
+  checks.push_back(makeCheck("carrier.files", Severity::Fixity,
+                             std::to_string(parsed->files.size()) +
+                                 " files listed in the carrier are in the bag, same size and SHA-256; no unrecorded inputs",
+                             "files differ from what the carrier records", fixity));
+  if (!pathProblems.empty()) parsed.reset();  // never re-execute a carrier with unsafe paths
+  return parsed;
+}
+
+void checkMetadata(const Inventory& inv, const std::string* carrierXml, std::vector<Check>& checks) {
+  const std::string metsPath = "metadata/mets.xml", crmPath = "metadata/crm.rdf";
+  const std::string* mets = contentOf(inv, metsPath);
+  const std::string* crm = contentOf(inv, crmPath);
+#ifdef SURROGATE_HAVE_MAPPING
+  auto run = [](const std::function<void()>& f) -> std::vector<std::string> {
+    try {
+      f();
+    } catch (const Error& e) {
+      return {e.what()};
+    }
+    return {};
+  };
+  std::vector<std::string> metsProblems =
+      mets ? run([&] { mapping::validateMets(*mets, metsPath); })
+           : std::vector<std::string>{metsPath + ": missing"};
+  checks.push_back(makeCheck("metadata.mets", Severity::Invalid,
+                             "metadata/mets.xml validates against the METS and PREMIS schemas",
+                             "metadata/mets.xml is missing or not valid", metsProblems));
+  std::vector<std::string> crmProblems =
+      crm ? run([&] { mapping::checkRdfWellFormed(*crm, crmPath); })
+          : std::vector<std::string>{crmPath + ": missing"};
+  checks.push_back(makeCheck("metadata.crm", Severity::Invalid,
+                             "metadata/crm.rdf is well-formed RDF/XML",
+                             "metadata/crm.rdf is missing or not well-formed", crmProblems));
+  if (!carrierXml || !mets || !crm) return;
+
+  // Package facts, as the packer recorded them (mapping.h).
+  mapping::PackageFacts facts;
+  std::vector<std::string> problems;
+  if (const std::string* info = contentOf(inv, "bag-info.txt")) {
+    const BagInfo bagInfo = parseBagInfo(*info);
+    auto one = [&](const char* label) {
+      const auto v = bagInfo.values(label);
+      return v.empty() ? std::string() : v.front();
+    };
+    facts.packageId = one("Surrogate-Package-Identifier");
+    facts.packagingTime = one("Surrogate-Packaging-Time");
+    facts.softwareAgent = one("Bag-Software-Agent");
+  }
+  std::map<std::string, mapping::PayloadFile> payload;
+  for (const char* algorithm : {"sha256", "sha512"}) {
+    const std::string name = std::string("manifest-") + algorithm + ".txt";
+    const std::string* text = contentOf(inv, name);
+    if (!text) continue;
+    for (const ManifestEntry& e : parseManifest(*text, algorithm, digestHexLength(algorithm)).entries) {
+      mapping::PayloadFile& p = payload[e.path];
+      p.path = e.path;
+      const auto it = inv.files.find(e.path);
+      if (it != inv.files.end()) p.size = it->second.size;
+      (std::string(algorithm) == "sha256" ? p.sha256 : p.sha512) = e.checksum;
+    }
+  }
+  for (auto& [path, p] : payload) facts.payload.push_back(p);
+  try {
+    const std::string derivedCrm = mapping::deriveCrm(*carrierXml, kCarrierPath);
+    if (derivedCrm != *crm) problems.push_back(crmPath + ": " + firstDifference(derivedCrm, *crm));
+    const std::string derivedMets = mapping::deriveMets(*carrierXml, facts, kCarrierPath);
+    if (derivedMets != *mets)
+      problems.push_back(metsPath + ": " + firstDifference(derivedMets, *mets));
+  } catch (const Error& e) {
+    problems.push_back(e.what());
+  }
+  checks.push_back(makeCheck("metadata.derived", Severity::Invalid,
+                             "crm.rdf and mets.xml equal what the bundled stylesheets derive "
+                             "from the carrier",
+                             "the metadata differ from what the carrier gives", problems));
+#else
+  // This build has no mapping library: check well-formedness only.
+  for (const auto& [path, text] : {std::pair{metsPath, mets}, std::pair{crmPath, crm}}) {
+    std::vector<std::string> problems;
+    if (!text) problems.push_back(path + ": missing");
+    else {
+      try {
+        xml::checkWellFormed(*text, path);
+      } catch (const Error& e) {
+        problems.push_back(e.what());
+      }
+    }
+    checks.push_back(makeCheck(path == metsPath ? "metadata.mets" : "metadata.crm",
+                               Severity::Invalid, path + " is well-formed XML",
+                               path + " is missing or not well-formed", problems));
+  }
+  (void)carrierXml;
+#endif
+}
+
+}  // namespace surrogate::verify::internal

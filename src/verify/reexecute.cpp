@@ -1,0 +1,287 @@
+// --reexecute: extract the bag's payload safely, run the recorded process list again on the
+// bagged originals, and compare every recorded result.
+#include <stdlib.h>
+#include <sys/stat.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <set>
+
+#include "core/error.h"
+#include "pipeline/stage.h"
+#include "stages/plan.h"
+#include "verify/checks.h"
+#include "verify/model_difference.h"
+
+namespace fs = std::filesystem;
+
+namespace surrogate::verify::internal {
+
+namespace {
+
+// A private folder under $TMPDIR (mkdtemp, mode 0700), removed with everything in it.
+class TempDir {
+ public:
+  TempDir() {
+    const char* base = std::getenv("TMPDIR");
+    std::string pattern = std::string(base && *base ? base : "/tmp") + "/surrogate-verify-XXXXXX";
+    if (!::mkdtemp(pattern.data()))
+      throw Error(ErrorKind::Internal, pattern, "verify",
+                  std::string("cannot create a temporary folder (") + std::strerror(errno) +
+                      "); set TMPDIR to a writable folder with room for the package");
+    path_ = pattern;
+  }
+  ~TempDir() {
+    std::error_code ec;
+    // Folders made read-only for the replay must be writable again to be emptied.
+    for (fs::recursive_directory_iterator it(path_, ec), end; !ec && it != end; it.increment(ec))
+      if (it->is_directory(ec) && !it->is_symlink(ec))
+        fs::permissions(it->path(), fs::perms::owner_all, fs::perm_options::add, ec);
+    fs::remove_all(path_, ec);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+bool isOutputPath(const std::string& relative, const carrier::Carrier& c) {
+  if (relative.compare(0, 15, "assembly-files/") == 0 || relative.compare(0, 15, "finished-files/") == 0)
+    return true;
+  const carrier::FileRecord* f = c.findFileByPath(relative);
+  return f && (f->role == "assembly" || f->role == "result");
+}
+
+void makeReadOnly(const fs::path& root) {
+  std::error_code ec;
+  std::vector<fs::path> dirs;
+  for (fs::recursive_directory_iterator it(root, ec), end; !ec && it != end; it.increment(ec)) {
+    if (it->is_directory(ec)) dirs.push_back(it->path());
+    else fs::permissions(it->path(), fs::perms::owner_read | fs::perms::group_read, ec);
+  }
+  for (const fs::path& d : dirs)
+    fs::permissions(d, fs::perms::owner_read | fs::perms::owner_exec, ec);
+}
+
+std::optional<double> asNumber(const std::string& s) {
+  if (s.empty()) return std::nullopt;
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(s.c_str(), &end);
+  if (end != s.c_str() + s.size() || errno == ERANGE) return std::nullopt;
+  return v;
+}
+
+bool sameNumber(double a, double b, double tolerance) {
+  if (a == b) return true;
+  return tolerance > 0 && std::fabs(a - b) <= tolerance * std::max(std::fabs(a), std::fabs(b));
+}
+
+std::string pathOfId(const carrier::Carrier& c, const std::string& id) {
+  const carrier::FileRecord* f = c.findFile(id);
+  return f ? f->path : "(unknown file " + id + ")";
+}
+
+struct StepComparison {
+  std::vector<std::string> differences;
+  std::size_t compared = 0;
+};
+
+StepComparison compareStep(const carrier::Step& step, const carrier::Carrier& recorded,
+                           const carrier::Carrier& fresh, const fs::path& recordedRoot,
+                           const fs::path& freshRoot, double tolerance) {
+  StepComparison out;
+  const carrier::Result* a = recorded.findResult(step.id);
+  const carrier::Result* b = fresh.findResult(step.id);
+  if (!a) return out;  // nothing recorded: nothing to reproduce
+  if (!b) {
+    out.differences.push_back("the step did not run again (an earlier step failed)");
+    return out;
+  }
+  if (a->status != b->status)
+    out.differences.push_back("status: recorded " + a->status + ", reproduced " + b->status);
+  // Items are matched by what they are about (element, image, name, sphere, index, kind),
+  // not by position, so one extra or missing result does not shift every other one.
+  auto keyOf = [](const carrier::Carrier& c, const carrier::DataItem& item) {
+    std::string key = item.element;
+    for (const char* attr : {"image", "name", "sphere", "index", "kind"}) {
+      if (auto v = item.get(attr))
+        key += std::string(" ") + attr + "=" + (std::string(attr) == "image" ? pathOfId(c, *v) : *v);
+    }
+    return key;
+  };
+  std::map<std::string, std::vector<const carrier::DataItem*>> fresher;
+  for (const carrier::DataItem& y : b->items) fresher[keyOf(fresh, y)].push_back(&y);
+  std::map<std::string, std::size_t> used;
+  std::vector<std::pair<const carrier::DataItem*, const carrier::DataItem*>> pairs;
+  for (const carrier::DataItem& x : a->items) {
+    const std::string key = keyOf(recorded, x);
+    auto& list = fresher[key];
+    std::size_t& n = used[key];
+    if (n < list.size()) {
+      pairs.emplace_back(&x, list[n++]);
+    } else {
+      out.differences.push_back("recorded <" + key + "> was not reproduced");
+    }
+  }
+  for (const auto& [key, list] : fresher)
+    for (std::size_t i = used[key]; i < list.size(); ++i)
+      out.differences.push_back("reproduced <" + key + ">, which was not recorded");
+  for (const auto& [px, py] : pairs) {
+    const carrier::DataItem& x = *px;
+    const carrier::DataItem& y = *py;
+    const std::string label = keyOf(recorded, x);
+    std::set<std::string> names;
+    for (const auto& [k, v] : x.attributes) names.insert(k);
+    for (const auto& [k, v] : y.attributes) names.insert(k);
+    for (const std::string& name : names) {
+      std::string u = x.get(name).value_or("(absent)"), v = y.get(name).value_or("(absent)");
+      ++out.compared;
+      if (name == "file" || name == "image") {
+        u = pathOfId(recorded, u);
+        v = pathOfId(fresh, v);
+      }
+      const auto nu = asNumber(u), nv = asNumber(v);
+      const bool same = (nu && nv) ? sameNumber(*nu, *nv, tolerance) : u == v;
+      if (!same)
+        out.differences.push_back(label + " @" + name + ": recorded " + u + ", reproduced " + v);
+    }
+    // Output files: by hash, then by how much.
+    if (x.element == "output") {
+      const carrier::FileRecord* fa = recorded.findFile(x.get("file").value_or(""));
+      const carrier::FileRecord* fb = fresh.findFile(y.get("file").value_or(""));
+      if (!fa || !fb) {
+        out.differences.push_back("output " + (fa ? fa->path : std::string("?")) +
+                                  ": not recorded in both carriers");
+        continue;
+      }
+      if (fa->sha256 == fb->sha256) continue;
+      std::string how = "differs (SHA-256 " + fa->sha256.substr(0, 12) + "... recorded, " +
+                        fb->sha256.substr(0, 12) + "... reproduced)";
+      const std::string ext = fs::path(fa->path).extension().string();
+      try {
+        if (ext == ".ptm" || ext == ".rti")
+          how += "; " + compareModels(recordedRoot / fa->path, freshRoot / fb->path).describe();
+        else if (ext == ".png" || ext == ".jpg" || ext == ".tif" || ext == ".tiff")
+          how += "; " + compareImages(recordedRoot / fa->path, freshRoot / fb->path);
+      } catch (const Error& e) {
+        how += "; cannot compare them (" + std::string(e.what()) + ")";
+      }
+      out.differences.push_back("output file " + fa->path + " " + how);
+    }
+  }
+  return out;
+}
+
+std::vector<std::string> softwareDifferences(const carrier::Carrier& recorded,
+                                             const carrier::Carrier& fresh) {
+  std::vector<std::string> out;
+  std::map<std::string, std::string> now;
+  for (const carrier::Software& s : fresh.header.software) now[s.name] = s.version;
+  for (const carrier::Software& s : recorded.header.software) {
+    const auto it = now.find(s.name);
+    if (it == now.end()) out.push_back(s.name + " " + s.version + " -> absent in this build");
+    else if (it->second != s.version) out.push_back(s.name + " " + s.version + " -> " + it->second);
+  }
+  return out;
+}
+
+}  // namespace
+
+void checkReexecution(const fs::path& package, const Inventory& inventory,
+                      const carrier::Carrier& recorded, const VerifyOptions& options,
+                      Report& report) {
+  report.reexecuted = true;
+  TempDir temp;
+  const fs::path replayRoot = temp.path() / "replay", recordedRoot = temp.path() / "recorded";
+  fs::create_directory(replayRoot);
+  fs::create_directory(recordedRoot);
+  // Inputs (originals, exports, a given .lp) go to replay/, recorded outputs to recorded/.
+  extractFiles(
+      package, inventory, temp.path(),
+      [&](const std::string& path) -> fs::path {
+        if (path.compare(0, 5, "data/") != 0) return {};
+        const std::string relative = path.substr(5);
+        return fs::path(isOutputPath(relative, recorded) ? "recorded" : "replay") / relative;
+      },
+      options.limits, options.progress);
+  makeReadOnly(replayRoot);
+  // Outputs are written into fresh folders of the copy; the originals stay read-only.
+  for (const char* dir : {"assembly-files", "finished-files"}) {
+    std::error_code ec;
+    fs::permissions(replayRoot, fs::perms::owner_all, ec);
+    fs::create_directory(replayRoot / dir, ec);
+  }
+
+  pipeline::RunSettings settings;
+  settings.threads = options.threads;
+  settings.who = "surrogate verify";
+  if (options.progress)
+    settings.progress = [&](const std::string& label, double f) {
+      options.progress("re-executing: " + label, f);
+    };
+  const fs::path freshCarrierPath = temp.path() / "reexecuted-carrier.xml";
+  carrier::Carrier fresh;
+  std::vector<std::string> runProblems;
+  try {
+    fresh = stages::replayCarrier(replayRoot, recorded, settings, freshCarrierPath);
+  } catch (const Error& e) {
+    runProblems.push_back(e.what());
+    std::error_code ec;
+    if (fs::exists(freshCarrierPath, ec)) {
+      try {
+        fresh = carrier::loadCarrier(freshCarrierPath);
+      } catch (const Error&) {
+      }
+    }
+    if (fresh.header.software.empty()) fresh.header.software = stages::softwareVersions();
+  } catch (const std::exception& e) {
+    // A library failing on a bagged file (a decoder exception) is a failure to reproduce,
+    // not a crash of the verifier.
+    runProblems.push_back(std::string("a step failed: ") + e.what());
+    fresh.header.software = stages::softwareVersions();
+  }
+  report.softwareDifferences = softwareDifferences(recorded, fresh);
+  // A step whose component has another version in this build may legitimately give other
+  // results: said next to the comparison (compared with the registry, not found in log texts).
+  stages::registerBuiltinStages();
+  for (const carrier::Step& step : recorded.process) {
+    try {
+      const std::string here = pipeline::StageRegistry::instance().create(step.component)->version();
+      if (here != step.version)
+        runProblems.push_back(step.id + ": " + step.component + " is version " + here +
+                              " in this build but the carrier records version " + step.version);
+    } catch (const Error&) {
+      // An unknown component already failed replayCarrier above.
+    }
+  }
+
+  std::vector<Check> found;
+  found.push_back(makeCheck("reexecute.run", Severity::NotReproduced,
+                            "the recorded process list ran again (" +
+                                std::to_string(recorded.process.size()) + " steps)",
+                            "the recorded process list could not be run again", runProblems));
+  for (const carrier::Step& step : recorded.process) {
+    const StepComparison cmp =
+        compareStep(step, recorded, fresh, recordedRoot, replayRoot, options.tolerance);
+    const std::string exactness = options.tolerance > 0
+        ? "within a relative tolerance of " + std::to_string(options.tolerance)
+        : "exactly";
+    found.push_back(makeCheck(
+        "reexecute." + step.id + "." + step.component, Severity::NotReproduced,
+        "reproduced " + exactness + " (" + std::to_string(cmp.compared) + " recorded values)",
+        "re-running the step gave other results than those recorded", cmp.differences));
+  }
+  for (Check& c : found) {
+    if (!c.passed && !report.softwareDifferences.empty())
+      for (const std::string& s : report.softwareDifferences)
+        c.where.push_back("software differs: " + s);
+    report.checks.push_back(std::move(c));
+  }
+}
+
+}  // namespace surrogate::verify::internal

@@ -1,0 +1,92 @@
+#include "verify/verify.h"
+
+#include "core/error.h"
+#include "verify/checks.h"
+
+namespace surrogate::verify {
+
+int Report::exitCode() const {
+  bool fixity = false, invalid = false, notReproduced = false;
+  for (const Check& c : checks) {
+    if (c.passed) continue;
+    fixity |= c.severity == Severity::Fixity;
+    invalid |= c.severity == Severity::Invalid;
+    notReproduced |= c.severity == Severity::NotReproduced;
+  }
+  if (fixity) return static_cast<int>(Severity::Fixity);
+  if (invalid) return static_cast<int>(Severity::Invalid);
+  if (notReproduced) return static_cast<int>(Severity::NotReproduced);
+  return 0;
+}
+
+std::size_t Report::failures() const {
+  std::size_t n = 0;
+  for (const Check& c : checks) n += !c.passed;
+  return n;
+}
+
+Report verifyPackage(const std::filesystem::path& package, const VerifyOptions& options) {
+  Report report;
+  report.package = package.string();
+  Inventory inventory;
+  try {
+    inventory = readPackage(package, options.limits, options.progress);
+  } catch (const Error& e) {
+    if (e.kind() == ErrorKind::Input || e.kind() == ErrorKind::Internal) throw;
+    Check c;
+    c.name = "package.read";
+    c.passed = false;
+    c.severity = e.kind() == ErrorKind::Fixity ? Severity::Fixity : Severity::Invalid;
+    c.what = e.kind() == ErrorKind::Fixity ? "the package cannot be read to its end"
+                                           : "the package was refused";
+    c.where.push_back(e.what());
+    report.checks.push_back(c);
+    return report;
+  }
+  report.kind = inventory.kind;
+  report.checks.push_back(internal::makeCheck(
+      "package.read", Severity::Invalid,
+      "read " + std::to_string(inventory.files.size()) + " files (" +
+          std::to_string(inventory.totalBytes) + " bytes) from the " + inventory.kind +
+          "; no unsafe entries",
+      "", {}));
+
+  internal::checkBag(inventory, report.checks);
+  const std::optional<carrier::Carrier> recorded = internal::checkCarrier(inventory, report.checks);
+  const auto carrierFile = inventory.files.find(internal::kCarrierPath);
+  const std::string* carrierXml =
+      recorded && carrierFile != inventory.files.end() && carrierFile->second.content
+          ? &*carrierFile->second.content
+          : nullptr;
+  internal::checkMetadata(inventory, carrierXml, report.checks);
+
+  if (options.reexecute) {
+    if (!recorded) {
+      report.checks.push_back(internal::makeCheck(
+          "reexecute.run", Severity::NotReproduced, "", "there is no valid carrier to re-execute",
+          {std::string(internal::kCarrierPath) + ": see carrier.schema"}));
+    } else if (report.exitCode() == static_cast<int>(Severity::Fixity)) {
+      // Re-running on files known to have changed would only repeat the fixity failure.
+      report.checks.push_back(internal::makeCheck(
+          "reexecute.run", Severity::NotReproduced, "",
+          "not re-executed: files of the package changed (see the fixity checks)",
+          {"fix the package first; re-execution runs on verified originals only"}));
+    } else {
+      try {
+        internal::checkReexecution(package, inventory, *recorded, options, report);
+      } catch (const Error& e) {
+        if (e.kind() == ErrorKind::Internal) throw;
+        Check c;
+        c.name = "reexecute.extract";
+        c.passed = false;
+        c.severity = e.kind() == ErrorKind::Fixity ? Severity::Fixity : Severity::Invalid;
+        c.what = "the package could not be extracted for re-execution";
+        c.where.push_back(e.what());
+        report.checks.push_back(c);
+      }
+    }
+  }
+  return report;
+}
+
+}  // namespace surrogate::verify

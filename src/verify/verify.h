@@ -1,0 +1,75 @@
+// The verifier: is an archival package (a BagIt bag as a directory, .tar or .zip) sound?
+//
+// It answers with a list of checks, each passed or failed with what was found and where:
+//   bagit.*      the bag itself (RFC 8493): bagit.txt, manifests, tagmanifests, Payload-Oxum,
+//                every payload file listed, every listed file present and matching
+//   carrier.*    data/assembly-files/carrier.xml validates against xsd/carrier.xsd and every
+//                file it lists is in the bag with the same size and SHA-256
+//   metadata.*   metadata/mets.xml validates (METS + PREMIS), metadata/crm.rdf is well-formed,
+//                and both equal what the bundled stylesheets derive from the carrier
+//   reexecute.*  (with `reexecute`) the recorded process list, run again on the bagged
+//                originals with the recorded parameters and interventions, gives the recorded
+//                results: numbers exactly (or within `tolerance`), files by hash, and when a
+//                file differs, by how much (max/RMS coefficient difference, PSNR of renders)
+//
+//   VerifyOptions options;
+//   options.reexecute = true;
+//   Report report = verifyPackage("stela.tar", options);
+//   return report.exitCode();   // 0 sound, 2 invalid, 3 fixity, 4 not reproduced
+//
+// Exit codes (the CLI's contract): 0 every check passed; 3 a fixity failure (a file changed,
+// is missing, unlisted, or the archive is truncated); 2 an invalid or refused package (bad
+// bagit.txt, schema failure, hostile entries, metadata that does not match the carrier);
+// 4 re-execution did not reproduce the recorded results. When several kinds fail, fixity
+// wins over invalid, which wins over not reproduced: a changed file explains the rest.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "verify/package.h"
+
+namespace surrogate::verify {
+
+// What kind of failure a check reports, and so the exit code it leads to.
+enum class Severity { Invalid = 2, Fixity = 3, NotReproduced = 4 };
+
+struct Check {
+  std::string name;    // e.g. "bagit.manifest-sha256", "reexecute.s5.PtmFit"
+  bool passed = true;
+  Severity severity = Severity::Invalid;  // what a failure means
+  std::string what;    // one sentence: what was checked, or what is wrong
+  std::vector<std::string> where;  // files, lines or values at fault (capped)
+};
+
+struct Report {
+  std::string package;
+  std::string kind;  // directory, tar, zip
+  std::vector<Check> checks;
+  bool reexecuted = false;
+  // Software that differs between the carrier's header and this build ("LibRaw 0.20.2 ->
+  // 0.21.1"), filled by re-execution.
+  std::vector<std::string> softwareDifferences;
+
+  bool sound() const { return exitCode() == 0; }
+  int exitCode() const;
+  std::size_t failures() const;
+};
+
+struct VerifyOptions {
+  bool reexecute = false;
+  // Relative tolerance for recorded numbers; 0 = exactly equal (the default: Surrogate's
+  // results are deterministic for the same software, at any thread count).
+  double tolerance = 0;
+  int threads = 0;  // for re-execution; 0 = all cores
+  Limits limits;
+  Progress progress;
+};
+
+// Never throws for a bad package: a refused or unreadable one gives a report with one failed
+// check ("package.read"). Throws Error(Input) when `package` does not exist, Error(Internal)
+// for environment failures (no temporary space, missing schemas).
+Report verifyPackage(const std::filesystem::path& package, const VerifyOptions& options);
+
+}  // namespace surrogate::verify

@@ -1,0 +1,57 @@
+// Test support for the verifier: making bags and archives, including broken and hostile ones,
+// with libarchive (never by hand).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace verify_test {
+
+// A fresh empty folder under the system's temporary folder.
+std::filesystem::path freshDir(const std::string& name);
+
+void writeText(const std::filesystem::path& path, const std::string& text);
+std::string readText(const std::filesystem::path& path);
+
+// A tiny capture (two "originals" of a few bytes and a valid carrier listing them), for
+// checks that do not need a real pipeline run.
+std::filesystem::path tinyCapture(const std::filesystem::path& dir);
+
+// Makes a BagIt bag at `bag` holding `capture` as data/: manifests (sha256, sha512),
+// bagit.txt, bag-info.txt (Payload-Oxum, Surrogate-Package-Identifier/-Packaging-Time),
+// metadata/crm.rdf and metadata/mets.xml derived from the carrier (when the mapping library
+// is built; placeholders otherwise) and tagmanifests.
+void makeBag(const std::filesystem::path& capture, const std::filesystem::path& bag);
+
+// Rewrites the bag's manifests, Payload-Oxum, metadata and tagmanifests for its current
+// content (after a test changed files "consistently").
+void rehashBag(const std::filesystem::path& bag);
+
+// Only the tagmanifests (after a test changed a tag file or a manifest "consistently").
+void rehashTagManifests(const std::filesystem::path& bag);
+
+// One entry of a hand-made archive.
+struct Entry {
+  enum Type { File, Directory, Symlink, Hardlink, Fifo, CharDevice };
+  Entry() = default;
+  Entry(Type t, std::string n, std::string c = "", std::string link = "")
+      : type(t), name(std::move(n)), content(std::move(c)), linkTarget(std::move(link)) {}
+  Type type = File;
+  std::string name;
+  std::string content;
+  std::string linkTarget;                  // symlinks and hard links
+  std::optional<std::int64_t> claimedSize; // a header size other than content.size() (tar)
+};
+
+// Writes `entries` into `archive` (format by extension: .tar or .zip) with libarchive.
+void writeArchive(const std::filesystem::path& archive, const std::vector<Entry>& entries);
+
+// Packs the directory `dir` into `archive` (.tar or .zip), entries under `prefix` ("" for the
+// bag's files at the archive's top, or e.g. "stela/").
+void archiveDirectory(const std::filesystem::path& dir, const std::filesystem::path& archive,
+                      const std::string& prefix);
+
+}  // namespace verify_test

@@ -1,0 +1,95 @@
+#include <catch2/catch.hpp>
+
+#include "verify/bag_text.h"
+
+using namespace surrogate::verify;
+
+TEST_CASE("safeBagPath accepts relative paths and strips a leading ./", "[verify][paths]") {
+  std::string why;
+  CHECK(safeBagPath("data/original-captures/IMG_0001.dng", &why) == "data/original-captures/IMG_0001.dng");
+  CHECK(safeBagPath("./data/a b.txt", &why) == "data/a b.txt");
+  CHECK(safeBagPath("data/caf\xC3\xA9.jpg", &why) == "data/caf\xC3\xA9.jpg");
+}
+
+TEST_CASE("safeBagPath refuses every path that could leave the bag", "[verify][paths]") {
+  for (const char* bad : {"../etc/passwd", "data/../../x", "/etc/passwd", "C:/x", "C:\\x",
+                          "\\\\server\\share", "~root/.ssh", "data//x", "data/./x", "", ".",
+                          "data/a\nb", "data/\x7f", "data/\xC3(", "data/\xED\xA0\x80"}) {
+    std::string why;
+    CHECK_FALSE(safeBagPath(bad, &why).has_value());
+    CHECK_FALSE(why.empty());
+  }
+  std::string why;
+  CHECK_FALSE(safeBagPath(std::string(2000, 'a'), &why).has_value());
+}
+
+TEST_CASE("percentDecode decodes only %0D, %0A and %25, in either case", "[verify][paths]") {
+  CHECK(percentDecode("data/100%25.txt") == "data/100%.txt");
+  CHECK(percentDecode("a%0ab%0D") == "a\nb\r");
+  CHECK(percentDecode("data/%2e%2e/x") == "data/%2e%2e/x");  // never produces ".." or "/"
+  CHECK(percentDecode("trailing%2") == "trailing%2");
+}
+
+TEST_CASE("bagit.txt must declare version 1.0 and UTF-8 in exactly two lines", "[verify][bagit]") {
+  CHECK(parseDeclaration("BagIt-Version: 1.0\nTag-File-Character-Encoding: UTF-8\n").problems.empty());
+  CHECK(parseDeclaration("BagIt-Version: 1.0\r\nTag-File-Character-Encoding: UTF-8\r\n").problems.empty());
+  CHECK_FALSE(parseDeclaration("BagIt-Version : 1.0\nTag-File-Character-Encoding: UTF-8\n").problems.empty());
+  CHECK_FALSE(parseDeclaration("\xEF\xBB\xBF" "BagIt-Version: 1.0\nTag-File-Character-Encoding: UTF-8\n").problems.empty());
+  CHECK_FALSE(parseDeclaration("BagIt-Version: 2.0\nTag-File-Character-Encoding: UTF-8\n").problems.empty());
+  CHECK_FALSE(parseDeclaration("BagIt-Version: 1.0\n").problems.empty());
+  CHECK_FALSE(parseDeclaration("BagIt-Version: 1.0\nTag-File-Character-Encoding: UTF-16\n").problems.empty());
+}
+
+TEST_CASE("bag-info.txt labels, continuation lines and non-repeatable labels", "[verify][bagit]") {
+  const BagInfo info = parseBagInfo("Source-Organization: Museum\nExternal-Description: a long\n"
+                                    "  description\nPayload-Oxum: 10.2\n");
+  CHECK(info.problems.empty());
+  CHECK(info.values("external-description") == std::vector<std::string>{"a long description"});
+  CHECK_FALSE(parseBagInfo("Payload-Oxum: 1.1\nPayload-Oxum: 2.2\n").problems.empty());
+  CHECK_FALSE(parseBagInfo(" orphan continuation\n").problems.empty());
+  CHECK_FALSE(parseBagInfo("no colon here\n").problems.empty());
+}
+
+TEST_CASE("Payload-Oxum parses octets.streams and nothing else", "[verify][bagit]") {
+  CHECK(parseOxum("1234.5") == std::make_pair<std::uint64_t, std::uint64_t>(1234, 5));
+  CHECK_FALSE(parseOxum("1234").has_value());
+  CHECK_FALSE(parseOxum("12a.5").has_value());
+  CHECK_FALSE(parseOxum(".5").has_value());
+  CHECK_FALSE(parseOxum("99999999999999999999999.1").has_value());
+}
+
+TEST_CASE("manifest lines: checksum, whitespace, escaped path", "[verify][bagit]") {
+  const std::string h(64, 'a');
+  const Manifest m = parseManifest(h + "  data/a%25b.txt\n" + h + "\tdata/c d.txt\r\n", "sha256", 64);
+  REQUIRE(m.problems.empty());
+  REQUIRE(m.entries.size() == 2);
+  CHECK(m.entries[0].path == "data/a%b.txt");
+  CHECK(m.entries[1].path == "data/c d.txt");
+}
+
+TEST_CASE("manifest problems: bad checksum, unsafe path, duplicates", "[verify][bagit]") {
+  const std::string h(64, 'b');
+  CHECK(parseManifest("xyz  data/a\n", "sha256", 64).problems.size() == 1);
+  CHECK(parseManifest(std::string(63, 'a') + "  data/a\n", "sha256", 64).problems.size() == 1);
+  CHECK(parseManifest(h + "  ../../etc/passwd\n", "sha256", 64).problems.size() == 1);
+  CHECK(parseManifest(h + "  /etc/passwd\n", "sha256", 64).problems.size() == 1);
+  CHECK(parseManifest(h + "  data/a\n" + h + "  data/a\n", "sha256", 64).problems.size() == 1);
+  CHECK(parseManifest(h + "\n", "sha256", 64).problems.size() == 1);
+}
+
+TEST_CASE("manifest names give kind and algorithm", "[verify][bagit]") {
+  CHECK(manifestName("manifest-sha256.txt")->second == "sha256");
+  CHECK(manifestName("tagmanifest-sha512.txt")->first == "tagmanifest");
+  CHECK_FALSE(manifestName("data/manifest-sha256.txt").has_value());
+  CHECK_FALSE(manifestName("bag-info.txt").has_value());
+  CHECK(digestHexLength("md5") == 0);
+}
+
+TEST_CASE("case folding keys: letter case and Unicode normalisation collide", "[verify][paths]") {
+  CHECK(caseFoldKey("data/IMG_0001.DNG") == caseFoldKey("data/img_0001.dng"));
+  // precomposed U+00C4, decomposed A + U+0308 (as macOS writes it), lower-case U+00E4
+  CHECK(caseFoldKey("data/\xC3\x84.dng") == caseFoldKey("data/A\xCC\x88.dng"));
+  CHECK(caseFoldKey("data/\xC3\x84.dng") == caseFoldKey("data/\xC3\xA4.DNG"));
+  CHECK(caseFoldKey("data/a.dng") != caseFoldKey("data/b.dng"));
+  CHECK(caseFoldKey(std::string("\xFF\xFE bad utf-8")) == std::string("\xFF\xFE bad utf-8"));
+}

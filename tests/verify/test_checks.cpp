@@ -1,0 +1,220 @@
+// Each check of the verifier fails for the problem it is about, with the right exit code.
+#include <catch2/catch.hpp>
+
+#include "archive/digest.h"
+#include "bag_fixture.h"
+#include "carrier/carrier.h"
+#include "verify/verify.h"
+
+namespace fs = std::filesystem;
+using namespace surrogate;
+using namespace verify_test;
+using Catch::Matchers::Contains;
+
+namespace {
+
+std::string allText(const verify::Report& r) {
+  std::string s;
+  for (const verify::Check& c : r.checks) {
+    s += (c.passed ? "ok   " : "FAIL ") + c.name + ": " + c.what + "\n";
+    for (const std::string& w : c.where) s += "  " + w + "\n";
+  }
+  return s;
+}
+
+bool failed(const verify::Report& r, const std::string& name) {
+  for (const verify::Check& c : r.checks)
+    if (c.name == name) return !c.passed;
+  return false;
+}
+
+fs::path cleanBag(const std::string& name) {
+  const fs::path dir = freshDir(name);
+  makeBag(tinyCapture(dir), dir / "bag");
+  return dir / "bag";
+}
+
+verify::Report run(const fs::path& p) { return verify::verifyPackage(p, {}); }
+
+void replaceInFile(const fs::path& p, const std::string& from, const std::string& to) {
+  std::string text = readText(p);
+  const auto at = text.find(from);
+  REQUIRE(at != std::string::npos);
+  text.replace(at, from.size(), to);
+  writeText(p, text);
+}
+
+}  // namespace
+
+TEST_CASE("a clean bag passes every check as a directory, tar, tar with a top folder and zip",
+          "[verify][checks]") {
+  const fs::path bag = cleanBag("clean");
+  const fs::path dir = bag.parent_path();
+  archiveDirectory(bag, dir / "bag.tar", "");
+  archiveDirectory(bag, dir / "prefixed.tar", "stela/");
+  archiveDirectory(bag, dir / "bag.zip", "");
+  for (const fs::path& p : {bag, dir / "bag.tar", dir / "prefixed.tar", dir / "bag.zip"}) {
+    const verify::Report r = run(p);
+    INFO(p << "\n" << allText(r));
+    CHECK(r.exitCode() == 0);
+    CHECK(r.sound());
+    CHECK(r.checks.size() >= 10);
+  }
+}
+
+TEST_CASE("a changed payload byte fails fixity in both manifests (exit 3)", "[verify][checks]") {
+  const fs::path bag = cleanBag("flip");
+  std::string text = readText(bag / "data/original-captures/IMG_0001.jpg");
+  text[3] ^= 0x01;
+  writeText(bag / "data/original-captures/IMG_0001.jpg", text);
+  const verify::Report r = run(bag);
+  INFO(allText(r));
+  CHECK(r.exitCode() == 3);
+  CHECK(failed(r, "bagit.fixity-sha256"));
+  CHECK(failed(r, "bagit.fixity-sha512"));
+  CHECK(failed(r, "carrier.files"));
+  CHECK_THAT(allText(r), Contains("data/original-captures/IMG_0001.jpg"));
+}
+
+TEST_CASE("missing and unlisted payload files fail completeness (exit 3)", "[verify][checks]") {
+  const fs::path bag = cleanBag("complete");
+  fs::remove(bag / "data/original-captures/IMG_0002.jpg");
+  verify::Report r = run(bag);
+  INFO(allText(r));
+  CHECK(r.exitCode() == 3);
+  CHECK(failed(r, "bagit.complete"));
+  CHECK(failed(r, "bagit.payload-oxum"));
+
+  const fs::path other = cleanBag("unlisted");
+  writeText(other / "data/original-captures/extra.jpg", "smuggled\n");
+  r = run(other);
+  CHECK(r.exitCode() == 3);
+  CHECK(failed(r, "bagit.complete"));
+  CHECK_THAT(allText(r), Contains("not listed in manifest-sha256.txt"));
+}
+
+TEST_CASE("a tag file added after packaging fails completeness (exit 3)", "[verify][checks]") {
+  const fs::path bag = cleanBag("addtag");
+  writeText(bag / "metadata/extra.xml", "<x/>\n");
+  const verify::Report r = run(bag);
+  INFO(allText(r));
+  CHECK(r.exitCode() == 3);
+  CHECK(failed(r, "bagit.complete"));
+  CHECK_THAT(allText(r), Contains("metadata/extra.xml"));
+}
+
+TEST_CASE("a changed tag file fails the tagmanifest (exit 3)", "[verify][checks]") {
+  const fs::path bag = cleanBag("tag");
+  replaceInFile(bag / "bag-info.txt", "Surrogate test", "Surrogate tesT");
+  const verify::Report r = run(bag);
+  INFO(allText(r));
+  CHECK(r.exitCode() == 3);
+  CHECK(failed(r, "bagit.tagfixity-sha256"));
+}
+
+TEST_CASE("a bag without bagit.txt or manifests is invalid (exit 2)", "[verify][checks]") {
+  fs::path bag = cleanBag("nodecl");
+  fs::remove(bag / "bagit.txt");
+  fs::remove(bag / "tagmanifest-sha256.txt");
+  fs::remove(bag / "tagmanifest-sha512.txt");
+  verify::Report r = run(bag);
+  CHECK(r.exitCode() == 2);
+  CHECK(failed(r, "bagit.declaration"));
+
+  bag = cleanBag("nomanifest");
+  fs::remove(bag / "manifest-sha256.txt");
+  fs::remove(bag / "manifest-sha512.txt");
+  rehashTagManifests(bag);
+  r = run(bag);
+  INFO(allText(r));
+  CHECK(failed(r, "bagit.manifests"));
+  CHECK(r.exitCode() == 2);  // without a payload manifest it is not a bag
+}
+
+TEST_CASE("manifest paths outside the bag or outside data/ are invalid", "[verify][checks]") {
+  const fs::path bag = cleanBag("outside");
+  const std::string h(64, '0');
+  writeText(bag / "manifest-sha256.txt",
+            readText(bag / "manifest-sha256.txt") + h + "  ../../etc/passwd\n" + h + "  bagit.txt\n");
+  rehashTagManifests(bag);
+  const verify::Report r = run(bag);
+  INFO(allText(r));
+  CHECK(failed(r, "bagit.manifests"));
+  CHECK(r.exitCode() == 2);
+  CHECK_THAT(allText(r), Contains("would leave the bag"));
+}
+
+TEST_CASE("an unsupported algorithm and a malformed bag-info are invalid", "[verify][checks]") {
+  const fs::path bag = cleanBag("md5");
+  writeText(bag / "manifest-md5.txt", "d41d8cd98f00b204e9800998ecf8427e  data/original-captures/IMG_0001.jpg\n");
+  writeText(bag / "bag-info.txt", readText(bag / "bag-info.txt") + "Payload-Oxum: 1.1\n");
+  rehashTagManifests(bag);
+  const verify::Report r = run(bag);
+  INFO(allText(r));
+  CHECK(failed(r, "bagit.manifests"));
+  CHECK(failed(r, "bagit.info"));
+  CHECK(r.exitCode() == 2);
+}
+
+TEST_CASE("a carrier whose hashes disagree with the bag fails carrier.files (exit 3)",
+          "[verify][checks]") {
+  // A file replaced and the manifests fixed: only the carrier still knows the old hash.
+  const fs::path bag = cleanBag("carrierhash");
+  writeText(bag / "data/original-captures/IMG_0002.jpg", "a different image\n");
+  rehashBag(bag);
+  const verify::Report r = run(bag);
+  INFO(allText(r));
+  CHECK_FALSE(failed(r, "bagit.fixity-sha256"));
+  CHECK(failed(r, "carrier.files"));
+  CHECK(r.exitCode() == 3);
+}
+
+TEST_CASE("a payload file the carrier does not record fails carrier.files (exit 3)",
+          "[verify][checks]") {
+  const fs::path bag = cleanBag("carrierextra");
+  writeText(bag / "data/original-captures/IMG_0003.jpg", "an image added later\n");
+  rehashBag(bag);
+  const verify::Report r = run(bag);
+  INFO(allText(r));
+  CHECK_FALSE(failed(r, "bagit.complete"));
+  CHECK(failed(r, "carrier.files"));
+  CHECK_THAT(allText(r), Contains("the carrier does not record"));
+  CHECK(r.exitCode() == 3);
+}
+
+TEST_CASE("a carrier naming an unsafe path is invalid and never re-executed", "[verify][checks]") {
+  const fs::path bag = cleanBag("carrierpath");
+  replaceInFile(bag / "data/assembly-files/carrier.xml", "path=\"original-captures/IMG_0002.jpg\"",
+                "path=\"../../../etc/passwd\"");
+  rehashBag(bag);
+  verify::VerifyOptions options;
+  options.reexecute = true;
+  const verify::Report r = verify::verifyPackage(bag, options);
+  INFO(allText(r));
+  CHECK(failed(r, "carrier.paths"));
+  CHECK(r.exitCode() == 2);
+}
+
+TEST_CASE("metadata that is missing or not well-formed fails the metadata checks", "[verify][checks]") {
+  const fs::path bag = cleanBag("metadata");
+  writeText(bag / "metadata/crm.rdf", "<rdf:RDF");
+  fs::remove(bag / "metadata/mets.xml");
+  rehashTagManifests(bag);
+  const verify::Report r = run(bag);
+  INFO(allText(r));
+  CHECK(failed(r, "metadata.crm"));
+  CHECK(failed(r, "metadata.mets"));
+  CHECK(r.exitCode() == 2);
+}
+
+TEST_CASE("the report's exit code prefers fixity over invalid over not reproduced",
+          "[verify][checks]") {
+  verify::Report r;
+  r.checks.push_back({"a", false, verify::Severity::NotReproduced, "", {}});
+  CHECK(r.exitCode() == 4);
+  r.checks.push_back({"b", false, verify::Severity::Invalid, "", {}});
+  CHECK(r.exitCode() == 2);
+  r.checks.push_back({"c", false, verify::Severity::Fixity, "", {}});
+  CHECK(r.exitCode() == 3);
+  CHECK(r.failures() == 3);
+}
