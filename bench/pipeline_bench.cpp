@@ -6,6 +6,7 @@
 // 3. Runs `surrogate lights` (decode + light estimation) and `surrogate run` (decode, lights,
 //    PTM LRGB, HSH order 2, derived maps) as child processes, measuring wall time and peak
 //    resident memory (getrusage of the child).
+// 4. Fits each basis alone with `surrogate fit` on the .lp that `lights` wrote.
 // Prints each time and its ratio to the decode floor. Targets: lights below 2x decode (light
 // estimation itself below 1x decode), the whole run within 1.5x of decode on JPEG input, peak
 // memory under 2 GiB.
@@ -126,6 +127,23 @@ int main(int argc, char** argv) {
               lights.seconds, lights.seconds / decode, (lights.seconds - decode) / decode, lights.peakMiB,
               lights.status == 0 ? "" : "  FAILED");
   std::fflush(stdout);
+  // Each basis alone: `surrogate fit` decodes the images named by the .lp and fits one model,
+  // so the fit itself is its time less the decode floor.
+  const fs::path lp = capture / "assembly-files" / "lights.lp";
+  if (lights.status == 0 && fs::exists(lp)) {
+    for (const char* basis : {"ptm-lrgb", "ptm-rgb", "hsh2", "hsh3"}) {
+      const std::string ext = std::string(basis).rfind("ptm", 0) == 0 ? ".ptm" : ".rti";
+      const ChildRun fit = runChild({surrogate, "fit", "--lp", lp.string(), "-o",
+                                     (dir / (std::string("bench-") + basis + ext)).string(), "--basis",
+                                     basis, "--quiet"});
+      const double fitOnly = std::max(1e-9, fit.seconds - decode);
+      std::printf("  surrogate fit --basis %-8s %8.1f s  (%.2fx decode; fit alone %.1f s = %.0f Mpixel-images/s) peak %.0f MiB%s\n",
+                  basis, fit.seconds, fit.seconds / decode, fitOnly, mpx * o.images / fitOnly, fit.peakMiB,
+                  fit.status == 0 ? "" : "  FAILED");
+      std::fflush(stdout);
+    }
+  }
+
   fs::remove_all(capture / "assembly-files");
   fs::remove_all(capture / "finished-files");
   const ChildRun run = runChild({surrogate, "run", capture.string(), "--quiet", "--source", "export"});
