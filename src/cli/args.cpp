@@ -1,5 +1,6 @@
 #include "cli/args.h"
 
+#include <cctype>
 #include <cmath>
 #include <sstream>
 
@@ -19,6 +20,11 @@ Args::Args(int argc, char** argv, int first, std::vector<OptionSpec> specs) {
     if (arg == "--help" || arg == "-h") {
       help_ = true;
       continue;
+    }
+    // A one-letter option may be given with one dash, as people type it: -o FILE.
+    if (arg.size() == 2 && arg[0] == '-' && std::isalpha(static_cast<unsigned char>(arg[1]))) {
+      for (const OptionSpec& s : specs)
+        if (s.name == arg.substr(1)) arg = "-" + arg;
     }
     if (arg.rfind("--", 0) != 0 || arg == "--") {
       positional_.push_back(arg);
@@ -86,7 +92,8 @@ double Args::doubleValue(const std::string& name, double fallback) const {
 std::string Args::describe(const std::vector<OptionSpec>& specs) {
   std::ostringstream out;
   for (const OptionSpec& s : specs) {
-    std::string left = "  --" + s.name + (s.takesValue ? " " + s.valueName : "");
+    // One-letter options are written the way people type them: -o (--o is accepted too).
+    std::string left = (s.name.size() == 1 ? "  -" : "  --") + s.name + (s.takesValue ? " " + s.valueName : "");
     if (left.size() < 30) left.resize(30, ' ');
     else left += "\n" + std::string(30, ' ');
     out << left << s.help << (s.repeatable ? " (repeatable)" : "") << "\n";

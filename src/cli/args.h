@@ -20,7 +20,8 @@ struct OptionSpec {
 
 class Args {
  public:
-  // Parses argv[first..argc) against `specs`. `--help` is always accepted.
+  // Parses argv[first..argc) against `specs`. `--help` is always accepted; a one-letter option
+  // may be written -o as well as --o.
   Args(int argc, char** argv, int first, std::vector<OptionSpec> specs);
 
   bool helpRequested() const { return help_; }

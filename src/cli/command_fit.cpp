@@ -51,12 +51,7 @@ int runCommandFit(int argc, char** argv) {
       {"quiet", false, false, "no progress bar"},
       {"json", false, false, "print the fit quality as JSON"},
   };
-  // Accept the short "-o" as well as "--o"/"--output".
-  std::vector<char*> rewritten(argv, argv + argc);
-  std::string longO = "--o";
-  for (char*& a : rewritten)
-    if (std::string(a) == "-o") a = longO.data();
-  Args args(argc, rewritten.data(), 1, specs);
+  Args args(argc, argv, 1, specs);
   if (args.helpRequested()) {
     std::cout << usageHeader("surrogate fit --lp FILE.lp -o OUT.ptm|OUT.rti [--basis BASIS]",
                              "Fit a PTM or HSH model to the images an .lp file names, with its light "

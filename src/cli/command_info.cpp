@@ -24,25 +24,32 @@ std::string lower(std::string s) {
   return s;
 }
 
-void printCarrier(const fs::path& path, bool json) {
-  const carrier::Carrier c = carrier::loadCarrier(path);
+// The carrier as a JSON object, written into `j` (alone, or nested in a capture's object).
+void carrierJson(JsonWriter& j, const carrier::Carrier& c) {
   int images = 0;
   for (const carrier::FileRecord& f : c.files) images += f.imageSize.has_value();
+  j.beginObject().key("kind").value("carrier").key("title").value(c.header.title)
+      .key("created").value(c.header.created).key("files").value(static_cast<int>(c.files.size()))
+      .key("images").value(images).key("steps").beginArray();
+  for (const carrier::Step& s : c.process) {
+    const carrier::Result* r = c.findResult(s.id);
+    j.beginObject().key("id").value(s.id).key("component").value(s.component)
+        .key("version").value(s.version).key("status").value(r ? r->status : "not run")
+        .key("interventions").value(static_cast<int>(s.interventions.size())).endObject();
+  }
+  j.endArray().endObject();
+}
+
+void printCarrier(const fs::path& path, bool json) {
+  const carrier::Carrier c = carrier::loadCarrier(path);
   if (json) {
     JsonWriter j;
-    j.beginObject().key("kind").value("carrier").key("title").value(c.header.title)
-        .key("created").value(c.header.created).key("files").value(static_cast<int>(c.files.size()))
-        .key("images").value(images).key("steps").beginArray();
-    for (const carrier::Step& s : c.process) {
-      const carrier::Result* r = c.findResult(s.id);
-      j.beginObject().key("id").value(s.id).key("component").value(s.component)
-          .key("version").value(s.version).key("status").value(r ? r->status : "not run")
-          .key("interventions").value(static_cast<int>(s.interventions.size())).endObject();
-    }
-    j.endArray().endObject();
+    carrierJson(j, c);
     std::cout << j.str() << "\n";
     return;
   }
+  int images = 0;
+  for (const carrier::FileRecord& f : c.files) images += f.imageSize.has_value();
   std::cout << path.string() << ": Surrogate carrier\n"
             << "  title:   " << c.header.title << "\n"
             << "  created: " << c.header.created << " on " << c.header.machine.hostname << "\n";
@@ -58,6 +65,7 @@ void printCarrier(const fs::path& path, bool json) {
   }
 }
 
+// A capture folder; with --json, a processed capture's carrier is nested under "carrier".
 void printCapture(const fs::path& path, bool json) {
   const capture::CaptureLayout layout = capture::scanCapture(path, 0);
   int originals = 0, exports = 0;
@@ -72,7 +80,13 @@ void printCapture(const fs::path& path, bool json) {
     j.beginObject().key("kind").value("capture").key("shots").value(static_cast<int>(layout.shots.size()))
         .key("originals").value(originals).key("exports").value(exports)
         .key("width").value(sample.width).key("height").value(sample.height)
-        .key("lp").value(layout.lp.value_or("")).endObject();
+        .key("lp").value(layout.lp.value_or(""));
+    const fs::path carrierPath = path / capture::kAssemblyDir / "carrier.xml";
+    if (fs::exists(carrierPath)) {
+      j.key("carrier");
+      carrierJson(j, carrier::loadCarrier(carrierPath));
+    }
+    j.endObject();
     std::cout << j.str() << "\n";
     return;
   }
@@ -133,7 +147,7 @@ int runCommandInfo(int argc, char** argv) {
   if (fs::is_directory(path)) {
     if (fs::exists(path / capture::kAssemblyDir / "carrier.xml") && !json) {
       printCapture(path, false);
-      printCarrier(path / capture::kAssemblyDir / "carrier.xml", false);
+      printCarrier(path / capture::kAssemblyDir / "carrier.xml", false);  // JSON: nested by printCapture
     } else {
       printCapture(path, json);
     }

@@ -21,11 +21,7 @@ int runCommandLights(int argc, char** argv) {
   specs.push_back({"o", true, false, "the .lp file to write", "FILE.lp"});
   specs.push_back({"output", true, false, "same as -o", "FILE.lp"});
   for (const OptionSpec& o : runtimeOptions()) specs.push_back(o);
-  std::vector<char*> rewritten(argv, argv + argc);
-  std::string longO = "--o";
-  for (char*& a : rewritten)
-    if (std::string(a) == "-o") a = longO.data();
-  Args args(argc, rewritten.data(), 1, specs);
+  Args args(argc, argv, 1, specs);
   if (args.helpRequested()) {
     std::cout << usageHeader("surrogate lights CAPTURE -o FILE.lp [options]",
                              "Estimate the light direction of every image from the highlights on "

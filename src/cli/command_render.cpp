@@ -5,6 +5,7 @@
 #include "cli/args.h"
 #include "cli/commands.h"
 #include "core/error.h"
+#include "core/json.h"
 #include "fit/render.h"
 #include "image/decode.h"
 
@@ -19,12 +20,9 @@ int runCommandRender(int argc, char** argv) {
       {"gain", true, false, "diffuse gain g (PTM; 1 = none; > 1 shows relief more strongly)", "G"},
       {"specular", false, false, "add specular enhancement from the recovered normals"},
       {"threads", true, false, "worker threads (default: all cores)", "N"},
+      {"json", false, false, "print what was written as JSON"},
   };
-  std::vector<char*> rewritten(argv, argv + argc);
-  std::string longO = "--o";
-  for (char*& a : rewritten)
-    if (std::string(a) == "-o") a = longO.data();
-  Args args(argc, rewritten.data(), 1, specs);
+  Args args(argc, argv, 1, specs);
   if (args.helpRequested()) {
     std::cout << usageHeader("surrogate render FILE.ptm|FILE.rti --light x,y,z -o OUT.png [--gain g] [--specular]",
                              "Relight a PTM or HSH file under any light and save the picture.")
@@ -44,6 +42,14 @@ int runCommandRender(int argc, char** argv) {
   options.threads = args.intValue("threads", 0);
   const auto model = fit::openRelightable(args.positional()[0]);
   image::writePng(model->render({l[0], l[1], l[2]}, options), *out);
+  if (args.has("json")) {
+    JsonWriter j;
+    j.beginObject().key("output").value(*out).key("basis").value(model->basis())
+        .key("width").value(model->width()).key("height").value(model->height()).key("light").beginArray()
+        .value(l[0]).value(l[1]).value(l[2]).endArray().endObject();
+    std::cout << j.str() << "\n";
+    return 0;
+  }
   std::cout << "wrote " << *out << " (" << model->width() << "x" << model->height() << ", "
             << model->basis() << ")\n";
   return 0;

@@ -1,5 +1,7 @@
 // surrogate run CAPTURE [options]
+#include <filesystem>
 #include <iostream>
+#include <optional>
 
 #include "capture/capture.h"
 #include "cli/args.h"
@@ -8,6 +10,7 @@
 #include "cli/progress.h"
 #include "core/error.h"
 #include "core/json.h"
+#include "report/report.h"
 #include "stages/plan.h"
 
 namespace surrogate::cli {
@@ -16,6 +19,9 @@ namespace surrogate::cli {
 int runCommandRun(int argc, char** argv) {
   std::vector<OptionSpec> specs = pipelineOptions(true);
   for (const OptionSpec& o : runtimeOptions()) specs.push_back(o);
+  specs.push_back({"no-report", false, false,
+                   "do not write finished-files/report.html (the HTML report, a view of the carrier); "
+                   "a previous one is removed, since it no longer matches the carrier"});
   Args args(argc, argv, 1, specs);
   if (args.helpRequested()) {
     std::cout << usageHeader("surrogate run CAPTURE [options]",
@@ -36,6 +42,12 @@ int runCommandRun(int argc, char** argv) {
   settings.progress = [&bar](const std::string& label, double f) { bar.update(label, f); };
   const carrier::Carrier c = stages::runCapture(capture, request, settings);
   bar.finish();
+  // The report is a derived view of the carrier, not a recorded step (it holds the time it was
+  // made): written after the run, never listed in the carrier.
+  std::optional<report::Report> rep;
+  if (!args.has("no-report")) rep = report::writeCaptureReport(capture);
+  else std::filesystem::remove(std::filesystem::path(capture) / capture::kFinishedDir / "report.html");
+  const std::string reportPath = capture + "/finished-files/report.html";
 
   const std::string carrierPath = capture + "/" + capture::kAssemblyDir + "/carrier.xml";
   if (args.has("json")) {
@@ -51,7 +63,10 @@ int runCommandRun(int argc, char** argv) {
     j.endArray().key("outputs").beginArray();
     for (const carrier::FileRecord& f : c.files)
       if (f.role == "assembly" || f.role == "result") j.value(f.path);
-    j.endArray().endObject();
+    j.endArray().key("report");
+    if (rep) j.value(reportPath);
+    else j.null();
+    j.endObject();
     std::cout << j.str() << "\n";
   } else {
     std::cout << "Processed " << capture << " (" << c.process.size() << " steps).\n"
@@ -59,6 +74,10 @@ int runCommandRun(int argc, char** argv) {
     for (const carrier::FileRecord& f : c.files)
       if (f.role == "assembly" || f.role == "result")
         std::cout << "  " << f.role << ": " << capture << "/" << f.path << "\n";
+    if (rep) {
+      std::cout << "  report (open in a browser): " << reportPath << "\n";
+      for (const std::string& g : rep->coverageGaps) std::cout << "  coverage: " << g << "\n";
+    }
     int warnings = 0;
     for (const carrier::LogEntry& e : c.log) warnings += e.level == "warning";
     if (warnings > 0)

@@ -16,10 +16,13 @@ struct Command {
 const std::vector<Command>& commands();
 
 int runCommandRun(int argc, char** argv);
+int runCommandPack(int argc, char** argv);
 int runCommandInfo(int argc, char** argv);
 int runCommandLights(int argc, char** argv);
 int runCommandFit(int argc, char** argv);
 int runCommandRender(int argc, char** argv);
+int runCommandReport(int argc, char** argv);
+int runCommandVerify(int argc, char** argv);
 
 // Shared by commands: prints `help` and returns 0 if --help was given.
 std::string usageHeader(const std::string& synopsis, const std::string& description);

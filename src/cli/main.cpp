@@ -12,6 +12,7 @@
 
 #include "cli/commands.h"
 #include "core/error.h"
+#include "core/json.h"
 #include "core/version.h"
 
 using namespace surrogate;
@@ -30,6 +31,20 @@ void printUsage() {
   std::cout << "\nexit codes: 0 success, 1 bad input, 2 bad usage or invalid package, "
                "3 fixity failure, 4 not reproduced, 5 internal error\n";
 }
+
+// With --json, a failure is also one JSON object on stdout, so a script reading stdout always
+// gets JSON: {"error":{"exitCode":1,"file":"...","step":"...","message":"..."}}.
+int fail(bool json, const std::string& command, int exitCode, const std::string& file,
+         const std::string& step, const std::string& message, const std::string& text) {
+  std::cerr << "surrogate " << command << ": " << text << "\n";
+  if (json) {
+    JsonWriter j;
+    j.beginObject().key("error").beginObject().key("exitCode").value(exitCode).key("file").value(file)
+        .key("step").value(step).key("message").value(message).endObject().endObject();
+    std::cout << j.str() << "\n";
+  }
+  return exitCode;
+}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -43,20 +58,22 @@ int main(int argc, char** argv) {
     return 0;
   }
   const std::string name = argv[1];
+  bool json = false;
+  for (int i = 2; i < argc; ++i) json = json || std::string(argv[i]) == "--json";
   for (const cli::Command& c : cli::commands()) {
     if (name != c.name) continue;
+    const int internal = static_cast<int>(ErrorKind::Internal);
     try {
       return c.run(argc - 1, argv + 1);
     } catch (const Error& e) {
-      std::cerr << "surrogate " << name << ": " << e.what() << "\n";
-      return e.exitCode();
+      return fail(json, name, e.exitCode(), e.file(), e.step(), e.message(), e.what());
     } catch (const std::bad_alloc&) {
-      std::cerr << "surrogate " << name << ": out of memory; lower --memory or --threads\n";
-      return static_cast<int>(ErrorKind::Internal);
+      const std::string m = "out of memory; lower --memory or --threads";
+      return fail(json, name, internal, "", "", m, m);
     } catch (const std::exception& e) {
-      std::cerr << "surrogate " << name << ": internal error: " << e.what()
-                << " (please report this with the command you ran)\n";
-      return static_cast<int>(ErrorKind::Internal);
+      const std::string m = std::string("internal error: ") + e.what() +
+                            " (please report this with the command you ran)";
+      return fail(json, name, internal, "", "", m, m);
     }
   }
   std::cerr << "surrogate: unknown command \"" << name << "\" (run surrogate --help)\n";

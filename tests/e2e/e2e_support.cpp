@@ -5,6 +5,8 @@
 
 #include <array>
 #include <cstdio>
+#include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 #include "archive/digest.h"
@@ -71,6 +73,13 @@ std::map<std::string, std::string> snapshot(const fs::path& root) {
         surrogate::archive::digestFile(entry.path()).sha256;
   }
   return out;
+}
+
+std::string bytesOf(const std::filesystem::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  std::ostringstream s;
+  s << f.rdbuf();
+  return s.str();
 }
 
 }  // namespace e2e

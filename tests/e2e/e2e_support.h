@@ -31,4 +31,7 @@ std::map<std::string, std::string> snapshot(const std::filesystem::path& root);
 
 std::string quote(const std::filesystem::path& p);
 
+// The whole content of a file (empty if it cannot be read).
+std::string bytesOf(const std::filesystem::path& p);
+
 }  // namespace e2e

@@ -16,13 +16,6 @@ namespace fs = std::filesystem;
 using namespace surrogate;
 
 namespace {
-std::string bytesOf(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
 // Results of every step, without times (which differ between runs).
 std::string resultsOf(const carrier::Carrier& c) {
   std::string out;
@@ -55,13 +48,13 @@ TEST_CASE("a run writes the .lp, overlays, .ptm, .rti, normals and previews, all
   }
   // The files re-read bit-exactly: reading and writing again gives the same bytes.
   CHECK(formats::serializePtm(formats::readPtm(capture / "finished-files/ptm-lrgb.ptm")) ==
-        bytesOf(capture / "finished-files/ptm-lrgb.ptm"));
+        e2e::bytesOf(capture / "finished-files/ptm-lrgb.ptm"));
   CHECK(formats::serializeRti(formats::readRti(capture / "finished-files/hsh2.rti")) ==
-        bytesOf(capture / "finished-files/hsh2.rti"));
+        e2e::bytesOf(capture / "finished-files/hsh2.rti"));
   // One light per image, unit vectors, in the standard .lp layout.
   const auto lights = formats::readLp(capture / "assembly-files/lights.lp");
   CHECK(lights.size() == 12);
-  CHECK(std::string(bytesOf(capture / "assembly-files/lights.lp")).rfind("12\n", 0) == 0);
+  CHECK(std::string(e2e::bytesOf(capture / "assembly-files/lights.lp")).rfind("12\n", 0) == 0);
   // Fit quality recorded for each model.
   int fits = 0;
   for (const carrier::Result& res : c.data)

@@ -1,0 +1,105 @@
+// surrogate report PACKAGE|CAPTURE -o report.html: the self-contained HTML report.
+#include <iostream>
+
+#include "cli/args.h"
+#include "cli/commands.h"
+#include "cli/progress.h"
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "core/json.h"
+#include "report/report.h"
+#include "verify/verify.h"
+
+namespace surrogate::cli {
+
+int runCommandReport(int argc, char** argv) {
+  const std::vector<OptionSpec> specs = {
+      {"o", true, false, "the HTML file to write", "FILE.html"},
+      {"output", true, false, "same as -o", "FILE.html"},
+      {"max-image-side", true, false, "longest side of the embedded pictures in pixels (default 720)", "N"},
+      {"relight-side", true, false, "longest side of the interactive PTM copy in pixels (default 256)", "N"},
+      {"verify", false, false, "verify the package first and show the result of every check"},
+      {"reexecute", false, false, "with --verify: also re-execute the recorded steps (slow)"},
+      {"quiet", false, false, "no progress bar (verification)"},
+      {"json", false, false, "print what the report shows as JSON"},
+  };
+  Args args(argc, argv, 1, specs);
+  if (args.helpRequested()) {
+    std::cout << usageHeader("surrogate report PACKAGE|CAPTURE -o FILE.html [options]",
+                             "Write a self-contained HTML report (one file, no network access) of a "
+                             "processed capture folder or a package (bag directory, .tar or .zip): "
+                             "light directions and coverage gaps, sphere detection, normals, albedo, "
+                             "previews, an interactive relighting view, the provenance timeline and "
+                             "the camera; with --verify, the verifier's result per check. surrogate run "
+                             "writes one to CAPTURE/finished-files/report.html. Exit code 0 when the "
+                             "report is written, whatever the checks found (surrogate verify gives the "
+                             "verdict).")
+              << Args::describe(specs);
+    return 0;
+  }
+  const auto out = args.has("o") ? args.value("o") : args.value("output");
+  if (args.positional().size() != 1 || !out)
+    throw Error(ErrorKind::Usage, "", "command line",
+                "give the capture or package and the output: surrogate report CAPTURE -o report.html");
+  report::ReportOptions options;
+  options.maxImageSide = args.intValue("max-image-side", options.maxImageSide);
+  options.relightMaxSide = args.intValue("relight-side", options.relightMaxSide);
+  if (options.maxImageSide < 16 || options.relightMaxSide < 16)
+    throw Error(ErrorKind::Usage, "--max-image-side/--relight-side", "command line", "needs at least 16 pixels");
+
+  const auto source = report::openReportSource(args.positional()[0]);
+  if (args.has("reexecute") && !args.has("verify"))
+    throw Error(ErrorKind::Usage, "--reexecute", "command line", "goes with --verify");
+  if (args.has("verify")) {
+    if (!source->isPackage())
+      throw Error(ErrorKind::Usage, args.positional()[0], "command line",
+                  "is a capture folder: --verify checks a package (surrogate pack makes one)");
+    verify::VerifyOptions vo;
+    vo.reexecute = args.has("reexecute");
+    ProgressBar bar(args.has("quiet") || args.has("json"));
+    vo.progress = [&bar](const std::string& label, double f) { bar.update(label, f); };
+    const verify::Report verified = verify::verifyPackage(args.positional()[0], vo);
+    bar.finish();
+    std::vector<report::VerificationCheck> checks;
+    for (const verify::Check& c : verified.checks) {
+      std::string detail = c.what;
+      for (const std::string& w : c.where) detail += (detail.empty() ? "" : "; ") + w;
+      checks.push_back({c.name, c.passed, detail});
+    }
+    options.verification = checks;
+  }
+  const report::Report r = report::buildReport(source->carrier(), *source, options);
+  writeFileAtomically(*out, r.html);
+  if (args.has("json")) {
+    JsonWriter j;
+    j.beginObject().key("output").value(*out).key("source").value(source->describe())
+        .key("lights").value(r.lightsPlotted).key("pictures").value(r.picturesEmbedded)
+        .key("relightable").value(r.relightable).key("coverageGaps").beginArray();
+    for (const std::string& g : r.coverageGaps) j.value(g);
+    j.endArray().key("bytes").value(static_cast<unsigned long long>(r.html.size())).key("verification");
+    if (options.verification) {
+      int failed = 0;
+      for (const report::VerificationCheck& c : *options.verification) failed += !c.passed;
+      j.beginObject().key("checks").value(static_cast<int>(options.verification->size()))
+          .key("failed").value(failed).endObject();
+    } else {
+      j.null();
+    }
+    j.endObject();
+    std::cout << j.str() << "\n";
+  } else {
+    std::cout << "wrote " << *out << " (" << r.lightsPlotted << " lights, " << r.picturesEmbedded
+              << " pictures" << (r.relightable ? ", interactive relighting" : "") << ", "
+              << r.html.size() / 1024 << " KiB)\n";
+    for (const std::string& g : r.coverageGaps) std::cout << "  coverage: " << g << "\n";
+    if (options.verification) {
+      int failed = 0;
+      for (const report::VerificationCheck& c : *options.verification) failed += !c.passed;
+      std::cout << "  verification: " << options.verification->size() << " checks, " << failed
+                << " failed (details in the report; surrogate verify gives the verdict as its exit code)\n";
+    }
+  }
+  return 0;
+}
+
+}  // namespace surrogate::cli

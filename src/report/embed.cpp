@@ -1,0 +1,111 @@
+#include "report/embed.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <vector>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "formats/ptm.h"
+#include "report/html.h"
+
+namespace surrogate::report {
+
+namespace {
+// A PNG whose header claims more pixels than this is not decoded (a package is untrusted: a
+// small file can claim a huge image).
+constexpr std::uint64_t kMaxPngPixels = 1ull << 28;
+
+bool plausiblePng(const std::string& bytes) {
+  if (bytes.size() < 24 || bytes.compare(0, 8, "\x89PNG\r\n\x1a\n") != 0) return true;  // not a PNG
+  auto be32 = [&](std::size_t at) {
+    std::uint64_t v = 0;
+    for (std::size_t i = 0; i < 4; ++i) v = (v << 8) | static_cast<unsigned char>(bytes[at + i]);
+    return v;
+  };
+  return be32(16) * be32(20) <= kMaxPngPixels;  // IHDR width, height
+}
+}  // namespace
+
+std::optional<EmbeddedPicture> embedPicture(const std::string& bytes, int maxSide) {
+  if (bytes.empty() || !plausiblePng(bytes)) return std::nullopt;
+  cv::Mat image;
+  try {
+    const cv::Mat raw(1, static_cast<int>(bytes.size()), CV_8UC1,
+                      const_cast<char*>(bytes.data()));
+    image = cv::imdecode(raw, cv::IMREAD_COLOR);  // 8-bit BGR, whatever the file's depth
+  } catch (const cv::Exception&) {
+    return std::nullopt;
+  }
+  if (image.empty()) return std::nullopt;
+  EmbeddedPicture p;
+  p.originalWidth = image.cols;
+  p.originalHeight = image.rows;
+  const int side = std::max(image.cols, image.rows);
+  if (maxSide > 0 && side > maxSide) {
+    const double f = static_cast<double>(maxSide) / side;
+    cv::Mat small;
+    cv::resize(image, small,
+               cv::Size(std::max(1, static_cast<int>(std::lround(image.cols * f))),
+                        std::max(1, static_cast<int>(std::lround(image.rows * f)))),
+               0, 0, cv::INTER_AREA);
+    image = small;
+  }
+  std::vector<unsigned char> jpeg;
+  if (!cv::imencode(".jpg", image, jpeg, {cv::IMWRITE_JPEG_QUALITY, 88})) return std::nullopt;
+  p.width = image.cols;
+  p.height = image.rows;
+  p.dataUri = "data:image/jpeg;base64," + base64(std::string(jpeg.begin(), jpeg.end()));
+  return p;
+}
+
+std::string relightJson(const std::string& ptmBytes, int maxSide, const std::string& name) {
+  const formats::PtmFile ptm = formats::parsePtm(
+      reinterpret_cast<const std::uint8_t*>(ptmBytes.data()), ptmBytes.size(), name);
+  const int side = std::max(ptm.width, ptm.height);
+  const int step = maxSide > 0 && side > maxSide ? (side + maxSide - 1) / maxSide : 1;
+  const int w = (ptm.width + step - 1) / step, h = (ptm.height + step - 1) / step;
+  const bool lrgb = ptm.format == formats::PtmFile::Format::Lrgb;
+  const int channels = lrgb ? 1 : 3;
+
+  // Block average of bytes; rows top-first, texel-interleaved: ((c*h + y)*w + x)*6 + k.
+  std::string coefficients(static_cast<std::size_t>(channels) * w * h * 6, '\0');
+  std::string rgb(lrgb ? static_cast<std::size_t>(w) * h * 3 : 0, '\0');
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const int x0 = x * step, y0 = y * step;
+      const int x1 = std::min(ptm.width, x0 + step), y1 = std::min(ptm.height, y0 + step);
+      const int n = (x1 - x0) * (y1 - y0);
+      for (int c = 0; c < channels; ++c) {
+        for (int k = 0; k < 6; ++k) {
+          int sum = 0;
+          for (int yy = y0; yy < y1; ++yy)
+            for (int xx = x0; xx < x1; ++xx) sum += ptm.byte(xx, yy, k, c);
+          coefficients[((static_cast<std::size_t>(c) * h + y) * w + x) * 6 + k] =
+              static_cast<char>((sum + n / 2) / n);
+        }
+      }
+      for (int c = 0; lrgb && c < 3; ++c) {
+        int sum = 0;
+        for (int yy = y0; yy < y1; ++yy)
+          for (int xx = x0; xx < x1; ++xx)
+            sum += ptm.rgb[(static_cast<std::size_t>(yy) * ptm.width + xx) * 3 + c];
+        rgb[(static_cast<std::size_t>(y) * w + x) * 3 + c] = static_cast<char>((sum + n / 2) / n);
+      }
+    }
+  }
+  std::ostringstream j;
+  j.precision(17);
+  j << "{\"format\":\"" << (lrgb ? "lrgb" : "rgb") << "\",\"width\":" << w << ",\"height\":" << h
+    << ",\"originalWidth\":" << ptm.width << ",\"originalHeight\":" << ptm.height << ",\"scale\":[";
+  for (int k = 0; k < 6; ++k) j << (k ? "," : "") << ptm.scale[k];
+  j << "],\"bias\":[";
+  for (int k = 0; k < 6; ++k) j << (k ? "," : "") << ptm.bias[k];
+  j << "],\"coefficients\":\"" << base64(coefficients) << "\",\"rgb\":\"" << base64(rgb) << "\"}";
+  return j.str();
+}
+
+}  // namespace surrogate::report

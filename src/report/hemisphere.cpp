@@ -1,0 +1,176 @@
+#include "report/hemisphere.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "report/html.h"
+
+namespace surrogate::report {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kCentre = 180, kRadius = 150;
+
+double wrap360(double deg) {
+  double d = std::fmod(deg, 360.0);
+  return d < 0 ? d + 360 : d;
+}
+
+// Plot coordinates of (elevation, azimuth).
+void project(double elevationDeg, double azimuthDeg, double& x, double& y) {
+  const double r = kRadius * (90 - std::clamp(elevationDeg, 0.0, 90.0)) / 90;
+  x = kCentre + r * std::cos(azimuthDeg * kPi / 180);
+  y = kCentre - r * std::sin(azimuthDeg * kPi / 180);
+}
+
+std::string num(double v) { return displayNumber(v, 2); }
+
+// An SVG path for the ring sector between two elevations and two azimuths (ccw from a0 to a1).
+std::string sectorPath(double e0, double e1, double a0, double a1) {
+  std::ostringstream p;
+  double x, y;
+  const int segments = std::max(2, static_cast<int>(std::ceil((a1 - a0) / 5)));
+  for (int i = 0; i <= segments; ++i) {
+    project(e0, a0 + (a1 - a0) * i / segments, x, y);
+    p << (i == 0 ? "M" : "L") << num(x) << "," << num(y);
+  }
+  for (int i = segments; i >= 0; --i) {
+    project(e1, a0 + (a1 - a0) * i / segments, x, y);
+    p << "L" << num(x) << "," << num(y);
+  }
+  p << "Z";
+  return p.str();
+}
+
+}  // namespace
+
+double AzimuthGap::widthDeg() const { return wrap360(toDeg - fromDeg); }
+
+Coverage analyseCoverage(const std::vector<LightPoint>& lights) {
+  Coverage c;
+  if (lights.empty()) return c;
+  c.lowestElevationDeg = c.highestElevationDeg = lights.front().elevationDeg;
+  std::vector<double> az;
+  for (const LightPoint& l : lights) {
+    c.lowestElevationDeg = std::min(c.lowestElevationDeg, l.elevationDeg);
+    c.highestElevationDeg = std::max(c.highestElevationDeg, l.elevationDeg);
+    az.push_back(wrap360(l.azimuthDeg));
+  }
+  c.missingRaking = c.lowestElevationDeg >= kRakingElevationDeg;
+  c.missingHigh = c.highestElevationDeg <= kHighElevationDeg;
+  std::sort(az.begin(), az.end());
+  for (std::size_t i = 0; i < az.size(); ++i) {
+    const double from = az[i];
+    const double to = i + 1 < az.size() ? az[i + 1] : az.front() + 360;
+    if (to - from > kMaxAzimuthGapDeg) c.azimuthGaps.push_back({from, wrap360(to)});
+  }
+  return c;
+}
+
+std::vector<std::string> Coverage::sentences() const {
+  std::vector<std::string> out;
+  if (missingRaking)
+    out.push_back("No light below " + displayNumber(kRakingElevationDeg, 0) +
+                  "\u00b0 elevation (the lowest is " + displayNumber(lowestElevationDeg, 1) +
+                  "\u00b0): raking light, which shows relief best, is missing.");
+  for (const AzimuthGap& g : azimuthGaps) {
+    const double width = g.widthDeg() == 0 ? 360 : g.widthDeg();
+    out.push_back("No light between azimuth " + displayNumber(g.fromDeg, 0) + "\u00b0 and " +
+                  displayNumber(g.toDeg, 0) + "\u00b0 (a sector of " + displayNumber(width, 0) +
+                  "\u00b0): relief facing that way is lit from one side only.");
+  }
+  if (missingHigh)
+    out.push_back("No light above " + displayNumber(kHighElevationDeg, 0) +
+                  "\u00b0 elevation (the highest is " + displayNumber(highestElevationDeg, 1) +
+                  "\u00b0): the fit has nothing near the camera's axis.");
+  return out;
+}
+
+std::string residualColour(double t) {
+  // Viridis, five stops.
+  static const double stops[5][3] = {{68, 1, 84}, {59, 82, 139}, {33, 145, 140}, {94, 201, 98},
+                                     {253, 231, 37}};
+  t = std::clamp(std::isfinite(t) ? t : 0.0, 0.0, 1.0) * 4;
+  const int i = std::min(3, static_cast<int>(t));
+  const double f = t - i;
+  char buf[8];
+  std::snprintf(buf, sizeof buf, "#%02x%02x%02x",
+                static_cast<int>(std::lround(stops[i][0] + f * (stops[i + 1][0] - stops[i][0]))),
+                static_cast<int>(std::lround(stops[i][1] + f * (stops[i + 1][1] - stops[i][1]))),
+                static_cast<int>(std::lround(stops[i][2] + f * (stops[i + 1][2] - stops[i][2]))));
+  return buf;
+}
+
+std::string hemisphereSvg(const std::vector<LightPoint>& lights, const Coverage& coverage) {
+  double lo = 0, hi = 0;
+  bool any = false;
+  for (const LightPoint& l : lights) {
+    if (!l.rmse) continue;
+    lo = any ? std::min(lo, *l.rmse) : *l.rmse;
+    hi = any ? std::max(hi, *l.rmse) : *l.rmse;
+    any = true;
+  }
+  std::ostringstream s;
+  s << "<svg id=\"hemisphere\" xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 460 360\" "
+       "width=\"460\" height=\"360\" role=\"img\" aria-label=\"Light directions on the hemisphere\">\n";
+  // Gaps first, beneath everything.
+  if (coverage.missingRaking)
+    s << "<path class=\"gap\" d=\"" << sectorPath(0, kRakingElevationDeg, 0, 360) << "\"/>\n";
+  for (const AzimuthGap& g : coverage.azimuthGaps) {
+    const double width = g.widthDeg() == 0 ? 360 : g.widthDeg();
+    s << "<path class=\"gap\" d=\"" << sectorPath(0, 90, g.fromDeg, g.fromDeg + width) << "\"/>\n";
+  }
+  // Elevation rings and azimuth spokes.
+  for (double e : {0.0, 30.0, 60.0}) {
+    double x, y;
+    project(e, 112.5, x, y);  // labels between the 90 and 135 degree spokes
+    s << "<circle class=\"grid\" cx=\"" << kCentre << "\" cy=\"" << kCentre << "\" r=\""
+      << num(kRadius * (90 - e) / 90) << "\"/>";
+    s << "<text class=\"axis elevation\" text-anchor=\"middle\" x=\"" << num(x) << "\" y=\"" << num(y + 12)
+      << "\">" << e << "\u00b0</text>\n";
+  }
+  s << "<circle class=\"grid raking\" cx=\"" << kCentre << "\" cy=\"" << kCentre << "\" r=\""
+    << num(kRadius * (90 - kRakingElevationDeg) / 90) << "\"/>\n";
+  for (int a = 0; a < 360; a += 45) {
+    double x, y, tx, ty;
+    project(0, a, x, y);
+    project(-9, a, tx, ty);
+    s << "<line class=\"grid\" x1=\"" << kCentre << "\" y1=\"" << kCentre << "\" x2=\"" << num(x)
+      << "\" y2=\"" << num(y) << "\"/><text class=\"axis\" text-anchor=\"middle\" x=\"" << num(tx)
+      << "\" y=\"" << num(ty + 4) << "\">" << a << "\u00b0</text>\n";
+  }
+  // The lights.
+  for (const LightPoint& l : lights) {
+    double x, y;
+    project(l.elevationDeg, l.azimuthDeg, x, y);
+    const std::string colour =
+        l.rmse ? residualColour(hi > lo ? (*l.rmse - lo) / (hi - lo) : 0.5) : std::string("#999999");
+    s << "<circle class=\"light\" cx=\"" << num(x) << "\" cy=\"" << num(y) << "\" r=\"6\" fill=\""
+      << colour << "\" data-image=\"" << escapeHtml(l.image) << "\"><title>" << escapeHtml(l.image)
+      << ": elevation " << displayNumber(l.elevationDeg, 1) << "\u00b0, azimuth "
+      << displayNumber(l.azimuthDeg, 1) << "\u00b0"
+      << (l.rmse ? ", residual " + displayNumber(*l.rmse, 2) + " levels" : std::string())
+      << "</title></circle>\n";
+  }
+  // Legend: the residual scale.
+  s << "<defs><linearGradient id=\"residual-scale\" x1=\"0\" y1=\"1\" x2=\"0\" y2=\"0\">";
+  for (int i = 0; i <= 4; ++i)
+    s << "<stop offset=\"" << i * 25 << "%\" stop-color=\"" << residualColour(i / 4.0) << "\"/>";
+  s << "</linearGradient></defs>\n";
+  if (any) {
+    s << "<rect x=\"400\" y=\"60\" width=\"16\" height=\"200\" fill=\"url(#residual-scale)\"/>"
+      << "<text class=\"axis\" x=\"420\" y=\"66\">" << displayNumber(hi, 1) << "</text>"
+      << "<text class=\"axis\" x=\"420\" y=\"262\">" << displayNumber(lo, 1) << "</text>"
+      << "<text class=\"axis\" x=\"392\" y=\"50\">residual</text>"
+      << "<text class=\"axis\" x=\"392\" y=\"280\">(8-bit levels)</text>\n";
+  } else {
+    s << "<text class=\"axis\" x=\"380\" y=\"60\">no fit: grey</text>\n";
+  }
+  s << "</svg>";
+  return s.str();
+}
+
+}  // namespace surrogate::report

@@ -1,0 +1,57 @@
+// The light directions of a capture on a hemisphere plot, and the gaps in their coverage.
+//
+// The plot is the hemisphere seen from the camera: the centre is a light on the optical axis
+// (elevation 90 degrees), the rim is grazing light (elevation 0); azimuth 0 is to the right of
+// the image, 90 at the top (x right, y up, as in the carrier):
+//
+//     radius = R * (90 - elevation) / 90        point = centre + radius * (cos az, -sin az)
+//
+// Coverage rules (what a photographer would redo the capture for):
+//   - no light below kRakingElevationDeg: raking light, which shows relief best, is missing;
+//   - an azimuth sector wider than kMaxAzimuthGapDeg without any light: relief facing that way
+//     is only lit from one side;
+//   - no light above kHighElevationDeg: the fit has nothing near the axis.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace surrogate::report {
+
+inline constexpr double kRakingElevationDeg = 20;
+inline constexpr double kMaxAzimuthGapDeg = 90;
+inline constexpr double kHighElevationDeg = 60;
+
+struct LightPoint {
+  std::string image;           // the image's path in the capture
+  double elevationDeg = 0;     // 0 grazing .. 90 on the axis
+  double azimuthDeg = 0;       // -180..180, 0 right, 90 up
+  std::optional<double> rmse;  // the fit's residual on this image (8-bit levels), if fitted
+};
+
+struct AzimuthGap {
+  double fromDeg = 0, toDeg = 0;  // counter-clockwise from `fromDeg` to `toDeg`, 0..360
+  double widthDeg() const;
+};
+
+struct Coverage {
+  std::vector<AzimuthGap> azimuthGaps;
+  bool missingRaking = false;  // no light below kRakingElevationDeg
+  bool missingHigh = false;    // no light above kHighElevationDeg
+  double lowestElevationDeg = 0, highestElevationDeg = 0;
+  // One sentence per finding, for the page and --json.
+  std::vector<std::string> sentences() const;
+};
+
+// Empty `lights` gives an empty Coverage.
+Coverage analyseCoverage(const std::vector<LightPoint>& lights);
+
+// The plot as an inline <svg id="hemisphere"> with one <circle class="light"> per light,
+// coloured from low (dark blue) to high residual (yellow), gaps shaded, and a colour legend.
+std::string hemisphereSvg(const std::vector<LightPoint>& lights, const Coverage& coverage);
+
+// "#rrggbb" for t in 0..1 on a viridis-like scale.
+std::string residualColour(double t);
+
+}  // namespace surrogate::report

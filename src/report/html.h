@@ -1,0 +1,21 @@
+// Small helpers for writing HTML from untrusted text (carrier fields, file names).
+#pragma once
+
+#include <string>
+
+namespace surrogate::report {
+
+// Escapes & < > " ' so the text is safe in element content and in quoted attributes.
+std::string escapeHtml(const std::string& text);
+
+// A JSON string literal safe to embed inside <script>: also escapes '<', '>' and '&', and
+// U+2028/U+2029, so no carrier text can close the script element.
+std::string scriptString(const std::string& text);
+
+// Standard base64 (RFC 4648, with padding).
+std::string base64(const std::string& bytes);
+
+// A number for display: up to `digits` decimals, trailing zeros removed ("12.5", "3").
+std::string displayNumber(double value, int digits = 1);
+
+}  // namespace surrogate::report

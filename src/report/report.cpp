@@ -1,0 +1,349 @@
+#include "report/report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "core/version.h"
+#include "report/embed.h"
+#include "report/hemisphere.h"
+#include "report/html.h"
+#include "report/page_assets.h"
+#include "report/sections.h"
+
+namespace surrogate::report {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// The lights of the last step that recorded any, with the residual of the first fit that
+// recorded per-image residuals.
+std::vector<LightPoint> collectLights(const carrier::Carrier& c, std::string* fitLabel) {
+  const carrier::Result* lightResult = nullptr;
+  const carrier::Result* fitResult = nullptr;
+  for (const carrier::Result& r : c.data) {
+    if (!r.itemsOf("light").empty()) lightResult = &r;
+    if (!fitResult) {
+      for (const carrier::DataItem* v : r.itemsOf("imageValue"))
+        if (v->get("name") == "rmse") {
+          fitResult = &r;
+          break;
+        }
+    }
+  }
+  std::map<std::string, double> rmse;
+  if (fitResult) {
+    for (const carrier::DataItem* v : fitResult->itemsOf("imageValue")) {
+      if (v->get("name") != "rmse") continue;
+      try {
+        rmse[v->get("image").value_or("")] = v->number("value");
+      } catch (const Error&) {
+        // An unreadable residual is shown as "no residual" rather than failing the page.
+      }
+    }
+    const carrier::Step* step = c.findStep(fitResult->step);
+    *fitLabel = step ? step->id + " " + step->component + " (" + step->param("basis", "?") + ")" : fitResult->step;
+  }
+  std::vector<LightPoint> out;
+  if (!lightResult) return out;
+  for (const carrier::DataItem* l : lightResult->itemsOf("light")) {
+    LightPoint p;
+    const std::string id = l->get("image").value_or("");
+    const carrier::FileRecord* f = c.findFile(id);
+    p.image = f ? f->path : id;
+    try {
+      if (l->get("elevationDeg") && l->get("azimuthDeg")) {
+        p.elevationDeg = l->number("elevationDeg");
+        p.azimuthDeg = l->number("azimuthDeg");
+      } else {  // angles from the direction
+        const double x = l->number("x"), y = l->number("y"), z = l->number("z");
+        const double n = std::sqrt(x * x + y * y + z * z);
+        if (!(n > 0)) continue;
+        p.elevationDeg = std::asin(std::clamp(z / n, -1.0, 1.0)) * 180 / kPi;
+        p.azimuthDeg = std::atan2(y, x) * 180 / kPi;
+      }
+    } catch (const Error&) {
+      continue;  // a light that is not numbers cannot be plotted
+    }
+    if (const auto it = rmse.find(id); it != rmse.end()) p.rmse = it->second;
+    out.push_back(p);
+  }
+  return out;
+}
+
+// Output files of every result, by kind, in carrier order.
+std::vector<std::pair<std::string, const carrier::FileRecord*>> outputsByKind(const carrier::Carrier& c) {
+  std::vector<std::pair<std::string, const carrier::FileRecord*>> out;
+  for (const carrier::Result& r : c.data)
+    for (const carrier::DataItem* o : r.itemsOf("output"))
+      if (const carrier::FileRecord* f = c.findFile(o->get("file").value_or("")))
+        out.emplace_back(o->get("kind").value_or(""), f);
+  return out;
+}
+
+std::string figure(const ReportSource& source, const carrier::FileRecord& file,
+                   const std::string& caption, int maxSide, int* embedded) {
+  std::ostringstream s;
+  const std::optional<std::string> bytes = source.read(file.path);
+  const std::optional<EmbeddedPicture> p = bytes ? embedPicture(*bytes, maxSide) : std::nullopt;
+  if (!p) {
+    s << "<p class=\"bad\">" << escapeHtml(file.path) << ": "
+      << (bytes ? "not a readable picture" : "not found in this package or capture")
+      << "</p>";
+    return s.str();
+  }
+  ++*embedded;
+  s << "<figure><img src=\"" << p->dataUri << "\" width=\"" << p->width << "\" height=\"" << p->height
+    << "\" alt=\"" << escapeHtml(caption) << "\"><figcaption>" << escapeHtml(caption) << " \u2014 <code>"
+    << escapeHtml(file.path) << "</code> (" << p->originalWidth << "\u00d7" << p->originalHeight
+    << ", shown at " << p->width << "\u00d7" << p->height << ")</figcaption></figure>";
+  return s.str();
+}
+
+std::string previewCaption(const std::string& path) {
+  if (path.find("raking") != std::string::npos) return "Relit: raking light";
+  if (path.find("top") != std::string::npos) return "Relit: light from above";
+  if (path.find("specular") != std::string::npos) return "Relit: specular enhancement";
+  return "Relit preview";
+}
+
+std::string lightsSection(const carrier::Carrier& c, Report& report) {
+  std::string fitLabel;
+  const std::vector<LightPoint> lights = collectLights(c, &fitLabel);
+  const Coverage coverage = analyseCoverage(lights);
+  report.lightsPlotted = static_cast<int>(lights.size());
+  report.coverageGaps = coverage.sentences();
+  std::ostringstream s;
+  s << "<section id=\"lights\"><h2>Light directions</h2>";
+  if (lights.empty()) {
+    s << "<p>This carrier records no light directions (the light estimation did not run or "
+         "failed; see the provenance below).</p></section>";
+    return s.str();
+  }
+  s << "<div class=\"plot\">" << hemisphereSvg(lights, coverage) << "<div><p>" << lights.size()
+    << " light" << (lights.size() == 1 ? "" : "s") << " seen from the camera: the centre is a light "
+       "on the camera's axis, the rim is grazing light; 0\u00b0 azimuth is to the right of the "
+       "image, 90\u00b0 at the top. Elevation from "
+    << displayNumber(coverage.lowestElevationDeg, 1) << "\u00b0 to "
+    << displayNumber(coverage.highestElevationDeg, 1) << "\u00b0. The dashed ring is "
+    << displayNumber(kRakingElevationDeg, 0) << "\u00b0 elevation.</p>";
+  s << "<p>" << (fitLabel.empty() ? std::string("No fit recorded residuals: points are grey.")
+                                   : "Colour: the residual (RMSE) of " + escapeHtml(fitLabel) +
+                                         " on each image, dark = small, yellow = large.")
+    << "</p>";
+  if (coverage.sentences().empty()) {
+    s << "<p class=\"ok\">No gap in coverage: lights below " << displayNumber(kRakingElevationDeg, 0)
+      << "\u00b0 and above " << displayNumber(kHighElevationDeg, 0)
+      << "\u00b0, and no azimuth sector wider than " << displayNumber(kMaxAzimuthGapDeg, 0)
+      << "\u00b0 without light.</p>";
+  } else {
+    s << "<h3>Gaps in coverage</h3><ul class=\"gaps\">";
+    for (const std::string& g : coverage.sentences()) s << "<li>" << escapeHtml(g) << "</li>";
+    s << "</ul>";
+  }
+  s << "</div></div><details><summary>Every light</summary><table><tr><th>image</th>"
+       "<th>elevation \u00b0</th><th>azimuth \u00b0</th><th>residual</th></tr>";
+  for (const LightPoint& l : lights)
+    s << "<tr><td><code>" << escapeHtml(l.image) << "</code></td><td class=\"num\">"
+      << displayNumber(l.elevationDeg, 1) << "</td><td class=\"num\">" << displayNumber(l.azimuthDeg, 1)
+      << "</td><td class=\"num\">" << (l.rmse ? displayNumber(*l.rmse, 2) : "-") << "</td></tr>";
+  s << "</table></details></section>";
+  return s.str();
+}
+
+std::string detectionSection(const carrier::Carrier& c, const ReportSource& source,
+                             const ReportOptions& options, Report& report) {
+  std::ostringstream s;
+  s << "<section id=\"detection\"><h2>Sphere and highlight detection</h2>";
+  std::vector<const carrier::DataItem*> spheres, flagged;
+  for (const carrier::Result& r : c.data) {
+    for (const carrier::DataItem* d : r.itemsOf("sphere")) spheres.push_back(d);
+    for (const carrier::DataItem* d : r.itemsOf("highlight"))
+      if (d->get("flag").value_or("ok") != "ok") flagged.push_back(d);
+  }
+  if (spheres.empty()) {
+    s << "<p>No sphere was detected or recorded (the lights may come from an .lp file).</p>";
+  } else {
+    s << "<table><tr><th>sphere</th><th>centre x, y (px)</th><th>radius (px)</th>"
+         "<th>confidence</th><th>source</th></tr>";
+    for (const carrier::DataItem* d : spheres) {
+      auto n = [&](const char* name) {
+        try {
+          return displayNumber(d->number(name), 2);
+        } catch (const Error&) {
+          return std::string("-");
+        }
+      };
+      s << "<tr><td>" << escapeHtml(d->get("index").value_or("")) << "</td><td class=\"num\">"
+        << n("cx") << ", " << n("cy") << "</td><td class=\"num\">" << n("r") << "</td><td class=\"num\">"
+        << n("confidence") << "</td><td>" << escapeHtml(d->get("source").value_or("")) << "</td></tr>";
+    }
+    s << "</table>";
+  }
+  if (!flagged.empty()) {
+    s << "<h3>Highlights to check</h3><ul>";
+    for (const carrier::DataItem* d : flagged) {
+      const carrier::FileRecord* f = c.findFile(d->get("image").value_or(""));
+      s << "<li class=\"warning\"><code>" << escapeHtml(f ? f->path : d->get("image").value_or(""))
+        << "</code>, sphere " << escapeHtml(d->get("sphere").value_or("")) << ": "
+        << escapeHtml(d->get("flag").value_or("")) << "</li>";
+    }
+    s << "</ul>";
+  }
+  s << "<div class=\"gallery\">";
+  bool any = false;
+  for (const auto& [kind, file] : outputsByKind(c)) {
+    if (kind == "sphere-overlay") {
+      s << figure(source, *file, "Sphere detection overlay", options.maxImageSide, &report.picturesEmbedded);
+      any = true;
+    } else if (kind == "highlight-overview") {
+      s << figure(source, *file, "Highlight overview", options.maxImageSide, &report.picturesEmbedded);
+      any = true;
+    }
+  }
+  s << "</div>";
+  if (!any) s << "<p class=\"note\">No overlay or highlight overview was written.</p>";
+  s << "</section>";
+  return s.str();
+}
+
+std::string resultsSection(const carrier::Carrier& c, const ReportSource& source,
+                           const ReportOptions& options, Report& report) {
+  std::ostringstream s;
+  s << "<section id=\"results\"><h2>Results</h2>";
+  // Fit quality per model.
+  std::ostringstream fits;
+  for (const carrier::Step& step : c.process) {
+    const carrier::Result* r = c.findResult(step.id);
+    if (!r) continue;
+    std::string rmse, psnr, output;
+    for (const carrier::DataItem* v : r->itemsOf("value")) {
+      if (v->get("name") == "rmse") rmse = v->get("value").value_or("");
+      if (v->get("name") == "psnr") psnr = v->get("value").value_or("");
+    }
+    if (rmse.empty()) continue;
+    for (const carrier::DataItem* o : r->itemsOf("output"))
+      if (const carrier::FileRecord* f = c.findFile(o->get("file").value_or(""))) output = f->path;
+    auto shown = [](const std::string& t) {
+      try {
+        return displayNumber(std::stod(t), 2);
+      } catch (const std::exception&) {
+        return std::string("-");
+      }
+    };
+    fits << "<tr><td>" << escapeHtml(step.id) << "</td><td>" << escapeHtml(step.param("basis", "-"))
+         << "</td><td><code>" << escapeHtml(output) << "</code></td><td class=\"num\">" << shown(rmse)
+         << "</td><td class=\"num\">" << shown(psnr) << "</td></tr>";
+  }
+  if (!fits.str().empty())
+    s << "<table><tr><th>step</th><th>model</th><th>file</th><th>RMSE (8-bit levels)</th>"
+         "<th>PSNR (dB)</th></tr>" << fits.str() << "</table>";
+
+  s << "<div class=\"gallery\">";
+  const carrier::FileRecord* ptm = nullptr;
+  for (const auto& [kind, file] : outputsByKind(c)) {
+    if (kind == "normals") s << figure(source, *file, "Normal map", options.maxImageSide, &report.picturesEmbedded);
+    else if (kind == "albedo") s << figure(source, *file, "Albedo", options.maxImageSide, &report.picturesEmbedded);
+    else if (kind == "preview")
+      s << figure(source, *file, previewCaption(file->path), options.maxImageSide, &report.picturesEmbedded);
+    if (!ptm && file->format.rfind("PTM_FORMAT", 0) == 0) ptm = file;
+  }
+  s << "</div>";
+
+  s << "<h3>Relight it yourself</h3>";
+  const std::optional<std::string> bytes = ptm ? source.read(ptm->path) : std::nullopt;
+  if (!ptm || !bytes) {
+    s << "<p class=\"note\">"
+      << (ptm ? "The PTM " + escapeHtml(ptm->path) + " is not in this package or capture."
+              : std::string("No PTM was fitted, so there is no interactive view."))
+      << "</p></section>";
+    return s.str();
+  }
+  std::string json;
+  try {
+    json = relightJson(*bytes, options.relightMaxSide, ptm->path);
+  } catch (const Error& e) {
+    s << "<p class=\"bad\">The PTM cannot be shown: " << escapeHtml(e.what()) << "</p></section>";
+    return s.str();
+  }
+  report.relightable = true;
+  s << "<p>A downscaled copy of <code>" << escapeHtml(ptm->path)
+    << "</code>. Drag on the picture or on the disc to move the light.</p>"
+       "<div class=\"relight\"><canvas id=\"relight-canvas\"></canvas><div>"
+       "<canvas id=\"light-pad\" width=\"160\" height=\"160\"></canvas>"
+       "<p id=\"light-readout\" class=\"note\"></p></div></div>"
+       "<script type=\"application/json\" id=\"relight-data\">"
+    << json << "</script></section>";
+  return s.str();
+}
+
+std::string summaryCards(const carrier::Carrier& c, const Report& report) {
+  int images = 0, interventions = 0, warnings = 0, errors = 0;
+  for (const carrier::Result& r : c.data)
+    if (r.itemsOf("decoded").size() > 0) images = static_cast<int>(r.itemsOf("decoded").size());
+  for (const carrier::Step& s : c.process) interventions += static_cast<int>(s.interventions.size());
+  for (const carrier::LogEntry& e : c.log) {
+    warnings += e.level == "warning";
+    errors += e.level == "error";
+  }
+  std::ostringstream s;
+  auto card = [&](const std::string& label, const std::string& value, const std::string& cls = "") {
+    s << "<div class=\"card" << (cls.empty() ? "" : " " + cls) << "\"><b>" << value << "</b>" << label << "</div>";
+  };
+  s << "<div class=\"cards\">";
+  card("images processed", std::to_string(images));
+  card("lights", std::to_string(report.lightsPlotted));
+  card("steps", std::to_string(c.process.size()));
+  card("human interventions", std::to_string(interventions), interventions ? "warning" : "");
+  card("warnings in the log", std::to_string(warnings), warnings ? "warning" : "");
+  card("errors in the log", std::to_string(errors), errors ? "bad" : "");
+  card("coverage gaps", std::to_string(report.coverageGaps.size()), report.coverageGaps.empty() ? "ok" : "bad");
+  s << "</div>";
+  return s.str();
+}
+
+}  // namespace
+
+Report buildReport(const carrier::Carrier& c, const ReportSource& source, const ReportOptions& options) {
+  Report report;
+  const std::string lights = lightsSection(c, report);
+  const std::string detection = detectionSection(c, source, options, report);
+  const std::string results = resultsSection(c, source, options, report);
+  const std::string generated = options.generatedAt.empty() ? carrier::timestampNow() : options.generatedAt;
+
+  std::ostringstream h;
+  h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
+       "<meta http-equiv=\"Content-Security-Policy\" content=\"default-src 'none'; img-src data:; "
+       "style-src 'unsafe-inline'; script-src 'unsafe-inline'\">"
+       "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">"
+       "<meta name=\"generator\" content=\"Surrogate " << escapeHtml(surrogateVersion()) << "\">"
+    << "<title>" << escapeHtml(c.header.title) << " \u2014 Surrogate report</title><style>" << kReportCss
+    << "</style></head>\n<body data-lights-expected=\"" << report.lightsPlotted << "\">\n<header><h1>"
+    << escapeHtml(c.header.title) << "</h1>";
+  for (const carrier::Creator& cr : c.header.creators)
+    h << "<p>" << escapeHtml(cr.role) << ": " << escapeHtml(cr.name) << "</p>";
+  h << "<p>From the " << escapeHtml(source.describe()) << "; carrier created " << escapeHtml(c.header.created)
+    << ", last changed " << escapeHtml(c.header.modified) << ".</p><p class=\"note\">Report made "
+    << escapeHtml(generated) << " by Surrogate " << escapeHtml(surrogateVersion())
+    << ". It is a view of the carrier (assembly-files/carrier.xml), which is the record; the report "
+       "itself is not part of the recorded provenance.</p></header>\n<main>"
+    << summaryCards(c, report) << lights << detection << results << provenanceSection(c)
+    << cameraSection(c) << verificationSection(options.verification) << filesSection(c)
+    << "</main>\n<script>" << kReportJs << "</script>\n</body></html>\n";
+  report.html = h.str();
+  return report;
+}
+
+Report writeCaptureReport(const std::filesystem::path& capture, const ReportOptions& options) {
+  const std::unique_ptr<ReportSource> source = openReportSource(capture);
+  Report r = buildReport(source->carrier(), *source, options);
+  std::filesystem::create_directories(capture / "finished-files");
+  writeFileAtomically(capture / "finished-files" / "report.html", r.html);
+  return r;
+}
+
+}  // namespace surrogate::report

@@ -1,0 +1,88 @@
+// The HTML report: what a photographer or an archivist looks at to judge a capture or a package.
+//
+// One self-contained file (inline CSS and JavaScript, pictures as data: URIs, no network
+// access, enforced by a Content-Security-Policy), built from a carrier and the files it names:
+//   - the light directions on a hemisphere plot, coloured by the fit's per-image residual, with
+//     the gaps in coverage pointed out (no raking light, an empty azimuth sector);
+//   - the sphere detection overlay and the highlight overviews;
+//   - the normal map, the albedo and the relit previews, and an interactive relighting view of a
+//     downscaled copy of the PTM (drag the light);
+//   - the provenance as a timeline (steps, software, parameters, durations, interventions with
+//     who and why), the camera and lens from EXIF;
+//   - when given, the verifier's result per check.
+// The report is a derived view, not a pipeline step: it is not recorded in the carrier and it
+// holds the time it was made, so two reports of the same carrier differ.
+//
+//   auto source = openReportSource("/data/stela12");          // capture, bag dir, .tar, .zip
+//   Report r = buildReport(source->carrier(), *source, ReportOptions());
+//   writeFileAtomically("stela12-report.html", r.html);
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "carrier/carrier.h"
+
+namespace surrogate::report {
+
+// One check of a verification (fixity, schema, re-execution, ...), as the verifier reports it.
+struct VerificationCheck {
+  std::string name;
+  bool passed = false;
+  std::string detail;
+};
+
+// Where the carrier's files are: a capture folder, a BagIt directory (files under data/), or a
+// .tar/.zip bag read in place with libarchive (nothing is extracted to disk). Paths are the
+// carrier's: relative, '/'-separated ("finished-files/normals.png").
+class ReportSource {
+ public:
+  virtual ~ReportSource() = default;
+  ReportSource() = default;
+  ReportSource(const ReportSource&) = delete;
+  ReportSource& operator=(const ReportSource&) = delete;
+
+  virtual const carrier::Carrier& carrier() const = 0;
+  // The bytes of a file named by the carrier, or nullopt when it is not there.
+  virtual std::optional<std::string> read(const std::string& relativePath) const = 0;
+  // "capture folder /data/stela12", "bag stela12.zip", for the report's header.
+  virtual std::string describe() const = 0;
+  // A package (bag directory, .tar, .zip), as opposed to a capture folder.
+  virtual bool isPackage() const = 0;
+};
+
+// Opens a capture folder (assembly-files/carrier.xml), a bag directory
+// (data/assembly-files/carrier.xml), a .tar or .zip bag, or a carrier.xml file directly.
+// Throws Error(Input) naming the path when none of these is found.
+std::unique_ptr<ReportSource> openReportSource(const std::filesystem::path& path);
+
+struct ReportOptions {
+  int maxImageSide = 720;    // embedded pictures are downscaled to this; larger = sharper, bigger file
+  int relightMaxSide = 256;  // the interactive PTM copy; its size grows with the square of this
+  std::string generatedAt;   // shown in the header; empty = now (UTC)
+  // The verifier's checks; absent = the section says the package was not verified here.
+  std::optional<std::vector<VerificationCheck>> verification;
+};
+
+// What the report shows, for the CLI's summary and --json.
+struct Report {
+  std::string html;
+  int lightsPlotted = 0;
+  int picturesEmbedded = 0;
+  bool relightable = false;            // an interactive PTM view is in the page
+  std::vector<std::string> coverageGaps;  // sentences, as shown in the page
+};
+
+// Builds the page. Missing files (a lights-only run, a package without previews) leave their
+// section saying what is absent; they are not errors. All text from the carrier is escaped.
+Report buildReport(const carrier::Carrier& carrier, const ReportSource& source,
+                   const ReportOptions& options);
+
+// The report of a capture folder after `surrogate run`: builds it and writes
+// CAPTURE/finished-files/report.html atomically. Returns what it wrote.
+Report writeCaptureReport(const std::filesystem::path& capture, const ReportOptions& options = {});
+
+}  // namespace surrogate::report

@@ -1,0 +1,24 @@
+// The report's text sections, straight from the carrier: provenance timeline, camera and lens,
+// verification, files. Each returns a <section> with every carrier string escaped.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "carrier/carrier.h"
+#include "report/report.h"
+
+namespace surrogate::report {
+
+// Software and machine, then one timeline entry per step: component, version, algorithm,
+// status, start, duration, parameters, interventions (who, when, why) and the step's log.
+std::string provenanceSection(const carrier::Carrier& c);
+// Camera bodies, lenses and exposure settings of the originals, with how many files share each.
+std::string cameraSection(const carrier::Carrier& c);
+// One row per check, or a sentence saying no verification was run for this report.
+std::string verificationSection(const std::optional<std::vector<VerificationCheck>>& checks);
+// Every file with its role, size and SHA-256 (folded), for an auditor comparing copies.
+std::string filesSection(const carrier::Carrier& c);
+
+}  // namespace surrogate::report

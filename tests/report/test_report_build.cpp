@@ -1,0 +1,225 @@
+// buildReport on carriers made in memory: what the page contains, what it escapes, and how it
+// copes with missing files.
+#include <catch2/catch.hpp>
+
+#include <map>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "carrier/carrier.h"
+#include "formats/ptm.h"
+#include "report/report.h"
+
+using namespace surrogate;
+using namespace surrogate::report;
+
+namespace {
+
+constexpr const char* kHostile = "\"><img src=x onerror=alert(1)></script><script>alert(2)</script>";
+
+class MemorySource : public ReportSource {
+ public:
+  explicit MemorySource(carrier::Carrier c) : carrier_(std::move(c)) {}
+  const carrier::Carrier& carrier() const override { return carrier_; }
+  std::optional<std::string> read(const std::string& path) const override {
+    const auto it = files.find(path);
+    if (it == files.end()) return std::nullopt;
+    return it->second;
+  }
+  std::string describe() const override { return "test source"; }
+  bool isPackage() const override { return false; }
+  std::map<std::string, std::string> files;
+
+ private:
+  carrier::Carrier carrier_;
+};
+
+std::string png(int width, int height) {
+  cv::Mat m(height, width, CV_8UC3, cv::Scalar(40, 120, 200));
+  std::vector<unsigned char> out;
+  cv::imencode(".png", m, out);
+  return std::string(out.begin(), out.end());
+}
+
+std::string smallPtm() {
+  formats::PtmFile ptm;
+  ptm.width = 8;
+  ptm.height = 6;
+  ptm.scale = {0.5, 0.5, 0.5, 1, 1, 1};
+  ptm.bias = {128, 128, 128, 128, 128, 0};
+  ptm.coefficients.assign(ptm.texels() * 6, 128);
+  ptm.rgb.assign(ptm.texels() * 3, 200);
+  return formats::serializePtm(ptm);
+}
+
+carrier::FileRecord output(const std::string& path, const std::string& role, const std::string& format) {
+  carrier::FileRecord f;
+  f.path = path;
+  f.role = role;
+  f.size = 1;
+  f.format = format;
+  return f;
+}
+
+int count(const std::string& text, const std::string& what) {
+  int n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+// A carrier like a run's: 5 images, spheres, lights, a PTM fit with residuals, derived maps,
+// an intervention and a warning; every free text field hostile.
+carrier::Carrier sampleCarrier() {
+  carrier::Carrier c = carrier::newCarrier(std::string("Stela ") + kHostile, {{kHostile, "photographer"}});
+  c.header.meta.push_back({"site", kHostile});
+  for (int i = 1; i <= 5; ++i) {
+    carrier::FileRecord f;
+    f.path = "original-captures/IMG_000" + std::to_string(i) + ".dng";
+    f.role = "original";
+    f.size = 100;
+    f.sha256 = std::string(64, 'a');
+    f.camera = {{"make", "Canon"}, {"model", "EOS 5D"}, {"lens", kHostile}, {"iso", i == 5 ? "200" : "100"}};
+    c.putFile(f);
+  }
+  carrier::Step& ingest = c.addStep("CaptureIngest", "1");
+  ingest.interventions.push_back({"exclude-image", "original-captures/IMG_0006.dng", "", "A. Conservator",
+                                  "2026-01-01T00:00:00Z", std::string("flash misfired ") + kHostile});
+  carrier::Step& lights = c.addStep("LightDirections", "1");
+  lights.setParam("model", kHostile);
+  carrier::Step& fit = c.addStep("RtiFit", "1");
+  fit.setParam("basis", "ptm-lrgb");
+  carrier::Step& maps = c.addStep("DerivedMaps", "1");
+
+  const std::string overlay = c.putFile(output("assembly-files/spheres.png", "assembly", "PNG"));
+  const std::string ptm = c.putFile(output("finished-files/ptm-lrgb.ptm", "result", "PTM_FORMAT_LRGB"));
+  const std::string normals = c.putFile(output("finished-files/normals.png", "result", "PNG"));
+  const std::string albedo = c.putFile(output("finished-files/albedo.png", "result", "PNG"));
+
+  carrier::Result lr;
+  lr.step = lights.id;
+  lr.add("sphere").set("index", 0).set("cx", 10.0).set("cy", 20.0).set("r", 5.0).set("confidence", 0.9)
+      .set("source", "detected");
+  lr.add("output").set("file", overlay).set("kind", "sphere-overlay");
+  for (int i = 0; i < 5; ++i)
+    lr.add("light").set("image", "f" + std::to_string(i + 1)).set("x", 0.0).set("y", 0.0).set("z", 1.0)
+        .set("elevationDeg", 30.0 + 10 * i).set("azimuthDeg", -150.0 + 70 * i).set("source", "sphere 0");
+  c.data.push_back(lr);
+  carrier::Result fr;
+  fr.step = fit.id;
+  fr.add("output").set("file", ptm).set("kind", "ptm-lrgb");
+  fr.add("value").set("name", "rmse").set("value", 4.5);
+  fr.add("value").set("name", "psnr").set("value", 30.0);
+  for (int i = 0; i < 5; ++i)
+    fr.add("imageValue").set("image", "f" + std::to_string(i + 1)).set("name", "rmse").set("value", 1.0 + i);
+  c.data.push_back(fr);
+  carrier::Result mr;
+  mr.step = maps.id;
+  mr.add("output").set("file", normals).set("kind", "normals");
+  mr.add("output").set("file", albedo).set("kind", "albedo");
+  c.data.push_back(mr);
+  c.addLog("warning", fit.id, std::string("something odd ") + kHostile);
+  return c;
+}
+
+}  // namespace
+
+TEST_CASE("the report shows lights, pictures, relighting, provenance and camera of a carrier") {
+  MemorySource source(sampleCarrier());
+  source.files["assembly-files/spheres.png"] = png(1600, 1200);
+  source.files["finished-files/normals.png"] = png(300, 200);
+  source.files["finished-files/albedo.png"] = png(300, 200);
+  source.files["finished-files/ptm-lrgb.ptm"] = smallPtm();
+  ReportOptions options;
+  options.generatedAt = "2026-02-03T04:05:06Z";
+  const Report r = buildReport(source.carrier(), source, options);
+
+  CHECK(r.lightsPlotted == 5);
+  CHECK(count(r.html, "<circle class=\"light\"") == 5);
+  CHECK_THAT(r.html, Catch::Contains("data-lights-expected=\"5\""));
+  CHECK(r.picturesEmbedded == 3);
+  CHECK(count(r.html, "src=\"data:image/jpeg;base64,") == 3);
+  // The 1600x1200 overlay is embedded at 720x540.
+  CHECK_THAT(r.html, Catch::Contains("(1600\u00d71200, shown at 720\u00d7540)"));
+  CHECK(r.relightable);
+  CHECK_THAT(r.html, Catch::Contains("id=\"relight-data\""));
+  // Coverage: lights from 30 to 70 degrees elevation: raking light missing, said on the page.
+  REQUIRE_FALSE(r.coverageGaps.empty());
+  CHECK_THAT(r.html, Catch::Contains("No light below 20"));
+  // Provenance: every step, the intervention with who, and the warning.
+  for (const char* component : {"CaptureIngest", "LightDirections", "RtiFit", "DerivedMaps"})
+    CHECK_THAT(r.html, Catch::Contains(component));
+  CHECK_THAT(r.html, Catch::Contains("A. Conservator"));
+  CHECK_THAT(r.html, Catch::Contains("exclude-image"));
+  CHECK_THAT(r.html, Catch::Contains("flash misfired"));
+  // Camera: the ISO that varies between shots is pointed out.
+  CHECK_THAT(r.html, Catch::Contains("EOS 5D"));
+  CHECK_THAT(r.html, Catch::Contains("varies between shots"));
+  CHECK_THAT(r.html, Catch::Contains("2026-02-03T04:05:06Z"));
+  // No network: a CSP forbids every fetch, and no http(s) URL appears in an attribute.
+  CHECK_THAT(r.html, Catch::Contains("default-src 'none'"));
+  CHECK(r.html.find("src=\"http") == std::string::npos);
+  CHECK(r.html.find("href=\"http") == std::string::npos);
+}
+
+TEST_CASE("every text from the carrier is escaped: hostile fields cannot inject markup") {
+  MemorySource source(sampleCarrier());
+  const Report r = buildReport(source.carrier(), source, ReportOptions());
+  CHECK(r.html.find("<img src=x") == std::string::npos);
+  CHECK(r.html.find("<script>alert") == std::string::npos);
+  CHECK(r.html.find("onerror=alert(1)>") == std::string::npos);
+  CHECK_THAT(r.html, Catch::Contains("&lt;img src=x onerror=alert(1)&gt;"));
+  // Exactly one script element is ours (plus the JSON data block when a PTM is present).
+  CHECK(count(r.html, "<script") == 1);
+}
+
+TEST_CASE("missing files leave their section saying so, without failing the report") {
+  MemorySource source(sampleCarrier());  // no file bytes at all
+  const Report r = buildReport(source.carrier(), source, ReportOptions());
+  CHECK(r.picturesEmbedded == 0);
+  CHECK_FALSE(r.relightable);
+  CHECK_THAT(r.html, Catch::Contains("assembly-files/spheres.png: not found"));
+  CHECK_THAT(r.html, Catch::Contains("is not in this package or capture"));
+  CHECK(r.lightsPlotted == 5);
+}
+
+TEST_CASE("lights recorded without angles are plotted from their direction") {
+  carrier::Carrier c = carrier::newCarrier("Dome", {});
+  carrier::Step& s = c.addStep("LightsFromFile", "1");
+  carrier::Result r;
+  r.step = s.id;
+  r.add("light").set("image", "f1").set("x", 0.0).set("y", 0.0).set("z", 1.0);     // zenith: centre
+  r.add("light").set("image", "f2").set("x", 0.0).set("y", 1.0).set("z", 0.0);     // top of the rim
+  r.add("light").set("image", "f3").set("x", "not a number").set("y", 0.0).set("z", 1.0);  // skipped
+  c.data.push_back(r);
+  MemorySource source(c);
+  const Report rep = buildReport(source.carrier(), source, ReportOptions());
+  CHECK(rep.lightsPlotted == 2);
+  CHECK_THAT(rep.html, Catch::Contains("cx=\"180\" cy=\"180\" r=\"6\""));
+  CHECK_THAT(rep.html, Catch::Contains("cx=\"180\" cy=\"30\" r=\"6\""));
+}
+
+TEST_CASE("a carrier without lights or fits still gives a page") {
+  carrier::Carrier c = carrier::newCarrier("Empty", {});
+  c.addStep("CaptureIngest", "1");
+  MemorySource source(c);
+  const Report r = buildReport(source.carrier(), source, ReportOptions());
+  CHECK(r.lightsPlotted == 0);
+  CHECK_THAT(r.html, Catch::Contains("records no light directions"));
+  CHECK_THAT(r.html, Catch::Contains("not run"));
+}
+
+TEST_CASE("the verification section lists each check, failures first in the summary") {
+  MemorySource source(sampleCarrier());
+  ReportOptions options;
+  CHECK_THAT(buildReport(source.carrier(), source, options).html,
+             Catch::Contains("No verification was run for this report"));
+  options.verification = std::vector<VerificationCheck>{
+      {"fixity: manifest-sha256.txt", true, "42 files match"},
+      {"re-execution: s6 RtiFit", false, std::string("coefficients differ ") + kHostile}};
+  const std::string html = buildReport(source.carrier(), source, options).html;
+  CHECK(count(html, "<tr class=\"check\">") == 2);
+  CHECK_THAT(html, Catch::Contains("1 of 2 checks failed."));
+  CHECK_THAT(html, Catch::Contains("FAILED"));
+  CHECK_THAT(html, Catch::Contains("42 files match"));
+  CHECK(html.find("<script>alert") == std::string::npos);
+}

@@ -1,0 +1,158 @@
+// The report's building blocks: escaping, base64, coverage analysis, the hemisphere plot and the
+// PTM copy for the relighting view.
+#include <catch2/catch.hpp>
+
+#include <regex>
+
+#include "formats/ptm.h"
+#include "report/embed.h"
+#include "report/hemisphere.h"
+#include "report/html.h"
+
+using namespace surrogate;
+using namespace surrogate::report;
+
+namespace {
+int count(const std::string& text, const std::string& what) {
+  int n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+LightPoint light(double elevation, double azimuth, std::optional<double> rmse = std::nullopt) {
+  LightPoint p;
+  p.image = "original-captures/IMG_" + std::to_string(static_cast<int>(azimuth)) + ".dng";
+  p.elevationDeg = elevation;
+  p.azimuthDeg = azimuth;
+  p.rmse = rmse;
+  return p;
+}
+}  // namespace
+
+TEST_CASE("escapeHtml neutralises markup in element content and quoted attributes") {
+  CHECK(escapeHtml("<b a=\"x\" b='y'>&</b>") == "&lt;b a=&quot;x&quot; b=&#39;y&#39;&gt;&amp;&lt;/b&gt;");
+  CHECK(escapeHtml("Stela 12 \xc3\xa9") == "Stela 12 \xc3\xa9");  // UTF-8 passes through
+}
+
+TEST_CASE("scriptString cannot close the script element it is embedded in") {
+  const std::string s = scriptString("</script><script>alert(1)</script>\"\\\n\xe2\x80\xa8");
+  CHECK(s.find('<') == std::string::npos);
+  CHECK(s.find('>') == std::string::npos);
+  CHECK(s.find("\\u2028") != std::string::npos);
+  CHECK(s.front() == '"');
+  CHECK(s.back() == '"');
+}
+
+TEST_CASE("base64 matches the RFC 4648 test vectors") {
+  CHECK(base64("") == "");
+  CHECK(base64("f") == "Zg==");
+  CHECK(base64("fo") == "Zm8=");
+  CHECK(base64("foo") == "Zm9v");
+  CHECK(base64("foob") == "Zm9vYg==");
+  CHECK(base64("fooba") == "Zm9vYmE=");
+  CHECK(base64("foobar") == "Zm9vYmFy");
+  CHECK(base64(std::string("\xff\x00\x10", 3)) == "/wAQ");
+}
+
+TEST_CASE("coverage: a capture without lights below 20 degrees is missing raking light") {
+  std::vector<LightPoint> lights;
+  for (int a = 0; a < 360; a += 30) lights.push_back(light(35 + a / 30, a));
+  const Coverage c = analyseCoverage(lights);
+  CHECK(c.missingRaking);
+  CHECK(c.azimuthGaps.empty());
+  CHECK(c.lowestElevationDeg == Approx(35));
+  REQUIRE_FALSE(c.sentences().empty());
+  CHECK_THAT(c.sentences().front(), Catch::Contains("No light below 20"));
+}
+
+TEST_CASE("coverage: a well spread capture has no gap") {
+  std::vector<LightPoint> lights;
+  for (int a = -180; a < 180; a += 45) {
+    lights.push_back(light(15, a));
+    lights.push_back(light(45, a + 20));
+    lights.push_back(light(75, a + 10));
+  }
+  const Coverage c = analyseCoverage(lights);
+  CHECK_FALSE(c.missingRaking);
+  CHECK_FALSE(c.missingHigh);
+  CHECK(c.azimuthGaps.empty());
+  CHECK(c.sentences().empty());
+}
+
+TEST_CASE("coverage: an empty half of the azimuth circle is found, across the 180 degree seam") {
+  // Lights from -90 to +90 (the right half): nothing from 90 round to 270.
+  std::vector<LightPoint> lights;
+  for (int a = -90; a <= 90; a += 30) lights.push_back(light(10, a));
+  lights.push_back(light(80, 0));
+  const Coverage c = analyseCoverage(lights);
+  REQUIRE(c.azimuthGaps.size() == 1);
+  CHECK(c.azimuthGaps[0].fromDeg == Approx(90));
+  CHECK(c.azimuthGaps[0].toDeg == Approx(270));
+  CHECK(c.azimuthGaps[0].widthDeg() == Approx(180));
+  CHECK_THAT(c.sentences().front(), Catch::Contains("between azimuth 90\u00b0 and 270\u00b0"));
+}
+
+TEST_CASE("coverage: one light leaves the whole circle as a gap, no light gives no finding") {
+  const Coverage one = analyseCoverage({light(40, 10)});
+  REQUIRE(one.azimuthGaps.size() == 1);
+  CHECK_THAT(one.sentences()[1], Catch::Contains("360"));
+  CHECK(analyseCoverage({}).sentences().empty());
+}
+
+TEST_CASE("the hemisphere plot has one point per light, placed by elevation and azimuth") {
+  const std::vector<LightPoint> lights = {light(90, 0, 1.0), light(0, 0, 5.0), light(0, 90, 3.0),
+                                          light(45, 180)};
+  const std::string svg = hemisphereSvg(lights, analyseCoverage(lights));
+  CHECK(count(svg, "class=\"light\"") == 4);
+  // Centre (180,180), radius 150: zenith at the centre, azimuth 0 to the right, 90 at the top.
+  CHECK(svg.find("cx=\"180\" cy=\"180\" r=\"6\"") != std::string::npos);
+  CHECK(svg.find("cx=\"330\" cy=\"180\" r=\"6\"") != std::string::npos);
+  CHECK(svg.find("cx=\"180\" cy=\"30\" r=\"6\"") != std::string::npos);
+  CHECK(svg.find("cx=\"105\" cy=\"180\" r=\"6\"") != std::string::npos);
+  // Lowest residual dark, highest yellow, no residual grey.
+  CHECK(svg.find("fill=\"" + residualColour(0) + "\" data-image") != std::string::npos);
+  CHECK(svg.find("fill=\"" + residualColour(1) + "\" data-image") != std::string::npos);
+  CHECK(svg.find("fill=\"#999999\"") != std::string::npos);
+}
+
+TEST_CASE("the hemisphere plot escapes image names") {
+  LightPoint p = light(30, 0);
+  p.image = "a\"><script>alert(1)</script>.jpg";
+  const std::string svg = hemisphereSvg({p}, analyseCoverage({p}));
+  CHECK(svg.find("<script>") == std::string::npos);
+  CHECK(svg.find("&lt;script&gt;") != std::string::npos);
+}
+
+TEST_CASE("the relighting copy of a PTM averages each coefficient over blocks") {
+  formats::PtmFile ptm;
+  ptm.format = formats::PtmFile::Format::Lrgb;
+  ptm.width = 4;
+  ptm.height = 2;
+  ptm.scale = {1, 1, 1, 1, 1, 1};
+  ptm.bias = {0, 0, 0, 0, 0, 0};
+  ptm.coefficients.resize(ptm.texels() * 6);
+  ptm.rgb.resize(ptm.texels() * 3);
+  for (std::size_t t = 0; t < ptm.texels(); ++t) {
+    for (int k = 0; k < 6; ++k) ptm.coefficients[t * 6 + k] = static_cast<std::uint8_t>(t * 10 + k);
+    for (int c = 0; c < 3; ++c) ptm.rgb[t * 3 + c] = static_cast<std::uint8_t>(100 + t);
+  }
+  const std::string full = relightJson(formats::serializePtm(ptm), 0, "t.ptm");
+  CHECK_THAT(full, Catch::Contains("\"width\":4,\"height\":2"));
+  CHECK_THAT(full, Catch::Contains("\"format\":\"lrgb\""));
+
+  // maxSide 2: blocks of 2x2 texels -> 2x1. Block 0 holds texels 0,1,4,5: k=0 mean 25.
+  const std::string half = relightJson(formats::serializePtm(ptm), 2, "t.ptm");
+  CHECK_THAT(half, Catch::Contains("\"width\":2,\"height\":1"));
+  std::string expected;
+  for (int block = 0; block < 2; ++block)
+    for (int k = 0; k < 6; ++k) expected += static_cast<char>(25 + block * 20 + k);
+  CHECK_THAT(half, Catch::Contains("\"coefficients\":\"" + base64(expected) + "\""));
+}
+
+TEST_CASE("embedPicture rejects bytes that are not a picture, and PNG headers claiming huge images") {
+  CHECK_FALSE(embedPicture("not an image", 100).has_value());
+  CHECK_FALSE(embedPicture("", 100).has_value());
+  // A PNG signature and IHDR claiming 100000 x 100000 pixels, and nothing else.
+  std::string bomb("\x89PNG\r\n\x1a\n\0\0\0\x0dIHDR\0\x01\x86\xa0\0\x01\x86\xa0\x08\x02\0\0\0", 29);
+  CHECK_FALSE(embedPicture(bomb, 100).has_value());
+}
