@@ -45,7 +45,8 @@ Gradients gradients(const cv::Mat& coarse8) {
 // The circle Hough transform over radii [r0, r1] (coarse pixels) inside `area`. Each radius
 // gets its own accumulator and yields its `perRadius` strongest local maxima (each found
 // maximum's neighbourhood of r/2 is cleared before the next). The candidates are returned
-// sorted by score (normalised by the circumference), ties in radius order, so the result is
+// sorted by score (normalised by what a perfect circle of that radius reaches), ties in radius
+// order, so the result is
 // identical at any thread count.
 std::vector<Candidate> hough(const Gradients& g, cv::Rect area, int r0, int r1, int perRadius, int threads) {
   double maxMag = 0;
@@ -68,6 +69,20 @@ std::vector<Candidate> hough(const Gradients& g, cv::Rect area, int r0, int r1, 
     cosArc[k] = std::cos(kArc[k]);
     sinArc[k] = std::sin(kArc[k]);
   }
+  // The accumulator value a perfect circle of radius r (unit edge strength) reaches at its
+  // centre: each edge pixel's central vote lands there, the arc votes land 2 r sin(|phi|/2)
+  // away and reach it only through the blur below (sigma 1). Dividing by this, not by the
+  // circumference alone, keeps scores comparable across radii: otherwise the five votes of a
+  // small circle pile up in one cell and a few pixels of any dark edge (a sphere's rim near
+  // the frame) outscore the whole sphere (seen at 6000 px wide, radius 308 px).
+  auto perfectCircle = [&](int r) {
+    double sum = 0;
+    for (int k = 0; k < 5; ++k) {
+      const double d = 2 * r * std::sin(std::abs(kArc[k]) / 2);
+      sum += std::exp(-d * d / 2);
+    }
+    return 2 * M_PI * r * sum;
+  };
   const int radii = r1 - r0 + 1;
   std::vector<std::vector<Candidate>> perR(radii);
   parallelFor(radii, 1, effectiveThreads(threads), [&](std::size_t b, std::size_t e) {
@@ -91,7 +106,7 @@ std::vector<Candidate> hough(const Gradients& g, cv::Rect area, int r0, int r1, 
         cv::Point at;
         cv::minMaxLoc(acc, nullptr, &value, nullptr, &at);
         if (value <= 0) break;
-        perR[ri].push_back({double(at.x + area.x), double(at.y + area.y), double(r), value / (2 * M_PI * r)});
+        perR[ri].push_back({double(at.x + area.x), double(at.y + area.y), double(r), value / perfectCircle(r)});
         cv::circle(acc, at, std::max(2, r / 2), cv::Scalar(0), -1);
       }
     }
@@ -263,7 +278,8 @@ std::vector<DetectedSphere> detectSpheres(const Image& median, const SphereDetec
   coarse.convertTo(coarse8, CV_8U, maxValue > 0 ? 255.0 / maxValue : 1.0);
   const Gradients g = gradients(coarse8);
   const double maxRadius = o.maxRadius > 0 ? o.maxRadius : std::min(median.width, median.height) / 4.0;
-  const int r0 = std::max(3, static_cast<int>(std::floor(o.minRadius / scale)));
+  // Below 6 coarse pixels a circle is a handful of accumulator cells: noise, not a sphere.
+  const int r0 = std::max(6, static_cast<int>(std::floor(o.minRadius / scale)));
   auto toFull = [&](Candidate c) {
     return Candidate{(c.x + 0.5) * scale - 0.5, (c.y + 0.5) * scale - 0.5, c.r * scale, c.score};
   };

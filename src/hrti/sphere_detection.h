@@ -7,7 +7,7 @@
 //      an arc of +-pi/12 around the point
 //            c = p - r (cos(g + phi), sin(g + phi)),   |phi| <= pi/12
 //      i.e. into the dark sphere. Radii are independent and run in parallel; the best
-//      (x, y, r), score normalised by the circumference, wins.
+//      (x, y, r), score normalised by what a perfect circle of that radius reaches, wins.
 //   4. sub-pixel refinement: along 360 rays from the centre, the sub-pixel maximum of the
 //      radial gradient (parabola through 3 samples) gives an edge point; a least-squares
 //      circle fit (algebraic, then geometric Gauss-Newton) with outlier rejection gives

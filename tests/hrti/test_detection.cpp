@@ -24,13 +24,14 @@ struct Shots {
   MemoryImageStack luminanceStack;
 };
 
-Shots render(int spheres, bool strongTexture, int images = 12) {
+Shots render(int spheres, bool strongTexture, int images = 12, int width = 480, int height = 360,
+             double sphereRadius = 60) {
   generator::GeneratorOptions o;
   o.images = images;
-  o.width = 480;
-  o.height = 360;
+  o.width = width;
+  o.height = height;
   o.spheres = spheres;
-  o.sphereRadius = 60;
+  o.sphereRadius = sphereRadius;
   o.seed = 5;
   o.strongTexture = strongTexture;
   const generator::CaptureTruth t = generator::planCapture(o);
@@ -62,6 +63,18 @@ TEST_CASE("one sphere on a textured, shadowed relief: centre, radius and lights"
     worst = std::max(worst, angleDeg(s.truth.lights[i], lightFromHighlight(spheres[0], highlights[i][0].x, highlights[i][0].y)));
   }
   CHECK(worst < 1.5);
+}
+
+TEST_CASE("a large frame: the sphere near its edge is found, not small circles on its rim") {
+  // At 6000x4000 with a 308 px sphere 16 px from the top edge, small circles along the rim once
+  // outscored the sphere in the coarse Hough transform; the same geometry at half size.
+  const Shots s = render(1, false, 5, 3000, 2000, 154);
+  const Image median = medianImage(s.luminanceStack, 16, 2);
+  const auto spheres = detectSpheres(median, SphereDetectionOptions());
+  REQUIRE(spheres.size() == 1);
+  const auto& truth = s.truth.spheres[0];
+  CHECK(std::hypot(spheres[0].cx - truth.cx, spheres[0].cy - truth.cy) < 0.3);
+  CHECK(std::abs(spheres[0].r - truth.r) < 0.5);
 }
 
 TEST_CASE("two spheres and strong background texture are both found") {
