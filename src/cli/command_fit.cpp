@@ -88,7 +88,7 @@ int runCommandFit(int argc, char** argv) {
   fit::FitOptions options;
   options.basis = basis;
   options.threads = run.threads;
-  options.memoryBudgetBytes = run.memoryBudget;
+  options.memoryBudgetBytes = run.fitBudget();
   options.progress = [&bar](double f) { bar.update("Fitting", f); };
   fit::FitStatistics stats;
   if (ptm) formats::writePtm(*out, fit::fitPtm(*decoded.rgb, lights, options, &stats));

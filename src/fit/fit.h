@@ -18,16 +18,17 @@
 // coefficients are set to 0 so that it does not widen the quantisation range.
 //
 // Streaming and memory: the photographs are read in row bands (ImageStack::readRows), all N
-// images' rows of a band at once. The band height is the largest that keeps the band buffers
-// and the per-thread scratch within FitOptions::memoryBudgetBytes (at least one row). The
+// images' rows of a band at once. The band height is the largest that keeps the result object
+// (9 or 18 bytes per pixel for PTM, 3*T for HSH), the band buffers and the per-thread scratch
+// within FitOptions::memoryBudgetBytes (at least one row). The
 // quantisation needs each coefficient's range over the whole image before any byte can be
 // written, so the fit makes TWO passes: pass 1 fits every pixel and keeps only the per-row
 // minima and maxima; pass 2 reads the bands again, fits again (the same code on the same
 // samples gives the same doubles), quantises into the result and measures the fit error.
 // Trade: the stack is read twice (when the whole stack fits in one band it is read once)
 // instead of spilling 4-8 bytes per coefficient to a temporary file (1.7 GB of floats for an
-// RGB PTM of 24 Mpx); fitting itself is cheap next to decoding. The result object (9 or 18
-// bytes per pixel for PTM, 3*T for HSH) and O(height * N) statistics come on top of the budget.
+// RGB PTM of 24 Mpx); fitting itself is cheap next to decoding. O(height * N) statistics come
+// on top of the budget.
 //
 // Determinism: every pixel is computed by the same sequence of floating-point operations
 // whatever the band height or thread count; reductions are kept per row and combined in row
@@ -62,7 +63,7 @@ struct FitOptions {
   Basis basis = Basis::PtmLrgb;  // which model and which file (.ptm or .rti)
 
   // Not recorded (the result is bit-identical whatever their value):
-  std::size_t memoryBudgetBytes = 2ull << 30;  // working memory; smaller = more, thinner bands
+  std::size_t memoryBudgetBytes = 2ull << 30;  // the output model plus the row bands; smaller = thinner bands
   int threads = 0;                             // 0 = all cores
   std::function<void(double fraction)> progress;  // called from the calling thread, 0..1
 

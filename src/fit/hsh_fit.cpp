@@ -62,7 +62,8 @@ formats::HshFile fitHsh(const ImageStack& stack, const std::vector<std::array<do
   for (double& v : p) v /= 65535.0;  // 16-bit samples -> 0..1 units
   HshFitter fitter(std::move(p), design, n, terms, &hsh);
   int passes = 0;
-  const std::vector<double> sqErr = internal::streamFit(stack, fitter, options, &passes);
+  const std::vector<double> sqErr =
+      internal::streamFit(stack, fitter, options, hsh.coefficients.size(), &passes);
   internal::finishStatistics(sqErr, hsh.texels(), pinv.rank, passes, stats);
   return hsh;
 }

@@ -203,14 +203,14 @@ formats::PtmFile fitPtm(const ImageStack& stack, const std::vector<std::array<do
     ptm.coefficients.resize(ptm.texels() * 6);
     ptm.rgb.resize(ptm.texels() * 3);
     LrgbFitter fitter(pinv.matrix, l, &ptm);
-    sqErr = internal::streamFit(stack, fitter, options, &passes);
+    sqErr = internal::streamFit(stack, fitter, options, ptm.coefficients.size() + ptm.rgb.size(), &passes);
   } else {
     ptm.format = formats::PtmFile::Format::Rgb;
     ptm.coefficients.resize(ptm.texels() * 18);
     std::vector<double> p = pinv.matrix;
     for (double& v : p) v /= 257.0;  // 16-bit samples -> 0..255 units
     RgbPtmFitter fitter(std::move(p), design, n, &ptm);
-    sqErr = internal::streamFit(stack, fitter, options, &passes);
+    sqErr = internal::streamFit(stack, fitter, options, ptm.coefficients.size(), &passes);
   }
   internal::finishStatistics(sqErr, ptm.texels(), pinv.rank, passes, stats);
   return ptm;

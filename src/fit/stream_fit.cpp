@@ -46,7 +46,7 @@ std::vector<std::array<double, 3>> checkedLights(const ImageStack& stack,
 }
 
 std::vector<double> streamFit(const ImageStack& stack, RowFitter& fitter,
-                              const FitOptions& options, int* passes) {
+                              const FitOptions& options, std::size_t modelBytes, int* passes) {
   const int n = stack.size(), w = stack.width(), h = stack.height(), ch = stack.channels();
   const int threads = effectiveThreads(options.threads);
   const std::size_t rowSamples = static_cast<std::size_t>(w) * 3;
@@ -54,8 +54,9 @@ std::vector<double> streamFit(const ImageStack& stack, RowFitter& fitter,
   const std::size_t scratchBytes =
       static_cast<std::size_t>(threads) * (fitter.scratchDoubles(w) * sizeof(double) +
                                            (ch == 1 ? rowSamples * 2 : 0));
+  const std::size_t fixedBytes = scratchBytes + modelBytes;
   const std::size_t available =
-      options.memoryBudgetBytes > scratchBytes ? options.memoryBudgetBytes - scratchBytes : 0;
+      options.memoryBudgetBytes > fixedBytes ? options.memoryBudgetBytes - fixedBytes : 0;
   const int band = static_cast<int>(
       std::clamp<std::size_t>(available / bandRowBytes, 1, static_cast<std::size_t>(h)));
   const int bands = (h + band - 1) / band;

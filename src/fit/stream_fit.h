@@ -40,9 +40,10 @@ std::vector<std::array<double, 3>> checkedLights(const ImageStack& stack,
                                                  int terms);
 
 // Runs both passes; returns the per-image squared luminance errors (summed over pixels in
-// row order) and sets stats->passes.
+// row order) and sets stats->passes. `modelBytes`, the model already allocated for the
+// output, counts against options.memoryBudgetBytes like the bands do.
 std::vector<double> streamFit(const ImageStack& stack, RowFitter& fitter,
-                              const FitOptions& options, int* passes);
+                              const FitOptions& options, std::size_t modelBytes, int* passes);
 
 void finishStatistics(const std::vector<double>& sqErr, std::size_t pixels, int rank, int passes,
                       FitStatistics* stats);

@@ -22,7 +22,11 @@ namespace surrogate::pipeline {
 // What the user asked of the run (not recorded as parameters: they do not change results).
 struct RunSettings {
   int threads = 0;                                // 0 = all cores
-  std::size_t memoryBudget = std::size_t(2) << 30;  // bytes, for streaming work
+  std::size_t memoryBudget = std::size_t(2) << 30;  // bytes: the process's peak should stay below
+  // The part of memoryBudget one fit may use (its output model and its row bands): three
+  // quarters. The rest is for what the process holds besides: models kept for the derived maps,
+  // decoders' buffers, the carrier (measured: 60 x 24 Mpx, pipeline_bench).
+  std::size_t fitBudget() const { return memoryBudget / 4 * 3; }
   std::string who;                                // the person running it (interventions, log)
   // Called with (step label, fraction done 0..1) for progress display; may be empty.
   std::function<void(const std::string&, double)> progress;

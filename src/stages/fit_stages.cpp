@@ -48,7 +48,7 @@ void RtiFitStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
                params.end());
   fit::FitOptions options = fit::FitOptions::fromParameters(params);
   options.threads = ctx.settings.threads;
-  options.memoryBudgetBytes = ctx.settings.memoryBudget;
+  options.memoryBudgetBytes = ctx.settings.fitBudget();
   const std::string basis = fit::basisName(options.basis);
   const std::string label = "Fitting " + basis;
   options.progress = [&](double f) { ctx.progress(label, f); };
