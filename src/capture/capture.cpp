@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
+#include "core/text.h"
 #include "formats/lp.h"
 #include "image/decode.h"
 
@@ -17,11 +18,6 @@ namespace {
 
 constexpr const char* kStep = "capture ingest";
 
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-  return s;
-}
-
 bool isHidden(const fs::path& p) {
   const std::string name = p.filename().string();
   return !name.empty() && name[0] == '.';
@@ -29,7 +25,7 @@ bool isHidden(const fs::path& p) {
 
 bool looksLikeImage(const fs::path& p) {
   static const char* kExtensions[] = {".jpg", ".jpeg", ".tif", ".tiff", ".png"};
-  const std::string ext = lower(p.extension().string());
+  const std::string ext = lowerCase(p.extension().string());
   for (const char* e : kExtensions)
     if (ext == e) return true;
   return image::isCameraRawExtension(p);
@@ -38,7 +34,7 @@ bool looksLikeImage(const fs::path& p) {
 const char* formatName(image::SourceKind kind, const fs::path& p) {
   switch (kind) {
     case image::SourceKind::CameraRaw:
-      return lower(p.extension().string()) == ".dng" ? "DNG" : "camera raw";
+      return lowerCase(p.extension().string()) == ".dng" ? "DNG" : "camera raw";
     case image::SourceKind::Jpeg: return "JPEG";
     case image::SourceKind::Tiff: return "TIFF";
     case image::SourceKind::Png: return "PNG";
@@ -64,7 +60,7 @@ FolderScan scanFolder(const fs::path& dir, CaptureLayout& layout) {
       layout.ignored.push_back(rel + "/");
       continue;
     }
-    if (lower(p.extension().string()) == ".xmp") {
+    if (lowerCase(p.extension().string()) == ".xmp") {
       layout.sidecars.push_back(rel);
       continue;
     }
@@ -196,7 +192,7 @@ CaptureLayout scanCapture(const fs::path& root, int threads) {
 
   std::vector<fs::path> lps;
   for (const auto& entry : fs::directory_iterator(layout.root)) {
-    if (entry.is_regular_file() && lower(entry.path().extension().string()) == ".lp")
+    if (entry.is_regular_file() && lowerCase(entry.path().extension().string()) == ".lp")
       lps.push_back(entry.path());
   }
   std::sort(lps.begin(), lps.end());

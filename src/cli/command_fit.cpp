@@ -8,6 +8,7 @@
 #include "cli/progress.h"
 #include "core/error.h"
 #include "core/json.h"
+#include "core/text.h"
 #include "fit/fit.h"
 #include "formats/lp.h"
 #include "stages/decode_images.h"
@@ -31,11 +32,6 @@ fs::path resolveImage(const fs::path& lpFile, const std::string& name) {
   throwInputError(lpFile.string(), "fit",
                   "names the image \"" + name + "\", which was not found next to the .lp file or "
                   "in the capture folder above it");
-}
-
-std::string lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
 }
 
 }  // namespace
@@ -63,7 +59,7 @@ int runCommandFit(int argc, char** argv) {
   const auto out = args.has("o") ? args.value("o") : args.value("output");
   if (!lp || !out)
     throw Error(ErrorKind::Usage, "", "command line", "give the light file and the output: --lp FILE.lp -o OUT.ptm");
-  const std::string ext = lower(fs::path(*out).extension().string());
+  const std::string ext = lowerCase(fs::path(*out).extension().string());
   if (ext != ".ptm" && ext != ".rti")
     throw Error(ErrorKind::Usage, *out, "command line", "the output must end in .ptm or .rti");
   const fit::Basis basis = fit::parseBasis(args.value("basis", ext == ".ptm" ? "ptm-lrgb" : "hsh2"));

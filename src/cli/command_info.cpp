@@ -9,6 +9,7 @@
 #include "cli/commands.h"
 #include "core/error.h"
 #include "core/json.h"
+#include "core/text.h"
 #include "image/decode.h"
 #include "meta/metadata.h"
 #include "formats/summary.h"
@@ -18,11 +19,6 @@ namespace surrogate::cli {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
 
 // The carrier as a JSON object, written into `j` (alone, or nested in a capture's object).
 void carrierJson(JsonWriter& j, const carrier::Carrier& c) {
@@ -143,7 +139,7 @@ int runCommandInfo(int argc, char** argv) {
   const fs::path path = args.positional()[0];
   const bool json = args.has("json");
   if (!fs::exists(path)) throwInputError(path.string(), "info", "does not exist");
-  const std::string ext = lower(path.extension().string());
+  const std::string ext = lowerCase(path.extension().string());
   if (fs::is_directory(path)) {
     if (fs::exists(path / capture::kAssemblyDir / "carrier.xml") && !json) {
       printCapture(path, false);

@@ -9,6 +9,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/json.h"
+#include "core/text.h"
 #include "formats/lp.h"
 #include "formats/ptm.h"
 #include "formats/rti_hsh.h"
@@ -28,11 +29,6 @@ std::string readHead(const fs::path& path) {
   in.read(head.data(), static_cast<std::streamsize>(head.size()));
   head.resize(static_cast<std::size_t>(in.gcount()));
   return head;
-}
-
-std::string lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
 }
 
 void checkComplete(FileSummary& s, std::uint64_t headerAndPayload) {
@@ -96,7 +92,7 @@ FileSummary summarize(const fs::path& path) {
     checkComplete(s, h.tablesOffset + static_cast<std::uint64_t>(h.payloadBytes));
     return s;
   }
-  if (lower(path.extension().string()) == ".lp") {
+  if (lowerCase(path.extension().string()) == ".lp") {
     const std::vector<LightEntry> lights = readLp(path);
     s.kind = "lp";
     s.format = "light positions";

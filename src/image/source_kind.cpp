@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/text.h"
 #include "image/raw_signature.h"
 #include "image/tiff_structure.h"
 
@@ -18,11 +19,6 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* kStep = "image decode";
-
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-  return s;
-}
 
 bool startsWith(const std::array<unsigned char, 16>& head, std::size_t have, const char* sig,
                 std::size_t n, std::size_t at = 0) {
@@ -36,7 +32,7 @@ bool isCameraRawExtension(const fs::path& path) {
                                ".raf", ".rw2", ".orf", ".pef", ".dng", ".srw", ".3fr", ".iiq",
                                ".x3f", ".erf", ".kdc", ".dcr", ".mef", ".mos", ".mrw", ".raw",
                                ".rwl", ".fff", ".gpr"};
-  const std::string ext = lower(path.extension().string());
+  const std::string ext = lowerCase(path.extension().string());
   return std::any_of(std::begin(kRaw), std::end(kRaw), [&](const char* e) { return ext == e; });
 }
 

@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <numeric>
 
 #include "capture/capture.h"
 #include "core/error.h"
+#include "core/text.h"
 #include "fit/fit.h"
 #include "fit/render.h"
 #include "image/decode.h"
@@ -21,16 +21,6 @@ namespace surrogate::stages {
 using Lights = std::vector<std::array<double, 3>>;
 
 std::string modelKey(const std::string& basis) { return "model:" + basis; }
-
-namespace {
-
-std::string fixed(double v, int digits) {
-  char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%.*f", digits, v);
-  return buffer;
-}
-
-}  // namespace
 
 std::string defaultFitOutput(const std::string& basisText) {
   const fit::Basis basis = fit::parseBasis(basisText);
@@ -90,10 +80,10 @@ void RtiFitStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
   std::string worst;
   for (std::size_t k = 0; k < std::min<std::size_t>(3, order.size()); ++k) {
     worst += (worst.empty() ? "" : ", ") + (*inputs)[order[k]].stem + " (" +
-             fixed(stats.perImageRmse[order[k]], 2) + ")";
+             fixedDecimals(stats.perImageRmse[order[k]], 2) + ")";
   }
-  ctx.carrier.addLog("info", step.id, basis + " fit: RMSE " + fixed(stats.rmse, 3) + ", PSNR " +
-                                          fixed(stats.psnr, 2) + " dB; worst images: " + worst);
+  ctx.carrier.addLog("info", step.id, basis + " fit: RMSE " + fixedDecimals(stats.rmse, 3) + ", PSNR " +
+                                          fixedDecimals(stats.psnr, 2) + " dB; worst images: " + worst);
   if (stats.rank < fit::basisTerms(options.basis))
     ctx.carrier.addLog("warning", step.id, "the light directions do not determine all " +
                                                std::to_string(fit::basisTerms(options.basis)) +
@@ -115,7 +105,7 @@ void DerivedMapsStage::run(const carrier::Step& step, pipeline::Context& ctx, ca
   result.add("value").set("name", "normalFallbackPixels").set("value", std::to_string(fallback));
   const double fraction = double(fallback) / (double(model->width()) * model->height());
   ctx.carrier.addLog(fraction > 0.05 ? "warning" : "info", step.id,
-                     std::to_string(fallback) + " pixels (" + fixed(100 * fraction, 2) +
+                     std::to_string(fallback) + " pixels (" + fixedDecimals(100 * fraction, 2) +
                          " %) had no valid PTM maximum and took the least-squares Lambertian normal");
 
   image::writePng(model->albedoMap(ctx.settings.threads), ctx.capture / (dir + "/albedo.png"));

@@ -7,6 +7,7 @@
 #include "archive/digest.h"
 #include "capture/capture.h"
 #include "core/parallel.h"
+#include "core/text.h"
 #include "meta/metadata.h"
 #include "pipeline/context.h"
 #include "stages/inputs.h"
@@ -19,15 +20,10 @@ namespace {
 
 constexpr const char* kStep = "capture ingest";
 
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-  return s;
-}
-
 // Media type and PRONOM identifier, only where the identifier is certain for every file of
 // that kind (DNG and JPEG identifiers depend on the version inside the file: left out).
 void setFormatIdentifiers(carrier::FileRecord& f) {
-  const std::string ext = lower(fs::path(f.path).extension().string());
+  const std::string ext = lowerCase(fs::path(f.path).extension().string());
   struct Known { const char* ext; const char* mediaType; const char* puid; };
   static const Known kKnown[] = {
       {".cr2", "image/x-canon-cr2", "fmt/592"}, {".crw", "image/x-canon-crw", "fmt/593"},

@@ -9,6 +9,7 @@
 #include "capture/capture.h"
 #include "carrier/xml.h"
 #include "core/error.h"
+#include "core/text.h"
 #include "core/version.h"
 #include "image/decode.h"
 #include "meta/metadata.h"
@@ -83,9 +84,7 @@ carrier::Carrier planRun(const fs::path& capture, const RunRequest& request) {
 
   bool hasLp = false;
   for (const auto& entry : fs::directory_iterator(capture)) {
-    std::string ext = entry.path().extension().string();
-    for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-    if (entry.is_regular_file() && ext == ".lp") hasLp = true;
+    if (entry.is_regular_file() && lowerCase(entry.path().extension().string()) == ".lp") hasLp = true;
   }
   auto& registry = pipeline::StageRegistry::instance();
   for (const PlannedStage& planned : analysisStages(hasLp, request)) {

@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <array>
-#include <cstdio>
 #include <vector>
 
 #include "core/error.h"
+#include "core/text.h"
 #include "core/parallel.h"
 #include "pipeline/context.h"
 #include "stages/inputs.h"
@@ -18,12 +18,6 @@ namespace surrogate::stages {
 namespace {
 
 std::string sizeText(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
-
-std::string fixed(double v, int digits) {
-  char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%.*f", digits, v);
-  return buffer;
-}
 
 bool inside(const PixelRect& r, const ImageStack& s) {
   return r.x >= 0 && r.y >= 0 && r.width > 0 && r.height > 0 &&
@@ -139,8 +133,8 @@ void WhiteBalanceStage::run(const carrier::Step& step, pipeline::Context& ctx, c
                                        input, gainTables(gains, input->transfer(), out), out));
   }
   ctx.carrier.addLog("info", step.id,
-                     "white balance " + options.mode + ": gains R " + fixed(gains[0], 4) + ", G " +
-                         fixed(gains[1], 4) + ", B " + fixed(gains[2], 4) + "; the fit reads " +
+                     "white balance " + options.mode + ": gains R " + fixedDecimals(gains[0], 4) + ", G " +
+                         fixedDecimals(gains[1], 4) + ", B " + fixedDecimals(gains[2], 4) + "; the fit reads " +
                          (out == Transfer::Linear ? "linear" : "sRGB-encoded") + " values");
   ctx.progress("White balance", 1);
 }

@@ -8,6 +8,8 @@
 #include <unicode/unorm2.h>
 #include <unicode/ustring.h>
 
+#include "core/text.h"
+
 namespace surrogate::verify {
 
 namespace {
@@ -42,11 +44,6 @@ std::string trim(const std::string& s) {
   while (b < e && (s[b] == ' ' || s[b] == '\t')) ++b;
   while (e > b && (s[e - 1] == ' ' || s[e - 1] == '\t')) --e;
   return s.substr(b, e - b);
-}
-
-std::string lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
 }
 
 }  // namespace
@@ -92,7 +89,7 @@ std::string percentDecode(const std::string& text) {
   out.reserve(text.size());
   for (std::size_t i = 0; i < text.size(); ++i) {
     if (text[i] == '%' && i + 2 < text.size()) {
-      const std::string code = lower(text.substr(i + 1, 2));
+      const std::string code = lowerCase(text.substr(i + 1, 2));
       if (code == "0d") { out += '\r'; i += 2; continue; }
       if (code == "0a") { out += '\n'; i += 2; continue; }
       if (code == "25") { out += '%'; i += 2; continue; }
@@ -107,31 +104,31 @@ std::string caseFoldKey(const std::string& path) {
   // as macOS writes it) and "ä.dng" share one key. Text that is not UTF-8 folds ASCII only.
   UErrorCode status = U_ZERO_ERROR;
   const UNormalizer2* nfc = unorm2_getNFCInstance(&status);
-  if (U_FAILURE(status) || path.size() > (1u << 20)) return lower(path);
+  if (U_FAILURE(status) || path.size() > (1u << 20)) return lowerCase(path);
   int32_t length = 0;
   u_strFromUTF8(nullptr, 0, &length, path.data(), static_cast<int32_t>(path.size()), &status);
-  if (status != U_BUFFER_OVERFLOW_ERROR && U_FAILURE(status)) return lower(path);
+  if (status != U_BUFFER_OVERFLOW_ERROR && U_FAILURE(status)) return lowerCase(path);
   status = U_ZERO_ERROR;
   std::u16string utf16(static_cast<std::size_t>(length), u'\0');
   u_strFromUTF8(reinterpret_cast<UChar*>(utf16.data()), length, nullptr, path.data(),
                 static_cast<int32_t>(path.size()), &status);
-  if (U_FAILURE(status)) return lower(path);
+  if (U_FAILURE(status)) return lowerCase(path);
   std::u16string normal(utf16.size() * 4 + 16, u'\0');
   const int32_t n = unorm2_normalize(nfc, reinterpret_cast<const UChar*>(utf16.data()), length,
                                      reinterpret_cast<UChar*>(normal.data()),
                                      static_cast<int32_t>(normal.size()), &status);
-  if (U_FAILURE(status)) return lower(path);
+  if (U_FAILURE(status)) return lowerCase(path);
   std::u16string folded(static_cast<std::size_t>(n) * 3 + 16, u'\0');
   const int32_t f = u_strFoldCase(reinterpret_cast<UChar*>(folded.data()),
                                   static_cast<int32_t>(folded.size()),
                                   reinterpret_cast<const UChar*>(normal.data()), n,
                                   U_FOLD_CASE_DEFAULT, &status);
-  if (U_FAILURE(status)) return lower(path);
+  if (U_FAILURE(status)) return lowerCase(path);
   std::string out(static_cast<std::size_t>(f) * 3 + 16, '\0');
   int32_t written = 0;
   u_strToUTF8(out.data(), static_cast<int32_t>(out.size()), &written,
               reinterpret_cast<const UChar*>(folded.data()), f, &status);
-  if (U_FAILURE(status)) return lower(path);
+  if (U_FAILURE(status)) return lowerCase(path);
   out.resize(static_cast<std::size_t>(written));
   return out;
 }
@@ -180,7 +177,7 @@ Declaration parseDeclaration(const std::string& text) {
       d.problems.push_back("line 2 must be \"Tag-File-Character-Encoding: UTF-8\"");
     else
       d.encoding = lines[1].substr(prefix.size());
-    if (!d.encoding.empty() && lower(d.encoding) != "utf-8")
+    if (!d.encoding.empty() && lowerCase(d.encoding) != "utf-8")
       d.problems.push_back("tag files are encoded in " + d.encoding +
                            "; this verifier reads UTF-8 tag files only");
   }
@@ -190,7 +187,7 @@ Declaration parseDeclaration(const std::string& text) {
 std::vector<std::string> BagInfo::values(const std::string& label) const {
   std::vector<std::string> out;
   for (const auto& [k, v] : fields)
-    if (lower(k) == lower(label)) out.push_back(v);
+    if (lowerCase(k) == lowerCase(label)) out.push_back(v);
   return out;
 }
 
@@ -269,7 +266,7 @@ Manifest parseManifest(const std::string& text, const std::string& algorithm,
       m.problems.push_back(where + "not \"<checksum> <path>\"");
       continue;
     }
-    std::string checksum = lower(line.substr(0, gap));
+    std::string checksum = lowerCase(line.substr(0, gap));
     const bool hex = std::all_of(checksum.begin(), checksum.end(), [](char c) {
       return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f');
     });
