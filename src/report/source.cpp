@@ -1,6 +1,5 @@
-// ReportSource: a capture folder, a bag directory, or a .tar/.zip bag read in place.
-#include <archive.h>
-#include <archive_entry.h>
+// ReportSource: a capture folder, a bag directory, or a .tar/.zip bag (the files a report shows
+// unpacked by the verifier's reader into a temporary folder).
 
 #include <algorithm>
 #include <fstream>
@@ -8,7 +7,10 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/temp_dir.h"
+#include "core/text.h"
 #include "report/report.h"
+#include "verify/package.h"
 
 namespace surrogate::report {
 
@@ -18,11 +20,6 @@ namespace {
 
 constexpr const char* kStep = "report";
 constexpr const char* kCarrierPath = "assembly-files/carrier.xml";
-
-std::string lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
 
 // A relative carrier path that stays inside its root.
 bool safeRelative(const std::string& path) {
@@ -36,8 +33,12 @@ bool safeRelative(const std::string& path) {
 class FolderSource : public ReportSource {
  public:
   FolderSource(fs::path root, std::string description, bool package)
+      : FolderSource(root, std::move(description), package, carrier::loadCarrier(root / kCarrierPath)) {}
+  // `keep`: the temporary folder `root` is in, removed with this source.
+  FolderSource(fs::path root, std::string description, bool package, carrier::Carrier c,
+               std::unique_ptr<TempDir> keep = nullptr)
       : root_(std::move(root)), description_(std::move(description)), package_(package),
-        carrier_(carrier::loadCarrier(root_ / kCarrierPath)) {}
+        carrier_(std::move(c)), keep_(std::move(keep)) {}
 
   const carrier::Carrier& carrier() const override { return carrier_; }
   std::string describe() const override { return description_; }
@@ -56,88 +57,41 @@ class FolderSource : public ReportSource {
   std::string description_;
   bool package_;
   carrier::Carrier carrier_;
+  std::unique_ptr<TempDir> keep_;
 };
 
-// A .tar or .zip bag: the files the report can show (the carrier, pictures, PTMs) under
-// data/assembly-files/ and data/finished-files/ are read into memory in one pass; originals,
-// .rti and everything else are skipped.
-class ArchiveSource : public ReportSource {
- public:
-  explicit ArchiveSource(const fs::path& path) : description_("bag " + path.string()) {
-    struct archive* a = archive_read_new();
-    archive_read_support_filter_all(a);
-    archive_read_support_format_tar(a);
-    archive_read_support_format_zip(a);
-    if (archive_read_open_filename(a, path.c_str(), 1 << 16) != ARCHIVE_OK) {
-      const std::string why = archive_error_string(a) ? archive_error_string(a) : "unreadable";
-      archive_read_free(a);
-      throwInputError(path.string(), kStep, "cannot be read as a .tar or .zip bag: " + why);
-    }
-    struct archive_entry* entry = nullptr;
-    int status;
-    while ((status = archive_read_next_header(a, &entry)) == ARCHIVE_OK) {
-      const char* name = archive_entry_pathname(entry);
-      const std::string relative = name ? underData(name) : "";
-      if (archive_entry_filetype(entry) != AE_IFREG || !shown(relative)) {
-        archive_read_data_skip(a);
-        continue;
-      }
-      std::string content;
-      char buffer[1 << 16];
-      la_ssize_t n;
-      while ((n = archive_read_data(a, buffer, sizeof buffer)) > 0) content.append(buffer, n);
-      if (n < 0) {
-        const std::string why = archive_error_string(a) ? archive_error_string(a) : "read error";
-        archive_read_free(a);
-        throwInputError(path.string(), kStep, "is damaged at " + std::string(name) + ": " + why);
-      }
-      files_[relative] = std::move(content);
-    }
-    const std::string why = status != ARCHIVE_EOF && archive_error_string(a) ? archive_error_string(a) : "";
-    archive_read_free(a);
-    if (status != ARCHIVE_EOF) throwInputError(path.string(), kStep, "is damaged: " + why);
-    const auto it = files_.find(kCarrierPath);
-    if (it == files_.end())
-      throwInputError(path.string(), kStep,
-                      "holds no data/assembly-files/carrier.xml: it is not a Surrogate package");
-    carrier_ = carrier::parseCarrier(it->second, path.string() + ":data/" + kCarrierPath);
-  }
+// The files of a bag a report can show: pictures, PTMs and the carrier in its two folders.
+bool shown(const std::string& relative) {
+  if (relative.rfind("assembly-files/", 0) != 0 && relative.rfind("finished-files/", 0) != 0) return false;
+  const std::string ext = lowerCase(fs::path(relative).extension().string());
+  for (const char* e : {".xml", ".png", ".jpg", ".jpeg", ".tif", ".tiff", ".ptm"})
+    if (ext == e) return true;
+  return false;
+}
 
-  const carrier::Carrier& carrier() const override { return carrier_; }
-  std::string describe() const override { return description_; }
-  bool isPackage() const override { return true; }
-  std::optional<std::string> read(const std::string& relativePath) const override {
-    const auto it = files_.find(relativePath);
-    if (it == files_.end()) return std::nullopt;
-    return it->second;
-  }
-
- private:
-  static bool shown(const std::string& relative) {
-    if (relative.rfind("assembly-files/", 0) != 0 && relative.rfind("finished-files/", 0) != 0) return false;
-    const std::string ext = lower(fs::path(relative).extension().string());
-    for (const char* e : {".xml", ".png", ".jpg", ".jpeg", ".tif", ".tiff", ".ptm"})
-      if (ext == e) return true;
-    return false;
-  }
-
-  // "data/x" or "TOP/data/x" (a bag packed with its folder) -> "x"; else "".
-  static std::string underData(std::string name) {
-    if (name.rfind("./", 0) == 0) name.erase(0, 2);
-    std::size_t at = std::string::npos;
-    if (name.rfind("data/", 0) == 0) at = 5;
-    else if (const auto slash = name.find('/');
-             slash != std::string::npos && name.compare(slash + 1, 5, "data/") == 0)
-      at = slash + 6;
-    if (at == std::string::npos) return "";
-    const std::string rest = name.substr(at);
-    return safeRelative(rest) ? rest : "";
-  }
-
-  std::string description_;
-  std::map<std::string, std::string> files_;
-  carrier::Carrier carrier_;
-};
+// A .tar or .zip bag, read with the verifier's reader (entry names, types, sizes and
+// compression ratios checked before anything is kept): the files the report can show are
+// extracted into a private temporary folder; originals, .rti and the rest are skipped.
+std::unique_ptr<ReportSource> openArchive(const fs::path& path) {
+  const verify::Limits limits;
+  const verify::Inventory inventory = verify::readPackage(path, limits);
+  const std::string carrierEntry = std::string("data/") + kCarrierPath;
+  const auto it = inventory.files.find(carrierEntry);
+  if (it == inventory.files.end() || !it->second.content)
+    throwInputError(path.string(), kStep,
+                    "holds no data/assembly-files/carrier.xml: it is not a Surrogate package");
+  carrier::Carrier c = carrier::parseCarrier(*it->second.content, path.string() + ":" + carrierEntry);
+  auto temp = std::make_unique<TempDir>("report");
+  verify::extractFiles(
+      path, inventory, temp->path(),
+      [](const std::string& entry) -> fs::path {
+        if (entry.compare(0, 5, "data/") != 0 || !shown(entry.substr(5))) return {};
+        return entry.substr(5);
+      },
+      limits);
+  const fs::path root = temp->path();
+  return std::make_unique<FolderSource>(root, "bag " + path.string(), true, std::move(c), std::move(temp));
+}
 
 }  // namespace
 
@@ -152,12 +106,12 @@ std::unique_ptr<ReportSource> openReportSource(const fs::path& path) {
                     "has no assembly-files/carrier.xml (a capture processed by surrogate run) "
                     "and no data/assembly-files/carrier.xml (a package made by surrogate pack)");
   }
-  const std::string name = lower(path.filename().string());
+  const std::string name = lowerCase(path.filename().string());
   const auto endsWith = [&](const std::string& suffix) {
     return name.size() >= suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
   };
   if (endsWith(".tar") || endsWith(".zip") || endsWith(".tar.gz") || endsWith(".tgz"))
-    return std::make_unique<ArchiveSource>(path);
+    return openArchive(path);
   if (endsWith(".xml")) {
     // CAPTURE/assembly-files/carrier.xml: the capture is two levels up.
     const fs::path root = fs::absolute(path).parent_path().parent_path();

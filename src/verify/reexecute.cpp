@@ -1,15 +1,15 @@
 // --reexecute: extract the bag's payload safely, run the recorded process list again on the
 // bagged originals, and compare every recorded result.
-#include <stdlib.h>
 #include <sys/stat.h>
 
 #include <cerrno>
 #include <cmath>
-#include <cstring>
+#include <cstdlib>
 #include <map>
 #include <set>
 
 #include "core/error.h"
+#include "core/temp_dir.h"
 #include "pipeline/stage.h"
 #include "stages/plan.h"
 #include "verify/checks.h"
@@ -20,34 +20,6 @@ namespace fs = std::filesystem;
 namespace surrogate::verify::internal {
 
 namespace {
-
-// A private folder under $TMPDIR (mkdtemp, mode 0700), removed with everything in it.
-class TempDir {
- public:
-  TempDir() {
-    const char* base = std::getenv("TMPDIR");
-    std::string pattern = std::string(base && *base ? base : "/tmp") + "/surrogate-verify-XXXXXX";
-    if (!::mkdtemp(pattern.data()))
-      throw Error(ErrorKind::Internal, pattern, "verify",
-                  std::string("cannot create a temporary folder (") + std::strerror(errno) +
-                      "); set TMPDIR to a writable folder with room for the package");
-    path_ = pattern;
-  }
-  ~TempDir() {
-    std::error_code ec;
-    // Folders made read-only for the replay must be writable again to be emptied.
-    for (fs::recursive_directory_iterator it(path_, ec), end; !ec && it != end; it.increment(ec))
-      if (it->is_directory(ec) && !it->is_symlink(ec))
-        fs::permissions(it->path(), fs::perms::owner_all, fs::perm_options::add, ec);
-    fs::remove_all(path_, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
 
 bool isOutputPath(const std::string& relative, const carrier::Carrier& c) {
   if (relative.compare(0, 15, "assembly-files/") == 0 || relative.compare(0, 15, "finished-files/") == 0)
@@ -196,7 +168,7 @@ void checkReexecution(const fs::path& package, const Inventory& inventory,
                       const carrier::Carrier& recorded, const VerifyOptions& options,
                       Report& report) {
   report.reexecuted = true;
-  TempDir temp;
+  TempDir temp("verify");
   const fs::path replayRoot = temp.path() / "replay", recordedRoot = temp.path() / "recorded";
   fs::create_directory(replayRoot);
   fs::create_directory(recordedRoot);
