@@ -12,6 +12,10 @@
       used parameters (crmdig:L13), ran on the workstation (crmdig:L12, a D8) within a time-span
       (P4, E52), continued the step before it (P134), and was steered by human interventions
       (E7 carried out by an E21, with the reason as a note);
+    each recorded command run (header/run: surrogate run, lights, pack; completed or failed) is an
+      activity (E7) of the session, carried out by a person (E21), with its command line, its
+      notes and outcome, continuing the run before it (P134); the run that made the record's
+      current state consists of (P9) the steps that ran;
     each file is a data object (crmdig:D9) identified by its path and its SHA-256 (E42), with its
       size (E54, bytes) and format (E55).
   Parameters:
@@ -53,6 +57,7 @@
 
   <xsl:key name="person" match="c:creator" use="normalize-space(.)"/>
   <xsl:key name="person" match="c:intervention/@who" use="normalize-space(.)"/>
+  <xsl:key name="person" match="c:run/@who" use="normalize-space(.)"/>
   <xsl:key name="camera" match="c:file[@role = 'original']/c:camera"
            use="concat(@make, '|', @model, '|', @serial)"/>
 
@@ -102,6 +107,20 @@
     </xsl:choose>
   </xsl:template>
 
+  <!-- A run's command line: "surrogate COMMAND ARG ...", an argument with a space (or an empty
+       one) in double quotes, as `surrogate info` prints it. -->
+  <xsl:template name="command-line">
+    <xsl:param name="run"/>
+    <xsl:value-of select="concat('surrogate ', $run/@command)"/>
+    <xsl:for-each select="$run/c:arg">
+      <xsl:text> </xsl:text>
+      <xsl:choose>
+        <xsl:when test="contains(., ' ') or . = ''"><xsl:value-of select="concat('&quot;', ., '&quot;')"/></xsl:when>
+        <xsl:otherwise><xsl:value-of select="."/></xsl:otherwise>
+      </xsl:choose>
+    </xsl:for-each>
+  </xsl:template>
+
   <xsl:template match="/">
     <rdf:RDF>
       <xsl:apply-templates select="c:carrier"/>
@@ -139,6 +158,9 @@
       <crm:P9_consists_of rdf:resource="{$base}capture"/>
       <xsl:for-each select="c:process/c:step">
         <crm:P9_consists_of rdf:resource="{$base}step/{@id}"/>
+      </xsl:for-each>
+      <xsl:for-each select="c:header/c:run">
+        <crm:P9_consists_of rdf:resource="{$base}run/{@id}"/>
       </xsl:for-each>
       <xsl:call-template name="time-span">
         <xsl:with-param name="uri" select="concat($base, 'session/time')"/>
@@ -228,7 +250,7 @@
     </rdf:Description>
 
     <!-- people -->
-    <xsl:for-each select="(c:header/c:creator | c:process/c:step/c:intervention/@who)[count(. | key('person', normalize-space(.))[1]) = 1]">
+    <xsl:for-each select="(c:header/c:creator | c:header/c:run/@who | c:process/c:step/c:intervention/@who)[count(. | key('person', normalize-space(.))[1]) = 1]">
       <crm:E21_Person>
         <xsl:attribute name="rdf:about"><xsl:call-template name="person-uri"><xsl:with-param name="name" select="."/></xsl:call-template></xsl:attribute>
         <rdfs:label><xsl:value-of select="normalize-space(.)"/></rdfs:label>
@@ -261,8 +283,60 @@
       </rdf:Description>
     </xsl:for-each>
 
+    <xsl:apply-templates select="c:header/c:run"/>
     <xsl:apply-templates select="c:process/c:step"/>
     <xsl:apply-templates select="c:files/c:file"/>
+  </xsl:template>
+
+  <!-- The run that made the record's current state: the last completed run (a failed run after
+       it left that state in place); with no completed run, the last run (a failed run whose
+       partial record is the state). Its P9 parts are the steps that ran (have a result). -->
+  <xsl:variable name="state-run">
+    <xsl:choose>
+      <xsl:when test="$carrier/c:header/c:run[@outcome = 'completed']"><xsl:value-of select="$carrier/c:header/c:run[@outcome = 'completed'][last()]/@id"/></xsl:when>
+      <xsl:otherwise><xsl:value-of select="$carrier/c:header/c:run[last()]/@id"/></xsl:otherwise>
+    </xsl:choose>
+  </xsl:variable>
+
+  <!-- a command run: the history of the record -->
+  <xsl:template match="c:run">
+    <xsl:variable name="uri" select="concat($base, 'run/', @id)"/>
+    <crm:E7_Activity rdf:about="{$uri}">
+      <rdfs:label><xsl:value-of select="concat('surrogate ', @command, ' (', @id, ')')"/></rdfs:label>
+      <crm:P2_has_type>
+        <crm:E55_Type rdf:about="{$base}type/surrogate-run"><rdfs:label>Surrogate command run</rdfs:label></crm:E55_Type>
+      </crm:P2_has_type>
+      <crm:P2_has_type>
+        <crm:E55_Type rdf:about="{$base}type/command/{translate(@command, $unsafe, $safe)}"><rdfs:label><xsl:value-of select="concat('surrogate ', @command)"/></rdfs:label></crm:E55_Type>
+      </crm:P2_has_type>
+      <crm:P2_has_type>
+        <crm:E55_Type rdf:about="{$base}type/run-outcome/{@outcome}"><rdfs:label><xsl:value-of select="concat('run outcome: ', @outcome)"/></rdfs:label></crm:E55_Type>
+      </crm:P2_has_type>
+      <crm:P14_carried_out_by>
+        <xsl:attribute name="rdf:resource"><xsl:call-template name="person-uri"><xsl:with-param name="name" select="@who"/></xsl:call-template></xsl:attribute>
+      </crm:P14_carried_out_by>
+      <crm:P3_has_note>
+        <xsl:text>command line: </xsl:text>
+        <xsl:call-template name="command-line"><xsl:with-param name="run" select="."/></xsl:call-template>
+      </crm:P3_has_note>
+      <crm:P3_has_note><xsl:value-of select="concat('outcome: ', @outcome)"/></crm:P3_has_note>
+      <xsl:for-each select="c:note">
+        <crm:P3_has_note><xsl:value-of select="."/></crm:P3_has_note>
+      </xsl:for-each>
+      <xsl:for-each select="preceding-sibling::c:run[1]">
+        <crm:P134_continued rdf:resource="{$base}run/{@id}"/>
+      </xsl:for-each>
+      <xsl:if test="@id = $state-run">
+        <xsl:for-each select="$carrier/c:process/c:step[@id = $carrier/c:data/c:result/@step]">
+          <crm:P9_consists_of rdf:resource="{$base}step/{@id}"/>
+        </xsl:for-each>
+      </xsl:if>
+      <xsl:call-template name="time-span">
+        <xsl:with-param name="uri" select="concat($uri, '/time')"/>
+        <xsl:with-param name="begin" select="@started"/>
+        <xsl:with-param name="end" select="@ended"/>
+      </xsl:call-template>
+    </crm:E7_Activity>
   </xsl:template>
 
   <!-- a pipeline step -->
@@ -354,7 +428,11 @@
           <xsl:attribute name="rdf:resource"><xsl:call-template name="person-uri"><xsl:with-param name="name" select="@who"/></xsl:call-template></xsl:attribute>
         </crm:P14_carried_out_by>
         <crm:P3_has_note><xsl:value-of select="concat('reason: ', normalize-space(.))"/></crm:P3_has_note>
-        <xsl:if test="@value != ''"><crm:P3_has_note><xsl:value-of select="concat('value chosen: ', @value)"/></crm:P3_has_note></xsl:if>
+        <xsl:choose>
+          <xsl:when test="@kind = 'accept-changed-original' and @value = 'removed'"><crm:P3_has_note>accepted: the file is removed</crm:P3_has_note></xsl:when>
+          <xsl:when test="@kind = 'accept-changed-original' and @value != ''"><crm:P3_has_note><xsl:value-of select="concat('accepted: the file as it is now, ', @value)"/></crm:P3_has_note></xsl:when>
+          <xsl:when test="@value != ''"><crm:P3_has_note><xsl:value-of select="concat('value chosen: ', @value)"/></crm:P3_has_note></xsl:when>
+        </xsl:choose>
         <xsl:call-template name="time-span">
           <xsl:with-param name="uri" select="concat($uri, '/intervention/', position(), '/time')"/>
           <xsl:with-param name="begin" select="@time"/>

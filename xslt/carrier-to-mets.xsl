@@ -51,10 +51,21 @@
     </xsl:choose>
   </xsl:variable>
   <xsl:variable name="surrogate" select="$carrier/c:header/c:software[@name = 'Surrogate'][1]"/>
+  <!-- The carrier's own path in the bag: the record every command run rewrote. -->
+  <xsl:variable name="carrier-path" select="'data/assembly-files/carrier.xml'"/>
+  <!-- The run that made the record's current state: the last completed run (a failed run after
+       it left that state in place); with no completed run, the last run. -->
+  <xsl:variable name="state-run">
+    <xsl:choose>
+      <xsl:when test="$carrier/c:header/c:run[@outcome = 'completed']"><xsl:value-of select="$carrier/c:header/c:run[@outcome = 'completed'][last()]/@id"/></xsl:when>
+      <xsl:otherwise><xsl:value-of select="$carrier/c:header/c:run[last()]/@id"/></xsl:otherwise>
+    </xsl:choose>
+  </xsl:variable>
 
-  <!-- Persons: creators, people who intervened or logged; grouped by name (Muenchian). -->
+  <!-- Persons: creators, people who ran commands, intervened or logged; grouped by name
+       (Muenchian). -->
   <xsl:key name="person" match="c:creator" use="normalize-space(.)"/>
-  <xsl:key name="person" match="c:intervention/@who | c:entry/@who" use="normalize-space(.)"/>
+  <xsl:key name="person" match="c:run/@who | c:intervention/@who | c:entry/@who" use="normalize-space(.)"/>
   <xsl:key name="camera" match="c:file[@role = 'original']/c:camera"
            use="concat(@make, '|', @model, '|', @serial)"/>
 
@@ -320,6 +331,14 @@
                 <premis:linkingEventIdentifierValue>event-capture</premis:linkingEventIdentifierValue>
               </premis:linkingEventIdentifier>
             </xsl:if>
+            <xsl:if test="$path = $carrier-path">
+              <xsl:for-each select="$carrier/c:header/c:run">
+                <premis:linkingEventIdentifier>
+                  <premis:linkingEventIdentifierType>Surrogate event</premis:linkingEventIdentifierType>
+                  <premis:linkingEventIdentifierValue><xsl:value-of select="concat('event-run-', @id)"/></premis:linkingEventIdentifierValue>
+                </premis:linkingEventIdentifier>
+              </xsl:for-each>
+            </xsl:if>
             <premis:linkingEventIdentifier>
               <premis:linkingEventIdentifierType>Surrogate event</premis:linkingEventIdentifierType>
               <premis:linkingEventIdentifierValue>event-message-digest</premis:linkingEventIdentifierValue>
@@ -387,7 +406,7 @@
           </xsl:if>
         </premis:creatingApplication>
       </xsl:when>
-      <xsl:when test="$path = 'data/assembly-files/carrier.xml'">
+      <xsl:when test="$path = $carrier-path">
         <premis:creatingApplication>
           <premis:creatingApplicationName>Surrogate</premis:creatingApplicationName>
           <premis:creatingApplicationVersion><xsl:value-of select="$surrogate/@version"/></premis:creatingApplicationVersion>
@@ -409,6 +428,20 @@
   </xsl:template>
 
   <!-- PREMIS events ===================================================================== -->
+  <!-- A run's command line: "surrogate COMMAND ARG ...", an argument with a space (or an empty
+       one) in double quotes, as `surrogate info` prints it. -->
+  <xsl:template name="command-line">
+    <xsl:param name="run"/>
+    <xsl:value-of select="concat('surrogate ', $run/@command)"/>
+    <xsl:for-each select="$run/c:arg">
+      <xsl:text> </xsl:text>
+      <xsl:choose>
+        <xsl:when test="contains(., ' ') or . = ''"><xsl:value-of select="concat('&quot;', ., '&quot;')"/></xsl:when>
+        <xsl:otherwise><xsl:value-of select="."/></xsl:otherwise>
+      </xsl:choose>
+    </xsl:for-each>
+  </xsl:template>
+
   <xsl:template name="linking-agent">
     <xsl:param name="type"/>
     <xsl:param name="value"/>
@@ -480,6 +513,66 @@
       </mets:mdWrap>
     </mets:digiprovMD>
 
+    <!-- each recorded command run (the history of the record), oldest first -->
+    <xsl:for-each select="c:header/c:run">
+      <mets:digiprovMD ID="event-run-{@id}">
+        <mets:mdWrap MDTYPE="PREMIS:EVENT">
+          <mets:xmlData>
+            <premis:event version="3.0">
+              <premis:eventIdentifier>
+                <premis:eventIdentifierType>Surrogate event</premis:eventIdentifierType>
+                <premis:eventIdentifierValue><xsl:value-of select="concat('event-run-', @id)"/></premis:eventIdentifierValue>
+              </premis:eventIdentifier>
+              <premis:eventType>metadata modification</premis:eventType>
+              <premis:eventDateTime><xsl:value-of select="@started"/></premis:eventDateTime>
+              <premis:eventDetailInformation>
+                <premis:eventDetail><xsl:call-template name="command-line"><xsl:with-param name="run" select="."/></xsl:call-template></premis:eventDetail>
+              </premis:eventDetailInformation>
+              <premis:eventDetailInformation>
+                <premis:eventDetail>
+                  <xsl:value-of select="concat('Surrogate command run ', @id, ' by ', normalize-space(@who), ', started ', @started, ', ended ', @ended, ', ', @outcome)"/>
+                  <xsl:if test="@id = $state-run and $carrier/c:data/c:result">
+                    <xsl:text>; made the record's current state, pipeline steps:</xsl:text>
+                    <xsl:for-each select="$carrier/c:process/c:step[@id = $carrier/c:data/c:result/@step]"><xsl:value-of select="concat(' event-', @id)"/></xsl:for-each>
+                  </xsl:if>
+                </premis:eventDetail>
+              </premis:eventDetailInformation>
+              <premis:eventOutcomeInformation>
+                <premis:eventOutcome>
+                  <xsl:choose>
+                    <xsl:when test="@outcome = 'completed'">success</xsl:when>
+                    <xsl:otherwise>failure</xsl:otherwise>
+                  </xsl:choose>
+                </premis:eventOutcome>
+                <xsl:for-each select="c:note">
+                  <premis:eventOutcomeDetail>
+                    <premis:eventOutcomeDetailNote><xsl:value-of select="."/></premis:eventOutcomeDetailNote>
+                  </premis:eventOutcomeDetail>
+                </xsl:for-each>
+              </premis:eventOutcomeInformation>
+              <xsl:call-template name="linking-agent">
+                <xsl:with-param name="type" select="'person'"/>
+                <xsl:with-param name="value" select="normalize-space(@who)"/>
+                <xsl:with-param name="role" select="'implementer'"/>
+              </xsl:call-template>
+              <xsl:if test="$surrogate">
+                <xsl:call-template name="linking-agent">
+                  <xsl:with-param name="type" select="'software'"/>
+                  <xsl:with-param name="value" select="concat($surrogate/@name, ' ', $surrogate/@version)"/>
+                  <xsl:with-param name="role" select="'executing program'"/>
+                </xsl:call-template>
+              </xsl:if>
+              <premis:linkingObjectIdentifier>
+                <premis:linkingObjectIdentifierType>BagIt payload path</premis:linkingObjectIdentifierType>
+                <premis:linkingObjectIdentifierValue><xsl:value-of select="$carrier-path"/></premis:linkingObjectIdentifierValue>
+                <premis:linkingObjectRole>outcome</premis:linkingObjectRole>
+              </premis:linkingObjectIdentifier>
+            </premis:event>
+          </mets:xmlData>
+        </mets:mdWrap>
+      </mets:digiprovMD>
+    </xsl:for-each>
+
     <!-- each pipeline step -->
     <xsl:for-each select="c:process/c:step">
       <xsl:variable name="step" select="."/>
@@ -536,7 +629,11 @@
                 </xsl:for-each>
                 <xsl:for-each select="c:intervention">
                   <premis:eventOutcomeDetail>
-                    <premis:eventOutcomeDetailNote><xsl:value-of select="concat('intervention ', @kind, ' on ', @target, ' by ', @who, ' at ', @time, ': ', normalize-space(.))"/></premis:eventOutcomeDetailNote>
+                    <premis:eventOutcomeDetailNote>
+                      <xsl:value-of select="concat('intervention ', @kind, ' on ', @target)"/>
+                      <xsl:if test="@value != ''"><xsl:value-of select="concat(' = ', @value)"/></xsl:if>
+                      <xsl:value-of select="concat(' by ', @who, ' at ', @time, ': ', normalize-space(.))"/>
+                    </premis:eventOutcomeDetailNote>
                   </premis:eventOutcomeDetail>
                 </xsl:for-each>
               </premis:eventOutcomeInformation>
@@ -674,7 +771,7 @@
         <xsl:with-param name="note" select="concat('pipeline stage of Surrogate ', $surrogate/@version, ' run on ', $carrier/c:header/c:machine/@hostname, ' (', $carrier/c:header/c:machine/@os, ', ', $carrier/c:header/c:machine/@architecture, ')')"/>
       </xsl:call-template>
     </xsl:for-each>
-    <xsl:for-each select="(c:header/c:creator | c:process/c:step/c:intervention/@who | c:log/c:entry/@who)[count(. | key('person', normalize-space(.))[1]) = 1][normalize-space(.) != '']">
+    <xsl:for-each select="(c:header/c:creator | c:header/c:run/@who | c:process/c:step/c:intervention/@who | c:log/c:entry/@who)[count(. | key('person', normalize-space(.))[1]) = 1][normalize-space(.) != '']">
       <xsl:call-template name="agent">
         <xsl:with-param name="id" select="concat('agent-person-', position())"/>
         <xsl:with-param name="type" select="'person'"/>

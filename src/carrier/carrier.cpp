@@ -14,6 +14,10 @@
 
 namespace surrogate::carrier {
 
+bool isEvidenceRole(const std::string& role) {
+  return role == "original" || role == "export" || role == "sidecar" || role == "lp";
+}
+
 std::string formatNumber(double value) {
   char buffer[40];
   std::snprintf(buffer, sizeof buffer, "%.17g", value);

@@ -54,6 +54,18 @@ struct Software {
   std::string name, version, role;
 };
 
+// One invocation of a command that changed (or tried to change) the capture's record: the
+// history an auditor reads to see the iterative process. Failed runs stay too.
+struct RunRecord {
+  std::string id;       // r1, r2, ...
+  std::string command;  // run, lights, pack
+  std::string who;
+  std::string started, ended;  // xs:dateTime
+  std::string outcome;  // completed, failed
+  std::vector<std::string> arguments;  // the command line after the command, as given
+  std::vector<std::string> notes;      // what changed; for a failed run, the cause
+};
+
 struct Header {
   std::string title;
   std::vector<Creator> creators;
@@ -61,12 +73,13 @@ struct Header {
   std::vector<std::pair<std::string, std::string>> meta;  // user metadata, in given order
   Machine machine;
   std::vector<Software> software;
+  std::vector<RunRecord> runs;  // oldest first
 };
 
 struct FileRecord {
   std::string id;    // f1, f2, ...
   std::string path;  // relative to the capture folder, '/' separated
-  std::string role;  // original, export, lp, sidecar, assembly, result
+  std::string role;  // original, export, lp, sidecar, other, assembly, result
   std::uint64_t size = 0;
   std::string sha256;
   std::string format;     // e.g. "DNG", "JPEG", "PTM_FORMAT_LRGB"
@@ -80,12 +93,16 @@ struct FileRecord {
   std::string xmp;        // the XMP packet, verbatim; empty when none
 };
 
+// Whether files of this role are evidence (original, export, sidecar, the dome's lp): once
+// recorded, their bytes may never be re-recorded silently; a change is a fixity failure.
+bool isEvidenceRole(const std::string& role);
+
 struct Param {
   std::string name, value;
 };
 
 struct Intervention {
-  std::string kind;    // exclude-image, manual-sphere, manual-highlight
+  std::string kind;    // exclude-image, manual-sphere, manual-highlight, accept-changed-original
   std::string target;  // file path, sphere index, "path:sphere"
   std::string value;   // optional: the value chosen by hand
   std::string who, time, reason;

@@ -65,6 +65,17 @@ void writeHeader(xmlNodePtr root, const Header& h) {
     attr(n, "version", s.version);
     optionalAttr(n, "role", s.role);
   }
+  for (const RunRecord& r : h.runs) {
+    xmlNodePtr n = child(header, "run");
+    attr(n, "id", r.id);
+    attr(n, "command", r.command);
+    attr(n, "who", r.who);
+    attr(n, "started", r.started);
+    attr(n, "ended", r.ended);
+    attr(n, "outcome", r.outcome);
+    for (const std::string& a : r.arguments) textChild(n, "arg", a);
+    for (const std::string& note : r.notes) textChild(n, "note", note);
+  }
 }
 
 void writeFiles(xmlNodePtr root, const std::vector<FileRecord>& files) {
@@ -202,6 +213,14 @@ Header readHeader(xmlNodePtr node) {
       if (!mem.empty()) h.machine.memoryBytes = std::stoull(mem);
     } else if (is(c, "software")) {
       h.software.push_back({prop(c, "name"), prop(c, "version"), prop(c, "role")});
+    } else if (is(c, "run")) {
+      RunRecord r{prop(c, "id"), prop(c, "command"), prop(c, "who"), prop(c, "started"),
+                  prop(c, "ended"), prop(c, "outcome"), {}, {}};
+      forChildren(c, [&](xmlNodePtr a) {
+        if (is(a, "arg")) r.arguments.push_back(text(a));
+        else if (is(a, "note")) r.notes.push_back(text(a));
+      });
+      h.runs.push_back(std::move(r));
     }
   });
   return h;

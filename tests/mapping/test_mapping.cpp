@@ -11,6 +11,7 @@
 #include <regex>
 
 #include "archive/digest.h"
+#include "carrier/carrier.h"
 #include "core/error.h"
 #include "mapping/mapping.h"
 #include "sample_capture.h"
@@ -37,9 +38,9 @@ struct Sample {
   mapping::PackageFacts facts;
 };
 
-Sample sample(const std::string& name) {
+Sample sampleOf(const fs::path& capture) {
   Sample s;
-  s.capture = samplecapture::make(freshDir(name));
+  s.capture = capture;
   s.carrierXml = slurp(s.capture / "assembly-files/carrier.xml");
   s.facts.packageId = "urn:sha256:" + archive::sha256Hex(s.carrierXml);
   s.facts.packagingTime = "2026-01-03T00:00:00Z";
@@ -53,6 +54,52 @@ Sample sample(const std::string& name) {
     s.facts.payload.push_back({"data/" + p, d.size, d.sha256, d.sha512});
   }
   return s;
+}
+
+Sample sample(const std::string& name) { return sampleOf(samplecapture::make(freshDir(name))); }
+
+// The sample capture with a history: three command runs in the header (two completed, the last
+// failed), an "other" file the capture brings, and an accept-changed-original intervention on
+// the ingest step. The carrier text is patched (the carrier API is not needed for this) and
+// written back, so that the payload digests are those of the patched carrier.
+const char* const kAcceptedHash = "sha256:4a5e1e4baab89f3a32518a88c31bc87f618f76673e2cc77ab2127b7afdeda33b";
+
+Sample sampleWithHistory(const std::string& name) {
+  const fs::path capture = samplecapture::make(freshDir(name));
+  const std::string notes = "Shot in gallery 3; the dome was not used.\n";
+  fs::create_directories(capture / "notes");
+  std::ofstream(capture / "notes/session notes.txt", std::ios::binary) << notes;
+  std::string xml = slurp(capture / "assembly-files/carrier.xml");
+  const auto insertBefore = [&xml](const std::string& at, const std::string& text) {
+    const auto where = xml.find(at);
+    REQUIRE(where != std::string::npos);
+    xml.insert(where, text);
+  };
+  insertBefore("  </header>",
+               "    <run id=\"r1\" command=\"run\" who=\"Eli Park\" started=\"2026-01-02T09:00:00Z\" "
+               "ended=\"2026-01-02T09:00:04Z\" outcome=\"completed\"><arg>--quiet</arg></run>\n"
+               "    <run id=\"r2\" command=\"run\" who=\"Dee Ortiz\" started=\"2026-01-02T10:00:00Z\" "
+               "ended=\"2026-01-02T10:00:05Z\" outcome=\"completed\"><arg>--exclude</arg><arg>IMG_0003</arg>"
+               "<arg>--reason</arg><arg>the flash did not fire</arg><arg>--accept-changed</arg>"
+               "<arg>original-captures/IMG_0002.dng</arg><arg>--reason</arg><arg>re-exported by the museum</arg>"
+               "<note>exclude-image original-captures/IMG_0003.dng: the flash did not fire</note>"
+               "<note>accepted the change of original-captures/IMG_0002.dng (now " +
+                   std::string(kAcceptedHash) + "): re-exported by the museum</note></run>\n"
+               "    <run id=\"r3\" command=\"lights\" who=\"Ana Silva\" started=\"2026-01-03T08:00:00Z\" "
+               "ended=\"2026-01-03T08:00:01Z\" outcome=\"failed\"><arg>--sphere</arg><arg>339,57,45</arg>"
+               "<arg>--reason</arg><arg>cut by frame</arg><arg></arg>"
+               "<note>manual-sphere 0 = 339,57,45: cut by frame</note>"
+               "<note>failed: sphere 0 lies outside the frame</note></run>\n");
+  insertBefore("  </files>",
+               "    <file id=\"f11\" path=\"notes/session notes.txt\" role=\"other\" size=\"" +
+                   std::to_string(notes.size()) + "\" sha256=\"" + archive::sha256Hex(notes) +
+                   "\" format=\"TXT\" mediaType=\"text/plain\"/>\n");
+  insertBefore("    </step>",
+               "      <intervention kind=\"accept-changed-original\" target=\"original-captures/IMG_0002.dng\" "
+               "value=\"" + std::string(kAcceptedHash) + "\" who=\"Dee Ortiz\" time=\"2026-01-02T10:00:00Z\">"
+               "re-exported by the museum</intervention>\n");
+  std::ofstream(capture / "assembly-files/carrier.xml", std::ios::binary) << xml;
+  return sampleOf(capture);
 }
 
 int count(const std::string& text, const std::string& what) {
@@ -232,4 +279,122 @@ TEST_CASE("the stylesheets and schemas to ship are all installed", "[mapping]") 
   }
   CHECK(mapping::crmStylesheetPath().filename() == "carrier-to-crm.xsl");
   CHECK_FALSE(mapping::libxsltVersion().empty());
+}
+
+TEST_CASE("command runs become PREMIS events with their command line, outcome, notes and agents", "[mapping][mets][runs]") {
+  const Sample s = sampleWithHistory("mets-runs");
+  CHECK_NOTHROW(carrier::parseCarrier(s.carrierXml, "patched carrier.xml"));  // the sample is schema-valid
+  const std::string mets = mapping::deriveMets(s.carrierXml, s.facts);
+  CHECK_NOTHROW(mapping::validateMets(mets, "mets.xml"));
+
+  // One event per run, identifiers apart from the steps' (event-s1) and the package's.
+  CHECK(count(mets, "<premis:eventType>metadata modification</premis:eventType>") == 3);
+  for (const std::string& id : {"r1", "r2", "r3"}) {
+    INFO(id);
+    CHECK(count(mets, "<mets:digiprovMD ID=\"event-run-" + id + "\">") == 1);
+    CHECK(count(mets, "<premis:eventIdentifierValue>event-run-" + id + "</premis:eventIdentifierValue>") == 1);
+    // carrier.xml, the record each run rewrote, links back to the run.
+    CHECK(count(mets, "<premis:linkingEventIdentifierValue>event-run-" + id + "</premis:linkingEventIdentifierValue>") == 1);
+  }
+  CHECK(mets.find("<premis:eventDateTime>2026-01-02T10:00:00Z</premis:eventDateTime>") != std::string::npos);
+  // The command line, arguments with spaces (or empty) quoted.
+  CHECK(mets.find("<premis:eventDetail>surrogate run --quiet</premis:eventDetail>") != std::string::npos);
+  CHECK(mets.find("<premis:eventDetail>surrogate lights --sphere 339,57,45 --reason \"cut by frame\" \"\"</premis:eventDetail>") != std::string::npos);
+  CHECK(mets.find("surrogate run --exclude IMG_0003 --reason \"the flash did not fire\" --accept-changed") != std::string::npos);
+  // Outcomes: the sample's 5 successes (capture, 2 steps, digests, packaging) plus r1 and r2.
+  CHECK(count(mets, "<premis:eventOutcome>success</premis:eventOutcome>") == 7);
+  CHECK(count(mets, "<premis:eventOutcome>failure</premis:eventOutcome>") == 1);
+  CHECK(mets.find("<premis:eventOutcomeDetailNote>failed: sphere 0 lies outside the frame</premis:eventOutcomeDetailNote>") != std::string::npos);
+  CHECK(mets.find("<premis:eventOutcomeDetailNote>manual-sphere 0 = 339,57,45: cut by frame</premis:eventOutcomeDetailNote>") != std::string::npos);
+  // The person who ran it (an agent even when named nowhere else: Eli Park) and the Surrogate
+  // software.
+  CHECK(mets.find("<premis:agentName>Eli Park</premis:agentName>") != std::string::npos);
+  CHECK(mets.find("<premis:linkingAgentIdentifierValue>Eli Park</premis:linkingAgentIdentifierValue>") != std::string::npos);
+  CHECK(count(mets, "<premis:linkingAgentRole>implementer</premis:linkingAgentRole>") == 3);
+  for (const std::string& id : {"r1", "r2", "r3"}) {
+    const auto from = mets.find("<mets:digiprovMD ID=\"event-run-" + id + "\">");
+    REQUIRE(from != std::string::npos);
+    const std::string event = mets.substr(from, mets.find("</mets:digiprovMD>", from) - from);
+    INFO(event);
+    const auto software = event.find("<premis:linkingAgentIdentifierValue>Surrogate 0.1.0</premis:linkingAgentIdentifierValue>");
+    REQUIRE(software != std::string::npos);
+    CHECK(event.find("<premis:linkingAgentRole>executing program</premis:linkingAgentRole>", software) != std::string::npos);
+    CHECK(event.find("<premis:linkingObjectIdentifierValue>data/assembly-files/carrier.xml</premis:linkingObjectIdentifierValue>") != std::string::npos);
+  }
+  // The last completed run (r2; r3 failed and left the record as it was) made the current steps.
+  const auto r2 = mets.find("ID=\"event-run-r2\"");
+  const auto r3 = mets.find("ID=\"event-run-r3\"");
+  const auto made = mets.find("made the record's current state, pipeline steps: event-s1 event-s2");
+  REQUIRE(made != std::string::npos);
+  CHECK((r2 < made && made < r3));
+  CHECK(count(mets, "made the record's current state") == 1);
+  // The accept-changed-original intervention, with the bytes it accepts.
+  CHECK(mets.find("intervention accept-changed-original on original-captures/IMG_0002.dng = " + std::string(kAcceptedHash) +
+                  " by Dee Ortiz at 2026-01-02T10:00:00Z: re-exported by the museum") != std::string::npos);
+  // A file the capture brings but the pipeline does not use: fileGrp "other", with its carrier id.
+  const auto other = mets.find("<mets:fileGrp USE=\"other\">");
+  REQUIRE(other != std::string::npos);
+  const auto notes = mets.find("xlink:href=\"data/notes/session notes.txt\"");
+  REQUIRE(notes != std::string::npos);
+  CHECK(other < notes);
+  CHECK(mets.find("<premis:objectIdentifierValue>f11</premis:objectIdentifierValue>") != std::string::npos);
+  CHECK(mets.find("<mets:div TYPE=\"other\" LABEL=\"data/notes/session notes.txt\">") != std::string::npos);
+}
+
+TEST_CASE("a carrier without runs has no run events", "[mapping][mets][runs]") {
+  const Sample s = sample("mets-no-runs");
+  const std::string mets = mapping::deriveMets(s.carrierXml, s.facts);
+  CHECK(mets.find("event-run-") == std::string::npos);
+  CHECK(mets.find("metadata modification") == std::string::npos);
+  CHECK(mapping::deriveCrm(s.carrierXml).find("/run/") == std::string::npos);
+}
+
+TEST_CASE("command runs become CIDOC-CRM activities of the session, in order, by a person", "[mapping][crm][runs]") {
+  const Sample s = sampleWithHistory("crm-runs");
+  const std::string crm = mapping::deriveCrm(s.carrierXml);
+  CHECK_NOTHROW(mapping::checkRdfWellFormed(crm, "crm.rdf"));
+  const fs::path file = s.capture.parent_path() / "crm.rdf";
+  std::ofstream(file, std::ios::binary) << crm;
+  const std::string parsed = run("rapper -q -i rdfxml -o ntriples " + file.string());
+  REQUIRE(parsed.find("<http://www.w3.org/1999/02/22-rdf-syntax-ns#type>") != std::string::npos);
+
+  const std::string base = "urn:surrogate:capture:" + archive::digestFile(s.capture / "original-captures/IMG_0001.dng").sha256 + "/";
+  const std::string crmNs = "http://www.cidoc-crm.org/cidoc-crm/";
+  const auto triple = [&](const std::string& subject, const std::string& property, const std::string& object) {
+    return parsed.find("<" + base + subject + "> <" + crmNs + property + "> " + object + " .") != std::string::npos;
+  };
+  const auto node = [&](const std::string& rel) { return "<" + base + rel + ">"; };
+  for (const std::string& id : {"r1", "r2", "r3"}) {
+    INFO(id);
+    CHECK(parsed.find(node("run/" + id) + " <http://www.w3.org/1999/02/22-rdf-syntax-ns#type> <" + crmNs + "E7_Activity> .") != std::string::npos);
+    CHECK(triple("session", "P9_consists_of", node("run/" + id)));
+    CHECK(triple("run/" + id, "P2_has_type", node("type/surrogate-run")));
+    CHECK(triple("run/" + id, "P4_has_time-span", node("run/" + id + "/time")));
+  }
+  CHECK(parsed.find(node("run/r3") + " <http://www.w3.org/2000/01/rdf-schema#label> \"surrogate lights (r3)\" .") != std::string::npos);
+  CHECK(triple("run/r2", "P134_continued", node("run/r1")));
+  CHECK(triple("run/r3", "P134_continued", node("run/r2")));
+  CHECK_FALSE(parsed.find(node("run/r1") + " <" + crmNs + "P134_continued>") != std::string::npos);
+  CHECK(triple("run/r2", "P14_carried_out_by", node("person/Dee_Ortiz")));
+  CHECK(triple("run/r3", "P14_carried_out_by", node("person/Ana_Silva")));
+  CHECK(triple("run/r1", "P14_carried_out_by", node("person/Eli_Park")));
+  CHECK(parsed.find(node("person/Eli_Park") + " <http://www.w3.org/1999/02/22-rdf-syntax-ns#type> <" + crmNs + "E21_Person> .") != std::string::npos);
+  CHECK(triple("run/r3", "P2_has_type", node("type/run-outcome/failed")));
+  CHECK(triple("run/r2", "P2_has_type", node("type/run-outcome/completed")));
+  CHECK(triple("run/r3", "P2_has_type", node("type/command/lights")));
+  CHECK(triple("run/r3/time", "P82a_begin_of_the_begin", "\"2026-01-03T08:00:00Z\"^^<http://www.w3.org/2001/XMLSchema#dateTime>"));
+  CHECK(triple("run/r3/time", "P82b_end_of_the_end", "\"2026-01-03T08:00:01Z\"^^<http://www.w3.org/2001/XMLSchema#dateTime>"));
+  CHECK(triple("run/r3", "P3_has_note", "\"command line: surrogate lights --sphere 339,57,45 --reason \\\"cut by frame\\\" \\\"\\\"\""));
+  CHECK(triple("run/r3", "P3_has_note", "\"failed: sphere 0 lies outside the frame\""));
+  CHECK(triple("run/r3", "P3_has_note", "\"outcome: failed\""));
+  // The last completed run made the current steps; the failed one after it did not.
+  CHECK(triple("run/r2", "P9_consists_of", node("step/s1")));
+  CHECK(triple("run/r2", "P9_consists_of", node("step/s2")));
+  CHECK_FALSE(triple("run/r3", "P9_consists_of", node("step/s1")));
+  CHECK_FALSE(triple("run/r1", "P9_consists_of", node("step/s1")));
+  // accept-changed-original: the bytes accepted; the "other" file's role.
+  CHECK(triple("step/s1/intervention/2", "P2_has_type", node("type/intervention/accept-changed-original")));
+  CHECK(triple("step/s1/intervention/2", "P3_has_note", "\"accepted: the file as it is now, " + std::string(kAcceptedHash) + "\""));
+  CHECK(triple("file/f11", "P2_has_type", node("type/role/other")));
+  CHECK(mapping::deriveCrm(s.carrierXml) == crm);
 }
