@@ -19,19 +19,15 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// An .lp names images relative to its own folder, to the capture above it (Surrogate writes
-// CAPTURE/assembly-files/lights.lp with names relative to CAPTURE), or by a path from another
-// machine (RTIBuilder writes absolute Windows paths): try each, then the base name.
+// The image an .lp names, by the one rule of formats::resolveLpImage: relative to the .lp's
+// folder, then to the folder above it (RTIBuilder's assembly-files/*.lp), then by base name
+// beside the .lp and in the capture's jpeg-exports/ and original-captures/.
 fs::path resolveImage(const fs::path& lpFile, const std::string& name) {
-  const fs::path dir = lpFile.parent_path();
-  const std::string base = name.substr(name.find_last_of("/\\") + 1);
-  for (const fs::path& candidate : {dir / name, dir.parent_path() / name, dir / base,
-                                    dir / "jpeg-exports" / base, dir.parent_path() / "jpeg-exports" / base}) {
-    if (fs::is_regular_file(candidate)) return candidate;
-  }
+  if (const auto found = formats::resolveLpImage(lpFile, name)) return *found;
   throwInputError(lpFile.string(), "fit",
-                  "names the image \"" + name + "\", which was not found next to the .lp file or "
-                  "in the capture folder above it");
+                  "names the image \"" + name + "\", which was not found relative to the .lp file's "
+                  "folder or the folder above it, nor by its name beside the .lp or in jpeg-exports/ or "
+                  "original-captures/ there");
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
 #include "formats/lp.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 
 #include "core/atomic_file.h"
@@ -126,6 +128,64 @@ std::string formatLp(const std::vector<LightEntry>& entries, const std::string& 
 
 void writeLp(const std::filesystem::path& path, const std::vector<LightEntry>& entries) {
   writeFileAtomically(path, formatLp(entries, path.string()));
+}
+
+namespace {
+namespace fs = std::filesystem;
+
+// The folder of an .lp file, absolute and weakly canonical (symbolic links of the folders
+// resolved, so that ".." means what the system makes of it).
+fs::path lpFolder(const fs::path& lpFile) {
+  return fs::weakly_canonical(fs::absolute(lpFile).parent_path());
+}
+
+// "C:\x", "C:/x", "\\server\x", "/x": absolute on Windows or POSIX, whatever this system is.
+bool isAbsoluteName(const std::string& name) {
+  if (!name.empty() && (name[0] == '/' || name[0] == '\\')) return true;
+  return name.size() >= 3 && std::isalpha(static_cast<unsigned char>(name[0])) && name[1] == ':' &&
+         (name[2] == '/' || name[2] == '\\');
+}
+}  // namespace
+
+std::string lpImageName(const fs::path& lpFile, const fs::path& image) {
+  const fs::path target = fs::weakly_canonical(fs::absolute(image));
+  const fs::path relative = target.lexically_relative(lpFolder(lpFile));
+  return (relative.empty() ? target : relative).generic_string();
+}
+
+std::vector<fs::path> lpImageCandidates(const fs::path& lpFile, const std::string& name) {
+  std::string generic = name;
+  for (char& c : generic)
+    if (c == '\\') c = '/';
+  const std::string base = generic.substr(generic.find_last_of('/') + 1);
+  const fs::path dir = lpFolder(lpFile);
+  const fs::path parent = dir.parent_path();
+
+  std::vector<fs::path> out;
+  auto add = [&out](const fs::path& p) {
+    const fs::path n = p.lexically_normal();
+    if (std::find(out.begin(), out.end(), n) == out.end()) out.push_back(n);
+  };
+  if (isAbsoluteName(name)) {
+    if (fs::path(generic).is_absolute()) add(generic);
+  } else if (!generic.empty()) {
+    add(dir / generic);
+    add(parent / generic);
+  }
+  if (base.empty()) return out;
+  add(dir / base);
+  for (const fs::path& capture : {dir, parent})
+    for (const char* folder : {"jpeg-exports", "original-captures", "raw-images"})
+      add(capture / folder / base);
+  return out;
+}
+
+std::optional<fs::path> resolveLpImage(const fs::path& lpFile, const std::string& name) {
+  for (const fs::path& candidate : lpImageCandidates(lpFile, name)) {
+    std::error_code ec;
+    if (fs::is_regular_file(candidate, ec)) return candidate;
+  }
+  return std::nullopt;
 }
 
 }  // namespace surrogate::formats

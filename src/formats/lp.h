@@ -15,9 +15,14 @@
 //   std::vector<LightEntry> lights = readLp("capture/assembly-files/lights.lp");
 //   for (const LightEntry& l : lights) use(l.filename, l.x, l.y, l.z);  // unit vectors
 //   writeLp("out.lp", lights);
+//
+// Image names. An .lp names each image by a path relative to the .lp file's own folder, with
+// '/' separators, as RTIBuilder and relight expect (lpImageName writes them so); reading, the
+// names are resolved by one rule, resolveLpImage (below, and docs/user-guide.md, `fit`).
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -46,5 +51,32 @@ std::vector<LightEntry> parseLp(const std::string& text, const std::string& name
 // break, or starts/ends with a space (it would not read back), or a component is not finite.
 void writeLp(const std::filesystem::path& path, const std::vector<LightEntry>& entries);
 std::string formatLp(const std::vector<LightEntry>& entries, const std::string& name);
+
+// The name an .lp file at `lpFile` gives `image`: the image's path relative to the .lp's
+// folder, '/'-separated ("stela12/original-captures/IMG_0001.dng",
+// "../stela12/jpeg-exports/IMG_0001.jpg"). Both paths are made absolute (against the working
+// directory) and weakly canonical first, so the result does not depend on the working
+// directory or on how either path was spelled. When no relative path exists (another drive
+// on Windows) the image's absolute path is returned.
+std::string lpImageName(const std::filesystem::path& lpFile, const std::filesystem::path& image);
+
+// Where the image that an .lp file at `lpFile` names `name` may be, in the order tried.
+// Backslashes in `name` are taken as separators (.lp files from Windows). With DIR the .lp's
+// folder (absolute, weakly canonical):
+//   1. DIR/name                  (the rule: names are relative to the .lp's folder)
+//   2. DIR/../name               (RTIBuilder writes CAPTURE/assembly-files/*.lp naming
+//                                 "jpeg-exports\000.jpg" relative to CAPTURE)
+//   3. by base name: DIR/BASE, then for CAPTURE = DIR and then DIR/..:
+//      CAPTURE/jpeg-exports/BASE, CAPTURE/original-captures/BASE, CAPTURE/raw-images/BASE
+// An absolute name ("/data/a.jpg", "C:\caps\a.jpg", "\\server\a.jpg") replaces steps 1 and
+// 2 by the name itself (only when it is absolute on this system); step 3 follows. Duplicates
+// are listed once.
+std::vector<std::filesystem::path> lpImageCandidates(const std::filesystem::path& lpFile,
+                                                     const std::string& name);
+
+// The first of lpImageCandidates that is a regular file (an absolute name is thus used as it
+// is only if it exists), or nullopt when none is.
+std::optional<std::filesystem::path> resolveLpImage(const std::filesystem::path& lpFile,
+                                                    const std::string& name);
 
 }  // namespace surrogate::formats

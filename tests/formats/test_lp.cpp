@@ -82,3 +82,68 @@ TEST_CASE("lp: every prefix and thousands of mutations parse or throw Error") {
   for (std::size_t n = 0; n <= valid.size(); ++n) test::parsesOrThrowsError(parse, valid.substr(0, n));
   test::fuzz(parse, valid, 20, 3000, 7);
 }
+
+TEST_CASE("lp: image names resolve relative to the .lp, then to the folder above, then by base name") {
+  const fs::path root = fs::weakly_canonical(fs::temp_directory_path()) / "surrogate-test-lp-resolve";
+  fs::remove_all(root);
+  const fs::path capture = root / "stela";
+  for (const char* d : {"jpeg-exports", "original-captures", "assembly-files/jpeg-exports", "elsewhere"})
+    fs::create_directories(capture / d);
+  for (const char* f : {"jpeg-exports/000.jpg", "jpeg-exports/001.jpg", "jpeg-exports/004.jpg",
+                        "original-captures/002.dng", "assembly-files/003.jpg",
+                        "assembly-files/jpeg-exports/004.jpg", "elsewhere/005.jpg"})
+    writeFileAtomically(capture / f, "image");
+  // An RTIBuilder-style file from Windows: backslashes, CRLF, names relative to the capture.
+  const fs::path lp = capture / "assembly-files" / "rti.lp";
+  writeFileAtomically(lp, "7\r\n"
+                          "jpeg-exports\\000.jpg 0 0 1\r\n"
+                          "..\\jpeg-exports\\001.jpg 0.5 0 0.8\r\n"
+                          "C:\\Users\\rti\\stela\\original-captures\\002.dng 0 0.5 0.8\r\n"
+                          "D:\\old\\003.jpg -0.5 0 0.8\r\n"
+                          "jpeg-exports\\004.jpg 0 -0.5 0.8\r\n" +
+                              (capture / "elsewhere/005.jpg").string() + " 0.3 0.3 0.9\r\n"
+                          "/no/such/folder/006.jpg 0 0 1\r\n");
+  const auto entries = readLp(lp);
+  REQUIRE(entries.size() == 7);
+  CHECK(entries[0].filename == "jpeg-exports\\000.jpg");
+  auto resolved = [&](std::size_t i) { return resolveLpImage(lp, entries[i].filename); };
+  CHECK(resolved(0) == capture / "jpeg-exports/000.jpg");                 // the folder above
+  CHECK(resolved(1) == capture / "jpeg-exports/001.jpg");                 // the .lp's folder
+  CHECK(resolved(2) == capture / "original-captures/002.dng");            // base name, capture
+  CHECK(resolved(3) == capture / "assembly-files/003.jpg");               // base name, beside
+  CHECK(resolved(4) == capture / "assembly-files/jpeg-exports/004.jpg");  // .lp's folder first
+  CHECK(resolved(5) == capture / "elsewhere/005.jpg");                    // absolute, exists
+  CHECK_FALSE(resolved(6).has_value());                                   // nowhere
+
+  // The order, spelled out; an absolute name is tried as it is, never under the folders.
+  const fs::path dir = capture / "assembly-files";
+  const auto candidates = lpImageCandidates(lp, "sub\\a.jpg");
+  REQUIRE(candidates.size() == 9);
+  CHECK(candidates[0] == dir / "sub/a.jpg");
+  CHECK(candidates[1] == capture / "sub/a.jpg");
+  CHECK(candidates[2] == dir / "a.jpg");
+  CHECK(candidates[3] == dir / "jpeg-exports/a.jpg");
+  CHECK(candidates[6] == capture / "jpeg-exports/a.jpg");
+  CHECK(candidates[7] == capture / "original-captures/a.jpg");
+  const auto absolute = lpImageCandidates(lp, "/data/a.jpg");
+  REQUIRE_FALSE(absolute.empty());
+  CHECK(absolute[0] == fs::path("/data/a.jpg"));
+  CHECK(absolute[1] == dir / "a.jpg");
+  CHECK(lpImageCandidates(lp, "C:\\caps\\a.jpg")[0] == dir / "a.jpg");
+
+  // A relative spelling of the .lp's path resolves the same.
+  const fs::path spelled = capture / "elsewhere" / ".." / "assembly-files" / "." / "rti.lp";
+  CHECK(resolveLpImage(spelled, entries[0].filename) == capture / "jpeg-exports/000.jpg");
+  fs::remove_all(root);
+}
+
+TEST_CASE("lp: names are written relative to the .lp's folder, with '/'") {
+  const fs::path root = fs::weakly_canonical(fs::temp_directory_path()) / "surrogate-test-lp-name";
+  const fs::path image = root / "stela/original-captures/IMG_0001.dng";
+  CHECK(lpImageName(root / "stela.lp", image) == "stela/original-captures/IMG_0001.dng");
+  CHECK(lpImageName(root / "lights/stela.lp", image) == "../stela/original-captures/IMG_0001.dng");
+  CHECK(lpImageName(root / "a/b/stela.lp", image) == "../../stela/original-captures/IMG_0001.dng");
+  CHECK(lpImageName(root / "stela/assembly-files/lights.lp", image) == "../original-captures/IMG_0001.dng");
+  CHECK(lpImageName(root / "x/../a/./stela.lp", root / "stela/./jpeg-exports/../original-captures/IMG_0001.dng") ==
+        "../stela/original-captures/IMG_0001.dng");
+}
