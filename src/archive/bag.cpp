@@ -23,6 +23,7 @@
 #include "archive/digest.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/text.h"
 
 namespace surrogate::archive {
 
@@ -113,6 +114,21 @@ std::string utcDateTime(std::int64_t epoch) {
   char text[32];
   std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &tm);
   return text;
+}
+
+std::string bagInfoLabelProblem(const std::string& label) {
+  static const std::set<std::string> computed = {"payload-oxum", "bagging-date", "bag-size",
+                                                  "bag-software-agent"};
+  if (computed.count(lowerCase(label)))
+    return "is computed by Surrogate for bag-info.txt and cannot be given as metadata; "
+           "remove it from the capture's metadata (--meta)";
+  const bool bad = label.empty() || std::any_of(label.begin(), label.end(), [](unsigned char c) {
+                     return c == ':' || c <= ' ' || c == 0x7f;
+                   });
+  if (bad)
+    return "is not a usable bag-info.txt label (no spaces, colons or control characters); "
+           "rename the metadata key, e.g. Source-Organization";
+  return "";
 }
 
 namespace {
@@ -341,23 +357,8 @@ bool safeRelative(const std::string& path) {
 }
 
 void checkLabel(const std::string& label) {
-  static const std::set<std::string> computed = {"payload-oxum", "bagging-date", "bag-size",
-                                                  "bag-software-agent"};
-  std::string lower = label;
-  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
-  if (computed.count(lower)) {
-    throw Error(ErrorKind::Usage, label, "packing",
-                "is computed by Surrogate for bag-info.txt and cannot be given as metadata; "
-                "remove it from the capture's metadata (--meta)");
-  }
-  const bool bad = label.empty() || std::any_of(label.begin(), label.end(), [](unsigned char c) {
-                     return c == ':' || c <= ' ' || c == 0x7f;
-                   });
-  if (bad) {
-    throw Error(ErrorKind::Usage, label, "packing",
-                "is not a usable bag-info.txt label (no spaces, colons or control characters); "
-                "rename the metadata key, e.g. Source-Organization");
-  }
+  const std::string problem = bagInfoLabelProblem(label);
+  if (!problem.empty()) throw Error(ErrorKind::Usage, label, "packing", problem);
 }
 
 // "Label: value", with line breaks in the value folded into continuation lines.

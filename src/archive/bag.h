@@ -113,6 +113,12 @@ class PayloadChanged : public std::runtime_error {
   std::string bagPath_, source_;
 };
 
+// Why `label` cannot be one of the caller's bag-info.txt labels (BagInput::info), or "" when
+// it can: Surrogate computes Payload-Oxum, Bagging-Date, Bag-Size and Bag-Software-Agent
+// itself, and a label has no spaces, colons or control characters (RFC 8493 2.2.2). writeBag
+// refuses such a label; the command line checks --meta keys with this same rule, before any work.
+std::string bagInfoLabelProblem(const std::string& label);
+
 // Checks, before any work, that `out` can be the bag's name: its folder exists, and it is not
 // an existing non-empty folder (directory bags) or a folder (archives). Throws Error(Usage).
 void checkOutput(const std::filesystem::path& out);

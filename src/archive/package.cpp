@@ -5,6 +5,7 @@
 #include <set>
 
 #include "archive/digest.h"
+#include "capture/capture.h"
 #include "carrier/carrier.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -20,19 +21,46 @@ namespace {
 
 constexpr const char* kCarrierPath = "assembly-files/carrier.xml";
 
-// Folders of a capture that are payload, whole (DESIGN.md, "The capture folder").
-const char* const kPayloadFolders[] = {"original-captures", "raw-images", "jpeg-exports",
-                                       "assembly-files", "finished-files"};
-
-// Leftovers of an interrupted atomic write (".name.part-PID-N"): never payload.
-bool isTemporary(const fs::path& p) {
-  const std::string name = p.filename().string();
-  return !name.empty() && name[0] == '.' && name.find(".part-") != std::string::npos;
-}
+constexpr const char* kReportPath = "finished-files/report.html";
 
 std::string relativeSlash(const fs::path& p, const fs::path& root) {
   return p.lexically_relative(root).generic_u8string();
 }
+
+bool isOutputPath(const std::string& rel) {
+  return rel.rfind("assembly-files/", 0) == 0 || rel.rfind("finished-files/", 0) == 0;
+}
+
+// Leftovers of an interrupted atomic write by Surrogate (".name.part-PID-N", core/atomic_file)
+// in its own output folders: never payload. (In the input folders such a name is a file the
+// photographer brought, and is recorded like any other.)
+bool isSurrogateLeftover(const std::string& rel) {
+  const std::string name = rel.substr(rel.find_last_of('/') + 1);
+  return isOutputPath(rel) && !name.empty() && name[0] == '.' && name.find(".part-") != std::string::npos;
+}
+
+// Every file of the capture by the shared rule (package.h), relative, '/' separated, sorted.
+// Symbolic links are listed too: the bag writer refuses them, naming them.
+std::vector<std::string> captureFiles(const fs::path& capture) {
+  std::vector<std::string> out;
+  for (auto it = fs::recursive_directory_iterator(capture); it != fs::recursive_directory_iterator(); ++it) {
+    const std::string name = it->path().filename().string();
+    if (it.depth() == 0 && (name == capture::kWorkDir || name == capture::kSupersededDir)) {
+      if (it->is_directory()) it.disable_recursion_pending();
+      continue;
+    }
+    if (capture::isSystemFile(name)) {
+      if (it->is_directory() && !it->is_symlink()) it.disable_recursion_pending();
+      continue;
+    }
+    if (it->is_directory() && !it->is_symlink()) continue;
+    const std::string rel = relativeSlash(it->path(), capture);
+    if (!isSurrogateLeftover(rel)) out.push_back(rel);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 
 }  // namespace
 
@@ -45,50 +73,67 @@ CarrierState checkCarrier(const fs::path& capture) {
   } catch (const Error& e) {
     return {false, "the carrier cannot be read (" + e.message() + ")"};
   }
-  if (c.process.empty()) return {false, "the carrier records no processing"};
-  for (const carrier::Step& s : c.process) {
-    const carrier::Result* r = c.findResult(s.id);
-    if (!r) return {false, "step " + s.id + " (" + s.component + ") never ran"};
-    if (r->status != "completed") return {false, "step " + s.id + " (" + s.component + ") failed"};
-  }
+  CarrierState state;
+  for (const std::string& rel : captureFiles(capture))
+    if (isOutputPath(rel) && rel != kReportPath && rel != kCarrierPath && !c.findFileByPath(rel))
+      state.unrecordedOutputs.push_back(rel);
+  auto incomplete = [&](const std::string& why) {
+    if (state.reason.empty()) state.reason = why;
+  };
   for (const carrier::FileRecord& f : c.files) {
     std::error_code ec;
     const fs::path p = capture / fs::u8path(f.path);
-    if (!fs::is_regular_file(p, ec)) return {false, f.path + " is missing"};
-    if (fs::file_size(p, ec) != f.size) return {false, f.path + " changed size since it was recorded"};
+    std::string problem;
+    if (!fs::is_regular_file(fs::symlink_status(p, ec))) problem = f.path + " is missing";
+    else if (fs::file_size(p, ec) != f.size) problem = f.path + " changed size since it was recorded";
+    if (problem.empty()) continue;
+    if (carrier::isEvidenceRole(f.role) && state.inputProblem.empty()) {
+      state.inputProblem = problem;
+      state.inputPath = f.path;
+    }
+    incomplete(problem);
   }
-  return {true, ""};
+  if (c.process.empty()) incomplete("the carrier records no processing");
+  for (const carrier::Step& s : c.process) {
+    const carrier::Result* r = c.findResult(s.id);
+    if (!r) incomplete("step " + s.id + " (" + s.component + ") never ran");
+    else if (r->status != "completed") incomplete("step " + s.id + " (" + s.component + ") failed");
+  }
+  for (const std::string& rel : captureFiles(capture))
+    if (!isOutputPath(rel) && !c.findFileByPath(rel))
+      incomplete(rel + " is in the capture but not in its carrier");
+  state.complete = state.reason.empty();
+  return state;
 }
 
 std::vector<PayloadSource> capturePayload(const fs::path& capture) {
-  std::map<std::string, PayloadSource> byPath;  // relative path -> source
-  auto add = [&](const fs::path& p) {
-    const std::string rel = relativeSlash(p, capture);
-    byPath[rel] = PayloadSource{"data/" + rel, p, ""};
-  };
-  for (const char* folder : kPayloadFolders) {
-    const fs::path dir = capture / folder;
-    if (!fs::is_directory(dir)) continue;
-    for (auto it = fs::recursive_directory_iterator(dir); it != fs::recursive_directory_iterator(); ++it) {
-      if (it->is_directory(/*follows links*/) && !it->is_symlink()) continue;
-      if (isTemporary(it->path())) continue;
-      add(it->path());  // links and special files are refused by writeBag, naming them
-    }
-  }
-  for (const auto& entry : fs::directory_iterator(capture)) {
-    if (entry.path().extension() == ".lp" && !entry.is_directory()) add(entry.path());
-  }
-  const fs::path carrierFile = capture / kCarrierPath;
-  if (fs::exists(carrierFile)) {
-    const carrier::Carrier c = carrier::loadCarrier(carrierFile);
-    for (const carrier::FileRecord& f : c.files) {
-      const fs::path p = capture / fs::u8path(f.path);
-      if (!byPath.count(f.path)) byPath[f.path] = PayloadSource{"data/" + f.path, p, ""};
-      byPath[f.path].expectedSha256 = f.sha256;
-    }
-  }
+  const carrier::Carrier c = carrier::loadCarrier(capture / kCarrierPath);
+  std::vector<std::string> unrecorded;
   std::vector<PayloadSource> out;
-  for (auto& [rel, source] : byPath) out.push_back(std::move(source));
+  for (const std::string& rel : captureFiles(capture)) {
+    const carrier::FileRecord* f = c.findFileByPath(rel);
+    if (!f && rel != kReportPath && rel != kCarrierPath) {
+      unrecorded.push_back(rel);
+      continue;
+    }
+    out.push_back(PayloadSource{"data/" + rel, capture / fs::u8path(rel), f ? f->sha256 : ""});
+  }
+  if (!unrecorded.empty()) {
+    std::string list;
+    for (std::size_t i = 0; i < unrecorded.size() && i < 10; ++i) list += (i ? ", " : "") + unrecorded[i];
+    if (unrecorded.size() > 10) list += " and " + std::to_string(unrecorded.size() - 10) + " more";
+    throw Error(ErrorKind::Input, capture.string(), "packing",
+                std::to_string(unrecorded.size()) + " file(s) of the capture are not described by its "
+                "carrier, and a package holds only what the carrier describes: " + list +
+                ". Files in assembly-files/ and finished-files/ that Surrogate did not write: move "
+                "them out of the capture. New inputs: run `surrogate run` first to record them");
+  }
+  // A recorded file that is missing is refused by the bag writer, naming it.
+  for (const carrier::FileRecord& f : c.files)
+    if (!std::binary_search(out.begin(), out.end(), PayloadSource{"data/" + f.path, {}, {}},
+                            [](const PayloadSource& x, const PayloadSource& y) { return x.bagPath < y.bagPath; }))
+      out.push_back(PayloadSource{"data/" + f.path, capture / fs::u8path(f.path), f.sha256});
+  std::sort(out.begin(), out.end(), [](const PayloadSource& x, const PayloadSource& y) { return x.bagPath < y.bagPath; });
   return out;
 }
 

@@ -26,17 +26,31 @@
 namespace surrogate::archive {
 
 // Whether a capture has a carrier that can be packed as it is: assembly-files/carrier.xml
-// exists and is valid, every step has a completed result, and every recorded file exists with
-// its recorded size. (Hashes are compared while packing, where every file is read anyway.)
+// exists and is valid, every step has a completed result, every recorded file exists with its
+// recorded size, and every file of the capture is recorded. (Hashes are compared while
+// packing, where every file is read anyway.)
+//
+// The files of a capture are every file under its folder except Surrogate's working area
+// (.surrogate/), superseded-files/ (results of earlier runs, moved aside) and the files
+// operating systems leave (capture::isSystemFile: .DS_Store, Thumbs.db, ...): the rule run,
+// pack and verify share. finished-files/report.html is the one file not recorded (a view of
+// the carrier, not a result).
 struct CarrierState {
   bool complete = false;
   std::string reason;  // why not, in a sentence
+  // An original, export, sidecar or dome .lp that is missing or changed size: evidence that no
+  // run may re-record (a fixity failure), in a sentence naming the file; empty when none.
+  std::string inputProblem;
+  std::string inputPath;  // the file inputProblem names, as the carrier records it
+  // Files in assembly-files/ or finished-files/ that the carrier does not describe (not
+  // written by Surrogate, or left by a run that was not recorded): never bagged.
+  std::vector<std::string> unrecordedOutputs;
 };
 CarrierState checkCarrier(const std::filesystem::path& capture);
 
-// The payload of a capture: every file under original-captures/, raw-images/, jpeg-exports/,
-// assembly-files/ and finished-files/, the .lp files at its top, and every file the carrier
-// lists; with the carrier's SHA-256 as the expected digest where it has one.
+// The payload of a capture: the carrier's files (with their SHA-256 as the expected digest)
+// and finished-files/report.html when present. Throws Error(Input) listing any other file of
+// the capture (see CarrierState): nothing is bagged that the carrier does not describe.
 std::vector<PayloadSource> capturePayload(const std::filesystem::path& capture);
 
 struct PackOptions {

@@ -18,9 +18,51 @@ namespace {
 
 constexpr const char* kStep = "capture ingest";
 
-bool isHidden(const fs::path& p) {
-  const std::string name = p.filename().string();
-  return !name.empty() && name[0] == '.';
+void refuseSymlink(const fs::path& p, const fs::path& root) {
+  if (!fs::is_symlink(p)) return;
+  throwInputError(p.lexically_relative(root).generic_string(), kStep,
+                  "is a symbolic link; Surrogate records and packs a file's own bytes, and a "
+                  "link's target can change or lie outside the capture: replace the link by a "
+                  "copy of the file (cp -L), then run again");
+}
+
+// The entries of a folder, sorted: the carrier lists files in a fixed order.
+std::vector<fs::path> sortedEntries(const fs::path& dir) {
+  std::vector<fs::path> entries;
+  for (const auto& entry : fs::directory_iterator(dir)) entries.push_back(entry.path());
+  std::sort(entries.begin(), entries.end());
+  return entries;
+}
+
+std::string relativeTo(const fs::path& p, const fs::path& root) {
+  return p.lexically_relative(root).generic_string();
+}
+
+void collectOthers(const fs::path& dir, CaptureLayout& layout);
+
+// What every entry of a capture's input folders goes through first: a link or a special file
+// is refused, a system file set aside, a folder taken whole as other files. True when `p` was
+// handled here; regular files are left to the caller.
+bool handleNonRegular(const fs::path& p, CaptureLayout& layout) {
+  const std::string rel = relativeTo(p, layout.root);
+  refuseSymlink(p, layout.root);
+  if (isSystemFile(p.filename().string())) {
+    layout.systemFiles.push_back(rel);
+    return true;
+  }
+  if (fs::is_directory(p)) {
+    collectOthers(p, layout);
+    return true;
+  }
+  if (!fs::is_regular_file(p))
+    throwInputError(rel, kStep, "is not a regular file (a device, pipe or socket); remove it from the capture");
+  return false;
+}
+
+// Every file under `dir` (recursively) as "other" files of the capture.
+void collectOthers(const fs::path& dir, CaptureLayout& layout) {
+  for (const fs::path& p : sortedEntries(dir))
+    if (!handleNonRegular(p, layout)) layout.others.push_back(relativeTo(p, layout.root));
 }
 
 bool looksLikeImage(const fs::path& p) {
@@ -50,22 +92,15 @@ struct FolderScan {
 FolderScan scanFolder(const fs::path& dir, CaptureLayout& layout) {
   FolderScan scan;
   std::map<std::string, fs::path> byStem;
-  std::vector<fs::path> entries;
-  for (const auto& entry : fs::directory_iterator(dir)) entries.push_back(entry.path());
-  std::sort(entries.begin(), entries.end());
-  for (const fs::path& p : entries) {
-    const std::string rel = fs::relative(p, layout.root).generic_string();
-    if (isHidden(p)) continue;
-    if (fs::is_directory(p)) {
-      layout.ignored.push_back(rel + "/");
-      continue;
-    }
+  for (const fs::path& p : sortedEntries(dir)) {
+    if (handleNonRegular(p, layout)) continue;
+    const std::string rel = relativeTo(p, layout.root);
     if (lowerCase(p.extension().string()) == ".xmp") {
       layout.sidecars.push_back(rel);
       continue;
     }
-    if (!fs::is_regular_file(p) || !looksLikeImage(p)) {
-      layout.ignored.push_back(rel);
+    if (!looksLikeImage(p)) {
+      layout.others.push_back(rel);
       continue;
     }
     const std::string stem = p.stem().string();
@@ -121,6 +156,47 @@ std::string baseName(const std::string& name) {
 
 }  // namespace
 
+bool isSystemFile(const std::string& name) {
+  static const char* kNames[] = {".DS_Store", "Thumbs.db", "ehthumbs.db", "ehthumbs_vista.db",
+                                 "desktop.ini", "Desktop.ini", ".Spotlight-V100", ".Trashes",
+                                 ".fseventsd", ".TemporaryItems", ".DocumentRevisions-V100",
+                                 "$RECYCLE.BIN", "System Volume Information", ".directory"};
+  for (const char* n : kNames)
+    if (name == n) return true;
+  return name.rfind("._", 0) == 0;  // AppleDouble: resource forks macOS writes on FAT cards
+}
+
+void refuseOutputInside(const fs::path& capture, const fs::path& output, const std::string& option,
+                        bool anywhere) {
+  std::error_code ec;
+  const fs::path root = fs::weakly_canonical(fs::absolute(capture), ec);
+  const fs::path out = fs::weakly_canonical(fs::absolute(output), ec);
+  const fs::path rel = out.lexically_relative(root);
+  if (rel.empty() || *rel.begin() == "..") return;  // outside the capture
+  const std::string first = rel.begin()->string();
+  const bool inputs = first == "original-captures" || first == "raw-images" || first == kExportsDir;
+  const bool ours = first == kAssemblyDir || first == kFinishedDir || first == kWorkDir ||
+                    first == kSupersededDir || rel == ".";
+  if (inputs)
+    throw Error(ErrorKind::Usage, option + " " + output.string(), "command line",
+                "is inside the capture's " + first + "/ folder, which holds the untouched "
+                "originals: Surrogate never writes there; choose a place outside the capture");
+  if (ours || anywhere)
+    throw Error(ErrorKind::Usage, option + " " + output.string(), "command line",
+                std::string("is inside the capture ") +
+                    (ours ? "folder that Surrogate manages (" + first + "/)" : "itself") +
+                    ", where it would become part of the capture's record; choose a place "
+                    "outside the capture");
+}
+
+std::pair<int, int> CaptureLayout::frameSize() const {
+  for (const Shot& s : shots)
+    if (hasOriginals() && s.original) return {s.original->width, s.original->height};
+  for (const Shot& s : shots)
+    if (s.exported) return {s.exported->width, s.exported->height};
+  return {0, 0};
+}
+
 bool CaptureLayout::hasExports() const {
   for (const Shot& s : shots)
     if (s.exported) return true;
@@ -136,7 +212,7 @@ std::optional<std::string> findShotStem(const CaptureLayout& layout, const std::
   return std::nullopt;
 }
 
-CaptureLayout scanCapture(const fs::path& root, int threads) {
+CaptureLayout scanCapture(const fs::path& root, int threads, const std::string& domeLp) {
   if (!fs::exists(root)) throwInputError(root.string(), kStep, "the capture folder does not exist");
   if (!fs::is_directory(root))
     throwInputError(root.string(), kStep, "is not a folder; give the capture folder");
@@ -153,6 +229,8 @@ CaptureLayout scanCapture(const fs::path& root, int threads) {
       layout.originalsDir = candidate;
     }
   }
+  if (!layout.originalsDir.empty()) refuseSymlink(layout.root / layout.originalsDir, layout.root);
+  if (fs::exists(fs::symlink_status(layout.root / kExportsDir))) refuseSymlink(layout.root / kExportsDir, layout.root);
   const bool exportsDir = fs::is_directory(layout.root / kExportsDir);
   if (layout.originalsDir.empty() && !exportsDir) {
     throwInputError(root.string(), kStep,
@@ -190,23 +268,28 @@ CaptureLayout scanCapture(const fs::path& root, int threads) {
   }
   for (auto& [stem, shot] : shots) layout.shots.push_back(std::move(shot));
 
-  std::vector<fs::path> lps;
-  for (const auto& entry : fs::directory_iterator(layout.root)) {
-    if (entry.is_regular_file() && lowerCase(entry.path().extension().string()) == ".lp")
-      lps.push_back(entry.path());
+  // Everything else at the top of the capture: files (and folders) that are not Surrogate's
+  // output folders or its working area are recorded as "other" files.
+  for (const fs::path& p : sortedEntries(layout.root)) {
+    const std::string name = p.filename().string();
+    if (name == layout.originalsDir || name == kExportsDir || name == kAssemblyDir ||
+        name == kFinishedDir || name == kWorkDir || name == kSupersededDir)
+      continue;
+    if (!handleNonRegular(p, layout)) layout.others.push_back(name);
   }
-  std::sort(lps.begin(), lps.end());
-  if (lps.size() > 1) {
-    throwInputError(root.string(), kStep,
-                    "has several .lp files (" + lps[0].filename().string() + ", " +
-                        lps[1].filename().string() + "); keep only the one that belongs to this "
-                        "capture");
-  }
-  if (lps.size() == 1) {
-    layout.lp = fs::relative(lps[0], layout.root).generic_string();
-    for (const formats::LightEntry& e : formats::readLp(lps[0])) {
+
+  if (!domeLp.empty()) {
+    const auto it = std::find(layout.others.begin(), layout.others.end(), domeLp);
+    if (it == layout.others.end())
+      throw Error(ErrorKind::Usage, "--lp " + domeLp, kStep,
+                  "is not a file of the capture outside its folders of images and of Surrogate's "
+                  "outputs; copy the dome's .lp file into the capture folder (e.g. " +
+                      root.string() + "/dome.lp) and give its name");
+    layout.others.erase(it);
+    layout.lp = domeLp;
+    for (const formats::LightEntry& e : formats::readLp(layout.root / domeLp)) {
       if (!findShotStem(layout, e.filename)) {
-        throwInputError(lps[0].string(), kStep,
+        throwInputError(domeLp, kStep,
                         "names the image \"" + e.filename + "\", which is not in the capture; "
                         "fix the .lp file or add the missing image");
       }

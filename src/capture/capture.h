@@ -26,6 +26,24 @@ namespace surrogate::capture {
 inline constexpr const char* kAssemblyDir = "assembly-files";
 inline constexpr const char* kFinishedDir = "finished-files";
 inline constexpr const char* kExportsDir = "jpeg-exports";
+// Surrogate's own working area inside a capture: the lock that lets one process at a time work
+// on it and the staging folder of a run in progress. Never recorded, never bagged.
+inline constexpr const char* kWorkDir = ".surrogate";
+// Results of earlier runs that a later run no longer produces, moved aside (the move is
+// recorded in the carrier's run history). Never recorded as files, never bagged.
+inline constexpr const char* kSupersededDir = "superseded-files";
+
+// Files that operating systems and file managers leave in folders and on cards (.DS_Store,
+// Thumbs.db, desktop.ini, AppleDouble "._" files, Spotlight/Trash folders): not part of a
+// capture, never recorded, never bagged. The one rule run, pack and verify share.
+bool isSystemFile(const std::string& fileName);
+
+// Refuses (Error(Usage), naming `option`) an output path inside the capture's folders of
+// originals and exports, or inside what Surrogate writes there (assembly-files/,
+// finished-files/, .surrogate/, superseded-files/); with `anywhere`, inside the capture at all
+// (a package inside the capture it packs would be part of the next one).
+void refuseOutputInside(const std::filesystem::path& capture, const std::filesystem::path& output,
+                        const std::string& option, bool anywhere = false);
 
 struct ImageFile {
   std::string relativePath;  // to the capture root, '/' separated
@@ -45,16 +63,28 @@ struct CaptureLayout {
   std::filesystem::path root;
   std::string originalsDir;        // "original-captures", "raw-images", or "" (exports only)
   std::vector<Shot> shots;         // sorted by stem
-  std::optional<std::string> lp;   // relative path of the capture's .lp file
+  std::optional<std::string> lp;   // the .lp chosen for a dome capture (relative path)
   std::vector<std::string> sidecars;  // .xmp files next to originals
-  std::vector<std::string> ignored;   // other files that are not images (reported, not used)
+  // Every other file the capture brings (notes, files in sub-folders, .lp files not chosen):
+  // recorded with role "other" and bagged, not used by the pipeline. Outside assembly-files/
+  // and finished-files/, which hold what Surrogate wrote.
+  std::vector<std::string> others;
+  std::vector<std::string> systemFiles;  // left out by isSystemFile(), for the log
 
   bool hasOriginals() const { return !originalsDir.empty(); }
   bool hasExports() const;
+  // Width and height of the images the pipeline reads (the originals', else the exports').
+  std::pair<int, int> frameSize() const;
 };
 
-// Scans and checks a capture folder; `threads` bounds the parallel header reads.
-CaptureLayout scanCapture(const std::filesystem::path& root, int threads);
+// Scans and checks a capture folder; `threads` bounds the parallel header reads. `domeLp`, when
+// not empty, is the capture-relative path of the .lp file that gives the lights (dome capture,
+// `--lp`): it must be a regular file inside the capture and name only its images. Symbolic
+// links anywhere in the capture's input folders are refused: the record holds a file's bytes,
+// and a link's target can change or lie outside the capture.
+CaptureLayout scanCapture(const std::filesystem::path& root, int threads,
+                          const std::string& domeLp = "");
+
 
 // Which images the pipeline decodes.
 enum class Source {

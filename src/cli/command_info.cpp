@@ -33,7 +33,54 @@ void carrierJson(JsonWriter& j, const carrier::Carrier& c) {
         .key("version").value(s.version).key("status").value(r ? r->status : "not run")
         .key("interventions").value(static_cast<int>(s.interventions.size())).endObject();
   }
+  j.endArray().key("creators").beginArray();
+  for (const carrier::Creator& cr : c.header.creators)
+    j.beginObject().key("name").value(cr.name).key("role").value(cr.role).endObject();
+  j.endArray().key("decisions").beginArray();
+  for (const carrier::Step& s : c.process)
+    for (const carrier::Intervention& i : s.interventions)
+      j.beginObject().key("step").value(s.id).key("component").value(s.component)
+          .key("kind").value(i.kind).key("target").value(i.target).key("value").value(i.value)
+          .key("who").value(i.who).key("time").value(i.time).key("reason").value(i.reason).endObject();
+  j.endArray().key("runs").beginArray();
+  for (const carrier::RunRecord& r : c.header.runs) {
+    j.beginObject().key("id").value(r.id).key("command").value(r.command).key("who").value(r.who)
+        .key("started").value(r.started).key("ended").value(r.ended).key("outcome").value(r.outcome)
+        .key("arguments").beginArray();
+    for (const std::string& a : r.arguments) j.value(a);
+    j.endArray().key("notes").beginArray();
+    for (const std::string& n : r.notes) j.value(n);
+    j.endArray().endObject();
+  }
   j.endArray().endObject();
+}
+
+// The standing decisions (human interventions, with who, when and why) and the run history,
+// as text.
+void printDecisionsAndRuns(const carrier::Carrier& c) {
+  std::cout << "  standing decisions:";
+  int n = 0;
+  for (const carrier::Step& s : c.process) {
+    for (const carrier::Intervention& i : s.interventions) {
+      std::cout << "\n    " << i.kind << " " << i.target << (i.value.empty() ? "" : " = " + i.value)
+                << " (" << s.component << ")\n      by " << i.who << ", " << i.time << ": "
+                << i.reason;
+      ++n;
+    }
+  }
+  for (const carrier::Step& s : c.process)
+    if (s.component == "CaptureIngest" && s.hasParam("lp"))
+      std::cout << "\n    lights from " << s.param("lp") << " (dome capture)", ++n;
+  std::cout << (n ? "\n" : " none\n");
+  if (c.header.runs.empty()) return;
+  std::cout << "  runs:\n";
+  for (const carrier::RunRecord& r : c.header.runs) {
+    std::string args;
+    for (const std::string& a : r.arguments) args += " " + (a.find(' ') != std::string::npos || a.empty() ? "\"" + a + "\"" : a);
+    std::cout << "    " << r.id << " " << r.started << " " << r.who << ": surrogate " << r.command
+              << args << " -> " << r.outcome << "\n";
+    for (const std::string& note : r.notes) std::cout << "      " << note << "\n";
+  }
 }
 
 void printCarrier(const fs::path& path, bool json) {
@@ -59,11 +106,18 @@ void printCarrier(const fs::path& path, bool json) {
     if (!s.interventions.empty()) std::cout << ", " << s.interventions.size() << " intervention(s)";
     std::cout << "\n";
   }
+  printDecisionsAndRuns(c);
 }
 
 // A capture folder; with --json, a processed capture's carrier is nested under "carrier".
 void printCapture(const fs::path& path, bool json) {
-  const capture::CaptureLayout layout = capture::scanCapture(path, 0);
+  // A dome capture's .lp is a decision the carrier records (`run --lp`).
+  const fs::path carrierPath = path / capture::kAssemblyDir / "carrier.xml";
+  std::string domeLp;
+  if (fs::exists(carrierPath))
+    for (const carrier::Step& s : carrier::loadCarrier(carrierPath).process)
+      if (s.component == "CaptureIngest") domeLp = s.param("lp", "");
+  const capture::CaptureLayout layout = capture::scanCapture(path, 0, domeLp);
   int originals = 0, exports = 0;
   for (const capture::Shot& s : layout.shots) {
     originals += s.original.has_value();
@@ -77,7 +131,6 @@ void printCapture(const fs::path& path, bool json) {
         .key("originals").value(originals).key("exports").value(exports)
         .key("width").value(sample.width).key("height").value(sample.height)
         .key("lp").value(layout.lp.value_or(""));
-    const fs::path carrierPath = path / capture::kAssemblyDir / "carrier.xml";
     if (fs::exists(carrierPath)) {
       j.key("carrier");
       carrierJson(j, carrier::loadCarrier(carrierPath));
@@ -91,8 +144,12 @@ void printCapture(const fs::path& path, bool json) {
             << (layout.originalsDir.empty() ? "-" : layout.originalsDir + "/") << ", " << exports
             << " exports)\n"
             << "  image:     " << sample.width << "x" << sample.height << " " << sample.format << "\n"
-            << "  lights:    " << (layout.lp ? "given by " + *layout.lp : "to be detected from the spheres")
+            << "  lights:    " << (layout.lp ? "given by " + *layout.lp + " (dome capture)" : "to be detected from the spheres")
             << "\n";
+  for (const std::string& other : layout.others)
+    if (other.find('/') == std::string::npos && lowerCase(fs::path(other).extension().string()) == ".lp")
+      std::cout << "  note:      " << other << " is kept as a file of the capture but not used; for "
+                << "a dome capture whose lights it gives, run with --lp " << other << "\n";
 }
 
 void printImage(const fs::path& path, bool json) {

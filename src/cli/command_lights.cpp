@@ -4,13 +4,14 @@
 #include <iostream>
 
 #include "capture/capture.h"
+#include "capture/lock.h"
 #include "cli/args.h"
 #include "cli/commands.h"
 #include "cli/pipeline_options.h"
 #include "cli/progress.h"
-#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/json.h"
+#include "formats/lp.h"
 
 namespace surrogate::cli {
 
@@ -25,9 +26,9 @@ int runCommandLights(int argc, char** argv) {
   if (args.helpRequested()) {
     std::cout << usageHeader("surrogate lights CAPTURE -o FILE.lp [options]",
                              "Estimate the light direction of every image from the highlights on "
-                             "the spheres and write them as an .lp file. Also writes the sphere "
-                             "overlay, the highlight overviews and the carrier in "
-                             "CAPTURE/assembly-files/.")
+                             "the spheres and write them as an .lp file, which names the images "
+                             "relative to its own folder. Also writes the sphere overlay, the "
+                             "highlight overviews and the carrier in CAPTURE/assembly-files/.")
               << Args::describe(specs);
     return 0;
   }
@@ -35,16 +36,27 @@ int runCommandLights(int argc, char** argv) {
   if (args.positional().size() != 1 || !out)
     throw Error(ErrorKind::Usage, "", "command line", "give the capture and the output: surrogate lights CAPTURE -o FILE.lp");
   const fs::path capture = args.positional()[0];
+  capture::refuseOutputInside(capture, *out, "-o");
   stages::RunRequest request = requestFrom(args);
   request.lightsOnly = true;
+  request.command = "lights";
   ProgressBar bar(args.has("quiet") || args.has("json"));
   pipeline::RunSettings settings = settingsFrom(args);
   settings.progress = [&bar](const std::string& label, double f) { bar.update(label, f); };
-  const carrier::Carrier c = stages::runCapture(capture, request, settings);
+  // Held until the capture's lights.lp is copied: a run meanwhile would replace it.
+  capture::CaptureLock lock(capture, "lights");
+  const carrier::Carrier c = stages::runCapture(capture, request, settings, /*takeLock=*/false);
   bar.finish();
 
+  // The capture's lights.lp names the images relative to assembly-files/; FILE.lp names them
+  // relative to its own folder, wherever it is and whatever the working directory.
   const fs::path written = capture / capture::kAssemblyDir / "lights.lp";
-  writeFileAtomically(*out, readFile(written, "lights"));
+  std::vector<formats::LightEntry> entries = formats::readLp(written);
+  for (formats::LightEntry& e : entries) {
+    const auto image = formats::resolveLpImage(written, e.filename);
+    e.filename = formats::lpImageName(*out, image ? *image : written.parent_path() / e.filename);
+  }
+  formats::writeLp(*out, entries);
   int lights = 0, flagged = 0;
   for (const carrier::Result& r : c.data) {
     lights += static_cast<int>(r.itemsOf("light").size());

@@ -2,6 +2,10 @@
 #include <iostream>
 
 #include "archive/package.h"
+#include "capture/capture.h"
+#include "capture/lock.h"
+#include "carrier/carrier.h"
+#include "stages/run_commit.h"
 #include "cli/args.h"
 #include "cli/commands.h"
 #include "cli/pipeline_options.h"
@@ -15,13 +19,30 @@ namespace surrogate::cli {
 
 namespace {
 
-// Runs the pipeline on the capture as `surrogate run` does (carrier, outputs, report).
+// Runs the pipeline as `surrogate run` does, starting from the decisions the carrier records
+// (the options of this command, if any, add to them), under the lock `pack` holds.
 void runPipeline(const std::string& capture, const Args& args, ProgressBar& bar) {
-  const stages::RunRequest request = requestFrom(args);
+  stages::RunRequest request = requestFrom(args);
+  request.command = "pack";
   pipeline::RunSettings settings = settingsFrom(args);
   settings.progress = [&bar](const std::string& label, double f) { bar.update(label, f); };
-  stages::runCapture(capture, request, settings);
+  stages::runCapture(capture, request, settings, /*takeLock=*/false);
   if (!args.has("no-report")) report::writeCaptureReport(capture);
+}
+
+// Whether the command line gives a decision (an option `surrogate run` records).
+bool givesDecisions(const Args& args) {
+  for (const OptionSpec& o : pipelineOptions(true))
+    if (args.has(o.name)) return true;
+  return false;
+}
+
+[[noreturn]] void refuseChangedInput(const std::string& capture, const std::string& what,
+                                     const std::string& path) {
+  throw Error(ErrorKind::Fixity, capture, "packing",
+              what + ". An original is evidence: pack never records a new baseline for it. "
+              "Restore the file from the card or a backup; if the change is deliberate, accept it "
+              "with `surrogate run " + capture + " --accept-changed " + path + " --reason \"why\"`, then pack");
 }
 
 }  // namespace
@@ -63,15 +84,31 @@ int runCommandPack(int argc, char** argv) {
     throw Error(ErrorKind::Usage, capture, "command line", "is not a capture folder");
 
   archive::checkOutput(*out);  // before any long work
+  capture::refuseOutputInside(capture, *out, "-o", /*anywhere=*/true);
 
+  // One process at a time on the capture, for the whole pack: a run meanwhile would change
+  // what is being bagged.
+  capture::CaptureLock lock(capture, "pack");
+  stages::recoverRun(capture);
   ProgressBar bar(args.has("quiet") || args.has("json"));
   bool ran = false;
   std::string why;
   const archive::CarrierState state = archive::checkCarrier(capture);
-  if (!state.complete) {
-    why = state.reason;
+  if (!state.inputProblem.empty()) refuseChangedInput(capture, state.inputProblem, state.inputPath);
+  if (!state.complete || givesDecisions(args)) {
+    why = state.complete ? "new decisions were given" : state.reason;
     runPipeline(capture, args, bar);
     ran = true;
+  }
+  const archive::CarrierState after = ran ? archive::checkCarrier(capture) : state;
+  if (!after.unrecordedOutputs.empty()) {
+    std::string list;
+    for (const std::string& f : after.unrecordedOutputs) list += "\n  " + f;
+    throw Error(ErrorKind::Input, capture, "packing",
+                "these files in the capture's output folders are not described by its carrier "
+                "(Surrogate did not write them, or a run that wrote them was not recorded), and a "
+                "package holds only what the carrier describes; move them out of the capture, "
+                "then pack again:" + list);
   }
   archive::PackOptions options;
   options.progress = [&bar](std::uint64_t done, std::uint64_t total) {
@@ -81,6 +118,11 @@ int runCommandPack(int argc, char** argv) {
   try {
     r = archive::packCapture(capture, *out, options);
   } catch (const archive::PayloadChanged& e) {
+    const carrier::Carrier recorded = carrier::loadCarrier(std::filesystem::path(capture) / "assembly-files/carrier.xml");
+    const carrier::FileRecord* f = recorded.findFileByPath(e.bagPath().substr(5));
+    if (f && carrier::isEvidenceRole(f->role))
+      refuseChangedInput(capture, e.bagPath().substr(5) + " no longer matches the SHA-256 its carrier records",
+                         e.bagPath().substr(5));
     if (ran) {
       throw Error(ErrorKind::Input, e.source(), "packing",
                   "changed while the capture was being processed and packed; make sure nothing "
@@ -114,7 +156,9 @@ int runCommandPack(int argc, char** argv) {
     j.endArray().endObject();
     std::cout << j.str() << "\n";
   } else {
-    if (ran) std::cout << "Processed " << capture << " first (" << why << ").\n";
+    if (ran)
+      std::cout << "Processed " << capture << " first (" << why << "), with the decisions its "
+                << "carrier records (see `surrogate info " << capture << "`).\n";
     char rate[64];
     std::snprintf(rate, sizeof rate, "%.1f MB in %.2f s", mb, r.bag.seconds);
     std::cout << "Packed " << capture << " into " << *out << " (BagIt 1.0, "

@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "capture/capture.h"
+#include "capture/lock.h"
 #include "cli/args.h"
 #include "cli/pipeline_options.h"
 #include "cli/commands.h"
@@ -40,7 +41,9 @@ int runCommandRun(int argc, char** argv) {
   ProgressBar bar(args.has("quiet") || args.has("json"));
   pipeline::RunSettings settings = settingsFrom(args);
   settings.progress = [&bar](const std::string& label, double f) { bar.update(label, f); };
-  const carrier::Carrier c = stages::runCapture(capture, request, settings);
+  // The lock covers the report too: it is written from the carrier this run committed.
+  capture::CaptureLock lock(capture, "run");
+  const carrier::Carrier c = stages::runCapture(capture, request, settings, /*takeLock=*/false);
   bar.finish();
   // The report is a derived view of the carrier, not a recorded step (it holds the time it was
   // made): written after the run, never listed in the carrier.
@@ -66,11 +69,30 @@ int runCommandRun(int argc, char** argv) {
     j.endArray().key("report");
     if (rep) j.value(reportPath);
     else j.null();
+    // This run in the carrier's history, and what it changed in the standing decisions.
+    if (!c.header.runs.empty()) {
+      j.key("run").value(c.header.runs.back().id).key("changes").beginArray();
+      for (const std::string& n : c.header.runs.back().notes) j.value(n);
+      j.endArray();
+    }
     j.endObject();
     std::cout << j.str() << "\n";
   } else {
-    std::cout << "Processed " << capture << " (" << c.process.size() << " steps).\n"
-              << "  carrier (provenance): " << carrierPath << "\n";
+    std::cout << "Processed " << capture << " (" << c.process.size() << " steps).\n";
+    for (const carrier::Step& s : c.process)
+      if (s.component == "CaptureIngest" && s.hasParam("lp"))
+        std::cout << "  lights: from " << s.param("lp") << " (dome capture: no sphere or highlight detection)\n";
+    if (!c.header.runs.empty()) {
+      const carrier::RunRecord& r = c.header.runs.back();
+      std::cout << "  run " << r.id << " of the capture's record; "
+                << (!r.notes.empty() ? "changes:" : r.id == "r1" ? "no decisions given" : "the recorded decisions stand, unchanged")
+                << "\n";
+      for (const std::string& n : r.notes) std::cout << "    " << n << "\n";
+    }
+    for (const carrier::FileRecord& f : c.files)
+      if (f.role == "other" && f.path.find('/') == std::string::npos && f.format == "LP")
+        std::cout << "  note: " << f.path << " is not used for the lights; for a dome capture, run with --lp " << f.path << "\n";
+    std::cout << "  carrier (provenance): " << carrierPath << "\n";
     for (const carrier::FileRecord& f : c.files)
       if (f.role == "assembly" || f.role == "result")
         std::cout << "  " << f.role << ": " << capture << "/" << f.path << "\n";

@@ -2,7 +2,9 @@
 
 #include <optional>
 
+#include "capture/capture.h"
 #include "carrier/carrier.h"
+#include "cli/option_checks.h"
 #include "core/error.h"
 #include "stages/preprocess.h"
 
@@ -26,6 +28,13 @@ std::vector<OptionSpec> pipelineOptions(bool withFit) {
       {"focal-length", true, false, "lens focal length for the perspective model (default: EXIF)", "MM"},
       {"pixel-pitch", true, false, "sensor pixel pitch for the perspective model (default: EXIF)", "MM"},
       {"sphere-diameter", true, false, "real sphere diameter: with 2 spheres, gives light positions", "MM"},
+      // The capture's memory: decisions recorded by earlier runs stand until withdrawn.
+      {"lp", true, false, "dome capture: take the lights from this .lp file in the capture (none: back to the spheres)", "FILE.lp"},
+      {"forget-exclusion", true, true, "withdraw a recorded exclusion (needs --reason after it)", "IMAGE"},
+      {"forget-sphere", true, true, "withdraw a sphere given by hand, by index from 0 (needs --reason)", "N"},
+      {"forget-highlight", true, true, "withdraw a highlight given by hand (needs --reason)", "IMAGE:SPHERE"},
+      {"reset", false, false, "withdraw every recorded processing decision (needs --reason after it)"},
+      {"accept-changed", true, true, "accept that a recorded original changed or was removed (needs --reason)", "PATH"},
   };
   if (withFit) {
     specs.push_back({"basis", true, true, "model to fit: ptm-lrgb, ptm-rgb, hsh2, hsh3 (default: ptm-lrgb and hsh2)", "BASIS"});
@@ -96,13 +105,14 @@ void preprocessing(stages::RunRequest& r, const Args& args) {
   }
   if (const auto text = args.value("resize"))
     r.preprocessing.push_back({"Resize", stages::ResizeOptions::fromText(*text, "--resize").toParameters()});
-  if (!r.preprocessing.empty() && r.bases.empty())
+  if (!r.preprocessing.empty() && r.bases && r.bases->empty())
     throw Error(ErrorKind::Usage, "--crop/--resize/--wb", "command line", "pre-processing needs a fit (--basis)");
 }
 
 }  // namespace
 
 stages::RunRequest requestFrom(const Args& args) {
+  checkPipelineOptionValues(args);  // every value that needs no capture, before any work
   stages::RunRequest r;
   r.title = args.value("title", "");
   for (const std::string& c : args.values("creator")) {
@@ -114,7 +124,14 @@ stages::RunRequest requestFrom(const Args& args) {
   }
   for (const std::string& m : args.values("meta")) r.meta.push_back(splitKeyValue(m, "--meta"));
   r.who = args.value("operator", "");
-  r.source = args.value("source", "auto");
+  r.source = args.value("source", "");
+  if (!r.source.empty()) capture::parseSource(r.source);  // an unknown source is a usage error now
+  if (const auto lp = args.value("lp")) r.lp = *lp == "none" ? std::string() : *lp;
+  for (const auto& [name, value] : args.ordered()) {
+    r.arguments.push_back("--" + name);
+    if (name != "quiet" && name != "json" && name != "no-report" && name != "reset")
+      r.arguments.push_back(value);
+  }
   for (const std::string& s : args.values("raw")) r.decodeSettings.push_back(splitKeyValue(s, "--raw"));
 
   std::string regions;
@@ -143,9 +160,41 @@ stages::RunRequest requestFrom(const Args& args) {
   int spheres = 0;
   carrier::Intervention* last = nullptr;
   bool lastIsExclusion = false;
+  std::string* lastReason = nullptr;  // of a withdrawal, --reset or --accept-changed
   for (const auto& [name, value] : args.ordered()) {
+    if (name == "forget-exclusion" || name == "forget-sphere" || name == "forget-highlight") {
+      std::string target = value;
+      if (name == "forget-highlight" && target.find(':') == std::string::npos) target += ":0";
+      if (name == "forget-sphere") parseNumberList(value, 1, "--forget-sphere");
+      r.withdrawals.push_back({name == "forget-exclusion" ? "exclude-image"
+                               : name == "forget-sphere"  ? "manual-sphere"
+                                                          : "manual-highlight",
+                               target, ""});
+      lastReason = &r.withdrawals.back().reason;
+      last = nullptr;
+      lastIsExclusion = false;
+      continue;
+    }
+    if (name == "reset" || name == "accept-changed") {
+      if (name == "reset") {
+        r.resetReason = "";
+        lastReason = &*r.resetReason;
+      } else {
+        r.acceptedChanges.push_back({value, ""});
+        lastReason = &r.acceptedChanges.back().reason;
+      }
+      last = nullptr;
+      lastIsExclusion = false;
+      continue;
+    }
+    if (name == "reason" && lastReason && lastReason->empty()) {
+      *lastReason = value;
+      lastReason = nullptr;
+      continue;
+    }
+    if (name == "exclude" || name == "sphere" || name == "highlight") lastReason = nullptr;
     if (name == "exclude") {
-      r.exclusions.push_back({value, ""});
+      r.exclusions.push_back({value, "", "", ""});
       lastIsExclusion = true;
       last = nullptr;
     } else if (name == "sphere") {
@@ -176,6 +225,15 @@ stages::RunRequest requestFrom(const Args& args) {
       }
     }
   }
+  auto needReason = [](const std::string& what, const std::string& reason) {
+    if (reason.empty())
+      throw Error(ErrorKind::Usage, what, "command line",
+                  "withdrawing a recorded decision or accepting a changed original needs a "
+                  "reason: add --reason \"why\" after it; it is recorded with who and when");
+  };
+  for (const stages::Withdrawal& w : r.withdrawals) needReason("--forget " + w.target, w.reason);
+  if (r.resetReason) needReason("--reset", *r.resetReason);
+  for (const stages::AcceptedChange& a : r.acceptedChanges) needReason("--accept-changed " + a.path, a.reason);
   for (const stages::Exclusion& e : r.exclusions)
     if (e.reason.empty())
       throw Error(ErrorKind::Usage, "--exclude " + e.image, "command line",

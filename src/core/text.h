@@ -12,4 +12,8 @@ std::string lowerCase(std::string s);
 // `v` with exactly `digits` decimals ("%.*f"), for log lines and messages.
 std::string fixedDecimals(double v, int digits);
 
+// True when `s` is well-formed UTF-8: no stray continuation bytes, no overlong forms, no
+// surrogates (U+D800..U+DFFF), nothing above U+10FFFF.
+bool isValidUtf8(const std::string& s);
+
 }  // namespace surrogate

@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <string>
 
+#include "core/error.h"
+
 namespace surrogate::hrti {
 
 namespace {
@@ -36,6 +38,19 @@ Image toImage(const cv::Mat& bgr) {
   return out;
 }
 
+// The drawings need a circle with a finite centre and a radius above 0 that overlaps the image;
+// the stages refuse any other circle first (stages/request_checks.h), this keeps a bad one from
+// ever reaching an OpenCV assertion.
+void checkDrawable(const DetectedSphere& s, int width, int height) {
+  const bool finite = std::isfinite(s.cx) && std::isfinite(s.cy) && std::isfinite(s.r);
+  if (!finite || !(s.r > 0) || s.cx + s.r < 0 || s.cy + s.r < 0 || s.cx - s.r > width - 1 ||
+      s.cy - s.r > height - 1 || s.r > 1e6)
+    throw Error(ErrorKind::Input, "", "sphere drawing",
+                "a sphere's circle (" + std::to_string(s.cx) + ", " + std::to_string(s.cy) + ", " +
+                    std::to_string(s.r) + ") is not a circle in the " + std::to_string(width) + "x" +
+                    std::to_string(height) + " image; give the sphere's circle again (--sphere CX,CY,R)");
+}
+
 cv::Point sub(double x, double y) { return {static_cast<int>(std::lround(x * kUnit)), static_cast<int>(std::lround(y * kUnit))}; }
 
 }  // namespace
@@ -45,6 +60,7 @@ Image drawSphereOverlay(const Image& median, const std::vector<DetectedSphere>& 
   const int thickness = std::max(1, median.width / 600);
   for (std::size_t k = 0; k < spheres.size(); ++k) {
     const DetectedSphere& s = spheres[k];
+    checkDrawable(s, median.width, median.height);
     cv::circle(bgr, sub(s.cx, s.cy), static_cast<int>(std::lround(s.r * kUnit)), cv::Scalar(0, 220, 0), thickness, cv::LINE_AA, kShift);
     const double arm = std::max(4.0, s.r / 8);
     cv::line(bgr, sub(s.cx - arm, s.cy), sub(s.cx + arm, s.cy), cv::Scalar(0, 220, 0), thickness, cv::LINE_AA, kShift);
@@ -61,6 +77,7 @@ Image drawSphereOverlay(const Image& median, const std::vector<DetectedSphere>& 
 }
 
 Image drawHighlightOverview(const Image& median, const DetectedSphere& s, const std::vector<Highlight>& perImage) {
+  checkDrawable(s, median.width, median.height);
   const double margin = s.r * 0.15;
   const int x0 = std::max(0, static_cast<int>(std::floor(s.cx - s.r - margin)));
   const int y0 = std::max(0, static_cast<int>(std::floor(s.cy - s.r - margin)));

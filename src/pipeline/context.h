@@ -35,14 +35,26 @@ struct RunSettings {
 class Context {
  public:
   Context(std::filesystem::path captureRoot, carrier::Carrier& carrier, RunSettings settings)
-      : capture(std::move(captureRoot)), carrier(carrier), settings(std::move(settings)) {}
+      : capture(std::move(captureRoot)), outputRoot(capture), carrier(carrier),
+        settings(std::move(settings)) {}
 
-  std::filesystem::path capture;  // absolute capture folder
+  std::filesystem::path capture;     // absolute capture folder: where the inputs are read
+  // Where the steps write their outputs (assembly-files/, finished-files/ beneath it): the
+  // capture itself, or a staging folder that becomes the capture's state only when the whole
+  // run succeeded (stages/run_commit.h), so a failed run never replaces good results.
+  std::filesystem::path outputRoot;
   carrier::Carrier& carrier;
   RunSettings settings;
+  // The capture's record before this run (null on a first run or a re-execution): what the
+  // ingest compares the originals with, since an original once recorded is evidence.
+  const carrier::Carrier* previous = nullptr;
 
-  // Absolute path of a file the carrier lists by id.
+  // Absolute path of a file the carrier lists by id (outputs of this run under outputRoot).
   std::filesystem::path pathOf(const std::string& fileId) const;
+  // Absolute path where a step writes the output `relativePath` (relative to the capture).
+  std::filesystem::path outputPath(const std::string& relativePath) const {
+    return outputRoot / relativePath;
+  }
 
   template <typename T>
   void put(const std::string& key, std::shared_ptr<T> value) {

@@ -13,10 +13,11 @@ namespace fs = std::filesystem;
 fs::path Context::pathOf(const std::string& fileId) const {
   const carrier::FileRecord* f = carrier.findFile(fileId);
   if (!f) throwInputError("carrier", "pipeline", "refers to file id " + fileId + ", which it does not list");
-  return capture / f->path;
+  const bool output = f->role == "assembly" || f->role == "result";
+  return (output ? outputRoot : capture) / f->path;
 }
 
-void runProcess(Context& context, const fs::path& carrierPath) {
+void runProcess(Context& context, const fs::path& carrierPath, std::size_t steps) {
   carrier::Carrier& c = context.carrier;
   auto save = [&] {
     if (carrierPath.empty()) return;
@@ -24,8 +25,9 @@ void runProcess(Context& context, const fs::path& carrierPath) {
     carrier::saveCarrier(c, carrierPath);
   };
   // Copy the list: a stage may append files, never steps, but the reference must stay valid.
-  const std::vector<carrier::Step> steps = c.process;
-  for (const carrier::Step& step : steps) {
+  std::vector<carrier::Step> list = c.process;
+  if (steps < list.size()) list.resize(steps);
+  for (const carrier::Step& step : list) {
     std::unique_ptr<Stage> stage = StageRegistry::instance().create(step.component);
     c.clearResult(step.id);
     carrier::Result result;

@@ -10,12 +10,15 @@
 //   runProcess(ctx, capture / "assembly-files/carrier.xml");
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
 
 #include "pipeline/context.h"
 
 namespace surrogate::pipeline {
 
-void runProcess(Context& context, const std::filesystem::path& carrierPath);
+// Runs the first `steps` steps of the process list (all by default); the others keep no result.
+void runProcess(Context& context, const std::filesystem::path& carrierPath,
+                std::size_t steps = static_cast<std::size_t>(-1));
 
 }  // namespace surrogate::pipeline

@@ -50,12 +50,12 @@ void RtiFitStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
   std::string format;
   if (options.basis == fit::Basis::PtmLrgb || options.basis == fit::Basis::PtmRgb) {
     formats::PtmFile ptm = fit::fitPtm(*rgb, *lights, options, &stats);
-    formats::writePtm(ctx.capture / output, ptm);
+    formats::writePtm(ctx.outputPath(output), ptm);
     format = formats::formatName(ptm.format);
     model = fit::makeRelightable(std::move(ptm));
   } else {
     formats::HshFile hsh = fit::fitHsh(*rgb, *lights, options, &stats);
-    formats::writeRti(ctx.capture / output, hsh);
+    formats::writeRti(ctx.outputPath(output), hsh);
     format = "RTI_HSH";
     model = fit::makeRelightable(std::move(hsh));
   }
@@ -100,7 +100,7 @@ void DerivedMapsStage::run(const carrier::Step& step, pipeline::Context& ctx, ca
 
   int fallback = 0;
   const Image normals = model->normalMap(&fallback, ctx.settings.threads);
-  image::writePng(normals, ctx.capture / (dir + "/normals.png"));
+  image::writePng(normals, ctx.outputPath(dir + "/normals.png"));
   recordOutput(ctx, step, result, dir + "/normals.png", "result", "PNG", "normals", "image/png");
   result.add("value").set("name", "normalFallbackPixels").set("value", std::to_string(fallback));
   const double fraction = double(fallback) / (double(model->width()) * model->height());
@@ -108,7 +108,7 @@ void DerivedMapsStage::run(const carrier::Step& step, pipeline::Context& ctx, ca
                      std::to_string(fallback) + " pixels (" + fixedDecimals(100 * fraction, 2) +
                          " %) had no valid PTM maximum and took the least-squares Lambertian normal");
 
-  image::writePng(model->albedoMap(ctx.settings.threads), ctx.capture / (dir + "/albedo.png"));
+  image::writePng(model->albedoMap(ctx.settings.threads), ctx.outputPath(dir + "/albedo.png"));
   recordOutput(ctx, step, result, dir + "/albedo.png", "result", "PNG", "albedo", "image/png");
 
   // Previews: a raking light from the upper left (elevation 20 deg, azimuth 135 deg), from the
@@ -127,7 +127,7 @@ void DerivedMapsStage::run(const carrier::Step& step, pipeline::Context& ctx, ca
     options.specular = p.specular && basis.rfind("ptm", 0) == 0;
     options.threads = ctx.settings.threads;
     const std::array<double, 3> light{std::cos(e) * std::cos(a), std::cos(e) * std::sin(a), std::sin(e)};
-    image::writePng(model->render(light, options), ctx.capture / (dir + "/" + p.name));
+    image::writePng(model->render(light, options), ctx.outputPath(dir + "/" + p.name));
     recordOutput(ctx, step, result, dir + "/" + p.name, "result", "PNG", "preview", "image/png");
   }
   ctx.progress("Normals, albedo and previews", 1);

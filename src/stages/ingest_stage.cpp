@@ -97,13 +97,47 @@ struct PendingFile {
   bool unrecorded = false;
 };
 
+// An original, export, sidecar or dome .lp, once recorded, is evidence: if its bytes changed or
+// it vanished since the previous record, the run stops with a fixity failure naming it, unless
+// an `accept-changed-original` intervention accepts exactly what the file is now.
+void checkAgainstPrevious(const carrier::Step& step, pipeline::Context& ctx) {
+  if (!ctx.previous) return;
+  for (const carrier::FileRecord& before : ctx.previous->files) {
+    if (!carrier::isEvidenceRole(before.role)) continue;
+    const carrier::FileRecord* now = ctx.carrier.findFileByPath(before.path);
+    if (now && now->sha256 == before.sha256 && now->size == before.size) continue;
+    const std::string state = now ? "sha256:" + now->sha256 : "removed";
+    const carrier::Intervention* accepted = nullptr;
+    for (const carrier::Intervention* i : step.interventionsOfKind("accept-changed-original"))
+      if (i->target == before.path && i->value == state) accepted = i;
+    if (accepted) {
+      ctx.carrier.addLog("intervention", step.id,
+                         before.path + (now ? " changed" : " was removed") +
+                             " since it was recorded (SHA-256 was " + before.sha256 +
+                             "); accepted: " + accepted->reason,
+                         accepted->who);
+      continue;
+    }
+    const std::string what =
+        now ? "has changed since it was recorded (SHA-256 " + before.sha256.substr(0, 16) +
+                  "..., " + std::to_string(before.size) + " bytes; now " + now->sha256.substr(0, 16) +
+                  "..., " + std::to_string(now->size) + " bytes)"
+            : "was recorded in the carrier (SHA-256 " + before.sha256.substr(0, 16) +
+                  "...) but is no longer in the capture";
+    throw Error(ErrorKind::Fixity, before.path, kStep,
+                what + ". An original is evidence: Surrogate never records a new baseline for it. "
+                "Restore the file from the card or a backup; if the change is deliberate, accept "
+                "it with --accept-changed " + before.path + " --reason \"why\"");
+  }
+}
+
 }  // namespace
 
 void IngestStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier::Result& result) {
   const int threads = effectiveThreads(ctx.settings.threads);
   const capture::Source source = capture::parseSource(step.param("source", "auto"));
   ctx.progress("Reading the capture", 0);
-  const capture::CaptureLayout layout = capture::scanCapture(ctx.capture, threads);
+  const capture::CaptureLayout layout = capture::scanCapture(ctx.capture, threads, step.param("lp", ""));
 
   // Every file the capture brings, in a fixed order: shots (original, export), .lp, sidecars.
   std::vector<PendingFile> pending;
@@ -125,6 +159,11 @@ void IngestStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
   if (layout.lp) pending.push_back({*layout.lp, "lp", "LP", false, 0, 0, "", false});
   for (const std::string& s : layout.sidecars)
     pending.push_back({s, "sidecar", "XMP", false, 0, 0, "", false});
+  for (const std::string& o : layout.others) {
+    std::string ext = fs::path(o).extension().string();
+    for (char& ch : ext) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+    pending.push_back({o, "other", ext.size() > 1 ? ext.substr(1) : "unknown", false, 0, 0, "", false});
+  }
 
   // Hash and read metadata in parallel; the records are assembled in order afterwards.
   std::vector<carrier::FileRecord> records(pending.size());
@@ -177,8 +216,13 @@ void IngestStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
     for (carrier::FileRecord& f : ctx.carrier.files)
       if (f.path == p.path) f.pairedWith = ctx.carrier.findFileByPath(p.pairedPath)->id;
   }
-  for (const std::string& ignored : layout.ignored)
-    ctx.carrier.addLog("warning", step.id, "ignored " + ignored + ": not an image of the capture");
+  for (const std::string& o : layout.others)
+    ctx.carrier.addLog("info", step.id, "kept " + o + " as an other file of the capture (recorded "
+                       "and packed, not an image the pipeline reads)");
+  for (const std::string& junk : layout.systemFiles)
+    ctx.carrier.addLog("info", step.id, "left out " + junk + ": a file the operating system made, "
+                       "not part of the capture (not recorded, not packed)");
+  checkAgainstPrevious(step, ctx);
   for (const carrier::FileRecord& f : ctx.carrier.files)
     if (f.role == "original" && f.unrecordedProcessing)
       ctx.carrier.addLog("warning", step.id,

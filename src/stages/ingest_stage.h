@@ -13,7 +13,9 @@ namespace surrogate::stages {
 class IngestStage : public pipeline::Stage {
  public:
   std::string component() const override { return "CaptureIngest"; }
-  std::string version() const override { return "1"; }
+  // 2: other files of the capture recorded (role "other"), system files left out, links
+  // refused, the dome .lp chosen by the "lp" parameter, recorded originals compared.
+  std::string version() const override { return "2"; }
   void run(const carrier::Step& step, pipeline::Context& context,
            carrier::Result& result) override;
 };

@@ -3,10 +3,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <map>
 
 #include "capture/capture.h"
 #include "core/error.h"
+#include "core/text.h"
 #include "formats/lp.h"
 #include "hrti/highlight_detection.h"
 #include "hrti/light_direction.h"
@@ -18,6 +21,7 @@
 #include "pipeline/context.h"
 #include "stages/inputs.h"
 #include "stages/outputs.h"
+#include "stages/request_checks.h"
 
 namespace surrogate::stages {
 
@@ -90,6 +94,12 @@ void SphereDetectionStage::run(const carrier::Step& step, pipeline::Context& ctx
   if (!manual.empty()) {
     for (const carrier::Intervention* i : manual) {
       const std::vector<double> v = numbers(i->value, 3, "manual sphere");
+      // Checked here too, not only on the command line: a recorded carrier (re-execution) or
+      // a standing decision meets images of another size than it was given for.
+      const std::string why = sphereCircleProblem(v[0], v[1], v[2], median->width, median->height);
+      if (!why.empty())
+        throw Error(ErrorKind::Input, "sphere " + i->target + " given by hand (" + i->value + ")",
+                    "sphere detection", why + "; give the sphere's circle again with --sphere CX,CY,R");
       spheres->push_back(hrti::DetectedSphere{v[0], v[1], v[2], 1.0});
       ctx.carrier.addLog("intervention", step.id,
                          "sphere " + i->target + " set by hand to " + i->value + ": " + i->reason, i->who);
@@ -107,7 +117,7 @@ void SphereDetectionStage::run(const carrier::Step& step, pipeline::Context& ctx
   result.add("value").set("name", "spheres").set("value", std::to_string(spheres->size()));
 
   const std::string overlay = std::string(capture::kAssemblyDir) + "/spheres.png";
-  image::writePng(hrti::drawSphereOverlay(displayable(*median, *lum), *spheres), ctx.capture / overlay);
+  image::writePng(hrti::drawSphereOverlay(displayable(*median, *lum), *spheres), ctx.outputPath(overlay));
   recordOutput(ctx, step, result, overlay, "assembly", "PNG", "sphere-overlay", "image/png");
   ctx.put(kSpheres, spheres);
   ctx.put(kMedianImage, median);
@@ -139,6 +149,12 @@ void HighlightDetectionStage::run(const carrier::Step& step, pipeline::Context& 
       throw Error(ErrorKind::Usage, i->target, "highlight detection",
                   "a manual highlight names an image or sphere that is not processed");
     const std::vector<double> v = numbers(i->value, 2, "manual highlight");
+    const hrti::DetectedSphere& on = (*spheres)[sphere];
+    const std::string why =
+        highlightPointProblem(v[0], v[1], lum->width(), lum->height(), SphereCircle{on.cx, on.cy, on.r});
+    if (!why.empty())
+      throw Error(ErrorKind::Input, "highlight of " + i->target + " given by hand (" + i->value + ")",
+                  "highlight detection", why + "; give it again with --highlight " + i->target + "=X,Y");
     hrti::Highlight& h = (*highlights)[it - inputs->begin()][sphere];
     h.x = v[0];
     h.y = v[1];
@@ -168,7 +184,7 @@ void HighlightDetectionStage::run(const carrier::Step& step, pipeline::Context& 
     const std::string overview = std::string(capture::kAssemblyDir) + "/highlights-sphere" +
                                  std::to_string(k + 1) + ".png";
     image::writePng(hrti::drawHighlightOverview(displayable(*median, *lum), (*spheres)[k], perImage),
-                    ctx.capture / overview);
+                    ctx.outputPath(overview));
     recordOutput(ctx, step, result, overview, "assembly", "PNG", "highlight-overview", "image/png");
   }
   ctx.put(kHighlights, highlights);
@@ -179,15 +195,37 @@ void HighlightDetectionStage::run(const carrier::Step& step, pipeline::Context& 
 
 namespace {
 
+// A number as a message shows it: "50", "0.006", "1e+20".
+std::string shown(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", v);
+  return text;
+}
+
+// A length parameter in millimetres: a finite number >= 0 (0 or absent: not given).
+double measureParam(const carrier::Step& step, const char* name, const char* option) {
+  const std::string text = step.param(name, "0");
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v) || v < 0)
+    throw Error(ErrorKind::Input, std::string(name) + "=" + text, "light directions",
+                std::string("is not a length in millimetres (a finite number above 0); give ") + option + " MM");
+  return v;
+}
+
 // Camera intrinsics from the step's parameters, else from the first image's EXIF.
 std::optional<hrti::CameraIntrinsics> intrinsicsFor(const carrier::Step& step, pipeline::Context& ctx,
                                                     const InputImages& inputs, const ImageStack& stack) {
-  double focal = std::stod(step.param("focalLengthMm", "0"));
-  double pitch = std::stod(step.param("pixelPitchMm", "0"));
+  double focal = measureParam(step, "focalLengthMm", "--focal-length");
+  double pitch = measureParam(step, "pixelPitchMm", "--pixel-pitch");
   const carrier::FileRecord* f = ctx.carrier.findFile(inputs.front().fileId);
   auto cam = [&](const char* key) -> std::optional<double> {
-    for (const auto& [k, v] : f->camera)
-      if (k == key) return std::stod(v);
+    for (const auto& [k, v] : f->camera) {
+      if (k != key) continue;
+      char* end = nullptr;
+      const double d = std::strtod(v.c_str(), &end);
+      if (!v.empty() && end == v.c_str() + v.size() && std::isfinite(d)) return d;
+    }
     return std::nullopt;
   };
   if (focal <= 0) focal = cam("focalLengthMm").value_or(0);
@@ -201,13 +239,20 @@ std::optional<hrti::CameraIntrinsics> intrinsicsFor(const carrier::Step& step, p
   return hrti::CameraIntrinsics{focal, pitch, (stack.width() - 1) / 2.0, (stack.height() - 1) / 2.0};
 }
 
+// Writes assembly-files/lights.lp. Like every .lp, it names the images relative to its own
+// folder ("../original-captures/IMG_0001.dng"), as RTIBuilder and relight expect; the names
+// are made from the capture-relative paths alone, lexically, so the file's bytes do not
+// depend on where the capture is (the verifier re-executes elsewhere and compares hashes).
 void writeLights(pipeline::Context& ctx, const carrier::Step& step, carrier::Result& result,
                  const InputImages& inputs, const Lights& lights) {
   std::vector<formats::LightEntry> entries;
-  for (std::size_t n = 0; n < inputs.size(); ++n)
-    entries.push_back({inputs[n].relativePath, lights[n][0], lights[n][1], lights[n][2]});
+  for (std::size_t n = 0; n < inputs.size(); ++n) {
+    const std::string name =
+        fs::path(inputs[n].relativePath).lexically_relative(capture::kAssemblyDir).generic_string();
+    entries.push_back({name, lights[n][0], lights[n][1], lights[n][2]});
+  }
   const std::string lp = std::string(capture::kAssemblyDir) + "/lights.lp";
-  formats::writeLp(ctx.capture / lp, entries);
+  formats::writeLp(ctx.outputPath(lp), entries);
   recordOutput(ctx, step, result, lp, "assembly", "LP", "lp", "text/plain");
 }
 
@@ -236,7 +281,7 @@ void LightDirectionsStage::run(const carrier::Step& step, pipeline::Context& ctx
                 "the perspective light model needs the focal length and the sensor's pixel pitch, and "
                 "the image's EXIF does not give them; add --focal-length MM and --pixel-pitch MM");
   result.add("value").set("name", "model").set("value", model);
-  const double diameter = std::stod(step.param("sphereDiameterMm", "0"));
+  const double diameter = measureParam(step, "sphereDiameterMm", "--sphere-diameter");
 
   auto lights = std::make_shared<Lights>();
   for (std::size_t n = 0; n < inputs->size(); ++n) {
@@ -248,6 +293,18 @@ void LightDirectionsStage::run(const carrier::Step& step, pipeline::Context& ctx
       const hrti::LightDirection l =
           model == "perspective" ? hrti::lightFromHighlightPerspective((*spheres)[k], h.x, h.y, *intrinsics)
                                  : hrti::lightFromHighlight((*spheres)[k], h.x, h.y);
+      // Never a NaN in the record: a direction that is not a number comes from the values it
+      // was computed with (a lens so long the rays are parallel to machine precision).
+      if (!std::isfinite(l.x) || !std::isfinite(l.y) || !std::isfinite(l.z))
+        throw Error(ErrorKind::Input, (*inputs)[n].relativePath, "light directions",
+                    "the " + model + " light model gives no finite light direction for the highlight at (" +
+                        fixedDecimals(h.x, 2) + ", " + fixedDecimals(h.y, 2) + ") on sphere " + std::to_string(k) +
+                        (model == "perspective"
+                             ? " with focal length " + shown(intrinsics->focalLengthMm) +
+                                   " mm (focalLengthMm, --focal-length) and pixel pitch " +
+                                   shown(intrinsics->pixelPitchMm) +
+                                   " mm (pixelPitchMm, --pixel-pitch); check both"
+                             : std::string("; check the sphere's circle and the highlight")));
       sum[0] += l.x;
       sum[1] += l.y;
       sum[2] += l.z;
@@ -273,6 +330,13 @@ void LightDirectionsStage::run(const carrier::Step& step, pipeline::Context& ctx
       }
       if (geometry.size() >= 2) {
         const hrti::LightPosition p = hrti::lightPositionFromSpheres(geometry, perSphere, *intrinsics);
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z) || !std::isfinite(p.residualMm))
+          throw Error(ErrorKind::Input, (*inputs)[n].relativePath, "light directions",
+                      "the light's position is not a finite point with sphere diameter " +
+                          shown(diameter) + " mm (sphereDiameterMm, --sphere-diameter), "
+                          "focal length " + shown(intrinsics->focalLengthMm) +
+                          " mm and pixel pitch " + shown(intrinsics->pixelPitchMm) +
+                          " mm; check these values");
         result.add("lightPosition").set("image", (*inputs)[n].fileId).set("x", p.x).set("y", p.y)
             .set("z", p.z).set("residualMm", p.residualMm).set("nearParallel", p.nearParallel ? "true" : "false");
       }

@@ -39,14 +39,14 @@ class HighlightDetectionStage : public pipeline::Stage {
 class LightDirectionsStage : public pipeline::Stage {
  public:
   std::string component() const override { return "LightDirections"; }
-  std::string version() const override { return "1"; }
+  std::string version() const override { return "2"; }  // 2: lights.lp names images relative to its own folder
   void run(const carrier::Step&, pipeline::Context&, carrier::Result&) override;
 };
 
 class LightsFromFileStage : public pipeline::Stage {
  public:
   std::string component() const override { return "LightsFromFile"; }
-  std::string version() const override { return "1"; }
+  std::string version() const override { return "2"; }  // 2: lights.lp names images relative to its own folder
   void run(const carrier::Step&, pipeline::Context&, carrier::Result&) override;
 };
 

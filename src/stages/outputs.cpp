@@ -9,7 +9,7 @@ std::string recordOutput(pipeline::Context& ctx, const carrier::Step& step,
                          carrier::Result& result, const std::string& relativePath,
                          const std::string& role, const std::string& format,
                          const std::string& kind, const std::string& mediaType) {
-  const archive::FileDigests d = archive::digestFile(ctx.capture / relativePath);
+  const archive::FileDigests d = archive::digestFile(ctx.outputPath(relativePath));
   carrier::FileRecord f;
   f.path = relativePath;
   f.role = role;

@@ -2,6 +2,8 @@
 
 #include <cstdlib>
 #include <mutex>
+#include <optional>
+#include <set>
 
 #include <Eigen/Core>
 
@@ -11,6 +13,7 @@
 #include "core/error.h"
 #include "core/text.h"
 #include "core/version.h"
+#include "fit/basis.h"
 #include "image/decode.h"
 #include "meta/metadata.h"
 #include "pipeline/runner.h"
@@ -18,6 +21,9 @@
 #include "stages/decode_stage.h"
 #include "stages/ingest_stage.h"
 #include "stages/registry.h"
+#include "stages/request_checks.h"
+#include "stages/run_commit.h"
+#include "capture/lock.h"
 
 namespace surrogate::stages {
 
@@ -65,29 +71,33 @@ carrier::Carrier planRun(const fs::path& capture, const RunRequest& request) {
       request.creators);
   c.header.meta = request.meta;
   for (const carrier::Software& s : softwareVersions()) c.header.software.push_back(s);
+  auto stamped = [&](carrier::Intervention in) {
+    if (in.who.empty()) in.who = who;
+    if (in.time.empty()) in.time = carrier::timestampNow();
+    return in;
+  };
 
   carrier::Step& ingest = c.addStep("CaptureIngest", IngestStage().version());
   ingest.description = "Read the capture folder, hash every file, read EXIF/XMP";
-  ingest.setParam("source", capture::sourceName(capture::parseSource(request.source)));
+  ingest.setParam("source", capture::sourceName(capture::parseSource(request.source.empty() ? "auto" : request.source)));
+  const bool dome = request.lp && !request.lp->empty();
+  if (dome) ingest.setParam("lp", *request.lp);
   for (const Exclusion& e : request.exclusions) {
     if (e.reason.empty())
       throw Error(ErrorKind::Usage, "--exclude " + e.image, "options",
                   "an excluded image needs a reason: add --reason \"...\" after it");
-    ingest.interventions.push_back(
-        {"exclude-image", e.image, "", who, carrier::timestampNow(), e.reason});
+    ingest.interventions.push_back(stamped({"exclude-image", e.image, "", e.who, e.time, e.reason}));
   }
+  for (const RunRequest::StageIntervention& i : request.stageInterventions)
+    if (i.component == "CaptureIngest") ingest.interventions.push_back(stamped(i.intervention));
 
   carrier::Step& decode = c.addStep("ImageDecode", DecodeStage().version());
   decode.description = "Decode each image once (LibRaw for raw/DNG, OpenCV for exports)";
   image::RawDecodeSettings settings = image::RawDecodeSettings::fromParameters(request.decodeSettings);
   for (const auto& [name, value] : settings.toParameters()) decode.setParam(name, value);
 
-  bool hasLp = false;
-  for (const auto& entry : fs::directory_iterator(capture)) {
-    if (entry.is_regular_file() && lowerCase(entry.path().extension().string()) == ".lp") hasLp = true;
-  }
   auto& registry = pipeline::StageRegistry::instance();
-  for (const PlannedStage& planned : analysisStages(hasLp, request)) {
+  for (const PlannedStage& planned : analysisStages(dome, request)) {
     const std::string& name = planned.component;
     auto stage = registry.create(name);
     carrier::Step& s = c.addStep(name, stage->version());
@@ -96,13 +106,8 @@ carrier::Carrier planRun(const fs::path& capture, const RunRequest& request) {
     for (const RunRequest::StageParam& p : request.stageParams)
       if (p.component == name) s.setParam(p.name, p.value);
     for (const auto& [pname, pvalue] : planned.params) s.setParam(pname, pvalue);
-    for (const RunRequest::StageIntervention& i : request.stageInterventions) {
-      if (i.component != name) continue;
-      carrier::Intervention in = i.intervention;
-      if (in.who.empty()) in.who = who;
-      if (in.time.empty()) in.time = carrier::timestampNow();
-      s.interventions.push_back(in);
-    }
+    for (const RunRequest::StageIntervention& i : request.stageInterventions)
+      if (i.component == name) s.interventions.push_back(stamped(i.intervention));
   }
   // Stage parameters addressed to a stage that is not in the plan are a usage error (a typo
   // in a component name must not silently do nothing).
@@ -116,17 +121,148 @@ carrier::Carrier planRun(const fs::path& capture, const RunRequest& request) {
   return c;
 }
 
-carrier::Carrier runCapture(const fs::path& capture, const RunRequest& request,
-                            const pipeline::RunSettings& settings) {
-  carrier::Carrier c = planRun(capture, request);
-  const fs::path assembly = capture / capture::kAssemblyDir;
-  const fs::path finished = capture / capture::kFinishedDir;
-  fs::create_directories(assembly);
-  fs::create_directories(finished);
+namespace {
+
+constexpr const char* kCarrierFile = "assembly-files/carrier.xml";
+
+// The number of steps a lights-only run executes: up to the step that gives the lights.
+std::size_t lightStepCount(const carrier::Carrier& c) {
+  for (std::size_t n = 0; n < c.process.size(); ++n)
+    if (c.process[n].component == "LightDirections" || c.process[n].component == "LightsFromFile") return n + 1;
+  return c.process.size();
+}
+
+// `--accept-changed PATH`: the intervention names exactly what the file is now (its SHA-256, or
+// "removed"), so it accepts this change and no later one.
+void addAcceptedChanges(const fs::path& capture, const RunRequest& request, const carrier::Carrier* previous,
+                        RunRequest& merged, std::vector<std::string>& changes) {
+  for (const AcceptedChange& a : request.acceptedChanges) {
+    const carrier::FileRecord* before = previous ? previous->findFileByPath(a.path) : nullptr;
+    if (!before || !carrier::isEvidenceRole(before->role))
+      throw Error(ErrorKind::Usage, "--accept-changed " + a.path, "command line",
+                  "the carrier records no original, export, sidecar or dome .lp at that path; give "
+                  "the path as the carrier has it (e.g. original-captures/IMG_0005.dng)");
+    const fs::path file = capture / fs::u8path(a.path);
+    const std::string now = fs::is_regular_file(file) ? "sha256:" + archive::digestFile(file).sha256 : "removed";
+    merged.stageInterventions.push_back(
+        {"CaptureIngest", {"accept-changed-original", a.path, now, "", "", a.reason}});
+    changes.push_back("accepted the change of " + a.path + " (now " + now + "): " + a.reason);
+  }
+}
+
+// Every basis to fit needs at least as many photographs as it has coefficients: checked before
+// any processing, naming the option, since the basis choice stands for later runs.
+void checkEnoughPhotographs(const capture::CaptureLayout& layout, const RunRequest& request) {
+  if (request.lightsOnly) return;
+  std::set<std::string> excluded;
+  for (const Exclusion& e : request.exclusions)
+    if (const auto stem = capture::findShotStem(layout, e.image)) excluded.insert(*stem);
+  const int photographs = static_cast<int>(layout.shots.size() - excluded.size());
+  for (const std::string& basis : request.bases.value_or(std::vector<std::string>{"ptm-lrgb", "hsh2"})) {
+    const int terms = fit::basisTerms(fit::parseBasis(basis));
+    if (photographs >= terms) continue;
+    throw Error(ErrorKind::Usage, "--basis " + basis, "command line",
+                "fits " + std::to_string(terms) + " coefficients per pixel and needs at least " +
+                    std::to_string(terms) + " photographs; the capture has " + std::to_string(photographs) +
+                    (excluded.empty() ? "" : " once " + std::to_string(excluded.size()) + " excluded") +
+                    ". Choose a smaller basis (e.g. --basis ptm-lrgb) or include more photographs");
+  }
+}
+
+}  // namespace
+
+carrier::Carrier runCapture(const fs::path& captureArg, const RunRequest& request,
+                            const pipeline::RunSettings& settings, bool takeLock) {
+  registerBuiltinStages();
+  if (!fs::is_directory(captureArg))
+    throwInputError(captureArg.string(), "plan", fs::exists(captureArg) ? "is not a folder; give the capture folder"
+                                                                        : "the capture folder does not exist");
+  const fs::path capture = fs::absolute(captureArg).lexically_normal();
+  // Refuse a folder that is no capture before writing anything into it.
+  capture::CaptureLayout layout = capture::scanCapture(capture, settings.threads);
+  std::optional<capture::CaptureLock> lock;
+  if (takeLock) lock.emplace(capture, request.command);
+  const std::optional<std::string> interrupted = recoverRun(capture);
+
+  std::optional<carrier::Carrier> previous;
+  if (fs::exists(capture / kCarrierFile)) {
+    try {
+      previous = carrier::loadCarrier(capture / kCarrierFile);
+    } catch (const Error& e) {
+      throw Error(ErrorKind::Input, (capture / kCarrierFile).string(), "plan",
+                  "the capture's carrier cannot be read (" + e.message() + "); it is the "
+                  "capture's memory, so Surrogate will not start a new one over it: restore it "
+                  "from a backup or package, or move it out of the capture to start afresh");
+    }
+  }
+  std::vector<std::string> changes;
+  if (interrupted) changes.push_back(*interrupted);
+  RunRequest merged = applyDecisions(previous ? standingDecisions(*previous) : RunRequest{}, request, changes);
+  addAcceptedChanges(capture, request, previous ? &*previous : nullptr, merged, changes);
+  if (merged.lp && !merged.lp->empty()) layout = capture::scanCapture(capture, settings.threads, *merged.lp);
+  const auto [width, height] = layout.frameSize();
+  checkRequestAgainstFrame(merged, width, height);
+  checkEnoughPhotographs(layout, merged);
+
+  carrier::Carrier c = planRun(capture, merged);
   pipeline::RunSettings s = settings;
   if (s.who.empty()) s.who = request.who.empty() ? defaultWho() : request.who;
-  pipeline::Context ctx(fs::absolute(capture).lexically_normal(), c, s);
-  pipeline::runProcess(ctx, assembly / "carrier.xml");
+  carrier::RunRecord record{"r" + std::to_string((previous ? previous->header.runs.size() : 0) + 1),
+                            request.command, s.who, carrier::timestampNow(), "", "",
+                            request.arguments, changes};
+  if (previous) {
+    c.header.created = previous->header.created;
+    c.header.runs = previous->header.runs;
+  }
+  for (const Withdrawal& w : merged.withdrawals)
+    c.addLog("intervention", "s1", "withdrew " + w.kind + " " + w.target + ": " + w.reason, s.who);
+  if (merged.resetReason) c.addLog("intervention", "s1", "reset every processing decision: " + *merged.resetReason, s.who);
+
+  const fs::path staging = stagingRoot(capture);
+  fs::remove_all(staging);
+  fs::create_directories(staging / capture::kAssemblyDir);
+  fs::create_directories(staging / capture::kFinishedDir);
+  pipeline::Context ctx(capture, c, s);
+  ctx.outputRoot = staging;
+  ctx.previous = previous ? &*previous : nullptr;
+  const std::size_t steps = request.lightsOnly ? lightStepCount(c) : c.process.size();
+  const fs::path stagedCarrier = staging / kCarrierFile;
+  try {
+    pipeline::runProcess(ctx, stagedCarrier, steps);
+  } catch (const Error& e) {
+    record.ended = carrier::timestampNow();
+    record.outcome = "failed";
+    record.notes.push_back("failed: " + std::string(e.what()));
+    if (previous) {
+      // The last state stays whole (complete or not: a failure must never re-record what the
+      // previous carrier holds, such as an original's hash): its carrier only learns that this
+      // run failed.
+      previous->header.runs.push_back(record);
+      previous->header.modified = carrier::timestampNow();
+      carrier::saveCarrier(*previous, capture / kCarrierFile);
+      fs::remove_all(staging);
+    } else {
+      // A first run: its failed record (and what it made) becomes the state, so the capture
+      // shows plainly that it is not processed.
+      c.header.runs.push_back(record);
+      carrier::saveCarrier(c, stagedCarrier);
+      commitRun(capture, previous ? &*previous : nullptr, c);
+    }
+    throw;
+  }
+  record.ended = carrier::timestampNow();
+  record.outcome = "completed";
+  if (request.lightsOnly && steps < c.process.size())
+    record.notes.push_back("light estimation only: steps " + c.process[steps].id + " to " +
+                           c.process.back().id + " are planned with the standing decisions but "
+                           "did not run");
+  for (const SupersededFile& f : supersededFiles(capture, previous ? &*previous : nullptr, c, record.id))
+    record.notes.push_back("moved " + f.path + " (a result of the previous record that this run "
+                           "does not produce) to " + f.movedTo);
+  c.header.runs.push_back(record);
+  c.header.modified = carrier::timestampNow();
+  carrier::saveCarrier(c, stagedCarrier);
+  commitRun(capture, previous ? &*previous : nullptr, c);
   return c;
 }
 

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -23,6 +24,22 @@ namespace surrogate::stages {
 struct Exclusion {
   std::string image;   // shot name, file name or path
   std::string reason;  // mandatory
+  std::string who, time;  // set when the decision was recorded (empty: now, by the operator)
+};
+
+// A standing decision withdrawn on purpose (`--forget-exclusion`, `--forget-sphere`,
+// `--forget-highlight`): recorded with its reason like the decision itself.
+struct Withdrawal {
+  std::string kind;    // exclude-image, manual-sphere, manual-highlight
+  std::string target;  // shot, sphere index, "IMAGE:SPHERE"
+  std::string reason;
+};
+
+// An original whose bytes changed (or that was removed) since it was recorded, accepted on
+// purpose (`--accept-changed`): without one, the run stops with a fixity failure.
+struct AcceptedChange {
+  std::string path;  // relative to the capture, as the carrier records it
+  std::string reason;
 };
 
 // A step to plan: its component and the parameters that differ from the stage's defaults.
@@ -31,19 +48,23 @@ struct PlannedStage {
   std::vector<std::pair<std::string, std::string>> params;
 };
 
+// What a command asks for. Every field is a decision that adds to or overrides the decisions
+// the capture's carrier already holds (standingDecisions + applyDecisions): an empty field
+// leaves the recorded decision as it is.
 struct RunRequest {
   // Header.
-  std::string title;
-  std::vector<carrier::Creator> creators;
-  std::vector<std::pair<std::string, std::string>> meta;
+  std::string title;  // empty: keep
+  std::vector<carrier::Creator> creators;  // added (a known name gets the role given)
+  std::vector<std::pair<std::string, std::string>> meta;  // set by key
   std::string who;  // the person running Surrogate (interventions); default: $USER
 
   // CaptureIngest.
-  std::string source = "auto";  // auto, original, export
+  std::string source;  // auto, original, export; empty: keep (first run: auto)
   std::vector<Exclusion> exclusions;
+  std::optional<std::string> lp;  // dome capture: the .lp giving the lights ("" = none)
+  std::vector<AcceptedChange> acceptedChanges;
 
-  // ImageDecode: LibRaw settings as name=value pairs (see image::RawDecodeSettings); empty
-  // means the defaults.
+  // ImageDecode: LibRaw settings as name=value pairs (see image::RawDecodeSettings), set by name.
   std::vector<std::pair<std::string, std::string>> decodeSettings;
 
   // Stage parameters given on the command line, by stage component: {component, name, value}.
@@ -51,7 +72,8 @@ struct RunRequest {
     std::string component, name, value;
   };
   std::vector<StageParam> stageParams;
-  // Interventions given on the command line for later stages (manual spheres, highlights).
+  // Interventions given on the command line for later stages (manual spheres, highlights); one
+  // with the same component, kind and target as a recorded one replaces it.
   struct StageIntervention {
     std::string component;
     carrier::Intervention intervention;
@@ -60,28 +82,57 @@ struct RunRequest {
 
   // Pre-processing of the images the fit reads (WhiteBalance, Crop, Resize with their
   // full parameters, see stages/preprocess.h), planned in the order given after light
-  // estimation and before fitting (`surrogate run` gives WhiteBalance, Crop, Resize). Empty:
-  // the fit reads the decoded images as they are.
+  // estimation and before fitting; one replaces a recorded step of the same component.
   std::vector<PlannedStage> preprocessing;
 
-  // Models to fit (RtiFit steps, in order): ptm-lrgb, ptm-rgb, hsh2, hsh3.
-  std::vector<std::string> bases = {"ptm-lrgb", "hsh2"};
-  // Stop after light estimation (surrogate lights): no fitting, no derived maps.
+  // Models to fit (RtiFit steps, in order): ptm-lrgb, ptm-rgb, hsh2, hsh3. Unset: keep (first
+  // run: ptm-lrgb and hsh2).
+  std::optional<std::vector<std::string>> bases;
+  // Run only up to light estimation (surrogate lights): the later steps are planned (so no
+  // decision about them is lost) but not run.
   bool lightsOnly = false;
+
+  // Withdrawn decisions, and `--reset`: every processing decision back to the defaults (the
+  // header and accepted changes of originals stay).
+  std::vector<Withdrawal> withdrawals;
+  std::optional<std::string> resetReason;
+
+  // For the run history: the command ("run", "lights", "pack") and its arguments as given.
+  std::string command = "run";
+  std::vector<std::string> arguments;
 };
+
+// The decisions a carrier holds, as the request that would reproduce them: header, source,
+// dome .lp, exclusions and interventions (with their who, time and reason), LibRaw settings,
+// stage parameters that differ from the defaults, pre-processing steps and bases.
+RunRequest standingDecisions(const carrier::Carrier& recorded);
+
+// `given` applied to `standing`: overrides and additions, withdrawals, reset. `changes` gets
+// one sentence per decision changed (for the run history). Throws Error(Usage) for a
+// withdrawal that names no standing decision, and for a dome .lp with sphere options.
+RunRequest applyDecisions(const RunRequest& standing, const RunRequest& given,
+                          std::vector<std::string>& changes);
 
 // Registers every stage this build of Surrogate has with the pipeline's registry (once).
 void registerBuiltinStages();
 
-// The stages after ImageDecode for a capture (with or without a .lp file) and a request.
+// The stages after ImageDecode for a capture (with or without a dome .lp) and a request whose
+// decisions are complete (applyDecisions).
 std::vector<PlannedStage> analysisStages(bool captureHasLp, const RunRequest& request);
 
-// Builds a new carrier whose process list is what `request` asks for.
+// Builds a new carrier whose process list is what `request` (complete decisions) asks for.
 carrier::Carrier planRun(const std::filesystem::path& capture, const RunRequest& request);
 
-// Plans and runs; the carrier is saved to CAPTURE/assembly-files/carrier.xml after each step.
+// One command's work on a capture, with the capture's memory: takes the capture's lock,
+// finishes a commit an earlier process was killed in, starts from the decisions the carrier
+// records and applies `request` to them, checks every value against the frame, plans, runs
+// into a staging folder, and only when every step succeeded makes the staged results and
+// carrier the capture's state (stages/run_commit.h); results no longer produced are moved to
+// superseded-files/. A failed run leaves the previous state whole and adds itself,
+// with its cause, to that carrier's run history. Returns the new carrier. `takeLock` false: the
+// caller holds the capture's lock already (pack, which holds it while it packs).
 carrier::Carrier runCapture(const std::filesystem::path& capture, const RunRequest& request,
-                            const pipeline::RunSettings& settings);
+                            const pipeline::RunSettings& settings, bool takeLock = true);
 
 // Re-execution: runs `recorded`'s process list again (same steps, parameters and
 // interventions) on the files under `captureRoot` (a capture folder, or a bag's data/ folder),

@@ -70,13 +70,13 @@ std::vector<PlannedStage> analysisStages(bool captureHasLp, const RunRequest& re
     out.push_back({"HighlightDetection", {}});
     out.push_back({"LightDirections", {}});
   }
-  if (request.lightsOnly) return out;
   for (const PlannedStage& p : request.preprocessing) out.push_back(p);
-  for (const std::string& basis : request.bases) {
+  const std::vector<std::string> bases = request.bases.value_or(std::vector<std::string>{"ptm-lrgb", "hsh2"});
+  for (const std::string& basis : bases) {
     const fit::Basis b = fit::parseBasis(basis);
     out.push_back({"RtiFit", {{"basis", fit::basisName(b)}, {"output", defaultFitOutput(basis)}}});
   }
-  if (!request.bases.empty()) out.push_back({"DerivedMaps", {{"model", fit::basisName(fit::parseBasis(request.bases.front()))}}});
+  if (!bases.empty()) out.push_back({"DerivedMaps", {{"model", fit::basisName(fit::parseBasis(bases.front()))}}});
   return out;
 }
 

@@ -14,31 +14,6 @@ namespace surrogate::verify {
 
 namespace {
 
-bool validUtf8(const std::string& s) {
-  std::size_t i = 0;
-  while (i < s.size()) {
-    const unsigned char c = static_cast<unsigned char>(s[i]);
-    int extra = 0;
-    unsigned int code = 0;
-    if (c < 0x80) { ++i; continue; }
-    if ((c & 0xE0) == 0xC0) { extra = 1; code = c & 0x1F; }
-    else if ((c & 0xF0) == 0xE0) { extra = 2; code = c & 0x0F; }
-    else if ((c & 0xF8) == 0xF0) { extra = 3; code = c & 0x07; }
-    else return false;
-    if (i + extra >= s.size()) return false;
-    for (int k = 1; k <= extra; ++k) {
-      const unsigned char d = static_cast<unsigned char>(s[i + k]);
-      if ((d & 0xC0) != 0x80) return false;
-      code = (code << 6) | (d & 0x3F);
-    }
-    if ((extra == 1 && code < 0x80) || (extra == 2 && code < 0x800) ||
-        (extra == 3 && (code < 0x10000 || code > 0x10FFFF)) || (code >= 0xD800 && code <= 0xDFFF))
-      return false;
-    i += extra + 1;
-  }
-  return true;
-}
-
 std::string trim(const std::string& s) {
   std::size_t b = 0, e = s.size();
   while (b < e && (s[b] == ' ' || s[b] == '\t')) ++b;
@@ -62,7 +37,7 @@ std::optional<std::string> safeBagPath(const std::string& raw, std::string* why,
     if (u < 0x20 || u == 0x7F) return fail("the path contains a control character");
     if (c == '\\') return fail("the path contains a backslash (a Windows path)");
   }
-  if (!validUtf8(raw)) return fail("the path is not valid UTF-8");
+  if (!isValidUtf8(raw)) return fail("the path is not valid UTF-8");
   if (raw[0] == '/') return fail("the path is absolute");
   if (raw[0] == '~') return fail("the path starts with '~' (a home directory)");
   if (raw.size() >= 2 && std::isalpha(static_cast<unsigned char>(raw[0])) && raw[1] == ':')
@@ -193,7 +168,7 @@ std::vector<std::string> BagInfo::values(const std::string& label) const {
 
 BagInfo parseBagInfo(const std::string& text) {
   BagInfo info;
-  if (!validUtf8(text)) info.problems.push_back("is not valid UTF-8");
+  if (!isValidUtf8(text)) info.problems.push_back("is not valid UTF-8");
   if (text.size() >= 3 && text.compare(0, 3, "\xEF\xBB\xBF") == 0)
     info.problems.push_back("starts with a byte-order mark");
   int number = 0;
@@ -250,7 +225,7 @@ Manifest parseManifest(const std::string& text, const std::string& algorithm,
                        std::size_t hexLength) {
   Manifest m;
   m.algorithm = algorithm;
-  if (!validUtf8(text)) m.problems.push_back("is not valid UTF-8");
+  if (!isValidUtf8(text)) m.problems.push_back("is not valid UTF-8");
   std::set<std::string> seen;
   int number = 0;
   for (const std::string& line : splitLines(text)) {

@@ -74,26 +74,28 @@ std::optional<carrier::Carrier> checkCarrier(const Inventory& inv, std::vector<C
                        it->second.sha256.substr(0, 16) + "...");
     }
   }
-  // Every input in the payload (originals, exports, a given .lp: anything outside
-  // assembly-files/ and finished-files/) is one the carrier recorded, so an image added with
-  // the manifests redone is still found. Outputs may include files made after the carrier was
-  // final (the HTML report written by `surrogate pack`).
+  // Every file in the payload is one the carrier records: an image added with the manifests
+  // redone is found, and so is a result left by a run the carrier does not describe (a stale
+  // .rti bagged beside the fresh ones). The one exception is the HTML report, a view of the
+  // carrier that holds the time it was made (docs/carrier.md), besides the carrier itself.
   for (const auto& [path, file] : inv.files) {
     if (!pathProblems.empty()) break;  // one cause, one failure: the unsafe path
     if (path.compare(0, 5, "data/") != 0) continue;
     const std::string relative = path.substr(5);
-    if (relative.compare(0, 15, "assembly-files/") == 0 ||
-        relative.compare(0, 15, "finished-files/") == 0)
-      continue;
+    if (relative == "finished-files/report.html" || path == kCarrierPath) continue;
     if (!parsed->findFileByPath(relative))
-      fixity.push_back(path + ": an input in the payload that the carrier does not record");
+      fixity.push_back(path + ": in the payload but not recorded in the carrier" +
+                       (relative.compare(0, 15, "assembly-files/") == 0 ||
+                                relative.compare(0, 15, "finished-files/") == 0
+                            ? std::string(" (a result no recorded step made)")
+                            : std::string(" (an input the record does not hold)")));
   }
   checks.push_back(makeCheck("carrier.paths", Severity::Invalid,
                              "every file the carrier lists has a safe relative path",
                              "the carrier names unsafe paths", pathProblems));
   checks.push_back(makeCheck("carrier.files", Severity::Fixity,
                              std::to_string(parsed->files.size()) +
-                                 " files listed in the carrier are in the bag, same size and SHA-256; no unrecorded inputs",
+                                 " files listed in the carrier are in the bag, same size and SHA-256; nothing else in the payload but the report",
                              "files differ from what the carrier records", fixity));
   if (!pathProblems.empty()) parsed.reset();  // never re-execute a carrier with unsafe paths
   return parsed;

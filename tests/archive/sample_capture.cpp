@@ -102,9 +102,11 @@ fs::path make(const fs::path& dir) {
   c.addLog("intervention", ingestId, "excluded IMG_0003: the flash did not fire", "Bo Chen");
   c.addLog("warning", fitId, "2 images only");
 
-  // Not in the carrier, but payload: the report, an overlay.
+  carrier::FileRecord overlay = record(capture, "assembly-files/spheres.png", "assembly", "PNG", bytes(300, 7));
+  overlay.createdBy = fitId;
+  c.putFile(overlay);
+  // Not in the carrier, but payload: the report (a view of the carrier).
   std::ofstream(capture / "finished-files/report.html") << "<html></html>";
-  std::ofstream(capture / "assembly-files/spheres.png", std::ios::binary) << bytes(300, 7);
   carrier::saveCarrier(c, capture / "assembly-files/carrier.xml");
   return capture;
 }

@@ -129,17 +129,52 @@ TEST_CASE("a file whose content changed but not its size is caught while packing
   CHECK_FALSE(fs::exists(dir / "pkg.tar"));
 }
 
-TEST_CASE("the payload takes the capture folders whole, and nothing outside them", "[archive][package]") {
+TEST_CASE("the payload is what the carrier records and the report, and no unrecorded file", "[archive][package]") {
   const fs::path dir = freshDir("payload");
   const fs::path capture = samplecapture::make(dir);
-  std::ofstream(capture / "dome.lp") << "0\n";
-  fs::create_directories(capture / "truth");
-  std::ofstream(capture / "truth/secret.txt") << "not payload";
+  // Left out by the documented rule: what operating systems leave, Surrogate's working area and
+  // moved-aside results, and Surrogate's own interrupted writes in its output folders.
+  std::ofstream(capture / "original-captures/.DS_Store") << "finder";
+  std::ofstream(capture / "jpeg-exports/Thumbs.db") << "explorer";
+  std::ofstream(capture / "original-captures/._IMG_0001.dng") << "appledouble";
+  fs::create_directories(capture / ".surrogate");
+  std::ofstream(capture / ".surrogate/lock") << "pid";
+  fs::create_directories(capture / "superseded-files/r1/finished-files");
+  std::ofstream(capture / "superseded-files/r1/finished-files/hsh3.rti") << "old result";
   std::ofstream(capture / "finished-files/.report.html.part-1-0") << "interrupted write";
   std::vector<std::string> paths;
   for (const PayloadSource& p : capturePayload(capture)) paths.push_back(p.bagPath);
-  CHECK(std::find(paths.begin(), paths.end(), "data/dome.lp") != paths.end());
-  CHECK(std::find(paths.begin(), paths.end(), "data/truth/secret.txt") == paths.end());
-  CHECK(std::find(paths.begin(), paths.end(), "data/finished-files/.report.html.part-1-0") == paths.end());
+  const carrier::Carrier c = carrier::loadCarrier(capture / "assembly-files/carrier.xml");
+  CHECK(paths.size() == c.files.size() + 2);  // + the carrier and the report
+  for (const carrier::FileRecord& f : c.files)
+    CHECK(std::find(paths.begin(), paths.end(), "data/" + f.path) != paths.end());
   CHECK(std::find(paths.begin(), paths.end(), "data/finished-files/report.html") != paths.end());
+  CHECK(std::find(paths.begin(), paths.end(), "data/assembly-files/carrier.xml") != paths.end());
+  CHECK(checkCarrier(capture).complete);
+
+  // Anything else is refused, named: a file the carrier does not describe is never bagged.
+  std::ofstream(capture / "notes.txt") << "not recorded";
+  std::ofstream(capture / "finished-files/hsh3.rti") << "a stale result";
+  try {
+    capturePayload(capture);
+    FAIL("no error");
+  } catch (const surrogate::Error& e) {
+    CHECK(std::string(e.what()).find("notes.txt") != std::string::npos);
+    CHECK(std::string(e.what()).find("finished-files/hsh3.rti") != std::string::npos);
+  }
+  const CarrierState state = checkCarrier(capture);
+  CHECK_FALSE(state.complete);
+  CHECK(state.unrecordedOutputs == std::vector<std::string>{"finished-files/hsh3.rti"});
+}
+
+TEST_CASE("a missing or resized original is an input problem, a missing result is not", "[archive][package]") {
+  const fs::path dir = freshDir("inputs");
+  const fs::path capture = samplecapture::make(dir);
+  fs::remove(capture / "finished-files/ptm-lrgb.ptm");
+  CarrierState state = checkCarrier(capture);
+  CHECK_FALSE(state.complete);
+  CHECK(state.inputProblem.empty());
+  std::ofstream(capture / "original-captures/IMG_0002.dng", std::ios::app) << "x";
+  state = checkCarrier(capture);
+  CHECK(state.inputProblem.find("original-captures/IMG_0002.dng") != std::string::npos);
 }

@@ -78,7 +78,8 @@ TEST_CASE("images of different sizes within one set are refused") {
 TEST_CASE("a .lp file naming images that are not in the capture is refused") {
   const fs::path capture = e2e::smallCapture(e2e::freshDir("lp"));
   std::ofstream(capture / "dome.lp") << "2\nIMG_0001.jpg 0 0 1\nIMG_0042.jpg 0.5 0 0.866\n";
-  requireRefused(run(capture), "dome.lp", capture);
+  requireRefused(e2e::surrogate("run " + e2e::quote(capture) + " --lp dome.lp --quiet"), "dome.lp", capture);
+  CHECK_FALSE(fs::exists(capture / "assembly-files"));  // refused before any processing
 }
 
 TEST_CASE("a file that is not an image, named like one, is refused by name") {

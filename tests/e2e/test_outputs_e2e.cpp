@@ -107,9 +107,16 @@ TEST_CASE("a dome capture's .lp skips detection, and the carrier says so") {
   REQUIRE(e2e::runShell(std::string(GENERATOR_EXE) + " --out " + e2e::quote(capture.parent_path() / "t") +
                         " --images 8 --width 400 --height 300 --sphere-radius 45 --seed 7 --formats jpeg").exitCode == 0);
   fs::copy_file(capture.parent_path() / "t/truth/lights.lp", capture / "dome.lp");
-  const e2e::CommandResult r = e2e::surrogate("run " + e2e::quote(capture) + " --quiet");
+  // Dome mode is explicit: an .lp in the folder is not used until --lp names it, and sphere
+  // options with it are refused, naming the conflict.
+  const e2e::CommandResult sphere = e2e::surrogate("run " + e2e::quote(capture) + " --lp dome.lp --sphere 339,57,45 --reason x --quiet");
+  CHECK(sphere.exitCode == 2);
+  CHECK_THAT(sphere.output, Catch::Contains("dome"));
+  CHECK_FALSE(fs::exists(capture / "assembly-files/carrier.xml"));
+  const e2e::CommandResult r = e2e::surrogate("run " + e2e::quote(capture) + " --lp dome.lp");
   INFO(r.output);
   REQUIRE(r.exitCode == 0);
+  CHECK_THAT(r.output, Catch::Contains("lights: from dome.lp (dome capture"));
   const carrier::Carrier c = carrier::loadCarrier(capture / "assembly-files/carrier.xml");
   bool fromFile = false, detection = false;
   for (const carrier::Step& s : c.process) {
@@ -121,6 +128,12 @@ TEST_CASE("a dome capture's .lp skips detection, and the carrier says so") {
   bool logged = false;
   for (const carrier::LogEntry& e : c.log) logged = logged || e.text.find("dome capture") != std::string::npos;
   CHECK(logged);
+  // The choice stands: a plain run keeps the dome's lights.
+  REQUIRE(e2e::surrogate("run " + e2e::quote(capture) + " --quiet").exitCode == 0);
+  const carrier::Carrier again = carrier::loadCarrier(capture / "assembly-files/carrier.xml");
+  bool stillFromFile = false;
+  for (const carrier::Step& s : again.process) stillFromFile = stillFromFile || s.component == "LightsFromFile";
+  CHECK(stillFromFile);
 }
 
 TEST_CASE("a sphere given by hand is used and recorded as an intervention") {

@@ -221,7 +221,7 @@ TEST_CASE("crop auto on a dome capture without spheres keeps the full frame and 
   REQUIRE(e2e::surrogate("lights " + e2e::quote(first) + " -o " + e2e::quote(first / "dome.lp") + " --quiet").exitCode == 0);
   const fs::path capture = e2e::smallCapture(e2e::freshDir("dome-crop"), 8);
   fs::copy_file(first / "dome.lp", capture / "dome.lp");
-  const e2e::CommandResult r = e2e::surrogate("run " + e2e::quote(capture) + " --quiet --basis ptm-lrgb --crop auto");
+  const e2e::CommandResult r = e2e::surrogate("run " + e2e::quote(capture) + " --lp dome.lp --quiet --basis ptm-lrgb --crop auto");
   INFO(r.output);
   REQUIRE(r.exitCode == 0);
   const carrier::Carrier c = carrier::loadCarrier(capture / "assembly-files/carrier.xml");

@@ -187,7 +187,7 @@ TEST_CASE("the report of a dome capture plots the lights of its .lp file") {
   REQUIRE(e2e::surrogate("lights " + e2e::quote(capture) + " -o " + e2e::quote(work / "dome.lp") + " --quiet").exitCode == 0);
   fs::remove_all(capture / "assembly-files");
   fs::copy_file(work / "dome.lp", capture / "dome.lp");
-  const e2e::CommandResult run = e2e::surrogate("run " + e2e::quote(capture) + " --json");
+  const e2e::CommandResult run = e2e::surrogate("run " + e2e::quote(capture) + " --lp dome.lp --json");
   INFO(run.output);
   REQUIRE(run.exitCode == 0);
   CHECK_THAT(run.output, Catch::Contains("LightsFromFile"));

@@ -178,7 +178,7 @@ TEST_CASE("a payload file the carrier does not record fails carrier.files (exit 
   INFO(allText(r));
   CHECK_FALSE(failed(r, "bagit.complete"));
   CHECK(failed(r, "carrier.files"));
-  CHECK_THAT(allText(r), Contains("the carrier does not record"));
+  CHECK_THAT(allText(r), Contains("not recorded in the carrier"));
   CHECK(r.exitCode() == 3);
 }
 

@@ -1,0 +1,82 @@
+#include "capture/lock.h"
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <ctime>
+
+#include "capture/capture.h"
+#include "core/error.h"
+
+namespace surrogate::capture {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string holderText(const std::string& command) {
+  char host[256] = {0};
+  gethostname(host, sizeof host - 1);
+  const char* user = std::getenv("USER");
+  char when[32];
+  const std::time_t now = std::time(nullptr);
+  std::strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  return "process " + std::to_string(getpid()) + " on " + host + ", `surrogate " + command +
+         "` started " + when + " by " + (user && *user ? user : "unknown") + "\n";
+}
+
+std::string readHolder(int fd) {
+  std::string text(512, '\0');
+  const ssize_t n = pread(fd, text.data(), text.size(), 0);
+  text.resize(n > 0 ? static_cast<std::size_t>(n) : 0);
+  while (!text.empty() && (text.back() == '\n' || text.back() == '\0')) text.pop_back();
+  return text.empty() ? "another process" : text;
+}
+
+}  // namespace
+
+CaptureLock::CaptureLock(const fs::path& capture, const std::string& command) {
+  // Nothing is written into a folder that is not a capture (not even the lock).
+  if (!fs::is_directory(capture))
+    throwInputError(capture.string(), "lock", fs::exists(capture) ? "is not a folder; give the capture folder"
+                                                                   : "the capture folder does not exist");
+  if (!fs::is_directory(capture / "original-captures") && !fs::is_directory(capture / "raw-images") &&
+      !fs::is_directory(capture / kExportsDir))
+    throwInputError(capture.string(), "lock",
+                    "has no original-captures/ (or raw-images/) and no jpeg-exports/ folder; put "
+                    "the camera files in original-captures/");
+  const fs::path dir = capture / kWorkDir;
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  const fs::path file = dir / "lock";
+  fd_ = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
+  if (fd_ < 0)
+    throw Error(ErrorKind::Input, file.string(), "lock",
+                std::string("cannot create the capture's lock file (") + std::strerror(errno) +
+                    "); Surrogate needs to write in the capture folder");
+  if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+    const std::string holder = readHolder(fd_);
+    ::close(fd_);
+    fd_ = -1;
+    throw Error(ErrorKind::Input, capture.string(), "lock",
+                "another Surrogate command is working on this capture (" + holder +
+                    "); wait for it to finish, then run this command again");
+  }
+  const std::string me = holderText(command);
+  if (::ftruncate(fd_, 0) == 0) {
+    [[maybe_unused]] const ssize_t n = ::pwrite(fd_, me.data(), me.size(), 0);
+  }
+}
+
+CaptureLock::~CaptureLock() {
+  if (fd_ >= 0) {
+    [[maybe_unused]] const int r = ::ftruncate(fd_, 0);
+    ::close(fd_);  // releases the lock
+  }
+}
+
+}  // namespace surrogate::capture

@@ -1,0 +1,31 @@
+// One process at a time on a capture: an advisory lock (flock) on CAPTURE/.surrogate/lock.
+//
+// `run`, `lights` and `pack` hold it for their whole duration, so two of them never interleave
+// their writes (a carrier whose hashes match no file on disk, a pack that re-runs the pipeline
+// under a user's run). The lock file holds who holds it (process id, host, command, user,
+// start time) for the message the second process prints. The kernel releases the lock when
+// the holder exits, however it exits (kill -9 included): no stale lock to clean up by hand.
+//
+//   CaptureLock lock(capturePath, "run");   // throws Error(Input) naming the holder if held
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+namespace surrogate::capture {
+
+class CaptureLock {
+ public:
+  // Takes the lock, creating CAPTURE/.surrogate/ if needed. Throws Error(Input) naming the
+  // holder when another process has it, and for a folder that is not a capture (no folder of
+  // originals or exports), so that nothing is written into such a folder.
+  CaptureLock(const std::filesystem::path& capture, const std::string& command);
+  ~CaptureLock();
+  CaptureLock(const CaptureLock&) = delete;
+  CaptureLock& operator=(const CaptureLock&) = delete;
+
+ private:
+  int fd_ = -1;
+};
+
+}  // namespace surrogate::capture

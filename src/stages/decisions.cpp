@@ -1,0 +1,261 @@
+// The capture's memory: the decisions a carrier records, and a new command's decisions applied
+// to them (stages/plan.h: standingDecisions, applyDecisions).
+#include <algorithm>
+
+#include "carrier/carrier.h"
+#include "core/error.h"
+#include "stages/plan.h"
+#include "stages/registry.h"
+
+namespace surrogate::stages {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+bool isPreprocessing(const std::string& component) {
+  return component == "WhiteBalance" || component == "Crop" || component == "Resize";
+}
+
+// The shot an exclusion names, for comparing two exclusions ("IMG_0003", "IMG_0003.dng" and
+// "original-captures/IMG_0003.dng" are one shot).
+std::string shotOf(const std::string& name) {
+  const auto slash = name.find_last_of("/\\");
+  const std::string base = slash == std::string::npos ? name : name.substr(slash + 1);
+  const std::string stem = fs::path(base).stem().string();
+  return stem.empty() ? base : stem;
+}
+
+std::string describe(const carrier::Intervention& i) {
+  std::string what = i.kind == "exclude-image"      ? "exclusion of " + i.target
+                     : i.kind == "manual-sphere"    ? "manual sphere " + i.target + " (" + i.value + ")"
+                     : i.kind == "manual-highlight" ? "manual highlight " + i.target + " (" + i.value + ")"
+                                                    : i.kind + " " + i.target;
+  return what + ", recorded " + i.time + " by " + i.who + " (\"" + i.reason + "\")";
+}
+
+}  // namespace
+
+RunRequest standingDecisions(const carrier::Carrier& recorded) {
+  RunRequest r;
+  r.title = recorded.header.title;
+  r.creators = recorded.header.creators;
+  r.meta = recorded.header.meta;
+  std::vector<std::string> bases;
+  for (const carrier::Step& s : recorded.process) {
+    if (s.component == "CaptureIngest") {
+      r.source = s.param("source", "auto");
+      if (s.hasParam("lp")) r.lp = s.param("lp");
+      for (const carrier::Intervention& i : s.interventions) {
+        if (i.kind == "exclude-image") r.exclusions.push_back({i.target, i.reason, i.who, i.time});
+        else r.stageInterventions.push_back({s.component, i});
+      }
+    } else if (s.component == "ImageDecode") {
+      for (const carrier::Param& p : s.params) r.decodeSettings.emplace_back(p.name, p.value);
+    } else if (isPreprocessing(s.component)) {
+      PlannedStage p{s.component, {}};
+      for (const carrier::Param& q : s.params) p.params.emplace_back(q.name, q.value);
+      r.preprocessing.push_back(std::move(p));
+    } else if (s.component == "RtiFit") {
+      bases.push_back(s.param("basis"));
+    } else if (s.component != "DerivedMaps") {
+      const auto defaults = defaultParameters(s.component);
+      for (const carrier::Param& p : s.params) {
+        const auto d = std::find_if(defaults.begin(), defaults.end(),
+                                    [&](const auto& kv) { return kv.first == p.name; });
+        if (d == defaults.end() || d->second != p.value)
+          r.stageParams.push_back({s.component, p.name, p.value});
+      }
+      for (const carrier::Intervention& i : s.interventions)
+        r.stageInterventions.push_back({s.component, i});
+    }
+  }
+  if (!bases.empty()) r.bases = bases;
+  return r;
+}
+
+RunRequest applyDecisions(const RunRequest& standing, const RunRequest& given,
+                          std::vector<std::string>& changes) {
+  RunRequest r = standing;
+  r.who = given.who;
+  r.command = given.command;
+  r.arguments = given.arguments;
+  r.lightsOnly = given.lightsOnly;
+  r.withdrawals = given.withdrawals;
+  r.resetReason = given.resetReason;
+  r.acceptedChanges = given.acceptedChanges;
+
+  if (given.resetReason) {
+    std::size_t n = r.exclusions.size() + r.stageParams.size() + r.preprocessing.size();
+    for (const auto& i : r.stageInterventions) n += i.intervention.kind != "accept-changed-original";
+    r.exclusions.clear();
+    r.stageParams.clear();
+    r.preprocessing.clear();
+    r.decodeSettings.clear();
+    r.bases.reset();
+    r.lp.reset();
+    r.source.clear();
+    r.stageInterventions.erase(
+        std::remove_if(r.stageInterventions.begin(), r.stageInterventions.end(),
+                       [](const auto& i) { return i.intervention.kind != "accept-changed-original"; }),
+        r.stageInterventions.end());
+    changes.push_back("reset every processing decision to the defaults (" + std::to_string(n) +
+                      " withdrawn): " + *given.resetReason);
+  }
+
+  for (const Withdrawal& w : given.withdrawals) {
+    bool found = false;
+    if (w.kind == "exclude-image") {
+      for (auto it = r.exclusions.begin(); it != r.exclusions.end(); ++it) {
+        if (shotOf(it->image) != shotOf(w.target)) continue;
+        changes.push_back("withdrew the " + describe({"exclude-image", it->image, "", it->who, it->time, it->reason}) +
+                          ": " + w.reason);
+        r.exclusions.erase(it);
+        found = true;
+        break;
+      }
+    } else {
+      for (auto it = r.stageInterventions.begin(); it != r.stageInterventions.end(); ++it) {
+        if (it->intervention.kind != w.kind || it->intervention.target != w.target) continue;
+        changes.push_back("withdrew the " + describe(it->intervention) + ": " + w.reason);
+        r.stageInterventions.erase(it);
+        found = true;
+        break;
+      }
+    }
+    if (!found) {
+      std::string standingList;
+      for (const Exclusion& e : r.exclusions) standingList += (standingList.empty() ? "" : ", ") + shotOf(e.image);
+      for (const auto& i : r.stageInterventions)
+        if (i.intervention.kind == w.kind) standingList += (standingList.empty() ? "" : ", ") + i.intervention.target;
+      const std::string option = w.kind == "exclude-image"   ? "--forget-exclusion"
+                                 : w.kind == "manual-sphere" ? "--forget-sphere"
+                                                             : "--forget-highlight";
+      throw Error(ErrorKind::Usage, option + " " + w.target, "command line",
+                  "the capture's carrier holds no such decision (standing: " +
+                      (standingList.empty() ? std::string("none") : standingList) +
+                      "); see them with: surrogate info CAPTURE");
+    }
+  }
+
+  if (!given.title.empty() && given.title != r.title) {
+    if (!r.title.empty()) changes.push_back("title \"" + r.title + "\" -> \"" + given.title + "\"");
+    r.title = given.title;
+  }
+  for (const carrier::Creator& c : given.creators) {
+    auto it = std::find_if(r.creators.begin(), r.creators.end(),
+                           [&](const carrier::Creator& k) { return k.name == c.name; });
+    if (it == r.creators.end()) {
+      r.creators.push_back(c);
+      changes.push_back("added creator " + c.name + " (" + c.role + ")");
+    } else if (it->role != c.role) {
+      changes.push_back("creator " + c.name + ": role " + it->role + " -> " + c.role);
+      it->role = c.role;
+    }
+  }
+  for (const auto& [key, value] : given.meta) {
+    auto it = std::find_if(r.meta.begin(), r.meta.end(), [&](const auto& kv) { return kv.first == key; });
+    if (it == r.meta.end()) {
+      r.meta.emplace_back(key, value);
+      changes.push_back("metadata " + key + " = \"" + value + "\"");
+    } else if (it->second != value) {
+      changes.push_back("metadata " + key + ": \"" + it->second + "\" -> \"" + value + "\"");
+      it->second = value;
+    }
+  }
+  if (!given.source.empty() && given.source != (r.source.empty() ? "auto" : r.source)) {
+    changes.push_back("image source " + (r.source.empty() ? std::string("auto") : r.source) + " -> " + given.source);
+    r.source = given.source;
+  }
+  if (given.lp && given.lp != r.lp) {
+    changes.push_back(given.lp->empty() ? "lights from the spheres again (no dome .lp)"
+                                        : "lights from " + *given.lp + " (dome capture)");
+    r.lp = given.lp;
+  }
+  for (const Exclusion& e : given.exclusions) {
+    auto it = std::find_if(r.exclusions.begin(), r.exclusions.end(),
+                           [&](const Exclusion& k) { return shotOf(k.image) == shotOf(e.image); });
+    if (it != r.exclusions.end()) {
+      changes.push_back("replaced the " + describe({"exclude-image", it->image, "", it->who, it->time, it->reason}));
+      *it = e;
+    } else {
+      r.exclusions.push_back(e);
+    }
+    changes.push_back("excluded " + e.image + ": " + e.reason);
+  }
+  for (const auto& [name, value] : given.decodeSettings) {
+    auto it = std::find_if(r.decodeSettings.begin(), r.decodeSettings.end(),
+                           [&](const auto& kv) { return kv.first == name; });
+    if (it == r.decodeSettings.end()) r.decodeSettings.emplace_back(name, value);
+    else if (it->second != value) {
+      changes.push_back("LibRaw " + name + ": " + it->second + " -> " + value);
+      it->second = value;
+    }
+  }
+  for (const RunRequest::StageParam& p : given.stageParams) {
+    auto it = std::find_if(r.stageParams.begin(), r.stageParams.end(), [&](const auto& k) {
+      return k.component == p.component && k.name == p.name;
+    });
+    if (it == r.stageParams.end()) {
+      r.stageParams.push_back(p);
+      changes.push_back(p.component + " " + p.name + " = " + p.value);
+    } else if (it->value != p.value) {
+      changes.push_back(p.component + " " + p.name + ": " + it->value + " -> " + p.value);
+      it->value = p.value;
+    }
+  }
+  for (const RunRequest::StageIntervention& i : given.stageInterventions) {
+    auto it = std::find_if(r.stageInterventions.begin(), r.stageInterventions.end(), [&](const auto& k) {
+      return k.component == i.component && k.intervention.kind == i.intervention.kind &&
+             k.intervention.target == i.intervention.target;
+    });
+    if (it != r.stageInterventions.end()) {
+      changes.push_back("replaced the " + describe(it->intervention));
+      *it = i;
+    } else {
+      r.stageInterventions.push_back(i);
+    }
+    changes.push_back(i.intervention.kind + " " + i.intervention.target +
+                      (i.intervention.value.empty() ? "" : " = " + i.intervention.value) + ": " +
+                      i.intervention.reason);
+  }
+  for (const PlannedStage& p : given.preprocessing) {
+    auto it = std::find_if(r.preprocessing.begin(), r.preprocessing.end(),
+                           [&](const PlannedStage& k) { return k.component == p.component; });
+    if (it != r.preprocessing.end()) *it = p;
+    else r.preprocessing.push_back(p);
+    changes.push_back("pre-processing " + p.component + " set");
+  }
+  // The recorded order of pre-processing is WhiteBalance, Crop, Resize (surrogate run's order).
+  std::stable_sort(r.preprocessing.begin(), r.preprocessing.end(), [](const PlannedStage& a, const PlannedStage& b) {
+    auto rank = [](const std::string& c) { return c == "WhiteBalance" ? 0 : c == "Crop" ? 1 : 2; };
+    return rank(a.component) < rank(b.component);
+  });
+  if (given.bases && given.bases != r.bases) {
+    std::string list;
+    for (const std::string& b : *given.bases) list += (list.empty() ? "" : ", ") + b;
+    changes.push_back("bases: " + list);
+    r.bases = given.bases;
+  }
+
+  // A dome capture takes its lights from the .lp: sphere and highlight decisions would do
+  // nothing, and dropping them silently would lose them.
+  if (r.lp && !r.lp->empty()) {
+    for (const auto& i : r.stageInterventions)
+      if (i.component == "SphereDetection" || i.component == "HighlightDetection")
+        throw Error(ErrorKind::Usage, "--lp " + *r.lp, "command line",
+                    "a dome capture takes its lights from the .lp file, but the capture holds a " +
+                        describe(i.intervention) + ", which would then do nothing; withdraw it "
+                        "first (--forget-sphere / --forget-highlight, or --reset --reason \"...\")");
+    for (const auto& p : r.stageParams)
+      if (p.component == "SphereDetection" || p.component == "HighlightDetection" ||
+          p.component == "LightDirections")
+        throw Error(ErrorKind::Usage, "--lp " + *r.lp, "command line",
+                    "a dome capture takes its lights from the .lp file, but the options of " +
+                        p.component + " (" + p.name + " = " + p.value + ") apply to light "
+                        "estimation from the spheres; leave them out (or --reset --reason \"...\")");
+  }
+  return r;
+}
+
+}  // namespace surrogate::stages

@@ -1,0 +1,111 @@
+#include "stages/run_commit.h"
+
+#include <cstdlib>
+#include <set>
+
+#include "capture/capture.h"
+#include "core/atomic_file.h"
+#include "core/error.h"
+
+namespace surrogate::stages {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kCarrierPath = "assembly-files/carrier.xml";
+constexpr const char* kReportPath = "finished-files/report.html";
+
+fs::path journalPath(const fs::path& capture) { return capture / capture::kWorkDir / "commit"; }
+
+bool isOutput(const carrier::FileRecord& f) { return f.role == "assembly" || f.role == "result"; }
+
+// rename(2), creating the target's folder; a missing source means an earlier, interrupted
+// commit already moved it.
+void moveInto(const fs::path& from, const fs::path& to) {
+  std::error_code ec;
+  if (!fs::exists(fs::symlink_status(from, ec))) return;
+  fs::create_directories(to.parent_path());
+  fs::rename(from, to, ec);
+  if (ec)
+    throw Error(ErrorKind::Internal, to.string(), "commit",
+                "could not move the run's result into place (" + ec.message() +
+                    "); run the command again to finish");
+}
+
+// The commit itself, from the journal's point on: idempotent, so recovery can repeat it.
+void finishCommit(const fs::path& capture, const carrier::Carrier* previous) {
+  const fs::path staging = stagingRoot(capture);
+  const carrier::Carrier next = carrier::loadCarrier(staging / kCarrierPath);
+  const std::string runId = next.header.runs.empty() ? "r0" : next.header.runs.back().id;
+  for (const SupersededFile& s : supersededFiles(capture, previous, next, runId))
+    moveInto(capture / s.path, capture / s.movedTo);
+  for (const carrier::FileRecord& f : next.files)
+    if (isOutput(f) && f.path != kCarrierPath) moveInto(staging / f.path, capture / f.path);
+  // Fault injection for the test of this guarantee (tests/e2e/test_workflow_e2e.cpp): with
+  // SURROGATE_FAULT_INJECTION=commit the process dies here, between the results and the
+  // carrier, as a kill -9 or a power cut could make it; the next command must finish the commit.
+  if (const char* fault = std::getenv("SURROGATE_FAULT_INJECTION"); fault && std::string(fault) == "commit")
+    std::_Exit(137);
+  // The report is a view of the carrier it was made from: it goes with the old carrier (the
+  // command writes a new one after the commit).
+  std::error_code ec;
+  fs::remove(capture / kReportPath, ec);
+  moveInto(staging / kCarrierPath, capture / kCarrierPath);
+  fs::remove(journalPath(capture));
+  fs::remove_all(staging);
+}
+
+}  // namespace
+
+fs::path stagingRoot(const fs::path& capture) { return capture / capture::kWorkDir / "staging"; }
+
+std::vector<SupersededFile> supersededFiles(const fs::path& capture, const carrier::Carrier* previous,
+                                            const carrier::Carrier& next, const std::string& runId) {
+  std::set<std::string> produced;
+  for (const carrier::FileRecord& f : next.files)
+    if (isOutput(f)) produced.insert(f.path);
+  std::vector<std::string> old;
+  if (previous)
+    for (const carrier::FileRecord& f : previous->files)
+      if (isOutput(f) && !produced.count(f.path)) old.push_back(f.path);
+  std::vector<SupersededFile> out;
+  for (const std::string& path : old) {
+    std::error_code ec;
+    if (!fs::exists(fs::symlink_status(capture / path, ec))) continue;
+    out.push_back({path, std::string(capture::kSupersededDir) + "/" + runId + "/" + path});
+  }
+  return out;
+}
+
+void commitRun(const fs::path& capture, const carrier::Carrier* previous, const carrier::Carrier& next) {
+  (void)next;  // saved in the staging folder already; finishCommit reads it from there
+  writeFileAtomically(journalPath(capture), "commit of the staged run in .surrogate/staging\n");
+  finishCommit(capture, previous);
+}
+
+std::optional<std::string> recoverRun(const fs::path& capture) {
+  const fs::path staging = stagingRoot(capture);
+  std::error_code ec;
+  if (fs::exists(journalPath(capture), ec)) {
+    if (fs::exists(staging / kCarrierPath, ec)) {
+      std::optional<carrier::Carrier> previous;
+      if (fs::exists(capture / kCarrierPath, ec)) previous = carrier::loadCarrier(capture / kCarrierPath);
+      // When the staged carrier is still there, the old carrier is still in place too (it is
+      // renamed last): the superseded files are computed against it as in the first attempt.
+      finishCommit(capture, previous ? &*previous : nullptr);
+      return std::nullopt;  // the interrupted run completed: its record is the carrier now
+    }
+    fs::remove(journalPath(capture));
+    fs::remove_all(staging, ec);
+    return std::nullopt;
+  }
+  if (fs::exists(staging, ec)) {
+    fs::remove_all(staging, ec);
+    return "an earlier command on this capture was interrupted before it finished (killed or "
+           "crashed); its partial results were discarded";
+  }
+  return std::nullopt;
+}
+
+}  // namespace surrogate::stages

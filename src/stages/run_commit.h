@@ -1,0 +1,45 @@
+// Making a run's staged results the capture's state, all or nothing.
+//
+// A run writes its outputs and carrier under CAPTURE/.surrogate/staging/ (the same relative
+// paths as in the capture). Only when every step succeeded does commitRun() move them into
+// place: it first writes a journal (CAPTURE/.surrogate/commit), then moves aside the results of
+// the previous record that the new one no longer has (into superseded-files/RUN/), renames each
+// staged output over the old one, renames the staged carrier last, and removes the journal. A
+// process killed in the middle leaves the journal; the next command on the capture calls
+// recoverRun() under the capture's lock and finishes the commit, so the capture is always
+// either the old state or the new one, never a mix.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "carrier/carrier.h"
+
+namespace surrogate::stages {
+
+// CAPTURE/.surrogate/staging: where a run in progress writes.
+std::filesystem::path stagingRoot(const std::filesystem::path& capture);
+
+// Results `previous` records (assembly and result files) that `next` does not
+// produce, with where commitRun() will move them: superseded-files/<runId>/<path>.
+struct SupersededFile {
+  std::string path;   // relative to the capture
+  std::string movedTo;
+};
+std::vector<SupersededFile> supersededFiles(const std::filesystem::path& capture,
+                                            const carrier::Carrier* previous,
+                                            const carrier::Carrier& next, const std::string& runId);
+
+// Moves the staged run into the capture (see above); `next` is the staged carrier, already
+// saved in the staging folder.
+void commitRun(const std::filesystem::path& capture, const carrier::Carrier* previous,
+               const carrier::Carrier& next);
+
+// Under the capture's lock, before anything else: finishes a commit that a killed process left
+// (journal present), or removes the staging folder of a run that never reached its commit.
+// Returns a sentence for the run history when it found an interrupted run, else nothing.
+std::optional<std::string> recoverRun(const std::filesystem::path& capture);
+
+}  // namespace surrogate::stages

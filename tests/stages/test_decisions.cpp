@@ -1,0 +1,136 @@
+// The capture's memory as data: a carrier's standing decisions, and a new command applied to
+// them (stages/plan.h). Built from carriers written here, not from a run.
+#include <catch2/catch.hpp>
+
+#include "carrier/carrier.h"
+#include "core/error.h"
+#include "stages/plan.h"
+
+using namespace surrogate;
+using stages::RunRequest;
+
+namespace {
+
+// A carrier as three earlier runs would leave it: a title, a creator and metadata, an
+// exclusion, a sphere given by hand, a threshold, a basis choice and a crop.
+carrier::Carrier recorded() {
+  carrier::Carrier c = carrier::newCarrier("Stela 12", {{"Ana Silva", "photographer"}});
+  c.header.meta = {{"site", "store 3"}};
+  carrier::Step& ingest = c.addStep("CaptureIngest", "1");
+  ingest.setParam("source", "export");
+  ingest.interventions.push_back({"exclude-image", "IMG_0003", "", "Ana Silva", "2026-11-01T10:00:00Z", "no flash"});
+  c.addStep("ImageDecode", "1").setParam("demosaic", "AHD");
+  carrier::Step& spheres = c.addStep("SphereDetection", "1");
+  spheres.interventions.push_back({"manual-sphere", "0", "339,57,45", "Bo Chen", "2026-11-02T10:00:00Z", "cut by the edge"});
+  c.addStep("HighlightDetection", "1").setParam("threshold", "0.9");
+  c.addStep("LightDirections", "1").setParam("model", "orthographic");  // the default: not a decision
+  c.addStep("Crop", "1").setParam("rectangle", "0,0,200,100");
+  c.addStep("RtiFit", "1").setParam("basis", "hsh3");
+  c.addStep("DerivedMaps", "1").setParam("model", "hsh3");
+  return c;
+}
+
+}  // namespace
+
+TEST_CASE("a carrier's standing decisions are read back with their who, when and why", "[stages][decisions]") {
+  const RunRequest r = stages::standingDecisions(recorded());
+  CHECK(r.title == "Stela 12");
+  REQUIRE(r.creators.size() == 1);
+  CHECK(r.creators[0].role == "photographer");
+  CHECK(r.source == "export");
+  REQUIRE(r.exclusions.size() == 1);
+  CHECK(r.exclusions[0].who == "Ana Silva");
+  CHECK(r.exclusions[0].time == "2026-11-01T10:00:00Z");
+  CHECK(r.exclusions[0].reason == "no flash");
+  REQUIRE(r.stageInterventions.size() == 1);
+  CHECK(r.stageInterventions[0].component == "SphereDetection");
+  CHECK(r.stageInterventions[0].intervention.who == "Bo Chen");
+  // Only parameters that differ from the stage's defaults are decisions.
+  bool threshold = false, model = false;
+  for (const auto& p : r.stageParams) {
+    threshold = threshold || (p.component == "HighlightDetection" && p.name == "threshold" && p.value == "0.9");
+    model = model || p.component == "LightDirections";
+  }
+  CHECK(threshold);
+  CHECK_FALSE(model);
+  REQUIRE(r.preprocessing.size() == 1);
+  CHECK(r.preprocessing[0].component == "Crop");
+  REQUIRE(r.bases);
+  CHECK(*r.bases == std::vector<std::string>{"hsh3"});
+}
+
+TEST_CASE("a new command adds to and overrides the standing decisions, and says what changed", "[stages][decisions]") {
+  RunRequest given;
+  given.exclusions.push_back({"original-captures/IMG_0005.dng", "blurred", "", ""});
+  given.exclusions.push_back({"IMG_0003.jpg", "still no flash", "", ""});  // the same shot as IMG_0003
+  given.stageInterventions.push_back({"SphereDetection", {"manual-sphere", "0", "340,58,44", "", "", "refined"}});
+  given.meta = {{"site", "store 4"}, {"project", "stelae"}};
+  given.creators = {{"Bo Chen", "conservator"}};
+  std::vector<std::string> changes;
+  const RunRequest r = stages::applyDecisions(stages::standingDecisions(recorded()), given, changes);
+  CHECK(r.title == "Stela 12");  // kept
+  CHECK(r.creators.size() == 2);
+  REQUIRE(r.meta.size() == 2);
+  CHECK(r.meta[0] == std::make_pair(std::string("site"), std::string("store 4")));
+  REQUIRE(r.exclusions.size() == 2);
+  CHECK(r.exclusions[0].reason == "still no flash");
+  REQUIRE(r.stageInterventions.size() == 1);
+  CHECK(r.stageInterventions[0].intervention.value == "340,58,44");
+  REQUIRE(r.bases);
+  CHECK(*r.bases == std::vector<std::string>{"hsh3"});  // kept: not given
+  CHECK(r.source == "export");
+  bool replacedSphere = false;
+  for (const std::string& c : changes) replacedSphere = replacedSphere || c.find("replaced the manual sphere 0 (339,57,45") != std::string::npos;
+  CHECK(replacedSphere);
+}
+
+TEST_CASE("withdrawing a decision is explicit, and one that does not stand is refused", "[stages][decisions]") {
+  RunRequest given;
+  given.withdrawals.push_back({"exclude-image", "IMG_0003.dng", "the flash fired after all"});
+  given.withdrawals.push_back({"manual-sphere", "0", "detection is right"});
+  std::vector<std::string> changes;
+  const RunRequest r = stages::applyDecisions(stages::standingDecisions(recorded()), given, changes);
+  CHECK(r.exclusions.empty());
+  CHECK(r.stageInterventions.empty());
+  REQUIRE(changes.size() == 2);
+  CHECK_THAT(changes[0], Catch::Contains("the flash fired after all"));
+  CHECK_THAT(changes[0], Catch::Contains("Ana Silva"));
+
+  RunRequest wrong;
+  wrong.withdrawals.push_back({"manual-highlight", "IMG_0004:0", "x"});
+  CHECK_THROWS_AS(stages::applyDecisions(stages::standingDecisions(recorded()), wrong, changes), Error);
+}
+
+TEST_CASE("a reset withdraws every processing decision but keeps the header and accepted changes", "[stages][decisions]") {
+  carrier::Carrier c = recorded();
+  c.process[0].interventions.push_back({"accept-changed-original", "original-captures/IMG_0005.dng", "removed", "Ana Silva",
+                                        "2026-11-03T10:00:00Z", "lost card"});
+  RunRequest given;
+  given.resetReason = "start again";
+  std::vector<std::string> changes;
+  const RunRequest r = stages::applyDecisions(stages::standingDecisions(c), given, changes);
+  CHECK(r.title == "Stela 12");
+  CHECK(r.meta.size() == 1);
+  CHECK(r.exclusions.empty());
+  CHECK(r.stageParams.empty());
+  CHECK(r.preprocessing.empty());
+  CHECK_FALSE(r.bases);
+  CHECK(r.source.empty());
+  REQUIRE(r.stageInterventions.size() == 1);
+  CHECK(r.stageInterventions[0].intervention.kind == "accept-changed-original");
+  REQUIRE(changes.size() == 1);
+  CHECK_THAT(changes[0], Catch::Contains("start again"));
+}
+
+TEST_CASE("a dome .lp with sphere decisions standing is refused, naming the conflict", "[stages][decisions]") {
+  RunRequest given;
+  given.lp = "dome.lp";
+  std::vector<std::string> changes;
+  try {
+    stages::applyDecisions(stages::standingDecisions(recorded()), given, changes);
+    FAIL("no error");
+  } catch (const Error& e) {
+    CHECK(e.kind() == ErrorKind::Usage);
+    CHECK_THAT(e.message(), Catch::Contains("manual sphere 0"));
+  }
+}
