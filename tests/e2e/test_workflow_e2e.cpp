@@ -359,6 +359,29 @@ TEST_CASE("kill -9 during run or commit leaves the old or the new state, never a
     CHECK(disagreements(capture).empty());
     CHECK(results() == old);  // the same decisions give the same bytes
   }
+  // Killed at several points of a pack that has to process first (a result changed): the
+  // package is whole under its name or absent, and the capture is the old or the new state.
+  for (int ms : {100, 300, 500, 700}) {
+    std::ofstream(capture / "finished-files/normals.png", std::ios::app) << "x";
+    const fs::path out = capture.parent_path() / ("killed-" + std::to_string(ms) + ".tar");
+    const pid_t pid = fork();
+    REQUIRE(pid >= 0);
+    if (pid == 0) {
+      execl(SURROGATE_EXE, SURROGATE_EXE, "pack", capture.c_str(), "-o", out.c_str(), "--quiet", "--threads", "1",
+            static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(ms));
+    kill(pid, SIGKILL);
+    waitpid(pid, nullptr, 0);
+    INFO("pack killed after " << ms << " ms");
+    if (fs::exists(out)) CHECK(e2e::surrogate("verify " + e2e::quote(out) + " --quiet").exitCode == 0);
+    const e2e::CommandResult again = e2e::surrogate("run " + e2e::quote(capture) + " --quiet");
+    INFO(again.output);
+    REQUIRE(again.exitCode == 0);
+    CHECK(disagreements(capture).empty());
+    CHECK(results() == old);
+  }
   // Dying in the middle of a commit (results moved, carrier not yet): the next command finishes
   // the commit, so the new state is whole.
   const e2e::CommandResult crash = e2e::runShell("SURROGATE_FAULT_INJECTION=commit " + std::string(SURROGATE_EXE) +
