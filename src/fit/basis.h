@@ -6,7 +6,7 @@
 //       theta = min(acos(lz), pi/2 - 0.01), phi = atan2(ly, lx),
 //       c = cos(theta), s = sqrt(c - c^2), t = 2c - 1,
 //       H0 = 1/sqrt(2 pi), H1 = sqrt(6/pi) cos(phi) s, H2 = sqrt(3/(2 pi)) t, ...
-//   (shared/spec/formats.md 2.3 term by term; light vectors are normalised first.)
+//   (docs/hrti-math.md, "The HSH basis", term by term; light vectors are normalised first.)
 //
 //   Basis b = parseBasis("hsh3");           // Basis::Hsh3, basisTerms(b) == 9
 //   double w[9];

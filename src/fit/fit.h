@@ -9,8 +9,8 @@
 //
 // Units: samples are 16-bit (Image convention); the fit treats value/257 as 0..255 units
 // (PTM coefficients, 0..255) or value/65535 as 0..1 units (HSH). The values are fitted as
-// encoded (display-referred sRGB exports, formats.md section 8); no linearisation.
-// LRGB (formats.md 1.6, relight's definition): chroma = mean colour weighted by
+// encoded (sRGB exports, docs/formats.md "Which pixel values are fitted"); no linearisation.
+// LRGB (docs/formats.md "LRGB: colour and luminance", relight's): chroma = mean colour weighted by
 // w_i = max(0, 0.25 - (asin(lz_i)/(pi/2) - 0.5)^2) (uniform weights if all are 0), stored as
 // bytes C; luminance samples L_i = 255 (R_i + G_i + B_i) / (C_R + C_G + C_B) using the STORED
 // bytes, so colour * L / 255 reproduces each photograph's R+G+B exactly before quantisation.

@@ -1,6 +1,6 @@
 // Surface normals and albedo recovered from a fitted model (.ptm or .rti HSH).
 //
-// PTM (hrti-math.md "Normals and enhancement"): the normal points at the maximum of the
+// PTM (docs/hrti-math.md, "Normals from a PTM"): the normal points at the maximum of the
 // luminance polynomial (LRGB luminance; the mean of the channels for RGB):
 //     d = 4 a0 a1 - a2^2;  lu0 = (a2 a4 - 2 a1 a3)/d;  lv0 = (a2 a3 - 2 a0 a4)/d
 //     valid when d > 0 and a0 < 0;  (lu0, lv0) clamped to the unit disc;

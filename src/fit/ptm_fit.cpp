@@ -28,7 +28,7 @@ std::uint8_t chromaByte(double v) {
   return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 255.0)));
 }
 
-// LRGB (formats.md 1.6): weighted mean colour, luminance polynomial relative to it.
+// LRGB (docs/formats.md, "LRGB: colour and luminance"): weighted mean colour, relative luminance.
 class LrgbFitter : public internal::RowFitter {
  public:
   LrgbFitter(const std::vector<double>& p, const std::vector<std::array<double, 3>>& lights,

@@ -1,5 +1,5 @@
 // The PTM polynomial of one texel: evaluation, its maximum, and the diffuse gain transform
-// (shared/spec/hrti-math.md "Normals and enhancement", corrected formulas).
+// (docs/hrti-math.md, "Normals from a PTM" and "Diffuse gain", corrected formulas).
 //
 //     L(lu, lv) = a0 lu^2 + a1 lv^2 + a2 lu lv + a3 lu + a4 lv + a5
 //     maximum:  d = 4 a0 a1 - a2^2,

@@ -1,10 +1,10 @@
 // Coefficient quantisation: from a coefficient's range over the image to a byte per texel.
 //
-//   PTM (formats.md 1.2, range extended to include 0 so the bias fits 0..255):
+//   PTM (docs/formats.md, .ptm "Quantisation"; range widened to include 0 so the bias fits):
 //       lo' = min(lo, 0), hi' = max(hi, 0)
 //       scale = (hi' - lo') / 255,  bias = clamp(round(-lo' / scale), 0, 255)
 //       byte  = clamp(round(a / scale + bias), 0, 255);   decoded (byte - bias) * scale
-//   HSH (formats.md 2.2, 0..1 units, float32 tables):
+//   HSH (docs/formats.md, .rti "Quantisation"; 0..1 units, float32 tables):
 //       SCALE = hi - lo,  BIAS = lo
 //       byte  = clamp(round((a - BIAS) / SCALE * 255), 0, 255);  decoded byte/255*SCALE + BIAS
 // With the range taken from the data no coefficient clips: the decoding error is at most half

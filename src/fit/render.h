@@ -3,8 +3,8 @@
 //   PTM LRGB: out_c = C_c * L(lu, lv) / 255        RGB: out_c = L_c(lu, lv)
 //   HSH:      out_c = 255 * sum_k coef_{c,k} H_k(theta, phi)
 // with (lu, lv) = extrapolation * (lx, ly) of the normalised light, theta clamped to
-// pi/2 - 0.01 as the viewers do (formats.md 1.5, 2.2, 5).
-// Enhancements (hrti-math.md):
+// pi/2 - 0.01 as the viewers do (docs/formats.md, "Light directions" and each format's rendering).
+// Enhancements (docs/hrti-math.md, "Normals, albedo and enhancement"):
 //   diffuse gain g (PTM only): each polynomial is transformed around the texel's normal
 //     direction (the maximum, or the Lambertian fallback; fit/ptm_math.h), which keeps the
 //     maximum's position and value and multiplies the curvature by g;

@@ -1,4 +1,4 @@
-// HP Polynomial Texture Maps (.ptm), version 1.2, raw LRGB and RGB (formats.md section 1).
+// HP Polynomial Texture Maps (.ptm), version 1.2, raw LRGB and RGB (docs/formats.md, ".ptm").
 //
 // A PTM stores, per texel, the six coefficients of a biquadratic in the light's projection
 // (lu, lv) = (lx, ly) on the image plane:

@@ -1,4 +1,4 @@
-// Light direction from a highlight on a mirror sphere (hrti-math.md, corrected formulas).
+// Light direction from a highlight on a mirror sphere (docs/hrti-math.md, corrected formulas).
 //
 // Orthographic camera (V = (0, 0, 1)): the sphere's normal at the highlight is the half
 // vector between V and the light L, so

@@ -1,4 +1,4 @@
-// Per-pixel median of an image stack (hrti-math.md, sphere detection step 1).
+// Per-pixel median of an image stack (docs/hrti-math.md, "Spheres in the median image").
 //
 // Shadows and highlights move from image to image; the spheres do not. The median over the
 // stack keeps the spheres and drops both. It needs every image's value at a pixel but never

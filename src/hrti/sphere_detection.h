@@ -1,4 +1,4 @@
-// Finding the reflective spheres in the median image (hrti-math.md, sphere detection).
+// The reflective spheres in the median image (docs/hrti-math.md, "Spheres in the median image").
 //
 //   1. 7x7 median filter: flattens texture, keeps the sphere's outline sharp
 //   2. Sobel gradient, magnitude and direction

@@ -34,7 +34,7 @@ TEST_CASE("basis: PTM terms are (lu^2, lv^2, lu lv, lu, lv, 1)") {
   CHECK(w[5] == 1);
 }
 
-TEST_CASE("basis: HSH terms follow formats.md 2.3 and clamp theta at pi/2 - 0.01") {
+TEST_CASE("basis: HSH terms follow docs/hrti-math.md and clamp theta at pi/2 - 0.01") {
   const double theta = 0.7, phi = 2.1;
   double h[16];
   hshBasis(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta), 16, h);
