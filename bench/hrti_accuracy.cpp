@@ -110,7 +110,7 @@ int main(int argc, char** argv) {
       for (std::size_t i = 0; i < highlights.size(); ++i) {
         double sum[3] = {0, 0, 0};
         for (std::size_t k = 0; k < spheres.size(); ++k) {
-          if (highlights[i][k].flag == hrti::HighlightFlag::None) continue;
+          if (!hrti::isUsable(highlights[i][k].flag)) continue;
           const auto l = hrti::lightFromHighlight(spheres[k], highlights[i][k].x, highlights[i][k].y);
           sum[0] += l.x;
           sum[1] += l.y;

@@ -68,6 +68,12 @@
   <xsl:key name="person" match="c:run/@who | c:intervention/@who | c:entry/@who" use="normalize-space(.)"/>
   <xsl:key name="camera" match="c:file[@role = 'original']/c:camera"
            use="concat(@make, '|', @model, '|', @serial)"/>
+  <!-- The carrier's file records by payload path ("data/" + path) and by id. They are looked up
+       once or more per payload file: a search of the whole list each time made deriving the
+       METS of a package of many files quadratic. key() looks in the document of the context
+       node, hence the for-each over $carrier (one node) around each lookup from the payload. -->
+  <xsl:key name="file-by-bag-path" match="c:files/c:file" use="concat('data/', @path)"/>
+  <xsl:key name="file-by-id" match="c:files/c:file" use="@id"/>
 
   <xsl:template match="/">
     <xsl:apply-templates select="c:carrier"/>
@@ -137,15 +143,10 @@
        else the carrier's files (paths under data/). Each file's number is its position here. -->
   <xsl:variable name="use-payload" select="count($payload) &gt; 0"/>
 
-  <!-- The carrier file record of a payload path ("data/" + carrier path). -->
-  <xsl:template name="role-of">
-    <xsl:param name="path"/>
-    <xsl:variable name="rec" select="$carrier/c:files/c:file[concat('data/', @path) = $path]"/>
-    <xsl:choose>
-      <xsl:when test="$rec"><xsl:value-of select="$rec/@role"/></xsl:when>
-      <xsl:otherwise>other</xsl:otherwise>
-    </xsl:choose>
-  </xsl:template>
+  <!-- Whether a payload file belongs to a group: the role of its carrier file record (the
+       first with the path "data/" + carrier path), "other" when the carrier does not list it.
+       Tested inline, in the carrier's document (key() looks in the context node's document):
+       with the path and the number of the payload file taken before switching to it. -->
 
   <xsl:template name="file-group">
     <xsl:param name="use"/>
@@ -153,8 +154,11 @@
       <xsl:choose>
         <xsl:when test="$use-payload">
           <xsl:for-each select="$payload">
-            <xsl:variable name="role"><xsl:call-template name="role-of"><xsl:with-param name="path" select="@path"/></xsl:call-template></xsl:variable>
-            <xsl:if test="$role = $use">x</xsl:if>
+            <xsl:variable name="path" select="@path"/>
+            <xsl:for-each select="$carrier">
+              <xsl:variable name="rec" select="key('file-by-bag-path', $path)"/>
+              <xsl:if test="($rec and $rec[1]/@role = $use) or (not($rec) and $use = 'other')">x</xsl:if>
+            </xsl:for-each>
           </xsl:for-each>
         </xsl:when>
         <xsl:otherwise>
@@ -167,15 +171,22 @@
         <xsl:choose>
           <xsl:when test="$use-payload">
             <xsl:for-each select="$payload">
-              <xsl:variable name="role"><xsl:call-template name="role-of"><xsl:with-param name="path" select="@path"/></xsl:call-template></xsl:variable>
-              <xsl:if test="$role = $use">
-                <xsl:call-template name="mets-file">
-                  <xsl:with-param name="n" select="position()"/>
-                  <xsl:with-param name="path" select="@path"/>
-                  <xsl:with-param name="size" select="@size"/>
-                  <xsl:with-param name="sha256" select="@sha256"/>
-                </xsl:call-template>
-              </xsl:if>
+              <xsl:variable name="n" select="position()"/>
+              <xsl:variable name="path" select="@path"/>
+              <xsl:variable name="size" select="@size"/>
+              <xsl:variable name="sha256" select="@sha256"/>
+              <xsl:for-each select="$carrier">
+                <xsl:variable name="rec" select="key('file-by-bag-path', $path)"/>
+                <xsl:if test="($rec and $rec[1]/@role = $use) or (not($rec) and $use = 'other')">
+                  <xsl:call-template name="mets-file">
+                    <xsl:with-param name="n" select="$n"/>
+                    <xsl:with-param name="path" select="$path"/>
+                    <xsl:with-param name="size" select="$size"/>
+                    <xsl:with-param name="sha256" select="$sha256"/>
+                    <xsl:with-param name="rec" select="$rec"/>
+                  </xsl:call-template>
+                </xsl:if>
+              </xsl:for-each>
             </xsl:for-each>
           </xsl:when>
           <xsl:otherwise>
@@ -186,6 +197,7 @@
                   <xsl:with-param name="path" select="concat('data/', @path)"/>
                   <xsl:with-param name="size" select="@size"/>
                   <xsl:with-param name="sha256" select="@sha256"/>
+                  <xsl:with-param name="rec" select="key('file-by-bag-path', concat('data/', @path))"/>
                 </xsl:call-template>
               </xsl:if>
             </xsl:for-each>
@@ -200,7 +212,7 @@
     <xsl:param name="path"/>
     <xsl:param name="size"/>
     <xsl:param name="sha256"/>
-    <xsl:variable name="rec" select="$carrier/c:files/c:file[concat('data/', @path) = $path]"/>
+    <xsl:param name="rec"/>
     <mets:file ID="file-{$n}" SIZE="{$size}" CHECKSUM="{$sha256}" CHECKSUMTYPE="SHA-256"
                ADMID="object-{$n}">
       <xsl:if test="$rec/@mediaType != ''">
@@ -218,10 +230,14 @@
     <xsl:choose>
       <xsl:when test="$use-payload">
         <xsl:for-each select="$payload">
-          <xsl:variable name="role"><xsl:call-template name="role-of"><xsl:with-param name="path" select="@path"/></xsl:call-template></xsl:variable>
-          <xsl:if test="$role = $use">
-            <mets:div TYPE="{$use}" LABEL="{@path}"><mets:fptr FILEID="file-{position()}"/></mets:div>
-          </xsl:if>
+          <xsl:variable name="n" select="position()"/>
+          <xsl:variable name="path" select="@path"/>
+          <xsl:for-each select="$carrier">
+            <xsl:variable name="rec" select="key('file-by-bag-path', $path)"/>
+            <xsl:if test="($rec and $rec[1]/@role = $use) or (not($rec) and $use = 'other')">
+              <mets:div TYPE="{$use}" LABEL="{$path}"><mets:fptr FILEID="file-{$n}"/></mets:div>
+            </xsl:if>
+          </xsl:for-each>
         </xsl:for-each>
       </xsl:when>
       <xsl:otherwise>
@@ -268,85 +284,87 @@
     <xsl:param name="size"/>
     <xsl:param name="sha256"/>
     <xsl:param name="sha512"/>
-    <xsl:variable name="rec" select="$carrier/c:files/c:file[concat('data/', @path) = $path]"/>
-    <mets:techMD ID="object-{$n}">
-      <mets:mdWrap MDTYPE="PREMIS:OBJECT">
-        <mets:xmlData>
-          <premis:object xsi:type="premis:file" version="3.0">
-            <premis:objectIdentifier>
-              <premis:objectIdentifierType>BagIt payload path</premis:objectIdentifierType>
-              <premis:objectIdentifierValue><xsl:value-of select="$path"/></premis:objectIdentifierValue>
-            </premis:objectIdentifier>
-            <xsl:if test="$rec">
+    <xsl:for-each select="$carrier">
+      <xsl:variable name="rec" select="key('file-by-bag-path', $path)"/>
+      <mets:techMD ID="object-{$n}">
+        <mets:mdWrap MDTYPE="PREMIS:OBJECT">
+          <mets:xmlData>
+            <premis:object xsi:type="premis:file" version="3.0">
               <premis:objectIdentifier>
-                <premis:objectIdentifierType>Surrogate carrier file id</premis:objectIdentifierType>
-                <premis:objectIdentifierValue><xsl:value-of select="$rec/@id"/></premis:objectIdentifierValue>
+                <premis:objectIdentifierType>BagIt payload path</premis:objectIdentifierType>
+                <premis:objectIdentifierValue><xsl:value-of select="$path"/></premis:objectIdentifierValue>
               </premis:objectIdentifier>
-            </xsl:if>
-            <premis:objectCharacteristics>
-              <premis:compositionLevel>0</premis:compositionLevel>
-              <premis:fixity>
-                <premis:messageDigestAlgorithm>SHA-256</premis:messageDigestAlgorithm>
-                <premis:messageDigest><xsl:value-of select="$sha256"/></premis:messageDigest>
-                <premis:messageDigestOriginator><xsl:value-of select="$software-agent"/></premis:messageDigestOriginator>
-              </premis:fixity>
-              <xsl:if test="$sha512 != ''">
+              <xsl:if test="$rec">
+                <premis:objectIdentifier>
+                  <premis:objectIdentifierType>Surrogate carrier file id</premis:objectIdentifierType>
+                  <premis:objectIdentifierValue><xsl:value-of select="$rec/@id"/></premis:objectIdentifierValue>
+                </premis:objectIdentifier>
+              </xsl:if>
+              <premis:objectCharacteristics>
+                <premis:compositionLevel>0</premis:compositionLevel>
                 <premis:fixity>
-                  <premis:messageDigestAlgorithm>SHA-512</premis:messageDigestAlgorithm>
-                  <premis:messageDigest><xsl:value-of select="$sha512"/></premis:messageDigest>
+                  <premis:messageDigestAlgorithm>SHA-256</premis:messageDigestAlgorithm>
+                  <premis:messageDigest><xsl:value-of select="$sha256"/></premis:messageDigest>
                   <premis:messageDigestOriginator><xsl:value-of select="$software-agent"/></premis:messageDigestOriginator>
                 </premis:fixity>
-              </xsl:if>
-              <premis:size><xsl:value-of select="$size"/></premis:size>
-              <xsl:call-template name="premis-format">
-                <xsl:with-param name="rec" select="$rec"/>
-                <xsl:with-param name="path" select="$path"/>
-              </xsl:call-template>
-              <xsl:call-template name="creating-application">
-                <xsl:with-param name="rec" select="$rec"/>
-                <xsl:with-param name="path" select="$path"/>
-              </xsl:call-template>
-            </premis:objectCharacteristics>
-            <premis:originalName><xsl:value-of select="substring-after($path, 'data/')"/></premis:originalName>
-            <xsl:for-each select="$rec/@pairedWith">
-              <xsl:variable name="other" select="$carrier/c:files/c:file[@id = current()]"/>
-              <premis:relationship>
-                <premis:relationshipType>structural</premis:relationshipType>
-                <premis:relationshipSubType>is sibling of (same shot)</premis:relationshipSubType>
-                <premis:relatedObjectIdentifier>
-                  <premis:relatedObjectIdentifierType>BagIt payload path</premis:relatedObjectIdentifierType>
-                  <premis:relatedObjectIdentifierValue><xsl:value-of select="concat('data/', $other/@path)"/></premis:relatedObjectIdentifierValue>
-                </premis:relatedObjectIdentifier>
-              </premis:relationship>
-            </xsl:for-each>
-            <xsl:for-each select="$rec/@createdBy">
-              <premis:linkingEventIdentifier>
-                <premis:linkingEventIdentifierType>Surrogate event</premis:linkingEventIdentifierType>
-                <premis:linkingEventIdentifierValue><xsl:value-of select="concat('event-', .)"/></premis:linkingEventIdentifierValue>
-              </premis:linkingEventIdentifier>
-            </xsl:for-each>
-            <xsl:if test="$rec/@role = 'original'">
-              <premis:linkingEventIdentifier>
-                <premis:linkingEventIdentifierType>Surrogate event</premis:linkingEventIdentifierType>
-                <premis:linkingEventIdentifierValue>event-capture</premis:linkingEventIdentifierValue>
-              </premis:linkingEventIdentifier>
-            </xsl:if>
-            <xsl:if test="$path = $carrier-path">
-              <xsl:for-each select="$carrier/c:header/c:run">
+                <xsl:if test="$sha512 != ''">
+                  <premis:fixity>
+                    <premis:messageDigestAlgorithm>SHA-512</premis:messageDigestAlgorithm>
+                    <premis:messageDigest><xsl:value-of select="$sha512"/></premis:messageDigest>
+                    <premis:messageDigestOriginator><xsl:value-of select="$software-agent"/></premis:messageDigestOriginator>
+                  </premis:fixity>
+                </xsl:if>
+                <premis:size><xsl:value-of select="$size"/></premis:size>
+                <xsl:call-template name="premis-format">
+                  <xsl:with-param name="rec" select="$rec"/>
+                  <xsl:with-param name="path" select="$path"/>
+                </xsl:call-template>
+                <xsl:call-template name="creating-application">
+                  <xsl:with-param name="rec" select="$rec"/>
+                  <xsl:with-param name="path" select="$path"/>
+                </xsl:call-template>
+              </premis:objectCharacteristics>
+              <premis:originalName><xsl:value-of select="substring-after($path, 'data/')"/></premis:originalName>
+              <xsl:for-each select="$rec/@pairedWith">
+                <xsl:variable name="other" select="key('file-by-id', current())"/>
+                <premis:relationship>
+                  <premis:relationshipType>structural</premis:relationshipType>
+                  <premis:relationshipSubType>is sibling of (same shot)</premis:relationshipSubType>
+                  <premis:relatedObjectIdentifier>
+                    <premis:relatedObjectIdentifierType>BagIt payload path</premis:relatedObjectIdentifierType>
+                    <premis:relatedObjectIdentifierValue><xsl:value-of select="concat('data/', $other/@path)"/></premis:relatedObjectIdentifierValue>
+                  </premis:relatedObjectIdentifier>
+                </premis:relationship>
+              </xsl:for-each>
+              <xsl:for-each select="$rec/@createdBy">
                 <premis:linkingEventIdentifier>
                   <premis:linkingEventIdentifierType>Surrogate event</premis:linkingEventIdentifierType>
-                  <premis:linkingEventIdentifierValue><xsl:value-of select="concat('event-run-', @id)"/></premis:linkingEventIdentifierValue>
+                  <premis:linkingEventIdentifierValue><xsl:value-of select="concat('event-', .)"/></premis:linkingEventIdentifierValue>
                 </premis:linkingEventIdentifier>
               </xsl:for-each>
-            </xsl:if>
-            <premis:linkingEventIdentifier>
-              <premis:linkingEventIdentifierType>Surrogate event</premis:linkingEventIdentifierType>
-              <premis:linkingEventIdentifierValue>event-message-digest</premis:linkingEventIdentifierValue>
-            </premis:linkingEventIdentifier>
-          </premis:object>
-        </mets:xmlData>
-      </mets:mdWrap>
-    </mets:techMD>
+              <xsl:if test="$rec/@role = 'original'">
+                <premis:linkingEventIdentifier>
+                  <premis:linkingEventIdentifierType>Surrogate event</premis:linkingEventIdentifierType>
+                  <premis:linkingEventIdentifierValue>event-capture</premis:linkingEventIdentifierValue>
+                </premis:linkingEventIdentifier>
+              </xsl:if>
+              <xsl:if test="$path = $carrier-path">
+                <xsl:for-each select="$carrier/c:header/c:run">
+                  <premis:linkingEventIdentifier>
+                    <premis:linkingEventIdentifierType>Surrogate event</premis:linkingEventIdentifierType>
+                    <premis:linkingEventIdentifierValue><xsl:value-of select="concat('event-run-', @id)"/></premis:linkingEventIdentifierValue>
+                  </premis:linkingEventIdentifier>
+                </xsl:for-each>
+              </xsl:if>
+              <premis:linkingEventIdentifier>
+                <premis:linkingEventIdentifierType>Surrogate event</premis:linkingEventIdentifierType>
+                <premis:linkingEventIdentifierValue>event-message-digest</premis:linkingEventIdentifierValue>
+              </premis:linkingEventIdentifier>
+            </premis:object>
+          </mets:xmlData>
+        </mets:mdWrap>
+      </mets:techMD>
+    </xsl:for-each>
   </xsl:template>
 
   <!-- Format: the carrier's format name and PRONOM id; for files the carrier does not list,
@@ -653,13 +671,13 @@
               </xsl:for-each>
               <xsl:for-each select="$result/c:input">
                 <xsl:call-template name="linking-object">
-                  <xsl:with-param name="file" select="$carrier/c:files/c:file[@id = current()/@file]"/>
+                  <xsl:with-param name="file" select="key('file-by-id', current()/@file)"/>
                   <xsl:with-param name="role" select="'source'"/>
                 </xsl:call-template>
               </xsl:for-each>
               <xsl:for-each select="$result/c:output">
                 <xsl:call-template name="linking-object">
-                  <xsl:with-param name="file" select="$carrier/c:files/c:file[@id = current()/@file]"/>
+                  <xsl:with-param name="file" select="key('file-by-id', current()/@file)"/>
                   <xsl:with-param name="role" select="'outcome'"/>
                 </xsl:call-template>
               </xsl:for-each>

@@ -3,6 +3,7 @@
 #include <archive.h>
 #include <archive_entry.h>
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -116,12 +117,8 @@ std::string utcDateTime(std::int64_t epoch) {
   return text;
 }
 
-std::string bagInfoLabelProblem(const std::string& label) {
-  static const std::set<std::string> computed = {"payload-oxum", "bagging-date", "bag-size",
-                                                  "bag-software-agent"};
-  if (computed.count(lowerCase(label)))
-    return "is computed by Surrogate for bag-info.txt and cannot be given as metadata; "
-           "remove it from the capture's metadata (--meta)";
+namespace {
+std::string labelFormProblem(const std::string& label) {
   const bool bad = label.empty() || std::any_of(label.begin(), label.end(), [](unsigned char c) {
                      return c == ':' || c <= ' ' || c == 0x7f;
                    });
@@ -129,6 +126,22 @@ std::string bagInfoLabelProblem(const std::string& label) {
     return "is not a usable bag-info.txt label (no spaces, colons or control characters); "
            "rename the metadata key, e.g. Source-Organization";
   return "";
+}
+}  // namespace
+
+std::string bagInfoLabelProblem(const std::string& label) {
+  static const std::set<std::string> computed = {"payload-oxum", "bagging-date", "bag-size",
+                                                  "bag-software-agent"};
+  static const std::set<std::string> own = {"surrogate-package-identifier",
+                                             "surrogate-packaging-time"};
+  if (computed.count(lowerCase(label)))
+    return "is computed by Surrogate for bag-info.txt and cannot be given as metadata; "
+           "remove it from the capture's metadata (--meta)";
+  if (own.count(lowerCase(label)))
+    return "is written by `surrogate pack` itself (the package's identifier, the SHA-256 of its "
+           "carrier, and the packaging time) and cannot be given as metadata; remove it from the "
+           "capture's metadata (--meta)";
+  return labelFormProblem(label);
 }
 
 namespace {
@@ -560,6 +573,42 @@ PayloadDigest streamFile(const Source& src, Sink& sink, PayloadHasher& hasher,
 
 }  // namespace
 
+std::vector<std::string> removeStaleParts(const fs::path& out) {
+  // AtomicFile's temporary name: ".NAME.part-PID-N" in the same folder.
+  const std::string prefix = "." + out.filename().string() + ".part-";
+  const fs::path folder = out.parent_path().empty() ? fs::path(".") : out.parent_path();
+  std::vector<std::string> removed;
+  std::error_code ec;
+  for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.compare(0, prefix.size(), prefix) != 0) continue;
+    const std::string rest = name.substr(prefix.size());  // "PID-N"
+    const std::size_t dash = rest.find('-');
+    if (dash == 0 || dash == std::string::npos || dash > 9 || dash + 1 == rest.size() ||
+        !std::all_of(rest.begin(), rest.end(), [](char c) { return (c >= '0' && c <= '9') || c == '-'; }) ||
+        rest.find('-', dash + 1) != std::string::npos)
+      continue;
+    const pid_t pid = static_cast<pid_t>(std::stol(rest.substr(0, dash)));
+    // Alive (or not ours to signal): keep it. Only "no such process" means it is gone.
+    if (pid <= 0 || pid == ::getpid() || ::kill(pid, 0) == 0 || errno != ESRCH) continue;
+    std::error_code rec;
+    // A partial folder bag may hold read-only folders (copied permissions, an interrupted
+    // chmod): make them writable for their owner first, so that everything can go.
+    if (it->is_directory(rec) && !it->is_symlink(rec)) {
+      for (fs::recursive_directory_iterator d(it->path(), rec), dend; !rec && d != dend; d.increment(rec))
+        if (d->is_directory(rec) && !d->is_symlink(rec))
+          fs::permissions(d->path(), fs::perms::owner_all, fs::perm_options::add, rec);
+      fs::permissions(it->path(), fs::perms::owner_all, fs::perm_options::add, rec);
+      rec.clear();
+    }
+    fs::remove_all(it->path(), rec);
+    if (rec) continue;
+    removed.push_back("removed " + it->path().string() + ", the partial output of a pack that "
+                      "did not finish (process " + std::to_string(pid) + " no longer runs)");
+  }
+  return removed;
+}
+
 void checkOutput(const fs::path& out) {
   const BagFormat format = bagFormatFor(out);
   if (format == BagFormat::Directory && fs::exists(out) &&
@@ -624,10 +673,17 @@ BagResult writeBag(const BagInput& input, const fs::path& out) {
     checkLabel(label);
     info += infoLine(label, value);
   }
+  for (const auto& [label, value] : input.ownInfo) {
+    if (const std::string problem = labelFormProblem(label); !problem.empty())
+      throw Error(ErrorKind::Internal, label, "packing", problem);
+    info += infoLine(label, value);
+  }
   const std::string bagit = "BagIt-Version: 1.0\nTag-File-Character-Encoding: UTF-8\n";
 
-  // The output, under a temporary name until complete.
+  // The output, under a temporary name until complete; first the partial outputs of packs to
+  // the same name that were killed.
   checkOutput(out);
+  std::vector<std::string> removedLeftovers = removeStaleParts(out);
   AtomicFile target(out);
   std::optional<UtcZone> zone;
   if (format == BagFormat::Zip) zone.emplace();
@@ -654,6 +710,7 @@ BagResult writeBag(const BagInput& input, const fs::path& out) {
   BagResult result;
   result.path = out;
   result.format = format;
+  result.removedLeftovers = std::move(removedLeftovers);
   result.payloadBytes = total;
   result.payloadFiles = sources.size();
   std::vector<unsigned char> buffers[2] = {std::vector<unsigned char>(kBufferSize),

@@ -19,7 +19,8 @@
 // 2000-01-01T00:00:00Z), so the same inputs give a byte-identical .tar or .zip. In an archive,
 // every entry sits under one top-level folder named after the archive ("pkg.tar" -> "pkg/"), as
 // RFC 8493 section 4 asks. The output is written under a temporary name and renamed when
-// complete: a partial bag never appears under the final name.
+// complete: a partial bag never appears under the final name, and the partial output of a pack
+// that was killed is removed by the next pack to the same name (removeStaleParts).
 //
 //   BagInput in;
 //   in.payload = {{"data/original-captures/IMG_1.dng", "/cap/original-captures/IMG_1.dng"}};
@@ -65,8 +66,11 @@ struct TagFile {
 struct BagInput {
   std::vector<PayloadSource> payload;
   // bag-info.txt labels after the computed ones, in the given order. Labels Surrogate computes
-  // (Payload-Oxum, Bagging-Date, Bag-Size, Bag-Software-Agent) may not be given here.
+  // or writes itself (bagInfoLabelProblem) may not be given here.
   std::vector<std::pair<std::string, std::string>> info;
+  // The packer's own labels (Surrogate-Package-Identifier, Surrogate-Packaging-Time), written
+  // after `info`; only their form is checked.
+  std::vector<std::pair<std::string, std::string>> ownInfo;
   std::string softwareAgent = "Surrogate";
   // Seconds since 1970 for every entry's time and for Bagging-Date. Default: SOURCE_DATE_EPOCH
   // when set, else kDefaultEpoch (see sourceDateEpoch()).
@@ -86,6 +90,9 @@ struct BagResult {
   std::vector<PayloadDigest> payload;  // sorted by bagPath
   std::vector<std::string> tagFiles;   // bag paths of every tag file, sorted
   double seconds = 0;
+  // Partial outputs of earlier packs to the same name whose process no longer runs (killed),
+  // removed before writing: one sentence each, naming the file and the process.
+  std::vector<std::string> removedLeftovers;
 };
 
 // 2000-01-01T00:00:00Z: the entries' time when SOURCE_DATE_EPOCH is not set. A fixed instant
@@ -115,9 +122,16 @@ class PayloadChanged : public std::runtime_error {
 
 // Why `label` cannot be one of the caller's bag-info.txt labels (BagInput::info), or "" when
 // it can: Surrogate computes Payload-Oxum, Bagging-Date, Bag-Size and Bag-Software-Agent
-// itself, and a label has no spaces, colons or control characters (RFC 8493 2.2.2). writeBag
-// refuses such a label; the command line checks --meta keys with this same rule, before any work.
+// itself and writes Surrogate-Package-Identifier and Surrogate-Packaging-Time (any case), and
+// a label has no spaces, colons or control characters (RFC 8493 2.2.2). writeBag refuses such
+// a label; the command line checks --meta keys with this same rule, before any work.
 std::string bagInfoLabelProblem(const std::string& label);
+
+// Leftovers of writes to `out` that never finished (".NAME.part-PID-N" beside it, from
+// AtomicFile) whose process PID no longer runs on this machine: removed, one sentence each
+// in the result. A leftover of a process that still runs (another pack writing now) is kept.
+// writeBag calls this before writing.
+std::vector<std::string> removeStaleParts(const std::filesystem::path& out);
 
 // Checks, before any work, that `out` can be the bag's name: its folder exists, and it is not
 // an existing non-empty folder (directory bags) or a folder (archives). Throws Error(Usage).

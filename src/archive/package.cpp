@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <map>
 #include <set>
+#include <unordered_map>
+#include <unordered_set>
 
 #include "archive/digest.h"
 #include "capture/capture.h"
@@ -62,20 +64,66 @@ std::vector<std::string> captureFiles(const fs::path& capture) {
 }
 
 
+// The carrier's files by path (Carrier::findFileByPath searches the whole list, which made
+// every per-file lookup over a capture of many files quadratic). The first record of a path
+// wins, as with findFileByPath.
+std::unordered_map<std::string, const carrier::FileRecord*> filesByPath(const carrier::Carrier& c) {
+  std::unordered_map<std::string, const carrier::FileRecord*> out;
+  out.reserve(c.files.size());
+  for (const carrier::FileRecord& f : c.files) out.emplace(f.path, &f);
+  return out;
+}
+
+// capturePayload with the carrier already read.
+std::vector<PayloadSource> payloadOf(const fs::path& capture, const carrier::Carrier& c) {
+  const auto byPath = filesByPath(c);
+  std::vector<std::string> unrecorded;
+  std::vector<PayloadSource> out;
+  std::unordered_set<std::string> bagged;
+  for (const std::string& rel : captureFiles(capture)) {
+    const auto it = byPath.find(rel);
+    const carrier::FileRecord* f = it == byPath.end() ? nullptr : it->second;
+    if (!f && rel != kReportPath && rel != kCarrierPath) {
+      unrecorded.push_back(rel);
+      continue;
+    }
+    out.push_back(PayloadSource{"data/" + rel, capture / fs::u8path(rel), f ? f->sha256 : ""});
+    bagged.insert(rel);
+  }
+  if (!unrecorded.empty()) {
+    std::string list;
+    for (std::size_t i = 0; i < unrecorded.size() && i < 10; ++i) list += (i ? ", " : "") + unrecorded[i];
+    if (unrecorded.size() > 10) list += " and " + std::to_string(unrecorded.size() - 10) + " more";
+    throw Error(ErrorKind::Input, capture.string(), "packing",
+                std::to_string(unrecorded.size()) + " file(s) of the capture are not described by its "
+                "carrier, and a package holds only what the carrier describes: " + list +
+                ". Files in assembly-files/ and finished-files/ that Surrogate did not write: move "
+                "them out of the capture. New inputs: run `surrogate run` first to record them");
+  }
+  // A recorded file that is missing is refused by the bag writer, naming it.
+  for (const carrier::FileRecord& f : c.files)
+    if (bagged.insert(f.path).second)
+      out.push_back(PayloadSource{"data/" + f.path, capture / fs::u8path(f.path), f.sha256});
+  std::sort(out.begin(), out.end(), [](const PayloadSource& x, const PayloadSource& y) { return x.bagPath < y.bagPath; });
+  return out;
+}
+
 }  // namespace
 
 CarrierState checkCarrier(const fs::path& capture) {
   const fs::path file = capture / kCarrierPath;
-  if (!fs::exists(file)) return {false, "the capture has not been processed (no " + std::string(kCarrierPath) + ")"};
+  if (!fs::exists(file)) return {false, "the capture has not been processed (no " + std::string(kCarrierPath) + ")", "", "", {}};
   carrier::Carrier c;
   try {
     c = carrier::loadCarrier(file);
   } catch (const Error& e) {
-    return {false, "the carrier cannot be read (" + e.message() + ")"};
+    return {false, "the carrier cannot be read (" + e.message() + ")", "", "", {}};
   }
+  const auto byPath = filesByPath(c);
+  const std::vector<std::string> files = captureFiles(capture);
   CarrierState state;
-  for (const std::string& rel : captureFiles(capture))
-    if (isOutputPath(rel) && rel != kReportPath && rel != kCarrierPath && !c.findFileByPath(rel))
+  for (const std::string& rel : files)
+    if (isOutputPath(rel) && rel != kReportPath && rel != kCarrierPath && !byPath.count(rel))
       state.unrecordedOutputs.push_back(rel);
   auto incomplete = [&](const std::string& why) {
     if (state.reason.empty()) state.reason = why;
@@ -99,41 +147,38 @@ CarrierState checkCarrier(const fs::path& capture) {
     if (!r) incomplete("step " + s.id + " (" + s.component + ") never ran");
     else if (r->status != "completed") incomplete("step " + s.id + " (" + s.component + ") failed");
   }
-  for (const std::string& rel : captureFiles(capture))
-    if (!isOutputPath(rel) && !c.findFileByPath(rel))
+  for (const std::string& rel : files)
+    if (!isOutputPath(rel) && !byPath.count(rel))
       incomplete(rel + " is in the capture but not in its carrier");
   state.complete = state.reason.empty();
   return state;
 }
 
 std::vector<PayloadSource> capturePayload(const fs::path& capture) {
-  const carrier::Carrier c = carrier::loadCarrier(capture / kCarrierPath);
-  std::vector<std::string> unrecorded;
-  std::vector<PayloadSource> out;
-  for (const std::string& rel : captureFiles(capture)) {
-    const carrier::FileRecord* f = c.findFileByPath(rel);
-    if (!f && rel != kReportPath && rel != kCarrierPath) {
-      unrecorded.push_back(rel);
-      continue;
-    }
-    out.push_back(PayloadSource{"data/" + rel, capture / fs::u8path(rel), f ? f->sha256 : ""});
+  return payloadOf(capture, carrier::loadCarrier(capture / kCarrierPath));
+}
+
+PackageInfo packageInfo(const carrier::Carrier& c, const std::string& packageId,
+                        const std::string& packagingTime) {
+  PackageInfo info;
+  bool hasDescription = false;
+  for (const auto& [key, value] : c.header.meta) {
+    info.user.emplace_back(key, value);
+    if (key == "External-Description") hasDescription = true;
   }
-  if (!unrecorded.empty()) {
-    std::string list;
-    for (std::size_t i = 0; i < unrecorded.size() && i < 10; ++i) list += (i ? ", " : "") + unrecorded[i];
-    if (unrecorded.size() > 10) list += " and " + std::to_string(unrecorded.size() - 10) + " more";
-    throw Error(ErrorKind::Input, capture.string(), "packing",
-                std::to_string(unrecorded.size()) + " file(s) of the capture are not described by its "
-                "carrier, and a package holds only what the carrier describes: " + list +
-                ". Files in assembly-files/ and finished-files/ that Surrogate did not write: move "
-                "them out of the capture. New inputs: run `surrogate run` first to record them");
-  }
-  // A recorded file that is missing is refused by the bag writer, naming it.
-  for (const carrier::FileRecord& f : c.files)
-    if (!std::binary_search(out.begin(), out.end(), PayloadSource{"data/" + f.path, {}, {}},
-                            [](const PayloadSource& x, const PayloadSource& y) { return x.bagPath < y.bagPath; }))
-      out.push_back(PayloadSource{"data/" + f.path, capture / fs::u8path(f.path), f.sha256});
-  std::sort(out.begin(), out.end(), [](const PayloadSource& x, const PayloadSource& y) { return x.bagPath < y.bagPath; });
+  if (!hasDescription)
+    info.user.emplace_back("External-Description", "Highlight-RTI capture: " + c.header.title);
+  info.own.emplace_back("Surrogate-Package-Identifier", packageId);
+  info.own.emplace_back("Surrogate-Packaging-Time", packagingTime);
+  return info;
+}
+
+std::string packageIdentifier(const std::string& carrierSha256) { return "urn:sha256:" + carrierSha256; }
+
+std::vector<std::string> packageMetadataFiles() {
+  std::vector<std::string> out = {"metadata/crm.rdf", "metadata/mets.xml"};
+  for (const std::string& rel : mapping::packagedResources()) out.push_back("metadata/" + rel);
+  std::sort(out.begin(), out.end());
   return out;
 }
 
@@ -143,7 +188,7 @@ PackResult packCapture(const fs::path& capture, const fs::path& out, const PackO
   const carrier::Carrier c = carrier::parseCarrier(carrierXml, carrierFile.string());
 
   PackResult result;
-  result.packageId = "urn:sha256:" + sha256Hex(carrierXml);
+  result.packageId = packageIdentifier(sha256Hex(carrierXml));
   const std::int64_t packedAt = packagingEpoch();
   result.packagingTime = utcDateTime(packedAt);
   const std::string agent = std::string("Surrogate ") + surrogateVersion();
@@ -157,24 +202,19 @@ PackResult packCapture(const fs::path& capture, const fs::path& out, const PackO
     resources.push_back({"metadata/" + rel, readFile(resourcePath(rel), "packing")});
 
   BagInput in;
-  in.payload = capturePayload(capture);
+  in.payload = payloadOf(capture, c);
   in.softwareAgent = agent;
   in.baggingDate = utcDate(packedAt);
-  bool hasDescription = false;
-  for (const auto& [key, value] : c.header.meta) {
-    in.info.emplace_back(key, value);
-    if (key == "External-Description") hasDescription = true;
-  }
-  if (!hasDescription)
-    in.info.emplace_back("External-Description", "Highlight-RTI capture: " + c.header.title);
-  in.info.emplace_back("Surrogate-Package-Identifier", result.packageId);
-  in.info.emplace_back("Surrogate-Packaging-Time", result.packagingTime);
+  PackageInfo info = packageInfo(c, result.packageId, result.packagingTime);
+  in.info = std::move(info.user);
+  in.ownInfo = std::move(info.own);
   in.progress = options.progress;
   in.tagFiles = [&](const std::vector<PayloadDigest>& payload) {
     mapping::PackageFacts facts;
     facts.packageId = result.packageId;
     facts.packagingTime = result.packagingTime;
     facts.softwareAgent = agent;
+    facts.payload.reserve(payload.size());
     for (const PayloadDigest& d : payload)
       facts.payload.push_back({d.bagPath, d.size, d.sha256, d.sha512});
     const std::string mets = mapping::deriveMets(carrierXml, facts, carrierFile.string());

@@ -3,7 +3,7 @@
 // files carry the standard metadata derived from the carrier (metadata/crm.rdf, mets.xml) and
 // the stylesheets, schemas and mapping tables that derive and explain it.
 //
-//   Bag layout (DESIGN.md):
+//   Bag layout (docs/package.md, "What is in the bag"):
 //     data/original-captures/...   data/jpeg-exports/...   data/<name>.lp
 //     data/assembly-files/carrier.xml, lights.lp, overlays
 //     data/finished-files/...      (.ptm, .rti, normals, previews, report.html, ...)
@@ -22,6 +22,10 @@
 #include <vector>
 
 #include "archive/bag.h"
+
+namespace surrogate::carrier {
+struct Carrier;
+}
 
 namespace surrogate::archive {
 
@@ -52,6 +56,26 @@ CarrierState checkCarrier(const std::filesystem::path& capture);
 // and finished-files/report.html when present. Throws Error(Input) listing any other file of
 // the capture (see CarrierState): nothing is bagged that the carrier does not describe.
 std::vector<PayloadSource> capturePayload(const std::filesystem::path& capture);
+
+// The bag-info.txt labels of a package of carrier `c`, after the ones writeBag computes
+// (Bag-Software-Agent, Bagging-Date, Bag-Size, Payload-Oxum): `user`, the carrier's header
+// metadata in its order, then External-Description (the carrier's, else "Highlight-RTI
+// capture: <title>"); `own`, Surrogate-Package-Identifier (packageId) and
+// Surrogate-Packaging-Time. packCapture writes them; the verifier compares a bag's bag-info.txt
+// with them, so that a label edited or added after packing is found.
+struct PackageInfo {
+  std::vector<std::pair<std::string, std::string>> user, own;
+};
+PackageInfo packageInfo(const carrier::Carrier& c, const std::string& packageId,
+                        const std::string& packagingTime);
+
+// "urn:sha256:<SHA-256 of the carrier's bytes, lower-case hex>": the package identifier.
+std::string packageIdentifier(const std::string& carrierSha256);
+
+// The tag files packCapture writes besides bagit.txt, bag-info.txt, the manifests and the tag
+// manifests: metadata/crm.rdf, metadata/mets.xml and metadata/<resource> for each of
+// mapping::packagedResources() (stylesheets, schemas, mapping tables), sorted.
+std::vector<std::string> packageMetadataFiles();
 
 struct PackOptions {
   std::function<void(std::uint64_t, std::uint64_t)> progress;  // payload bytes done, in all

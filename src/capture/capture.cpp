@@ -1,8 +1,10 @@
 #include "capture/capture.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <map>
 #include <mutex>
+#include <system_error>
 
 #include "core/error.h"
 #include "core/parallel.h"
@@ -26,16 +28,76 @@ void refuseSymlink(const fs::path& p, const fs::path& root) {
                   "copy of the file (cp -L), then run again");
 }
 
+std::string relativeTo(const fs::path& p, const fs::path& root) {
+  return p.lexically_relative(root).generic_string();
+}
+
+// A name as a message can show it: bytes that are not UTF-8 text, and control characters, as
+// \xNN.
+std::string escapedName(const std::string& name) {
+  std::string out;
+  std::size_t i = 0;
+  while (i < name.size()) {
+    const unsigned char c = static_cast<unsigned char>(name[i]);
+    // The length of a well-formed UTF-8 sequence starting here, or 0.
+    std::size_t n = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xE ? 3 : (c >> 3) == 0x1E ? 4 : 0;
+    if (n > 1 && (i + n > name.size() || !isValidUtf8(name.substr(i, n)))) n = 0;
+    if (n == 0 || (n == 1 && (c < 0x20 || c == 0x7F))) {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "\\x%02X", c);
+      out += hex;
+      ++i;
+    } else {
+      out += name.substr(i, n);
+      i += n;
+    }
+  }
+  return out;
+}
+
+// Names go into the carrier (XML, UTF-8), the bag's manifests and METS: a name that is not
+// UTF-8 text, or holds a control character, cannot be recorded as it is.
+void refuseUnrecordableName(const fs::path& p, const fs::path& root) {
+  const std::string name = p.filename().string();
+  const bool utf8 = isValidUtf8(name);
+  const bool control = std::any_of(name.begin(), name.end(), [](char ch) {
+    const unsigned char c = static_cast<unsigned char>(ch);
+    return c < 0x20 || c == 0x7F;
+  });
+  if (utf8 && !control) return;
+  throwInputError(escapedName(relativeTo(p, root)), kStep,
+                  std::string("the name ") +
+                      (utf8 ? "contains a control character (shown as \\xNN)"
+                            : "is not UTF-8 text (the bytes that are not are shown as \\xNN; it was "
+                              "probably written in another encoding, such as Latin-1)") +
+                      ": the carrier and the package record every name as UTF-8 text, so this one "
+                      "cannot be recorded as it is; rename it (letters, digits, '-' and '_' are safe "
+                      "everywhere), then run again");
+}
+
 // The entries of a folder, sorted: the carrier lists files in a fixed order.
-std::vector<fs::path> sortedEntries(const fs::path& dir) {
+std::vector<fs::path> sortedEntries(const fs::path& dir, const fs::path& root) {
   std::vector<fs::path> entries;
-  for (const auto& entry : fs::directory_iterator(dir)) entries.push_back(entry.path());
+  std::error_code ec;
+  fs::directory_iterator it(dir, ec), end;
+  for (; !ec && it != end; it.increment(ec)) entries.push_back(it->path());
+  if (ec)
+    throwInputError(escapedName(dir == root ? dir.string() : relativeTo(dir, root)), kStep,
+                    "cannot be read (" + ec.message() + "); check that the folder exists and that "
+                    "you may read it");
   std::sort(entries.begin(), entries.end());
   return entries;
 }
 
-std::string relativeTo(const fs::path& p, const fs::path& root) {
-  return p.lexically_relative(root).generic_string();
+// A capture folder that must be a real folder (original-captures/, raw-images/,
+// jpeg-exports/): refused when it is a symbolic link (even one that loops); true when it is a
+// folder, false when absent or another kind of file.
+bool isCaptureFolder(const fs::path& p, const fs::path& root) {
+  std::error_code ec;
+  const fs::file_status st = fs::symlink_status(p, ec);
+  if (ec || !fs::exists(st)) return false;
+  refuseSymlink(p, root);
+  return fs::is_directory(st);
 }
 
 void collectOthers(const fs::path& dir, CaptureLayout& layout);
@@ -45,23 +107,27 @@ void collectOthers(const fs::path& dir, CaptureLayout& layout);
 // handled here; regular files are left to the caller.
 bool handleNonRegular(const fs::path& p, CaptureLayout& layout) {
   const std::string rel = relativeTo(p, layout.root);
+  refuseUnrecordableName(p, layout.root);
   refuseSymlink(p, layout.root);
   if (isSystemFile(p.filename().string())) {
     layout.systemFiles.push_back(rel);
     return true;
   }
-  if (fs::is_directory(p)) {
+  std::error_code ec;
+  const fs::file_status st = fs::status(p, ec);
+  if (ec) throwInputError(rel, kStep, "cannot be read (" + ec.message() + "); check your permissions");
+  if (fs::is_directory(st)) {
     collectOthers(p, layout);
     return true;
   }
-  if (!fs::is_regular_file(p))
+  if (!fs::is_regular_file(st))
     throwInputError(rel, kStep, "is not a regular file (a device, pipe or socket); remove it from the capture");
   return false;
 }
 
 // Every file under `dir` (recursively) as "other" files of the capture.
 void collectOthers(const fs::path& dir, CaptureLayout& layout) {
-  for (const fs::path& p : sortedEntries(dir))
+  for (const fs::path& p : sortedEntries(dir, layout.root))
     if (!handleNonRegular(p, layout)) layout.others.push_back(relativeTo(p, layout.root));
 }
 
@@ -92,7 +158,7 @@ struct FolderScan {
 FolderScan scanFolder(const fs::path& dir, CaptureLayout& layout) {
   FolderScan scan;
   std::map<std::string, fs::path> byStem;
-  for (const fs::path& p : sortedEntries(dir)) {
+  for (const fs::path& p : sortedEntries(dir, layout.root)) {
     if (handleNonRegular(p, layout)) continue;
     const std::string rel = relativeTo(p, layout.root);
     if (lowerCase(p.extension().string()) == ".xmp") {
@@ -213,14 +279,30 @@ std::optional<std::string> findShotStem(const CaptureLayout& layout, const std::
 }
 
 CaptureLayout scanCapture(const fs::path& root, int threads, const std::string& domeLp) {
-  if (!fs::exists(root)) throwInputError(root.string(), kStep, "the capture folder does not exist");
-  if (!fs::is_directory(root))
-    throwInputError(root.string(), kStep, "is not a folder; give the capture folder");
+  std::error_code ec;
+  const fs::file_status rootStatus = fs::status(root, ec);
+  if (ec && ec != std::errc::no_such_file_or_directory) {
+    throwInputError(escapedName(root.string()), kStep,
+                    ec == std::errc::too_many_symbolic_link_levels
+                        ? "is a loop of symbolic links, not a folder; give the capture folder itself"
+                        : "cannot be read (" + ec.message() + "); check the path and your permissions");
+  }
+  if (!fs::exists(rootStatus)) throwInputError(escapedName(root.string()), kStep, "the capture folder does not exist");
+  if (!fs::is_directory(rootStatus))
+    throwInputError(escapedName(root.string()), kStep, "is not a folder; give the capture folder");
   CaptureLayout layout;
   layout.root = fs::absolute(root).lexically_normal();
+  // The capture folder's own name titles the project unless --title says otherwise, and is
+  // shown in every record and message: UTF-8 text like every name in it.
+  if (const std::string name = layout.root.filename().string(); !isValidUtf8(name))
+    throwInputError(escapedName(root.string()), kStep,
+                    "the capture folder's name is not UTF-8 text (the bytes that are not are shown as "
+                    "\\xNN; it was probably written in another encoding, such as Latin-1): the carrier "
+                    "records the project's title, by default this name, as UTF-8 text; rename the "
+                    "folder, then run again");
 
   for (const char* candidate : {"original-captures", "raw-images"}) {
-    if (fs::is_directory(layout.root / candidate)) {
+    if (isCaptureFolder(layout.root / candidate, layout.root)) {
       if (!layout.originalsDir.empty()) {
         throwInputError(root.string(), kStep,
                         "has both original-captures/ and raw-images/; keep the originals in one "
@@ -229,9 +311,7 @@ CaptureLayout scanCapture(const fs::path& root, int threads, const std::string& 
       layout.originalsDir = candidate;
     }
   }
-  if (!layout.originalsDir.empty()) refuseSymlink(layout.root / layout.originalsDir, layout.root);
-  if (fs::exists(fs::symlink_status(layout.root / kExportsDir))) refuseSymlink(layout.root / kExportsDir, layout.root);
-  const bool exportsDir = fs::is_directory(layout.root / kExportsDir);
+  const bool exportsDir = isCaptureFolder(layout.root / kExportsDir, layout.root);
   if (layout.originalsDir.empty() && !exportsDir) {
     throwInputError(root.string(), kStep,
                     "has no original-captures/ (or raw-images/) and no jpeg-exports/ folder; put "
@@ -270,7 +350,7 @@ CaptureLayout scanCapture(const fs::path& root, int threads, const std::string& 
 
   // Everything else at the top of the capture: files (and folders) that are not Surrogate's
   // output folders or its working area are recorded as "other" files.
-  for (const fs::path& p : sortedEntries(layout.root)) {
+  for (const fs::path& p : sortedEntries(layout.root, layout.root)) {
     const std::string name = p.filename().string();
     if (name == layout.originalsDir || name == kExportsDir || name == kAssemblyDir ||
         name == kFinishedDir || name == kWorkDir || name == kSupersededDir)

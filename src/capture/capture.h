@@ -80,8 +80,10 @@ struct CaptureLayout {
 // Scans and checks a capture folder; `threads` bounds the parallel header reads. `domeLp`, when
 // not empty, is the capture-relative path of the .lp file that gives the lights (dome capture,
 // `--lp`): it must be a regular file inside the capture and name only its images. Symbolic
-// links anywhere in the capture's input folders are refused: the record holds a file's bytes,
-// and a link's target can change or lie outside the capture.
+// links anywhere in the capture's input folders are refused (loops too): the record holds a
+// file's bytes, and a link's target can change or lie outside the capture. A file or folder
+// name that is not UTF-8 text, or holds a control character, is refused, shown with its odd
+// bytes as \xNN: the carrier and the package record names as UTF-8 text.
 CaptureLayout scanCapture(const std::filesystem::path& root, int threads,
                           const std::string& domeLp = "");
 

@@ -40,17 +40,22 @@ std::string readHolder(int fd) {
 }  // namespace
 
 CaptureLock::CaptureLock(const fs::path& capture, const std::string& command) {
-  // Nothing is written into a folder that is not a capture (not even the lock).
-  if (!fs::is_directory(capture))
-    throwInputError(capture.string(), "lock", fs::exists(capture) ? "is not a folder; give the capture folder"
-                                                                   : "the capture folder does not exist");
-  if (!fs::is_directory(capture / "original-captures") && !fs::is_directory(capture / "raw-images") &&
-      !fs::is_directory(capture / kExportsDir))
+  // Nothing is written into a folder that is not a capture (not even the lock). Error codes,
+  // not exceptions: a loop of symbolic links is the user's folder, not a bug.
+  std::error_code ec;
+  const fs::file_status st = fs::status(capture, ec);
+  if (!fs::is_directory(st))
+    throwInputError(capture.string(), "lock",
+                    ec == std::errc::too_many_symbolic_link_levels
+                        ? "is a loop of symbolic links, not a folder; give the capture folder itself"
+                    : fs::exists(st) ? "is not a folder; give the capture folder"
+                                     : "the capture folder does not exist");
+  auto folder = [&](const char* name) { return fs::is_directory(capture / name, ec); };
+  if (!folder("original-captures") && !folder("raw-images") && !folder(kExportsDir))
     throwInputError(capture.string(), "lock",
                     "has no original-captures/ (or raw-images/) and no jpeg-exports/ folder; put "
                     "the camera files in original-captures/");
   const fs::path dir = capture / kWorkDir;
-  std::error_code ec;
   fs::create_directories(dir, ec);
   const fs::path file = dir / "lock";
   fd_ = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);

@@ -5,6 +5,7 @@
 
 #include "cli/args.h"
 #include "cli/commands.h"
+#include "cli/option_checks.h"
 #include "cli/progress.h"
 #include "core/error.h"
 #include "core/json.h"
@@ -57,7 +58,9 @@ int runCommandFit(int argc, char** argv) {
     throw Error(ErrorKind::Usage, "", "command line", "give the light file and the output: --lp FILE.lp -o OUT.ptm");
   const std::string ext = lowerCase(fs::path(*out).extension().string());
   if (ext != ".ptm" && ext != ".rti")
-    throw Error(ErrorKind::Usage, *out, "command line", "the output must end in .ptm or .rti");
+    throw Error(ErrorKind::Usage, "-o " + *out, "command line", "the output must end in .ptm or .rti");
+  checkOutputFile("-o", *out, ext == ".ptm" ? "model.ptm" : "model.rti");
+  const int threads = threadsOption(args);
   const fit::Basis basis = fit::parseBasis(args.value("basis", ext == ".ptm" ? "ptm-lrgb" : "hsh2"));
   const bool ptm = basis == fit::Basis::PtmLrgb || basis == fit::Basis::PtmRgb;
   if (ptm != (ext == ".ptm"))
@@ -72,7 +75,7 @@ int runCommandFit(int argc, char** argv) {
   }
   ProgressBar bar(args.has("quiet") || args.has("json"));
   pipeline::RunSettings run;
-  run.threads = args.intValue("threads", 0);
+  run.threads = threads;
   if (const auto m = args.value("memory")) run.memoryBudget = parseByteSize(*m, "--memory");
   run.progress = [&bar](const std::string& label, double f) { bar.update(label, f); };
   const stages::DecodedStacks decoded = stages::decodeImages(files, image::RawDecodeSettings(), run);

@@ -2,6 +2,7 @@
 #include <filesystem>
 #include <iostream>
 #include <sstream>
+#include <system_error>
 
 #include "capture/capture.h"
 #include "carrier/carrier.h"
@@ -195,10 +196,15 @@ int runCommandInfo(int argc, char** argv) {
     throw Error(ErrorKind::Usage, "", "command line", "give one file or folder: surrogate info FILE");
   const fs::path path = args.positional()[0];
   const bool json = args.has("json");
-  if (!fs::exists(path)) throwInputError(path.string(), "info", "does not exist");
+  // Error codes, not exceptions: a loop of symbolic links is the user's path, not a bug.
+  std::error_code ec;
+  const fs::file_status st = fs::status(path, ec);
+  if (ec == std::errc::too_many_symbolic_link_levels)
+    throwInputError(path.string(), "info", "is a loop of symbolic links; give the file or folder itself");
+  if (!fs::exists(st)) throwInputError(path.string(), "info", "does not exist");
   const std::string ext = lowerCase(path.extension().string());
-  if (fs::is_directory(path)) {
-    if (fs::exists(path / capture::kAssemblyDir / "carrier.xml") && !json) {
+  if (fs::is_directory(st)) {
+    if (fs::exists(path / capture::kAssemblyDir / "carrier.xml", ec) && !json) {
       printCapture(path, false);
       printCarrier(path / capture::kAssemblyDir / "carrier.xml", false);  // JSON: nested by printCapture
     } else {

@@ -7,6 +7,7 @@
 #include "capture/lock.h"
 #include "cli/args.h"
 #include "cli/commands.h"
+#include "cli/option_checks.h"
 #include "cli/pipeline_options.h"
 #include "cli/progress.h"
 #include "core/error.h"
@@ -37,6 +38,7 @@ int runCommandLights(int argc, char** argv) {
     throw Error(ErrorKind::Usage, "", "command line", "give the capture and the output: surrogate lights CAPTURE -o FILE.lp");
   const fs::path capture = args.positional()[0];
   capture::refuseOutputInside(capture, *out, "-o");
+  checkOutputFile("-o", *out, "lights.lp");  // before the run, not after it
   stages::RunRequest request = requestFrom(args);
   request.lightsOnly = true;
   request.command = "lights";

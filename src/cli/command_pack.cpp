@@ -1,10 +1,12 @@
 // surrogate pack CAPTURE -o OUT [options]
+#include <cctype>
 #include <iostream>
 
 #include "archive/package.h"
 #include "capture/capture.h"
 #include "capture/lock.h"
 #include "carrier/carrier.h"
+#include "pipeline/stage.h"
 #include "stages/run_commit.h"
 #include "cli/args.h"
 #include "cli/commands.h"
@@ -28,6 +30,20 @@ void runPipeline(const std::string& capture, const Args& args, ProgressBar& bar)
   settings.progress = [&bar](const std::string& label, double f) { bar.update(label, f); };
   stages::runCapture(capture, request, settings, /*takeLock=*/false);
   if (!args.has("no-report")) report::writeCaptureReport(capture);
+}
+
+// A step the carrier records with another version than this build's stage (the verifier
+// would find the package invalid): the capture is processed again with its recorded decisions.
+std::string outdatedStep(const std::string& capture) {
+  stages::registerBuiltinStages();
+  const carrier::Carrier c = carrier::loadCarrier(std::filesystem::path(capture) / "assembly-files/carrier.xml");
+  for (const carrier::Step& s : c.process) {
+    const std::string now = pipeline::StageRegistry::instance().create(s.component)->version();
+    if (now != s.version)
+      return "step " + s.id + " (" + s.component + ") was recorded by version " + s.version +
+             " of the stage; this Surrogate has version " + now;
+  }
+  return "";
 }
 
 // Whether the command line gives a decision (an option `surrogate run` records).
@@ -95,8 +111,9 @@ int runCommandPack(int argc, char** argv) {
   std::string why;
   const archive::CarrierState state = archive::checkCarrier(capture);
   if (!state.inputProblem.empty()) refuseChangedInput(capture, state.inputProblem, state.inputPath);
-  if (!state.complete || givesDecisions(args)) {
-    why = state.complete ? "new decisions were given" : state.reason;
+  const std::string outdated = state.complete ? outdatedStep(capture) : "";
+  if (!state.complete || !outdated.empty() || givesDecisions(args)) {
+    why = !state.complete ? state.reason : !outdated.empty() ? outdated : "new decisions were given";
     runPipeline(capture, args, bar);
     ran = true;
   }
@@ -153,12 +170,16 @@ int runCommandPack(int argc, char** argv) {
         .key("megabytesPerSecond").value(r.bag.seconds > 0 ? mb / r.bag.seconds : 0.0);
     j.key("tagFiles").beginArray();
     for (const std::string& t : r.bag.tagFiles) j.value(t);
+    j.endArray().key("removedLeftovers").beginArray();
+    for (const std::string& t : r.bag.removedLeftovers) j.value(t);
     j.endArray().endObject();
     std::cout << j.str() << "\n";
   } else {
     if (ran)
       std::cout << "Processed " << capture << " first (" << why << "), with the decisions its "
                 << "carrier records (see `surrogate info " << capture << "`).\n";
+    for (const std::string& removed : r.bag.removedLeftovers)
+      std::cout << char(std::toupper(static_cast<unsigned char>(removed[0]))) << removed.substr(1) << ".\n";
     char rate[64];
     std::snprintf(rate, sizeof rate, "%.1f MB in %.2f s", mb, r.bag.seconds);
     std::cout << "Packed " << capture << " into " << *out << " (BagIt 1.0, "

@@ -1,13 +1,15 @@
-// surrogate render FILE.ptm|FILE.rti --light x,y,z -o OUT.png [--gain g] [--specular]
+// surrogate render FILE.ptm|FILE.rti --light x,y,z -o OUT.png|OUT.jpg|OUT.tif [--gain g]
+// [--specular] [--quality Q]: the output's format is the one its name ends in.
 #include <cmath>
 #include <iostream>
 
 #include "cli/args.h"
 #include "cli/commands.h"
+#include "cli/option_checks.h"
 #include "core/error.h"
 #include "core/json.h"
 #include "fit/render.h"
-#include "image/decode.h"
+#include "image/write_any.h"
 
 namespace surrogate::cli {
 
@@ -15,8 +17,9 @@ int runCommandRender(int argc, char** argv) {
   const std::vector<OptionSpec> specs = {
       {"light", true, false, "light direction x,y,z (x right, y up, z to the camera); |x,y| > 1 "
                              "extrapolates beyond grazing (PTM)", "X,Y,Z"},
-      {"o", true, false, "the PNG to write", "OUT.png"},
-      {"output", true, false, "same as -o", "OUT.png"},
+      {"o", true, false, "the picture to write: .png, .jpg/.jpeg (JPEG) or .tif/.tiff (TIFF)", "OUT"},
+      {"output", true, false, "same as -o", "OUT"},
+      {"quality", true, false, "JPEG quality 1..100 (default 95; JPEG output only)", "Q"},
       {"gain", true, false, "diffuse gain g (PTM; 1 = none; > 1 shows relief more strongly)", "G"},
       {"specular", false, false, "add specular enhancement from the recovered normals"},
       {"threads", true, false, "worker threads (default: all cores)", "N"},
@@ -24,8 +27,10 @@ int runCommandRender(int argc, char** argv) {
   };
   Args args(argc, argv, 1, specs);
   if (args.helpRequested()) {
-    std::cout << usageHeader("surrogate render FILE.ptm|FILE.rti --light x,y,z -o OUT.png [--gain g] [--specular]",
-                             "Relight a PTM or HSH file under any light and save the picture.")
+    std::cout << usageHeader("surrogate render FILE.ptm|FILE.rti --light x,y,z -o OUT.png|OUT.jpg|OUT.tif "
+                             "[--gain g] [--specular]",
+                             "Relight a PTM or HSH file under any light and save the picture, in the "
+                             "format its name ends in.")
               << Args::describe(specs);
     return 0;
   }
@@ -33,25 +38,44 @@ int runCommandRender(int argc, char** argv) {
   if (args.positional().size() != 1 || !out || !args.has("light"))
     throw Error(ErrorKind::Usage, "", "command line",
                 "give the model, the light and the output: surrogate render FILE --light x,y,z -o OUT.png");
+  // The output first: a name whose format is unknown, a folder or a missing folder is refused
+  // before the model is read.
+  const auto format = image::pictureFormatFor(*out);
+  if (!format)
+    throw Error(ErrorKind::Usage, "-o " + *out, "command line",
+                "the picture's format comes from its name: end it in .png (PNG), .jpg or .jpeg "
+                "(JPEG) or .tif or .tiff (TIFF)");
+  checkOutputFile("-o", *out, "relit.png");
+  int quality = 95;
+  if (const auto q = args.value("quality")) {
+    if (*format != image::PictureFormat::Jpeg)
+      throw Error(ErrorKind::Usage, "--quality " + *q, "command line",
+                  "applies to JPEG output only (-o NAME.jpg); " + *out + " is written as " +
+                      image::pictureFormatName(*format));
+    quality = args.intValue("quality", 95);
+    if (quality < 1 || quality > 100)
+      throw Error(ErrorKind::Usage, "--quality " + *q, "command line", "needs a JPEG quality from 1 to 100");
+  }
   const std::vector<double> l = parseNumberList(*args.value("light"), 3, "--light");
   fit::RenderOptions options;
   options.diffuseGain = args.doubleValue("gain", 1.0);
   if (!(options.diffuseGain > 0))
     throw Error(ErrorKind::Usage, "--gain", "command line", "needs a number above 0");
   options.specular = args.has("specular");
-  options.threads = args.intValue("threads", 0);
+  options.threads = threadsOption(args);
   const auto model = fit::openRelightable(args.positional()[0]);
-  image::writePng(model->render({l[0], l[1], l[2]}, options), *out);
+  image::writePicture(model->render({l[0], l[1], l[2]}, options), *out, quality);
   if (args.has("json")) {
     JsonWriter j;
-    j.beginObject().key("output").value(*out).key("basis").value(model->basis())
+    j.beginObject().key("output").value(*out).key("format").value(image::pictureFormatName(*format))
+        .key("basis").value(model->basis())
         .key("width").value(model->width()).key("height").value(model->height()).key("light").beginArray()
         .value(l[0]).value(l[1]).value(l[2]).endArray().endObject();
     std::cout << j.str() << "\n";
     return 0;
   }
-  std::cout << "wrote " << *out << " (" << model->width() << "x" << model->height() << ", "
-            << model->basis() << ")\n";
+  std::cout << "wrote " << *out << " (" << image::pictureFormatName(*format) << ", " << model->width() << "x"
+            << model->height() << ", " << model->basis() << ")\n";
   return 0;
 }
 

@@ -3,6 +3,7 @@
 
 #include "cli/args.h"
 #include "cli/commands.h"
+#include "cli/option_checks.h"
 #include "cli/progress.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -41,6 +42,7 @@ int runCommandReport(int argc, char** argv) {
   if (args.positional().size() != 1 || !out)
     throw Error(ErrorKind::Usage, "", "command line",
                 "give the capture or package and the output: surrogate report CAPTURE -o report.html");
+  checkOutputFile("-o", *out, "report.html");
   report::ReportOptions options;
   options.maxImageSide = args.intValue("max-image-side", options.maxImageSide);
   options.relightMaxSide = args.intValue("relight-side", options.relightMaxSide);

@@ -74,7 +74,7 @@ int runCommandVerify(int argc, char** argv) {
        "also run the recorded steps again on the bagged originals and compare the results"},
       {"tolerance", true, false,
        "relative tolerance for recorded numbers when re-executing (default 0: exactly equal)", "REL"},
-      {"threads", true, false, "threads for re-execution (default: all cores)", "N"},
+      {"threads", true, false, "threads for re-execution, 1 or more (default or 0: all cores)", "N"},
       {"json", false, false, "print the report as JSON"},
       {"quiet", false, false, "no progress bar"},
   };
@@ -83,17 +83,22 @@ int runCommandVerify(int argc, char** argv) {
     std::cout << usageHeader(
                      "surrogate verify PACKAGE [--reexecute] [options]",
                      "Check that an archival package (a bag directory, .tar or .zip) is sound: "
-                     "BagIt fixity and completeness, the carrier against its schema and the "
-                     "files it lists, METS/PREMIS and CIDOC-CRM metadata against what the "
+                     "BagIt fixity and completeness, every file `surrogate pack` writes present "
+                     "(a package cut short is never sound), the bundled stylesheets, schemas "
+                     "and tables identical to this Surrogate's, bag-info.txt against the "
+                     "carrier, the carrier against its schema, the files it lists and the steps "
+                     "this build can run, METS/PREMIS and CIDOC-CRM metadata against what the "
                      "bundled stylesheets derive from the carrier; with --reexecute, the "
                      "recorded steps are run again on the bagged originals in a temporary "
                      "folder ($TMPDIR) and every recorded result is compared. Archives are "
                      "read without extracting; unsafe entries (.., absolute paths, links, "
                      "devices, duplicates, decompression bombs) refuse the package.\n\n"
                      "exit codes: 0 sound; 1 the package cannot be read (missing file); "
-                     "2 invalid or refused package, or bad usage; 3 fixity failure (a file "
-                     "changed, is missing or unlisted, or the archive is truncated); "
-                     "4 re-execution did not reproduce the recorded results; 5 internal error")
+                     "2 invalid or refused package (including steps that cannot run, resources "
+                     "of another version, bag-info.txt that disagrees with the carrier), or bad "
+                     "usage; 3 fixity failure (a file changed, is missing or unlisted, the "
+                     "package is incomplete, or the archive is truncated or has data after its "
+                     "end); 4 re-execution did not reproduce the recorded results; 5 internal error")
               << Args::describe(specs);
     return 0;
   }
@@ -107,6 +112,10 @@ int runCommandVerify(int argc, char** argv) {
     throw Error(ErrorKind::Usage, "--tolerance", "command line",
                 "give a relative tolerance between 0 and 1, e.g. 1e-9");
   options.threads = args.intValue("threads", 0);
+  if (options.threads < 0)
+    throw Error(ErrorKind::Usage, "--threads", "command line",
+                "give a number of threads, 1 or more (0 or none: all cores), not " +
+                    std::to_string(options.threads));
   ProgressBar bar(args.has("quiet") || args.has("json"));
   options.progress = [&bar](const std::string& label, double f) { bar.update(label, f); };
   const verify::Report report = verify::verifyPackage(args.positional()[0], options);

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cstdio>
 #include <string>
+#include <system_error>
 
 #include "archive/bag.h"
 #include "core/error.h"
@@ -135,6 +136,35 @@ void checkPipelineOptionValues(const Args& args) {
   if (const auto d = args.value("sphere-diameter"))
     checkMeasure("sphere-diameter", *d, kMinSphereDiameterMm, kMaxSphereDiameterMm,
                  "the real sphere's diameter in millimetres, e.g. 25");
+}
+
+int threadsOption(const Args& args) {
+  const auto v = args.value("threads");
+  if (!v) return 0;
+  const int n = args.intValue("threads", 0);  // Error(Usage) for anything but a whole number
+  if (n < 0 || n > kMaxThreads)
+    usage("--threads " + *v, "needs a number of worker threads from 1 to " + std::to_string(kMaxThreads) +
+                                 ", or 0 for all cores (the default)");
+  return n;
+}
+
+void checkOutputFile(const std::string& option, const std::filesystem::path& output,
+                     const std::string& example) {
+  namespace fs = std::filesystem;
+  const std::string named = option + " " + output.string();
+  if (output.empty()) usage(option, "needs the name of the file to write");
+  std::error_code ec;
+  if (fs::is_directory(output, ec))
+    usage(named, "is a folder; give the name of the file to write, e.g. " + (output / example).string());
+  if (!output.has_filename())
+    usage(named, "ends in a folder separator; give the name of the file to write");
+  const fs::path parent = output.parent_path().empty() ? fs::path(".") : output.parent_path();
+  const fs::file_status st = fs::status(parent, ec);
+  if (!fs::exists(st))
+    usage(named, "is in the folder " + parent.string() + ", which does not exist; create it first (mkdir -p " +
+                     parent.string() + ") or write elsewhere");
+  if (!fs::is_directory(st))
+    usage(named, "is in " + parent.string() + ", which is not a folder; write elsewhere");
 }
 
 }  // namespace surrogate::cli

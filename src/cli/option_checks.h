@@ -8,11 +8,24 @@
 // the option and the value: "--sphere 339,57,-5: the radius R is -5; it must be above 0 ...".
 #pragma once
 
+#include <filesystem>
+
 #include "cli/args.h"
 
 namespace surrogate::cli {
 
 void checkPipelineOptionValues(const Args& args);
+
+// --threads N: a whole number from 0 (all cores, the default) to kMaxThreads; anything else is
+// Error(Usage) naming the option and the value.
+inline constexpr int kMaxThreads = 1024;
+int threadsOption(const Args& args);
+
+// An output file the user names (`-o OUT`), checked before any work: not an existing folder,
+// in a folder that exists. Error(Usage) naming `option` and the path, saying what to do;
+// `example` is a file name the message suggests ("relit.png").
+void checkOutputFile(const std::string& option, const std::filesystem::path& output,
+                     const std::string& example);
 
 // Lens and sphere measures in millimetres that any real capture falls within.
 inline constexpr double kMinFocalLengthMm = 0.5, kMaxFocalLengthMm = 10000;

@@ -17,7 +17,7 @@ std::vector<OptionSpec> pipelineOptions(bool withFit) {
       {"meta", true, true, "user metadata recorded in the carrier and the bag", "KEY=VALUE"},
       {"operator", true, false, "who runs this (recorded with interventions; default $USER)", "NAME"},
       {"exclude", true, true, "leave an image out (needs --reason after it)", "IMAGE"},
-      {"reason", true, true, "why: follows --exclude, --sphere or --highlight", "TEXT"},
+      {"reason", true, true, "why: follows --exclude, --sphere, --highlight, --accept-... or --forget-...", "TEXT"},
       {"source", true, false, "images to use: auto (raw if present), original, export", "WHICH"},
       {"raw", true, true, "LibRaw setting, e.g. demosaic=AHD, whiteBalance=camera", "NAME=VALUE"},
       {"sphere-roi", true, true, "search a sphere only in this region (one per sphere)", "X,Y,W,H"},
@@ -35,6 +35,8 @@ std::vector<OptionSpec> pipelineOptions(bool withFit) {
       {"forget-highlight", true, true, "withdraw a highlight given by hand (needs --reason)", "IMAGE:SPHERE"},
       {"reset", false, false, "withdraw every recorded processing decision (needs --reason after it)"},
       {"accept-changed", true, true, "accept that a recorded original changed or was removed (needs --reason)", "PATH"},
+      {"accept-damaged", true, true, "decode an image although its decoder reports damaged data (needs --reason)", "IMAGE"},
+      {"forget-damaged", true, true, "withdraw an accepted damaged image (needs --reason)", "IMAGE"},
   };
   if (withFit) {
     specs.push_back({"basis", true, true, "model to fit: ptm-lrgb, ptm-rgb, hsh2, hsh3 (default: ptm-lrgb and hsh2)", "BASIS"});
@@ -162,12 +164,14 @@ stages::RunRequest requestFrom(const Args& args) {
   bool lastIsExclusion = false;
   std::string* lastReason = nullptr;  // of a withdrawal, --reset or --accept-changed
   for (const auto& [name, value] : args.ordered()) {
-    if (name == "forget-exclusion" || name == "forget-sphere" || name == "forget-highlight") {
+    if (name == "forget-exclusion" || name == "forget-sphere" || name == "forget-highlight" ||
+        name == "forget-damaged") {
       std::string target = value;
       if (name == "forget-highlight" && target.find(':') == std::string::npos) target += ":0";
       if (name == "forget-sphere") parseNumberList(value, 1, "--forget-sphere");
       r.withdrawals.push_back({name == "forget-exclusion" ? "exclude-image"
                                : name == "forget-sphere"  ? "manual-sphere"
+                               : name == "forget-damaged" ? "accept-decoder-warning"
                                                           : "manual-highlight",
                                target, ""});
       lastReason = &r.withdrawals.back().reason;
@@ -175,10 +179,13 @@ stages::RunRequest requestFrom(const Args& args) {
       lastIsExclusion = false;
       continue;
     }
-    if (name == "reset" || name == "accept-changed") {
+    if (name == "reset" || name == "accept-changed" || name == "accept-damaged") {
       if (name == "reset") {
         r.resetReason = "";
         lastReason = &*r.resetReason;
+      } else if (name == "accept-damaged") {
+        r.acceptedDamage.push_back({value, ""});
+        lastReason = &r.acceptedDamage.back().reason;
       } else {
         r.acceptedChanges.push_back({value, ""});
         lastReason = &r.acceptedChanges.back().reason;
@@ -228,12 +235,13 @@ stages::RunRequest requestFrom(const Args& args) {
   auto needReason = [](const std::string& what, const std::string& reason) {
     if (reason.empty())
       throw Error(ErrorKind::Usage, what, "command line",
-                  "withdrawing a recorded decision or accepting a changed original needs a "
-                  "reason: add --reason \"why\" after it; it is recorded with who and when");
+                  "withdrawing a recorded decision, or accepting a changed original or a damaged "
+                  "image, needs a reason: add --reason \"why\" after it; it is recorded with who and when");
   };
   for (const stages::Withdrawal& w : r.withdrawals) needReason("--forget " + w.target, w.reason);
   if (r.resetReason) needReason("--reset", *r.resetReason);
   for (const stages::AcceptedChange& a : r.acceptedChanges) needReason("--accept-changed " + a.path, a.reason);
+  for (const stages::AcceptedDamage& a : r.acceptedDamage) needReason("--accept-damaged " + a.image, a.reason);
   for (const stages::Exclusion& e : r.exclusions)
     if (e.reason.empty())
       throw Error(ErrorKind::Usage, "--exclude " + e.image, "command line",
@@ -248,8 +256,7 @@ stages::RunRequest requestFrom(const Args& args) {
 
 pipeline::RunSettings settingsFrom(const Args& args) {
   pipeline::RunSettings s;
-  s.threads = args.intValue("threads", 0);
-  if (s.threads < 0) throw Error(ErrorKind::Usage, "--threads", "command line", "needs a number >= 0");
+  s.threads = threadsOption(args);  // 0 (all cores) to kMaxThreads
   if (const auto m = args.value("memory")) s.memoryBudget = parseByteSize(*m, "--memory");
   s.who = args.value("operator", "");
   return s;

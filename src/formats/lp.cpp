@@ -13,7 +13,7 @@ namespace surrogate::formats {
 namespace {
 const char* const kReadStep = "read light positions";
 const char* const kWriteStep = "write light positions";
-constexpr long long kMaxLights = 1000;  // relight's limit (formats.md section 3)
+constexpr long long kMaxLights = 1000;  // relight's limit (docs/formats.md, ".lp")
 }  // namespace
 
 std::vector<LightEntry> parseLp(const std::string& text, const std::string& name) {
@@ -78,6 +78,11 @@ std::vector<LightEntry> parseLp(const std::string& text, const std::string& name
       if (k) e.filename += ' ';
       e.filename.append(t[k].data(), t[k].size());
     }
+    if (e.filename.size() > kMaxImageNameBytes) {
+      fail("the image name is " + std::to_string(e.filename.size()) + " bytes long (it starts \"" +
+           e.filename.substr(0, 40) + "...\"); a path has at most " + std::to_string(kMaxImageNameBytes) +
+           " bytes: the file is damaged or not a light file");
+    }
     const double norm = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
     if (!(norm >= 1e-4)) {
       fail("the light direction of \"" + e.filename +
@@ -111,6 +116,10 @@ std::string formatLp(const std::vector<LightEntry>& entries, const std::string& 
   std::string out = std::to_string(entries.size()) + "\n";
   for (const LightEntry& e : entries) {
     const std::string& f = e.filename;
+    if (f.size() > kMaxImageNameBytes) {
+      fail("an image name of " + std::to_string(f.size()) + " bytes cannot be written; a path has at most " +
+           std::to_string(kMaxImageNameBytes) + " bytes");
+    }
     if (f.empty() || f.find_first_of("\t\r\n") != std::string::npos || f.front() == ' ' ||
         f.back() == ' ' || f.find("  ") != std::string::npos) {
       fail("the image name \"" + f +

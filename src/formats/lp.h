@@ -7,7 +7,7 @@
 //
 // Line 1 is the number of lights N (1..1000). Each further line is a file name followed by
 // the three components of the light direction (lx, ly, lz): x to the right of the image, y to
-// its TOP, z towards the camera (shared/spec/formats.md sections 3 and 5). Tokens are
+// its TOP, z towards the camera (docs/formats.md, ".lp" and "Light directions"). Tokens are
 // separated by any whitespace; when a line has more than four tokens the leading ones are
 // joined with single spaces into a file name that contains spaces. '\r\n' line ends and a
 // UTF-8 byte-order mark are accepted; blank lines are ignored.
@@ -37,10 +37,15 @@ struct LightEntry {
   }
 };
 
+// The longest image name an .lp may hold: PATH_MAX on Linux, longer than any path Windows or
+// macOS accept.
+inline constexpr std::size_t kMaxImageNameBytes = 4096;
+
 // Reads and validates a .lp file. Directions are normalised to unit length (the file may hold
 // any length). Throws Error(Input) naming the file and the line when: the count is not an
-// integer in 1..1000, a line has fewer than 4 tokens or a non-numeric component, a direction
-// is shorter than 1e-4, or the number of light lines differs from the count.
+// integer in 1..1000, a line has fewer than 4 tokens or a non-numeric component, an image name
+// is longer than kMaxImageNameBytes, a direction is shorter than 1e-4, or the number of light
+// lines differs from the count.
 std::vector<LightEntry> readLp(const std::filesystem::path& path);
 
 // The same, from text already in memory; `name` is used in error messages.

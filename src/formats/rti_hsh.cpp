@@ -15,6 +15,8 @@ namespace surrogate::formats {
 namespace {
 const char* const kReadStep = "read RTI";
 const char* const kWriteStep = "write RTI";
+constexpr long long kBasisType = 2;    // RGB: each channel its own coefficients
+constexpr long long kElementSize = 1;  // bytes per coefficient
 
 // IEEE-754 float32, little-endian, independent of the host's byte order.
 float readFloatLE(const std::uint8_t* p) {
@@ -89,8 +91,19 @@ RtiHeader parseRtiHeader(const std::uint8_t* data, std::size_t size, const std::
   const auto basis = detail::tokens(cur.line("basis"));
   if (basis.size() != 3) cur.fail("the basis line should be \"<terms> <basis type> <element size>\"");
   long long terms = parseField(cur, basis[0], "number of terms");
-  parseField(cur, basis[1], "basis type");  // ignored by both viewers for HSH
-  parseField(cur, basis[2], "element size");
+  // Every HSH writer (RTIBuilder's hshfitter, relight, RTIViewer's tools) writes "2 1": basis
+  // type 2, each colour channel with its own coefficients, and elements of 1 byte. This reader
+  // reads that layout; any other declaration is a layout it would misread.
+  const long long basisType = parseField(cur, basis[1], "basis type");
+  const long long elementSize = parseField(cur, basis[2], "element size");
+  if (basisType != kBasisType) {
+    cur.fail("the basis type is " + std::to_string(basisType) + "; an HSH file stores each colour "
+             "channel's coefficients separately, basis type 2, the only layout RTI viewers read");
+  }
+  if (elementSize != kElementSize) {
+    cur.fail("the element size is " + std::to_string(elementSize) + " bytes; HSH coefficients are "
+             "stored as single bytes (element size 1)");
+  }
   if (terms == 1) terms = 4;  // RTIViewer's order codes
   if (terms == 2) terms = 9;
   if (terms != 4 && terms != 9 && terms != 16) {

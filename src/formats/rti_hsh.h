@@ -1,5 +1,5 @@
-// RTIViewer ".rti" files holding hemispherical harmonics (HSH, RTI type 3), formats.md
-// section 2.
+// RTIViewer ".rti" files holding hemispherical harmonics (HSH, RTI type 3), docs/formats.md
+// ".rti".
 //
 // Per texel and colour channel c, `terms` (4, 9 or 16) coefficients of the HSH basis H_k
 // (fit/basis.h) in 0..1 intensity units:
@@ -16,8 +16,9 @@
 //   double red0 = hsh.coefficient(x, y, 0, 0);
 //   writeRti("copy.rti", hsh);   // byte-identical to a file we wrote
 //
-// The reader skips any leading '#' comment lines (RTIViewer does), requires type 3 and 3
-// channels, and accepts the order codes 1 and 2 for 4 and 9 terms. Bytes after the payload
+// The reader skips any leading '#' comment lines (RTIViewer does), requires type 3, 3
+// channels, basis type 2 and element size 1 (the "2 1" every HSH writer writes), and accepts
+// the order codes 1 and 2 for 4 and 9 terms. Bytes after the payload
 // are ignored and counted in RtiReadReport::trailingBytes.
 #pragma once
 
@@ -64,8 +65,9 @@ struct RtiHeader {
 };
 
 // Parses the ASCII header. Throws Error(Input) naming `name` for a missing header, an RTI type
-// other than 3 (HSH), a channel count other than 3, a term count other than 4, 9 or 16, or
-// dimensions outside 1..65536 / above 2^31 texels.
+// other than 3 (HSH), a channel count other than 3, a term count other than 4, 9 or 16, a
+// basis type other than 2 or an element size other than 1, or dimensions outside 1..65536 /
+// above 2^31 texels.
 RtiHeader parseRtiHeader(const std::uint8_t* data, std::size_t size, const std::string& name);
 
 // Parses a whole file in memory (never reads outside the buffer); also throws for a truncated

@@ -93,7 +93,7 @@ Image drawHighlightOverview(const Image& median, const DetectedSphere& s, const 
   cv::circle(big, map(s.cx, s.cy), static_cast<int>(std::lround(s.r * zoom * kUnit)), cv::Scalar(0, 200, 0), 2, cv::LINE_AA, kShift);
   for (std::size_t i = 0; i < perImage.size(); ++i) {
     const Highlight& h = perImage[i];
-    if (h.flag == HighlightFlag::None) continue;
+    if (!isUsable(h.flag)) continue;  // refused: its position means nothing
     const cv::Scalar colour = h.flag == HighlightFlag::Ok ? cv::Scalar(40, 40, 255) : cv::Scalar(0, 230, 255);
     cv::circle(big, map(h.x, h.y), static_cast<int>(4 * kUnit), colour, -1, cv::LINE_AA, kShift);
     const std::string label = std::to_string(i + 1);

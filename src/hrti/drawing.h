@@ -12,7 +12,8 @@ namespace surrogate::hrti {
 
 Image drawSphereOverlay(const Image& medianLuminance, const std::vector<DetectedSphere>& spheres);
 
-// Highlights in red (numbered by image, from 1), flagged ones in yellow; the circle in green.
+// Highlights in red (numbered by image, from 1), flagged ones in yellow, refused ones left out;
+// the circle in green.
 Image drawHighlightOverview(const Image& medianLuminance, const DetectedSphere& sphere,
                             const std::vector<Highlight>& perImage);
 

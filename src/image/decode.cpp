@@ -1,20 +1,99 @@
 #include "image/decode.h"
 
+#include <algorithm>
+
+#include "image/decoder_messages.h"
+#include "image/export_decoder.h"
 #include "image/libraw_decoder.h"
-#include "image/opencv_decoder.h"
 
 namespace surrogate::image {
 
+namespace {
+
+std::string damageMessage(const std::string& library, const std::vector<std::string>& warnings) {
+  std::string said;
+  for (const std::string& w : warnings) said += (said.empty() ? "\"" : "; \"") + w + "\"";
+  return "the image data is damaged: " + library + " reports " + said +
+         " (decoded, the damaged part would be made up by the decoder); copy the file from the "
+         "card again";
+}
+
+std::string megapixels(std::uint64_t pixels) {
+  return std::to_string((pixels + 500'000) / 1'000'000) + " Mpx";
+}
+
+}  // namespace
+
+DamagedImageError::DamagedImageError(const std::string& file, std::string library,
+                                     std::vector<std::string> warnings)
+    : Error(ErrorKind::Input, file, "image decode", damageMessage(library, warnings)),
+      library_(std::move(library)),
+      warnings_(std::move(warnings)) {}
+
+void DecoderMessages::add(const char* text) noexcept {
+  try {
+    ++count_;
+    std::string t = text ? text : "";
+    while (!t.empty() && (t.back() == '\n' || t.back() == ' ' || t.back() == '.')) t.pop_back();
+    if (t.empty()) t = "(no text)";
+    if (distinct_.size() < kKept && std::find(distinct_.begin(), distinct_.end(), t) == distinct_.end())
+      distinct_.push_back(std::move(t));
+  } catch (...) {
+    // Out of memory inside a library callback: the count still says something was reported.
+  }
+}
+
+std::vector<std::string> DecoderMessages::summary() const {
+  std::vector<std::string> out;
+  for (const std::string& d : distinct_) out.push_back(library_ + ": " + d);
+  if (count_ > distinct_.size())
+    out.push_back(library_ + ": ... (" + std::to_string(count_) + " warnings in all)");
+  return out;
+}
+
+void settle(const DecoderMessages& messages, const std::filesystem::path& path,
+            const DecodeOptions& options, DecodeReport* report) {
+  if (messages.count() == 0) return;
+  if (!options.acceptDamage) {
+    std::vector<std::string> words = messages.distinct();
+    if (messages.count() > words.size())
+      words.push_back("... " + std::to_string(messages.count()) + " warnings in all");
+    throw DamagedImageError(path.string(), messages.library(), words);
+  }
+  if (report)
+    for (const std::string& s : messages.summary()) report->decoderWarnings.push_back(s);
+}
+
+void checkDeclaredSize(const std::filesystem::path& path, std::uint64_t width, std::uint64_t height,
+                       const DecodeOptions& options) {
+  const std::uint64_t pixels = width * height;  // both < 2^32: no overflow
+  const std::uint64_t limit = std::min(options.maxPixels, kMaxImagePixels);
+  if (pixels <= limit) return;
+  const std::string declared = std::to_string(width) + "x" + std::to_string(height) + " pixels (" +
+                               megapixels(pixels) + ")";
+  if (pixels > kMaxImagePixels)
+    throwInputError(path.string(), "image decode",
+                    "its header declares " + declared + ", more than the " + megapixels(kMaxImagePixels) +
+                        " Surrogate reads: the header is damaged, or this is not a photograph");
+  throwInputError(path.string(), "image decode",
+                  "its header declares " + declared + ", more than the " + megapixels(limit) +
+                      " expected here (the other images of the capture are smaller): the header is "
+                      "damaged; copy the file from the card again");
+}
+
 ImageProbe probeImage(const std::filesystem::path& path) {
   const SourceKind kind = classifyImageFile(path);
-  return kind == SourceKind::CameraRaw ? probeCameraRaw(path) : checkExportStructure(path, kind);
+  const ImageProbe probe = kind == SourceKind::CameraRaw ? probeCameraRaw(path) : checkExportStructure(path, kind);
+  checkDeclaredSize(path, static_cast<std::uint64_t>(probe.width), static_cast<std::uint64_t>(probe.height),
+                    DecodeOptions{});
+  return probe;
 }
 
 Image decodeImage(const std::filesystem::path& path, const RawDecodeSettings& settings,
-                  DecodeReport* report) {
+                  DecodeReport* report, const DecodeOptions& options) {
   const SourceKind kind = classifyImageFile(path);
-  return kind == SourceKind::CameraRaw ? decodeCameraRaw(path, settings, report)
-                                       : decodeExport(path, kind, report);
+  return kind == SourceKind::CameraRaw ? decodeCameraRaw(path, settings, report, options)
+                                       : decodeExport(path, kind, report, options);
 }
 
 }  // namespace surrogate::image

@@ -1,9 +1,11 @@
-// Decoding photographs: camera raw and DNG through LibRaw, JPEG/TIFF/PNG through OpenCV.
+// Decoding photographs: camera raw and DNG through LibRaw, JPEG through libjpeg(-turbo), PNG
+// through libpng, TIFF through libtiff, each called directly so that every message the library
+// has about the data reaches Surrogate (none is printed, none is lost).
 //
 // The folder's front door: including it gives the whole public interface of src/image.
 //
-//   camera raw, DNG --LibRaw, RawDecodeSettings--> linear 16-bit RGB      (Transfer::Linear)
-//   JPEG, TIFF, PNG --OpenCV, pixels as stored---> 8/16-bit grey or RGB   (Transfer::Srgb)
+//   camera raw, DNG --LibRaw, RawDecodeSettings------------> linear 16-bit RGB     (Transfer::Linear)
+//   JPEG, TIFF, PNG --libjpeg / libtiff / libpng, as stored-> 8/16-bit grey or RGB  (Transfer::Srgb)
 //
 // Every LibRaw setting that changes pixels is fixed by RawDecodeSettings, which the pipeline
 // records in the carrier and re-applies on re-execution, so decoding is deterministic:
@@ -15,12 +17,23 @@
 //
 // Errors are surrogate::Error(Input) naming the file, with a sentence a photographer can act
 // on ("the file is truncated ..."). No library prints to the terminal.
+//
+// Decoding is strict: a library's warning that the data is damaged (libjpeg's "Corrupt JPEG
+// data: ...", a libpng or libtiff warning, a LibRaw data error) refuses the image with the
+// library's words (DamagedImageError), unless the caller accepts damage for that image
+// (DecodeOptions::acceptDamage, which the pipeline sets only for an image the user accepted with
+// a recorded intervention); the warnings are then in DecodeReport::decoderWarnings.
+//
+// Sizes are checked before any pixel is decoded: an image whose header declares more than
+// DecodeOptions::maxPixels (at most kMaxImagePixels) is refused without allocating its pixels.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
 
+#include "core/error.h"
 #include "core/image.h"
 #include "image/raw_settings.h"
 #include "image/source_kind.h"
@@ -28,6 +41,11 @@
 #include "image/write.h"
 
 namespace surrogate::image {
+
+// The largest image Surrogate reads: 500 megapixels (a 16-bit RGB copy is 3 GB). No camera
+// comes near it (the largest sensors give 150-400 Mpx as multi-shot composites); a header that
+// declares more is damaged or crafted, and is refused as bad input.
+inline constexpr std::uint64_t kMaxImagePixels = 500'000'000;
 
 struct ImageProbe {
   int width = 0;   // as decodeImage returns it with default settings
@@ -37,7 +55,8 @@ struct ImageProbe {
 
 // Checks that the file is a readable, complete image and returns its size without decoding
 // pixels: JPEG markers up to end-of-image, PNG header and end chunk, TIFF strip table, LibRaw's
-// header parse for raw. Missing, empty, truncated or unsupported files are Error(Input).
+// header parse for raw. Missing, empty, truncated or unsupported files are Error(Input), and so
+// is a header declaring more than kMaxImagePixels.
 // (A raw whose pixel data is damaged inside an intact container is found by decodeImage.)
 ImageProbe probeImage(const std::filesystem::path& path);
 
@@ -50,15 +69,48 @@ struct DecodeReport {
   std::vector<int> channelBlackLevels;
   std::vector<double> whiteBalanceMultipliers;  // camera raw only: applied R, G, B, G2 (G = 1)
   std::vector<std::string> warnings;            // e.g. no as-shot white balance in the file
+  // Only with DecodeOptions::acceptDamage: what the decoding library said about damaged data,
+  // in its own words, prefixed by its name ("libjpeg: Corrupt JPEG data: premature end of data
+  // segment"); at most a few distinct messages, then "... (N warnings in all)".
+  std::vector<std::string> decoderWarnings;
+};
+
+struct DecodeOptions {
+  // Decode an image whose data the library reports as damaged, as the library can (libjpeg
+  // fills what is missing with grey, LibRaw with what it read, libtiff leaves an unreadable
+  // strip black), recording its warnings instead of refusing the image.
+  bool acceptDamage = false;
+  // Refused (Error(Input)) before decoding when its header declares more pixels than this
+  // (never more than kMaxImagePixels).
+  std::uint64_t maxPixels = kMaxImagePixels;
+};
+
+// The library reported damaged data and the caller did not accept damage: Error(Input) naming
+// the file, with the library's words in the message and in warnings().
+class DamagedImageError : public Error {
+ public:
+  DamagedImageError(const std::string& file, std::string library, std::vector<std::string> warnings);
+  const std::string& library() const { return library_; }         // "libjpeg", "libpng", ...
+  const std::vector<std::string>& warnings() const { return warnings_; }  // its own words
+
+ private:
+  std::string library_;
+  std::vector<std::string> warnings_;
 };
 
 // Decodes the whole image. Camera raw: linear 16-bit RGB (or grey for monochrome sensors).
 // Others: as stored (8-bit widened by 257, bitsPerSample kept; grey stays one channel; alpha
-// dropped; the EXIF orientation tag is not applied). Safe to call from several threads at once.
+// dropped; the EXIF orientation tag is not applied), the same values OpenCV's imread gave
+// (IMREAD_UNCHANGED | IMREAD_ANYDEPTH | IMREAD_IGNORE_ORIENTATION), which decoded them before.
+// Safe to call from several threads at once.
 Image decodeImage(const std::filesystem::path& path, const RawDecodeSettings& settings,
-                  DecodeReport* report = nullptr);
+                  DecodeReport* report = nullptr, const DecodeOptions& options = {});
 
-std::string librawVersion();  // "0.20.2-Release" (LibRaw::version())
-std::string opencvVersion();  // "4.6.0"
+std::string librawVersion();   // "0.20.2-Release" (LibRaw::version())
+std::string opencvVersion();   // "4.6.0"
+std::string libjpegName();     // "libjpeg-turbo" (the libjpeg JPEGs are decoded with)
+std::string libjpegVersion();  // "2.1.5"
+std::string libpngVersion();   // "1.6.39" (png_get_libpng_ver)
+std::string libtiffVersion();  // "4.5.0" (TIFFGetVersion)
 
 }  // namespace surrogate::image

@@ -45,8 +45,10 @@ std::size_t skipEntropyData(const std::uint8_t* d, std::size_t size, std::size_t
 
 JpegStructure readJpegStructure(const std::filesystem::path& path) {
   const std::string bytes = readFile(path, "image probe");
-  const auto* d = reinterpret_cast<const std::uint8_t*>(bytes.data());
-  const std::size_t size = bytes.size();
+  return readJpegStructure(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
+}
+
+JpegStructure readJpegStructure(const std::uint8_t* d, std::size_t size) {
   JpegStructure s;
   if (size < 4 || d[0] != 0xFF || d[1] != 0xD8) {
     s.problem = "is not a JPEG file (it does not start with the JPEG start-of-image marker)";

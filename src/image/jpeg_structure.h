@@ -10,6 +10,8 @@
 // the markers is how Surrogate tells a truncated JPEG from a complete one before decoding it.
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 
@@ -24,5 +26,7 @@ struct JpegStructure {
 
 // Walks the markers of the file from SOI to EOI. Reads the file once; bounded by its size.
 JpegStructure readJpegStructure(const std::filesystem::path& path);
+// The same, of a file already in memory.
+JpegStructure readJpegStructure(const std::uint8_t* data, std::size_t size);
 
 }  // namespace surrogate::image

@@ -4,11 +4,13 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <cstring>
 #include <memory>
 #include <string>
 
 #include "core/error.h"
+#include "image/decoder_messages.h"
 #include "image/raw_signature.h"
 #include "image/tiff_structure.h"
 
@@ -20,16 +22,23 @@ namespace {
 
 constexpr const char* kStep = "image decode";
 
-// What LibRaw reported through its data-error callback while reading pixel data.
+// What LibRaw reported through its data-error callback while reading pixel data. The end of
+// the file (offset -1) ends LibRaw's decode with an error too; corrupt data (a value out of
+// range, a broken code) it reports once and decodes on, which is damage to refuse or accept.
 struct DataErrors {
   bool endOfFile = false;
-  bool corrupt = false;
-  bool any() const { return endOfFile || corrupt; }
+  DecoderMessages corrupt{"LibRaw"};
 };
 
 void collectDataError(void* data, const char* /*file*/, const int offset) {
   auto* errors = static_cast<DataErrors*>(data);
-  (offset < 0 ? errors->endOfFile : errors->corrupt) = true;  // offset -1 means end of file
+  if (offset < 0) {
+    errors->endOfFile = true;
+    return;
+  }
+  char text[128];
+  std::snprintf(text, sizeof text, "corrupt raw data (first found near byte %d of the file)", offset);
+  errors->corrupt.add(text);
 }
 
 std::string lowerExtension(const fs::path& path) {
@@ -70,15 +79,14 @@ std::string describe(int code, const fs::path& path) {
   }
 }
 
+// A LibRaw error code, or the end of the file reached while reading pixel data: refused.
+// (Corrupt data LibRaw decoded on is settled after decoding: refused, or accepted and reported.)
 void check(int code, const fs::path& path, const DataErrors& errors) {
-  if (code != LIBRAW_SUCCESS) throwInputError(path.string(), kStep, describe(code, path));
   if (errors.endOfFile)
     throwInputError(path.string(), kStep,
                     "the file is truncated: LibRaw reached its end while reading the raw data; "
                     "copy it from the card again");
-  if (errors.corrupt)
-    throwInputError(path.string(), kStep,
-                    "the raw data is damaged (LibRaw found corrupt data); copy it from the card again");
+  if (code != LIBRAW_SUCCESS) throwInputError(path.string(), kStep, describe(code, path));
 }
 
 // LibRaw 0.20 decodes a DNG whose tiles lie past the end of the file (a pruned or truncated
@@ -195,10 +203,16 @@ void fillReport(const LibRaw& raw, const RawDecodeSettings& s, DecodeReport& rep
 
 }  // namespace
 
-Image decodeCameraRaw(const fs::path& path, const RawDecodeSettings& settings, DecodeReport* report) {
+Image decodeCameraRaw(const fs::path& path, const RawDecodeSettings& settings, DecodeReport* report,
+                      const DecodeOptions& options) {
   Decoder d(path);
+  // Before LibRaw allocates anything for pixels: the visible size against the caller's limit,
+  // the stored mosaic (with its margins) against Surrogate's.
+  checkDeclaredSize(path, d.raw->imgdata.sizes.width, d.raw->imgdata.sizes.height, options);
+  checkDeclaredSize(path, d.raw->imgdata.sizes.raw_width, d.raw->imgdata.sizes.raw_height, DecodeOptions{});
   apply(settings, d.raw->imgdata.params);
   check(d.raw->unpack(), path, d.errors);
+  if (!options.acceptDamage) settle(d.errors.corrupt, path, options, report);  // refused: no need to go on
   check(d.raw->dcraw_process(), path, d.errors);
   int code = LIBRAW_SUCCESS;
   std::unique_ptr<libraw_processed_image_t, void (*)(libraw_processed_image_t*)> processed(
@@ -215,6 +229,7 @@ Image decodeCameraRaw(const fs::path& path, const RawDecodeSettings& settings, D
   im.transfer = Transfer::Linear;
   std::memcpy(im.pixels.data(), processed->data, im.pixels.size() * sizeof(std::uint16_t));
   if (report) fillReport(*d.raw, settings, *report);
+  settle(d.errors.corrupt, path, options, report);
   return im;
 }
 

@@ -4,8 +4,9 @@
 //   demosaic, colour matrix) -> dcraw_make_mem_image (16-bit RGB, linear gamma)
 //
 // One LibRaw object per call, on the heap (it is several hundred kilobytes), so calls from
-// several threads never share state. LibRaw's data-error messages ("Unexpected end of file")
-// are collected rather than printed, and turn the decode into an Error.
+// several threads never share state. LibRaw's data-error callback is collected rather than
+// printed: the end of the file is an Error (truncated); corrupt data is damage, refused
+// (DamagedImageError) unless DecodeOptions::acceptDamage.
 #pragma once
 
 #include <filesystem>
@@ -15,7 +16,7 @@
 namespace surrogate::image {
 
 Image decodeCameraRaw(const std::filesystem::path& path, const RawDecodeSettings& settings,
-                      DecodeReport* report);
+                      DecodeReport* report, const DecodeOptions& options);
 
 // Header parse only (open_file): the size decodeCameraRaw gives with default settings.
 // Reading the mosaic (unpack) would find damaged pixel data, but costs about 0.2 s per 24 Mpx

@@ -5,6 +5,8 @@
 // The IHDR chunk comes first and gives the size; a complete file ends with the IEND chunk.
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 
@@ -18,5 +20,11 @@ struct PngStructure {
 };
 
 PngStructure readPngStructure(const std::filesystem::path& path);
+// The same, of a file already in memory.
+PngStructure readPngStructure(const std::uint8_t* data, std::size_t size);
+// From the file's first `headSize` (at least 33) bytes, its last `tailSize` (up to 4096) bytes
+// and its size.
+PngStructure pngStructureOf(const std::uint8_t* head, std::size_t headSize, const std::uint8_t* tail,
+                            std::size_t tailSize, std::uint64_t size);
 
 }  // namespace surrogate::image

@@ -152,7 +152,8 @@ RawDecodeSettings RawDecodeSettings::fromParameters(const Parameters& params) {
       requireOneOf(name, value, {"16"});
     } else {
       const auto& fixed = fixedParameters();
-      const auto it = std::find_if(fixed.begin(), fixed.end(), [&](const auto& f) { return f.first == name; });
+      const std::string& key = name;  // a structured binding cannot be captured in C++17 (clang)
+      const auto it = std::find_if(fixed.begin(), fixed.end(), [&key](const auto& f) { return f.first == key; });
       if (it == fixed.end()) refuse(name, value, "is not a raw decoding setting");
       if (value != it->second) refuse(name, value, "Surrogate always decodes with " + name + "=" + it->second);
     }

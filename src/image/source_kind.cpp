@@ -60,4 +60,12 @@ SourceKind classifyImageFile(const fs::path& path) {
                   "raw, DNG, JPEG, TIFF or PNG)");
 }
 
+bool isDngFile(const fs::path& path) {
+  try {
+    return rawContainerOf(path) == RawContainer::Tiff && readTiffStructure(path).isDng;
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
 }  // namespace surrogate::image

@@ -22,4 +22,8 @@ bool isCameraRawExtension(const std::filesystem::path& path);
 // Surrogate reads.
 SourceKind classifyImageFile(const std::filesystem::path& path);
 
+// True when the file is a DNG by its content (a TIFF whose IFD0 has the DNGVersion tag),
+// whatever its name. Never throws (false for a file that cannot be read).
+bool isDngFile(const std::filesystem::path& path);
+
 }  // namespace surrogate::image

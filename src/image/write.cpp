@@ -1,6 +1,7 @@
 #include "image/write.h"
 
 #include <opencv2/core.hpp>
+#include <opencv2/core/version.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -70,5 +71,7 @@ void writeJpeg(const Image& image, const fs::path& path, int quality) {
     throw Error(ErrorKind::Usage, path.string(), kStep, "JPEG quality must be 1 to 100");
   encode(image, path, ".jpg", true, {cv::IMWRITE_JPEG_QUALITY, quality});
 }
+
+std::string opencvVersion() { return CV_VERSION; }
 
 }  // namespace surrogate::image

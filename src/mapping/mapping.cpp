@@ -14,6 +14,7 @@
 #include <cstdarg>
 #include <cstdio>
 #include <cstring>
+#include <exception>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -93,16 +94,25 @@ std::string xpathLiteral(const std::string& value, const std::string& name) {
               "change the value");
 }
 
-std::string transform(const std::filesystem::path& stylesheet, const std::string& carrierXml,
-                      const std::string& source,
-                      const std::vector<std::pair<std::string, std::string>>& params,
-                      const std::string* payload) {
+// A finished transformation: the result tree and what it refers to (destroyed in reverse
+// order: the result first, the input last).
+struct Transformed {
+  DocPtr input;
+  std::unique_ptr<xsltStylesheet, StyleFree> style;
+  DocPtr result;
+};
+
+Transformed runTransform(const std::filesystem::path& stylesheet, const std::string& carrierXml,
+                         const std::string& source,
+                         const std::vector<std::pair<std::string, std::string>>& params,
+                         const std::string* payload) {
   initialiseXslt();
+  Transformed t;
   // The carrier: checked by the same safe parser as everywhere (no DOCTYPE, no network).
   xml::checkWellFormed(carrierXml, source);
-  DocPtr input(xmlReadMemory(carrierXml.data(), static_cast<int>(carrierXml.size()),
-                             source.c_str(), nullptr, kParseOptions));
-  if (!input) throwInputError(source, "metadata", "is not well-formed XML");
+  t.input.reset(xmlReadMemory(carrierXml.data(), static_cast<int>(carrierXml.size()),
+                              source.c_str(), nullptr, kParseOptions));
+  if (!t.input) throwInputError(source, "metadata", "is not well-formed XML");
 
   const std::string styleText = readFile(stylesheet, "metadata");
   xml::checkWellFormed(styleText, stylesheet.string());
@@ -110,8 +120,8 @@ std::string transform(const std::filesystem::path& stylesheet, const std::string
                                      stylesheet.c_str(), nullptr, kParseOptions);
   if (!styleDoc) throw Error(ErrorKind::Internal, stylesheet.string(), "metadata",
                              "the stylesheet is not well-formed; reinstall Surrogate");
-  std::unique_ptr<xsltStylesheet, StyleFree> style(xsltParseStylesheetDoc(styleDoc));
-  if (!style) {
+  t.style.reset(xsltParseStylesheetDoc(styleDoc));
+  if (!t.style) {
     xmlFreeDoc(styleDoc);
     throw Error(ErrorKind::Internal, stylesheet.string(), "metadata",
                 "the stylesheet could not be compiled; reinstall Surrogate");
@@ -125,7 +135,7 @@ std::string transform(const std::filesystem::path& stylesheet, const std::string
   xsltSetSecurityPrefs(prefs.get(), XSLT_SECPREF_WRITE_NETWORK, xsltSecurityForbid);
 
   std::unique_ptr<xsltTransformContext, CtxtFree> ctxt(
-      xsltNewTransformContext(style.get(), input.get()));
+      xsltNewTransformContext(t.style.get(), t.input.get()));
   if (!ctxt) throw Error(ErrorKind::Internal, stylesheet.string(), "metadata", "libxslt could not start");
   xsltSetCtxtSecurityPrefs(prefs.get(), ctxt.get());
   ErrorText errors;
@@ -139,29 +149,65 @@ std::string transform(const std::filesystem::path& stylesheet, const std::string
     texts.push_back(xpathLiteral(value, name));
   }
   std::vector<const char*> raw;
-  for (const std::string& t : texts) raw.push_back(t.c_str());
+  for (const std::string& text : texts) raw.push_back(text.c_str());
   raw.push_back(nullptr);
 
   currentPayload = payload;
-  DocPtr result(xsltApplyStylesheetUser(style.get(), input.get(), raw.data(), nullptr, nullptr,
-                                        ctxt.get()));
+  t.result.reset(xsltApplyStylesheetUser(t.style.get(), t.input.get(), raw.data(), nullptr, nullptr,
+                                         ctxt.get()));
   currentPayload = nullptr;
-  const bool failed = !result || ctxt->state != XSLT_STATE_OK;
+  const bool failed = !t.result || ctxt->state != XSLT_STATE_OK;
   xsltSetGenericErrorFunc(nullptr, nullptr);
   if (failed) {
     throw Error(ErrorKind::Input, source, "metadata",
                 "deriving metadata with " + stylesheet.filename().string() + " failed (" +
                     errors.summary() + ")");
   }
+  return t;
+}
+
+std::string transform(const std::filesystem::path& stylesheet, const std::string& carrierXml,
+                      const std::string& source,
+                      const std::vector<std::pair<std::string, std::string>>& params,
+                      const std::string* payload) {
+  const Transformed t = runTransform(stylesheet, carrierXml, source, params, payload);
   xmlChar* bytes = nullptr;
   int length = 0;
-  if (xsltSaveResultToString(&bytes, &length, result.get(), style.get()) != 0 || !bytes) {
+  if (xsltSaveResultToString(&bytes, &length, t.result.get(), t.style.get()) != 0 || !bytes) {
     throw Error(ErrorKind::Internal, stylesheet.string(), "metadata",
                 "libxslt could not serialise the result");
   }
   std::string out(reinterpret_cast<const char*>(bytes), static_cast<std::size_t>(length));
   xmlFree(bytes);
   return out;
+}
+
+// The result serialised as xsltSaveResultToString does (UTF-8 needs no encoder), piece by
+// piece into `sink`.
+void serialiseTo(const Transformed& t, const std::filesystem::path& stylesheet, const TextSink& sink) {
+  struct Target {
+    const TextSink* sink;
+    std::exception_ptr failure;
+  } target{&sink, nullptr};
+  auto write = [](void* context, const char* data, int length) -> int {
+    auto* to = static_cast<Target*>(context);
+    if (to->failure) return -1;
+    try {
+      (*to->sink)(data, static_cast<std::size_t>(length));
+    } catch (...) {
+      to->failure = std::current_exception();  // never across libxml2
+      return -1;
+    }
+    return length;
+  };
+  xmlOutputBufferPtr buffer = xmlOutputBufferCreateIO(write, nullptr, &target, nullptr);
+  if (!buffer) throw Error(ErrorKind::Internal, stylesheet.string(), "metadata", "libxml2 could not start");
+  const int written = xsltSaveResultTo(buffer, t.result.get(), t.style.get());
+  const int closed = xmlOutputBufferClose(buffer);
+  if (target.failure) std::rethrow_exception(target.failure);
+  if (written < 0 || closed < 0)
+    throw Error(ErrorKind::Internal, stylesheet.string(), "metadata",
+                "libxslt could not serialise the result");
 }
 
 // Escapes text for an XML attribute value (CR, LF and tab as character references so that they
@@ -217,6 +263,35 @@ std::string deriveMets(const std::string& carrierXml, const PackageFacts& facts,
   };
   params.emplace_back("payload-uri", kPayloadUri);  // always: document('') would read the stylesheet
   return transform(metsStylesheetPath(), carrierXml, source, params, &payload);
+}
+
+void deriveCrmTo(const std::string& carrierXml, const TextSink& sink, const std::string& source) {
+  const std::filesystem::path stylesheet = crmStylesheetPath();
+  const Transformed t = runTransform(stylesheet, carrierXml, source, {}, nullptr);
+  const xmlNode* root = xmlDocGetRootElement(t.result.get());
+  const bool rdf = root && std::strcmp(reinterpret_cast<const char*>(root->name), "RDF") == 0 &&
+                   root->ns &&
+                   std::strcmp(reinterpret_cast<const char*>(root->ns->href),
+                               "http://www.w3.org/1999/02/22-rdf-syntax-ns#") == 0;
+  if (!rdf)
+    throw Error(ErrorKind::Internal, stylesheet.string(), "metadata",
+                "the stylesheet did not give RDF/XML (its root is not rdf:RDF); reinstall Surrogate");
+  serialiseTo(t, stylesheet, sink);
+}
+
+void deriveMetsTo(const std::string& carrierXml, const PackageFacts& facts, const TextSink& sink,
+                  const std::string& source) {
+  const std::filesystem::path stylesheet = metsStylesheetPath();
+  std::string payload = payloadXml(facts.payload);
+  std::vector<std::pair<std::string, std::string>> params = {
+      {"package-id", facts.packageId},
+      {"packaging-time", facts.packagingTime},
+      {"software-agent", facts.softwareAgent.empty() ? "Surrogate" : facts.softwareAgent},
+  };
+  params.emplace_back("payload-uri", kPayloadUri);
+  Transformed t = runTransform(stylesheet, carrierXml, source, params, &payload);
+  std::string().swap(payload);  // the payload document was read: its text is not needed
+  serialiseTo(t, stylesheet, sink);
 }
 
 std::string libxsltVersion() { return xsltEngineVersion; }

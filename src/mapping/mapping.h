@@ -25,6 +25,8 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -61,6 +63,36 @@ std::string deriveCrm(const std::string& carrierXml,
 // Deterministic for the same inputs.
 std::string deriveMets(const std::string& carrierXml, const PackageFacts& facts,
                        const std::string& source = "assembly-files/carrier.xml");
+
+// deriveCrm / deriveMets without the text in memory: the same bytes are handed to `sink` as
+// they are serialised (a verifier hashes them and compares with the bag's file; a package of
+// 100 000 files has a METS of about 400 MB). deriveCrmTo also checks that the result's root is
+// rdf:RDF (Error(Internal) otherwise: a bug in the stylesheet).
+using TextSink = std::function<void(const char* data, std::size_t size)>;
+void deriveCrmTo(const std::string& carrierXml, const TextSink& sink,
+                 const std::string& source = "assembly-files/carrier.xml");
+void deriveMetsTo(const std::string& carrierXml, const PackageFacts& facts, const TextSink& sink,
+                  const std::string& source = "assembly-files/carrier.xml");
+
+// validateMets for text that arrives in pieces (e.g. from deriveMetsTo), without building the
+// document: memory stays bounded by the document's depth and IDs, not its size.
+//
+//   MetsValidator v("metadata/mets.xml");
+//   deriveMetsTo(carrier, facts, [&](const char* p, std::size_t n) { v.feed(p, n); });
+//   v.finish();   // Error(Input) naming the source, as validateMets
+class MetsValidator {
+ public:
+  explicit MetsValidator(const std::string& source);
+  ~MetsValidator();
+  MetsValidator(const MetsValidator&) = delete;
+  MetsValidator& operator=(const MetsValidator&) = delete;
+  void feed(const char* data, std::size_t size);
+  void finish();
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
 
 // Validates METS (and the PREMIS inside its mdWrap/xmlData) against the vendored schemas
 // (xsd/mets-1.12.1.xsd, xsd/premis-3.0.xsd, xsd/xlink.xsd), offline. Throws Error(Input)

@@ -1,6 +1,7 @@
 #include "pipeline/spill_stack.h"
 
 #include <fcntl.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -14,12 +15,24 @@ namespace surrogate::pipeline {
 
 namespace fs = std::filesystem;
 
-namespace {
 fs::path spillDirectory(const fs::path& requested) {
   if (!requested.empty()) return requested;
   const char* tmp = std::getenv("TMPDIR");
   return tmp && *tmp ? fs::path(tmp) : fs::path("/tmp");
 }
+
+std::optional<std::uint64_t> spillSpaceAvailable(const fs::path& directory) {
+  struct statvfs st {};
+  if (::statvfs(spillDirectory(directory).c_str(), &st) != 0) return std::nullopt;
+  return static_cast<std::uint64_t>(st.f_bavail) * st.f_frsize;
+}
+
+std::uint64_t spillBytes(int count, int width, int height, int channels) {
+  return static_cast<std::uint64_t>(count) * static_cast<std::uint64_t>(width) *
+         static_cast<std::uint64_t>(height) * static_cast<std::uint64_t>(channels) * sizeof(std::uint16_t);
+}
+
+namespace {
 
 [[noreturn]] void spillFailure(const fs::path& dir, const char* what) {
   throw Error(ErrorKind::Internal, dir.string(), "image stack",

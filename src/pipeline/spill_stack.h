@@ -9,10 +9,19 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 
 #include "core/stack.h"
 
 namespace surrogate::pipeline {
+
+// The folder spill files go to: `requested`, else $TMPDIR, else /tmp.
+std::filesystem::path spillDirectory(const std::filesystem::path& requested = {});
+// Bytes an unprivileged process may still write in that folder's file system (statvfs), or
+// nothing when it cannot be told.
+std::optional<std::uint64_t> spillSpaceAvailable(const std::filesystem::path& directory = {});
+// The bytes `count` images of width x height x channels take in a spill file.
+std::uint64_t spillBytes(int count, int width, int height, int channels);
 
 class SpillStack : public ImageStack {
  public:

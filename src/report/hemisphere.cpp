@@ -148,11 +148,16 @@ std::string hemisphereSvg(const std::vector<LightPoint>& lights, const Coverage&
     project(l.elevationDeg, l.azimuthDeg, x, y);
     const std::string colour =
         l.rmse ? residualColour(hi > lo ? (*l.rmse - lo) / (hi - lo) : 0.5) : std::string("#999999");
-    s << "<circle class=\"light\" cx=\"" << num(x) << "\" cy=\"" << num(y) << "\" r=\"6\" fill=\""
-      << colour << "\" data-image=\"" << escapeHtml(l.image) << "\"><title>" << escapeHtml(l.image)
+    const bool doubtful = l.highlightConfidence && *l.highlightConfidence < kDoubtfulConfidence;
+    s << "<circle class=\"light" << (doubtful ? " doubtful" : "") << "\" cx=\"" << num(x) << "\" cy=\""
+      << num(y) << "\" r=\"6\" fill=\"" << colour << "\""
+      << (doubtful ? " stroke=\"#d62728\" stroke-width=\"2.5\"" : "") << " data-image=\""
+      << escapeHtml(l.image) << "\"><title>" << escapeHtml(l.image)
       << ": elevation " << displayNumber(l.elevationDeg, 1) << "\u00b0, azimuth "
       << displayNumber(l.azimuthDeg, 1) << "\u00b0"
       << (l.rmse ? ", residual " + displayNumber(*l.rmse, 2) + " levels" : std::string())
+      << (l.highlightConfidence ? ", highlight confidence " + displayNumber(*l.highlightConfidence, 2)
+                                : std::string())
       << "</title></circle>\n";
   }
   // Legend: the residual scale.

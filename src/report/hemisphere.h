@@ -28,7 +28,14 @@ struct LightPoint {
   double elevationDeg = 0;     // 0 grazing .. 90 on the axis
   double azimuthDeg = 0;       // -180..180, 0 right, 90 up
   std::optional<double> rmse;  // the fit's residual on this image (8-bit levels), if fitted
+  // How far the highlight(s) the light was measured from can be trusted, 0..1: the lowest
+  // confidence of the highlights used (carrier highlight/@confidence); absent for lights from
+  // an .lp file or carriers that do not record it.
+  std::optional<double> highlightConfidence;
 };
+
+// Below this highlight confidence a light is marked as doubtful on the plot (a red ring).
+inline constexpr double kDoubtfulConfidence = 0.5;
 
 struct AzimuthGap {
   double fromDeg = 0, toDeg = 0;  // counter-clockwise from `fromDeg` to `toDeg`, 0..360
@@ -48,7 +55,8 @@ struct Coverage {
 Coverage analyseCoverage(const std::vector<LightPoint>& lights);
 
 // The plot as an inline <svg id="hemisphere"> with one <circle class="light"> per light,
-// coloured from low (dark blue) to high residual (yellow), gaps shaded, and a colour legend.
+// coloured from low (dark blue) to high residual (yellow), a red ring round the lights whose
+// highlight confidence is below kDoubtfulConfidence, gaps shaded, and a colour legend.
 std::string hemisphereSvg(const std::vector<LightPoint>& lights, const Coverage& coverage);
 
 // "#rrggbb" for t in 0..1 on a viridis-like scale.

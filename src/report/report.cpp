@@ -20,6 +20,19 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
+// Highlights that give a light direction (hrti::isUsable; the report does not link hrti).
+bool isUsedHighlight(const std::string& flag) {
+  return flag == "ok" || flag == "multiple" || flag == "manual";
+}
+
+std::string numberOr(const carrier::DataItem& d, const char* name, int digits, const std::string& absent = "-") {
+  try {
+    return d.get(name) ? displayNumber(d.number(name), digits) : absent;
+  } catch (const Error&) {
+    return absent;
+  }
+}
+
 // The lights of the last step that recorded any, with the residual of the first fit that
 // recorded per-image residuals.
 std::vector<LightPoint> collectLights(const carrier::Carrier& c, std::string* fitLabel) {
@@ -48,6 +61,21 @@ std::vector<LightPoint> collectLights(const carrier::Carrier& c, std::string* fi
     const carrier::Step* step = c.findStep(fitResult->step);
     *fitLabel = step ? step->id + " " + step->component + " (" + step->param("basis", "?") + ")" : fitResult->step;
   }
+  // The lowest confidence of the usable highlights of each image (those its light came from).
+  std::map<std::string, double> confidence;
+  for (const carrier::Result& r : c.data)
+    for (const carrier::DataItem* h : r.itemsOf("highlight")) {
+      const std::string flag = h->get("flag").value_or("");
+      if (!isUsedHighlight(flag) || !h->get("confidence")) continue;
+      try {
+        const double v = h->number("confidence");
+        const std::string id = h->get("image").value_or("");
+        const auto it = confidence.find(id);
+        confidence[id] = it == confidence.end() ? v : std::min(it->second, v);
+      } catch (const Error&) {
+        // not a number: shown as unknown
+      }
+    }
   std::vector<LightPoint> out;
   if (!lightResult) return out;
   for (const carrier::DataItem* l : lightResult->itemsOf("light")) {
@@ -70,6 +98,7 @@ std::vector<LightPoint> collectLights(const carrier::Carrier& c, std::string* fi
       continue;  // a light that is not numbers cannot be plotted
     }
     if (const auto it = rmse.find(id); it != rmse.end()) p.rmse = it->second;
+    if (const auto it = confidence.find(id); it != confidence.end()) p.highlightConfidence = it->second;
     out.push_back(p);
   }
   return out;
@@ -145,12 +174,19 @@ std::string lightsSection(const carrier::Carrier& c, Report& report) {
     for (const std::string& g : coverage.sentences()) s << "<li>" << escapeHtml(g) << "</li>";
     s << "</ul>";
   }
+  const bool anyDoubtful = std::any_of(lights.begin(), lights.end(), [](const LightPoint& l) {
+    return l.highlightConfidence && *l.highlightConfidence < kDoubtfulConfidence;
+  });
+  if (anyDoubtful)
+    s << "<p class=\"warning\">A red ring marks a light measured from a highlight of confidence below "
+      << displayNumber(kDoubtfulConfidence, 1) << ": check it on the highlight overview.</p>";
   s << "</div></div><details><summary>Every light</summary><table><tr><th>image</th>"
-       "<th>elevation \u00b0</th><th>azimuth \u00b0</th><th>residual</th></tr>";
+       "<th>elevation \u00b0</th><th>azimuth \u00b0</th><th>residual</th><th>highlight confidence</th></tr>";
   for (const LightPoint& l : lights)
     s << "<tr><td><code>" << escapeHtml(l.image) << "</code></td><td class=\"num\">"
       << displayNumber(l.elevationDeg, 1) << "</td><td class=\"num\">" << displayNumber(l.azimuthDeg, 1)
-      << "</td><td class=\"num\">" << (l.rmse ? displayNumber(*l.rmse, 2) : "-") << "</td></tr>";
+      << "</td><td class=\"num\">" << (l.rmse ? displayNumber(*l.rmse, 2) : "-") << "</td><td class=\"num\">"
+      << (l.highlightConfidence ? displayNumber(*l.highlightConfidence, 2) : "-") << "</td></tr>";
   s << "</table></details></section>";
   return s.str();
 }
@@ -159,11 +195,18 @@ std::string detectionSection(const carrier::Carrier& c, const ReportSource& sour
                              const ReportOptions& options, Report& report) {
   std::ostringstream s;
   s << "<section id=\"detection\"><h2>Sphere and highlight detection</h2>";
-  std::vector<const carrier::DataItem*> spheres, flagged;
+  std::vector<const carrier::DataItem*> spheres, highlights, flagged;
   for (const carrier::Result& r : c.data) {
     for (const carrier::DataItem* d : r.itemsOf("sphere")) spheres.push_back(d);
-    for (const carrier::DataItem* d : r.itemsOf("highlight"))
-      if (d->get("flag").value_or("ok") != "ok") flagged.push_back(d);
+    for (const carrier::DataItem* d : r.itemsOf("highlight")) {
+      highlights.push_back(d);
+      bool doubtful = false;
+      try {
+        doubtful = d->get("confidence") && d->number("confidence") < kDoubtfulConfidence;
+      } catch (const Error&) {
+      }
+      if (d->get("flag").value_or("ok") != "ok" || doubtful) flagged.push_back(d);
+    }
   }
   if (spheres.empty()) {
     s << "<p>No sphere was detected or recorded (the lights may come from an .lp file).</p>";
@@ -184,15 +227,34 @@ std::string detectionSection(const carrier::Carrier& c, const ReportSource& sour
     }
     s << "</table>";
   }
+  auto imagePath = [&](const carrier::DataItem& d) {
+    const carrier::FileRecord* f = c.findFile(d.get("image").value_or(""));
+    return f ? f->path : d.get("image").value_or("");
+  };
   if (!flagged.empty()) {
     s << "<h3>Highlights to check</h3><ul>";
     for (const carrier::DataItem* d : flagged) {
-      const carrier::FileRecord* f = c.findFile(d->get("image").value_or(""));
-      s << "<li class=\"warning\"><code>" << escapeHtml(f ? f->path : d->get("image").value_or(""))
-        << "</code>, sphere " << escapeHtml(d->get("sphere").value_or("")) << ": "
-        << escapeHtml(d->get("flag").value_or("")) << "</li>";
+      const std::string reason = d->get("reason").value_or("");
+      s << "<li class=\"warning\"><code>" << escapeHtml(imagePath(*d)) << "</code>, sphere "
+        << escapeHtml(d->get("sphere").value_or("")) << ": " << escapeHtml(d->get("flag").value_or(""))
+        << ", confidence " << numberOr(*d, "confidence", 2) << (reason.empty() ? "" : " \u2014 ")
+        << escapeHtml(reason) << "</li>";
     }
     s << "</ul>";
+  }
+  if (!highlights.empty()) {
+    s << "<details><summary>Every highlight</summary><p>Confidence, from 0 to 1: how clearly the "
+         "highlight is one small, compact peak far above the sphere's dark body (the lowest of five "
+         "scores: contrast, spread, share, fill and roundness; docs/carrier.md). 1 for a highlight "
+         "given by hand; 0 for one refused.</p><table><tr><th>image</th><th>sphere</th>"
+         "<th>x, y (px)</th><th>flag</th><th>confidence</th><th>reason</th></tr>";
+    for (const carrier::DataItem* d : highlights)
+      s << "<tr><td><code>" << escapeHtml(imagePath(*d)) << "</code></td><td class=\"num\">"
+        << escapeHtml(d->get("sphere").value_or("")) << "</td><td class=\"num\">" << numberOr(*d, "x", 2)
+        << ", " << numberOr(*d, "y", 2) << "</td><td>" << escapeHtml(d->get("flag").value_or(""))
+        << "</td><td class=\"num\">" << numberOr(*d, "confidence", 2) << "</td><td>"
+        << escapeHtml(d->get("reason").value_or("")) << "</td></tr>";
+    s << "</table></details>";
   }
   s << "<div class=\"gallery\">";
   bool any = false;

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <system_error>
 
 #include "core/error.h"
 #include "core/temp_dir.h"
@@ -96,11 +97,16 @@ std::unique_ptr<ReportSource> openArchive(const fs::path& path) {
 }  // namespace
 
 std::unique_ptr<ReportSource> openReportSource(const fs::path& path) {
-  if (!fs::exists(path)) throwInputError(path.string(), kStep, "does not exist");
-  if (fs::is_directory(path)) {
-    if (fs::is_regular_file(path / kCarrierPath))
+  // Error codes, not exceptions: a loop of symbolic links is the user's path, not a bug.
+  std::error_code ec;
+  const fs::file_status st = fs::status(path, ec);
+  if (ec == std::errc::too_many_symbolic_link_levels)
+    throwInputError(path.string(), kStep, "is a loop of symbolic links; give the capture folder or package itself");
+  if (!fs::exists(st)) throwInputError(path.string(), kStep, "does not exist");
+  if (fs::is_directory(st)) {
+    if (fs::is_regular_file(path / kCarrierPath, ec))
       return std::make_unique<FolderSource>(path, "capture folder " + path.string(), false);
-    if (fs::is_regular_file(path / "data" / kCarrierPath))
+    if (fs::is_regular_file(path / "data" / kCarrierPath, ec))
       return std::make_unique<FolderSource>(path / "data", "bag " + path.string(), true);
     throwInputError(path.string(), kStep,
                     "has no assembly-files/carrier.xml (a capture processed by surrogate run) "
@@ -115,7 +121,7 @@ std::unique_ptr<ReportSource> openReportSource(const fs::path& path) {
   if (endsWith(".xml")) {
     // CAPTURE/assembly-files/carrier.xml: the capture is two levels up.
     const fs::path root = fs::absolute(path).parent_path().parent_path();
-    if (fs::is_regular_file(root / kCarrierPath) && fs::equivalent(root / kCarrierPath, path))
+    if (fs::is_regular_file(root / kCarrierPath, ec) && fs::equivalent(root / kCarrierPath, path, ec))
       return std::make_unique<FolderSource>(root, "capture folder " + root.string(), false);
   }
   throwInputError(path.string(), kStep,

@@ -26,11 +26,20 @@ std::string shotOf(const std::string& name) {
   return stem.empty() ? base : stem;
 }
 
+// An accepted damaged image named as users name images: its path, file name or shot.
+bool namesImage(const std::string& path, const std::string& name) {
+  if (path == name) return true;
+  const auto slash = path.find_last_of('/');
+  const std::string base = slash == std::string::npos ? path : path.substr(slash + 1);
+  return base == name || (name.find('/') == std::string::npos && shotOf(path) == shotOf(name));
+}
+
 std::string describe(const carrier::Intervention& i) {
-  std::string what = i.kind == "exclude-image"      ? "exclusion of " + i.target
-                     : i.kind == "manual-sphere"    ? "manual sphere " + i.target + " (" + i.value + ")"
-                     : i.kind == "manual-highlight" ? "manual highlight " + i.target + " (" + i.value + ")"
-                                                    : i.kind + " " + i.target;
+  std::string what = i.kind == "exclude-image"          ? "exclusion of " + i.target
+                     : i.kind == "manual-sphere"        ? "manual sphere " + i.target + " (" + i.value + ")"
+                     : i.kind == "manual-highlight"     ? "manual highlight " + i.target + " (" + i.value + ")"
+                     : i.kind == "accept-decoder-warning" ? "accepted damage in " + i.target
+                                                        : i.kind + " " + i.target;
   return what + ", recorded " + i.time + " by " + i.who + " (\"" + i.reason + "\")";
 }
 
@@ -52,6 +61,7 @@ RunRequest standingDecisions(const carrier::Carrier& recorded) {
       }
     } else if (s.component == "ImageDecode") {
       for (const carrier::Param& p : s.params) r.decodeSettings.emplace_back(p.name, p.value);
+      for (const carrier::Intervention& i : s.interventions) r.stageInterventions.push_back({s.component, i});
     } else if (isPreprocessing(s.component)) {
       PlannedStage p{s.component, {}};
       for (const carrier::Param& q : s.params) p.params.emplace_back(q.name, q.value);
@@ -114,6 +124,18 @@ RunRequest applyDecisions(const RunRequest& standing, const RunRequest& given,
         found = true;
         break;
       }
+    } else if (w.kind == "accept-decoder-warning") {
+      // Named as the user names images: every accepted file of that name goes (an original and
+      // its export share a shot name).
+      for (auto it = r.stageInterventions.begin(); it != r.stageInterventions.end();) {
+        if (it->intervention.kind != w.kind || !namesImage(it->intervention.target, w.target)) {
+          ++it;
+          continue;
+        }
+        changes.push_back("withdrew the " + describe(it->intervention) + ": " + w.reason);
+        it = r.stageInterventions.erase(it);
+        found = true;
+      }
     } else {
       for (auto it = r.stageInterventions.begin(); it != r.stageInterventions.end(); ++it) {
         if (it->intervention.kind != w.kind || it->intervention.target != w.target) continue;
@@ -128,9 +150,10 @@ RunRequest applyDecisions(const RunRequest& standing, const RunRequest& given,
       for (const Exclusion& e : r.exclusions) standingList += (standingList.empty() ? "" : ", ") + shotOf(e.image);
       for (const auto& i : r.stageInterventions)
         if (i.intervention.kind == w.kind) standingList += (standingList.empty() ? "" : ", ") + i.intervention.target;
-      const std::string option = w.kind == "exclude-image"   ? "--forget-exclusion"
-                                 : w.kind == "manual-sphere" ? "--forget-sphere"
-                                                             : "--forget-highlight";
+      const std::string option = w.kind == "exclude-image"            ? "--forget-exclusion"
+                                 : w.kind == "manual-sphere"          ? "--forget-sphere"
+                                 : w.kind == "accept-decoder-warning" ? "--forget-damaged"
+                                                                      : "--forget-highlight";
       throw Error(ErrorKind::Usage, option + " " + w.target, "command line",
                   "the capture's carrier holds no such decision (standing: " +
                       (standingList.empty() ? std::string("none") : standingList) +
@@ -167,7 +190,8 @@ RunRequest applyDecisions(const RunRequest& standing, const RunRequest& given,
     changes.push_back("image source " + (r.source.empty() ? std::string("auto") : r.source) + " -> " + given.source);
     r.source = given.source;
   }
-  if (given.lp && given.lp != r.lp) {
+  const bool wasDome = r.lp && !r.lp->empty();
+  if (given.lp && given.lp != r.lp && (wasDome || !given.lp->empty())) {
     changes.push_back(given.lp->empty() ? "lights from the spheres again (no dome .lp)"
                                         : "lights from " + *given.lp + " (dome capture)");
     r.lp = given.lp;

@@ -2,16 +2,21 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
+#include <cstdio>
 #include <mutex>
 
 #include "archive/digest.h"
 #include "core/error.h"
 #include "core/parallel.h"
+#include "fit/basis.h"
 #include "pipeline/spill_stack.h"
 
 namespace surrogate::stages {
 
 namespace {
+
+constexpr const char* kStep = "image decode";
 
 std::string pixelDigest(const Image& im) {
   archive::MultiDigest d({archive::DigestAlgorithm::Sha256});
@@ -29,20 +34,83 @@ Image toRgb(const Image& im) {
   return rgb;
 }
 
-// How many images to decode at once: the threads, but no more than the memory budget allows
-// (a decoded image plus the decoder's working memory: about 4 copies of 16-bit RGB).
-int concurrentDecodes(const pipeline::RunSettings& s, int width, int height) {
-  const std::size_t perImage = std::max<std::size_t>(1, std::size_t(width) * height * 3 * 2 * 4);
-  const std::size_t byMemory = std::max<std::size_t>(1, s.memoryBudget / perImage);
-  return static_cast<int>(std::min<std::size_t>(effectiveThreads(s.threads), byMemory));
+// How many images to decode at once: the threads, but no more than the memory budget allows.
+int concurrentDecodes(const pipeline::RunSettings& s, std::uint64_t pixels) {
+  const std::uint64_t perImage = std::max<std::uint64_t>(1, residentBytesPerImage(pixels));
+  const std::uint64_t byMemory = std::max<std::uint64_t>(1, s.memoryBudget / perImage);
+  return static_cast<int>(std::min<std::uint64_t>(effectiveThreads(s.threads), byMemory));
+}
+
+// Sizes as --memory writes them (binary units): "21.6G", "512M".
+std::string size(std::uint64_t bytes) {
+  const char* units[] = {"K", "M", "G", "T"};
+  double v = static_cast<double>(bytes) / 1024;
+  int u = 0;
+  while (v >= 1024 && u < 3) {
+    v /= 1024;
+    ++u;
+  }
+  char text[32];
+  std::snprintf(text, sizeof text, v < 10 ? "%.1f%s" : "%.0f%s", v, units[u]);
+  return text;
+}
+
+// Before any pixel is decoded: what one image needs in memory against --memory, and the two
+// stacks against the free space of the folder they spill to.
+void checkResources(const std::vector<std::filesystem::path>& files, const image::ImageProbe& first,
+                    const pipeline::RunSettings& run, std::uint64_t laterBytesPerPixel) {
+  const std::uint64_t pixels = std::uint64_t(first.width) * std::uint64_t(first.height);
+  const std::uint64_t resident = residentBytesPerImage(pixels) + pixels * laterBytesPerPixel;
+  const std::string declared = std::to_string(first.width) + "x" + std::to_string(first.height);
+  const std::uint64_t stackBytes = pipeline::spillBytes(static_cast<int>(files.size()), first.width, first.height, 3) +
+                                   pipeline::spillBytes(static_cast<int>(files.size()), first.width, first.height, 1);
+  if (resident > run.memoryBudget) {
+    const std::uint64_t gib = (resident + (1ull << 30) - 1) >> 30;
+    throw Error(ErrorKind::Usage, "--memory " + size(run.memoryBudget), kStep,
+                "is too small for these images: " + files.front().filename().string() + " declares " +
+                    declared + " pixels, and decoding one such image" +
+                    (laterBytesPerPixel ? std::string(" and keeping the fitted models") : std::string()) +
+                    " needs about " + size(resident) + " in memory at once (the decoded stack of " +
+                    std::to_string(files.size()) +
+                    " images, " + size(stackBytes) + ", goes to a temporary file, not memory); the "
+                    "budget (--memory) is " + size(run.memoryBudget) + ". Give --memory " +
+                    std::to_string(gib) + "G or more if the computer has it; if the images are not "
+                    "that large, their headers are damaged");
+  }
+  const std::filesystem::path dir = pipeline::spillDirectory();
+  if (const auto free = pipeline::spillSpaceAvailable(dir); free && *free < stackBytes) {
+    throw Error(ErrorKind::Usage, dir.string(), kStep,
+                "the decoded images (" + std::to_string(files.size()) + " x " + declared + " pixels) need " +
+                    size(stackBytes) + " of temporary space in this folder, which has " + size(*free) +
+                    " free; free some space there, or set TMPDIR to a folder on a disk with more "
+                    "(e.g. TMPDIR=/scratch surrogate run ...)");
+  }
 }
 
 }  // namespace
 
+std::uint64_t residentBytesPerImage(std::uint64_t pixels) { return pixels * kResidentBytesPerPixel; }
+
+std::uint64_t modelBytesPerPixel(const std::string& basis) {
+  const fit::Basis b = fit::parseBasis(basis);
+  if (b == fit::Basis::PtmLrgb) return 9;
+  if (b == fit::Basis::PtmRgb) return 18;
+  return 3 * static_cast<std::uint64_t>(fit::basisTerms(b));
+}
+
 DecodedStacks decodeImages(const std::vector<std::filesystem::path>& files,
                            const image::RawDecodeSettings& settings,
-                           const pipeline::RunSettings& run) {
+                           const pipeline::RunSettings& run,
+                           const std::vector<bool>& acceptDamage,
+                           std::uint64_t laterBytesPerPixel) {
   const int n = static_cast<int>(files.size());
+  if (n == 0) throw Error(ErrorKind::Input, "", kStep, "there are no images to decode");
+  // The headers first: nothing is decoded, or allocated for pixels, before the sizes they
+  // declare are known to fit in memory and on disk.
+  const image::ImageProbe first = image::probeImage(files.front());
+  checkResources(files, first, run, laterBytesPerPixel);
+  const std::uint64_t declared = std::uint64_t(first.width) * std::uint64_t(first.height);
+
   DecodedStacks out;
   out.images.resize(n);
   std::shared_ptr<pipeline::SpillStack> rgb, lum;
@@ -51,7 +119,10 @@ DecodedStacks decodeImages(const std::vector<std::filesystem::path>& files,
 
   auto decodeOne = [&](int i) {
     DecodedImage& d = out.images[i];
-    const Image im = image::decodeImage(files[i], settings, &d.report);
+    image::DecodeOptions options;
+    options.acceptDamage = i < static_cast<int>(acceptDamage.size()) && acceptDamage[i];
+    options.maxPixels = declared;  // all images are alike: a larger header is damaged
+    const Image im = image::decodeImage(files[i], settings, &d.report, options);
     d.width = im.width;
     d.height = im.height;
     d.channels = im.channels;
@@ -66,7 +137,7 @@ DecodedStacks decodeImages(const std::vector<std::filesystem::path>& files,
       }
     }
     if (im.width != rgb->width() || im.height != rgb->height() || im.transfer != lum->transfer()) {
-      throwInputError(files[i].string(), "image decode",
+      throwInputError(files[i].string(), kStep,
                       "decodes to " + std::to_string(im.width) + "x" + std::to_string(im.height) +
                           " pixels of another kind than the first image (" +
                           std::to_string(rgb->width()) + "x" + std::to_string(rgb->height()) +
@@ -77,9 +148,8 @@ DecodedStacks decodeImages(const std::vector<std::filesystem::path>& files,
     if (run.progress) run.progress("Decoding images", double(++done) / n);
   };
 
-  if (n == 0) throw Error(ErrorKind::Input, "", "image decode", "there are no images to decode");
   decodeOne(0);  // fixes the stacks' size
-  const int workers = concurrentDecodes(run, rgb->width(), rgb->height());
+  const int workers = concurrentDecodes(run, declared);
   parallelFor(static_cast<std::size_t>(n - 1), 1, workers, [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) decodeOne(static_cast<int>(i) + 1);
   });

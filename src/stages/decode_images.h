@@ -4,8 +4,15 @@
 //              and highlight detection read
 // Images are decoded in parallel, as many at once as the threads and the memory budget allow;
 // the stacks and the per-image reports are in input order whatever the thread count.
+//
+// Bounded for any input: before anything is decoded, the first image's header gives the size;
+// if decoding one such image needs more memory than --memory (residentBytesPerImage), or the
+// two stacks more than the free space of the folder they spill to ($TMPDIR), it is refused
+// (Error(Usage), naming --memory or the folder); an image whose header declares more pixels
+// than the first is refused before its pixels are allocated.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -30,8 +37,30 @@ struct DecodedStacks {
   std::vector<DecodedImage> images;
 };
 
+// `acceptDamage[i]`: decode image i even if its decoder reports damaged data (the warnings are
+// then in images[i].report.decoderWarnings); otherwise such an image is refused with
+// image::DamagedImageError. Missing entries are false.
+// `laterBytesPerPixel`: what the run holds per pixel after decoding besides the stacks' bands
+// (the fitted models the derived maps keep: modelBytesPerPixel); counted in the check against
+// --memory so that a run refused for its size is refused before anything is decoded.
 DecodedStacks decodeImages(const std::vector<std::filesystem::path>& files,
                            const image::RawDecodeSettings& settings,
-                           const pipeline::RunSettings& run);
+                           const pipeline::RunSettings& run,
+                           const std::vector<bool>& acceptDamage = {},
+                           std::uint64_t laterBytesPerPixel = 0);
+
+// What decoding one image of `pixels` pixels holds in memory at once: the decoded image, its
+// luminance and sRGB copies and the decoder's working memory, about 4 copies of 16-bit RGB
+// (measured: see kResidentBytesPerPixel). Everything else of a run streams in bands sized to
+// the budget; the stacks are in temporary files.
+// Measured (surrogate run, --threads 1, 10 x 3 Mpx): 16 bytes per pixel above the process's
+// own 80 MB for decoding and light estimation; a whole run 33 (ptm-lrgb), 33 (hsh2), 47 (hsh3)
+// and 42 (ptm-lrgb and hsh2), i.e. at most this plus the fitted models' bytes per pixel.
+inline constexpr std::uint64_t kResidentBytesPerPixel = 24;
+std::uint64_t residentBytesPerImage(std::uint64_t pixels);
+
+// Bytes per pixel of a fitted model held in memory: PTM LRGB 6 coefficients + RGB (9), PTM RGB
+// 18, HSH 3 x terms (12 for hsh2, 27 for hsh3). For the check of decodeImages.
+std::uint64_t modelBytesPerPixel(const std::string& basis);
 
 }  // namespace surrogate::stages

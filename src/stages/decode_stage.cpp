@@ -1,5 +1,7 @@
 #include "stages/decode_stage.h"
 
+#include <algorithm>
+
 #include "pipeline/context.h"
 #include "stages/decode_images.h"
 #include "stages/inputs.h"
@@ -7,13 +9,73 @@
 
 namespace surrogate::stages {
 
+namespace {
+
+std::string joined(const std::vector<std::string>& parts) {
+  std::string out;
+  for (const std::string& p : parts) out += (out.empty() ? "" : "; ") + p;
+  return out;
+}
+
+// The `accept-decoder-warning` interventions: per input, the one that accepts damage in exactly
+// the bytes the file has now (its value is "sha256:<hex>" of the file when it was accepted).
+std::vector<const carrier::Intervention*> acceptedDamage(const carrier::Step& step, pipeline::Context& ctx,
+                                                         const InputImages& inputs) {
+  std::vector<const carrier::Intervention*> accepted(inputs.size(), nullptr);
+  for (const carrier::Intervention* i : step.interventionsOfKind(kAcceptDecoderWarning)) {
+    const auto in = std::find_if(inputs.begin(), inputs.end(),
+                                 [&](const InputImage& x) { return x.relativePath == i->target; });
+    if (in == inputs.end()) {
+      ctx.carrier.addLog("info", step.id,
+                         "the accepted damage in " + i->target + " (" + i->reason + ") does not apply: this "
+                         "run does not decode that file (excluded, or the other source)", i->who);
+      continue;
+    }
+    const carrier::FileRecord* f = ctx.carrier.findFile(in->fileId);
+    if (!f || i->value != "sha256:" + f->sha256) {
+      ctx.carrier.addLog("warning", step.id,
+                         "the accepted damage in " + i->target + " was accepted for other bytes (" + i->value +
+                             "); the file is now sha256:" + (f ? f->sha256 : std::string("?")) +
+                             ", so its decoder's warnings refuse it again until accepted anew", i->who);
+      continue;
+    }
+    accepted[static_cast<std::size_t>(in - inputs.begin())] = i;
+  }
+  return accepted;
+}
+
+}  // namespace
+
 void DecodeStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier::Result& result) {
   const auto inputs = ctx.get<InputImages>(kInputImages);
   const image::RawDecodeSettings settings =
       image::RawDecodeSettings::fromParameters(parametersOf(step));
   std::vector<std::filesystem::path> files;
   for (const InputImage& in : *inputs) files.push_back(ctx.pathOf(in.fileId));
-  const DecodedStacks decoded = decodeImages(files, settings, ctx.settings);
+  const std::vector<const carrier::Intervention*> accepted = acceptedDamage(step, ctx, *inputs);
+  std::vector<bool> acceptDamage;
+  for (const carrier::Intervention* a : accepted) acceptDamage.push_back(a != nullptr);
+  // The fitted models this run will hold (the derived maps keep every one): counted, with the
+  // decoding, against --memory before anything is decoded.
+  std::uint64_t modelBytes = 0;
+  for (const carrier::Step& s : ctx.carrier.process)
+    if (s.component == "RtiFit" && s.hasParam("basis")) modelBytes += modelBytesPerPixel(s.param("basis"));
+  DecodedStacks decoded;
+  try {
+    decoded = decodeImages(files, settings, ctx.settings, acceptDamage, modelBytes);
+  } catch (const image::DamagedImageError& e) {
+    // Refused with the library's words; what the user can do about it, with this capture's names.
+    std::string rel = e.file(), stem = e.file();
+    for (std::size_t i = 0; i < files.size(); ++i)
+      if (files[i].string() == e.file()) {
+        rel = (*inputs)[i].relativePath;
+        stem = (*inputs)[i].stem;
+      }
+    throw Error(ErrorKind::Input, e.file(), e.step(),
+                e.message() + ". If the damage is acceptable (the shot cannot be taken again and the "
+                "rest of the image is sound), accept it, recorded with your reason: --accept-damaged " +
+                    rel + " --reason \"...\"; or leave the shot out: --exclude " + stem + " --reason \"...\"");
+  }
 
   for (std::size_t i = 0; i < inputs->size(); ++i) {
     const DecodedImage& d = decoded.images[i];
@@ -42,6 +104,20 @@ void DecodeStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
     }
     for (const std::string& w : d.report.warnings)
       ctx.carrier.addLog("warning", step.id, (*inputs)[i].relativePath + ": " + w);
+    if (const carrier::Intervention* a = accepted[i]) {
+      if (d.report.decoderWarnings.empty()) {
+        ctx.carrier.addLog("info", step.id,
+                           (*inputs)[i].relativePath + ": damage was accepted (" + a->reason +
+                               "), but its decoder reported none", a->who);
+      } else {
+        const std::string words = joined(d.report.decoderWarnings);
+        result.add("imageValue").set("image", (*inputs)[i].fileId).set("name", "decoderWarning").set("value", words);
+        ctx.carrier.addLog("intervention", step.id,
+                           (*inputs)[i].relativePath + " decoded although its decoder reports damaged data (" +
+                               words + "); the damaged part holds what the decoder made up. Accepted: " +
+                               a->reason, a->who);
+      }
+    }
   }
   // Inputs processed by other software before Surrogate saw them (exports, or files whose XMP
   // holds an editing history): the auditor must see that part of the processing is unrecorded.

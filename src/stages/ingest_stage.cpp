@@ -8,6 +8,7 @@
 #include "capture/capture.h"
 #include "core/parallel.h"
 #include "core/text.h"
+#include "image/decode.h"
 #include "meta/metadata.h"
 #include "pipeline/context.h"
 #include "stages/inputs.h"
@@ -20,12 +21,16 @@ namespace {
 
 constexpr const char* kStep = "capture ingest";
 
-// Media type and PRONOM identifier, only where the identifier is certain for every file of
-// that kind (DNG and JPEG identifiers depend on the version inside the file: left out).
-void setFormatIdentifiers(carrier::FileRecord& f) {
-  const std::string ext = lowerCase(fs::path(f.path).extension().string());
-  struct Known { const char* ext; const char* mediaType; const char* puid; };
-  static const Known kKnown[] = {
+struct KnownFormat {
+  const char* ext;
+  const char* mediaType;
+  const char* puid;
+};
+
+// Media type and PRONOM identifier by extension, only where the identifier is certain for every
+// file of that kind (DNG and JPEG identifiers depend on the version inside the file: left out).
+const KnownFormat* byExtension(const std::string& ext) {
+  static const KnownFormat kKnown[] = {
       {".cr2", "image/x-canon-cr2", "fmt/592"}, {".crw", "image/x-canon-crw", "fmt/593"},
       {".cr3", "image/x-canon-cr3", "fmt/1595"}, {".nef", "image/x-nikon-nef", "fmt/202"},
       {".dng", "image/x-adobe-dng", ""},          {".jpg", "image/jpeg", ""},
@@ -33,13 +38,40 @@ void setFormatIdentifiers(carrier::FileRecord& f) {
       {".tiff", "image/tiff", "fmt/353"},         {".png", "image/png", ""},
       {".lp", "text/plain", ""},                  {".xmp", "application/rdf+xml", ""},
   };
-  for (const Known& k : kKnown) {
-    if (ext == k.ext) {
-      f.mediaType = k.mediaType;
-      f.puid = k.puid;
-      return;
+  for (const KnownFormat& k : kKnown)
+    if (ext == k.ext) return &k;
+  return nullptr;
+}
+
+// Media type and PRONOM identifier. An image's come from its content (the format the probe
+// found: JPEG, PNG, TIFF, DNG), not its name: a PNG named .jpg is image/png. Camera raws other
+// than DNG share the TIFF container, so their extension names the camera format. Returns a
+// warning when the name says another format than the content.
+std::string setFormatIdentifiers(carrier::FileRecord& f, const fs::path& abs, bool isImage) {
+  const std::string ext = lowerCase(fs::path(f.path).extension().string());
+  const KnownFormat* named = byExtension(ext);
+  if (!isImage) {
+    if (named) {
+      f.mediaType = named->mediaType;
+      f.puid = named->puid;
     }
+    return {};
   }
+  const char* contentExt = f.format == "JPEG" ? ".jpg" : f.format == "PNG" ? ".png" : f.format == "TIFF" ? ".tif" : "";
+  if (!*contentExt && (f.format == "DNG" || ext == ".dng" || image::isDngFile(abs))) {
+    f.format = "DNG";
+    contentExt = ".dng";
+  }
+  const KnownFormat* content = *contentExt ? byExtension(contentExt) : named;
+  if (content) {
+    f.mediaType = content->mediaType;
+    f.puid = content->puid;
+  }
+  if (named && content && std::string(named->mediaType) != content->mediaType)
+    return f.path + " is a " + f.format + " file named " + ext + ": recorded as " + content->mediaType +
+           " (from its content, not its name); rename it to " + contentExt + " so that other software "
+           "opens it as what it is";
+  return {};
 }
 
 carrier::Attributes cameraAttributes(const meta::CameraMetadata& m) {
@@ -168,6 +200,7 @@ void IngestStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
   // Hash and read metadata in parallel; the records are assembled in order afterwards.
   std::vector<carrier::FileRecord> records(pending.size());
   std::vector<std::string> metadataWarnings(pending.size());
+  std::vector<std::string> formatWarnings(pending.size());
   std::atomic<std::size_t> done{0};
   parallelFor(pending.size(), 1, threads, [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) {
@@ -181,7 +214,7 @@ void IngestStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
       f.sha256 = d.sha256;
       f.format = p.format;
       f.unrecordedProcessing = p.unrecorded;
-      setFormatIdentifiers(f);
+      formatWarnings[i] = setFormatIdentifiers(f, abs, p.isImage);
       if (p.isImage) {
         f.imageSize = std::make_pair(p.width, p.height);
         try {
@@ -206,6 +239,7 @@ void IngestStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
   });
   for (std::size_t i = 0; i < records.size(); ++i) {
     ctx.carrier.putFile(records[i]);
+    if (!formatWarnings[i].empty()) ctx.carrier.addLog("warning", step.id, formatWarnings[i]);
     if (!metadataWarnings[i].empty())
       ctx.carrier.addLog("warning", step.id,
                          (records[i].role == "sidecar" ? "unreadable XMP sidecar: " : "no camera metadata: ") +

@@ -61,16 +61,6 @@ int bandRowsFor(const ImageStack& stack, std::size_t budget) {
                                                   static_cast<std::size_t>(stack.height())));
 }
 
-const char* flagName(hrti::HighlightFlag f) {
-  switch (f) {
-    case hrti::HighlightFlag::Ok: return "ok";
-    case hrti::HighlightFlag::None: return "none";
-    case hrti::HighlightFlag::Multiple: return "multiple";
-    case hrti::HighlightFlag::Manual: return "manual";
-  }
-  return "ok";
-}
-
 // The median image made viewable: camera-raw luminance is linear and would look black.
 Image displayable(const Image& median, const ImageStack& lum) {
   return lum.transfer() == Transfer::Linear ? image::srgbEncode(median) : median;
@@ -126,6 +116,48 @@ void SphereDetectionStage::run(const carrier::Step& step, pipeline::Context& ctx
 
 // ---- HighlightDetection -------------------------------------------------------------------
 
+namespace {
+
+std::string confidenceText(double c) { return fixedDecimals(c, 2); }
+
+// Up to `most` items joined by "; ", then "and N more".
+std::string listed(const std::vector<std::string>& items, std::size_t most = 6) {
+  std::string out;
+  for (std::size_t i = 0; i < items.size() && i < most; ++i) out += (i ? "; " : "") + items[i];
+  if (items.size() > most) out += "; and " + std::to_string(items.size() - most) + " more";
+  return out;
+}
+
+// A sphere on which most images (more than half, and at least kSphereRefusals) show no
+// trustworthy highlight is not a sphere: a circle given by hand in the wrong place, or a
+// detection that found something else.
+constexpr std::size_t kSphereRefusals = 3;
+void refuseSphereWithoutHighlights(const carrier::Step& sphereStep, const hrti::DetectedSphere& s, std::size_t k,
+                                   const std::vector<std::string>& refused, std::size_t images) {
+  const std::string counted = "shows no trustworthy highlight in " + std::to_string(refused.size()) + " of " +
+                              std::to_string(images) + " images (" + listed(refused, 3) + ")";
+  const std::string circle = fixedDecimals(s.cx, 1) + "," + fixedDecimals(s.cy, 1) + "," + fixedDecimals(s.r, 1);
+  for (const carrier::Intervention* i : sphereStep.interventionsOfKind("manual-sphere")) {
+    if (i->target != std::to_string(k)) continue;
+    throw Error(ErrorKind::Input, "--sphere " + i->value, "highlight detection",
+                "the circle given by hand for sphere " + std::to_string(k) + " " + counted +
+                    ": it is probably not where the sphere is in the images. Give the sphere's circle "
+                    "again, as it appears in the images, with --sphere CX,CY,R --reason \"...\", or "
+                    "withdraw it with --forget-sphere " + std::to_string(k) +
+                    " --reason \"...\" to let Surrogate find the sphere. (If the circle is right, these "
+                    "images show no highlight: leave them out with --exclude or give their highlights by "
+                    "hand with --highlight.)");
+  }
+  throw Error(ErrorKind::Input, "sphere " + std::to_string(k) + " at " + circle, "highlight detection",
+              "the circle found for sphere " + std::to_string(k) + " " + counted +
+                  ": it is probably not a sphere. Give the sphere's circle by hand with --sphere CX,CY,R "
+                  "--reason \"...\", or restrict the search to the sphere with --sphere-roi X,Y,W,H. (If "
+                  "the circle is right, these images show no highlight: leave them out with --exclude or "
+                  "give their highlights by hand with --highlight.)");
+}
+
+}  // namespace
+
 void HighlightDetectionStage::run(const carrier::Step& step, pipeline::Context& ctx,
                                   carrier::Result& result) {
   const auto lum = ctx.get<ImageStack>(kLuminanceStack);
@@ -159,23 +191,48 @@ void HighlightDetectionStage::run(const carrier::Step& step, pipeline::Context& 
     h.x = v[0];
     h.y = v[1];
     h.flag = hrti::HighlightFlag::Manual;
+    h.confidence = 1;
+    h.reason = "given by hand: " + i->reason;
     ctx.carrier.addLog("intervention", step.id,
                        "highlight of " + i->target + " set by hand to " + i->value + ": " + i->reason, i->who);
   }
 
+  // The record: every highlight with its flag, confidence and, when refused or doubtful, why.
+  std::vector<std::string> unusable;  // images without any usable highlight, with why
+  std::vector<const InputImage*> unusableImages;
+  std::vector<std::vector<std::string>> refusedOn(spheres->size());  // per sphere
   for (std::size_t n = 0; n < inputs->size(); ++n) {
+    const InputImage& in = (*inputs)[n];
+    bool usable = false;
+    std::vector<std::string> why;
     for (std::size_t k = 0; k < spheres->size(); ++k) {
       const hrti::Highlight& h = (*highlights)[n][k];
-      result.add("highlight").set("image", (*inputs)[n].fileId).set("sphere", static_cast<int>(k))
-          .set("x", h.x).set("y", h.y).set("flag", flagName(h.flag)).set("peak", h.peak)
-          .set("components", h.components);
-      if (h.flag == hrti::HighlightFlag::None)
-        ctx.carrier.addLog("warning", step.id, (*inputs)[n].relativePath + ": no highlight on sphere " +
-                           std::to_string(k) + "; the image gets its light from the other spheres, or "
-                           "exclude it (--exclude) or give the highlight by hand (--highlight)");
-      else if (h.flag == hrti::HighlightFlag::Multiple)
-        ctx.carrier.addLog("warning", step.id, (*inputs)[n].relativePath + ": several strong highlights on sphere " +
-                           std::to_string(k) + "; the one nearest the centre was used, check the highlight overview");
+      carrier::DataItem& item = result.add("highlight");
+      item.set("image", in.fileId).set("sphere", static_cast<int>(k)).set("x", h.x).set("y", h.y)
+          .set("flag", hrti::flagName(h.flag)).set("peak", h.peak).set("components", h.components)
+          .set("confidence", h.confidence);
+      if (!h.reason.empty()) item.set("reason", h.reason);
+      const std::string on = spheres->size() > 1 ? " on sphere " + std::to_string(k) : "";
+      if (hrti::isUsable(h.flag)) {
+        usable = true;
+        if (h.flag == hrti::HighlightFlag::Multiple)
+          ctx.carrier.addLog("warning", step.id, in.relativePath + ": several strong highlights" + on +
+                             "; the one nearest the centre was used (confidence " + confidenceText(h.confidence) +
+                             "), check the highlight overview");
+        else if (h.flag == hrti::HighlightFlag::Ok && h.confidence < 0.5)
+          ctx.carrier.addLog("warning", step.id, in.relativePath + ": the highlight" + on + " has confidence " +
+                             confidenceText(h.confidence) + " only; check it on the highlight overview");
+      } else {
+        refusedOn[k].push_back(in.stem);
+        why.push_back(std::string(hrti::flagName(h.flag)) + on + ": " + h.reason);
+      }
+    }
+    if (!usable) {
+      unusable.push_back(in.relativePath + " (" + listed(why, 2) + ")");
+      unusableImages.push_back(&in);
+    } else if (!why.empty()) {
+      ctx.carrier.addLog("warning", step.id, in.relativePath + ": no trustworthy highlight " + listed(why, 2) +
+                         "; its light comes from the other sphere(s)");
     }
   }
   for (std::size_t k = 0; k < spheres->size(); ++k) {
@@ -186,6 +243,24 @@ void HighlightDetectionStage::run(const carrier::Step& step, pipeline::Context& 
     image::writePng(hrti::drawHighlightOverview(displayable(*median, *lum), (*spheres)[k], perImage),
                     ctx.outputPath(overview));
     recordOutput(ctx, step, result, overview, "assembly", "PNG", "highlight-overview", "image/png");
+  }
+
+  // Refused by default: never a confident light direction from a highlight that is not one.
+  const carrier::Step* sphereStep = nullptr;
+  for (const carrier::Step& s : ctx.carrier.process)
+    if (s.component == "SphereDetection") sphereStep = &s;
+  for (std::size_t k = 0; k < spheres->size(); ++k)
+    if (2 * refusedOn[k].size() > inputs->size() && refusedOn[k].size() >= kSphereRefusals && sphereStep)
+      refuseSphereWithoutHighlights(*sphereStep, (*spheres)[k], k, refusedOn[k], inputs->size());
+  if (!unusable.empty()) {
+    const bool one = unusable.size() == 1;
+    const std::string& stem = unusableImages.front()->stem;
+    throw Error(ErrorKind::Input, one ? unusableImages.front()->relativePath : "", "highlight detection",
+                (one ? std::string("this image has") : std::to_string(unusable.size()) + " images have") +
+                    " no trustworthy highlight on any sphere, so " + (one ? "its" : "their") +
+                    " light direction cannot be measured: " + listed(unusable, 8) + ". Leave each out with "
+                    "--exclude " + stem + " --reason \"...\", or give its highlight by hand with --highlight " +
+                    stem + ":0=X,Y --reason \"...\" (X,Y in pixels of the full frame)");
   }
   ctx.put(kHighlights, highlights);
   ctx.progress("Highlight detection", 1);
@@ -289,7 +364,7 @@ void LightDirectionsStage::run(const carrier::Step& step, pipeline::Context& ctx
     std::string from;
     for (std::size_t k = 0; k < spheres->size(); ++k) {
       const hrti::Highlight& h = (*highlights)[n][k];
-      if (h.flag == hrti::HighlightFlag::None) continue;
+      if (!hrti::isUsable(h.flag)) continue;
       const hrti::LightDirection l =
           model == "perspective" ? hrti::lightFromHighlightPerspective((*spheres)[k], h.x, h.y, *intrinsics)
                                  : hrti::lightFromHighlight((*spheres)[k], h.x, h.y);
@@ -324,7 +399,7 @@ void LightDirectionsStage::run(const carrier::Step& step, pipeline::Context& ctx
       std::vector<hrti::SphereGeometry> geometry;
       std::vector<hrti::Highlight> perSphere;
       for (std::size_t k = 0; k < spheres->size(); ++k) {
-        if ((*highlights)[n][k].flag == hrti::HighlightFlag::None) continue;
+        if (!hrti::isUsable((*highlights)[n][k].flag)) continue;
         geometry.push_back({(*spheres)[k], diameter});
         perSphere.push_back((*highlights)[n][k]);
       }

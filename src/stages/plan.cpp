@@ -1,5 +1,6 @@
 #include "stages/plan.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <mutex>
 #include <optional>
@@ -42,7 +43,10 @@ void registerBuiltinStages() {
 std::vector<carrier::Software> softwareVersions() {
   return {
       {"LibRaw", image::librawVersion(), "camera raw decoding"},
-      {"OpenCV", image::opencvVersion(), "image decoding and filtering"},
+      {image::libjpegName(), image::libjpegVersion(), "JPEG decoding"},
+      {"libpng", image::libpngVersion(), "PNG decoding"},
+      {"libtiff", image::libtiffVersion(), "TIFF decoding"},
+      {"OpenCV", image::opencvVersion(), "image writing and filtering"},
       {"Exiv2", meta::exiv2Version(), "EXIF/XMP metadata"},
       {"libxml2", xml::libxml2Version(), "XML and schema validation"},
       {"OpenSSL", archive::opensslVersion(), "message digests"},
@@ -92,9 +96,11 @@ carrier::Carrier planRun(const fs::path& capture, const RunRequest& request) {
     if (i.component == "CaptureIngest") ingest.interventions.push_back(stamped(i.intervention));
 
   carrier::Step& decode = c.addStep("ImageDecode", DecodeStage().version());
-  decode.description = "Decode each image once (LibRaw for raw/DNG, OpenCV for exports)";
+  decode.description = "Decode each image once (LibRaw for raw/DNG; libjpeg, libpng, libtiff for JPEG, PNG, TIFF)";
   image::RawDecodeSettings settings = image::RawDecodeSettings::fromParameters(request.decodeSettings);
   for (const auto& [name, value] : settings.toParameters()) decode.setParam(name, value);
+  for (const RunRequest::StageIntervention& i : request.stageInterventions)
+    if (i.component == "ImageDecode") decode.interventions.push_back(stamped(i.intervention));
 
   auto& registry = pipeline::StageRegistry::instance();
   for (const PlannedStage& planned : analysisStages(dome, request)) {
@@ -150,6 +156,41 @@ void addAcceptedChanges(const fs::path& capture, const RunRequest& request, cons
   }
 }
 
+// `--accept-damaged IMAGE`: the file of the capture the run decodes for that name (a path or
+// file name; a shot name means the file the image source selects), recorded with its bytes
+// (SHA-256), so the acceptance holds for this damage and no later change of the file.
+void addAcceptedDamage(const fs::path& capture, const capture::CaptureLayout& layout, const RunRequest& request,
+                       RunRequest& merged, std::vector<std::string>& changes) {
+  for (const AcceptedDamage& a : request.acceptedDamage) {
+    std::optional<std::string> path;
+    for (const capture::Shot& shot : layout.shots)
+      for (const std::optional<capture::ImageFile>& f : {shot.original, shot.exported})
+        if (f && (f->relativePath == a.image || fs::path(f->relativePath).filename().string() == a.image)) path = f->relativePath;
+    if (!path) {
+      if (const auto stem = capture::findShotStem(layout, a.image)) {
+        const std::vector<capture::ImageFile> chosen =
+            capture::selectImages(layout, capture::parseSource(merged.source.empty() ? "auto" : merged.source));
+        for (const capture::ImageFile& f : chosen)
+          if (fs::path(f.relativePath).stem().string() == *stem) path = f.relativePath;
+      }
+    }
+    if (!path)
+      throw Error(ErrorKind::Usage, "--accept-damaged " + a.image, "command line",
+                  "no image of the capture has that name; give the file as it is in original-captures/ "
+                  "or jpeg-exports/ (e.g. jpeg-exports/IMG_0003.jpg), or the shot's name");
+    const std::string bytes = "sha256:" + archive::digestFile(capture / fs::u8path(*path)).sha256;
+    auto& list = merged.stageInterventions;
+    list.erase(std::remove_if(list.begin(), list.end(),
+                              [&](const RunRequest::StageIntervention& i) {
+                                return i.component == "ImageDecode" && i.intervention.kind == kAcceptDecoderWarning &&
+                                       i.intervention.target == *path;
+                              }),
+               list.end());
+    list.push_back({"ImageDecode", {kAcceptDecoderWarning, *path, bytes, "", "", a.reason}});
+    changes.push_back("accepted the damage its decoder reports in " + *path + " (" + bytes + "): " + a.reason);
+  }
+}
+
 // Every basis to fit needs at least as many photographs as it has coefficients: checked before
 // any processing, naming the option, since the basis choice stands for later runs.
 void checkEnoughPhotographs(const capture::CaptureLayout& layout, const RunRequest& request) {
@@ -200,6 +241,7 @@ carrier::Carrier runCapture(const fs::path& captureArg, const RunRequest& reques
   RunRequest merged = applyDecisions(previous ? standingDecisions(*previous) : RunRequest{}, request, changes);
   addAcceptedChanges(capture, request, previous ? &*previous : nullptr, merged, changes);
   if (merged.lp && !merged.lp->empty()) layout = capture::scanCapture(capture, settings.threads, *merged.lp);
+  addAcceptedDamage(capture, layout, request, merged, changes);
   const auto [width, height] = layout.frameSize();
   checkRequestAgainstFrame(merged, width, height);
   checkEnoughPhotographs(layout, merged);

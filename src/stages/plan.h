@@ -30,8 +30,8 @@ struct Exclusion {
 // A standing decision withdrawn on purpose (`--forget-exclusion`, `--forget-sphere`,
 // `--forget-highlight`): recorded with its reason like the decision itself.
 struct Withdrawal {
-  std::string kind;    // exclude-image, manual-sphere, manual-highlight
-  std::string target;  // shot, sphere index, "IMAGE:SPHERE"
+  std::string kind;    // exclude-image, manual-sphere, manual-highlight, accept-decoder-warning
+  std::string target;  // shot, sphere index, "IMAGE:SPHERE", image (shot, file name or path)
   std::string reason;
 };
 
@@ -40,6 +40,14 @@ struct Withdrawal {
 struct AcceptedChange {
   std::string path;  // relative to the capture, as the carrier records it
   std::string reason;
+};
+
+// An image whose decoder reports damaged data, accepted on purpose (`--accept-damaged`): without
+// one, ImageDecode refuses it. Resolved by runCapture to the file the run decodes and recorded
+// as an `accept-decoder-warning` intervention on ImageDecode that names its bytes (SHA-256).
+struct AcceptedDamage {
+  std::string image;   // shot name, file name or path relative to the capture
+  std::string reason;  // mandatory
 };
 
 // A step to plan: its component and the parameters that differ from the stage's defaults.
@@ -66,6 +74,7 @@ struct RunRequest {
 
   // ImageDecode: LibRaw settings as name=value pairs (see image::RawDecodeSettings), set by name.
   std::vector<std::pair<std::string, std::string>> decodeSettings;
+  std::vector<AcceptedDamage> acceptedDamage;
 
   // Stage parameters given on the command line, by stage component: {component, name, value}.
   struct StageParam {

@@ -149,6 +149,15 @@ std::pair<int, int> ResizeOptions::outputSize(int w, int h, const std::string& o
     refuse(origin, std::to_string(ow) + "x" + std::to_string(oh),
            "is larger than the " + std::to_string(w) + "x" + std::to_string(h) +
                " images it resizes; resizing only reduces (enlarging adds no information)");
+  if (ow < kMinResizeSide || oh < kMinResizeSide) {
+    const std::string given = factor > 0 ? shortNumber(factor) : std::to_string(width) + "x" + std::to_string(height);
+    char least[32];
+    std::snprintf(least, sizeof least, "%.3g", std::ceil(1000.0 * kMinResizeSide / std::min(w, h)) / 1000);
+    refuse(origin, given,
+           "would reduce the " + std::to_string(w) + "x" + std::to_string(h) + " images to " + std::to_string(ow) +
+               "x" + std::to_string(oh) + " pixels; the result needs at least " + std::to_string(kMinResizeSide) +
+               " pixels per side: give a factor of at least " + least + " or a size WxH");
+  }
   return {ow, oh};
 }
 
@@ -167,7 +176,10 @@ void parseResizeValue(ResizeOptions& o, const std::string& text, const std::stri
   if (x != std::string::npos) {
     if (!parseInt(text.substr(0, x), o.width) || !parseInt(text.substr(x + 1), o.height) ||
         o.width <= 0 || o.height <= 0)
-      refuse(origin, what + text, "needs a target size WxH of at least 1x1 pixels, e.g. 640x480");
+      refuse(origin, what + text, "needs a target size WxH in whole pixels, e.g. 640x480");
+    if (o.width < kMinResizeSide || o.height < kMinResizeSide)
+      refuse(origin, what + text, "needs a target size of at least " + std::to_string(kMinResizeSide) + "x" +
+                                      std::to_string(kMinResizeSide) + " pixels, e.g. 640x480");
     o.factor = 0;
     return;
   }

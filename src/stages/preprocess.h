@@ -43,15 +43,20 @@ struct CropOptions {
   static CropOptions fromText(const std::string& text, const std::string& origin = "--crop");
 };
 
+// The smallest side a resize may give: a fit of a few pixels is no surrogate of anything.
+inline constexpr int kMinResizeSide = 16;
+
 struct ResizeOptions {
   // Either a scale factor (0 < factor <= 1) or a target size; factor 0 means "use the size".
+  // Either way the result has at least kMinResizeSide pixels per side.
   double factor = 0;
   int width = 0, height = 0;
   // "area": each output pixel is the area-weighted mean of the input pixels it covers,
   // averaged in linear light, exact integer weights (deterministic). Reduces only.
   std::string filter = "area";
 
-  // The output size for an input of w x h; Error(Usage) naming `origin` if it would enlarge.
+  // The output size for an input of w x h; Error(Usage) naming `origin` if it would enlarge or
+  // give fewer than kMinResizeSide pixels on a side.
   std::pair<int, int> outputSize(int w, int h, const std::string& origin = "carrier") const;
   Parameters toParameters() const;
   static ResizeOptions fromParameters(const Parameters& p, const std::string& origin = "carrier");

@@ -166,27 +166,38 @@ void checkRequestAgainstFrame(const RunRequest& request, int width, int height) 
   }
 
   // Pre-processing rectangles, while they are still in full-frame pixels (before a crop or a
-  // resize changes the images the later steps receive). The stages check them again.
+  // resize changes the images the later steps receive), and a resize while the size it
+  // reduces is known (after a rectangle crop, not an automatic one). The stages check again.
   bool fullFrame = true;
+  int w = width, h = height;  // of the images the next step receives; 0 when not known
   for (const PlannedStage& step : request.preprocessing) {
-    if (!fullFrame) break;
     if (step.component == "WhiteBalance") {
       const WhiteBalanceOptions wb = WhiteBalanceOptions::fromParameters(step.params, "--wb");
-      if (wb.mode == "region") {
+      if (wb.mode == "region" && fullFrame) {
         const PixelRect& r = wb.region;
         const std::string why = frameRegionProblem(r.x, r.y, r.width, r.height, width, height);
         if (!why.empty()) usage("--wb-region " + r.text(), why + "; give a grey area of the frame");
       }
     } else if (step.component == "Crop") {
       const CropOptions crop = CropOptions::fromParameters(step.params, "--crop");
-      if (crop.method == "user") {
+      if (crop.method == "user" && fullFrame) {
         const PixelRect& r = crop.rect;
         const std::string why = frameRegionProblem(r.x, r.y, r.width, r.height, width, height);
         if (!why.empty()) usage("--crop " + r.text(), why + "; give a rectangle of the frame, or --crop auto");
       }
+      w = crop.method == "user" ? crop.rect.width : 0;
+      h = crop.method == "user" ? crop.rect.height : 0;
+      fullFrame = false;
+    } else if (step.component == "Resize") {
+      if (w > 0 && h > 0) {
+        const auto [ow, oh] = ResizeOptions::fromParameters(step.params, "--resize").outputSize(w, h, "--resize");
+        w = ow;
+        h = oh;
+      }
       fullFrame = false;
     } else {
       fullFrame = false;
+      w = h = 0;
     }
   }
 }

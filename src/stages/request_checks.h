@@ -49,7 +49,8 @@ std::string frameRegionProblem(double x, double y, double w, double h, int width
 
 // Checks the request's values against a width x height frame (the capture's images), before
 // any processing: the circles and highlights given by hand, the sphere search regions, a
-// user crop rectangle and a white-balance grey region. A highlight given for a sphere whose
+// user crop rectangle, a white-balance grey region and the size a resize gives (at least
+// kMinResizeSide pixels per side, stages/preprocess.h). A highlight given for a sphere whose
 // circle is given by hand must lie on that circle, and name one of those spheres. Throws
 // Error(Usage) naming the option and its value ("--sphere 900,57,45"), saying what is wrong
 // and what the frame allows.

@@ -1,7 +1,9 @@
 #include <algorithm>
 #include <functional>
 #include <map>
+#include <unordered_set>
 
+#include "archive/digest.h"
 #include "carrier/xml.h"
 #include "core/error.h"
 #include "verify/bag_text.h"
@@ -9,6 +11,8 @@
 #ifdef SURROGATE_HAVE_MAPPING
 #include "mapping/mapping.h"
 #endif
+
+namespace fs = std::filesystem;
 
 namespace surrogate::verify::internal {
 
@@ -55,7 +59,12 @@ std::optional<carrier::Carrier> checkCarrier(const Inventory& inv, std::vector<C
   if (!parsed) return parsed;
 
   std::vector<std::string> pathProblems, fixity;
+  // The carrier's paths, for the payload's files below (Carrier::findFileByPath searches the
+  // list: once per payload file, that was quadratic in the number of files).
+  std::unordered_set<std::string> recordedPaths;
+  recordedPaths.reserve(parsed->files.size());
   for (const carrier::FileRecord& f : parsed->files) {
+    recordedPaths.insert(f.path);
     std::string why;
     const auto safe = safeBagPath(f.path, &why);
     if (!safe) {
@@ -83,7 +92,7 @@ std::optional<carrier::Carrier> checkCarrier(const Inventory& inv, std::vector<C
     if (path.compare(0, 5, "data/") != 0) continue;
     const std::string relative = path.substr(5);
     if (relative == "finished-files/report.html" || path == kCarrierPath) continue;
-    if (!parsed->findFileByPath(relative))
+    if (!recordedPaths.count(relative))
       fixity.push_back(path + ": in the payload but not recorded in the carrier" +
                        (relative.compare(0, 15, "assembly-files/") == 0 ||
                                 relative.compare(0, 15, "finished-files/") == 0
@@ -101,85 +110,121 @@ std::optional<carrier::Carrier> checkCarrier(const Inventory& inv, std::vector<C
   return parsed;
 }
 
-void checkMetadata(const Inventory& inv, const std::string* carrierXml, std::vector<Check>& checks) {
+void checkMetadata(const fs::path& package, const Inventory& inv, const std::string* carrierXml,
+                   const Limits& limits, std::vector<Check>& checks) {
   const std::string metsPath = "metadata/mets.xml", crmPath = "metadata/crm.rdf";
-  const std::string* mets = contentOf(inv, metsPath);
-  const std::string* crm = contentOf(inv, crmPath);
-#ifdef SURROGATE_HAVE_MAPPING
+  const auto mets = inv.files.find(metsPath), crm = inv.files.find(crmPath);
+  const bool hasMets = mets != inv.files.end(), hasCrm = crm != inv.files.end();
+  // The bag's own text, read again only when a check needs it (the inventory holds the digests).
+  auto text = [&](const std::string& path) { return readBagFile(package, inv, path, limits); };
   auto run = [](const std::function<void()>& f) -> std::vector<std::string> {
     try {
       f();
     } catch (const Error& e) {
+      // A missing schema (internal) or a package changing under us (fixity) is not a finding
+      // about these files.
+      if (e.kind() == ErrorKind::Internal || e.kind() == ErrorKind::Fixity) throw;
       return {e.what()};
     }
     return {};
   };
-  std::vector<std::string> metsProblems =
-      mets ? run([&] { mapping::validateMets(*mets, metsPath); })
-           : std::vector<std::string>{metsPath + ": missing"};
+#ifdef SURROGATE_HAVE_MAPPING
+  std::vector<std::string> metsProblems, crmProblems, problems;
+  if (!hasMets) metsProblems.push_back(metsPath + ": missing");
+  if (!hasCrm) crmProblems.push_back(crmPath + ": missing");
+  bool metsChecked = !hasMets, crmChecked = !hasCrm;
+
+  if (carrierXml && hasMets && hasCrm) {
+    // Package facts, as the packer recorded them (mapping.h).
+    mapping::PackageFacts facts;
+    if (const std::string* info = contentOf(inv, "bag-info.txt")) {
+      const BagInfo bagInfo = parseBagInfo(*info);
+      auto one = [&](const char* label) {
+        const auto v = bagInfo.values(label);
+        return v.empty() ? std::string() : v.front();
+      };
+      facts.packageId = one("Surrogate-Package-Identifier");
+      facts.packagingTime = one("Surrogate-Packaging-Time");
+      facts.softwareAgent = one("Bag-Software-Agent");
+    }
+    {
+      std::map<std::string, mapping::PayloadFile> payload;
+      for (const char* algorithm : {"sha256", "sha512"}) {
+        const std::string* manifest = contentOf(inv, std::string("manifest-") + algorithm + ".txt");
+        if (!manifest) continue;
+        for (ManifestEntry& e : parseManifest(*manifest, algorithm, digestHexLength(algorithm)).entries) {
+          mapping::PayloadFile& p = payload[e.path];
+          if (p.path.empty()) {
+            p.path = e.path;
+            const auto it = inv.files.find(e.path);
+            if (it != inv.files.end()) p.size = it->second.size;
+          }
+          (std::string(algorithm) == "sha256" ? p.sha256 : p.sha512) = std::move(e.checksum);
+        }
+      }
+      facts.payload.reserve(payload.size());
+      for (auto& [path, p] : payload) facts.payload.push_back(std::move(p));
+    }
+
+    // Each derived document is hashed as it is serialised, and compared with the bag's by
+    // digest: the texts (hundreds of MB for a package of many files) are never held. Only
+    // when they differ is the bag's text read again, to say where.
+    auto derive = [&](bool isMets, mapping::MetsValidator* validator) {
+      archive::MultiDigest digest({archive::DigestAlgorithm::Sha256});
+      std::uint64_t size = 0;
+      const mapping::TextSink sink = [&](const char* data, std::size_t n) {
+        digest.update(data, n);
+        size += n;
+        if (validator) validator->feed(data, n);
+      };
+      if (isMets) mapping::deriveMetsTo(*carrierXml, facts, sink, kCarrierPath);
+      else mapping::deriveCrmTo(*carrierXml, sink, kCarrierPath);
+      const InventoryFile& bag = (isMets ? mets : crm)->second;
+      return bag.size == size && bag.sha256 == digest.hex(archive::DigestAlgorithm::Sha256);
+    };
+    try {
+      mapping::MetsValidator validator(metsPath);
+      if (derive(false, nullptr)) {
+        crmChecked = true;  // the bag's crm.rdf is the derived one: RDF/XML (deriveCrmTo checks)
+      } else {
+        const std::string derived = mapping::deriveCrm(*carrierXml, kCarrierPath);
+        const std::string bag = text(crmPath);
+        problems.push_back(crmPath + ": " + firstDifference(derived, bag));
+      }
+      if (derive(true, &validator)) {
+        // The bag's mets.xml is the derived one, whose text the validator has just read.
+        metsProblems = run([&] { validator.finish(); });
+        metsChecked = true;
+      } else {
+        const std::string derived = mapping::deriveMets(*carrierXml, facts, kCarrierPath);
+        const std::string bag = text(metsPath);
+        problems.push_back(metsPath + ": " + firstDifference(derived, bag));
+      }
+    } catch (const Error& e) {
+      if (e.kind() == ErrorKind::Internal || e.kind() == ErrorKind::Fixity) throw;
+      problems.push_back(e.what());
+    }
+  }
+  // Without a carrier to derive from, or when the bag's text differs: the bag's own files.
+  if (!metsChecked) metsProblems = run([&] { mapping::validateMets(text(metsPath), metsPath); });
+  if (!crmChecked) crmProblems = run([&] { mapping::checkRdfWellFormed(text(crmPath), crmPath); });
   checks.push_back(makeCheck("metadata.mets", Severity::Invalid,
                              "metadata/mets.xml validates against the METS and PREMIS schemas",
                              "metadata/mets.xml is missing or not valid", metsProblems));
-  std::vector<std::string> crmProblems =
-      crm ? run([&] { mapping::checkRdfWellFormed(*crm, crmPath); })
-          : std::vector<std::string>{crmPath + ": missing"};
   checks.push_back(makeCheck("metadata.crm", Severity::Invalid,
                              "metadata/crm.rdf is well-formed RDF/XML",
                              "metadata/crm.rdf is missing or not well-formed", crmProblems));
-  if (!carrierXml || !mets || !crm) return;
-
-  // Package facts, as the packer recorded them (mapping.h).
-  mapping::PackageFacts facts;
-  std::vector<std::string> problems;
-  if (const std::string* info = contentOf(inv, "bag-info.txt")) {
-    const BagInfo bagInfo = parseBagInfo(*info);
-    auto one = [&](const char* label) {
-      const auto v = bagInfo.values(label);
-      return v.empty() ? std::string() : v.front();
-    };
-    facts.packageId = one("Surrogate-Package-Identifier");
-    facts.packagingTime = one("Surrogate-Packaging-Time");
-    facts.softwareAgent = one("Bag-Software-Agent");
-  }
-  std::map<std::string, mapping::PayloadFile> payload;
-  for (const char* algorithm : {"sha256", "sha512"}) {
-    const std::string name = std::string("manifest-") + algorithm + ".txt";
-    const std::string* text = contentOf(inv, name);
-    if (!text) continue;
-    for (const ManifestEntry& e : parseManifest(*text, algorithm, digestHexLength(algorithm)).entries) {
-      mapping::PayloadFile& p = payload[e.path];
-      p.path = e.path;
-      const auto it = inv.files.find(e.path);
-      if (it != inv.files.end()) p.size = it->second.size;
-      (std::string(algorithm) == "sha256" ? p.sha256 : p.sha512) = e.checksum;
-    }
-  }
-  for (auto& [path, p] : payload) facts.payload.push_back(p);
-  try {
-    const std::string derivedCrm = mapping::deriveCrm(*carrierXml, kCarrierPath);
-    if (derivedCrm != *crm) problems.push_back(crmPath + ": " + firstDifference(derivedCrm, *crm));
-    const std::string derivedMets = mapping::deriveMets(*carrierXml, facts, kCarrierPath);
-    if (derivedMets != *mets)
-      problems.push_back(metsPath + ": " + firstDifference(derivedMets, *mets));
-  } catch (const Error& e) {
-    problems.push_back(e.what());
-  }
+  if (!carrierXml || !hasMets || !hasCrm) return;
   checks.push_back(makeCheck("metadata.derived", Severity::Invalid,
                              "crm.rdf and mets.xml equal what the bundled stylesheets derive "
                              "from the carrier",
                              "the metadata differ from what the carrier gives", problems));
 #else
   // This build has no mapping library: check well-formedness only.
-  for (const auto& [path, text] : {std::pair{metsPath, mets}, std::pair{crmPath, crm}}) {
+  for (const auto& [path, present] : {std::pair{metsPath, hasMets}, std::pair{crmPath, hasCrm}}) {
     std::vector<std::string> problems;
-    if (!text) problems.push_back(path + ": missing");
-    else {
-      try {
-        xml::checkWellFormed(*text, path);
-      } catch (const Error& e) {
-        problems.push_back(e.what());
-      }
-    }
+    if (!present) problems.push_back(path + ": missing");
+    else problems = run([&] { xml::checkWellFormed(text(path), path); });
     checks.push_back(makeCheck(path == metsPath ? "metadata.mets" : "metadata.crm",
                                Severity::Invalid, path + " is well-formed XML",
                                path + " is missing or not well-formed", problems));

@@ -24,9 +24,29 @@ void checkBag(const Inventory& inventory, std::vector<Check>& checks);
 // carrier.*: schema and files; returns the parsed carrier when it is valid.
 std::optional<carrier::Carrier> checkCarrier(const Inventory& inventory, std::vector<Check>& checks);
 
-// metadata.*: METS, CRM, and re-derivation from the carrier.
-void checkMetadata(const Inventory& inventory, const std::string* carrierXml,
-                   std::vector<Check>& checks);
+// Whether the bag is a Surrogate package: bag-info.txt has Surrogate-Package-Identifier, or
+// the bag has data/assembly-files/carrier.xml. Such a package is held to what `surrogate pack`
+// writes (package.*).
+bool isSurrogatePackage(const Inventory& inventory);
+
+// package.complete (every file of a Surrogate package present: fixity) and package.bundled
+// (metadata/ resources byte-identical to this verifier's, no other tag file: invalid).
+void checkCompleteness(const Inventory& inventory, std::vector<Check>& checks);
+
+// package.info: bag-info.txt is what packing the carrier gives (identifier = urn:sha256 of
+// the carrier, its header metadata, dates, Bag-Size).
+void checkPackageInfo(const Inventory& inventory, const std::optional<carrier::Carrier>& recorded,
+                      std::vector<Check>& checks);
+
+// carrier.steps: every recorded step can run in this build as recorded (known component and
+// version, parameters its parser accepts, outputs inside assembly-files/ or finished-files/).
+// Returns whether they all can.
+bool checkSteps(const carrier::Carrier& recorded, std::vector<Check>& checks);
+
+// metadata.*: METS, CRM, and re-derivation from the carrier (compared by digest; the bag's
+// texts are read again from `package` only when a check needs them).
+void checkMetadata(const std::filesystem::path& package, const Inventory& inventory,
+                   const std::string* carrierXml, const Limits& limits, std::vector<Check>& checks);
 
 // reexecute.*: extract, replay the process list, compare.
 void checkReexecution(const std::filesystem::path& package, const Inventory& inventory,

@@ -38,7 +38,9 @@ struct Limits {
 struct InventoryFile {
   std::uint64_t size = 0;
   std::string sha256, sha512;          // lower-case hex
-  std::optional<std::string> content;  // tag files (outside data/) and the carrier
+  // Tag files (outside data/) but the two large derived ones (metadata/mets.xml and crm.rdf,
+  // compared by their digests, see readBagFile), and the carrier.
+  std::optional<std::string> content;
 };
 
 struct Inventory {
@@ -54,6 +56,12 @@ using Progress = std::function<void(const std::string&, double)>;
 
 Inventory readPackage(const std::filesystem::path& package, const Limits& limits,
                       const Progress& progress = {});
+
+// The content of one file of the bag, read again from the package: the inventory does not hold
+// the large tag files (metadata/mets.xml, metadata/crm.rdf), which a check reads only when it
+// needs their text. Error(Fixity) if the file is gone or changed since the inventory was made.
+std::string readBagFile(const std::filesystem::path& package, const Inventory& inventory,
+                        const std::string& path, const Limits& limits);
 
 // Extracts files of the bag into `destination` (which must exist): `targetOf(path)` gives
 // the relative destination of a bag path, or an empty path to skip it. Every file is created

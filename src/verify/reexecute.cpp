@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <map>
 #include <set>
+#include <unordered_set>
 
 #include "core/error.h"
 #include "core/temp_dir.h"
@@ -21,22 +22,23 @@ namespace surrogate::verify::internal {
 
 namespace {
 
-bool isOutputPath(const std::string& relative, const carrier::Carrier& c) {
+// Whether a payload file is an output of the recorded steps (extracted aside, to compare with)
+// rather than an input; `outputs` holds the paths of the carrier's assembly and result files.
+bool isOutputPath(const std::string& relative, const std::unordered_set<std::string>& outputs) {
   if (relative.compare(0, 15, "assembly-files/") == 0 || relative.compare(0, 15, "finished-files/") == 0)
     return true;
-  const carrier::FileRecord* f = c.findFileByPath(relative);
-  return f && (f->role == "assembly" || f->role == "result");
+  return outputs.count(relative) > 0;
 }
 
+// The extracted inputs are made read-only, so that no step can change an original by
+// accident. Folders stay writable for their owner: what a killed verifier leaves in $TMPDIR
+// can be removed with `rm -rf` (TempDir removes it on every other way out).
 void makeReadOnly(const fs::path& root) {
   std::error_code ec;
-  std::vector<fs::path> dirs;
   for (fs::recursive_directory_iterator it(root, ec), end; !ec && it != end; it.increment(ec)) {
-    if (it->is_directory(ec)) dirs.push_back(it->path());
+    if (it->is_directory(ec)) fs::permissions(it->path(), fs::perms::owner_all, ec);
     else fs::permissions(it->path(), fs::perms::owner_read | fs::perms::group_read, ec);
   }
-  for (const fs::path& d : dirs)
-    fs::permissions(d, fs::perms::owner_read | fs::perms::owner_exec, ec);
 }
 
 std::optional<double> asNumber(const std::string& s) {
@@ -173,19 +175,21 @@ void checkReexecution(const fs::path& package, const Inventory& inventory,
   fs::create_directory(replayRoot);
   fs::create_directory(recordedRoot);
   // Inputs (originals, exports, a given .lp) go to replay/, recorded outputs to recorded/.
+  std::unordered_set<std::string> outputs;
+  for (const carrier::FileRecord& f : recorded.files)
+    if (f.role == "assembly" || f.role == "result") outputs.insert(f.path);
   extractFiles(
       package, inventory, temp.path(),
       [&](const std::string& path) -> fs::path {
         if (path.compare(0, 5, "data/") != 0) return {};
         const std::string relative = path.substr(5);
-        return fs::path(isOutputPath(relative, recorded) ? "recorded" : "replay") / relative;
+        return fs::path(isOutputPath(relative, outputs) ? "recorded" : "replay") / relative;
       },
       options.limits, options.progress);
   makeReadOnly(replayRoot);
   // Outputs are written into fresh folders of the copy; the originals stay read-only.
   for (const char* dir : {"assembly-files", "finished-files"}) {
     std::error_code ec;
-    fs::permissions(replayRoot, fs::perms::owner_all, ec);
     fs::create_directory(replayRoot / dir, ec);
   }
 
@@ -218,20 +222,6 @@ void checkReexecution(const fs::path& package, const Inventory& inventory,
     fresh.header.software = stages::softwareVersions();
   }
   report.softwareDifferences = softwareDifferences(recorded, fresh);
-  // A step whose component has another version in this build may legitimately give other
-  // results: said next to the comparison (compared with the registry, not found in log texts).
-  stages::registerBuiltinStages();
-  for (const carrier::Step& step : recorded.process) {
-    try {
-      const std::string here = pipeline::StageRegistry::instance().create(step.component)->version();
-      if (here != step.version)
-        runProblems.push_back(step.id + ": " + step.component + " is version " + here +
-                              " in this build but the carrier records version " + step.version);
-    } catch (const Error&) {
-      // An unknown component already failed replayCarrier above.
-    }
-  }
-
   std::vector<Check> found;
   found.push_back(makeCheck("reexecute.run", Severity::NotReproduced,
                             "the recorded process list ran again (" +

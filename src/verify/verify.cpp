@@ -52,19 +52,36 @@ Report verifyPackage(const std::filesystem::path& package, const VerifyOptions& 
       "", {}));
 
   internal::checkBag(inventory, report.checks);
+  internal::checkCompleteness(inventory, report.checks);
   const std::optional<carrier::Carrier> recorded = internal::checkCarrier(inventory, report.checks);
+  const bool runnable = recorded && internal::checkSteps(*recorded, report.checks);
+  internal::checkPackageInfo(inventory, recorded, report.checks);
   const auto carrierFile = inventory.files.find(internal::kCarrierPath);
   const std::string* carrierXml =
       recorded && carrierFile != inventory.files.end() && carrierFile->second.content
           ? &*carrierFile->second.content
           : nullptr;
-  internal::checkMetadata(inventory, carrierXml, report.checks);
+  try {
+    internal::checkMetadata(package, inventory, carrierXml, options.limits, report.checks);
+  } catch (const Error& e) {
+    // The package changed or vanished while it was being verified.
+    if (e.kind() != ErrorKind::Fixity) throw;
+    report.checks.push_back(internal::makeCheck("package.reread", Severity::Fixity, "",
+                                                "the package changed while it was being verified",
+                                                {e.what()}));
+  }
 
   if (options.reexecute) {
     if (!recorded) {
       report.checks.push_back(internal::makeCheck(
           "reexecute.run", Severity::NotReproduced, "", "there is no valid carrier to re-execute",
           {std::string(internal::kCarrierPath) + ": see carrier.schema"}));
+    } else if (!runnable) {
+      // A step that cannot run as recorded would fail for that reason, not for its results.
+      report.checks.push_back(internal::makeCheck(
+          "reexecute.run", Severity::Invalid, "",
+          "not re-executed: the carrier records steps this build cannot run (see carrier.steps)",
+          {"re-execution runs valid carriers only"}));
     } else if (report.exitCode() == static_cast<int>(Severity::Fixity)) {
       // Re-running on files known to have changed would only repeat the fixity failure.
       report.checks.push_back(internal::makeCheck(

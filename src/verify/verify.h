@@ -1,12 +1,23 @@
 // The verifier: is an archival package (a BagIt bag as a directory, .tar or .zip) sound?
 //
 // It answers with a list of checks, each passed or failed with what was found and where:
+//   package.read the package read to its end, safely: no hostile entry, a .tar that ends with
+//                its end-of-archive marker and nothing after it but zero padding, a .zip whose
+//                end record ends the file
 //   bagit.*      the bag itself (RFC 8493): bagit.txt, manifests, tagmanifests, Payload-Oxum,
-//                every payload file listed, every listed file present and matching
-//   carrier.*    data/assembly-files/carrier.xml validates against xsd/carrier.xsd and every
-//                file it lists is in the bag with the same size and SHA-256
+//                every payload file listed, every listed file present and matching, every tag
+//                file in every tagmanifest
+//   package.*    for a Surrogate package (bag-info has Surrogate-Package-Identifier, or the bag
+//                has data/assembly-files/carrier.xml): every file `surrogate pack` writes is
+//                present (complete), metadata/'s stylesheets, schemas and tables are
+//                byte-identical to this verifier's and nothing else is there (bundled), and
+//                bag-info.txt is what packing the carrier gives (info)
+//   carrier.*    data/assembly-files/carrier.xml validates against xsd/carrier.xsd, every
+//                file it lists is in the bag with the same size and SHA-256, and every step
+//                it records can run in this build as recorded (steps)
 //   metadata.*   metadata/mets.xml validates (METS + PREMIS), metadata/crm.rdf is well-formed,
-//                and both equal what the bundled stylesheets derive from the carrier
+//                and both equal what the bundled stylesheets derive from the carrier (compared
+//                by digest while the derivation is serialised: their text is never held)
 //   reexecute.*  (with `reexecute`) the recorded process list, run again on the bagged
 //                originals with the recorded parameters and interventions, gives the recorded
 //                results: numbers exactly (or within `tolerance`), files by hash, and when a
@@ -18,9 +29,11 @@
 //   return report.exitCode();   // 0 sound, 2 invalid, 3 fixity, 4 not reproduced
 //
 // Exit codes (the CLI's contract): 0 every check passed; 3 a fixity failure (a file changed,
-// is missing, unlisted, or the archive is truncated); 2 an invalid or refused package (bad
-// bagit.txt, schema failure, hostile entries, metadata that does not match the carrier);
-// 4 re-execution did not reproduce the recorded results. When several kinds fail, fixity
+// is missing or unlisted, the package is incomplete, the archive is truncated or has data after
+// its end); 2 an invalid or refused package (bad bagit.txt, schema failure, hostile entries,
+// resources of another version, bag-info or metadata that do not match the carrier, steps that
+// cannot run); 4 re-execution did not reproduce the recorded results. A carrier whose steps
+// cannot run is never re-executed. When several kinds fail, fixity
 // wins over invalid, which wins over not reproduced: a changed file explains the rest.
 #pragma once
 

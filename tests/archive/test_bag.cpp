@@ -4,6 +4,7 @@
 
 #include <signal.h>
 #include <sys/resource.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -339,7 +340,48 @@ TEST_CASE("computed bag-info labels cannot be given as user metadata", "[archive
   CHECK_THROWS_AS(writeBag(in, dir / "bag"), Error);
   in.info.back() = {"Bad Label", "x"};
   CHECK_THROWS_AS(writeBag(in, dir / "bag"), Error);
+  // The labels pack writes itself, in any case: given twice they would contradict each other.
+  for (const char* own : {"Surrogate-Package-Identifier", "surrogate-packaging-time"}) {
+    CHECK_THAT(bagInfoLabelProblem(own), Catch::Matchers::Contains("written by `surrogate pack` itself"));
+    in.info.back() = {own, "urn:forged"};
+    CHECK_THROWS_AS(writeBag(in, dir / "bag"), Error);
+  }
   CHECK_FALSE(fs::exists(dir / "bag"));
+  CHECK(bagInfoLabelProblem("Source-Organization").empty());
+  // The packer's own labels go in through ownInfo, after the user's, once each.
+  in.info.pop_back();
+  in.ownInfo = {{"Surrogate-Package-Identifier", "urn:sha256:00"}, {"Surrogate-Packaging-Time", "2026-01-02T03:04:05Z"}};
+  writeBag(in, dir / "bag");
+  const std::string info = slurp(dir / "bag/bag-info.txt");
+  CHECK(info.find("Surrogate-Package-Identifier: urn:sha256:00\n") != std::string::npos);
+  CHECK(info.find("Surrogate-Package-Identifier") == info.rfind("Surrogate-Package-Identifier"));
+  CHECK(info.find("External-Description") < info.find("Surrogate-Package-Identifier"));
+}
+
+TEST_CASE("the partial output of a killed pack is removed by the next pack to the same name",
+          "[archive][bag]") {
+  const fs::path dir = freshDir("stale");
+  // A process that has ended: its pid names the leftovers.
+  const pid_t child = ::fork();
+  if (child == 0) ::_exit(0);
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  const std::string dead = std::to_string(child);
+  writeBytes(dir / (".bag.tar.part-" + dead + "-0"), "half a tar");
+  writeBytes(dir / (".bag.tar.part-" + dead + "-7/data/x"), "a folder of one");
+  fs::permissions(dir / (".bag.tar.part-" + dead + "-7/data"), fs::perms::owner_read | fs::perms::owner_exec);
+  writeBytes(dir / ".bag.tar.part-1-0", "a pack still running (pid 1)");
+  writeBytes(dir / (".other.tar.part-" + dead + "-0"), "another output's");
+  writeBytes(dir / (".bag.tar.part-" + dead + "-x"), "not a name AtomicFile makes");
+  const BagResult r = writeBag(sampleInput(dir / "src"), dir / "bag.tar");
+  CHECK_FALSE(fs::exists(dir / (".bag.tar.part-" + dead + "-0")));
+  CHECK_FALSE(fs::exists(dir / (".bag.tar.part-" + dead + "-7")));
+  CHECK(fs::exists(dir / ".bag.tar.part-1-0"));
+  CHECK(fs::exists(dir / (".other.tar.part-" + dead + "-0")));
+  CHECK(fs::exists(dir / (".bag.tar.part-" + dead + "-x")));
+  REQUIRE(r.removedLeftovers.size() == 2);
+  CHECK_THAT(r.removedLeftovers[0], Catch::Matchers::Contains("process " + dead + " no longer runs"));
+  CHECK(fs::exists(dir / "bag.tar"));
 }
 
 TEST_CASE("Bag-Size is human-readable", "[archive][bag]") {

@@ -1,4 +1,4 @@
-// A capture packed as an archival package: layout per DESIGN.md, the carrier's hashes checked
+// A capture packed as an archival package: layout per docs/package.md, the carrier's hashes checked
 // while packing, metadata derived and valid, the package explains itself.
 #include <catch2/catch.hpp>
 
@@ -22,7 +22,7 @@ using namespace surrogate::archive;
 using testfiles::freshDir;
 using testfiles::slurp;
 
-TEST_CASE("a packed capture has the DESIGN.md layout and is a valid bag", "[archive][package]") {
+TEST_CASE("a packed capture has the docs/package.md layout and is a valid bag", "[archive][package]") {
   const fs::path dir = freshDir("layout");
   const fs::path capture = samplecapture::make(dir);
   const PackResult r = packCapture(capture, dir / "pkg.zip");
@@ -54,6 +54,16 @@ TEST_CASE("a packed capture has the DESIGN.md layout and is a valid bag", "[arch
   CHECK(info.find("Contact-Name")->second == "Ana Silva");
   CHECK(info.find("Surrogate-Package-Identifier")->second == r.packageId);
   CHECK(info.find("Surrogate-Packaging-Time")->second == r.packagingTime);
+  CHECK(info.count("Surrogate-Package-Identifier") == 1);
+  CHECK(info.count("Surrogate-Packaging-Time") == 1);
+  // The labels are packageInfo's, which the verifier compares bag-info.txt with.
+  const PackageInfo expected =
+      packageInfo(carrier::loadCarrier(capture / "assembly-files/carrier.xml"), r.packageId, r.packagingTime);
+  for (const auto* list : {&expected.user, &expected.own})
+    for (const auto& [label, value] : *list) {
+      INFO(label);
+      CHECK(info.count(label) == 1);
+    }
 
   // The metadata is what the stylesheets give, and METS is valid.
   const std::string carrierXml = bag.files.at("data/assembly-files/carrier.xml");

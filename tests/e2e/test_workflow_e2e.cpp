@@ -401,3 +401,21 @@ TEST_CASE("kill -9 during run or commit leaves the old or the new state, never a
   CHECK(disagreements(capture).empty());
   CHECK(e2e::surrogate("verify " + e2e::quote(bag) + " --quiet").exitCode == 0);
 }
+
+TEST_CASE("pack processes again, with the recorded decisions, a capture recorded by an older stage version", "[e2e][workflow]") {
+  const fs::path capture = e2e::smallCapture(e2e::freshDir("oldversion"), 8);
+  runIn(capture, "--exclude IMG_0002 --reason \"blurred\"");
+  carrier::Carrier c = carrierOf(capture);
+  const std::string current = c.process.front().version;
+  c.process.front().version = "0";  // as an older Surrogate would have recorded it
+  carrier::saveCarrier(c, capture / "assembly-files/carrier.xml");
+  const fs::path bag = capture.parent_path() / "bag";
+  const e2e::CommandResult pack = e2e::surrogate("pack " + e2e::quote(capture) + " -o " + e2e::quote(bag) + " --quiet");
+  INFO(pack.output);
+  REQUIRE(pack.exitCode == 0);
+  CHECK_THAT(pack.output, Catch::Contains("recorded by version 0"));
+  c = carrierOf(capture);
+  CHECK(c.process.front().version == current);
+  CHECK(hasIntervention(c, "exclude-image", "IMG_0002"));
+  CHECK(e2e::surrogate("verify " + e2e::quote(bag) + " --quiet").exitCode == 0);
+}

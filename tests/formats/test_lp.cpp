@@ -147,3 +147,21 @@ TEST_CASE("lp: names are written relative to the .lp's folder, with '/'") {
   CHECK(lpImageName(root / "x/../a/./stela.lp", root / "stela/./jpeg-exports/../original-captures/IMG_0001.dng") ==
         "../stela/original-captures/IMG_0001.dng");
 }
+
+TEST_CASE("lp: an absurdly long image name is refused with its length, not carried around") {
+  // A 20 MB "name" (a damaged file, or a binary file given as .lp) once went into messages and
+  // path look-ups whole.
+  const std::string longName(20 * 1000 * 1000, 'a');
+  const std::string message = errorOf("1\n" + longName + ".jpg 0 0 1\n");
+  CHECK_THAT(message, Catch::Contains("line 2"));
+  CHECK_THAT(message, Catch::Contains("20000004 bytes"));
+  CHECK_THAT(message, Catch::Contains(std::to_string(kMaxImageNameBytes)));
+  CHECK(message.size() < 400);
+  // The longest name allowed still reads, and writes back.
+  const std::string longest(kMaxImageNameBytes, 'b');
+  const auto l = parseLp("1\n" + longest + " 0 0 1\n", "x.lp");
+  REQUIRE(l.size() == 1);
+  CHECK(l[0].filename == longest);
+  CHECK(parseLp(formatLp(l, "x.lp"), "x.lp") == l);
+  CHECK_THROWS_AS(formatLp({{longest + "b", 0, 0, 1}}, "x.lp"), Error);
+}

@@ -94,6 +94,21 @@ TEST_CASE("rti: reader rejects other RTI types, channels, terms, sizes and non-f
   CHECK_THAT(parseError(nan), Catch::Contains("finite"));
 }
 
+TEST_CASE("rti: a basis type other than 2 or an element size other than 1 is refused, naming the file") {
+  // Every HSH writer writes "<terms> 2 1"; another declaration is a layout this reader would
+  // misread (such files once rendered as if they were "2 1").
+  std::string tables;
+  for (int i = 0; i < 8; ++i) tables += std::string("\x00\x00\x80\x3F", 4);
+  const std::string payload = tables + std::string(12, '\x07');
+  CHECK_NOTHROW(parse("#HSH1.2\n3\n1 1 3\n4 2 1\n" + payload));
+  CHECK_THAT(parseError("#HSH1.2\n3\n1 1 3\n4 99 1\n" + payload), Catch::Contains("basis type is 99"));
+  CHECK_THAT(parseError("#HSH1.2\n3\n1 1 3\n4 0 1\n" + payload), Catch::Contains("basis type is 0"));
+  CHECK_THAT(parseError("#HSH1.2\n3\n1 1 3\n4 2 0\n" + payload), Catch::Contains("element size is 0"));
+  CHECK_THAT(parseError("#HSH1.2\n3\n1 1 3\n4 2 4\n" + payload), Catch::Contains("element size is 4"));
+  CHECK_THAT(parseError("#HSH1.2\n3\n1 1 3\n4 2 -1\n" + payload), Catch::Contains("element size"));
+  CHECK_THAT(parseError("#HSH1.2\n3\n1 1 3\n4 2 x\n" + payload), Catch::Contains("element size"));
+}
+
 TEST_CASE("rti: every prefix is rejected and mutations parse or throw Error") {
   for (int terms : {4, 9}) {
     const std::string bytes = serializeRti(makeHsh(terms, 3, 2));

@@ -223,3 +223,47 @@ TEST_CASE("the verification section lists each check, failures first in the summ
   CHECK_THAT(html, Catch::Contains("42 files match"));
   CHECK(html.find("<script>alert") == std::string::npos);
 }
+
+TEST_CASE("each image's highlight confidence is shown: lights table, hemisphere plot and highlight table") {
+  carrier::Carrier c = carrier::newCarrier("Highlights", {});
+  for (int i = 1; i <= 3; ++i) {
+    carrier::FileRecord f;
+    f.path = "original-captures/IMG_000" + std::to_string(i) + ".dng";
+    f.role = "original";
+    f.size = 1;
+    f.sha256 = std::string(64, 'a');
+    c.putFile(f);
+  }
+  const std::string highlightStep = c.addStep("HighlightDetection", "2").id;
+  const std::string lightStep = c.addStep("LightDirections", "2").id;
+  carrier::Result hr;
+  hr.step = highlightStep;
+  hr.add("highlight").set("image", "f1").set("sphere", 0).set("x", 10.0).set("y", 20.0).set("flag", "ok")
+      .set("confidence", 1.0);
+  hr.add("highlight").set("image", "f2").set("sphere", 0).set("x", 11.0).set("y", 21.0).set("flag", "multiple")
+      .set("confidence", 0.25).set("reason", std::string("another spot ") + kHostile);
+  hr.add("highlight").set("image", "f3").set("sphere", 0).set("x", 12.0).set("y", 22.0).set("flag", "manual")
+      .set("confidence", 1.0).set("reason", "given by hand: rim reflection");
+  c.data.push_back(hr);
+  carrier::Result lr;
+  lr.step = lightStep;
+  for (int i = 1; i <= 3; ++i)
+    lr.add("light").set("image", "f" + std::to_string(i)).set("x", 0.0).set("y", 0.0).set("z", 1.0)
+        .set("elevationDeg", 20.0 * i).set("azimuthDeg", 100.0 * i).set("source", "sphere 0");
+  c.data.push_back(lr);
+  MemorySource source(c);
+  const Report r = buildReport(source.carrier(), source, ReportOptions());
+  // The plot: the light of the doubtful highlight ringed, its confidence in the tooltip.
+  CHECK(count(r.html, "<circle class=\"light") == 3);
+  CHECK(count(r.html, "<circle class=\"light doubtful\"") == 1);
+  CHECK_THAT(r.html, Catch::Contains("highlight confidence 0.25"));
+  CHECK_THAT(r.html, Catch::Contains("A red ring marks a light"));
+  // The lights table has the column; the highlight table every highlight with flag and reason.
+  CHECK_THAT(r.html, Catch::Contains("<th>highlight confidence</th>"));
+  CHECK_THAT(r.html, Catch::Contains("Every highlight"));
+  CHECK_THAT(r.html, Catch::Contains("given by hand: rim reflection"));
+  // To check: the doubtful one and the manual one (flag not ok), with their confidence.
+  CHECK_THAT(r.html, Catch::Contains("Highlights to check"));
+  CHECK_THAT(r.html, Catch::Contains("multiple, confidence 0.25"));
+  CHECK(r.html.find("<img src=x") == std::string::npos);
+}

@@ -134,3 +134,49 @@ TEST_CASE("a dome .lp with sphere decisions standing is refused, naming the conf
     CHECK_THAT(e.message(), Catch::Contains("manual sphere 0"));
   }
 }
+
+TEST_CASE("an accepted damaged image stands across runs until withdrawn, with its who, when and why", "[stages][decisions]") {
+  carrier::Carrier c = recorded();
+  for (carrier::Step& s : c.process)
+    if (s.component == "ImageDecode")
+      s.interventions.push_back({"accept-decoder-warning", "jpeg-exports/IMG_0004.jpg", "sha256:ab12", "Ana Silva",
+                                 "2026-11-03T10:00:00Z", "the only frame of this light"});
+  const RunRequest standing = stages::standingDecisions(c);
+  bool found = false;
+  for (const auto& i : standing.stageInterventions)
+    if (i.component == "ImageDecode" && i.intervention.kind == "accept-decoder-warning") {
+      found = true;
+      CHECK(i.intervention.who == "Ana Silva");
+      CHECK(i.intervention.time == "2026-11-03T10:00:00Z");
+      CHECK(i.intervention.value == "sha256:ab12");
+    }
+  CHECK(found);
+  // A run with other options keeps it; planRun puts it on the ImageDecode step.
+  std::vector<std::string> changes;
+  RunRequest next = stages::applyDecisions(standing, RunRequest{}, changes);
+  const carrier::Carrier planned = stages::planRun(SURROGATE_SOURCE_DIR, next);
+  bool onDecode = false;
+  for (const carrier::Step& s : planned.process)
+    for (const carrier::Intervention& i : s.interventions)
+      onDecode = onDecode || (s.component == "ImageDecode" && i.kind == "accept-decoder-warning" &&
+                              i.target == "jpeg-exports/IMG_0004.jpg" && i.who == "Ana Silva");
+  CHECK(onDecode);
+  // Withdrawn by the shot's name, with a reason that goes into the history.
+  RunRequest withdraw;
+  withdraw.withdrawals.push_back({"accept-decoder-warning", "IMG_0004", "re-shot"});
+  changes.clear();
+  const RunRequest after = stages::applyDecisions(standing, withdraw, changes);
+  for (const auto& i : after.stageInterventions) CHECK(i.intervention.kind != "accept-decoder-warning");
+  REQUIRE_FALSE(changes.empty());
+  CHECK_THAT(changes.back(), Catch::Contains("accepted damage in jpeg-exports/IMG_0004.jpg") && Catch::Contains("re-shot"));
+  // Withdrawing one that is not there names the option.
+  RunRequest none;
+  none.withdrawals.push_back({"accept-decoder-warning", "IMG_0009", "typo"});
+  try {
+    stages::applyDecisions(standing, none, changes);
+    FAIL("no error");
+  } catch (const Error& e) {
+    CHECK(e.kind() == ErrorKind::Usage);
+    CHECK_THAT(e.file(), Catch::Contains("--forget-damaged"));
+  }
+}

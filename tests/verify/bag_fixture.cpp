@@ -12,8 +12,11 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "archive/bag.h"
 #include "archive/digest.h"
+#include "archive/package.h"
 #include "carrier/carrier.h"
+#include "core/resources.h"
 #ifdef SURROGATE_HAVE_MAPPING
 #include "mapping/mapping.h"
 #endif
@@ -89,13 +92,27 @@ std::string escape(const std::string& path) {
   return out;
 }
 
-void writeMetadata(const fs::path& bag) {
+// A bag-info.txt label's value in the bag, or "".
+std::string bagInfoValue(const fs::path& bag, const std::string& label) {
+  std::error_code ec;
+  if (!fs::exists(bag / "bag-info.txt", ec)) return "";
+  std::istringstream in(readText(bag / "bag-info.txt"));
+  std::string line;
+  while (std::getline(in, line))
+    if (line.compare(0, label.size() + 2, label + ": ") == 0) return line.substr(label.size() + 2);
+  return "";
+}
+
+void writeMetadata(const fs::path& bag, const std::string& agent, const std::string& time) {
   const std::string carrierXml = readText(bag / "data/assembly-files/carrier.xml");
 #ifdef SURROGATE_HAVE_MAPPING
+  // The stylesheets, schemas and tables the verifier bundles, as `surrogate pack` copies them.
+  for (const std::string& rel : surrogate::mapping::packagedResources())
+    writeText(bag / "metadata" / rel, readText(surrogate::resourcePath(rel)));
   surrogate::mapping::PackageFacts facts;
-  facts.packageId = "urn:test:bag";
-  facts.packagingTime = "2026-11-25T08:00:00Z";
-  facts.softwareAgent = "Surrogate test";
+  facts.packageId = surrogate::archive::packageIdentifier(surrogate::archive::sha256Hex(carrierXml));
+  facts.packagingTime = time;
+  facts.softwareAgent = agent;
   for (const std::string& p : filesUnder(bag, bag / "data")) {
     const auto d = surrogate::archive::digestFile(bag / p, true);
     facts.payload.push_back({p, d.size, d.sha256, d.sha512});
@@ -104,6 +121,8 @@ void writeMetadata(const fs::path& bag) {
   writeText(bag / "metadata/mets.xml", surrogate::mapping::deriveMets(carrierXml, facts));
 #else
   (void)carrierXml;
+  (void)agent;
+  (void)time;
   writeText(bag / "metadata/crm.rdf",
             "<?xml version=\"1.0\"?>\n<rdf:RDF xmlns:rdf=\"http://www.w3.org/1999/02/22-rdf-syntax-ns#\"/>\n");
   writeText(bag / "metadata/mets.xml",
@@ -145,12 +164,28 @@ void rehashBag(const fs::path& bag) {
   writeText(bag / "manifest-sha256.txt", m256);
   writeText(bag / "manifest-sha512.txt", m512);
   writeText(bag / "bagit.txt", "BagIt-Version: 1.0\nTag-File-Character-Encoding: UTF-8\n");
-  writeText(bag / "bag-info.txt",
-            "Bag-Software-Agent: Surrogate test\nBagging-Date: 2026-11-25\n"
-            "Payload-Oxum: " + std::to_string(octets) + "." + std::to_string(streams) + "\n"
-            "Surrogate-Package-Identifier: urn:test:bag\n"
-            "Surrogate-Packaging-Time: 2026-11-25T08:00:00Z\n");
-  writeMetadata(bag);
+  // bag-info.txt as `surrogate pack` writes it for the carrier now in the bag (its agent and
+  // packaging time kept when the bag has them).
+  std::string agent = bagInfoValue(bag, "Bag-Software-Agent");
+  if (agent.empty()) agent = "Surrogate test";
+  std::string time = bagInfoValue(bag, "Surrogate-Packaging-Time");
+  if (time.empty()) time = "2026-11-25T08:00:00Z";
+  const std::string carrierXml = readText(bag / "data/assembly-files/carrier.xml");
+  const std::string id = surrogate::archive::packageIdentifier(surrogate::archive::sha256Hex(carrierXml));
+  surrogate::archive::PackageInfo labels;
+  try {
+    labels = surrogate::archive::packageInfo(
+        surrogate::carrier::parseCarrier(carrierXml, "carrier.xml"), id, time);
+  } catch (const std::exception&) {
+    labels.own = {{"Surrogate-Package-Identifier", id}, {"Surrogate-Packaging-Time", time}};
+  }
+  std::string info = "Bag-Software-Agent: " + agent + "\nBagging-Date: " + time.substr(0, 10) +
+                     "\nBag-Size: " + surrogate::archive::humanSize(octets) +
+                     "\nPayload-Oxum: " + std::to_string(octets) + "." + std::to_string(streams) + "\n";
+  for (const auto* list : {&labels.user, &labels.own})
+    for (const auto& [label, value] : *list) info += label + ": " + value + "\n";
+  writeText(bag / "bag-info.txt", info);
+  writeMetadata(bag, agent, time);
   rehashTagManifests(bag);
 }
 
@@ -235,6 +270,54 @@ void archiveDirectory(const fs::path& dir, const fs::path& archive, const std::s
     entries.push_back(std::move(e));
   }
   writeArchive(archive, entries);
+}
+
+std::vector<std::uint64_t> tarEntryOffsets(const std::string& tar) {
+  std::vector<std::uint64_t> out;
+  std::uint64_t at = 0;
+  while (at + 512 <= tar.size()) {
+    const std::string block = tar.substr(at, 512);
+    if (block.find_first_not_of('\0') == std::string::npos) {
+      out.push_back(at);  // the end-of-archive marker
+      return out;
+    }
+    out.push_back(at);
+    const std::uint64_t size = std::strtoull(block.substr(124, 12).c_str(), nullptr, 8);
+    const char type = block[156];
+    const std::uint64_t data = (type >= '1' && type <= '6') ? 0 : size;
+    at += 512 + (data + 511) / 512 * 512;
+  }
+  throw std::runtime_error("not a well-formed tar");
+}
+
+std::vector<std::uint64_t> zipEntryOffsets(const std::string& zip) {
+  auto u16 = [&](std::size_t p) {
+    return std::uint64_t(static_cast<unsigned char>(zip[p])) |
+           std::uint64_t(static_cast<unsigned char>(zip[p + 1])) << 8;
+  };
+  auto u32 = [&](std::size_t p) { return u16(p) | u16(p + 2) << 16; };
+  const std::size_t end = zip.rfind(std::string("PK\x05\x06", 4));
+  if (end == std::string::npos) throw std::runtime_error("not a zip");
+  const std::uint64_t entries = u16(end + 10), cdOffset = u32(end + 16);
+  std::vector<std::uint64_t> out;
+  std::size_t p = static_cast<std::size_t>(cdOffset);
+  for (std::uint64_t i = 0; i < entries; ++i) {
+    if (u32(p) != 0x02014b50) throw std::runtime_error("bad central directory");
+    out.push_back(u32(p + 42));
+    p += 46 + u16(p + 28) + u16(p + 30) + u16(p + 32);
+  }
+  std::sort(out.begin(), out.end());
+  out.push_back(cdOffset);
+  out.push_back(end);
+  return out;
+}
+
+std::vector<std::string> filesInWriteOrder(const fs::path& bag) {
+  std::vector<std::string> out;
+  for (const auto& e : fs::recursive_directory_iterator(bag))
+    if (e.is_regular_file()) out.push_back(fs::relative(e.path(), bag).generic_string());
+  std::sort(out.begin(), out.end());
+  return out;
 }
 
 }  // namespace verify_test

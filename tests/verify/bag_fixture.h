@@ -20,14 +20,17 @@ std::string readText(const std::filesystem::path& path);
 // checks that do not need a real pipeline run.
 std::filesystem::path tinyCapture(const std::filesystem::path& dir);
 
-// Makes a BagIt bag at `bag` holding `capture` as data/: manifests (sha256, sha512),
-// bagit.txt, bag-info.txt (Payload-Oxum, Surrogate-Package-Identifier/-Packaging-Time),
-// metadata/crm.rdf and metadata/mets.xml derived from the carrier (when the mapping library
-// is built; placeholders otherwise) and tagmanifests.
+// Makes a BagIt bag at `bag` holding `capture` as data/, as `surrogate pack` would: manifests
+// (sha256, sha512), bagit.txt, bag-info.txt (the computed labels, the carrier's metadata and
+// External-Description, Surrogate-Package-Identifier = urn:sha256 of the carrier,
+// Surrogate-Packaging-Time), metadata/crm.rdf and metadata/mets.xml derived from the carrier
+// with the bundled stylesheets, schemas and tables copied to metadata/ (when the mapping
+// library is built; placeholders otherwise) and tagmanifests.
 void makeBag(const std::filesystem::path& capture, const std::filesystem::path& bag);
 
-// Rewrites the bag's manifests, Payload-Oxum, metadata and tagmanifests for its current
-// content (after a test changed files "consistently").
+// Rewrites the bag's manifests, bag-info.txt, metadata and tagmanifests for its current
+// content (after a test changed files "consistently"): what a forger who redoes every
+// derivable file would do. The bag's Bag-Software-Agent and packaging time are kept.
 void rehashBag(const std::filesystem::path& bag);
 
 // Only the tagmanifests (after a test changed a tag file or a manifest "consistently").
@@ -53,5 +56,18 @@ void writeArchive(const std::filesystem::path& archive, const std::vector<Entry>
 // bag's files at the archive's top, or e.g. "stela/").
 void archiveDirectory(const std::filesystem::path& dir, const std::filesystem::path& archive,
                       const std::string& prefix);
+
+// Where the entries of an uncompressed tar begin (each header block, pax headers included, in
+// order), and last the offset of its end-of-archive marker. Only for well-formed archives.
+std::vector<std::uint64_t> tarEntryOffsets(const std::string& tar);
+
+// Where the local headers of a zip's entries begin (from its central directory, in order),
+// then the central directory's offset and the end record's offset.
+std::vector<std::uint64_t> zipEntryOffsets(const std::string& zip);
+
+// The bag's files (regular files, relative '/' paths) in the order an archive writer writes
+// them: byte order of their paths (bag-info.txt, bagit.txt, data/..., manifest-*, metadata/...,
+// tagmanifest-*), as `surrogate pack` writes.
+std::vector<std::string> filesInWriteOrder(const std::filesystem::path& bag);
 
 }  // namespace verify_test

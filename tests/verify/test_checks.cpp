@@ -112,14 +112,29 @@ TEST_CASE("a changed tag file fails the tagmanifest (exit 3)", "[verify][checks]
   CHECK(failed(r, "bagit.tagfixity-sha256"));
 }
 
-TEST_CASE("a bag without bagit.txt or manifests is invalid (exit 2)", "[verify][checks]") {
+TEST_CASE("a bag without bagit.txt or manifests is not a bag (exit 2), a Surrogate package "
+          "without them is incomplete (exit 3)", "[verify][checks]") {
+  // A plain BagIt bag (no carrier, no Surrogate identifier): without bagit.txt it is no bag.
+  fs::path plain = freshDir("plain") / "bag";
+  writeText(plain / "data/hello.txt", "hello\n");
+  writeText(plain / "manifest-sha256.txt",
+            archive::sha256Hex("hello\n") + "  data/hello.txt\n");
+  verify::Report r = run(plain);
+  INFO(allText(r));
+  CHECK(r.exitCode() == 2);
+  CHECK(failed(r, "bagit.declaration"));
+  CHECK_FALSE(failed(r, "package.complete"));
+
   fs::path bag = cleanBag("nodecl");
   fs::remove(bag / "bagit.txt");
   fs::remove(bag / "tagmanifest-sha256.txt");
   fs::remove(bag / "tagmanifest-sha512.txt");
-  verify::Report r = run(bag);
-  CHECK(r.exitCode() == 2);
+  r = run(bag);
+  INFO(allText(r));
+  CHECK(r.exitCode() == 3);
   CHECK(failed(r, "bagit.declaration"));
+  CHECK(failed(r, "package.complete"));
+  CHECK_THAT(allText(r), Contains("tagmanifest-sha512.txt: missing"));
 
   bag = cleanBag("nomanifest");
   fs::remove(bag / "manifest-sha256.txt");
@@ -128,7 +143,8 @@ TEST_CASE("a bag without bagit.txt or manifests is invalid (exit 2)", "[verify][
   r = run(bag);
   INFO(allText(r));
   CHECK(failed(r, "bagit.manifests"));
-  CHECK(r.exitCode() == 2);  // without a payload manifest it is not a bag
+  CHECK(failed(r, "package.complete"));
+  CHECK(r.exitCode() == 3);
 }
 
 TEST_CASE("manifest paths outside the bag or outside data/ are invalid", "[verify][checks]") {
@@ -196,15 +212,22 @@ TEST_CASE("a carrier naming an unsafe path is invalid and never re-executed", "[
 }
 
 TEST_CASE("metadata that is missing or not well-formed fails the metadata checks", "[verify][checks]") {
-  const fs::path bag = cleanBag("metadata");
+  fs::path bag = cleanBag("metadata");
   writeText(bag / "metadata/crm.rdf", "<rdf:RDF");
-  fs::remove(bag / "metadata/mets.xml");
   rehashTagManifests(bag);
-  const verify::Report r = run(bag);
+  verify::Report r = run(bag);
   INFO(allText(r));
   CHECK(failed(r, "metadata.crm"));
-  CHECK(failed(r, "metadata.mets"));
   CHECK(r.exitCode() == 2);
+
+  bag = cleanBag("nomets");
+  fs::remove(bag / "metadata/mets.xml");
+  rehashTagManifests(bag);
+  r = run(bag);
+  INFO(allText(r));
+  CHECK(failed(r, "metadata.mets"));
+  CHECK(failed(r, "package.complete"));  // a package without its METS is incomplete
+  CHECK(r.exitCode() == 3);
 }
 
 TEST_CASE("the report's exit code prefers fixity over invalid over not reproduced",

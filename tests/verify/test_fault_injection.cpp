@@ -9,6 +9,7 @@
 #include "bag_fixture.h"
 #include "carrier/carrier.h"
 #include "e2e_support.h"
+#include "verify/verify.h"
 
 namespace fs = std::filesystem;
 using namespace verify_test;
@@ -17,7 +18,7 @@ using Catch::Matchers::Contains;
 namespace {
 
 struct Fixture {
-  fs::path dir, capture, bag, tar;
+  fs::path dir, capture, bag, tar, zip;
 };
 
 // Made once per test process: the capture, run with 2 threads, and its bag (dir and .tar).
@@ -31,8 +32,9 @@ const Fixture& fixture() {
     if (run.exitCode != 0) throw std::runtime_error("surrogate run failed: " + run.output);
     x.bag = x.dir / "bag";
     x.tar = x.dir / "bag.tar";
+    x.zip = x.dir / "bag.zip";
 #ifdef SURROGATE_HAVE_PACK
-    for (const fs::path& out : {x.bag, x.tar}) {
+    for (const fs::path& out : {x.bag, x.tar, x.zip}) {
       const e2e::CommandResult pack =
           e2e::surrogate("pack " + e2e::quote(x.capture) + " -o " + e2e::quote(out) + " --quiet");
       if (pack.exitCode != 0) throw std::runtime_error("surrogate pack failed: " + pack.output);
@@ -40,6 +42,7 @@ const Fixture& fixture() {
 #else
     makeBag(x.capture, x.bag);
     archiveDirectory(x.bag, x.tar, "bag/");
+    archiveDirectory(x.bag, x.zip, "bag/");
 #endif
     return x;
   }();
@@ -244,6 +247,107 @@ TEST_CASE("every injected fault is detected with the right check and exit code",
          return b;
        },
        4, "reexecute.s4.HighlightDetection", true, "dB"},
+      {"delete both tag manifests",
+       [] {
+         auto b = copyOfBag("notagmanifests");
+         fs::remove(b / "tagmanifest-sha256.txt");
+         fs::remove(b / "tagmanifest-sha512.txt");
+         return b;
+       },
+       3, "package.complete", false, "tagmanifest-sha256.txt: missing"},
+      {"delete the SHA-512 tag manifest",
+       [] { auto b = copyOfBag("notag512"); fs::remove(b / "tagmanifest-sha512.txt"); return b; },
+       3, "package.complete", false, "tagmanifest-sha512.txt: missing"},
+      {"delete a bundled schema and its tag manifest lines",
+       [] {
+         auto b = copyOfBag("noxsd");
+         fs::remove(b / "metadata/xsd/premis-3.0.xsd");
+         rehashTagManifests(b);
+         return b;
+       },
+       3, "package.complete", false, "metadata/xsd/premis-3.0.xsd: missing"},
+      {"empty carrier.xsd, tag manifests redone",
+       [] {
+         auto b = copyOfBag("emptyxsd");
+         writeText(b / "metadata/xsd/carrier.xsd", "");
+         rehashTagManifests(b);
+         return b;
+       },
+       2, "package.bundled", false, "metadata/xsd/carrier.xsd: differs"},
+      {"a garbage stylesheet, tag manifests redone",
+       [] {
+         auto b = copyOfBag("garbagexsl");
+         writeText(b / "metadata/xslt/carrier-to-crm.xsl", "garbage");
+         rehashTagManifests(b);
+         return b;
+       },
+       2, "package.bundled", false, "metadata/xslt/carrier-to-crm.xsl: differs"},
+      {"a forged bag-info, tag manifests redone",
+       [] {
+         auto b = copyOfBag("forgedinfo");
+         replaceText(b / "bag-info.txt", "External-Description: ", "External-Description: Stela 9, ");
+         rehashTagManifests(b);
+         return b;
+       },
+       2, "package.info", false, "the carrier's header gives"},
+      {"a forged package identifier, tag manifests redone",
+       [] {
+         auto b = copyOfBag("forgedid");
+         replaceText(b / "bag-info.txt", "Surrogate-Package-Identifier: urn:sha256:",
+                     "Surrogate-Package-Identifier: urn:sha256:0");
+         rehashTagManifests(b);
+         return b;
+       },
+       2, "package.info", false, "the carrier in the package gives urn:sha256:"},
+      {"Payload-Oxum off by one file, tag manifests redone",
+       [] {
+         auto b = copyOfBag("oxum");
+         std::string info = readText(b / "bag-info.txt");
+         const auto at = info.find("Payload-Oxum: ");
+         const auto dot = info.find('.', at), end = info.find('\n', at);
+         info.replace(dot + 1, end - dot - 1, std::to_string(std::stoi(info.substr(dot + 1, end - dot - 1)) + 1));
+         writeText(b / "bag-info.txt", info);
+         rehashTagManifests(b);
+         return b;
+       },
+       3, "bagit.payload-oxum", false, "Payload-Oxum says"},
+      {"append a second tar after the end-of-archive marker",
+       [] {
+         const fs::path more = verify_test::freshDir("twotars") / "bag.tar";
+         const std::string tar = readText(fixture().tar);
+         writeText(more, tar + tar);
+         return more;
+       },
+       3, "package.read", false, "data follow the end of the archive"},
+      {"a recorded threshold that is not a number, hashes and metadata redone",
+       [] {
+         auto b = copyOfBag("nan");
+         replaceText(b / "data/assembly-files/carrier.xml",
+                     "<param name=\"threshold\" value=\"0.80000000000000004\"/>",
+                     "<param name=\"threshold\" value=\"nan\"/>");
+         rehashBag(b);
+         return b;
+       },
+       2, "carrier.steps", true, "step s4 (HighlightDetection): threshold"},
+      {"an unknown component, hashes and metadata redone",
+       [] {
+         auto b = copyOfBag("unknown");
+         replaceText(b / "data/assembly-files/carrier.xml", "component=\"DerivedMaps\"",
+                     "component=\"DerivedMagic\"");
+         rehashBag(b);
+         return b;
+       },
+       2, "carrier.steps", true, "(DerivedMagic): no stage of this build"},
+      {"an output path escaping the capture, hashes and metadata redone",
+       [] {
+         auto b = copyOfBag("escape");
+         replaceText(b / "data/assembly-files/carrier.xml",
+                     "<param name=\"output\" value=\"finished-files/ptm-lrgb.ptm\"/>",
+                     "<param name=\"output\" value=\"../../ptm-lrgb.ptm\"/>");
+         rehashBag(b);
+         return b;
+       },
+       2, "carrier.steps", true, "output=../../ptm-lrgb.ptm"},
   };
 
   int detected = 0;
@@ -257,14 +361,175 @@ TEST_CASE("every injected fault is detected with the right check and exit code",
     CHECK(rightCode);
     CHECK(rightCheck);
     if (rightCode && rightCheck) ++detected;
-    if (fault.reexecute) {
+    if (fault.reexecute && fault.expectedExit == 4) {
       // Without re-execution the consistent edit is invisible: the package itself is sound.
       const e2e::CommandResult plain = verify(package);
       INFO(plain.output);
       CHECK(plain.exitCode == 0);
+    } else if (fault.reexecute) {
+      // An invalid carrier: plain verify says so too, and --reexecute never ran it.
+      const e2e::CommandResult plain = verify(package);
+      INFO(plain.output);
+      CHECK(plain.exitCode == fault.expectedExit);
+      CHECK(r.output.find("not re-executed") != std::string::npos);
     }
   }
   std::cout << faults.size() << " faults injected, " << detected << " detected\n";
   CHECK(detected == static_cast<int>(faults.size()));
   (void)f;
 }
+
+namespace {
+
+surrogate::verify::Report verifyHere(const fs::path& package) {
+  return surrogate::verify::verifyPackage(package, {});
+}
+
+std::string failures(const surrogate::verify::Report& r) {
+  std::string s;
+  for (const auto& c : r.checks) {
+    if (c.passed) continue;
+    s += c.name + ": " + c.what + "\n";
+    for (const std::string& w : c.where) s += "  " + w + "\n";
+  }
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("every prefix of a packed folder bag, cut file by file as pack writes it, fails",
+          "[verify][faults]") {
+  const fs::path bag = fixture().bag;
+  const std::vector<std::string> files = filesInWriteOrder(bag);
+  const fs::path cut = verify_test::freshDir("prefixes") / "bag";
+  fs::create_directories(cut);
+  int failed = 0;
+  for (std::size_t k = 0; k < files.size(); ++k) {
+    const auto r = verifyHere(cut);
+    INFO("the first " << k << " of " << files.size() << " files, up to before " << files[k] << "\n"
+                      << failures(r));
+    CHECK(r.exitCode() == (k == 0 ? 2 : 3));  // nothing: not a bag; a part: incomplete
+    failed += r.exitCode() != 0;
+    fs::create_directories((cut / files[k]).parent_path());
+    fs::copy_file(bag / files[k], cut / files[k]);
+  }
+  std::cout << files.size() << " prefixes of a folder bag, " << failed << " failed\n";
+  CHECK(failed == static_cast<int>(files.size()));
+  CHECK(verifyHere(cut).exitCode() == 0);  // all of it
+}
+
+TEST_CASE("a packed tar or zip cut at any entry boundary, or inside entries, fails (exit 3)",
+          "[verify][faults]") {
+  const fs::path dir = verify_test::freshDir("cuts");
+  struct Cut {
+    std::string name;
+    std::uint64_t at;
+  };
+  std::vector<Cut> cuts;
+  const std::string tar = readText(fixture().tar), zip = readText(fixture().zip);
+  const std::vector<std::uint64_t> tarOffsets = tarEntryOffsets(tar), zipOffsets = zipEntryOffsets(zip);
+  for (std::size_t i = 0; i < tarOffsets.size(); ++i) {
+    if (tarOffsets[i] > 0) cuts.push_back({"cut.tar", tarOffsets[i]});  // entry boundary
+    if (i % 5 == 1) {                                                    // some entries: inside
+      cuts.push_back({"cut.tar", tarOffsets[i] + 256});
+      if (i + 1 < tarOffsets.size())
+        cuts.push_back({"cut.tar", (tarOffsets[i] + 512 + tarOffsets[i + 1]) / 2});
+    }
+  }
+  cuts.push_back({"cut.tar", tarOffsets.back() + 512});   // half the end-of-archive marker
+  cuts.push_back({"cut.tar", tarOffsets.back() + 1500});  // inside a block of the padding
+  for (std::size_t i = 0; i < zipOffsets.size(); ++i) {
+    if (zipOffsets[i] > 0) cuts.push_back({"cut.zip", zipOffsets[i]});
+    if (i % 5 == 1 && i + 1 < zipOffsets.size())
+      cuts.push_back({"cut.zip", (zipOffsets[i] + zipOffsets[i + 1]) / 2});
+  }
+  cuts.push_back({"cut.zip", zip.size() - 1});
+  int failed = 0, tried = 0;
+  for (const Cut& c : cuts) {
+    const std::string& whole = c.name == "cut.tar" ? tar : zip;
+    if (c.at >= whole.size()) continue;
+    writeText(dir / c.name, whole.substr(0, c.at));
+    const auto r = verifyHere(dir / c.name);
+    INFO(c.name << " cut at byte " << c.at << " of " << whole.size() << "\n" << failures(r));
+    CHECK(r.exitCode() == 3);
+    ++tried;
+    failed += r.exitCode() == 3;
+  }
+  std::cout << tried << " cuts of a packed tar and zip, " << failed << " failed with exit 3\n";
+  CHECK(failed == tried);
+  // Trailing data after a zip's end, and zeros after a tar's (padding: sound).
+  writeText(dir / "more.zip", zip + "PK and more");
+  auto r = verifyHere(dir / "more.zip");
+  INFO(failures(r));
+  CHECK(r.exitCode() == 3);
+  writeText(dir / "padded.tar", tar + std::string(10240, '\0'));  // whole blocks of zeros: padding
+  r = verifyHere(dir / "padded.tar");
+  INFO(failures(r));
+  CHECK(r.exitCode() == 0);
+}
+
+TEST_CASE("verify refuses a negative thread count", "[verify][faults]") {
+  const e2e::CommandResult r = verify(fixture().tar, "--threads -1");
+  INFO(r.output);
+  CHECK(r.exitCode == 2);
+  CHECK_THAT(r.output, Contains("--threads"));
+}
+
+TEST_CASE("a verify --reexecute stopped by a signal leaves nothing, and a killed one only what "
+          "rm -rf removes", "[verify][faults]") {
+  for (const std::string signal : {"TERM", "INT", "KILL"}) {
+    const fs::path tmp = verify_test::freshDir("killed-" + signal);
+    // set -m: with job control a background job keeps SIGINT (else the shell ignores it).
+    const std::string script =
+        "set -m; TMPDIR=" + e2e::quote(tmp) + " " + SURROGATE_EXE + " verify " + e2e::quote(fixture().tar) +
+        " --reexecute --quiet >/dev/null 2>&1 & pid=$!; "
+        "for i in $(seq 1 600); do "
+        "  if [ -n \"$(find " + e2e::quote(tmp) + " -path '*/replay/original-captures/*' 2>/dev/null | head -1)\" ]; then break; fi; "
+        "  sleep 0.02; done; "
+        "kill -" + signal + " $pid; wait $pid; echo \"status $?\"";
+    e2e::CommandResult r = e2e::runShell("bash -c " + e2e::quote(script));
+    INFO(signal << ": " << r.output);
+    if (signal != "KILL") {
+      CHECK(fs::is_empty(tmp));  // the handler removed the temporary folder
+    } else {
+      // What SIGKILL leaves is writable for its owner (no folder without u+w, so rm -rf works
+      // for a user who is not root too).
+      r = e2e::runShell("find " + e2e::quote(tmp) + " -type d ! -perm -u+w | wc -l");
+      CHECK(r.output == "0\n");
+      r = e2e::runShell("rm -rf " + e2e::quote(tmp) + "/*; echo rm $?; ls -A " + e2e::quote(tmp) + " | wc -l");
+      INFO(r.output);
+      CHECK_THAT(r.output, Contains("rm 0"));
+      CHECK(fs::is_empty(tmp));
+    }
+  }
+}
+
+#ifdef SURROGATE_HAVE_PACK
+TEST_CASE("pack removes the partial output of a killed pack to the same name, and says so",
+          "[verify][faults]") {
+  const fs::path dir = verify_test::freshDir("stale");
+  // A process that has ended: its pid names the leftovers.
+  const e2e::CommandResult child = e2e::runShell("sh -c 'echo $$'");
+  const std::string pid = child.output.substr(0, child.output.find('\n'));
+  const fs::path staleFile = dir / (".out.tar.part-" + pid + "-0");
+  const fs::path staleDir = dir / (".out.part-" + pid + "-3");
+  const fs::path alive = dir / ".out.tar.part-1-0";  // pid 1 runs: kept
+  writeText(staleFile, "half a tar");
+  writeText(staleDir / "data/x.dng", "half a bag");
+  fs::permissions(staleDir / "data", fs::perms::owner_read | fs::perms::owner_exec);
+  writeText(alive, "another pack, still writing");
+  e2e::CommandResult r = e2e::surrogate("pack " + e2e::quote(fixture().capture) + " -o " +
+                                        e2e::quote(dir / "out.tar"));
+  INFO(r.output);
+  CHECK(r.exitCode == 0);
+  CHECK_FALSE(fs::exists(staleFile));
+  CHECK(fs::exists(alive));
+  CHECK_THAT(r.output, Contains("Removed " + staleFile.string()));
+  CHECK_THAT(r.output, Contains("process " + pid + " no longer runs"));
+  r = e2e::surrogate("pack " + e2e::quote(fixture().capture) + " -o " + e2e::quote(dir / "out") + " --json");
+  INFO(r.output);
+  CHECK(r.exitCode == 0);
+  CHECK_FALSE(fs::exists(staleDir));
+  CHECK_THAT(r.output, Contains("\"removedLeftovers\":[\"removed " + staleDir.string()));
+}
+#endif

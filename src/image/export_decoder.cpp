@@ -1,0 +1,95 @@
+#include "image/export_decoder.h"
+
+#include <string>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "image/jpeg_structure.h"
+#include "image/png_structure.h"
+#include "image/tiff_structure.h"
+
+namespace surrogate::image {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kStep = "image decode";
+
+// The structure check on the file's bytes (JPEG, PNG) or the file itself (TIFF: libtiff reads
+// only the directories and the strip tables).
+ImageProbe checkStructure(const fs::path& path, SourceKind kind, const std::string* bytes) {
+  ImageProbe probe;
+  probe.kind = kind;
+  std::string problem;
+  switch (kind) {
+    case SourceKind::Jpeg: {
+      const JpegStructure s =
+          bytes ? readJpegStructure(reinterpret_cast<const std::uint8_t*>(bytes->data()), bytes->size())
+                : readJpegStructure(path);
+      probe.width = s.width;
+      probe.height = s.height;
+      problem = s.problem;
+      break;
+    }
+    case SourceKind::Png: {
+      const PngStructure s =
+          bytes ? readPngStructure(reinterpret_cast<const std::uint8_t*>(bytes->data()), bytes->size())
+                : readPngStructure(path);
+      probe.width = s.width;
+      probe.height = s.height;
+      problem = s.problem;
+      break;
+    }
+    case SourceKind::Tiff: {
+      const TiffStructure s = readTiffStructure(path);
+      probe.width = s.width;
+      probe.height = s.height;
+      problem = tiffProblem(s);
+      break;
+    }
+    case SourceKind::CameraRaw:
+      throw Error(ErrorKind::Internal, path.string(), kStep, "camera raw files are LibRaw's to check");
+  }
+  if (!problem.empty()) throwInputError(path.string(), kStep, problem);
+  if (probe.width <= 0 || probe.height <= 0)
+    throwInputError(path.string(), kStep, "the image declares no size (0 pixels wide or high)");
+  return probe;
+}
+
+const char* libraryOf(SourceKind kind) {
+  return kind == SourceKind::Jpeg ? "libjpeg" : kind == SourceKind::Png ? "libpng" : "libtiff";
+}
+
+}  // namespace
+
+ImageProbe checkExportStructure(const fs::path& path, SourceKind kind) {
+  return checkStructure(path, kind, nullptr);
+}
+
+Image decodeExport(const fs::path& path, SourceKind kind, DecodeReport* report, const DecodeOptions& options) {
+  DecoderMessages messages(libraryOf(kind));
+  Image im;
+  if (kind == SourceKind::Tiff) {
+    const ImageProbe probe = checkStructure(path, kind, nullptr);
+    checkDeclaredSize(path, static_cast<std::uint64_t>(probe.width), static_cast<std::uint64_t>(probe.height), options);
+    im = decodeTiff(path, options, messages);
+  } else {
+    const std::string bytes = readFile(path, kStep);
+    const ImageProbe probe = checkStructure(path, kind, &bytes);
+    checkDeclaredSize(path, static_cast<std::uint64_t>(probe.width), static_cast<std::uint64_t>(probe.height), options);
+    const auto* data = reinterpret_cast<const std::uint8_t*>(bytes.data());
+    im = kind == SourceKind::Jpeg ? decodeJpeg(path, data, bytes.size(), options, messages)
+                                  : decodePng(path, data, bytes.size(), options, messages);
+  }
+  if (report) {
+    *report = DecodeReport{};
+    report->decoder = kind == SourceKind::Jpeg ? libjpegName() + " " + libjpegVersion()
+                      : kind == SourceKind::Png ? "libpng " + libpngVersion()
+                                                : "libtiff " + libtiffVersion();
+  }
+  settle(messages, path, options, report);
+  return im;
+}
+
+}  // namespace surrogate::image

@@ -1,0 +1,215 @@
+// package.*: a Surrogate package is complete (every file `surrogate pack` writes is there), its
+// bundled stylesheets, schemas and mapping tables are the ones this verifier bundles, and its
+// bag-info.txt is what packing the carrier gives.
+#include <mutex>
+#include <regex>
+#include <set>
+
+#include "archive/bag.h"
+#include "archive/digest.h"
+#include "archive/package.h"
+#include "carrier/carrier.h"
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "core/resources.h"
+#include "core/text.h"
+#include "core/version.h"
+#include "verify/bag_text.h"
+#include "verify/checks.h"
+
+namespace surrogate::verify::internal {
+
+namespace {
+
+const std::string* contentOf(const Inventory& inv, const std::string& path) {
+  const auto it = inv.files.find(path);
+  if (it == inv.files.end() || !it->second.content) return nullptr;
+  return &*it->second.content;
+}
+
+// The SHA-256 of each resource this verifier bundles, by bag path ("metadata/xsd/..."),
+// computed once per process.
+const std::map<std::string, std::string>& bundledDigests() {
+  static std::once_flag once;
+  static std::map<std::string, std::string> digests;
+  std::call_once(once, [] {
+    for (const std::string& path : archive::packageMetadataFiles()) {
+      if (path == "metadata/crm.rdf" || path == "metadata/mets.xml") continue;  // derived
+      const std::string rel = path.substr(std::string("metadata/").size());
+      digests[path] = archive::sha256Hex(readFile(resourcePath(rel), "verify"));
+    }
+  });
+  return digests;
+}
+
+// The tag files every Surrogate package has (bagit.txt, bag-info.txt, both manifests and tag
+// manifests, metadata/...), sorted.
+std::vector<std::string> requiredTagFiles() {
+  std::vector<std::string> out = {"bag-info.txt",          "bagit.txt",
+                                  "manifest-sha256.txt",   "manifest-sha512.txt",
+                                  "tagmanifest-sha256.txt", "tagmanifest-sha512.txt"};
+  for (const std::string& p : archive::packageMetadataFiles()) out.push_back(p);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::string softwareAgentOf(const Inventory& inv) {
+  if (const std::string* text = contentOf(inv, "bag-info.txt")) {
+    const auto v = parseBagInfo(*text).values("Bag-Software-Agent");
+    if (!v.empty()) return v.front();
+  }
+  return "";
+}
+
+// A bag-info value as it reads back: line breaks folded into continuation lines, each line
+// trimmed and the lines joined by one space (parseBagInfo).
+std::string asReadBack(const std::string& value) {
+  std::string out;
+  bool first = true;
+  for (const std::string& line : splitLines(value + "\n")) {
+    std::size_t b = 0, e = line.size();
+    while (b < e && (line[b] == ' ' || line[b] == '\t')) ++b;
+    while (e > b && (line[e - 1] == ' ' || line[e - 1] == '\t')) --e;
+    out += (first ? "" : " ") + line.substr(b, e - b);
+    first = false;
+  }
+  return out;
+}
+
+std::string quoted(const std::string& s) { return "\"" + s.substr(0, 200) + (s.size() > 200 ? "..." : "") + "\""; }
+
+}  // namespace
+
+bool isSurrogatePackage(const Inventory& inv) {
+  if (inv.files.count(kCarrierPath)) return true;
+  if (const std::string* text = contentOf(inv, "bag-info.txt"))
+    return !parseBagInfo(*text).values("Surrogate-Package-Identifier").empty();
+  return false;
+}
+
+void checkCompleteness(const Inventory& inv, std::vector<Check>& checks) {
+  if (!isSurrogatePackage(inv)) return;
+  // Every file `surrogate pack` writes: a package without one was cut short (a truncated
+  // archive, an interrupted copy) or had files removed, and is never sound.
+  std::vector<std::string> missing;
+  std::vector<std::string> required = requiredTagFiles();
+  required.push_back(kCarrierPath);
+  for (const std::string& path : required)
+    if (!inv.files.count(path))
+      missing.push_back(path + ": missing; every Surrogate package has it");
+  checks.push_back(makeCheck(
+      "package.complete", Severity::Fixity,
+      "every file of a Surrogate package is present (bagit.txt, bag-info.txt, both manifests "
+      "and tag manifests, the carrier, metadata/)",
+      "the package is incomplete: it was cut short (a truncated archive or copy) or files were "
+      "removed",
+      missing));
+
+  // The stylesheets, schemas and mapping tables: byte for byte the ones this verifier bundles,
+  // so that what they say is what the verifier checked with; and no other tag file.
+  std::vector<std::string> problems;
+  const std::string agent = softwareAgentOf(inv);
+  const std::string ours = std::string("Surrogate ") + surrogateVersion();
+  const std::set<std::string> known(required.begin(), required.end());
+  for (const auto& [path, digest] : bundledDigests()) {
+    const auto it = inv.files.find(path);
+    if (it == inv.files.end()) continue;  // package.complete
+    if (it->second.sha256 == digest) continue;
+    std::string why = path + ": differs from the " + path.substr(path.rfind('/') + 1) +
+                      " this verifier bundles (SHA-256 " + it->second.sha256.substr(0, 16) +
+                      "..., bundled " + digest.substr(0, 16) + "...)";
+    if (!agent.empty() && agent != ours)
+      why += "; the package was made by " + agent + " and this verifier is " + ours +
+             ": verify it with " + agent;
+    else
+      why += "; it was changed after packing";
+    problems.push_back(why);
+  }
+  for (const auto& [path, file] : inv.files) {
+    if (path.compare(0, 5, "data/") == 0 || known.count(path)) continue;
+    problems.push_back(path + ": not a file `surrogate pack` writes (added to the package "
+                       "after packing?)");
+  }
+  checks.push_back(makeCheck(
+      "package.bundled", Severity::Invalid,
+      "the stylesheets, schemas and mapping tables in metadata/ are byte-identical to the ones "
+      "this verifier bundles, and there is no other tag file",
+      "metadata/ holds stylesheets, schemas or tables other than this verifier's, or other "
+      "files",
+      problems));
+}
+
+void checkPackageInfo(const Inventory& inv, const std::optional<carrier::Carrier>& recorded,
+                      std::vector<Check>& checks) {
+  const std::string* text = contentOf(inv, "bag-info.txt");
+  const auto carrierFile = inv.files.find(kCarrierPath);
+  if (!isSurrogatePackage(inv) || !text || !recorded || carrierFile == inv.files.end()) return;
+  const BagInfo info = parseBagInfo(*text);
+  std::vector<std::string> problems;
+  auto one = [&](const std::string& label) -> std::optional<std::string> {
+    const auto v = info.values(label);
+    if (v.empty()) {
+      problems.push_back("bag-info.txt: " + label + " is missing");
+      return std::nullopt;
+    }
+    if (v.size() > 1) {
+      problems.push_back("bag-info.txt: " + label + " is given " + std::to_string(v.size()) +
+                         " times; a package has it once");
+      return std::nullopt;
+    }
+    return v.front();
+  };
+
+  // The labels writeBag computes.
+  if (const auto agent = one("Bag-Software-Agent"); agent && agent->compare(0, 10, "Surrogate ") != 0)
+    problems.push_back("bag-info.txt: Bag-Software-Agent is " + quoted(*agent) +
+                       ", not Surrogate: this is not a package `surrogate pack` wrote");
+  const auto oxum = one("Payload-Oxum");
+  if (const auto size = one("Bag-Size"); size && oxum) {
+    if (const auto parsed = parseOxum(*oxum)) {
+      const std::string expected = archive::humanSize(parsed->first);
+      if (*size != expected)
+        problems.push_back("bag-info.txt: Bag-Size is " + quoted(*size) + ", Payload-Oxum " +
+                           *oxum + " gives " + quoted(expected));
+    }
+  }
+  const auto time = one("Surrogate-Packaging-Time");
+  static const std::regex dateTime(R"(\d{4}-\d\d-\d\dT\d\d:\d\d:\d\dZ)");
+  if (time && !std::regex_match(*time, dateTime))
+    problems.push_back("bag-info.txt: Surrogate-Packaging-Time " + quoted(*time) +
+                       " is not a UTC time YYYY-MM-DDTHH:MM:SSZ");
+  if (const auto date = one("Bagging-Date"); date && time && std::regex_match(*time, dateTime) &&
+                                             *date != time->substr(0, 10))
+    problems.push_back("bag-info.txt: Bagging-Date " + *date + " is not the day of "
+                       "Surrogate-Packaging-Time " + *time);
+
+  // The package identifier: the SHA-256 of the carrier in the bag.
+  const std::string id = archive::packageIdentifier(carrierFile->second.sha256);
+  if (const auto given = one("Surrogate-Package-Identifier"); given && *given != id)
+    problems.push_back("bag-info.txt: Surrogate-Package-Identifier is " + quoted(*given) +
+                       "; the carrier in the package gives " + id);
+
+  // The user's labels: the carrier's header metadata, and nothing else.
+  const archive::PackageInfo expected = archive::packageInfo(*recorded, id, time.value_or(""));
+  std::set<std::string> labels = {"bag-software-agent", "bagging-date", "bag-size", "payload-oxum"};
+  for (const auto& [label, value] : expected.own) labels.insert(lowerCase(label));
+  for (const auto& [label, value] : expected.user) {
+    labels.insert(lowerCase(label));
+    const auto given = one(label);
+    if (given && *given != asReadBack(value))
+      problems.push_back("bag-info.txt: " + label + " is " + quoted(*given) +
+                         "; the carrier's header gives " + quoted(asReadBack(value)));
+  }
+  std::set<std::string> reported;
+  for (const auto& [label, value] : info.fields)
+    if (!labels.count(lowerCase(label)) && reported.insert(lowerCase(label)).second)
+      problems.push_back("bag-info.txt: " + label + " is not in the carrier's header (added "
+                         "after packing?)");
+  checks.push_back(makeCheck(
+      "package.info", Severity::Invalid,
+      "bag-info.txt is what packing the carrier gives: its identifier (" + id.substr(0, 27) +
+          "...), metadata, dates and sizes",
+      "bag-info.txt disagrees with the carrier", problems));
+}
+
+}  // namespace surrogate::verify::internal
