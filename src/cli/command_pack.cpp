@@ -96,8 +96,11 @@ int runCommandPack(int argc, char** argv) {
     throw Error(ErrorKind::Usage, "", "command line",
                 "give the capture and the output: surrogate pack CAPTURE -o OUT (see --help)");
   const std::string capture = args.positional()[0];
-  if (!std::filesystem::is_directory(capture))
-    throw Error(ErrorKind::Usage, capture, "command line", "is not a capture folder");
+  std::error_code ec;  // a symbolic-link loop is no folder either, not an internal error
+  if (!std::filesystem::is_directory(capture, ec))
+    throw Error(ErrorKind::Usage, capture, "command line",
+                ec ? "cannot be read as a folder (" + ec.message() + "); give the capture folder"
+                   : "is not a capture folder");
 
   archive::checkOutput(*out);  // before any long work
   capture::refuseOutputInside(capture, *out, "-o", /*anywhere=*/true);

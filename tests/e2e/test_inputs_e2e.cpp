@@ -356,4 +356,5 @@ TEST_CASE("symbolic link loops are refused with a message, not a filesystem erro
   requireRefused(e2e::surrogate("lights " + loop + " -o " + e2e::quote(dir / "x.lp") + " --quiet"), {"loop1"});
   requireRefused(e2e::surrogate("info " + loop), {"loop1", "loop of symbolic links"});
   requireRefused(e2e::surrogate("report " + loop + " -o " + e2e::quote(dir / "r.html")), {"loop1"});
+  requireRefused(e2e::surrogate("pack " + loop + " -o " + e2e::quote(dir / "p.zip")), {"loop1"}, /*usage=*/true);
 }
