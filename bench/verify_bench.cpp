@@ -24,9 +24,9 @@
 #include <string>
 #include <vector>
 
-#include "archive/digest.h"
 #include "archive/package.h"
 #include "carrier/carrier.h"
+#include "core/digest.h"
 #include "core/error.h"
 #include "verify/verify.h"
 
@@ -71,7 +71,7 @@ void makeCapture(const fs::path& capture, int files, int bytes) {
     f.path = rel;
     f.role = "original";
     f.size = content.size();
-    f.sha256 = archive::sha256Hex(content);
+    f.sha256 = sha256Hex(content);
     f.format = "JPEG";
     f.mediaType = "image/jpeg";
     c.files.push_back(std::move(f));

@@ -2,10 +2,10 @@
 #include <cstdint>
 #include <string>
 
-#include "verify/bag_text.h"
+#include "archive/bag_text.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  using namespace surrogate::verify;
+  using namespace surrogate::archive;
   const std::string text(reinterpret_cast<const char*>(data), size);
   parseDeclaration(text);
   const BagInfo info = parseBagInfo(text);

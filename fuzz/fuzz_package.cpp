@@ -6,8 +6,8 @@
 #include <cstdio>
 #include <string>
 
+#include "archive/package_reader.h"
 #include "core/error.h"
-#include "verify/package.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const std::string path = "/tmp/surrogate-fuzz-package-" + std::to_string(::getpid());
@@ -15,14 +15,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (!f) return 0;
   std::fwrite(data, 1, size, f);
   std::fclose(f);
-  surrogate::verify::Limits limits;
+  surrogate::archive::Limits limits;
   limits.maxEntries = 1000;
   limits.maxEntryBytes = 8 << 20;
   limits.maxTotalBytes = 32 << 20;
   limits.ratioFloorBytes = 1 << 20;
   limits.maxTagFileBytes = 1 << 20;
   try {
-    surrogate::verify::readPackage(path, limits);
+    surrogate::archive::readPackage(path, limits);
   } catch (const surrogate::Error&) {
     // refusing is the expected outcome for most inputs; crashing is not
   }

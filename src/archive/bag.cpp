@@ -21,8 +21,8 @@
 #include <set>
 #include <thread>
 
-#include "archive/digest.h"
 #include "core/atomic_file.h"
+#include "core/digest.h"
 #include "core/error.h"
 #include "core/text.h"
 

@@ -6,10 +6,10 @@
 #include <unordered_map>
 #include <unordered_set>
 
-#include "archive/digest.h"
 #include "capture/capture.h"
 #include "carrier/carrier.h"
 #include "core/atomic_file.h"
+#include "core/digest.h"
 #include "core/error.h"
 #include "core/resources.h"
 #include "core/version.h"

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-namespace surrogate::fit::internal {
+namespace surrogate::fit {
 
 ChannelFitter::ChannelFitter(std::vector<double> p, std::vector<double> basisAtLights, int n,
                              int terms, double displayScale)
@@ -73,4 +73,4 @@ void ChannelFitter::quantise(const RowView& row, double* scratch, double* sqErr)
   }
 }
 
-}  // namespace surrogate::fit::internal
+}  // namespace surrogate::fit

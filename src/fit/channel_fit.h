@@ -1,4 +1,4 @@
-// Internal to src/fit: the per-channel linear fit shared by PTM RGB and HSH.
+// Private to src/fit: the per-channel linear fit shared by PTM RGB and HSH.
 //
 // For each pixel and colour channel c:  a_{c,k} = sum_i P[k][i] * s_i,c   (k < T)
 // computed for a whole row at once (loop over lights, then terms, then the row's samples), so
@@ -10,7 +10,7 @@
 
 #include "fit/stream_fit.h"
 
-namespace surrogate::fit::internal {
+namespace surrogate::fit {
 
 class ChannelFitter : public RowFitter {
  public:
@@ -37,4 +37,4 @@ class ChannelFitter : public RowFitter {
   double displayScale_;
 };
 
-}  // namespace surrogate::fit::internal
+}  // namespace surrogate::fit

@@ -9,7 +9,7 @@ namespace surrogate::fit {
 
 namespace {
 
-class HshFitter : public internal::ChannelFitter {
+class HshFitter : public ChannelFitter {
  public:
   HshFitter(std::vector<double> p, std::vector<double> basis, int n, int terms,
             formats::HshFile* out)
@@ -45,11 +45,11 @@ formats::HshFile fitHsh(const ImageStack& stack, const std::vector<std::array<do
                     " makes a .ptm file, not an .rti");
   }
   const int terms = basisTerms(options.basis);
-  const auto l = internal::checkedLights(stack, lights, terms);
+  const auto l = checkedLights(stack, lights, terms);
   const int n = static_cast<int>(l.size());
   std::vector<double> design(static_cast<std::size_t>(n) * terms);
   for (int i = 0; i < n; ++i) hshBasis(l[i][0], l[i][1], l[i][2], terms, &design[i * terms]);
-  const internal::PseudoInverse pinv = internal::pseudoInverse(design, n, terms);
+  const PseudoInverse pinv = pseudoInverse(design, n, terms);
 
   formats::HshFile hsh;
   hsh.width = stack.width();
@@ -63,8 +63,8 @@ formats::HshFile fitHsh(const ImageStack& stack, const std::vector<std::array<do
   HshFitter fitter(std::move(p), design, n, terms, &hsh);
   int passes = 0;
   const std::vector<double> sqErr =
-      internal::streamFit(stack, fitter, options, hsh.coefficients.size(), &passes);
-  internal::finishStatistics(sqErr, hsh.texels(), pinv.rank, passes, stats);
+      streamFit(stack, fitter, options, hsh.coefficients.size(), &passes);
+  finishStatistics(sqErr, hsh.texels(), pinv.rank, passes, stats);
   return hsh;
 }
 

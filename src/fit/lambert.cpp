@@ -4,7 +4,7 @@
 
 #include "fit/pseudo_inverse.h"
 
-namespace surrogate::fit::internal {
+namespace surrogate::fit {
 
 namespace {
 LambertDirections makeDirections() {
@@ -48,4 +48,4 @@ bool normalFromLambert(const std::array<double, 3>& b, std::array<double, 3>* n)
   return true;
 }
 
-}  // namespace surrogate::fit::internal
+}  // namespace surrogate::fit

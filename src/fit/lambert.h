@@ -1,4 +1,4 @@
-// Internal to src/fit: least-squares Lambertian fit over a fixed set of light directions.
+// Private to src/fit: least-squares Lambertian fit over a fixed set of light directions.
 //
 //     I(l) ~= b . l,   b = rho n   (rho: albedo, n: unit normal)
 //     b = Q I,  Q = (D^T D)^-1 D^T  (3 x K, D: K x 3 directions), computed once
@@ -12,7 +12,7 @@
 #include <array>
 #include <vector>
 
-namespace surrogate::fit::internal {
+namespace surrogate::fit {
 
 struct LambertDirections {
   std::vector<std::array<double, 3>> directions;  // K unit vectors
@@ -28,4 +28,4 @@ std::array<double, 3> lambertFit(const double* values);
 // n = (0, 0, 1) and false.
 bool normalFromLambert(const std::array<double, 3>& b, std::array<double, 3>* n);
 
-}  // namespace surrogate::fit::internal
+}  // namespace surrogate::fit

@@ -54,10 +54,10 @@ double length(const std::array<double, 3>& b) {
 }
 
 std::array<double, 3> ptmLambert(const PtmCoefficients& a) {
-  const auto& dirs = internal::lambertDirections().directions;
+  const auto& dirs = lambertDirections().directions;
   std::vector<double> values(dirs.size());
   for (std::size_t j = 0; j < dirs.size(); ++j) values[j] = evaluatePtm(a, dirs[j][0], dirs[j][1]);
-  return internal::lambertFit(values.data());
+  return lambertFit(values.data());
 }
 
 }  // namespace
@@ -75,7 +75,7 @@ std::array<double, 3> ptmNormal(const PtmCoefficients& a, bool* usedFallback) {
     return {lu0, lv0, std::sqrt(std::max(0.0, 1 - lu0 * lu0 - lv0 * lv0))};
   }
   std::array<double, 3> n;
-  internal::normalFromLambert(ptmLambert(a), &n);
+  normalFromLambert(ptmLambert(a), &n);
   if (usedFallback) *usedFallback = true;
   return n;
 }
@@ -84,7 +84,7 @@ Image normalMap(const formats::PtmFile& ptm, int* fallbackCount, int threads) {
   Image out = normalImage(ptm.width, ptm.height);
   const int fallbacks = forEachTexel(ptm.width, ptm.height, threads, [&](int x, int y) {
     bool fallback = false;
-    const auto n = ptmNormal(internal::ptmLuminance(ptm, x, y), &fallback);
+    const auto n = ptmNormal(ptmLuminance(ptm, x, y), &fallback);
     for (int c = 0; c < 3; ++c) out.at(x, y, c) = encodeUnit(n[c]);
     return fallback ? 1 : 0;
   });
@@ -96,11 +96,11 @@ Image normalMap(const formats::HshFile& hsh, int* fallbackCount, int threads) {
   Image out = normalImage(hsh.width, hsh.height);
   const int fallbacks = forEachTexel(hsh.width, hsh.height, threads, [&](int x, int y) {
     std::array<double, 3> b[3];
-    internal::hshLambert(hsh, x, y, b);
+    hshLambert(hsh, x, y, b);
     std::array<double, 3> sum{}, n;
     for (int c = 0; c < 3; ++c)
       for (int r = 0; r < 3; ++r) sum[r] += b[c][r] / 3.0;
-    const bool ok = internal::normalFromLambert(sum, &n);
+    const bool ok = normalFromLambert(sum, &n);
     for (int c = 0; c < 3; ++c) out.at(x, y, c) = encodeUnit(n[c]);
     return ok ? 0 : 1;
   });
@@ -112,13 +112,13 @@ Image albedoMap(const formats::PtmFile& ptm, int threads) {
   Image out = albedoImage(ptm.width, ptm.height);
   forEachTexel(ptm.width, ptm.height, threads, [&](int x, int y) {
     if (ptm.format == formats::PtmFile::Format::Lrgb) {
-      const double rho = length(ptmLambert(internal::ptmChannel(ptm, x, y, 0)));
+      const double rho = length(ptmLambert(ptmChannel(ptm, x, y, 0)));
       for (int c = 0; c < 3; ++c)
         out.at(x, y, c) = encodeByte(ptm.rgb[(static_cast<std::size_t>(y) * ptm.width + x) * 3 + c] *
                                      rho / 255.0);
     } else {
       for (int c = 0; c < 3; ++c)
-        out.at(x, y, c) = encodeByte(length(ptmLambert(internal::ptmChannel(ptm, x, y, c))));
+        out.at(x, y, c) = encodeByte(length(ptmLambert(ptmChannel(ptm, x, y, c))));
     }
     return 0;
   });
@@ -129,7 +129,7 @@ Image albedoMap(const formats::HshFile& hsh, int threads) {
   Image out = albedoImage(hsh.width, hsh.height);
   forEachTexel(hsh.width, hsh.height, threads, [&](int x, int y) {
     std::array<double, 3> b[3];
-    internal::hshLambert(hsh, x, y, b);
+    hshLambert(hsh, x, y, b);
     for (int c = 0; c < 3; ++c) out.at(x, y, c) = encodeByte(length(b[c]));
     return 0;
   });

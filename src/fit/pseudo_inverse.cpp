@@ -2,7 +2,7 @@
 
 #include <Eigen/SVD>
 
-namespace surrogate::fit::internal {
+namespace surrogate::fit {
 
 PseudoInverse pseudoInverse(const std::vector<double>& a, int rows, int cols) {
   using Matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
@@ -24,4 +24,4 @@ PseudoInverse pseudoInverse(const std::vector<double>& a, int rows, int cols) {
   return out;
 }
 
-}  // namespace surrogate::fit::internal
+}  // namespace surrogate::fit

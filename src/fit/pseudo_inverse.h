@@ -1,4 +1,4 @@
-// Internal to src/fit: the least-squares pseudo-inverse of a small design matrix.
+// Private to src/fit: the least-squares pseudo-inverse of a small design matrix.
 //
 //   A: N x T (one row per light, one column per basis term), row-major, double.
 //   P = (A^T A)^-1 A^T  (T x N, row-major), so that the coefficients of one pixel are a = P s.
@@ -10,7 +10,7 @@
 
 #include <vector>
 
-namespace surrogate::fit::internal {
+namespace surrogate::fit {
 
 struct PseudoInverse {
   std::vector<double> matrix;  // T x N, row-major
@@ -19,4 +19,4 @@ struct PseudoInverse {
 
 PseudoInverse pseudoInverse(const std::vector<double>& a, int rows, int cols);
 
-}  // namespace surrogate::fit::internal
+}  // namespace surrogate::fit

@@ -13,8 +13,6 @@ namespace surrogate::fit {
 
 namespace {
 
-using internal::RowView;
-
 std::vector<double> ptmDesign(const std::vector<std::array<double, 3>>& lights) {
   std::vector<double> a;
   for (const auto& l : lights) {
@@ -29,7 +27,7 @@ std::uint8_t chromaByte(double v) {
 }
 
 // LRGB (docs/formats.md, "LRGB: colour and luminance"): weighted mean colour, relative luminance.
-class LrgbFitter : public internal::RowFitter {
+class LrgbFitter : public RowFitter {
  public:
   LrgbFitter(const std::vector<double>& p, const std::vector<std::array<double, 3>>& lights,
              formats::PtmFile* out)
@@ -91,7 +89,7 @@ class LrgbFitter : public internal::RowFitter {
       for (int c = 0; c < 3; ++c)
         out_->rgb[(base + x) * 3 + c] = static_cast<std::uint8_t>(chroma[3 * x + c]);
     }
-    const double lr[3] = {internal::kLumR, internal::kLumG, internal::kLumB};
+    const double lr[3] = {kLumR, kLumG, kLumB};
     for (int i = 0; i < n_; ++i) {
       std::fill(lum, lum + w, 0.0);
       for (int k = 0; k < 6; ++k) {
@@ -154,7 +152,7 @@ class LrgbFitter : public internal::RowFitter {
 };
 
 // RGB: one polynomial per channel, coefficients in 0..255 units, scale/bias shared.
-class RgbPtmFitter : public internal::ChannelFitter {
+class RgbPtmFitter : public ChannelFitter {
  public:
   RgbPtmFitter(std::vector<double> p, std::vector<double> basis, int n, formats::PtmFile* out)
       : ChannelFitter(std::move(p), std::move(basis), n, 6, 1.0), out_(out) {}
@@ -188,10 +186,10 @@ formats::PtmFile fitPtm(const ImageStack& stack, const std::vector<std::array<do
                 std::string("the basis ") + basisName(options.basis) +
                     " makes an .rti file, not a .ptm");
   }
-  const auto l = internal::checkedLights(stack, lights, 6);
+  const auto l = checkedLights(stack, lights, 6);
   const int n = static_cast<int>(l.size());
   const std::vector<double> design = ptmDesign(l);
-  const internal::PseudoInverse pinv = internal::pseudoInverse(design, n, 6);
+  const PseudoInverse pinv = pseudoInverse(design, n, 6);
 
   formats::PtmFile ptm;
   ptm.width = stack.width();
@@ -203,16 +201,16 @@ formats::PtmFile fitPtm(const ImageStack& stack, const std::vector<std::array<do
     ptm.coefficients.resize(ptm.texels() * 6);
     ptm.rgb.resize(ptm.texels() * 3);
     LrgbFitter fitter(pinv.matrix, l, &ptm);
-    sqErr = internal::streamFit(stack, fitter, options, ptm.coefficients.size() + ptm.rgb.size(), &passes);
+    sqErr = streamFit(stack, fitter, options, ptm.coefficients.size() + ptm.rgb.size(), &passes);
   } else {
     ptm.format = formats::PtmFile::Format::Rgb;
     ptm.coefficients.resize(ptm.texels() * 18);
     std::vector<double> p = pinv.matrix;
     for (double& v : p) v /= 257.0;  // 16-bit samples -> 0..255 units
     RgbPtmFitter fitter(std::move(p), design, n, &ptm);
-    sqErr = internal::streamFit(stack, fitter, options, ptm.coefficients.size(), &passes);
+    sqErr = streamFit(stack, fitter, options, ptm.coefficients.size(), &passes);
   }
-  internal::finishStatistics(sqErr, ptm.texels(), pinv.rank, passes, stats);
+  finishStatistics(sqErr, ptm.texels(), pinv.rank, passes, stats);
   return ptm;
 }
 

@@ -75,11 +75,11 @@ Image render(const formats::PtmFile& ptm, const std::array<double, 3>& light,
   forRows(ptm.height, options.threads, [&](int y) {
     for (int x = 0; x < ptm.width; ++x) {
       std::array<double, 3> n{0, 0, 1};
-      if (gain || options.specular) n = ptmNormal(internal::ptmLuminance(ptm, x, y));
+      if (gain || options.specular) n = ptmNormal(ptmLuminance(ptm, x, y));
       const double spec = options.specular ? specularTerm(n, l, options) : 0.0;
       double diffuse[3];
       for (int c = 0; c < (lrgb ? 1 : 3); ++c) {
-        PtmCoefficients a = internal::ptmChannel(ptm, x, y, c);
+        PtmCoefficients a = ptmChannel(ptm, x, y, c);
         if (gain) a = applyDiffuseGain(a, options.diffuseGain, n[0], n[1]);
         diffuse[c] = evaluatePtm(a, lu, lv);
       }
@@ -110,10 +110,10 @@ Image render(const formats::HshFile& hsh, const std::array<double, 3>& light,
       double spec = 0;
       if (options.specular) {
         std::array<double, 3> b[3], sum{}, n;
-        internal::hshLambert(hsh, x, y, b);
+        hshLambert(hsh, x, y, b);
         for (int c = 0; c < 3; ++c)
           for (int r = 0; r < 3; ++r) sum[r] += b[c][r] / 3.0;
-        internal::normalFromLambert(sum, &n);
+        normalFromLambert(sum, &n);
         spec = specularTerm(n, l, options);
       }
       for (int c = 0; c < 3; ++c) {

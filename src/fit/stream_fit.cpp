@@ -7,7 +7,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 
-namespace surrogate::fit::internal {
+namespace surrogate::fit {
 
 namespace {
 const char* const kStep = "fit";
@@ -150,4 +150,4 @@ void finishStatistics(const std::vector<double>& sqErr, std::size_t pixels, int 
   stats->passes = passes;
 }
 
-}  // namespace surrogate::fit::internal
+}  // namespace surrogate::fit

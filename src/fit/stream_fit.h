@@ -1,4 +1,4 @@
-// Internal to src/fit: the two-pass, band-streaming driver shared by the PTM and HSH fits
+// Private to src/fit: the two-pass, band-streaming driver shared by the PTM and HSH fits
 // (the plan is described in fit.h). A RowFitter does the per-row maths; the driver reads the
 // bands, runs rows on the workers and keeps the per-row reductions in row order.
 #pragma once
@@ -10,7 +10,7 @@
 #include "core/stack.h"
 #include "fit/fit.h"
 
-namespace surrogate::fit::internal {
+namespace surrogate::fit {
 
 // One image row of every photograph: images[i] points at width*3 interleaved RGB samples
 // (16-bit; grey stacks are expanded to RGB by the driver).
@@ -51,4 +51,4 @@ void finishStatistics(const std::vector<double>& sqErr, std::size_t pixels, int 
 // Rec. 709 luminance weights (core/image.h luminance() uses the same).
 constexpr double kLumR = 0.2126, kLumG = 0.7152, kLumB = 0.0722;
 
-}  // namespace surrogate::fit::internal
+}  // namespace surrogate::fit

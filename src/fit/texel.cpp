@@ -3,7 +3,7 @@
 #include "fit/basis.h"
 #include "fit/lambert.h"
 
-namespace surrogate::fit::internal {
+namespace surrogate::fit {
 
 PtmCoefficients ptmChannel(const formats::PtmFile& ptm, int x, int y, int c) {
   const int channel = ptm.format == formats::PtmFile::Format::Lrgb ? 0 : c;
@@ -56,4 +56,4 @@ void hshLambert(const formats::HshFile& hsh, int x, int y, std::array<double, 3>
   }
 }
 
-}  // namespace surrogate::fit::internal
+}  // namespace surrogate::fit

@@ -1,4 +1,4 @@
-// Internal to src/fit: decoding the model of one texel, shared by normals and rendering.
+// Private to src/fit: decoding the model of one texel, shared by normals and rendering.
 #pragma once
 
 #include <array>
@@ -8,7 +8,7 @@
 #include "formats/ptm.h"
 #include "formats/rti_hsh.h"
 
-namespace surrogate::fit::internal {
+namespace surrogate::fit {
 
 // Decoded polynomial of channel c (Rgb) or the luminance polynomial (Lrgb; c ignored).
 PtmCoefficients ptmChannel(const formats::PtmFile& ptm, int x, int y, int c);
@@ -21,4 +21,4 @@ const std::vector<double>& hshAtLambertDirections(int terms);
 // Lambertian fit b_c (0..255 units) of each colour channel of an HSH texel.
 void hshLambert(const formats::HshFile& hsh, int x, int y, std::array<double, 3> b[3]);
 
-}  // namespace surrogate::fit::internal
+}  // namespace surrogate::fit

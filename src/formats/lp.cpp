@@ -17,7 +17,6 @@ constexpr long long kMaxLights = 1000;  // relight's limit (docs/formats.md, ".l
 }  // namespace
 
 std::vector<LightEntry> parseLp(const std::string& text, const std::string& name) {
-  using detail::tokens;
   std::size_t pos = 0;
   if (text.compare(0, 3, "\xEF\xBB\xBF") == 0) pos = 3;  // UTF-8 BOM from Windows editors
   int lineNumber = 0;
@@ -33,7 +32,7 @@ std::vector<LightEntry> parseLp(const std::string& text, const std::string& name
       ++lineNumber;
       *line = std::string_view(text).substr(pos, end - pos);
       pos = end + 1;
-      if (!detail::trim(*line).empty()) return true;
+      if (!trim(*line).empty()) return true;
     }
     return false;
   };
@@ -45,9 +44,9 @@ std::vector<LightEntry> parseLp(const std::string& text, const std::string& name
   }
   long long count = 0;
   const auto head = tokens(line);
-  if (head.size() != 1 || !detail::parseInt(head[0], &count)) {
+  if (head.size() != 1 || !parseInt(head[0], &count)) {
     fail("expected the number of lights alone on the first line, found \"" +
-         std::string(detail::trim(line).substr(0, 60)) + "\"");
+         std::string(trim(line).substr(0, 60)) + "\"");
   }
   if (count < 1 || count > kMaxLights) {
     fail("the number of lights must be between 1 and " + std::to_string(kMaxLights) +
@@ -69,7 +68,7 @@ std::vector<LightEntry> parseLp(const std::string& text, const std::string& name
     LightEntry e;
     double v[3];
     for (int k = 0; k < 3; ++k) {
-      if (!detail::parseDouble(t[t.size() - 3 + k], &v[k])) {
+      if (!parseDouble(t[t.size() - 3 + k], &v[k])) {
         fail("the light direction component \"" + std::string(t[t.size() - 3 + k].substr(0, 40)) +
              "\" is not a number");
       }
@@ -129,8 +128,8 @@ std::string formatLp(const std::vector<LightEntry>& entries, const std::string& 
     if (!std::isfinite(e.x) || !std::isfinite(e.y) || !std::isfinite(e.z)) {
       fail("the light direction of \"" + f + "\" is not a finite vector");
     }
-    out += f + ' ' + detail::formatDecimals(e.x, 6) + ' ' + detail::formatDecimals(e.y, 6) +
-           ' ' + detail::formatDecimals(e.z, 6) + '\n';
+    out += f + ' ' + formatDecimals(e.x, 6) + ' ' + formatDecimals(e.y, 6) +
+           ' ' + formatDecimals(e.z, 6) + '\n';
   }
   return out;
 }

@@ -17,9 +17,9 @@ const char* const kWriteStep = "write PTM";
 
 std::size_t bytesPerTexel(PtmFile::Format f) { return f == PtmFile::Format::Lrgb ? 9 : 18; }
 
-int parseSide(detail::HeaderCursor& cur, std::string_view token, const char* what) {
+int parseSide(HeaderCursor& cur, std::string_view token, const char* what) {
   long long v = 0;
-  if (!detail::parseInt(token, &v)) {
+  if (!parseInt(token, &v)) {
     cur.fail(std::string("the ") + what + " \"" + std::string(token.substr(0, 40)) +
              "\" on line " + std::to_string(cur.lineNumber()) + " is not an integer");
   }
@@ -41,17 +41,17 @@ bool PtmFile::operator==(const PtmFile& o) const {
 }
 
 PtmHeader parsePtmHeader(const std::uint8_t* data, std::size_t size, const std::string& name) {
-  detail::HeaderCursor cur(data, size, name, kReadStep);
+  HeaderCursor cur(data, size, name, kReadStep);
   if (size < 4 || std::memcmp(data, "PTM_", 4) != 0) {
     cur.fail("this is not a PTM file: it does not start with \"PTM_\"");
   }
   PtmHeader h;
-  h.report.version = std::string(detail::trim(cur.line("version", 64)));
+  h.report.version = std::string(trim(cur.line("version", 64)));
   if (h.report.version != "PTM_1.2" && h.report.version != "PTM_1.1") {
     cur.fail("unsupported PTM version \"" + h.report.version.substr(0, 40) +
              "\"; PTM_1.1 and PTM_1.2 can be read");
   }
-  const std::string format(detail::trim(cur.line("format", 256)));
+  const std::string format(trim(cur.line("format", 256)));
   if (format == "PTM_FORMAT_LRGB") {
     h.format = PtmFile::Format::Lrgb;
   } else if (format == "PTM_FORMAT_RGB" && h.report.version == "PTM_1.2") {
@@ -65,10 +65,10 @@ PtmHeader parsePtmHeader(const std::uint8_t* data, std::size_t size, const std::
              format.substr(0, 40) + "\"");
   }
 
-  const auto first = detail::tokens(cur.line("width"));
+  const auto first = tokens(cur.line("width"));
   if (first.size() == 1) {
     h.width = parseSide(cur, first[0], "width");
-    const auto second = detail::tokens(cur.line("height"));
+    const auto second = tokens(cur.line("height"));
     if (second.size() != 1) cur.fail("line 4 should hold the image height alone");
     h.height = parseSide(cur, second[0], "height");
   } else if (first.size() == 2) {
@@ -84,25 +84,25 @@ PtmHeader parsePtmHeader(const std::uint8_t* data, std::size_t size, const std::
              " is larger than this program accepts (2^31 texels); the header is corrupt");
   }
 
-  const auto scales = detail::tokens(cur.line("scale values"));
+  const auto scales = tokens(cur.line("scale values"));
   if (scales.size() != 6) {
     cur.fail("line " + std::to_string(cur.lineNumber()) + " should hold 6 scale values, found " +
              std::to_string(scales.size()));
   }
   for (int k = 0; k < 6; ++k) {
-    if (!detail::parseDouble(scales[k], &h.scale[k])) {
+    if (!parseDouble(scales[k], &h.scale[k])) {
       cur.fail("scale value " + std::to_string(k + 1) + " \"" +
                std::string(scales[k].substr(0, 40)) + "\" is not a finite number");
     }
   }
-  const auto biases = detail::tokens(cur.line("bias values"));
+  const auto biases = tokens(cur.line("bias values"));
   if (biases.size() != 6) {
     cur.fail("line " + std::to_string(cur.lineNumber()) + " should hold 6 bias values, found " +
              std::to_string(biases.size()));
   }
   for (int k = 0; k < 6; ++k) {
     long long b = -1;
-    if (!detail::parseInt(biases[k], &b) || b < 0 || b > 255) {
+    if (!parseInt(biases[k], &b) || b < 0 || b > 255) {
       cur.fail("bias value " + std::to_string(k + 1) + " \"" +
                std::string(biases[k].substr(0, 40)) + "\" is not an integer in 0..255");
     }
@@ -201,7 +201,7 @@ void writePtm(std::ostream& out, const PtmFile& ptm, const std::string& name) {
   std::string header = "PTM_1.2\n";
   header += formatName(ptm.format);
   header += "\n" + std::to_string(ptm.width) + "\n" + std::to_string(ptm.height) + "\n";
-  for (int k = 0; k < 6; ++k) header += (k ? " " : "") + detail::formatFixed(ptm.scale[k]);
+  for (int k = 0; k < 6; ++k) header += (k ? " " : "") + formatFixed(ptm.scale[k]);
   header += "\n";
   for (int k = 0; k < 6; ++k) header += (k ? " " : "") + std::to_string(ptm.bias[k]);
   header += "\n";

@@ -35,9 +35,9 @@ void appendFloatLE(std::string& out, float f) {
   for (int i = 0; i < 4; ++i) out += static_cast<char>((bits >> (8 * i)) & 0xFF);
 }
 
-long long parseField(detail::HeaderCursor& cur, std::string_view token, const char* what) {
+long long parseField(HeaderCursor& cur, std::string_view token, const char* what) {
   long long v = 0;
-  if (!detail::parseInt(token, &v)) {
+  if (!parseInt(token, &v)) {
     cur.fail(std::string("the ") + what + " \"" + std::string(token.substr(0, 40)) +
              "\" on line " + std::to_string(cur.lineNumber()) + " is not an integer");
   }
@@ -56,7 +56,7 @@ bool HshFile::operator==(const HshFile& o) const {
 }
 
 RtiHeader parseRtiHeader(const std::uint8_t* data, std::size_t size, const std::string& name) {
-  detail::HeaderCursor cur(data, size, name, kReadStep);
+  HeaderCursor cur(data, size, name, kReadStep);
   RtiHeader h;
   if (size == 0 || (data[0] != '#' && !(data[0] >= '0' && data[0] <= '9'))) {
     cur.fail("this is not an RTI file: it should start with a \"#HSH1.2\" comment line");
@@ -68,14 +68,14 @@ RtiHeader parseRtiHeader(const std::uint8_t* data, std::size_t size, const std::
     if (h.report.comments.size() >= 1000) cur.fail("too many comment lines; not an RTI file");
     h.report.comments.emplace_back(line.substr(1));
   }
-  const auto type = detail::tokens(line);
+  const auto type = tokens(line);
   if (type.size() != 1) cur.fail("the line after the comments should hold the RTI type alone");
   const long long rtiType = parseField(cur, type[0], "RTI type");
   if (rtiType != 3) {
     cur.fail("the RTI type is " + std::to_string(rtiType) +
              "; only type 3 (hemispherical harmonics, HSH) can be read, as in RTIViewer");
   }
-  const auto dims = detail::tokens(cur.line("size"));
+  const auto dims = tokens(cur.line("size"));
   if (dims.size() != 3) cur.fail("the size line should be \"<width> <height> <channels>\"");
   const long long w = parseField(cur, dims[0], "width");
   const long long ht = parseField(cur, dims[1], "height");
@@ -88,7 +88,7 @@ RtiHeader parseRtiHeader(const std::uint8_t* data, std::size_t size, const std::
   if (channels != 3) {
     cur.fail("the file has " + std::to_string(channels) + " colour channels; HSH files have 3");
   }
-  const auto basis = detail::tokens(cur.line("basis"));
+  const auto basis = tokens(cur.line("basis"));
   if (basis.size() != 3) cur.fail("the basis line should be \"<terms> <basis type> <element size>\"");
   long long terms = parseField(cur, basis[0], "number of terms");
   // Every HSH writer (RTIBuilder's hshfitter, relight, RTIViewer's tools) writes "2 1": basis

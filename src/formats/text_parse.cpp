@@ -5,7 +5,7 @@
 
 #include "core/error.h"
 
-namespace surrogate::formats::detail {
+namespace surrogate::formats {
 
 HeaderCursor::HeaderCursor(const std::uint8_t* data, std::size_t size, std::string file,
                            std::string step)
@@ -95,4 +95,4 @@ std::string formatDecimals(double value, int decimals) {
   return std::string(buffer, r.ptr);
 }
 
-}  // namespace surrogate::formats::detail
+}  // namespace surrogate::formats

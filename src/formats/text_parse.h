@@ -1,4 +1,4 @@
-// Internal to src/formats: bounds-checked parsing of the ASCII headers of .ptm, .rti and .lp.
+// Private to src/formats: bounds-checked parsing of the ASCII headers of .ptm, .rti and .lp.
 //
 // Every reader in this folder parses from a byte buffer whose size is known; HeaderCursor
 // never looks past that size, and numbers are parsed with std::from_chars (locale independent,
@@ -12,7 +12,7 @@
 #include <string_view>
 #include <vector>
 
-namespace surrogate::formats::detail {
+namespace surrogate::formats {
 
 class HeaderCursor {
  public:
@@ -51,4 +51,4 @@ std::string formatFixed(double value);
 // Fixed notation with `decimals` digits after the point (the .lp writer's %.6f, locale free).
 std::string formatDecimals(double value, int decimals);
 
-}  // namespace surrogate::formats::detail
+}  // namespace surrogate::formats

@@ -23,7 +23,7 @@
 #include "carrier/xml.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
-#include "mapping/schemas_internal.h"
+#include "mapping/schemas.h"
 
 namespace surrogate::mapping {
 
@@ -50,7 +50,7 @@ int allowPayloadOnly(xsltSecurityPrefsPtr, xsltTransformContextPtr, const char* 
 void initialiseXslt() {
   static std::once_flag once;
   std::call_once(once, [] {
-    internal::initialiseXml();
+    initialiseXml();
     xsltInit();
     xsltSetLoaderFunc(payloadOnlyLoader);
   });

@@ -16,11 +16,10 @@
 #include "core/error.h"
 #include "core/resources.h"
 #include "mapping/mapping.h"
-#include "mapping/schemas_internal.h"
+#include "mapping/schemas.h"
 
 namespace surrogate::mapping {
 
-namespace internal {
 namespace {
 
 // Remote schema locations used by the vendored schemas, and their local copies (xsd/).
@@ -69,10 +68,8 @@ void initialiseXml() {
   });
 }
 
-}  // namespace internal
-
 void validateMets(const std::string& metsXml, const std::string& source) {
-  internal::initialiseXml();
+  initialiseXml();
   xml::validateAgainstSchema(metsXml, source, resourcePath("xsd/mets-premis.xsd"));
 }
 
@@ -144,7 +141,7 @@ struct MetsValidator::State {
 };
 
 MetsValidator::MetsValidator(const std::string& source) : state_(std::make_unique<State>()) {
-  internal::initialiseXml();
+  initialiseXml();
   State& s = *state_;
   s.source = source;
   const std::string xsd = resourcePath("xsd/mets-premis.xsd").string();
@@ -205,7 +202,7 @@ void MetsValidator::finish() {
 }
 
 void checkRdfWellFormed(const std::string& rdfXml, const std::string& source) {
-  internal::initialiseXml();
+  initialiseXml();
   xml::checkWellFormed(rdfXml, source);  // no DOCTYPE, well-formed, size limits
   xmlDocPtr doc = xmlReadMemory(rdfXml.data(), static_cast<int>(rdfXml.size()), source.c_str(),
                                 nullptr, XML_PARSE_NONET | XML_PARSE_NOERROR | XML_PARSE_NOWARNING);

@@ -36,7 +36,7 @@ struct VerificationCheck {
 };
 
 // Where the carrier's files are: a capture folder, a BagIt directory (files under data/), or a
-// .tar/.zip bag read with the verifier's package reader, the files a report shows unpacked into
+// .tar/.zip bag read with the package reader (archive/package_reader.h), the files a report shows unpacked into
 // a private temporary folder removed with the source. Paths are the
 // carrier's: relative, '/'-separated ("finished-files/normals.png").
 class ReportSource {

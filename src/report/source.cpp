@@ -7,11 +7,11 @@
 #include <sstream>
 #include <system_error>
 
+#include "archive/package_reader.h"
 #include "core/error.h"
 #include "core/temp_dir.h"
 #include "core/text.h"
 #include "report/report.h"
-#include "verify/package.h"
 
 namespace surrogate::report {
 
@@ -70,12 +70,13 @@ bool shown(const std::string& relative) {
   return false;
 }
 
-// A .tar or .zip bag, read with the verifier's reader (entry names, types, sizes and
-// compression ratios checked before anything is kept): the files the report can show are
-// extracted into a private temporary folder; originals, .rti and the rest are skipped.
+// A .tar or .zip bag, read with the package reader of src/archive, the verifier's (entry names,
+// types, sizes and compression ratios checked before anything is kept): the files the report
+// can show are extracted into a private temporary folder; originals, .rti and the rest are
+// skipped.
 std::unique_ptr<ReportSource> openArchive(const fs::path& path) {
-  const verify::Limits limits;
-  const verify::Inventory inventory = verify::readPackage(path, limits);
+  const archive::Limits limits;
+  const archive::Inventory inventory = archive::readPackage(path, limits);
   const std::string carrierEntry = std::string("data/") + kCarrierPath;
   const auto it = inventory.files.find(carrierEntry);
   if (it == inventory.files.end() || !it->second.content)
@@ -83,7 +84,7 @@ std::unique_ptr<ReportSource> openArchive(const fs::path& path) {
                     "holds no data/assembly-files/carrier.xml: it is not a Surrogate package");
   carrier::Carrier c = carrier::parseCarrier(*it->second.content, path.string() + ":" + carrierEntry);
   auto temp = std::make_unique<TempDir>("report");
-  verify::extractFiles(
+  archive::extractFiles(
       path, inventory, temp->path(),
       [](const std::string& entry) -> fs::path {
         if (entry.compare(0, 5, "data/") != 0 || !shown(entry.substr(5))) return {};

@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <mutex>
 
-#include "archive/digest.h"
+#include "core/digest.h"
 #include "core/error.h"
 #include "core/parallel.h"
 #include "fit/basis.h"
@@ -19,9 +19,9 @@ namespace {
 constexpr const char* kStep = "image decode";
 
 std::string pixelDigest(const Image& im) {
-  archive::MultiDigest d({archive::DigestAlgorithm::Sha256});
+  MultiDigest d({DigestAlgorithm::Sha256});
   d.update(im.pixels.data(), im.pixels.size() * sizeof(std::uint16_t));
-  return d.hex(archive::DigestAlgorithm::Sha256);
+  return d.hex(DigestAlgorithm::Sha256);
 }
 
 Image toRgb(const Image& im) {

@@ -4,8 +4,8 @@
 #include <atomic>
 #include <set>
 
-#include "archive/digest.h"
 #include "capture/capture.h"
+#include "core/digest.h"
 #include "core/parallel.h"
 #include "core/text.h"
 #include "image/decode.h"
@@ -206,7 +206,7 @@ void IngestStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
     for (std::size_t i = b; i < e; ++i) {
       const PendingFile& p = pending[i];
       const fs::path abs = ctx.capture / p.path;
-      const archive::FileDigests d = archive::digestFile(abs);
+      const FileDigests d = digestFile(abs);
       carrier::FileRecord& f = records[i];
       f.path = p.path;
       f.role = p.role;

@@ -1,6 +1,6 @@
 #include "stages/outputs.h"
 
-#include "archive/digest.h"
+#include "core/digest.h"
 #include "core/error.h"
 
 namespace surrogate::stages {
@@ -9,7 +9,7 @@ std::string recordOutput(pipeline::Context& ctx, const carrier::Step& step,
                          carrier::Result& result, const std::string& relativePath,
                          const std::string& role, const std::string& format,
                          const std::string& kind, const std::string& mediaType) {
-  const archive::FileDigests d = archive::digestFile(ctx.outputPath(relativePath));
+  const FileDigests d = digestFile(ctx.outputPath(relativePath));
   carrier::FileRecord f;
   f.path = relativePath;
   f.role = role;

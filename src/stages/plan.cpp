@@ -8,9 +8,10 @@
 
 #include <Eigen/Core>
 
-#include "archive/digest.h"
 #include "capture/capture.h"
+#include "capture/lock.h"
 #include "carrier/xml.h"
+#include "core/digest.h"
 #include "core/error.h"
 #include "core/text.h"
 #include "core/version.h"
@@ -24,7 +25,6 @@
 #include "stages/registry.h"
 #include "stages/request_checks.h"
 #include "stages/run_commit.h"
-#include "capture/lock.h"
 
 namespace surrogate::stages {
 
@@ -49,7 +49,7 @@ std::vector<carrier::Software> softwareVersions() {
       {"OpenCV", image::opencvVersion(), "image writing and filtering"},
       {"Exiv2", meta::exiv2Version(), "EXIF/XMP metadata"},
       {"libxml2", xml::libxml2Version(), "XML and schema validation"},
-      {"OpenSSL", archive::opensslVersion(), "message digests"},
+      {"OpenSSL", opensslVersion(), "message digests"},
       {"Eigen", std::to_string(EIGEN_WORLD_VERSION) + "." + std::to_string(EIGEN_MAJOR_VERSION) +
                     "." + std::to_string(EIGEN_MINOR_VERSION),
        "linear algebra"},
@@ -149,7 +149,7 @@ void addAcceptedChanges(const fs::path& capture, const RunRequest& request, cons
                   "the carrier records no original, export, sidecar or dome .lp at that path; give "
                   "the path as the carrier has it (e.g. original-captures/IMG_0005.dng)");
     const fs::path file = capture / fs::u8path(a.path);
-    const std::string now = fs::is_regular_file(file) ? "sha256:" + archive::digestFile(file).sha256 : "removed";
+    const std::string now = fs::is_regular_file(file) ? "sha256:" + digestFile(file).sha256 : "removed";
     merged.stageInterventions.push_back(
         {"CaptureIngest", {"accept-changed-original", a.path, now, "", "", a.reason}});
     changes.push_back("accepted the change of " + a.path + " (now " + now + "): " + a.reason);
@@ -178,7 +178,7 @@ void addAcceptedDamage(const fs::path& capture, const capture::CaptureLayout& la
       throw Error(ErrorKind::Usage, "--accept-damaged " + a.image, "command line",
                   "no image of the capture has that name; give the file as it is in original-captures/ "
                   "or jpeg-exports/ (e.g. jpeg-exports/IMG_0003.jpg), or the shot's name");
-    const std::string bytes = "sha256:" + archive::digestFile(capture / fs::u8path(*path)).sha256;
+    const std::string bytes = "sha256:" + digestFile(capture / fs::u8path(*path)).sha256;
     auto& list = merged.stageInterventions;
     list.erase(std::remove_if(list.begin(), list.end(),
                               [&](const RunRequest::StageIntervention& i) {

@@ -1,10 +1,10 @@
 #include <map>
 #include <set>
 
-#include "verify/bag_text.h"
+#include "archive/bag_text.h"
 #include "verify/checks.h"
 
-namespace surrogate::verify::internal {
+namespace surrogate::verify {
 
 Check makeCheck(const std::string& name, Severity severity, const std::string& passedText,
                 const std::string& failedText, const std::vector<std::string>& problems) {
@@ -195,4 +195,4 @@ void checkBag(const Inventory& inv, std::vector<Check>& checks) {
   }
 }
 
-}  // namespace surrogate::verify::internal
+}  // namespace surrogate::verify

@@ -3,18 +3,16 @@
 #include <map>
 #include <unordered_set>
 
-#include "archive/digest.h"
+#include "archive/bag_text.h"
 #include "carrier/xml.h"
+#include "core/digest.h"
 #include "core/error.h"
-#include "verify/bag_text.h"
 #include "verify/checks.h"
-#ifdef SURROGATE_HAVE_MAPPING
 #include "mapping/mapping.h"
-#endif
 
 namespace fs = std::filesystem;
 
-namespace surrogate::verify::internal {
+namespace surrogate::verify {
 
 namespace {
 
@@ -128,7 +126,6 @@ void checkMetadata(const fs::path& package, const Inventory& inv, const std::str
     }
     return {};
   };
-#ifdef SURROGATE_HAVE_MAPPING
   std::vector<std::string> metsProblems, crmProblems, problems;
   if (!hasMets) metsProblems.push_back(metsPath + ": missing");
   if (!hasCrm) crmProblems.push_back(crmPath + ": missing");
@@ -170,7 +167,7 @@ void checkMetadata(const fs::path& package, const Inventory& inv, const std::str
     // digest: the texts (hundreds of MB for a package of many files) are never held. Only
     // when they differ is the bag's text read again, to say where.
     auto derive = [&](bool isMets, mapping::MetsValidator* validator) {
-      archive::MultiDigest digest({archive::DigestAlgorithm::Sha256});
+      MultiDigest digest({DigestAlgorithm::Sha256});
       std::uint64_t size = 0;
       const mapping::TextSink sink = [&](const char* data, std::size_t n) {
         digest.update(data, n);
@@ -180,7 +177,7 @@ void checkMetadata(const fs::path& package, const Inventory& inv, const std::str
       if (isMets) mapping::deriveMetsTo(*carrierXml, facts, sink, kCarrierPath);
       else mapping::deriveCrmTo(*carrierXml, sink, kCarrierPath);
       const InventoryFile& bag = (isMets ? mets : crm)->second;
-      return bag.size == size && bag.sha256 == digest.hex(archive::DigestAlgorithm::Sha256);
+      return bag.size == size && bag.sha256 == digest.hex(DigestAlgorithm::Sha256);
     };
     try {
       mapping::MetsValidator validator(metsPath);
@@ -219,18 +216,6 @@ void checkMetadata(const fs::path& package, const Inventory& inv, const std::str
                              "crm.rdf and mets.xml equal what the bundled stylesheets derive "
                              "from the carrier",
                              "the metadata differ from what the carrier gives", problems));
-#else
-  // This build has no mapping library: check well-formedness only.
-  for (const auto& [path, present] : {std::pair{metsPath, hasMets}, std::pair{crmPath, hasCrm}}) {
-    std::vector<std::string> problems;
-    if (!present) problems.push_back(path + ": missing");
-    else problems = run([&] { xml::checkWellFormed(text(path), path); });
-    checks.push_back(makeCheck(path == metsPath ? "metadata.mets" : "metadata.crm",
-                               Severity::Invalid, path + " is well-formed XML",
-                               path + " is missing or not well-formed", problems));
-  }
-  (void)carrierXml;
-#endif
 }
 
-}  // namespace surrogate::verify::internal
+}  // namespace surrogate::verify

@@ -1,15 +1,33 @@
-// The verifier's groups of checks, each appending to a report (internal to src/verify).
+// Private to src/verify: the verifier's groups of checks, each appending to a report.
 #pragma once
 
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "archive/bag_text.h"
+#include "archive/package_reader.h"
 #include "carrier/carrier.h"
-#include "verify/package.h"
 #include "verify/verify.h"
 
-namespace surrogate::verify::internal {
+namespace surrogate::verify {
+
+// The package reader and the BagIt text formats live in src/archive; the checks use them.
+using archive::extractFiles;
+using archive::readBagFile;
+using archive::readPackage;
+using archive::BagInfo;
+using archive::digestHexLength;
+using archive::Manifest;
+using archive::ManifestEntry;
+using archive::manifestName;
+using archive::parseBagInfo;
+using archive::parseDeclaration;
+using archive::parseManifest;
+using archive::parseOxum;
+using archive::percentDecode;
+using archive::safeBagPath;
+using archive::splitLines;
 
 // At most this many "where" lines per check; the rest are counted.
 constexpr std::size_t kMaxWhere = 20;
@@ -55,4 +73,4 @@ void checkReexecution(const std::filesystem::path& package, const Inventory& inv
 
 inline constexpr const char* kCarrierPath = "data/assembly-files/carrier.xml";
 
-}  // namespace surrogate::verify::internal
+}  // namespace surrogate::verify

@@ -6,18 +6,18 @@
 #include <set>
 
 #include "archive/bag.h"
-#include "archive/digest.h"
+#include "archive/bag_text.h"
 #include "archive/package.h"
 #include "carrier/carrier.h"
 #include "core/atomic_file.h"
+#include "core/digest.h"
 #include "core/error.h"
 #include "core/resources.h"
 #include "core/text.h"
 #include "core/version.h"
-#include "verify/bag_text.h"
 #include "verify/checks.h"
 
-namespace surrogate::verify::internal {
+namespace surrogate::verify {
 
 namespace {
 
@@ -36,7 +36,7 @@ const std::map<std::string, std::string>& bundledDigests() {
     for (const std::string& path : archive::packageMetadataFiles()) {
       if (path == "metadata/crm.rdf" || path == "metadata/mets.xml") continue;  // derived
       const std::string rel = path.substr(std::string("metadata/").size());
-      digests[path] = archive::sha256Hex(readFile(resourcePath(rel), "verify"));
+      digests[path] = sha256Hex(readFile(resourcePath(rel), "verify"));
     }
   });
   return digests;
@@ -212,4 +212,4 @@ void checkPackageInfo(const Inventory& inv, const std::optional<carrier::Carrier
       "bag-info.txt disagrees with the carrier", problems));
 }
 
-}  // namespace surrogate::verify::internal
+}  // namespace surrogate::verify

@@ -18,7 +18,7 @@
 
 namespace fs = std::filesystem;
 
-namespace surrogate::verify::internal {
+namespace surrogate::verify {
 
 namespace {
 
@@ -246,4 +246,4 @@ void checkReexecution(const fs::path& package, const Inventory& inventory,
   }
 }
 
-}  // namespace surrogate::verify::internal
+}  // namespace surrogate::verify

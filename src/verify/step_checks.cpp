@@ -8,6 +8,7 @@
 #include <map>
 #include <set>
 
+#include "archive/bag_text.h"
 #include "capture/capture.h"
 #include "core/error.h"
 #include "fit/basis.h"
@@ -20,10 +21,9 @@
 #include "stages/plan.h"
 #include "stages/preprocess.h"
 #include "stages/request_checks.h"
-#include "verify/bag_text.h"
 #include "verify/checks.h"
 
-namespace surrogate::verify::internal {
+namespace surrogate::verify {
 
 namespace {
 
@@ -228,4 +228,4 @@ bool checkSteps(const carrier::Carrier& c, std::vector<Check>& checks) {
   return problems.empty();
 }
 
-}  // namespace surrogate::verify::internal
+}  // namespace surrogate::verify

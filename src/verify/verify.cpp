@@ -44,53 +44,53 @@ Report verifyPackage(const std::filesystem::path& package, const VerifyOptions& 
     return report;
   }
   report.kind = inventory.kind;
-  report.checks.push_back(internal::makeCheck(
+  report.checks.push_back(makeCheck(
       "package.read", Severity::Invalid,
       "read " + std::to_string(inventory.files.size()) + " files (" +
           std::to_string(inventory.totalBytes) + " bytes) from the " + inventory.kind +
           "; no unsafe entries",
       "", {}));
 
-  internal::checkBag(inventory, report.checks);
-  internal::checkCompleteness(inventory, report.checks);
-  const std::optional<carrier::Carrier> recorded = internal::checkCarrier(inventory, report.checks);
-  const bool runnable = recorded && internal::checkSteps(*recorded, report.checks);
-  internal::checkPackageInfo(inventory, recorded, report.checks);
-  const auto carrierFile = inventory.files.find(internal::kCarrierPath);
+  checkBag(inventory, report.checks);
+  checkCompleteness(inventory, report.checks);
+  const std::optional<carrier::Carrier> recorded = checkCarrier(inventory, report.checks);
+  const bool runnable = recorded && checkSteps(*recorded, report.checks);
+  checkPackageInfo(inventory, recorded, report.checks);
+  const auto carrierFile = inventory.files.find(kCarrierPath);
   const std::string* carrierXml =
       recorded && carrierFile != inventory.files.end() && carrierFile->second.content
           ? &*carrierFile->second.content
           : nullptr;
   try {
-    internal::checkMetadata(package, inventory, carrierXml, options.limits, report.checks);
+    checkMetadata(package, inventory, carrierXml, options.limits, report.checks);
   } catch (const Error& e) {
     // The package changed or vanished while it was being verified.
     if (e.kind() != ErrorKind::Fixity) throw;
-    report.checks.push_back(internal::makeCheck("package.reread", Severity::Fixity, "",
+    report.checks.push_back(makeCheck("package.reread", Severity::Fixity, "",
                                                 "the package changed while it was being verified",
                                                 {e.what()}));
   }
 
   if (options.reexecute) {
     if (!recorded) {
-      report.checks.push_back(internal::makeCheck(
+      report.checks.push_back(makeCheck(
           "reexecute.run", Severity::NotReproduced, "", "there is no valid carrier to re-execute",
-          {std::string(internal::kCarrierPath) + ": see carrier.schema"}));
+          {std::string(kCarrierPath) + ": see carrier.schema"}));
     } else if (!runnable) {
       // A step that cannot run as recorded would fail for that reason, not for its results.
-      report.checks.push_back(internal::makeCheck(
+      report.checks.push_back(makeCheck(
           "reexecute.run", Severity::Invalid, "",
           "not re-executed: the carrier records steps this build cannot run (see carrier.steps)",
           {"re-execution runs valid carriers only"}));
     } else if (report.exitCode() == static_cast<int>(Severity::Fixity)) {
       // Re-running on files known to have changed would only repeat the fixity failure.
-      report.checks.push_back(internal::makeCheck(
+      report.checks.push_back(makeCheck(
           "reexecute.run", Severity::NotReproduced, "",
           "not re-executed: files of the package changed (see the fixity checks)",
           {"fix the package first; re-execution runs on verified originals only"}));
     } else {
       try {
-        internal::checkReexecution(package, inventory, *recorded, options, report);
+        checkReexecution(package, inventory, *recorded, options, report);
       } catch (const Error& e) {
         if (e.kind() == ErrorKind::Internal) throw;
         Check c;

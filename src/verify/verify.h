@@ -41,9 +41,16 @@
 #include <string>
 #include <vector>
 
-#include "verify/package.h"
+#include "archive/package_reader.h"
 
 namespace surrogate::verify {
+
+// The package reader (src/archive) gives the inventory the checks work on; its limits and
+// progress callback are part of the verifier's options.
+using archive::Inventory;
+using archive::InventoryFile;
+using archive::Limits;
+using archive::Progress;
 
 // What kind of failure a check reports, and so the exit code it leads to.
 enum class Severity { Invalid = 2, Fixity = 3, NotReproduced = 4 };

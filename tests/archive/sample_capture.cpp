@@ -4,8 +4,8 @@
 #include <random>
 #include <string>
 
-#include "archive/digest.h"
 #include "carrier/carrier.h"
+#include "core/digest.h"
 
 namespace samplecapture {
 
@@ -28,7 +28,7 @@ carrier::FileRecord record(const fs::path& capture, const std::string& rel, cons
   f.path = rel;
   f.role = role;
   f.size = content.size();
-  f.sha256 = archive::digestFile(capture / rel).sha256;
+  f.sha256 = digestFile(capture / rel).sha256;
   f.format = format;
   return f;
 }

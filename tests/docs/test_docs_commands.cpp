@@ -1,12 +1,9 @@
 // Every command shown in the documentation runs: the ```sh blocks of docs/*.md are run in
 // order, one document at a time, in a fresh folder holding a generated capture named stela12,
-// with the built `surrogate` first on PATH; each command must exit with 0.
-//
-// A block marked ```sh {requires=pack} (or {requires=pack,verify}) is skipped, with a warning,
-// only while `surrogate pack --help` fails, i.e. while that subcommand is not in the build.
-// Other code blocks may show `surrogate ...` only as a synopsis (with CAPITAL placeholders or
-// [options]), so no runnable-looking command escapes the test. And every option that a
-// command's --help lists is documented in docs/user-guide.md.
+// with the built `surrogate` first on PATH; each command must exit with 0 (every subcommand is
+// always built: no block is skipped). Other code blocks may show `surrogate ...` only as a
+// synopsis (with CAPITAL placeholders or [options]), so no runnable-looking command escapes
+// the test. And every option that a command's --help lists is documented in docs/user-guide.md.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -30,7 +27,6 @@ struct Block {
   fs::path file;
   int line = 0;             // of the opening fence
   std::string language;     // first word of the info string
-  std::vector<std::string> needs;  // subcommands from {requires=...}: documentation only, all are built
   std::vector<Command> commands;  // continuation lines joined; comments and blanks dropped
 };
 
@@ -51,11 +47,6 @@ std::vector<Block> codeBlocks(const fs::path& file) {
         b.line = number;
         const std::string info = line.substr(3);
         b.language = info.substr(0, info.find_first_of(" {"));
-        std::smatch m;
-        if (std::regex_search(info, m, std::regex("requires=([a-z,]+)"))) {
-          std::stringstream names(m[1].str());
-          for (std::string n; std::getline(names, n, ',');) b.needs.push_back(n);
-        }
         blocks.push_back(b);
       }
       inside = !inside;

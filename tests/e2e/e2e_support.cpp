@@ -9,7 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "archive/digest.h"
+#include "core/digest.h"
 
 namespace fs = std::filesystem;
 
@@ -70,7 +70,7 @@ std::map<std::string, std::string> snapshot(const fs::path& root) {
   for (const auto& entry : fs::recursive_directory_iterator(root)) {
     if (!entry.is_regular_file()) continue;
     out[fs::relative(entry.path(), root).generic_string()] =
-        surrogate::archive::digestFile(entry.path()).sha256;
+        surrogate::digestFile(entry.path()).sha256;
   }
   return out;
 }

@@ -18,8 +18,8 @@
 #include <tiffio.h>
 
 #include "../image/damage.h"
-#include "archive/digest.h"
 #include "carrier/carrier.h"
+#include "core/digest.h"
 #include "e2e_support.h"
 #include "image/decode.h"
 
@@ -72,7 +72,7 @@ void requireAccepted(const e2e::CommandResult& r, const fs::path& capture, const
     if (i.kind == "accept-decoder-warning" && i.target == path) {
       recorded = true;
       CHECK(i.reason == reason);
-      CHECK(i.value == "sha256:" + archive::digestFile(capture / path).sha256);
+      CHECK(i.value == "sha256:" + digestFile(capture / path).sha256);
       CHECK_FALSE(i.who.empty());
       CHECK_FALSE(i.time.empty());
     }

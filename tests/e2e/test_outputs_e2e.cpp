@@ -5,8 +5,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "archive/digest.h"
 #include "carrier/carrier.h"
+#include "core/digest.h"
 #include "e2e_support.h"
 #include "formats/lp.h"
 #include "formats/ptm.h"
@@ -43,7 +43,7 @@ TEST_CASE("a run writes the .lp, overlays, .ptm, .rti, normals and previews, all
     INFO(path);
     const carrier::FileRecord* f = c.findFileByPath(path);
     REQUIRE(f != nullptr);
-    CHECK(f->sha256 == archive::digestFile(capture / path).sha256);
+    CHECK(f->sha256 == digestFile(capture / path).sha256);
     CHECK_FALSE(f->createdBy.empty());
   }
   // The files re-read bit-exactly: reading and writing again gives the same bytes.
@@ -76,7 +76,7 @@ TEST_CASE("results are bit-identical with 1 and 2 threads") {
   for (const char* path : {"assembly-files/lights.lp", "assembly-files/spheres.png", "finished-files/ptm-lrgb.ptm",
                            "finished-files/hsh2.rti", "finished-files/normals.png", "finished-files/preview-specular.png"}) {
     INFO(path);
-    CHECK(archive::digestFile(a / path).sha256 == archive::digestFile(b / path).sha256);
+    CHECK(digestFile(a / path).sha256 == digestFile(b / path).sha256);
   }
 }
 

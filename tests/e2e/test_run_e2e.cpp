@@ -2,8 +2,8 @@
 
 #include <fstream>
 
-#include "archive/digest.h"
 #include "carrier/carrier.h"
+#include "core/digest.h"
 #include "e2e_support.h"
 
 namespace fs = std::filesystem;
@@ -24,7 +24,7 @@ TEST_CASE("surrogate run records every file with its hash, metadata and decode p
     if (f.role != "original" && f.role != "export") continue;
     originals += f.role == "original";
     exports += f.role == "export";
-    CHECK(f.sha256 == archive::digestFile(capture / f.path).sha256);
+    CHECK(f.sha256 == digestFile(capture / f.path).sha256);
     CHECK(f.size == fs::file_size(capture / f.path));
     REQUIRE(f.imageSize.has_value());
     CHECK(f.imageSize->first == 400);
@@ -158,7 +158,7 @@ TEST_CASE("XMP sidecars are kept verbatim and a damaged one is a warning, not a 
   REQUIRE(bad != nullptr);
   CHECK(good->role == "sidecar");
   CHECK_THAT(good->xmp, Catch::Contains("crs:Exposure2012=\"+0.35\""));
-  CHECK(bad->sha256 == archive::digestFile(capture / bad->path).sha256);
+  CHECK(bad->sha256 == digestFile(capture / bad->path).sha256);
   bool warned = false;
   for (const carrier::LogEntry& e : c.log)
     warned = warned || (e.level == "warning" && e.text.find("IMG_0002.xmp") != std::string::npos);

@@ -11,9 +11,9 @@
 #include <fstream>
 #include <thread>
 
-#include "archive/digest.h"
 #include "bag_check.h"
 #include "carrier/carrier.h"
+#include "core/digest.h"
 #include "e2e_support.h"
 
 namespace fs = std::filesystem;
@@ -54,7 +54,7 @@ std::vector<std::string> disagreements(const fs::path& capture) {
       out.push_back(f.path + " missing");
       continue;
     }
-    if (archive::digestFile(p).sha256 != f.sha256) out.push_back(f.path + " differs");
+    if (digestFile(p).sha256 != f.sha256) out.push_back(f.path + " differs");
   }
   // Nothing in Surrogate's output folders that the carrier does not describe (but the report).
   for (const char* dir : {"assembly-files", "finished-files"}) {

@@ -95,14 +95,14 @@ TEST_CASE("pseudo-inverse: recovers an exact linear model, reports rank deficien
     const auto w = ptmBasis(r * std::cos(az), r * std::sin(az));
     a.insert(a.end(), w.begin(), w.end());
   }
-  CHECK(internal::pseudoInverse(a, 12, 6).rank == 5);
+  CHECK(pseudoInverse(a, 12, 6).rank == 5);
   a.clear();
   for (int i = 0; i < 12; ++i) {
     const double az = i * 2.4, r = 0.2 + 0.06 * i;
     const auto w = ptmBasis(r * std::cos(az), r * std::sin(az));
     a.insert(a.end(), w.begin(), w.end());
   }
-  const auto p = internal::pseudoInverse(a, 12, 6);
+  const auto p = pseudoInverse(a, 12, 6);
   CHECK(p.rank == 6);
   const double truth[6] = {-3, -2, 1, 4, 5, 100};
   for (int k = 0; k < 6; ++k) {

@@ -25,7 +25,7 @@ std::vector<double> noiseGain(const std::vector<Light>& lights, int terms, bool 
     }
     a.insert(a.end(), w, w + terms);
   }
-  const auto p = internal::pseudoInverse(a, static_cast<int>(lights.size()), terms);
+  const auto p = pseudoInverse(a, static_cast<int>(lights.size()), terms);
   std::vector<double> g(terms, 0.0);
   for (int k = 0; k < terms; ++k)
     for (std::size_t i = 0; i < lights.size(); ++i) g[k] += std::fabs(p.matrix[k * lights.size() + i]);

@@ -10,8 +10,8 @@
 #include <fstream>
 #include <regex>
 
-#include "archive/digest.h"
 #include "carrier/carrier.h"
+#include "core/digest.h"
 #include "core/error.h"
 #include "mapping/mapping.h"
 #include "sample_capture.h"
@@ -42,7 +42,7 @@ Sample sampleOf(const fs::path& capture) {
   Sample s;
   s.capture = capture;
   s.carrierXml = slurp(s.capture / "assembly-files/carrier.xml");
-  s.facts.packageId = "urn:sha256:" + archive::sha256Hex(s.carrierXml);
+  s.facts.packageId = "urn:sha256:" + sha256Hex(s.carrierXml);
   s.facts.packagingTime = "2026-01-03T00:00:00Z";
   s.facts.softwareAgent = "Surrogate 0.1.0";
   std::vector<std::string> paths;
@@ -50,7 +50,7 @@ Sample sampleOf(const fs::path& capture) {
     if (it->is_regular_file()) paths.push_back(it->path().lexically_relative(s.capture).generic_string());
   std::sort(paths.begin(), paths.end());
   for (const std::string& p : paths) {
-    const archive::FileDigests d = archive::digestFile(s.capture / p, true);
+    const FileDigests d = digestFile(s.capture / p, true);
     s.facts.payload.push_back({"data/" + p, d.size, d.sha256, d.sha512});
   }
   return s;
@@ -92,7 +92,7 @@ Sample sampleWithHistory(const std::string& name) {
                "<note>failed: sphere 0 lies outside the frame</note></run>\n");
   insertBefore("  </files>",
                "    <file id=\"f11\" path=\"notes/session notes.txt\" role=\"other\" size=\"" +
-                   std::to_string(notes.size()) + "\" sha256=\"" + archive::sha256Hex(notes) +
+                   std::to_string(notes.size()) + "\" sha256=\"" + sha256Hex(notes) +
                    "\" format=\"TXT\" mediaType=\"text/plain\"/>\n");
   insertBefore("    </step>",
                "      <intervention kind=\"accept-changed-original\" target=\"original-captures/IMG_0002.dng\" "
@@ -208,7 +208,7 @@ TEST_CASE("CIDOC-CRM derived from a carrier parses with rapper and has the key c
   // The camera's make, model and serial; a file's hash; a step's software version.
   CHECK(parsed.find("\"0123456789\"") != std::string::npos);
   CHECK(parsed.find("\"Canon EOS 5D Mark IV\"") != std::string::npos);
-  CHECK(parsed.find("\"" + archive::digestFile(s.capture / "original-captures/IMG_0001.dng").sha256 + "\"") != std::string::npos);
+  CHECK(parsed.find("\"" + digestFile(s.capture / "original-captures/IMG_0001.dng").sha256 + "\"") != std::string::npos);
   CHECK(parsed.find("\"version 2\"") != std::string::npos);
   CHECK(parsed.find("\"basis=ptm-lrgb\"") != std::string::npos);
   CHECK(parsed.find("\"reason: the flash did not fire\"") != std::string::npos);
@@ -358,7 +358,7 @@ TEST_CASE("command runs become CIDOC-CRM activities of the session, in order, by
   const std::string parsed = run("rapper -q -i rdfxml -o ntriples " + file.string());
   REQUIRE(parsed.find("<http://www.w3.org/1999/02/22-rdf-syntax-ns#type>") != std::string::npos);
 
-  const std::string base = "urn:surrogate:capture:" + archive::digestFile(s.capture / "original-captures/IMG_0001.dng").sha256 + "/";
+  const std::string base = "urn:surrogate:capture:" + digestFile(s.capture / "original-captures/IMG_0001.dng").sha256 + "/";
   const std::string crmNs = "http://www.cidoc-crm.org/cidoc-crm/";
   const auto triple = [&](const std::string& subject, const std::string& property, const std::string& object) {
     return parsed.find("<" + base + subject + "> <" + crmNs + property + "> " + object + " .") != std::string::npos;

@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <map>
 
-#include "archive/digest.h"
+#include "core/digest.h"
 #include "generator/capture_generator.h"
 #include "image/decode.h"
 #include "meta/metadata.h"
@@ -32,7 +32,7 @@ fs::path freshDir(const std::string& name) {
 std::map<std::string, std::string> hashes(const fs::path& root) {
   std::map<std::string, std::string> out;
   for (const auto& e : fs::recursive_directory_iterator(root))
-    if (e.is_regular_file()) out[fs::relative(e.path(), root).string()] = archive::digestFile(e.path()).sha256;
+    if (e.is_regular_file()) out[fs::relative(e.path(), root).string()] = digestFile(e.path()).sha256;
   return out;
 }
 }  // namespace

@@ -13,13 +13,11 @@
 #include <stdexcept>
 
 #include "archive/bag.h"
-#include "archive/digest.h"
 #include "archive/package.h"
 #include "carrier/carrier.h"
+#include "core/digest.h"
 #include "core/resources.h"
-#ifdef SURROGATE_HAVE_MAPPING
 #include "mapping/mapping.h"
-#endif
 
 namespace fs = std::filesystem;
 
@@ -105,29 +103,19 @@ std::string bagInfoValue(const fs::path& bag, const std::string& label) {
 
 void writeMetadata(const fs::path& bag, const std::string& agent, const std::string& time) {
   const std::string carrierXml = readText(bag / "data/assembly-files/carrier.xml");
-#ifdef SURROGATE_HAVE_MAPPING
   // The stylesheets, schemas and tables the verifier bundles, as `surrogate pack` copies them.
   for (const std::string& rel : surrogate::mapping::packagedResources())
     writeText(bag / "metadata" / rel, readText(surrogate::resourcePath(rel)));
   surrogate::mapping::PackageFacts facts;
-  facts.packageId = surrogate::archive::packageIdentifier(surrogate::archive::sha256Hex(carrierXml));
+  facts.packageId = surrogate::archive::packageIdentifier(surrogate::sha256Hex(carrierXml));
   facts.packagingTime = time;
   facts.softwareAgent = agent;
   for (const std::string& p : filesUnder(bag, bag / "data")) {
-    const auto d = surrogate::archive::digestFile(bag / p, true);
+    const auto d = surrogate::digestFile(bag / p, true);
     facts.payload.push_back({p, d.size, d.sha256, d.sha512});
   }
   writeText(bag / "metadata/crm.rdf", surrogate::mapping::deriveCrm(carrierXml));
   writeText(bag / "metadata/mets.xml", surrogate::mapping::deriveMets(carrierXml, facts));
-#else
-  (void)carrierXml;
-  (void)agent;
-  (void)time;
-  writeText(bag / "metadata/crm.rdf",
-            "<?xml version=\"1.0\"?>\n<rdf:RDF xmlns:rdf=\"http://www.w3.org/1999/02/22-rdf-syntax-ns#\"/>\n");
-  writeText(bag / "metadata/mets.xml",
-            "<?xml version=\"1.0\"?>\n<mets xmlns=\"http://www.loc.gov/METS/\"/>\n");
-#endif
 }
 
 }  // namespace
@@ -143,7 +131,7 @@ void rehashTagManifests(const fs::path& bag) {
   std::sort(tags.begin(), tags.end());
   std::string t256, t512;
   for (const std::string& p : tags) {
-    const auto d = surrogate::archive::digestFile(bag / p, true);
+    const auto d = surrogate::digestFile(bag / p, true);
     t256 += d.sha256 + "  " + escape(p) + "\n";
     t512 += d.sha512 + "  " + escape(p) + "\n";
   }
@@ -155,7 +143,7 @@ void rehashBag(const fs::path& bag) {
   std::string m256, m512;
   std::uint64_t octets = 0, streams = 0;
   for (const std::string& p : filesUnder(bag, bag / "data")) {
-    const auto d = surrogate::archive::digestFile(bag / p, true);
+    const auto d = surrogate::digestFile(bag / p, true);
     m256 += d.sha256 + "  " + escape(p) + "\n";
     m512 += d.sha512 + "  " + escape(p) + "\n";
     octets += d.size;
@@ -171,7 +159,7 @@ void rehashBag(const fs::path& bag) {
   std::string time = bagInfoValue(bag, "Surrogate-Packaging-Time");
   if (time.empty()) time = "2026-11-25T08:00:00Z";
   const std::string carrierXml = readText(bag / "data/assembly-files/carrier.xml");
-  const std::string id = surrogate::archive::packageIdentifier(surrogate::archive::sha256Hex(carrierXml));
+  const std::string id = surrogate::archive::packageIdentifier(surrogate::sha256Hex(carrierXml));
   surrogate::archive::PackageInfo labels;
   try {
     labels = surrogate::archive::packageInfo(
@@ -199,7 +187,7 @@ fs::path tinyCapture(const fs::path& dir) {
     surrogate::carrier::FileRecord f;
     f.path = rel;
     f.role = "original";
-    const auto d = surrogate::archive::digestFile(capture / rel);
+    const auto d = surrogate::digestFile(capture / rel);
     f.size = d.size;
     f.sha256 = d.sha256;
     f.format = "JPEG";

@@ -1,8 +1,8 @@
 #include <catch2/catch.hpp>
 
-#include "verify/bag_text.h"
+#include "archive/bag_text.h"
 
-using namespace surrogate::verify;
+using namespace surrogate::archive;
 
 TEST_CASE("safeBagPath accepts relative paths and strips a leading ./", "[verify][paths]") {
   std::string why;

@@ -1,9 +1,9 @@
 // Each check of the verifier fails for the problem it is about, with the right exit code.
 #include <catch2/catch.hpp>
 
-#include "archive/digest.h"
 #include "bag_fixture.h"
 #include "carrier/carrier.h"
+#include "core/digest.h"
 #include "verify/verify.h"
 
 namespace fs = std::filesystem;
@@ -118,7 +118,7 @@ TEST_CASE("a bag without bagit.txt or manifests is not a bag (exit 2), a Surroga
   fs::path plain = freshDir("plain") / "bag";
   writeText(plain / "data/hello.txt", "hello\n");
   writeText(plain / "manifest-sha256.txt",
-            archive::sha256Hex("hello\n") + "  data/hello.txt\n");
+            sha256Hex("hello\n") + "  data/hello.txt\n");
   verify::Report r = run(plain);
   INFO(allText(r));
   CHECK(r.exitCode() == 2);

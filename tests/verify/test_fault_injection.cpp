@@ -5,9 +5,9 @@
 #include <functional>
 #include <iostream>
 
-#include "archive/digest.h"
 #include "bag_fixture.h"
 #include "carrier/carrier.h"
+#include "core/digest.h"
 #include "e2e_support.h"
 #include "verify/verify.h"
 
@@ -33,17 +33,11 @@ const Fixture& fixture() {
     x.bag = x.dir / "bag";
     x.tar = x.dir / "bag.tar";
     x.zip = x.dir / "bag.zip";
-#ifdef SURROGATE_HAVE_PACK
     for (const fs::path& out : {x.bag, x.tar, x.zip}) {
       const e2e::CommandResult pack =
           e2e::surrogate("pack " + e2e::quote(x.capture) + " -o " + e2e::quote(out) + " --quiet");
       if (pack.exitCode != 0) throw std::runtime_error("surrogate pack failed: " + pack.output);
     }
-#else
-    makeBag(x.capture, x.bag);
-    archiveDirectory(x.bag, x.tar, "bag/");
-    archiveDirectory(x.bag, x.zip, "bag/");
-#endif
     return x;
   }();
   return f;
@@ -227,9 +221,9 @@ TEST_CASE("every injected fault is detected with the right check and exit code",
        [] {
          auto b = copyOfBag("otherfit2");
          const fs::path ptm = b / "data/finished-files/ptm-lrgb.ptm";
-         const auto before = surrogate::archive::digestFile(ptm);
+         const auto before = surrogate::digestFile(ptm);
          fs::copy_file(otherFit(), ptm, fs::copy_options::overwrite_existing);
-         const auto after = surrogate::archive::digestFile(ptm);
+         const auto after = surrogate::digestFile(ptm);
          replaceText(b / "data/assembly-files/carrier.xml",
                      "size=\"" + std::to_string(before.size) + "\" sha256=\"" + before.sha256,
                      "size=\"" + std::to_string(after.size) + "\" sha256=\"" + after.sha256);
@@ -504,7 +498,6 @@ TEST_CASE("a verify --reexecute stopped by a signal leaves nothing, and a killed
   }
 }
 
-#ifdef SURROGATE_HAVE_PACK
 TEST_CASE("pack removes the partial output of a killed pack to the same name, and says so",
           "[verify][faults]") {
   const fs::path dir = verify_test::freshDir("stale");
@@ -532,4 +525,3 @@ TEST_CASE("pack removes the partial output of a killed pack to the same name, an
   CHECK_FALSE(fs::exists(staleDir));
   CHECK_THAT(r.output, Contains("\"removedLeftovers\":[\"removed " + staleDir.string()));
 }
-#endif

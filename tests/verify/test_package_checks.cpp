@@ -7,9 +7,9 @@
 
 #include <catch2/catch.hpp>
 
-#include "archive/digest.h"
 #include "bag_fixture.h"
 #include "carrier/carrier.h"
+#include "core/digest.h"
 #include "core/error.h"
 #include "core/temp_dir.h"
 #include "mapping/mapping.h"

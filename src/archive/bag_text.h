@@ -15,7 +15,7 @@
 #include <utility>
 #include <vector>
 
-namespace surrogate::verify {
+namespace surrogate::archive {
 
 // A path inside a bag or archive, checked: relative, '/' separated, no "..", no "." or empty
 // segments (a leading "./" is tolerated and removed), no backslash, drive letter, "~", control
@@ -77,4 +77,4 @@ std::optional<std::pair<std::string, std::string>> manifestName(const std::strin
 // does not compute it.
 std::size_t digestHexLength(const std::string& algorithm);
 
-}  // namespace surrogate::verify
+}  // namespace surrogate::archive

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-namespace surrogate::archive {
+namespace surrogate {
 
 enum class DigestAlgorithm { Sha256, Sha512 };
 
@@ -59,4 +59,4 @@ std::string sha256Hex(const std::string& bytes);
 
 std::string opensslVersion();
 
-}  // namespace surrogate::archive
+}  // namespace surrogate

@@ -1,4 +1,4 @@
-#include "verify/package.h"
+#include "archive/package_reader.h"
 
 #include <archive.h>
 #include <archive_entry.h>
@@ -13,13 +13,13 @@
 #include <optional>
 #include <vector>
 
-#include "archive/digest.h"
+#include "archive/bag_text.h"
+#include "core/digest.h"
 #include "core/error.h"
-#include "verify/bag_text.h"
 
 namespace fs = std::filesystem;
 
-namespace surrogate::verify {
+namespace surrogate::archive {
 
 namespace {
 
@@ -656,7 +656,7 @@ Inventory readPackage(const fs::path& package, const Limits& limits, const Progr
       refuse(name, "entry \"" + path + "\" appears twice; a later copy could silently replace "
                    "the first");
     InventoryFile file;
-    archive::MultiDigest digest({archive::DigestAlgorithm::Sha256, archive::DigestAlgorithm::Sha512});
+    MultiDigest digest({DigestAlgorithm::Sha256, DigestAlgorithm::Sha512});
     const bool keep = keepContent(path);
     std::string content;
     if (keep && entry.declaredSize && *entry.declaredSize <= limits.maxTagFileBytes)
@@ -665,8 +665,8 @@ Inventory readPackage(const fs::path& package, const Limits& limits, const Progr
       digest.update(data, n);
       if (keep && content.size() <= limits.maxTagFileBytes) content.append(data, n);
     });
-    file.sha256 = digest.hex(archive::DigestAlgorithm::Sha256);
-    file.sha512 = digest.hex(archive::DigestAlgorithm::Sha512);
+    file.sha256 = digest.hex(DigestAlgorithm::Sha256);
+    file.sha512 = digest.hex(DigestAlgorithm::Sha512);
     if (keep && content.size() <= limits.maxTagFileBytes) {
       kept += content.size();
       if (kept > kMaxKeptBytes)
@@ -716,12 +716,12 @@ std::string readBagFile(const fs::path& package, const Inventory& inventory, con
     if (entry.type != EntryType::File || full != inventory.rootPrefix + path) continue;
     std::string content;
     content.reserve(static_cast<std::size_t>(known->second.size));
-    archive::MultiDigest digest({archive::DigestAlgorithm::Sha256});
+    MultiDigest digest({DigestAlgorithm::Sha256});
     pump(*source, entry, path, limits, total, [&](const char* data, std::size_t n) {
       digest.update(data, n);
       content.append(data, n);
     });
-    if (digest.hex(archive::DigestAlgorithm::Sha256) != known->second.sha256)
+    if (digest.hex(DigestAlgorithm::Sha256) != known->second.sha256)
       throw Error(ErrorKind::Fixity, path, kStep,
                   "the file changed between two reads of the package; is something writing to it?");
     return content;
@@ -766,7 +766,7 @@ void extractFiles(const fs::path& package, const Inventory& inventory, const fs:
       throw Error(ErrorKind::Internal, target.string(), kStep,
                   std::string("cannot write the temporary copy (") + std::strerror(errno) +
                       "); is the temporary folder full? set TMPDIR to a larger disk");
-    archive::MultiDigest digest({archive::DigestAlgorithm::Sha256});
+    MultiDigest digest({DigestAlgorithm::Sha256});
     bool writeFailed = false;
     try {
       pump(*source, entry, path, limits, total, [&](const char* data, std::size_t n) {
@@ -787,11 +787,11 @@ void extractFiles(const fs::path& package, const Inventory& inventory, const fs:
     if (writeFailed)
       throw Error(ErrorKind::Internal, target.string(), kStep,
                   "cannot write the temporary copy (disk full?); set TMPDIR to a larger disk");
-    if (digest.hex(archive::DigestAlgorithm::Sha256) != known->second.sha256)
+    if (digest.hex(DigestAlgorithm::Sha256) != known->second.sha256)
       throw Error(ErrorKind::Fixity, path, kStep,
                   "the file changed between two reads of the package; is something writing to it?");
     if (progress) progress("extracting for re-execution", source->fraction());
   }
 }
 
-}  // namespace surrogate::verify
+}  // namespace surrogate::archive

@@ -1,4 +1,5 @@
-// Reading a package (a bag directory, .tar or .zip) without trusting it.
+// Reading a package (a bag directory, .tar or .zip) without trusting it: the verifier's
+// inventory, and the files `surrogate report` shows from a packed bag.
 //
 // Every entry is checked before anything else happens: its name (safeBagPath: no "..", no
 // absolute path, ...), its type (regular files and directories only: no symlink, hard link,
@@ -8,7 +9,7 @@
 // links and every file is opened with O_NOFOLLOW.
 //
 //   Inventory inv = readPackage("stela.tar", Limits{});    // hashes and small tag files
-//   extractPayload("stela.tar", inv, tempDir, targetOf);   // for --reexecute only
+//   extractFiles("stela.tar", inv, tempDir, targetOf, Limits{});  // for --reexecute, report
 //
 // A hostile or malformed package is refused with Error(Usage) naming the entry and the
 // problem; a truncated or damaged archive with Error(Fixity).
@@ -22,7 +23,7 @@
 #include <set>
 #include <string>
 
-namespace surrogate::verify {
+namespace surrogate::archive {
 
 // Limits on what a package may hold; exceeding one refuses the package.
 struct Limits {
@@ -72,4 +73,4 @@ void extractFiles(const std::filesystem::path& package, const Inventory& invento
                   const std::function<std::filesystem::path(const std::string&)>& targetOf,
                   const Limits& limits, const Progress& progress = {});
 
-}  // namespace surrogate::verify
+}  // namespace surrogate::archive

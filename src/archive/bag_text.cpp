@@ -1,4 +1,4 @@
-#include "verify/bag_text.h"
+#include "archive/bag_text.h"
 
 #include <algorithm>
 #include <cctype>
@@ -10,7 +10,7 @@
 
 #include "core/text.h"
 
-namespace surrogate::verify {
+namespace surrogate::archive {
 
 namespace {
 
@@ -283,4 +283,4 @@ std::size_t digestHexLength(const std::string& algorithm) {
   return 0;
 }
 
-}  // namespace surrogate::verify
+}  // namespace surrogate::archive

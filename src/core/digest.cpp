@@ -1,4 +1,4 @@
-#include "archive/digest.h"
+#include "core/digest.h"
 
 #include <openssl/crypto.h>
 #include <openssl/evp.h>
@@ -10,7 +10,7 @@
 
 #include "core/error.h"
 
-namespace surrogate::archive {
+namespace surrogate {
 
 const char* bagitName(DigestAlgorithm algorithm) {
   return algorithm == DigestAlgorithm::Sha256 ? "sha256" : "sha512";
@@ -97,4 +97,4 @@ std::string sha256Hex(const std::string& bytes) {
 
 std::string opensslVersion() { return OpenSSL_version(OPENSSL_VERSION); }
 
-}  // namespace surrogate::archive
+}  // namespace surrogate
