@@ -19,15 +19,15 @@ Check makeCheck(const std::string& name, Severity severity, const std::string& p
   return c;
 }
 
-namespace {
-
-bool isPayload(const std::string& path) { return path.compare(0, 5, "data/") == 0; }
-
 const std::string* contentOf(const Inventory& inv, const std::string& path) {
   const auto it = inv.files.find(path);
   if (it == inv.files.end() || !it->second.content) return nullptr;
   return &*it->second.content;
 }
+
+namespace {
+
+bool isPayload(const std::string& path) { return path.compare(0, 5, "data/") == 0; }
 
 const std::string& digestOf(const InventoryFile& f, const std::string& algorithm) {
   return algorithm == "sha512" ? f.sha512 : f.sha256;

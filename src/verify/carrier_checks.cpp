@@ -16,12 +16,6 @@ namespace surrogate::verify {
 
 namespace {
 
-const std::string* contentOf(const Inventory& inv, const std::string& path) {
-  const auto it = inv.files.find(path);
-  if (it == inv.files.end() || !it->second.content) return nullptr;
-  return &*it->second.content;
-}
-
 // The first difference between two texts, as "line N: expected ... found ...".
 std::string firstDifference(const std::string& expected, const std::string& found) {
   const std::vector<std::string> a = splitLines(expected), b = splitLines(found);

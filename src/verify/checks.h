@@ -36,6 +36,10 @@ constexpr std::size_t kMaxWhere = 20;
 Check makeCheck(const std::string& name, Severity severity, const std::string& passedText,
                 const std::string& failedText, const std::vector<std::string>& problems);
 
+// The content of a file the inventory holds in memory (tag files, the carrier), or null when
+// it is absent or was only hashed.
+const std::string* contentOf(const Inventory& inventory, const std::string& path);
+
 // bagit.*: RFC 8493 structure, manifests, tagmanifests, Payload-Oxum, completeness, fixity.
 void checkBag(const Inventory& inventory, std::vector<Check>& checks);
 

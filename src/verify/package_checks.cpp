@@ -21,12 +21,6 @@ namespace surrogate::verify {
 
 namespace {
 
-const std::string* contentOf(const Inventory& inv, const std::string& path) {
-  const auto it = inv.files.find(path);
-  if (it == inv.files.end() || !it->second.content) return nullptr;
-  return &*it->second.content;
-}
-
 // The SHA-256 of each resource this verifier bundles, by bag path ("metadata/xsd/..."),
 // computed once per process.
 const std::map<std::string, std::string>& bundledDigests() {
