@@ -4,47 +4,13 @@
 #include "bag_fixture.h"
 #include "carrier/carrier.h"
 #include "core/digest.h"
+#include "report_helpers.h"
 #include "verify/verify.h"
 
 namespace fs = std::filesystem;
 using namespace surrogate;
 using namespace verify_test;
 using Catch::Matchers::Contains;
-
-namespace {
-
-std::string allText(const verify::Report& r) {
-  std::string s;
-  for (const verify::Check& c : r.checks) {
-    s += (c.passed ? "ok   " : "FAIL ") + c.name + ": " + c.what + "\n";
-    for (const std::string& w : c.where) s += "  " + w + "\n";
-  }
-  return s;
-}
-
-bool failed(const verify::Report& r, const std::string& name) {
-  for (const verify::Check& c : r.checks)
-    if (c.name == name) return !c.passed;
-  return false;
-}
-
-fs::path cleanBag(const std::string& name) {
-  const fs::path dir = freshDir(name);
-  makeBag(tinyCapture(dir), dir / "bag");
-  return dir / "bag";
-}
-
-verify::Report run(const fs::path& p) { return verify::verifyPackage(p, {}); }
-
-void replaceInFile(const fs::path& p, const std::string& from, const std::string& to) {
-  std::string text = readText(p);
-  const auto at = text.find(from);
-  REQUIRE(at != std::string::npos);
-  text.replace(at, from.size(), to);
-  writeText(p, text);
-}
-
-}  // namespace
 
 TEST_CASE("a clean bag passes every check as a directory, tar, tar with a top folder and zip",
           "[verify][checks]") {

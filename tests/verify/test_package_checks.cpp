@@ -15,6 +15,7 @@
 #include "mapping/mapping.h"
 #include "pipeline/stage.h"
 #include "stages/plan.h"
+#include "report_helpers.h"
 #include "verify/verify.h"
 
 namespace fs = std::filesystem;
@@ -24,45 +25,10 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-std::string allText(const verify::Report& r) {
-  std::string s;
-  for (const verify::Check& c : r.checks) {
-    s += (c.passed ? "ok   " : "FAIL ") + c.name + ": " + c.what + "\n";
-    for (const std::string& w : c.where) s += "  " + w + "\n";
-  }
-  return s;
-}
-
-bool failed(const verify::Report& r, const std::string& name) {
-  for (const verify::Check& c : r.checks)
-    if (c.name == name) return !c.passed;
-  return false;
-}
-
 bool has(const verify::Report& r, const std::string& name) {
   for (const verify::Check& c : r.checks)
     if (c.name == name) return true;
   return false;
-}
-
-fs::path cleanBag(const std::string& name) {
-  const fs::path dir = freshDir(name);
-  makeBag(tinyCapture(dir), dir / "bag");
-  return dir / "bag";
-}
-
-verify::Report run(const fs::path& p, bool reexecute = false) {
-  verify::VerifyOptions options;
-  options.reexecute = reexecute;
-  return verify::verifyPackage(p, options);
-}
-
-void replaceInFile(const fs::path& p, const std::string& from, const std::string& to) {
-  std::string text = readText(p);
-  const auto at = text.find(from);
-  REQUIRE(at != std::string::npos);
-  text.replace(at, from.size(), to);
-  writeText(p, text);
 }
 
 std::string stageVersion(const std::string& component) {
