@@ -1,7 +1,12 @@
-// libFuzzer target: the .ptm and .rti (HSH) readers on arbitrary bytes held in memory.
+// libFuzzer target: the .ptm (raw and JPEG-compressed), .rti (HSH) and .lp readers on
+// arbitrary bytes held in memory.
 #include <cstdint>
 
 #include "core/error.h"
+#include <string>
+#include <vector>
+
+#include "formats/lp.h"
 #include "formats/ptm.h"
 #include "formats/rti_hsh.h"
 
@@ -17,6 +22,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     formats::HshFile hsh = formats::parseRti(data, size, "fuzz.rti");
     formats::validateHsh(hsh, "fuzz.rti");
     (void)formats::serializeRti(hsh);
+  } catch (const Error&) {
+  }
+  try {
+    const std::string text(reinterpret_cast<const char*>(data), size);
+    const std::vector<formats::LightEntry> lines = formats::parseLp(text, "fuzz.lp");
+    (void)formats::formatLp(lines, "fuzz.lp");
+    (void)formats::matchLpLines("fuzz.lp", lines, {"IMG_0001.JPG", "img_0002.jpg", "IMG_0002.CR2"});
   } catch (const Error&) {
   }
   return 0;

@@ -367,10 +367,16 @@ CaptureLayout scanCapture(const fs::path& root, int threads, const std::string& 
                       root.string() + "/dome.lp) and give its name");
     layout.others.erase(it);
     layout.lp = domeLp;
-    for (const formats::LightEntry& e : formats::readLp(layout.root / domeLp)) {
-      if (!findShotStem(layout, e.filename)) {
+    // The same pairing as the LightsFromFile stage (formats::matchLpLines): it refuses a line
+    // that could mean two shots, or two lines for one shot.
+    const std::vector<formats::LightEntry> lines = formats::readLp(layout.root / domeLp);
+    std::vector<std::string> stems;
+    for (const Shot& s : layout.shots) stems.push_back(s.stem);
+    const formats::LpMatch match = formats::matchLpLines(domeLp, lines, stems);
+    for (std::size_t l = 0; l < lines.size(); ++l) {
+      if (!match.imageOfLine[l]) {
         throwInputError(domeLp, kStep,
-                        "names the image \"" + e.filename + "\", which is not in the capture; "
+                        "names the image \"" + lines[l].filename + "\", which is not in the capture; "
                         "fix the .lp file or add the missing image");
       }
     }

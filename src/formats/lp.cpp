@@ -7,6 +7,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "formats/text_parse.h"
+#include "image/source_kind.h"
 
 namespace surrogate::formats {
 
@@ -188,10 +189,113 @@ std::vector<fs::path> lpImageCandidates(const fs::path& lpFile, const std::strin
   return out;
 }
 
+namespace {
+std::string baseOf(const std::string& name) {
+  return name.substr(name.find_last_of("/\\") + 1);
+}
+
+std::string stemOf(const std::string& base) { return fs::path(base).stem().string(); }
+
+std::string asciiLower(std::string s) {
+  for (char& c : s)
+    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+  return s;
+}
+
+bool sameButExtension(const std::string& a, const std::string& b) {
+  const std::string sa = stemOf(a), sb = stemOf(b);
+  return sa == sb || a == sb || sa == b;
+}
+
+// An image by its extension: a sidecar (IMG_0001.xmp) or a log beside the images must never
+// be taken for one under "another extension".
+bool isImageName(const fs::path& name) {
+  const std::string ext = asciiLower(name.extension().string());
+  return ext == ".jpg" || ext == ".jpeg" || ext == ".jpe" || ext == ".tif" || ext == ".tiff" ||
+         ext == ".png" || image::isCameraRawExtension(name);
+}
+
+std::string describeLine(const std::vector<LightEntry>& lines, std::size_t l) {
+  return "the line naming \"" + lines[l].filename + "\"";
+}
+}  // namespace
+
+int lpNameRank(const std::string& lpName, const std::string& imageName) {
+  const std::string a = baseOf(lpName), b = baseOf(imageName);
+  if (a.empty() || b.empty()) return 0;
+  if (a == b) return 1;
+  const std::string la = asciiLower(a), lb = asciiLower(b);
+  if (la == lb) return 2;
+  if (sameButExtension(a, b)) return 3;
+  if (sameButExtension(la, lb)) return 4;
+  return 0;
+}
+
+LpMatch matchLpLines(const std::string& lpFile, const std::vector<LightEntry>& lines,
+                     const std::vector<std::string>& images) {
+  const char* const step = "match light positions";
+  LpMatch m;
+  m.lineOfImage.assign(images.size(), std::nullopt);
+  m.imageOfLine.assign(lines.size(), std::nullopt);
+  std::vector<int> rankOfLine(lines.size(), 0);
+  std::vector<int> ranks(images.size());
+  for (std::size_t l = 0; l < lines.size(); ++l) {
+    for (std::size_t i = 0; i < images.size(); ++i) {
+      ranks[i] = lpNameRank(lines[l].filename, images[i]);
+      if (ranks[i] != 0 && (rankOfLine[l] == 0 || ranks[i] < rankOfLine[l])) {
+        rankOfLine[l] = ranks[i];
+        m.imageOfLine[l] = i;
+      }
+    }
+    for (std::size_t i = 0; rankOfLine[l] != 0 && i < images.size(); ++i) {
+      if (ranks[i] == rankOfLine[l] && i != *m.imageOfLine[l]) {
+        throw Error(ErrorKind::Input, lpFile, step,
+                    describeLine(lines, l) + " could mean \"" + images[*m.imageOfLine[l]] +
+                        "\" or \"" + images[i] + "\", whose names differ only by letter case or "
+                        "extension; rename one of the images or write the full name in the .lp");
+      }
+    }
+  }
+  for (std::size_t l = 0; l < lines.size(); ++l) {
+    if (!m.imageOfLine[l]) continue;
+    const std::size_t i = *m.imageOfLine[l];
+    std::optional<std::size_t>& current = m.lineOfImage[i];
+    if (current && rankOfLine[*current] == rankOfLine[l]) {
+      throw Error(ErrorKind::Input, lpFile, step,
+                  describeLine(lines, *current) + " and " + describeLine(lines, l) +
+                      " both give the light of \"" + images[i] +
+                      "\"; remove the line that does not belong to it");
+    }
+    if (!current || rankOfLine[l] < rankOfLine[*current]) current = l;
+  }
+  return m;
+}
+
 std::optional<fs::path> resolveLpImage(const fs::path& lpFile, const std::string& name) {
-  for (const fs::path& candidate : lpImageCandidates(lpFile, name)) {
+  const std::vector<fs::path> candidates = lpImageCandidates(lpFile, name);
+  for (const fs::path& candidate : candidates) {
     std::error_code ec;
     if (fs::is_regular_file(candidate, ec)) return candidate;
+  }
+  // Another letter case or extension, folder by folder in the same order.
+  std::vector<fs::path> searched;
+  for (const fs::path& candidate : candidates) {
+    const fs::path folder = candidate.parent_path();
+    if (std::find(searched.begin(), searched.end(), folder) != searched.end()) continue;
+    searched.push_back(folder);
+    std::error_code ec;
+    std::vector<std::string> files;
+    for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+      std::error_code fileEc;
+      if (it->is_regular_file(fileEc) && isImageName(it->path().filename()) &&
+          lpNameRank(name, it->path().filename().string()) != 0)
+        files.push_back(it->path().filename().string());
+    }
+    if (files.empty()) continue;
+    std::sort(files.begin(), files.end());  // the same message whatever the listing order
+    const std::vector<LightEntry> line = {LightEntry{name, 0, 0, 1}};
+    const LpMatch m = matchLpLines(lpFile.string(), line, files);
+    if (m.imageOfLine[0]) return folder / files[*m.imageOfLine[0]];
   }
   return std::nullopt;
 }

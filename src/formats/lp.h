@@ -65,6 +65,27 @@ std::string formatLp(const std::vector<LightEntry>& entries, const std::string& 
 // on Windows) the image's absolute path is returned.
 std::string lpImageName(const std::filesystem::path& lpFile, const std::filesystem::path& image);
 
+// How well an .lp line's image name designates an image file, comparing base names only
+// (folders are ignored; '\\' counts as a separator): 1 = the same name, 2 = the same but for
+// letter case, 3 = the same but for the extension (or one of the two has none), 4 = the same
+// but for the extension and letter case; 0 = another image. Letter case is compared for ASCII
+// letters only. Other tools name exports and originals alike ("IMG_0001.JPG" in the .lp,
+// "IMG_0001.CR2" or "img_0001.jpg" on disk), hence the leniency.
+int lpNameRank(const std::string& lpName, const std::string& imageName);
+
+// Pairs the lines of an .lp with a set of images (file names or shot names), by lpNameRank:
+// each line goes to the image it designates best, and each image takes, of the lines that went
+// to it, the one that designates it best. Throws Error(Input) naming `lpFile` when that is not
+// unambiguous: a line that designates two images equally well ("IMG_1.jpg" with both
+// "img_1.JPG" and "IMG_1.JPG" present), or an image that two lines designate equally well
+// ("IMG_1.JPG" and "IMG_1.CR2" for the shot IMG_1).
+struct LpMatch {
+  std::vector<std::optional<std::size_t>> lineOfImage;  // per image: its line, if any
+  std::vector<std::optional<std::size_t>> imageOfLine;  // per line: the image it went to, if any
+};
+LpMatch matchLpLines(const std::string& lpFile, const std::vector<LightEntry>& lines,
+                     const std::vector<std::string>& images);
+
 // Where the image that an .lp file at `lpFile` names `name` may be, in the order tried.
 // Backslashes in `name` are taken as separators (.lp files from Windows). With DIR the .lp's
 // folder (absolute, weakly canonical):
@@ -80,7 +101,11 @@ std::vector<std::filesystem::path> lpImageCandidates(const std::filesystem::path
                                                      const std::string& name);
 
 // The first of lpImageCandidates that is a regular file (an absolute name is thus used as it
-// is only if it exists), or nullopt when none is.
+// is only if it exists). When none is, the folders of the candidates are searched in the same
+// order for an image file (JPEG, TIFF, PNG or camera raw, by its extension: never a sidecar
+// such as IMG_0001.xmp) that lpNameRank accepts (another letter case or extension): the first
+// folder holding one wins, its best-ranked file is returned, and two files of equal rank there
+// are refused (Error(Input) naming `lpFile` and both files). nullopt when nothing fits.
 std::optional<std::filesystem::path> resolveLpImage(const std::filesystem::path& lpFile,
                                                     const std::string& name);
 

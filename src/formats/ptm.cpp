@@ -7,6 +7,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "formats/ptm_jpeg.h"
 #include "formats/text_parse.h"
 
 namespace surrogate::formats {
@@ -52,18 +53,25 @@ PtmHeader parsePtmHeader(const std::uint8_t* data, std::size_t size, const std::
              "\"; PTM_1.1 and PTM_1.2 can be read");
   }
   const std::string format(trim(cur.line("format", 256)));
+  const bool v12 = h.report.version == "PTM_1.2";
+  bool jpeg = false;
   if (format == "PTM_FORMAT_LRGB") {
     h.format = PtmFile::Format::Lrgb;
-  } else if (format == "PTM_FORMAT_RGB" && h.report.version == "PTM_1.2") {
+  } else if (format == "PTM_FORMAT_RGB" && v12) {
     h.format = PtmFile::Format::Rgb;
+  } else if ((format == "PTM_FORMAT_JPEG_LRGB" || format == "PTM_FORMAT_JPEG_RGB") && v12) {
+    h.format = format == "PTM_FORMAT_JPEG_LRGB" ? PtmFile::Format::Lrgb : PtmFile::Format::Rgb;
+    jpeg = true;
   } else if (format.rfind("PTM_FORMAT_", 0) == 0) {
     cur.fail("the PTM format " + format.substr(0, 40) + " (" + h.report.version +
-             ") is not supported; raw PTM_FORMAT_LRGB and PTM_FORMAT_RGB files can be read "
-             "(re-export the PTM without JPEG compression)");
+             ") is not supported; PTM_FORMAT_LRGB and PTM_FORMAT_RGB files, raw or JPEG-"
+             "compressed (PTM_FORMAT_JPEG_LRGB, PTM_FORMAT_JPEG_RGB), can be read (re-export "
+             "the PTM as one of these)");
   } else {
     cur.fail("line 2 should name the PTM format (e.g. PTM_FORMAT_LRGB), found \"" +
              format.substr(0, 40) + "\"");
   }
+  h.report.formatLine = format;
 
   const auto first = tokens(cur.line("width"));
   if (first.size() == 1) {
@@ -108,8 +116,12 @@ PtmHeader parsePtmHeader(const std::uint8_t* data, std::size_t size, const std::
     }
     h.bias[k] = static_cast<int>(b);
   }
+  if (jpeg) {
+    parseJpegPlaneTable(cur, h.format == PtmFile::Format::Lrgb ? 9 : 18, &h);
+  } else {
+    h.payloadBytes = static_cast<std::size_t>(texels) * bytesPerTexel(h.format);
+  }
   h.payloadOffset = cur.offset();
-  h.payloadBytes = static_cast<std::size_t>(texels) * bytesPerTexel(h.format);
   return h;
 }
 
@@ -123,6 +135,11 @@ PtmFile parsePtm(const std::uint8_t* data, std::size_t size, const std::string& 
                     std::to_string(h.height) + " texels (" + std::to_string(h.payloadBytes) +
                     " bytes of data) but only " + std::to_string(available) + " bytes follow");
   }
+  if (report) {
+    *report = h.report;
+    report->trailingBytes = available - h.payloadBytes;
+  }
+  if (!h.jpegPlanes.empty()) return decodeJpegPtm(h, data + h.payloadOffset, available, name);
   PtmFile ptm;
   ptm.format = h.format;
   ptm.width = h.width;
@@ -159,10 +176,6 @@ PtmFile parsePtm(const std::uint8_t* data, std::size_t size, const std::string& 
                     payload + (c * texels + fileRow(y) * w) * 6, w * 6);
       }
     }
-  }
-  if (report) {
-    *report = h.report;
-    report->trailingBytes = available - h.payloadBytes;
   }
   return ptm;
 }

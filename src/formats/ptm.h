@@ -1,4 +1,5 @@
-// HP Polynomial Texture Maps (.ptm), version 1.2, raw LRGB and RGB (docs/formats.md, ".ptm").
+// HP Polynomial Texture Maps (.ptm), version 1.2: raw LRGB and RGB written and read, the
+// JPEG-compressed LRGB and RGB variants read (docs/formats.md, ".ptm").
 //
 // A PTM stores, per texel, the six coefficients of a biquadratic in the light's projection
 // (lu, lv) = (lx, ly) on the image plane:
@@ -26,6 +27,11 @@
 // Files read: PTM_1.2 and PTM_1.1 (LRGB only, 9 interleaved bytes per texel), width and
 // height on one line or two, extra spaces and '\r' tolerated. Bytes after the payload are
 // ignored and counted in PtmReadReport::trailingBytes (viewers ignore them as well).
+// PTM_FORMAT_JPEG_LRGB and PTM_FORMAT_JPEG_RGB (PTM_1.2) are read into the same PtmFile as
+// their raw forms: each coefficient or colour plane is a greyscale JPEG, possibly predicted
+// from another plane and corrected by side information (docs/formats.md, "JPEG-compressed
+// PTMs"); the bytes are the JPEG's approximation of the fitted ones, and writePtm writes
+// them back uncompressed.
 #pragma once
 
 #include <array>
@@ -66,8 +72,21 @@ const char* formatName(PtmFile::Format format);  // "PTM_FORMAT_LRGB", "PTM_FORM
 // What the reader noticed that the PtmFile itself does not say.
 struct PtmReadReport {
   std::string version;         // "PTM_1.2" or "PTM_1.1"
+  std::string formatLine;      // the format as the file names it ("PTM_FORMAT_JPEG_LRGB")
   bool sizeOnOneLine = false;  // "w h" on one line (readable, but RTIViewer rejects it)
   std::size_t trailingBytes = 0;
+  int jpegQuality = -1;        // JPEG variants: the compression parameter; -1 for raw files
+};
+
+// One plane of a JPEG-compressed PTM as its header describes it. Planes are numbered as the
+// raw layout orders bytes: LRGB a0..a5, R, G, B (9); RGB a0..a5 of red, green, blue (18).
+struct PtmJpegPlane {
+  int transform = 0;            // 0 none, 1 invert the reference (255 - r), 2 motion compensation
+  int motionX = 0, motionY = 0;
+  int order = 0;                // position in the decoding sequence (0 = decoded first)
+  int reference = -1;           // the plane this one is predicted from, or -1
+  std::uint64_t jpegBytes = 0;  // its JPEG stream, stored first
+  std::uint64_t sideBytes = 0;  // then its side information: 5-byte corrections
 };
 
 // Header fields only, for `surrogate info` (reads the header, not the payload).
@@ -78,20 +97,27 @@ struct PtmHeader {
   std::array<double, 6> scale{};
   std::array<int, 6> bias{};
   std::size_t payloadOffset = 0;  // bytes of header
-  std::size_t payloadBytes = 0;   // 9 or 18 per texel
+  std::size_t payloadBytes = 0;   // 9 or 18 per texel; JPEG: the sum of the planes' sizes
+  std::vector<PtmJpegPlane> jpegPlanes;  // JPEG variants only (9 or 18), in plane order
 };
 
 // Limits the readers enforce before allocating anything.
 constexpr int kMaxSide = 65536;
 constexpr std::uint64_t kMaxTexels = 1ull << 31;
 
-// Parses the header at the start of `data` (the payload need not be present).
+// Parses the header at the start of `data` (the payload need not be present), with, for the
+// JPEG variants, the plane table that follows the biases.
 // Throws Error(Input) naming `name` for a bad magic, an unsupported version or format, bad
-// dimensions (outside 1..65536 or more than 2^31 texels), or malformed scale/bias lines.
+// dimensions (outside 1..65536 or more than 2^31 texels; JPEG variants: more than
+// image::kMaxImagePixels), malformed scale/bias lines, or a plane table that cannot describe
+// a decodable file (a decoding order that is not a permutation, a reference decoded later
+// than the plane it predicts, a side-information size not a multiple of 5, ...).
 PtmHeader parsePtmHeader(const std::uint8_t* data, std::size_t size, const std::string& name);
 
 // Parses a whole file held in memory; also throws when the payload is shorter than the header
-// says. Never reads outside [data, data + size).
+// says, and, for the JPEG variants, when a plane's JPEG stream is damaged, is not a greyscale
+// image of the PTM's size, or a side-information entry points outside the image. Never reads
+// outside [data, data + size).
 PtmFile parsePtm(const std::uint8_t* data, std::size_t size, const std::string& name,
                  PtmReadReport* report = nullptr);
 PtmFile readPtm(const std::filesystem::path& path, PtmReadReport* report = nullptr);

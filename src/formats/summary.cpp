@@ -63,7 +63,7 @@ FileSummary summarize(const fs::path& path) {
   if (head.compare(0, 4, "PTM_") == 0) {
     const PtmHeader h = parsePtmHeader(data, head.size(), s.path);
     s.kind = "ptm";
-    s.format = formatName(h.format);
+    s.format = h.report.formatLine;
     s.version = h.report.version;
     s.basis = h.format == PtmFile::Format::Lrgb ? "ptm-lrgb" : "ptm-rgb";
     s.width = h.width;
@@ -71,6 +71,16 @@ FileSummary summarize(const fs::path& path) {
     s.terms = 6;
     s.scale.assign(h.scale.begin(), h.scale.end());
     s.bias.assign(h.bias.begin(), h.bias.end());
+    if (!h.jpegPlanes.empty()) {
+      int predicted = 0;
+      for (const PtmJpegPlane& p : h.jpegPlanes) predicted += p.reference >= 0;
+      s.notes.push_back("JPEG-compressed (compression parameter " +
+                        std::to_string(h.report.jpegQuality) + ", " +
+                        std::to_string(predicted) + " of " +
+                        std::to_string(h.jpegPlanes.size()) +
+                        " planes predicted from another): the coefficients are JPEG's "
+                        "approximation of the fitted ones");
+    }
     if (h.report.sizeOnOneLine)
       s.notes.push_back("width and height share one line: RTIViewer cannot open this file");
     checkComplete(s, h.payloadOffset + static_cast<std::uint64_t>(h.payloadBytes));

@@ -18,7 +18,8 @@ namespace surrogate::formats {
 struct FileSummary {
   std::string path;
   std::string kind;     // "ptm", "rti" or "lp"
-  std::string format;   // "PTM_FORMAT_LRGB", "PTM_FORMAT_RGB", "HSH" or "light positions"
+  std::string format;   // the PTM format line ("PTM_FORMAT_LRGB", "PTM_FORMAT_JPEG_LRGB", ...),
+                        // "HSH" or "light positions"
   std::string version;  // "PTM_1.2", "PTM_1.1", the first comment of an .rti ("HSH1.2")
   std::string basis;    // "ptm-lrgb", "ptm-rgb", "hsh2", "hsh3", "hsh4"; empty for .lp
   int width = 0, height = 0;

@@ -106,6 +106,22 @@ class DamagedImageError : public Error {
 Image decodeImage(const std::filesystem::path& path, const RawDecodeSettings& settings,
                   DecodeReport* report = nullptr, const DecodeOptions& options = {});
 
+// A JPEG stream held in memory (one plane of a JPEG-compressed PTM, for instance), decoded by
+// libjpeg strictly: a fatal error or any warning about damaged data (a truncated stream, a bad
+// Huffman code) leaves `samples` empty and says why in `problem`, in libjpeg's words, for the
+// caller to word its own error. A header declaring more than maxPixels (or kMaxImagePixels)
+// is refused before any sample buffer is allocated. Grey stays one channel; other streams
+// come out as RGB; CMYK is refused.
+//
+//   JpegSamples plane = decodeJpegSamples(bytes, size, expectedWidth * expectedHeight);
+//   if (!plane.problem.empty()) throw ...;   // plane.samples[y * width + x] for grey
+struct JpegSamples {
+  int width = 0, height = 0, components = 0;  // components: 1 (grey) or 3 (RGB)
+  std::vector<std::uint8_t> samples;          // rows top first as stored, channels interleaved
+  std::string problem;                        // empty when decoded
+};
+JpegSamples decodeJpegSamples(const std::uint8_t* data, std::size_t size, std::uint64_t maxPixels);
+
 std::string librawVersion();   // "0.20.2-Release" (LibRaw::version())
 std::string opencvVersion();   // "4.6.0"
 std::string libjpegName();     // "libjpeg-turbo" (the libjpeg JPEGs are decoded with)

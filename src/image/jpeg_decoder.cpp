@@ -3,6 +3,7 @@
 // DecoderMessages through emit_message, never to stderr; its fatal errors end the decode with
 // its message. Output as OpenCV's imread made it (libjpeg's defaults: islow DCT, fancy
 // upsampling; grey stays grey; CMYK/YCCK converted with OpenCV's formula).
+#include <algorithm>
 #include <csetjmp>
 #include <cstdio>  // jpeglib.h needs FILE and size_t first
 #include <cstring>
@@ -152,6 +153,53 @@ Image decodeJpeg(const fs::path& path, const std::uint8_t* data, std::size_t siz
     for (std::size_t i = 0; i < pixels.size(); ++i) im.pixels[i] = static_cast<std::uint16_t>(pixels[i] * 257);
   }
   return im;
+}
+
+JpegSamples decodeJpegSamples(const std::uint8_t* data, std::size_t size, std::uint64_t maxPixels) {
+  JpegSamples out;
+  DecoderMessages messages("libjpeg");
+  std::unique_ptr<Job, JobCloser> job(new Job());
+  job->cinfo.err = jpeg_std_error(&job->err.pub);
+  job->err.pub.error_exit = onError;
+  job->err.pub.emit_message = onMessage;
+  job->err.pub.output_message = onOutput;
+  job->err.messages = &messages;
+  job->err.stopOnWarning = true;  // strict: a stream libjpeg calls damaged is refused
+  job->err.fatal[0] = '\0';
+  auto refused = [&](int status) {
+    out.problem = status == 0 ? std::string(job->err.fatal)
+                              : (messages.distinct().empty() ? "damaged data" : messages.distinct()[0]);
+    return out;
+  };
+  int status = startJob(job.get(), data, size);
+  if (status != 1) return refused(status);
+  jpeg_decompress_struct& c = job->cinfo;
+  const std::uint64_t pixels = static_cast<std::uint64_t>(c.image_width) * c.image_height;
+  if (pixels > std::min(maxPixels, kMaxImagePixels)) {
+    out.problem = "it declares " + std::to_string(c.image_width) + " x " + std::to_string(c.image_height) +
+                  " pixels, more than expected";
+    return out;
+  }
+  if (c.num_components != 1 && c.num_components != 3) {
+    out.problem = "it has " + std::to_string(c.num_components) + " colour components (1 or 3 expected)";
+    return out;
+  }
+  const int components = c.num_components;
+  c.out_color_space = components == 1 ? JCS_GRAYSCALE : JCS_RGB;
+  const std::size_t stride = static_cast<std::size_t>(c.image_width) * components;
+  std::vector<std::uint8_t> samples(stride * c.image_height);
+  status = readPixels(job.get(), samples.data(), stride);
+  if (status != 1) return refused(status);
+  if (c.output_width != c.image_width || c.output_height != c.image_height ||
+      c.output_components != components) {
+    out.problem = "libjpeg gave another layout than asked for";
+    return out;
+  }
+  out.width = static_cast<int>(c.image_width);
+  out.height = static_cast<int>(c.image_height);
+  out.components = components;
+  out.samples = std::move(samples);
+  return out;
 }
 
 std::string libjpegName() {

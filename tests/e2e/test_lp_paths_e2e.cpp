@@ -4,7 +4,10 @@
 // assembly-files/lights.lp names them relative to assembly-files/.
 #include <catch2/catch.hpp>
 
+#include <cctype>
 #include <fstream>
+#include <string>
+#include <vector>
 
 #include "e2e_support.h"
 #include "formats/lp.h"
@@ -126,4 +129,63 @@ TEST_CASE("fit reads an RTIBuilder-style .lp with backslashes and CRLF naming jp
   const e2e::CommandResult missing = surrogateIn(base, "fit --lp missing.lp -o out.ptm --quiet");
   CHECK(missing.exitCode == 1);
   CHECK_THAT(missing.output, Catch::Contains("no-such-image.jpg"));
+}
+
+TEST_CASE("fit and a dome run read .lp names that differ from the images by letter case or extension, never ambiguously") {
+  const fs::path base = e2e::freshDir("lp-lenient");
+  const fs::path capture = e2e::smallCapture(base);
+  REQUIRE(surrogateIn(base, "lights capture -o lights.lp --quiet").exitCode == 0);
+  const auto lights = formats::readLp(base / "lights.lp");
+  REQUIRE(lights.size() == 8);
+  // As other tools leave them: Windows paths, lower-case names with upper-case extensions, the
+  // originals' extension (.CR2) or another one (.TIF) for the exports, CRLF, blank lines and
+  // trailing spaces.
+  auto lpText = [&](const std::vector<std::string>& names) {
+    std::string text = "\r\n8 \r\n";
+    for (std::size_t i = 0; i < lights.size(); ++i) {
+      text += names[i] + " " + std::to_string(lights[i].x) + " " + std::to_string(lights[i].y) + " " +
+              std::to_string(lights[i].z) + " \r\n" + (i == 4 ? "\r\n \r\n" : "");
+    }
+    return text;
+  };
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    const std::string stem = fs::path(lights[i].filename).stem().string();  // IMG_0001
+    std::string lower = stem;
+    for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    names.push_back(i % 3 == 0 ? "C:\\capture\\jpeg-exports\\" + lower + ".JPG"
+                    : i % 3 == 1 ? "jpeg-exports\\" + stem + ".CR2" : stem + ".TIF");
+  }
+  std::ofstream(capture / "assembly-files/lenient.lp", std::ios::binary) << lpText(names);
+  const e2e::CommandResult fit =
+      surrogateIn(base / "elsewhere", "fit --lp ../capture/assembly-files/lenient.lp -o out.ptm --quiet");
+  INFO(fit.output);
+  CHECK(fit.exitCode == 0);
+  CHECK(fs::exists(base / "elsewhere/out.ptm"));
+
+  // A dome run (on a fresh copy of the capture) pairs the same names with the shots.
+  const fs::path domeCapture = e2e::smallCapture(e2e::freshDir("lp-lenient-dome"));
+  std::ofstream(domeCapture / "dome.lp", std::ios::binary) << lpText(names);
+  const e2e::CommandResult dome = e2e::surrogate("run " + e2e::quote(domeCapture) + " --lp dome.lp --quiet");
+  INFO(dome.output);
+  CHECK(dome.exitCode == 0);
+
+  // Two lines that name one shot equally well: refused, naming both.
+  std::vector<std::string> twice = names;
+  twice[1] = fs::path(lights[0].filename).stem().string() + ".DNG";  // IMG_0001 again
+  twice[0] = fs::path(lights[0].filename).stem().string() + ".JPG";
+  std::ofstream(domeCapture / "twice.lp", std::ios::binary) << lpText(twice);
+  const e2e::CommandResult refused = e2e::surrogate("run " + e2e::quote(domeCapture) + " --lp twice.lp --quiet");
+  CHECK(refused.exitCode == 1);
+  CHECK_THAT(refused.output, Catch::Contains("both give the light of"));
+
+  // An export under two extensions: the line naming neither is refused, naming both.
+  const fs::path jpg = capture / "jpeg-exports" / (fs::path(lights[1].filename).stem().string() + ".jpg");
+  REQUIRE(fs::exists(jpg));
+  fs::copy_file(jpg, fs::path(jpg).replace_extension(".jpeg"));
+  const e2e::CommandResult ambiguous =
+      surrogateIn(base / "elsewhere", "fit --lp ../capture/assembly-files/lenient.lp -o again.ptm --quiet");
+  CHECK(ambiguous.exitCode == 1);
+  CHECK_THAT(ambiguous.output, Catch::Contains(".jpeg\"") && Catch::Contains(".jpg\""));
+  CHECK_FALSE(fs::exists(base / "elsewhere/again.ptm"));
 }

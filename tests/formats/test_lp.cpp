@@ -165,3 +165,98 @@ TEST_CASE("lp: an absurdly long image name is refused with its length, not carri
   CHECK(parseLp(formatLp(l, "x.lp"), "x.lp") == l);
   CHECK_THROWS_AS(formatLp({{longest + "b", 0, 0, 1}}, "x.lp"), Error);
 }
+
+TEST_CASE("lp: files as other tools leave them: CRLF, blank lines, trailing spaces, tabs, Windows paths") {
+  const auto l = parseLp("\r\n3 \r\n\r\n"
+                         "C:\\capture\\jpeg-exports\\IMG_0001.JPG 0.5 0.5 0.707107 \r\n"
+                         "  \t \r\n"
+                         "jpeg-exports\\000.jpg\t-0.5\t0.5\t0.707107\t\r\n"
+                         "C:\\My Captures\\IMG 0003.JPG 0 0 1   \r\n\r\n\r\n",
+                         "rti.lp");
+  REQUIRE(l.size() == 3);
+  CHECK(l[0].filename == "C:\\capture\\jpeg-exports\\IMG_0001.JPG");
+  CHECK(l[0].z == Approx(0.707107 / std::sqrt(0.25 + 0.25 + 0.707107 * 0.707107)));
+  CHECK(l[1].filename == "jpeg-exports\\000.jpg");
+  CHECK(l[2].filename == "C:\\My Captures\\IMG 0003.JPG");
+  CHECK(l[2].z == 1);
+}
+
+TEST_CASE("lp: name ranks: exact, then letter case, then extension, then both") {
+  CHECK(lpNameRank("C:\\caps\\IMG_0001.JPG", "IMG_0001.JPG") == 1);
+  CHECK(lpNameRank("jpeg-exports\\IMG_0001.JPG", "img_0001.jpg") == 2);
+  CHECK(lpNameRank("IMG_0001.JPG", "IMG_0001.CR2") == 3);
+  CHECK(lpNameRank("IMG_0001.JPG", "IMG_0001") == 3);   // a shot named without extension
+  CHECK(lpNameRank("IMG_0001", "IMG_0001.tif") == 3);
+  CHECK(lpNameRank("img_0001.jpg", "IMG_0001.CR2") == 4);
+  CHECK(lpNameRank("IMG_0001.JPG", "IMG_00010.JPG") == 0);
+  CHECK(lpNameRank("IMG_0001.JPG", "IMG_0002.JPG") == 0);
+  CHECK(lpNameRank("a/", "a") == 0);                    // no base name
+  CHECK(lpNameRank("\xC3\x89T\xC3\x89.jpg", "\xC3\xA9t\xC3\xA9.jpg") == 0);  // ASCII case only
+}
+
+TEST_CASE("lp: lines pair with images unambiguously, or the .lp is refused") {
+  const std::vector<LightEntry> lines = {{"C:\\caps\\IMG_0001.JPG", 0, 0, 1},
+                                         {"jpeg-exports\\img_0002.jpg", 0.5, 0, 0.8},
+                                         {"IMG_0003.tif", 0, 0.5, 0.8},
+                                         {"IMG_0009.JPG", 0, 0.5, 0.8}};
+  // Shots named by stem (a dome capture), files with other cases and extensions.
+  const LpMatch m = matchLpLines("rti.lp", lines, {"IMG_0001", "IMG_0002", "IMG_0003", "IMG_0004"});
+  CHECK(m.lineOfImage[0] == std::optional<std::size_t>(0));
+  CHECK(m.lineOfImage[1] == std::optional<std::size_t>(1));
+  CHECK(m.lineOfImage[2] == std::optional<std::size_t>(2));
+  CHECK_FALSE(m.lineOfImage[3].has_value());
+  CHECK_FALSE(m.imageOfLine[3].has_value());
+  // The better rank wins: the exact name over another case.
+  const LpMatch exact = matchLpLines("rti.lp", {{"IMG_1.JPG", 0, 0, 1}}, {"img_1.jpg", "IMG_1.JPG"});
+  CHECK(exact.imageOfLine[0] == std::optional<std::size_t>(1));
+  // One line, two images of equal rank: refused, naming both.
+  try {
+    matchLpLines("rti.lp", {{"Img_1.jpg", 0, 0, 1}}, {"img_1.jpg", "IMG_1.JPG"});
+    FAIL("no error");
+  } catch (const Error& e) {
+    CHECK(e.file() == "rti.lp");
+    CHECK_THAT(e.message(), Catch::Contains("\"img_1.jpg\"") && Catch::Contains("\"IMG_1.JPG\"") &&
+                                Catch::Contains("Img_1.jpg"));
+  }
+  CHECK_THROWS_WITH(matchLpLines("rti.lp", {{"IMG_1.JPG", 0, 0, 1}}, {"IMG_1.CR2", "IMG_1.tif"}),
+                    Catch::Contains("differ only by letter case or extension"));
+  // Two lines for one shot: refused; of different rank: the better one is taken.
+  CHECK_THROWS_WITH(matchLpLines("rti.lp", {{"IMG_1.JPG", 0, 0, 1}, {"IMG_1.CR2", 1, 0, 1}}, {"IMG_1"}),
+                    Catch::Contains("both give the light of \"IMG_1\""));
+  const LpMatch better = matchLpLines("rti.lp", {{"IMG_1.CR2", 1, 0, 1}, {"IMG_1.JPG", 0, 0, 1}}, {"IMG_1.JPG"});
+  CHECK(better.lineOfImage[0] == std::optional<std::size_t>(1));
+}
+
+TEST_CASE("lp: images are found under another letter case or extension, never ambiguously") {
+  const fs::path root = fs::weakly_canonical(fs::temp_directory_path()) / "surrogate-test-lp-lenient";
+  fs::remove_all(root);
+  const fs::path capture = root / "stela";
+  for (const char* d : {"jpeg-exports", "original-captures", "assembly-files"}) fs::create_directories(capture / d);
+  for (const char* f : {"jpeg-exports/img_0001.jpg", "original-captures/IMG_0002.CR2",
+                        "jpeg-exports/IMG_0003.JPG", "jpeg-exports/IMG_0003.TIF",
+                        "jpeg-exports/IMG_0004.JPG", "jpeg-exports/img_0004.jpg",
+                        "jpeg-exports/IMG_0005.JPG", "original-captures/IMG_0002.xmp"})
+    writeFileAtomically(capture / f, "image");
+  const fs::path lp = capture / "assembly-files" / "rti.lp";
+  writeFileAtomically(lp, "6\r\n"
+                          "C:\\capture\\jpeg-exports\\IMG_0001.JPG 0 0 1\r\n"
+                          "jpeg-exports\\IMG_0002.jpg 0.5 0 0.8\r\n"
+                          "jpeg-exports\\IMG_0003.jpeg 0 0.5 0.8 \r\n"
+                          "\r\n"
+                          "jpeg-exports\\Img_0004.jpg -0.5 0 0.8\r\n"
+                          "jpeg-exports\\IMG_0004.JPG -0.5 0 0.8\r\n"
+                          "C:\\capture\\jpeg-exports\\IMG_0005.JPG 0 -0.5 0.8\r\n");
+  const auto e = readLp(lp);
+  REQUIRE(e.size() == 6);
+  CHECK(resolveLpImage(lp, e[0].filename) == capture / "jpeg-exports/img_0001.jpg");    // case
+  CHECK(resolveLpImage(lp, e[1].filename) == capture / "original-captures/IMG_0002.CR2");  // extension,
+                                                                                         // not the .xmp
+  CHECK_THROWS_WITH(resolveLpImage(lp, e[2].filename),                                 // .JPG or .TIF?
+                    Catch::Contains("IMG_0003.JPG") && Catch::Contains("IMG_0003.TIF"));
+  CHECK_THROWS_WITH(resolveLpImage(lp, e[3].filename),                                 // two cases
+                    Catch::Contains("differ only by letter case"));
+  CHECK(resolveLpImage(lp, e[4].filename) == capture / "jpeg-exports/IMG_0004.JPG");   // exact wins
+  CHECK(resolveLpImage(lp, e[5].filename) == capture / "jpeg-exports/IMG_0005.JPG");   // Windows path
+  CHECK_FALSE(resolveLpImage(lp, "IMG_0099.JPG").has_value());
+  fs::remove_all(root);
+}

@@ -116,7 +116,8 @@ TEST_CASE("ptm: reader rejects bad magic, formats, dimensions and truncation") {
   const std::string body = "0.5 1 1 1 1 1\n0 0 0 0 0 0\n";
   CHECK_THAT(parseError("GIF89a"), Catch::Contains("not a PTM file"));
   CHECK_THAT(parseError("PTM_2.0\nPTM_FORMAT_LRGB\n1\n1\n" + body), Catch::Contains("version"));
-  CHECK_THAT(parseError("PTM_1.2\nPTM_FORMAT_JPEG_LRGB\n1\n1\n" + body), Catch::Contains("not supported"));
+  CHECK_THAT(parseError("PTM_1.2\nPTM_FORMAT_LUM\n1\n1\n" + body), Catch::Contains("not supported"));
+  CHECK_THAT(parseError("PTM_1.2\nPTM_FORMAT_JPEG_LRGB\n1\n1\n" + body), Catch::Contains("compression parameter"));
   CHECK_THAT(parseError("PTM_1.2\nBANANA\n1\n1\n" + body), Catch::Contains("format"));
   CHECK_THAT(parseError("PTM_1.2\nPTM_FORMAT_LRGB\n70000\n1\n" + body), Catch::Contains("outside"));
   CHECK_THAT(parseError("PTM_1.2\nPTM_FORMAT_LRGB\n0\n1\n" + body), Catch::Contains("outside"));
