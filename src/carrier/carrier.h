@@ -71,6 +71,9 @@ struct Header {
   std::vector<Creator> creators;
   std::string created, modified;  // xs:dateTime
   std::vector<std::pair<std::string, std::string>> meta;  // user metadata, in given order
+  // Rights statement in the depositor's words (--rights) and the licence's URI (--license);
+  // empty when not given (carriers before these existed have neither).
+  std::string rights, license;
   Machine machine;
   std::vector<Software> software;
   std::vector<RunRecord> runs;  // oldest first

@@ -52,6 +52,8 @@ void writeHeader(xmlNodePtr root, const Header& h) {
   textChild(header, "created", h.created);
   textChild(header, "modified", h.modified);
   for (const auto& [key, value] : h.meta) attr(textChild(header, "meta", value), "key", key);
+  if (!h.rights.empty()) textChild(header, "rights", h.rights);
+  if (!h.license.empty()) textChild(header, "license", h.license);
   xmlNodePtr m = child(header, "machine");
   attr(m, "hostname", h.machine.hostname);
   attr(m, "os", h.machine.os);
@@ -203,6 +205,8 @@ Header readHeader(xmlNodePtr node) {
     else if (is(c, "created")) h.created = text(c);
     else if (is(c, "modified")) h.modified = text(c);
     else if (is(c, "meta")) h.meta.emplace_back(prop(c, "key"), text(c));
+    else if (is(c, "rights")) h.rights = text(c);
+    else if (is(c, "license")) h.license = text(c);
     else if (is(c, "machine")) {
       h.machine.hostname = prop(c, "hostname");
       h.machine.os = prop(c, "os");

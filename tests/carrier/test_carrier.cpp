@@ -110,3 +110,24 @@ TEST_CASE("putFile gives new ids and replaces a record with the same path") {
   CHECK(c.files.size() == 2);
   CHECK(c.findFileByPath("a.jpg")->size == 9);
 }
+
+TEST_CASE("rights and licence in the header round-trip, and a carrier without them (older versions) still validates") {
+  Carrier c = sampleCarrier();
+  const std::string without = toXml(c);
+  CHECK(without.find("<rights>") == std::string::npos);  // nothing written when not given
+  CHECK_NOTHROW(parseCarrier(without, "old.xml"));
+  c.header.rights = "Images: Museum <of> Stelae & co; research use only";
+  c.header.license = "https://creativecommons.org/licenses/by-nc/4.0/";
+  const std::string text = toXml(c);
+  const Carrier back = parseCarrier(text, "memory");
+  CHECK(back.header.rights == c.header.rights);
+  CHECK(back.header.license == c.header.license);
+  CHECK(toXml(back) == text);
+  // They sit after the user metadata and before the machine, in the schema's order.
+  CHECK(text.find("<meta ") < text.find("<rights>"));
+  CHECK(text.find("<license>") < text.find("<machine "));
+  // An empty rights element is not a statement: the schema refuses it.
+  std::string empty = text;
+  empty.replace(empty.find("<rights>"), empty.find("</rights>") - empty.find("<rights>"), "<rights>");
+  CHECK_THROWS_AS(parseCarrier(empty, "empty.xml"), Error);
+}
