@@ -45,15 +45,12 @@ int runCommandFit(int argc, char** argv) {
       {"json", false, false, "print the fit quality as JSON"},
   };
   Args args(argc, argv, 1, specs);
-  if (args.helpRequested()) {
-    std::cout << usageHeader("surrogate fit --lp FILE.lp -o OUT.ptm|OUT.rti [--basis BASIS]",
-                             "Fit a PTM or HSH model to the images an .lp file names, with its light "
-                             "directions. (surrogate run does this for a capture, with provenance.)")
-              << Args::describe(specs);
+  if (helpShown(args, specs, "surrogate fit --lp FILE.lp -o OUT.ptm|OUT.rti [--basis BASIS]",
+                "Fit a PTM or HSH model to the images an .lp file names, with its light "
+                "directions. (surrogate run does this for a capture, with provenance.)"))
     return 0;
-  }
   const auto lp = args.value("lp");
-  const auto out = args.has("o") ? args.value("o") : args.value("output");
+  const auto out = outputOption(args);
   if (!lp || !out)
     throw Error(ErrorKind::Usage, "", "command line", "give the light file and the output: --lp FILE.lp -o OUT.ptm");
   const std::string ext = lowerCase(fs::path(*out).extension().string());

@@ -24,16 +24,13 @@ int runCommandLights(int argc, char** argv) {
   specs.push_back({"output", true, false, "same as -o", "FILE.lp"});
   for (const OptionSpec& o : runtimeOptions()) specs.push_back(o);
   Args args(argc, argv, 1, specs);
-  if (args.helpRequested()) {
-    std::cout << usageHeader("surrogate lights CAPTURE -o FILE.lp [options]",
-                             "Estimate the light direction of every image from the highlights on "
-                             "the spheres and write them as an .lp file, which names the images "
-                             "relative to its own folder. Also writes the sphere overlay, the "
-                             "highlight overviews and the carrier in CAPTURE/assembly-files/.")
-              << Args::describe(specs);
+  if (helpShown(args, specs, "surrogate lights CAPTURE -o FILE.lp [options]",
+                "Estimate the light direction of every image from the highlights on "
+                "the spheres and write them as an .lp file, which names the images "
+                "relative to its own folder. Also writes the sphere overlay, the "
+                "highlight overviews and the carrier in CAPTURE/assembly-files/."))
     return 0;
-  }
-  const auto out = args.has("o") ? args.value("o") : args.value("output");
+  const auto out = outputOption(args);
   if (args.positional().size() != 1 || !out)
     throw Error(ErrorKind::Usage, "", "command line", "give the capture and the output: surrogate lights CAPTURE -o FILE.lp");
   const fs::path capture = args.positional()[0];
@@ -43,8 +40,7 @@ int runCommandLights(int argc, char** argv) {
   request.lightsOnly = true;
   request.command = "lights";
   ProgressBar bar(args.has("quiet") || args.has("json"));
-  pipeline::RunSettings settings = settingsFrom(args);
-  settings.progress = [&bar](const std::string& label, double f) { bar.update(label, f); };
+  const pipeline::RunSettings settings = settingsFrom(args, bar);
   // Held until the capture's lights.lp is copied: a run meanwhile would replace it.
   capture::CaptureLock lock(capture, "lights");
   const carrier::Carrier c = stages::runCapture(capture, request, settings, /*takeLock=*/false);

@@ -1,6 +1,9 @@
 // surrogate pack CAPTURE -o OUT [options]
 #include <cctype>
+#include <cstdio>
+#include <filesystem>
 #include <iostream>
+#include <utility>
 
 #include "archive/package.h"
 #include "capture/capture.h"
@@ -26,8 +29,7 @@ namespace {
 void runPipeline(const std::string& capture, const Args& args, ProgressBar& bar) {
   stages::RunRequest request = requestFrom(args);
   request.command = "pack";
-  pipeline::RunSettings settings = settingsFrom(args);
-  settings.progress = [&bar](const std::string& label, double f) { bar.update(label, f); };
+  const pipeline::RunSettings settings = settingsFrom(args, bar);
   stages::runCapture(capture, request, settings, /*takeLock=*/false);
   if (!args.has("no-report")) report::writeCaptureReport(capture);
 }
@@ -61,37 +63,19 @@ bool givesDecisions(const Args& args) {
               "with `surrogate run " + capture + " --accept-changed " + path + " --reason \"why\"`, then pack");
 }
 
-}  // namespace
-
-int runCommandPack(int argc, char** argv) {
+std::vector<OptionSpec> packOptions() {
   std::vector<OptionSpec> specs = pipelineOptions(true);
   for (const OptionSpec& o : runtimeOptions()) specs.push_back(o);
   specs.push_back({"o", true, false, "the package to write: a folder, NAME.tar or NAME.zip", "OUT"});
   specs.push_back({"output", true, false, "same as -o", "OUT"});
   specs.push_back({"no-report", false, false,
                    "when the pipeline runs, do not write finished-files/report.html"});
-  std::vector<char*> rewritten(argv, argv + argc);  // the short "-o" as well as "--o"
-  std::string longO = "--o";
-  for (char*& a : rewritten)
-    if (std::string(a) == "-o") a = longO.data();
-  Args args(argc, rewritten.data(), 1, specs);
-  if (args.helpRequested()) {
-    std::cout << usageHeader(
-                     "surrogate pack CAPTURE -o OUT [options]",
-                     "Write the archival package of a capture: a BagIt 1.0 bag (a folder, or a "
-                     ".tar or .zip by OUT's name) holding the untouched originals, the carrier, "
-                     "the results, SHA-256 and SHA-512 manifests, and metadata/ with CIDOC-CRM "
-                     "(crm.rdf), METS+PREMIS (mets.xml) and the stylesheets and schemas that "
-                     "derive them. Runs the pipeline first (with the options below, as `surrogate "
-                     "run`) when the capture has no complete carrier or its files changed. "
-                     "SOURCE_DATE_EPOCH, when set, fixes every time in the package, so that two "
-                     "packs of the same capture are byte-identical.\n\nexit codes: 0 packed, 1 bad "
-                     "input (unreadable or changing file), 2 usage, 5 could not write (disk full, "
-                     "permissions)")
-              << Args::describe(specs);
-    return 0;
-  }
-  const auto out = args.has("o") ? args.value("o") : args.value("output");
+  return specs;
+}
+
+// The capture folder and the package to write, checked before any long work.
+std::pair<std::string, std::string> captureAndOutput(const Args& args) {
+  const auto out = outputOption(args);
   if (args.positional().size() != 1 || !out || out->empty())
     throw Error(ErrorKind::Usage, "", "command line",
                 "give the capture and the output: surrogate pack CAPTURE -o OUT (see --help)");
@@ -101,26 +85,30 @@ int runCommandPack(int argc, char** argv) {
     throw Error(ErrorKind::Usage, capture, "command line",
                 ec ? "cannot be read as a folder (" + ec.message() + "); give the capture folder"
                    : "is not a capture folder");
-
-  archive::checkOutput(*out);  // before any long work
+  archive::checkOutput(*out);
   capture::refuseOutputInside(capture, *out, "-o", /*anywhere=*/true);
+  return {capture, *out};
+}
 
-  // One process at a time on the capture, for the whole pack: a run meanwhile would change
-  // what is being bagged.
-  capture::CaptureLock lock(capture, "pack");
-  stages::recoverRun(capture);
-  ProgressBar bar(args.has("quiet") || args.has("json"));
+// Whether the pipeline ran first, and why.
+struct Processing {
   bool ran = false;
   std::string why;
+};
+
+// Runs the pipeline when the capture's record is incomplete, outdated or given new decisions;
+// then refuses output files its carrier does not describe (a package holds only those).
+Processing processIfNeeded(const std::string& capture, const Args& args, ProgressBar& bar) {
+  Processing p;
   const archive::CarrierState state = archive::checkCarrier(capture);
   if (!state.inputProblem.empty()) refuseChangedInput(capture, state.inputProblem, state.inputPath);
   const std::string outdated = state.complete ? outdatedStep(capture) : "";
   if (!state.complete || !outdated.empty() || givesDecisions(args)) {
-    why = !state.complete ? state.reason : !outdated.empty() ? outdated : "new decisions were given";
+    p.why = !state.complete ? state.reason : !outdated.empty() ? outdated : "new decisions were given";
     runPipeline(capture, args, bar);
-    ran = true;
+    p.ran = true;
   }
-  const archive::CarrierState after = ran ? archive::checkCarrier(capture) : state;
+  const archive::CarrierState after = p.ran ? archive::checkCarrier(capture) : state;
   if (!after.unrecordedOutputs.empty()) {
     std::string list;
     for (const std::string& f : after.unrecordedOutputs) list += "\n  " + f;
@@ -130,67 +118,107 @@ int runCommandPack(int argc, char** argv) {
                 "package holds only what the carrier describes; move them out of the capture, "
                 "then pack again:" + list);
   }
+  return p;
+}
+
+// Packs; when a result no longer matches its carrier, processes the capture again once and
+// packs again (an original that changed is refused: it is evidence).
+archive::PackResult packOnce(const std::string& capture, const std::string& out, const Args& args,
+                             ProgressBar& bar, Processing& processing) {
   archive::PackOptions options;
   options.progress = [&bar](std::uint64_t done, std::uint64_t total) {
     bar.update("packing", total ? static_cast<double>(done) / static_cast<double>(total) : 1.0);
   };
-  archive::PackResult r;
   try {
-    r = archive::packCapture(capture, *out, options);
+    return archive::packCapture(capture, out, options);
   } catch (const archive::PayloadChanged& e) {
+    const std::string path = e.bagPath().substr(5);  // without "data/"
     const carrier::Carrier recorded = carrier::loadCarrier(std::filesystem::path(capture) / "assembly-files/carrier.xml");
-    const carrier::FileRecord* f = recorded.findFileByPath(e.bagPath().substr(5));
+    const carrier::FileRecord* f = recorded.findFileByPath(path);
     if (f && carrier::isEvidenceRole(f->role))
-      refuseChangedInput(capture, e.bagPath().substr(5) + " no longer matches the SHA-256 its carrier records",
-                         e.bagPath().substr(5));
-    if (ran) {
+      refuseChangedInput(capture, path + " no longer matches the SHA-256 its carrier records", path);
+    if (processing.ran) {
       throw Error(ErrorKind::Input, e.source(), "packing",
                   "changed while the capture was being processed and packed; make sure nothing "
                   "else writes to the capture, then pack again");
     }
-    why = e.bagPath().substr(5) + " no longer matches the carrier";
+    processing.why = path + " no longer matches the carrier";
     runPipeline(capture, args, bar);
-    ran = true;
-    r = archive::packCapture(capture, *out, options);
+    processing.ran = true;
+    return archive::packCapture(capture, out, options);
   }
-  bar.finish();
+}
 
+void printJson(const std::string& capture, const std::string& out, const Processing& processing,
+               const archive::PackResult& r) {
   const double mb = static_cast<double>(r.bag.payloadBytes) / 1e6;
-  if (args.has("json")) {
-    JsonWriter j;
-    j.beginObject().key("capture").value(capture).key("package").value(*out)
-        .key("format").value(archive::bagFormatName(r.bag.format))
-        .key("pipelineRan").value(ran);
-    j.key("pipelineReason");
-    if (ran) j.value(why);
-    else j.null();
-    j.key("packageId").value(r.packageId).key("packagingTime").value(r.packagingTime)
-        .key("payloadFiles").value(static_cast<unsigned long long>(r.bag.payloadFiles))
-        .key("payloadBytes").value(static_cast<unsigned long long>(r.bag.payloadBytes))
-        .key("payloadOxum").value(std::to_string(r.bag.payloadBytes) + "." +
-                                  std::to_string(r.bag.payloadFiles))
-        .key("seconds").value(r.bag.seconds)
-        .key("megabytesPerSecond").value(r.bag.seconds > 0 ? mb / r.bag.seconds : 0.0);
-    j.key("tagFiles").beginArray();
-    for (const std::string& t : r.bag.tagFiles) j.value(t);
-    j.endArray().key("removedLeftovers").beginArray();
-    for (const std::string& t : r.bag.removedLeftovers) j.value(t);
-    j.endArray().endObject();
-    std::cout << j.str() << "\n";
-  } else {
-    if (ran)
-      std::cout << "Processed " << capture << " first (" << why << "), with the decisions its "
-                << "carrier records (see `surrogate info " << capture << "`).\n";
-    for (const std::string& removed : r.bag.removedLeftovers)
-      std::cout << char(std::toupper(static_cast<unsigned char>(removed[0]))) << removed.substr(1) << ".\n";
-    char rate[64];
-    std::snprintf(rate, sizeof rate, "%.1f MB in %.2f s", mb, r.bag.seconds);
-    std::cout << "Packed " << capture << " into " << *out << " (BagIt 1.0, "
-              << archive::bagFormatName(r.bag.format) << ").\n"
-              << "  payload: " << r.bag.payloadFiles << " files, " << rate << "\n"
-              << "  package id: " << r.packageId << "\n"
-              << "  metadata: metadata/crm.rdf (CIDOC-CRM), metadata/mets.xml (METS+PREMIS)\n";
-  }
+  JsonWriter j;
+  j.beginObject().key("capture").value(capture).key("package").value(out)
+      .key("format").value(archive::bagFormatName(r.bag.format))
+      .key("pipelineRan").value(processing.ran);
+  j.key("pipelineReason");
+  if (processing.ran) j.value(processing.why);
+  else j.null();
+  j.key("packageId").value(r.packageId).key("packagingTime").value(r.packagingTime)
+      .key("payloadFiles").value(static_cast<unsigned long long>(r.bag.payloadFiles))
+      .key("payloadBytes").value(static_cast<unsigned long long>(r.bag.payloadBytes))
+      .key("payloadOxum").value(std::to_string(r.bag.payloadBytes) + "." +
+                                std::to_string(r.bag.payloadFiles))
+      .key("seconds").value(r.bag.seconds)
+      .key("megabytesPerSecond").value(r.bag.seconds > 0 ? mb / r.bag.seconds : 0.0);
+  j.key("tagFiles").beginArray();
+  for (const std::string& t : r.bag.tagFiles) j.value(t);
+  j.endArray().key("removedLeftovers").beginArray();
+  for (const std::string& t : r.bag.removedLeftovers) j.value(t);
+  j.endArray().endObject();
+  std::cout << j.str() << "\n";
+}
+
+void printSummary(const std::string& capture, const std::string& out, const Processing& processing,
+                  const archive::PackResult& r) {
+  if (processing.ran)
+    std::cout << "Processed " << capture << " first (" << processing.why << "), with the decisions its "
+              << "carrier records (see `surrogate info " << capture << "`).\n";
+  for (const std::string& removed : r.bag.removedLeftovers)
+    std::cout << char(std::toupper(static_cast<unsigned char>(removed[0]))) << removed.substr(1) << ".\n";
+  char rate[64];
+  std::snprintf(rate, sizeof rate, "%.1f MB in %.2f s", static_cast<double>(r.bag.payloadBytes) / 1e6,
+                r.bag.seconds);
+  std::cout << "Packed " << capture << " into " << out << " (BagIt 1.0, "
+            << archive::bagFormatName(r.bag.format) << ").\n"
+            << "  payload: " << r.bag.payloadFiles << " files, " << rate << "\n"
+            << "  package id: " << r.packageId << "\n"
+            << "  metadata: metadata/crm.rdf (CIDOC-CRM), metadata/mets.xml (METS+PREMIS)\n";
+}
+
+}  // namespace
+
+int runCommandPack(int argc, char** argv) {
+  const std::vector<OptionSpec> specs = packOptions();
+  Args args(argc, argv, 1, specs);  // Args takes -o as well as --o
+  if (helpShown(args, specs, "surrogate pack CAPTURE -o OUT [options]",
+                 "Write the archival package of a capture: a BagIt 1.0 bag (a folder, or a "
+                 ".tar or .zip by OUT's name) holding the untouched originals, the carrier, "
+                 "the results, SHA-256 and SHA-512 manifests, and metadata/ with CIDOC-CRM "
+                 "(crm.rdf), METS+PREMIS (mets.xml) and the stylesheets and schemas that "
+                 "derive them. Runs the pipeline first (with the options below, as `surrogate "
+                 "run`) when the capture has no complete carrier or its files changed. "
+                 "SOURCE_DATE_EPOCH, when set, fixes every time in the package, so that two "
+                 "packs of the same capture are byte-identical.\n\nexit codes: 0 packed, 1 bad "
+                 "input (unreadable or changing file), 2 usage, 5 could not write (disk full, "
+                 "permissions)"))
+    return 0;
+  const auto [capture, out] = captureAndOutput(args);
+  // One process at a time on the capture, for the whole pack: a run meanwhile would change
+  // what is being bagged.
+  capture::CaptureLock lock(capture, "pack");
+  stages::recoverRun(capture);
+  ProgressBar bar(args.has("quiet") || args.has("json"));
+  Processing processing = processIfNeeded(capture, args, bar);
+  const archive::PackResult r = packOnce(capture, out, args, bar, processing);
+  bar.finish();
+  if (args.has("json")) printJson(capture, out, processing, r);
+  else printSummary(capture, out, processing, r);
   return 0;
 }
 

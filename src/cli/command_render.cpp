@@ -26,15 +26,12 @@ int runCommandRender(int argc, char** argv) {
       {"json", false, false, "print what was written as JSON"},
   };
   Args args(argc, argv, 1, specs);
-  if (args.helpRequested()) {
-    std::cout << usageHeader("surrogate render FILE.ptm|FILE.rti --light x,y,z -o OUT.png|OUT.jpg|OUT.tif "
-                             "[--gain g] [--specular]",
-                             "Relight a PTM or HSH file under any light and save the picture, in the "
-                             "format its name ends in.")
-              << Args::describe(specs);
+  if (helpShown(args, specs, "surrogate render FILE.ptm|FILE.rti --light x,y,z -o OUT.png|OUT.jpg|OUT.tif "
+                "[--gain g] [--specular]",
+                "Relight a PTM or HSH file under any light and save the picture, in the "
+                "format its name ends in."))
     return 0;
-  }
-  const auto out = args.has("o") ? args.value("o") : args.value("output");
+  const auto out = outputOption(args);
   if (args.positional().size() != 1 || !out || !args.has("light"))
     throw Error(ErrorKind::Usage, "", "command line",
                 "give the model, the light and the output: surrogate render FILE --light x,y,z -o OUT.png");

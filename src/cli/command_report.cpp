@@ -25,20 +25,17 @@ int runCommandReport(int argc, char** argv) {
       {"json", false, false, "print what the report shows as JSON"},
   };
   Args args(argc, argv, 1, specs);
-  if (args.helpRequested()) {
-    std::cout << usageHeader("surrogate report PACKAGE|CAPTURE -o FILE.html [options]",
-                             "Write a self-contained HTML report (one file, no network access) of a "
-                             "processed capture folder or a package (bag directory, .tar or .zip): "
-                             "light directions and coverage gaps, sphere detection, normals, albedo, "
-                             "previews, an interactive relighting view, the provenance timeline and "
-                             "the camera; with --verify, the verifier's result per check. surrogate run "
-                             "writes one to CAPTURE/finished-files/report.html. Exit code 0 when the "
-                             "report is written, whatever the checks found (surrogate verify gives the "
-                             "verdict).")
-              << Args::describe(specs);
+  if (helpShown(args, specs, "surrogate report PACKAGE|CAPTURE -o FILE.html [options]",
+                "Write a self-contained HTML report (one file, no network access) of a "
+                "processed capture folder or a package (bag directory, .tar or .zip): "
+                "light directions and coverage gaps, sphere detection, normals, albedo, "
+                "previews, an interactive relighting view, the provenance timeline and "
+                "the camera; with --verify, the verifier's result per check. surrogate run "
+                "writes one to CAPTURE/finished-files/report.html. Exit code 0 when the "
+                "report is written, whatever the checks found (surrogate verify gives the "
+                "verdict)."))
     return 0;
-  }
-  const auto out = args.has("o") ? args.value("o") : args.value("output");
+  const auto out = outputOption(args);
   if (args.positional().size() != 1 || !out)
     throw Error(ErrorKind::Usage, "", "command line",
                 "give the capture or package and the output: surrogate report CAPTURE -o report.html");

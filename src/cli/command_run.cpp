@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "core/json.h"
 #include "report/report.h"
+#include "stages/ingest_stage.h"
 #include "stages/plan.h"
 
 namespace surrogate::cli {
@@ -24,14 +25,11 @@ int runCommandRun(int argc, char** argv) {
                    "do not write finished-files/report.html (the HTML report, a view of the carrier); "
                    "a previous one is removed, since it no longer matches the carrier"});
   Args args(argc, argv, 1, specs);
-  if (args.helpRequested()) {
-    std::cout << usageHeader("surrogate run CAPTURE [options]",
-                             "Run the HRTI pipeline on a capture folder: ingest (hash, EXIF/XMP), "
-                             "decode, and every processing stage, recording all of it in "
-                             "CAPTURE/assembly-files/carrier.xml.")
-              << Args::describe(specs);
+  if (helpShown(args, specs, "surrogate run CAPTURE [options]",
+                "Run the HRTI pipeline on a capture folder: ingest (hash, EXIF/XMP), "
+                "decode, and every processing stage, recording all of it in "
+                "CAPTURE/assembly-files/carrier.xml."))
     return 0;
-  }
   if (args.positional().size() != 1)
     throw Error(ErrorKind::Usage, "", "command line",
                 "give exactly one capture folder: surrogate run CAPTURE (see --help)");
@@ -39,8 +37,7 @@ int runCommandRun(int argc, char** argv) {
   const stages::RunRequest request = requestFrom(args);
 
   ProgressBar bar(args.has("quiet") || args.has("json"));
-  pipeline::RunSettings settings = settingsFrom(args);
-  settings.progress = [&bar](const std::string& label, double f) { bar.update(label, f); };
+  const pipeline::RunSettings settings = settingsFrom(args, bar);
   // The lock covers the report too: it is written from the carrier this run committed.
   capture::CaptureLock lock(capture, "run");
   const carrier::Carrier c = stages::runCapture(capture, request, settings, /*takeLock=*/false);
@@ -80,7 +77,7 @@ int runCommandRun(int argc, char** argv) {
   } else {
     std::cout << "Processed " << capture << " (" << c.process.size() << " steps).\n";
     for (const carrier::Step& s : c.process)
-      if (s.component == "CaptureIngest" && s.hasParam("lp"))
+      if (s.component == stages::IngestStage::kComponent && s.hasParam("lp"))
         std::cout << "  lights: from " << s.param("lp") << " (dome capture: no sphere or highlight detection)\n";
     if (!c.header.runs.empty()) {
       const carrier::RunRecord& r = c.header.runs.back();

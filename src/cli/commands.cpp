@@ -1,5 +1,7 @@
 #include "cli/commands.h"
 
+#include <iostream>
+
 namespace surrogate::cli {
 
 const std::vector<Command>& commands() {
@@ -18,6 +20,17 @@ const std::vector<Command>& commands() {
 
 std::string usageHeader(const std::string& synopsis, const std::string& description) {
   return "usage: " + synopsis + "\n\n" + description + "\n\noptions:\n";
+}
+
+bool helpShown(const Args& args, const std::vector<OptionSpec>& specs, const std::string& synopsis,
+               const std::string& description) {
+  if (!args.helpRequested()) return false;
+  std::cout << usageHeader(synopsis, description) << Args::describe(specs);
+  return true;
+}
+
+std::optional<std::string> outputOption(const Args& args) {
+  return args.has("o") ? args.value("o") : args.value("output");
 }
 
 }  // namespace surrogate::cli

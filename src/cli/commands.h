@@ -1,9 +1,13 @@
 // The `surrogate` subcommands. Each parses its options and calls the libraries: nothing of
-// substance lives here (see STYLE.md: a thin CLI over the libraries).
+// substance lives here (a thin CLI over the libraries: docs/developer-guide.md, "Code
+// conventions").
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "cli/args.h"
 
 namespace surrogate::cli {
 
@@ -24,7 +28,13 @@ int runCommandRender(int argc, char** argv);
 int runCommandReport(int argc, char** argv);
 int runCommandVerify(int argc, char** argv);
 
-// Shared by commands: prints `help` and returns 0 if --help was given.
+// Shared by commands: the head of a command's --help.
 std::string usageHeader(const std::string& synopsis, const std::string& description);
+// When --help was given: prints the command's help (usageHeader and its options) and returns
+// true, so the command returns 0.
+bool helpShown(const Args& args, const std::vector<OptionSpec>& specs, const std::string& synopsis,
+               const std::string& description);
+// The file a command writes: -o (also --o) or --output.
+std::optional<std::string> outputOption(const Args& args);
 
 }  // namespace surrogate::cli

@@ -1,12 +1,15 @@
 #include "cli/pipeline_options.h"
 
+#include <cctype>
 #include <optional>
 
 #include "capture/capture.h"
 #include "carrier/carrier.h"
 #include "cli/option_checks.h"
 #include "core/error.h"
+#include "stages/light_stages.h"
 #include "stages/preprocess.h"
+#include "stages/preprocess_stages.h"
 
 namespace surrogate::cli {
 
@@ -15,6 +18,8 @@ std::vector<OptionSpec> pipelineOptions(bool withFit) {
       {"title", true, false, "title of the project (default: the folder name)", "TEXT"},
       {"creator", true, true, "a creator, e.g. \"Ana Silva\" or \"Ana Silva:photographer\"", "NAME"},
       {"meta", true, true, "user metadata recorded in the carrier and the bag", "KEY=VALUE"},
+      {"rights", true, false, "who may do what with the capture, in your words (recorded; METS rights)", "TEXT"},
+      {"license", true, false, "the licence of the capture, as a URI, e.g. https://creativecommons.org/licenses/by/4.0/", "URI"},
       {"operator", true, false, "who runs this (recorded with interventions; default $USER)", "NAME"},
       {"exclude", true, true, "leave an image out (needs --reason after it)", "IMAGE"},
       {"reason", true, true, "why: follows --exclude, --sphere, --highlight, --accept-... or --forget-...", "TEXT"},
@@ -70,8 +75,31 @@ std::pair<std::string, std::string> splitKeyValue(const std::string& text, const
   return {text.substr(0, eq), text.substr(eq + 1)};
 }
 
-void param(stages::RunRequest& r, const char* component, const char* name, const std::string& value) {
-  r.stageParams.push_back({component, name, value});
+void param(stages::RunRequest& r, const char* component, const std::pair<std::string, std::string>& p) {
+  r.stageParams.push_back({component, p.first, p.second});
+}
+
+// --light-model, --focal-length, --pixel-pitch, --sphere-diameter: the LightDirections
+// parameters given, each recorded on its own (a standing decision for the others stays).
+void lightDirections(stages::RunRequest& r, const Args& args) {
+  using stages::LightDirectionsOptions;
+  const char* component = stages::LightDirectionsStage::kComponent;
+  LightDirectionsOptions given;
+  if (const auto m = args.value("light-model")) {
+    given.model = *m;
+    param(r, component, given.modelParameter());
+  }
+  const std::pair<const char*, double LightDirectionsOptions::*> lengths[] = {
+      {"focal-length", &LightDirectionsOptions::focalLengthMm},
+      {"pixel-pitch", &LightDirectionsOptions::pixelPitchMm},
+      {"sphere-diameter", &LightDirectionsOptions::sphereDiameterMm},
+  };
+  for (const auto& [option, field] : lengths) {
+    const auto text = args.value(option);
+    if (!text) continue;
+    given.*field = parseNumberList(*text, 1, std::string("--") + option)[0];
+    param(r, component, given.parameter(field));
+  }
 }
 
 // --wb, --wb-region, --output-space, --crop, --crop-margin, --resize: the pre-processing steps,
@@ -90,7 +118,7 @@ void preprocessing(stages::RunRequest& r, const Args& args) {
     if (!wb) wb = stages::WhiteBalanceOptions{};
     wb->outputSpace = *space;
   }
-  if (wb) r.preprocessing.push_back({"WhiteBalance", wb->toParameters()});
+  if (wb) r.preprocessing.push_back({stages::WhiteBalanceStage::kComponent, wb->toParameters()});
 
   if (args.has("crop-margin") && args.value("crop", "") != "auto")
     throw Error(ErrorKind::Usage, "--crop-margin", "command line", "only applies with --crop auto");
@@ -103,10 +131,11 @@ void preprocessing(stages::RunRequest& r, const Args& args) {
                     "needs a fraction of the sphere radius from 0 to 10");
       crop.margin = v;
     }
-    r.preprocessing.push_back({"Crop", crop.toParameters()});
+    r.preprocessing.push_back({stages::CropStage::kComponent, crop.toParameters()});
   }
   if (const auto text = args.value("resize"))
-    r.preprocessing.push_back({"Resize", stages::ResizeOptions::fromText(*text, "--resize").toParameters()});
+    r.preprocessing.push_back(
+        {stages::ResizeStage::kComponent, stages::ResizeOptions::fromText(*text, "--resize").toParameters()});
   if (!r.preprocessing.empty() && r.bases && r.bases->empty())
     throw Error(ErrorKind::Usage, "--crop/--resize/--wb", "command line", "pre-processing needs a fit (--basis)");
 }
@@ -125,6 +154,20 @@ stages::RunRequest requestFrom(const Args& args) {
       r.creators.push_back({c, "creator"});
   }
   for (const std::string& m : args.values("meta")) r.meta.push_back(splitKeyValue(m, "--meta"));
+  r.rights = args.value("rights", "");
+  r.license = args.value("license", "");
+  if (!r.license.empty()) {
+    // A URI with a scheme ("https:", "urn:"), no spaces: what a repository can resolve.
+    const auto colon = r.license.find(':');
+    bool uri = colon != std::string::npos && colon > 0 && std::isalpha(static_cast<unsigned char>(r.license[0]));
+    for (std::size_t i = 0; uri && i < r.license.size(); ++i) {
+      const auto c = static_cast<unsigned char>(r.license[i]);
+      if (c <= 0x20 || c == 0x7f || (i < colon && !(std::isalnum(c) || c == '+' || c == '-' || c == '.'))) uri = false;
+    }
+    if (!uri)
+      throw Error(ErrorKind::Usage, "--license " + r.license, "command line",
+                  "needs the licence as a URI, e.g. https://creativecommons.org/licenses/by/4.0/");
+  }
   r.who = args.value("operator", "");
   r.source = args.value("source", "");
   if (!r.source.empty()) capture::parseSource(r.source);  // an unknown source is a usage error now
@@ -141,20 +184,15 @@ stages::RunRequest requestFrom(const Args& args) {
     parseNumberList(roi, 4, "--sphere-roi");
     regions += (regions.empty() ? "" : ";") + roi;
   }
-  if (!regions.empty()) param(r, "SphereDetection", "regions", regions);
+  // The names are those of hrti::SphereDetectionOptions and hrti::HighlightOptions.
+  if (!regions.empty()) param(r, stages::SphereDetectionStage::kComponent, {"regions", regions});
   if (const auto t = args.value("highlight-threshold")) {
     const double v = parseNumberList(*t, 1, "--highlight-threshold")[0];
     if (!(v > 0 && v < 1))
       throw Error(ErrorKind::Usage, "--highlight-threshold", "command line", "needs a fraction between 0 and 1");
-    param(r, "HighlightDetection", "threshold", carrier::formatNumber(v));
+    param(r, stages::HighlightDetectionStage::kComponent, {"threshold", carrier::formatNumber(v)});
   }
-  if (const auto m = args.value("light-model")) param(r, "LightDirections", "model", *m);
-  if (const auto f = args.value("focal-length"))
-    param(r, "LightDirections", "focalLengthMm", carrier::formatNumber(parseNumberList(*f, 1, "--focal-length")[0]));
-  if (const auto p = args.value("pixel-pitch"))
-    param(r, "LightDirections", "pixelPitchMm", carrier::formatNumber(parseNumberList(*p, 1, "--pixel-pitch")[0]));
-  if (const auto d = args.value("sphere-diameter"))
-    param(r, "LightDirections", "sphereDiameterMm", carrier::formatNumber(parseNumberList(*d, 1, "--sphere-diameter")[0]));
+  lightDirections(r, args);
   if (args.has("basis")) r.bases = args.values("basis");
   preprocessing(r, args);
 
@@ -206,7 +244,7 @@ stages::RunRequest requestFrom(const Args& args) {
       last = nullptr;
     } else if (name == "sphere") {
       parseNumberList(value, 3, "--sphere");
-      r.stageInterventions.push_back({"SphereDetection",
+      r.stageInterventions.push_back({stages::SphereDetectionStage::kComponent,
                                       {"manual-sphere", std::to_string(spheres++), value, "", "", ""}});
       last = &r.stageInterventions.back().intervention;
       lastIsExclusion = false;
@@ -217,7 +255,7 @@ stages::RunRequest requestFrom(const Args& args) {
       parseNumberList(value.substr(eq + 1), 2, "--highlight");
       std::string target = value.substr(0, eq);
       if (target.find(':') == std::string::npos) target += ":0";
-      r.stageInterventions.push_back({"HighlightDetection",
+      r.stageInterventions.push_back({stages::HighlightDetectionStage::kComponent,
                                       {"manual-highlight", target, value.substr(eq + 1), "", "", ""}});
       last = &r.stageInterventions.back().intervention;
       lastIsExclusion = false;
@@ -259,6 +297,12 @@ pipeline::RunSettings settingsFrom(const Args& args) {
   s.threads = threadsOption(args);  // 0 (all cores) to kMaxThreads
   if (const auto m = args.value("memory")) s.memoryBudget = parseByteSize(*m, "--memory");
   s.who = args.value("operator", "");
+  return s;
+}
+
+pipeline::RunSettings settingsFrom(const Args& args, ProgressBar& bar) {
+  pipeline::RunSettings s = settingsFrom(args);
+  s.progress = [&bar](const std::string& label, double f) { bar.update(label, f); };
   return s;
 }
 

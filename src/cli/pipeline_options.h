@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "cli/args.h"
+#include "cli/progress.h"
 #include "pipeline/context.h"
 #include "stages/plan.h"
 
@@ -17,5 +18,7 @@ std::vector<OptionSpec> runtimeOptions();
 
 stages::RunRequest requestFrom(const Args& args);
 pipeline::RunSettings settingsFrom(const Args& args);
+// The same, reporting progress on `bar`.
+pipeline::RunSettings settingsFrom(const Args& args, ProgressBar& bar);
 
 }  // namespace surrogate::cli

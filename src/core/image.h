@@ -5,7 +5,8 @@
 // 8-bit sources are widened by *257 so that 255 -> 65535 exactly; `bitsPerSample` keeps the
 // source depth. `transfer` says how values relate to light: Linear (camera raw decoded with
 // gamma 1) or Srgb (display-encoded JPEG/TIFF/PNG exports).
-// Public headers of other folders use this type, never cv::Mat (see STYLE.md).
+// Public headers of other folders use this type, never cv::Mat (docs/developer-guide.md,
+// "Code conventions").
 #pragma once
 
 #include <cstddef>

@@ -5,7 +5,8 @@
 //
 // Computed once per light set with Eigen's JacobiSVD (deterministic, and gives the
 // minimum-norm solution when A is rank deficient, e.g. every light at the same elevation,
-// where lu^2 + lv^2 is constant). Eigen stays inside the .cpp (STYLE.md).
+// where lu^2 + lv^2 is constant). Eigen stays inside the .cpp (docs/developer-guide.md,
+// "Code conventions").
 #pragma once
 
 #include <vector>

@@ -1,5 +1,6 @@
 // Internal: include only from .cpp files. It pulls in OpenCV's core header (about a second to
-// parse), and public headers of src/ folders never expose cv::Mat (see STYLE.md).
+// parse), and public headers of src/ folders never expose cv::Mat (docs/developer-guide.md,
+// "Code conventions").
 //
 // surrogate::Image <-> cv::Mat, keeping RGB order. OpenCV's own codecs use BGR; these
 // functions do not reorder channels, so a Mat from toMat() is RGB and must be converted

@@ -60,8 +60,9 @@ class Context {
   void put(const std::string& key, std::shared_ptr<T> value) {
     blackboard_[key] = std::move(value);
   }
-  // The cached value, or Error(Internal) naming the missing key (a process list in the wrong
-  // order, e.g. fitting before decoding).
+  // The cached value. Error(Input) naming the key when no earlier step put it (a process list
+  // in the wrong order, e.g. fitting before decoding); Error(Internal) naming the key when it
+  // holds another type than asked for (a bug: two stages disagree on what the key means).
   template <typename T>
   std::shared_ptr<T> get(const std::string& key) const {
     auto it = blackboard_.find(key);
@@ -69,7 +70,10 @@ class Context {
       throw Error(ErrorKind::Input, "carrier", "pipeline",
                   "a step needs \"" + key + "\", which no earlier step of the process list "
                   "produced; the process list is incomplete or out of order");
-    return std::any_cast<std::shared_ptr<T>>(it->second);
+    if (const auto* value = std::any_cast<std::shared_ptr<T>>(&it->second)) return *value;
+    throw Error(ErrorKind::Internal, key, "pipeline",
+                "a step reads the shared data \"" + key + "\" as another type than the step "
+                "that put it there; this is a bug in Surrogate, please report it");
   }
   bool has(const std::string& key) const { return blackboard_.count(key) != 0; }
 

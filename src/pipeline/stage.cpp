@@ -4,32 +4,56 @@
 
 namespace surrogate::pipeline {
 
+NoOptions NoOptions::fromParameters(const Parameters& parameters) {
+  if (!parameters.empty())
+    throw Error(ErrorKind::Input, parameters.front().first + "=" + parameters.front().second, "carrier",
+                "is a parameter of a step that takes none");
+  return {};
+}
+
 StageRegistry& StageRegistry::instance() {
   static StageRegistry registry;
   return registry;
 }
 
-void StageRegistry::add(const std::string& component, Factory factory) {
-  factories_.emplace_back(component, std::move(factory));
+void StageRegistry::add(StageInfo info, Factory factory) {
+  if (has(info.component))
+    throw Error(ErrorKind::Internal, info.component, "pipeline", "is registered twice");
+  entries_.push_back({std::move(info), std::move(factory)});
 }
 
-bool StageRegistry::has(const std::string& component) const {
-  for (const auto& [name, factory] : factories_)
-    if (name == component) return true;
-  return false;
+void StageRegistry::add(const std::string& component, Factory factory) {
+  StageInfo info;
+  info.component = component;
+  info.version = factory()->version();
+  add(std::move(info), std::move(factory));
 }
+
+const StageInfo* StageRegistry::info(const std::string& component) const {
+  for (const Entry& e : entries_)
+    if (e.info.component == component) return &e.info;
+  return nullptr;
+}
+
+bool StageRegistry::has(const std::string& component) const { return info(component) != nullptr; }
 
 std::unique_ptr<Stage> StageRegistry::create(const std::string& component) const {
-  for (const auto& [name, factory] : factories_)
-    if (name == component) return factory();
+  for (const Entry& e : entries_)
+    if (e.info.component == component) return e.factory();
   throwInputError("carrier", "pipeline",
                   "names the processing component \"" + component +
                       "\", which this version of Surrogate does not have");
 }
 
+std::vector<const StageInfo*> StageRegistry::stages() const {
+  std::vector<const StageInfo*> out;
+  for (const Entry& e : entries_) out.push_back(&e.info);
+  return out;
+}
+
 std::vector<std::string> StageRegistry::components() const {
   std::vector<std::string> out;
-  for (const auto& [name, factory] : factories_) out.push_back(name);
+  for (const Entry& e : entries_) out.push_back(e.info.component);
   return out;
 }
 

@@ -6,18 +6,25 @@
 // only through the carrier, plus the context's cache of pixel data derived from the files the
 // carrier lists (decoding the same files again would give the same pixels).
 //
-//   class SphereDetectionStage : public Stage {
-//     std::string component() const override { return "SphereDetection"; }
-//     std::string version() const override { return "1"; }
+// A stage describes itself in one place, its class: `info()` gives its name, version,
+// description, place in the plan and default parameters (from its options struct), and the
+// check of a recorded step's parameters. One line registers it:
+//
+//   class SphereDetectionStage : public DescribedStage<SphereDetectionStage> {
+//    public:
+//     static StageInfo info() {
+//       return withOptions<hrti::SphereDetectionOptions>(
+//           {"SphereDetection", "1", "Find the reflective spheres: ...", PlanSlot::LightsFromSpheres});
+//     }
 //     void run(const carrier::Step& step, Context& ctx, carrier::Result& out) override;
 //   };
-//   StageRegistry::instance().add("SphereDetection",
-//                                 [] { return std::make_unique<SphereDetectionStage>(); });
+//   registry.add<SphereDetectionStage>();
 #pragma once
 
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "carrier/carrier.h"
@@ -25,6 +32,65 @@
 namespace surrogate::pipeline {
 
 class Context;
+
+// A step's parameters as name/value pairs, in the carrier's order.
+using Parameters = std::vector<std::pair<std::string, std::string>>;
+
+// Where `surrogate run` puts a stage in the process list it plans (stages/plan.h). Within a
+// slot, stages come in registration order.
+enum class PlanSlot {
+  Ingest,             // first: reads the capture folder
+  Decode,             // second: decodes the images
+  LightsFromSpheres,  // light estimation, for a capture without a dome .lp
+  LightsFromFile,     // light directions, for a capture with a dome .lp
+  Preprocessing,      // only when the request asks for it, in the order asked
+  EachModel,          // once per model fitted (`forModel` gives the parameters)
+  AfterModels,        // once after the fits, for the first model (`forModel`, if set)
+  NotPlanned,         // never planned by `surrogate run` (a carrier may still name it)
+};
+
+// What a stage says about itself: everything the registry, the planner and the carrier need.
+struct StageInfo {
+  StageInfo() = default;
+  StageInfo(std::string component, std::string version, std::string description, PlanSlot slot)
+      : component(std::move(component)), version(std::move(version)),
+        description(std::move(description)), slot(slot) {}
+
+  std::string component;    // the carrier's step/@component: recorded, so never renamed
+  std::string version;      // bumped whenever results change for the same inputs and parameters
+  std::string description;  // one sentence for the carrier's <description>
+  PlanSlot slot = PlanSlot::NotPlanned;
+  // Recorded when the user gives none, so the carrier holds every value used: the options
+  // struct's defaults (its toParameters()).
+  Parameters defaults;
+  // Throws Error naming the parameter when recorded parameters cannot be read (the options
+  // struct's fromParameters()). Empty: the stage takes no parameters.
+  std::function<void(const Parameters&)> check;
+  // EachModel and AfterModels: the parameters of the step for the model `basis` ("hsh2").
+  std::function<Parameters(const std::string& basis)> forModel;
+};
+
+// `info` with the defaults and check of an options struct that has toParameters() and
+// fromParameters(const Parameters&).
+template <class Options>
+StageInfo withOptions(StageInfo info) {
+  info.defaults = Options().toParameters();
+  info.check = [](const Parameters& p) { Options::fromParameters(p); };
+  return info;
+}
+
+// The options of a stage that takes no parameters: fromParameters refuses any (Error(Input)).
+struct NoOptions {
+  Parameters toParameters() const { return {}; }
+  static NoOptions fromParameters(const Parameters& parameters);
+};
+
+// `info` with the check of an options struct, and no defaults: the plan gives every parameter.
+template <class Options>
+StageInfo checkedBy(StageInfo info) {
+  info.check = [](const Parameters& p) { Options::fromParameters(p); };
+  return info;
+}
 
 class Stage {
  public:
@@ -35,18 +101,43 @@ class Stage {
   virtual void run(const carrier::Step& step, Context& context, carrier::Result& result) = 0;
 };
 
+// A stage whose component and version come from its static `info()`.
+template <class Self>
+class DescribedStage : public Stage {
+ public:
+  std::string component() const override { return Self::info().component; }
+  std::string version() const override { return Self::info().version; }
+};
+
 class StageRegistry {
  public:
   using Factory = std::function<std::unique_ptr<Stage>()>;
   static StageRegistry& instance();
+
+  // Registers a stage class with a static info() (a DescribedStage).
+  template <class S>
+  void add() {
+    add(S::info(), [] { return std::make_unique<S>(); });
+  }
+  void add(StageInfo info, Factory factory);
+  // A stage known only by its factory (no description, defaults or place in the plan).
   void add(const std::string& component, Factory factory);
+
   // Throws Error(Input) when the carrier names a component this build does not have.
   std::unique_ptr<Stage> create(const std::string& component) const;
   bool has(const std::string& component) const;
+  // The description of `component`, or null when this build does not have it.
+  const StageInfo* info(const std::string& component) const;
+  // Every registered stage, in registration order.
+  std::vector<const StageInfo*> stages() const;
   std::vector<std::string> components() const;
 
  private:
-  std::vector<std::pair<std::string, Factory>> factories_;
+  struct Entry {
+    StageInfo info;
+    Factory factory;
+  };
+  std::vector<Entry> entries_;
 };
 
 }  // namespace surrogate::pipeline

@@ -1,11 +1,17 @@
 // The capture's memory: the decisions a carrier records, and a new command's decisions applied
 // to them (stages/plan.h: standingDecisions, applyDecisions).
 #include <algorithm>
+#include <optional>
 
 #include "carrier/carrier.h"
 #include "core/error.h"
+#include "stages/outputs.h"
 #include "stages/plan.h"
-#include "stages/registry.h"
+#include "pipeline/stage.h"
+#include "stages/decode_stage.h"
+#include "stages/fit_stages.h"
+#include "stages/ingest_stage.h"
+#include "stages/light_stages.h"
 
 namespace surrogate::stages {
 
@@ -13,8 +19,18 @@ namespace fs = std::filesystem;
 
 namespace {
 
-bool isPreprocessing(const std::string& component) {
-  return component == "WhiteBalance" || component == "Crop" || component == "Resize";
+// The slot a component has in the plan (NotPlanned for one this build does not have).
+pipeline::PlanSlot slotOf(const std::string& component) {
+  const pipeline::StageInfo* info = pipeline::StageRegistry::instance().info(component);
+  return info ? info->slot : pipeline::PlanSlot::NotPlanned;
+}
+
+// The registration order of a pre-processing stage: the order `surrogate run` records them in.
+std::size_t preprocessingRank(const std::string& component) {
+  const auto stages = pipeline::StageRegistry::instance().stages();
+  for (std::size_t n = 0; n < stages.size(); ++n)
+    if (stages[n]->component == component) return n;
+  return stages.size();
 }
 
 // The shot an exclusion names, for comparing two exclusions ("IMG_0003", "IMG_0003.dng" and
@@ -34,6 +50,20 @@ bool namesImage(const std::string& path, const std::string& name) {
   return base == name || (name.find('/') == std::string::npos && shotOf(path) == shotOf(name));
 }
 
+// Puts `value` in `list` in place of the element `same` finds, or adds it at the end; returns
+// the element replaced (none when added), from which the caller words the change.
+template <class T, class Same>
+std::optional<T> replaceOrAdd(std::vector<T>& list, const T& value, Same same) {
+  const auto it = std::find_if(list.begin(), list.end(), same);
+  if (it == list.end()) {
+    list.push_back(value);
+    return std::nullopt;
+  }
+  std::optional<T> old = *it;
+  *it = value;
+  return old;
+}
+
 std::string describe(const carrier::Intervention& i) {
   std::string what = i.kind == "exclude-image"          ? "exclusion of " + i.target
                      : i.kind == "manual-sphere"        ? "manual sphere " + i.target + " (" + i.value + ")"
@@ -50,26 +80,31 @@ RunRequest standingDecisions(const carrier::Carrier& recorded) {
   r.title = recorded.header.title;
   r.creators = recorded.header.creators;
   r.meta = recorded.header.meta;
+  r.rights = recorded.header.rights;
+  r.license = recorded.header.license;
+  registerBuiltinStages();
   std::vector<std::string> bases;
   for (const carrier::Step& s : recorded.process) {
-    if (s.component == "CaptureIngest") {
+    const pipeline::StageInfo* info = pipeline::StageRegistry::instance().info(s.component);
+    const pipeline::PlanSlot slot = info ? info->slot : pipeline::PlanSlot::NotPlanned;
+    if (s.component == IngestStage::kComponent) {
       r.source = s.param("source", "auto");
       if (s.hasParam("lp")) r.lp = s.param("lp");
       for (const carrier::Intervention& i : s.interventions) {
         if (i.kind == "exclude-image") r.exclusions.push_back({i.target, i.reason, i.who, i.time});
         else r.stageInterventions.push_back({s.component, i});
       }
-    } else if (s.component == "ImageDecode") {
+    } else if (s.component == DecodeStage::kComponent) {
       for (const carrier::Param& p : s.params) r.decodeSettings.emplace_back(p.name, p.value);
       for (const carrier::Intervention& i : s.interventions) r.stageInterventions.push_back({s.component, i});
-    } else if (isPreprocessing(s.component)) {
+    } else if (slot == pipeline::PlanSlot::Preprocessing) {
       PlannedStage p{s.component, {}};
       for (const carrier::Param& q : s.params) p.params.emplace_back(q.name, q.value);
       r.preprocessing.push_back(std::move(p));
-    } else if (s.component == "RtiFit") {
-      bases.push_back(s.param("basis"));
-    } else if (s.component != "DerivedMaps") {
-      const auto defaults = defaultParameters(s.component);
+    } else if (s.component == RtiFitStage::kComponent) {
+      bases.push_back(fit::basisName(RtiFitOptions::fromParameters(parametersOf(s)).fit.basis));
+    } else if (!info || !info->forModel) {  // the plan derives a forModel stage's parameters
+      const pipeline::Parameters defaults = info ? info->defaults : pipeline::Parameters{};
       for (const carrier::Param& p : s.params) {
         const auto d = std::find_if(defaults.begin(), defaults.end(),
                                     [&](const auto& kv) { return kv.first == p.name; });
@@ -166,25 +201,24 @@ RunRequest applyDecisions(const RunRequest& standing, const RunRequest& given,
     r.title = given.title;
   }
   for (const carrier::Creator& c : given.creators) {
-    auto it = std::find_if(r.creators.begin(), r.creators.end(),
-                           [&](const carrier::Creator& k) { return k.name == c.name; });
-    if (it == r.creators.end()) {
-      r.creators.push_back(c);
-      changes.push_back("added creator " + c.name + " (" + c.role + ")");
-    } else if (it->role != c.role) {
-      changes.push_back("creator " + c.name + ": role " + it->role + " -> " + c.role);
-      it->role = c.role;
-    }
+    const auto old = replaceOrAdd(r.creators, c, [&](const carrier::Creator& k) { return k.name == c.name; });
+    if (!old) changes.push_back("added creator " + c.name + " (" + c.role + ")");
+    else if (old->role != c.role) changes.push_back("creator " + c.name + ": role " + old->role + " -> " + c.role);
   }
-  for (const auto& [key, value] : given.meta) {
-    auto it = std::find_if(r.meta.begin(), r.meta.end(), [&](const auto& kv) { return kv.first == key; });
-    if (it == r.meta.end()) {
-      r.meta.emplace_back(key, value);
-      changes.push_back("metadata " + key + " = \"" + value + "\"");
-    } else if (it->second != value) {
-      changes.push_back("metadata " + key + ": \"" + it->second + "\" -> \"" + value + "\"");
-      it->second = value;
-    }
+  for (const auto& kv : given.meta) {
+    const auto& [key, value] = kv;
+    const auto old = replaceOrAdd(r.meta, kv, [&](const auto& k) { return k.first == key; });
+    if (!old) changes.push_back("metadata " + key + " = \"" + value + "\"");
+    else if (old->second != value) changes.push_back("metadata " + key + ": \"" + old->second + "\" -> \"" + value + "\"");
+  }
+  if (!given.rights.empty() && given.rights != r.rights) {
+    changes.push_back(r.rights.empty() ? "rights \"" + given.rights + "\""
+                                       : "rights \"" + r.rights + "\" -> \"" + given.rights + "\"");
+    r.rights = given.rights;
+  }
+  if (!given.license.empty() && given.license != r.license) {
+    changes.push_back(r.license.empty() ? "license " + given.license : "license " + r.license + " -> " + given.license);
+    r.license = given.license;
   }
   if (!given.source.empty() && given.source != (r.source.empty() ? "auto" : r.source)) {
     changes.push_back("image source " + (r.source.empty() ? std::string("auto") : r.source) + " -> " + given.source);
@@ -197,63 +231,39 @@ RunRequest applyDecisions(const RunRequest& standing, const RunRequest& given,
     r.lp = given.lp;
   }
   for (const Exclusion& e : given.exclusions) {
-    auto it = std::find_if(r.exclusions.begin(), r.exclusions.end(),
-                           [&](const Exclusion& k) { return shotOf(k.image) == shotOf(e.image); });
-    if (it != r.exclusions.end()) {
-      changes.push_back("replaced the " + describe({"exclude-image", it->image, "", it->who, it->time, it->reason}));
-      *it = e;
-    } else {
-      r.exclusions.push_back(e);
-    }
+    const auto old = replaceOrAdd(r.exclusions, e, [&](const Exclusion& k) { return shotOf(k.image) == shotOf(e.image); });
+    if (old) changes.push_back("replaced the " + describe({"exclude-image", old->image, "", old->who, old->time, old->reason}));
     changes.push_back("excluded " + e.image + ": " + e.reason);
   }
-  for (const auto& [name, value] : given.decodeSettings) {
-    auto it = std::find_if(r.decodeSettings.begin(), r.decodeSettings.end(),
-                           [&](const auto& kv) { return kv.first == name; });
-    if (it == r.decodeSettings.end()) r.decodeSettings.emplace_back(name, value);
-    else if (it->second != value) {
-      changes.push_back("LibRaw " + name + ": " + it->second + " -> " + value);
-      it->second = value;
-    }
+  for (const auto& kv : given.decodeSettings) {
+    const auto old = replaceOrAdd(r.decodeSettings, kv, [&](const auto& k) { return k.first == kv.first; });
+    if (old && old->second != kv.second) changes.push_back("LibRaw " + kv.first + ": " + old->second + " -> " + kv.second);
   }
   for (const RunRequest::StageParam& p : given.stageParams) {
-    auto it = std::find_if(r.stageParams.begin(), r.stageParams.end(), [&](const auto& k) {
+    const auto old = replaceOrAdd(r.stageParams, p, [&](const RunRequest::StageParam& k) {
       return k.component == p.component && k.name == p.name;
     });
-    if (it == r.stageParams.end()) {
-      r.stageParams.push_back(p);
-      changes.push_back(p.component + " " + p.name + " = " + p.value);
-    } else if (it->value != p.value) {
-      changes.push_back(p.component + " " + p.name + ": " + it->value + " -> " + p.value);
-      it->value = p.value;
-    }
+    if (!old) changes.push_back(p.component + " " + p.name + " = " + p.value);
+    else if (old->value != p.value) changes.push_back(p.component + " " + p.name + ": " + old->value + " -> " + p.value);
   }
   for (const RunRequest::StageIntervention& i : given.stageInterventions) {
-    auto it = std::find_if(r.stageInterventions.begin(), r.stageInterventions.end(), [&](const auto& k) {
+    const auto old = replaceOrAdd(r.stageInterventions, i, [&](const RunRequest::StageIntervention& k) {
       return k.component == i.component && k.intervention.kind == i.intervention.kind &&
              k.intervention.target == i.intervention.target;
     });
-    if (it != r.stageInterventions.end()) {
-      changes.push_back("replaced the " + describe(it->intervention));
-      *it = i;
-    } else {
-      r.stageInterventions.push_back(i);
-    }
+    if (old) changes.push_back("replaced the " + describe(old->intervention));
     changes.push_back(i.intervention.kind + " " + i.intervention.target +
                       (i.intervention.value.empty() ? "" : " = " + i.intervention.value) + ": " +
                       i.intervention.reason);
   }
   for (const PlannedStage& p : given.preprocessing) {
-    auto it = std::find_if(r.preprocessing.begin(), r.preprocessing.end(),
-                           [&](const PlannedStage& k) { return k.component == p.component; });
-    if (it != r.preprocessing.end()) *it = p;
-    else r.preprocessing.push_back(p);
+    replaceOrAdd(r.preprocessing, p, [&](const PlannedStage& k) { return k.component == p.component; });
     changes.push_back("pre-processing " + p.component + " set");
   }
-  // The recorded order of pre-processing is WhiteBalance, Crop, Resize (surrogate run's order).
+  // The recorded order of pre-processing is their registration order (surrogate run's order:
+  // WhiteBalance, Crop, Resize).
   std::stable_sort(r.preprocessing.begin(), r.preprocessing.end(), [](const PlannedStage& a, const PlannedStage& b) {
-    auto rank = [](const std::string& c) { return c == "WhiteBalance" ? 0 : c == "Crop" ? 1 : 2; };
-    return rank(a.component) < rank(b.component);
+    return preprocessingRank(a.component) < preprocessingRank(b.component);
   });
   if (given.bases && given.bases != r.bases) {
     std::string list;
@@ -266,14 +276,13 @@ RunRequest applyDecisions(const RunRequest& standing, const RunRequest& given,
   // nothing, and dropping them silently would lose them.
   if (r.lp && !r.lp->empty()) {
     for (const auto& i : r.stageInterventions)
-      if (i.component == "SphereDetection" || i.component == "HighlightDetection")
+      if (slotOf(i.component) == pipeline::PlanSlot::LightsFromSpheres)
         throw Error(ErrorKind::Usage, "--lp " + *r.lp, "command line",
                     "a dome capture takes its lights from the .lp file, but the capture holds a " +
                         describe(i.intervention) + ", which would then do nothing; withdraw it "
                         "first (--forget-sphere / --forget-highlight, or --reset --reason \"...\")");
     for (const auto& p : r.stageParams)
-      if (p.component == "SphereDetection" || p.component == "HighlightDetection" ||
-          p.component == "LightDirections")
+      if (slotOf(p.component) == pipeline::PlanSlot::LightsFromSpheres)
         throw Error(ErrorKind::Usage, "--lp " + *r.lp, "command line",
                     "a dome capture takes its lights from the .lp file, but the options of " +
                         p.component + " (" + p.name + " = " + p.value + ") apply to light "

@@ -3,7 +3,9 @@
 #include <algorithm>
 
 #include "pipeline/context.h"
+#include "image/raw_settings.h"
 #include "stages/decode_images.h"
+#include "stages/fit_stages.h"
 #include "stages/inputs.h"
 #include "stages/outputs.h"
 
@@ -46,6 +48,16 @@ std::vector<const carrier::Intervention*> acceptedDamage(const carrier::Step& st
 
 }  // namespace
 
+pipeline::StageInfo DecodeStage::info() {
+  // 2: JPEG, PNG and TIFF decoded by libjpeg, libpng and libtiff called directly (the same
+  // pixels as OpenCV's imread gave, so the same pixelSha256; `decoded/@decoder` names the
+  // library); images whose decoder reports damaged data refused unless accepted.
+  return pipeline::withOptions<image::RawDecodeSettings>(
+      {kComponent, "2",
+       "Decode each image once (LibRaw for raw/DNG; libjpeg, libpng, libtiff for JPEG, PNG, TIFF)",
+       pipeline::PlanSlot::Decode});
+}
+
 void DecodeStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier::Result& result) {
   const auto inputs = ctx.get<InputImages>(kInputImages);
   const image::RawDecodeSettings settings =
@@ -59,7 +71,7 @@ void DecodeStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
   // decoding, against --memory before anything is decoded.
   std::uint64_t modelBytes = 0;
   for (const carrier::Step& s : ctx.carrier.process)
-    if (s.component == "RtiFit" && s.hasParam("basis")) modelBytes += modelBytesPerPixel(s.param("basis"));
+    if (s.component == RtiFitStage::kComponent && s.hasParam("basis")) modelBytes += modelBytesPerPixel(s.param("basis"));
   DecodedStacks decoded;
   try {
     decoded = decodeImages(files, settings, ctx.settings, acceptDamage, modelBytes);

@@ -19,13 +19,10 @@ namespace surrogate::stages {
 
 inline constexpr const char* kAcceptDecoderWarning = "accept-decoder-warning";
 
-class DecodeStage : public pipeline::Stage {
+class DecodeStage : public pipeline::DescribedStage<DecodeStage> {
  public:
-  std::string component() const override { return "ImageDecode"; }
-  // 2: JPEG, PNG and TIFF decoded by libjpeg, libpng and libtiff called directly (the same
-  // pixels as OpenCV's imread gave, so the same pixelSha256; `decoded/@decoder` names the
-  // library); images whose decoder reports damaged data refused unless accepted.
-  std::string version() const override { return "2"; }
+  static constexpr const char* kComponent = "ImageDecode";
+  static pipeline::StageInfo info();  // in decode_stage.cpp, with the version history
   void run(const carrier::Step& step, pipeline::Context& context,
            carrier::Result& result) override;
 };

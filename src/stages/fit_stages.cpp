@@ -28,22 +28,55 @@ std::string defaultFitOutput(const std::string& basisText) {
   return std::string(capture::kFinishedDir) + "/" + fit::basisName(basis) + (ptm ? ".ptm" : ".rti");
 }
 
+namespace {
+constexpr const char* kOutputParameter = "output";
+constexpr const char* kModelParameter = "model";
+}  // namespace
+
+pipeline::Parameters RtiFitOptions::toParameters() const {
+  pipeline::Parameters p = fit.toParameters();
+  if (!output.empty()) p.emplace_back(kOutputParameter, output);
+  return p;
+}
+
+RtiFitOptions RtiFitOptions::fromParameters(const pipeline::Parameters& parameters) {
+  RtiFitOptions o;
+  pipeline::Parameters fitParameters;
+  for (const auto& [name, value] : parameters) {
+    if (name == kOutputParameter) o.output = checkedOutputPath(value);
+    else fitParameters.emplace_back(name, value);
+  }
+  o.fit = fit::FitOptions::fromParameters(fitParameters);
+  return o;
+}
+
+RtiFitOptions RtiFitOptions::forBasis(const std::string& basis) {
+  RtiFitOptions o;
+  o.fit.basis = fit::parseBasis(basis);
+  o.output = defaultFitOutput(basis);
+  return o;
+}
+
+pipeline::StageInfo RtiFitStage::info() {
+  pipeline::StageInfo info = pipeline::withOptions<RtiFitOptions>(
+      {kComponent, "1", "Least-squares fit of a per-pixel reflectance model over the light directions",
+       pipeline::PlanSlot::EachModel});
+  info.forModel = [](const std::string& basis) { return RtiFitOptions::forBasis(basis).toParameters(); };
+  return info;
+}
+
 void RtiFitStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier::Result& result) {
   const auto rgb = ctx.get<ImageStack>(kRgbStack);
   const auto lights = ctx.get<Lights>(kLights);
   const auto inputs = ctx.get<InputImages>(kInputImages);
-  auto params = parametersOf(step);
-  params.erase(std::remove_if(params.begin(), params.end(),
-                              [](const auto& p) { return p.first == "output"; }),
-               params.end());
-  fit::FitOptions options = fit::FitOptions::fromParameters(params);
+  const RtiFitOptions recorded = RtiFitOptions::fromParameters(parametersOf(step));
+  fit::FitOptions options = recorded.fit;
   options.threads = ctx.settings.threads;
   options.memoryBudgetBytes = ctx.settings.fitBudget();
   const std::string basis = fit::basisName(options.basis);
   const std::string label = "Fitting " + basis;
   options.progress = [&](double f) { ctx.progress(label, f); };
-  const std::string output =
-      checkedOutputPath(step.param("output", defaultFitOutput(fit::basisName(options.basis))));
+  const std::string output = recorded.output.empty() ? defaultFitOutput(basis) : recorded.output;
 
   fit::FitStatistics stats;
   std::shared_ptr<fit::Relightable> model;
@@ -92,8 +125,39 @@ void RtiFitStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
   ctx.put(modelKey(basis), model);
 }
 
+pipeline::Parameters DerivedMapsOptions::toParameters() const { return {{kModelParameter, model}}; }
+
+DerivedMapsOptions DerivedMapsOptions::fromParameters(const pipeline::Parameters& parameters) {
+  DerivedMapsOptions o;
+  for (const auto& [name, value] : parameters) {
+    if (name != kModelParameter)
+      throw Error(ErrorKind::Input, name + "=" + value, "derived maps",
+                  "is not a parameter of DerivedMaps (model)");
+    try {
+      fit::parseBasis(value);
+    } catch (const Error&) {
+      throw Error(ErrorKind::Input, name + "=" + value, "derived maps",
+                  "is not a model Surrogate fits (ptm-lrgb, ptm-rgb, hsh2, hsh3)");
+    }
+    o.model = value;  // as recorded: the key RtiFit put the model under (modelKey)
+  }
+  return o;
+}
+
+pipeline::StageInfo DerivedMapsStage::info() {
+  pipeline::StageInfo info = pipeline::withOptions<DerivedMapsOptions>(
+      {kComponent, "1", "Surface normals, albedo and relit previews from a model",
+       pipeline::PlanSlot::AfterModels});
+  info.forModel = [](const std::string& basis) {
+    DerivedMapsOptions o;
+    o.model = fit::basisName(fit::parseBasis(basis));
+    return o.toParameters();
+  };
+  return info;
+}
+
 void DerivedMapsStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier::Result& result) {
-  const std::string basis = step.param("model", "ptm-lrgb");
+  const std::string basis = DerivedMapsOptions::fromParameters(parametersOf(step)).model;
   const auto model = ctx.get<fit::Relightable>(modelKey(basis));
   const std::string dir = capture::kFinishedDir;
   ctx.progress("Normals, albedo and previews", 0);

@@ -8,6 +8,9 @@
 //                previews at a few fixed lights.
 #pragma once
 
+#include <string>
+
+#include "fit/fit.h"
 #include "pipeline/stage.h"
 
 namespace surrogate::stages {
@@ -17,17 +20,39 @@ std::string modelKey(const std::string& basis);
 // Where RtiFit writes a basis unless told otherwise: finished-files/ptm-lrgb.ptm, .../hsh2.rti.
 std::string defaultFitOutput(const std::string& basis);
 
-class RtiFitStage : public pipeline::Stage {
+// The parameters of RtiFit: the fit's (fit::FitOptions: basis) and where the model goes.
+struct RtiFitOptions {
+  fit::FitOptions fit;
+  std::string output;  // relative to the capture; empty: defaultFitOutput(basis)
+
+  pipeline::Parameters toParameters() const;  // basis, then output when given
+  // Error(Input) for an unknown basis or name, or an output outside assembly-files/ and
+  // finished-files/ (checkedOutputPath).
+  static RtiFitOptions fromParameters(const pipeline::Parameters& parameters);
+  static RtiFitOptions forBasis(const std::string& basis);  // with its default output
+};
+
+// The parameters of DerivedMaps: which fitted model the maps come from.
+struct DerivedMapsOptions {
+  std::string model = "ptm-lrgb";  // a basis name fitted by an earlier RtiFit step
+
+  pipeline::Parameters toParameters() const;
+  // Error(Input) for an unknown basis or name.
+  static DerivedMapsOptions fromParameters(const pipeline::Parameters& parameters);
+};
+
+// Each stage's info() (version, description, place in the plan) is in fit_stages.cpp.
+class RtiFitStage : public pipeline::DescribedStage<RtiFitStage> {
  public:
-  std::string component() const override { return "RtiFit"; }
-  std::string version() const override { return "1"; }
+  static constexpr const char* kComponent = "RtiFit";
+  static pipeline::StageInfo info();
   void run(const carrier::Step&, pipeline::Context&, carrier::Result&) override;
 };
 
-class DerivedMapsStage : public pipeline::Stage {
+class DerivedMapsStage : public pipeline::DescribedStage<DerivedMapsStage> {
  public:
-  std::string component() const override { return "DerivedMaps"; }
-  std::string version() const override { return "1"; }
+  static constexpr const char* kComponent = "DerivedMaps";
+  static pipeline::StageInfo info();
   void run(const carrier::Step&, pipeline::Context&, carrier::Result&) override;
 };
 

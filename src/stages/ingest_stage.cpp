@@ -163,15 +163,9 @@ void checkAgainstPrevious(const carrier::Step& step, pipeline::Context& ctx) {
   }
 }
 
-}  // namespace
-
-void IngestStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier::Result& result) {
-  const int threads = effectiveThreads(ctx.settings.threads);
-  const capture::Source source = capture::parseSource(step.param("source", "auto"));
-  ctx.progress("Reading the capture", 0);
-  const capture::CaptureLayout layout = capture::scanCapture(ctx.capture, threads, step.param("lp", ""));
-
-  // Every file the capture brings, in a fixed order: shots (original, export), .lp, sidecars.
+// Every file the capture brings, in a fixed order: shots (original, export), .lp, sidecars,
+// other files.
+std::vector<PendingFile> pendingFiles(const capture::CaptureLayout& layout) {
   std::vector<PendingFile> pending;
   const bool exportsAreOriginals = !layout.hasOriginals();
   for (const capture::Shot& shot : layout.shots) {
@@ -196,67 +190,90 @@ void IngestStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
     for (char& ch : ext) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
     pending.push_back({o, "other", ext.size() > 1 ? ext.substr(1) : "unknown", false, 0, 0, "", false});
   }
+  return pending;
+}
 
-  // Hash and read metadata in parallel; the records are assembled in order afterwards.
-  std::vector<carrier::FileRecord> records(pending.size());
-  std::vector<std::string> metadataWarnings(pending.size());
-  std::vector<std::string> formatWarnings(pending.size());
+// One file's record, with what went wrong reading it (logged as warnings, never fatal).
+struct ReadFile {
+  carrier::FileRecord record;
+  std::string formatWarning, metadataWarning;
+};
+
+// Hashes the file and reads its metadata (images: EXIF/XMP; sidecars: their XMP).
+ReadFile readFile(const PendingFile& p, const fs::path& capture) {
+  const fs::path abs = capture / p.path;
+  const FileDigests d = digestFile(abs);
+  ReadFile out;
+  carrier::FileRecord& f = out.record;
+  f.path = p.path;
+  f.role = p.role;
+  f.size = d.size;
+  f.sha256 = d.sha256;
+  f.format = p.format;
+  f.unrecordedProcessing = p.unrecorded;
+  out.formatWarning = setFormatIdentifiers(f, abs, p.isImage);
+  try {
+    if (p.isImage) {
+      f.imageSize = std::make_pair(p.width, p.height);
+      const meta::CameraMetadata m = meta::readMetadata(abs);
+      f.camera = cameraAttributes(m);
+      f.xmp = m.xmpPacket;
+      if (p.role == "original" && isExportFormat(p.format) && editedOutside(f.xmp))
+        f.unrecordedProcessing = true;
+    } else if (p.role == "sidecar") {
+      // A damaged sidecar is still an original to keep and hash; only its reading fails.
+      f.xmp = meta::readXmpSidecar(abs);
+    }
+  } catch (const Error& e) {
+    out.metadataWarning = e.what();
+  }
+  return out;
+}
+
+// Reads every pending file in parallel; the records are in the order of `pending`.
+std::vector<ReadFile> readFiles(const std::vector<PendingFile>& pending, pipeline::Context& ctx, int threads) {
+  std::vector<ReadFile> read(pending.size());
   std::atomic<std::size_t> done{0};
   parallelFor(pending.size(), 1, threads, [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) {
-      const PendingFile& p = pending[i];
-      const fs::path abs = ctx.capture / p.path;
-      const FileDigests d = digestFile(abs);
-      carrier::FileRecord& f = records[i];
-      f.path = p.path;
-      f.role = p.role;
-      f.size = d.size;
-      f.sha256 = d.sha256;
-      f.format = p.format;
-      f.unrecordedProcessing = p.unrecorded;
-      formatWarnings[i] = setFormatIdentifiers(f, abs, p.isImage);
-      if (p.isImage) {
-        f.imageSize = std::make_pair(p.width, p.height);
-        try {
-          const meta::CameraMetadata m = meta::readMetadata(abs);
-          f.camera = cameraAttributes(m);
-          f.xmp = m.xmpPacket;
-          if (p.role == "original" && isExportFormat(p.format) && editedOutside(f.xmp))
-            f.unrecordedProcessing = true;
-        } catch (const Error& e) {
-          metadataWarnings[i] = e.what();
-        }
-      } else if (p.role == "sidecar") {
-        // A damaged sidecar is still an original to keep and hash; only its reading fails.
-        try {
-          f.xmp = meta::readXmpSidecar(abs);
-        } catch (const Error& e) {
-          metadataWarnings[i] = e.what();
-        }
-      }
+      read[i] = readFile(pending[i], ctx.capture);
       ctx.progress("Hashing and reading metadata", double(++done) / pending.size());
     }
   });
-  for (std::size_t i = 0; i < records.size(); ++i) {
-    ctx.carrier.putFile(records[i]);
-    if (!formatWarnings[i].empty()) ctx.carrier.addLog("warning", step.id, formatWarnings[i]);
-    if (!metadataWarnings[i].empty())
+  return read;
+}
+
+// Puts the records in the carrier, with their warnings, and pairs originals with exports.
+void recordFiles(pipeline::Context& ctx, const carrier::Step& step, const std::vector<PendingFile>& pending,
+                 const std::vector<ReadFile>& read) {
+  for (const ReadFile& r : read) {
+    ctx.carrier.putFile(r.record);
+    if (!r.formatWarning.empty()) ctx.carrier.addLog("warning", step.id, r.formatWarning);
+    if (!r.metadataWarning.empty())
       ctx.carrier.addLog("warning", step.id,
-                         (records[i].role == "sidecar" ? "unreadable XMP sidecar: " : "no camera metadata: ") +
-                             metadataWarnings[i]);
+                         (r.record.role == "sidecar" ? "unreadable XMP sidecar: " : "no camera metadata: ") +
+                             r.metadataWarning);
   }
   for (const PendingFile& p : pending) {
     if (p.pairedPath.empty()) continue;
     for (carrier::FileRecord& f : ctx.carrier.files)
       if (f.path == p.path) f.pairedWith = ctx.carrier.findFileByPath(p.pairedPath)->id;
   }
+}
+
+// The files of the capture that are not photographs: kept (other files) or left out (system
+// files).
+void logOtherFiles(pipeline::Context& ctx, const carrier::Step& step, const capture::CaptureLayout& layout) {
   for (const std::string& o : layout.others)
     ctx.carrier.addLog("info", step.id, "kept " + o + " as an other file of the capture (recorded "
                        "and packed, not an image the pipeline reads)");
   for (const std::string& junk : layout.systemFiles)
     ctx.carrier.addLog("info", step.id, "left out " + junk + ": a file the operating system made, "
                        "not part of the capture (not recorded, not packed)");
-  checkAgainstPrevious(step, ctx);
+}
+
+// Processing that other software did and this record cannot hold.
+void logUnrecordedProcessing(pipeline::Context& ctx, const carrier::Step& step, const capture::CaptureLayout& layout) {
   for (const carrier::FileRecord& f : ctx.carrier.files)
     if (f.role == "original" && f.unrecordedProcessing)
       ctx.carrier.addLog("warning", step.id,
@@ -268,8 +285,11 @@ void IngestStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
                        "the files in jpeg-exports/ were made by other software: their processing "
                        "is not recorded (flagged unrecordedProcessing in the files section)");
   }
+}
 
-  // Exclusions: each must name a shot of this capture.
+// The shots the exclude-image interventions name; each must name a shot of this capture.
+std::set<std::string> excludedShots(pipeline::Context& ctx, const carrier::Step& step,
+                                    const capture::CaptureLayout& layout) {
   std::set<std::string> excluded;
   for (const carrier::Intervention* i : step.interventionsOfKind("exclude-image")) {
     const auto stem = capture::findShotStem(layout, i->target);
@@ -282,7 +302,14 @@ void IngestStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
     ctx.carrier.addLog("intervention", step.id,
                        "excluded " + *stem + " from processing: " + i->reason, i->who);
   }
+  return excluded;
+}
 
+// The images the pipeline reads (the source's choice, less the excluded shots), recorded as
+// the step's inputs.
+std::shared_ptr<InputImages> chooseInputs(pipeline::Context& ctx, carrier::Result& result,
+                                          const capture::CaptureLayout& layout, capture::Source source,
+                                          const std::set<std::string>& excluded) {
   const std::vector<capture::ImageFile> chosen = capture::selectImages(layout, source);
   auto inputs = std::make_shared<InputImages>();
   for (const capture::ImageFile& image : chosen) {
@@ -302,6 +329,31 @@ void IngestStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
   if (layout.lp) {
     result.add("input").set("file", ctx.carrier.findFileByPath(*layout.lp)->id).set("kind", "lp");
   }
+  return inputs;
+}
+
+}  // namespace
+
+pipeline::StageInfo IngestStage::info() {
+  // 2: other files of the capture recorded (role "other"), system files left out, links
+  // refused, the dome .lp chosen by the "lp" parameter, recorded originals compared.
+  // Its parameters (source, lp) come from the request, not from defaults (stages/plan.cpp).
+  return {kComponent, "2", "Read the capture folder, hash every file, read EXIF/XMP",
+          pipeline::PlanSlot::Ingest};
+}
+
+void IngestStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier::Result& result) {
+  const int threads = effectiveThreads(ctx.settings.threads);
+  const capture::Source source = capture::parseSource(step.param("source", "auto"));
+  ctx.progress("Reading the capture", 0);
+  const capture::CaptureLayout layout = capture::scanCapture(ctx.capture, threads, step.param("lp", ""));
+  const std::vector<PendingFile> pending = pendingFiles(layout);
+  recordFiles(ctx, step, pending, readFiles(pending, ctx, threads));
+  logOtherFiles(ctx, step, layout);
+  checkAgainstPrevious(step, ctx);
+  logUnrecordedProcessing(ctx, step, layout);
+  const std::set<std::string> excluded = excludedShots(ctx, step, layout);
+  auto inputs = chooseInputs(ctx, result, layout, source, excluded);
   if (inputs->empty())
     throwInputError(ctx.capture.string(), kStep, "every image is excluded: nothing to process");
   ctx.put(kInputImages, inputs);

@@ -10,12 +10,10 @@
 
 namespace surrogate::stages {
 
-class IngestStage : public pipeline::Stage {
+class IngestStage : public pipeline::DescribedStage<IngestStage> {
  public:
-  std::string component() const override { return "CaptureIngest"; }
-  // 2: other files of the capture recorded (role "other"), system files left out, links
-  // refused, the dome .lp chosen by the "lp" parameter, recorded originals compared.
-  std::string version() const override { return "2"; }
+  static constexpr const char* kComponent = "CaptureIngest";
+  static pipeline::StageInfo info();  // in ingest_stage.cpp, with the version history
   void run(const carrier::Step& step, pipeline::Context& context,
            carrier::Result& result) override;
 };

@@ -8,6 +8,7 @@
 #include <map>
 
 #include "capture/capture.h"
+#include "carrier/carrier.h"
 #include "core/error.h"
 #include "core/text.h"
 #include "formats/lp.h"
@@ -69,6 +70,14 @@ Image displayable(const Image& median, const ImageStack& lum) {
 }  // namespace
 
 // ---- SphereDetection ----------------------------------------------------------------------
+
+pipeline::StageInfo SphereDetectionStage::info() {
+  return pipeline::withOptions<hrti::SphereDetectionOptions>(
+      {kComponent, "1",
+       "Find the reflective spheres: per-pixel median of the stack, circle Hough transform on "
+       "the gradient, sub-pixel circle fit",
+       pipeline::PlanSlot::LightsFromSpheres});
+}
 
 void SphereDetectionStage::run(const carrier::Step& step, pipeline::Context& ctx,
                                carrier::Result& result) {
@@ -157,6 +166,15 @@ void refuseSphereWithoutHighlights(const carrier::Step& sphereStep, const hrti::
 }
 
 }  // namespace
+
+pipeline::StageInfo HighlightDetectionStage::info() {
+  // 2: every highlight judged (confidence, reason, refused flags), refusals stop the run
+  return pipeline::withOptions<hrti::HighlightOptions>(
+      {kComponent, "2",
+       "Find the specular highlight on each sphere in each image: threshold, 8-connected "
+       "components, value-weighted centroid nearest the sphere centre",
+       pipeline::PlanSlot::LightsFromSpheres});
+}
 
 void HighlightDetectionStage::run(const carrier::Step& step, pipeline::Context& ctx,
                                   carrier::Result& result) {
@@ -248,7 +266,7 @@ void HighlightDetectionStage::run(const carrier::Step& step, pipeline::Context& 
   // Refused by default: never a confident light direction from a highlight that is not one.
   const carrier::Step* sphereStep = nullptr;
   for (const carrier::Step& s : ctx.carrier.process)
-    if (s.component == "SphereDetection") sphereStep = &s;
+    if (s.component == SphereDetectionStage::kComponent) sphereStep = &s;
   for (std::size_t k = 0; k < spheres->size(); ++k)
     if (2 * refusedOn[k].size() > inputs->size() && refusedOn[k].size() >= kSphereRefusals && sphereStep)
       refuseSphereWithoutHighlights(*sphereStep, (*spheres)[k], k, refusedOn[k], inputs->size());
@@ -277,22 +295,30 @@ std::string shown(double v) {
   return text;
 }
 
-// A length parameter in millimetres: a finite number >= 0 (0 or absent: not given).
-double measureParam(const carrier::Step& step, const char* name, const char* option) {
-  const std::string text = step.param(name, "0");
-  char* end = nullptr;
-  const double v = std::strtod(text.c_str(), &end);
-  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v) || v < 0)
-    throw Error(ErrorKind::Input, std::string(name) + "=" + text, "light directions",
-                std::string("is not a length in millimetres (a finite number above 0); give ") + option + " MM");
-  return v;
+// The lengths of LightDirectionsOptions: each name once, with the option that sets it.
+struct Length {
+  const char* name;
+  double LightDirectionsOptions::*field;
+  const char* option;
+};
+constexpr Length kLengths[] = {
+    {"focalLengthMm", &LightDirectionsOptions::focalLengthMm, "--focal-length"},
+    {"pixelPitchMm", &LightDirectionsOptions::pixelPitchMm, "--pixel-pitch"},
+    {"sphereDiameterMm", &LightDirectionsOptions::sphereDiameterMm, "--sphere-diameter"},
+};
+constexpr const char* kModelParameter = "model";
+
+const Length& lengthOf(double LightDirectionsOptions::*field) {
+  for (const Length& l : kLengths)
+    if (l.field == field) return l;
+  throw Error(ErrorKind::Internal, "", "light directions", "not a length of LightDirectionsOptions");
 }
 
-// Camera intrinsics from the step's parameters, else from the first image's EXIF.
-std::optional<hrti::CameraIntrinsics> intrinsicsFor(const carrier::Step& step, pipeline::Context& ctx,
+// Camera intrinsics from the options, else from the first image's EXIF.
+std::optional<hrti::CameraIntrinsics> intrinsicsFor(const LightDirectionsOptions& options, pipeline::Context& ctx,
                                                     const InputImages& inputs, const ImageStack& stack) {
-  double focal = measureParam(step, "focalLengthMm", "--focal-length");
-  double pitch = measureParam(step, "pixelPitchMm", "--pixel-pitch");
+  double focal = options.focalLengthMm;
+  double pitch = options.pixelPitchMm;
   const carrier::FileRecord* f = ctx.carrier.findFile(inputs.front().fileId);
   auto cam = [&](const char* key) -> std::optional<double> {
     for (const auto& [k, v] : f->camera) {
@@ -341,22 +367,69 @@ void addLightItem(carrier::Result& result, const std::string& fileId, const std:
 
 }  // namespace
 
+pipeline::Parameters LightDirectionsOptions::toParameters() const {
+  pipeline::Parameters p = {modelParameter()};
+  for (const Length& l : kLengths) p.push_back(parameter(l.field));
+  return p;
+}
+
+std::pair<std::string, std::string> LightDirectionsOptions::modelParameter() const {
+  return {kModelParameter, model};
+}
+
+std::pair<std::string, std::string> LightDirectionsOptions::parameter(double LightDirectionsOptions::*length) const {
+  return {lengthOf(length).name, carrier::formatNumber(this->*length)};
+}
+
+LightDirectionsOptions LightDirectionsOptions::fromParameters(const pipeline::Parameters& parameters) {
+  LightDirectionsOptions o;
+  for (const auto& [name, value] : parameters) {
+    if (name == kModelParameter) {
+      if (value != "orthographic" && value != "perspective")
+        throw Error(ErrorKind::Usage, value, "light directions", "unknown light model; use orthographic or perspective");
+      o.model = value;
+      continue;
+    }
+    const Length* length = nullptr;
+    for (const Length& l : kLengths)
+      if (name == l.name) length = &l;
+    if (!length)
+      throw Error(ErrorKind::Input, name + "=" + value, "light directions",
+                  "is not a parameter of LightDirections (model, focalLengthMm, pixelPitchMm, "
+                  "sphereDiameterMm)");
+    char* end = nullptr;
+    const double v = std::strtod(value.c_str(), &end);
+    if (value.empty() || end != value.c_str() + value.size() || !std::isfinite(v) || v < 0)
+      throw Error(ErrorKind::Input, name + "=" + value, "light directions",
+                  std::string("is not a length in millimetres (a finite number above 0); give ") +
+                      length->option + " MM");
+    o.*(length->field) = v;
+  }
+  return o;
+}
+
+pipeline::StageInfo LightDirectionsStage::info() {
+  // 2: lights.lp names images relative to its own folder
+  return pipeline::withOptions<LightDirectionsOptions>(
+      {kComponent, "2", "Light direction of each image from its highlights by the law of reflection",
+       pipeline::PlanSlot::LightsFromSpheres});
+}
+
 void LightDirectionsStage::run(const carrier::Step& step, pipeline::Context& ctx,
                                carrier::Result& result) {
   const auto lum = ctx.get<ImageStack>(kLuminanceStack);
   const auto inputs = ctx.get<InputImages>(kInputImages);
   const auto spheres = ctx.get<Spheres>(kSpheres);
   const auto highlights = ctx.get<Highlights>(kHighlights);
-  const std::string model = step.param("model", "orthographic");
-  if (model != "orthographic" && model != "perspective")
-    throw Error(ErrorKind::Usage, model, "light directions", "unknown light model; use orthographic or perspective");
-  const auto intrinsics = intrinsicsFor(step, ctx, *inputs, *lum);
+  const LightDirectionsOptions options = LightDirectionsOptions::fromParameters(parametersOf(step));
+  const std::string& model = options.model;
+  const auto intrinsics = intrinsicsFor(options, ctx, *inputs, *lum);
   if (model == "perspective" && !intrinsics)
     throw Error(ErrorKind::Usage, ctx.carrier.findFile(inputs->front().fileId)->path, "light directions",
                 "the perspective light model needs the focal length and the sensor's pixel pitch, and "
                 "the image's EXIF does not give them; add --focal-length MM and --pixel-pitch MM");
   result.add("value").set("name", "model").set("value", model);
-  const double diameter = measureParam(step, "sphereDiameterMm", "--sphere-diameter");
+  const double diameter = options.sphereDiameterMm;
 
   auto lights = std::make_shared<Lights>();
   for (std::size_t n = 0; n < inputs->size(); ++n) {
@@ -423,6 +496,12 @@ void LightDirectionsStage::run(const carrier::Step& step, pipeline::Context& ctx
 
 // ---- LightsFromFile -----------------------------------------------------------------------
 
+pipeline::StageInfo LightsFromFileStage::info() {
+  // 2: lights.lp names images relative to its own folder
+  return pipeline::withOptions<pipeline::NoOptions>({kComponent, "2", "Light directions given by the capture's .lp file",
+                                           pipeline::PlanSlot::LightsFromFile});
+}
+
 void LightsFromFileStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier::Result& result) {
   const auto inputs = ctx.get<InputImages>(kInputImages);
   const carrier::FileRecord* lpRecord = nullptr;
@@ -431,20 +510,29 @@ void LightsFromFileStage::run(const carrier::Step& step, pipeline::Context& ctx,
   if (!lpRecord)
     throwInputError(ctx.capture.string(), "lights from file", "has no .lp file to read the lights from");
   const fs::path lpPath = ctx.capture / lpRecord->path;
-  std::map<std::string, std::array<double, 3>> byStem;
-  for (const formats::LightEntry& e : formats::readLp(lpPath)) {
-    std::string base = e.filename.substr(e.filename.find_last_of("/\\") + 1);
-    byStem[fs::path(base).stem().string()] = {e.x, e.y, e.z};
-  }
+  // Lines are paired with shots by formats::matchLpLines (name, then letter case, then
+  // extension; ambiguity refused), among every shot of the capture, excluded ones too, so that
+  // an excluded shot's line never lights another shot whose name differs only by case.
+  const std::vector<formats::LightEntry> lines = formats::readLp(lpPath);
+  std::vector<std::string> stems;
+  for (const carrier::FileRecord& f : ctx.carrier.files)
+    if (f.role == "original" || f.role == "export") stems.push_back(fs::path(f.path).stem().string());
+  for (const InputImage& in : *inputs) stems.push_back(in.stem);
+  std::sort(stems.begin(), stems.end());
+  stems.erase(std::unique(stems.begin(), stems.end()), stems.end());
+  const formats::LpMatch match = formats::matchLpLines(lpPath.string(), lines, stems);
   result.add("input").set("file", lpRecord->id).set("kind", "lp");
   auto lights = std::make_shared<Lights>();
   for (const InputImage& in : *inputs) {
-    auto it = byStem.find(in.stem);
-    if (it == byStem.end())
+    const auto shot = std::lower_bound(stems.begin(), stems.end(), in.stem) - stems.begin();
+    const auto line = match.lineOfImage[static_cast<std::size_t>(shot)];
+    if (!line)
       throwInputError(lpPath.string(), "lights from file",
                       "gives no light for " + in.relativePath + "; add a line for it or exclude the image");
-    lights->push_back(it->second);
-    addLightItem(result, in.fileId, it->second, "lp");
+    const formats::LightEntry& e = lines[*line];
+    const std::array<double, 3> light = {e.x, e.y, e.z};
+    lights->push_back(light);
+    addLightItem(result, in.fileId, light, "lp");
   }
   ctx.carrier.addLog("info", step.id, "light directions read from " + lpRecord->path +
                      " (dome capture): sphere and highlight detection skipped");

@@ -16,7 +16,13 @@
 //                       3D light positions when two spheres and their diameter are known.
 //                       Writes assembly-files/lights.lp.
 //   LightsFromFile      a dome capture's own .lp file instead of the three stages above.
+//
+// Each stage's info() (version, description, place in the plan, parameters) is defined next to
+// its run() in light_stages.cpp.
 #pragma once
+
+#include <string>
+#include <utility>
 
 #include "pipeline/stage.h"
 
@@ -27,32 +33,53 @@ inline constexpr const char* kMedianImage = "median-image";
 inline constexpr const char* kHighlights = "highlights";
 inline constexpr const char* kLights = "lights";
 
-class SphereDetectionStage : public pipeline::Stage {
+// The parameters of LightDirections. Their names and values are what carriers record: never
+// rename them. Lengths are millimetres; 0 means "not given".
+struct LightDirectionsOptions {
+  // "orthographic": each sphere seen along the optical axis (needs no lens data; good for
+  // spheres near the image centre or a long lens). "perspective": the ray through each
+  // highlight from the focal length and pixel pitch (better for spheres far off-centre with a
+  // short lens; needs both, from these values or the EXIF).
+  std::string model = "orthographic";
+  double focalLengthMm = 0;     // 0: the first image's EXIF focal length
+  double pixelPitchMm = 0;      // 0: from the EXIF focal-plane resolution
+  double sphereDiameterMm = 0;  // with two spheres and the lens known: light positions; 0: none
+
+  pipeline::Parameters toParameters() const;
+  // Missing names keep their defaults. Error(Usage) for an unknown model; Error(Input) naming
+  // the parameter for an unknown name or a length that is not a finite number >= 0.
+  static LightDirectionsOptions fromParameters(const pipeline::Parameters& parameters);
+  // One field as toParameters() writes it (what the command line records when it sets only
+  // that field): parameter(&LightDirectionsOptions::focalLengthMm), or the model's.
+  std::pair<std::string, std::string> parameter(double LightDirectionsOptions::*length) const;
+  std::pair<std::string, std::string> modelParameter() const;
+};
+
+class SphereDetectionStage : public pipeline::DescribedStage<SphereDetectionStage> {
  public:
-  std::string component() const override { return "SphereDetection"; }
-  std::string version() const override { return "1"; }
+  static constexpr const char* kComponent = "SphereDetection";
+  static pipeline::StageInfo info();
   void run(const carrier::Step&, pipeline::Context&, carrier::Result&) override;
 };
 
-class HighlightDetectionStage : public pipeline::Stage {
+class HighlightDetectionStage : public pipeline::DescribedStage<HighlightDetectionStage> {
  public:
-  std::string component() const override { return "HighlightDetection"; }
-  // 2: every highlight judged (confidence, reason, refused flags), refusals stop the run
-  std::string version() const override { return "2"; }
+  static constexpr const char* kComponent = "HighlightDetection";
+  static pipeline::StageInfo info();
   void run(const carrier::Step&, pipeline::Context&, carrier::Result&) override;
 };
 
-class LightDirectionsStage : public pipeline::Stage {
+class LightDirectionsStage : public pipeline::DescribedStage<LightDirectionsStage> {
  public:
-  std::string component() const override { return "LightDirections"; }
-  std::string version() const override { return "2"; }  // 2: lights.lp names images relative to its own folder
+  static constexpr const char* kComponent = "LightDirections";
+  static pipeline::StageInfo info();
   void run(const carrier::Step&, pipeline::Context&, carrier::Result&) override;
 };
 
-class LightsFromFileStage : public pipeline::Stage {
+class LightsFromFileStage : public pipeline::DescribedStage<LightsFromFileStage> {
  public:
-  std::string component() const override { return "LightsFromFile"; }
-  std::string version() const override { return "2"; }  // 2: lights.lp names images relative to its own folder
+  static constexpr const char* kComponent = "LightsFromFile";
+  static pipeline::StageInfo info();
   void run(const carrier::Step&, pipeline::Context&, carrier::Result&) override;
 };
 

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cstdlib>
-#include <mutex>
 #include <optional>
 #include <set>
 
@@ -16,29 +15,19 @@
 #include "core/text.h"
 #include "core/version.h"
 #include "fit/basis.h"
+#include "stages/fit_stages.h"
 #include "image/decode.h"
 #include "meta/metadata.h"
 #include "pipeline/runner.h"
 #include "pipeline/stage.h"
 #include "stages/decode_stage.h"
 #include "stages/ingest_stage.h"
-#include "stages/registry.h"
 #include "stages/request_checks.h"
 #include "stages/run_commit.h"
 
 namespace surrogate::stages {
 
 namespace fs = std::filesystem;
-
-void registerBuiltinStages() {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    auto& r = pipeline::StageRegistry::instance();
-    r.add("CaptureIngest", [] { return std::make_unique<IngestStage>(); });
-    r.add("ImageDecode", [] { return std::make_unique<DecodeStage>(); });
-    registerAnalysisStages(r);
-  });
-}
 
 std::vector<carrier::Software> softwareVersions() {
   return {
@@ -63,6 +52,43 @@ std::string defaultWho() {
 }
 }  // namespace
 
+namespace {
+
+carrier::Step& addPlannedStep(carrier::Carrier& c, const pipeline::StageInfo& info) {
+  carrier::Step& s = c.addStep(info.component, info.version);
+  s.description = info.description;
+  return s;
+}
+
+bool inSlot(const std::string& component, pipeline::PlanSlot slot) {
+  const pipeline::StageInfo* info = pipeline::StageRegistry::instance().info(component);
+  return info && info->slot == slot;
+}
+
+}  // namespace
+
+std::vector<PlannedStage> analysisStages(bool captureHasLp, const RunRequest& request) {
+  using pipeline::PlanSlot;
+  const std::vector<const pipeline::StageInfo*> stages = pipeline::StageRegistry::instance().stages();
+  std::vector<PlannedStage> out;
+  auto addSlot = [&](PlanSlot slot, const std::string& basis) {
+    for (const pipeline::StageInfo* info : stages)
+      if (info->slot == slot)
+        out.push_back({info->component, info->forModel && !basis.empty() ? info->forModel(basis)
+                                                                         : pipeline::Parameters{}});
+  };
+  addSlot(captureHasLp ? PlanSlot::LightsFromFile : PlanSlot::LightsFromSpheres, "");
+  for (const PlannedStage& p : request.preprocessing) {
+    if (!inSlot(p.component, PlanSlot::Preprocessing))
+      throw Error(ErrorKind::Internal, p.component, "plan", "is not a pre-processing stage");
+    out.push_back(p);
+  }
+  const std::vector<std::string> bases = request.bases.value_or(std::vector<std::string>{"ptm-lrgb", "hsh2"});
+  for (const std::string& basis : bases) addSlot(PlanSlot::EachModel, basis);
+  if (!bases.empty()) addSlot(PlanSlot::AfterModels, bases.front());
+  return out;
+}
+
 carrier::Carrier planRun(const fs::path& capture, const RunRequest& request) {
   registerBuiltinStages();
   if (!fs::is_directory(capture))
@@ -74,6 +100,8 @@ carrier::Carrier planRun(const fs::path& capture, const RunRequest& request) {
                             : request.title,
       request.creators);
   c.header.meta = request.meta;
+  c.header.rights = request.rights;
+  c.header.license = request.license;
   for (const carrier::Software& s : softwareVersions()) c.header.software.push_back(s);
   auto stamped = [&](carrier::Intervention in) {
     if (in.who.empty()) in.who = who;
@@ -81,8 +109,10 @@ carrier::Carrier planRun(const fs::path& capture, const RunRequest& request) {
     return in;
   };
 
-  carrier::Step& ingest = c.addStep("CaptureIngest", IngestStage().version());
-  ingest.description = "Read the capture folder, hash every file, read EXIF/XMP";
+  // Ingest and decode take their parameters from the request's own fields (source, dome .lp,
+  // exclusions, LibRaw settings); every later stage from its defaults and the request's
+  // stage parameters, in the slot its info() names.
+  carrier::Step& ingest = addPlannedStep(c, IngestStage::info());
   ingest.setParam("source", capture::sourceName(capture::parseSource(request.source.empty() ? "auto" : request.source)));
   const bool dome = request.lp && !request.lp->empty();
   if (dome) ingest.setParam("lp", *request.lp);
@@ -93,22 +123,21 @@ carrier::Carrier planRun(const fs::path& capture, const RunRequest& request) {
     ingest.interventions.push_back(stamped({"exclude-image", e.image, "", e.who, e.time, e.reason}));
   }
   for (const RunRequest::StageIntervention& i : request.stageInterventions)
-    if (i.component == "CaptureIngest") ingest.interventions.push_back(stamped(i.intervention));
+    if (i.component == ingest.component) ingest.interventions.push_back(stamped(i.intervention));
 
-  carrier::Step& decode = c.addStep("ImageDecode", DecodeStage().version());
-  decode.description = "Decode each image once (LibRaw for raw/DNG; libjpeg, libpng, libtiff for JPEG, PNG, TIFF)";
+  carrier::Step& decode = addPlannedStep(c, DecodeStage::info());
   image::RawDecodeSettings settings = image::RawDecodeSettings::fromParameters(request.decodeSettings);
   for (const auto& [name, value] : settings.toParameters()) decode.setParam(name, value);
   for (const RunRequest::StageIntervention& i : request.stageInterventions)
-    if (i.component == "ImageDecode") decode.interventions.push_back(stamped(i.intervention));
+    if (i.component == decode.component) decode.interventions.push_back(stamped(i.intervention));
 
-  auto& registry = pipeline::StageRegistry::instance();
+  const auto& registry = pipeline::StageRegistry::instance();
   for (const PlannedStage& planned : analysisStages(dome, request)) {
     const std::string& name = planned.component;
-    auto stage = registry.create(name);
-    carrier::Step& s = c.addStep(name, stage->version());
-    s.description = describeStage(name);
-    for (const auto& [pname, pvalue] : defaultParameters(name)) s.setParam(pname, pvalue);
+    const pipeline::StageInfo* info = registry.info(name);
+    if (!info) registry.create(name);  // Error(Input) naming the unknown component
+    carrier::Step& s = addPlannedStep(c, *info);
+    for (const auto& [pname, pvalue] : info->defaults) s.setParam(pname, pvalue);
     for (const RunRequest::StageParam& p : request.stageParams)
       if (p.component == name) s.setParam(p.name, p.value);
     for (const auto& [pname, pvalue] : planned.params) s.setParam(pname, pvalue);
@@ -131,11 +160,14 @@ namespace {
 
 constexpr const char* kCarrierFile = "assembly-files/carrier.xml";
 
-// The number of steps a lights-only run executes: up to the step that gives the lights.
+// The number of steps a lights-only run executes: up to the last step of light estimation.
 std::size_t lightStepCount(const carrier::Carrier& c) {
+  std::size_t count = 0;
   for (std::size_t n = 0; n < c.process.size(); ++n)
-    if (c.process[n].component == "LightDirections" || c.process[n].component == "LightsFromFile") return n + 1;
-  return c.process.size();
+    if (inSlot(c.process[n].component, pipeline::PlanSlot::LightsFromSpheres) ||
+        inSlot(c.process[n].component, pipeline::PlanSlot::LightsFromFile))
+      count = n + 1;
+  return count ? count : c.process.size();
 }
 
 // `--accept-changed PATH`: the intervention names exactly what the file is now (its SHA-256, or
@@ -151,7 +183,7 @@ void addAcceptedChanges(const fs::path& capture, const RunRequest& request, cons
     const fs::path file = capture / fs::u8path(a.path);
     const std::string now = fs::is_regular_file(file) ? "sha256:" + digestFile(file).sha256 : "removed";
     merged.stageInterventions.push_back(
-        {"CaptureIngest", {"accept-changed-original", a.path, now, "", "", a.reason}});
+        {IngestStage::kComponent, {"accept-changed-original", a.path, now, "", "", a.reason}});
     changes.push_back("accepted the change of " + a.path + " (now " + now + "): " + a.reason);
   }
 }
@@ -182,11 +214,11 @@ void addAcceptedDamage(const fs::path& capture, const capture::CaptureLayout& la
     auto& list = merged.stageInterventions;
     list.erase(std::remove_if(list.begin(), list.end(),
                               [&](const RunRequest::StageIntervention& i) {
-                                return i.component == "ImageDecode" && i.intervention.kind == kAcceptDecoderWarning &&
+                                return i.component == DecodeStage::kComponent && i.intervention.kind == kAcceptDecoderWarning &&
                                        i.intervention.target == *path;
                               }),
                list.end());
-    list.push_back({"ImageDecode", {kAcceptDecoderWarning, *path, bytes, "", "", a.reason}});
+    list.push_back({DecodeStage::kComponent, {kAcceptDecoderWarning, *path, bytes, "", "", a.reason}});
     changes.push_back("accepted the damage its decoder reports in " + *path + " (" + bytes + "): " + a.reason);
   }
 }

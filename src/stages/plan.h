@@ -64,6 +64,8 @@ struct RunRequest {
   std::string title;  // empty: keep
   std::vector<carrier::Creator> creators;  // added (a known name gets the role given)
   std::vector<std::pair<std::string, std::string>> meta;  // set by key
+  std::string rights;   // rights statement (--rights); empty: keep
+  std::string license;  // licence URI (--license); empty: keep
   std::string who;  // the person running Surrogate (interventions); default: $USER
 
   // CaptureIngest.
@@ -122,11 +124,13 @@ RunRequest standingDecisions(const carrier::Carrier& recorded);
 RunRequest applyDecisions(const RunRequest& standing, const RunRequest& given,
                           std::vector<std::string>& changes);
 
-// Registers every stage this build of Surrogate has with the pipeline's registry (once).
+// Registers every stage this build of Surrogate has with the pipeline's registry (once):
+// src/stages/registry.cpp, one line a stage.
 void registerBuiltinStages();
 
 // The stages after ImageDecode for a capture (with or without a dome .lp) and a request whose
-// decisions are complete (applyDecisions).
+// decisions are complete (applyDecisions): every registered stage in the slot its info() names
+// (pipeline::PlanSlot), slot by slot, in registration order within a slot.
 std::vector<PlannedStage> analysisStages(bool captureHasLp, const RunRequest& request);
 
 // Builds a new carrier whose process list is what `request` (complete decisions) asks for.

@@ -8,7 +8,9 @@
 #include "core/text.h"
 #include "core/parallel.h"
 #include "pipeline/context.h"
+#include "stages/decode_stage.h"
 #include "stages/inputs.h"
+#include "stages/light_stages.h"
 #include "stages/outputs.h"
 #include "stages/preprocess.h"
 #include "stages/stack_views.h"
@@ -43,7 +45,7 @@ void recordValue(carrier::Result& result, const std::string& name, const std::st
 // The decoded images' transfer per the ImageDecode result ("linear" for camera raw).
 bool decodedFromRaw(const carrier::Carrier& c) {
   for (const carrier::Step& s : c.process) {
-    if (s.component != "ImageDecode") continue;
+    if (s.component != DecodeStage::kComponent) continue;
     if (const carrier::Result* r = c.findResult(s.id))
       for (const carrier::DataItem* d : r->itemsOf("decoded"))
         if (d->get("transfer") == std::string("linear")) return true;
@@ -53,7 +55,7 @@ bool decodedFromRaw(const carrier::Carrier& c) {
 
 std::string decodeWhiteBalance(const carrier::Carrier& c) {
   for (const carrier::Step& s : c.process)
-    if (s.component == "ImageDecode") return s.param("whiteBalance", "camera");
+    if (s.component == DecodeStage::kComponent) return s.param("whiteBalance", "camera");
   return "camera";
 }
 
@@ -89,6 +91,14 @@ std::vector<std::array<double, 3>> regionMeans(const ImageStack& stack, const Pi
 }  // namespace
 
 // ---- WhiteBalance ---------------------------------------------------------------------------
+
+pipeline::StageInfo WhiteBalanceStage::info() {
+  return pipeline::withOptions<WhiteBalanceOptions>(
+      {kComponent, "1",
+       "White balance of the images the fit reads: per-channel gains in linear light (as "
+       "shot, from a grey region, or given), and the encoding the fit reads (sRGB or linear)",
+       pipeline::PlanSlot::Preprocessing});
+}
 
 void WhiteBalanceStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier::Result& result) {
   const auto input = ctx.get<ImageStack>(kRgbStack);
@@ -141,6 +151,15 @@ void WhiteBalanceStage::run(const carrier::Step& step, pipeline::Context& ctx, c
 
 // ---- Crop -----------------------------------------------------------------------------------
 
+pipeline::StageInfo CropStage::info() {
+  // No defaults: the plan gives every parameter (a crop has no rectangle by default).
+  return pipeline::checkedBy<CropOptions>(
+      {kComponent, "1",
+       "Crop the images the fit reads to a rectangle (given, or the largest clear of the "
+       "spheres); light estimation keeps the full frame",
+       pipeline::PlanSlot::Preprocessing});
+}
+
 void CropStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier::Result& result) {
   const auto input = ctx.get<ImageStack>(kRgbStack);
   const CropOptions options = CropOptions::fromParameters(parametersOf(step), "--crop");
@@ -157,13 +176,13 @@ void CropStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier::
     std::vector<Circle> circles;
     bool detection = false;
     for (const carrier::Step& s : ctx.carrier.process) {
-      if (s.component != "SphereDetection") continue;
+      if (s.component != SphereDetectionStage::kComponent) continue;
       detection = true;
       const carrier::Result* r = ctx.carrier.findResult(s.id);
       if (!r || r->status != "completed")
         throw Error(ErrorKind::Input, "--crop auto", step.component,
                     "the automatic crop needs the spheres, but step " + s.id +
-                        " (SphereDetection) has not run before it; put Crop after the light "
+                        " (" + s.component + ") has not run before it; put Crop after the light "
                         "estimation steps");
       for (const carrier::DataItem* d : r->itemsOf("sphere"))
         circles.push_back({d->number("cx"), d->number("cy"), d->number("r")});
@@ -192,6 +211,15 @@ void CropStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier::
 }
 
 // ---- Resize ---------------------------------------------------------------------------------
+
+pipeline::StageInfo ResizeStage::info() {
+  // No defaults: the plan gives every parameter (a factor or a size).
+  return pipeline::checkedBy<ResizeOptions>(
+      {kComponent, "1",
+       "Reduce the images the fit reads: area-weighted mean in linear light, exact integer "
+       "weights",
+       pipeline::PlanSlot::Preprocessing});
+}
 
 void ResizeStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier::Result& result) {
   const auto input = ctx.get<ImageStack>(kRgbStack);

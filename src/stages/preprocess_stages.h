@@ -16,31 +16,32 @@
 //   Resize        a scale factor or a target size, area averaging in linear light with exact
 //                 integer weights. Records the input and output sizes and the filter.
 //
-// Parameters: see preprocess.h (CropOptions, ResizeOptions, WhiteBalanceOptions).
+// Parameters: see preprocess.h (CropOptions, ResizeOptions, WhiteBalanceOptions). Each stage's
+// info() (version, description, place in the plan) is next to its run() in preprocess_stages.cpp.
 #pragma once
 
 #include "pipeline/stage.h"
 
 namespace surrogate::stages {
 
-class WhiteBalanceStage : public pipeline::Stage {
+class WhiteBalanceStage : public pipeline::DescribedStage<WhiteBalanceStage> {
  public:
-  std::string component() const override { return "WhiteBalance"; }
-  std::string version() const override { return "1"; }
+  static constexpr const char* kComponent = "WhiteBalance";
+  static pipeline::StageInfo info();
   void run(const carrier::Step&, pipeline::Context&, carrier::Result&) override;
 };
 
-class CropStage : public pipeline::Stage {
+class CropStage : public pipeline::DescribedStage<CropStage> {
  public:
-  std::string component() const override { return "Crop"; }
-  std::string version() const override { return "1"; }
+  static constexpr const char* kComponent = "Crop";
+  static pipeline::StageInfo info();
   void run(const carrier::Step&, pipeline::Context&, carrier::Result&) override;
 };
 
-class ResizeStage : public pipeline::Stage {
+class ResizeStage : public pipeline::DescribedStage<ResizeStage> {
  public:
-  std::string component() const override { return "Resize"; }
-  std::string version() const override { return "1"; }
+  static constexpr const char* kComponent = "Resize";
+  static pipeline::StageInfo info();
   void run(const carrier::Step&, pipeline::Context&, carrier::Result&) override;
 };
 

@@ -8,7 +8,9 @@
 #include <vector>
 
 #include "core/error.h"
+#include "stages/light_stages.h"
 #include "stages/preprocess.h"
+#include "stages/preprocess_stages.h"
 
 namespace surrogate::stages {
 
@@ -120,7 +122,7 @@ std::string frameRegionProblem(double x, double y, double w, double h, int width
 void checkRequestAgainstFrame(const RunRequest& request, int width, int height) {
   // Sphere search regions: "x,y,w,h;x,y,w,h".
   for (const RunRequest::StageParam& p : request.stageParams) {
-    if (p.component != "SphereDetection" || p.name != "regions") continue;
+    if (p.component != SphereDetectionStage::kComponent || p.name != "regions") continue;
     std::stringstream ss(p.value);
     for (std::string region; std::getline(ss, region, ';');) {
       if (region.empty()) continue;
@@ -135,7 +137,7 @@ void checkRequestAgainstFrame(const RunRequest& request, int width, int height) 
   // Circles given by hand, in the order the sphere detection takes them (sphere 0, 1, ...).
   std::vector<SphereCircle> circles;
   for (const RunRequest::StageIntervention& s : request.stageInterventions) {
-    if (s.component != "SphereDetection" || s.intervention.kind != "manual-sphere") continue;
+    if (s.component != SphereDetectionStage::kComponent || s.intervention.kind != "manual-sphere") continue;
     const std::string option = "--sphere " + s.intervention.value;
     const auto v = numbers(s.intervention.value, 3);
     if (!v) usage(option, "needs 3 comma-separated numbers CX,CY,R (pixels)");
@@ -147,7 +149,7 @@ void checkRequestAgainstFrame(const RunRequest& request, int width, int height) 
 
   // Highlights given by hand: target "IMAGE:SPHERE", value "x,y".
   for (const RunRequest::StageIntervention& s : request.stageInterventions) {
-    if (s.component != "HighlightDetection" || s.intervention.kind != "manual-highlight") continue;
+    if (s.component != HighlightDetectionStage::kComponent || s.intervention.kind != "manual-highlight") continue;
     const std::string option = "--highlight " + s.intervention.target + "=" + s.intervention.value;
     const int sphere = sphereIndexOf(s.intervention.target);
     if (sphere < 0) usage(option, "needs the form IMAGE:SPHERE=X,Y with SPHERE a number from 0");
@@ -171,14 +173,14 @@ void checkRequestAgainstFrame(const RunRequest& request, int width, int height) 
   bool fullFrame = true;
   int w = width, h = height;  // of the images the next step receives; 0 when not known
   for (const PlannedStage& step : request.preprocessing) {
-    if (step.component == "WhiteBalance") {
+    if (step.component == WhiteBalanceStage::kComponent) {
       const WhiteBalanceOptions wb = WhiteBalanceOptions::fromParameters(step.params, "--wb");
       if (wb.mode == "region" && fullFrame) {
         const PixelRect& r = wb.region;
         const std::string why = frameRegionProblem(r.x, r.y, r.width, r.height, width, height);
         if (!why.empty()) usage("--wb-region " + r.text(), why + "; give a grey area of the frame");
       }
-    } else if (step.component == "Crop") {
+    } else if (step.component == CropStage::kComponent) {
       const CropOptions crop = CropOptions::fromParameters(step.params, "--crop");
       if (crop.method == "user" && fullFrame) {
         const PixelRect& r = crop.rect;
@@ -188,7 +190,7 @@ void checkRequestAgainstFrame(const RunRequest& request, int width, int height) 
       w = crop.method == "user" ? crop.rect.width : 0;
       h = crop.method == "user" ? crop.rect.height : 0;
       fullFrame = false;
-    } else if (step.component == "Resize") {
+    } else if (step.component == ResizeStage::kComponent) {
       if (w > 0 && h > 0) {
         const auto [ow, oh] = ResizeOptions::fromParameters(step.params, "--resize").outputSize(w, h, "--resize");
         w = ow;

@@ -1,6 +1,7 @@
 #include <catch2/catch.hpp>
 
 #include <filesystem>
+#include <string>
 
 #include "pipeline/context.h"
 #include "pipeline/runner.h"
@@ -90,4 +91,92 @@ TEST_CASE("an unknown component in a carrier is refused by name") {
   } catch (const Error& e) {
     CHECK(e.message().find("NoSuchStage") != std::string::npos);
   }
+}
+
+TEST_CASE("a shared value read as another type is an Error naming its key, not a bad_any_cast") {
+  carrier::Carrier c = carrier::newCarrier("runner", {});
+  Context ctx(fs::temp_directory_path(), c, RunSettings{});
+  ctx.put("lights", std::make_shared<double>(1.0));
+  CHECK(*ctx.get<double>("lights") == 1.0);
+  try {
+    ctx.get<std::string>("lights");
+    FAIL("no error");
+  } catch (const Error& e) {
+    CHECK(e.kind() == ErrorKind::Internal);
+    CHECK(e.file() == "lights");
+    CHECK_THAT(e.message(), Catch::Contains("\"lights\""));
+  }
+  try {
+    ctx.get<double>("spheres");
+    FAIL("no error");
+  } catch (const Error& e) {
+    CHECK(e.kind() == ErrorKind::Input);
+    CHECK_THAT(e.message(), Catch::Contains("\"spheres\""));
+  }
+}
+
+namespace {
+
+// Throws what a raw std::stod would, as a stage with a bug might.
+class RawThrowingStage : public Stage {
+ public:
+  std::string component() const override { return "TestRawThrow"; }
+  std::string version() const override { return "1"; }
+  void run(const carrier::Step&, Context&, carrier::Result&) override { (void)std::stod("not a number"); }
+};
+
+// Its parameter "value" must be a number: the check every stage's options struct gives.
+struct NumberOptions {
+  Parameters toParameters() const { return {{"value", "1"}}; }
+  static NumberOptions fromParameters(const Parameters& p) {
+    for (const auto& [name, value] : p)
+      if (name != "value" || value.empty() || value.find_first_not_of("0123456789") != std::string::npos)
+        throw Error(ErrorKind::Input, name + "=" + value, "test", "is not a whole number");
+    return {};
+  }
+};
+class CheckedStage : public DescribedStage<CheckedStage> {
+ public:
+  static StageInfo info() { return withOptions<NumberOptions>({"TestChecked", "1", "checked", PlanSlot::NotPlanned}); }
+  void run(const carrier::Step&, Context&, carrier::Result&) override {}
+};
+
+}  // namespace
+
+TEST_CASE("a stage failing with another exception than Error is recorded as failed, as an internal Error") {
+  static const bool once = (StageRegistry::instance().add("TestRawThrow", [] { return std::make_unique<RawThrowingStage>(); }), true);
+  (void)once;
+  carrier::Carrier c = carrier::newCarrier("runner", {});
+  c.addStep("TestRawThrow", "1");
+  Context ctx(fs::temp_directory_path(), c, RunSettings{});
+  try {
+    runProcess(ctx, {});
+    FAIL("no error");
+  } catch (const Error& e) {
+    CHECK(e.kind() == ErrorKind::Internal);
+    CHECK(e.step() == "TestRawThrow");
+  }
+  REQUIRE(c.data.size() == 1);
+  CHECK(c.data[0].status == "failed");
+  CHECK(c.log.back().level == "error");
+}
+
+TEST_CASE("the runner checks a step's parameters with its stage's options before running it") {
+  static const bool once = (StageRegistry::instance().add<CheckedStage>(), true);
+  (void)once;
+  const StageInfo* info = StageRegistry::instance().info("TestChecked");
+  REQUIRE(info);
+  CHECK(info->defaults == Parameters{{"value", "1"}});
+  carrier::Carrier c = carrier::newCarrier("runner", {});
+  c.addStep("TestChecked", "1").setParam("value", "1e9x");
+  Context ctx(fs::temp_directory_path(), c, RunSettings{});
+  try {
+    runProcess(ctx, {});
+    FAIL("no error");
+  } catch (const Error& e) {
+    CHECK(e.kind() == ErrorKind::Input);
+    CHECK(e.file() == "value=1e9x");
+  }
+  REQUIRE(c.data.size() == 1);
+  CHECK(c.data[0].status == "failed");
 }

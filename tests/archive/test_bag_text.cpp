@@ -37,7 +37,7 @@ TEST_CASE("bagit.txt must declare version 1.0 and UTF-8 in exactly two lines", "
   CHECK_FALSE(parseDeclaration("\xEF\xBB\xBF" "BagIt-Version: 1.0\nTag-File-Character-Encoding: UTF-8\n").problems.empty());
   CHECK_FALSE(parseDeclaration("BagIt-Version: 2.0\nTag-File-Character-Encoding: UTF-8\n").problems.empty());
   CHECK_FALSE(parseDeclaration("BagIt-Version: 1.0\n").problems.empty());
-  CHECK_FALSE(parseDeclaration("BagIt-Version: 1.0\nTag-File-Character-Encoding: UTF-16\n").problems.empty());
+  CHECK_FALSE(parseDeclaration("BagIt-Version: 1.0\nTag-File-Character-Encoding: NO-SUCH-CODE\n").problems.empty());
 }
 
 TEST_CASE("bag-info.txt labels, continuation lines and non-repeatable labels", "[verify][bagit]") {
@@ -82,7 +82,7 @@ TEST_CASE("manifest names give kind and algorithm", "[verify][bagit]") {
   CHECK(manifestName("tagmanifest-sha512.txt")->first == "tagmanifest");
   CHECK_FALSE(manifestName("data/manifest-sha256.txt").has_value());
   CHECK_FALSE(manifestName("bag-info.txt").has_value());
-  CHECK(digestHexLength("md5") == 0);
+  CHECK(digestHexLength("crc32") == 0);
 }
 
 TEST_CASE("case folding keys: letter case and Unicode normalisation collide", "[verify][paths]") {
