@@ -4,20 +4,27 @@
 
   Input: a carrier (namespace urn:surrogate:carrier:1, schema xsd/carrier.xsd).
   What it says:
-    the capture session (E7) consists of the digitization (crmdig:D2) of the object (E22,
-      the carrier's title) on the camera(s) (crmdig:D8: make, model, serial, lens), carried out
-      by the creators (E21), which created the original images (crmdig:D9);
+    the digitization (crmdig:D2) of the object (E22, the carrier's title) on the camera(s)
+      (crmdig:D8: make, model, serial, lens), carried out by the creators (E21), created the
+      original images (crmdig:D9); the processing (E7) continued it (P134) and consists of (P9)
+      the steps that ran, the command runs and the interventions, all within its time-span;
     each pipeline step is a software execution (crmdig:D10) that used software (crmdig:L23,
       crmdig:D14 with name and version), read inputs (crmdig:L10), wrote outputs (crmdig:L11),
       used parameters (crmdig:L13), ran on the workstation (crmdig:L12, a D8) within a time-span
-      (P4, E52), continued the step before it (P134), and was steered by human interventions
-      (E7 carried out by an E21, with the reason as a note);
+      (P4, E52), continued the step before it (P134), and was motivated by (P17) human
+      interventions (E7 carried out by an E21, with the reason as a note);
     each recorded command run (header/run: surrogate run, lights, pack; completed or failed) is an
       activity (E7) of the session, carried out by a person (E21), with its command line, its
       notes and outcome, continuing the run before it (P134); the run that made the record's
       current state consists of (P9) the steps that ran;
     each file is a data object (crmdig:D9) identified by its path and its SHA-256 (E42), with its
-      size (E54, bytes) and format (E55).
+      size (E54, bytes) and format (E55); results are also visual items (E36) representing
+      (P138) the object; an export made by other software is the output of a machine event
+      (crmdig:D7) that read its original; every file is subject to (P104) the rights (E30)
+      when the carrier records any;
+    the document states the CRM and CRMdig versions it uses (rdfs:comment, dcterms:conformsTo).
+  Every class and property used, with its domain and range, is in
+  tests/mapping/data/crm-terms.tsv (checked by the tests).
   Parameters:
     crmdig-ns  the CRMdig namespace (default the current one, of versions 4 and 5; older data
                uses http://www.ics.forth.gr/isl/CRMdig/)
@@ -34,6 +41,7 @@
     xmlns:rdfs="http://www.w3.org/2000/01/rdf-schema#"
     xmlns:crm="http://www.cidoc-crm.org/cidoc-crm/"
     xmlns:crmdig="http://www.cidoc-crm.org/extensions/crmdig/"
+    xmlns:dcterms="http://purl.org/dc/terms/"
     exclude-result-prefixes="c">
 
   <xsl:output method="xml" encoding="UTF-8" indent="yes"/>
@@ -60,6 +68,15 @@
   <xsl:key name="person" match="c:run/@who" use="normalize-space(.)"/>
   <xsl:key name="camera" match="c:file[@role = 'original']/c:camera"
            use="concat(@make, '|', @model, '|', @serial)"/>
+  <xsl:key name="file-by-id" match="c:files/c:file" use="@id"/>
+  <xsl:key name="file-by-creator" match="c:files/c:file" use="@createdBy"/>
+  <xsl:key name="result-by-step" match="c:data/c:result" use="@step"/>
+  <!-- What a step's results name as used (an input file, or an image a per-image result is
+       about), keyed by "step-id file-id", and the images ImageDecode decoded: sources are
+       selected by testing each file against these keys, which stays linear in the number of
+       files (key() given a node-set of N values merges N node-sets, quadratic in libxslt). -->
+  <xsl:key name="step-input" match="c:data/c:result/c:input/@file | c:data/c:result/*/@image" use="concat(../../@step, ' ', .)"/>
+  <xsl:key name="decoded-image" match="c:data/c:result/c:decoded/@image" use="."/>
 
   <!-- URIs -->
   <xsl:template name="person-uri">
@@ -131,6 +148,22 @@
     <xsl:variable name="originals" select="c:files/c:file[@role = 'original']"/>
     <xsl:variable name="cameras" select="$originals/c:camera[count(. | key('camera', concat(@make, '|', @model, '|', @serial))[1]) = 1]"/>
 
+    <!-- what this document is written in -->
+    <rdf:Description rdf:about="{$base}crm.rdf">
+      <rdfs:label><xsl:value-of select="concat('CIDOC-CRM description of the capture ', c:header/c:title)"/></rdfs:label>
+      <xsl:choose>
+        <xsl:when test="$crmdig-ns = 'http://www.cidoc-crm.org/extensions/crmdig/'">
+          <rdfs:comment>Classes and properties of CIDOC-CRM 7.1.3 (namespace http://www.cidoc-crm.org/cidoc-crm/) and CRMdig 5.0 (namespace http://www.cidoc-crm.org/extensions/crmdig/); derived from the Surrogate carrier by carrier-to-crm.xsl</rdfs:comment>
+          <dcterms:conformsTo rdf:resource="https://cidoc-crm.org/rdfs/7.1.3/CIDOC_CRM_v7.1.3.rdfs"/>
+          <dcterms:conformsTo rdf:resource="https://cidoc-crm.org/extensions/crmdig/html/CRMdig_v5.0.html"/>
+        </xsl:when>
+        <xsl:otherwise>
+          <rdfs:comment><xsl:value-of select="concat('Classes and properties of CIDOC-CRM 7.1.3 (namespace http://www.cidoc-crm.org/cidoc-crm/) and CRMdig in the namespace ', $crmdig-ns, ' (the terms of CRMdig 5.0); derived from the Surrogate carrier by carrier-to-crm.xsl')"/></rdfs:comment>
+          <dcterms:conformsTo rdf:resource="https://cidoc-crm.org/rdfs/7.1.3/CIDOC_CRM_v7.1.3.rdfs"/>
+        </xsl:otherwise>
+      </xsl:choose>
+    </rdf:Description>
+
     <!-- the object -->
     <crm:E22_Human-Made_Object rdf:about="{$base}object">
       <rdfs:label><xsl:value-of select="c:header/c:title"/></rdfs:label>
@@ -152,15 +185,38 @@
       </xsl:for-each>
     </crm:E22_Human-Made_Object>
 
+    <!-- the rights the depositor stated (option rights) and the licence (option license), which every
+         file of the capture is subject to -->
+    <xsl:if test="c:header/c:rights or c:header/c:license">
+      <crm:E30_Right rdf:about="{$base}rights">
+        <rdfs:label><xsl:value-of select="concat('rights in the capture ', c:header/c:title)"/></rdfs:label>
+        <xsl:for-each select="c:header/c:rights">
+          <crm:P3_has_note><xsl:value-of select="."/></crm:P3_has_note>
+        </xsl:for-each>
+        <xsl:for-each select="c:header/c:license">
+          <crm:P2_has_type>
+            <crm:E55_Type rdf:about="{normalize-space(.)}"><rdfs:label><xsl:value-of select="concat('licence ', normalize-space(.))"/></rdfs:label></crm:E55_Type>
+          </crm:P2_has_type>
+        </xsl:for-each>
+      </crm:E30_Right>
+    </xsl:if>
+
     <!-- the session -->
     <crm:E7_Activity rdf:about="{$base}session">
-      <rdfs:label><xsl:value-of select="concat('RTI capture and processing: ', c:header/c:title)"/></rdfs:label>
-      <crm:P9_consists_of rdf:resource="{$base}capture"/>
-      <xsl:for-each select="c:process/c:step">
+      <rdfs:label><xsl:value-of select="concat('RTI processing: ', c:header/c:title)"/></rdfs:label>
+      <!-- The processing continued the photography; it does not consist of it: its time-span
+           (when the record was kept) does not contain the shooting, which is earlier and in
+           the camera's local time. Its parts are the steps that ran, the command runs and
+           the human interventions, all within its time-span. -->
+      <crm:P134_continued rdf:resource="{$base}capture"/>
+      <xsl:for-each select="c:process/c:step[key('result-by-step', @id)]">
         <crm:P9_consists_of rdf:resource="{$base}step/{@id}"/>
       </xsl:for-each>
       <xsl:for-each select="c:header/c:run">
         <crm:P9_consists_of rdf:resource="{$base}run/{@id}"/>
+      </xsl:for-each>
+      <xsl:for-each select="c:process/c:step/c:intervention">
+        <crm:P9_consists_of rdf:resource="{$base}step/{../@id}/intervention/{count(preceding-sibling::c:intervention) + 1}"/>
       </xsl:for-each>
       <xsl:call-template name="time-span">
         <xsl:with-param name="uri" select="concat($base, 'session/time')"/>
@@ -361,17 +417,32 @@
       <xsl:if test="c:param">
         <xsl:call-template name="dig"><xsl:with-param name="p" select="'L13_used_parameters'"/><xsl:with-param name="to" select="concat($uri, '/parameters')"/></xsl:call-template>
       </xsl:if>
-      <xsl:for-each select="$result/c:input">
-        <xsl:call-template name="dig"><xsl:with-param name="p" select="'L10_had_input'"/><xsl:with-param name="to" select="concat($base, 'file/', @file)"/></xsl:call-template>
-      </xsl:for-each>
-      <xsl:for-each select="$result/c:output">
-        <xsl:call-template name="dig"><xsl:with-param name="p" select="'L11_had_output'"/><xsl:with-param name="to" select="concat($base, 'file/', @file)"/></xsl:call-template>
+      <!-- What the step used: the same expression as carrier-to-mets.xsl's step-sources (see
+           there and mappings/carrier-to-crm.md). -->
+      <xsl:variable name="explicit" select="boolean($result/c:input/@file or $result/*/@image)"/>
+      <xsl:variable name="decodeIds" select="$carrier/c:process/c:step[@component = 'ImageDecode']/@id"/>
+      <xsl:variable name="useDecoded" select="not($explicit) and $step/@component != 'CaptureIngest' and $step/@component != 'ImageDecode' and $step/@component != 'DerivedMaps'"/>
+      <xsl:variable name="lights" select="key('result-by-step', $step/preceding-sibling::c:step[@component = 'LightDirections' or @component = 'LightsFromFile']/@id)/c:output[@kind = 'lp']/@file[$step/@component = 'RtiFit']"/>
+      <xsl:variable name="model" select="key('result-by-step', $step/preceding-sibling::c:step[@component = 'RtiFit'][c:param[@name = 'basis']/@value = $step/c:param[@name = 'model']/@value]/@id)/c:output/@file[$step/@component = 'DerivedMaps']"/>
+      <xsl:variable name="sources" select="$carrier/c:files/c:file[
+          key('step-input', concat($step/@id, ' ', @id))
+          or ($useDecoded and key('decoded-image', @id)[../../@step = $decodeIds])
+          or @id = $lights or @id = $model]"/>
+      <xsl:if test="$result">
+        <xsl:for-each select="$sources">
+          <xsl:call-template name="dig"><xsl:with-param name="p" select="'L10_had_input'"/><xsl:with-param name="to" select="concat($base, 'file/', @id)"/></xsl:call-template>
+        </xsl:for-each>
+      </xsl:if>
+      <xsl:for-each select="key('file-by-id', $result/c:output/@file) | key('file-by-creator', @id)">
+        <xsl:call-template name="dig"><xsl:with-param name="p" select="'L11_had_output'"/><xsl:with-param name="to" select="concat($base, 'file/', @id)"/></xsl:call-template>
       </xsl:for-each>
       <xsl:for-each select="preceding-sibling::c:step[1]">
         <crm:P134_continued rdf:resource="{$base}step/{@id}"/>
       </xsl:for-each>
+      <!-- A decision by hand steered the step; it was taken when the command was given,
+           before the step ran, so it is not a part of the step (P9 would nest time-spans). -->
       <xsl:for-each select="c:intervention">
-        <crm:P9_consists_of rdf:resource="{$uri}/intervention/{position()}"/>
+        <crm:P17_was_motivated_by rdf:resource="{$uri}/intervention/{position()}"/>
       </xsl:for-each>
       <xsl:if test="$result">
         <crm:P3_has_note><xsl:value-of select="concat('status: ', $result/@status, '; seconds: ', $result/@seconds)"/></crm:P3_has_note>
@@ -474,10 +545,15 @@
           <xsl:if test="@mediaType != ''"><crm:P3_has_note><xsl:value-of select="concat('media type ', @mediaType)"/></crm:P3_has_note></xsl:if>
         </crm:E55_Type>
       </crm:P2_has_type>
+      <xsl:if test="$carrier/c:header/c:rights or $carrier/c:header/c:license">
+        <crm:P104_is_subject_to rdf:resource="{$base}rights"/>
+      </xsl:if>
       <crm:P2_has_type>
         <crm:E55_Type rdf:about="{$base}type/role/{@role}"><rdfs:label><xsl:value-of select="concat('file role: ', @role)"/></rdfs:label></crm:E55_Type>
       </crm:P2_has_type>
       <xsl:if test="@role = 'result'">
+        <!-- a result is an image of the object: P138's domain is E36 Visual Item -->
+        <rdf:type rdf:resource="{$crm-ns}E36_Visual_Item"/>
         <crm:P138_represents rdf:resource="{$base}object"/>
       </xsl:if>
       <xsl:for-each select="@pairedWith">
@@ -486,6 +562,7 @@
       <xsl:if test="@unrecordedProcessing = 'true' or @unrecordedProcessing = '1'">
         <crm:P3_has_note>made by other software; its processing is not recorded in the carrier</crm:P3_has_note>
       </xsl:if>
+
       <xsl:for-each select="c:image">
         <crm:P3_has_note><xsl:value-of select="concat('image ', @width, ' x ', @height, ' pixels')"/></crm:P3_has_note>
       </xsl:for-each>
@@ -499,6 +576,17 @@
         <crm:P3_has_note><xsl:value-of select="concat('XMP packet of ', string-length(c:xmp), ' characters, kept verbatim in the carrier')"/></crm:P3_has_note>
       </xsl:if>
     </rdf:Description>
+    <!-- an export made by other software from the original of the same shot: the machine
+         event that made it, with what it read; when, how and with what is not on record -->
+    <xsl:if test="(@unrecordedProcessing = 'true' or @unrecordedProcessing = '1') and key('file-by-id', @pairedWith)/@role = 'original'">
+      <rdf:Description rdf:about="{$uri}/made-elsewhere">
+        <xsl:call-template name="dig-type"><xsl:with-param name="class" select="'D7_Digital_Machine_Event'"/></xsl:call-template>
+        <rdfs:label><xsl:value-of select="concat('export of ', key('file-by-id', @pairedWith)/@path, ' by other software')"/></rdfs:label>
+        <xsl:call-template name="dig"><xsl:with-param name="p" select="'L10_had_input'"/><xsl:with-param name="to" select="concat($base, 'file/', @pairedWith)"/></xsl:call-template>
+        <xsl:call-template name="dig"><xsl:with-param name="p" select="'L11_had_output'"/><xsl:with-param name="to" select="$uri"/></xsl:call-template>
+        <crm:P3_has_note>made by software other than Surrogate; what it did, when and with which settings is not recorded</crm:P3_has_note>
+      </rdf:Description>
+    </xsl:if>
   </xsl:template>
 
 </xsl:stylesheet>

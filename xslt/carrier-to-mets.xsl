@@ -13,6 +13,12 @@
                     the list has no file, the carrier's own file list is used instead (without
                     SHA-512). Give an absolute path or URI: a relative one is resolved against
                     this stylesheet's location.
+  What it holds: Dublin Core (dmdSec dmd-dc) beside a pointer to crm.rdf; in the amdSec the
+  capture as a PREMIS intellectual entity, one PREMIS file object per payload file (fixity,
+  size, format with PRONOM identifier where certain, derivation relationships to what the step
+  that made it used), the rights statements (rightsMD), one event per capture, command run,
+  pipeline step and packaging act (eventType from the Library of Congress vocabulary
+  id.loc.gov/vocabulary/preservation/eventType), and each agent once.
   The mapping is explained, element by element, in mappings/carrier-to-mets.md.
   Re-derive by hand:
     xsltproc -\-stringparam package-id ID -\-stringparam packaging-time T \
@@ -27,6 +33,7 @@
     xmlns:premis="http://www.loc.gov/premis/v3"
     xmlns:xlink="http://www.w3.org/1999/xlink"
     xmlns:xsi="http://www.w3.org/2001/XMLSchema-instance"
+    xmlns:dc="http://purl.org/dc/elements/1.1/"
     exclude-result-prefixes="c">
 
   <xsl:output method="xml" encoding="UTF-8" indent="yes"/>
@@ -74,6 +81,24 @@
        node, hence the for-each over $carrier (one node) around each lookup from the payload. -->
   <xsl:key name="file-by-bag-path" match="c:files/c:file" use="concat('data/', @path)"/>
   <xsl:key name="file-by-id" match="c:files/c:file" use="@id"/>
+  <xsl:key name="step-by-id" match="c:process/c:step" use="@id"/>
+  <xsl:key name="file-by-creator" match="c:files/c:file" use="@createdBy"/>
+  <xsl:key name="media-type" match="c:files/c:file" use="@mediaType"/>
+  <xsl:key name="result-by-step" match="c:data/c:result" use="@step"/>
+  <!-- What a step's results name as used (an input file, or an image a per-image result is
+       about), keyed by "step-id file-id", and the images ImageDecode decoded: sources are
+       selected by testing each file against these keys, which stays linear in the number of
+       files (key() given a node-set of N values merges N node-sets, quadratic in libxslt). -->
+  <xsl:key name="step-input" match="c:data/c:result/c:input/@file | c:data/c:result/*/@image" use="concat(../../@step, ' ', .)"/>
+  <xsl:key name="decoded-image" match="c:data/c:result/c:decoded/@image" use="."/>
+  <!-- Pipeline stages by component and version: one PREMIS agent each. -->
+  <xsl:key name="stage" match="c:process/c:step" use="concat(@component, ' ', @version)"/>
+  <xsl:variable name="event-types" select="'http://id.loc.gov/vocabulary/preservation/eventType'"/>
+  <!-- The person who ran the command that made the record's current state: the operator of
+       its steps (none in carriers written before runs were recorded). -->
+  <xsl:variable name="operator" select="normalize-space($carrier/c:header/c:run[@id = $state-run]/@who)"/>
+  <!-- Whether the packer is the Surrogate the header names (then it is that one agent). -->
+  <xsl:variable name="packer-is-surrogate" select="$surrogate and $software-agent = concat($surrogate/@name, ' ', $surrogate/@version)"/>
 
   <xsl:template match="/">
     <xsl:apply-templates select="c:carrier"/>
@@ -103,6 +128,7 @@
         </xsl:for-each>
       </mets:metsHdr>
 
+      <xsl:call-template name="dublin-core"/>
       <mets:dmdSec ID="dmd-crm">
         <mets:mdRef LOCTYPE="URL" xlink:href="crm.rdf" MDTYPE="OTHER"
                     OTHERMDTYPE="CIDOC-CRM+CRMdig" MIMETYPE="application/rdf+xml"
@@ -110,7 +136,9 @@
       </mets:dmdSec>
 
       <mets:amdSec ID="amd">
+        <xsl:call-template name="intellectual-entity"/>
         <xsl:call-template name="objects"/>
+        <xsl:call-template name="rights"/>
         <xsl:call-template name="events"/>
         <xsl:call-template name="agents"/>
       </mets:amdSec>
@@ -126,7 +154,7 @@
       </mets:fileSec>
 
       <mets:structMap TYPE="physical" LABEL="Package layout">
-        <mets:div TYPE="RTI capture" LABEL="{c:header/c:title}" DMDID="dmd-crm">
+        <mets:div TYPE="RTI capture" LABEL="{c:header/c:title}" DMDID="dmd-dc dmd-crm" ADMID="object-ie rights">
           <xsl:call-template name="struct-div"><xsl:with-param name="use" select="'original'"/></xsl:call-template>
           <xsl:call-template name="struct-div"><xsl:with-param name="use" select="'export'"/></xsl:call-template>
           <xsl:call-template name="struct-div"><xsl:with-param name="use" select="'lp'"/></xsl:call-template>
@@ -137,6 +165,192 @@
         </mets:div>
       </mets:structMap>
     </mets:mets>
+  </xsl:template>
+
+  <!-- Descriptive metadata: Dublin Core (simple, the 15 elements of
+       http://purl.org/dc/elements/1.1/) from the carrier's header. Which header field and which
+       meta keys give which element: mappings/carrier-to-mets.md, "Dublin Core". -->
+  <xsl:template name="dublin-core">
+    <xsl:variable name="h" select="c:header"/>
+    <xsl:variable name="shot">
+      <xsl:for-each select="c:files/c:file[@role = 'original']/c:camera/@dateTimeOriginal">
+        <xsl:sort select="."/>
+        <xsl:if test="position() = 1"><xsl:call-template name="exif-date"><xsl:with-param name="d" select="."/></xsl:call-template></xsl:if>
+      </xsl:for-each>
+    </xsl:variable>
+    <mets:dmdSec ID="dmd-dc">
+      <mets:mdWrap MDTYPE="DC" MIMETYPE="text/xml" LABEL="Dublin Core description of the capture">
+        <mets:xmlData>
+          <dc:title><xsl:value-of select="$h/c:title"/></dc:title>
+          <xsl:for-each select="$h/c:creator">
+            <dc:creator><xsl:value-of select="normalize-space(.)"/></dc:creator>
+          </xsl:for-each>
+          <xsl:for-each select="$h/c:meta[@key = 'Subject']">
+            <dc:subject><xsl:value-of select="."/></dc:subject>
+          </xsl:for-each>
+          <xsl:for-each select="$h/c:meta[@key = 'Description' or @key = 'External-Description']">
+            <dc:description><xsl:value-of select="."/></dc:description>
+          </xsl:for-each>
+          <dc:description><xsl:value-of select="concat('Highlight-RTI capture of ', count(c:files/c:file[@role = 'original']), ' images, with the files derived from them by Surrogate')"/></dc:description>
+          <xsl:for-each select="$h/c:meta[@key = 'Publisher' or @key = 'Source-Organization']">
+            <dc:publisher><xsl:value-of select="."/></dc:publisher>
+          </xsl:for-each>
+          <xsl:for-each select="$h/c:meta[@key = 'Contributor']">
+            <dc:contributor><xsl:value-of select="."/></dc:contributor>
+          </xsl:for-each>
+          <!-- the date of the capture: the first shot's day (camera clock), else the day the
+               record was begun -->
+          <dc:date>
+            <xsl:choose>
+              <xsl:when test="$shot != ''"><xsl:value-of select="substring($shot, 1, 10)"/></xsl:when>
+              <xsl:otherwise><xsl:value-of select="substring($h/c:created, 1, 10)"/></xsl:otherwise>
+            </xsl:choose>
+          </dc:date>
+          <dc:type>Image</dc:type>
+          <xsl:for-each select="c:files/c:file[@mediaType != ''][count(. | key('media-type', @mediaType)[1]) = 1]">
+            <dc:format><xsl:value-of select="@mediaType"/></dc:format>
+          </xsl:for-each>
+          <dc:identifier><xsl:value-of select="$objid"/></dc:identifier>
+          <xsl:for-each select="$h/c:meta[@key = 'External-Identifier' or @key = 'Object-Identifier']">
+            <dc:identifier><xsl:value-of select="."/></dc:identifier>
+          </xsl:for-each>
+          <xsl:for-each select="$h/c:meta[@key = 'Source']">
+            <dc:source><xsl:value-of select="."/></dc:source>
+          </xsl:for-each>
+          <xsl:for-each select="$h/c:meta[@key = 'Language']">
+            <dc:language><xsl:value-of select="."/></dc:language>
+          </xsl:for-each>
+          <xsl:for-each select="$h/c:meta[@key = 'Relation']">
+            <dc:relation><xsl:value-of select="."/></dc:relation>
+          </xsl:for-each>
+          <xsl:for-each select="$h/c:meta[@key = 'Coverage']">
+            <dc:coverage><xsl:value-of select="."/></dc:coverage>
+          </xsl:for-each>
+          <xsl:for-each select="$h/c:rights">
+            <dc:rights><xsl:value-of select="."/></dc:rights>
+          </xsl:for-each>
+          <xsl:for-each select="$h/c:license">
+            <dc:rights><xsl:value-of select="."/></dc:rights>
+          </xsl:for-each>
+        </mets:xmlData>
+      </mets:mdWrap>
+    </mets:dmdSec>
+  </xsl:template>
+
+  <!-- The intellectual entity: the capture, which every file of the package is part of. -->
+  <xsl:template name="intellectual-entity">
+    <mets:techMD ID="object-ie">
+      <mets:mdWrap MDTYPE="PREMIS:OBJECT">
+        <mets:xmlData>
+          <premis:object xsi:type="premis:intellectualEntity" version="3.0">
+            <premis:objectIdentifier>
+              <premis:objectIdentifierType>Surrogate package identifier</premis:objectIdentifierType>
+              <premis:objectIdentifierValue><xsl:value-of select="$objid"/></premis:objectIdentifierValue>
+            </premis:objectIdentifier>
+            <xsl:for-each select="c:header/c:meta[@key = 'External-Identifier' or @key = 'Object-Identifier']">
+              <premis:objectIdentifier>
+                <premis:objectIdentifierType><xsl:value-of select="@key"/></premis:objectIdentifierType>
+                <premis:objectIdentifierValue><xsl:value-of select="."/></premis:objectIdentifierValue>
+              </premis:objectIdentifier>
+            </xsl:for-each>
+            <premis:significantProperties>
+              <premis:significantPropertiesType>content</premis:significantPropertiesType>
+              <premis:significantPropertiesValue><xsl:value-of select="concat('Highlight-RTI capture of ', c:header/c:title, ': ', count(c:files/c:file[@role = 'original']), ' photographs and the files derived from them')"/></premis:significantPropertiesValue>
+            </premis:significantProperties>
+            <premis:originalName><xsl:value-of select="c:header/c:title"/></premis:originalName>
+            <premis:linkingEventIdentifier>
+              <premis:linkingEventIdentifierType>Surrogate event</premis:linkingEventIdentifierType>
+              <premis:linkingEventIdentifierValue>event-capture</premis:linkingEventIdentifierValue>
+            </premis:linkingEventIdentifier>
+            <premis:linkingEventIdentifier>
+              <premis:linkingEventIdentifierType>Surrogate event</premis:linkingEventIdentifierType>
+              <premis:linkingEventIdentifierValue>event-packaging</premis:linkingEventIdentifierValue>
+            </premis:linkingEventIdentifier>
+            <xsl:call-template name="linking-rights"/>
+          </premis:object>
+        </mets:xmlData>
+      </mets:mdWrap>
+    </mets:techMD>
+  </xsl:template>
+
+  <!-- Rights: the licence (option license) and the depositor's statement (option rights) as PREMIS
+       rights statements about the capture; with neither, a statement that none was given. -->
+  <xsl:template name="linking-rights">
+    <xsl:for-each select="$carrier/c:header">
+      <xsl:if test="c:license">
+        <premis:linkingRightsStatementIdentifier>
+          <premis:linkingRightsStatementIdentifierType>Surrogate rights statement</premis:linkingRightsStatementIdentifierType>
+          <premis:linkingRightsStatementIdentifierValue>rights-license</premis:linkingRightsStatementIdentifierValue>
+        </premis:linkingRightsStatementIdentifier>
+      </xsl:if>
+      <xsl:if test="c:rights or not(c:license)">
+        <premis:linkingRightsStatementIdentifier>
+          <premis:linkingRightsStatementIdentifierType>Surrogate rights statement</premis:linkingRightsStatementIdentifierType>
+          <premis:linkingRightsStatementIdentifierValue>rights-statement</premis:linkingRightsStatementIdentifierValue>
+        </premis:linkingRightsStatementIdentifier>
+      </xsl:if>
+    </xsl:for-each>
+  </xsl:template>
+
+  <xsl:template name="rights-object-link">
+    <premis:linkingObjectIdentifier>
+      <premis:linkingObjectIdentifierType>Surrogate package identifier</premis:linkingObjectIdentifierType>
+      <premis:linkingObjectIdentifierValue><xsl:value-of select="$objid"/></premis:linkingObjectIdentifierValue>
+    </premis:linkingObjectIdentifier>
+  </xsl:template>
+
+  <xsl:template name="rights">
+    <xsl:variable name="h" select="c:header"/>
+    <mets:rightsMD ID="rights">
+      <mets:mdWrap MDTYPE="PREMIS:RIGHTS">
+        <mets:xmlData>
+          <premis:rights version="3.0">
+            <xsl:if test="$h/c:license">
+              <premis:rightsStatement>
+                <premis:rightsStatementIdentifier>
+                  <premis:rightsStatementIdentifierType>Surrogate rights statement</premis:rightsStatementIdentifierType>
+                  <premis:rightsStatementIdentifierValue>rights-license</premis:rightsStatementIdentifierValue>
+                </premis:rightsStatementIdentifier>
+                <premis:rightsBasis>license</premis:rightsBasis>
+                <premis:licenseInformation>
+                  <premis:licenseDocumentationIdentifier>
+                    <premis:licenseDocumentationIdentifierType>URI</premis:licenseDocumentationIdentifierType>
+                    <premis:licenseDocumentationIdentifierValue><xsl:value-of select="$h/c:license"/></premis:licenseDocumentationIdentifierValue>
+                    <premis:licenseDocumentationRole>license</premis:licenseDocumentationRole>
+                  </premis:licenseDocumentationIdentifier>
+                  <premis:licenseNote>the licence the depositor named when recording the capture (surrogate run, option license)</premis:licenseNote>
+                </premis:licenseInformation>
+                <xsl:call-template name="rights-object-link"/>
+              </premis:rightsStatement>
+            </xsl:if>
+            <xsl:if test="$h/c:rights or not($h/c:license)">
+              <premis:rightsStatement>
+                <premis:rightsStatementIdentifier>
+                  <premis:rightsStatementIdentifierType>Surrogate rights statement</premis:rightsStatementIdentifierType>
+                  <premis:rightsStatementIdentifierValue>rights-statement</premis:rightsStatementIdentifierValue>
+                </premis:rightsStatementIdentifier>
+                <premis:rightsBasis>other</premis:rightsBasis>
+                <premis:otherRightsInformation>
+                  <premis:otherRightsBasis>
+                    <xsl:choose>
+                      <xsl:when test="$h/c:rights">rights statement of the depositor</xsl:when>
+                      <xsl:otherwise>unknown</xsl:otherwise>
+                    </xsl:choose>
+                  </premis:otherRightsBasis>
+                  <premis:otherRightsNote>
+                    <xsl:choose>
+                      <xsl:when test="$h/c:rights"><xsl:value-of select="$h/c:rights"/></xsl:when>
+                      <xsl:otherwise>no rights statement or licence was recorded with the capture (surrogate run, options rights and license); ask the depositor</xsl:otherwise>
+                    </xsl:choose>
+                  </premis:otherRightsNote>
+                </premis:otherRightsInformation>
+                <xsl:call-template name="rights-object-link"/>
+              </premis:rightsStatement>
+            </xsl:if>
+          </premis:rights>
+        </mets:xmlData>
+      </mets:mdWrap>
+    </mets:rightsMD>
   </xsl:template>
 
   <!-- The payload files as (path, size, sha256, sha512) nodes: the payload list when given,
@@ -215,9 +429,32 @@
     <xsl:param name="rec"/>
     <mets:file ID="file-{$n}" SIZE="{$size}" CHECKSUM="{$sha256}" CHECKSUMTYPE="SHA-256"
                ADMID="object-{$n}">
-      <xsl:if test="$rec/@mediaType != ''">
-        <xsl:attribute name="MIMETYPE"><xsl:value-of select="$rec/@mediaType"/></xsl:attribute>
-      </xsl:if>
+      <xsl:attribute name="MIMETYPE">
+        <xsl:choose>
+          <xsl:when test="$rec/@mediaType != ''"><xsl:value-of select="$rec/@mediaType"/></xsl:when>
+          <xsl:otherwise>
+            <!-- files the carrier does not describe (itself, the report, ...): by name -->
+            <xsl:variable name="key">
+              <xsl:call-template name="format-key">
+                <xsl:with-param name="rec" select="$rec"/>
+                <xsl:with-param name="path" select="$path"/>
+              </xsl:call-template>
+            </xsl:variable>
+            <xsl:choose>
+              <xsl:when test="$key = 'XML'">application/xml</xsl:when>
+              <xsl:when test="$key = 'HTML'">text/html</xsl:when>
+              <xsl:when test="$key = 'PNG' or $key = 'PNG-written'">image/png</xsl:when>
+              <xsl:when test="$key = 'JPEG'">image/jpeg</xsl:when>
+              <xsl:when test="$key = 'DNG'">image/x-adobe-dng</xsl:when>
+              <xsl:when test="$key = 'TIFF'">image/tiff</xsl:when>
+              <xsl:when test="$key = 'PTM'">application/x-ptm</xsl:when>
+              <xsl:when test="$key = 'RTI'">application/x-rti</xsl:when>
+              <xsl:when test="$key = 'LP' or $key = 'TXT'">text/plain</xsl:when>
+              <xsl:otherwise>application/octet-stream</xsl:otherwise>
+            </xsl:choose>
+          </xsl:otherwise>
+        </xsl:choose>
+      </xsl:attribute>
       <xsl:if test="$rec/@createdBy">
         <xsl:attribute name="CREATED"><xsl:value-of select="$carrier/c:data/c:result[@step = $rec/@createdBy]/@ended"/></xsl:attribute>
       </xsl:if>
@@ -300,6 +537,16 @@
                   <premis:objectIdentifierValue><xsl:value-of select="$rec/@id"/></premis:objectIdentifierValue>
                 </premis:objectIdentifier>
               </xsl:if>
+              <xsl:if test="$rec/@unrecordedProcessing = 'true' or $rec/@unrecordedProcessing = '1'">
+                <premis:significantProperties>
+                  <premis:significantPropertiesType>provenance</premis:significantPropertiesType>
+                  <premis:significantPropertiesValue>
+                    <xsl:text>processed outside Surrogate: made by other software</xsl:text>
+                    <xsl:for-each select="key('file-by-id', $rec/@pairedWith)"><xsl:value-of select="concat(' from data/', @path)"/></xsl:for-each>
+                    <xsl:text>; what that software did is not recorded (carrier: unrecordedProcessing="true")</xsl:text>
+                  </premis:significantPropertiesValue>
+                </premis:significantProperties>
+              </xsl:if>
               <premis:objectCharacteristics>
                 <premis:compositionLevel>0</premis:compositionLevel>
                 <premis:fixity>
@@ -325,22 +572,56 @@
                 </xsl:call-template>
               </premis:objectCharacteristics>
               <premis:originalName><xsl:value-of select="substring-after($path, 'data/')"/></premis:originalName>
-              <xsl:for-each select="$rec/@pairedWith">
-                <xsl:variable name="other" select="key('file-by-id', current())"/>
+              <!-- every file is part of the capture (the intellectual entity) -->
+              <premis:relationship>
+                <premis:relationshipType>structural</premis:relationshipType>
+                <premis:relationshipSubType>is included in</premis:relationshipSubType>
+                <premis:relatedObjectIdentifier>
+                  <premis:relatedObjectIdentifierType>Surrogate package identifier</premis:relatedObjectIdentifierType>
+                  <premis:relatedObjectIdentifierValue><xsl:value-of select="$objid"/></premis:relatedObjectIdentifierValue>
+                </premis:relatedObjectIdentifier>
+              </premis:relationship>
+              <!-- a file a step made: derived from what the step used, by that step's event -->
+              <xsl:for-each select="key('step-by-id', $rec/@createdBy)">
                 <premis:relationship>
-                  <premis:relationshipType>structural</premis:relationshipType>
-                  <premis:relationshipSubType>is sibling of (same shot)</premis:relationshipSubType>
-                  <premis:relatedObjectIdentifier>
-                    <premis:relatedObjectIdentifierType>BagIt payload path</premis:relatedObjectIdentifierType>
-                    <premis:relatedObjectIdentifierValue><xsl:value-of select="concat('data/', $other/@path)"/></premis:relatedObjectIdentifierValue>
-                  </premis:relatedObjectIdentifier>
+                  <premis:relationshipType>derivation</premis:relationshipType>
+                  <premis:relationshipSubType>has source</premis:relationshipSubType>
+                  <xsl:call-template name="step-sources">
+                    <xsl:with-param name="step" select="."/>
+                    <xsl:with-param name="as" select="'related'"/>
+                  </xsl:call-template>
+                  <premis:relatedEventIdentifier>
+                    <premis:relatedEventIdentifierType>Surrogate event</premis:relatedEventIdentifierType>
+                    <premis:relatedEventIdentifierValue><xsl:value-of select="concat('event-', @id)"/></premis:relatedEventIdentifierValue>
+                  </premis:relatedEventIdentifier>
                 </premis:relationship>
               </xsl:for-each>
-              <xsl:for-each select="$rec/@createdBy">
-                <premis:linkingEventIdentifier>
-                  <premis:linkingEventIdentifierType>Surrogate event</premis:linkingEventIdentifierType>
-                  <premis:linkingEventIdentifierValue><xsl:value-of select="concat('event-', .)"/></premis:linkingEventIdentifierValue>
-                </premis:linkingEventIdentifier>
+              <xsl:for-each select="$rec/@pairedWith">
+                <xsl:variable name="other" select="key('file-by-id', current())"/>
+                <xsl:choose>
+                  <!-- an export made by other software from the original of the same shot: a
+                       derivation whose event is not on record -->
+                  <xsl:when test="($rec/@unrecordedProcessing = 'true' or $rec/@unrecordedProcessing = '1') and $other/@role = 'original'">
+                    <premis:relationship>
+                      <premis:relationshipType>derivation</premis:relationshipType>
+                      <premis:relationshipSubType>has source</premis:relationshipSubType>
+                      <premis:relatedObjectIdentifier>
+                        <premis:relatedObjectIdentifierType>BagIt payload path</premis:relatedObjectIdentifierType>
+                        <premis:relatedObjectIdentifierValue><xsl:value-of select="concat('data/', $other/@path)"/></premis:relatedObjectIdentifierValue>
+                      </premis:relatedObjectIdentifier>
+                    </premis:relationship>
+                  </xsl:when>
+                  <xsl:otherwise>
+                    <premis:relationship>
+                      <premis:relationshipType>structural</premis:relationshipType>
+                      <premis:relationshipSubType>is sibling of (same shot)</premis:relationshipSubType>
+                      <premis:relatedObjectIdentifier>
+                        <premis:relatedObjectIdentifierType>BagIt payload path</premis:relatedObjectIdentifierType>
+                        <premis:relatedObjectIdentifierValue><xsl:value-of select="concat('data/', $other/@path)"/></premis:relatedObjectIdentifierValue>
+                      </premis:relatedObjectIdentifier>
+                    </premis:relationship>
+                  </xsl:otherwise>
+                </xsl:choose>
               </xsl:for-each>
               <xsl:if test="$rec/@role = 'original'">
                 <premis:linkingEventIdentifier>
@@ -348,6 +629,15 @@
                   <premis:linkingEventIdentifierValue>event-capture</premis:linkingEventIdentifierValue>
                 </premis:linkingEventIdentifier>
               </xsl:if>
+              <!-- the step that made it (the events of the steps that used it list it as their
+                   source; listing them here too would make the METS of a large capture
+                   quadratic to derive) -->
+              <xsl:for-each select="$rec/@createdBy">
+                <premis:linkingEventIdentifier>
+                  <premis:linkingEventIdentifierType>Surrogate event</premis:linkingEventIdentifierType>
+                  <premis:linkingEventIdentifierValue><xsl:value-of select="concat('event-', .)"/></premis:linkingEventIdentifierValue>
+                </premis:linkingEventIdentifier>
+              </xsl:for-each>
               <xsl:if test="$path = $carrier-path">
                 <xsl:for-each select="$carrier/c:header/c:run">
                   <premis:linkingEventIdentifier>
@@ -367,41 +657,150 @@
     </xsl:for-each>
   </xsl:template>
 
-  <!-- Format: the carrier's format name and PRONOM id; for files the carrier does not list,
-       by extension (PRONOM ids only where they are certain). -->
-  <xsl:template name="premis-format">
+  <!-- The files a step used, as PREMIS identifiers (as = 'related': relatedObjectIdentifier,
+       otherwise linkingObjectIdentifier with the role source).
+       What the carrier records: the files the step lists as input and every image its results
+       name (decoded, highlight, light, imageValue). What it does not list but the stage code
+       reads (mappings/carrier-to-mets.md, "What each step used"): a step after decoding that
+       names no file worked on the decoded images (the ImageDecode step's); RtiFit fitted to the
+       light directions, which the lights step wrote to its .lp; DerivedMaps computed from the
+       model of the RtiFit step whose basis it names, which that step wrote to its file.
+       Must stay the same expression as in carrier-to-crm.xsl (L10_had_input). -->
+  <xsl:template name="step-sources">
+    <xsl:param name="step"/>
+    <xsl:param name="as"/>
+    <xsl:for-each select="$carrier">
+      <xsl:variable name="result" select="key('result-by-step', $step/@id)"/>
+      <xsl:variable name="explicit" select="boolean($result/c:input/@file or $result/*/@image)"/>
+      <xsl:variable name="decodeIds" select="$carrier/c:process/c:step[@component = 'ImageDecode']/@id"/>
+      <xsl:variable name="useDecoded" select="not($explicit) and $step/@component != 'CaptureIngest' and $step/@component != 'ImageDecode' and $step/@component != 'DerivedMaps'"/>
+      <xsl:variable name="lights" select="key('result-by-step', $step/preceding-sibling::c:step[@component = 'LightDirections' or @component = 'LightsFromFile']/@id)/c:output[@kind = 'lp']/@file[$step/@component = 'RtiFit']"/>
+      <xsl:variable name="model" select="key('result-by-step', $step/preceding-sibling::c:step[@component = 'RtiFit'][c:param[@name = 'basis']/@value = $step/c:param[@name = 'model']/@value]/@id)/c:output/@file[$step/@component = 'DerivedMaps']"/>
+      <xsl:variable name="sources" select="$carrier/c:files/c:file[
+          key('step-input', concat($step/@id, ' ', @id))
+          or ($useDecoded and key('decoded-image', @id)[../../@step = $decodeIds])
+          or @id = $lights or @id = $model]"/>
+      <xsl:choose>
+        <xsl:when test="$as = 'related'">
+          <xsl:for-each select="$sources">
+            <premis:relatedObjectIdentifier>
+              <premis:relatedObjectIdentifierType>BagIt payload path</premis:relatedObjectIdentifierType>
+              <premis:relatedObjectIdentifierValue><xsl:value-of select="concat('data/', @path)"/></premis:relatedObjectIdentifierValue>
+            </premis:relatedObjectIdentifier>
+          </xsl:for-each>
+        </xsl:when>
+        <xsl:otherwise>
+          <xsl:for-each select="$sources">
+            <xsl:call-template name="linking-object">
+              <xsl:with-param name="file" select="."/>
+              <xsl:with-param name="role" select="'source'"/>
+            </xsl:call-template>
+          </xsl:for-each>
+        </xsl:otherwise>
+      </xsl:choose>
+    </xsl:for-each>
+  </xsl:template>
+
+  <!-- The format table (mappings/carrier-to-mets.md, "Formats"): the carrier's format name
+       becomes the registry's name and version; the PRONOM identifier is the carrier's when it
+       records one, else the one this table gives where the version is certain. -->
+  <xsl:template name="format-key">
     <xsl:param name="rec"/>
     <xsl:param name="path"/>
     <xsl:variable name="lower" select="translate($path, 'ABCDEFGHIJKLMNOPQRSTUVWXYZ', 'abcdefghijklmnopqrstuvwxyz')"/>
+    <xsl:choose>
+      <xsl:when test="$rec and starts-with($rec/@format, 'PTM')">PTM</xsl:when>
+      <xsl:when test="$rec and starts-with($rec/@format, 'RTI')">RTI</xsl:when>
+      <xsl:when test="$rec and $rec/@format = 'PNG' and $rec/@createdBy">PNG-written</xsl:when>
+      <xsl:when test="$rec"><xsl:value-of select="$rec/@format"/></xsl:when>
+      <xsl:when test="substring($lower, string-length($lower) - 3) = '.xml'">XML</xsl:when>
+      <xsl:when test="substring($lower, string-length($lower) - 4) = '.html'">HTML</xsl:when>
+      <xsl:when test="substring($lower, string-length($lower) - 3) = '.png'">PNG</xsl:when>
+      <xsl:when test="substring($lower, string-length($lower) - 3) = '.jpg' or substring($lower, string-length($lower) - 4) = '.jpeg'">JPEG</xsl:when>
+      <xsl:when test="substring($lower, string-length($lower) - 3) = '.ptm'">PTM</xsl:when>
+      <xsl:when test="substring($lower, string-length($lower) - 3) = '.rti'">RTI</xsl:when>
+      <xsl:when test="substring($lower, string-length($lower) - 2) = '.lp'">LP</xsl:when>
+      <xsl:when test="substring($lower, string-length($lower) - 3) = '.txt'">TXT</xsl:when>
+      <xsl:otherwise>unknown</xsl:otherwise>
+    </xsl:choose>
+  </xsl:template>
+
+  <xsl:template name="premis-format">
+    <xsl:param name="rec"/>
+    <xsl:param name="path"/>
+    <xsl:variable name="key">
+      <xsl:call-template name="format-key">
+        <xsl:with-param name="rec" select="$rec"/>
+        <xsl:with-param name="path" select="$path"/>
+      </xsl:call-template>
+    </xsl:variable>
+    <xsl:variable name="name">
+      <xsl:choose>
+        <xsl:when test="$key = 'DNG'">Digital Negative Format (DNG)</xsl:when>
+        <xsl:when test="$key = 'JPEG'">JPEG</xsl:when>
+        <xsl:when test="$key = 'TIFF'">Tagged Image File Format</xsl:when>
+        <xsl:when test="$key = 'PNG' or $key = 'PNG-written'">Portable Network Graphics</xsl:when>
+        <xsl:when test="$key = 'PTM'">Polynomial Texture Map (PTM)</xsl:when>
+        <xsl:when test="$key = 'RTI'">Reflectance Transformation Imaging file (.rti)</xsl:when>
+        <xsl:when test="$key = 'LP'">RTI light positions (.lp)</xsl:when>
+        <xsl:when test="$key = 'XML'">Extensible Markup Language</xsl:when>
+        <xsl:when test="$key = 'HTML'">Hypertext Markup Language</xsl:when>
+        <xsl:when test="$key = 'TXT'">Plain Text File</xsl:when>
+        <xsl:otherwise><xsl:value-of select="$key"/></xsl:otherwise>
+      </xsl:choose>
+    </xsl:variable>
+    <xsl:variable name="version">
+      <xsl:choose>
+        <xsl:when test="$key = 'PNG-written'">1.2</xsl:when>
+        <xsl:when test="$key = 'PTM' and $rec">1.2</xsl:when>
+        <xsl:when test="$key = 'RTI' and $rec/@format = 'RTI_HSH'">HSH 1.2</xsl:when>
+        <xsl:when test="$key = 'XML'">1.0</xsl:when>
+        <xsl:when test="$key = 'HTML'">5</xsl:when>
+      </xsl:choose>
+    </xsl:variable>
+    <xsl:variable name="puid">
+      <xsl:choose>
+        <xsl:when test="$rec/@puid != ''"><xsl:value-of select="$rec/@puid"/></xsl:when>
+        <xsl:when test="$key = 'PNG-written'">fmt/13</xsl:when>
+        <xsl:when test="$key = 'XML'">fmt/101</xsl:when>
+        <xsl:when test="$key = 'HTML'">fmt/471</xsl:when>
+        <xsl:when test="$key = 'TIFF'">fmt/353</xsl:when>
+        <xsl:when test="$key = 'TXT'">x-fmt/111</xsl:when>
+      </xsl:choose>
+    </xsl:variable>
     <premis:format>
       <premis:formatDesignation>
-        <premis:formatName>
-          <xsl:choose>
-            <xsl:when test="$rec"><xsl:value-of select="$rec/@format"/></xsl:when>
-            <xsl:when test="substring($lower, string-length($lower) - 3) = '.xml'">XML</xsl:when>
-            <xsl:when test="substring($lower, string-length($lower) - 4) = '.html'">HTML</xsl:when>
-            <xsl:when test="substring($lower, string-length($lower) - 3) = '.png'">PNG</xsl:when>
-            <xsl:when test="substring($lower, string-length($lower) - 3) = '.jpg'">JPEG</xsl:when>
-            <xsl:when test="substring($lower, string-length($lower) - 3) = '.ptm'">PTM</xsl:when>
-            <xsl:when test="substring($lower, string-length($lower) - 3) = '.rti'">RTI</xsl:when>
-            <xsl:when test="substring($lower, string-length($lower) - 2) = '.lp'">LP</xsl:when>
-            <xsl:otherwise>unknown</xsl:otherwise>
-          </xsl:choose>
-        </premis:formatName>
+        <premis:formatName><xsl:value-of select="$name"/></premis:formatName>
+        <xsl:if test="$version != ''"><premis:formatVersion><xsl:value-of select="$version"/></premis:formatVersion></xsl:if>
       </premis:formatDesignation>
-      <xsl:if test="$rec/@puid != ''">
+      <xsl:if test="$puid != ''">
         <premis:formatRegistry>
           <premis:formatRegistryName>PRONOM</premis:formatRegistryName>
-          <premis:formatRegistryKey><xsl:value-of select="$rec/@puid"/></premis:formatRegistryKey>
+          <premis:formatRegistryKey><xsl:value-of select="$puid"/></premis:formatRegistryKey>
           <premis:formatRegistryRole>specification</premis:formatRegistryRole>
         </premis:formatRegistry>
       </xsl:if>
       <xsl:if test="$rec/@mediaType != ''">
         <premis:formatNote><xsl:value-of select="concat('media type ', $rec/@mediaType)"/></premis:formatNote>
       </xsl:if>
+      <xsl:if test="$rec and $rec/@format != $name">
+        <premis:formatNote><xsl:value-of select="concat('carrier format name ', $rec/@format)"/></premis:formatNote>
+      </xsl:if>
+      <xsl:if test="$puid = ''">
+        <premis:formatNote>
+          <xsl:choose>
+            <xsl:when test="$key = 'DNG'">no PRONOM identifier given: PRONOM identifies DNG by version (fmt/436 1.0, fmt/152 1.1, fmt/437 1.2, fmt/438 1.3, fmt/730 1.4, fmt/1841 1.5, fmt/1842 1.6) and the carrier does not record the DNGVersion of the file; identify it with DROID or Siegfried</xsl:when>
+            <xsl:when test="$key = 'JPEG'">no PRONOM identifier given: PRONOM identifies JPEG by variant and version (JFIF 1.00 fmt/42, 1.01 fmt/43, 1.02 fmt/44; Exif JPEGs have their own entries) and the carrier does not record which; identify it with DROID or Siegfried</xsl:when>
+            <xsl:when test="$key = 'PNG'">no PRONOM identifier given: PRONOM identifies PNG by version (1.0 fmt/11, 1.1 fmt/12, 1.2 fmt/13) and this file was not written by Surrogate</xsl:when>
+            <xsl:when test="$key = 'PTM'">PRONOM has no entry for PTM; specification: Malzbender, Gelb, Wolters, Polynomial Texture Map (.ptm) File Format, HP Labs, 2001</xsl:when>
+            <xsl:when test="$key = 'RTI'">PRONOM has no entry for the .rti format of Cultural Heritage Imaging's RTIBuilder and RTIViewer</xsl:when>
+            <xsl:when test="$key = 'LP'">PRONOM has no entry for .lp light-position files (plain text: a count, then one line per image with its light direction)</xsl:when>
+            <xsl:otherwise>no PRONOM identifier known for this format</xsl:otherwise>
+          </xsl:choose>
+        </premis:formatNote>
+      </xsl:if>
     </premis:format>
   </xsl:template>
-
   <xsl:template name="creating-application">
     <xsl:param name="rec"/>
     <xsl:param name="path"/>
@@ -460,6 +859,75 @@
     </xsl:for-each>
   </xsl:template>
 
+  <!-- An event type from the Library of Congress PREMIS eventType vocabulary
+       (id.loc.gov/vocabulary/preservation/eventType), with its URI. -->
+  <xsl:template name="event-type">
+    <xsl:param name="label"/>
+    <xsl:variable name="code">
+      <xsl:choose>
+        <xsl:when test="$label = 'capture'">cap</xsl:when>
+        <xsl:when test="$label = 'creation'">cre</xsl:when>
+        <xsl:when test="$label = 'interpreting'">int</xsl:when>
+        <xsl:when test="$label = 'metadata extraction'">mee</xsl:when>
+        <xsl:when test="$label = 'metadata modification'">mem</xsl:when>
+        <xsl:when test="$label = 'message digest calculation'">mes</xsl:when>
+        <xsl:when test="$label = 'information package creation'">ipc</xsl:when>
+      </xsl:choose>
+    </xsl:variable>
+    <premis:eventType authority="eventType" authorityURI="{$event-types}" valueURI="{concat($event-types, '/', $code)}"><xsl:value-of select="$label"/></premis:eventType>
+  </xsl:template>
+
+  <!-- The libraries a step used, by the stage code (mappings/carrier-to-mets.md, "What each
+       step used"): each header software entry named there, linked as a software agent. The
+       decoder of each image is the one ImageDecode recorded. -->
+  <xsl:template name="step-libraries">
+    <xsl:param name="step"/>
+    <xsl:variable name="result" select="$carrier/c:data/c:result[@step = $step/@id]"/>
+    <xsl:variable name="names">
+      <xsl:choose>
+        <xsl:when test="$step/@component = 'CaptureIngest'">|LibRaw|Exiv2|OpenSSL|</xsl:when>
+        <xsl:when test="$step/@component = 'ImageDecode' and $result/c:decoded/@decoder">|OpenSSL|</xsl:when>
+        <xsl:when test="$step/@component = 'ImageDecode'">|LibRaw|OpenCV|OpenSSL|</xsl:when>
+        <xsl:when test="$step/@component = 'SphereDetection'">|OpenCV|Eigen|OpenSSL|</xsl:when>
+        <xsl:when test="$step/@component = 'HighlightDetection'">|OpenCV|OpenSSL|</xsl:when>
+        <xsl:when test="$step/@component = 'LightDirections'">|Eigen|OpenSSL|</xsl:when>
+        <xsl:when test="$step/@component = 'LightsFromFile'">|OpenSSL|</xsl:when>
+        <xsl:when test="$step/@component = 'RtiFit'">|Eigen|OpenSSL|</xsl:when>
+        <xsl:when test="$step/@component = 'DerivedMaps'">|OpenCV|Eigen|OpenSSL|</xsl:when>
+      </xsl:choose>
+    </xsl:variable>
+    <xsl:for-each select="$carrier/c:header/c:software[@name != 'Surrogate']">
+      <xsl:variable name="sw" select="."/>
+      <xsl:if test="contains($names, concat('|', @name, '|')) or ($step/@component = 'ImageDecode' and $result/c:decoded[starts-with(@decoder, concat($sw/@name, ' '))])">
+        <xsl:call-template name="linking-agent">
+          <xsl:with-param name="type" select="'software'"/>
+          <xsl:with-param name="value"><xsl:call-template name="software-id"/></xsl:with-param>
+          <xsl:with-param name="role" select="'software library'"/>
+        </xsl:call-template>
+      </xsl:if>
+    </xsl:for-each>
+  </xsl:template>
+
+  <!-- A header software entry's agent identifier: "name version", the version alone when it
+       already begins with the name (OpenSSL reports "OpenSSL 3.0.13 30 Jan 2024"). -->
+  <xsl:template name="software-id">
+    <xsl:choose>
+      <xsl:when test="starts-with(@version, concat(@name, ' '))"><xsl:value-of select="@version"/></xsl:when>
+      <xsl:otherwise><xsl:value-of select="concat(@name, ' ', @version)"/></xsl:otherwise>
+    </xsl:choose>
+  </xsl:template>
+
+  <!-- Surrogate itself, as the program that ran a step or command. -->
+  <xsl:template name="surrogate-agent">
+    <xsl:if test="$surrogate">
+      <xsl:call-template name="linking-agent">
+        <xsl:with-param name="type" select="'software'"/>
+        <xsl:with-param name="value" select="concat($surrogate/@name, ' ', $surrogate/@version)"/>
+        <xsl:with-param name="role" select="'executing program'"/>
+      </xsl:call-template>
+    </xsl:if>
+  </xsl:template>
+
   <xsl:template name="linking-agent">
     <xsl:param name="type"/>
     <xsl:param name="value"/>
@@ -492,16 +960,31 @@
               <premis:eventIdentifierType>Surrogate event</premis:eventIdentifierType>
               <premis:eventIdentifierValue>event-capture</premis:eventIdentifierValue>
             </premis:eventIdentifier>
-            <premis:eventType>capture</premis:eventType>
-            <premis:eventDateTime>
+            <xsl:call-template name="event-type"><xsl:with-param name="label" select="'capture'"/></xsl:call-template>
+            <xsl:variable name="shot">
               <xsl:for-each select="$originals/c:camera/@dateTimeOriginal">
                 <xsl:sort select="."/>
                 <xsl:if test="position() = 1"><xsl:call-template name="exif-date"><xsl:with-param name="d" select="."/></xsl:call-template></xsl:if>
               </xsl:for-each>
-              <xsl:if test="not($originals/c:camera/@dateTimeOriginal)"><xsl:value-of select="c:header/c:created"/></xsl:if>
+            </xsl:variable>
+            <xsl:variable name="zone" select="substring($shot, 20)"/>
+            <premis:eventDateTime>
+              <xsl:choose>
+                <xsl:when test="$shot != ''"><xsl:value-of select="$shot"/></xsl:when>
+                <xsl:otherwise><xsl:value-of select="c:header/c:created"/></xsl:otherwise>
+              </xsl:choose>
             </premis:eventDateTime>
             <premis:eventDetailInformation>
               <premis:eventDetail><xsl:value-of select="concat('Highlight-RTI capture of ', count($originals), ' images: ', c:header/c:title)"/></premis:eventDetail>
+            </premis:eventDetailInformation>
+            <premis:eventDetailInformation>
+              <premis:eventDetail>
+                <xsl:choose>
+                  <xsl:when test="$shot = ''">date: the camera recorded no shooting time (EXIF DateTimeOriginal); the date given is when the record was made (UTC)</xsl:when>
+                  <xsl:when test="contains($zone, 'Z') or contains($zone, '+') or contains($zone, '-')">date: the first shot, from the camera clock (EXIF DateTimeOriginal with its time zone)</xsl:when>
+                  <xsl:otherwise>date: the first shot, from the camera clock (EXIF DateTimeOriginal); local time of the camera, time zone not recorded</xsl:otherwise>
+                </xsl:choose>
+              </premis:eventDetail>
             </premis:eventDetailInformation>
             <premis:eventOutcomeInformation>
               <premis:eventOutcome>success</premis:eventOutcome>
@@ -541,7 +1024,7 @@
                 <premis:eventIdentifierType>Surrogate event</premis:eventIdentifierType>
                 <premis:eventIdentifierValue><xsl:value-of select="concat('event-run-', @id)"/></premis:eventIdentifierValue>
               </premis:eventIdentifier>
-              <premis:eventType>metadata modification</premis:eventType>
+              <xsl:call-template name="event-type"><xsl:with-param name="label" select="'metadata modification'"/></xsl:call-template>
               <premis:eventDateTime><xsl:value-of select="@started"/></premis:eventDateTime>
               <premis:eventDetailInformation>
                 <premis:eventDetail><xsl:call-template name="command-line"><xsl:with-param name="run" select="."/></xsl:call-template></premis:eventDetail>
@@ -573,13 +1056,15 @@
                 <xsl:with-param name="value" select="normalize-space(@who)"/>
                 <xsl:with-param name="role" select="'implementer'"/>
               </xsl:call-template>
-              <xsl:if test="$surrogate">
+              <xsl:call-template name="surrogate-agent"/>
+              <!-- the record is written and checked against its schema with libxml2 -->
+              <xsl:for-each select="$carrier/c:header/c:software[@name = 'libxml2']">
                 <xsl:call-template name="linking-agent">
                   <xsl:with-param name="type" select="'software'"/>
-                  <xsl:with-param name="value" select="concat($surrogate/@name, ' ', $surrogate/@version)"/>
-                  <xsl:with-param name="role" select="'executing program'"/>
+                  <xsl:with-param name="value"><xsl:call-template name="software-id"/></xsl:with-param>
+                  <xsl:with-param name="role" select="'software library'"/>
                 </xsl:call-template>
-              </xsl:if>
+              </xsl:for-each>
               <premis:linkingObjectIdentifier>
                 <premis:linkingObjectIdentifierType>BagIt payload path</premis:linkingObjectIdentifierType>
                 <premis:linkingObjectIdentifierValue><xsl:value-of select="$carrier-path"/></premis:linkingObjectIdentifierValue>
@@ -603,12 +1088,15 @@
                 <premis:eventIdentifierType>Surrogate event</premis:eventIdentifierType>
                 <premis:eventIdentifierValue><xsl:value-of select="concat('event-', @id)"/></premis:eventIdentifierValue>
               </premis:eventIdentifier>
-              <premis:eventType>
-                <xsl:choose>
-                  <xsl:when test="$result/c:output">creation</xsl:when>
-                  <xsl:otherwise>metadata extraction</xsl:otherwise>
-                </xsl:choose>
-              </premis:eventType>
+              <xsl:call-template name="event-type">
+                <xsl:with-param name="label">
+                  <xsl:choose>
+                    <xsl:when test="$result/c:output">creation</xsl:when>
+                    <xsl:when test="@component = 'ImageDecode'">interpreting</xsl:when>
+                    <xsl:otherwise>metadata extraction</xsl:otherwise>
+                  </xsl:choose>
+                </xsl:with-param>
+              </xsl:call-template>
               <premis:eventDateTime>
                 <xsl:choose>
                   <xsl:when test="$result"><xsl:value-of select="$result/@started"/></xsl:when>
@@ -655,11 +1143,20 @@
                   </premis:eventOutcomeDetail>
                 </xsl:for-each>
               </premis:eventOutcomeInformation>
+              <xsl:if test="$operator != '' and $result">
+                <xsl:call-template name="linking-agent">
+                  <xsl:with-param name="type" select="'person'"/>
+                  <xsl:with-param name="value" select="$operator"/>
+                  <xsl:with-param name="role" select="'implementer'"/>
+                </xsl:call-template>
+              </xsl:if>
               <xsl:call-template name="linking-agent">
                 <xsl:with-param name="type" select="'software'"/>
                 <xsl:with-param name="value" select="concat('Surrogate ', @component, ' ', @version)"/>
                 <xsl:with-param name="role" select="'executing program'"/>
               </xsl:call-template>
+              <xsl:call-template name="surrogate-agent"/>
+              <xsl:call-template name="step-libraries"><xsl:with-param name="step" select="."/></xsl:call-template>
               <xsl:for-each select="c:intervention">
                 <xsl:if test="not(preceding-sibling::c:intervention[normalize-space(@who) = normalize-space(current()/@who)])">
                   <xsl:call-template name="linking-agent">
@@ -669,15 +1166,14 @@
                   </xsl:call-template>
                 </xsl:if>
               </xsl:for-each>
-              <xsl:for-each select="$result/c:input">
+              <xsl:call-template name="step-sources">
+                <xsl:with-param name="step" select="."/>
+                <xsl:with-param name="as" select="'linking'"/>
+              </xsl:call-template>
+              <!-- what it wrote: its outputs, and any file that names it as its maker -->
+              <xsl:for-each select="key('file-by-id', $result/c:output/@file) | key('file-by-creator', @id)">
                 <xsl:call-template name="linking-object">
-                  <xsl:with-param name="file" select="key('file-by-id', current()/@file)"/>
-                  <xsl:with-param name="role" select="'source'"/>
-                </xsl:call-template>
-              </xsl:for-each>
-              <xsl:for-each select="$result/c:output">
-                <xsl:call-template name="linking-object">
-                  <xsl:with-param name="file" select="key('file-by-id', current()/@file)"/>
+                  <xsl:with-param name="file" select="."/>
                   <xsl:with-param name="role" select="'outcome'"/>
                 </xsl:call-template>
               </xsl:for-each>
@@ -712,7 +1208,7 @@
               <premis:eventIdentifierType>Surrogate event</premis:eventIdentifierType>
               <premis:eventIdentifierValue><xsl:value-of select="$id"/></premis:eventIdentifierValue>
             </premis:eventIdentifier>
-            <premis:eventType><xsl:value-of select="$type"/></premis:eventType>
+            <xsl:call-template name="event-type"><xsl:with-param name="label" select="$type"/></xsl:call-template>
             <premis:eventDateTime><xsl:value-of select="$pack-time"/></premis:eventDateTime>
             <premis:eventDetailInformation>
               <premis:eventDetail><xsl:value-of select="$detail"/></premis:eventDetail>
@@ -725,6 +1221,13 @@
               <xsl:with-param name="value" select="$software-agent"/>
               <xsl:with-param name="role" select="'executing program'"/>
             </xsl:call-template>
+            <xsl:if test="$id = 'event-packaging'">
+              <premis:linkingObjectIdentifier>
+                <premis:linkingObjectIdentifierType>Surrogate package identifier</premis:linkingObjectIdentifierType>
+                <premis:linkingObjectIdentifierValue><xsl:value-of select="$objid"/></premis:linkingObjectIdentifierValue>
+                <premis:linkingObjectRole>outcome</premis:linkingObjectRole>
+              </premis:linkingObjectIdentifier>
+            </xsl:if>
           </premis:event>
         </mets:xmlData>
       </mets:mdWrap>
@@ -758,29 +1261,35 @@
     </mets:digiprovMD>
   </xsl:template>
 
+  <!-- Each agent once: events link to them by (type, value). -->
   <xsl:template name="agents">
-    <xsl:call-template name="agent">
-      <xsl:with-param name="id" select="'agent-packer'"/>
-      <xsl:with-param name="type" select="'software'"/>
-      <xsl:with-param name="value" select="$software-agent"/>
-      <xsl:with-param name="name" select="$software-agent"/>
-      <xsl:with-param name="agent-type" select="'software'"/>
-      <xsl:with-param name="note" select="'wrote the BagIt package and its manifests'"/>
-    </xsl:call-template>
+    <xsl:if test="not($packer-is-surrogate)">
+      <xsl:call-template name="agent">
+        <xsl:with-param name="id" select="'agent-packer'"/>
+        <xsl:with-param name="type" select="'software'"/>
+        <xsl:with-param name="value" select="$software-agent"/>
+        <xsl:with-param name="name" select="$software-agent"/>
+        <xsl:with-param name="agent-type" select="'software'"/>
+        <xsl:with-param name="note" select="'wrote the BagIt package and its manifests'"/>
+      </xsl:call-template>
+    </xsl:if>
     <xsl:for-each select="c:header/c:software">
       <xsl:call-template name="agent">
         <xsl:with-param name="id" select="concat('agent-software-', position())"/>
         <xsl:with-param name="type" select="'software'"/>
-        <xsl:with-param name="value" select="concat(@name, ' ', @version)"/>
+        <xsl:with-param name="value"><xsl:call-template name="software-id"/></xsl:with-param>
         <xsl:with-param name="name" select="@name"/>
         <xsl:with-param name="agent-type" select="'software'"/>
         <xsl:with-param name="version" select="@version"/>
-        <xsl:with-param name="note" select="@role"/>
+        <xsl:with-param name="note">
+          <xsl:value-of select="@role"/>
+          <xsl:if test="@name = 'Surrogate' and $packer-is-surrogate">; also wrote the BagIt package and its manifests</xsl:if>
+        </xsl:with-param>
       </xsl:call-template>
     </xsl:for-each>
-    <xsl:for-each select="c:process/c:step">
+    <xsl:for-each select="c:process/c:step[count(. | key('stage', concat(@component, ' ', @version))[1]) = 1]">
       <xsl:call-template name="agent">
-        <xsl:with-param name="id" select="concat('agent-', @id)"/>
+        <xsl:with-param name="id" select="concat('agent-stage-', position())"/>
         <xsl:with-param name="type" select="'software'"/>
         <xsl:with-param name="value" select="concat('Surrogate ', @component, ' ', @version)"/>
         <xsl:with-param name="name" select="concat('Surrogate ', @component)"/>

@@ -9,11 +9,13 @@
 #include <cstdio>
 #include <fstream>
 #include <regex>
+#include <set>
 
 #include "carrier/carrier.h"
 #include "core/digest.h"
 #include "core/error.h"
 #include "mapping/mapping.h"
+#include "archival_checks.h"
 #include "sample_capture.h"
 #include "test_files.h"
 
@@ -117,7 +119,9 @@ TEST_CASE("METS with PREMIS derived from a carrier validates against the vendore
   // Every payload file is in the fileSec, with its SHA-256, and has a PREMIS object with both
   // fixities, its size and (where known) its PRONOM id.
   CHECK(count(mets, "<mets:file ") == static_cast<int>(s.facts.payload.size()));
-  CHECK(count(mets, "<premis:object ") == static_cast<int>(s.facts.payload.size()));
+  // ... and the capture itself is one more object: the intellectual entity.
+  CHECK(count(mets, "<premis:object ") == static_cast<int>(s.facts.payload.size()) + 1);
+  CHECK(count(mets, "<premis:object xsi:type=\"premis:intellectualEntity\"") == 1);
   for (const mapping::PayloadFile& f : s.facts.payload) {
     INFO(f.path);
     CHECK(mets.find("xlink:href=\"" + f.path + "\"") != std::string::npos);
@@ -128,9 +132,9 @@ TEST_CASE("METS with PREMIS derived from a carrier validates against the vendore
   CHECK(mets.find("<premis:creatingApplicationName>Canon EOS 5D Mark IV</premis:creatingApplicationName>") != std::string::npos);
   CHECK(mets.find("<premis:creatingApplicationName>Surrogate RtiFit</premis:creatingApplicationName>") != std::string::npos);
   // Events: capture, each step, message digest calculation, packaging; with outcomes and agents.
-  CHECK(mets.find("<premis:eventType>capture</premis:eventType>") != std::string::npos);
-  CHECK(mets.find("<premis:eventType>message digest calculation</premis:eventType>") != std::string::npos);
-  CHECK(mets.find("<premis:eventType>information package creation</premis:eventType>") != std::string::npos);
+  CHECK(mets.find("eventType/cap\">capture</premis:eventType>") != std::string::npos);
+  CHECK(mets.find("eventType/mes\">message digest calculation</premis:eventType>") != std::string::npos);
+  CHECK(mets.find("eventType/ipc\">information package creation</premis:eventType>") != std::string::npos);
   CHECK(mets.find("event-s1") != std::string::npos);
   CHECK(mets.find("event-s2") != std::string::npos);
   CHECK(count(mets, "<premis:eventOutcome>success</premis:eventOutcome>") == 5);
@@ -288,7 +292,7 @@ TEST_CASE("command runs become PREMIS events with their command line, outcome, n
   CHECK_NOTHROW(mapping::validateMets(mets, "mets.xml"));
 
   // One event per run, identifiers apart from the steps' (event-s1) and the package's.
-  CHECK(count(mets, "<premis:eventType>metadata modification</premis:eventType>") == 3);
+  CHECK(count(mets, ">metadata modification</premis:eventType>") == 3);
   for (const std::string& id : {"r1", "r2", "r3"}) {
     INFO(id);
     CHECK(count(mets, "<mets:digiprovMD ID=\"event-run-" + id + "\">") == 1);
@@ -310,7 +314,9 @@ TEST_CASE("command runs become PREMIS events with their command line, outcome, n
   // software.
   CHECK(mets.find("<premis:agentName>Eli Park</premis:agentName>") != std::string::npos);
   CHECK(mets.find("<premis:linkingAgentIdentifierValue>Eli Park</premis:linkingAgentIdentifierValue>") != std::string::npos);
-  CHECK(count(mets, "<premis:linkingAgentRole>implementer</premis:linkingAgentRole>") == 3);
+  // Each run's person, and the person of the run that made the current state (r2, Dee Ortiz)
+  // as the operator of the two steps that ran.
+  CHECK(count(mets, "<premis:linkingAgentRole>implementer</premis:linkingAgentRole>") == 5);
   for (const std::string& id : {"r1", "r2", "r3"}) {
     const auto from = mets.find("<mets:digiprovMD ID=\"event-run-" + id + "\">");
     REQUIRE(from != std::string::npos);
@@ -397,4 +403,118 @@ TEST_CASE("command runs become CIDOC-CRM activities of the session, in order, by
   CHECK(triple("step/s1/intervention/2", "P3_has_note", "\"accepted: the file as it is now, " + std::string(kAcceptedHash) + "\""));
   CHECK(triple("file/f11", "P2_has_type", node("type/role/other")));
   CHECK(mapping::deriveCrm(s.carrierXml) == crm);
+}
+
+// Issue 14: the derived metadata read as a repository's ingest reads it (archival_checks.h).
+TEST_CASE("PREMIS in METS of a carrier with history: every link resolves, each agent and event once", "[mapping][mets][premis]") {
+  const Sample s = sampleWithHistory("premis-links");
+  const std::string mets = mapping::deriveMets(s.carrierXml, s.facts);
+  CHECK_NOTHROW(mapping::validateMets(mets, "mets.xml"));
+  const archival::Premis p = archival::readPremis(mets);
+  for (const std::string& problem : archival::linkProblems(p)) FAIL_CHECK(problem);
+  // The Surrogate of the header is also the packer: one agent, not two.
+  CHECK(count(mets, "<premis:agentIdentifierValue>Surrogate 0.1.0</premis:agentIdentifierValue>") == 1);
+  // One agent per distinct stage component and version.
+  std::set<std::string> stageAgents;
+  for (const auto& a : p.agents)
+    if (a.value.rfind("Surrogate ", 0) == 0 && a.value != "Surrogate 0.1.0") CHECK(stageAgents.insert(a.value).second);
+  // Every payload file has a MIMETYPE, those the carrier does not describe by their name.
+  REQUIRE(p.files.size() == s.facts.payload.size());
+  for (const auto& [href, mime] : p.files) {
+    INFO(href);
+    CHECK_FALSE(mime.empty());
+  }
+  CHECK(mets.find("MIMETYPE=\"text/plain\"") != std::string::npos);
+  // The step that made the result files is their derivation event, with its sources.
+  const std::vector<std::string> derived = {"data/finished-files/ptm-lrgb.ptm"};
+  for (const std::string& problem : archival::derivationProblems(p, derived)) FAIL_CHECK(problem);
+}
+
+TEST_CASE("a carrier without rights or licence, as older versions wrote, maps to a statement that none was recorded", "[mapping][mets][rights]") {
+  const Sample s = sample("no-rights");
+  REQUIRE(s.carrierXml.find("<rights>") == std::string::npos);
+  CHECK_NOTHROW(carrier::parseCarrier(s.carrierXml, "old carrier.xml"));
+  const std::string mets = mapping::deriveMets(s.carrierXml, s.facts);
+  CHECK_NOTHROW(mapping::validateMets(mets, "mets.xml"));
+  CHECK(count(mets, "<premis:rightsStatement>") == 1);
+  CHECK(mets.find("<premis:otherRightsBasis>unknown</premis:otherRightsBasis>") != std::string::npos);
+  CHECK(mets.find("<dc:rights>") == std::string::npos);
+  CHECK(mapping::deriveCrm(s.carrierXml).find("E30_Right") == std::string::npos);
+}
+
+TEST_CASE("rights and licence in the carrier header become PREMIS rights, METS rightsMD, Dublin Core and an E30 Right", "[mapping][mets][crm][rights]") {
+  const fs::path capture = samplecapture::make(freshDir("rights"));
+  std::string xml = slurp(capture / "assembly-files/carrier.xml");
+  const auto at = xml.find("    <machine ");
+  REQUIRE(at != std::string::npos);
+  xml.insert(at, "    <rights>Images: Museum of Stelae; research use only</rights>\n"
+                 "    <license>https://creativecommons.org/licenses/by-nc/4.0/</license>\n");
+  const auto meta = xml.find("    <rights>");
+  xml.insert(meta, "    <meta key=\"Subject\">funerary stela</meta>\n    <meta key=\"Description\">limestone, 3rd c. BC</meta>\n");
+  std::ofstream(capture / "assembly-files/carrier.xml", std::ios::binary) << xml;
+  const Sample s = sampleOf(capture);
+  const carrier::Carrier c = carrier::parseCarrier(s.carrierXml, "carrier.xml");  // the schema takes them
+  CHECK(c.header.rights == "Images: Museum of Stelae; research use only");
+  CHECK(c.header.license == "https://creativecommons.org/licenses/by-nc/4.0/");
+  CHECK(carrier::toXml(c).find("<license>https://creativecommons.org/licenses/by-nc/4.0/</license>") != std::string::npos);
+
+  const std::string mets = mapping::deriveMets(s.carrierXml, s.facts);
+  CHECK_NOTHROW(mapping::validateMets(mets, "mets.xml"));
+  CHECK(mets.find("<mets:rightsMD ID=\"rights\">") != std::string::npos);
+  CHECK(mets.find("<premis:rightsBasis>license</premis:rightsBasis>") != std::string::npos);
+  CHECK(mets.find("<premis:licenseDocumentationIdentifierValue>https://creativecommons.org/licenses/by-nc/4.0/</premis:licenseDocumentationIdentifierValue>") != std::string::npos);
+  CHECK(mets.find("<premis:otherRightsNote>Images: Museum of Stelae; research use only</premis:otherRightsNote>") != std::string::npos);
+  CHECK(count(mets, "<premis:linkingRightsStatementIdentifierValue>") == 2);  // from the intellectual entity
+  const archival::Premis p = archival::readPremis(mets);
+  for (const std::string& problem : archival::linkProblems(p)) FAIL_CHECK(problem);
+  // Dublin Core beside the CRM pointer; the structMap's top div names both.
+  CHECK(mets.find("<mets:mdWrap MDTYPE=\"DC\"") != std::string::npos);
+  CHECK(mets.find("DMDID=\"dmd-dc dmd-crm\"") != std::string::npos);
+  for (const std::string& dc : {std::string("<dc:title>Stela 12 &amp; &lt;friends&gt;</dc:title>"), std::string("<dc:subject>funerary stela</dc:subject>"),
+                                std::string("<dc:description>limestone, 3rd c. BC</dc:description>"),
+                                std::string("<dc:rights>Images: Museum of Stelae; research use only</dc:rights>"),
+                                std::string("<dc:rights>https://creativecommons.org/licenses/by-nc/4.0/</dc:rights>"),
+                                std::string("<dc:date>2026-01-01</dc:date>"), std::string("<dc:type>Image</dc:type>")}) {
+    INFO(dc);
+    CHECK(mets.find(dc) != std::string::npos);
+  }
+  CHECK(mets.find("<dc:creator>") != std::string::npos);
+
+  const std::vector<archival::Triple> triples = archival::rdfTriples(mapping::deriveCrm(s.carrierXml), capture.parent_path().string());
+  int subject = 0;
+  for (const auto& t : triples)
+    if (t.p == "http://www.cidoc-crm.org/cidoc-crm/P104_is_subject_to") ++subject;
+  CHECK(subject == static_cast<int>(c.files.size()));
+  for (const std::string& problem :
+       archival::crmTermProblems(triples, std::string(SURROGATE_SOURCE_DIR) + "/tests/mapping/data/crm-terms.tsv"))
+    FAIL_CHECK(problem);
+}
+
+TEST_CASE("every CRM class and property of a carrier with history keeps the CRM 7.1.3 and CRMdig domains and ranges", "[mapping][crm][terms]") {
+  const Sample s = sampleWithHistory("crm-terms");
+  const std::string crm = mapping::deriveCrm(s.carrierXml);
+  const std::vector<archival::Triple> triples = archival::rdfTriples(crm, s.capture.parent_path().string());
+  REQUIRE(triples.size() > 150);
+  for (const std::string& problem :
+       archival::crmTermProblems(triples, std::string(SURROGATE_SOURCE_DIR) + "/tests/mapping/data/crm-terms.tsv"))
+    FAIL_CHECK(problem);
+  for (const std::string& problem : archival::crmDerivationProblems(triples)) FAIL_CHECK(problem);
+  // The versions targeted are stated in the document.
+  CHECK(crm.find("CIDOC-CRM 7.1.3") != std::string::npos);
+  CHECK(crm.find("CRMdig 5.0") != std::string::npos);
+  CHECK(crm.find("https://cidoc-crm.org/rdfs/7.1.3/CIDOC_CRM_v7.1.3.rdfs") != std::string::npos);
+}
+
+TEST_CASE("the term check catches a property used outside its domain", "[mapping][crm][terms]") {
+  // P138_represents on a node that is only a D9 (its domain is E36), and an unknown class.
+  const std::string nt =
+      "<urn:x:f> <http://www.w3.org/1999/02/22-rdf-syntax-ns#type> <http://www.cidoc-crm.org/extensions/crmdig/D9_Data_Object> .\n"
+      "<urn:x:o> <http://www.w3.org/1999/02/22-rdf-syntax-ns#type> <http://www.cidoc-crm.org/cidoc-crm/E22_Human-Made_Object> .\n"
+      "<urn:x:f> <http://www.cidoc-crm.org/cidoc-crm/P138_represents> <urn:x:o> .\n"
+      "<urn:x:g> <http://www.w3.org/1999/02/22-rdf-syntax-ns#type> <http://www.cidoc-crm.org/cidoc-crm/E999_Nothing> .\n";
+  const auto problems = archival::crmTermProblems(archival::parseNTriples(nt),
+                                                  std::string(SURROGATE_SOURCE_DIR) + "/tests/mapping/data/crm-terms.tsv");
+  REQUIRE(problems.size() == 2);
+  CHECK(problems[0].find("E999_Nothing") != std::string::npos);
+  CHECK(problems[1].find("P138_represents: subject urn:x:f is not a E36_Visual_Item") != std::string::npos);
 }
