@@ -64,15 +64,23 @@ std::string deriveCrm(const std::string& carrierXml,
 std::string deriveMets(const std::string& carrierXml, const PackageFacts& facts,
                        const std::string& source = "assembly-files/carrier.xml");
 
-// deriveCrm / deriveMets without the text in memory: the same bytes are handed to `sink` as
-// they are serialised (a verifier hashes them and compares with the bag's file; a package of
-// 100 000 files has a METS of about 400 MB). deriveCrmTo also checks that the result's root is
-// rdf:RDF (Error(Internal) otherwise: a bug in the stylesheet).
+// deriveCrm / deriveMets without the text or the result tree in memory: the same bytes are
+// handed to `sink` while the stylesheet runs, and each finished part of the result is freed
+// once it is written (a verifier hashes them and compares with the bag's file; a package of
+// 100 000 files has a METS of 400-500 MB, whose tree would take about 2 GB). deriveCrmTo
+// also checks that the result's root is rdf:RDF (Error(Internal) otherwise: a bug in the
+// stylesheet).
+//
+// Returns false in the one case where the text cannot be written before the stylesheet is
+// done with it: an element that receives text after element children already written
+// indented (the bundled stylesheets make none). What `sink` was given is then not the
+// derivation; derive again with deriveCrm / deriveMets.
 using TextSink = std::function<void(const char* data, std::size_t size)>;
-void deriveCrmTo(const std::string& carrierXml, const TextSink& sink,
-                 const std::string& source = "assembly-files/carrier.xml");
-void deriveMetsTo(const std::string& carrierXml, const PackageFacts& facts, const TextSink& sink,
-                  const std::string& source = "assembly-files/carrier.xml");
+[[nodiscard]] bool deriveCrmTo(const std::string& carrierXml, const TextSink& sink,
+                               const std::string& source = "assembly-files/carrier.xml");
+[[nodiscard]] bool deriveMetsTo(const std::string& carrierXml, const PackageFacts& facts,
+                                const TextSink& sink,
+                                const std::string& source = "assembly-files/carrier.xml");
 
 // validateMets for text that arrives in pieces (e.g. from deriveMetsTo), without building the
 // document: memory stays bounded by the document's depth and IDs, not its size.

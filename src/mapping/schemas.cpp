@@ -88,7 +88,9 @@ struct MetsValidator::State {
   // xs:ID and xs:IDREF(S) of METS and PREMIS, which a streaming validation does not check
   // (libxml2 checks them on a document tree only): IDs unique, references to existing IDs.
   std::set<std::string> ids;
-  std::map<std::string, long> references;  // first line of each
+  // References to IDs not yet seen, with the line of the first (METS and PREMIS mostly refer
+  // back to IDs already read: few are ever held).
+  std::map<std::string, long> references;
 
   long line() const { return parser && parser->input ? parser->input->line : 0; }
   void add(long at, const std::string& message) {
@@ -126,7 +128,7 @@ struct MetsValidator::State {
         const std::string token = value.substr(start, end - start);
         if (id && !s->ids.insert(token).second)
           s->add(s->line(), "attribute '" + name + "': '" + token + "' is not unique (xs:ID)");
-        if (reference) s->references.emplace(token, s->line());
+        if (reference && !s->ids.count(token)) s->references.emplace(token, s->line());
         at = end;
         if (id) break;
       }

@@ -1,6 +1,8 @@
 #include <algorithm>
 #include <functional>
 #include <map>
+#include <memory>
+#include <optional>
 #include <unordered_set>
 
 #include "archive/bag_text.h"
@@ -158,23 +160,38 @@ void checkMetadata(const fs::path& package, const Inventory& inv, const std::str
     }
 
     // Each derived document is hashed as it is serialised, and compared with the bag's by
-    // digest: the texts (hundreds of MB for a package of many files) are never held. Only
-    // when they differ is the bag's text read again, to say where.
-    auto derive = [&](bool isMets, mapping::MetsValidator* validator) {
-      MultiDigest digest({DigestAlgorithm::Sha256});
+    // digest: neither the texts nor the result trees (hundreds of MB, GB, for a package of many
+    // files) are ever held whole. Only when they differ is the bag's text read again, to say
+    // where.
+    auto derive = [&](bool isMets, std::unique_ptr<mapping::MetsValidator>* validator) {
+      std::optional<MultiDigest> digest;
       std::uint64_t size = 0;
-      const mapping::TextSink sink = [&](const char* data, std::size_t n) {
-        digest.update(data, n);
-        size += n;
-        if (validator) validator->feed(data, n);
+      auto restart = [&] {
+        digest.emplace(std::vector<DigestAlgorithm>{DigestAlgorithm::Sha256});
+        size = 0;
+        if (validator) *validator = std::make_unique<mapping::MetsValidator>(metsPath);
       };
-      if (isMets) mapping::deriveMetsTo(*carrierXml, facts, sink, kCarrierPath);
-      else mapping::deriveCrmTo(*carrierXml, sink, kCarrierPath);
+      restart();
+      const mapping::TextSink sink = [&](const char* data, std::size_t n) {
+        digest->update(data, n);
+        size += n;
+        if (validator) (*validator)->feed(data, n);
+      };
+      const bool streamed = isMets ? mapping::deriveMetsTo(*carrierXml, facts, sink, kCarrierPath)
+                                   : mapping::deriveCrmTo(*carrierXml, sink, kCarrierPath);
+      if (!streamed) {
+        // A result that could not be written while it was built (mapping.h): derived whole.
+        restart();
+        const std::string whole = isMets ? mapping::deriveMets(*carrierXml, facts, kCarrierPath)
+                                         : mapping::deriveCrm(*carrierXml, kCarrierPath);
+        if (!isMets) mapping::checkRdfWellFormed(whole, crmPath);
+        sink(whole.data(), whole.size());
+      }
       const InventoryFile& bag = (isMets ? mets : crm)->second;
-      return bag.size == size && bag.sha256 == digest.hex(DigestAlgorithm::Sha256);
+      return bag.size == size && bag.sha256 == digest->hex(DigestAlgorithm::Sha256);
     };
     try {
-      mapping::MetsValidator validator(metsPath);
+      std::unique_ptr<mapping::MetsValidator> validator;
       if (derive(false, nullptr)) {
         crmChecked = true;  // the bag's crm.rdf is the derived one: RDF/XML (deriveCrmTo checks)
       } else {
@@ -184,7 +201,7 @@ void checkMetadata(const fs::path& package, const Inventory& inv, const std::str
       }
       if (derive(true, &validator)) {
         // The bag's mets.xml is the derived one, whose text the validator has just read.
-        metsProblems = run([&] { validator.finish(); });
+        metsProblems = run([&] { validator->finish(); });
         metsChecked = true;
       } else {
         const std::string derived = mapping::deriveMets(*carrierXml, facts, kCarrierPath);
