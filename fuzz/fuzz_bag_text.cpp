@@ -1,4 +1,5 @@
-// libFuzzer target: bagit.txt, bag-info.txt and manifest parsing, and path checks.
+// libFuzzer target: bagit.txt, bag-info.txt, manifest and fetch.txt parsing, tag files in other
+// encodings, and path checks.
 #include <cstdint>
 #include <string>
 
@@ -19,7 +20,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                          (p.size() >= 3 && p.compare(p.size() - 3, 3, "/..") == 0);
     if (!safeBagPath(p, &why) || escapes || p[0] == '/') __builtin_trap();
   }
+  for (const FetchEntry& e : parseFetch(text).entries) {
+    std::string why;
+    if (!safeBagPath(e.path, &why)) __builtin_trap();
+  }
   std::string why;
+  for (const char* encoding : {"UTF-16", "ISO-8859-1"}) {
+    if (const auto decoded = decodeTagText(text, encoding, &why)) parseManifest(*decoded, "md5", 32);
+  }
   safeBagPath(percentDecode(text), &why);
   caseFoldKey(text);
   return 0;

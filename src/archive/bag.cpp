@@ -571,6 +571,110 @@ PayloadDigest streamFile(const Source& src, Sink& sink, PayloadHasher& hasher,
   return out;
 }
 
+// The payload: checked, sorted by bag path, sized (lstat: a symbolic link is refused, never
+// followed); `total` receives the sum of the sizes.
+std::vector<Source> checkedPayload(const BagInput& input, std::uint64_t& total) {
+  std::vector<Source> sources;
+  std::set<std::string> seen;
+  total = 0;
+  for (const PayloadSource& p : input.payload) {
+    if (p.bagPath.rfind("data/", 0) != 0 || !safeRelative(p.bagPath)) {
+      throw Error(ErrorKind::Internal, p.bagPath, "packing",
+                  "is not a valid payload path (must be under data/, without '..')");
+    }
+    if (!seen.insert(p.bagPath).second) {
+      throw Error(ErrorKind::Internal, p.bagPath, "packing", "is listed twice in the payload");
+    }
+    struct stat st {};
+    if (::lstat(p.source.c_str(), &st) != 0) {
+      throwInputError(p.source.string(), "packing",
+                      std::string("cannot be read (") + std::strerror(errno) +
+                          "); it is listed in the capture but missing or inaccessible");
+    }
+    if (!S_ISREG(st.st_mode)) {
+      throwInputError(p.source.string(), "packing",
+                      "is not a regular file (a link, folder or device); replace it with the "
+                      "file itself");
+    }
+    sources.push_back({&p, static_cast<std::uint64_t>(st.st_size)});
+    total += static_cast<std::uint64_t>(st.st_size);
+  }
+  std::sort(sources.begin(), sources.end(),
+            [](const Source& a, const Source& b) { return a.in->bagPath < b.in->bagPath; });
+  return sources;
+}
+
+// bag-info.txt: the computed labels, then the caller's, then the caller's own (checked).
+std::string bagInfoText(const BagInput& input, std::uint64_t total, std::size_t files) {
+  const std::string baggingDate =
+      input.baggingDate.empty() ? utcDate(packagingEpoch()) : input.baggingDate;
+  std::string info;
+  info += infoLine("Bag-Software-Agent", input.softwareAgent);
+  info += infoLine("Bagging-Date", baggingDate);
+  info += infoLine("Bag-Size", humanSize(total));
+  info += infoLine("Payload-Oxum", std::to_string(total) + "." + std::to_string(files));
+  for (const auto& [label, value] : input.info) {
+    checkLabel(label);
+    info += infoLine(label, value);
+  }
+  for (const auto& [label, value] : input.ownInfo) {
+    if (const std::string problem = labelFormProblem(label); !problem.empty())
+      throw Error(ErrorKind::Internal, label, "packing", problem);
+    info += infoLine(label, value);
+  }
+  return info;
+}
+
+std::unique_ptr<Sink> openSink(BagFormat format, const AtomicFile& target, const fs::path& out,
+                               std::int64_t epoch) {
+  if (format == BagFormat::Directory)
+    return std::make_unique<DirectorySink>(target.tempPath(), out, epoch);
+  return std::make_unique<ArchiveSink>(target.tempPath(), out, format, out.stem().string(), epoch);
+}
+
+// Every payload file into the sink, in order, with its digests.
+std::vector<PayloadDigest> streamPayload(const BagInput& input, const std::vector<Source>& sources,
+                                         std::uint64_t total, Sink& sink) {
+  std::vector<unsigned char> buffers[2] = {std::vector<unsigned char>(kBufferSize),
+                                           std::vector<unsigned char>(kBufferSize)};
+  PayloadHasher hasher;
+  std::uint64_t done = 0;
+  auto advance = [&](std::uint64_t n) {
+    done += n;
+    if (input.progress) input.progress(done, total);
+  };
+  std::vector<PayloadDigest> digests;
+  digests.reserve(sources.size());
+  for (const Source& s : sources) digests.push_back(streamFile(s, sink, hasher, buffers, advance));
+  return digests;
+}
+
+// The manifests and the caller's tag files (checked: no reserved name, nothing in data/, no
+// duplicate), in path order.
+std::vector<TagFile> sortedTagFiles(const BagInput& input, const std::vector<PayloadDigest>& payload) {
+  std::vector<TagFile> tags;
+  tags.push_back({"manifest-sha256.txt", manifestText(payload, DigestAlgorithm::Sha256)});
+  tags.push_back({"manifest-sha512.txt", manifestText(payload, DigestAlgorithm::Sha512)});
+  if (input.tagFiles) {
+    for (TagFile& t : input.tagFiles(payload)) {
+      const bool reserved = t.bagPath == "bagit.txt" || t.bagPath == "bag-info.txt" ||
+                            t.bagPath.rfind("manifest-", 0) == 0 ||
+                            t.bagPath.rfind("tagmanifest-", 0) == 0 || t.bagPath == "fetch.txt";
+      if (!safeRelative(t.bagPath) || t.bagPath.rfind("data/", 0) == 0 || reserved) {
+        throw Error(ErrorKind::Internal, t.bagPath, "packing", "is not a valid tag file path");
+      }
+      tags.push_back(std::move(t));
+    }
+  }
+  std::sort(tags.begin(), tags.end(),
+            [](const TagFile& a, const TagFile& b) { return a.bagPath < b.bagPath; });
+  for (std::size_t i = 1; i < tags.size(); ++i) {
+    if (tags[i].bagPath == tags[i - 1].bagPath)
+      throw Error(ErrorKind::Internal, tags[i].bagPath, "packing", "is given twice");
+  }
+  return tags;
+}
+
 }  // namespace
 
 std::vector<std::string> removeStaleParts(const fs::path& out) {
@@ -631,53 +735,11 @@ BagResult writeBag(const BagInput& input, const fs::path& out) {
   const auto started = std::chrono::steady_clock::now();
   const BagFormat format = bagFormatFor(out);
   const std::int64_t epoch = input.epoch.value_or(sourceDateEpoch());
-  const std::string baggingDate =
-      input.baggingDate.empty() ? utcDate(packagingEpoch()) : input.baggingDate;
 
-  // The payload: checked, sorted, sized (lstat: a symbolic link is refused, never followed).
-  std::vector<Source> sources;
-  std::set<std::string> seen;
   std::uint64_t total = 0;
-  for (const PayloadSource& p : input.payload) {
-    if (p.bagPath.rfind("data/", 0) != 0 || !safeRelative(p.bagPath)) {
-      throw Error(ErrorKind::Internal, p.bagPath, "packing",
-                  "is not a valid payload path (must be under data/, without '..')");
-    }
-    if (!seen.insert(p.bagPath).second) {
-      throw Error(ErrorKind::Internal, p.bagPath, "packing", "is listed twice in the payload");
-    }
-    struct stat st {};
-    if (::lstat(p.source.c_str(), &st) != 0) {
-      throwInputError(p.source.string(), "packing",
-                      std::string("cannot be read (") + std::strerror(errno) +
-                          "); it is listed in the capture but missing or inaccessible");
-    }
-    if (!S_ISREG(st.st_mode)) {
-      throwInputError(p.source.string(), "packing",
-                      "is not a regular file (a link, folder or device); replace it with the "
-                      "file itself");
-    }
-    sources.push_back({&p, static_cast<std::uint64_t>(st.st_size)});
-    total += static_cast<std::uint64_t>(st.st_size);
-  }
-  std::sort(sources.begin(), sources.end(),
-            [](const Source& a, const Source& b) { return a.in->bagPath < b.in->bagPath; });
-
+  const std::vector<Source> sources = checkedPayload(input, total);
   // bag-info.txt and bagit.txt need only the sizes: they come first, as the sorted order wants.
-  std::string info;
-  info += infoLine("Bag-Software-Agent", input.softwareAgent);
-  info += infoLine("Bagging-Date", baggingDate);
-  info += infoLine("Bag-Size", humanSize(total));
-  info += infoLine("Payload-Oxum", std::to_string(total) + "." + std::to_string(sources.size()));
-  for (const auto& [label, value] : input.info) {
-    checkLabel(label);
-    info += infoLine(label, value);
-  }
-  for (const auto& [label, value] : input.ownInfo) {
-    if (const std::string problem = labelFormProblem(label); !problem.empty())
-      throw Error(ErrorKind::Internal, label, "packing", problem);
-    info += infoLine(label, value);
-  }
+  const std::string info = bagInfoText(input, total, sources.size());
   const std::string bagit = "BagIt-Version: 1.0\nTag-File-Character-Encoding: UTF-8\n";
 
   // The output, under a temporary name until complete; first the partial outputs of packs to
@@ -689,13 +751,7 @@ BagResult writeBag(const BagInput& input, const fs::path& out) {
   if (format == BagFormat::Zip) zone.emplace();
   std::optional<Utf8Locale> utf8;
   if (format != BagFormat::Directory) utf8.emplace();
-  std::unique_ptr<Sink> sink;
-  if (format == BagFormat::Directory) {
-    sink = std::make_unique<DirectorySink>(target.tempPath(), out, epoch);
-  } else {
-    sink = std::make_unique<ArchiveSink>(target.tempPath(), out, format,
-                                         out.stem().string(), epoch);
-  }
+  std::unique_ptr<Sink> sink = openSink(format, target, out, epoch);
 
   std::vector<PayloadDigest> tagDigests;
   auto putTag = [&](const std::string& path, const std::string& content, bool listed) {
@@ -713,46 +769,15 @@ BagResult writeBag(const BagInput& input, const fs::path& out) {
   result.removedLeftovers = std::move(removedLeftovers);
   result.payloadBytes = total;
   result.payloadFiles = sources.size();
-  std::vector<unsigned char> buffers[2] = {std::vector<unsigned char>(kBufferSize),
-                                           std::vector<unsigned char>(kBufferSize)};
-  PayloadHasher hasher;
-  std::uint64_t done = 0;
-  auto advance = [&](std::uint64_t n) {
-    done += n;
-    if (input.progress) input.progress(done, total);
-  };
-  for (const Source& s : sources)
-    result.payload.push_back(streamFile(s, *sink, hasher, buffers, advance));
+  result.payload = streamPayload(input, sources, total, *sink);
 
   // Manifests and the caller's tag files, in path order; then the tag manifests.
-  std::vector<TagFile> tags;
-  tags.push_back({"manifest-sha256.txt", manifestText(result.payload, DigestAlgorithm::Sha256)});
-  tags.push_back({"manifest-sha512.txt", manifestText(result.payload, DigestAlgorithm::Sha512)});
-  if (input.tagFiles) {
-    for (TagFile& t : input.tagFiles(result.payload)) {
-      const bool reserved = t.bagPath == "bagit.txt" || t.bagPath == "bag-info.txt" ||
-                            t.bagPath.rfind("manifest-", 0) == 0 ||
-                            t.bagPath.rfind("tagmanifest-", 0) == 0 || t.bagPath == "fetch.txt";
-      if (!safeRelative(t.bagPath) || t.bagPath.rfind("data/", 0) == 0 || reserved) {
-        throw Error(ErrorKind::Internal, t.bagPath, "packing", "is not a valid tag file path");
-      }
-      tags.push_back(std::move(t));
-    }
-  }
-  std::sort(tags.begin(), tags.end(),
-            [](const TagFile& a, const TagFile& b) { return a.bagPath < b.bagPath; });
-  for (std::size_t i = 1; i < tags.size(); ++i) {
-    if (tags[i].bagPath == tags[i - 1].bagPath)
-      throw Error(ErrorKind::Internal, tags[i].bagPath, "packing", "is given twice");
-  }
-  for (const TagFile& t : tags) putTag(t.bagPath, t.content, true);
+  for (const TagFile& t : sortedTagFiles(input, result.payload)) putTag(t.bagPath, t.content, true);
   std::sort(tagDigests.begin(), tagDigests.end(),
             [](const PayloadDigest& a, const PayloadDigest& b) { return a.bagPath < b.bagPath; });
   for (const PayloadDigest& d : tagDigests) result.tagFiles.push_back(d.bagPath);
-  const std::string tag256 = manifestText(tagDigests, DigestAlgorithm::Sha256);
-  const std::string tag512 = manifestText(tagDigests, DigestAlgorithm::Sha512);
-  putTag("tagmanifest-sha256.txt", tag256, false);
-  putTag("tagmanifest-sha512.txt", tag512, false);
+  putTag("tagmanifest-sha256.txt", manifestText(tagDigests, DigestAlgorithm::Sha256), false);
+  putTag("tagmanifest-sha512.txt", manifestText(tagDigests, DigestAlgorithm::Sha512), false);
   result.tagFiles.push_back("tagmanifest-sha256.txt");
   result.tagFiles.push_back("tagmanifest-sha512.txt");
   sink->close();

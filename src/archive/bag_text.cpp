@@ -1,7 +1,10 @@
 #include "archive/bag_text.h"
 
+#include <iconv.h>
+
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <set>
 
 #include <unicode/ucasemap.h>
@@ -137,6 +140,7 @@ Declaration parseDeclaration(const std::string& text) {
     d.problems.push_back("must have exactly two lines (BagIt-Version and "
                          "Tag-File-Character-Encoding), has " + std::to_string(lines.size()));
   }
+  if (!isValidUtf8(text)) d.problems.push_back("is not valid UTF-8 (RFC 8493 requires it)");
   if (!lines.empty()) {
     const std::string prefix = "BagIt-Version: ";
     if (lines[0].compare(0, prefix.size(), prefix) != 0)
@@ -152,11 +156,87 @@ Declaration parseDeclaration(const std::string& text) {
       d.problems.push_back("line 2 must be \"Tag-File-Character-Encoding: UTF-8\"");
     else
       d.encoding = lines[1].substr(prefix.size());
-    if (!d.encoding.empty() && lowerCase(d.encoding) != "utf-8")
-      d.problems.push_back("tag files are encoded in " + d.encoding +
-                           "; this verifier reads UTF-8 tag files only");
+    if (!d.encoding.empty() && !tagEncodingSupported(d.encoding))
+      d.problems.push_back("tag files are declared as " + d.encoding.substr(0, 60) +
+                           ", an encoding this verifier cannot read (UTF-8, UTF-16, "
+                           "ISO-8859-1 and the others iconv knows)");
   }
   return d;
+}
+
+namespace {
+
+bool isUtf8Name(const std::string& encoding) {
+  const std::string e = lowerCase(encoding);
+  return e == "utf-8" || e == "utf8";
+}
+
+// An iconv descriptor from `encoding` to UTF-8, closed on scope exit.
+struct Converter {
+  iconv_t cd;
+  explicit Converter(const std::string& encoding)
+      : cd(iconv_open("UTF-8", encoding.c_str())) {}
+  ~Converter() {
+    if (ok()) iconv_close(cd);
+  }
+  Converter(const Converter&) = delete;
+  Converter& operator=(const Converter&) = delete;
+  bool ok() const { return cd != reinterpret_cast<iconv_t>(-1); }
+};
+
+// Encoding names are short words; anything else is refused before iconv sees it.
+bool plausibleEncodingName(const std::string& encoding) {
+  if (encoding.empty() || encoding.size() > 40) return false;
+  return std::all_of(encoding.begin(), encoding.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.' ||
+           c == ':';
+  });
+}
+
+}  // namespace
+
+bool tagEncodingSupported(const std::string& encoding) {
+  if (isUtf8Name(encoding)) return true;
+  if (!plausibleEncodingName(encoding)) return false;
+  return Converter(encoding).ok();
+}
+
+std::optional<std::string> decodeTagText(const std::string& bytes, const std::string& encoding,
+                                         std::string* why) {
+  auto fail = [&](const std::string& reason) -> std::optional<std::string> {
+    if (why) *why = reason;
+    return std::nullopt;
+  };
+  if (isUtf8Name(encoding)) return bytes;
+  if (!plausibleEncodingName(encoding)) return fail("the encoding "" + encoding.substr(0, 60) + "" is unknown");
+  Converter converter(encoding);
+  if (!converter.ok()) return fail("the encoding " + encoding + " is unknown to iconv");
+  std::string out;
+  out.resize(bytes.size() * 2 + 16);
+  char* in = const_cast<char*>(bytes.data());
+  std::size_t inLeft = bytes.size();
+  std::size_t done = 0;
+  while (true) {
+    char* outPtr = out.data() + done;
+    std::size_t outLeft = out.size() - done;
+    const std::size_t r = iconv(converter.cd, inLeft ? &in : nullptr, &inLeft, &outPtr, &outLeft);
+    done = out.size() - outLeft;
+    if (r != static_cast<std::size_t>(-1)) {
+      if (inLeft == 0) break;
+      continue;
+    }
+    if (errno == E2BIG) {
+      out.resize(out.size() * 2);
+      continue;
+    }
+    const std::size_t at = bytes.size() - inLeft;
+    return fail((errno == EINVAL ? "ends in the middle of a character" : "is not valid " + encoding) +
+                std::string(" (byte ") + std::to_string(at) + ")");
+  }
+  out.resize(done);
+  // A UTF-8 byte-order mark is what iconv writes for a BOM it was not asked to consume.
+  if (out.compare(0, 3, "\xEF\xBB\xBF") == 0) out.erase(0, 3);
+  return out;
 }
 
 std::vector<std::string> BagInfo::values(const std::string& label) const {
@@ -280,7 +360,67 @@ std::optional<std::pair<std::string, std::string>> manifestName(const std::strin
 std::size_t digestHexLength(const std::string& algorithm) {
   if (algorithm == "sha256") return 64;
   if (algorithm == "sha512") return 128;
+  if (algorithm == "md5") return 32;
+  if (algorithm == "sha1") return 40;
   return 0;
+}
+
+bool isLegacyAlgorithm(const std::string& algorithm) {
+  return algorithm == "md5" || algorithm == "sha1";
+}
+
+Fetch parseFetch(const std::string& text) {
+  Fetch f;
+  if (!isValidUtf8(text)) f.problems.push_back("is not valid UTF-8");
+  auto isSpace = [](char c) { return c == ' ' || c == '\t'; };
+  int number = 0;
+  for (const std::string& line : splitLines(text)) {
+    ++number;
+    const std::string where = "line " + std::to_string(number) + ": ";
+    if (trim(line).empty()) continue;
+    // Two words, then the rest of the line: the path may hold spaces.
+    std::size_t i = 0;
+    std::string words[2];
+    for (std::string& word : words) {
+      while (i < line.size() && isSpace(line[i])) ++i;
+      const std::size_t start = i;
+      while (i < line.size() && !isSpace(line[i])) ++i;
+      word = line.substr(start, i - start);
+    }
+    while (i < line.size() && isSpace(line[i])) ++i;
+    if (words[1].empty() || i == line.size()) {
+      f.problems.push_back(where + "not \"<url> <length or -> <path>\"");
+      continue;
+    }
+    FetchEntry e;
+    e.url = words[0];
+    e.line = number;
+    if (e.url.find(':') == std::string::npos) {
+      f.problems.push_back(where + "\"" + e.url.substr(0, 200) + "\" is not an absolute URL");
+      continue;
+    }
+    if (words[1] != "-") {
+      e.length = std::nullopt;
+      const bool digits = words[1].size() <= 19 &&
+          std::all_of(words[1].begin(), words[1].end(), [](char c) { return c >= '0' && c <= '9'; });
+      if (!digits) {
+        f.problems.push_back(where + "length \"" + words[1].substr(0, 40) +
+                             "\" is neither a number of bytes nor \"-\"");
+        continue;
+      }
+      e.length = std::stoull(words[1]);
+    }
+    std::string why;
+    const std::string decoded = percentDecode(line.substr(i));
+    const auto path = safeBagPath(decoded, &why);
+    if (!path) {
+      f.problems.push_back(where + "\"" + decoded.substr(0, 200) + "\": " + why);
+      continue;
+    }
+    e.path = *path;
+    f.entries.push_back(std::move(e));
+  }
+  return f;
 }
 
 }  // namespace surrogate::archive

@@ -35,12 +35,26 @@ std::string caseFoldKey(const std::string& path);
 // Splits text into lines at LF, CRLF or CR.
 std::vector<std::string> splitLines(const std::string& text);
 
-// bagit.txt: exactly "BagIt-Version: 1.0" (or 0.97) and "Tag-File-Character-Encoding: UTF-8".
+// bagit.txt: exactly two lines, "BagIt-Version: 1.0" (or 0.97) and
+// "Tag-File-Character-Encoding: ENCODING", in UTF-8 without a byte-order mark. ENCODING is
+// UTF-8 for every bag Surrogate writes; older bags name UTF-16, ISO-8859-1 and others, which
+// are accepted when decodeTagText can read them (iconv knows the name).
 struct Declaration {
   std::string version, encoding;
   std::vector<std::string> problems;  // empty when valid
 };
 Declaration parseDeclaration(const std::string& text);
+
+// A tag file's bytes (bag-info.txt, manifests, tagmanifests, fetch.txt) decoded from the
+// encoding bagit.txt names into UTF-8 (glibc's iconv; a UTF-16 byte-order mark is honoured and
+// removed). UTF-8 text is returned as it is, so its own checks (valid UTF-8, no BOM) still
+// apply. nullopt with the reason in `why` when the bytes are not valid in that encoding or
+// the encoding is unknown.
+std::optional<std::string> decodeTagText(const std::string& bytes, const std::string& encoding,
+                                         std::string* why);
+
+// Whether decodeTagText can read `encoding`.
+bool tagEncodingSupported(const std::string& encoding);
 
 // bag-info.txt: "Label: value" lines, continuation lines start with a space or tab.
 struct BagInfo {
@@ -73,8 +87,27 @@ Manifest parseManifest(const std::string& text, const std::string& algorithm,
 // "sha512"}; nullopt for other names.
 std::optional<std::pair<std::string, std::string>> manifestName(const std::string& path);
 
-// Hex digest length of an algorithm this verifier computes (sha256: 64, sha512: 128), 0 if it
-// does not compute it.
+// Hex digest length of an algorithm this verifier computes (sha256: 64, sha512: 128, md5: 32,
+// sha1: 40), 0 if it does not compute it.
 std::size_t digestHexLength(const std::string& algorithm);
+
+// md5 and sha1: accepted in bags made by other tools (RFC 8493 section 2.4 keeps them for
+// existing bags), with a warning, since they no longer resist a deliberate change.
+bool isLegacyAlgorithm(const std::string& algorithm);
+
+// fetch.txt (RFC 8493 section 2.2.3): "<url> <length or -> <path>" per line, separated by
+// spaces or tabs; the path is the rest of the line (it may hold spaces) and is decoded and
+// checked as in a manifest.
+struct FetchEntry {
+  std::string url;
+  std::optional<std::uint64_t> length;  // nullopt for "-"
+  std::string path;                     // decoded, normalised
+  int line = 0;
+};
+struct Fetch {
+  std::vector<FetchEntry> entries;
+  std::vector<std::string> problems;  // "line 2: ..."
+};
+Fetch parseFetch(const std::string& text);
 
 }  // namespace surrogate::archive

@@ -631,7 +631,13 @@ std::uint64_t pump(Source& source, const RawEntry& entry, const std::string& pat
 
 }  // namespace
 
-Inventory readPackage(const fs::path& package, const Limits& limits, const Progress& progress) {
+Inventory readPackage(const fs::path& package, const Limits& limits, const Progress& progress,
+                      bool legacyDigests) {
+  std::vector<DigestAlgorithm> algorithms = {DigestAlgorithm::Sha256, DigestAlgorithm::Sha512};
+  if (legacyDigests) {
+    algorithms.push_back(DigestAlgorithm::Md5);
+    algorithms.push_back(DigestAlgorithm::Sha1);
+  }
   std::unique_ptr<Source> source = openSource(package);
   const std::string name = package.string();
   Inventory raw;
@@ -656,7 +662,7 @@ Inventory readPackage(const fs::path& package, const Limits& limits, const Progr
       refuse(name, "entry \"" + path + "\" appears twice; a later copy could silently replace "
                    "the first");
     InventoryFile file;
-    MultiDigest digest({DigestAlgorithm::Sha256, DigestAlgorithm::Sha512});
+    MultiDigest digest(algorithms);
     const bool keep = keepContent(path);
     std::string content;
     if (keep && entry.declaredSize && *entry.declaredSize <= limits.maxTagFileBytes)
@@ -667,6 +673,10 @@ Inventory readPackage(const fs::path& package, const Limits& limits, const Progr
     });
     file.sha256 = digest.hex(DigestAlgorithm::Sha256);
     file.sha512 = digest.hex(DigestAlgorithm::Sha512);
+    if (legacyDigests) {
+      file.md5 = digest.hex(DigestAlgorithm::Md5);
+      file.sha1 = digest.hex(DigestAlgorithm::Sha1);
+    }
     if (keep && content.size() <= limits.maxTagFileBytes) {
       kept += content.size();
       if (kept > kMaxKeptBytes)

@@ -1,9 +1,14 @@
-// surrogate info FILE: what a carrier, capture folder, image, .ptm, .rti or .lp holds.
+// surrogate info FILE: what a package, carrier, capture folder, image, .ptm, .rti or .lp holds.
 #include <filesystem>
 #include <iostream>
+#include <map>
+#include <optional>
 #include <sstream>
 #include <system_error>
 
+#include "archive/bag.h"
+#include "archive/bag_text.h"
+#include "archive/package_reader.h"
 #include "capture/capture.h"
 #include "carrier/carrier.h"
 #include "cli/args.h"
@@ -84,18 +89,12 @@ void printDecisionsAndRuns(const carrier::Carrier& c) {
   }
 }
 
-void printCarrier(const fs::path& path, bool json) {
-  const carrier::Carrier c = carrier::loadCarrier(path);
-  if (json) {
-    JsonWriter j;
-    carrierJson(j, c);
-    std::cout << j.str() << "\n";
-    return;
-  }
+// The carrier as text: title, who made it when, files, the steps with their status and
+// interventions, the standing decisions and the runs.
+void printCarrierText(const carrier::Carrier& c) {
   int images = 0;
   for (const carrier::FileRecord& f : c.files) images += f.imageSize.has_value();
-  std::cout << path.string() << ": Surrogate carrier\n"
-            << "  title:   " << c.header.title << "\n"
+  std::cout << "  title:   " << c.header.title << "\n"
             << "  created: " << c.header.created << " on " << c.header.machine.hostname << "\n";
   for (const carrier::Creator& cr : c.header.creators)
     std::cout << "  " << cr.role << ": " << cr.name << "\n";
@@ -108,6 +107,221 @@ void printCarrier(const fs::path& path, bool json) {
     std::cout << "\n";
   }
   printDecisionsAndRuns(c);
+}
+
+void printCarrier(const fs::path& path, bool json) {
+  const carrier::Carrier c = carrier::loadCarrier(path);
+  if (json) {
+    JsonWriter j;
+    carrierJson(j, c);
+    std::cout << j.str() << "\n";
+    return;
+  }
+  std::cout << path.string() << ": Surrogate carrier\n";
+  printCarrierText(c);
+}
+
+// --- packages (a bag folder, .tar or .zip) ---
+
+// Whether `path` is a package: a folder with bagit.txt, or a .tar or .zip file.
+bool isPackage(const fs::path& path, const fs::file_status& st) {
+  std::error_code ec;
+  if (fs::is_directory(st)) return fs::exists(path / "bagit.txt", ec);
+  const std::string ext = lowerCase(path.extension().string());
+  return fs::is_regular_file(st) && (ext == ".tar" || ext == ".zip");
+}
+
+// A path as one shell word: as it is when it needs no quoting, else in single quotes; never
+// starting with '-', which would read as an option.
+std::string shellWord(const std::string& path) {
+  const std::string s = !path.empty() && path[0] == '-' ? "./" + path : path;
+  const bool plain = !s.empty() && s.find_first_not_of(
+      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789._/+-:,@%=") == std::string::npos;
+  if (plain) return s;
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+// What a package's file is for: the carrier's role for the files it records, else the
+// package's layout (docs/package.md); in a bag another tool made, payload or bag file.
+std::string roleOf(const std::string& path, const std::map<std::string, std::string>& carrierRoles,
+                   bool surrogate) {
+  if (!surrogate) return path.compare(0, 5, "data/") == 0 ? "payload" : "bag files";
+  if (path == "data/assembly-files/carrier.xml") return "carrier";
+  if (path.compare(0, 5, "data/") == 0) {
+    const auto it = carrierRoles.find(path.substr(5));
+    if (it != carrierRoles.end()) {
+      const std::string& r = it->second;
+      if (r == "original" || r == "sidecar") return "originals";
+      if (r == "export") return "exports";
+      if (r == "result") return "results";
+      if (r == "assembly" || r == "lp") return "assembly";
+      return "other payload";
+    }
+    const std::string rest = path.substr(5);
+    if (rest.compare(0, 18, "original-captures/") == 0) return "originals";
+    if (rest.compare(0, 13, "jpeg-exports/") == 0) return "exports";
+    if (rest.compare(0, 15, "finished-files/") == 0) return "results";
+    if (rest.compare(0, 15, "assembly-files/") == 0) return "assembly";
+    return "other payload";
+  }
+  if (path.compare(0, 9, "metadata/") == 0) return "metadata";
+  return "bag files";
+}
+
+struct RoleTotal {
+  std::size_t files = 0;
+  std::uint64_t bytes = 0;
+};
+
+// What info shows of a package, gathered once for text and JSON.
+struct PackageSummary {
+  std::string kind;  // directory, tar, zip
+  bool surrogate = false;
+  std::vector<std::pair<std::string, std::string>> bagInfo;
+  std::vector<std::string> manifests;  // manifest-sha256.txt, ...
+  std::vector<std::pair<std::string, RoleTotal>> roles;  // in the order of kRoleOrder
+  std::vector<std::pair<std::string, std::uint64_t>> results;  // finished files, by path
+  std::uint64_t totalBytes = 0;
+  std::size_t totalFiles = 0;
+  std::optional<carrier::Carrier> recorded;
+  std::string carrierProblem;  // why the carrier could not be read
+  std::vector<std::string> verifyCommands;
+};
+
+PackageSummary summarizePackage(const fs::path& path) {
+  const archive::Inventory inv = archive::readPackage(path, archive::Limits{});
+  PackageSummary s;
+  s.kind = inv.kind;
+  const auto carrierFile = inv.files.find("data/assembly-files/carrier.xml");
+  std::map<std::string, std::string> carrierRoles;
+  if (carrierFile != inv.files.end()) {
+    if (!carrierFile->second.content) {
+      s.carrierProblem = "too large to read";
+    } else {
+      try {
+        s.recorded = carrier::parseCarrier(*carrierFile->second.content, "data/assembly-files/carrier.xml");
+        for (const carrier::FileRecord& f : s.recorded->files) carrierRoles[f.path] = f.role;
+      } catch (const Error& e) {
+        s.carrierProblem = e.what();
+      }
+    }
+  }
+  const auto info = inv.files.find("bag-info.txt");
+  if (info != inv.files.end() && info->second.content) {
+    // bag-info.txt in the encoding bagit.txt names (older bags: UTF-16, ISO-8859-1).
+    std::string encoding = "UTF-8";
+    if (const auto decl = inv.files.find("bagit.txt"); decl != inv.files.end() && decl->second.content) {
+      const archive::Declaration d = archive::parseDeclaration(*decl->second.content);
+      if (!d.encoding.empty()) encoding = d.encoding;
+    }
+    std::string why;
+    if (const auto text = archive::decodeTagText(*info->second.content, encoding, &why))
+      s.bagInfo = archive::parseBagInfo(*text).fields;
+  }
+  for (const auto& [label, value] : s.bagInfo)
+    if (lowerCase(label) == "surrogate-package-identifier") s.surrogate = true;
+  s.surrogate = s.surrogate || carrierFile != inv.files.end();
+
+  static const char* kRoleOrder[] = {"originals", "exports", "assembly", "carrier", "results",
+                                     "other payload", "payload", "metadata", "bag files"};
+  std::map<std::string, RoleTotal> totals;
+  for (const auto& [file, f] : inv.files) {
+    if (archive::manifestName(file) && archive::manifestName(file)->first == "manifest")
+      s.manifests.push_back(file);
+    const std::string role = roleOf(file, carrierRoles, s.surrogate);
+    totals[role].files += 1;
+    totals[role].bytes += f.size;
+    s.totalFiles += 1;
+    s.totalBytes += f.size;
+    if (role == "results") s.results.emplace_back(file.substr(5), f.size);
+  }
+  for (const char* role : kRoleOrder)
+    if (totals.count(role)) s.roles.emplace_back(role, totals[role]);
+  const std::string word = shellWord(path.string());
+  s.verifyCommands.push_back("surrogate verify " + word);
+  if (s.surrogate) s.verifyCommands.push_back("surrogate verify " + word + " --reexecute");
+  return s;
+}
+
+std::string bagInfoValue(const PackageSummary& s, const std::string& label) {
+  for (const auto& [k, v] : s.bagInfo)
+    if (lowerCase(k) == lowerCase(label)) return v;
+  return "";
+}
+
+void printPackageJson(const PackageSummary& s) {
+  JsonWriter j;
+  j.beginObject().key("kind").value("package").key("format").value(s.kind)
+      .key("surrogatePackage").value(s.surrogate)
+      .key("files").value(static_cast<unsigned long long>(s.totalFiles))
+      .key("bytes").value(static_cast<unsigned long long>(s.totalBytes));
+  j.key("bagInfo").beginArray();
+  for (const auto& [label, value] : s.bagInfo)
+    j.beginObject().key("label").value(label).key("value").value(value).endObject();
+  j.endArray().key("manifests").beginArray();
+  for (const std::string& m : s.manifests) j.value(m);
+  j.endArray().key("roles").beginArray();
+  for (const auto& [role, t] : s.roles)
+    j.beginObject().key("role").value(role).key("files").value(static_cast<unsigned long long>(t.files))
+        .key("bytes").value(static_cast<unsigned long long>(t.bytes)).endObject();
+  j.endArray().key("results").beginArray();
+  for (const auto& [file, bytes] : s.results)
+    j.beginObject().key("path").value(file).key("bytes").value(static_cast<unsigned long long>(bytes)).endObject();
+  j.endArray();
+  if (s.recorded) {
+    j.key("carrier");
+    carrierJson(j, *s.recorded);
+  } else if (!s.carrierProblem.empty()) {
+    j.key("carrierProblem").value(s.carrierProblem);
+  }
+  j.key("verify").beginArray();
+  for (const std::string& c : s.verifyCommands) j.value(c);
+  j.endArray().endObject();
+  std::cout << j.str() << "\n";
+}
+
+void printPackageText(const fs::path& path, const PackageSummary& s) {
+  std::cout << path.string() << ": " << (s.surrogate ? "Surrogate package" : "BagIt bag, not a Surrogate package")
+            << " (" << s.kind << ")\n";
+  if (s.surrogate) {
+    std::cout << "  identifier: " << bagInfoValue(s, "Surrogate-Package-Identifier") << "\n"
+              << "  packed:     " << bagInfoValue(s, "Surrogate-Packaging-Time") << " by "
+              << bagInfoValue(s, "Bag-Software-Agent") << "\n";
+  } else {
+    for (const auto& [label, value] : s.bagInfo)
+      std::cout << "  " << label << ": " << value << "\n";
+  }
+  std::cout << "  holds:      " << s.totalFiles << " files, " << archive::humanSize(s.totalBytes)
+            << " (manifests:";
+  for (const std::string& m : s.manifests) std::cout << " " << m;
+  std::cout << ")\n";
+  for (const auto& [role, t] : s.roles) {
+    std::string name = role;
+    name.resize(14, ' ');
+    std::cout << "    " << name << t.files << (t.files == 1 ? " file,  " : " files, ")
+              << archive::humanSize(t.bytes) << "\n";
+  }
+  if (!s.results.empty()) {
+    std::cout << "  results:\n";
+    for (const auto& [file, bytes] : s.results)
+      std::cout << "    " << file << "  " << archive::humanSize(bytes) << "\n";
+  }
+  if (s.recorded) {
+    std::cout << "  carrier (data/assembly-files/carrier.xml):\n";
+    printCarrierText(*s.recorded);
+  } else if (!s.carrierProblem.empty()) {
+    std::cout << "  carrier:    cannot be read: " << s.carrierProblem << "\n";
+  }
+  std::cout << "  to verify it:\n";
+  for (const std::string& c : s.verifyCommands) std::cout << "    " << c << "\n";
+}
+
+void printPackage(const fs::path& path, bool json) {
+  const PackageSummary s = summarizePackage(path);
+  if (json) printPackageJson(s);
+  else printPackageText(path, s);
 }
 
 // A capture folder; with --json, a processed capture's carrier is nested under "carrier".
@@ -187,8 +401,10 @@ int runCommandInfo(int argc, char** argv) {
   Args args(argc, argv, 1, specs);
   if (args.helpRequested()) {
     std::cout << usageHeader("surrogate info FILE",
-                             "Describe a carrier (carrier.xml), a capture folder, an image, or a "
-                             ".ptm, .rti or .lp file.")
+                             "Describe a package (a bag folder, .tar or .zip: what it holds by "
+                             "role, who made it when, the steps, decisions and results, and the "
+                             "command to verify it), a carrier (carrier.xml), a capture folder, "
+                             "an image, or a .ptm, .rti or .lp file.")
               << Args::describe(specs);
     return 0;
   }
@@ -203,7 +419,9 @@ int runCommandInfo(int argc, char** argv) {
     throwInputError(path.string(), "info", "is a loop of symbolic links; give the file or folder itself");
   if (!fs::exists(st)) throwInputError(path.string(), "info", "does not exist");
   const std::string ext = lowerCase(path.extension().string());
-  if (fs::is_directory(st)) {
+  if (isPackage(path, st)) {
+    printPackage(path, json);
+  } else if (fs::is_directory(st)) {
     if (fs::exists(path / capture::kAssemblyDir / "carrier.xml", ec) && !json) {
       printCapture(path, false);
       printCarrier(path / capture::kAssemblyDir / "carrier.xml", false);  // JSON: nested by printCapture

@@ -22,12 +22,41 @@ const char* verdict(int code) {
   }
 }
 
+// The two parts of the verdict, as words.
+std::string bagitVerdict(const verify::Report& r) { return r.bagitValid() ? "valid" : "invalid"; }
+
+std::string packageVerdict(const verify::Report& r) {
+  if (r.surrogatePackage) return r.packageSound() ? "sound" : "not sound";
+  return r.kind.empty() ? "not checked" : "not a Surrogate package";
+}
+
+// The failed checks of one part.
+std::vector<std::string> failedChecks(const verify::Report& r, bool bagit) {
+  std::vector<std::string> out;
+  for (const verify::Check& c : r.checks)
+    if (!c.passed && c.aboutBagIt() == bagit) out.push_back(c.name);
+  return out;
+}
+
 void printJson(const verify::Report& report) {
   JsonWriter j;
   j.beginObject().key("package").value(report.package).key("kind").value(report.kind)
       .key("sound").value(report.sound()).key("exitCode").value(report.exitCode())
       .key("verdict").value(verdict(report.exitCode()))
       .key("reexecuted").value(report.reexecuted);
+  j.key("bagit").beginObject().key("valid").value(report.bagitValid())
+      .key("verdict").value(bagitVerdict(report)).key("failedChecks").beginArray();
+  for (const std::string& name : failedChecks(report, true)) j.value(name);
+  j.endArray().endObject();
+  j.key("surrogatePackage").beginObject().key("is").value(report.surrogatePackage).key("sound");
+  if (report.surrogatePackage) j.value(report.packageSound());
+  else j.null();
+  j.key("verdict").value(packageVerdict(report)).key("failedChecks").beginArray();
+  for (const std::string& name : failedChecks(report, false)) j.value(name);
+  j.endArray().endObject();
+  j.key("warnings").beginArray();
+  for (const std::string& w : report.warnings) j.value(w);
+  j.endArray();
   j.key("softwareDifferences").beginArray();
   for (const std::string& s : report.softwareDifferences) j.value(s);
   j.endArray().key("checks").beginArray();
@@ -57,13 +86,37 @@ void printText(const verify::Report& report) {
     std::cout << "Software versions differ from the carrier's:\n";
     for (const std::string& s : report.softwareDifferences) std::cout << "  " << s << "\n";
   }
+  if (!report.warnings.empty()) {
+    std::cout << "Warnings:\n";
+    for (const std::string& w : report.warnings) std::cout << "  " << w << "\n";
+  }
+  // The two-part verdict: the bag, then what a Surrogate package adds.
+  std::size_t bagitChecks = 0, ownChecks = 0;
+  for (const verify::Check& c : report.checks) (c.aboutBagIt() ? bagitChecks : ownChecks) += 1;
+  const std::size_t bagitFailed = failedChecks(report, true).size();
+  const std::size_t ownFailed = failedChecks(report, false).size();
+  std::cout << "BagIt: " << bagitVerdict(report);
+  if (bagitFailed) std::cout << " (" << bagitFailed << " of " << bagitChecks << " checks failed)";
+  std::cout << "\nSurrogate package: " << packageVerdict(report);
+  if (!report.surrogatePackage)
+    std::cout << (report.kind.empty() ? " (the package could not be read)"
+                                      : " (made by another tool: its BagIt verdict is the whole verdict)");
+  else if (ownFailed)
+    std::cout << " (" << ownFailed << " of " << ownChecks << " checks failed)";
+  else if (bagitFailed)
+    std::cout << " (a package that is not a valid bag is not sound)";
+  std::cout << "\n";
   const int code = report.exitCode();
-  if (code == 0)
+  if (code == 0 && report.surrogatePackage)
     std::cout << "SOUND: all " << report.checks.size() << " checks passed"
               << (report.reexecuted ? ", including re-execution" : "") << ".\n";
+  else if (code == 0)
+    std::cout << "VALID BAG: all " << report.checks.size() << " checks passed; it is not a "
+              << "Surrogate package, so there is no more to check.\n";
   else
-    std::cout << "NOT SOUND (" << verdict(code) << ", exit " << code << "): "
-              << report.failures() << " of " << report.checks.size() << " checks failed.\n";
+    std::cout << (report.surrogatePackage ? "NOT SOUND (" : "NOT VALID (") << verdict(code)
+              << ", exit " << code << "): " << report.failures() << " of "
+              << report.checks.size() << " checks failed.\n";
 }
 
 }  // namespace
@@ -92,8 +145,13 @@ int runCommandVerify(int argc, char** argv) {
                      "recorded steps are run again on the bagged originals in a temporary "
                      "folder ($TMPDIR) and every recorded result is compared. Archives are "
                      "read without extracting; unsafe entries (.., absolute paths, links, "
-                     "devices, duplicates, decompression bombs) refuse the package.\n\n"
-                     "exit codes: 0 sound; 1 the package cannot be read (missing file); "
+                     "devices, duplicates, decompression bombs) refuse the package. A bag that "
+                     "another tool made is verified as a bag (RFC 8493: md5 and sha1 manifests "
+                     "accepted with a warning, tag files in the encoding bagit.txt names, "
+                     "fetch.txt) and its exit code is its BagIt verdict. The verdict has two "
+                     "parts: \"BagIt: valid/invalid\" and \"Surrogate package: sound/not "
+                     "sound/not a Surrogate package\".\n\n"
+                     "exit codes: 0 sound (a bag that is not a Surrogate package: valid); 1 the package cannot be read (missing file); "
                      "2 invalid or refused package (including steps that cannot run, resources "
                      "of another version, bag-info.txt that disagrees with the carrier), or bad "
                      "usage; 3 fixity failure (a file changed, is missing or unlisted, the "

@@ -13,8 +13,28 @@
 namespace surrogate {
 
 const char* bagitName(DigestAlgorithm algorithm) {
-  return algorithm == DigestAlgorithm::Sha256 ? "sha256" : "sha512";
+  switch (algorithm) {
+    case DigestAlgorithm::Sha256: return "sha256";
+    case DigestAlgorithm::Sha512: return "sha512";
+    case DigestAlgorithm::Md5: return "md5";
+    case DigestAlgorithm::Sha1: return "sha1";
+  }
+  return "";
 }
+
+namespace {
+
+const EVP_MD* evpOf(DigestAlgorithm algorithm) {
+  switch (algorithm) {
+    case DigestAlgorithm::Sha256: return EVP_sha256();
+    case DigestAlgorithm::Sha512: return EVP_sha512();
+    case DigestAlgorithm::Md5: return EVP_md5();
+    case DigestAlgorithm::Sha1: return EVP_sha1();
+  }
+  return nullptr;
+}
+
+}  // namespace
 
 struct MultiDigest::State {
   DigestAlgorithm algorithm;
@@ -28,8 +48,8 @@ MultiDigest::MultiDigest(std::vector<DigestAlgorithm> algorithms) {
     auto s = std::make_unique<State>();
     s->algorithm = a;
     s->ctx = EVP_MD_CTX_new();
-    const EVP_MD* md = a == DigestAlgorithm::Sha256 ? EVP_sha256() : EVP_sha512();
-    if (!s->ctx || EVP_DigestInit_ex(s->ctx, md, nullptr) != 1)
+    const EVP_MD* md = evpOf(a);
+    if (!s->ctx || !md || EVP_DigestInit_ex(s->ctx, md, nullptr) != 1)
       throw std::runtime_error("OpenSSL could not initialise a digest");
     states_.push_back(std::move(s));
   }

@@ -18,9 +18,11 @@
 
 namespace surrogate {
 
-enum class DigestAlgorithm { Sha256, Sha512 };
+// Md5 and Sha1 only to check bags made by other tools: RFC 8493 section 2.4 lets a verifier
+// accept them for existing bags; nothing Surrogate writes uses them.
+enum class DigestAlgorithm { Sha256, Sha512, Md5, Sha1 };
 
-// The BagIt name of an algorithm: "sha256", "sha512".
+// The BagIt name of an algorithm: "sha256", "sha512", "md5", "sha1".
 const char* bagitName(DigestAlgorithm algorithm);
 
 class MultiDigest {

@@ -17,6 +17,10 @@ using archive::extractFiles;
 using archive::readBagFile;
 using archive::readPackage;
 using archive::BagInfo;
+using archive::Declaration;
+using archive::decodeTagText;
+using archive::isLegacyAlgorithm;
+using archive::tagEncodingSupported;
 using archive::digestHexLength;
 using archive::Manifest;
 using archive::ManifestEntry;
@@ -40,8 +44,15 @@ Check makeCheck(const std::string& name, Severity severity, const std::string& p
 // it is absent or was only hashed.
 const std::string* contentOf(const Inventory& inventory, const std::string& path);
 
-// bagit.*: RFC 8493 structure, manifests, tagmanifests, Payload-Oxum, completeness, fixity.
-void checkBag(const Inventory& inventory, std::vector<Check>& checks);
+// bagit.*: RFC 8493 structure, manifests, tagmanifests, fetch.txt, Payload-Oxum,
+// completeness, fixity, for any bag (tag files in the encoding bagit.txt names, md5 and sha1
+// manifests with a warning). A Surrogate package is held to more: package.tags-listed.
+void checkBag(const Inventory& inventory, bool surrogatePackage, std::vector<Check>& checks,
+              std::vector<std::string>& warnings);
+
+// Whether the bag has md5 or sha1 manifests, whose digests readPackage computes only when
+// asked.
+bool needsLegacyDigests(const Inventory& inventory);
 
 // carrier.*: schema and files; returns the parsed carrier when it is valid.
 std::optional<carrier::Carrier> checkCarrier(const Inventory& inventory, std::vector<Check>& checks);

@@ -75,9 +75,20 @@ std::string quoted(const std::string& s) { return "\"" + s.substr(0, 200) + (s.s
 }  // namespace
 
 bool isSurrogatePackage(const Inventory& inv) {
+  // Any one mark of `surrogate pack` is enough: a package cut short or with files removed must
+  // be judged as the Surrogate package it was (and found incomplete), never pass as a plain bag
+  // from another tool because the mark that remains is not the carrier.
   if (inv.files.count(kCarrierPath)) return true;
-  if (const std::string* text = contentOf(inv, "bag-info.txt"))
-    return !parseBagInfo(*text).values("Surrogate-Package-Identifier").empty();
+  for (const std::string& path : archive::packageMetadataFiles())
+    if (inv.files.count(path)) return true;
+  if (const std::string* text = contentOf(inv, "bag-info.txt")) {
+    const BagInfo info = parseBagInfo(*text);
+    if (!info.values("Surrogate-Package-Identifier").empty() ||
+        !info.values("Surrogate-Packaging-Time").empty())
+      return true;
+    for (const std::string& agent : info.values("Bag-Software-Agent"))
+      if (agent.rfind("Surrogate ", 0) == 0) return true;
+  }
   return false;
 }
 

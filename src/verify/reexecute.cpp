@@ -65,6 +65,94 @@ struct StepComparison {
   std::size_t compared = 0;
 };
 
+// What a result item is about (element, image, name, sphere, index, kind): items are matched
+// by it, not by position, so one extra or missing result does not shift every other one.
+std::string itemKey(const carrier::Carrier& c, const carrier::DataItem& item) {
+  std::string key = item.element;
+  for (const char* attr : {"image", "name", "sphere", "index", "kind"}) {
+    if (auto v = item.get(attr))
+      key += std::string(" ") + attr + "=" + (std::string(attr) == "image" ? pathOfId(c, *v) : *v);
+  }
+  return key;
+}
+
+using ItemPair = std::pair<const carrier::DataItem*, const carrier::DataItem*>;
+
+// Pairs each recorded item with a reproduced one of the same key; what is left on either side
+// is a difference.
+std::vector<ItemPair> matchItems(const carrier::Carrier& recorded, const carrier::Result& a,
+                                 const carrier::Carrier& fresh, const carrier::Result& b,
+                                 StepComparison& out) {
+  std::map<std::string, std::vector<const carrier::DataItem*>> fresher;
+  for (const carrier::DataItem& y : b.items) fresher[itemKey(fresh, y)].push_back(&y);
+  std::map<std::string, std::size_t> used;
+  std::vector<ItemPair> pairs;
+  for (const carrier::DataItem& x : a.items) {
+    const std::string key = itemKey(recorded, x);
+    auto& list = fresher[key];
+    std::size_t& n = used[key];
+    if (n < list.size()) {
+      pairs.emplace_back(&x, list[n++]);
+    } else {
+      out.differences.push_back("recorded <" + key + "> was not reproduced");
+    }
+  }
+  for (const auto& [key, list] : fresher)
+    for (std::size_t i = used[key]; i < list.size(); ++i)
+      out.differences.push_back("reproduced <" + key + ">, which was not recorded");
+  return pairs;
+}
+
+// Every attribute of a pair of items: numbers within the tolerance, files by path, the rest
+// as text.
+void compareAttributes(const carrier::DataItem& x, const carrier::DataItem& y,
+                       const carrier::Carrier& recorded, const carrier::Carrier& fresh,
+                       double tolerance, StepComparison& out) {
+  const std::string label = itemKey(recorded, x);
+  std::set<std::string> names;
+  for (const auto& [k, v] : x.attributes) names.insert(k);
+  for (const auto& [k, v] : y.attributes) names.insert(k);
+  for (const std::string& name : names) {
+    std::string u = x.get(name).value_or("(absent)"), v = y.get(name).value_or("(absent)");
+    ++out.compared;
+    if (name == "file" || name == "image") {
+      u = pathOfId(recorded, u);
+      v = pathOfId(fresh, v);
+    }
+    const auto nu = asNumber(u), nv = asNumber(v);
+    const bool same = (nu && nv) ? sameNumber(*nu, *nv, tolerance) : u == v;
+    if (!same)
+      out.differences.push_back(label + " @" + name + ": recorded " + u + ", reproduced " + v);
+  }
+}
+
+// An output file: by hash, then, when it differs, by how much.
+void compareOutputFile(const carrier::DataItem& x, const carrier::DataItem& y,
+                       const carrier::Carrier& recorded, const carrier::Carrier& fresh,
+                       const fs::path& recordedRoot, const fs::path& freshRoot,
+                       StepComparison& out) {
+  const carrier::FileRecord* fa = recorded.findFile(x.get("file").value_or(""));
+  const carrier::FileRecord* fb = fresh.findFile(y.get("file").value_or(""));
+  if (!fa || !fb) {
+    out.differences.push_back("output " + (fa ? fa->path : std::string("?")) +
+                              ": not recorded in both carriers");
+    return;
+  }
+  if (fa->sha256 == fb->sha256) return;
+  std::string how = "differs (SHA-256 " + fa->sha256.substr(0, 12) + "... recorded, " +
+                    fb->sha256.substr(0, 12) + "... reproduced)";
+  const std::string ext = fs::path(fa->path).extension().string();
+  try {
+    if (ext == ".ptm" || ext == ".rti")
+      how += "; " + compareModels(recordedRoot / fa->path, freshRoot / fb->path).describe();
+    else if (ext == ".png" || ext == ".jpg" || ext == ".tif" || ext == ".tiff")
+      how += "; " + compareImages(recordedRoot / fa->path, freshRoot / fb->path);
+  } catch (const Error& e) {
+    how += "; cannot compare them (" + std::string(e.what()) + ")";
+  }
+  out.differences.push_back("output file " + fa->path + " " + how);
+}
+
 StepComparison compareStep(const carrier::Step& step, const carrier::Carrier& recorded,
                            const carrier::Carrier& fresh, const fs::path& recordedRoot,
                            const fs::path& freshRoot, double tolerance) {
@@ -78,75 +166,9 @@ StepComparison compareStep(const carrier::Step& step, const carrier::Carrier& re
   }
   if (a->status != b->status)
     out.differences.push_back("status: recorded " + a->status + ", reproduced " + b->status);
-  // Items are matched by what they are about (element, image, name, sphere, index, kind),
-  // not by position, so one extra or missing result does not shift every other one.
-  auto keyOf = [](const carrier::Carrier& c, const carrier::DataItem& item) {
-    std::string key = item.element;
-    for (const char* attr : {"image", "name", "sphere", "index", "kind"}) {
-      if (auto v = item.get(attr))
-        key += std::string(" ") + attr + "=" + (std::string(attr) == "image" ? pathOfId(c, *v) : *v);
-    }
-    return key;
-  };
-  std::map<std::string, std::vector<const carrier::DataItem*>> fresher;
-  for (const carrier::DataItem& y : b->items) fresher[keyOf(fresh, y)].push_back(&y);
-  std::map<std::string, std::size_t> used;
-  std::vector<std::pair<const carrier::DataItem*, const carrier::DataItem*>> pairs;
-  for (const carrier::DataItem& x : a->items) {
-    const std::string key = keyOf(recorded, x);
-    auto& list = fresher[key];
-    std::size_t& n = used[key];
-    if (n < list.size()) {
-      pairs.emplace_back(&x, list[n++]);
-    } else {
-      out.differences.push_back("recorded <" + key + "> was not reproduced");
-    }
-  }
-  for (const auto& [key, list] : fresher)
-    for (std::size_t i = used[key]; i < list.size(); ++i)
-      out.differences.push_back("reproduced <" + key + ">, which was not recorded");
-  for (const auto& [px, py] : pairs) {
-    const carrier::DataItem& x = *px;
-    const carrier::DataItem& y = *py;
-    const std::string label = keyOf(recorded, x);
-    std::set<std::string> names;
-    for (const auto& [k, v] : x.attributes) names.insert(k);
-    for (const auto& [k, v] : y.attributes) names.insert(k);
-    for (const std::string& name : names) {
-      std::string u = x.get(name).value_or("(absent)"), v = y.get(name).value_or("(absent)");
-      ++out.compared;
-      if (name == "file" || name == "image") {
-        u = pathOfId(recorded, u);
-        v = pathOfId(fresh, v);
-      }
-      const auto nu = asNumber(u), nv = asNumber(v);
-      const bool same = (nu && nv) ? sameNumber(*nu, *nv, tolerance) : u == v;
-      if (!same)
-        out.differences.push_back(label + " @" + name + ": recorded " + u + ", reproduced " + v);
-    }
-    // Output files: by hash, then by how much.
-    if (x.element == "output") {
-      const carrier::FileRecord* fa = recorded.findFile(x.get("file").value_or(""));
-      const carrier::FileRecord* fb = fresh.findFile(y.get("file").value_or(""));
-      if (!fa || !fb) {
-        out.differences.push_back("output " + (fa ? fa->path : std::string("?")) +
-                                  ": not recorded in both carriers");
-        continue;
-      }
-      if (fa->sha256 == fb->sha256) continue;
-      std::string how = "differs (SHA-256 " + fa->sha256.substr(0, 12) + "... recorded, " +
-                        fb->sha256.substr(0, 12) + "... reproduced)";
-      const std::string ext = fs::path(fa->path).extension().string();
-      try {
-        if (ext == ".ptm" || ext == ".rti")
-          how += "; " + compareModels(recordedRoot / fa->path, freshRoot / fb->path).describe();
-        else if (ext == ".png" || ext == ".jpg" || ext == ".tif" || ext == ".tiff")
-          how += "; " + compareImages(recordedRoot / fa->path, freshRoot / fb->path);
-      } catch (const Error& e) {
-        how += "; cannot compare them (" + std::string(e.what()) + ")";
-      }
-      out.differences.push_back("output file " + fa->path + " " + how);
-    }
+  for (const auto& [x, y] : matchItems(recorded, *a, fresh, *b, out)) {
+    compareAttributes(*x, *y, recorded, fresh, tolerance, out);
+    if (x->element == "output") compareOutputFile(*x, *y, recorded, fresh, recordedRoot, freshRoot, out);
   }
   return out;
 }
@@ -164,22 +186,19 @@ std::vector<std::string> softwareDifferences(const carrier::Carrier& recorded,
   return out;
 }
 
-}  // namespace
-
-void checkReexecution(const fs::path& package, const Inventory& inventory,
+// Extracts the payload into `root`: inputs (originals, exports, a given .lp) to replay/, made
+// read-only, recorded outputs to recorded/ to compare with.
+void extractForReplay(const fs::path& package, const Inventory& inventory,
                       const carrier::Carrier& recorded, const VerifyOptions& options,
-                      Report& report) {
-  report.reexecuted = true;
-  TempDir temp("verify");
-  const fs::path replayRoot = temp.path() / "replay", recordedRoot = temp.path() / "recorded";
+                      const fs::path& root) {
+  const fs::path replayRoot = root / "replay";
   fs::create_directory(replayRoot);
-  fs::create_directory(recordedRoot);
-  // Inputs (originals, exports, a given .lp) go to replay/, recorded outputs to recorded/.
+  fs::create_directory(root / "recorded");
   std::unordered_set<std::string> outputs;
   for (const carrier::FileRecord& f : recorded.files)
     if (f.role == "assembly" || f.role == "result") outputs.insert(f.path);
   extractFiles(
-      package, inventory, temp.path(),
+      package, inventory, root,
       [&](const std::string& path) -> fs::path {
         if (path.compare(0, 5, "data/") != 0) return {};
         const std::string relative = path.substr(5);
@@ -192,7 +211,13 @@ void checkReexecution(const fs::path& package, const Inventory& inventory,
     std::error_code ec;
     fs::create_directory(replayRoot / dir, ec);
   }
+}
 
+// Runs the recorded process list again in `replayRoot`; returns the fresh carrier (as far as
+// it got) and what stopped it in `problems`.
+carrier::Carrier replay(const fs::path& replayRoot, const carrier::Carrier& recorded,
+                        const VerifyOptions& options, const fs::path& freshCarrierPath,
+                        std::vector<std::string>& problems) {
   pipeline::RunSettings settings;
   settings.threads = options.threads;
   settings.who = "surrogate verify";
@@ -200,13 +225,11 @@ void checkReexecution(const fs::path& package, const Inventory& inventory,
     settings.progress = [&](const std::string& label, double f) {
       options.progress("re-executing: " + label, f);
     };
-  const fs::path freshCarrierPath = temp.path() / "reexecuted-carrier.xml";
   carrier::Carrier fresh;
-  std::vector<std::string> runProblems;
   try {
     fresh = stages::replayCarrier(replayRoot, recorded, settings, freshCarrierPath);
   } catch (const Error& e) {
-    runProblems.push_back(e.what());
+    problems.push_back(e.what());
     std::error_code ec;
     if (fs::exists(freshCarrierPath, ec)) {
       try {
@@ -218,9 +241,24 @@ void checkReexecution(const fs::path& package, const Inventory& inventory,
   } catch (const std::exception& e) {
     // A library failing on a bagged file (a decoder exception) is a failure to reproduce,
     // not a crash of the verifier.
-    runProblems.push_back(std::string("a step failed: ") + e.what());
+    problems.push_back(std::string("a step failed: ") + e.what());
     fresh.header.software = stages::softwareVersions();
   }
+  return fresh;
+}
+
+}  // namespace
+
+void checkReexecution(const fs::path& package, const Inventory& inventory,
+                      const carrier::Carrier& recorded, const VerifyOptions& options,
+                      Report& report) {
+  report.reexecuted = true;
+  TempDir temp("verify");
+  const fs::path replayRoot = temp.path() / "replay", recordedRoot = temp.path() / "recorded";
+  extractForReplay(package, inventory, recorded, options, temp.path());
+  std::vector<std::string> runProblems;
+  const carrier::Carrier fresh =
+      replay(replayRoot, recorded, options, temp.path() / "reexecuted-carrier.xml", runProblems);
   report.softwareDifferences = softwareDifferences(recorded, fresh);
   std::vector<Check> found;
   found.push_back(makeCheck("reexecute.run", Severity::NotReproduced,

@@ -186,7 +186,7 @@ TEST_CASE("every injected fault is detected with the right check and exit code",
        3, "bagit.complete"},
       {"add an unlisted tag file",
        [] { auto b = copyOfBag("addtag"); writeText(b / "metadata/notes.txt", "added later\n"); return b; },
-       3, "bagit.complete"},
+       3, "package.tags-listed"},
       {"add an original, manifests and metadata redone consistently",
        [] {
          auto b = copyOfBag("addoriginal");

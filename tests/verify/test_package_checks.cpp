@@ -105,7 +105,7 @@ TEST_CASE("a tag manifest must cover every tag file", "[verify][package]") {
   const verify::Report r = run(bag);
   INFO(allText(r));
   CHECK(r.exitCode() == 3);
-  CHECK(failed(r, "bagit.complete"));
+  CHECK(failed(r, "package.tags-listed"));
   CHECK_THAT(allText(r), Contains("metadata/xsd/carrier.xsd: a tag file not listed in tagmanifest-sha256.txt"));
 }
 
