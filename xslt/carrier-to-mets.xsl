@@ -83,7 +83,6 @@
   <xsl:key name="file-by-id" match="c:files/c:file" use="@id"/>
   <xsl:key name="step-by-id" match="c:process/c:step" use="@id"/>
   <xsl:key name="file-by-creator" match="c:files/c:file" use="@createdBy"/>
-  <xsl:key name="media-type" match="c:files/c:file" use="@mediaType"/>
   <xsl:key name="result-by-step" match="c:data/c:result" use="@step"/>
   <!-- What a step's results name as used (an input file, or an image a per-image result is
        about), keyed by "step-id file-id", and the images ImageDecode decoded: sources are
@@ -170,6 +169,20 @@
   <!-- Descriptive metadata: Dublin Core (simple, the 15 elements of
        http://purl.org/dc/elements/1.1/) from the carrier's header. Which header field and which
        meta keys give which element: mappings/carrier-to-mets.md, "Dublin Core". -->
+  <!-- One dc:format per media type, in the order of each type's first file. One pass over the
+       files per type found (a handful): grouping by key() would copy the node-set of every
+       file of a type for every file, quadratic in libxslt (minutes at 100 000 files). -->
+  <xsl:template name="dc-formats">
+    <xsl:param name="seen" select="'|'"/>
+    <xsl:variable name="next" select="(c:files/c:file[@mediaType != ''][not(contains($seen, concat('|', @mediaType, '|')))])[1]"/>
+    <xsl:if test="$next">
+      <dc:format><xsl:value-of select="$next/@mediaType"/></dc:format>
+      <xsl:call-template name="dc-formats">
+        <xsl:with-param name="seen" select="concat($seen, $next/@mediaType, '|')"/>
+      </xsl:call-template>
+    </xsl:if>
+  </xsl:template>
+
   <xsl:template name="dublin-core">
     <xsl:variable name="h" select="c:header"/>
     <xsl:variable name="shot">
@@ -207,9 +220,7 @@
             </xsl:choose>
           </dc:date>
           <dc:type>Image</dc:type>
-          <xsl:for-each select="c:files/c:file[@mediaType != ''][count(. | key('media-type', @mediaType)[1]) = 1]">
-            <dc:format><xsl:value-of select="@mediaType"/></dc:format>
-          </xsl:for-each>
+          <xsl:call-template name="dc-formats"/>
           <dc:identifier><xsl:value-of select="$objid"/></dc:identifier>
           <xsl:for-each select="$h/c:meta[@key = 'External-Identifier' or @key = 'Object-Identifier']">
             <dc:identifier><xsl:value-of select="."/></dc:identifier>
