@@ -103,6 +103,20 @@ struct JobCloser {
                       "; the file is damaged: copy it from the card again");
 }
 
+// A decompression job whose libjpeg messages go to `messages`; a warning stops it when
+// `stopOnWarning` (the image is then refused, or settled by the caller).
+std::unique_ptr<Job, JobCloser> newJob(DecoderMessages& messages, bool stopOnWarning) {
+  std::unique_ptr<Job, JobCloser> job(new Job());
+  job->cinfo.err = jpeg_std_error(&job->err.pub);
+  job->err.pub.error_exit = onError;
+  job->err.pub.emit_message = onMessage;
+  job->err.pub.output_message = onOutput;
+  job->err.messages = &messages;
+  job->err.stopOnWarning = stopOnWarning;
+  job->err.fatal[0] = '\0';
+  return job;
+}
+
 #define SURROGATE_STR2(x) #x
 #define SURROGATE_STR(x) SURROGATE_STR2(x)
 
@@ -110,14 +124,7 @@ struct JobCloser {
 
 Image decodeJpeg(const fs::path& path, const std::uint8_t* data, std::size_t size,
                  const DecodeOptions& options, DecoderMessages& messages) {
-  std::unique_ptr<Job, JobCloser> job(new Job());
-  job->cinfo.err = jpeg_std_error(&job->err.pub);
-  job->err.pub.error_exit = onError;
-  job->err.pub.emit_message = onMessage;
-  job->err.pub.output_message = onOutput;
-  job->err.messages = &messages;
-  job->err.stopOnWarning = !options.acceptDamage;
-  job->err.fatal[0] = '\0';
+  std::unique_ptr<Job, JobCloser> job = newJob(messages, !options.acceptDamage);
 
   int status = startJob(job.get(), data, size);
   if (status == 0) fatal(path, *job);
@@ -158,14 +165,8 @@ Image decodeJpeg(const fs::path& path, const std::uint8_t* data, std::size_t siz
 JpegSamples decodeJpegSamples(const std::uint8_t* data, std::size_t size, std::uint64_t maxPixels) {
   JpegSamples out;
   DecoderMessages messages("libjpeg");
-  std::unique_ptr<Job, JobCloser> job(new Job());
-  job->cinfo.err = jpeg_std_error(&job->err.pub);
-  job->err.pub.error_exit = onError;
-  job->err.pub.emit_message = onMessage;
-  job->err.pub.output_message = onOutput;
-  job->err.messages = &messages;
-  job->err.stopOnWarning = true;  // strict: a stream libjpeg calls damaged is refused
-  job->err.fatal[0] = '\0';
+  // strict: a stream libjpeg calls damaged is refused
+  std::unique_ptr<Job, JobCloser> job = newJob(messages, true);
   auto refused = [&](int status) {
     out.problem = status == 0 ? std::string(job->err.fatal)
                               : (messages.distinct().empty() ? "damaged data" : messages.distinct()[0]);

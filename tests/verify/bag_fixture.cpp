@@ -79,16 +79,6 @@ std::vector<std::string> filesUnder(const fs::path& root, const fs::path& dir) {
   return out;
 }
 
-std::string escape(const std::string& path) {
-  std::string out;
-  for (char c : path) {
-    if (c == '%') out += "%25";
-    else if (c == '\n') out += "%0A";
-    else if (c == '\r') out += "%0D";
-    else out += c;
-  }
-  return out;
-}
 
 // A bag-info.txt label's value in the bag, or "".
 std::string bagInfoValue(const fs::path& bag, const std::string& label) {
@@ -132,8 +122,8 @@ void rehashTagManifests(const fs::path& bag) {
   std::string t256, t512;
   for (const std::string& p : tags) {
     const auto d = surrogate::digestFile(bag / p, true);
-    t256 += d.sha256 + "  " + escape(p) + "\n";
-    t512 += d.sha512 + "  " + escape(p) + "\n";
+    t256 += d.sha256 + "  " + escapedPath(p) + "\n";
+    t512 += d.sha512 + "  " + escapedPath(p) + "\n";
   }
   writeText(bag / "tagmanifest-sha256.txt", t256);
   writeText(bag / "tagmanifest-sha512.txt", t512);
@@ -144,8 +134,8 @@ void rehashBag(const fs::path& bag) {
   std::uint64_t octets = 0, streams = 0;
   for (const std::string& p : filesUnder(bag, bag / "data")) {
     const auto d = surrogate::digestFile(bag / p, true);
-    m256 += d.sha256 + "  " + escape(p) + "\n";
-    m512 += d.sha512 + "  " + escape(p) + "\n";
+    m256 += d.sha256 + "  " + escapedPath(p) + "\n";
+    m512 += d.sha512 + "  " + escapedPath(p) + "\n";
     octets += d.size;
     ++streams;
   }
@@ -305,6 +295,17 @@ std::vector<std::string> filesInWriteOrder(const fs::path& bag) {
   for (const auto& e : fs::recursive_directory_iterator(bag))
     if (e.is_regular_file()) out.push_back(fs::relative(e.path(), bag).generic_string());
   std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::string escapedPath(const std::string& path) {
+  std::string out;
+  for (char c : path) {
+    if (c == '%') out += "%25";
+    else if (c == '\n') out += "%0A";
+    else if (c == '\r') out += "%0D";
+    else out += c;
+  }
   return out;
 }
 

@@ -33,6 +33,9 @@ void makeBag(const std::filesystem::path& capture, const std::filesystem::path& 
 // derivable file would do. The bag's Bag-Software-Agent and packaging time are kept.
 void rehashBag(const std::filesystem::path& bag);
 
+// A manifest path as RFC 8493 writes it: CR, LF and % percent-encoded.
+std::string escapedPath(const std::string& path);
+
 // Only the tagmanifests (after a test changed a tag file or a manifest "consistently").
 void rehashTagManifests(const std::filesystem::path& bag);
 

@@ -38,18 +38,6 @@ inline std::string hexDigest(const std::string& bytes, surrogate::DigestAlgorith
   return d.hex(algorithm);
 }
 
-// A manifest path as RFC 8493 writes it: CR, LF and % percent-encoded.
-inline std::string escapedPath(const std::string& path) {
-  std::string out;
-  for (char c : path) {
-    if (c == '%') out += "%25";
-    else if (c == '\n') out += "%0A";
-    else if (c == '\r') out += "%0D";
-    else out += c;
-  }
-  return out;
-}
-
 // A bag another tool made.
 struct GenericBag {
   std::map<std::string, std::string> payload;  // "data/..." -> content (UTF-8 names)
