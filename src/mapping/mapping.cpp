@@ -353,6 +353,17 @@ void requireRdf(xmlDoc* result, const std::filesystem::path& stylesheet) {
                 "the stylesheet did not give RDF/XML (its root is not rdf:RDF); reinstall Surrogate");
 }
 
+// The METS stylesheet's parameters for a package (its payload list checked first).
+std::vector<std::pair<std::string, std::string>> metsParams(const PackageFacts& facts) {
+  checkPayload(facts.payload);
+  return {
+      {"package-id", facts.packageId},
+      {"packaging-time", facts.packagingTime},
+      {"software-agent", facts.softwareAgent.empty() ? "Surrogate" : facts.softwareAgent},
+      {"payload-uri", kPayloadUri},  // always: document('') would read the stylesheet
+  };
+}
+
 }  // namespace
 
 std::string deriveCrm(const std::string& carrierXml, const std::string& source) {
@@ -361,14 +372,7 @@ std::string deriveCrm(const std::string& carrierXml, const std::string& source) 
 
 std::string deriveMets(const std::string& carrierXml, const PackageFacts& facts,
                        const std::string& source) {
-  checkPayload(facts.payload);
-  std::vector<std::pair<std::string, std::string>> params = {
-      {"package-id", facts.packageId},
-      {"packaging-time", facts.packagingTime},
-      {"software-agent", facts.softwareAgent.empty() ? "Surrogate" : facts.softwareAgent},
-  };
-  params.emplace_back("payload-uri", kPayloadUri);  // always: document('') would read the stylesheet
-  return transform(metsStylesheetPath(), carrierXml, source, params, &facts.payload);
+  return transform(metsStylesheetPath(), carrierXml, source, metsParams(facts), &facts.payload);
 }
 
 bool deriveCrmTo(const std::string& carrierXml, const TextSink& sink, const std::string& source) {
@@ -379,14 +383,7 @@ bool deriveCrmTo(const std::string& carrierXml, const TextSink& sink, const std:
 
 bool deriveMetsTo(const std::string& carrierXml, const PackageFacts& facts, const TextSink& sink,
                   const std::string& source) {
-  checkPayload(facts.payload);
-  std::vector<std::pair<std::string, std::string>> params = {
-      {"package-id", facts.packageId},
-      {"packaging-time", facts.packagingTime},
-      {"software-agent", facts.softwareAgent.empty() ? "Surrogate" : facts.softwareAgent},
-  };
-  params.emplace_back("payload-uri", kPayloadUri);
-  return transformTo(metsStylesheetPath(), carrierXml, source, params, &facts.payload, sink);
+  return transformTo(metsStylesheetPath(), carrierXml, source, metsParams(facts), &facts.payload, sink);
 }
 
 std::string libxsltVersion() { return xsltEngineVersion; }
