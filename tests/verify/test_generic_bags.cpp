@@ -291,7 +291,7 @@ void removeConsistently(const fs::path& bag, const std::string& payloadPath,
 }  // namespace
 
 TEST_CASE("a Surrogate package stripped of its carrier and its identifier is still judged as one "
-          "and is not sound, whatever mark of pack is left",
+          "and is not sound whatever mark of pack is left",
           "[verify][generic]") {
   // The carrier and the package identifier gone, consistently: metadata/ and the software agent
   // still say Surrogate made it.
