@@ -10,18 +10,13 @@
 #include <thread>
 
 #include "core/error.h"
+#include "core/text.h"
 #include "core/version.h"
 
 namespace surrogate::carrier {
 
 bool isEvidenceRole(const std::string& role) {
   return role == "original" || role == "export" || role == "sidecar" || role == "lp";
-}
-
-std::string formatNumber(double value) {
-  char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%.17g", value);
-  return buffer;
 }
 
 std::string timestampNow() {

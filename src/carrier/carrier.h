@@ -12,8 +12,10 @@
 //   saveCarrier(c, "assembly-files/carrier.xml");   // validated against the XSD, atomic
 //   Carrier again = loadCarrier("assembly-files/carrier.xml");
 //
-// Numbers are written with formatNumber() (17 significant digits), so a value read back is the
-// same double and re-execution can compare results exactly.
+// Numbers are written with formatNumber() (core/text.h: the shortest text that reads back as the
+// same double), so a value read back is the same double and re-execution can compare results
+// exactly. Carriers from older versions wrote 17 significant digits ("0.80000000000000004");
+// that text reads back as the same double too.
 #pragma once
 
 #include <cstdint>
@@ -31,9 +33,6 @@ inline constexpr const char* kFormatVersion = "1.0";
 
 using Attributes = std::vector<std::pair<std::string, std::string>>;
 
-// Round-trip exact text of a double ("%.17g", with "inf"/"nan" never produced: callers must
-// not record non-finite numbers).
-std::string formatNumber(double value);
 // UTC now as xs:dateTime ("2026-11-24T15:04:05Z").
 std::string timestampNow();
 

@@ -10,6 +10,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/resources.h"
+#include "core/text.h"
 
 namespace surrogate::carrier {
 

@@ -10,6 +10,7 @@
 #include "stages/light_stages.h"
 #include "stages/preprocess.h"
 #include "stages/preprocess_stages.h"
+#include "core/text.h"
 
 namespace surrogate::cli {
 
@@ -190,7 +191,7 @@ stages::RunRequest requestFrom(const Args& args) {
     const double v = parseNumberList(*t, 1, "--highlight-threshold")[0];
     if (!(v > 0 && v < 1))
       throw Error(ErrorKind::Usage, "--highlight-threshold", "command line", "needs a fraction between 0 and 1");
-    param(r, stages::HighlightDetectionStage::kComponent, {"threshold", carrier::formatNumber(v)});
+    param(r, stages::HighlightDetectionStage::kComponent, {"threshold", formatNumber(v)});
   }
   lightDirections(r, args);
   if (args.has("basis")) r.bases = args.values("basis");

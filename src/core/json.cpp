@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/text.h"
+
 namespace surrogate {
 
 void JsonWriter::separate() {
@@ -58,13 +60,11 @@ JsonWriter& JsonWriter::value(const std::string& text) {
 
 JsonWriter& JsonWriter::value(double number) {
   separate();
-  if (!std::isfinite(number)) {
+  if (!std::isfinite(number)) {  // JSON has no NaN or infinity; formatNumber refuses them
     out_ += "null";
     return *this;
   }
-  char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%.17g", number);
-  out_ += buffer;
+  out_ += formatNumber(number);
   return *this;
 }
 

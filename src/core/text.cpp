@@ -1,13 +1,34 @@
 #include "core/text.h"
 
+#include <charconv>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
+
+#include "core/error.h"
 
 namespace surrogate {
 
 std::string lowerCase(std::string s) {
   for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return s;
+}
+
+std::string formatNumber(double value) {
+  if (!std::isfinite(value))
+    throw Error(ErrorKind::Internal, "", "writing a number",
+                "a value that is not a finite number (NaN or infinity) was to be recorded");
+  // Below 1e15 every integer part is exact (2^53 is about 9.007e15), so the shortest plain
+  // decimal has the same significant digits as the shortest scientific form; above, plain
+  // notation would spell out digits the double does not determine.
+  const double magnitude = std::fabs(value);
+  const bool plain = magnitude == 0 || (magnitude >= 1e-6 && magnitude < 1e15);
+  char buffer[64];
+  const auto r = std::to_chars(buffer, buffer + sizeof buffer, value,
+                               plain ? std::chars_format::fixed : std::chars_format::scientific);
+  if (r.ec != std::errc())
+    throw Error(ErrorKind::Internal, "", "writing a number", "the number does not fit its buffer");
+  return std::string(buffer, r.ptr);
 }
 
 std::string fixedDecimals(double v, int digits) {

@@ -9,6 +9,16 @@ namespace surrogate {
 // ASCII keywords compared without regard to case.
 std::string lowerCase(std::string s);
 
+// The one text form of a number that is recorded (carrier attributes and parameters, .lp light
+// files, --json output): the shortest decimal that reads back (strtod, from_chars, xs:double) as
+// exactly `value`, from std::to_chars, so 0.8 is "0.8", never "0.80000000000000004". Plain
+// decimal notation for 1e-6 <= |value| < 1e15 ("0.000125", "250", "123456789012345"), else
+// scientific in to_chars' form ("1e-07", "1.5e+21"); -0.0 stays "-0" (it reads back as -0.0).
+// Throws Error(Internal) for NaN and infinities: no record holds them (a parameter or result
+// that is not finite is refused where it is computed or read), so one here is a bug. The JSON
+// writer (core/json.cpp) writes them as null before they reach this function.
+std::string formatNumber(double value);
+
 // `v` with exactly `digits` decimals ("%.*f"), for log lines and messages.
 std::string fixedDecimals(double v, int digits);
 

@@ -6,6 +6,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/text.h"
 #include "formats/text_parse.h"
 #include "image/source_kind.h"
 
@@ -129,8 +130,7 @@ std::string formatLp(const std::vector<LightEntry>& entries, const std::string& 
     if (!std::isfinite(e.x) || !std::isfinite(e.y) || !std::isfinite(e.z)) {
       fail("the light direction of \"" + f + "\" is not a finite vector");
     }
-    out += f + ' ' + formatDecimals(e.x, 6) + ' ' + formatDecimals(e.y, 6) +
-           ' ' + formatDecimals(e.z, 6) + '\n';
+    out += f + ' ' + formatNumber(e.x) + ' ' + formatNumber(e.y) + ' ' + formatNumber(e.z) + '\n';
   }
   return out;
 }

@@ -51,7 +51,8 @@ std::vector<LightEntry> readLp(const std::filesystem::path& path);
 // The same, from text already in memory; `name` is used in error messages.
 std::vector<LightEntry> parseLp(const std::string& text, const std::string& name);
 
-// Writes "N\n" then "<filename> %.6f %.6f %.6f\n" per light, atomically (a temporary file
+// Writes "N\n" then "<filename> <x> <y> <z>\n" per light, each component the shortest text that
+// reads back as the same double (formatNumber, core/text.h), atomically (a temporary file
 // renamed into place). Throws Error(Input) when a filename is empty, contains a tab or a line
 // break, or starts/ends with a space (it would not read back), or a component is not finite.
 void writeLp(const std::filesystem::path& path, const std::vector<LightEntry>& entries);

@@ -87,12 +87,4 @@ std::string formatFixed(double value) {
   return std::string(buffer, r.ptr);
 }
 
-std::string formatDecimals(double value, int decimals) {
-  char buffer[512];
-  const auto r =
-      std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::fixed, decimals);
-  if (r.ec != std::errc()) return "0";
-  return std::string(buffer, r.ptr);
-}
-
 }  // namespace surrogate::formats

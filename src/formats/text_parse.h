@@ -46,9 +46,8 @@ std::string_view trim(std::string_view text);
 bool parseInt(std::string_view token, long long* value);
 bool parseDouble(std::string_view token, double* value);  // also false for inf/nan
 
-// Shortest decimal text that reads back as exactly `value`, never in exponent notation.
+// Shortest decimal text that reads back as exactly `value`, never in exponent notation: the PTM
+// header's scales, whose bytes RtiFit's version stands for (records use formatNumber, core/text.h).
 std::string formatFixed(double value);
-// Fixed notation with `decimals` digits after the point (the .lp writer's %.6f, locale free).
-std::string formatDecimals(double value, int decimals);
 
 }  // namespace surrogate::formats

@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
+#include "core/text.h"
 
 namespace surrogate::hrti {
 
@@ -22,10 +23,7 @@ constexpr double kMeasuredRadius = 0.85;
 }  // namespace
 
 std::vector<std::pair<std::string, std::string>> HighlightOptions::toParameters() const {
-  std::ostringstream t;
-  t.precision(17);
-  t << threshold;
-  return {{"threshold", t.str()}, {"rimPixels", std::to_string(rimPixels)}};
+  return {{"threshold", formatNumber(threshold)}, {"rimPixels", std::to_string(rimPixels)}};
 }
 
 HighlightOptions HighlightOptions::fromParameters(const std::vector<std::pair<std::string, std::string>>& params) {

@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "hrti/circle_fit.h"
+#include "core/text.h"
 
 namespace surrogate::hrti {
 
@@ -225,15 +226,9 @@ std::vector<std::pair<std::string, std::string>> SphereDetectionOptions::toParam
   for (const Rect& q : regions)
     r += (r.empty() ? "" : ";") + std::to_string(q.x) + "," + std::to_string(q.y) + "," +
          std::to_string(q.w) + "," + std::to_string(q.h);
-  auto num = [](double v) {
-    std::ostringstream s;
-    s.precision(17);
-    s << v;
-    return s.str();
-  };
-  return {{"minRadius", num(minRadius)},       {"maxRadius", num(maxRadius)},
-          {"regions", r},                      {"maxSpheres", std::to_string(maxSpheres)},
-          {"minConfidence", num(minConfidence)}, {"coarseWidth", std::to_string(coarseWidth)}};
+  return {{"minRadius", formatNumber(minRadius)},       {"maxRadius", formatNumber(maxRadius)},
+          {"regions", r},                               {"maxSpheres", std::to_string(maxSpheres)},
+          {"minConfidence", formatNumber(minConfidence)}, {"coarseWidth", std::to_string(coarseWidth)}};
 }
 
 SphereDetectionOptions SphereDetectionOptions::fromParameters(

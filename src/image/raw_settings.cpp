@@ -6,6 +6,7 @@
 #include <initializer_list>
 
 #include "core/error.h"
+#include "core/text.h"
 
 namespace surrogate::image {
 
@@ -31,17 +32,6 @@ const Parameters& fixedParameters() {
       {"badPixels", "none"},               // bad_pixels = NULL: no bad-pixel map
   };
   return fixed;
-}
-
-// Shortest text that reads back to the same double ("0", "0.75", "100"), locale-independent
-// enough for the values used here (%g never writes a thousands separator).
-std::string formatNumber(double v) {
-  char buf[32];
-  for (int precision = 1; precision <= 17; ++precision) {
-    std::snprintf(buf, sizeof buf, "%.*g", precision, v);
-    if (std::strtod(buf, nullptr) == v) break;
-  }
-  return buf;
 }
 
 [[noreturn]] void refuse(const std::string& name, const std::string& value, const std::string& why) {

@@ -1,10 +1,13 @@
 // The capture's memory: the decisions a carrier records, and a new command's decisions applied
 // to them (stages/plan.h: standingDecisions, applyDecisions).
 #include <algorithm>
+#include <charconv>
+#include <cmath>
 #include <optional>
 
 #include "carrier/carrier.h"
 #include "core/error.h"
+#include "core/text.h"
 #include "stages/outputs.h"
 #include "stages/plan.h"
 #include "pipeline/stage.h"
@@ -73,6 +76,19 @@ std::string describe(const carrier::Intervention& i) {
   return what + ", recorded " + i.time + " by " + i.who + " (\"" + i.reason + "\")";
 }
 
+// A recorded parameter value as this version writes it: a number from an older carrier
+// ("0.80000000000000004", from "%.17g") becomes its shortest form ("0.8", core/text.h), the same
+// double, so that it compares equal to the defaults and to the same value given again, and the
+// next run records it short. Integers and text are kept as they are.
+std::string recordedValue(const std::string& value) {
+  if (value.find_first_of(".eE") == std::string::npos) return value;
+  double v = 0;
+  const char* end = value.data() + value.size();
+  const auto r = std::from_chars(value.data(), end, v, std::chars_format::general);
+  if (r.ec != std::errc() || r.ptr != end || !std::isfinite(v)) return value;
+  return formatNumber(v);
+}
+
 }  // namespace
 
 RunRequest standingDecisions(const carrier::Carrier& recorded) {
@@ -95,21 +111,22 @@ RunRequest standingDecisions(const carrier::Carrier& recorded) {
         else r.stageInterventions.push_back({s.component, i});
       }
     } else if (s.component == DecodeStage::kComponent) {
-      for (const carrier::Param& p : s.params) r.decodeSettings.emplace_back(p.name, p.value);
+      for (const carrier::Param& p : s.params) r.decodeSettings.emplace_back(p.name, recordedValue(p.value));
       for (const carrier::Intervention& i : s.interventions) r.stageInterventions.push_back({s.component, i});
     } else if (slot == pipeline::PlanSlot::Preprocessing) {
       PlannedStage p{s.component, {}};
-      for (const carrier::Param& q : s.params) p.params.emplace_back(q.name, q.value);
+      for (const carrier::Param& q : s.params) p.params.emplace_back(q.name, recordedValue(q.value));
       r.preprocessing.push_back(std::move(p));
     } else if (s.component == RtiFitStage::kComponent) {
       bases.push_back(fit::basisName(RtiFitOptions::fromParameters(parametersOf(s)).fit.basis));
     } else if (!info || !info->forModel) {  // the plan derives a forModel stage's parameters
       const pipeline::Parameters defaults = info ? info->defaults : pipeline::Parameters{};
       for (const carrier::Param& p : s.params) {
+        const std::string value = recordedValue(p.value);
         const auto d = std::find_if(defaults.begin(), defaults.end(),
                                     [&](const auto& kv) { return kv.first == p.name; });
-        if (d == defaults.end() || d->second != p.value)
-          r.stageParams.push_back({s.component, p.name, p.value});
+        if (d == defaults.end() || d->second != value)
+          r.stageParams.push_back({s.component, p.name, value});
       }
       for (const carrier::Intervention& i : s.interventions)
         r.stageInterventions.push_back({s.component, i});

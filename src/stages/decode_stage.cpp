@@ -8,6 +8,7 @@
 #include "stages/fit_stages.h"
 #include "stages/inputs.h"
 #include "stages/outputs.h"
+#include "core/text.h"
 
 namespace surrogate::stages {
 
@@ -104,7 +105,7 @@ void DecodeStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
     if (!d.report.whiteBalanceMultipliers.empty()) {
       std::string wb;
       for (double m : d.report.whiteBalanceMultipliers)
-        wb += (wb.empty() ? "" : " ") + carrier::formatNumber(m);
+        wb += (wb.empty() ? "" : " ") + formatNumber(m);
       item.set("whiteBalance", wb);
     }
     item.set("pixelSha256", d.pixelSha256);

@@ -96,12 +96,12 @@ void RtiFitStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
                output.size() > 4 && output.substr(output.size() - 4) == ".ptm" ? "application/x-ptm"
                                                                              : "application/x-rti");
 
-  result.add("value").set("name", "rmse").set("value", carrier::formatNumber(stats.rmse)).set("unit", "8-bit levels");
-  result.add("value").set("name", "psnr").set("value", carrier::formatNumber(stats.psnr)).set("unit", "dB");
+  result.add("value").set("name", "rmse").set("value", formatNumber(stats.rmse)).set("unit", "8-bit levels");
+  result.add("value").set("name", "psnr").set("value", formatNumber(stats.psnr)).set("unit", "dB");
   result.add("value").set("name", "lightMatrixRank").set("value", std::to_string(stats.rank));
   for (std::size_t n = 0; n < inputs->size() && n < stats.perImageRmse.size(); ++n) {
     result.add("imageValue").set("image", (*inputs)[n].fileId).set("name", "rmse")
-        .set("value", carrier::formatNumber(stats.perImageRmse[n])).set("unit", "8-bit levels");
+        .set("value", formatNumber(stats.perImageRmse[n])).set("unit", "8-bit levels");
   }
   // The images the model fits worst: where a moved object, a missed flash or a wrong light
   // direction shows first.

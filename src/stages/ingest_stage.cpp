@@ -80,7 +80,7 @@ carrier::Attributes cameraAttributes(const meta::CameraMetadata& m) {
     if (v && !v->empty()) a.emplace_back(name, *v);
   };
   auto number = [&](const char* name, const auto& v) {
-    if (v) a.emplace_back(name, carrier::formatNumber(static_cast<double>(*v)));
+    if (v) a.emplace_back(name, formatNumber(static_cast<double>(*v)));
   };
   auto integer = [&](const char* name, const auto& v) {
     if (v) a.emplace_back(name, std::to_string(*v));

@@ -378,7 +378,7 @@ std::pair<std::string, std::string> LightDirectionsOptions::modelParameter() con
 }
 
 std::pair<std::string, std::string> LightDirectionsOptions::parameter(double LightDirectionsOptions::*length) const {
-  return {lengthOf(length).name, carrier::formatNumber(this->*length)};
+  return {lengthOf(length).name, formatNumber(this->*length)};
 }
 
 LightDirectionsOptions LightDirectionsOptions::fromParameters(const pipeline::Parameters& parameters) {
@@ -410,8 +410,10 @@ LightDirectionsOptions LightDirectionsOptions::fromParameters(const pipeline::Pa
 
 pipeline::StageInfo LightDirectionsStage::info() {
   // 2: lights.lp names images relative to its own folder
+  // 3: lights.lp holds each component as the shortest text that reads back exactly (it had six
+  //    decimals), so the file's bytes differ from version 2's for the same lights
   return pipeline::withOptions<LightDirectionsOptions>(
-      {kComponent, "2", "Light direction of each image from its highlights by the law of reflection",
+      {kComponent, "3", "Light direction of each image from its highlights by the law of reflection",
        pipeline::PlanSlot::LightsFromSpheres});
 }
 
@@ -498,7 +500,9 @@ void LightDirectionsStage::run(const carrier::Step& step, pipeline::Context& ctx
 
 pipeline::StageInfo LightsFromFileStage::info() {
   // 2: lights.lp names images relative to its own folder
-  return pipeline::withOptions<pipeline::NoOptions>({kComponent, "2", "Light directions given by the capture's .lp file",
+  // 3: lights.lp holds each component as the shortest text that reads back exactly (it had six
+  //    decimals), so the file's bytes differ from version 2's for the same lights
+  return pipeline::withOptions<pipeline::NoOptions>({kComponent, "3", "Light directions given by the capture's .lp file",
                                            pipeline::PlanSlot::LightsFromFile});
 }
 

@@ -6,20 +6,11 @@
 #include <cstdlib>
 
 #include "core/error.h"
+#include "core/text.h"
 
 namespace surrogate::stages {
 
 namespace {
-
-// Shortest text that reads back to the same double.
-std::string shortNumber(double v) {
-  char buf[40];
-  for (int precision = 1; precision <= 17; ++precision) {
-    std::snprintf(buf, sizeof buf, "%.*g", precision, v);
-    if (std::strtod(buf, nullptr) == v) break;
-  }
-  return buf;
-}
 
 [[noreturn]] void refuse(const std::string& origin, const std::string& what, const std::string& why) {
   throw Error(ErrorKind::Usage, origin + (what.empty() ? "" : " " + what), "pre-processing", why);
@@ -100,7 +91,7 @@ std::string PixelRect::text() const {
 Parameters CropOptions::toParameters() const {
   Parameters p = {{"method", method}};
   if (method == "user") p.push_back({"rectangle", rect.text()});
-  else p.push_back({"margin", shortNumber(margin)});
+  else p.push_back({"margin", formatNumber(margin)});
   return p;
 }
 
@@ -150,7 +141,7 @@ std::pair<int, int> ResizeOptions::outputSize(int w, int h, const std::string& o
            "is larger than the " + std::to_string(w) + "x" + std::to_string(h) +
                " images it resizes; resizing only reduces (enlarging adds no information)");
   if (ow < kMinResizeSide || oh < kMinResizeSide) {
-    const std::string given = factor > 0 ? shortNumber(factor) : std::to_string(width) + "x" + std::to_string(height);
+    const std::string given = factor > 0 ? formatNumber(factor) : std::to_string(width) + "x" + std::to_string(height);
     char least[32];
     std::snprintf(least, sizeof least, "%.3g", std::ceil(1000.0 * kMinResizeSide / std::min(w, h)) / 1000);
     refuse(origin, given,
@@ -163,7 +154,7 @@ std::pair<int, int> ResizeOptions::outputSize(int w, int h, const std::string& o
 
 Parameters ResizeOptions::toParameters() const {
   Parameters p;
-  if (factor > 0) p.push_back({"factor", shortNumber(factor)});
+  if (factor > 0) p.push_back({"factor", formatNumber(factor)});
   else p.push_back({"size", std::to_string(width) + "x" + std::to_string(height)});
   p.push_back({"filter", filter});
   return p;
@@ -223,8 +214,8 @@ Parameters WhiteBalanceOptions::toParameters() const {
   Parameters p = {{"mode", mode}};
   if (mode == "region") p.push_back({"region", region.text()});
   if (mode == "multipliers")
-    p.push_back({"multipliers", shortNumber(multipliers[0]) + "," + shortNumber(multipliers[1]) +
-                                    "," + shortNumber(multipliers[2])});
+    p.push_back({"multipliers", formatNumber(multipliers[0]) + "," + formatNumber(multipliers[1]) +
+                                    "," + formatNumber(multipliers[2])});
   p.push_back({"outputSpace", outputSpace});
   return p;
 }

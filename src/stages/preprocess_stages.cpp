@@ -125,16 +125,16 @@ void WhiteBalanceStage::run(const carrier::Step& step, pipeline::Context& ctx, c
     const auto means = regionMeans(*input, options.region, effectiveThreads(ctx.settings.threads));
     for (std::size_t i = 0; i < means.size() && i < inputs->size(); ++i)
       result.add("imageValue").set("image", (*inputs)[i].fileId).set("name", "greyRegionMean")
-          .set("value", carrier::formatNumber(means[i][0]) + " " + carrier::formatNumber(means[i][1]) +
-                            " " + carrier::formatNumber(means[i][2]))
+          .set("value", formatNumber(means[i][0]) + " " + formatNumber(means[i][1]) +
+                            " " + formatNumber(means[i][2]))
           .set("unit", "linear R G B (0..1)");
     gains = greyRegionGains(means, "--wb-region " + options.region.text());
     recordValue(result, "greyRegion", options.region.text(), "pixels x,y,w,h");
   }
   recordValue(result, "mode", options.mode);
-  recordValue(result, "gainR", carrier::formatNumber(gains[0]), "linear multiplier");
-  recordValue(result, "gainG", carrier::formatNumber(gains[1]), "linear multiplier");
-  recordValue(result, "gainB", carrier::formatNumber(gains[2]), "linear multiplier");
+  recordValue(result, "gainR", formatNumber(gains[0]), "linear multiplier");
+  recordValue(result, "gainG", formatNumber(gains[1]), "linear multiplier");
+  recordValue(result, "gainB", formatNumber(gains[2]), "linear multiplier");
   recordValue(result, "outputSpace", options.outputSpace);
 
   const Transfer out = options.outputSpace == "linear" ? Transfer::Linear : Transfer::Srgb;
@@ -192,7 +192,7 @@ void CropStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier::
       throw Error(ErrorKind::Input, "--crop auto", step.component,
                   "the spheres leave no rectangle clear of them; give the rectangle with --crop X,Y,W,H");
     recordValue(result, "spheresAvoided", std::to_string(circles.size()));
-    recordValue(result, "margin", carrier::formatNumber(options.margin), "fraction of the sphere radius");
+    recordValue(result, "margin", formatNumber(options.margin), "fraction of the sphere radius");
     if (!detection)
       ctx.carrier.addLog("warning", step.id,
                          "no sphere detection in this process list (light directions from a file): "

@@ -131,3 +131,48 @@ TEST_CASE("rights and licence in the header round-trip, and a carrier without th
   empty.replace(empty.find("<rights>"), empty.find("</rights>") - empty.find("<rights>"), "<rights>");
   CHECK_THROWS_AS(parseCarrier(empty, "empty.xml"), Error);
 }
+
+TEST_CASE("numbers are written with the fewest digits that read back and old 17-digit text reads the same") {
+  Carrier c = sampleCarrier();
+  Result r;
+  r.step = "s1";
+  r.started = r.ended = timestampNow();
+  r.add("light").set("image", "f1").set("x", 0.8).set("y", 0.1 + 0.2).set("z", 1e-7)
+      .set("elevationDeg", 250.0).set("azimuthDeg", -135.5).set("source", "lp");
+  r.seconds = 0.25;
+  c.data.push_back(r);
+  const std::string text = toXml(c);
+  CHECK(text.find("x=\"0.8\" y=\"0.30000000000000004\" z=\"1e-07\" elevationDeg=\"250\" azimuthDeg=\"-135.5\"") !=
+        std::string::npos);
+  CHECK(text.find("seconds=\"0.25\"") != std::string::npos);
+  CHECK(text.find("cy=\"0.3333333333333333\"") != std::string::npos);
+
+  // A carrier written before (carrier.cpp printed "%.17g") holds the long forms of the same
+  // doubles: read back, they are the values the short forms give.
+  std::string old = text;
+  for (const auto& [now, before] : std::vector<std::pair<std::string, std::string>>{
+           {"x=\"0.8\"", "x=\"0.80000000000000004\""},
+           {"z=\"1e-07\"", "z=\"9.9999999999999995e-08\""},
+           {"seconds=\"0.25\"", "seconds=\"0.25\""},
+           {"cy=\"0.3333333333333333\"", "cy=\"0.33333333333333331\""}}) {
+    const auto at = old.find(now);
+    REQUIRE(at != std::string::npos);
+    old.replace(at, now.size(), before);
+  }
+  const Carrier back = parseCarrier(old, "memory");
+  const Result* items = nullptr;
+  for (const Result& x : back.data)
+    if (!x.itemsOf("light").empty()) items = &x;
+  REQUIRE(items != nullptr);
+  const DataItem& light = *items->itemsOf("light")[0];
+  CHECK(light.number("x") == 0.8);
+  CHECK(light.number("z") == 1e-7);
+  CHECK(back.data[0].itemsOf("sphere")[0]->number("cy") == 1.0 / 3.0);
+  // Written again, the old carrier's numbers take their short forms: the same record.
+  Carrier again = back;
+  for (Result& x : again.data)
+    for (DataItem& i : x.items)
+      for (auto& [name, value] : i.attributes)
+        if (name == "x" || name == "z" || name == "cy") i.set(name, i.number(name));
+  CHECK(toXml(again) == text);
+}

@@ -6,6 +6,7 @@
 #include "pipeline/context.h"
 #include "pipeline/runner.h"
 #include "pipeline/stage.h"
+#include "core/text.h"
 
 using namespace surrogate;
 using namespace surrogate::pipeline;
@@ -21,7 +22,7 @@ class DoublingStage : public Stage {
   void run(const carrier::Step& step, Context& ctx, carrier::Result& result) override {
     double v = std::stod(step.param("value", "1"));
     if (ctx.has("last")) v += *ctx.get<double>("last");
-    result.add("value").set("name", "doubled").set("value", carrier::formatNumber(2 * v));
+    result.add("value").set("name", "doubled").set("value", formatNumber(2 * v));
     ctx.put("last", std::make_shared<double>(2 * v));
   }
 };

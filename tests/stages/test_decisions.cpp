@@ -180,3 +180,33 @@ TEST_CASE("an accepted damaged image stands across runs until withdrawn, with it
     CHECK_THAT(e.file(), Catch::Contains("--forget-damaged"));
   }
 }
+
+TEST_CASE("numbers from an older carrier's 17 digits are read as the same values in their short form",
+          "[stages][decisions]") {
+  // Before core/text.h's formatNumber, "%.17g" recorded the default threshold 0.8 as
+  // 0.80000000000000004: that is the default, not a decision, and a value given as 0.95 again
+  // is no change.
+  carrier::Carrier c = carrier::newCarrier("Stela 12", {});
+  c.addStep("CaptureIngest", "1");
+  c.addStep("HighlightDetection", "2").setParam("threshold", "0.80000000000000004");
+  carrier::Step& spheres = c.addStep("SphereDetection", "1");
+  spheres.setParam("minConfidence", "0.94999999999999996");
+  spheres.setParam("regions", "0,0,200,100");
+  c.addStep("Crop", "1").setParam("margin", "0.29999999999999999");
+  const RunRequest r = stages::standingDecisions(c);
+  bool threshold = false, confidence = false;
+  for (const auto& p : r.stageParams) {
+    threshold = threshold || p.name == "threshold";
+    confidence = confidence || (p.name == "minConfidence" && p.value == "0.95");
+  }
+  CHECK_FALSE(threshold);
+  CHECK(confidence);
+  REQUIRE(r.preprocessing.size() == 1);
+  CHECK(r.preprocessing[0].params == std::vector<std::pair<std::string, std::string>>{{"margin", "0.3"}});
+
+  RunRequest given;
+  given.stageParams.push_back({"SphereDetection", "minConfidence", "0.95"});
+  std::vector<std::string> changes;
+  stages::applyDecisions(r, given, changes);
+  CHECK(changes.empty());
+}

@@ -144,7 +144,7 @@ TEST_CASE("software version differences are reported, and next to the difference
   CHECK_THAT(r.output, Contains("\"softwareDifferences\":[\"Eigen 0.0.1-"));
   // With a changed parameter as well, the failing step names the software difference.
   replaceText(b / "data/assembly-files/carrier.xml",
-              "<param name=\"threshold\" value=\"0.80000000000000004\"/>",
+              "<param name=\"threshold\" value=\"0.8\"/>",
               "<param name=\"threshold\" value=\"0.5\"/>");
   rehashBag(b);
   r = verify(b, "--reexecute");
@@ -235,7 +235,7 @@ TEST_CASE("every injected fault is detected with the right check and exit code",
        [] {
          auto b = copyOfBag("param");
          replaceText(b / "data/assembly-files/carrier.xml",
-                     "<param name=\"threshold\" value=\"0.80000000000000004\"/>",
+                     "<param name=\"threshold\" value=\"0.8\"/>",
                      "<param name=\"threshold\" value=\"0.5\"/>");
          rehashBag(b);
          return b;
@@ -317,7 +317,7 @@ TEST_CASE("every injected fault is detected with the right check and exit code",
        [] {
          auto b = copyOfBag("nan");
          replaceText(b / "data/assembly-files/carrier.xml",
-                     "<param name=\"threshold\" value=\"0.80000000000000004\"/>",
+                     "<param name=\"threshold\" value=\"0.8\"/>",
                      "<param name=\"threshold\" value=\"nan\"/>");
          rehashBag(b);
          return b;
