@@ -653,8 +653,8 @@ std::vector<PayloadDigest> streamPayload(const BagInput& input, const std::vecto
 // duplicate), in path order.
 std::vector<TagFile> sortedTagFiles(const BagInput& input, const std::vector<PayloadDigest>& payload) {
   std::vector<TagFile> tags;
-  tags.push_back({"manifest-sha256.txt", manifestText(payload, DigestAlgorithm::Sha256)});
-  tags.push_back({"manifest-sha512.txt", manifestText(payload, DigestAlgorithm::Sha512)});
+  tags.push_back({"manifest-sha256.txt", manifestText(payload, DigestAlgorithm::Sha256), {}});
+  tags.push_back({"manifest-sha512.txt", manifestText(payload, DigestAlgorithm::Sha512), {}});
   if (input.tagFiles) {
     for (TagFile& t : input.tagFiles(payload)) {
       const bool reserved = t.bagPath == "bagit.txt" || t.bagPath == "bag-info.txt" ||
@@ -772,7 +772,30 @@ BagResult writeBag(const BagInput& input, const fs::path& out) {
   result.payload = streamPayload(input, sources, total, *sink);
 
   // Manifests and the caller's tag files, in path order; then the tag manifests.
-  for (const TagFile& t : sortedTagFiles(input, result.payload)) putTag(t.bagPath, t.content, true);
+  for (const TagFile& t : sortedTagFiles(input, result.payload)) {
+    if (t.file.empty()) {
+      putTag(t.bagPath, t.content, true);
+      continue;
+    }
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> in(std::fopen(t.file.c_str(), "rb"), &std::fclose);
+    std::error_code ec;
+    const std::uint64_t size = fs::file_size(t.file, ec);
+    if (!in || ec)
+      throw Error(ErrorKind::Internal, t.file.string(), "packing", "cannot read a derived tag file");
+    MultiDigest digest({DigestAlgorithm::Sha256, DigestAlgorithm::Sha512});
+    std::vector<char> buffer(kBufferSize);
+    sink->begin(t.bagPath, size);
+    std::uint64_t copied = 0;
+    for (std::size_t n; (n = std::fread(buffer.data(), 1, buffer.size(), in.get())) > 0; copied += n) {
+      sink->write(buffer.data(), n);
+      digest.update(buffer.data(), n);
+    }
+    if (std::ferror(in.get()) || copied != size)
+      throw Error(ErrorKind::Internal, t.file.string(), "packing", "cannot read a derived tag file");
+    sink->end();
+    tagDigests.push_back({t.bagPath, size, digest.hex(DigestAlgorithm::Sha256),
+                          digest.hex(DigestAlgorithm::Sha512)});
+  }
   std::sort(tagDigests.begin(), tagDigests.end(),
             [](const PayloadDigest& a, const PayloadDigest& b) { return a.bagPath < b.bagPath; });
   for (const PayloadDigest& d : tagDigests) result.tagFiles.push_back(d.bagPath);

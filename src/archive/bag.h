@@ -61,6 +61,10 @@ struct PayloadDigest {
 struct TagFile {
   std::string bagPath;  // e.g. "metadata/mets.xml" (outside data/)
   std::string content;
+  // When set, the content is this file's instead, copied in pieces (a METS of 100 000 files is
+  // about 450 MB; the packer derives it into a temporary file). It must stay until writeBag
+  // returns.
+  std::filesystem::path file;
 };
 
 struct BagInput {

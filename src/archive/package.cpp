@@ -1,6 +1,10 @@
 #include "archive/package.h"
 
 #include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <memory>
 #include <map>
 #include <set>
 #include <unordered_map>
@@ -182,6 +186,27 @@ std::vector<std::string> packageMetadataFiles() {
   return out;
 }
 
+namespace {
+
+// Writes what `derive` hands its sink into `file` (created or truncated) as it comes: the METS
+// of 100 000 files is about 450 MB, whose result tree would take about 2 GB (mapping.h).
+// Returns what `derive` returns (false: the bytes are not the derivation; see deriveMetsTo).
+bool deriveInto(const fs::path& file, const std::function<bool(const mapping::TextSink&)>& derive) {
+  auto cannot = [&] {
+    throw Error(ErrorKind::Internal, file.string(), "packing",
+                std::string("cannot be written (") + std::strerror(errno) + ")");
+  };
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(file.c_str(), "wb"), &std::fclose);
+  if (!f) cannot();
+  const bool streamed = derive([&](const char* data, std::size_t n) {
+    if (std::fwrite(data, 1, n, f.get()) != n) cannot();
+  });
+  if (std::fclose(f.release()) != 0) cannot();
+  return streamed;
+}
+
+}  // namespace
+
 PackResult packCapture(const fs::path& capture, const fs::path& out, const PackOptions& options) {
   const fs::path carrierFile = capture / kCarrierPath;
   const std::string carrierXml = readFile(carrierFile, "packing");
@@ -194,12 +219,25 @@ PackResult packCapture(const fs::path& capture, const fs::path& out, const PackO
   const std::string agent = std::string("Surrogate ") + surrogateVersion();
 
   // Metadata that needs only the carrier, derived before any payload byte is written, so a
-  // mapping problem never leaves half a package behind.
-  const std::string crm = mapping::deriveCrm(carrierXml, carrierFile.string());
-  mapping::checkRdfWellFormed(crm, "metadata/crm.rdf");
+  // mapping problem never leaves half a package behind. The derived documents go into
+  // temporary files beside the output (AtomicFile's names, never committed: removed when
+  // packing ends, and by removeStaleParts after a pack that was killed), from which writeBag
+  // copies them; their bytes are deriveCrm's / deriveMets's (the fallback below).
+  checkOutput(out);
+  const AtomicFile crmFile(out), metsFile(out);
+  if (!deriveInto(crmFile.tempPath(), [&](const mapping::TextSink& sink) {
+        return mapping::deriveCrmTo(carrierXml, sink, carrierFile.string());
+      })) {
+    const std::string crm = mapping::deriveCrm(carrierXml, carrierFile.string());
+    mapping::checkRdfWellFormed(crm, "metadata/crm.rdf");
+    (void)deriveInto(crmFile.tempPath(), [&](const mapping::TextSink& sink) {
+      sink(crm.data(), crm.size());
+      return true;
+    });
+  }
   std::vector<TagFile> resources;
   for (const std::string& rel : mapping::packagedResources())
-    resources.push_back({"metadata/" + rel, readFile(resourcePath(rel), "packing")});
+    resources.push_back({"metadata/" + rel, readFile(resourcePath(rel), "packing"), {}});
 
   BagInput in;
   in.payload = payloadOf(capture, c);
@@ -217,17 +255,33 @@ PackResult packCapture(const fs::path& capture, const fs::path& out, const PackO
     facts.payload.reserve(payload.size());
     for (const PayloadDigest& d : payload)
       facts.payload.push_back({d.bagPath, d.size, d.sha256, d.sha512});
-    const std::string mets = mapping::deriveMets(carrierXml, facts, carrierFile.string());
+    std::unique_ptr<mapping::MetsValidator> validator;
+    const bool streamed = deriveInto(metsFile.tempPath(), [&](const mapping::TextSink& sink) {
+      validator = std::make_unique<mapping::MetsValidator>("metadata/mets.xml");
+      return mapping::deriveMetsTo(carrierXml, facts, [&](const char* data, std::size_t n) {
+        sink(data, n);
+        validator->feed(data, n);
+      }, carrierFile.string());
+    });
+    if (!streamed) {
+      const std::string mets = mapping::deriveMets(carrierXml, facts, carrierFile.string());
+      (void)deriveInto(metsFile.tempPath(), [&](const mapping::TextSink& sink) {
+        validator = std::make_unique<mapping::MetsValidator>("metadata/mets.xml");
+        sink(mets.data(), mets.size());
+        validator->feed(mets.data(), mets.size());
+        return true;
+      });
+    }
     try {
-      mapping::validateMets(mets, "metadata/mets.xml");
+      validator->finish();
     } catch (const Error& e) {
       throw Error(ErrorKind::Internal, "metadata/mets.xml", "packing",
                   "the METS derived from the carrier is not valid, a bug in Surrogate (" +
                       e.message() + ")");
     }
     std::vector<TagFile> tags = resources;
-    tags.push_back({"metadata/crm.rdf", crm});
-    tags.push_back({"metadata/mets.xml", mets});
+    tags.push_back({"metadata/crm.rdf", {}, crmFile.tempPath()});
+    tags.push_back({"metadata/mets.xml", {}, metsFile.tempPath()});
     return tags;
   };
   result.bag = writeBag(in, out);

@@ -70,10 +70,12 @@ std::string attributeText(const std::string& value, const std::string& what) {
 std::string payloadEntry(const PayloadFile& f) {
   return "<file path=\"" + attributeText(f.path, f.path) + "\" size=\"" + std::to_string(f.size) +
          "\" sha256=\"" + attributeText(f.sha256, f.path) + "\" sha512=\"" +
-         attributeText(f.sha512, f.path) + "\"/>\n";
+         attributeText(f.sha512, f.path) + "\"/>";
 }
 
-// The payload list as XML ("<payload>", one <file .../> per payload file, "</payload>"), made
+// The payload list as XML ("<payload>", one <file .../> per payload file, "</payload>", with no
+// white space between them: the stylesheet selects payload/file only, and a line break would
+// be one more text node per file, 13 MB for 100 000 files), made
 // a few entries at a time as the parser reads it: the whole text (30 MB for 100 000 files)
 // would otherwise be held, and copied by libxml2, beside the document it becomes.
 // Every entry is checked (checkPayload) before a transformation starts, so that making one
@@ -92,7 +94,7 @@ struct PayloadText {
         t->pending.erase(0, t->at);
         t->at = 0;
         if (!t->opened) {
-          t->pending += "<payload>\n";
+          t->pending += "<payload>";
           t->opened = true;
         } else if (t->next < t->files->size()) {
           for (int i = 0; i < 64 && t->next < t->files->size(); ++i) t->pending += payloadEntry((*t->files)[t->next++]);
@@ -117,6 +119,9 @@ void checkPayload(const std::vector<PayloadFile>& payload) {
 
 // The payload list of the transformation running on this thread (document("surrogate:payload")).
 thread_local const std::vector<PayloadFile>* currentPayload = nullptr;
+// The same list when the caller gave it away (deriveMetsTo with PackageFacts&&): released
+// once its document is made.
+thread_local std::vector<PayloadFile>* releasablePayload = nullptr;
 
 // libxslt's document loader: only the payload list; every other document is refused.
 xmlDocPtr payloadOnlyLoader(const xmlChar* uri, xmlDictPtr, int, void*, xsltLoadType type) {
@@ -127,6 +132,12 @@ xmlDocPtr payloadOnlyLoader(const xmlChar* uri, xmlDictPtr, int, void*, xsltLoad
   // libxslt orders a loaded document's elements for XPath only when its debugger hook is off;
   // a streamed transformation (result_stream.h) has it on.
   if (doc) xmlXPathOrderDocElems(doc);
+  if (doc && releasablePayload == currentPayload) {
+    // libxslt keeps the loaded document for the rest of the transformation (document() of
+    // the same URI is not loaded again): the list is not read after this.
+    std::vector<PayloadFile>().swap(*releasablePayload);
+    releasablePayload = nullptr;
+  }
   return doc;
 }
 
@@ -196,7 +207,9 @@ Transformed runTransform(const std::filesystem::path& stylesheet, const std::str
                          const std::vector<std::pair<std::string, std::string>>& params,
                          const std::vector<PayloadFile>* payload, xmlOutputBufferPtr stream = nullptr,
                          bool* streamed = nullptr,
-                         const std::function<void(xmlDoc*)>& check = {}) {
+                         const std::function<void(xmlDoc*)>& check = {},
+                         std::vector<PayloadFile>* releasable = nullptr,
+                         std::string* releasableCarrier = nullptr) {
   initialiseXslt();
   Transformed t;
   // The carrier, parsed once with the safe parser's options (no network); a document that
@@ -220,6 +233,7 @@ Transformed runTransform(const std::filesystem::path& stylesheet, const std::str
     xml::checkWellFormed(carrierXml, source);
     throwInputError(source, "metadata", "is not well-formed XML");
   }
+  if (releasableCarrier) std::string().swap(*releasableCarrier);  // the tree holds it now
 
   const std::string styleText = readFile(stylesheet, "metadata");
   xml::checkWellFormed(styleText, stylesheet.string());
@@ -265,9 +279,11 @@ Transformed runTransform(const std::filesystem::path& stylesheet, const std::str
     writer->attach(ctxt.get());
   }
   currentPayload = payload;
+  releasablePayload = releasable;
   t.result.reset(xsltApplyStylesheetUser(t.style.get(), t.input.get(), raw.data(), nullptr, nullptr,
                                          ctxt.get()));
   currentPayload = nullptr;
+  releasablePayload = nullptr;
   const bool failed = !t.result || ctxt->state != XSLT_STATE_OK;
   xsltSetGenericErrorFunc(nullptr, nullptr);
   if (failed) {
@@ -309,7 +325,9 @@ bool transformTo(const std::filesystem::path& stylesheet, const std::string& car
                  const std::string& source,
                  const std::vector<std::pair<std::string, std::string>>& params,
                  const std::vector<PayloadFile>* payload, const TextSink& sink,
-                 const std::function<void(xmlDoc*)>& check = {}) {
+                 const std::function<void(xmlDoc*)>& check = {},
+                 std::vector<PayloadFile>* releasable = nullptr,
+                 std::string* releasableCarrier = nullptr) {
   struct Target {
     const TextSink* sink;
     std::exception_ptr failure;
@@ -329,7 +347,8 @@ bool transformTo(const std::filesystem::path& stylesheet, const std::string& car
   if (!buffer) throw Error(ErrorKind::Internal, stylesheet.string(), "metadata", "libxml2 could not start");
   bool streamed = false;
   try {
-    runTransform(stylesheet, carrierXml, source, params, payload, buffer, &streamed, check);
+    runTransform(stylesheet, carrierXml, source, params, payload, buffer, &streamed, check,
+                 releasable, releasableCarrier);
   } catch (...) {
     xmlOutputBufferClose(buffer);
     throw;
@@ -384,6 +403,18 @@ bool deriveCrmTo(const std::string& carrierXml, const TextSink& sink, const std:
 bool deriveMetsTo(const std::string& carrierXml, const PackageFacts& facts, const TextSink& sink,
                   const std::string& source) {
   return transformTo(metsStylesheetPath(), carrierXml, source, metsParams(facts), &facts.payload, sink);
+}
+
+bool deriveMetsTo(const std::string& carrierXml, PackageFacts&& facts, const TextSink& sink,
+                  const std::string& source) {
+  return transformTo(metsStylesheetPath(), carrierXml, source, metsParams(facts), &facts.payload,
+                     sink, {}, &facts.payload);
+}
+
+bool deriveMetsTo(std::string&& carrierXml, PackageFacts&& facts, const TextSink& sink,
+                  const std::string& source) {
+  return transformTo(metsStylesheetPath(), carrierXml, source, metsParams(facts), &facts.payload,
+                     sink, {}, &facts.payload, &carrierXml);
 }
 
 std::string libxsltVersion() { return xsltEngineVersion; }

@@ -81,6 +81,17 @@ using TextSink = std::function<void(const char* data, std::size_t size)>;
 [[nodiscard]] bool deriveMetsTo(const std::string& carrierXml, const PackageFacts& facts,
                                 const TextSink& sink,
                                 const std::string& source = "assembly-files/carrier.xml");
+// The same, releasing facts.payload (left empty) as soon as the stylesheet has read it: the
+// list is then held once (as the stylesheet's tree), not twice, while the METS is derived
+// (100 000 files: about 40 MB less).
+[[nodiscard]] bool deriveMetsTo(const std::string& carrierXml, PackageFacts&& facts,
+                                const TextSink& sink,
+                                const std::string& source = "assembly-files/carrier.xml");
+// And the carrier's text as well (left empty once the stylesheet's tree of it is built: 25 MB
+// for 100 000 files).
+[[nodiscard]] bool deriveMetsTo(std::string&& carrierXml, PackageFacts&& facts,
+                                const TextSink& sink,
+                                const std::string& source = "assembly-files/carrier.xml");
 
 // validateMets for text that arrives in pieces (e.g. from deriveMetsTo), without building the
 // document: memory stays bounded by the document's depth and IDs, not its size.

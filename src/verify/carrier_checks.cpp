@@ -3,6 +3,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <unordered_set>
 
 #include "archive/bag_text.h"
@@ -104,8 +105,8 @@ std::optional<carrier::Carrier> checkCarrier(const Inventory& inv, std::vector<C
   return parsed;
 }
 
-void checkMetadata(const fs::path& package, const Inventory& inv, const std::string* carrierXml,
-                   const Limits& limits, std::vector<Check>& checks) {
+void checkMetadata(const fs::path& package, Inventory& inv, const std::string* carrierXml,
+                   const Limits& limits, std::vector<Check>& checks, bool dropPayloadEntries) {
   const std::string metsPath = "metadata/mets.xml", crmPath = "metadata/crm.rdf";
   const auto mets = inv.files.find(metsPath), crm = inv.files.find(crmPath);
   const bool hasMets = mets != inv.files.end(), hasCrm = crm != inv.files.end();
@@ -128,22 +129,33 @@ void checkMetadata(const fs::path& package, const Inventory& inv, const std::str
   bool metsChecked = !hasMets, crmChecked = !hasCrm;
 
   if (carrierXml && hasMets && hasCrm) {
-    // Package facts, as the packer recorded them (mapping.h).
-    mapping::PackageFacts facts;
-    if (const std::string* info = contentOf(inv, "bag-info.txt")) {
-      const BagInfo bagInfo = parseBagInfo(*info);
-      auto one = [&](const char* label) {
-        const auto v = bagInfo.values(label);
-        return v.empty() ? std::string() : v.front();
-      };
-      facts.packageId = one("Surrogate-Package-Identifier");
-      facts.packagingTime = one("Surrogate-Packaging-Time");
-      facts.softwareAgent = one("Bag-Software-Agent");
-    }
-    {
+    // Package facts, as the packer recorded them (mapping.h). Made again only for a second
+    // derivation (a result that differs, or cannot be streamed): when nothing after this
+    // check needs the inventory's payload entries and manifest texts, they are let go once
+    // the facts are made, and the first facts' payload list is given to the stylesheet
+    // (mapping::deriveMetsTo with PackageFacts&&), so that the stylesheets' trees do not
+    // stand beside them (100 000 files: the entries about 100 MB, the manifests 30 MB, the
+    // list 40 MB). The sizes are then kept apart, in the list's order.
+    std::vector<std::uint64_t> sizes;
+    std::set<std::string> released;  // manifests whose text is read again from the package
+    auto makeFacts = [&] {
+      mapping::PackageFacts facts;
+      if (const std::string* info = contentOf(inv, "bag-info.txt")) {
+        const BagInfo bagInfo = parseBagInfo(*info);
+        auto one = [&](const char* label) {
+          const auto v = bagInfo.values(label);
+          return v.empty() ? std::string() : v.front();
+        };
+        facts.packageId = one("Surrogate-Package-Identifier");
+        facts.packagingTime = one("Surrogate-Packaging-Time");
+        facts.softwareAgent = one("Bag-Software-Agent");
+      }
       std::map<std::string, mapping::PayloadFile> payload;
       for (const char* algorithm : {"sha256", "sha512"}) {
-        const std::string* manifest = contentOf(inv, std::string("manifest-") + algorithm + ".txt");
+        const std::string name = std::string("manifest-") + algorithm + ".txt";
+        std::string again;
+        const std::string* manifest = contentOf(inv, name);
+        if (released.count(name)) manifest = &(again = text(name));
         if (!manifest) continue;
         for (ManifestEntry& e : parseManifest(*manifest, algorithm, digestHexLength(algorithm)).entries) {
           mapping::PayloadFile& p = payload[e.path];
@@ -157,6 +169,36 @@ void checkMetadata(const fs::path& package, const Inventory& inv, const std::str
       }
       facts.payload.reserve(payload.size());
       for (auto& [path, p] : payload) facts.payload.push_back(std::move(p));
+      if (sizes.size() == facts.payload.size())
+        for (std::size_t i = 0; i < sizes.size(); ++i) facts.payload[i].size = sizes[i];
+      return facts;
+    };
+    mapping::PackageFacts facts = makeFacts();
+    // The carrier's text, given to the METS stylesheet with the facts in the same case (its
+    // tree is what the stylesheet reads), and read again from the package if needed after.
+    std::string* ownCarrier = nullptr;
+    std::string carrierAgain;
+    auto carrier = [&]() -> const std::string& {
+      if (!ownCarrier || !ownCarrier->empty()) return *carrierXml;
+      if (carrierAgain.empty()) carrierAgain = text(kCarrierPath);
+      return carrierAgain;
+    };
+    if (dropPayloadEntries) {
+      for (const mapping::PayloadFile& p : facts.payload) sizes.push_back(p.size);
+      // What is left to do reads the tag files (readBagFile looks up only the path it reads)
+      // and the carrier's text (carrierXml points into its entry, which stays).
+      for (auto it = inv.files.lower_bound("data/"); it != inv.files.end() && it->first.rfind("data/", 0) == 0;)
+        it = it->first == kCarrierPath ? std::next(it) : inv.files.erase(it);
+      const auto entry = inv.files.find(kCarrierPath);
+      if (entry != inv.files.end() && entry->second.content && &*entry->second.content == carrierXml &&
+          !carrierXml->empty())
+        ownCarrier = &*entry->second.content;
+      for (const char* name : {"manifest-sha256.txt", "manifest-sha512.txt"}) {
+        const auto it = inv.files.find(name);
+        if (it == inv.files.end() || !it->second.content) continue;
+        it->second.content.reset();
+        released.insert(name);
+      }
     }
 
     // Each derived document is hashed as it is serialised, and compared with the bag's by
@@ -177,13 +219,16 @@ void checkMetadata(const fs::path& package, const Inventory& inv, const std::str
         size += n;
         if (validator) (*validator)->feed(data, n);
       };
-      const bool streamed = isMets ? mapping::deriveMetsTo(*carrierXml, facts, sink, kCarrierPath)
-                                   : mapping::deriveCrmTo(*carrierXml, sink, kCarrierPath);
+      bool streamed;
+      if (!isMets) streamed = mapping::deriveCrmTo(carrier(), sink, kCarrierPath);
+      else if (ownCarrier) streamed = mapping::deriveMetsTo(std::move(*ownCarrier), std::move(facts), sink, kCarrierPath);
+      else if (dropPayloadEntries) streamed = mapping::deriveMetsTo(carrier(), std::move(facts), sink, kCarrierPath);
+      else streamed = mapping::deriveMetsTo(carrier(), facts, sink, kCarrierPath);
       if (!streamed) {
         // A result that could not be written while it was built (mapping.h): derived whole.
         restart();
-        const std::string whole = isMets ? mapping::deriveMets(*carrierXml, facts, kCarrierPath)
-                                         : mapping::deriveCrm(*carrierXml, kCarrierPath);
+        const std::string whole = isMets ? mapping::deriveMets(carrier(), makeFacts(), kCarrierPath)
+                                         : mapping::deriveCrm(carrier(), kCarrierPath);
         if (!isMets) mapping::checkRdfWellFormed(whole, crmPath);
         sink(whole.data(), whole.size());
       }
@@ -195,7 +240,7 @@ void checkMetadata(const fs::path& package, const Inventory& inv, const std::str
       if (derive(false, nullptr)) {
         crmChecked = true;  // the bag's crm.rdf is the derived one: RDF/XML (deriveCrmTo checks)
       } else {
-        const std::string derived = mapping::deriveCrm(*carrierXml, kCarrierPath);
+        const std::string derived = mapping::deriveCrm(carrier(), kCarrierPath);
         const std::string bag = text(crmPath);
         problems.push_back(crmPath + ": " + firstDifference(derived, bag));
       }
@@ -204,7 +249,7 @@ void checkMetadata(const fs::path& package, const Inventory& inv, const std::str
         metsProblems = run([&] { validator->finish(); });
         metsChecked = true;
       } else {
-        const std::string derived = mapping::deriveMets(*carrierXml, facts, kCarrierPath);
+        const std::string derived = mapping::deriveMets(carrier(), makeFacts(), kCarrierPath);
         const std::string bag = text(metsPath);
         problems.push_back(metsPath + ": " + firstDifference(derived, bag));
       }

@@ -77,9 +77,14 @@ void checkPackageInfo(const Inventory& inventory, const std::optional<carrier::C
 bool checkSteps(const carrier::Carrier& recorded, std::vector<Check>& checks);
 
 // metadata.*: METS, CRM, and re-derivation from the carrier (compared by digest; the bag's
-// texts are read again from `package` only when a check needs them).
-void checkMetadata(const std::filesystem::path& package, const Inventory& inventory,
-                   const std::string* carrierXml, const Limits& limits, std::vector<Check>& checks);
+// texts are read again from `package` only when a check needs them). With
+// `dropPayloadEntries` (nothing after it needs them: no re-execution), the inventory's entries
+// under data/ but the carrier are erased, and the texts of the payload manifests and of the
+// carrier let go, as soon as what the stylesheets need is taken from them (see
+// carrier_checks.cpp): the inventory is then no longer complete.
+void checkMetadata(const std::filesystem::path& package, Inventory& inventory,
+                   const std::string* carrierXml, const Limits& limits, std::vector<Check>& checks,
+                   bool dropPayloadEntries = false);
 
 // reexecute.*: extract, replay the process list, compare.
 void checkReexecution(const std::filesystem::path& package, const Inventory& inventory,
