@@ -45,6 +45,9 @@
     exclude-result-prefixes="c">
 
   <xsl:output method="xml" encoding="UTF-8" indent="yes"/>
+  <!-- White space between the carrier's elements is layout, never data (Surrogate parses the
+       carrier without it, to keep the tree small; this makes xsltproc read it the same way). -->
+  <xsl:strip-space elements="*"/>
 
   <xsl:param name="crmdig-ns" select="'http://www.cidoc-crm.org/extensions/crmdig/'"/>
   <xsl:param name="base-uri" select="''"/>

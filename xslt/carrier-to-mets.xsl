@@ -9,7 +9,9 @@
     software-agent  the packing software, e.g. "Surrogate 0.1.0" (bag-info Bag-Software-Agent)
     payload-uri     URI of a payload list, one element per payload file of the bag:
                       <payload><file path="data/..." size="N" sha256="hex" sha512="hex"/></payload>
-                    (Surrogate builds it from manifest-sha256.txt and manifest-sha512.txt). When
+                    (Surrogate builds it from manifest-sha256.txt and manifest-sha512.txt;
+                    it leaves out size and sha256 where the carrier's record of the same path,
+                    data/ + @path, gives the same ones, and they are taken from there). When
                     the list has no file, the carrier's own file list is used instead (without
                     SHA-512). Give an absolute path or URI: a relative one is resolved against
                     this stylesheet's location.
@@ -37,6 +39,9 @@
     exclude-result-prefixes="c">
 
   <xsl:output method="xml" encoding="UTF-8" indent="yes"/>
+  <!-- White space between the carrier's elements is layout, never data (Surrogate parses the
+       carrier without it, to keep the tree small; this makes xsltproc read it the same way). -->
+  <xsl:strip-space elements="*"/>
 
   <xsl:param name="package-id" select="''"/>
   <xsl:param name="packaging-time" select="''"/>
@@ -438,7 +443,8 @@
     <xsl:param name="size"/>
     <xsl:param name="sha256"/>
     <xsl:param name="rec"/>
-    <mets:file ID="file-{$n}" SIZE="{$size}" CHECKSUM="{$sha256}" CHECKSUMTYPE="SHA-256"
+    <mets:file ID="file-{$n}" SIZE="{$size | $rec[1]/@size[not($size)]}"
+               CHECKSUM="{$sha256 | $rec[1]/@sha256[not($sha256)]}" CHECKSUMTYPE="SHA-256"
                ADMID="object-{$n}">
       <xsl:attribute name="MIMETYPE">
         <xsl:choose>
@@ -562,7 +568,7 @@
                 <premis:compositionLevel>0</premis:compositionLevel>
                 <premis:fixity>
                   <premis:messageDigestAlgorithm>SHA-256</premis:messageDigestAlgorithm>
-                  <premis:messageDigest><xsl:value-of select="$sha256"/></premis:messageDigest>
+                  <premis:messageDigest><xsl:value-of select="$sha256 | $rec[1]/@sha256[not($sha256)]"/></premis:messageDigest>
                   <premis:messageDigestOriginator><xsl:value-of select="$software-agent"/></premis:messageDigestOriginator>
                 </premis:fixity>
                 <xsl:if test="$sha512 != ''">
@@ -572,7 +578,7 @@
                     <premis:messageDigestOriginator><xsl:value-of select="$software-agent"/></premis:messageDigestOriginator>
                   </premis:fixity>
                 </xsl:if>
-                <premis:size><xsl:value-of select="$size"/></premis:size>
+                <premis:size><xsl:value-of select="$size | $rec[1]/@size[not($size)]"/></premis:size>
                 <xsl:call-template name="premis-format">
                   <xsl:with-param name="rec" select="$rec"/>
                   <xsl:with-param name="path" select="$path"/>

@@ -7,6 +7,7 @@
 
 #include "carrier/carrier.h"
 #include "carrier/xml.h"
+#include "carrier/xml_tree.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/resources.h"
@@ -19,10 +20,7 @@ namespace {
 const xmlChar* X(const char* s) { return reinterpret_cast<const xmlChar*>(s); }
 const xmlChar* X(const std::string& s) { return X(s.c_str()); }
 
-struct DocDeleter {
-  void operator()(xmlDoc* d) const { xmlFreeDoc(d); }
-};
-using DocPtr = std::unique_ptr<xmlDoc, DocDeleter>;
+using xml::DocPtr;
 
 // ---- writing ----------------------------------------------------------------------------
 
@@ -306,20 +304,28 @@ std::string toXml(const Carrier& carrier) {
 }
 
 Carrier parseCarrier(const std::string& xmlText, const std::string& source) {
-  xml::validateAgainstSchema(xmlText, source, resourcePath("xsd/carrier.xsd"));
-  DocPtr doc(xmlReadMemory(xmlText.data(), static_cast<int>(xmlText.size()), source.c_str(),
-                           nullptr, XML_PARSE_NONET | XML_PARSE_NOWARNING | XML_PARSE_NOERROR));
-  if (!doc) throwInputError(source, "carrier", "is not well-formed XML");
+  const DocPtr doc = xml::parseValidated(xmlText, source, resourcePath("xsd/carrier.xsd"));
   Carrier c;
   forChildren(xmlDocGetRootElement(doc.get()), [&](xmlNodePtr section) {
-    if (is(section, "header")) c.header = readHeader(section);
-    else if (is(section, "files")) forChildren(section, [&](xmlNodePtr n) { c.files.push_back(readFileRecord(n)); });
-    else if (is(section, "process")) forChildren(section, [&](xmlNodePtr n) { c.process.push_back(readStep(n)); });
-    else if (is(section, "data")) forChildren(section, [&](xmlNodePtr n) { c.data.push_back(readResult(n)); });
-    else if (is(section, "log"))
+    // Sized first: growing a list of 100 000 file records by doubling would hold two copies.
+    const std::size_t count = xmlChildElementCount(section);
+    if (is(section, "header")) {
+      c.header = readHeader(section);
+    } else if (is(section, "files")) {
+      c.files.reserve(count);
+      forChildren(section, [&](xmlNodePtr n) { c.files.push_back(readFileRecord(n)); });
+    } else if (is(section, "process")) {
+      c.process.reserve(count);
+      forChildren(section, [&](xmlNodePtr n) { c.process.push_back(readStep(n)); });
+    } else if (is(section, "data")) {
+      c.data.reserve(count);
+      forChildren(section, [&](xmlNodePtr n) { c.data.push_back(readResult(n)); });
+    } else if (is(section, "log")) {
+      c.log.reserve(count);
       forChildren(section, [&](xmlNodePtr n) {
         c.log.push_back({prop(n, "time"), prop(n, "level"), prop(n, "step"), prop(n, "who"), text(n)});
       });
+    }
   });
   return c;
 }

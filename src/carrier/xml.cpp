@@ -1,4 +1,5 @@
 #include "carrier/xml.h"
+#include "carrier/xml_tree.h"
 
 #include <libxml/parser.h>
 #include <libxml/xmlschemas.h>
@@ -37,11 +38,9 @@ void initialiseLibxml2() {
 }
 
 constexpr int kSafeParseOptions = XML_PARSE_NONET | XML_PARSE_NOWARNING | XML_PARSE_NOERROR;
-
-struct DocDeleter {
-  void operator()(xmlDoc* d) const { xmlFreeDoc(d); }
-};
-using DocPtr = std::unique_ptr<xmlDoc, DocDeleter>;
+// For a tree that is only read: no text nodes for the white space between elements, short
+// texts inside their nodes.
+constexpr int kReadOnlyTreeOptions = kSafeParseOptions | XML_PARSE_NOBLANKS | XML_PARSE_COMPACT;
 
 // Collects error messages (libxml2 calls this once per error).
 struct ErrorCollector {
@@ -58,12 +57,15 @@ struct ErrorCollector {
   }
 };
 
-DocPtr parseSafely(const std::string& text, const std::string& source) {
+DocPtr parseSafely(const std::string& text, const std::string& source,
+                   int options = kSafeParseOptions) {
+  if (text.size() > static_cast<std::size_t>(INT32_MAX))
+    throwInputError(source, "xml", "is too large to be an XML document Surrogate wrote");
   initialiseLibxml2();
   xmlParserCtxtPtr ctxt = xmlNewParserCtxt();
   if (!ctxt) throw Error(ErrorKind::Internal, source, "xml", "libxml2 could not start");
   DocPtr doc(xmlCtxtReadMemory(ctxt, text.data(), static_cast<int>(text.size()),
-                               source.c_str(), nullptr, kSafeParseOptions));
+                               source.c_str(), nullptr, options));
   std::string problem;
   if (!doc) {
     const xmlError* e = xmlCtxtGetLastError(ctxt);
@@ -85,18 +87,10 @@ DocPtr parseSafely(const std::string& text, const std::string& source) {
 
 }  // namespace
 
-void checkWellFormed(const std::string& text, const std::string& source) {
-  if (text.size() > static_cast<std::size_t>(INT32_MAX))
-    throwInputError(source, "xml", "is too large to be an XML document Surrogate wrote");
-  parseSafely(text, source);
-}
+namespace {
 
-void validateAgainstSchema(const std::string& text, const std::string& source,
-                           const std::filesystem::path& xsd) {
-  if (text.size() > static_cast<std::size_t>(INT32_MAX))
-    throwInputError(source, "xml", "is too large to be an XML document Surrogate wrote");
-  DocPtr doc = parseSafely(text, source);
-
+// Validates a parsed document against the schema file `xsd`.
+void validateDocument(xmlDoc* doc, const std::string& source, const std::filesystem::path& xsd) {
   ErrorCollector schemaErrors;
   xmlSchemaParserCtxtPtr pctxt = xmlSchemaNewParserCtxt(xsd.c_str());
   xmlSchemaSetParserStructuredErrors(pctxt, &ErrorCollector::collect, &schemaErrors);
@@ -109,7 +103,7 @@ void validateAgainstSchema(const std::string& text, const std::string& source,
   ErrorCollector errors;
   xmlSchemaValidCtxtPtr vctxt = xmlSchemaNewValidCtxt(schema);
   xmlSchemaSetValidStructuredErrors(vctxt, &ErrorCollector::collect, &errors);
-  const int rc = xmlSchemaValidateDoc(vctxt, doc.get());
+  const int rc = xmlSchemaValidateDoc(vctxt, doc);
   xmlSchemaFreeValidCtxt(vctxt);
   xmlSchemaFree(schema);
   if (rc != 0) {
@@ -117,6 +111,24 @@ void validateAgainstSchema(const std::string& text, const std::string& source,
                     "does not conform to " + xsd.filename().string() + " (" +
                         (errors.text.empty() ? "internal validation error" : errors.text) + ")");
   }
+}
+
+}  // namespace
+
+void checkWellFormed(const std::string& text, const std::string& source) {
+  parseSafely(text, source);
+}
+
+void validateAgainstSchema(const std::string& text, const std::string& source,
+                           const std::filesystem::path& xsd) {
+  validateDocument(parseSafely(text, source).get(), source, xsd);
+}
+
+DocPtr parseValidated(const std::string& text, const std::string& source,
+                      const std::filesystem::path& xsd) {
+  DocPtr doc = parseSafely(text, source, kReadOnlyTreeOptions);
+  validateDocument(doc.get(), source, xsd);
+  return doc;
 }
 
 std::string libxml2Version() { return LIBXML_DOTTED_VERSION; }
