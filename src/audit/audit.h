@@ -1,0 +1,241 @@
+// Auditing an RTI that another tool made (RTIBuilder, relight-cli, a dome's software): how far
+// its light file is from Surrogate's lights, how well its model reproduces the photographs
+// beside Surrogate's own fit of the same basis, and a plain-language verdict
+// (docs/hrti-math.md, "Auditing a prior RTI", defines every figure).
+//
+//   audit::AuditInputs in;
+//   in.priorLightFiles = {"cap/assembly-files/stela.lp"};
+//   in.priorModels = {"cap/finished-files/stela.ptm"};
+//   in.photographs = {stacks.rgb.get(), files};        // as Surrogate fits them
+//   in.surrogateLights = lightsPerPhotograph;           // spheres, or assembly-files/lights.lp
+//   audit::AuditReport report = audit::runAudit(in, {});
+//   for (const std::string& line : audit::auditLines(report)) std::cout << line << "\n";
+//
+// Nothing here writes into the capture except the difference image, when asked for, at the
+// path the caller chose. Figures do not depend on the thread count.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/image.h"
+#include "core/json.h"
+#include "core/stack.h"
+#include "formats/lp.h"
+#include "formats/ptm.h"
+#include "formats/rti_hsh.h"
+
+namespace surrogate::audit {
+
+using Light = std::array<double, 3>;  // x right, y up, z towards the camera (docs/formats.md)
+
+struct AuditOptions {
+  // Images whose two light directions differ by more than this are named. 2 degrees is about
+  // what sphere-based estimates of one light agree to between tools; a wrong light in an .lp
+  // (a swapped line, a sign error) is off by far more.
+  double angleThresholdDegrees = 2.0;
+  // The prior counts as reproduced when its PSNR is at most this far below Surrogate's fit of
+  // the same basis with the prior's own lights: quantisation and fitting details differ by
+  // tenths of a dB between tools, a wrong light or a clipped coefficient costs several dB.
+  double reproducedDb = 1.0;
+  // The difference image of each model, written when not empty: "<folder>/<model stem>-difference.png".
+  std::filesystem::path differenceFolder;
+  enum class DifferenceAgainst { Photograph, SurrogateFit };
+  DifferenceAgainst differenceAgainst = DifferenceAgainst::Photograph;
+  // The photograph (stack index) whose prior light the difference is rendered at; -1 = the one
+  // whose prior light is nearest the viewing axis.
+  int differenceImage = -1;
+  // Against SurrogateFit only: render both models at this light instead of a photograph's.
+  std::optional<Light> differenceLight;
+  int threads = 0;  // 0 = all cores; the figures are identical at any count
+  std::size_t memoryBudgetBytes = 2ull << 30;  // for Surrogate's fits (fit::FitOptions)
+};
+
+// The photographs as Surrogate decodes and fits them (stages::decodeImages' rgb stack, or any
+// view of it), with each image's file for matching against the prior light file's names.
+struct Photographs {
+  const ImageStack* stack = nullptr;
+  std::vector<std::filesystem::path> files;  // one per stack image, same order
+};
+
+// ---- 1. Light comparison -------------------------------------------------------------------
+
+// Which line of a prior light file lights which photograph: formats::matchLpLines by name
+// (folders, '\\', case and extension ignored as lpNameRank says), then, for lines still
+// unmatched, formats::resolveLpImage against the photographs' paths.
+struct PriorLights {
+  std::filesystem::path file;
+  std::vector<formats::LightEntry> lines;
+  std::vector<std::optional<std::size_t>> lineOfImage;  // per photograph
+  std::vector<std::optional<Light>> lightOfImage() const;  // unit vectors, per photograph
+};
+// Reads and matches; Error(Input) naming the file when it cannot be read or the names are
+// ambiguous (formats/lp.h).
+PriorLights readPriorLights(const std::filesystem::path& lpFile,
+                            const std::vector<std::filesystem::path>& images);
+PriorLights matchPriorLights(const std::filesystem::path& lpFile,
+                             std::vector<formats::LightEntry> lines,
+                             const std::vector<std::filesystem::path>& images);
+
+struct ImageAngle {
+  std::string image;  // the photograph's file name
+  double degrees = 0; // angle between the prior's and Surrogate's unit vectors
+  Light prior{};      // the prior's unit vector (for the report's hemisphere plot)
+};
+
+struct LightComparison {
+  std::filesystem::path file;             // the prior light file
+  double thresholdDegrees = 0;
+  std::vector<ImageAngle> angles;         // photographs with both lights, in stack order
+  double medianDegrees = 0, p95Degrees = 0, maxDegrees = 0;  // 0 when `angles` is empty
+  std::vector<ImageAngle> aboveThreshold; // in stack order
+  std::vector<std::string> onlyInPrior;   // .lp lines naming no photograph (as written)
+  std::vector<std::string> onlyInSurrogate;  // photographs the .lp does not name
+};
+
+// `surrogateLights`: one per photograph (the stack order of `prior.lineOfImage`).
+LightComparison compareLights(const PriorLights& prior, const std::vector<std::string>& imageNames,
+                              const std::vector<Light>& surrogateLights, double thresholdDegrees);
+
+// ---- 2. Model check -------------------------------------------------------------------------
+
+struct SizeRelation {
+  enum class Kind { Same, UniformScale, Different };
+  Kind kind = Kind::Same;
+  int modelWidth = 0, modelHeight = 0, photoWidth = 0, photoHeight = 0;
+  double scale = 1;  // photograph side / model side, for UniformScale
+  std::string describe() const;
+};
+// Same size; or one factor for both sides, each side within one pixel of the photograph's side
+// divided by it (a resized export); else Different (another crop: not compared).
+SizeRelation relateSizes(int modelWidth, int modelHeight, int photoWidth, int photoHeight);
+
+struct ImageError {
+  std::string image;
+  double rmse = 0;  // 0..255 units of Rec. 709 luminance
+  double psnr = 0;  // 20 log10(255 / rmse), capped at 100 dB
+};
+
+// A model's error against the photographs, each rendered at its own light.
+struct ModelErrors {
+  bool computed = false;
+  std::string note;                 // why not computed
+  std::vector<ImageError> images;   // stack order
+  double rmse = 0, psnr = 0;        // over every pixel of every image
+  double medianPsnr = 0, worstPsnr = 0;
+  std::string worstImage;
+};
+
+// A consistent tone difference between the model's rendering r and the photographs p, fitted
+// as p = 255 g (r / 255)^gamma on mid-tones; `explains` when correcting it removes most of
+// the error (another white balance, gamma or exposure in the prior's processing).
+struct ColourRelation {
+  bool measured = false;
+  double gain = 1, gamma = 1;
+  double rmseBefore = 0, rmseAfter = 0;  // on the sampled mid-tone pixels
+  bool differs = false;
+};
+
+// Clipping in a model's quantised coefficients (docs/formats.md, "Quantisation"; the rule in
+// docs/hrti-math.md, "Auditing a prior RTI"). Clipping piles texels up at byte 0 or 255: a spike.
+struct PlaneCheck {
+  std::string plane;        // "a3", "red a3" (PTM RGB), "term 2" (HSH)
+  double atZero = 0, atFull = 0;  // share of texels in a spike at byte 0 / 255 not decoding to 0
+  double outsideRange = 0;  // share of texels in a spike whose refitted value lies beyond the
+                            // range the scale and bias can hold
+  bool clamped = false;     // one of the three shares is 1% or more
+};
+struct QuantisationCheck {
+  bool clamped = false;
+  std::vector<PlaneCheck> planes;  // every plane, flagged or not
+};
+QuantisationCheck checkQuantisation(const formats::PtmFile& prior, const formats::PtmFile* refit);
+QuantisationCheck checkQuantisation(const formats::HshFile& prior, const formats::HshFile* refit);
+
+struct ModelCheck {
+  std::filesystem::path file;
+  std::filesystem::path lightFile;   // whose lights the prior was rendered at
+  std::string basis;                 // "ptm-lrgb", "ptm-rgb", "hsh2", "hsh3", "hsh4"
+  std::string values;                // what the photographs' values are: "sRGB-encoded" or "linear"
+  SizeRelation size;
+  ModelErrors prior;                 // the prior model at the prior lights
+  ModelErrors refitPriorLights;      // Surrogate's fit of the same basis, prior lights
+  ModelErrors refitSurrogateLights;  // Surrogate's fit of the same basis, Surrogate's lights
+  ColourRelation colour;
+  QuantisationCheck quantisation;
+  std::filesystem::path differenceImage;  // when written
+  std::string differenceDescription;      // "prior minus photograph IMG_3.jpg at (x, y, z)"
+};
+
+// `priorLights` and `surrogateLights` (empty when Surrogate has none) are per photograph.
+// Error(Input) when the model cannot be read; a size that does not match is reported, not
+// thrown.
+ModelCheck checkModel(const std::filesystem::path& model, const Photographs& photographs,
+                      const PriorLights& priorLights, const std::vector<Light>& surrogateLights,
+                      const AuditOptions& options);
+
+// Signed difference a - b of two 8-bit RGB renders of the same size, per channel, as an 8-bit
+// image: 128 + (a - b), clamped to 0..255 (mid-grey = no difference).
+Image differenceImage(const Image& a, const Image& b);
+
+// ---- 3. Verdict -----------------------------------------------------------------------------
+
+struct Finding {
+  enum class Cause { DifferentLights, MissingImages, DifferentSize, ColourHandling, BrokenBias,
+                     FitShortfall };
+  Cause cause;
+  std::string text;
+};
+const char* causeName(Finding::Cause cause);  // "different-lights", ...
+
+struct Verdict {
+  std::filesystem::path model;      // empty for a light file audited alone
+  std::filesystem::path lightFile;
+  bool reproduced = false;
+  double dbBelowRefit = 0;  // Surrogate's PSNR with the prior's lights minus the prior's
+  double maxDegrees = 0;    // the light comparison's max (0 without one)
+  std::vector<Finding> findings;
+  std::string sentence;
+};
+// Either argument may be null (a light file alone, or a model in a capture without Surrogate
+// lights).
+Verdict diagnose(const LightComparison* lights, const ModelCheck* model, const AuditOptions& options);
+
+// ---- 4. The whole audit and its output ------------------------------------------------------
+
+struct AuditInputs {
+  std::vector<std::filesystem::path> priorLightFiles;  // .lp
+  std::vector<std::filesystem::path> priorModels;      // .ptm / .rti
+  Photographs photographs;
+  std::vector<Light> surrogateLights;  // per photograph; empty when there are none
+};
+
+struct AuditReport {
+  double thresholdDegrees = 0;
+  // Prior files left out because they cannot be read as what their name says (filled by the
+  // caller that leaves them out: stages::AuditStage), with the reader's words.
+  struct NotAudited {
+    std::filesystem::path file;
+    std::string reason;
+  };
+  std::vector<NotAudited> notAudited;
+  std::vector<LightComparison> lights;
+  std::vector<ModelCheck> models;
+  std::vector<Verdict> verdicts;  // one per model, then one per light file no model used
+};
+
+// Each model is rendered at the lights of the light file with the same stem, else of the one
+// naming most photographs; a model without any is reported as not compared. Error(Input) when a
+// prior file cannot be read.
+AuditReport runAudit(const AuditInputs& inputs, const AuditOptions& options);
+
+// Numbers rounded for display: angles to 0.1 degree, dB to 0.01, RMSE to 0.01.
+void writeAuditJson(JsonWriter& json, const AuditReport& report);
+std::string auditJson(const AuditReport& report);
+std::vector<std::string> auditLines(const AuditReport& report);
+
+}  // namespace surrogate::audit

@@ -1,0 +1,364 @@
+// The model check: a prior .ptm/.rti rendered at each photograph's prior light and compared
+// with the photograph, beside Surrogate's own fit of the same basis (fit/fit.h).
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <opencv2/imgproc.hpp>
+
+#include "audit/audit.h"
+#include "audit/statistics.h"
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "core/text.h"
+#include "fit/fit.h"
+#include "fit/render.h"
+#include "image/opencv_bridge.h"
+#include "image/write.h"
+
+namespace surrogate::audit {
+namespace {
+
+const char* const kStep = "audit";
+
+// Mid-tones only for the tone fit: near black and near white the photograph clips, which
+// is no evidence of another tone curve.
+constexpr double kToneLow = 8.0, kToneHigh = 247.0;
+// At most this many (render, photograph) luminance pairs are kept for the tone fit: enough
+// for two parameters, and a fixed stride keeps it deterministic.
+constexpr std::size_t kToneSamples = 200000;
+// A tone difference is reported when gain or gamma is this far from 1 and correcting it
+// removes at least half of the error (otherwise the error has another cause).
+constexpr double kToneTolerance = 0.03;
+constexpr double kToneExplains = 0.5;
+// Tone curves that processing gives (exposure within two stops, gamma between a linear and a
+// doubly encoded rendering); a fit outside says the error is no tone curve at all.
+constexpr double kToneMinGain = 0.25, kToneMaxGain = 4.0, kToneMinGamma = 0.4, kToneMaxGamma = 2.5;
+
+// Images [index] of another stack, in the order given.
+class SubsetStack : public ImageStack {
+ public:
+  SubsetStack(const ImageStack& inner, std::vector<int> index) : inner_(inner), index_(std::move(index)) {}
+  int size() const override { return static_cast<int>(index_.size()); }
+  int width() const override { return inner_.width(); }
+  int height() const override { return inner_.height(); }
+  int channels() const override { return inner_.channels(); }
+  Transfer transfer() const override { return inner_.transfer(); }
+  void readRows(int i, int y0, int y1, std::uint16_t* out) const override {
+    inner_.readRows(index_[i], y0, y1, out);
+  }
+
+ private:
+  const ImageStack& inner_;
+  std::vector<int> index_;
+};
+
+Image readImage(const ImageStack& stack, int index) {
+  Image im(stack.width(), stack.height(), stack.channels());
+  im.transfer = stack.transfer();
+  stack.readRows(index, 0, stack.height(), im.pixels.data());
+  return im;
+}
+
+// The photographs at the model's size (a uniform scale): area averaging to shrink, bilinear
+// to enlarge, on the values as encoded, as the exporting tools resize.
+std::unique_ptr<ImageStack> resizedCopy(const ImageStack& stack, int width, int height) {
+  std::vector<Image> images;
+  for (int i = 0; i < stack.size(); ++i) {
+    const cv::Mat in = image::toMat(readImage(stack, i));
+    cv::Mat out;
+    const bool shrink = width < stack.width();
+    cv::resize(in, out, cv::Size(width, height), 0, 0, shrink ? cv::INTER_AREA : cv::INTER_LINEAR);
+    images.push_back(image::fromMat(out, stack.transfer(), 16));
+  }
+  return std::make_unique<MemoryImageStack>(std::move(images));
+}
+
+struct ToneSamples {
+  std::size_t stride = 1;
+  std::vector<std::pair<double, double>> pairs;  // (render, photograph), 0..255
+};
+
+// The model's luminance error against every photograph that has a light, at that light.
+ModelErrors errorsOf(const fit::Relightable& model, const ImageStack& photos,
+                     const std::vector<std::string>& names,
+                     const std::vector<std::optional<Light>>& lights, int threads,
+                     ToneSamples* tone) {
+  ModelErrors out;
+  fit::RenderOptions render;
+  render.threads = threads;
+  double totalSquares = 0;
+  std::size_t totalCount = 0;
+  std::vector<double> psnrs;
+  for (int i = 0; i < photos.size(); ++i) {
+    if (!lights[i]) continue;
+    const Image rendered = luminance(model.render(*lights[i], render));
+    const Image photo = luminance(readImage(photos, i));
+    double squares = 0;
+    for (std::size_t p = 0; p < photo.pixels.size(); ++p) {
+      const double r = rendered.pixels[p] / 257.0, s = photo.pixels[p] / 257.0;
+      squares += (r - s) * (r - s);
+      if (tone && (totalCount + p) % tone->stride == 0 && r > kToneLow && r < kToneHigh &&
+          s > kToneLow && s < kToneHigh)
+        tone->pairs.emplace_back(r, s);
+    }
+    totalSquares += squares;
+    totalCount += photo.pixels.size();
+    const double rmse = std::sqrt(squares / static_cast<double>(photo.pixels.size()));
+    out.images.push_back({names[i], rmse, psnrOf(rmse)});
+    psnrs.push_back(out.images.back().psnr);
+  }
+  if (out.images.empty()) {
+    out.note = "no photograph has a light to render at";
+    return out;
+  }
+  out.computed = true;
+  out.rmse = std::sqrt(totalSquares / static_cast<double>(totalCount));
+  out.psnr = psnrOf(out.rmse);
+  out.medianPsnr = median(psnrs);
+  const auto worst = std::min_element(out.images.begin(), out.images.end(),
+                                      [](const ImageError& a, const ImageError& b) { return a.psnr < b.psnr; });
+  out.worstPsnr = worst->psnr;
+  out.worstImage = worst->image;
+  return out;
+}
+
+// p = 255 g (r / 255)^gamma by least squares on the logarithms.
+ColourRelation fitTone(const ToneSamples& tone) {
+  ColourRelation out;
+  if (tone.pairs.size() < 100) return out;
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (const auto& [r, p] : tone.pairs) {
+    const double x = std::log(r / 255.0), y = std::log(p / 255.0);
+    sx += x, sy += y, sxx += x * x, sxy += x * y;
+  }
+  const double n = static_cast<double>(tone.pairs.size());
+  const double det = n * sxx - sx * sx;
+  if (!(std::abs(det) > 1e-12)) return out;
+  out.measured = true;
+  out.gamma = (n * sxy - sx * sy) / det;
+  out.gain = std::exp((sy - out.gamma * sx) / n);
+  double before = 0, after = 0;
+  for (const auto& [r, p] : tone.pairs) {
+    const double corrected = 255.0 * out.gain * std::pow(r / 255.0, out.gamma);
+    before += (r - p) * (r - p);
+    after += (corrected - p) * (corrected - p);
+  }
+  out.rmseBefore = std::sqrt(before / n);
+  out.rmseAfter = std::sqrt(after / n);
+  const bool plausible = out.gain >= kToneMinGain && out.gain <= kToneMaxGain && out.gamma >= kToneMinGamma &&
+                         out.gamma <= kToneMaxGamma;
+  out.differs = plausible &&
+                (std::abs(out.gain - 1) > kToneTolerance || std::abs(out.gamma - 1) > kToneTolerance) &&
+                out.rmseAfter <= kToneExplains * out.rmseBefore;
+  return out;
+}
+
+// The prior model as read, kept for the quantisation check.
+struct PriorModel {
+  std::optional<formats::PtmFile> ptm;
+  std::optional<formats::HshFile> hsh;
+  std::unique_ptr<fit::Relightable> relightable;
+};
+
+PriorModel readPriorModel(const std::filesystem::path& path) {
+  const std::string bytes = readFile(path, kStep);
+  const auto* data = reinterpret_cast<const std::uint8_t*>(bytes.data());
+  PriorModel m;
+  if (bytes.compare(0, 4, "PTM_") == 0) {
+    m.ptm = formats::parsePtm(data, bytes.size(), path.string());
+    m.relightable = fit::makeRelightable(*m.ptm);
+  } else if (!bytes.empty() && bytes[0] == '#') {
+    m.hsh = formats::parseRti(data, bytes.size(), path.string());
+    m.relightable = fit::makeRelightable(*m.hsh);
+  } else {
+    throwInputError(path.string(), kStep, "is neither a PTM (.ptm) nor an HSH RTI (.rti) file; it cannot be audited");
+  }
+  return m;
+}
+
+// The basis Surrogate refits with, when its fitter has it (HSH order 4 it has not).
+std::optional<fit::Basis> refitBasis(const std::string& basis) {
+  for (fit::Basis b : {fit::Basis::PtmLrgb, fit::Basis::PtmRgb, fit::Basis::Hsh2, fit::Basis::Hsh3})
+    if (basis == fit::basisName(b)) return b;
+  return std::nullopt;
+}
+
+struct Refit {
+  ModelErrors errors;
+  std::optional<formats::PtmFile> ptm;
+  std::optional<formats::HshFile> hsh;
+  std::unique_ptr<fit::Relightable> relightable;
+};
+
+// Surrogate's fit of `basis` from the photographs that have a light, then its error at them.
+Refit refit(fit::Basis basis, const ImageStack& photos, const std::vector<std::string>& names,
+            const std::vector<std::optional<Light>>& lights, const AuditOptions& audit) {
+  Refit out;
+  std::vector<int> index;
+  std::vector<std::array<double, 3>> used;
+  for (int i = 0; i < photos.size(); ++i)
+    if (lights[i]) index.push_back(i), used.push_back(*lights[i]);
+  if (static_cast<int>(index.size()) < fit::basisTerms(basis)) {
+    out.errors.note = std::to_string(index.size()) + " photographs with a light, fewer than the " +
+                      std::to_string(fit::basisTerms(basis)) + " terms of " + fit::basisName(basis);
+    return out;
+  }
+  const SubsetStack subset(photos, index);
+  fit::FitOptions options;
+  options.basis = basis;
+  options.threads = audit.threads;
+  options.memoryBudgetBytes = audit.memoryBudgetBytes;
+  if (fit::isPtm(basis)) {
+    out.ptm = fit::fitPtm(subset, used, options);
+    out.relightable = fit::makeRelightable(*out.ptm);
+  } else {
+    out.hsh = fit::fitHsh(subset, used, options);
+    out.relightable = fit::makeRelightable(*out.hsh);
+  }
+  out.errors = errorsOf(*out.relightable, photos, names, lights, audit.threads, nullptr);
+  return out;
+}
+
+// Surrogate's fits of the prior's basis, with the prior's lights and with its own, into
+// `check`; the first is returned whole (the quantisation check and the difference image use it).
+Refit surrogateFits(ModelCheck& check, const ImageStack& photos, const std::vector<std::string>& names,
+                    const std::vector<std::optional<Light>>& priorOfImage, const std::vector<Light>& surrogateLights,
+                    const AuditOptions& options) {
+  Refit withPrior, withSurrogate;
+  const auto basis = refitBasis(check.basis);
+  if (basis) {
+    withPrior = refit(*basis, photos, names, priorOfImage, options);
+    const std::vector<std::optional<Light>> surrogateOfImage(surrogateLights.begin(), surrogateLights.end());
+    if (!surrogateLights.empty()) withSurrogate = refit(*basis, photos, names, surrogateOfImage, options);
+    else withSurrogate.errors.note = "Surrogate has no lights for these photographs";
+  } else {
+    withPrior.errors.note = withSurrogate.errors.note = "Surrogate does not fit " + check.basis;
+  }
+  check.refitPriorLights = withPrior.errors;
+  check.refitSurrogateLights = std::move(withSurrogate.errors);
+  return withPrior;
+}
+
+QuantisationCheck quantisationOf(const PriorModel& prior, const Refit* refit) {
+  if (prior.ptm) return checkQuantisation(*prior.ptm, refit && refit->ptm ? &*refit->ptm : nullptr);
+  return checkQuantisation(*prior.hsh, refit && refit->hsh ? &*refit->hsh : nullptr);
+}
+
+std::string basisOf(const PriorModel& m) {
+  if (m.ptm) return m.ptm->format == formats::PtmFile::Format::Lrgb ? "ptm-lrgb" : "ptm-rgb";
+  return "hsh" + std::to_string(static_cast<int>(std::lround(std::sqrt(m.hsh->terms))));
+}
+
+std::string lightText(const Light& l) {
+  return "(" + fixedDecimals(l[0], 3) + ", " + fixedDecimals(l[1], 3) + ", " + fixedDecimals(l[2], 3) + ")";
+}
+
+// The photograph the difference image is made at: the caller's choice, else the one whose
+// prior light is nearest the viewing axis (the least shadowed view).
+int differenceIndex(const std::vector<std::optional<Light>>& lights, int requested) {
+  if (requested >= 0) {
+    if (requested < static_cast<int>(lights.size()) && lights[requested]) return requested;
+    throw Error(ErrorKind::Usage, "--difference-image", kStep,
+                "photograph " + std::to_string(requested) + " has no prior light; choose another");
+  }
+  int best = -1;
+  for (int i = 0; i < static_cast<int>(lights.size()); ++i)
+    if (lights[i] && (best < 0 || (*lights[i])[2] > (*lights[best])[2])) best = i;
+  return best;
+}
+
+Image eightBit(Image im) {
+  if (im.channels == 1) {
+    Image rgb(im.width, im.height, 3);
+    for (std::size_t p = 0; p < im.pixels.size(); ++p)
+      for (int c = 0; c < 3; ++c) rgb.pixels[p * 3 + c] = im.pixels[p];
+    im = std::move(rgb);
+  }
+  for (auto& v : im.pixels) v = static_cast<std::uint16_t>((v + 128) / 257 * 257);
+  im.bitsPerSample = 8;
+  return im;
+}
+
+void writeDifference(ModelCheck& check, const fit::Relightable& prior, const fit::Relightable* refitted,
+                     const ImageStack& photos, const std::vector<std::string>& names,
+                     const std::vector<std::optional<Light>>& lights, const AuditOptions& options) {
+  const bool againstFit = options.differenceAgainst == AuditOptions::DifferenceAgainst::SurrogateFit;
+  if (againstFit && !refitted) return;
+  const bool atChosenLight = againstFit && options.differenceLight;
+  const int d = atChosenLight ? -1 : differenceIndex(lights, options.differenceImage);
+  if (!atChosenLight && d < 0) return;
+  const Light light = atChosenLight ? *options.differenceLight : *lights[d];
+  fit::RenderOptions render;
+  render.threads = options.threads;
+  const Image a = prior.render(light, render);
+  const Image b = againstFit ? refitted->render(light, render) : eightBit(readImage(photos, d));
+  const std::filesystem::path path =
+      options.differenceFolder / (check.file.stem().string() + "-difference.png");
+  image::writePng(differenceImage(a, b), path);
+  check.differenceImage = path;
+  check.differenceDescription = std::string("prior model minus ") +
+                                (againstFit ? "Surrogate's fit (prior lights)" : "the photograph") +
+                                (atChosenLight ? " at the light " : " " + names[d] + " at its prior light ") +
+                                lightText(light) + ", 128 = no difference";
+}
+
+}  // namespace
+
+Image differenceImage(const Image& a, const Image& b) {
+  if (a.width != b.width || a.height != b.height || a.channels != 3 || b.channels != 3)
+    throw Error(ErrorKind::Internal, "", kStep, "difference of two images of different sizes");
+  Image out(a.width, a.height, 3);
+  out.bitsPerSample = 8;
+  for (std::size_t p = 0; p < a.pixels.size(); ++p) {
+    const int diff = static_cast<int>((a.pixels[p] + 128) / 257) - static_cast<int>((b.pixels[p] + 128) / 257);
+    out.pixels[p] = static_cast<std::uint16_t>(std::clamp(128 + diff, 0, 255) * 257);
+  }
+  return out;
+}
+
+ModelCheck checkModel(const std::filesystem::path& model, const Photographs& photographs,
+                      const PriorLights& priorLights, const std::vector<Light>& surrogateLights,
+                      const AuditOptions& options) {
+  const std::size_t n = photographs.files.size();
+  if (!photographs.stack || photographs.stack->size() != static_cast<int>(n) ||
+      priorLights.lineOfImage.size() != n || (!surrogateLights.empty() && surrogateLights.size() != n))
+    throw Error(ErrorKind::Internal, "", kStep, "the photographs, their files and their lights differ in number");
+  ModelCheck check;
+  check.file = model;
+  check.lightFile = priorLights.file;
+  PriorModel prior = readPriorModel(model);
+  check.basis = basisOf(prior);
+  const ImageStack& stack = *photographs.stack;
+  check.values = stack.transfer() == Transfer::Linear ? "linear" : "sRGB-encoded";
+  check.size = relateSizes(prior.relightable->width(), prior.relightable->height(), stack.width(),
+                           stack.height());
+  std::vector<std::string> names;
+  for (const auto& f : photographs.files) names.push_back(f.filename().string());
+
+  // Every figure is taken at the model's size; another crop is not compared at all.
+  std::unique_ptr<ImageStack> resized;
+  if (check.size.kind == SizeRelation::Kind::UniformScale)
+    resized = resizedCopy(stack, check.size.modelWidth, check.size.modelHeight);
+  const ImageStack& photos = resized ? *resized : stack;
+
+  const auto priorOfImage = priorLights.lightOfImage();
+  const Refit withPrior = surrogateFits(check, photos, names, priorOfImage, surrogateLights, options);
+
+  if (check.size.kind == SizeRelation::Kind::Different) {
+    check.prior.note = check.size.describe();
+    check.quantisation = quantisationOf(prior, nullptr);
+    return check;
+  }
+  ToneSamples tone;
+  const std::size_t pixels = static_cast<std::size_t>(photos.width()) * photos.height() * photos.size();
+  tone.stride = std::max<std::size_t>(1, pixels / kToneSamples);
+  check.prior = errorsOf(*prior.relightable, photos, names, priorOfImage, options.threads, &tone);
+  if (priorLights.file.empty()) check.prior.note = "no prior light file to render it at";
+  check.colour = fitTone(tone);
+  check.quantisation = quantisationOf(prior, &withPrior);
+  if (!options.differenceFolder.empty())
+    writeDifference(check, *prior.relightable, withPrior.relightable.get(), photos, names, priorOfImage, options);
+  return check;
+}
+
+}  // namespace surrogate::audit

@@ -1,0 +1,116 @@
+// The audit as a carrier result (audit/recorded.h): every figure written is read back the same,
+// so `surrogate audit` and the report print from the carrier exactly what the Audit step found.
+#include <catch2/catch.hpp>
+
+#include "audit/audit.h"
+#include "audit/recorded.h"
+#include "core/error.h"
+
+using namespace surrogate;
+
+namespace {
+
+carrier::FileRecord file(const std::string& id, const std::string& path, const std::string& role) {
+  carrier::FileRecord f;
+  f.id = id;
+  f.path = path;
+  f.role = role;
+  return f;
+}
+
+// A report with every kind of figure, two light files and a model, numbers that need all their
+// digits.
+audit::AuditReport sampleReport() {
+  audit::AuditReport r;
+  r.thresholdDegrees = 2.5;
+  audit::LightComparison l;
+  l.file = "assembly-files/stela.lp";
+  l.thresholdDegrees = 2.5;
+  l.angles = {{"IMG_0001.jpg", 0.30000000000000004, {0.1, 0.2, 0.9746794344808963}},
+              {"IMG_0002.jpg", 6.125, {-0.5, 0.25, 0.82915619758885}}};
+  l.aboveThreshold = {l.angles[1]};
+  l.medianDegrees = 3.2125, l.p95Degrees = 5.83, l.maxDegrees = 6.125;
+  l.onlyInPrior = {"jpeg-exports\\IMG_0099.JPG"};
+  l.onlyInSurrogate = {"IMG_0003.jpg"};
+  r.lights.push_back(l);
+  audit::LightComparison other = l;
+  other.file = "finished-files/old.lp";
+  other.aboveThreshold.clear();
+  other.onlyInPrior.clear();
+  r.lights.push_back(other);
+
+  audit::ModelCheck m;
+  m.file = "finished-files/stela.ptm";
+  m.lightFile = "assembly-files/stela.lp";
+  m.basis = "ptm-lrgb";
+  m.values = "sRGB-encoded";
+  m.size = {audit::SizeRelation::Kind::UniformScale, 200, 150, 400, 300, 2};
+  m.prior = {true, "", {{"IMG_0001.jpg", 10.5, 27.7}, {"IMG_0002.jpg", 12.25, 26.37}}, 11.4, 27.01, 27.03, 26.37, "IMG_0002.jpg"};
+  m.refitPriorLights = {true, "", {{"IMG_0001.jpg", 9, 29.04}, {"IMG_0002.jpg", 9.5, 28.58}}, 9.25, 28.8, 28.81, 28.58, "IMG_0002.jpg"};
+  m.refitSurrogateLights.note = "Surrogate has no lights of its own (a dome capture)";
+  m.colour = {true, 1.058, 0.979, 12.5, 11.25, false};
+  m.quantisation.clamped = true;
+  m.quantisation.planes = {{"a0", 0, 0, 0, false}, {"a5", 0.001, 0.934, 0.925, true}};
+  m.differenceImage = "assembly-files/audit/stela-difference.png";
+  m.differenceDescription = "prior model minus the photograph IMG_0001.jpg at its prior light (0.100, 0.200, 0.975)";
+  r.models.push_back(m);
+
+  audit::Verdict v;
+  v.model = m.file;
+  v.lightFile = m.lightFile;
+  v.dbBelowRefit = 1.79;
+  v.maxDegrees = 6.125;
+  v.findings = {{audit::Finding::Cause::DifferentLights, "1 of 2 prior lights differ"},
+                {audit::Finding::Cause::BrokenBias, "the file's scale and bias clip coefficients: a5"}};
+  v.sentence = "not reproduced: 1 of 2 prior lights differ";
+  r.verdicts.push_back(v);
+  audit::Verdict lightsOnly;
+  lightsOnly.lightFile = other.file;
+  lightsOnly.reproduced = true;
+  lightsOnly.sentence = "reproduced within 0.3 degrees";
+  r.verdicts.push_back(lightsOnly);
+  r.notAudited = {{"finished-files/broken.rti", "the file ends before its header does"}};
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("an audit recorded in a carrier result reads back with every figure the same") {
+  carrier::Carrier c;
+  c.files = {file("f1", "jpeg-exports/IMG_0001.jpg", "original"), file("f2", "jpeg-exports/IMG_0002.jpg", "original"),
+             file("f3", "jpeg-exports/IMG_0003.jpg", "original"), file("f4", "assembly-files/stela.lp", "prior"),
+             file("f5", "finished-files/old.lp", "prior"), file("f6", "finished-files/stela.ptm", "prior"),
+             file("f7", "finished-files/broken.rti", "prior")};
+  audit::RecordedIds ids;
+  for (const auto& f : c.files) {
+    if (f.role == "prior") ids.priorFiles[f.path] = f.id;
+    else ids.photographs[f.path.substr(f.path.rfind('/') + 1)] = f.id;
+  }
+  carrier::Result result;
+  result.step = "s9";
+  const audit::AuditReport report = sampleReport();
+  audit::recordAudit(report, ids, result);
+  const audit::AuditReport back = audit::recordedAudit(c, result);
+  CHECK(audit::auditJson(back) == audit::auditJson(report));
+  CHECK(audit::auditLines(back) == audit::auditLines(report));
+  // Exact doubles, beyond what the JSON's rounding shows.
+  CHECK(back.lights.at(0).angles.at(0).degrees == 0.30000000000000004);
+  CHECK(back.lights.at(0).angles.at(1).prior[2] == 0.82915619758885);
+  CHECK(back.models.at(0).prior.images.at(1).rmse == 12.25);
+  CHECK(back.models.at(0).colour.rmseAfter == 11.25);
+  CHECK(back.models.at(0).size.kind == audit::SizeRelation::Kind::UniformScale);
+}
+
+TEST_CASE("a recorded audit figure that is not a number is an input error naming it") {
+  carrier::Carrier c;
+  c.files = {file("f4", "assembly-files/stela.lp", "prior")};
+  carrier::Result result;
+  result.add("input").set("file", "f4").set("kind", "prior-lp");
+  result.add("imageValue").set("image", "f4").set("name", "medianDegrees").set("value", "about two");
+  REQUIRE_THROWS_AS(audit::recordedAudit(c, result), Error);
+  try {
+    audit::recordedAudit(c, result);
+  } catch (const Error& e) {
+    CHECK(std::string(e.what()).find("medianDegrees") != std::string::npos);
+  }
+}
