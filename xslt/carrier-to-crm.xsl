@@ -565,6 +565,9 @@
       <xsl:if test="@unrecordedProcessing = 'true' or @unrecordedProcessing = '1'">
         <crm:P3_has_note>made by other software; its processing is not recorded in the carrier</crm:P3_has_note>
       </xsl:if>
+      <xsl:if test="@role = 'prior'">
+        <crm:P3_has_note><xsl:value-of select="concat('prior work (', @priorKind, '): made outside Surrogate by another tool; no recorded Surrogate event produced it')"/></crm:P3_has_note>
+      </xsl:if>
 
       <xsl:for-each select="c:image">
         <crm:P3_has_note><xsl:value-of select="concat('image ', @width, ' x ', @height, ' pixels')"/></crm:P3_has_note>
@@ -588,6 +591,19 @@
         <xsl:call-template name="dig"><xsl:with-param name="p" select="'L10_had_input'"/><xsl:with-param name="to" select="concat($base, 'file/', @pairedWith)"/></xsl:call-template>
         <xsl:call-template name="dig"><xsl:with-param name="p" select="'L11_had_output'"/><xsl:with-param name="to" select="$uri"/></xsl:call-template>
         <crm:P3_has_note>made by software other than Surrogate; what it did, when and with which settings is not recorded</crm:P3_has_note>
+      </rdf:Description>
+    </xsl:if>
+    <!-- prior work: the machine event of another tool that made it, of which only what the
+         file itself says is known (madeBy) -->
+    <xsl:if test="@role = 'prior'">
+      <rdf:Description rdf:about="{$uri}/made-elsewhere">
+        <xsl:call-template name="dig-type"><xsl:with-param name="class" select="'D7_Digital_Machine_Event'"/></xsl:call-template>
+        <rdfs:label><xsl:value-of select="concat('making of ', @path, ' by another tool (prior work)')"/></rdfs:label>
+        <xsl:call-template name="dig"><xsl:with-param name="p" select="'L11_had_output'"/><xsl:with-param name="to" select="$uri"/></xsl:call-template>
+        <crm:P3_has_note>made by software other than Surrogate before this record; what it did, when and with which settings is not recorded</crm:P3_has_note>
+        <xsl:if test="@madeBy != ''">
+          <crm:P3_has_note><xsl:value-of select="concat('the file says of its making: ', @madeBy)"/></crm:P3_has_note>
+        </xsl:if>
       </rdf:Description>
     </xsl:if>
   </xsl:template>

@@ -154,6 +154,8 @@
         <xsl:call-template name="file-group"><xsl:with-param name="use" select="'sidecar'"/></xsl:call-template>
         <xsl:call-template name="file-group"><xsl:with-param name="use" select="'assembly'"/></xsl:call-template>
         <xsl:call-template name="file-group"><xsl:with-param name="use" select="'result'"/></xsl:call-template>
+        <!-- files another tool made (RTIBuilder's .lp, log, .ptm), found in the output folders -->
+        <xsl:call-template name="file-group"><xsl:with-param name="use" select="'prior'"/><xsl:with-param name="label" select="'prior-work'"/></xsl:call-template>
         <xsl:call-template name="file-group"><xsl:with-param name="use" select="'other'"/></xsl:call-template>
       </mets:fileSec>
 
@@ -165,6 +167,7 @@
           <xsl:call-template name="struct-div"><xsl:with-param name="use" select="'sidecar'"/></xsl:call-template>
           <xsl:call-template name="struct-div"><xsl:with-param name="use" select="'assembly'"/></xsl:call-template>
           <xsl:call-template name="struct-div"><xsl:with-param name="use" select="'result'"/></xsl:call-template>
+          <xsl:call-template name="struct-div"><xsl:with-param name="use" select="'prior'"/><xsl:with-param name="label" select="'prior-work'"/></xsl:call-template>
           <xsl:call-template name="struct-div"><xsl:with-param name="use" select="'other'"/></xsl:call-template>
         </mets:div>
       </mets:structMap>
@@ -380,6 +383,8 @@
 
   <xsl:template name="file-group">
     <xsl:param name="use"/>
+    <!-- the group's USE when it is not the role's name -->
+    <xsl:param name="label" select="$use"/>
     <xsl:variable name="members">
       <xsl:choose>
         <xsl:when test="$use-payload">
@@ -397,7 +402,7 @@
       </xsl:choose>
     </xsl:variable>
     <xsl:if test="string($members) != ''">
-      <mets:fileGrp USE="{$use}">
+      <mets:fileGrp USE="{$label}">
         <xsl:choose>
           <xsl:when test="$use-payload">
             <xsl:for-each select="$payload">
@@ -481,6 +486,7 @@
 
   <xsl:template name="struct-div">
     <xsl:param name="use"/>
+    <xsl:param name="label" select="$use"/>
     <xsl:choose>
       <xsl:when test="$use-payload">
         <xsl:for-each select="$payload">
@@ -489,7 +495,7 @@
           <xsl:for-each select="$carrier">
             <xsl:variable name="rec" select="key('file-by-bag-path', $path)"/>
             <xsl:if test="($rec and $rec[1]/@role = $use) or (not($rec) and $use = 'other')">
-              <mets:div TYPE="{$use}" LABEL="{$path}"><mets:fptr FILEID="file-{$n}"/></mets:div>
+              <mets:div TYPE="{$label}" LABEL="{$path}"><mets:fptr FILEID="file-{$n}"/></mets:div>
             </xsl:if>
           </xsl:for-each>
         </xsl:for-each>
@@ -497,7 +503,7 @@
       <xsl:otherwise>
         <xsl:for-each select="$carrier/c:files/c:file">
           <xsl:if test="@role = $use">
-            <mets:div TYPE="{$use}" LABEL="data/{@path}"><mets:fptr FILEID="file-{position()}"/></mets:div>
+            <mets:div TYPE="{$label}" LABEL="data/{@path}"><mets:fptr FILEID="file-{position()}"/></mets:div>
           </xsl:if>
         </xsl:for-each>
       </xsl:otherwise>
@@ -561,6 +567,31 @@
                     <xsl:text>processed outside Surrogate: made by other software</xsl:text>
                     <xsl:for-each select="key('file-by-id', $rec/@pairedWith)"><xsl:value-of select="concat(' from data/', @path)"/></xsl:for-each>
                     <xsl:text>; what that software did is not recorded (carrier: unrecordedProcessing="true")</xsl:text>
+                  </premis:significantPropertiesValue>
+                </premis:significantProperties>
+              </xsl:if>
+              <!-- prior work: made outside Surrogate, by no event on record; what the file says
+                   of its making is all that is known -->
+              <xsl:if test="$rec/@role = 'prior'">
+                <premis:significantProperties>
+                  <premis:significantPropertiesType>provenance</premis:significantPropertiesType>
+                  <premis:significantPropertiesValue>
+                    <xsl:text>prior work: made outside Surrogate by another tool and found in the capture</xsl:text>
+                    <xsl:choose>
+                      <xsl:when test="$rec/@priorKind = 'lp'"><xsl:text> (a light file)</xsl:text></xsl:when>
+                      <xsl:when test="$rec/@priorKind = 'rti'"><xsl:text> (an RTI result)</xsl:text></xsl:when>
+                      <xsl:when test="$rec/@priorKind = 'log'"><xsl:text> (a processing log)</xsl:text></xsl:when>
+                    </xsl:choose>
+                    <xsl:text>; no Surrogate event made it, and how it was made is not recorded</xsl:text>
+                  </premis:significantPropertiesValue>
+                </premis:significantProperties>
+                <premis:significantProperties>
+                  <premis:significantPropertiesType>made by (as the file says)</premis:significantPropertiesType>
+                  <premis:significantPropertiesValue>
+                    <xsl:choose>
+                      <xsl:when test="$rec/@madeBy != ''"><xsl:value-of select="$rec/@madeBy"/></xsl:when>
+                      <xsl:otherwise>not known: the file does not say</xsl:otherwise>
+                    </xsl:choose>
                   </premis:significantPropertiesValue>
                 </premis:significantProperties>
               </xsl:if>

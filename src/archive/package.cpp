@@ -37,12 +37,10 @@ bool isOutputPath(const std::string& rel) {
   return rel.rfind("assembly-files/", 0) == 0 || rel.rfind("finished-files/", 0) == 0;
 }
 
-// Leftovers of an interrupted atomic write by Surrogate (".name.part-PID-N", core/atomic_file)
-// in its own output folders: never payload. (In the input folders such a name is a file the
-// photographer brought, and is recorded like any other.)
+// Leftovers of an interrupted atomic write by Surrogate in its own output folders: never
+// payload (capture::isInterruptedWrite).
 bool isSurrogateLeftover(const std::string& rel) {
-  const std::string name = rel.substr(rel.find_last_of('/') + 1);
-  return isOutputPath(rel) && !name.empty() && name[0] == '.' && name.find(".part-") != std::string::npos;
+  return isOutputPath(rel) && capture::isInterruptedWrite(rel.substr(rel.find_last_of('/') + 1));
 }
 
 // Every file of the capture by the shared rule (package.h), relative, '/' separated, sorted.
@@ -101,8 +99,8 @@ std::vector<PayloadSource> payloadOf(const fs::path& capture, const carrier::Car
     throw Error(ErrorKind::Input, capture.string(), "packing",
                 std::to_string(unrecorded.size()) + " file(s) of the capture are not described by its "
                 "carrier, and a package holds only what the carrier describes: " + list +
-                ". Files in assembly-files/ and finished-files/ that Surrogate did not write: move "
-                "them out of the capture. New inputs: run `surrogate run` first to record them");
+                ". Run `surrogate run` first to record them: new inputs as such, and files in "
+                "assembly-files/ and finished-files/ that Surrogate did not write as prior work");
   }
   // A recorded file that is missing is refused by the bag writer, naming it.
   for (const carrier::FileRecord& f : c.files)

@@ -42,12 +42,14 @@ namespace surrogate::archive {
 struct CarrierState {
   bool complete = false;
   std::string reason;  // why not, in a sentence
-  // An original, export, sidecar or dome .lp that is missing or changed size: evidence that no
-  // run may re-record (a fixity failure), in a sentence naming the file; empty when none.
+  // An original, export, sidecar, dome .lp or prior file that is missing or changed size:
+  // evidence that no run may re-record (a fixity failure), in a sentence naming the file; empty when none.
   std::string inputProblem;
   std::string inputPath;  // the file inputProblem names, as the carrier records it
   // Files in assembly-files/ or finished-files/ that the carrier does not describe (not
-  // written by Surrogate, or left by a run that was not recorded): never bagged.
+  // written by Surrogate, or left by a run that was not recorded): never bagged. The next
+  // `surrogate run` records them as prior work, or replaces them when they lie where it
+  // writes (stages/prior_work.h).
   std::vector<std::string> unrecordedOutputs;
 };
 CarrierState checkCarrier(const std::filesystem::path& capture);

@@ -643,6 +643,7 @@ Inventory readPackage(const fs::path& package, const Limits& limits, const Progr
   Inventory raw;
   std::map<std::string, std::string> folded;  // case-fold key -> path
   std::uint64_t entries = 0, total = 0, kept = 0;
+  const std::string label = "reading " + package.filename().string();
   RawEntry entry;
   while (source->next(entry)) {
     if (++entries > limits.maxEntries)
@@ -670,6 +671,7 @@ Inventory readPackage(const fs::path& package, const Limits& limits, const Progr
     file.size = pump(*source, entry, path, limits, total, [&](const char* data, std::size_t n) {
       digest.update(data, n);
       if (keep && content.size() <= limits.maxTagFileBytes) content.append(data, n);
+      if (progress) progress(label, source->fraction());  // a large file moves the bar too
     });
     file.sha256 = digest.hex(DigestAlgorithm::Sha256);
     file.sha512 = digest.hex(DigestAlgorithm::Sha512);
@@ -685,8 +687,9 @@ Inventory readPackage(const fs::path& package, const Limits& limits, const Progr
       file.content = std::move(content);
     }
     raw.files.emplace(path, std::move(file));
-    if (progress) progress("reading " + package.filename().string(), source->fraction());
   }
+  // The last entry's end is not the archive's: a .zip's central directory follows it.
+  if (progress) progress(label, 1);
   // A file must not also be a folder of other entries ("a" and "a/b").
   for (const auto& [path, file] : raw.files) {
     for (std::size_t slash = path.find('/'); slash != std::string::npos;
@@ -802,6 +805,7 @@ void extractFiles(const fs::path& package, const Inventory& inventory, const fs:
                   "the file changed between two reads of the package; is something writing to it?");
     if (progress) progress("extracting for re-execution", source->fraction());
   }
+  if (progress) progress("extracting for re-execution", 1);
 }
 
 }  // namespace surrogate::archive

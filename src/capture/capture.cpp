@@ -131,6 +131,32 @@ void collectOthers(const fs::path& dir, CaptureLayout& layout) {
     if (!handleNonRegular(p, layout)) layout.others.push_back(relativeTo(p, layout.root));
 }
 
+// Every file under `dir` (recursively) into the layout's outputFolderFiles, less Surrogate's
+// carrier (whose presence is what makes the other files Surrogate's or not) and interrupted
+// writes. Links and special files are refused as in the input folders.
+void collectOutputFolder(const fs::path& dir, CaptureLayout& layout) {
+  for (const fs::path& p : sortedEntries(dir, layout.root)) {
+    const std::string rel = relativeTo(p, layout.root);
+    refuseUnrecordableName(p, layout.root);
+    refuseSymlink(p, layout.root);
+    if (isSystemFile(p.filename().string())) {
+      layout.systemFiles.push_back(rel);
+      continue;
+    }
+    std::error_code ec;
+    const fs::file_status st = fs::status(p, ec);
+    if (ec) throwInputError(rel, kStep, "cannot be read (" + ec.message() + "); check your permissions");
+    if (fs::is_directory(st)) {
+      collectOutputFolder(p, layout);
+      continue;
+    }
+    if (!fs::is_regular_file(st))
+      throwInputError(rel, kStep, "is not a regular file (a device, pipe or socket); remove it from the capture");
+    if (rel == std::string(kAssemblyDir) + "/carrier.xml" || isInterruptedWrite(p.filename().string())) continue;
+    layout.outputFolderFiles.push_back(rel);
+  }
+}
+
 bool looksLikeImage(const fs::path& p) {
   static const char* kExtensions[] = {".jpg", ".jpeg", ".tif", ".tiff", ".png"};
   const std::string ext = lowerCase(p.extension().string());
@@ -232,6 +258,10 @@ bool isSystemFile(const std::string& name) {
   return name.rfind("._", 0) == 0;  // AppleDouble: resource forks macOS writes on FAT cards
 }
 
+bool isInterruptedWrite(const std::string& name) {
+  return !name.empty() && name[0] == '.' && name.find(".part-") != std::string::npos;
+}
+
 void refuseOutputInside(const fs::path& capture, const fs::path& output, const std::string& option,
                         bool anywhere) {
   std::error_code ec;
@@ -276,6 +306,32 @@ std::optional<std::string> findShotStem(const CaptureLayout& layout, const std::
     if (s.stem == base || s.stem == stem) return s.stem;
   }
   return std::nullopt;
+}
+
+void requireCaptureFolder(const fs::path& root) {
+  std::error_code ec;
+  if (!fs::is_directory(fs::status(root, ec))) return;  // the lock and scanCapture say what it is
+  std::string present;  // the input folders the folder has, "original-captures/ and ..."
+  for (const char* dir : {"original-captures", "raw-images", kExportsDir}) {
+    if (!fs::is_directory(fs::status(root / dir, ec))) continue;
+    present += (present.empty() ? "" : " and ") + std::string(dir) + "/";
+    fs::directory_iterator it(root / dir, ec), end;
+    for (; !ec && it != end; it.increment(ec))
+      if (looksLikeImage(it->path()) && !isSystemFile(it->path().filename().string())) return;
+  }
+  std::size_t loose = 0;  // images lying in the folder itself
+  fs::directory_iterator it(root, ec), end;
+  for (; !ec && it != end; it.increment(ec))
+    loose += looksLikeImage(it->path()) && fs::is_regular_file(it->status(ec));
+  std::string what = present.empty() ? "has no original-captures/ (or raw-images/) and no jpeg-exports/ folder"
+                                     : "has " + present + " but no images in " +
+                                           (present.find(" and ") == std::string::npos ? "it" : "them");
+  if (loose > 0) what += ", and its " + std::to_string(loose) + " image(s) lie in the folder itself";
+  throwInputError(escapedName(root.string()), kStep,
+                  "is not a capture folder: it " + what + ". A capture folder holds the camera files "
+                  "in original-captures/ (or raw-images/) and, optionally, JPEG exports of the same "
+                  "shots in jpeg-exports/; Surrogate writes assembly-files/ and finished-files/ beside "
+                  "them. Put the camera files in original-captures/, then run again");
 }
 
 CaptureLayout scanCapture(const fs::path& root, int threads, const std::string& domeLp) {
@@ -357,6 +413,7 @@ CaptureLayout scanCapture(const fs::path& root, int threads, const std::string& 
       continue;
     if (!handleNonRegular(p, layout)) layout.others.push_back(name);
   }
+  layout.outputFolderFiles = listOutputFolderFiles(layout.root);
 
   if (!domeLp.empty()) {
     const auto it = std::find(layout.others.begin(), layout.others.end(), domeLp);
@@ -382,6 +439,14 @@ CaptureLayout scanCapture(const fs::path& root, int threads, const std::string& 
     }
   }
   return layout;
+}
+
+std::vector<std::string> listOutputFolderFiles(const fs::path& root) {
+  CaptureLayout layout;
+  layout.root = fs::absolute(root).lexically_normal();
+  for (const char* dir : {kAssemblyDir, kFinishedDir})
+    if (isCaptureFolder(layout.root / dir, layout.root)) collectOutputFolder(layout.root / dir, layout);
+  return layout.outputFolderFiles;
 }
 
 Source parseSource(const std::string& text) {

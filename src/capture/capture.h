@@ -3,8 +3,8 @@
 //   CAPTURE/original-captures/  (or raw-images/)  untouched camera files: raw, DNG, JPEG, TIFF
 //   CAPTURE/jpeg-exports/       optional exports of the same shots (paired by file stem)
 //   CAPTURE/*.lp                optional known light directions (dome captures)
-//   CAPTURE/assembly-files/     written by Surrogate
-//   CAPTURE/finished-files/     written by Surrogate
+//   CAPTURE/assembly-files/     written by Surrogate (and files of another tool: prior work)
+//   CAPTURE/finished-files/     written by Surrogate (and files of another tool: prior work)
 //
 // scanCapture() reads only names and headers: it finds the shots, pairs originals with their
 // exports, and refuses a capture Surrogate cannot process faithfully, naming the file and the
@@ -38,6 +38,12 @@ inline constexpr const char* kSupersededDir = "superseded-files";
 // capture, never recorded, never bagged. The one rule run, pack and verify share.
 bool isSystemFile(const std::string& fileName);
 
+// The name of a file Surrogate was writing when it was interrupted (".NAME.part-PID-N", see
+// core/atomic_file.h). Inside assembly-files/ and finished-files/ such a file is Surrogate's
+// leftover: never prior work, never bagged. (In the input folders the same name is a file the
+// photographer brought, and is recorded like any other.)
+bool isInterruptedWrite(const std::string& fileName);
+
 // Refuses (Error(Usage), naming `option`) an output path inside the capture's folders of
 // originals and exports, or inside what Surrogate writes there (assembly-files/,
 // finished-files/, .surrogate/, superseded-files/); with `anywhere`, inside the capture at all
@@ -67,9 +73,14 @@ struct CaptureLayout {
   std::vector<std::string> sidecars;  // .xmp files next to originals
   // Every other file the capture brings (notes, files in sub-folders, .lp files not chosen):
   // recorded with role "other" and bagged, not used by the pipeline. Outside assembly-files/
-  // and finished-files/, which hold what Surrogate wrote.
+  // and finished-files/, which hold what Surrogate wrote and prior work (outputFolderFiles).
   std::vector<std::string> others;
   std::vector<std::string> systemFiles;  // left out by isSystemFile(), for the log
+  // Every file under assembly-files/ and finished-files/ (sorted), less the carrier and
+  // interrupted writes: Surrogate's results of earlier runs (and its report) or prior work made
+  // by another tool (RTIBuilder's .lp, .ptm, log). Which is which only the carrier can tell
+  // (stages/prior_work.h).
+  std::vector<std::string> outputFolderFiles;
 
   bool hasOriginals() const { return !originalsDir.empty(); }
   bool hasExports() const;
@@ -87,6 +98,15 @@ struct CaptureLayout {
 CaptureLayout scanCapture(const std::filesystem::path& root, int threads,
                           const std::string& domeLp = "");
 
+// Only the outputFolderFiles of scanCapture (names and links checked the same way), without
+// reading any image: what a run compares with its plan once an interrupted commit is finished.
+std::vector<std::string> listOutputFolderFiles(const std::filesystem::path& root);
+
+// Refuses (Error(Input), naming the folder and saying what a capture folder holds) a folder
+// that is not a capture: no original-captures/, raw-images/ or jpeg-exports/ with an image in
+// it (judged by file names). Reads names only and writes nothing: `run` calls it before it
+// creates anything in the folder, its lock included.
+void requireCaptureFolder(const std::filesystem::path& root);
 
 // Which images the pipeline decodes.
 enum class Source {

@@ -16,7 +16,7 @@
 namespace surrogate::carrier {
 
 bool isEvidenceRole(const std::string& role) {
-  return role == "original" || role == "export" || role == "sidecar" || role == "lp";
+  return role == "original" || role == "export" || role == "sidecar" || role == "lp" || role == "prior";
 }
 
 std::string timestampNow() {

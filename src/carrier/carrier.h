@@ -81,7 +81,7 @@ struct Header {
 struct FileRecord {
   std::string id;    // f1, f2, ...
   std::string path;  // relative to the capture folder, '/' separated
-  std::string role;  // original, export, lp, sidecar, other, assembly, result
+  std::string role;  // original, export, lp, sidecar, other, prior, assembly, result
   std::uint64_t size = 0;
   std::string sha256;
   std::string format;     // e.g. "DNG", "JPEG", "PTM_FORMAT_LRGB"
@@ -93,10 +93,18 @@ struct FileRecord {
   std::optional<std::pair<int, int>> imageSize;  // width, height
   Attributes camera;      // attributes of <camera>, empty when none
   std::string xmp;        // the XMP packet, verbatim; empty when none
+  // Prior work (role "prior": a file in assembly-files/ or finished-files/ that Surrogate did
+  // not write, e.g. RTIBuilder's): what it is, "lp", "rti" (a .ptm or .rti result), "log" or
+  // "other"; and what the file itself says of the tool or format that made it (a PTM's version
+  // and format lines, an .rti's first comment, a log's root element and its attributes), empty
+  // when it says nothing. Both empty for every other role.
+  std::string priorKind;
+  std::string madeBy;
 };
 
-// Whether files of this role are evidence (original, export, sidecar, the dome's lp): once
-// recorded, their bytes may never be re-recorded silently; a change is a fixity failure.
+// Whether files of this role are evidence (original, export, sidecar, the dome's lp, prior
+// work): once recorded, their bytes may never be re-recorded silently; a change is a fixity
+// failure.
 bool isEvidenceRole(const std::string& role);
 
 struct Param {

@@ -94,6 +94,8 @@ void writeFiles(xmlNodePtr root, const std::vector<FileRecord>& files) {
     optionalAttr(n, "createdBy", f.createdBy);
     optionalAttr(n, "pairedWith", f.pairedWith);
     if (f.unrecordedProcessing) attr(n, "unrecordedProcessing", "true");
+    optionalAttr(n, "priorKind", f.priorKind);
+    optionalAttr(n, "madeBy", f.madeBy);
     if (f.imageSize) {
       xmlNodePtr im = child(n, "image");
       attr(im, "width", std::to_string(f.imageSize->first));
@@ -243,6 +245,8 @@ FileRecord readFileRecord(xmlNodePtr n) {
   f.pairedWith = prop(n, "pairedWith");
   const std::string unrecorded = prop(n, "unrecordedProcessing");
   f.unrecordedProcessing = unrecorded == "true" || unrecorded == "1";
+  f.priorKind = prop(n, "priorKind");
+  f.madeBy = prop(n, "madeBy");
   forChildren(n, [&](xmlNodePtr c) {
     if (is(c, "image")) f.imageSize = {std::stoi(prop(c, "width")), std::stoi(prop(c, "height"))};
     else if (is(c, "camera")) f.camera = allProps(c);

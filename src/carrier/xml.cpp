@@ -2,6 +2,7 @@
 #include "carrier/xml_tree.h"
 
 #include <libxml/parser.h>
+#include <libxml/tree.h>
 #include <libxml/xmlschemas.h>
 #include <libxml/xmlversion.h>
 
@@ -129,6 +130,21 @@ DocPtr parseValidated(const std::string& text, const std::string& source,
   DocPtr doc = parseSafely(text, source, kReadOnlyTreeOptions);
   validateDocument(doc.get(), source, xsd);
   return doc;
+}
+
+RootElement readRootElement(const std::string& text, const std::string& source) {
+  DocPtr doc = parseSafely(text, source);
+  const xmlNode* root = xmlDocGetRootElement(doc.get());
+  RootElement out;
+  if (!root) return out;
+  auto utf8 = [](const xmlChar* s) { return std::string(s ? reinterpret_cast<const char*>(s) : ""); };
+  out.name = root->ns && root->ns->prefix ? utf8(root->ns->prefix) + ":" + utf8(root->name) : utf8(root->name);
+  for (const xmlAttr* a = root->properties; a; a = a->next) {
+    xmlChar* value = xmlNodeListGetString(doc.get(), a->children, 1);
+    out.attributes.emplace_back(utf8(a->name), utf8(value));
+    xmlFree(value);
+  }
+  return out;
 }
 
 std::string libxml2Version() { return LIBXML_DOTTED_VERSION; }

@@ -9,6 +9,8 @@
 
 #include <filesystem>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace surrogate::xml {
 
@@ -20,6 +22,16 @@ void checkWellFormed(const std::string& text, const std::string& source);
 // first validation errors (and their line numbers) when the document is not valid.
 void validateAgainstSchema(const std::string& text, const std::string& source,
                            const std::filesystem::path& xsd);
+
+// The root element of a document: its name (with its prefix, if any) and its attributes in
+// document order (namespace declarations are not attributes).
+struct RootElement {
+  std::string name;
+  std::vector<std::pair<std::string, std::string>> attributes;
+};
+// Parses `text` as safely as above and returns its root element; throws Error(Input) naming
+// `source` when it is not well-formed XML or holds a DOCTYPE.
+RootElement readRootElement(const std::string& text, const std::string& source);
 
 // libxml2's version, e.g. "2.9.14".
 std::string libxml2Version();

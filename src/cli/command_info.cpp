@@ -1,4 +1,6 @@
 // surrogate info FILE: what a package, carrier, capture folder, image, .ptm, .rti or .lp holds.
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <map>
@@ -17,6 +19,7 @@
 #include "core/json.h"
 #include "core/text.h"
 #include "image/decode.h"
+#include "meta/camera_text.h"
 #include "meta/metadata.h"
 #include "formats/summary.h"
 
@@ -26,17 +29,56 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// Numbers in a carrier's text values ("339,57,45", or an old carrier's
+// "326.00000000000006,70") to 0.1 for display; other text as it is.
+std::string shownValue(const std::string& value) {
+  std::string out;
+  std::size_t start = 0;
+  while (start <= value.size()) {
+    const std::size_t comma = std::min(value.find(',', start), value.size());
+    const std::string part = value.substr(start, comma - start);
+    char* end = nullptr;
+    const double v = std::strtod(part.c_str(), &end);
+    if (part.empty() || end != part.c_str() + part.size() || !std::isfinite(v)) return value;
+    std::string t = fixedDecimals(v, 1);
+    if (t.size() > 2 && t.compare(t.size() - 2, 2, ".0") == 0) t.resize(t.size() - 2);
+    out += (out.empty() ? "" : ",") + t;
+    start = comma + 1;
+  }
+  return out;
+}
+
+// What an intervention does, in words: which images, which sphere.
+std::string interventionWhat(const carrier::Intervention& i) {
+  if (i.kind == "exclude-image") return i.target + " is left out of every step";
+  if (i.kind == "manual-sphere") return "circle of sphere " + i.target + " given by hand (x,y,r " + shownValue(i.value) + ")";
+  if (i.kind == "manual-highlight") {
+    const auto colon = i.target.rfind(':');
+    const std::string image = i.target.substr(0, colon), sphere = colon == std::string::npos ? "" : i.target.substr(colon + 1);
+    return "highlight of " + image + (sphere.empty() ? "" : " on sphere " + sphere) + " given by hand (x,y " +
+           shownValue(i.value) + ")";
+  }
+  if (i.kind == "accept-changed-original") return "the changed " + i.target + " accepted as it is now";
+  return i.target + (i.value.empty() ? "" : " = " + shownValue(i.value));
+}
+
 // The carrier as a JSON object, written into `j` (alone, or nested in a capture's object).
 void carrierJson(JsonWriter& j, const carrier::Carrier& c) {
   int images = 0;
   for (const carrier::FileRecord& f : c.files) images += f.imageSize.has_value();
   j.beginObject().key("kind").value("carrier").key("title").value(c.header.title)
-      .key("created").value(c.header.created).key("files").value(static_cast<int>(c.files.size()))
+      .key("created").value(c.header.created).key("modified").value(c.header.modified)
+      .key("rights").value(c.header.rights).key("license").value(c.header.license)
+      .key("metadata").beginArray();
+  for (const auto& [name, value] : c.header.meta)
+    j.beginObject().key("name").value(name).key("value").value(value).endObject();
+  j.endArray().key("files").value(static_cast<int>(c.files.size()))
       .key("images").value(images).key("steps").beginArray();
   for (const carrier::Step& s : c.process) {
     const carrier::Result* r = c.findResult(s.id);
     j.beginObject().key("id").value(s.id).key("component").value(s.component)
         .key("version").value(s.version).key("status").value(r ? r->status : "not run")
+        .key("seconds").value(r ? r->seconds : 0.0)
         .key("interventions").value(static_cast<int>(s.interventions.size())).endObject();
   }
   j.endArray().key("creators").beginArray();
@@ -47,7 +89,13 @@ void carrierJson(JsonWriter& j, const carrier::Carrier& c) {
     for (const carrier::Intervention& i : s.interventions)
       j.beginObject().key("step").value(s.id).key("component").value(s.component)
           .key("kind").value(i.kind).key("target").value(i.target).key("value").value(i.value)
+          .key("what").value(interventionWhat(i))
           .key("who").value(i.who).key("time").value(i.time).key("reason").value(i.reason).endObject();
+  j.endArray().key("exclusions").beginArray();
+  for (const carrier::Step& s : c.process)
+    for (const carrier::Intervention* i : s.interventionsOfKind("exclude-image"))
+      j.beginObject().key("image").value(i->target).key("who").value(i->who).key("time").value(i->time)
+          .key("reason").value(i->reason).endObject();
   j.endArray().key("runs").beginArray();
   for (const carrier::RunRecord& r : c.header.runs) {
     j.beginObject().key("id").value(r.id).key("command").value(r.command).key("who").value(r.who)
@@ -61,23 +109,25 @@ void carrierJson(JsonWriter& j, const carrier::Carrier& c) {
   j.endArray().endObject();
 }
 
-// The standing decisions (human interventions, with who, when and why) and the run history,
-// as text.
+// The standing decisions (human interventions: what, in which step, who, when and why), the
+// excluded images and the run history, as text.
 void printDecisionsAndRuns(const carrier::Carrier& c) {
   std::cout << "  standing decisions:";
   int n = 0;
+  std::string excluded;
   for (const carrier::Step& s : c.process) {
     for (const carrier::Intervention& i : s.interventions) {
-      std::cout << "\n    " << i.kind << " " << i.target << (i.value.empty() ? "" : " = " + i.value)
-                << " (" << s.component << ")\n      by " << i.who << ", " << i.time << ": "
-                << i.reason;
+      std::cout << "\n    " << i.kind << " " << i.target << " (" << s.id << " " << s.component << "): " << interventionWhat(i) << "\n      by "
+                << i.who << ", " << i.time << ": " << i.reason;
       ++n;
+      if (i.kind == "exclude-image") excluded += (excluded.empty() ? "" : ", ") + i.target;
     }
   }
   for (const carrier::Step& s : c.process)
     if (s.component == "CaptureIngest" && s.hasParam("lp"))
       std::cout << "\n    lights from " << s.param("lp") << " (dome capture)", ++n;
   std::cout << (n ? "\n" : " none\n");
+  std::cout << "  excluded images: " << (excluded.empty() ? "none" : excluded) << "\n";
   if (c.header.runs.empty()) return;
   std::cout << "  runs:\n";
   for (const carrier::RunRecord& r : c.header.runs) {
@@ -89,8 +139,8 @@ void printDecisionsAndRuns(const carrier::Carrier& c) {
   }
 }
 
-// The carrier as text: title, who made it when, files, the steps with their status and
-// interventions, the standing decisions and the runs.
+// The carrier as text: title, who made it when, rights and metadata, files, the steps with
+// their status, the standing decisions and the runs.
 void printCarrierText(const carrier::Carrier& c) {
   int images = 0;
   for (const carrier::FileRecord& f : c.files) images += f.imageSize.has_value();
@@ -98,12 +148,18 @@ void printCarrierText(const carrier::Carrier& c) {
             << "  created: " << c.header.created << " on " << c.header.machine.hostname << "\n";
   for (const carrier::Creator& cr : c.header.creators)
     std::cout << "  " << cr.role << ": " << cr.name << "\n";
+  if (!c.header.rights.empty()) std::cout << "  rights:  " << c.header.rights << "\n";
+  if (!c.header.license.empty()) std::cout << "  licence: " << c.header.license << "\n";
+  for (const auto& [name, value] : c.header.meta) std::cout << "  metadata: " << name << " = " << value << "\n";
   std::cout << "  files:   " << c.files.size() << " (" << images << " images)\n  steps:\n";
   for (const carrier::Step& s : c.process) {
     const carrier::Result* r = c.findResult(s.id);
     std::cout << "    " << s.id << " " << s.component << " v" << s.version << ": "
               << (r ? r->status : "not run");
-    if (!s.interventions.empty()) std::cout << ", " << s.interventions.size() << " intervention(s)";
+    if (r && r->status == "completed") std::cout << " in " << fixedDecimals(r->seconds, 1) << " s";
+    if (!s.interventions.empty())
+      std::cout << ", " << s.interventions.size() << (s.interventions.size() == 1 ? " decision" : " decisions")
+                << " (below)";
     std::cout << "\n";
   }
   printDecisionsAndRuns(c);
@@ -157,6 +213,7 @@ std::string roleOf(const std::string& path, const std::map<std::string, std::str
       if (r == "export") return "exports";
       if (r == "result") return "results";
       if (r == "assembly" || r == "lp") return "assembly";
+      if (r == "prior") return "prior work";  // made by another tool, found in the output folders
       return "other payload";
     }
     const std::string rest = path.substr(5);
@@ -225,7 +282,7 @@ PackageSummary summarizePackage(const fs::path& path) {
   s.surrogate = s.surrogate || carrierFile != inv.files.end();
 
   static const char* kRoleOrder[] = {"originals", "exports", "assembly", "carrier", "results",
-                                     "other payload", "payload", "metadata", "bag files"};
+                                     "prior work", "other payload", "payload", "metadata", "bag files"};
   std::map<std::string, RoleTotal> totals;
   for (const auto& [file, f] : inv.files) {
     if (archive::manifestName(file) && archive::manifestName(file)->first == "manifest")
@@ -324,6 +381,16 @@ void printPackage(const fs::path& path, bool json) {
   else printPackageText(path, s);
 }
 
+// How the shots are held: "8 originals in original-captures/, 8 JPEG exports"; for a capture
+// of JPEG exports alone, the exports are the originals the pipeline reads (docs/user-guide.md).
+std::string shotsText(const capture::CaptureLayout& layout, int originals, int exports) {
+  if (!layout.hasOriginals())
+    return "exports in " + std::string(capture::kExportsDir) + "/, no raw originals: the exports "
+           "are the originals the pipeline reads";
+  return std::to_string(originals) + " originals in " + layout.originalsDir + "/" +
+         (exports ? ", " + std::to_string(exports) + " exports in " + capture::kExportsDir + "/" : "");
+}
+
 // A capture folder; with --json, a processed capture's carrier is nested under "carrier".
 void printCapture(const fs::path& path, bool json) {
   // A dome capture's .lp is a decision the carrier records (`run --lp`).
@@ -344,6 +411,8 @@ void printCapture(const fs::path& path, bool json) {
     JsonWriter j;
     j.beginObject().key("kind").value("capture").key("shots").value(static_cast<int>(layout.shots.size()))
         .key("originals").value(originals).key("exports").value(exports)
+        // What the carrier records as the originals: the exports, in a capture of exports alone.
+        .key("originalsFolder").value((layout.hasOriginals() ? layout.originalsDir : std::string(capture::kExportsDir)) + "/")
         .key("width").value(sample.width).key("height").value(sample.height)
         .key("lp").value(layout.lp.value_or(""));
     if (fs::exists(carrierPath)) {
@@ -355,9 +424,7 @@ void printCapture(const fs::path& path, bool json) {
     return;
   }
   std::cout << path.string() << ": capture folder\n"
-            << "  shots:     " << layout.shots.size() << " (" << originals << " originals in "
-            << (layout.originalsDir.empty() ? "-" : layout.originalsDir + "/") << ", " << exports
-            << " exports)\n"
+            << "  shots:     " << layout.shots.size() << " (" << shotsText(layout, originals, exports) << ")\n"
             << "  image:     " << sample.width << "x" << sample.height << " " << sample.format << "\n"
             << "  lights:    " << (layout.lp ? "given by " + *layout.lp + " (dome capture)" : "to be detected from the spheres")
             << "\n";
@@ -367,31 +434,198 @@ void printCapture(const fs::path& path, bool json) {
                 << "a dome capture whose lights it gives, run with --lp " << other << "\n";
 }
 
-void printImage(const fs::path& path, bool json) {
-  const image::ImageProbe probe = image::probeImage(path);
-  const meta::CameraMetadata m = meta::readMetadata(path);
-  auto opt = [](const auto& v) {
-    std::ostringstream s;
-    if (v) s << *v;
-    return s.str();
+// --- images and sidecars ---
+
+// What info shows of an image, gathered once for text and JSON: its metadata (Exiv2) and
+// whether Surrogate decodes it. A camera format LibRaw does not decode (CR3, some DNGs) still
+// has its metadata described; the refusal is stated on its own line.
+struct ImageSummary {
+  std::optional<image::ImageProbe> probe;
+  std::string decodeProblem;  // why the pixels cannot be decoded
+  std::optional<meta::CameraMetadata> camera;
+  std::string metadataProblem;
+};
+
+ImageSummary summarizeImage(const fs::path& path) {
+  ImageSummary s;
+  std::optional<Error> refusal;
+  try {
+    s.probe = image::probeImage(path);
+  } catch (const Error& e) {
+    s.decodeProblem = e.message();
+    refusal = e;
+  }
+  try {
+    s.camera = meta::readMetadata(path);
+  } catch (const Error& e) {
+    if (refusal) throw *refusal;  // neither pixels nor metadata: not an image Surrogate reads
+    s.metadataProblem = e.message();
+  }
+  return s;
+}
+
+const char* kindName(image::SourceKind kind) {
+  switch (kind) {
+    case image::SourceKind::CameraRaw: return "camera raw";
+    case image::SourceKind::Jpeg: return "JPEG";
+    case image::SourceKind::Tiff: return "TIFF";
+    case image::SourceKind::Png: return "PNG";
+  }
+  return "image";
+}
+
+// The camera metadata as JSON members: every field the carrier records under <camera>, with
+// numbers as numbers and the date in ISO 8601, and `shown`, the text `info` prints.
+void cameraJson(JsonWriter& j, const meta::CameraMetadata& m) {
+  auto text = [&](const char* k, const std::optional<std::string>& v) {
+    if (v && !v->empty()) j.key(k).value(*v);
   };
+  auto number = [&](const char* k, const auto& v) {
+    if (v) j.key(k).value(static_cast<double>(*v));
+  };
+  text("make", m.make);
+  text("model", m.model);
+  text("serial", m.bodySerial);
+  text("lens", m.lens);
+  if (m.lens) j.key("lensFromMakerNote").value(m.lensFromMakerNote);
+  if (m.lensMinFocalMm && m.lensMaxFocalMm)
+    j.key("lensFocalRangeMm").beginArray().value(*m.lensMinFocalMm).value(*m.lensMaxFocalMm).endArray();
+  number("focalLengthMm", m.focalLengthMm);
+  number("fNumber", m.fNumber);
+  text("exposureTime", m.exposureTime);
+  number("exposureSeconds", m.exposureSeconds);
+  number("iso", m.iso);
+  if (m.dateTimeOriginal) j.key("dateTimeOriginal").value(meta::dateTimeText(*m.dateTimeOriginal, m.offsetTimeOriginal));
+  text("offsetTimeOriginal", m.offsetTimeOriginal);
+  number("orientation", m.orientation);
+  number("pixelWidth", m.pixelWidth);
+  number("pixelHeight", m.pixelHeight);
+  number("focalPlaneXResolution", m.focalPlaneXResolution);
+  number("focalPlaneYResolution", m.focalPlaneYResolution);
+  number("focalPlaneResolutionUnit", m.focalPlaneResolutionUnit);
+  j.key("xmp").value(!m.xmpPacket.empty()).key("xmpBytes").value(static_cast<unsigned long long>(m.xmpPacket.size()));
+  j.key("shown").beginObject();
+  auto shown = [&](const char* k, const std::string& v) {
+    if (!v.empty()) j.key(k).value(v);
+  };
+  shown("camera", meta::cameraText(m));
+  shown("lens", meta::lensText(m));
+  if (m.focalLengthMm) shown("focalLength", meta::focalLengthText(*m.focalLengthMm));
+  if (m.fNumber) shown("aperture", meta::apertureText(*m.fNumber));
+  if (m.exposureSeconds) shown("exposure", meta::exposureText(*m.exposureSeconds));
+  if (m.dateTimeOriginal) shown("taken", meta::dateTimeText(*m.dateTimeOriginal, m.offsetTimeOriginal));
+  j.endObject();
+}
+
+void printImageJson(const ImageSummary& s) {
+  JsonWriter j;
+  j.beginObject().key("kind").value("image").key("decodable").value(s.probe.has_value());
+  if (s.probe)
+    j.key("width").value(s.probe->width).key("height").value(s.probe->height)
+        .key("format").value(kindName(s.probe->kind));
+  else
+    j.key("decodeProblem").value(s.decodeProblem);
+  if (s.camera) cameraJson(j, *s.camera);
+  else j.key("metadataProblem").value(s.metadataProblem);
+  j.endObject();
+  std::cout << j.str() << "\n";
+}
+
+// "31 mm, f/5.6, 1/125 s, ISO 100": the exposure as a photographer notes it, known parts only.
+std::string exposureLine(const meta::CameraMetadata& m) {
+  std::string line;
+  auto add = [&](const std::string& part) {
+    if (!part.empty()) line += (line.empty() ? "" : ", ") + part;
+  };
+  if (m.focalLengthMm) add(meta::focalLengthText(*m.focalLengthMm));
+  if (m.fNumber) add(meta::apertureText(*m.fNumber));
+  if (m.exposureSeconds) add(meta::exposureText(*m.exposureSeconds));
+  else if (m.exposureTime) add(*m.exposureTime);
+  if (m.iso) add("ISO " + std::to_string(*m.iso));
+  return line;
+}
+
+void printCameraText(const meta::CameraMetadata& m) {
+  auto line = [](const char* label, const std::string& value) {
+    if (!value.empty()) std::cout << "  " << label << value << "\n";
+  };
+  const std::string camera = meta::cameraText(m);
+  line("camera:      ", camera + (m.bodySerial ? (camera.empty() ? "serial " : ", serial ") + *m.bodySerial : ""));
+  line("lens:        ", meta::lensText(m));
+  line("exposure:    ", exposureLine(m));
+  if (m.dateTimeOriginal) line("taken:       ", meta::dateTimeText(*m.dateTimeOriginal, m.offsetTimeOriginal));
+  if (m.pixelWidth && m.pixelHeight)
+    line("EXIF size:   ", std::to_string(*m.pixelWidth) + "x" + std::to_string(*m.pixelHeight));
+  if (m.orientation)
+    line("orientation: ", std::to_string(*m.orientation) + " (" + meta::orientationText(*m.orientation) + ")");
+  if (m.focalPlaneXResolution) {
+    const std::string x = fixedDecimals(*m.focalPlaneXResolution, 1);
+    const std::string y = m.focalPlaneYResolution ? fixedDecimals(*m.focalPlaneYResolution, 1) : x;
+    line("focal plane: ", (x == y ? x : x + " x " + y) + " " +
+                              meta::resolutionUnitText(m.focalPlaneResolutionUnit.value_or(2)));
+  }
+  line("XMP:         ", m.xmpPacket.empty() ? "none" : std::to_string(m.xmpPacket.size()) + " bytes");
+}
+
+void printImage(const fs::path& path, bool json) {
+  const ImageSummary s = summarizeImage(path);
+  if (json) return printImageJson(s);
+  std::cout << path.string() << ": ";
+  if (s.probe)
+    std::cout << "image " << s.probe->width << "x" << s.probe->height << ", " << kindName(s.probe->kind) << "\n";
+  else
+    std::cout << "image whose metadata Surrogate reads but whose pixels it cannot decode\n";
+  if (s.camera) printCameraText(*s.camera);
+  else std::cout << "  metadata:    cannot be read: " << s.metadataProblem << "\n";
+  if (!s.probe) std::cout << "  decoding:    refused: " << s.decodeProblem << "\n";
+}
+
+// An .xmp sidecar: what it records about its image, not the image itself.
+void printXmpSidecar(const fs::path& path, bool json) {
+  const meta::XmpSidecarSummary s = meta::summarizeXmpSidecar(path);
   if (json) {
     JsonWriter j;
-    j.beginObject().key("kind").value("image").key("width").value(probe.width)
-        .key("height").value(probe.height).key("make").value(opt(m.make))
-        .key("model").value(opt(m.model)).key("serial").value(opt(m.bodySerial))
-        .key("lens").value(opt(m.lens)).key("exposureTime").value(opt(m.exposureTime))
-        .key("iso").value(opt(m.iso)).key("dateTimeOriginal").value(opt(m.dateTimeOriginal))
-        .key("xmp").value(!m.xmpPacket.empty()).endObject();
+    j.beginObject().key("kind").value("xmp-sidecar").key("bytes").value(static_cast<unsigned long long>(s.bytes));
+    auto text = [&](const char* k, const std::optional<std::string>& v) {
+      if (v && !v->empty()) j.key(k).value(*v);
+    };
+    text("software", s.creatorTool);
+    text("rating", s.rating);
+    text("modified", s.modified);
+    text("creator", s.creator);
+    text("rights", s.rights);
+    j.key("developSettings").value(s.developSettings);
+    text("processVersion", s.processVersion);
+    j.key("history").beginArray();
+    for (const meta::XmpHistoryEvent& e : s.history)
+      j.beginObject().key("action").value(e.action).key("when").value(e.when)
+          .key("software").value(e.software).key("changed").value(e.changed).endObject();
+    j.endArray().endObject();
     std::cout << j.str() << "\n";
     return;
   }
-  std::cout << path.string() << ": image " << probe.width << "x" << probe.height << "\n"
-            << "  camera:   " << opt(m.make) << " " << opt(m.model) << "  serial " << opt(m.bodySerial) << "\n"
-            << "  lens:     " << opt(m.lens) << "  " << opt(m.focalLengthMm) << " mm  f/" << opt(m.fNumber) << "\n"
-            << "  exposure: " << opt(m.exposureTime) << "  ISO " << opt(m.iso) << "\n"
-            << "  taken:    " << opt(m.dateTimeOriginal) << "\n"
-            << "  XMP:      " << (m.xmpPacket.empty() ? "none" : std::to_string(m.xmpPacket.size()) + " bytes") << "\n";
+  auto line = [](const char* label, const std::optional<std::string>& v) {
+    if (v && !v->empty()) std::cout << "  " << label << *v << "\n";
+  };
+  std::cout << path.string() << ": XMP sidecar (metadata kept next to an image, " << s.bytes
+            << " bytes; Surrogate records it verbatim with its original)\n";
+  line("written by:  ", s.creatorTool);
+  line("modified:    ", s.modified);
+  line("rating:      ", s.rating ? std::optional<std::string>(*s.rating == "-1" ? "rejected" : *s.rating + " of 5") : std::nullopt);
+  line("creator:     ", s.creator);
+  line("rights:      ", s.rights);
+  std::cout << "  develop:     "
+            << (s.developSettings ? std::to_string(s.developSettings) + " Camera Raw / Lightroom settings" +
+                                        (s.processVersion ? " (process version " + *s.processVersion + ")" : "")
+                                  : "no develop settings")
+            << "\n";
+  std::cout << "  history:     " << (s.history.empty() ? "none recorded" : std::to_string(s.history.size()) + " event(s)") << "\n";
+  for (const meta::XmpHistoryEvent& e : s.history) {
+    std::cout << "    " << (e.when.empty() ? "-" : e.when) << " " << e.action;
+    if (!e.changed.empty()) std::cout << " (" << e.changed << ")";
+    if (!e.software.empty()) std::cout << " by " << e.software;
+    std::cout << "\n";
+  }
 }
 
 }  // namespace
@@ -403,8 +637,10 @@ int runCommandInfo(int argc, char** argv) {
     std::cout << usageHeader("surrogate info FILE",
                              "Describe a package (a bag folder, .tar or .zip: what it holds by "
                              "role, who made it when, the steps, decisions and results, and the "
-                             "command to verify it), a carrier (carrier.xml), a capture folder, "
-                             "an image, or a .ptm, .rti or .lp file.")
+                             "command to verify it), a carrier (carrier.xml: creators, metadata, "
+                             "steps, decisions with who, when and why, runs), a capture folder, "
+                             "an image (camera, lens, exposure, date; also one Surrogate cannot "
+                             "decode), an .xmp sidecar, or a .ptm, .rti or .lp file.")
               << Args::describe(specs);
     return 0;
   }
@@ -430,6 +666,8 @@ int runCommandInfo(int argc, char** argv) {
     }
   } else if (ext == ".xml") {
     printCarrier(path, json);
+  } else if (ext == ".xmp") {
+    printXmpSidecar(path, json);
   } else if (ext == ".ptm" || ext == ".rti" || ext == ".lp") {
     const formats::FileSummary s = formats::summarize(path);
     std::cout << (json ? s.toJson() : s.toText()) << "\n";

@@ -41,6 +41,7 @@ int runCommandLights(int argc, char** argv) {
   request.command = "lights";
   ProgressBar bar(args.has("quiet") || args.has("json"));
   const pipeline::RunSettings settings = settingsFrom(args, bar);
+  capture::requireCaptureFolder(capture);  // before anything is written in it
   // Held until the capture's lights.lp is copied: a run meanwhile would replace it.
   capture::CaptureLock lock(capture, "lights");
   const carrier::Carrier c = stages::runCapture(capture, request, settings, /*takeLock=*/false);

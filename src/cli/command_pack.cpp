@@ -31,7 +31,11 @@ void runPipeline(const std::string& capture, const Args& args, ProgressBar& bar)
   request.command = "pack";
   const pipeline::RunSettings settings = settingsFrom(args, bar);
   stages::runCapture(capture, request, settings, /*takeLock=*/false);
-  if (!args.has("no-report")) report::writeCaptureReport(capture);
+  if (!args.has("no-report")) {
+    report::ReportOptions options;
+    options.progress = bar.callback();
+    report::writeCaptureReport(capture, options);
+  }
 }
 
 // A step the carrier records with another version than this build's stage (the verifier
@@ -58,7 +62,8 @@ bool givesDecisions(const Args& args) {
 [[noreturn]] void refuseChangedInput(const std::string& capture, const std::string& what,
                                      const std::string& path) {
   throw Error(ErrorKind::Fixity, capture, "packing",
-              what + ". An original is evidence: pack never records a new baseline for it. "
+              what + ". An original (or prior work another tool made) is evidence: pack never records a "
+              "new baseline for it. "
               "Restore the file from the card or a backup; if the change is deliberate, accept it "
               "with `surrogate run " + capture + " --accept-changed " + path + " --reason \"why\"`, then pack");
 }
@@ -115,8 +120,9 @@ Processing processIfNeeded(const std::string& capture, const Args& args, Progres
     throw Error(ErrorKind::Input, capture, "packing",
                 "these files in the capture's output folders are not described by its carrier "
                 "(Surrogate did not write them, or a run that wrote them was not recorded), and a "
-                "package holds only what the carrier describes; move them out of the capture, "
-                "then pack again:" + list);
+                "package holds only what the carrier describes; run `surrogate run " + capture +
+                    "` to record them as prior work (files another tool made), or move them out of "
+                    "the capture, then pack again:" + list);
   }
   return p;
 }

@@ -21,7 +21,7 @@ int runCommandReport(int argc, char** argv) {
       {"relight-side", true, false, "longest side of the interactive PTM copy in pixels (default 256)", "N"},
       {"verify", false, false, "verify the package first and show the result of every check"},
       {"reexecute", false, false, "with --verify: also re-execute the recorded steps (slow)"},
-      {"quiet", false, false, "no progress bar (verification)"},
+      {"quiet", false, false, "no progress bar"},
       {"json", false, false, "print what the report shows as JSON"},
   };
   Args args(argc, argv, 1, specs);
@@ -46,7 +46,8 @@ int runCommandReport(int argc, char** argv) {
   if (options.maxImageSide < 16 || options.relightMaxSide < 16)
     throw Error(ErrorKind::Usage, "--max-image-side/--relight-side", "command line", "needs at least 16 pixels");
 
-  const auto source = report::openReportSource(args.positional()[0]);
+  ProgressBar bar(args.has("quiet") || args.has("json"));
+  const auto source = report::openReportSource(args.positional()[0], bar.callback());
   if (args.has("reexecute") && !args.has("verify"))
     throw Error(ErrorKind::Usage, "--reexecute", "command line", "goes with --verify");
   if (args.has("verify")) {
@@ -55,8 +56,7 @@ int runCommandReport(int argc, char** argv) {
                   "is a capture folder: --verify checks a package (surrogate pack makes one)");
     verify::VerifyOptions vo;
     vo.reexecute = args.has("reexecute");
-    ProgressBar bar(args.has("quiet") || args.has("json"));
-    vo.progress = [&bar](const std::string& label, double f) { bar.update(label, f); };
+    vo.progress = bar.callback();
     const verify::Report verified = verify::verifyPackage(args.positional()[0], vo);
     bar.finish();
     std::vector<report::VerificationCheck> checks;
@@ -67,7 +67,9 @@ int runCommandReport(int argc, char** argv) {
     }
     options.verification = checks;
   }
+  options.progress = bar.callback();
   const report::Report r = report::buildReport(source->carrier(), *source, options);
+  bar.finish();
   writeFileAtomically(*out, r.html);
   if (args.has("json")) {
     JsonWriter j;

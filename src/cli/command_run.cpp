@@ -38,6 +38,8 @@ int runCommandRun(int argc, char** argv) {
 
   ProgressBar bar(args.has("quiet") || args.has("json"));
   const pipeline::RunSettings settings = settingsFrom(args, bar);
+  // A folder that is not a capture is refused before anything is written in it, lock included.
+  capture::requireCaptureFolder(capture);
   // The lock covers the report too: it is written from the carrier this run committed.
   capture::CaptureLock lock(capture, "run");
   const carrier::Carrier c = stages::runCapture(capture, request, settings, /*takeLock=*/false);
@@ -45,8 +47,12 @@ int runCommandRun(int argc, char** argv) {
   // The report is a derived view of the carrier, not a recorded step (it holds the time it was
   // made): written after the run, never listed in the carrier.
   std::optional<report::Report> rep;
-  if (!args.has("no-report")) rep = report::writeCaptureReport(capture);
-  else std::filesystem::remove(std::filesystem::path(capture) / capture::kFinishedDir / "report.html");
+  if (!args.has("no-report")) {
+    report::ReportOptions options;
+    options.progress = bar.callback();
+    rep = report::writeCaptureReport(capture, options);
+    bar.finish();
+  } else std::filesystem::remove(std::filesystem::path(capture) / capture::kFinishedDir / "report.html");
   const std::string reportPath = capture + "/finished-files/report.html";
 
   const std::string carrierPath = capture + "/" + capture::kAssemblyDir + "/carrier.xml";
@@ -93,6 +99,11 @@ int runCommandRun(int argc, char** argv) {
     for (const carrier::FileRecord& f : c.files)
       if (f.role == "assembly" || f.role == "result")
         std::cout << "  " << f.role << ": " << capture << "/" << f.path << "\n";
+    // Files another tool left in the output folders: recorded, never touched.
+    for (const carrier::FileRecord& f : c.files)
+      if (f.role == "prior")
+        std::cout << "  prior work (kept as found): " << capture << "/" << f.path << " (" << f.priorKind
+                  << (f.madeBy.empty() ? "" : "; " + f.madeBy) << ")\n";
     if (rep) {
       std::cout << "  report (open in a browser): " << reportPath << "\n";
       for (const std::string& g : rep->coverageGaps) std::cout << "  coverage: " << g << "\n";

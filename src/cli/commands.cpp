@@ -11,9 +11,10 @@ const std::vector<Command>& commands() {
       {"lights", "estimate the light directions of a capture and write an .lp file", runCommandLights},
       {"fit", "fit a PTM or HSH model to the images of an .lp file", runCommandFit},
       {"render", "relight a .ptm or .rti under a chosen light and save a PNG", runCommandRender},
-      {"info", "describe a carrier, capture, image, .ptm, .rti or .lp file", runCommandInfo},
+      {"info", "describe a package, carrier, capture, image, .xmp sidecar, .ptm, .rti or .lp file", runCommandInfo},
       {"report", "write the HTML report of a capture or package", runCommandReport},
       {"verify", "check a package: fixity, schemas, metadata; --reexecute re-runs its steps", runCommandVerify},
+      {"audit", "audit the prior work (RTIBuilder's .lp, .ptm or .rti) left in a capture", runCommandAudit},
   };
   return list;
 }

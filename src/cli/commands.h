@@ -27,6 +27,7 @@ int runCommandFit(int argc, char** argv);
 int runCommandRender(int argc, char** argv);
 int runCommandReport(int argc, char** argv);
 int runCommandVerify(int argc, char** argv);
+int runCommandAudit(int argc, char** argv);
 
 // Shared by commands: the head of a command's --help.
 std::string usageHeader(const std::string& synopsis, const std::string& description);

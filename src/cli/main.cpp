@@ -21,7 +21,8 @@ namespace {
 void printUsage() {
   std::cout << "surrogate " << surrogateVersion()
             << ": digital surrogates of Highlight-RTI captures, with their provenance\n\n"
-               "usage: surrogate COMMAND [options]    (surrogate COMMAND --help for details)\n\n"
+               "usage: surrogate COMMAND [options]    (surrogate help COMMAND, or surrogate COMMAND --help,\n"
+               "                                      for details)\n\n"
                "commands:\n";
   for (const cli::Command& c : cli::commands()) {
     std::string name = c.name;
@@ -45,9 +46,34 @@ int fail(bool json, const std::string& command, int exitCode, const std::string&
   }
   return exitCode;
 }
+
+// "run, pack, lights, ...": the commands, for a message about an unknown one.
+std::string commandNames() {
+  std::string names;
+  for (const cli::Command& c : cli::commands()) names += (names.empty() ? "" : ", ") + std::string(c.name);
+  return names;
+}
+
+int unknownCommand(const std::string& how, const std::string& name) {
+  std::cerr << "surrogate" << how << ": unknown command \"" << name << "\"; the commands are "
+            << commandNames() << " (surrogate --help describes them)\n";
+  return static_cast<int>(ErrorKind::Usage);
+}
+
+// surrogate help COMMAND: the command's own --help.
+int helpFor(const std::string& name) {
+  for (const cli::Command& c : cli::commands()) {
+    if (name != c.name) continue;
+    std::string command = c.name, help = "--help";
+    char* args[] = {command.data(), help.data(), nullptr};
+    return c.run(2, args);
+  }
+  return unknownCommand(" help", name);
+}
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc >= 3 && std::string(argv[1]) == "help") return helpFor(argv[2]);
   if (argc < 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h" ||
       std::string(argv[1]) == "help") {
     printUsage();
@@ -76,6 +102,5 @@ int main(int argc, char** argv) {
       return fail(json, name, internal, "", "", m, m);
     }
   }
-  std::cerr << "surrogate: unknown command \"" << name << "\" (run surrogate --help)\n";
-  return static_cast<int>(ErrorKind::Usage);
+  return unknownCommand("", name);
 }

@@ -127,8 +127,9 @@ std::string FileSummary::toText() const {
   if (!version.empty()) o << "version: " << version << "\n";
   if (kind == "lp") {
     o << "lights: " << lightCount << "\n"
-      << "elevation: " << formatNumber(minElevationDegrees) << " to "
-      << formatNumber(maxElevationDegrees) << " degrees\n";
+      // Angles to 0.1 degree, as the report shows them; --json has the full values.
+      << "elevation: " << fixedDecimals(minElevationDegrees, 1) << " to "
+      << fixedDecimals(maxElevationDegrees, 1) << " degrees\n";
   } else {
     o << "basis: " << basis << "\n"
       << "size: " << width << " x " << height << "\n"

@@ -72,9 +72,19 @@ std::optional<std::string> makerNote(const Exiv2::ExifData& exif, ExifFinder fin
   return meaningful(s) ? std::optional<std::string>(s) : std::nullopt;
 }
 
+// The n-th value as a double: a rational exactly (4.2 mm stored as 42/10 is 4.2, not the
+// nearest float, 4.199999809), other types as Exiv2 converts them.
+double numberAt(const Exiv2::Exifdatum& d, long n) {
+  if (d.typeId() == Exiv2::unsignedRational || d.typeId() == Exiv2::signedRational) {
+    const Exiv2::Rational r = d.toRational(n);
+    return r.second == 0 ? 0.0 : static_cast<double>(r.first) / r.second;
+  }
+  return static_cast<double>(d.toFloat(n));
+}
+
 std::optional<double> exifNumber(const Exiv2::ExifData& exif, std::initializer_list<const char*> keys) {
   for (const char* k : keys)
-    if (const auto* d = findExif(exif, k)) return static_cast<double>(d->toFloat(0));
+    if (const auto* d = findExif(exif, k)) return numberAt(*d, 0);
   return std::nullopt;
 }
 
@@ -94,6 +104,30 @@ std::optional<double> leadingNumber(const std::optional<std::string>& s) {
   return v;
 }
 
+// The lens's focal range as the file records it. LensSpecification and Nikon's Lens hold four
+// rationals (shortest and longest focal length, then apertures; 0/0 when unknown); CanonCs.Lens
+// holds the longest and shortest focal length and the units per mm.
+void readLensRange(const Exiv2::ExifData& exif, CameraMetadata& m) {
+  for (const char* key : {"Exif.Photo.LensSpecification", "Exif.Nikon3.Lens"}) {
+    const auto* d = findExif(exif, key);
+    if (!d || d->count() < 2) continue;
+    const double lo = numberAt(*d, 0), hi = numberAt(*d, 1);
+    if (lo > 0 && hi >= lo) {
+      m.lensMinFocalMm = lo;
+      m.lensMaxFocalMm = hi;
+      return;
+    }
+  }
+  if (const auto* d = findExif(exif, "Exif.CanonCs.Lens"); d && d->count() >= 3) {
+    const double units = static_cast<double>(d->toLong(2));
+    const double hi = static_cast<double>(d->toLong(0)), lo = static_cast<double>(d->toLong(1));
+    if (units > 0 && lo > 0 && hi >= lo) {
+      m.lensMinFocalMm = lo / units;
+      m.lensMaxFocalMm = hi / units;
+    }
+  }
+}
+
 void readExif(const Exiv2::ExifData& exif, const Exiv2::XmpData& xmp, CameraMetadata& m) {
   m.make = exifText(exif, {"Exif.Image.Make"});
   if (!m.make) m.make = xmpText(xmp, {"Xmp.tiff.Make"});
@@ -106,7 +140,11 @@ void readExif(const Exiv2::ExifData& exif, const Exiv2::XmpData& xmp, CameraMeta
 
   m.lens = exifText(exif, {"Exif.Photo.LensModel"});
   if (!m.lens) m.lens = xmpText(xmp, {"Xmp.exifEX.LensModel", "Xmp.aux.Lens"});
-  if (!m.lens) m.lens = makerNote(exif, Exiv2::lensName);
+  if (!m.lens) {
+    m.lens = makerNote(exif, Exiv2::lensName);
+    m.lensFromMakerNote = m.lens.has_value();
+  }
+  readLensRange(exif, m);
 
   m.focalLengthMm = exifNumber(exif, {"Exif.Photo.FocalLength", "Exif.Image.FocalLength"});
   if (!m.focalLengthMm) m.focalLengthMm = leadingNumber(makerNote(exif, Exiv2::focalLength));
@@ -115,7 +153,7 @@ void readExif(const Exiv2::ExifData& exif, const Exiv2::XmpData& xmp, CameraMeta
   for (const char* key : {"Exif.Photo.ExposureTime", "Exif.Image.ExposureTime"}) {
     if (const auto* d = findExif(exif, key)) {
       m.exposureTime = printed(*d, exif);
-      m.exposureSeconds = d->toFloat(0);
+      m.exposureSeconds = numberAt(*d, 0);
       break;
     }
   }
@@ -129,6 +167,7 @@ void readExif(const Exiv2::ExifData& exif, const Exiv2::XmpData& xmp, CameraMeta
 
   // Exif.Image.DateTime is when the file was last changed, not when the photograph was taken.
   m.dateTimeOriginal = exifText(exif, {"Exif.Photo.DateTimeOriginal", "Exif.Image.DateTimeOriginal"});
+  m.offsetTimeOriginal = exifText(exif, {"Exif.Photo.OffsetTimeOriginal"});
   m.orientation = exifInteger(exif, {"Exif.Image.Orientation"});
   if (m.orientation && (*m.orientation < 1 || *m.orientation > 8)) m.orientation.reset();
 

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdio>
 #include <exception>
+#include <mutex>
 
 #include "carrier/carrier.h"
 #include "pipeline/stage.h"
@@ -30,6 +31,52 @@ void checkParameters(const carrier::Step& step) {
   info->check(params);
 }
 
+// A step's progress as the user sees it: each part of a step (a label) ends at 100 % when the
+// step moves on to its next part or completes, so that no bar is left part-way for work that
+// is done (a stage reports its start and its own milestones; the end is the runner's to say).
+class StepProgress {
+ public:
+  explicit StepProgress(std::function<void(const std::string&, double)> out) : out_(std::move(out)) {}
+  void update(const std::string& label, double fraction) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (label != label_) completeLocked();
+    label_ = label;
+    done_ = fraction >= 1;
+    out_(label, fraction);
+  }
+  // The step succeeded: its last part is done.
+  void complete() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    completeLocked();
+  }
+
+ private:
+  void completeLocked() {
+    if (!label_.empty() && !done_) out_(label_, 1);
+    done_ = true;
+  }
+  std::function<void(const std::string&, double)> out_;
+  std::mutex mutex_;
+  std::string label_;
+  bool done_ = true;
+};
+
+// Routes the stages' progress through `progress` while a step runs, however it ends.
+class ProgressRouting {
+ public:
+  ProgressRouting(RunSettings& settings, StepProgress& progress)
+      : settings_(settings), saved_(settings.progress) {
+    if (saved_) settings_.progress = [&progress](const std::string& label, double f) { progress.update(label, f); };
+  }
+  ~ProgressRouting() { settings_.progress = saved_; }
+  ProgressRouting(const ProgressRouting&) = delete;
+  ProgressRouting& operator=(const ProgressRouting&) = delete;
+
+ private:
+  RunSettings& settings_;
+  std::function<void(const std::string&, double)> saved_;
+};
+
 }  // namespace
 
 void runProcess(Context& context, const fs::path& carrierPath, std::size_t steps) {
@@ -42,7 +89,10 @@ void runProcess(Context& context, const fs::path& carrierPath, std::size_t steps
   // Copy the list: a stage may append files, never steps, but the reference must stay valid.
   std::vector<carrier::Step> list = c.process;
   if (steps < list.size()) list.resize(steps);
+  const auto userProgress = context.settings.progress;
   for (const carrier::Step& step : list) {
+    StepProgress progress(userProgress);
+    const ProgressRouting routing(context.settings, progress);
     std::unique_ptr<Stage> stage = StageRegistry::instance().create(step.component);
     c.clearResult(step.id);
     carrier::Result result;
@@ -72,6 +122,7 @@ void runProcess(Context& context, const fs::path& carrierPath, std::size_t steps
       fail(internal);
       throw internal;
     }
+    progress.complete();
     result.ended = carrier::timestampNow();
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     c.data.push_back(std::move(result));

@@ -46,6 +46,7 @@ enum class PlanSlot {
   Preprocessing,      // only when the request asks for it, in the order asked
   EachModel,          // once per model fitted (`forModel` gives the parameters)
   AfterModels,        // once after the fits, for the first model (`forModel`, if set)
+  PriorWork,          // last, only when the capture holds prior work to audit (stages/audit_stage.h)
   NotPlanned,         // never planned by `surrogate run` (a carrier may still name it)
 };
 
@@ -68,6 +69,10 @@ struct StageInfo {
   std::function<void(const Parameters&)> check;
   // EachModel and AfterModels: the parameters of the step for the model `basis` ("hsh2").
   std::function<Parameters(const std::string& basis)> forModel;
+  // The files a step of this stage writes (capture-relative paths), known from the step before
+  // it runs; a '*' stands for any text (one overview per sphere found). `surrogate run`
+  // refuses a plan that would write over prior work (stages/prior_work.h). Empty: no file.
+  std::function<std::vector<std::string>(const carrier::Step& step)> outputs;
 };
 
 // `info` with the defaults and check of an options struct that has toParameters() and

@@ -105,6 +105,36 @@ std::string residualColour(double t) {
 }
 
 std::string hemisphereSvg(const std::vector<LightPoint>& lights, const Coverage& coverage) {
+  return hemisphereSvg(lights, coverage, {});
+}
+
+namespace {
+// Each prior light as a cross, joined by a line to Surrogate's light of the same image.
+void drawPriorLights(std::ostringstream& s, const std::vector<LightPoint>& lights,
+                     const std::vector<PriorLightPoint>& priorLights) {
+  for (const PriorLightPoint& p : priorLights) {
+    double x, y;
+    project(p.elevationDeg, p.azimuthDeg, x, y);
+    const std::string colour = p.aboveThreshold ? "#d62728" : "#555555";
+    for (const LightPoint& l : lights) {
+      if (l.image != p.image) continue;
+      double lx, ly;
+      project(l.elevationDeg, l.azimuthDeg, lx, ly);
+      s << "<line class=\"prior-offset\" x1=\"" << num(lx) << "\" y1=\"" << num(ly) << "\" x2=\"" << num(x)
+        << "\" y2=\"" << num(y) << "\" stroke=\"" << colour << "\"/>";
+    }
+    s << "<path class=\"prior-light" << (p.aboveThreshold ? " off" : "") << "\" d=\"M" << num(x - 4) << ","
+      << num(y - 4) << "L" << num(x + 4) << "," << num(y + 4) << "M" << num(x - 4) << "," << num(y + 4) << "L"
+      << num(x + 4) << "," << num(y - 4) << "\" stroke=\"" << colour << "\" stroke-width=\"2\" data-image=\""
+      << escapeHtml(p.image) << "\"><title>" << escapeHtml(p.image) << " in " << escapeHtml(p.file)
+      << ": elevation " << displayNumber(p.elevationDeg, 1) << "\u00b0, azimuth " << displayNumber(p.azimuthDeg, 1)
+      << "\u00b0, " << displayNumber(p.angleDeg, 1) << "\u00b0 from Surrogate's light</title></path>\n";
+  }
+}
+}  // namespace
+
+std::string hemisphereSvg(const std::vector<LightPoint>& lights, const Coverage& coverage,
+                          const std::vector<PriorLightPoint>& priorLights) {
   double lo = 0, hi = 0;
   bool any = false;
   for (const LightPoint& l : lights) {
@@ -160,6 +190,7 @@ std::string hemisphereSvg(const std::vector<LightPoint>& lights, const Coverage&
                                 : std::string())
       << "</title></circle>\n";
   }
+  drawPriorLights(s, lights, priorLights);
   // Legend: the residual scale.
   s << "<defs><linearGradient id=\"residual-scale\" x1=\"0\" y1=\"1\" x2=\"0\" y2=\"0\">";
   for (int i = 0; i <= 4; ++i)

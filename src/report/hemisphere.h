@@ -59,6 +59,21 @@ Coverage analyseCoverage(const std::vector<LightPoint>& lights);
 // highlight confidence is below kDoubtfulConfidence, gaps shaded, and a colour legend.
 std::string hemisphereSvg(const std::vector<LightPoint>& lights, const Coverage& coverage);
 
+// A light of a prior light file (the Audit step, audit/recorded.h), drawn beside Surrogate's
+// light of the same image: a cross joined to it by a line, red when the two differ by more than
+// the audit's threshold.
+struct PriorLightPoint {
+  std::string image;  // the image's path in the capture (LightPoint::image)
+  std::string file;   // the prior light file
+  double elevationDeg = 0, azimuthDeg = 0;
+  double angleDeg = 0;  // to Surrogate's light
+  bool aboveThreshold = false;
+};
+
+// The plot with the prior lights drawn too (<path class="prior-light">, one per prior light).
+std::string hemisphereSvg(const std::vector<LightPoint>& lights, const Coverage& coverage,
+                          const std::vector<PriorLightPoint>& priorLights);
+
 // "#rrggbb" for t in 0..1 on a viridis-like scale.
 std::string residualColour(double t);
 

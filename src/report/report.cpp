@@ -153,7 +153,7 @@ std::string lightsSection(const carrier::Carrier& c, Report& report) {
          "failed; see the provenance below).</p></section>";
     return s.str();
   }
-  s << "<div class=\"plot\">" << hemisphereSvg(lights, coverage) << "<div><p>" << lights.size()
+  s << "<div class=\"plot\">" << hemisphereSvg(lights, coverage, priorLightPoints(c)) << "<div><p>" << lights.size()
     << " light" << (lights.size() == 1 ? "" : "s") << " seen from the camera: the centre is a light "
        "on the camera's axis, the rim is grazing light; 0\u00b0 azimuth is to the right of the "
        "image, 90\u00b0 at the top. Elevation from "
@@ -368,13 +368,35 @@ std::string summaryCards(const carrier::Carrier& c, const Report& report) {
   return s.str();
 }
 
+// The share of the report's work done once the detection section is built: decoding,
+// downscaling and re-encoding the pictures is most of it, so the pictures are counted (the
+// interactive PTM copy as one more).
+double shareAfterDetection(const carrier::Carrier& c) {
+  int detection = 0, results = 1;
+  for (const auto& [kind, file] : outputsByKind(c)) {
+    if (kind == "sphere-overlay" || kind == "highlight-overview") ++detection;
+    else if (kind == "normals" || kind == "albedo" || kind == "preview") ++results;
+  }
+  return double(detection) / (detection + results);
+}
+
 }  // namespace
 
 Report buildReport(const carrier::Carrier& c, const ReportSource& source, const ReportOptions& options) {
+  const auto progress = [&options](double f) {
+    if (options.progress) options.progress(kProgressLabel, f);
+  };
+  progress(0);
   Report report;
   const std::string lights = lightsSection(c, report);
+  progress(0.05);
   const std::string detection = detectionSection(c, source, options, report);
+  progress(0.05 + 0.9 * shareAfterDetection(c));
   const std::string results = resultsSection(c, source, options, report);
+  const std::string priorWork = auditSection(c, [&](const carrier::FileRecord& f, const std::string& caption) {
+    return figure(source, f, caption, options.maxImageSide, &report.picturesEmbedded);
+  });
+  progress(0.95);
   const std::string generated = options.generatedAt.empty() ? carrier::timestampNow() : options.generatedAt;
 
   std::ostringstream h;
@@ -393,10 +415,11 @@ Report buildReport(const carrier::Carrier& c, const ReportSource& source, const 
     << escapeHtml(generated) << " by Surrogate " << escapeHtml(surrogateVersion())
     << ". It is a view of the carrier (assembly-files/carrier.xml), which is the record; the report "
        "itself is not part of the recorded provenance.</p></header>\n<main>"
-    << summaryCards(c, report) << lights << detection << results << provenanceSection(c)
+    << summaryCards(c, report) << lights << detection << results << priorWork << provenanceSection(c)
     << cameraSection(c) << verificationSection(options.verification) << filesSection(c)
     << "</main>\n<script>" << kReportJs << "</script>\n</body></html>\n";
   report.html = h.str();
+  progress(1);
   return report;
 }
 

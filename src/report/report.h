@@ -19,6 +19,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -57,8 +58,10 @@ class ReportSource {
 
 // Opens a capture folder (assembly-files/carrier.xml), a bag directory
 // (data/assembly-files/carrier.xml), a .tar or .zip bag, or a carrier.xml file directly.
-// Throws Error(Input) naming the path when none of these is found.
-std::unique_ptr<ReportSource> openReportSource(const std::filesystem::path& path);
+// Throws Error(Input) naming the path when none of these is found. `progress` follows the
+// reading and unpacking of an archive: (label, fraction done 0..1); may be empty.
+std::unique_ptr<ReportSource> openReportSource(
+    const std::filesystem::path& path, const std::function<void(const std::string&, double)>& progress = {});
 
 struct ReportOptions {
   int maxImageSide = 720;    // embedded pictures are downscaled to this; larger = sharper, bigger file
@@ -66,7 +69,12 @@ struct ReportOptions {
   std::string generatedAt;   // shown in the header; empty = now (UTC)
   // The verifier's checks; absent = the section says the package was not verified here.
   std::optional<std::vector<VerificationCheck>> verification;
+  // Called with (kProgressLabel, fraction done 0..1) as the page is built; may be empty.
+  std::function<void(const std::string&, double)> progress;
 };
+
+// The label of the report's progress.
+inline constexpr const char* kProgressLabel = "Writing the report";
 
 // What the report shows, for the CLI's summary and --json.
 struct Report {

@@ -2,11 +2,13 @@
 // verification, files. Each returns a <section> with every carrier string escaped.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "carrier/carrier.h"
+#include "report/hemisphere.h"
 #include "report/report.h"
 
 namespace surrogate::report {
@@ -20,5 +22,13 @@ std::string cameraSection(const carrier::Carrier& c);
 std::string verificationSection(const std::optional<std::vector<VerificationCheck>>& checks);
 // Every file with its role, size and SHA-256 (folded), for an auditor comparing copies.
 std::string filesSection(const carrier::Carrier& c);
+
+// "Audit of prior work", when the carrier has an Audit result (audit/recorded.h): the verdicts,
+// the lights above the threshold, the PSNR table and the difference images (through `figure`,
+// which embeds a recorded picture with a caption); empty otherwise.
+std::string auditSection(const carrier::Carrier& c,
+                         const std::function<std::string(const carrier::FileRecord&, const std::string&)>& figure);
+// The prior lights the Audit result records, for the hemisphere plot; empty without one.
+std::vector<PriorLightPoint> priorLightPoints(const carrier::Carrier& c);
 
 }  // namespace surrogate::report

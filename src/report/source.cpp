@@ -74,9 +74,9 @@ bool shown(const std::string& relative) {
 // types, sizes and compression ratios checked before anything is kept): the files the report
 // can show are extracted into a private temporary folder; originals, .rti and the rest are
 // skipped.
-std::unique_ptr<ReportSource> openArchive(const fs::path& path) {
+std::unique_ptr<ReportSource> openArchive(const fs::path& path, const archive::Progress& progress) {
   const archive::Limits limits;
-  const archive::Inventory inventory = archive::readPackage(path, limits);
+  const archive::Inventory inventory = archive::readPackage(path, limits, progress);
   const std::string carrierEntry = std::string("data/") + kCarrierPath;
   const auto it = inventory.files.find(carrierEntry);
   if (it == inventory.files.end() || !it->second.content)
@@ -90,14 +90,16 @@ std::unique_ptr<ReportSource> openArchive(const fs::path& path) {
         if (entry.compare(0, 5, "data/") != 0 || !shown(entry.substr(5))) return {};
         return entry.substr(5);
       },
-      limits);
+      limits, [&progress](const std::string&, double f) {
+        if (progress) progress("extracting the pictures", f);
+      });
   const fs::path root = temp->path();
   return std::make_unique<FolderSource>(root, "bag " + path.string(), true, std::move(c), std::move(temp));
 }
 
 }  // namespace
 
-std::unique_ptr<ReportSource> openReportSource(const fs::path& path) {
+std::unique_ptr<ReportSource> openReportSource(const fs::path& path, const archive::Progress& progress) {
   // Error codes, not exceptions: a loop of symbolic links is the user's path, not a bug.
   std::error_code ec;
   const fs::file_status st = fs::status(path, ec);
@@ -118,7 +120,7 @@ std::unique_ptr<ReportSource> openReportSource(const fs::path& path) {
     return name.size() >= suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
   };
   if (endsWith(".tar") || endsWith(".zip") || endsWith(".tar.gz") || endsWith(".tgz"))
-    return openArchive(path);
+    return openArchive(path, progress);
   if (endsWith(".xml")) {
     // CAPTURE/assembly-files/carrier.xml: the capture is two levels up.
     const fs::path root = fs::absolute(path).parent_path().parent_path();

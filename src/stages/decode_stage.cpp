@@ -157,6 +157,7 @@ void DecodeStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
   result.add("value").set("name", "detectionInputTransfer")
       .set("value", decoded.luminance->transfer() == Transfer::Linear ? "linear" : "srgb");
   ctx.put(kRgbStack, decoded.rgb);
+  ctx.put(kDecodedRgbStack, decoded.rgb);
   ctx.put(kLuminanceStack, decoded.luminance);
 }
 

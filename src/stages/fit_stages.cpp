@@ -31,6 +31,22 @@ std::string defaultFitOutput(const std::string& basisText) {
 namespace {
 constexpr const char* kOutputParameter = "output";
 constexpr const char* kModelParameter = "model";
+
+// The previews DerivedMaps renders: a raking light from the upper left (elevation 20 deg,
+// azimuth 135 deg), from the top, and a specular-enhanced view, as photographers look at RTI
+// first.
+struct Preview {
+  const char* name;
+  double elevationDeg, azimuthDeg;
+  bool specular;
+};
+constexpr Preview kPreviews[] = {{"preview-raking.png", 20, 135, false},
+                                 {"preview-top.png", 70, 90, false},
+                                 {"preview-specular.png", 45, 135, true}};
+constexpr const char* kNormalsFile = "normals.png";
+constexpr const char* kAlbedoFile = "albedo.png";
+
+std::string finished(const std::string& name) { return std::string(capture::kFinishedDir) + "/" + name; }
 }  // namespace
 
 pipeline::Parameters RtiFitOptions::toParameters() const {
@@ -62,6 +78,10 @@ pipeline::StageInfo RtiFitStage::info() {
       {kComponent, "1", "Least-squares fit of a per-pixel reflectance model over the light directions",
        pipeline::PlanSlot::EachModel});
   info.forModel = [](const std::string& basis) { return RtiFitOptions::forBasis(basis).toParameters(); };
+  info.outputs = [](const carrier::Step& step) {
+    const RtiFitOptions o = RtiFitOptions::fromParameters(parametersOf(step));
+    return std::vector<std::string>{o.output.empty() ? defaultFitOutput(fit::basisName(o.fit.basis)) : o.output};
+  };
   return info;
 }
 
@@ -76,6 +96,7 @@ void RtiFitStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
   const std::string basis = fit::basisName(options.basis);
   const std::string label = "Fitting " + basis;
   options.progress = [&](double f) { ctx.progress(label, f); };
+  ctx.progress(label, 0);  // the fit reports once per band of rows: show the bar from the start
   const std::string output = recorded.output.empty() ? defaultFitOutput(basis) : recorded.output;
 
   fit::FitStatistics stats;
@@ -153,48 +174,48 @@ pipeline::StageInfo DerivedMapsStage::info() {
     o.model = fit::basisName(fit::parseBasis(basis));
     return o.toParameters();
   };
+  info.outputs = [](const carrier::Step&) {
+    std::vector<std::string> out = {finished(kNormalsFile), finished(kAlbedoFile)};
+    for (const Preview& p : kPreviews) out.push_back(finished(p.name));
+    return out;
+  };
   return info;
 }
 
 void DerivedMapsStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier::Result& result) {
   const std::string basis = DerivedMapsOptions::fromParameters(parametersOf(step)).model;
   const auto model = ctx.get<fit::Relightable>(modelKey(basis));
-  const std::string dir = capture::kFinishedDir;
-  ctx.progress("Normals, albedo and previews", 0);
+  // Five pictures of about equal cost (normals, albedo, three previews): the bar moves by one
+  // fifth as each is written.
+  int pictures = 0;
+  const auto written = [&ctx, &pictures] { ctx.progress("Normals, albedo and previews", pictures++ / 5.0); };
+  written();
 
   int fallback = 0;
   const Image normals = model->normalMap(&fallback, ctx.settings.threads);
-  image::writePng(normals, ctx.outputPath(dir + "/normals.png"));
-  recordOutput(ctx, step, result, dir + "/normals.png", "result", "PNG", "normals", "image/png");
+  image::writePng(normals, ctx.outputPath(finished(kNormalsFile)));
+  recordOutput(ctx, step, result, finished(kNormalsFile), "result", "PNG", "normals", "image/png");
   result.add("value").set("name", "normalFallbackPixels").set("value", std::to_string(fallback));
   const double fraction = double(fallback) / (double(model->width()) * model->height());
   ctx.carrier.addLog(fraction > 0.05 ? "warning" : "info", step.id,
                      std::to_string(fallback) + " pixels (" + fixedDecimals(100 * fraction, 2) +
                          " %) had no valid PTM maximum and took the least-squares Lambertian normal");
+  written();
 
-  image::writePng(model->albedoMap(ctx.settings.threads), ctx.outputPath(dir + "/albedo.png"));
-  recordOutput(ctx, step, result, dir + "/albedo.png", "result", "PNG", "albedo", "image/png");
+  image::writePng(model->albedoMap(ctx.settings.threads), ctx.outputPath(finished(kAlbedoFile)));
+  recordOutput(ctx, step, result, finished(kAlbedoFile), "result", "PNG", "albedo", "image/png");
+  written();
 
-  // Previews: a raking light from the upper left (elevation 20 deg, azimuth 135 deg), from the
-  // top, and a specular-enhanced view, as photographers look at RTI first.
-  struct Preview {
-    const char* name;
-    double elevationDeg, azimuthDeg;
-    bool specular;
-  };
-  const Preview previews[] = {{"preview-raking.png", 20, 135, false},
-                              {"preview-top.png", 70, 90, false},
-                              {"preview-specular.png", 45, 135, true}};
-  for (const Preview& p : previews) {
+  for (const Preview& p : kPreviews) {
     const double e = p.elevationDeg * M_PI / 180, a = p.azimuthDeg * M_PI / 180;
     fit::RenderOptions options;
     options.specular = p.specular && basis.rfind("ptm", 0) == 0;
     options.threads = ctx.settings.threads;
     const std::array<double, 3> light{std::cos(e) * std::cos(a), std::cos(e) * std::sin(a), std::sin(e)};
-    image::writePng(model->render(light, options), ctx.outputPath(dir + "/" + p.name));
-    recordOutput(ctx, step, result, dir + "/" + p.name, "result", "PNG", "preview", "image/png");
+    image::writePng(model->render(light, options), ctx.outputPath(finished(p.name)));
+    recordOutput(ctx, step, result, finished(p.name), "result", "PNG", "preview", "image/png");
+    written();
   }
-  ctx.progress("Normals, albedo and previews", 1);
 }
 
 }  // namespace surrogate::stages

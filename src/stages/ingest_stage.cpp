@@ -12,6 +12,7 @@
 #include "meta/metadata.h"
 #include "pipeline/context.h"
 #include "stages/inputs.h"
+#include "stages/prior_work.h"
 
 namespace surrogate::stages {
 
@@ -20,6 +21,8 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* kStep = "capture ingest";
+// The report: written after every run, never recorded (a view of the carrier).
+constexpr const char* kReportPath = "finished-files/report.html";
 
 struct KnownFormat {
   const char* ext;
@@ -129,9 +132,19 @@ struct PendingFile {
   bool unrecorded = false;
 };
 
-// An original, export, sidecar or dome .lp, once recorded, is evidence: if its bytes changed or
-// it vanished since the previous record, the run stops with a fixity failure naming it, unless
-// an `accept-changed-original` intervention accepts exactly what the file is now.
+// Why a recorded file of this role may not change, for the fixity failure's message.
+std::string whyEvidence(const std::string& role) {
+  if (role == "prior")
+    return "Prior work (a file another tool made) is evidence: Surrogate never records a new "
+           "baseline for it. Restore the file from a backup";
+  return "An original is evidence: Surrogate never records a new baseline for it. Restore the "
+         "file from the card or a backup";
+}
+
+// An original, export, sidecar, dome .lp or prior file, once recorded, is evidence: if its
+// bytes changed or it vanished since the previous record, the run stops with a fixity failure
+// naming it, unless an `accept-changed-original` intervention accepts exactly what the file is
+// now.
 void checkAgainstPrevious(const carrier::Step& step, pipeline::Context& ctx) {
   if (!ctx.previous) return;
   for (const carrier::FileRecord& before : ctx.previous->files) {
@@ -157,15 +170,14 @@ void checkAgainstPrevious(const carrier::Step& step, pipeline::Context& ctx) {
             : "was recorded in the carrier (SHA-256 " + before.sha256.substr(0, 16) +
                   "...) but is no longer in the capture";
     throw Error(ErrorKind::Fixity, before.path, kStep,
-                what + ". An original is evidence: Surrogate never records a new baseline for it. "
-                "Restore the file from the card or a backup; if the change is deliberate, accept "
+                what + ". " + whyEvidence(before.role) + "; if the change is deliberate, accept "
                 "it with --accept-changed " + before.path + " --reason \"why\"");
   }
 }
 
 // Every file the capture brings, in a fixed order: shots (original, export), .lp, sidecars,
-// other files.
-std::vector<PendingFile> pendingFiles(const capture::CaptureLayout& layout) {
+// other files, prior work (`prior`: the files of assembly-files/ and finished-files/ that are).
+std::vector<PendingFile> pendingFiles(const capture::CaptureLayout& layout, const std::vector<std::string>& prior) {
   std::vector<PendingFile> pending;
   const bool exportsAreOriginals = !layout.hasOriginals();
   for (const capture::Shot& shot : layout.shots) {
@@ -190,6 +202,7 @@ std::vector<PendingFile> pendingFiles(const capture::CaptureLayout& layout) {
     for (char& ch : ext) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
     pending.push_back({o, "other", ext.size() > 1 ? ext.substr(1) : "unknown", false, 0, 0, "", false});
   }
+  for (const std::string& p : prior) pending.push_back({p, "prior", "", false, 0, 0, "", false});
   return pending;
 }
 
@@ -211,6 +224,15 @@ ReadFile readFile(const PendingFile& p, const fs::path& capture) {
   f.sha256 = d.sha256;
   f.format = p.format;
   f.unrecordedProcessing = p.unrecorded;
+  if (p.role == "prior") {
+    const PriorFile prior = describePriorFile(abs, p.path);
+    f.priorKind = prior.kind;
+    f.madeBy = prior.madeBy;
+    f.format = prior.format;
+    f.mediaType = prior.mediaType;
+    out.formatWarning = prior.warning;
+    return out;
+  }
   out.formatWarning = setFormatIdentifiers(f, abs, p.isImage);
   try {
     if (p.isImage) {
@@ -261,12 +283,33 @@ void recordFiles(pipeline::Context& ctx, const carrier::Step& step, const std::v
   }
 }
 
-// The files of the capture that are not photographs: kept (other files) or left out (system
-// files).
+// The files of assembly-files/ and finished-files/ that are prior work (prior_work.h); the
+// others are Surrogate's own, recorded again by the steps that write them. One the carrier
+// does not record is a leftover of an interrupted run, which this run replaces: logged.
+std::vector<std::string> priorWorkOf(pipeline::Context& ctx, const carrier::Step& step,
+                                     const capture::CaptureLayout& layout) {
+  const std::vector<std::string> planned = plannedOutputs(ctx.carrier);
+  std::vector<std::string> prior;
+  for (const std::string& path : layout.outputFolderFiles) {
+    if (isPriorWork(path, ctx.previous, planned)) prior.push_back(path);
+    else if (!ctx.previous->findFileByPath(path) && path != kReportPath)
+      ctx.carrier.addLog("info", step.id, path + " is not in the carrier but lies where this run writes: "
+                         "taken for what an interrupted run of Surrogate left, and replaced");
+  }
+  return prior;
+}
+
+// The files of the capture that are not photographs: kept (other files, prior work) or left
+// out (system files).
 void logOtherFiles(pipeline::Context& ctx, const carrier::Step& step, const capture::CaptureLayout& layout) {
   for (const std::string& o : layout.others)
     ctx.carrier.addLog("info", step.id, "kept " + o + " as an other file of the capture (recorded "
                        "and packed, not an image the pipeline reads)");
+  for (const carrier::FileRecord& f : ctx.carrier.files)
+    if (f.role == "prior")
+      ctx.carrier.addLog("info", step.id, "kept " + f.path + " as prior work (" + f.priorKind +
+                         (f.madeBy.empty() ? "; the file does not say what made it" : "; the file says: " + f.madeBy) +
+                         "): made by another tool, recorded and packed, never modified or written over");
   for (const std::string& junk : layout.systemFiles)
     ctx.carrier.addLog("info", step.id, "left out " + junk + ": a file the operating system made, "
                        "not part of the capture (not recorded, not packed)");
@@ -347,7 +390,7 @@ void IngestStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
   const capture::Source source = capture::parseSource(step.param("source", "auto"));
   ctx.progress("Reading the capture", 0);
   const capture::CaptureLayout layout = capture::scanCapture(ctx.capture, threads, step.param("lp", ""));
-  const std::vector<PendingFile> pending = pendingFiles(layout);
+  const std::vector<PendingFile> pending = pendingFiles(layout, priorWorkOf(ctx, step, layout));
   recordFiles(ctx, step, pending, readFiles(pending, ctx, threads));
   logOtherFiles(ctx, step, layout);
   checkAgainstPrevious(step, ctx);

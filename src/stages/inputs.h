@@ -12,6 +12,9 @@ namespace surrogate::stages {
 // Blackboard keys.
 inline constexpr const char* kInputImages = "input-images";
 inline constexpr const char* kRgbStack = "rgb-stack";
+// The decoded stack as ImageDecode made it: kRgbStack before any pre-processing step replaced
+// it (the Audit compares another tool's result with the whole frames).
+inline constexpr const char* kDecodedRgbStack = "decoded-rgb-stack";
 inline constexpr const char* kLuminanceStack = "luminance-stack";
 
 // One photograph the pipeline uses (after exclusions), in capture order.

@@ -34,6 +34,16 @@ using Lights = std::vector<std::array<double, 3>>;
 
 namespace {
 
+// The files these stages write: named once, for the stage that writes them and for its info()
+// (what the plan will write, checked against prior work before a run).
+const std::string kSphereOverlay = std::string(capture::kAssemblyDir) + "/spheres.png";
+const std::string kLightsFile = std::string(capture::kAssemblyDir) + "/lights.lp";
+std::string highlightOverview(const std::string& sphere) {
+  return std::string(capture::kAssemblyDir) + "/highlights-sphere" + sphere + ".png";
+}
+
+std::vector<std::string> lightsFileOutput(const carrier::Step&) { return {kLightsFile}; }
+
 std::vector<double> numbers(const std::string& text, std::size_t count, const std::string& what) {
   std::vector<double> out;
   std::size_t start = 0;
@@ -72,11 +82,13 @@ Image displayable(const Image& median, const ImageStack& lum) {
 // ---- SphereDetection ----------------------------------------------------------------------
 
 pipeline::StageInfo SphereDetectionStage::info() {
-  return pipeline::withOptions<hrti::SphereDetectionOptions>(
+  pipeline::StageInfo info = pipeline::withOptions<hrti::SphereDetectionOptions>(
       {kComponent, "1",
        "Find the reflective spheres: per-pixel median of the stack, circle Hough transform on "
        "the gradient, sub-pixel circle fit",
        pipeline::PlanSlot::LightsFromSpheres});
+  info.outputs = [](const carrier::Step&) { return std::vector<std::string>{kSphereOverlay}; };
+  return info;
 }
 
 void SphereDetectionStage::run(const carrier::Step& step, pipeline::Context& ctx,
@@ -84,7 +96,8 @@ void SphereDetectionStage::run(const carrier::Step& step, pipeline::Context& ctx
   const auto lum = ctx.get<ImageStack>(kLuminanceStack);
   hrti::SphereDetectionOptions options = hrti::SphereDetectionOptions::fromParameters(parametersOf(step));
   options.threads = ctx.settings.threads;
-  ctx.progress("Sphere detection: median of the stack", 0);
+  // The median of the stack is most of the work; the circle search follows it.
+  ctx.progress("Sphere detection", 0);
   auto median = std::make_shared<Image>(
       hrti::medianImage(*lum, bandRowsFor(*lum, ctx.settings.memoryBudget), ctx.settings.threads));
 
@@ -104,7 +117,7 @@ void SphereDetectionStage::run(const carrier::Step& step, pipeline::Context& ctx
                          "sphere " + i->target + " set by hand to " + i->value + ": " + i->reason, i->who);
     }
   } else {
-    ctx.progress("Sphere detection: circle search", 0.5);
+    ctx.progress("Sphere detection", 0.6);
     *spheres = hrti::detectSpheres(*median, options);
   }
   for (std::size_t k = 0; k < spheres->size(); ++k) {
@@ -115,7 +128,7 @@ void SphereDetectionStage::run(const carrier::Step& step, pipeline::Context& ctx
   }
   result.add("value").set("name", "spheres").set("value", std::to_string(spheres->size()));
 
-  const std::string overlay = std::string(capture::kAssemblyDir) + "/spheres.png";
+  const std::string& overlay = kSphereOverlay;
   image::writePng(hrti::drawSphereOverlay(displayable(*median, *lum), *spheres), ctx.outputPath(overlay));
   recordOutput(ctx, step, result, overlay, "assembly", "PNG", "sphere-overlay", "image/png");
   ctx.put(kSpheres, spheres);
@@ -169,11 +182,13 @@ void refuseSphereWithoutHighlights(const carrier::Step& sphereStep, const hrti::
 
 pipeline::StageInfo HighlightDetectionStage::info() {
   // 2: every highlight judged (confidence, reason, refused flags), refusals stop the run
-  return pipeline::withOptions<hrti::HighlightOptions>(
+  pipeline::StageInfo info = pipeline::withOptions<hrti::HighlightOptions>(
       {kComponent, "2",
        "Find the specular highlight on each sphere in each image: threshold, 8-connected "
        "components, value-weighted centroid nearest the sphere centre",
        pipeline::PlanSlot::LightsFromSpheres});
+  info.outputs = [](const carrier::Step&) { return std::vector<std::string>{highlightOverview("*")}; };
+  return info;
 }
 
 void HighlightDetectionStage::run(const carrier::Step& step, pipeline::Context& ctx,
@@ -256,8 +271,7 @@ void HighlightDetectionStage::run(const carrier::Step& step, pipeline::Context& 
   for (std::size_t k = 0; k < spheres->size(); ++k) {
     std::vector<hrti::Highlight> perImage;
     for (const auto& row : *highlights) perImage.push_back(row[k]);
-    const std::string overview = std::string(capture::kAssemblyDir) + "/highlights-sphere" +
-                                 std::to_string(k + 1) + ".png";
+    const std::string overview = highlightOverview(std::to_string(k + 1));
     image::writePng(hrti::drawHighlightOverview(displayable(*median, *lum), (*spheres)[k], perImage),
                     ctx.outputPath(overview));
     recordOutput(ctx, step, result, overview, "assembly", "PNG", "highlight-overview", "image/png");
@@ -352,7 +366,7 @@ void writeLights(pipeline::Context& ctx, const carrier::Step& step, carrier::Res
         fs::path(inputs[n].relativePath).lexically_relative(capture::kAssemblyDir).generic_string();
     entries.push_back({name, lights[n][0], lights[n][1], lights[n][2]});
   }
-  const std::string lp = std::string(capture::kAssemblyDir) + "/lights.lp";
+  const std::string& lp = kLightsFile;
   formats::writeLp(ctx.outputPath(lp), entries);
   recordOutput(ctx, step, result, lp, "assembly", "LP", "lp", "text/plain");
 }
@@ -412,9 +426,11 @@ pipeline::StageInfo LightDirectionsStage::info() {
   // 2: lights.lp names images relative to its own folder
   // 3: lights.lp holds each component as the shortest text that reads back exactly (it had six
   //    decimals), so the file's bytes differ from version 2's for the same lights
-  return pipeline::withOptions<LightDirectionsOptions>(
+  pipeline::StageInfo info = pipeline::withOptions<LightDirectionsOptions>(
       {kComponent, "3", "Light direction of each image from its highlights by the law of reflection",
        pipeline::PlanSlot::LightsFromSpheres});
+  info.outputs = lightsFileOutput;
+  return info;
 }
 
 void LightDirectionsStage::run(const carrier::Step& step, pipeline::Context& ctx,
@@ -502,8 +518,10 @@ pipeline::StageInfo LightsFromFileStage::info() {
   // 2: lights.lp names images relative to its own folder
   // 3: lights.lp holds each component as the shortest text that reads back exactly (it had six
   //    decimals), so the file's bytes differ from version 2's for the same lights
-  return pipeline::withOptions<pipeline::NoOptions>({kComponent, "3", "Light directions given by the capture's .lp file",
-                                           pipeline::PlanSlot::LightsFromFile});
+  pipeline::StageInfo info = pipeline::withOptions<pipeline::NoOptions>(
+      {kComponent, "3", "Light directions given by the capture's .lp file", pipeline::PlanSlot::LightsFromFile});
+  info.outputs = lightsFileOutput;
+  return info;
 }
 
 void LightsFromFileStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier::Result& result) {

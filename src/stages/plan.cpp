@@ -20,8 +20,10 @@
 #include "meta/metadata.h"
 #include "pipeline/runner.h"
 #include "pipeline/stage.h"
+#include "stages/audit_stage.h"
 #include "stages/decode_stage.h"
 #include "stages/ingest_stage.h"
+#include "stages/prior_work.h"
 #include "stages/request_checks.h"
 #include "stages/run_commit.h"
 
@@ -86,6 +88,7 @@ std::vector<PlannedStage> analysisStages(bool captureHasLp, const RunRequest& re
   const std::vector<std::string> bases = request.bases.value_or(std::vector<std::string>{"ptm-lrgb", "hsh2"});
   for (const std::string& basis : bases) addSlot(PlanSlot::EachModel, basis);
   if (!bases.empty()) addSlot(PlanSlot::AfterModels, bases.front());
+  if (request.auditPriorWork) addSlot(PlanSlot::PriorWork, "");
   return out;
 }
 
@@ -178,7 +181,7 @@ void addAcceptedChanges(const fs::path& capture, const RunRequest& request, cons
     const carrier::FileRecord* before = previous ? previous->findFileByPath(a.path) : nullptr;
     if (!before || !carrier::isEvidenceRole(before->role))
       throw Error(ErrorKind::Usage, "--accept-changed " + a.path, "command line",
-                  "the carrier records no original, export, sidecar or dome .lp at that path; give "
+                  "the carrier records no original, export, sidecar, dome .lp or prior work at that path; give "
                   "the path as the carrier has it (e.g. original-captures/IMG_0005.dng)");
     const fs::path file = capture / fs::u8path(a.path);
     const std::string now = fs::is_regular_file(file) ? "sha256:" + digestFile(file).sha256 : "removed";
@@ -242,6 +245,21 @@ void checkEnoughPhotographs(const capture::CaptureLayout& layout, const RunReque
   }
 }
 
+// The plan, with an Audit step when the capture holds prior work of kind lp or rti (judged
+// with the outputs of the plan itself, so that a leftover of Surrogate's is not taken for it).
+// Without prior work, an Audit threshold standing from an earlier run has no step to go to.
+carrier::Carrier planRunWithAudit(const fs::path& capture, const carrier::Carrier* previous, RunRequest& merged) {
+  merged.auditPriorWork = true;
+  const carrier::Carrier withAudit = planRun(capture, merged);
+  if (!priorWorkToAudit(capture, previous, plannedOutputs(withAudit)).empty()) return withAudit;
+  merged.auditPriorWork = false;
+  auto& params = merged.stageParams;
+  params.erase(std::remove_if(params.begin(), params.end(),
+                              [](const RunRequest::StageParam& p) { return p.component == AuditStage::kComponent; }),
+               params.end());
+  return planRun(capture, merged);
+}
+
 }  // namespace
 
 carrier::Carrier runCapture(const fs::path& captureArg, const RunRequest& request,
@@ -278,7 +296,11 @@ carrier::Carrier runCapture(const fs::path& captureArg, const RunRequest& reques
   checkRequestAgainstFrame(merged, width, height);
   checkEnoughPhotographs(layout, merged);
 
-  carrier::Carrier c = planRun(capture, merged);
+  carrier::Carrier c = planRunWithAudit(capture, previous ? &*previous : nullptr, merged);
+  // Before anything runs: never a plan that writes over a file another tool made. The files
+  // are listed again: recoverRun may have just finished an interrupted commit.
+  refuseOutputsOverPriorWork(capture::listOutputFolderFiles(capture), previous ? &*previous : nullptr,
+                             plannedOutputs(c));
   pipeline::RunSettings s = settings;
   if (s.who.empty()) s.who = request.who.empty() ? defaultWho() : request.who;
   carrier::RunRecord record{"r" + std::to_string((previous ? previous->header.runs.size() : 0) + 1),

@@ -102,6 +102,9 @@ struct RunRequest {
   // Run only up to light estimation (surrogate lights): the later steps are planned (so no
   // decision about them is lost) but not run.
   bool lightsOnly = false;
+  // Whether the capture holds prior work to audit (a prior .lp, .ptm or .rti): plans the
+  // PriorWork slot. Not a decision: runCapture sets it from the capture's files.
+  bool auditPriorWork = false;
 
   // Withdrawn decisions, and `--reset`: every processing decision back to the defaults (the
   // header and accepted changes of originals stay).

@@ -3,6 +3,7 @@
 #include <mutex>
 
 #include "pipeline/stage.h"
+#include "stages/audit_stage.h"
 #include "stages/decode_stage.h"
 #include "stages/fit_stages.h"
 #include "stages/ingest_stage.h"
@@ -27,6 +28,7 @@ void registerBuiltinStages() {
     r.add<ResizeStage>();
     r.add<RtiFitStage>();
     r.add<DerivedMapsStage>();
+    r.add<AuditStage>();
   });
 }
 

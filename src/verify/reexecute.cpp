@@ -186,23 +186,27 @@ std::vector<std::string> softwareDifferences(const carrier::Carrier& recorded,
   return out;
 }
 
-// Extracts the payload into `root`: inputs (originals, exports, a given .lp) to replay/, made
-// read-only, recorded outputs to recorded/ to compare with.
+// Extracts the payload into `root`: inputs (originals, exports, a given .lp, and prior work,
+// which lies in the output folders but is an input: the run records it again, and a step may
+// read it) to replay/, made read-only, recorded outputs to recorded/ to compare with.
 void extractForReplay(const fs::path& package, const Inventory& inventory,
                       const carrier::Carrier& recorded, const VerifyOptions& options,
                       const fs::path& root) {
   const fs::path replayRoot = root / "replay";
   fs::create_directory(replayRoot);
   fs::create_directory(root / "recorded");
-  std::unordered_set<std::string> outputs;
-  for (const carrier::FileRecord& f : recorded.files)
+  std::unordered_set<std::string> outputs, prior;
+  for (const carrier::FileRecord& f : recorded.files) {
     if (f.role == "assembly" || f.role == "result") outputs.insert(f.path);
+    if (f.role == "prior") prior.insert(f.path);
+  }
   extractFiles(
       package, inventory, root,
       [&](const std::string& path) -> fs::path {
         if (path.compare(0, 5, "data/") != 0) return {};
         const std::string relative = path.substr(5);
-        return fs::path(isOutputPath(relative, outputs) ? "recorded" : "replay") / relative;
+        const bool output = !prior.count(relative) && isOutputPath(relative, outputs);
+        return fs::path(output ? "recorded" : "replay") / relative;
       },
       options.limits, options.progress);
   makeReadOnly(replayRoot);

@@ -176,3 +176,28 @@ TEST_CASE("numbers are written with the fewest digits that read back and old 17-
         if (name == "x" || name == "z" || name == "cy") i.set(name, i.number(name));
   CHECK(toXml(again) == text);
 }
+
+TEST_CASE("prior work round-trips with its kind and maker and is evidence") {
+  Carrier c = sampleCarrier();
+  FileRecord f;
+  f.path = "finished-files/stela.ptm";
+  f.role = "prior";
+  f.size = 99;
+  f.sha256 = std::string(64, 'b');
+  f.format = "PTM_FORMAT_LRGB";
+  f.priorKind = "rti";
+  f.madeBy = "PTM_1.2 PTM_FORMAT_LRGB & \"more\"";
+  c.putFile(f);
+  const Carrier back = parseCarrier(toXml(c), "memory");
+  const FileRecord* r = back.findFileByPath("finished-files/stela.ptm");
+  REQUIRE(r != nullptr);
+  CHECK(r->role == "prior");
+  CHECK(r->priorKind == "rti");
+  CHECK(r->madeBy == f.madeBy);
+  CHECK(back.findFileByPath("original-captures/IMG_0001.dng")->priorKind.empty());
+  CHECK(isEvidenceRole("prior"));
+  // A kind the schema does not know is refused.
+  std::string text = toXml(c);
+  text.replace(text.find("priorKind=\"rti\""), 15, "priorKind=\"ptm\"");
+  CHECK_THROWS_AS(parseCarrier(text, "edited.xml"), Error);
+}

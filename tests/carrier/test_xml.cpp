@@ -27,3 +27,16 @@ TEST_CASE("entity-expansion bombs and external entities are refused") {
       "<?xml version=\"1.0\"?><!DOCTYPE x [<!ENTITY e SYSTEM \"file:///etc/passwd\">]><x>&e;</x>";
   CHECK_THROWS_AS(xml::checkWellFormed(xxe, "xxe.xml"), Error);
 }
+
+TEST_CASE("the root element of a document is read with its attributes in order") {
+  const xml::RootElement root = xml::readRootElement(
+      "<?xml version=\"1.0\"?>\n<!-- a log -->\n<log:RTIBuilderLog xmlns:log=\"urn:x\" version=\"2.0.2\" "
+      "tool=\"RTIBuilder &amp; PTMFitter\"><step/></log:RTIBuilderLog>",
+      "log.xml");
+  CHECK(root.name == "log:RTIBuilderLog");
+  REQUIRE(root.attributes.size() == 2);
+  CHECK(root.attributes[0] == std::make_pair(std::string("version"), std::string("2.0.2")));
+  CHECK(root.attributes[1] == std::make_pair(std::string("tool"), std::string("RTIBuilder & PTMFitter")));
+  CHECK_THROWS_AS(xml::readRootElement("<a><b></a>", "broken.xml"), Error);
+  CHECK_THROWS_AS(xml::readRootElement("<!DOCTYPE a [<!ENTITY e \"x\">]><a>&e;</a>", "dtd.xml"), Error);
+}

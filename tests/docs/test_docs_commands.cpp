@@ -77,11 +77,14 @@ std::vector<fs::path> docs() {
   return out;
 }
 
+// The capture the user guide starts from (docs/user-guide.md, "A capture to start with").
+constexpr const char* kGeneratorOptions = "--out stela12 --images 12 --width 400 --height 300 --sphere-radius 45 --seed 7";
+
 // A fresh folder with the generated capture as ./stela12 (12 shots, DNG originals + JPEG exports).
 fs::path workFolder(const std::string& name) {
   const fs::path work = e2e::freshDir("docs-" + name);
-  const e2e::CommandResult r = e2e::runShell(std::string(GENERATOR_EXE) + " --out " + e2e::quote(work / "stela12") +
-                                             " --images 12 --width 400 --height 300 --sphere-radius 45 --seed 7");
+  const e2e::CommandResult r =
+      e2e::runShell("cd " + e2e::quote(work) + " && " + std::string(GENERATOR_EXE) + " " + kGeneratorOptions);
   if (r.exitCode != 0) FAIL("generator failed: " << r.output);
   fs::remove_all(work / "stela12/truth");
   return work;
@@ -160,4 +163,94 @@ TEST_CASE("the user guide documents every command and every option their --help 
       CHECK(guide.find("`" + option) != std::string::npos);
     }
   }
+}
+
+namespace {
+
+// The member names of a JSON text, in order of appearance: every string followed by ':'
+// outside another string (the output is one object, checked elsewhere to be valid JSON).
+std::vector<std::string> jsonKeys(const std::string& json) {
+  std::vector<std::string> keys;
+  for (std::size_t i = 0; i < json.size(); ++i) {
+    if (json[i] != '"') continue;
+    std::string text;
+    for (++i; i < json.size() && json[i] != '"'; ++i) {
+      if (json[i] == '\\') ++i;
+      else text += json[i];
+    }
+    std::size_t next = json.find_first_not_of(" \t\r\n", i + 1);
+    if (next != std::string::npos && json[next] == ':') keys.push_back(text);
+  }
+  return keys;
+}
+
+// The text of the guide's section "### TITLE", up to the next heading.
+std::string guideSection(const std::string& guide, const std::string& title) {
+  const std::size_t start = guide.find("\n### " + title + "\n");
+  if (start == std::string::npos) return "";
+  const std::size_t end = guide.find("\n#", start + 1);
+  return guide.substr(start, end == std::string::npos ? std::string::npos : end - start);
+}
+
+}  // namespace
+
+TEST_CASE("every JSON member the commands print on the sample is documented in the user guide") {
+  const std::string guide = slurp(fs::path(DOCS_DIR) / "user-guide.md");
+  const fs::path work = workFolder("json");
+  const std::string c = e2e::quote(work / "stela12");
+  const std::string w = e2e::quote(work);
+  // Runs whose output has every kind of member: a creator, an exclusion (decisions,
+  // exclusions), a package, a verification with re-execution, an error.
+  const std::vector<std::pair<std::string, std::string>> commands = {
+      {"run " + c + " --creator \"Ana Silva:photographer\" --meta \"site=Store 3\" --exclude IMG_0003 "
+       "--reason \"the flash did not fire\" --json", "run --json"},
+      {"lights " + c + " -o " + w + "/l.lp --json", "lights --json"},
+      {"fit --lp " + w + "/l.lp -o " + w + "/f.ptm --json", "fit --json"},
+      {"render " + w + "/f.ptm --light 0.5,0,0.8 -o " + w + "/r.png --json", "render --json"},
+      {"run " + c + " --quiet", ""},  // the capture's results again after `lights`
+      {"pack " + c + " -o " + w + "/p.tar --json", "pack --json"},
+      {"verify " + w + "/p.tar --reexecute --json", "verify --json"},
+      {"report " + w + "/p.tar --verify -o " + w + "/r.html --json", "report --json"},
+      {"info " + c + " --json", "info --json"},
+      {"info " + c + "/assembly-files/carrier.xml --json", "info --json"},
+      {"info " + w + "/p.tar --json", "info --json"},
+      {"info " + w + "/f.ptm --json", "info --json"},
+      {"info " + c + "/finished-files/hsh2.rti --json", "info --json"},
+      {"info " + w + "/l.lp --json", "info --json"},
+      {"info " + c + "/original-captures/IMG_0001.dng --json", "info --json"},
+      {"info " + c + "/jpeg-exports/IMG_0001.jpg --json", "info --json"},
+      {"info " + w + "/nowhere.ptm --json", "Errors"},
+  };
+  for (const auto& [args, title] : commands) {
+    const e2e::CommandResult r =
+        e2e::runShell("(" + std::string(SURROGATE_EXE) + " " + args + " 2>/dev/null)");
+    INFO("surrogate " << args << "\n" << r.output);
+    if (title.empty()) {
+      REQUIRE(r.exitCode == 0);
+      continue;
+    }
+    CHECK((r.exitCode == 0) == (title != "Errors"));
+    const std::string section = guideSection(guide, title);
+    INFO("the guide's section \"### " << title << "\"");
+    REQUIRE_FALSE(section.empty());
+    const std::vector<std::string> keys = jsonKeys(r.output);
+    CHECK(keys.size() >= 4);
+    for (const std::string& key : keys) {
+      // Documented as `key`, `key[]`, or within a path (`steps[].key`, `bagit.key`).
+      INFO("the member \"" << key << "\"");
+      CHECK(std::regex_search(section, std::regex("[`.]" + key + "(\\[\\])?[`.]")));
+    }
+  }
+}
+
+TEST_CASE("the user guide starts from the capture the docs test generates") {
+  const std::string guide = slurp(fs::path(DOCS_DIR) / "user-guide.md");
+  const std::size_t start = guide.find("## A capture to start with");
+  REQUIRE(start != std::string::npos);
+  // Nothing before it uses the capture; the generator's command there is the test's own.
+  CHECK(guide.substr(0, start).find("stela12") == std::string::npos);
+  const std::size_t generator = guide.find("build/samples/surrogate-generate " + std::string(kGeneratorOptions));
+  CHECK(generator != std::string::npos);
+  CHECK(generator > start);
+  CHECK_THAT(guide, Catch::Contains("scripts/demo"));
 }

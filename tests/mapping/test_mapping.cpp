@@ -518,3 +518,60 @@ TEST_CASE("the term check catches a property used outside its domain", "[mapping
   CHECK(problems[0].find("E999_Nothing") != std::string::npos);
   CHECK(problems[1].find("P138_represents: subject urn:x:f is not a E36_Visual_Item") != std::string::npos);
 }
+
+namespace {
+// The sample capture with prior work another tool left: a .ptm in finished-files/ (what its
+// header says recorded as madeBy) and an .lp in assembly-files/ that says nothing of its maker.
+Sample sampleWithPriorWork(const std::string& name) {
+  const fs::path capture = samplecapture::make(freshDir(name));
+  const std::string ptm = "PTM_1.2\nPTM_FORMAT_LRGB\n1\n1\n1 1 1 1 1 1\n0 0 0 0 0 0\n" + std::string(9, '\x40');
+  const std::string lp = "1\r\njpeg-exports\\IMG_0001.jpg 0 0 1\r\n";
+  fs::create_directories(capture / "finished-files/rtibuilder");
+  std::ofstream(capture / "finished-files/rtibuilder/stela.ptm", std::ios::binary) << ptm;
+  std::ofstream(capture / "assembly-files/stela.lp", std::ios::binary) << lp;
+  std::string xml = slurp(capture / "assembly-files/carrier.xml");
+  const auto where = xml.find("  </files>");
+  REQUIRE(where != std::string::npos);
+  xml.insert(where,
+             "    <file id=\"f90\" path=\"finished-files/rtibuilder/stela.ptm\" role=\"prior\" size=\"" +
+                 std::to_string(ptm.size()) + "\" sha256=\"" + sha256Hex(ptm) +
+                 "\" format=\"PTM_FORMAT_LRGB\" mediaType=\"application/x-ptm\" priorKind=\"rti\" "
+                 "madeBy=\"PTM_1.2 PTM_FORMAT_LRGB\"/>\n"
+                 "    <file id=\"f91\" path=\"assembly-files/stela.lp\" role=\"prior\" size=\"" +
+                 std::to_string(lp.size()) + "\" sha256=\"" + sha256Hex(lp) +
+                 "\" format=\"LP\" mediaType=\"text/plain\" priorKind=\"lp\"/>\n");
+  std::ofstream(capture / "assembly-files/carrier.xml", std::ios::binary) << xml;
+  return sampleOf(capture);
+}
+}  // namespace
+
+TEST_CASE("prior work maps to its own METS group and to objects no Surrogate event made", "[mapping][mets][crm][prior]") {
+  const Sample s = sampleWithPriorWork("prior-work");
+  CHECK_NOTHROW(carrier::parseCarrier(s.carrierXml, "carrier.xml"));  // valid against xsd/carrier.xsd
+  const std::string mets = mapping::deriveMets(s.carrierXml, s.facts);
+  CHECK_NOTHROW(mapping::validateMets(mets, "mets.xml"));
+  const archival::Premis p = archival::readPremis(mets);
+  for (const std::string& problem : archival::linkProblems(p)) FAIL_CHECK(problem);
+  const auto group = mets.find("<mets:fileGrp USE=\"prior-work\">");
+  REQUIRE(group != std::string::npos);
+  const std::string members = mets.substr(group, mets.find("</mets:fileGrp>", group) - group);
+  CHECK(count(members, "<mets:file ") == 2);
+  CHECK(members.find("xlink:href=\"data/finished-files/rtibuilder/stela.ptm\"") != std::string::npos);
+  CHECK(members.find("xlink:href=\"data/assembly-files/stela.lp\"") != std::string::npos);
+  CHECK(mets.find("<premis:significantPropertiesValue>PTM_1.2 PTM_FORMAT_LRGB</premis:significantPropertiesValue>") != std::string::npos);
+  CHECK(mets.find("<premis:significantPropertiesValue>not known: the file does not say</premis:significantPropertiesValue>") != std::string::npos);
+  // Derived from nothing on record: the result the sample's RtiFit made still is, the prior
+  // .ptm is not.
+  for (const std::string& problem : archival::derivationProblems(p, {"data/finished-files/ptm-lrgb.ptm"})) FAIL_CHECK(problem);
+  CHECK(archival::derivationProblems(p, {"data/finished-files/rtibuilder/stela.ptm"}) ==
+        std::vector<std::string>{"data/finished-files/rtibuilder/stela.ptm has no PREMIS path back to a photograph"});
+
+  const std::string crm = mapping::deriveCrm(s.carrierXml);
+  const std::vector<archival::Triple> triples = archival::rdfTriples(crm, s.capture.parent_path().string());
+  for (const std::string& problem :
+       archival::crmTermProblems(triples, std::string(SURROGATE_SOURCE_DIR) + "/tests/mapping/data/crm-terms.tsv"))
+    FAIL_CHECK(problem);
+  for (const std::string& problem : archival::crmDerivationProblems(triples)) FAIL_CHECK(problem);
+  CHECK(crm.find("the file says of its making: PTM_1.2 PTM_FORMAT_LRGB") != std::string::npos);
+  CHECK(crm.find("prior work (lp): made outside Surrogate") != std::string::npos);
+}

@@ -36,12 +36,27 @@ class FailingStage : public Stage {
   }
 };
 
+// Reports the start of two parts of its work and a milestone of the second, not their ends;
+// with the "fail" parameter, stops after the first part's start.
+class ReportingStage : public Stage {
+ public:
+  std::string component() const override { return "TestReporting"; }
+  std::string version() const override { return "1"; }
+  void run(const carrier::Step& step, Context& ctx, carrier::Result&) override {
+    ctx.progress("Reading", 0);
+    if (step.hasParam("fail")) throwInputError("IMG_0001.jpg", "test", "is broken");
+    ctx.progress("Measuring", 0);
+    ctx.progress("Measuring", 0.5);
+  }
+};
+
 void registerTestStages() {
   static bool done = false;
   if (done) return;
   done = true;
   StageRegistry::instance().add("TestDoubling", [] { return std::make_unique<DoublingStage>(); });
   StageRegistry::instance().add("TestFailing", [] { return std::make_unique<FailingStage>(); });
+  StageRegistry::instance().add("TestReporting", [] { return std::make_unique<ReportingStage>(); });
 }
 
 }  // namespace
@@ -180,4 +195,21 @@ TEST_CASE("the runner checks a step's parameters with its stage's options before
   }
   REQUIRE(c.data.size() == 1);
   CHECK(c.data[0].status == "failed");
+}
+
+TEST_CASE("the runner ends each part of a step's progress at 100 percent, once the step goes on or completes") {
+  registerTestStages();
+  carrier::Carrier c = carrier::newCarrier("runner", {});
+  c.addStep("TestReporting", "1");
+  c.addStep("TestReporting", "1").setParam("fail", "yes");
+  std::vector<std::pair<std::string, double>> seen;
+  RunSettings settings;
+  settings.progress = [&seen](const std::string& label, double f) { seen.emplace_back(label, f); };
+  Context ctx(fs::temp_directory_path(), c, settings);
+  CHECK_THROWS_AS(runProcess(ctx, {}), Error);
+  const std::vector<std::pair<std::string, double>> expected = {
+      {"Reading", 0}, {"Reading", 1}, {"Measuring", 0}, {"Measuring", 0.5}, {"Measuring", 1},
+      {"Reading", 0}};  // the failed step's part is not said to be done
+  CHECK(seen == expected);
+  CHECK(ctx.settings.progress);  // the caller's callback is back in place after the failure
 }

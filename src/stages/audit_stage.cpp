@@ -1,0 +1,191 @@
+#include "stages/audit_stage.h"
+
+#include <array>
+#include <cmath>
+
+#include "audit/audit.h"
+#include "capture/capture.h"
+#include "core/error.h"
+#include "core/text.h"
+#include "pipeline/context.h"
+#include "stages/inputs.h"
+#include "stages/light_stages.h"
+#include "stages/outputs.h"
+#include "stages/prior_work.h"
+
+namespace surrogate::stages {
+
+namespace fs = std::filesystem;
+
+namespace {
+constexpr const char* kThresholdParameter = "angleThresholdDegrees";
+constexpr const char* kMarginParameter = "reproducedMarginDb";
+// The difference images: one per prior model, named after it (audit::AuditOptions).
+constexpr const char* kDifferenceFolder = "assembly-files/audit";
+
+double parameterNumber(const std::string& name, const std::string& value, double low, double high) {
+  try {
+    std::size_t used = 0;
+    const double v = std::stod(value, &used);
+    if (used == value.size() && std::isfinite(v) && v >= low && v < high) return v;
+  } catch (const std::exception&) {
+  }
+  throw Error(ErrorKind::Input, name + "=" + value, "audit",
+              "must be a number from " + formatNumber(low) + " up to " + formatNumber(high));
+}
+
+bool isAudited(const std::string& kind) { return kind == "lp" || kind == "rti"; }
+
+std::string captureRelative(const fs::path& p, const fs::path& capture) {
+  return p.lexically_relative(capture).generic_string();
+}
+
+// Paths of the report relative to the capture, as the carrier lists the files.
+void relativise(audit::AuditReport& report, const fs::path& capture) {
+  const auto rel = [&](fs::path& p) {
+    if (!p.empty()) p = captureRelative(p, capture);
+  };
+  for (auto& l : report.lights) rel(l.file);
+  for (auto& m : report.models) {
+    rel(m.file);
+    rel(m.lightFile);
+  }
+  for (auto& v : report.verdicts) {
+    rel(v.model);
+    rel(v.lightFile);
+  }
+}
+
+// Runs the audit; a prior file that cannot be read as what its name says (a damaged .ptm, an
+// .lp naming images ambiguously) is left out, with the reason recorded and logged, so that
+// another tool's broken file never stops the processing of the photographs.
+audit::AuditReport auditReadable(audit::AuditInputs& in, const audit::AuditOptions& options,
+                                 const carrier::Step& step, pipeline::Context& ctx) {
+  std::vector<audit::AuditReport::NotAudited> left;
+  for (;;) {
+    try {
+      audit::AuditReport report = audit::runAudit(in, options);
+      report.notAudited = left;
+      return report;
+    } catch (const Error& e) {
+      bool dropped = false;
+      for (auto* list : {&in.priorLightFiles, &in.priorModels})
+        for (auto it = list->begin(); it != list->end() && !dropped; ++it) {
+          if (it->string() != e.file()) continue;
+          const std::string relative = captureRelative(*it, ctx.capture);
+          left.push_back({relative, e.message()});
+          ctx.carrier.addLog("warning", step.id, relative + " is not audited: " + e.message());
+          list->erase(it);
+          dropped = true;
+          break;
+        }
+      if (!dropped) throw;
+    }
+  }
+}
+
+// Lights from a dome's .lp are not an independent estimate: the audit compares the fit only.
+bool lightsFromSpheres(const carrier::Carrier& c) {
+  for (const carrier::Step& s : c.process)
+    if (s.component == LightsFromFileStage::kComponent) return false;
+  return true;
+}
+}  // namespace
+
+pipeline::Parameters AuditStageOptions::toParameters() const {
+  return {{kThresholdParameter, formatNumber(angleThresholdDegrees)},
+          {kMarginParameter, formatNumber(reproducedMarginDb)}};
+}
+
+AuditStageOptions AuditStageOptions::fromParameters(const pipeline::Parameters& parameters) {
+  AuditStageOptions o;
+  for (const auto& [name, value] : parameters) {
+    if (name == kThresholdParameter) o.angleThresholdDegrees = parameterNumber(name, value, 0, 180);
+    else if (name == kMarginParameter) o.reproducedMarginDb = parameterNumber(name, value, 0, 100);
+    else
+      throw Error(ErrorKind::Input, name + "=" + value, "audit",
+                  std::string("is not a parameter of Audit (") + kThresholdParameter + ", " + kMarginParameter + ")");
+  }
+  if (!(o.angleThresholdDegrees > 0))
+    throw Error(ErrorKind::Input, std::string(kThresholdParameter) + "=0", "audit", "must be more than 0 degrees");
+  return o;
+}
+
+pipeline::StageInfo AuditStage::info() {
+  // Version 1: light angles, model errors against the photographs, refits, clipped planes and
+  // the verdict as docs/hrti-math.md "Auditing a prior RTI" defines them.
+  pipeline::StageInfo info = pipeline::withOptions<AuditStageOptions>(
+      {kComponent, "1",
+       "Audit of prior work: its light file against Surrogate's lights, its model against the "
+       "photographs beside Surrogate's refits, and a verdict",
+       pipeline::PlanSlot::PriorWork});
+  info.outputs = [](const carrier::Step&) {
+    return std::vector<std::string>{std::string(kDifferenceFolder) + "/*-difference.png"};
+  };
+  return info;
+}
+
+void AuditStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier::Result& result) {
+  const AuditStageOptions recorded = AuditStageOptions::fromParameters(parametersOf(step));
+  // The frames as decoded, not as cropped or resized for Surrogate's fit: another tool fitted
+  // the whole frames (a crop of its own shows as a size that differs).
+  const auto rgb = ctx.get<ImageStack>(ctx.has(kDecodedRgbStack) ? kDecodedRgbStack : kRgbStack);
+  const auto lights = ctx.get<std::vector<std::array<double, 3>>>(kLights);
+  const auto inputs = ctx.get<InputImages>(kInputImages);
+  ctx.progress("Auditing prior work", 0);
+
+  audit::AuditInputs in;
+  audit::RecordedIds ids;
+  for (const carrier::FileRecord& f : ctx.carrier.files) {
+    if (f.role != "prior" || !isAudited(f.priorKind)) continue;
+    (f.priorKind == "lp" ? in.priorLightFiles : in.priorModels).push_back(ctx.capture / fs::u8path(f.path));
+    ids.priorFiles[f.path] = f.id;
+  }
+  if (in.priorLightFiles.empty() && in.priorModels.empty())
+    throw Error(ErrorKind::Input, "carrier", "audit",
+                "the carrier lists no prior light file or result (.lp, .ptm, .rti) to audit");
+  for (const InputImage& image : *inputs) {
+    in.photographs.files.push_back(ctx.capture / fs::u8path(image.relativePath));
+    ids.photographs[fs::u8path(image.relativePath).filename().u8string()] = image.fileId;
+  }
+  in.photographs.stack = rgb.get();
+  if (lightsFromSpheres(ctx.carrier)) in.surrogateLights = *lights;
+
+  audit::AuditOptions options;
+  options.angleThresholdDegrees = recorded.angleThresholdDegrees;
+  options.reproducedDb = recorded.reproducedMarginDb;
+  options.threads = ctx.settings.threads;
+  options.memoryBudgetBytes = ctx.settings.fitBudget();
+  options.differenceFolder = ctx.outputPath(kDifferenceFolder);
+  fs::create_directories(options.differenceFolder);
+  audit::AuditReport report = auditReadable(in, options, step, ctx);
+
+  for (audit::ModelCheck& m : report.models) {
+    if (m.differenceImage.empty()) continue;
+    const std::string relative = std::string(kDifferenceFolder) + "/" + m.differenceImage.filename().u8string();
+    recordOutput(ctx, step, result, checkedOutputPath(relative), "assembly", "PNG", "difference", "image/png");
+    m.differenceImage = relative;
+  }
+  relativise(report, ctx.capture);
+  audit::recordAudit(report, ids, result);
+  for (const audit::Verdict& v : report.verdicts)
+    ctx.carrier.addLog("info", step.id, "audit of " + (v.model.empty() ? v.lightFile : v.model).generic_string() +
+                                            ": " + v.sentence);
+  ctx.progress("Auditing prior work", 1);
+}
+
+std::vector<std::string> priorWorkToAudit(const fs::path& capture, const carrier::Carrier* previous,
+                                          const std::vector<std::string>& planned) {
+  std::vector<std::string> out;
+  for (const std::string& path : capture::listOutputFolderFiles(capture)) {
+    if (!isPriorWork(path, previous, planned)) continue;
+    const carrier::FileRecord* known = previous ? previous->findFileByPath(path) : nullptr;
+    const std::string kind = known && known->role == "prior" && !known->priorKind.empty()
+                                 ? known->priorKind
+                                 : describePriorFile(capture / fs::u8path(path), path).kind;
+    if (isAudited(kind)) out.push_back(path);
+  }
+  return out;
+}
+
+}  // namespace surrogate::stages

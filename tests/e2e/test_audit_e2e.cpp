@@ -1,0 +1,308 @@
+// Issue 17 (the audit): a generated capture laid out as RTIBuilder leaves it, with prior work
+// written here without Surrogate's code: an .lp (Windows paths, CRLF, a blank line) of the
+// generator's true lights with three of them tilted by exactly 6 degrees, a PTM fitted with
+// those lights by the independent writer of tests/audit/prior_rti.h with a clamped bias, and a
+// log XML. `run` plans an Audit step; `audit --json` names exactly the tilted images, gives both
+// PSNRs, flags the bias and states the verdict; `pack` then `verify --reexecute` is SOUND, and
+// a changed audit figure in the packed carrier is not.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <array>
+#include <fstream>
+#include <map>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include "../audit/prior_rti.h"
+#include "bag_check.h"
+#include "e2e_support.h"
+
+namespace fs = std::filesystem;
+using namespace surrogate;
+
+namespace {
+
+constexpr int kImages = 12;
+constexpr double kTiltDegrees = 6;
+// Surrogate's lights from the generated sphere agree with the generator's truth to about half a
+// degree (measured: median 0.4, max 0.9 on this capture); the tilted images are 6 degrees off.
+constexpr double kAngleTolerance = 1.5;
+const std::set<int> kTilted = {2, 5, 8};  // IMG_0003, IMG_0006, IMG_0009
+
+struct TrueLight {
+  std::string image;  // jpeg-exports/IMG_0001.jpg
+  test::Light light;
+};
+
+// truth/lights.lp as the generator writes it: a count, then "path x y z" per image.
+std::vector<TrueLight> trueLights(const fs::path& capture) {
+  std::ifstream in(capture / "truth" / "lights.lp");
+  int n = 0;
+  in >> n;
+  std::vector<TrueLight> out(n);
+  for (TrueLight& t : out) in >> t.image >> t.light[0] >> t.light[1] >> t.light[2];
+  return out;
+}
+
+std::string fileName(const std::string& path) { return fs::path(path).filename().string(); }
+
+// The photographs as 16-bit RGB (8-bit values widened *257), decoded with OpenCV.
+std::vector<Image> photographs(const fs::path& capture, const std::vector<TrueLight>& lights) {
+  std::vector<Image> out;
+  for (const TrueLight& t : lights) {
+    const cv::Mat bgr = cv::imread((capture / t.image).string(), cv::IMREAD_COLOR);
+    REQUIRE(!bgr.empty());
+    Image im(bgr.cols, bgr.rows, 3);
+    for (int y = 0; y < bgr.rows; ++y)
+      for (int x = 0; x < bgr.cols; ++x)
+        for (int c = 0; c < 3; ++c) im.at(x, y, c) = static_cast<std::uint16_t>(bgr.at<cv::Vec3b>(y, x)[2 - c] * 257);
+    out.push_back(std::move(im));
+  }
+  return out;
+}
+
+// The prior PTM: the independent writer's file (tests/audit/prior_rti.h, each plane's range
+// widened to include 0), with the constant term a5 written as a writer that clamps every bias
+// to 128 would: the scale of the plane's range kept, so that every texel above half of it
+// saturates at byte 255.
+constexpr int kClampedBias = 128;
+std::string clampedBiasPtm(const test::PriorPtm& p) {
+  const std::string text = test::ptmText(p, test::BiasRule::WithZero);
+  std::vector<std::string> header;
+  std::size_t at = 0;
+  for (int line = 0; line < 6; ++line) {
+    const std::size_t end = text.find('\n', at);
+    header.push_back(text.substr(at, end - at));
+    at = end + 1;
+  }
+  std::istringstream scales(header[4]), biases(header[5]);
+  std::array<double, 6> scale{};
+  std::array<int, 6> bias{};
+  for (int k = 0; k < 6; ++k) scales >> scale[k];
+  for (int k = 0; k < 6; ++k) biases >> bias[k];
+  bias[5] = kClampedBias;
+  std::string payload = text.substr(at);
+  for (int y = 0; y < p.h; ++y)
+    for (int x = 0; x < p.w; ++x) {
+      const std::size_t texel = static_cast<std::size_t>(p.h - 1 - y) * p.w + x;  // bottom row first
+      const double byte = std::lround(p.a[y * p.w + x][5] / scale[5] + kClampedBias);
+      payload[texel * 6 + 5] = static_cast<char>(static_cast<std::uint8_t>(std::clamp(byte, 0.0, 255.0)));
+    }
+  std::string out;
+  for (int line = 0; line < 5; ++line) out += header[line] + "\n";
+  for (int k = 0; k < 6; ++k) out += std::to_string(bias[k]) + (k < 5 ? " " : "\n");
+  return out + payload;
+}
+
+// The capture with RTIBuilder's prior work: stela.lp, stela.ptm, stela_log.xml.
+fs::path rtibuilderCapture(const std::string& name) {
+  const fs::path capture = e2e::freshDir(name) / "capture";
+  const e2e::CommandResult g = e2e::runShell(std::string(GENERATOR_EXE) + " --out " + e2e::quote(capture) +
+                                             " --images " + std::to_string(kImages) +
+                                             " --width 400 --height 300 --sphere-radius 45 --seed 7 --formats jpeg");
+  REQUIRE(g.exitCode == 0);
+  const std::vector<TrueLight> truth = trueLights(capture);
+  REQUIRE(truth.size() == kImages);
+  std::vector<test::Light> prior;
+  std::ostringstream lp;
+  lp.precision(9);
+  lp << kImages << "\r\n";
+  for (int i = 0; i < kImages; ++i) {
+    prior.push_back(kTilted.count(i) ? test::tilted(truth[i].light, kTiltDegrees) : truth[i].light);
+    lp << "jpeg-exports\\" << fileName(truth[i].image) << " " << prior[i][0] << " " << prior[i][1] << " "
+       << prior[i][2] << "\r\n";
+  }
+  lp << "\r\n";
+  fs::create_directories(capture / "assembly-files");
+  fs::create_directories(capture / "finished-files");
+  test::writeText((capture / "assembly-files" / "stela.lp").string(), lp.str());
+  test::writeText((capture / "assembly-files" / "stela_log.xml").string(),
+                  "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\r\n<RTIBuilderLog version=\"2.0.2\">\r\n"
+                  "  <step name=\"PTMFitter\" basis=\"LRGB\"/>\r\n</RTIBuilderLog>\r\n");
+  const test::PriorPtm ptm = test::fitPrior(photographs(capture, truth), prior);
+  test::writeText((capture / "finished-files" / "stela.ptm").string(), clampedBiasPtm(ptm));
+  return capture;
+}
+
+// The JSON array after `"key":[` up to its closing bracket (the arrays read here hold objects
+// without arrays inside).
+std::string jsonArray(const std::string& json, const std::string& key) {
+  const std::string open = "\"" + key + "\":[";
+  const auto start = json.find(open);
+  REQUIRE(start != std::string::npos);
+  return json.substr(start + open.size(), json.find(']', start) - start - open.size());
+}
+
+double jsonNumber(const std::string& json, const std::string& key) {
+  std::smatch m;
+  REQUIRE(std::regex_search(json, m, std::regex("\"" + key + "\":(-?[0-9.]+)")));
+  return std::stod(m[1]);
+}
+
+// A file of the bag rewritten with as many bytes (Payload-Oxum stays right), its digests in the
+// manifests and theirs in the tag manifests updated, so that only the content tells.
+void rewriteInBag(const fs::path& bag, const std::string& path, const std::string& bytes) {
+  const std::string before = e2e::bytesOf(bag / path);
+  REQUIRE(before.size() == bytes.size());
+  const auto digest = [](const std::string& algorithm, const std::string& b) {
+    return algorithm == "sha256" ? bagcheck::sha256(b) : bagcheck::sha512(b);
+  };
+  const auto replace = [&](const std::string& manifest, const std::string& from, const std::string& to) {
+    std::string text = e2e::bytesOf(bag / manifest);
+    const auto at = text.find(from);
+    REQUIRE(at != std::string::npos);
+    test::writeText((bag / manifest).string(), text.replace(at, from.size(), to));
+  };
+  test::writeText((bag / path).string(), bytes);
+  std::map<std::string, std::string> manifestsBefore;
+  for (const std::string algorithm : {"sha256", "sha512"}) {
+    const std::string manifest = "manifest-" + algorithm + ".txt";
+    manifestsBefore[manifest] = e2e::bytesOf(bag / manifest);
+    replace(manifest, digest(algorithm, before), digest(algorithm, bytes));
+  }
+  for (const std::string algorithm : {"sha256", "sha512"})
+    for (const auto& [manifest, old] : manifestsBefore)
+      replace("tagmanifest-" + algorithm + ".txt", digest(algorithm, old), digest(algorithm, e2e::bytesOf(bag / manifest)));
+}
+
+}  // namespace
+
+TEST_CASE("audit names the tilted prior lights and the clamped bias of an RTIBuilder layout", "[e2e][audit]") {
+  const fs::path capture = rtibuilderCapture("audit");
+  const e2e::CommandResult run = e2e::surrogate("run " + e2e::quote(capture) + " --quiet");
+  REQUIRE(run.exitCode == 0);
+  CHECK(run.output.find("assembly-files/audit/stela-difference.png") != std::string::npos);
+
+  const e2e::CommandResult r = e2e::surrogate("audit " + e2e::quote(capture) + " --json");
+  INFO(r.output);
+  REQUIRE(r.exitCode == 0);
+  const std::string& json = r.output;
+  CHECK(json.find("\"ran\":false") != std::string::npos);  // printed from the recorded step
+  CHECK(json.find("\"file\":\"assembly-files/stela.lp\"") != std::string::npos);
+
+  // Exactly the tilted images, each about 6 degrees off.
+  const std::string above = jsonArray(json, "aboveThreshold");
+  const std::regex entry("\"image\":\"([^\"]+)\",\"degrees\":([0-9.]+)");
+  std::set<std::string> named;
+  for (std::sregex_iterator it(above.begin(), above.end(), entry), end; it != end; ++it) {
+    named.insert((*it)[1]);
+    CHECK(std::stod((*it)[2]) == Approx(kTiltDegrees).margin(kAngleTolerance));
+  }
+  CHECK(named == std::set<std::string>{"IMG_0003.jpg", "IMG_0006.jpg", "IMG_0009.jpg"});
+  CHECK(jsonNumber(json, "medianDegrees") < kAngleTolerance);
+
+  // Both PSNRs, the clamped bias, the verdict.
+  const std::string models = json.substr(json.find("\"models\":"));
+  CHECK(models.find("\"file\":\"finished-files/stela.ptm\"") != std::string::npos);
+  const double prior = jsonNumber(models.substr(models.find("\"prior\":")), "psnr");
+  const double refit = jsonNumber(models.substr(models.find("\"refitPriorLights\":")), "psnr");
+  const double own = jsonNumber(models.substr(models.find("\"refitSurrogateLights\":")), "psnr");
+  CHECK(prior > 10);
+  CHECK(refit - prior > 1.0);  // the clamped bias costs the prior more than a dB
+  CHECK(own > 20);
+  CHECK(models.find("\"quantisation\":{\"clamped\":true") != std::string::npos);
+  const std::string verdicts = json.substr(json.find("\"verdicts\":"));
+  CHECK(verdicts.find("\"reproduced\":false") != std::string::npos);
+  CHECK(verdicts.find("\"cause\":\"broken-bias\"") != std::string::npos);
+  CHECK(verdicts.find("\"cause\":\"different-lights\"") != std::string::npos);
+  CHECK(verdicts.find("IMG_0006.jpg") != std::string::npos);
+
+  // The text form says the same, and the report has the section and the prior lights.
+  const e2e::CommandResult text = e2e::surrogate("audit " + e2e::quote(capture));
+  CHECK(text.exitCode == 0);
+  CHECK(text.output.find("3 above 2.0: IMG_0003.jpg") != std::string::npos);
+  CHECK(text.output.find("verdict (stela.ptm): not reproduced") != std::string::npos);
+  const std::string report = e2e::bytesOf(capture / "finished-files" / "report.html");
+  CHECK(report.find("<section id=\"audit\"><h2>Audit of prior work</h2>") != std::string::npos);
+  std::size_t off = 0, crosses = 0;
+  for (std::size_t at = report.find("class=\"prior-light"); at != std::string::npos;
+       at = report.find("class=\"prior-light", at + 1)) {
+    ++crosses;
+    off += report.compare(at, 22, "class=\"prior-light off") == 0;
+  }
+  CHECK(crosses == kImages);
+  CHECK(off == kTilted.size());
+}
+
+TEST_CASE("audit with another threshold runs the Audit step again and records it", "[e2e][audit]") {
+  const fs::path capture = rtibuilderCapture("audit-threshold");
+  REQUIRE(e2e::surrogate("run " + e2e::quote(capture) + " --quiet").exitCode == 0);
+  const e2e::CommandResult r = e2e::surrogate("audit " + e2e::quote(capture) + " --json --threshold 10");
+  INFO(r.output);
+  REQUIRE(r.exitCode == 0);
+  CHECK(r.output.find("\"ran\":true") != std::string::npos);
+  CHECK(jsonArray(r.output, "aboveThreshold").empty());
+  const std::string carrier = e2e::bytesOf(capture / "assembly-files" / "carrier.xml");
+  CHECK(carrier.find("<param name=\"angleThresholdDegrees\" value=\"10\"/>") != std::string::npos);
+  CHECK(carrier.find("command=\"audit\"") != std::string::npos);
+  // The threshold stands: asked again without it, the recorded audit is printed.
+  const e2e::CommandResult again = e2e::surrogate("audit " + e2e::quote(capture) + " --json");
+  CHECK(again.output.find("\"ran\":false") != std::string::npos);
+}
+
+TEST_CASE("audit on a capture never run or without prior work says so", "[e2e][audit]") {
+  const fs::path capture = e2e::smallCapture(e2e::freshDir("audit-none"), 8);
+  const e2e::CommandResult never = e2e::surrogate("audit " + e2e::quote(capture));
+  CHECK(never.exitCode == 2);
+  CHECK(never.output.find("surrogate run") != std::string::npos);
+  REQUIRE(e2e::surrogate("run " + e2e::quote(capture) + " --quiet").exitCode == 0);
+  CHECK(e2e::bytesOf(capture / "assembly-files" / "carrier.xml").find("component=\"Audit\"") == std::string::npos);
+  const e2e::CommandResult none = e2e::surrogate("audit " + e2e::quote(capture));
+  CHECK(none.exitCode == 0);
+  CHECK(none.output.find("no prior work to audit") != std::string::npos);
+}
+
+TEST_CASE("a packed audit re-executes SOUND and a changed audit figure does not", "[e2e][audit]") {
+  const fs::path capture = rtibuilderCapture("audit-pack");
+  const fs::path bag = capture.parent_path() / "bag";
+  REQUIRE(e2e::surrogate("pack " + e2e::quote(capture) + " -o " + e2e::quote(bag) + " --quiet").exitCode == 0);
+  const e2e::CommandResult sound = e2e::surrogate("verify " + e2e::quote(bag) + " --reexecute --threads 1");
+  INFO(sound.output);
+  CHECK(sound.exitCode == 0);
+  CHECK(sound.output.find("SOUND") != std::string::npos);
+  std::smatch step;
+  REQUIRE(std::regex_search(sound.output, step, std::regex("ok +reexecute\\.(s[0-9]+)\\.Audit +reproduced exactly")));
+
+  // The recorded median angle of the prior light file, changed in the bag's carrier.
+  const std::string carrierPath = "data/assembly-files/carrier.xml";
+  std::string carrier = e2e::bytesOf(bag / carrierPath);
+  std::smatch median;
+  REQUIRE(std::regex_search(carrier, median, std::regex("name=\"medianDegrees\" value=\"([0-9.]+)([0-9])\"")));
+  const char last = median[2].str()[0] == '1' ? '2' : '1';  // one digit changed: same size
+  carrier[median.position(2)] = last;
+  rewriteInBag(bag, carrierPath, carrier);
+  const e2e::CommandResult tampered = e2e::surrogate("verify " + e2e::quote(bag) + " --reexecute --threads 1");
+  INFO(tampered.output);
+  CHECK(tampered.exitCode != 0);
+  CHECK(tampered.output.find("SOUND:") == std::string::npos);
+  CHECK(std::regex_search(tampered.output, std::regex("FAIL +reexecute\\." + step[1].str() + "\\.Audit")));
+  CHECK(tampered.output.find("medianDegrees") != std::string::npos);
+}
+
+TEST_CASE("a prior file that cannot be read is left out of the audit and the run goes on", "[e2e][audit]") {
+  const fs::path capture = e2e::smallCapture(e2e::freshDir("audit-broken"), 8);
+  fs::create_directories(capture / "finished-files");
+  // A PTM_1.2 header cut off after the width (docs/formats.md, "Header": six lines).
+  test::writeText((capture / "finished-files" / "old.ptm").string(), "PTM_1.2\nPTM_FORMAT_LRGB\n400\n");
+  const e2e::CommandResult run = e2e::surrogate("run " + e2e::quote(capture) + " --quiet");
+  INFO(run.output);
+  REQUIRE(run.exitCode == 0);
+  const e2e::CommandResult r = e2e::surrogate("audit " + e2e::quote(capture) + " --json");
+  INFO(r.output);
+  CHECK(r.exitCode == 0);
+  CHECK(r.output.find("\"notAudited\":[{\"file\":\"finished-files/old.ptm\",\"reason\":\"") != std::string::npos);
+  CHECK(r.output.find("\"models\":[]") != std::string::npos);
+  CHECK(e2e::bytesOf(capture / "finished-files" / "old.ptm") == "PTM_1.2\nPTM_FORMAT_LRGB\n400\n");
+}
+
+TEST_CASE("help audit and audit --help print the same help", "[e2e][audit]") {
+  const e2e::CommandResult help = e2e::surrogate("help audit");
+  CHECK(help.exitCode == 0);
+  CHECK(help.output.find("usage: surrogate audit CAPTURE") != std::string::npos);
+  CHECK(help.output.find("--threshold DEG") != std::string::npos);
+  CHECK(help.output == e2e::surrogate("audit --help").output);
+}

@@ -1,0 +1,231 @@
+// What `surrogate info`, `help` and `run` say to a user (issue 16): camera metadata of real
+// files as a photographer reads it, a carrier's decisions with who, when, why and what, a
+// capture of exports alone, every command's help, and a folder that is not a capture refused
+// before anything is written in it.
+//
+// The expected camera values are what `exiv2 -pa` / `exiv2 -pv` (0.27.6) print for each file
+// of tests/data (quoted beside each check), written the way photographers write them.
+#include <catch2/catch.hpp>
+
+#include <fstream>
+
+#include "e2e_support.h"
+
+namespace fs = std::filesystem;
+using Catch::Contains;
+
+namespace {
+
+fs::path fixture(const std::string& name) { return fs::path(SURROGATE_SOURCE_DIR) / "tests/data" / name; }
+
+e2e::CommandResult info(const fs::path& file, const std::string& options = "") {
+  return e2e::surrogate("info " + e2e::quote(file) + options);
+}
+
+// Every entry (files and folders) under `root`, by relative path: what `run` left behind.
+std::vector<std::string> listing(const fs::path& root) {
+  std::vector<std::string> out;
+  for (const auto& entry : fs::recursive_directory_iterator(root))
+    out.push_back(fs::relative(entry.path(), root).generic_string());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("info on the Canon EOS D30 raw shows the camera once and the recorded lens range and f/5.6 and an ISO date") {
+  const e2e::CommandResult r = info(fixture("raw-real/canon-eos-d30.crw"));
+  INFO(r.output);
+  REQUIRE(r.exitCode == 0);
+  CHECK_THAT(r.output, Contains("  camera:      Canon EOS D30, serial 123502474\n"));
+  CHECK_THAT(r.output, !Contains("Canon Canon"));
+  // Exif.CanonCs.Lens 16.0 - 35.0 mm; Exif.CanonCs.LensType's reading is a 70-200 mm lens.
+  CHECK_THAT(r.output, Contains("  lens:        16-35 mm (recorded focal range; the lens code reads as "
+                                "Canon EF 70-200mm f/2.8L IS II USM, which does not match it)\n"));
+  CHECK_THAT(r.output, Contains("  exposure:    31 mm, f/5.6, 1 s, ISO 100\n"));  // F5.7 = 2828427/500000
+  CHECK_THAT(r.output, Contains("  taken:       2018-01-01T13:03:32\n"));
+  CHECK_THAT(r.output, !Contains("5.65685"));
+
+  const e2e::CommandResult j = info(fixture("raw-real/canon-eos-d30.crw"), " --json");
+  INFO(j.output);
+  REQUIRE(j.exitCode == 0);
+  CHECK_THAT(j.output, Contains("\"decodable\":true"));
+  CHECK_THAT(j.output, Contains("\"focalLengthMm\":31,"));
+  CHECK_THAT(j.output, Contains("\"fNumber\":5.656854,"));  // 2828427/500000, exactly
+  CHECK_THAT(j.output, Contains("\"lensFocalRangeMm\":[16,35]"));
+  CHECK_THAT(j.output, Contains("\"iso\":100,"));
+  CHECK_THAT(j.output, Contains("\"dateTimeOriginal\":\"2018-01-01T13:03:32\""));
+  CHECK_THAT(j.output, Contains("\"aperture\":\"f/5.6\""));
+  CHECK_THAT(j.output, Contains("\"camera\":\"Canon EOS D30\""));
+}
+
+TEST_CASE("info on a Sony JPEG omits the serial and lens it does not record") {
+  const e2e::CommandResult r = info(fixture("raw-metadata/DSC_3079.jpg"));
+  INFO(r.output);
+  REQUIRE(r.exitCode == 0);
+  CHECK_THAT(r.output, Contains("  camera:      Sony D5803\n"));
+  CHECK_THAT(r.output, !Contains("serial") && !Contains("lens:"));
+  CHECK_THAT(r.output, Contains("  exposure:    4.6 mm, f/2, 1/32 s, ISO 64\n"));
+  CHECK_THAT(r.output, Contains("  XMP:         3179 bytes\n"));
+  const e2e::CommandResult j = info(fixture("raw-metadata/DSC_3079.jpg"), " --json");
+  CHECK_THAT(j.output, !Contains("\"serial\"") && !Contains("\"lens\""));
+  CHECK_THAT(j.output, Contains("\"focalLengthMm\":4.6,") && Contains("\"fNumber\":2,"));
+}
+
+TEST_CASE("files Exiv2 reads but LibRaw cannot decode have their metadata shown and the refusal stated apart") {
+  const e2e::CommandResult dng = info(fixture("raw-metadata/IMG_1361.dng"));
+  INFO(dng.output);
+  CHECK(dng.exitCode == 0);
+  CHECK_THAT(dng.output, Contains("  camera:      Apple iPhone 12 Pro\n"));
+  CHECK_THAT(dng.output, Contains("  exposure:    4.2 mm, f/1.6, 1/5556 s, ISO 32\n"));
+  CHECK_THAT(dng.output, Contains("  taken:       2020-12-29T14:24:45-05:00\n"));  // OffsetTimeOriginal -05:00
+  CHECK_THAT(dng.output, Contains("\n  decoding:    refused: ") && Contains("truncated"));
+
+  const e2e::CommandResult cr3 = info(fixture("raw-metadata/Canon-R6-pruned.CR3"));
+  INFO(cr3.output);
+  CHECK(cr3.exitCode == 0);
+  CHECK_THAT(cr3.output, Contains("  camera:      Canon EOS R6, serial 093022004357\n"));
+  CHECK_THAT(cr3.output, Contains("  lens:        RF70-200mm F2.8 L IS USM\n"));
+  CHECK_THAT(cr3.output, Contains("  exposure:    200 mm, f/25, 1/4 s, ISO 100\n"));
+  CHECK_THAT(cr3.output, Contains("  taken:       2021-05-12T12:21:21+02:00\n"));
+  CHECK_THAT(cr3.output, Contains("\n  decoding:    refused: ") && Contains("CR3"));
+
+  const e2e::CommandResult j = info(fixture("raw-metadata/Canon-R6-pruned.CR3"), " --json");
+  INFO(j.output);
+  CHECK(j.exitCode == 0);
+  CHECK_THAT(j.output, Contains("\"decodable\":false,\"decodeProblem\":\""));
+  CHECK_THAT(j.output, Contains("\"focalLengthMm\":200,") && Contains("\"fNumber\":25,"));
+  CHECK_THAT(j.output, Contains("\"offsetTimeOriginal\":\"+02:00\""));
+
+  // Neither pixels nor metadata: still bad input.
+  const fs::path dir = e2e::freshDir("info-not-image");
+  std::ofstream(dir / "notes.jpg") << "not a picture";
+  CHECK(info(dir / "notes.jpg").exitCode == 1);
+}
+
+TEST_CASE("info describes an XMP sidecar as a sidecar") {
+  const e2e::CommandResult r = info(fixture("raw-metadata/StaffPhotographer-Example.xmp"));
+  INFO(r.output);
+  REQUIRE(r.exitCode == 0);
+  CHECK_THAT(r.output, Contains(": XMP sidecar ("));
+  CHECK_THAT(r.output, Contains("  written by:  Adobe Photoshop CS Windows\n"));  // Xmp.xmp.CreatorTool
+  CHECK_THAT(r.output, Contains("  creator:     John Doe\n"));
+  CHECK_THAT(r.output, !Contains("unsupported") && !Contains("not an image"));
+  const e2e::CommandResult j = info(fixture("raw-metadata/StaffPhotographer-Example.xmp"), " --json");
+  CHECK_THAT(j.output, Contains("{\"kind\":\"xmp-sidecar\",\"bytes\":10715,\"software\":\"Adobe Photoshop CS Windows\""));
+}
+
+TEST_CASE("info on a carrier lists decisions with what and who and when and why and the exclusions and creators and metadata") {
+  const fs::path capture = e2e::smallCapture(e2e::freshDir("info-carrier"));
+  const std::string c = e2e::quote(capture);
+  REQUIRE(e2e::surrogate("run " + c + " --quiet --title \"Stela 12\" --creator \"Ana Silva:photographer\""
+                         " --meta \"site=Museum store 3\" --rights \"Museum use only\""
+                         " --license https://creativecommons.org/licenses/by/4.0/"
+                         " --exclude IMG_0003 --reason \"the flash did not fire\" --operator \"Ana Silva\"")
+              .exitCode == 0);
+  REQUIRE(e2e::surrogate("run " + c + " --quiet --sphere 339,57,45 --reason \"cut by the frame edge\""
+                         " --operator \"Ben Okafor\"").exitCode == 0);
+
+  const e2e::CommandResult r = info(capture);
+  INFO(r.output);
+  REQUIRE(r.exitCode == 0);
+  CHECK_THAT(r.output, Contains("  title:   Stela 12\n"));
+  CHECK_THAT(r.output, Contains("  photographer: Ana Silva\n"));
+  CHECK_THAT(r.output, Contains("  rights:  Museum use only\n"));
+  CHECK_THAT(r.output, Contains("  licence: https://creativecommons.org/licenses/by/4.0/\n"));
+  CHECK_THAT(r.output, Contains("  metadata: site = Museum store 3\n"));
+  CHECK_THAT(r.output, Contains("    exclude-image IMG_0003 (s1 CaptureIngest): IMG_0003 is left out of every step\n"
+                                "      by Ana Silva, "));
+  CHECK_THAT(r.output, Contains(": the flash did not fire\n"));
+  CHECK_THAT(r.output, Contains("    manual-sphere 0 (s3 SphereDetection): circle of sphere 0 given by hand "
+                                "(x,y,r 339,57,45)\n      by Ben Okafor, "));
+  CHECK_THAT(r.output, Contains("  excluded images: IMG_0003\n"));
+  CHECK_THAT(r.output, Contains("    s1 CaptureIngest v") && Contains(": completed in "));
+  CHECK_THAT(r.output, !Contains("intervention(s)"));
+
+  const e2e::CommandResult j = info(capture, " --json");
+  INFO(j.output);
+  REQUIRE(j.exitCode == 0);
+  CHECK_THAT(j.output, Contains("\"creators\":[{\"name\":\"Ana Silva\",\"role\":\"photographer\"}]"));
+  CHECK_THAT(j.output, Contains("\"rights\":\"Museum use only\",\"license\":\"https://creativecommons.org/licenses/by/4.0/\""));
+  CHECK_THAT(j.output, Contains("\"metadata\":[{\"name\":\"site\",\"value\":\"Museum store 3\"}]"));
+  CHECK_THAT(j.output, Contains("\"exclusions\":[{\"image\":\"IMG_0003\",\"who\":\"Ana Silva\""));
+  CHECK_THAT(j.output, Contains("\"kind\":\"manual-sphere\",\"target\":\"0\",\"value\":\"339,57,45\""));
+  CHECK_THAT(j.output, Contains("\"who\":\"Ben Okafor\""));
+
+  // An older carrier wrote numbers with 17 digits: shown to 0.1 all the same.
+  std::string xml = e2e::bytesOf(capture / "assembly-files/carrier.xml");
+  const std::string recorded = "value=\"339,57,45\"";
+  REQUIRE(xml.find(recorded) != std::string::npos);
+  xml.replace(xml.find(recorded), recorded.size(), "value=\"339.00000000000006,56.999999999999993,45\"");
+  const fs::path old = e2e::freshDir("info-carrier-old") / "carrier.xml";
+  std::ofstream(old, std::ios::binary) << xml;
+  const e2e::CommandResult o = info(old);
+  INFO(o.output);
+  REQUIRE(o.exitCode == 0);
+  CHECK_THAT(o.output, Contains("given by hand (x,y,r 339,57,45)\n"));
+  CHECK_THAT(o.output, !Contains("339.00000000000006"));
+}
+
+TEST_CASE("info on a capture of exports alone calls the exports the originals the pipeline reads") {
+  const fs::path capture = e2e::smallCapture(e2e::freshDir("info-exports"));
+  fs::remove_all(capture / "original-captures");
+  const e2e::CommandResult r = info(capture);
+  INFO(r.output);
+  REQUIRE(r.exitCode == 0);
+  CHECK_THAT(r.output, Contains("  shots:     8 (exports in jpeg-exports/, no raw originals: the exports are "
+                                "the originals the pipeline reads)\n"));
+  CHECK_THAT(r.output, !Contains("0 originals") && !Contains(" in -"));
+  const e2e::CommandResult j = info(capture, " --json");
+  CHECK_THAT(j.output, Contains("\"originals\":0,\"exports\":8,\"originalsFolder\":\"jpeg-exports/\""));
+}
+
+TEST_CASE("info on an .lp shows elevations to 0.1 degree") {
+  const fs::path dir = e2e::freshDir("info-lp");
+  // Directions of elevation asin(0.5) = 30 degrees and asin(0.9) = 64.158... degrees.
+  std::ofstream(dir / "two.lp") << "2\nIMG_0001.jpg 0.866025403784 0 0.5\nIMG_0002.jpg 0.435889894354 0 0.9\n";
+  const e2e::CommandResult r = info(dir / "two.lp");
+  INFO(r.output);
+  REQUIRE(r.exitCode == 0);
+  CHECK_THAT(r.output, Contains("elevation: 30.0 to 64.2 degrees\n"));
+}
+
+TEST_CASE("help COMMAND and COMMAND --help print the help of that command for every command") {
+  for (const char* command : {"run", "pack", "lights", "fit", "render", "info", "report", "verify"}) {
+    const e2e::CommandResult help = e2e::surrogate(std::string("help ") + command);
+    const e2e::CommandResult option = e2e::surrogate(std::string(command) + " --help");
+    INFO(command << "\n" << help.output);
+    CHECK(help.exitCode == 0);
+    CHECK_THAT(help.output, Contains(std::string("usage: surrogate ") + command + " "));
+    CHECK_THAT(help.output, Contains("options:"));
+    CHECK(help.output == option.output);
+  }
+  const e2e::CommandResult unknown = e2e::surrogate("help frobnicate");
+  INFO(unknown.output);
+  CHECK(unknown.exitCode == 2);
+  CHECK_THAT(unknown.output, Contains("\"frobnicate\"") &&
+                                 Contains("run, pack, lights, fit, render, info, report, verify"));
+}
+
+TEST_CASE("run refuses a folder that is not a capture and writes nothing in it") {
+  const fs::path root = e2e::freshDir("run-not-capture");
+  fs::create_directories(root / "notes");
+  std::ofstream(root / "notes/readme.txt") << "a folder of notes\n";
+  fs::create_directories(root / "empty-originals/original-captures");
+  fs::create_directories(root / "loose");
+  fs::copy_file(e2e::smallCapture(e2e::freshDir("run-not-capture-src")) / "jpeg-exports/IMG_0001.jpg",
+                root / "loose/IMG_0001.jpg");
+  for (const char* folder : {"notes", "empty-originals", "loose"}) {
+    const std::vector<std::string> before = listing(root / folder);
+    for (const char* command : {"run", "lights"}) {
+      const std::string output = std::string(command) == "lights" ? " -o " + e2e::quote(root / "out.lp") : "";
+      const e2e::CommandResult r =
+          e2e::surrogate(std::string(command) + " " + e2e::quote(root / folder) + output + " --quiet");
+      INFO(command << " " << folder << "\n" << r.output);
+      CHECK(r.exitCode == 1);
+      CHECK_THAT(r.output, Contains(folder + std::string(": is not a capture folder")));
+      CHECK_THAT(r.output, Contains("original-captures/"));
+      CHECK(listing(root / folder) == before);
+    }
+  }
+}
