@@ -149,7 +149,17 @@ void AuditStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier:
     ids.photographs[fs::u8path(image.relativePath).filename().u8string()] = image.fileId;
   }
   in.photographs.stack = rgb.get();
-  if (lightsFromSpheres(ctx.carrier)) in.surrogateLights = *lights;
+  if (lightsFromSpheres(ctx.carrier)) {
+    in.surrogateLights = *lights;
+  } else if (in.priorLightFiles.empty()) {
+    // A dome capture: its .lp came with the dome and is what a prior fit used too, unless the
+    // prior work brought a light file of its own. The fits are compared at those lights.
+    for (const carrier::FileRecord& f : ctx.carrier.files) {
+      if (f.role != "lp") continue;
+      in.priorLightFiles.push_back(ctx.capture / fs::u8path(f.path));
+      ids.priorFiles[f.path] = f.id;
+    }
+  }
 
   audit::AuditOptions options;
   options.angleThresholdDegrees = recorded.angleThresholdDegrees;

@@ -228,6 +228,37 @@ TEST_CASE("audit names the tilted prior lights and the clamped bias of an RTIBui
   CHECK(off == kTilted.size());
 }
 
+// A dome capture: its lights are the dome's .lp, so there is no independent estimate to compare
+// a light file with; the prior model is compared at the dome's lights, beside Surrogate's fit
+// from the same lights.
+TEST_CASE("audit of a dome capture compares the prior fit at the dome lights", "[e2e][audit]") {
+  const fs::path capture = e2e::freshDir("audit-dome") / "capture";
+  REQUIRE(e2e::runShell(std::string(GENERATOR_EXE) + " --out " + e2e::quote(capture) + " --images " +
+                        std::to_string(kImages) + " --width 400 --height 300 --sphere-radius 45 --seed 7 --formats jpeg")
+              .exitCode == 0);
+  const std::vector<TrueLight> truth = trueLights(capture);
+  std::vector<test::Light> lights;
+  for (const TrueLight& t : truth) lights.push_back(t.light);
+  fs::rename(capture / "truth" / "lights.lp", capture / "dome.lp");
+  fs::remove_all(capture / "truth");
+  fs::create_directories(capture / "finished-files");
+  test::writeText((capture / "finished-files" / "dome-fit.ptm").string(),
+                  test::ptmText(test::fitPrior(photographs(capture, truth), lights), test::BiasRule::WithZero));
+  REQUIRE(e2e::surrogate("run " + e2e::quote(capture) + " --lp dome.lp --quiet").exitCode == 0);
+
+  const e2e::CommandResult r = e2e::surrogate("audit " + e2e::quote(capture) + " --json");
+  INFO(r.output);
+  REQUIRE(r.exitCode == 0);
+  const std::string models = r.output.substr(r.output.find("\"models\":"));
+  CHECK(models.find("\"lightFile\":\"dome.lp\"") != std::string::npos);
+  const double prior = jsonNumber(models.substr(models.find("\"prior\":")), "psnr");
+  const double refit = jsonNumber(models.substr(models.find("\"refitPriorLights\":")), "psnr");
+  CHECK(prior > 20);
+  CHECK(std::abs(refit - prior) < 1.0);  // the same lights, the same basis: the same fit
+  CHECK(r.output.find("\"reproduced\":true") != std::string::npos);
+  CHECK(r.output.find("\"lightFiles\":[]") != std::string::npos);  // no estimate to compare it with
+}
+
 TEST_CASE("audit with another threshold runs the Audit step again and records it", "[e2e][audit]") {
   const fs::path capture = rtibuilderCapture("audit-threshold");
   REQUIRE(e2e::surrogate("run " + e2e::quote(capture) + " --quiet").exitCode == 0);
