@@ -18,7 +18,7 @@ int runCommandReport(int argc, char** argv) {
       {"o", true, false, "the HTML file to write", "FILE.html"},
       {"output", true, false, "same as -o", "FILE.html"},
       {"max-image-side", true, false, "longest side of the embedded pictures in pixels (default 720)", "N"},
-      {"relight-side", true, false, "longest side of the interactive PTM copy in pixels (default 256)", "N"},
+      {"relight-side", true, false, "longest side of each model's interactive copy in pixels (default 1200)", "N"},
       {"verify", false, false, "verify the package first and show the result of every check"},
       {"reexecute", false, false, "with --verify: also re-execute the recorded steps (slow)"},
       {"quiet", false, false, "no progress bar"},

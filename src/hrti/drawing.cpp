@@ -16,6 +16,9 @@ namespace {
 
 constexpr int kShift = 4;  // sub-pixel drawing: coordinates in 1/16 pixel
 constexpr double kUnit = 1 << kShift;
+// The highlight labels' font scale on the 600 px overview: about 13 px high, readable when the
+// report shows the picture at half size.
+constexpr double kLabelScale = 0.55;
 
 cv::Mat greyToBgr8(const Image& grey) {
   cv::Mat m(grey.height, grey.width, CV_8U);
@@ -51,6 +54,23 @@ void checkDrawable(const DetectedSphere& s, int width, int height) {
                     std::to_string(height) + " image; give the sphere's circle again (--sphere CX,CY,R)");
 }
 
+// Where a label's baseline starts so that the whole text lies inside the picture (2 px in from
+// each edge), as near as possible to `wanted`: a label is never cut at the frame's edge.
+cv::Point labelOrigin(const cv::Mat& picture, const std::string& text, double scale, int thickness, cv::Point wanted) {
+  int baseline = 0;
+  const cv::Size size = cv::getTextSize(text, cv::FONT_HERSHEY_SIMPLEX, scale, thickness, &baseline);
+  const int x = std::clamp(wanted.x, 2, std::max(2, picture.cols - size.width - 2));
+  const int y = std::clamp(wanted.y, size.height + 2, std::max(size.height + 2, picture.rows - baseline - 2));
+  return {x, y};
+}
+
+// Text with a dark outline, readable on the bright and the dark parts of a sphere.
+void outlinedText(cv::Mat& picture, const std::string& text, cv::Point at, double scale, int thickness,
+                  const cv::Scalar& colour) {
+  cv::putText(picture, text, at, cv::FONT_HERSHEY_SIMPLEX, scale, cv::Scalar(0, 0, 0), thickness + 2, cv::LINE_AA);
+  cv::putText(picture, text, at, cv::FONT_HERSHEY_SIMPLEX, scale, colour, thickness, cv::LINE_AA);
+}
+
 cv::Point sub(double x, double y) { return {static_cast<int>(std::lround(x * kUnit)), static_cast<int>(std::lround(y * kUnit))}; }
 
 }  // namespace
@@ -66,17 +86,19 @@ Image drawSphereOverlay(const Image& median, const std::vector<DetectedSphere>& 
     cv::line(bgr, sub(s.cx - arm, s.cy), sub(s.cx + arm, s.cy), cv::Scalar(0, 220, 0), thickness, cv::LINE_AA, kShift);
     cv::line(bgr, sub(s.cx, s.cy - arm), sub(s.cx, s.cy + arm), cv::Scalar(0, 220, 0), thickness, cv::LINE_AA, kShift);
     char label[64];
-    std::snprintf(label, sizeof label, "sphere %zu  r=%.2f  conf %.2f", k, s.r, s.confidence);
+    // Spheres are numbered from 1, as in the file names (highlights-sphere1.png) and the report.
+    std::snprintf(label, sizeof label, "sphere %zu  r=%.1f  conf %.2f", k + 1, s.r, s.confidence);
     const double scale = std::max(0.4, median.width / 2000.0);
     const int ty = static_cast<int>(s.cy + s.r + 20 * scale) < median.height ? static_cast<int>(s.cy + s.r + 20 * scale)
                                                                              : static_cast<int>(s.cy - s.r - 6);
-    cv::putText(bgr, label, cv::Point(static_cast<int>(std::max(0.0, s.cx - s.r)), ty), cv::FONT_HERSHEY_SIMPLEX,
-                scale, cv::Scalar(0, 220, 0), thickness, cv::LINE_AA);
+    const cv::Point at = labelOrigin(bgr, label, scale, thickness, cv::Point(static_cast<int>(s.cx - s.r), ty));
+    outlinedText(bgr, label, at, scale, thickness, cv::Scalar(0, 220, 0));
   }
   return toImage(bgr);
 }
 
-Image drawHighlightOverview(const Image& median, const DetectedSphere& s, const std::vector<Highlight>& perImage) {
+Image drawHighlightOverview(const Image& median, const DetectedSphere& s, const std::vector<Highlight>& perImage,
+                            const std::vector<std::string>& labels) {
   checkDrawable(s, median.width, median.height);
   const double margin = s.r * 0.15;
   const int x0 = std::max(0, static_cast<int>(std::floor(s.cx - s.r - margin)));
@@ -96,10 +118,11 @@ Image drawHighlightOverview(const Image& median, const DetectedSphere& s, const 
     if (!isUsable(h.flag)) continue;  // refused: its position means nothing
     const cv::Scalar colour = h.flag == HighlightFlag::Ok ? cv::Scalar(40, 40, 255) : cv::Scalar(0, 230, 255);
     cv::circle(big, map(h.x, h.y), static_cast<int>(4 * kUnit), colour, -1, cv::LINE_AA, kShift);
-    const std::string label = std::to_string(i + 1);
-    const cv::Point at = map(h.x, h.y);
-    cv::putText(big, label, cv::Point(at.x / static_cast<int>(kUnit) + 6, at.y / static_cast<int>(kUnit) - 4),
-                cv::FONT_HERSHEY_SIMPLEX, 0.4, colour, 1, cv::LINE_AA);
+    const std::string label = i < labels.size() ? labels[i] : std::to_string(i + 1);
+    const cv::Point mark = map(h.x, h.y);
+    const cv::Point at = labelOrigin(big, label, kLabelScale, 1,
+                                     cv::Point(mark.x / static_cast<int>(kUnit) + 7, mark.y / static_cast<int>(kUnit) - 5));
+    outlinedText(big, label, at, kLabelScale, 1, colour);
   }
   return toImage(big);
 }

@@ -10,6 +10,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "formats/ptm.h"
+#include "formats/rti_hsh.h"
 #include "report/html.h"
 
 namespace surrogate::report {
@@ -62,11 +63,24 @@ std::optional<EmbeddedPicture> embedPicture(const std::string& bytes, int maxSid
   return p;
 }
 
-std::string relightJson(const std::string& ptmBytes, int maxSide, const std::string& name) {
+namespace {
+
+// Texels per block side so that the longer side is at most maxSide (1 = native resolution).
+int blockSide(int width, int height, int maxSide) {
+  const int side = std::max(width, height);
+  return maxSide > 0 && side > maxSide ? (side + maxSide - 1) / maxSide : 1;
+}
+
+void writeNumbers(std::ostringstream& j, const char* name, const std::vector<double>& v) {
+  j << ",\"" << name << "\":[";
+  for (std::size_t k = 0; k < v.size(); ++k) j << (k ? "," : "") << v[k];
+  j << "]";
+}
+
+std::string ptmRelightJson(const std::string& ptmBytes, int maxSide, const std::string& name) {
   const formats::PtmFile ptm = formats::parsePtm(
       reinterpret_cast<const std::uint8_t*>(ptmBytes.data()), ptmBytes.size(), name);
-  const int side = std::max(ptm.width, ptm.height);
-  const int step = maxSide > 0 && side > maxSide ? (side + maxSide - 1) / maxSide : 1;
+  const int step = blockSide(ptm.width, ptm.height, maxSide);
   const int w = (ptm.width + step - 1) / step, h = (ptm.height + step - 1) / step;
   const bool lrgb = ptm.format == formats::PtmFile::Format::Lrgb;
   const int channels = lrgb ? 1 : 3;
@@ -99,13 +113,55 @@ std::string relightJson(const std::string& ptmBytes, int maxSide, const std::str
   }
   std::ostringstream j;
   j.precision(17);
-  j << "{\"format\":\"" << (lrgb ? "lrgb" : "rgb") << "\",\"width\":" << w << ",\"height\":" << h
-    << ",\"originalWidth\":" << ptm.width << ",\"originalHeight\":" << ptm.height << ",\"scale\":[";
-  for (int k = 0; k < 6; ++k) j << (k ? "," : "") << ptm.scale[k];
-  j << "],\"bias\":[";
-  for (int k = 0; k < 6; ++k) j << (k ? "," : "") << ptm.bias[k];
-  j << "],\"coefficients\":\"" << base64(coefficients) << "\",\"rgb\":\"" << base64(rgb) << "\"}";
+  j << "{\"model\":\"ptm\",\"basis\":\"" << (lrgb ? "ptm-lrgb" : "ptm-rgb") << "\",\"format\":\""
+    << (lrgb ? "lrgb" : "rgb") << "\",\"width\":" << w << ",\"height\":" << h
+    << ",\"originalWidth\":" << ptm.width << ",\"originalHeight\":" << ptm.height;
+  writeNumbers(j, "scale", std::vector<double>(ptm.scale.begin(), ptm.scale.end()));
+  writeNumbers(j, "bias", std::vector<double>(ptm.bias.begin(), ptm.bias.end()));
+  j << ",\"coefficients\":\"" << base64(coefficients) << "\",\"rgb\":\"" << base64(rgb) << "\"}";
   return j.str();
+}
+
+std::string hshRelightJson(const std::string& rtiBytes, int maxSide, const std::string& name) {
+  const formats::HshFile hsh = formats::parseRti(
+      reinterpret_cast<const std::uint8_t*>(rtiBytes.data()), rtiBytes.size(), name);
+  const int step = blockSide(hsh.width, hsh.height, maxSide);
+  const int w = (hsh.width + step - 1) / step, h = (hsh.height + step - 1) / step;
+  const int terms = hsh.terms;
+  // Block average of bytes, in the file's layout: ((y*w + x)*3 + c)*terms + k.
+  std::string coefficients(static_cast<std::size_t>(w) * h * 3 * terms, '\0');
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const int x0 = x * step, y0 = y * step;
+      const int x1 = std::min(hsh.width, x0 + step), y1 = std::min(hsh.height, y0 + step);
+      const int n = (x1 - x0) * (y1 - y0);
+      for (int c = 0; c < 3; ++c) {
+        for (int k = 0; k < terms; ++k) {
+          int sum = 0;
+          for (int yy = y0; yy < y1; ++yy)
+            for (int xx = x0; xx < x1; ++xx) sum += hsh.byte(xx, yy, c, k);
+          coefficients[((static_cast<std::size_t>(y) * w + x) * 3 + c) * terms + k] =
+              static_cast<char>((sum + n / 2) / n);
+        }
+      }
+    }
+  }
+  std::ostringstream j;
+  j.precision(17);
+  j << "{\"model\":\"hsh\",\"basis\":\"" << (terms == 4 ? "hsh2" : terms == 9 ? "hsh3" : "hsh4")
+    << "\",\"terms\":" << terms << ",\"width\":" << w << ",\"height\":" << h
+    << ",\"originalWidth\":" << hsh.width << ",\"originalHeight\":" << hsh.height;
+  writeNumbers(j, "scale", std::vector<double>(hsh.scale.begin(), hsh.scale.end()));
+  writeNumbers(j, "bias", std::vector<double>(hsh.bias.begin(), hsh.bias.end()));
+  j << ",\"coefficients\":\"" << base64(coefficients) << "\"}";
+  return j.str();
+}
+
+}  // namespace
+
+std::string relightJson(const std::string& modelBytes, int maxSide, const std::string& name) {
+  if (modelBytes.compare(0, 4, "PTM_") == 0) return ptmRelightJson(modelBytes, maxSide, name);
+  return hshRelightJson(modelBytes, maxSide, name);
 }
 
 }  // namespace surrogate::report

@@ -1,5 +1,5 @@
-// What the page embeds: pictures downscaled with OpenCV as data: URIs, and a downscaled copy of
-// a PTM for the interactive relighting view.
+// What the page embeds: pictures downscaled with OpenCV as data: URIs, and a copy of each fitted
+// model (PTM or HSH) for the interactive relighting view.
 #pragma once
 
 #include <optional>
@@ -18,12 +18,18 @@ struct EmbeddedPicture {
 // bytes are not an image OpenCV can read.
 std::optional<EmbeddedPicture> embedPicture(const std::string& bytes, int maxSide);
 
-// A .ptm's bytes as a JSON object for the page's relighting view:
-//   {"format":"lrgb"|"rgb","width":w,"height":h,"scale":[6],"bias":[6],
-//    "coefficients":base64, "rgb":base64}
-// The copy is downscaled to at most `maxSide` by averaging each coefficient byte over the
-// texels of a block (exact in decoded units, since decoding is affine per coefficient).
-// Throws Error(Input) naming `name` for a malformed PTM.
-std::string relightJson(const std::string& ptmBytes, int maxSide, const std::string& name);
+// A fitted model's bytes (.ptm, or .rti HSH chosen by the first bytes "PTM_") as a JSON object
+// for the page's relighting view:
+//   PTM: {"model":"ptm","basis":"ptm-lrgb"|"ptm-rgb","format":"lrgb"|"rgb","width":w,"height":h,
+//         "originalWidth":W,"originalHeight":H,"scale":[6],"bias":[6],"coefficients":base64,
+//         "rgb":base64}             coefficients texel-interleaved: ((c*h + y)*w + x)*6 + k
+//   HSH: {"model":"hsh","basis":"hsh2"|"hsh3"|"hsh4","terms":n,"width":w,"height":h,
+//         "originalWidth":W,"originalHeight":H,"scale":[n],"bias":[n],"coefficients":base64}
+//                                   the .rti layout: ((y*w + x)*3 + c)*n + k
+// Rows top-first. The copy keeps the model's resolution when its longer side is at most
+// `maxSide`, else it is downscaled by averaging each coefficient byte over the texels of a block
+// (exact in decoded units, since decoding is affine per coefficient).
+// Throws Error(Input) naming `name` for a malformed model.
+std::string relightJson(const std::string& modelBytes, int maxSide, const std::string& name);
 
 }  // namespace surrogate::report

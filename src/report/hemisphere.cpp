@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <sstream>
 
 #include "report/html.h"
@@ -160,17 +161,18 @@ std::string hemisphereSvg(const std::vector<LightPoint>& lights, const Coverage&
     s << "<circle class=\"grid\" cx=\"" << kCentre << "\" cy=\"" << kCentre << "\" r=\""
       << num(kRadius * (90 - e) / 90) << "\"/>";
     s << "<text class=\"axis elevation\" text-anchor=\"middle\" x=\"" << num(x) << "\" y=\"" << num(y + 12)
-      << "\">" << e << "\u00b0</text>\n";
+      << "\">el " << e << "\u00b0</text>\n";
   }
   s << "<circle class=\"grid raking\" cx=\"" << kCentre << "\" cy=\"" << kCentre << "\" r=\""
     << num(kRadius * (90 - kRakingElevationDeg) / 90) << "\"/>\n";
-  for (int a = 0; a < 360; a += 45) {
+  // Azimuth labels in the lights' own range, -180..180 (the table and the tooltips use it too).
+  for (int a = -135; a <= 180; a += 45) {
     double x, y, tx, ty;
     project(0, a, x, y);
     project(-9, a, tx, ty);
     s << "<line class=\"grid\" x1=\"" << kCentre << "\" y1=\"" << kCentre << "\" x2=\"" << num(x)
       << "\" y2=\"" << num(y) << "\"/><text class=\"axis\" text-anchor=\"middle\" x=\"" << num(tx)
-      << "\" y=\"" << num(ty + 4) << "\">" << a << "\u00b0</text>\n";
+      << "\" y=\"" << num(ty + 4) << "\">" << (a < 0 ? "\u2212" : "") << std::abs(a) << "\u00b0</text>\n";
   }
   // The lights.
   for (const LightPoint& l : lights) {

@@ -4,39 +4,47 @@ namespace surrogate::report {
 
 const char* const kReportCss = R"CSS(
 :root { --fg:#1d1d1f; --muted:#62636a; --line:#d8d8de; --bg:#fafafa; --card:#fff;
-        --bad:#b3261e; --warn:#8a5a00; --good:#1e6b34; }
+        --bad:#b3261e; --warn:#8a5a00; --good:#1e6b34; --accent:#3446b8; }
 * { box-sizing: border-box; }
 body { margin:0; font:15px/1.45 system-ui,-apple-system,"Segoe UI",Roboto,sans-serif; color:var(--fg); background:var(--bg); }
-header { padding:24px 32px 12px; border-bottom:1px solid var(--line); background:var(--card); }
-header h1 { margin:0 0 4px; font-size:26px; }
-header p { margin:2px 0; color:var(--muted); }
-main { padding:8px 32px 48px; max-width:1200px; }
-section { margin-top:28px; }
-h2 { font-size:20px; border-bottom:1px solid var(--line); padding-bottom:4px; }
-h3 { font-size:16px; margin:18px 0 6px; }
+header { padding:12px 24px 8px; border-bottom:1px solid var(--line); background:var(--card); }
+header h1 { margin:0 0 2px; font-size:24px; overflow-wrap:anywhere; }
+header p { margin:2px 0; }
+main { padding:4px 24px 48px; max-width:1680px; margin:0 auto; }
+section { margin-top:18px; min-width:0; }
+h2 { font-size:20px; border-bottom:1px solid var(--line); padding-bottom:4px; margin:0 0 10px; }
+h3 { font-size:16px; margin:14px 0 6px; }
+.visually-hidden { position:absolute; width:1px; height:1px; overflow:hidden; clip:rect(0 0 0 0); white-space:nowrap; }
 .note { color:var(--muted); font-size:13px; }
-.cards { display:flex; flex-wrap:wrap; gap:12px; }
-.card { background:var(--card); border:1px solid var(--line); border-radius:6px; padding:10px 14px; min-width:140px; }
-.card b { display:block; font-size:20px; }
-.gallery { display:flex; flex-wrap:wrap; gap:16px; align-items:flex-start; }
-figure { margin:0; background:var(--card); border:1px solid var(--line); border-radius:6px; padding:8px; }
-figure img { display:block; max-width:100%; max-height:420px; width:auto; height:auto; }
-figcaption { font-size:13px; color:var(--muted); margin-top:4px; width:0; min-width:100%; }
-table { border-collapse:collapse; font-size:13px; margin:6px 0; }
+.facts { columns:4 250px; column-gap:10px; }
+.fact { background:var(--card); border:1px solid var(--line); border-radius:6px; padding:4px 12px 6px; margin:0 0 10px; break-inside:avoid; font-size:14px; line-height:1.35; }
+.fact h3 { margin:2px 0 4px; font-size:13px; text-transform:uppercase; letter-spacing:.04em; color:var(--muted); }
+.fact dl { display:grid; grid-template-columns:max-content 1fr; gap:2px 12px; margin:0; }
+.fact dt { color:var(--muted); }
+.fact dd { margin:0; overflow-wrap:anywhere; }
+.fact p { margin:2px 0; }
+.verdict { font-weight:700; }
+.gallery { display:grid; grid-template-columns:repeat(auto-fill, minmax(min(100%, 320px), 1fr)); gap:16px; align-items:start; }
+.gallery.large { grid-template-columns:repeat(auto-fill, minmax(min(100%, 480px), 1fr)); }
+figure { margin:0; background:var(--card); border:1px solid var(--line); border-radius:6px; padding:8px; min-width:0; }
+figure img { display:block; max-width:100%; height:auto; margin:0 auto; }
+figcaption { font-size:13px; color:var(--muted); margin-top:4px; overflow-wrap:anywhere; }
+table { border-collapse:collapse; font-size:13px; margin:6px 0; display:block; max-width:100%; overflow-x:auto; }
 th, td { border:1px solid var(--line); padding:3px 8px; text-align:left; vertical-align:top; }
 th { background:#f0f0f3; }
 td.num { text-align:right; font-variant-numeric:tabular-nums; }
-code, .mono { font-family:ui-monospace,Menlo,Consolas,monospace; font-size:12px; word-break:break-all; }
+code, .mono { font-family:ui-monospace,Menlo,Consolas,monospace; font-size:12px; overflow-wrap:anywhere; }
 .gaps li, .bad { color:var(--bad); }
 .ok { color:var(--good); }
 .warning { color:var(--warn); }
 .plot { display:flex; flex-wrap:wrap; gap:24px; align-items:flex-start; }
-.plot > div { flex:1; min-width:280px; }
-#hemisphere { background:var(--card); border:1px solid var(--line); border-radius:6px; }
+.plot > div { flex:1; min-width:260px; }
+#hemisphere { background:var(--card); border:1px solid var(--line); border-radius:6px; max-width:100%; height:auto; }
 #hemisphere .grid { fill:none; stroke:#c9c9d0; stroke-width:1; }
 #hemisphere .raking { stroke:#b3261e; stroke-dasharray:4 3; }
 #hemisphere .gap { fill:#b3261e; fill-opacity:.10; stroke:none; }
 #hemisphere .axis { font-size:11px; fill:var(--muted); }
+#hemisphere .axis.elevation { fill:var(--accent); font-style:italic; }
 #hemisphere .light { stroke:#222; stroke-width:1; }
 ol.timeline { list-style:none; padding:0; margin:0; border-left:3px solid var(--line); }
 ol.timeline > li { position:relative; margin:0 0 18px 0; padding-left:18px; }
@@ -44,11 +52,23 @@ ol.timeline > li::before { content:""; position:absolute; left:-9px; top:6px; wi
 ol.timeline > li.failed::before { border-color:var(--bad); }
 .step-head { font-weight:600; }
 .intervention { border-left:3px solid var(--warn); background:#fff8e6; padding:4px 8px; margin:6px 0; }
-.relight { display:flex; flex-wrap:wrap; gap:16px; align-items:flex-start; }
-#relight-canvas { image-rendering:auto; width:min(560px, 100%); height:auto; border:1px solid var(--line); cursor:crosshair; touch-action:none; background:#000; }
-#light-pad { border:1px solid var(--line); border-radius:50%; cursor:crosshair; touch-action:none; background:var(--card); }
+.relight { display:flex; flex-wrap:wrap; gap:16px 24px; align-items:flex-start; }
+.relight-view { min-width:0; max-width:100%; }
+.relight-controls { flex:1 1 240px; max-width:300px; }
+.first-row { display:flex; flex-wrap:wrap; column-gap:40px; align-items:flex-start; }
+.first-row > section { flex:1 1 560px; min-width:0; max-width:100%; }
+.first-row > #relight { flex:1 1 auto; }
+#relight-canvas { display:block; max-width:100%; height:auto; border:1px solid var(--line); cursor:crosshair; touch-action:none; background:#000; }
+#relight-caption { margin:4px 0 0; }
+#light-pad { display:block; border:1px solid var(--line); border-radius:50%; cursor:crosshair; touch-action:none; background:var(--card); max-width:100%; }
+#light-readout { font-variant-numeric:tabular-nums; margin:6px 0; }
+#model-choice { display:flex; flex-wrap:wrap; gap:6px; margin-bottom:10px; }
+#model-choice button { font:inherit; padding:4px 10px; border:1px solid var(--line); border-radius:4px; background:var(--card); cursor:pointer; }
+#model-choice button[aria-pressed="true"] { background:var(--accent); color:#fff; border-color:var(--accent); }
 details { margin:6px 0; }
-summary { cursor:pointer; color:#3446b8; }
+footer { padding:8px 24px 24px; max-width:1680px; margin:0 auto; }
+summary { cursor:pointer; color:var(--accent); }
+.columns { display:grid; grid-template-columns:repeat(auto-fit, minmax(360px, 1fr)); gap:0 32px; }
 )CSS";
 
 const char* const kReportJs = R"JS(
@@ -72,67 +92,173 @@ const char* const kReportJs = R"JS(
     for (var i = 0; i < bin.length; ++i) out[i] = bin.charCodeAt(i);
     return out;
   }
+  // As the C++ renderer's toSample: clamp to 0..255, then round half away from zero.
+  function sample(v) { return v <= 0 ? 0 : v >= 255 ? 255 : Math.round(v); }
+  var degree = Math.PI / 180;
 
-  // PTM relighting: L = a0 u^2 + a1 v^2 + a2 u v + a3 u + a4 v + a5, a_k = (byte - bias) * scale.
+  // A light in the hemisphere plot's angles (azimuth -180..180, 0 right, 90 up; elevation 0 at
+  // grazing, 90 on the camera's axis) as a unit vector x right, y up, z towards the camera.
+  function lightVector(light) {
+    var a = light.azimuth * degree, e = light.elevation * degree;
+    return [Math.cos(e) * Math.cos(a), Math.cos(e) * Math.sin(a), Math.sin(e)];
+  }
+
+  // The HSH basis of src/fit/basis.cpp (hshBasis), term for term, theta clamped the same way.
+  function hshBasis(l, terms) {
+    var n = Math.sqrt(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
+    var z = n > 0 ? Math.min(1, Math.max(-1, l[2] / n)) : 1;
+    var theta = Math.min(Math.acos(z), 1.5607963267948966), phi = Math.atan2(l[1], l[0]);
+    var pi = Math.PI, c = Math.cos(theta), s = Math.sqrt(c - c * c), t = 2 * c - 1;
+    var cp = Math.cos(phi), sp = Math.sin(phi), c2p = Math.cos(2 * phi), s2p = Math.sin(2 * phi);
+    var s3 = Math.pow(c - c * c, 1.5);
+    var h = [1 / Math.sqrt(2 * pi), Math.sqrt(6 / pi) * cp * s, Math.sqrt(3 / (2 * pi)) * t,
+             Math.sqrt(6 / pi) * sp * s, Math.sqrt(30 / pi) * c2p * (c * c - c),
+             Math.sqrt(30 / pi) * cp * t * s, Math.sqrt(5 / (2 * pi)) * (6 * c * c - 6 * c + 1),
+             Math.sqrt(30 / pi) * sp * t * s, Math.sqrt(30 / pi) * s2p * (c * c - c),
+             2 * Math.sqrt(35 / pi) * Math.cos(3 * phi) * s3,
+             Math.sqrt(210 / pi) * c2p * t * (c * c - c),
+             2 * Math.sqrt(21 / pi) * cp * s * (5 * c * c - 5 * c + 1),
+             Math.sqrt(7 / (2 * pi)) * (20 * c * c * c - 30 * c * c + 12 * c - 1),
+             2 * Math.sqrt(21 / pi) * sp * s * (5 * c * c - 5 * c + 1),
+             Math.sqrt(210 / pi) * s2p * t * (c * c - c),
+             2 * Math.sqrt(35 / pi) * Math.sin(3 * phi) * s3];
+    return h.slice(0, terms);
+  }
+
+  // A model of the page's relight-data (report/embed.h) with render(light, rgba pixels), the
+  // same formulas as src/fit/render.cpp:
+  //   PTM LRGB: out_c = C_c * L(lx, ly) / 255; RGB: out_c = L_c(lx, ly);
+  //   L = a0 lx^2 + a1 ly^2 + a2 lx ly + a3 lx + a4 ly + a5, a_k = (byte - bias_k) * scale_k;
+  //   HSH: out_c = 255 * sum_k (byte / 255 * scale_k + bias_k) H_k(theta, phi).
+  function makeModel(m) {
+    var w = m.width, h = m.height, n = w * h, coef = decodeBase64(m.coefficients);
+    if (m.model === "hsh") {
+      if (coef.length !== n * 3 * m.terms) throw new Error("HSH relighting data has the wrong size");
+      return { m: m, render: function (l, px) {
+        var H = hshBasis(l, m.terms), terms = m.terms, weight = [], offset = 0;
+        for (var k = 0; k < terms; ++k) { weight.push(m.scale[k] * H[k]); offset += m.bias[k] * H[k]; }
+        for (var t = 0; t < n; ++t) {
+          for (var c = 0; c < 3; ++c) {
+            var base = (t * 3 + c) * terms, v = offset * 255;
+            for (var q = 0; q < terms; ++q) v += coef[base + q] * weight[q];
+            px[t * 4 + c] = sample(v);
+          }
+          px[t * 4 + 3] = 255;
+        }
+      } };
+    }
+    var channels = m.format === "rgb" ? 3 : 1, rgb = decodeBase64(m.rgb);
+    if (coef.length !== n * 6 * channels || (channels === 1 && rgb.length !== n * 3))
+      throw new Error("PTM relighting data has the wrong size");
+    return { m: m, render: function (l, px) {
+      var u = l[0], v = l[1], s = m.scale, b = m.bias;
+      var wk = [s[0] * u * u, s[1] * v * v, s[2] * u * v, s[3] * u, s[4] * v, s[5]];
+      var bk = 0;
+      for (var k = 0; k < 6; ++k) bk += b[k] * wk[k];
+      function evaluate(i) {
+        return coef[i] * wk[0] + coef[i + 1] * wk[1] + coef[i + 2] * wk[2] + coef[i + 3] * wk[3] +
+               coef[i + 4] * wk[4] + coef[i + 5] * wk[5] - bk;
+      }
+      for (var t = 0; t < n; ++t) {
+        if (channels === 1) {
+          var lum = evaluate(t * 6);
+          for (var c = 0; c < 3; ++c) px[t * 4 + c] = sample(rgb[t * 3 + c] * lum / 255);
+        } else {
+          for (var d = 0; d < 3; ++d) px[t * 4 + d] = sample(evaluate((d * n + t) * 6));
+        }
+        px[t * 4 + 3] = 255;
+      }
+    } };
+  }
+
+  // "#model=1&light=x,y,z" (or azimuth=..&elevation=..) chooses the first view: for links and tests.
+  function hashSettings() {
+    var out = {};
+    location.hash.replace(/^#/, "").split("&").forEach(function (part) {
+      var kv = part.split("=");
+      if (kv.length === 2) out[kv[0]] = decodeURIComponent(kv[1]);
+    });
+    return out;
+  }
+
   function setUpRelight() {
     var dataElement = document.getElementById("relight-data");
     var canvas = document.getElementById("relight-canvas");
     var pad = document.getElementById("light-pad");
     if (!dataElement || !canvas || !pad) { body.setAttribute("data-relight", "absent"); return; }
-    var ptm = JSON.parse(dataElement.textContent);
-    var w = ptm.width, h = ptm.height, channels = ptm.format === "rgb" ? 3 : 1;
-    var coef = decodeBase64(ptm.coefficients), rgb = decodeBase64(ptm.rgb);
-    if (coef.length !== w * h * 6 * channels || (channels === 1 && rgb.length !== w * h * 3)) {
-      throw new Error("relighting data has the wrong size");
-    }
-    canvas.width = w; canvas.height = h;
-    var context = canvas.getContext("2d");
-    var picture = context.createImageData(w, h);
+    var models = JSON.parse(dataElement.textContent).map(makeModel);
     var readout = document.getElementById("light-readout");
-    var light = { u: 0.5, v: 0.5 };
-
-    function evaluate(base, u, v) {
-      var s = ptm.scale, b = ptm.bias;
-      return (coef[base] - b[0]) * s[0] * u * u + (coef[base + 1] - b[1]) * s[1] * v * v +
-             (coef[base + 2] - b[2]) * s[2] * u * v + (coef[base + 3] - b[3]) * s[3] * u +
-             (coef[base + 4] - b[4]) * s[4] * v + (coef[base + 5] - b[5]) * s[5];
+    var caption = document.getElementById("relight-caption");
+    var context = canvas.getContext("2d");
+    var light = { azimuth: 45, elevation: 45 }, current = null, picture = null, pending = false;
+    var settings = hashSettings();
+    if (settings.light) {
+      var l = settings.light.split(",").map(Number), norm = Math.hypot(l[0], l[1], l[2]);
+      if (norm > 0) light = { azimuth: Math.atan2(l[1], l[0]) / degree, elevation: Math.asin(l[2] / norm) / degree };
     }
+    if (settings.azimuth) light.azimuth = Number(settings.azimuth);
+    if (settings.elevation) light.elevation = Number(settings.elevation);
+
     function draw() {
-      var u = light.u, v = light.v, px = picture.data, n = w * h;
-      for (var t = 0; t < n; ++t) {
-        if (channels === 1) {
-          var lum = evaluate(t * 6, u, v) / 255;
-          px[t * 4] = rgb[t * 3] * lum; px[t * 4 + 1] = rgb[t * 3 + 1] * lum; px[t * 4 + 2] = rgb[t * 3 + 2] * lum;
-        } else {
-          for (var c = 0; c < 3; ++c) px[t * 4 + c] = evaluate((c * n + t) * 6, u, v);
-        }
-        px[t * 4 + 3] = 255;
-      }
+      pending = false;
+      current.render(lightVector(light), picture.data);
       context.putImageData(picture, 0, 0);
       drawPad();
-      var z = Math.sqrt(Math.max(0, 1 - u * u - v * v));
-      var elevation = Math.asin(Math.min(1, z)) * 180 / Math.PI;
-      var azimuth = Math.atan2(v, u) * 180 / Math.PI;
-      readout.textContent = "light: elevation " + elevation.toFixed(0) + "\u00b0, azimuth " +
-                            azimuth.toFixed(0) + "\u00b0 (x " + u.toFixed(2) + ", y " + v.toFixed(2) + ")";
+      readout.textContent = "Light: azimuth " + light.azimuth.toFixed(1) + "\u00b0, elevation " +
+                            light.elevation.toFixed(1) + "\u00b0";
     }
-    function drawPad() {
-      var g = pad.getContext("2d"), r = pad.width / 2 - 4, cx = pad.width / 2, cy = pad.height / 2;
-      g.clearRect(0, 0, pad.width, pad.height);
-      g.strokeStyle = "#c9c9d0"; g.beginPath(); g.arc(cx, cy, r, 0, 2 * Math.PI); g.stroke();
-      g.beginPath(); g.arc(cx, cy, r * 2 / 3, 0, 2 * Math.PI); g.stroke();
-      g.beginPath(); g.arc(cx, cy, r / 3, 0, 2 * Math.PI); g.stroke();
-      g.fillStyle = "#f0b400"; g.strokeStyle = "#222";
-      g.beginPath(); g.arc(cx + light.u * r, cy - light.v * r, 7, 0, 2 * Math.PI); g.fill(); g.stroke();
+    function redraw() {
+      if (!pending) { pending = true; requestAnimationFrame(draw); }
     }
-    function setFrom(element, event) {
-      var box = element.getBoundingClientRect();
-      var u = ((event.clientX - box.left) / box.width) * 2 - 1;
-      var v = 1 - ((event.clientY - box.top) / box.height) * 2;
-      var length = Math.sqrt(u * u + v * v);
-      if (length > 1) { u /= length; v /= length; }
-      light.u = u; light.v = v;
+    function choose(index) {
+      current = models[index];
+      var m = current.m;
+      canvas.width = m.width; canvas.height = m.height;
+      picture = context.createImageData(m.width, m.height);
+      caption.textContent = m.basis.toUpperCase() + " model, " + m.width + "\u00d7" + m.height +
+          (m.width !== m.originalWidth ? " (a copy of the " + m.originalWidth + "\u00d7" + m.originalHeight + " model)"
+                                       : " (the model's own resolution)");
+      body.setAttribute("data-relight-model", m.basis);
+      Array.prototype.forEach.call(document.querySelectorAll("#model-choice button"), function (b) {
+        b.setAttribute("aria-pressed", String(Number(b.getAttribute("data-model")) === index));
+      });
       draw();
+    }
+    // The disc: the hemisphere plot's projection, radius = R (90 - elevation) / 90.
+    function padGeometry() { return { cx: pad.width / 2, cy: pad.height / 2, r: pad.width / 2 - 34 }; }
+    function drawPad() {
+      var g = pad.getContext("2d"), p = padGeometry();
+      g.clearRect(0, 0, pad.width, pad.height);
+      g.lineWidth = 1; g.strokeStyle = "#c9c9d0"; g.font = "11px system-ui, sans-serif";
+      g.textAlign = "center"; g.textBaseline = "middle";
+      [0, 30, 60].forEach(function (e) {
+        var r = p.r * (90 - e) / 90;
+        g.beginPath(); g.arc(p.cx, p.cy, r, 0, 2 * Math.PI); g.stroke();
+        var a = 112.5 * degree;
+        g.fillStyle = "#3446b8";
+        g.fillText("el " + e + "\u00b0", p.cx + r * Math.cos(a), p.cy - r * Math.sin(a) + 8);
+      });
+      [0, 90, 180, -90].forEach(function (a) {
+        var x = p.cx + (p.r + 17) * Math.cos(a * degree), y = p.cy - (p.r + 10) * Math.sin(a * degree);
+        g.beginPath(); g.moveTo(p.cx, p.cy);
+        g.lineTo(p.cx + p.r * Math.cos(a * degree), p.cy - p.r * Math.sin(a * degree)); g.stroke();
+        g.fillStyle = "#62636a";
+        g.fillText((a === 90 ? "" : a === -90 ? "\u2212" : "") + Math.abs(a) + "\u00b0", x, y);
+      });
+      var r = p.r * (90 - light.elevation) / 90, a = light.azimuth * degree;
+      g.fillStyle = "#f0b400"; g.strokeStyle = "#222";
+      g.beginPath(); g.arc(p.cx + r * Math.cos(a), p.cy - r * Math.sin(a), 7, 0, 2 * Math.PI); g.fill(); g.stroke();
+    }
+    // A pointer on the disc, or on the picture taken as the same disc round its centre.
+    function setFrom(element, event) {
+      var box = element.getBoundingClientRect(), p = padGeometry();
+      var scale = element === pad ? pad.width / box.width : 1;
+      var radius = element === pad ? p.r / scale : Math.min(box.width, box.height) / 2;
+      var dx = event.clientX - (box.left + box.width / 2), dy = event.clientY - (box.top + box.height / 2);
+      var f = Math.min(1, Math.sqrt(dx * dx + dy * dy) / radius);
+      light.elevation = 90 * (1 - f);
+      light.azimuth = f > 0 ? Math.atan2(-dy, dx) / degree : light.azimuth;
+      redraw();
     }
     [canvas, pad].forEach(function (element) {
       var dragging = false;
@@ -142,12 +268,54 @@ const char* const kReportJs = R"JS(
       element.addEventListener("pointermove", function (e) { if (dragging) setFrom(element, e); });
       element.addEventListener("pointerup", function () { dragging = false; });
     });
-    draw();
-    // Mean brightness of the first rendering (0..255): a blank or black view is a failure.
-    var sum = 0;
-    for (var i = 0; i < picture.data.length; i += 4) sum += picture.data[i] + picture.data[i + 1] + picture.data[i + 2];
-    body.setAttribute("data-relight-mean", (sum / (3 * w * h)).toFixed(1));
+    Array.prototype.forEach.call(document.querySelectorAll("#model-choice button"), function (b) {
+      b.addEventListener("click", function () { choose(Number(b.getAttribute("data-model"))); });
+    });
+    var first = Math.min(models.length - 1, Math.max(0, Number(settings.model || 0)));
+    choose(first);
+    recordRendering(picture, current.m);
+    body.setAttribute("data-relight-models", models.map(function (m) { return m.m.basis; }).join(" "));
     body.setAttribute("data-relight", "rendered");
+  }
+
+  // For tests and for people checking the page: the mean (0..255) of the first rendering, and
+  // its pixels at the centres of a 3x3 grid ("x,y:r,g,b;...").
+  function recordRendering(picture, m) {
+    var d = picture.data, sum = 0;
+    for (var i = 0; i < d.length; i += 4) sum += d[i] + d[i + 1] + d[i + 2];
+    body.setAttribute("data-relight-mean", (sum / (3 * m.width * m.height)).toFixed(3));
+    var probes = [];
+    for (var j = 0; j < 3; ++j) {
+      for (var k = 0; k < 3; ++k) {
+        var x = Math.floor(m.width * (2 * k + 1) / 6), y = Math.floor(m.height * (2 * j + 1) / 6), t = (y * m.width + x) * 4;
+        probes.push(x + "," + y + ":" + d[t] + "," + d[t + 1] + "," + d[t + 2]);
+      }
+    }
+    body.setAttribute("data-relight-probes", probes.join(";"));
+  }
+
+  // Where the page lays things out, for the layout test: the viewport, the viewer's place and
+  // any element reaching past the viewport's edges (scrolling boxes count, not their content).
+  function recordLayout() {
+    var width = document.documentElement.clientWidth, outside = [];
+    (function check(element) {
+      var box = element.getBoundingClientRect();
+      if (box.width > 0 && (box.right > width + 0.5 || box.left < -0.5) && outside.length < 5)
+        outside.push(element.tagName.toLowerCase() + (element.id ? "#" + element.id : "") +
+                     (element.className && typeof element.className === "string" ? "." + element.className.split(" ")[0] : ""));
+      if (getComputedStyle(element).overflowX !== "visible") return;
+      for (var i = 0; i < element.children.length; ++i) check(element.children[i]);
+    })(body);
+    body.setAttribute("data-viewport", window.innerWidth + "x" + window.innerHeight);
+    body.setAttribute("data-page-width", String(document.documentElement.scrollWidth));
+    body.setAttribute("data-outside", outside.join(" "));
+    var viewer = document.getElementById("relight-canvas");
+    if (viewer) {
+      var v = viewer.getBoundingClientRect();
+      body.setAttribute("data-viewer-top", String(Math.round(v.top + window.scrollY)));
+      body.setAttribute("data-viewer-bottom", String(Math.round(v.bottom + window.scrollY)));
+      body.setAttribute("data-viewer-width", String(Math.round(v.width)));
+    }
   }
 
   try {
@@ -157,6 +325,8 @@ const char* const kReportJs = R"JS(
   }
   var plotted = document.querySelectorAll("#hemisphere circle.light").length;
   body.setAttribute("data-lights-plotted", String(plotted));
+  recordLayout();
+  window.addEventListener("resize", recordLayout);
   body.setAttribute("data-ready", "yes");
 })();
 )JS";

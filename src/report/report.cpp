@@ -59,7 +59,7 @@ std::vector<LightPoint> collectLights(const carrier::Carrier& c, std::string* fi
       }
     }
     const carrier::Step* step = c.findStep(fitResult->step);
-    *fitLabel = step ? step->id + " " + step->component + " (" + step->param("basis", "?") + ")" : fitResult->step;
+    *fitLabel = step ? stepTitle(*step) : fitResult->step;
   }
   // The lowest confidence of the usable highlights of each image (those its light came from).
   std::map<std::string, double> confidence;
@@ -104,6 +104,18 @@ std::vector<LightPoint> collectLights(const carrier::Carrier& c, std::string* fi
   return out;
 }
 
+// The carrier counts spheres from 0 (sphere/@index, highlight/@sphere); people and the file
+// names count from 1, and so does the page. Text that is not a number is shown as it is.
+std::string sphereNumber(const std::string& index) {
+  try {
+    std::size_t used = 0;
+    const int k = std::stoi(index, &used);
+    if (used == index.size() && k >= 0) return std::to_string(k + 1);
+  } catch (const std::exception&) {
+  }
+  return index;
+}
+
 // Output files of every result, by kind, in carrier order.
 std::vector<std::pair<std::string, const carrier::FileRecord*>> outputsByKind(const carrier::Carrier& c) {
   std::vector<std::pair<std::string, const carrier::FileRecord*>> out;
@@ -140,12 +152,8 @@ std::string previewCaption(const std::string& path) {
   return "Relit preview";
 }
 
-std::string lightsSection(const carrier::Carrier& c, Report& report) {
-  std::string fitLabel;
-  const std::vector<LightPoint> lights = collectLights(c, &fitLabel);
-  const Coverage coverage = analyseCoverage(lights);
-  report.lightsPlotted = static_cast<int>(lights.size());
-  report.coverageGaps = coverage.sentences();
+std::string lightsSection(const carrier::Carrier& c, const std::vector<LightPoint>& lights,
+                          const Coverage& coverage, const std::string& fitLabel) {
   std::ostringstream s;
   s << "<section id=\"lights\"><h2>Light directions</h2>";
   if (lights.empty()) {
@@ -155,8 +163,9 @@ std::string lightsSection(const carrier::Carrier& c, Report& report) {
   }
   s << "<div class=\"plot\">" << hemisphereSvg(lights, coverage, priorLightPoints(c)) << "<div><p>" << lights.size()
     << " light" << (lights.size() == 1 ? "" : "s") << " seen from the camera: the centre is a light "
-       "on the camera's axis, the rim is grazing light; 0\u00b0 azimuth is to the right of the "
-       "image, 90\u00b0 at the top. Elevation from "
+       "on the camera's axis, the rim is grazing light; azimuth runs from \u2212180\u00b0 to "
+       "180\u00b0: 0\u00b0 to the right of the image, 90\u00b0 at the top, \u221290\u00b0 at the bottom; the "
+       "blue rings are elevations. Elevation from "
     << displayNumber(coverage.lowestElevationDeg, 1) << "\u00b0 to "
     << displayNumber(coverage.highestElevationDeg, 1) << "\u00b0. The dashed ring is "
     << displayNumber(kRakingElevationDeg, 0) << "\u00b0 elevation.</p>";
@@ -221,11 +230,12 @@ std::string detectionSection(const carrier::Carrier& c, const ReportSource& sour
           return std::string("-");
         }
       };
-      s << "<tr><td>" << escapeHtml(d->get("index").value_or("")) << "</td><td class=\"num\">"
+      s << "<tr><td>" << escapeHtml(sphereNumber(d->get("index").value_or(""))) << "</td><td class=\"num\">"
         << n("cx") << ", " << n("cy") << "</td><td class=\"num\">" << n("r") << "</td><td class=\"num\">"
         << n("confidence") << "</td><td>" << escapeHtml(d->get("source").value_or("")) << "</td></tr>";
     }
-    s << "</table>";
+    s << "</table><p class=\"note\">Spheres are numbered from 1 on this page; the command line's "
+         "<code>--highlight IMAGE:SPHERE</code> and <code>--forget-sphere N</code> count them from 0.</p>";
   }
   auto imagePath = [&](const carrier::DataItem& d) {
     const carrier::FileRecord* f = c.findFile(d.get("image").value_or(""));
@@ -236,7 +246,7 @@ std::string detectionSection(const carrier::Carrier& c, const ReportSource& sour
     for (const carrier::DataItem* d : flagged) {
       const std::string reason = d->get("reason").value_or("");
       s << "<li class=\"warning\"><code>" << escapeHtml(imagePath(*d)) << "</code>, sphere "
-        << escapeHtml(d->get("sphere").value_or("")) << ": " << escapeHtml(d->get("flag").value_or(""))
+        << escapeHtml(sphereNumber(d->get("sphere").value_or(""))) << ": " << escapeHtml(d->get("flag").value_or(""))
         << ", confidence " << numberOr(*d, "confidence", 2) << (reason.empty() ? "" : " \u2014 ")
         << escapeHtml(reason) << "</li>";
     }
@@ -250,13 +260,13 @@ std::string detectionSection(const carrier::Carrier& c, const ReportSource& sour
          "<th>x, y (px)</th><th>flag</th><th>confidence</th><th>reason</th></tr>";
     for (const carrier::DataItem* d : highlights)
       s << "<tr><td><code>" << escapeHtml(imagePath(*d)) << "</code></td><td class=\"num\">"
-        << escapeHtml(d->get("sphere").value_or("")) << "</td><td class=\"num\">" << numberOr(*d, "x", 2)
+        << escapeHtml(sphereNumber(d->get("sphere").value_or(""))) << "</td><td class=\"num\">" << numberOr(*d, "x", 2)
         << ", " << numberOr(*d, "y", 2) << "</td><td>" << escapeHtml(d->get("flag").value_or(""))
         << "</td><td class=\"num\">" << numberOr(*d, "confidence", 2) << "</td><td>"
         << escapeHtml(d->get("reason").value_or("")) << "</td></tr>";
     s << "</table></details>";
   }
-  s << "<div class=\"gallery\">";
+  s << "<div class=\"gallery large\">";  // the overviews' labels need the pictures near full size
   bool any = false;
   for (const auto& [kind, file] : outputsByKind(c)) {
     if (kind == "sphere-overlay") {
@@ -297,80 +307,81 @@ std::string resultsSection(const carrier::Carrier& c, const ReportSource& source
         return std::string("-");
       }
     };
-    fits << "<tr><td>" << escapeHtml(step.id) << "</td><td>" << escapeHtml(step.param("basis", "-"))
-         << "</td><td><code>" << escapeHtml(output) << "</code></td><td class=\"num\">" << shown(rmse)
+    fits << "<tr><td>" << escapeHtml(stepTitle(step)) << "</td><td><code>" << escapeHtml(output) << "</code></td><td class=\"num\">" << shown(rmse)
          << "</td><td class=\"num\">" << shown(psnr) << "</td></tr>";
   }
   if (!fits.str().empty())
-    s << "<table><tr><th>step</th><th>model</th><th>file</th><th>RMSE (8-bit levels)</th>"
+    s << "<table><tr><th>fit</th><th>file</th><th>RMSE (8-bit levels)</th>"
          "<th>PSNR (dB)</th></tr>" << fits.str() << "</table>";
 
   s << "<div class=\"gallery\">";
-  const carrier::FileRecord* ptm = nullptr;
   for (const auto& [kind, file] : outputsByKind(c)) {
     if (kind == "normals") s << figure(source, *file, "Normal map", options.maxImageSide, &report.picturesEmbedded);
     else if (kind == "albedo") s << figure(source, *file, "Albedo", options.maxImageSide, &report.picturesEmbedded);
     else if (kind == "preview")
       s << figure(source, *file, previewCaption(file->path), options.maxImageSide, &report.picturesEmbedded);
-    if (!ptm && file->format.rfind("PTM_FORMAT", 0) == 0) ptm = file;
   }
-  s << "</div>";
-
-  s << "<h3>Relight it yourself</h3>";
-  const std::optional<std::string> bytes = ptm ? source.read(ptm->path) : std::nullopt;
-  if (!ptm || !bytes) {
-    s << "<p class=\"note\">"
-      << (ptm ? "The PTM " + escapeHtml(ptm->path) + " is not in this package or capture."
-              : std::string("No PTM was fitted, so there is no interactive view."))
-      << "</p></section>";
-    return s.str();
-  }
-  std::string json;
-  try {
-    json = relightJson(*bytes, options.relightMaxSide, ptm->path);
-  } catch (const Error& e) {
-    s << "<p class=\"bad\">The PTM cannot be shown: " << escapeHtml(e.what()) << "</p></section>";
-    return s.str();
-  }
-  report.relightable = true;
-  s << "<p>A downscaled copy of <code>" << escapeHtml(ptm->path)
-    << "</code>. Drag on the picture or on the disc to move the light.</p>"
-       "<div class=\"relight\"><canvas id=\"relight-canvas\"></canvas><div>"
-       "<canvas id=\"light-pad\" width=\"160\" height=\"160\"></canvas>"
-       "<p id=\"light-readout\" class=\"note\"></p></div></div>"
-       "<script type=\"application/json\" id=\"relight-data\">"
-    << json << "</script></section>";
+  s << "</div></section>";
   return s.str();
 }
 
-std::string summaryCards(const carrier::Carrier& c, const Report& report) {
-  int images = 0, interventions = 0, warnings = 0, errors = 0;
-  for (const carrier::Result& r : c.data)
-    if (r.itemsOf("decoded").size() > 0) images = static_cast<int>(r.itemsOf("decoded").size());
-  for (const carrier::Step& s : c.process) interventions += static_cast<int>(s.interventions.size());
-  for (const carrier::LogEntry& e : c.log) {
-    warnings += e.level == "warning";
-    errors += e.level == "error";
+// The fitted models (.ptm and .rti HSH) the carrier lists as outputs, in carrier order.
+std::vector<const carrier::FileRecord*> fittedModels(const carrier::Carrier& c) {
+  std::vector<const carrier::FileRecord*> out;
+  for (const auto& [kind, file] : outputsByKind(c))
+    if (file->format.rfind("PTM_FORMAT", 0) == 0 || file->format == "RTI_HSH")
+      if (std::find(out.begin(), out.end(), file) == out.end()) out.push_back(file);
+  return out;
+}
+
+// The interactive view: every fitted model the source holds, as JSON for the page's script,
+// drawn at the model's resolution (or options.relightMaxSide); the first model is shown first.
+std::string relightSection(const carrier::Carrier& c, const ReportSource& source,
+                           const ReportOptions& options, Report& report) {
+  std::ostringstream s, notes, buttons, data;
+  s << "<section id=\"relight\"><h2>Relight it yourself</h2>";
+  int shown = 0;
+  for (const carrier::FileRecord* model : fittedModels(c)) {
+    const std::optional<std::string> bytes = source.read(model->path);
+    if (!bytes) {
+      notes << "<p class=\"note\">The model " << escapeHtml(model->path) << " is not in this package or capture.</p>";
+      continue;
+    }
+    try {
+      const std::string json = relightJson(*bytes, options.relightMaxSide, model->path);
+      data << (shown ? "," : "") << json;
+      const carrier::Step* fit = c.findStep(model->createdBy);
+      buttons << "<button type=\"button\" data-model=\"" << shown << "\" title=\"" << escapeHtml(model->path)
+              << "\">" << escapeHtml(fit ? modelTitle(fit->param("basis", "")) : model->path) << "</button>";
+      ++shown;
+    } catch (const Error& e) {
+      notes << "<p class=\"bad\">The model cannot be shown: " << escapeHtml(e.what()) << "</p>";
+    }
   }
-  std::ostringstream s;
-  auto card = [&](const std::string& label, const std::string& value, const std::string& cls = "") {
-    s << "<div class=\"card" << (cls.empty() ? "" : " " + cls) << "\"><b>" << value << "</b>" << label << "</div>";
-  };
-  s << "<div class=\"cards\">";
-  card("images processed", std::to_string(images));
-  card("lights", std::to_string(report.lightsPlotted));
-  card("steps", std::to_string(c.process.size()));
-  card("human interventions", std::to_string(interventions), interventions ? "warning" : "");
-  card("warnings in the log", std::to_string(warnings), warnings ? "warning" : "");
-  card("errors in the log", std::to_string(errors), errors ? "bad" : "");
-  card("coverage gaps", std::to_string(report.coverageGaps.size()), report.coverageGaps.empty() ? "ok" : "bad");
-  s << "</div>";
+  if (shown == 0) {
+    const std::string none = notes.str().empty()
+                                 ? std::string("<p class=\"note\">No model was fitted, so there is no interactive view.</p>")
+                                 : notes.str();
+    s << none << "</section>";
+    return s.str();
+  }
+  report.relightable = true;
+  s << "<div class=\"relight\"><div class=\"relight-view\"><canvas id=\"relight-canvas\"></canvas>"
+       "<p id=\"relight-caption\" class=\"note\"></p></div><div class=\"relight-controls\">"
+    << (shown > 1 ? "<div id=\"model-choice\" role=\"group\" aria-label=\"model\">" + buttons.str() + "</div>" : "")
+    << "<canvas id=\"light-pad\" width=\"260\" height=\"260\" aria-label=\"light direction\"></canvas>"
+       "<p id=\"light-readout\"></p><p class=\"note\">Drag on the disc or on the picture to move the "
+       "light. The disc is drawn as the light directions' plot: the centre is a light on the camera's "
+       "axis, the rim grazing light, rings every 30\u00b0 of elevation; azimuth 0\u00b0 to the right, 90\u00b0 at "
+       "the top, \u221290\u00b0 at the bottom.</p>"
+    << notes.str() << "</div></div><script type=\"application/json\" id=\"relight-data\">[" << data.str()
+    << "]</script></section>";
   return s.str();
 }
 
 // The share of the report's work done once the detection section is built: decoding,
 // downscaling and re-encoding the pictures is most of it, so the pictures are counted (the
-// interactive PTM copy as one more).
+// interactive models as one more).
 double shareAfterDetection(const carrier::Carrier& c) {
   int detection = 0, results = 1;
   for (const auto& [kind, file] : outputsByKind(c)) {
@@ -388,11 +399,17 @@ Report buildReport(const carrier::Carrier& c, const ReportSource& source, const 
   };
   progress(0);
   Report report;
-  const std::string lights = lightsSection(c, report);
+  std::string fitLabel;
+  const std::vector<LightPoint> lightPoints = collectLights(c, &fitLabel);
+  const Coverage coverage = analyseCoverage(lightPoints);
+  report.lightsPlotted = static_cast<int>(lightPoints.size());
+  report.coverageGaps = coverage.sentences();
+  const std::string lights = lightsSection(c, lightPoints, coverage, fitLabel);
   progress(0.05);
   const std::string detection = detectionSection(c, source, options, report);
   progress(0.05 + 0.9 * shareAfterDetection(c));
   const std::string results = resultsSection(c, source, options, report);
+  const std::string relight = relightSection(c, source, options, report);
   const std::string priorWork = auditSection(c, [&](const carrier::FileRecord& f, const std::string& caption) {
     return figure(source, f, caption, options.maxImageSide, &report.picturesEmbedded);
   });
@@ -407,17 +424,17 @@ Report buildReport(const carrier::Carrier& c, const ReportSource& source, const 
        "<meta name=\"generator\" content=\"Surrogate " << escapeHtml(surrogateVersion()) << "\">"
     << "<title>" << escapeHtml(c.header.title) << " \u2014 Surrogate report</title><style>" << kReportCss
     << "</style></head>\n<body data-lights-expected=\"" << report.lightsPlotted << "\">\n<header><h1>"
-    << escapeHtml(c.header.title) << "</h1>";
-  for (const carrier::Creator& cr : c.header.creators)
-    h << "<p>" << escapeHtml(cr.role) << ": " << escapeHtml(cr.name) << "</p>";
-  h << "<p>From the " << escapeHtml(source.describe()) << "; carrier created " << escapeHtml(c.header.created)
-    << ", last changed " << escapeHtml(c.header.modified) << ".</p><p class=\"note\">Report made "
-    << escapeHtml(generated) << " by Surrogate " << escapeHtml(surrogateVersion())
-    << ". It is a view of the carrier (assembly-files/carrier.xml), which is the record; the report "
-       "itself is not part of the recorded provenance.</p></header>\n<main>"
-    << summaryCards(c, report) << lights << detection << results << priorWork << provenanceSection(c)
-    << cameraSection(c) << verificationSection(options.verification) << filesSection(c)
-    << "</main>\n<script>" << kReportJs << "</script>\n</body></html>\n";
+    << escapeHtml(c.header.title) << "</h1><p class=\"note\">From the " << escapeHtml(source.describe())
+    << "; report made " << escapeHtml(generated) << " by Surrogate " << escapeHtml(surrogateVersion())
+    << ".</p></header>\n<main>"
+    << summarySection(c, lightPoints, coverage, options.verification)
+    // Side by side when the window has room for both (a small model and its light plot).
+    << "<div class=\"first-row\">" << relight << lights << "</div>" << detection << results
+    << priorWork << provenanceSection(c) << "<div class=\"columns\">" << cameraSection(c)
+    << verificationSection(options.verification) << filesSection(c) << "</div></main>\n<footer class=\"note\">Carrier created "
+    << escapeHtml(c.header.created) << ", last changed " << escapeHtml(c.header.modified)
+    << ". This page is a view of the carrier (assembly-files/carrier.xml), which is the record; the "
+       "report itself is not part of the recorded provenance.</footer>\n<script>" << kReportJs << "</script>\n</body></html>\n";
   report.html = h.str();
   progress(1);
   return report;

@@ -5,8 +5,10 @@
 //   - the light directions on a hemisphere plot, coloured by the fit's per-image residual, with
 //     the gaps in coverage pointed out (no raking light, an empty azimuth sector);
 //   - the sphere detection overlay and the highlight overviews;
-//   - the normal map, the albedo and the relit previews, and an interactive relighting view of a
-//     downscaled copy of the PTM (drag the light);
+//   - first, a summary (object, capture, verdict of verification, key figures) and an
+//     interactive relighting view of each fitted model, PTM or HSH, at its own resolution
+//     (drag the light, in the hemisphere plot's angles);
+//   - the normal map, the albedo and the relit previews;
 //   - the provenance as a timeline (steps, software, parameters, durations, interventions with
 //     who and why), the camera and lens from EXIF;
 //   - when given, the verifier's result per check.
@@ -65,7 +67,9 @@ std::unique_ptr<ReportSource> openReportSource(
 
 struct ReportOptions {
   int maxImageSide = 720;    // embedded pictures are downscaled to this; larger = sharper, bigger file
-  int relightMaxSide = 256;  // the interactive PTM copy; its size grows with the square of this
+  // The interactive copy of each model: at its own resolution up to this longer side, else
+  // downscaled by a whole factor. Its size in the page grows with the square of this.
+  int relightMaxSide = 1200;
   std::string generatedAt;   // shown in the header; empty = now (UTC)
   // The verifier's checks; absent = the section says the package was not verified here.
   std::optional<std::vector<VerificationCheck>> verification;
@@ -81,7 +85,7 @@ struct Report {
   std::string html;
   int lightsPlotted = 0;
   int picturesEmbedded = 0;
-  bool relightable = false;            // an interactive PTM view is in the page
+  bool relightable = false;            // an interactive view of a PTM or HSH model is in the page
   std::vector<std::string> coverageGaps;  // sentences, as shown in the page
 };
 

@@ -53,9 +53,11 @@ std::string provenanceSection(const carrier::Carrier& c) {
     const carrier::Result* r = c.findResult(step.id);
     const std::string status = r ? r->status : "not run";
     s << "<li class=\"step " << (status == "completed" ? "completed" : "failed") << "\" data-step=\""
-      << escapeHtml(step.id) << "\"><div class=\"step-head\">" << escapeHtml(step.id) << " \u00b7 "
-      << escapeHtml(step.component) << " v" << escapeHtml(step.version);
-    if (!step.algorithm.empty()) s << " (" << escapeHtml(step.algorithm) << ")";
+      << escapeHtml(step.id) << "\"><div class=\"step-head\">" << escapeHtml(stepTitle(step))
+      << " <span class=\"note\">(step " << escapeHtml(step.id) << ", " << escapeHtml(step.component) << " v"
+      << escapeHtml(step.version);
+    if (!step.algorithm.empty()) s << ", " << escapeHtml(step.algorithm);
+    s << ")</span>";
     s << " \u2014 <span class=\"" << (status == "completed" ? "ok" : "bad") << "\">" << escapeHtml(status)
       << "</span></div>";
     if (r)

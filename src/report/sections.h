@@ -1,5 +1,5 @@
-// The report's text sections, straight from the carrier: provenance timeline, camera and lens,
-// verification, files. Each returns a <section> with every carrier string escaped.
+// The report's text sections, straight from the carrier: summary, provenance timeline, camera
+// and lens, verification, files. Each returns a <section> with every carrier string escaped.
 #pragma once
 
 #include <functional>
@@ -12,6 +12,17 @@
 #include "report/report.h"
 
 namespace surrogate::report {
+
+// The first section: object (title, creators, rights), capture (images, camera, lens, dates),
+// the verdict of `checks` when given, and key figures (spheres, light spread, coverage, each
+// fit's PSNR, interventions, log).
+std::string summarySection(const carrier::Carrier& c, const std::vector<LightPoint>& lights,
+                           const Coverage& coverage,
+                           const std::optional<std::vector<VerificationCheck>>& checks);
+// A step as people name it: "Fit: PTM (LRGB)", "Sphere detection"; its component otherwise.
+std::string stepTitle(const carrier::Step& step);
+// A fitted model as people name it: "ptm-lrgb" -> "PTM (LRGB)", "hsh2" -> "HSH order 2".
+std::string modelTitle(const std::string& basis);
 
 // Software and machine, then one timeline entry per step: component, version, algorithm,
 // status, start, duration, parameters, interventions (who, when, why) and the step's log.

@@ -61,19 +61,19 @@ class FolderSource : public ReportSource {
   std::unique_ptr<TempDir> keep_;
 };
 
-// The files of a bag a report can show: pictures, PTMs and the carrier in its two folders.
+// The files of a bag a report can show: pictures, models (.ptm, .rti) and the carrier in its two
+// folders.
 bool shown(const std::string& relative) {
   if (relative.rfind("assembly-files/", 0) != 0 && relative.rfind("finished-files/", 0) != 0) return false;
   const std::string ext = lowerCase(fs::path(relative).extension().string());
-  for (const char* e : {".xml", ".png", ".jpg", ".jpeg", ".tif", ".tiff", ".ptm"})
+  for (const char* e : {".xml", ".png", ".jpg", ".jpeg", ".tif", ".tiff", ".ptm", ".rti"})
     if (ext == e) return true;
   return false;
 }
 
 // A .tar or .zip bag, read with the package reader of src/archive, the verifier's (entry names,
 // types, sizes and compression ratios checked before anything is kept): the files the report
-// can show are extracted into a private temporary folder; originals, .rti and the rest are
-// skipped.
+// can show are extracted into a private temporary folder; originals and the rest are skipped.
 std::unique_ptr<ReportSource> openArchive(const fs::path& path, const archive::Progress& progress) {
   const archive::Limits limits;
   const archive::Inventory inventory = archive::readPackage(path, limits, progress);

@@ -82,8 +82,10 @@ Image displayable(const Image& median, const ImageStack& lum) {
 // ---- SphereDetection ----------------------------------------------------------------------
 
 pipeline::StageInfo SphereDetectionStage::info() {
+  // 2: the overlay numbers spheres from 1 and keeps its label inside the picture, so its bytes
+  //    differ from version 1's for the same images
   pipeline::StageInfo info = pipeline::withOptions<hrti::SphereDetectionOptions>(
-      {kComponent, "1",
+      {kComponent, "2",
        "Find the reflective spheres: per-pixel median of the stack, circle Hough transform on "
        "the gradient, sub-pixel circle fit",
        pipeline::PlanSlot::LightsFromSpheres});
@@ -182,8 +184,10 @@ void refuseSphereWithoutHighlights(const carrier::Step& sphereStep, const hrti::
 
 pipeline::StageInfo HighlightDetectionStage::info() {
   // 2: every highlight judged (confidence, reason, refused flags), refusals stop the run
+  // 3: the overview labels each highlight with its image's file name (it numbered them by
+  //    position among the processed images), larger and kept inside the picture
   pipeline::StageInfo info = pipeline::withOptions<hrti::HighlightOptions>(
-      {kComponent, "2",
+      {kComponent, "3",
        "Find the specular highlight on each sphere in each image: threshold, 8-connected "
        "components, value-weighted centroid nearest the sphere centre",
        pipeline::PlanSlot::LightsFromSpheres});
@@ -268,11 +272,14 @@ void HighlightDetectionStage::run(const carrier::Step& step, pipeline::Context& 
                          "; its light comes from the other sphere(s)");
     }
   }
+  // Highlights labelled by the image's file name, as every table of the report names them.
+  std::vector<std::string> imageLabels;
+  for (const InputImage& in : *inputs) imageLabels.push_back(in.stem);
   for (std::size_t k = 0; k < spheres->size(); ++k) {
     std::vector<hrti::Highlight> perImage;
     for (const auto& row : *highlights) perImage.push_back(row[k]);
     const std::string overview = highlightOverview(std::to_string(k + 1));
-    image::writePng(hrti::drawHighlightOverview(displayable(*median, *lum), (*spheres)[k], perImage),
+    image::writePng(hrti::drawHighlightOverview(displayable(*median, *lum), (*spheres)[k], perImage, imageLabels),
                     ctx.outputPath(overview));
     recordOutput(ctx, step, result, overview, "assembly", "PNG", "highlight-overview", "image/png");
   }

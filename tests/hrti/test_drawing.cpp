@@ -34,3 +34,46 @@ TEST_CASE("drawing a circle outside the frame or with no radius is an Error") {
     CHECK_THROWS_AS(drawHighlightOverview(median, s, {Highlight{}}), Error);
   }
 }
+
+namespace {
+// Columns of the picture's right edge that hold green label pixels below row `fromRow`.
+bool greenOnRightEdge(const Image& picture, int fromRow) {
+  for (int y = fromRow; y < picture.height; ++y) {
+    const int x = picture.width - 1;
+    if (picture.at(x, y, 1) > 150 * 257 && picture.at(x, y, 0) < 100 * 257) return true;
+  }
+  return false;
+}
+}  // namespace
+
+TEST_CASE("the overlay's label of a sphere at the frame edge stays inside the picture") {
+  // Black, so that any green pixel is the drawing's. The sphere touches the right edge; its
+  // label, below the circle, would run past it if placed at the circle's left side.
+  Image median(400, 300, 1);
+  const Image overlay = drawSphereOverlay(median, {{380, 40, 30, 0.9}});
+  REQUIRE(overlay.width == 400);
+  CHECK_FALSE(greenOnRightEdge(overlay, 40 + 30 + 3));
+  bool anyLabel = false;  // the label is drawn somewhere below the circle
+  for (int y = 40 + 30 + 3; y < overlay.height && !anyLabel; ++y)
+    for (int x = 0; x < overlay.width && !anyLabel; ++x) anyLabel = overlay.at(x, y, 1) > 150 * 257;
+  CHECK(anyLabel);
+}
+
+TEST_CASE("highlight overview labels are the given names, inside the picture") {
+  Image median(400, 300, 1);
+  Highlight nearEdge;
+  nearEdge.x = 199;  // at the sphere's right rim: the label would run past the crop
+  nearEdge.y = 150;
+  nearEdge.flag = HighlightFlag::Ok;
+  const DetectedSphere sphere{150, 150, 50, 1};
+  const Image numbered = drawHighlightOverview(median, sphere, {nearEdge});
+  const Image named = drawHighlightOverview(median, sphere, {nearEdge}, {"IMG_0004"});
+  REQUIRE(named.width == numbered.width);
+  CHECK(named.pixels != numbered.pixels);  // the name, not "1"
+  // Nothing red (the label's colour) in the last column.
+  for (int y = 0; y < named.height; ++y) {
+    INFO("row " << y);
+    const int x = named.width - 1;
+    CHECK_FALSE((named.at(x, y, 0) > 150 * 257 && named.at(x, y, 1) < 100 * 257));
+  }
+}

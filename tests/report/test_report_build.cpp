@@ -8,6 +8,7 @@
 
 #include "carrier/carrier.h"
 #include "formats/ptm.h"
+#include "formats/rti_hsh.h"
 #include "report/report.h"
 
 using namespace surrogate;
@@ -266,4 +267,67 @@ TEST_CASE("each image's highlight confidence is shown: lights table, hemisphere 
   CHECK_THAT(r.html, Catch::Contains("Highlights to check"));
   CHECK_THAT(r.html, Catch::Contains("multiple, confidence 0.25"));
   CHECK(r.html.find("<img src=x") == std::string::npos);
+}
+
+TEST_CASE("the page opens with the summary and the relighting view, steps and models in plain words") {
+  carrier::Carrier c = sampleCarrier();
+  c.header.rights = "CC BY 4.0, the museum";
+  MemorySource source(std::move(c));
+  source.files["finished-files/ptm-lrgb.ptm"] = smallPtm();
+  ReportOptions options;
+  options.verification = std::vector<VerificationCheck>{{"fixity", true, "42 files match"}, {"schema", true, ""}};
+  const Report r = buildReport(source.carrier(), source, options);
+  // Summary, viewer, then the plot, the detection and the rest.
+  const std::size_t summary = r.html.find("<section id=\"summary\""), relight = r.html.find("<section id=\"relight\""),
+                    lights = r.html.find("<section id=\"lights\""), detection = r.html.find("<section id=\"detection\""),
+                    provenance = r.html.find("<section id=\"provenance\"");
+  REQUIRE(summary != std::string::npos);
+  REQUIRE(relight != std::string::npos);
+  CHECK(summary < relight);
+  CHECK(relight < lights);
+  CHECK(lights < detection);
+  CHECK(detection < provenance);
+  const std::string head = r.html.substr(summary, relight - summary);
+  CHECK_THAT(head, Catch::Contains("CC BY 4.0, the museum"));
+  CHECK_THAT(head, Catch::Contains("photographer"));
+  CHECK_THAT(head, Catch::Contains("5 originals"));
+  CHECK_THAT(head, Catch::Contains("Canon EOS 5D"));
+  CHECK_THAT(head, Catch::Contains("PASSED"));
+  CHECK_THAT(head, Catch::Contains("Fit: PTM (LRGB): 30 dB"));
+  CHECK_THAT(head, Catch::Contains("<dt>spheres</dt><dd>1</dd>"));
+  // Step names as people say them, the component kept in the timeline for the record.
+  CHECK(r.html.find("s3 RtiFit (ptm-lrgb)") == std::string::npos);
+  CHECK_THAT(r.html, Catch::Contains("Fit: PTM (LRGB) <span class=\"note\">(step s3, RtiFit v1)</span>"));
+  // Spheres counted from 1 in the table, and the page says so.
+  CHECK_THAT(r.html, Catch::Contains("<tr><td>1</td><td class=\"num\">10, 20</td>"));
+  CHECK_THAT(r.html, Catch::Contains("Spheres are numbered from 1 on this page"));
+  // The viewer holds the model at its own resolution.
+  CHECK_THAT(r.html, Catch::Contains("\"model\":\"ptm\",\"basis\":\"ptm-lrgb\""));
+  CHECK_THAT(r.html, Catch::Contains("\"width\":8,\"height\":6,\"originalWidth\":8,\"originalHeight\":6"));
+}
+
+TEST_CASE("an HSH-only carrier is relightable in the page") {
+  carrier::Carrier c = carrier::newCarrier("HSH only", {});
+  carrier::Step& fit = c.addStep("RtiFit", "1");
+  fit.setParam("basis", "hsh2");
+  carrier::FileRecord model = output("finished-files/hsh2.rti", "result", "RTI_HSH");
+  model.createdBy = fit.id;
+  const std::string id = c.putFile(model);
+  carrier::Result fr;
+  fr.step = fit.id;
+  fr.add("output").set("file", id).set("kind", "hsh2");
+  c.data.push_back(fr);
+  MemorySource source(std::move(c));
+  formats::HshFile hsh;
+  hsh.width = 3;
+  hsh.height = 2;
+  hsh.terms = 4;
+  hsh.scale = {1, 1, 1, 1};
+  hsh.bias = {0, 0, 0, 0};
+  hsh.coefficients.assign(hsh.texels() * 3 * 4, 100);
+  source.files["finished-files/hsh2.rti"] = formats::serializeRti(hsh);
+  const Report r = buildReport(source.carrier(), source, ReportOptions());
+  CHECK(r.relightable);
+  CHECK_THAT(r.html, Catch::Contains("\"model\":\"hsh\",\"basis\":\"hsh2\""));
+  CHECK(r.html.find("No model was fitted") == std::string::npos);
 }

@@ -4,7 +4,9 @@
 
 #include <regex>
 
+#include "core/error.h"
 #include "formats/ptm.h"
+#include "formats/rti_hsh.h"
 #include "report/embed.h"
 #include "report/hemisphere.h"
 #include "report/html.h"
@@ -155,4 +157,52 @@ TEST_CASE("embedPicture rejects bytes that are not a picture, and PNG headers cl
   // A PNG signature and IHDR claiming 100000 x 100000 pixels, and nothing else.
   std::string bomb("\x89PNG\r\n\x1a\n\0\0\0\x0dIHDR\0\x01\x86\xa0\0\x01\x86\xa0\x08\x02\0\0\0", 29);
   CHECK_FALSE(embedPicture(bomb, 100).has_value());
+}
+
+TEST_CASE("the relighting copy of an HSH model keeps the .rti layout and averages over blocks") {
+  formats::HshFile hsh;
+  hsh.width = 4;
+  hsh.height = 2;
+  hsh.terms = 4;
+  hsh.scale = {1, 2, 3, 4};
+  hsh.bias = {-0.5f, 0, 0.25f, 0};
+  hsh.coefficients.resize(hsh.texels() * 3 * 4);
+  // ((y*w + x)*3 + c)*terms + k = t*12 + c*4 + k
+  for (std::size_t i = 0; i < hsh.coefficients.size(); ++i) hsh.coefficients[i] = static_cast<std::uint8_t>(i % 200);
+  const std::string bytes = formats::serializeRti(hsh);
+  const std::string full = relightJson(bytes, 0, "t.rti");
+  CHECK_THAT(full, Catch::Contains("\"model\":\"hsh\",\"basis\":\"hsh2\",\"terms\":4,\"width\":4,\"height\":2"));
+  CHECK_THAT(full, Catch::Contains("\"scale\":[1,2,3,4],\"bias\":[-0.5,0,0.25,0]"));
+  const std::string original(hsh.coefficients.begin(), hsh.coefficients.end());
+  CHECK_THAT(full, Catch::Contains("\"coefficients\":\"" + base64(original) + "\""));
+
+  // maxSide 2: blocks of 2x2 texels -> 2x1; block 0 holds texels 0, 1, 4, 5.
+  const std::string half = relightJson(bytes, 2, "t.rti");
+  CHECK_THAT(half, Catch::Contains("\"width\":2,\"height\":1,\"originalWidth\":4,\"originalHeight\":2"));
+  std::string expected;
+  for (int block = 0; block < 2; ++block)
+    for (int j = 0; j < 12; ++j) {
+      const int t0 = block * 2, texels[4] = {t0, t0 + 1, t0 + 4, t0 + 5};
+      int sum = 0;
+      for (int t : texels) sum += hsh.coefficients[t * 12 + j];
+      expected += static_cast<char>((sum + 2) / 4);
+    }
+  CHECK_THAT(half, Catch::Contains("\"coefficients\":\"" + base64(expected) + "\""));
+  CHECK_THROWS_AS(relightJson("#HSH1.2\n3\n", 0, "broken.rti"), Error);
+}
+
+TEST_CASE("the hemisphere plot labels azimuths -180..180 as the light table does, and elevation rings apart") {
+  LightPoint p;
+  p.image = "IMG_0001.dng";
+  p.elevationDeg = 40;
+  p.azimuthDeg = -52;
+  const std::string svg = hemisphereSvg({p}, analyseCoverage({p}));
+  for (const char* label : {">\u2212135\u00b0<", ">\u221290\u00b0<", ">\u221245\u00b0<", ">0\u00b0<", ">45\u00b0<",
+                            ">90\u00b0<", ">135\u00b0<", ">180\u00b0<"})
+    CHECK_THAT(svg, Catch::Contains(label));
+  for (const char* label : {">225\u00b0<", ">270\u00b0<", ">315\u00b0<"}) CHECK(svg.find(label) == std::string::npos);
+  // Elevation rings carry "el" and their own class, unlike the azimuth labels.
+  CHECK_THAT(svg, Catch::Contains("class=\"axis elevation\""));
+  CHECK_THAT(svg, Catch::Contains(">el 30\u00b0<"));
+  CHECK_THAT(svg, Catch::Contains("azimuth -52\u00b0"));
 }
