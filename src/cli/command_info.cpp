@@ -22,6 +22,7 @@
 #include "meta/camera_text.h"
 #include "meta/metadata.h"
 #include "formats/summary.h"
+#include "publish/web_layout.h"
 
 namespace surrogate::cli {
 
@@ -628,6 +629,35 @@ void printXmpSidecar(const fs::path& path, bool json) {
   }
 }
 
+// A web layout (publish/web_layout.h): what its info.json says and whether its planes are there.
+void printWebLayout(const fs::path& path, bool json) {
+  const publish::WebLayoutSummary s = publish::describeWebLayout(path);
+  if (json) {
+    JsonWriter j;
+    j.beginObject().key("kind").value("web-layout").key("type").value(s.type).key("colorspace").value(s.colorspace)
+        .key("basis").value(s.basis).key("width").value(s.width).key("height").value(s.height)
+        .key("nplanes").value(s.nplanes).key("format").value(s.format);
+    if (s.quality >= 0) j.key("quality").value(s.quality);
+    j.key("planes").beginArray();
+    for (const std::string& p : s.planes) j.value(p);
+    j.endArray().key("missingPlanes").beginArray();
+    for (const std::string& p : s.missingPlanes) j.value(p);
+    j.endArray();
+    if (!s.tiles.empty()) j.key("tiles").value(s.tiles);
+    j.key("bytes").value(static_cast<unsigned long long>(s.bytes)).endObject();
+    std::cout << j.str() << "\n";
+    return;
+  }
+  std::cout << path.string() << ": web layout (OpenLIME, relight)\n"
+            << "  model:   " << s.type << " " << s.colorspace << (s.basis.empty() ? "" : " (" + s.basis + ")") << ", "
+            << s.width << "x" << s.height << ", " << s.nplanes << " coefficients per texel\n"
+            << "  planes:  " << s.planes.size() << " " << s.format << " images"
+            << (s.tiles.empty() ? std::string() : " (" + s.tiles + " tiles)")
+            << (s.quality >= 0 ? ", quality " + std::to_string(s.quality) : std::string()) << ", " << s.bytes
+            << " bytes with info.json\n";
+  for (const std::string& p : s.missingPlanes) std::cout << "  missing: " << p << " (the viewers cannot show the model)\n";
+}
+
 }  // namespace
 
 int runCommandInfo(int argc, char** argv) {
@@ -640,7 +670,8 @@ int runCommandInfo(int argc, char** argv) {
                              "command to verify it), a carrier (carrier.xml: creators, metadata, "
                              "steps, decisions with who, when and why, runs), a capture folder, "
                              "an image (camera, lens, exposure, date; also one Surrogate cannot "
-                             "decode), an .xmp sidecar, or a .ptm, .rti or .lp file.")
+                             "decode), an .xmp sidecar, a .ptm, .rti or .lp file, or the info.json of "
+                             "a web layout (surrogate publish).")
               << Args::describe(specs);
     return 0;
   }
@@ -664,6 +695,8 @@ int runCommandInfo(int argc, char** argv) {
     } else {
       printCapture(path, json);
     }
+  } else if (path.filename() == "info.json") {
+    printWebLayout(path, json);
   } else if (ext == ".xml") {
     printCarrier(path, json);
   } else if (ext == ".xmp") {

@@ -11,6 +11,7 @@ const std::vector<Command>& commands() {
       {"lights", "estimate the light directions of a capture and write an .lp file", runCommandLights},
       {"fit", "fit a PTM or HSH model to the images of an .lp file", runCommandFit},
       {"render", "relight a .ptm or .rti under a chosen light and save a PNG", runCommandRender},
+      {"publish", "write a .ptm, .rti or capture's results in the web layout (info.json, JPEG planes)", runCommandPublish},
       {"info", "describe a package, carrier, capture, image, .xmp sidecar, .ptm, .rti or .lp file", runCommandInfo},
       {"report", "write the HTML report of a capture or package", runCommandReport},
       {"verify", "check a package: fixity, schemas, metadata; --reexecute re-runs its steps", runCommandVerify},

@@ -25,6 +25,7 @@ int runCommandInfo(int argc, char** argv);
 int runCommandLights(int argc, char** argv);
 int runCommandFit(int argc, char** argv);
 int runCommandRender(int argc, char** argv);
+int runCommandPublish(int argc, char** argv);
 int runCommandReport(int argc, char** argv);
 int runCommandVerify(int argc, char** argv);
 int runCommandAudit(int argc, char** argv);

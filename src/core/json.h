@@ -1,5 +1,6 @@
 // A minimal JSON writer for --json output (objects, arrays, strings, numbers, booleans).
-// Output only: Surrogate never parses JSON.
+// Output only: the one JSON Surrogate reads, a web layout's info.json, is read with OpenCV's
+// FileStorage (publish/info_json.h).
 //
 //   JsonWriter j;
 //   j.beginObject().key("images").value(24).key("title").value("Stela").endObject();

@@ -208,6 +208,8 @@ TEST_CASE("every JSON member the commands print on the sample is documented in t
       {"fit --lp " + w + "/l.lp -o " + w + "/f.ptm --json", "fit --json"},
       {"render " + w + "/f.ptm --light 0.5,0,0.8 -o " + w + "/r.png --json", "render --json"},
       {"run " + c + " --quiet", ""},  // the capture's results again after `lights`
+      {"publish " + c + " -o " + w + "/web --json", "publish --json"},
+      {"info " + w + "/web/hsh2/info.json --json", "info --json"},
       {"pack " + c + " -o " + w + "/p.tar --json", "pack --json"},
       {"verify " + w + "/p.tar --reexecute --json", "verify --json"},
       {"report " + w + "/p.tar --verify -o " + w + "/r.html --json", "report --json"},

@@ -329,11 +329,3 @@ TEST_CASE("a prior file that cannot be read is left out of the audit and the run
   CHECK(r.output.find("\"models\":[]") != std::string::npos);
   CHECK(e2e::bytesOf(capture / "finished-files" / "old.ptm") == "PTM_1.2\nPTM_FORMAT_LRGB\n400\n");
 }
-
-TEST_CASE("help audit and audit --help print the same help", "[e2e][audit]") {
-  const e2e::CommandResult help = e2e::surrogate("help audit");
-  CHECK(help.exitCode == 0);
-  CHECK(help.output.find("usage: surrogate audit CAPTURE") != std::string::npos);
-  CHECK(help.output.find("--threshold DEG") != std::string::npos);
-  CHECK(help.output == e2e::surrogate("audit --help").output);
-}

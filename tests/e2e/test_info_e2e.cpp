@@ -191,7 +191,8 @@ TEST_CASE("info on an .lp shows elevations to 0.1 degree") {
 }
 
 TEST_CASE("help COMMAND and COMMAND --help print the help of that command for every command") {
-  for (const char* command : {"run", "pack", "lights", "fit", "render", "info", "report", "verify"}) {
+  for (const char* command :
+       {"run", "pack", "lights", "fit", "render", "publish", "info", "report", "verify", "audit"}) {
     const e2e::CommandResult help = e2e::surrogate(std::string("help ") + command);
     const e2e::CommandResult option = e2e::surrogate(std::string(command) + " --help");
     INFO(command << "\n" << help.output);
@@ -204,7 +205,7 @@ TEST_CASE("help COMMAND and COMMAND --help print the help of that command for ev
   INFO(unknown.output);
   CHECK(unknown.exitCode == 2);
   CHECK_THAT(unknown.output, Contains("\"frobnicate\"") &&
-                                 Contains("run, pack, lights, fit, render, info, report, verify"));
+                                 Contains("run, pack, lights, fit, render, publish, info, report, verify, audit"));
 }
 
 TEST_CASE("run refuses a folder that is not a capture and writes nothing in it") {

@@ -1,0 +1,89 @@
+// The web layout of a relightable model: the folder that OpenLIME's RTI layer and Relight's
+// web viewer read (docs/formats.md, "The web layout"): an info.json naming the basis, the
+// size, the colour space and, per coefficient, the scale and bias that turn a plane's byte
+// into the coefficient, plus the coefficient planes as JPEG images, three coefficients per
+// image (plane_0.jpg, plane_1.jpg, ...).
+//
+//   PTM LRGB  "ptm"/"lrgb", 9 planes:  plane_0 = colour, plane_1 = (1, u, v), plane_2 = (u^2, uv, v^2)
+//   PTM RGB   "ptm"/"rgb", 18 planes:  plane_j = term j of (1, u, v, u^2, uv, v^2) for R, G, B
+//   HSH       "hsh"/"rgb", 12 or 27:   plane_j = HSH term j for R, G, B
+//   coefficient = (byte / 255 - bias) * scale; the viewer's value, 0..1, is display sRGB
+//
+// The bytes are the model's own bytes (moved between planes, never re-quantised); only the
+// JPEG compression changes them. Rows are top-first, as the model's image; the light is the
+// model's (x right, y up). The folder is written under a temporary name beside the final one
+// and renamed into place when complete, so an interrupted publish never leaves a folder that
+// looks finished.
+//
+//   PublishOptions options;  options.quality = 90;
+//   std::vector<PublishedModel> done = publish("finished-files/stela.ptm", "web/stela", options);
+//   // web/stela/info.json, web/stela/plane_0.jpg ...
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "formats/ptm.h"
+#include "formats/rti_hsh.h"
+
+namespace surrogate::publish {
+
+struct PublishOptions {
+  // JPEG quality 1..100 of the planes: lower gives smaller files and a larger error in the
+  // relit image (docs/formats.md, "The web layout", has the measured figures).
+  int quality = 95;
+};
+
+// What one published model holds.
+struct PublishedModel {
+  std::string source;      // the .ptm or .rti, as given (a capture: relative to it)
+  std::string folder;      // the folder written, relative to the output folder ("" = itself)
+  std::string type;        // "ptm" or "hsh"
+  std::string colorspace;  // "lrgb" or "rgb"
+  int width = 0, height = 0;
+  int nplanes = 0;         // coefficients per texel (the JPEGs hold three each)
+  std::vector<std::string> files;  // info.json then the planes, relative to `folder`
+};
+
+// The info.json and the planes of one model, in memory: name -> bytes, info.json first.
+struct WebLayoutFiles {
+  PublishedModel model;
+  std::vector<std::pair<std::string, std::string>> files;
+};
+
+// Throws Error(Usage) naming "--quality" for a quality outside 1..100.
+WebLayoutFiles webLayoutOf(const formats::PtmFile& ptm, const PublishOptions& options);
+// Throws Error(Input) for 16 terms (order 4): the web viewers evaluate HSH up to order 3.
+WebLayoutFiles webLayoutOf(const formats::HshFile& hsh, const PublishOptions& options);
+
+// Publishes `source` into the folder `out`, which must not exist or be empty:
+//   a .ptm (raw or JPEG-compressed) or an HSH .rti: `out` holds its layout;
+//   a capture folder: each PTM or HSH result its carrier records in finished-files/, in a
+//   subfolder of `out` named after the file (finished-files/stela-hsh.rti -> out/stela-hsh/).
+// Throws Error(Input) for a source that is neither, or a capture with no such result, and
+// Error(Usage) naming `out` when it is a file or a folder that is not empty.
+std::vector<PublishedModel> publish(const std::filesystem::path& source, const std::filesystem::path& out,
+                                    const PublishOptions& options);
+
+// What a web layout's info.json says (any writer's, Surrogate's or relight's), checked against
+// the plane files beside it, for `surrogate info DIR/info.json`.
+struct WebLayoutSummary {
+  std::string type, colorspace;  // as info.json names them
+  int width = 0, height = 0;
+  int nplanes = 0;               // coefficients per texel
+  int quality = -1;              // -1 when info.json does not say
+  std::string format;            // the planes' extension ("jpg")
+  std::string basis;             // Surrogate's name: "ptm-lrgb", "ptm-rgb", "hsh2", "hsh3"; "" else
+  std::vector<std::string> planes;         // the plane files the layout names, in order
+  std::vector<std::string> missingPlanes;  // those not beside info.json, in no form
+  std::string tiles;             // "deepzoom" or "tarzoom" when planes are tiled; "" else
+  std::uint64_t bytes = 0;       // info.json and the untiled planes present
+};
+
+// Throws Error(Input) naming the file when it is not JSON or lacks a member the viewers need
+// (width, height, type, colorspace, nplanes, materials with scale and bias of nplanes values).
+WebLayoutSummary describeWebLayout(const std::filesystem::path& infoJson);
+
+}  // namespace surrogate::publish

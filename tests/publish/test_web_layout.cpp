@@ -1,0 +1,403 @@
+// The web layout (src/publish) read back by the independent reader of web_reader.h: each
+// basis renders as fit::render (what `surrogate render` calls) renders the source, within
+// the JPEG error; the planes keep the model's bytes and rows; publishing is deterministic and
+// writes nothing over an existing folder.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include <unistd.h>
+
+#include "core/error.h"
+#include "fit/render.h"
+#include "publish/web_layout.h"
+#include "web_reader.h"
+
+namespace fs = std::filesystem;
+using namespace surrogate;
+
+namespace {
+
+constexpr int kW = 96, kH = 64;
+
+// Smooth fields that differ along x and y and between terms and channels, so that a swapped
+// plane, channel or a flipped row order would show as a large error.
+std::uint8_t field(int x, int y, int k, int c) {
+  const double v = 128 + 80 * std::sin(0.07 * x + 0.9 * k + 0.5 * c) * std::cos(0.05 * y + 0.4 * k) + 40.0 * y / kH - 20;
+  return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 255.0)));
+}
+
+formats::PtmFile makePtm(formats::PtmFile::Format format) {
+  formats::PtmFile p;
+  p.format = format;
+  p.width = kW;
+  p.height = kH;
+  p.scale = {0.4, 0.35, 0.3, 0.5, 0.45, 1.0};
+  p.bias = {130, 125, 128, 120, 135, 0};
+  const bool lrgb = format == formats::PtmFile::Format::Lrgb;
+  const int channels = lrgb ? 1 : 3;
+  p.coefficients.resize(p.texels() * 6 * channels);
+  for (int c = 0; c < channels; ++c)
+    for (int y = 0; y < kH; ++y)
+      for (int x = 0; x < kW; ++x)
+        for (int k = 0; k < 6; ++k)
+          p.coefficients[((static_cast<std::size_t>(c) * kH + y) * kW + x) * 6 + k] = field(x, y, k, c);
+  if (lrgb) {
+    p.rgb.resize(p.texels() * 3);
+    for (int y = 0; y < kH; ++y)
+      for (int x = 0; x < kW; ++x)
+        for (int c = 0; c < 3; ++c) p.rgb[(static_cast<std::size_t>(y) * kW + x) * 3 + c] = field(x, y, 7, c);
+  }
+  return p;
+}
+
+formats::HshFile makeHsh(int terms) {
+  formats::HshFile h;
+  h.width = kW;
+  h.height = kH;
+  h.terms = terms;
+  for (int k = 0; k < terms; ++k) {
+    h.scale.push_back(k == 0 ? 1.5f : 0.6f);
+    h.bias.push_back(k == 0 ? 0.1f : -0.3f);
+  }
+  h.coefficients.resize(h.texels() * 3 * terms);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x)
+      for (int c = 0; c < 3; ++c)
+        for (int k = 0; k < terms; ++k)
+          h.coefficients[((static_cast<std::size_t>(y) * kW + x) * 3 + c) * terms + k] = field(x, y, k, c);
+  return h;
+}
+
+const std::array<std::array<double, 3>, 5> kLights = {{
+    {0, 0, 1}, {0.6, 0.3, 0.74}, {-0.5, -0.6, 0.62}, {0.9, -0.1, 0.42}, {-0.2, 0.95, 0.24}}};
+
+std::vector<int> renderedBySurrogate(const fit::Relightable& model, const std::array<double, 3>& l) {
+  const Image img = model.render(l, {});
+  std::vector<int> out(static_cast<std::size_t>(img.width) * img.height * 3);
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x)
+      for (int c = 0; c < 3; ++c) out[(static_cast<std::size_t>(y) * img.width + x) * 3 + c] = img.at(x, y, c) / 257;
+  return out;
+}
+
+fs::path freshDir(const std::string& name) {
+  static int counter = 0;
+  const fs::path d = fs::temp_directory_path() /
+                     ("surrogate-publish-test-" + std::to_string(::getpid()) + "-" + name + "-" + std::to_string(counter++));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+void writeModel(const fs::path& file, const formats::PtmFile& ptm) { formats::writePtm(file, ptm); }
+void writeModel(const fs::path& file, const formats::HshFile& hsh) { formats::writeRti(file, hsh); }
+
+struct Worst {
+  double psnr = INFINITY;
+  int maxDiff = 0;
+};
+
+// Publishes `model` at `quality` and compares the reader's renders with fit::render's.
+template <class Model>
+Worst publishAndCompare(const Model& model, const std::string& fileName, int quality) {
+  const fs::path dir = freshDir("cmp");
+  writeModel(dir / fileName, model);
+  publish::PublishOptions options;
+  options.quality = quality;
+  publish::publish(dir / fileName, dir / "web", options);
+  const webtest::WebModel web = webtest::readWebModel(dir / "web");
+  const auto reference = fit::openRelightable(dir / fileName);
+  Worst worst;
+  for (const auto& l : kLights) {
+    const auto a = webtest::renderAt(web, l[0], l[1], l[2]);
+    const auto b = renderedBySurrogate(*reference, l);
+    worst.psnr = std::min(worst.psnr, webtest::psnr(a, b));
+    worst.maxDiff = std::max(worst.maxDiff, webtest::maxAbsDifference(a, b));
+  }
+  fs::remove_all(dir);
+  return worst;
+}
+
+}  // namespace
+
+TEST_CASE("publish writes info.json and the planes the web viewers request for each basis") {
+  struct Case {
+    std::string file, type, colorspace;
+    int nplanes;
+  };
+  const fs::path dir = freshDir("names");
+  writeModel(dir / "lrgb.ptm", makePtm(formats::PtmFile::Format::Lrgb));
+  writeModel(dir / "rgb.ptm", makePtm(formats::PtmFile::Format::Rgb));
+  writeModel(dir / "hsh2.rti", makeHsh(4));
+  writeModel(dir / "hsh3.rti", makeHsh(9));
+  for (const Case& c : {Case{"lrgb.ptm", "ptm", "lrgb", 9}, Case{"rgb.ptm", "ptm", "rgb", 18},
+                        Case{"hsh2.rti", "hsh", "rgb", 12}, Case{"hsh3.rti", "hsh", "rgb", 27}}) {
+    INFO(c.file);
+    const fs::path out = dir / ("web-" + c.file);
+    const auto models = publish::publish(dir / c.file, out, {});
+    REQUIRE(models.size() == 1);
+    const webtest::Json info = webtest::JsonParser(webtest::slurp(out / "info.json")).parseDocument();
+    CHECK(info["type"].text == c.type);
+    CHECK(info["colorspace"].text == c.colorspace);
+    CHECK(info["nplanes"].number == c.nplanes);
+    CHECK(info["width"].number == kW);
+    CHECK(info["height"].number == kH);
+    CHECK(info["format"].text == "jpg");
+    CHECK(info["quality"].number == 95);
+    std::size_t files = 0;
+    for (const auto& e : fs::directory_iterator(out)) files += e.is_regular_file();
+    CHECK(files == 1 + static_cast<std::size_t>(c.nplanes / 3));
+    for (int j = 0; j < c.nplanes / 3; ++j) CHECK(fs::is_regular_file(out / ("plane_" + std::to_string(j) + ".jpg")));
+  }
+  fs::remove_all(dir);
+}
+
+// Tolerance at quality 100: JPEG changes a byte by at most a few units, which moves a relit
+// value by a few levels; a wrong plane, channel, term order, bias convention or row order
+// moves it by tens (the fields above vary by +-80 bytes).
+constexpr int kMaxDifferenceAtQuality100 = 4;
+constexpr double kMinPsnrAtQuality100 = 45;
+
+TEST_CASE("the independent reader renders the published PTM LRGB as surrogate render renders the .ptm") {
+  const Worst w = publishAndCompare(makePtm(formats::PtmFile::Format::Lrgb), "m.ptm", 100);
+  CHECK(w.maxDiff <= kMaxDifferenceAtQuality100);
+  CHECK(w.psnr >= kMinPsnrAtQuality100);
+}
+
+TEST_CASE("the independent reader renders the published PTM RGB as surrogate render renders the .ptm") {
+  const Worst w = publishAndCompare(makePtm(formats::PtmFile::Format::Rgb), "m.ptm", 100);
+  CHECK(w.maxDiff <= kMaxDifferenceAtQuality100);
+  CHECK(w.psnr >= kMinPsnrAtQuality100);
+}
+
+TEST_CASE("the independent reader renders the published HSH order 2 and 3 as surrogate render renders the .rti") {
+  for (int terms : {4, 9}) {
+    INFO(terms << " terms");
+    const Worst w = publishAndCompare(makeHsh(terms), "m.rti", 100);
+    CHECK(w.maxDiff <= kMaxDifferenceAtQuality100);
+    CHECK(w.psnr >= kMinPsnrAtQuality100);
+  }
+}
+
+TEST_CASE("an HSH term with scale 0 is published as its constant") {
+  formats::HshFile h = makeHsh(4);
+  h.scale[2] = 0;
+  h.bias[2] = 0.25f;
+  const Worst w = publishAndCompare(h, "m.rti", 100);
+  CHECK(w.maxDiff <= kMaxDifferenceAtQuality100);
+}
+
+// The relit error per JPEG quality on the smooth fields above (the measured values are
+// printed; docs/formats.md gives those of a fitted capture).
+TEST_CASE("the relit error grows as the JPEG quality falls and stays bounded at 75") {
+  const auto lrgb = makePtm(formats::PtmFile::Format::Lrgb);
+  const auto hsh = makeHsh(9);
+  double previousPtm = INFINITY, previousHsh = INFINITY;
+  for (int q : {100, 90, 75}) {
+    const Worst p = publishAndCompare(lrgb, "m.ptm", q);
+    const Worst h = publishAndCompare(hsh, "m.rti", q);
+    WARN("quality " << q << ": PTM LRGB worst PSNR " << p.psnr << " dB (max " << p.maxDiff << "), HSH3 "
+                    << h.psnr << " dB (max " << h.maxDiff << ")");
+    CHECK(p.psnr <= previousPtm);
+    CHECK(h.psnr <= previousHsh);
+    CHECK(p.psnr >= 30);
+    CHECK(h.psnr >= 30);
+    previousPtm = p.psnr;
+    previousHsh = h.psnr;
+  }
+}
+
+TEST_CASE("the colour plane of a PTM LRGB keeps the model's bytes and rows top-first") {
+  const fs::path dir = freshDir("rows");
+  const auto ptm = makePtm(formats::PtmFile::Format::Lrgb);
+  writeModel(dir / "m.ptm", ptm);
+  publish::PublishOptions options;
+  options.quality = 100;
+  publish::publish(dir / "m.ptm", dir / "web", options);
+  const cv::Mat bgr = cv::imread((dir / "web" / "plane_0.jpg").string(), cv::IMREAD_COLOR);
+  REQUIRE(bgr.rows == kH);
+  int worst = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x)
+      for (int c = 0; c < 3; ++c)
+        worst = std::max(worst, std::abs(int(bgr.at<cv::Vec3b>(y, x)[2 - c]) -
+                                         int(ptm.rgb[(static_cast<std::size_t>(y) * kW + x) * 3 + c])));
+  CHECK(worst <= 2);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("publishing twice gives identical bytes") {
+  const fs::path dir = freshDir("twice");
+  writeModel(dir / "m.rti", makeHsh(9));
+  publish::PublishOptions options;
+  options.quality = 90;
+  publish::publish(dir / "m.rti", dir / "a", options);
+  publish::publish(dir / "m.rti", dir / "b", options);
+  std::size_t compared = 0;
+  for (const auto& e : fs::directory_iterator(dir / "a")) {
+    INFO(e.path().filename().string());
+    CHECK(webtest::slurp(e.path()) == webtest::slurp(dir / "b" / e.path().filename()));
+    ++compared;
+  }
+  CHECK(compared == 10);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("publish refuses a folder that is not empty and leaves it as it was") {
+  const fs::path dir = freshDir("refuse");
+  writeModel(dir / "m.ptm", makePtm(formats::PtmFile::Format::Lrgb));
+  fs::create_directories(dir / "web");
+  { std::ofstream(dir / "web" / "mine.txt") << "not Surrogate's"; }
+  CHECK_THROWS_AS(publish::publish(dir / "m.ptm", dir / "web", {}), Error);
+  CHECK(webtest::slurp(dir / "web" / "mine.txt") == "not Surrogate's");
+  std::size_t entries = 0;
+  for (const auto& e : fs::directory_iterator(dir)) entries += e.path().filename().string()[0] == '.';
+  CHECK(entries == 0);  // no partial folder left beside it
+  fs::remove_all(dir);
+}
+
+TEST_CASE("publish into an existing empty folder fills it") {
+  const fs::path dir = freshDir("empty");
+  writeModel(dir / "m.ptm", makePtm(formats::PtmFile::Format::Rgb));
+  fs::create_directories(dir / "web");
+  publish::publish(dir / "m.ptm", dir / "web", {});
+  CHECK(fs::is_regular_file(dir / "web" / "plane_5.jpg"));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("publish refuses HSH order 4 and a quality outside 1 to 100") {
+  CHECK_THROWS_AS(publish::webLayoutOf(makeHsh(16), {}), Error);
+  publish::PublishOptions bad;
+  bad.quality = 0;
+  CHECK_THROWS_AS(publish::webLayoutOf(makeHsh(4), bad), Error);
+  bad.quality = 101;
+  CHECK_THROWS_AS(publish::webLayoutOf(makePtm(formats::PtmFile::Format::Lrgb), bad), Error);
+}
+
+TEST_CASE("describeWebLayout reads back what publish wrote and names a missing plane") {
+  const fs::path dir = freshDir("describe");
+  writeModel(dir / "m.rti", makeHsh(4));
+  publish::PublishOptions options;
+  options.quality = 80;
+  publish::publish(dir / "m.rti", dir / "web", options);
+  publish::WebLayoutSummary s = publish::describeWebLayout(dir / "web" / "info.json");
+  CHECK(s.type == "hsh");
+  CHECK(s.colorspace == "rgb");
+  CHECK(s.basis == "hsh2");
+  CHECK(s.width == kW);
+  CHECK(s.height == kH);
+  CHECK(s.nplanes == 12);
+  CHECK(s.quality == 80);
+  CHECK(s.planes == std::vector<std::string>{"plane_0.jpg", "plane_1.jpg", "plane_2.jpg", "plane_3.jpg"});
+  CHECK(s.missingPlanes.empty());
+  std::uintmax_t bytes = 0;
+  for (const auto& e : fs::directory_iterator(dir / "web")) bytes += fs::file_size(e.path());
+  CHECK(s.bytes == bytes);
+  fs::remove(dir / "web" / "plane_2.jpg");
+  s = publish::describeWebLayout(dir / "web" / "info.json");
+  CHECK(s.missingPlanes == std::vector<std::string>{"plane_2.jpg"});
+  fs::remove_all(dir);
+}
+
+TEST_CASE("describeWebLayout refuses text that is not JSON or lacks what the viewers need") {
+  const fs::path dir = freshDir("describe-bad");
+  const auto refused = [&](const std::string& text) {
+    { std::ofstream(dir / "info.json", std::ios::binary) << text; }
+    try {
+      publish::describeWebLayout(dir / "info.json");
+    } catch (const Error& e) {
+      return e.kind() == ErrorKind::Input;
+    }
+    return false;
+  };
+  const std::string material = R"("materials":[{"scale":[1,1,1],"bias":[0,0,0]}])";
+  CHECK_FALSE(refused(R"({"width":4,"height":3,"type":"ptm","colorspace":"rgb","nplanes":3,)" + material + "}"));
+  CHECK(refused(R"({"width":4,"height":3,"type":"ptm","colorspace":"rgb","nplanes":3,)" + material));  // unclosed
+  CHECK(refused(R"({"width":4,"height":3,"type":"ptm","nplanes":3,)" + material + "}"));  // no colorspace
+  CHECK(refused(R"({"width":4.5,"height":3,"type":"ptm","colorspace":"rgb","nplanes":3,)" + material + "}"));
+  CHECK(refused(R"({"width":4,"height":3,"type":"ptm","colorspace":"rgb","nplanes":6,)" + material + "}"));
+  CHECK(refused(std::string(100, '[') + std::string(100, ']')));  // nested too deeply
+  CHECK(refused("[1,2]"));
+  fs::remove_all(dir);
+}
+
+// The reader is OpenCV's FileStorage with a check before it (src/publish/info_json.cpp): what
+// FileStorage would crash on (deep nesting), stop at (a NUL byte), ignore (text after the object)
+// or misread (010, 4294967300) is refused, and its own errors become an Error(Input).
+TEST_CASE("describeWebLayout says what is wrong with malformed or hostile JSON, naming the file") {
+  const fs::path dir = freshDir("describe-malformed");
+  const fs::path file = dir / "info.json";
+  const std::string material = R"("materials":[{"scale":[1,1,1],"bias":[0,0,0]}])";
+  const std::string good = R"({"width":4,"height":3,"type":"ptm","colorspace":"rgb","nplanes":3,)" + material + "}";
+  // The sentence of the Error(Input) describeWebLayout throws, "" when it reads the text.
+  const auto refusal = [&](const std::string& text) -> std::string {
+    { std::ofstream(file, std::ios::binary) << text; }
+    try {
+      publish::describeWebLayout(file);
+    } catch (const Error& e) {
+      CHECK(e.kind() == ErrorKind::Input);
+      CHECK(e.file() == file.string());
+      return e.message();
+    } catch (...) {
+      FAIL("describeWebLayout let an exception other than surrogate::Error out");
+    }
+    return "";
+  };
+  const auto says = [](const std::string& message, const std::string& what) {
+    INFO(message);
+    CHECK(message.find(what) != std::string::npos);
+  };
+  CHECK(refusal(good).empty());
+  CHECK(refusal("\xEF\xBB\xBF" + good + "\n").empty());  // a byte order mark, a final newline
+  CHECK(refusal("\xEF\xBB\xBF \r\n\t" + good).empty());  // space before the object
+  // FileStorage's own refusal, its line counted from the start of the file.
+  says(refusal("\n\n" R"({"width":4,)" "\n" R"("height":})"), "at line 4");
+  says(refusal(""), "it is empty");
+  says(refusal("[1,2]"), "it is not a JSON object");
+  says(refusal(good.substr(0, good.size() - 1)), "it ends before its brackets close");
+  says(refusal(good + " {}"), "there is more text after the JSON object");
+  says(refusal(good + std::string(1, '\0') + "x"), "NUL byte");
+  says(refusal(R"({"width":4,"type":"ptm)"), "a string is not closed");
+  says(refusal(R"({"width":010})"), "neither a string, a number");
+  says(refusal(R"({"width":0x10})"), "neither a string, a number");
+  says(refusal(R"({"width":4294967300})"), "outside -2147483648 to 2147483647");
+  says(refusal(R"({"width":99999999999999999999999999999})"), "outside -2147483648 to 2147483647");
+  says(refusal(R"({"width":1e999})"), "too large for a double");
+  says(refusal(R"({"width":4,"width":5})"), "\"width\" is given twice");
+  says(refusal(R"({"width":4,)" "\n" R"("height":})"), "at line 2");  // FileStorage's own refusal
+  says(refusal("{\"type\":\"pt\x1Bm\"}"), "a string holds a control character");
+  says(refusal(R"({"type":null})"), "OpenCV's FileStorage");
+  says(refusal(R"({"type":"\u0070tm"})"), "OpenCV's FileStorage");
+  // Nesting: FileStorage recurses once per level and overflows the stack at some 50 000.
+  const int deep = 200000;
+  says(refusal("{\"a\":" + std::string(deep, '[') + std::string(deep, ']') + "}"), "nested too deeply");
+  std::string maps;
+  for (int i = 0; i < deep; ++i) maps += "{\"a\":";
+  says(refusal(maps + "1" + std::string(deep, '}')), "nested too deeply");
+  const std::size_t deepest = 63;  // within the object: 64 levels, the most the reader takes
+  CHECK(refusal("{\"a\":" + std::string(deepest, '[') + std::string(deepest, ']') + "," + good.substr(1)).empty());
+  says(refusal("{\"a\":" + std::string(deepest + 1, '[') + std::string(deepest + 1, ']') + "," + good.substr(1)),
+       "nested too deeply");
+  // relight's PCA bases: megabytes of numbers beside the members the viewers need.
+  std::string basis = R"({"basis":[)";
+  for (int i = 0; i < 200000; ++i) basis += (i ? "," : "") + std::to_string(i % 997 - 498) + ".125e-3";
+  CHECK(refusal(basis + "]," + good.substr(1)).empty());
+  // JSON is UTF-8; FileStorage would pass Latin-1 bytes into the type that `info --json` prints.
+  const std::string utf8 =
+      R"({"width":4,"height":3,"type":"pt)" "\xC3\xA9" R"(","colorspace":"rgb","nplanes":3,)" + material + "}";
+  CHECK(refusal(utf8).empty());
+  CHECK(publish::describeWebLayout(file).type == "pt\xC3\xA9");
+  CHECK(publish::describeWebLayout(file).basis.empty());
+  std::string latin1 = utf8;
+  latin1.replace(latin1.find("\xC3\xA9"), 2, "\xE9");
+  says(refusal(latin1), "not UTF-8");
+  says(refusal(R"({"type":"pt)" "\xED\xA0\x80" R"("})"), "not UTF-8");  // a UTF-16 surrogate
+  says(refusal(R"({"type":"pt)" "\xC0\xAF" R"("})"), "not UTF-8");      // an overlong '/'
+  says(refusal(std::string("\xFF\xFE{\0\"\0", 6)), "NUL byte");  // UTF-16
+  fs::remove_all(dir);
+}
