@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <map>
 #include <set>
+#include <tuple>
 #include <unordered_set>
 
 #include "core/error.h"
@@ -153,6 +154,64 @@ void compareOutputFile(const carrier::DataItem& x, const carrier::DataItem& y,
   out.differences.push_back("output file " + fa->path + " " + how);
 }
 
+// The carrier's description of every file, as the re-executed steps record it again: what a
+// file is (role, format, media type, PRONOM id, what prior work says of its making), its camera
+// metadata, XMP, size in pixels and pairing. Bytes (size, SHA-256) of inputs are compared too;
+// those of outputs are the steps' comparisons (which may allow a tolerance). Without this, a
+// carrier whose descriptions were rewritten, then packed again, would re-execute as sound.
+StepComparison compareFileRecords(const carrier::Carrier& recorded, const carrier::Carrier& fresh) {
+  StepComparison out;
+  std::map<std::string, const carrier::FileRecord*> freshByPath;
+  for (const carrier::FileRecord& f : fresh.files) freshByPath.emplace(f.path, &f);
+  auto pairedPath = [](const carrier::Carrier& c, const carrier::FileRecord& f) {
+    return f.pairedWith.empty() ? std::string() : pathOfId(c, f.pairedWith);
+  };
+  auto cameraText = [](const carrier::Attributes& a) {
+    std::string t;
+    for (const auto& [k, v] : a) t += k + "=" + v + ";";
+    return t;
+  };
+  auto sizeText = [](const std::optional<std::pair<int, int>>& s) {
+    return s ? std::to_string(s->first) + "x" + std::to_string(s->second) : std::string("(absent)");
+  };
+  for (const carrier::FileRecord& a : recorded.files) {
+    const auto it = freshByPath.find(a.path);
+    if (it == freshByPath.end()) {
+      out.differences.push_back("file " + a.path + ": recorded, not recorded again");
+      continue;
+    }
+    const carrier::FileRecord& b = *it->second;
+    freshByPath.erase(it);
+    const bool output = a.role == "assembly" || a.role == "result";
+    std::vector<std::tuple<const char*, std::string, std::string>> fields = {
+        {"role", a.role, b.role},
+        {"format", a.format, b.format},
+        {"mediaType", a.mediaType, b.mediaType},
+        {"puid", a.puid, b.puid},
+        {"createdBy", a.createdBy, b.createdBy},
+        {"pairedWith", pairedPath(recorded, a), pairedPath(fresh, b)},
+        {"unrecordedProcessing", a.unrecordedProcessing ? "true" : "false", b.unrecordedProcessing ? "true" : "false"},
+        {"image size", sizeText(a.imageSize), sizeText(b.imageSize)},
+        {"camera", cameraText(a.camera), cameraText(b.camera)},
+        {"xmp", a.xmp, b.xmp},
+        {"priorKind", a.priorKind, b.priorKind},
+        {"madeBy", a.madeBy, b.madeBy}};
+    if (!output) {
+      fields.emplace_back("size", std::to_string(a.size), std::to_string(b.size));
+      fields.emplace_back("sha256", a.sha256, b.sha256);
+    }
+    for (const auto& [name, u, v] : fields) {
+      ++out.compared;
+      if (u != v)
+        out.differences.push_back("file " + a.path + " @" + name + ": recorded \"" + u.substr(0, 120) +
+                                  "\", reproduced \"" + v.substr(0, 120) + "\"");
+    }
+  }
+  for (const auto& [path, f] : freshByPath)
+    out.differences.push_back("file " + path + ": recorded again, but not in the recorded carrier");
+  return out;
+}
+
 StepComparison compareStep(const carrier::Step& step, const carrier::Carrier& recorded,
                            const carrier::Carrier& fresh, const fs::path& recordedRoot,
                            const fs::path& freshRoot, double tolerance) {
@@ -280,6 +339,12 @@ void checkReexecution(const fs::path& package, const Inventory& inventory,
         "reproduced " + exactness + " (" + std::to_string(cmp.compared) + " recorded values)",
         "re-running the step gave other results than those recorded", cmp.differences));
   }
+  const StepComparison files = compareFileRecords(recorded, fresh);
+  found.push_back(makeCheck("reexecute.files", Severity::NotReproduced,
+                            "the files are described as recorded (" + std::to_string(files.compared) +
+                                " recorded values)",
+                            "re-running the steps described the files otherwise than recorded",
+                            files.differences));
   for (Check& c : found) {
     if (!c.passed && !report.softwareDifferences.empty())
       for (const std::string& s : report.softwareDifferences)

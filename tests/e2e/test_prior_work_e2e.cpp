@@ -173,6 +173,30 @@ TEST_CASE("pack bags prior work in its own METS group and verify checks its fixi
   CHECK_THAT(altered.output, Catch::Contains(std::string("data/") + kPriorPtm));
 }
 
+// The carrier describes each file (what prior work says of its making, formats, camera
+// metadata): a description rewritten in the capture's carrier and packed again is consistent
+// everywhere in the bag, so only re-running the steps can tell, and it must.
+TEST_CASE("a file description rewritten in the carrier and packed again does not re-execute as sound", "[e2e][prior]") {
+  const fs::path capture = rtibuilderCapture("prior-forged");
+  REQUIRE(runIn(capture).exitCode == 0);
+  const fs::path carrierFile = capture / "assembly-files/carrier.xml";
+  std::string text = e2e::bytesOf(carrierFile);
+  const std::string made = "madeBy=\"PTM_1.2 PTM_FORMAT_LRGB\"";
+  REQUIRE(text.find(made) != std::string::npos);
+  text.replace(text.find(made), made.size(), "madeBy=\"RTIBuilder 2.0.2\"");
+  writeBytes(carrierFile, text);
+  const fs::path bag = capture.parent_path() / "bag";
+  REQUIRE(e2e::surrogate("pack " + e2e::quote(capture) + " -o " + e2e::quote(bag) + " --quiet").exitCode == 0);
+
+  CHECK(e2e::surrogate("verify " + e2e::quote(bag) + " --quiet").exitCode == 0);  // fixity holds
+  const e2e::CommandResult reexecuted = e2e::surrogate("verify " + e2e::quote(bag) + " --reexecute");
+  INFO(reexecuted.output);
+  CHECK(reexecuted.exitCode == 4);
+  CHECK_THAT(reexecuted.output, Catch::Contains("FAIL  reexecute.files"));
+  CHECK_THAT(reexecuted.output, Catch::Contains(std::string("file ") + kPriorPtm +
+                                                " @madeBy: recorded \"RTIBuilder 2.0.2\", reproduced \"PTM_1.2 PTM_FORMAT_LRGB\""));
+}
+
 TEST_CASE("a prior file changed between runs is refused as changed evidence naming it", "[e2e][prior]") {
   const fs::path capture = rtibuilderCapture("prior-changed");
   REQUIRE(runIn(capture).exitCode == 0);
