@@ -2,6 +2,7 @@
 
 #include <cstdlib>
 #include <set>
+#include <vector>
 
 #include "capture/capture.h"
 #include "core/atomic_file.h"
@@ -56,6 +57,28 @@ void finishCommit(const fs::path& capture, const carrier::Carrier* previous) {
   fs::remove_all(staging);
 }
 
+// The temporary files of atomic writes (".NAME.part-PID-N", core/atomic_file.h) that a killed
+// command left in the output folders: a run killed while it wrote its report after the commit
+// leaves ".report.html.part-...". Under the capture's lock no other command is writing there,
+// so each one is a leftover. Returns their capture-relative paths.
+std::vector<std::string> removeInterruptedWrites(const fs::path& capture) {
+  std::vector<fs::path> leftovers;
+  for (const char* dir : {"assembly-files", "finished-files"}) {
+    std::error_code ec;
+    if (!fs::is_directory(fs::symlink_status(capture / dir, ec))) continue;
+    for (auto it = fs::recursive_directory_iterator(capture / dir, ec); !ec && it != fs::recursive_directory_iterator();
+         it.increment(ec))
+      if (!it->is_directory(ec) && capture::isInterruptedWrite(it->path().filename().string()))
+        leftovers.push_back(it->path());
+  }
+  std::vector<std::string> removed;
+  for (const fs::path& p : leftovers) {
+    std::error_code ec;
+    if (fs::remove(p, ec)) removed.push_back(p.lexically_relative(capture).generic_string());
+  }
+  return removed;
+}
+
 }  // namespace
 
 fs::path stagingRoot(const fs::path& capture) { return capture / capture::kWorkDir / "staging"; }
@@ -85,6 +108,7 @@ void commitRun(const fs::path& capture, const carrier::Carrier* previous, const 
 }
 
 std::optional<std::string> recoverRun(const fs::path& capture) {
+  const std::vector<std::string> leftovers = removeInterruptedWrites(capture);
   const fs::path staging = stagingRoot(capture);
   std::error_code ec;
   if (fs::exists(journalPath(capture), ec)) {
@@ -105,6 +129,10 @@ std::optional<std::string> recoverRun(const fs::path& capture) {
     return "an earlier command on this capture was interrupted before it finished (killed or "
            "crashed); its partial results were discarded";
   }
+  if (!leftovers.empty())
+    return "an earlier command on this capture was interrupted while it wrote " + leftovers.front() +
+           (leftovers.size() > 1 ? " and " + std::to_string(leftovers.size() - 1) + " more" : std::string()) +
+           "; the partial file was removed";
   return std::nullopt;
 }
 

@@ -328,6 +328,24 @@ TEST_CASE("one command at a time works on a capture", "[e2e][workflow]") {
   CHECK(disagreements(capture).empty());
 }
 
+// A command killed while it wrote a file atomically (the report, written after the commit)
+// leaves the temporary ".NAME.part-PID-N" beside it: the next command on the capture removes it.
+TEST_CASE("the next command removes what a killed atomic write left in the output folders", "[e2e][workflow]") {
+  const fs::path capture = e2e::smallCapture(e2e::freshDir("part-leftover"), 8);
+  runIn(capture, "--basis ptm-lrgb");
+  const fs::path report = capture / "finished-files/.report.html.part-999999-0";
+  const fs::path image = capture / "assembly-files/.spheres.png.part-999999-1";
+  std::ofstream(report) << "<html>half a report";
+  std::ofstream(image) << "half a picture";
+  CHECK_FALSE(disagreements(capture).empty());
+  runIn(capture, "--basis ptm-lrgb");
+  CHECK_FALSE(fs::exists(report));
+  CHECK_FALSE(fs::exists(image));
+  CHECK(disagreements(capture).empty());
+  CHECK_THAT(e2e::bytesOf(capture / "assembly-files/carrier.xml"),
+             Catch::Contains("interrupted while it wrote assembly-files/.spheres.png.part-999999-1 and 1 more"));
+}
+
 TEST_CASE("kill -9 during run or commit leaves the old or the new state, never a mix", "[e2e][workflow]") {
   const fs::path capture = e2e::smallCapture(e2e::freshDir("kill"), 12);
   runIn(capture, "--basis ptm-rgb");
