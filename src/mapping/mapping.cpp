@@ -86,18 +86,17 @@ struct RecordedFiles {
   std::deque<std::string> owned;  // values that are not one plain text node in the tree
 
   explicit RecordedFiles(const xmlDoc* carrier) {
-    std::vector<const xmlNode*> pending;
-    if (const xmlNode* root = xmlDocGetRootElement(carrier)) pending.push_back(root);
-    // Depth first in document order: children pushed last first.
-    while (!pending.empty()) {
-      const xmlNode* n = pending.back();
-      pending.pop_back();
+    // Every node in document order, by the tree's own links (no list of pending nodes).
+    const xmlNode* root = xmlDocGetRootElement(carrier);
+    for (const xmlNode* n = root; n;) {
       if (isCarrierElement(n, "file") && isCarrierElement(n->parent, "files"))
         byPath.push_back({value(n, "path"), value(n, "size"), value(n, "sha256")});
-      std::vector<const xmlNode*> children;
-      for (const xmlNode* c = n->children; c; c = c->next)
-        if (c->type == XML_ELEMENT_NODE) children.push_back(c);
-      pending.insert(pending.end(), children.rbegin(), children.rend());
+      if (n->type == XML_ELEMENT_NODE && n->children) {
+        n = n->children;
+        continue;
+      }
+      while (n != root && !n->next) n = n->parent;
+      n = n == root ? nullptr : n->next;
     }
     std::stable_sort(byPath.begin(), byPath.end(),
                      [](const RecordedFile& a, const RecordedFile& b) { return a.path < b.path; });

@@ -8,6 +8,7 @@
 #include <map>
 #include <set>
 #include <tuple>
+#include <unordered_map>
 #include <unordered_set>
 
 #include "core/error.h"
@@ -163,8 +164,18 @@ StepComparison compareFileRecords(const carrier::Carrier& recorded, const carrie
   StepComparison out;
   std::map<std::string, const carrier::FileRecord*> freshByPath;
   for (const carrier::FileRecord& f : fresh.files) freshByPath.emplace(f.path, &f);
-  auto pairedPath = [](const carrier::Carrier& c, const carrier::FileRecord& f) {
-    return f.pairedWith.empty() ? std::string() : pathOfId(c, f.pairedWith);
+  // Pairings compared by path (ids may be numbered otherwise): each carrier's ids looked up
+  // once, not by a search of its whole list per file.
+  auto pathsById = [](const carrier::Carrier& c) {
+    std::unordered_map<std::string, std::string> out;
+    for (const carrier::FileRecord& f : c.files) out.emplace(f.id, f.path);
+    return out;
+  };
+  const auto recordedPaths = pathsById(recorded), freshPaths = pathsById(fresh);
+  auto pairedPath = [](const std::unordered_map<std::string, std::string>& paths, const carrier::FileRecord& f) {
+    if (f.pairedWith.empty()) return std::string();
+    const auto it = paths.find(f.pairedWith);
+    return it != paths.end() ? it->second : "(unknown file " + f.pairedWith + ")";
   };
   auto cameraText = [](const carrier::Attributes& a) {
     std::string t;
@@ -189,7 +200,7 @@ StepComparison compareFileRecords(const carrier::Carrier& recorded, const carrie
         {"mediaType", a.mediaType, b.mediaType},
         {"puid", a.puid, b.puid},
         {"createdBy", a.createdBy, b.createdBy},
-        {"pairedWith", pairedPath(recorded, a), pairedPath(fresh, b)},
+        {"pairedWith", pairedPath(recordedPaths, a), pairedPath(freshPaths, b)},
         {"unrecordedProcessing", a.unrecordedProcessing ? "true" : "false", b.unrecordedProcessing ? "true" : "false"},
         {"image size", sizeText(a.imageSize), sizeText(b.imageSize)},
         {"camera", cameraText(a.camera), cameraText(b.camera)},
