@@ -26,14 +26,25 @@
 
 namespace {
 
-const std::filesystem::path& inputFile() {
-  static const std::filesystem::path file = [] {
+// The decoders read files by name: each input is written to one scratch file, whose folder is
+// removed when the process ends.
+struct ScratchFolder {
+  std::filesystem::path dir;
+  ScratchFolder() {
     const char* tmp = std::getenv("TMPDIR");
-    const std::filesystem::path dir = std::filesystem::path(tmp && *tmp ? tmp : "/tmp") /
-                                      ("surrogate-fuzz-image-" + std::to_string(::getpid()));
+    dir = std::filesystem::path(tmp && *tmp ? tmp : "/tmp") /
+          ("surrogate-fuzz-image-" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
-    return dir / "input";
-  }();
+  }
+  ~ScratchFolder() {
+    std::error_code ec;
+    std::filesystem::remove_all(dir, ec);
+  }
+};
+
+const std::filesystem::path& inputFile() {
+  static const ScratchFolder scratch;
+  static const std::filesystem::path file = scratch.dir / "input";
   return file;
 }
 

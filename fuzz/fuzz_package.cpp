@@ -4,13 +4,24 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 
 #include "archive/package_reader.h"
 #include "core/error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  static const std::string path = "/tmp/surrogate-fuzz-package-" + std::to_string(::getpid());
+  // The reader takes a file name: each input is written to one scratch file, removed at exit.
+  struct ScratchFile {
+    std::string path;
+    ScratchFile() {
+      const char* tmp = std::getenv("TMPDIR");
+      path = std::string(tmp && *tmp ? tmp : "/tmp") + "/surrogate-fuzz-package-" + std::to_string(::getpid());
+    }
+    ~ScratchFile() { std::remove(path.c_str()); }
+  };
+  static const ScratchFile scratch;
+  const std::string& path = scratch.path;
   FILE* f = std::fopen(path.c_str(), "wb");
   if (!f) return 0;
   std::fwrite(data, 1, size, f);
