@@ -11,7 +11,10 @@
                       <payload><file path="data/..." size="N" sha256="hex" sha512="hex"/></payload>
                     (Surrogate builds it from manifest-sha256.txt and manifest-sha512.txt;
                     it leaves out size and sha256 where the carrier's record of the same path,
-                    data/ + @path, gives the same ones, and they are taken from there). When
+                    data/ + @path, gives the same ones, and they are taken from there; and it
+                    names each element after the file's group, the role of that record or
+                    "other" when there is none: <original .../>, <result .../>. A <file>'s
+                    group is looked up here). When
                     the list has no file, the carrier's own file list is used instead (without
                     SHA-512). Give an absolute path or URI: a relative one is resolved against
                     this stylesheet's location.
@@ -49,7 +52,7 @@
   <xsl:param name="payload-uri" select="''"/>
 
   <xsl:variable name="carrier" select="/c:carrier"/>
-  <xsl:variable name="payload" select="document($payload-uri)/payload/file"/>
+  <xsl:variable name="payload" select="document($payload-uri)/payload/*"/>
   <xsl:variable name="objid">
     <xsl:choose>
       <xsl:when test="$package-id != ''"><xsl:value-of select="$package-id"/></xsl:when>
@@ -376,10 +379,11 @@
        else the carrier's files (paths under data/). Each file's number is its position here. -->
   <xsl:variable name="use-payload" select="count($payload) &gt; 0"/>
 
-  <!-- Whether a payload file belongs to a group: the role of its carrier file record (the
-       first with the path "data/" + carrier path), "other" when the carrier does not list it.
-       Tested inline, in the carrier's document (key() looks in the context node's document):
-       with the path and the number of the payload file taken before switching to it. -->
+  <!-- Whether a payload file belongs to a group: its element's name when the list names it;
+       for a <file>, the role of its carrier file record (the first with the path "data/" +
+       carrier path), "other" when the carrier does not list it. Looked up inline, in the
+       carrier's document (key() looks in the context node's document): with the path and the
+       number of the payload file taken before switching to it. -->
 
   <xsl:template name="file-group">
     <xsl:param name="use"/>
@@ -388,7 +392,8 @@
     <xsl:variable name="members">
       <xsl:choose>
         <xsl:when test="$use-payload">
-          <xsl:for-each select="$payload">
+          <xsl:if test="$payload[local-name() = $use]">x</xsl:if>
+          <xsl:for-each select="$payload[self::file]">
             <xsl:variable name="path" select="@path"/>
             <xsl:for-each select="$carrier">
               <xsl:variable name="rec" select="key('file-by-bag-path', $path)"/>
@@ -410,9 +415,10 @@
               <xsl:variable name="path" select="@path"/>
               <xsl:variable name="size" select="@size"/>
               <xsl:variable name="sha256" select="@sha256"/>
-              <xsl:for-each select="$carrier">
+              <xsl:variable name="named" select="local-name() = $use"/>
+              <xsl:for-each select="$carrier[$named or current()/self::file]">
                 <xsl:variable name="rec" select="key('file-by-bag-path', $path)"/>
-                <xsl:if test="($rec and $rec[1]/@role = $use) or (not($rec) and $use = 'other')">
+                <xsl:if test="$named or ($rec and $rec[1]/@role = $use) or (not($rec) and $use = 'other')">
                   <xsl:call-template name="mets-file">
                     <xsl:with-param name="n" select="$n"/>
                     <xsl:with-param name="path" select="$path"/>
@@ -490,14 +496,21 @@
     <xsl:choose>
       <xsl:when test="$use-payload">
         <xsl:for-each select="$payload">
-          <xsl:variable name="n" select="position()"/>
-          <xsl:variable name="path" select="@path"/>
-          <xsl:for-each select="$carrier">
-            <xsl:variable name="rec" select="key('file-by-bag-path', $path)"/>
-            <xsl:if test="($rec and $rec[1]/@role = $use) or (not($rec) and $use = 'other')">
-              <mets:div TYPE="{$label}" LABEL="{$path}"><mets:fptr FILEID="file-{$n}"/></mets:div>
-            </xsl:if>
-          </xsl:for-each>
+          <xsl:choose>
+            <xsl:when test="local-name() = $use">
+              <mets:div TYPE="{$label}" LABEL="{@path}"><mets:fptr FILEID="file-{position()}"/></mets:div>
+            </xsl:when>
+            <xsl:when test="self::file">
+              <xsl:variable name="n" select="position()"/>
+              <xsl:variable name="path" select="@path"/>
+              <xsl:for-each select="$carrier">
+                <xsl:variable name="rec" select="key('file-by-bag-path', $path)"/>
+                <xsl:if test="($rec and $rec[1]/@role = $use) or (not($rec) and $use = 'other')">
+                  <mets:div TYPE="{$label}" LABEL="{$path}"><mets:fptr FILEID="file-{$n}"/></mets:div>
+                </xsl:if>
+              </xsl:for-each>
+            </xsl:when>
+          </xsl:choose>
         </xsl:for-each>
       </xsl:when>
       <xsl:otherwise>
