@@ -75,7 +75,11 @@ int runCommandFit(int argc, char** argv) {
   run.threads = threads;
   if (const auto m = args.value("memory")) run.memoryBudget = parseByteSize(*m, "--memory");
   run.progress = [&bar](const std::string& label, double f) { bar.update(label, f); };
-  const stages::DecodedStacks decoded = stages::decodeImages(files, image::RawDecodeSettings(), run);
+  // The output model is held besides the stacks: counted when deciding whether they stay in
+  // memory, and the stacks held there leave the fit what remains of the budget.
+  const stages::DecodedStacks decoded = stages::decodeImages(files, image::RawDecodeSettings(), run, {},
+                                                             stages::modelBytesPerPixel(fit::basisName(basis)));
+  run.heldBytes = decoded.bytesInMemory;
 
   fit::FitOptions options;
   options.basis = basis;

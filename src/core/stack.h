@@ -9,9 +9,9 @@
 //     ... per-pixel work on the band ...
 //   }
 //
-// Implementations: MemoryImageStack (tests, small captures) and the pipeline's decoded stack
-// (images decoded once and spilled to a temporary file). readRows must be safe to call from
-// several threads at once.
+// Implementations: MemoryImageStack (tests, and decoded images that fit the memory budget) and
+// the pipeline's SpillStack (images decoded once and spilled to a temporary file when they do
+// not). readRows must be safe to call from several threads at once.
 #pragma once
 
 #include <cstdint>

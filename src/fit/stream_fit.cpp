@@ -60,9 +60,13 @@ std::vector<double> streamFit(const ImageStack& stack, RowFitter& fitter,
   const int band = static_cast<int>(
       std::clamp<std::size_t>(available / bandRowBytes, 1, static_cast<std::size_t>(h)));
   const int bands = (h + band - 1) / band;
-  std::vector<std::uint16_t> buffer(static_cast<std::size_t>(n) * band * rowSamples);
+  // RGB images already in memory (the decoded stacks when they fit --memory) are read where
+  // they are, band by band as the others: no band buffer, no copy.
+  const auto* held = ch == 3 ? dynamic_cast<const MemoryImageStack*>(&stack) : nullptr;
+  std::vector<std::uint16_t> buffer(held ? 0 : static_cast<std::size_t>(n) * band * rowSamples);
 
   auto readBand = [&](int y0, int y1) {
+    if (held) return;
     parallelFor(static_cast<std::size_t>(n), 1, threads, [&](std::size_t b, std::size_t e) {
       std::vector<std::uint16_t> grey;
       for (std::size_t i = b; i < e; ++i) {
@@ -87,7 +91,8 @@ std::vector<double> streamFit(const ImageStack& stack, RowFitter& fitter,
       std::vector<const std::uint16_t*> images(n);
       for (std::size_t r = b; r < e; ++r) {
         for (int i = 0; i < n; ++i)
-          images[i] = buffer.data() + (static_cast<std::size_t>(i) * band + r) * rowSamples;
+          images[i] = held ? held->image(i).pixels.data() + (y0 + r) * rowSamples
+                           : buffer.data() + (static_cast<std::size_t>(i) * band + r) * rowSamples;
         fn(RowView{images.data(), w, y0 + static_cast<int>(r)}, scratch.data());
       }
     });

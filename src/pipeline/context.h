@@ -6,6 +6,7 @@
 // stays the single source of truth.
 #pragma once
 
+#include <algorithm>
 #include <any>
 #include <cstddef>
 #include <filesystem>
@@ -23,10 +24,14 @@ namespace surrogate::pipeline {
 struct RunSettings {
   int threads = 0;                                // 0 = all cores
   std::size_t memoryBudget = std::size_t(2) << 30;  // bytes: the process's peak should stay below
-  // The part of memoryBudget one fit may use (its output model and its row bands): three
-  // quarters. The rest is for what the process holds besides: models kept for the derived maps,
-  // decoders' buffers, the carrier (measured: 60 x 24 Mpx, pipeline_bench).
-  std::size_t fitBudget() const { return memoryBudget / 4 * 3; }
+  // Bytes held for the rest of the run out of memoryBudget: the decoded stacks when they are
+  // kept in memory (stages::decodeImages). What streams in bands shares what is left.
+  std::size_t heldBytes = 0;
+  std::size_t streamingBudget() const { return memoryBudget - std::min(heldBytes, memoryBudget); }
+  // The part of the streaming budget one fit may use (its output model and its row bands):
+  // three quarters. The rest is for what the process holds besides: models kept for the
+  // derived maps, decoders' buffers, the carrier (measured: 60 x 24 Mpx, pipeline_bench).
+  std::size_t fitBudget() const { return streamingBudget() / 4 * 3; }
   std::string who;                                // the person running it (interventions, log)
   // Called with (step label, fraction done 0..1) for progress display; may be empty.
   std::function<void(const std::string&, double)> progress;

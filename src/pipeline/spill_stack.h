@@ -1,7 +1,8 @@
 // SpillStack: an ImageStack whose pixels live in an anonymous temporary file.
 //
 // A capture of 60 photographs of 24 Mpx is 8.6 GB as 16-bit RGB: more than a workstation
-// should hold in memory. Each image is decoded once, written to the spill file with pwrite,
+// should hold in memory. When the decoded images do not fit --memory
+// (stages::stacksFitInMemory), each is decoded once, written to the spill file with pwrite,
 // and read back by row bands with pread: resident memory stays at the bands being processed
 // (the operating system's page cache does the rest). The file is unlinked at creation, so
 // nothing is left behind even if the process is killed.

@@ -5,6 +5,12 @@
 // Images are decoded in parallel, as many at once as the threads and the memory budget allow;
 // the stacks and the per-image reports are in input order whatever the thread count.
 //
+// The stacks stay in memory when they fit the budget (stacksFitInMemory: at most half of what
+// --memory leaves after decoding one image and the fitted models), and only otherwise go to a
+// temporary file (pipeline::SpillStack). Held in memory, they count against the budget for the
+// rest of the run: DecodedStacks::bytesInMemory, which the caller adds to
+// RunSettings::heldBytes so that the bands of later steps are sized to what is left.
+//
 // Bounded for any input: before anything is decoded, the first image's header gives the size;
 // if decoding one such image needs more memory than --memory (residentBytesPerImage), or the
 // two stacks more than the free space of the folder they spill to ($TMPDIR), it is refused
@@ -35,7 +41,14 @@ struct DecodedStacks {
   std::shared_ptr<ImageStack> rgb;
   std::shared_ptr<ImageStack> luminance;
   std::vector<DecodedImage> images;
+  std::uint64_t bytesInMemory = 0;  // what rgb and luminance hold in memory; 0 when spilled
 };
+
+// Whether the two stacks of `count` images of `pixels` pixels stay in memory under `budget`
+// (bytes), with `laterBytesPerPixel` held besides (see decodeImages). The other half of the
+// budget is for the bands the later steps stream and for decoding several images at once.
+bool stacksFitInMemory(int count, std::uint64_t pixels, std::uint64_t budget,
+                       std::uint64_t laterBytesPerPixel = 0);
 
 // `acceptDamage[i]`: decode image i even if its decoder reports damaged data (the warnings are
 // then in images[i].report.decoderWarnings); otherwise such an image is refused with
@@ -52,7 +65,7 @@ DecodedStacks decodeImages(const std::vector<std::filesystem::path>& files,
 // What decoding one image of `pixels` pixels holds in memory at once: the decoded image, its
 // luminance and sRGB copies and the decoder's working memory, about 4 copies of 16-bit RGB
 // (measured: see kResidentBytesPerPixel). Everything else of a run streams in bands sized to
-// the budget; the stacks are in temporary files.
+// the budget; the stacks are in memory or in temporary files (stacksFitInMemory).
 // Measured (surrogate run, --threads 1, 10 x 3 Mpx): 16 bytes per pixel above the process's
 // own 80 MB for decoding and light estimation; a whole run 33 (ptm-lrgb), 33 (hsh2), 47 (hsh3)
 // and 42 (ptm-lrgb and hsh2), i.e. at most this plus the fitted models' bytes per pixel.

@@ -47,6 +47,18 @@ std::vector<const carrier::Intervention*> acceptedDamage(const carrier::Step& st
   return accepted;
 }
 
+std::string mebibytes(std::uint64_t bytes) { return std::to_string((bytes + (1u << 19)) >> 20) + " MiB"; }
+
+std::string stackPlacement(const DecodedStacks& d, std::size_t count, std::uint64_t budget) {
+  if (d.bytesInMemory > 0)
+    return "the " + std::to_string(count) + " decoded images are held in memory (" + mebibytes(d.bytesInMemory) +
+           " of the " + mebibytes(budget) + " --memory budget)";
+  const std::uint64_t bytes = std::uint64_t(count) * d.rgb->width() * d.rgb->height() * (3 + 1) * 2;
+  return "the " + std::to_string(count) + " decoded images (" + mebibytes(bytes) +
+         ") are in a temporary file: with room for the rest of the run they do not fit the " +
+         mebibytes(budget) + " --memory budget; a larger --memory keeps them in memory and runs faster";
+}
+
 }  // namespace
 
 pipeline::StageInfo DecodeStage::info() {
@@ -159,6 +171,10 @@ void DecodeStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
   ctx.put(kRgbStack, decoded.rgb);
   ctx.put(kDecodedRgbStack, decoded.rgb);
   ctx.put(kLuminanceStack, decoded.luminance);
+  // Stacks kept in memory count against --memory for the rest of the run (they replace any
+  // earlier ones on the blackboard). The log says where they are: a spilled run is slower.
+  ctx.settings.heldBytes = decoded.bytesInMemory;
+  ctx.carrier.addLog("info", step.id, stackPlacement(decoded, files.size(), ctx.settings.memoryBudget));
 }
 
 }  // namespace surrogate::stages

@@ -101,7 +101,7 @@ void SphereDetectionStage::run(const carrier::Step& step, pipeline::Context& ctx
   // The median of the stack is most of the work; the circle search follows it.
   ctx.progress("Sphere detection", 0);
   auto median = std::make_shared<Image>(
-      hrti::medianImage(*lum, bandRowsFor(*lum, ctx.settings.memoryBudget), ctx.settings.threads));
+      hrti::medianImage(*lum, bandRowsFor(*lum, ctx.settings.streamingBudget()), ctx.settings.threads));
 
   auto spheres = std::make_shared<Spheres>();
   const auto manual = step.interventionsOfKind("manual-sphere");

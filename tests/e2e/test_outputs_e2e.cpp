@@ -80,6 +80,38 @@ TEST_CASE("results are bit-identical with 1 and 2 threads") {
   }
 }
 
+TEST_CASE("a memory budget too small to hold the decoded images gives bit-identical results") {
+  // 16 x 800x600: 61 MB of stacks, held in memory under the default 2G; under 64M (the least
+  // --memory takes), beside decoding one image and the two models kept, they go to a
+  // temporary file.
+  const fs::path dir = e2e::freshDir("memory");
+  const fs::path a = dir / "held", b = dir / "spilled";
+  REQUIRE(e2e::runShell(std::string(GENERATOR_EXE) + " --out " + e2e::quote(a) +
+                        " --images 16 --width 800 --height 600 --sphere-radius 60 --seed 5 --formats jpeg").exitCode == 0);
+  fs::remove_all(a / "truth");
+  fs::copy(a, b, fs::copy_options::recursive);
+  REQUIRE(e2e::surrogate("run " + e2e::quote(a) + " --quiet --threads 2").exitCode == 0);
+  const e2e::CommandResult spilled = e2e::surrogate("run " + e2e::quote(b) + " --quiet --threads 2 --memory 64M");
+  INFO(spilled.output);
+  REQUIRE(spilled.exitCode == 0);
+  const carrier::Carrier ca = carrier::loadCarrier(a / "assembly-files/carrier.xml");
+  const carrier::Carrier cb = carrier::loadCarrier(b / "assembly-files/carrier.xml");
+  CHECK(resultsOf(ca) == resultsOf(cb));
+  for (const char* path : {"assembly-files/lights.lp", "assembly-files/spheres.png", "finished-files/ptm-lrgb.ptm",
+                           "finished-files/hsh2.rti", "finished-files/normals.png", "finished-files/preview-specular.png"}) {
+    INFO(path);
+    CHECK(digestFile(a / path).sha256 == digestFile(b / path).sha256);
+  }
+  // The log says where the decoded images were, so that a slow run can be told apart.
+  auto logged = [](const carrier::Carrier& c, const std::string& words) {
+    for (const carrier::LogEntry& e : c.log)
+      if (e.text.find(words) != std::string::npos) return true;
+    return false;
+  };
+  CHECK(logged(ca, "decoded images are held in memory"));
+  CHECK(logged(cb, ") are in a temporary file"));
+}
+
 TEST_CASE("surrogate lights writes the .lp and light directions close to the truth") {
   const fs::path dir = e2e::freshDir("lights");
   const fs::path generated = dir / "generated";

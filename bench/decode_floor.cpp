@@ -1,0 +1,161 @@
+// The decode floor: a plain libjpeg-turbo full decode of JPEG files to 8-bit RGB, nothing else.
+//
+// Every speed target of issue 19 is a ratio to this figure. The files are read into memory,
+// then decoded on N threads (default: all cores), each thread taking the next file; the pixels
+// are decoded into one buffer per thread and dropped. Prints wall time, CPU time (user and
+// system) and peak resident memory, as text or (--json) as one JSON object.
+//
+//   decode_floor [--threads N] [--json] FILE.jpg ...
+//   decode_floor [--threads N] [--json] DIR       (every *.jpg / *.jpeg in DIR)
+#include <sys/resource.h>
+
+#include <cstdio>  // before jpeglib.h, which uses FILE
+#include <jpeglib.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <csetjmp>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct ErrorManager {
+  jpeg_error_mgr base;
+  std::jmp_buf jump;
+};
+
+[[noreturn]] void onJpegError(j_common_ptr info) {
+  std::longjmp(reinterpret_cast<ErrorManager*>(info->err)->jump, 1);
+}
+
+std::vector<unsigned char> readBytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// Decodes one JPEG to RGB into `pixels` (reused across files). Returns the pixel count, or 0
+// when libjpeg reports an error.
+std::size_t decodeRgb(const std::vector<unsigned char>& bytes, std::vector<unsigned char>& pixels) {
+  jpeg_decompress_struct info{};
+  ErrorManager errors{};
+  info.err = jpeg_std_error(&errors.base);
+  errors.base.error_exit = onJpegError;
+  if (setjmp(errors.jump)) {
+    jpeg_destroy_decompress(&info);
+    return 0;
+  }
+  jpeg_create_decompress(&info);
+  jpeg_mem_src(&info, bytes.data(), static_cast<unsigned long>(bytes.size()));
+  jpeg_read_header(&info, TRUE);
+  info.out_color_space = JCS_RGB;
+  jpeg_start_decompress(&info);
+  const std::size_t stride = std::size_t(info.output_width) * info.output_components;
+  pixels.resize(stride * info.output_height);
+  while (info.output_scanline < info.output_height) {
+    JSAMPROW rows[16];
+    const unsigned n = std::min(16u, info.output_height - info.output_scanline);
+    for (unsigned r = 0; r < n; ++r) rows[r] = pixels.data() + (info.output_scanline + r) * stride;
+    jpeg_read_scanlines(&info, rows, n);
+  }
+  const std::size_t count = std::size_t(info.output_width) * info.output_height;
+  jpeg_finish_decompress(&info);
+  jpeg_destroy_decompress(&info);
+  return count;
+}
+
+std::vector<fs::path> listInputs(const std::vector<std::string>& args) {
+  std::vector<fs::path> files;
+  for (const std::string& a : args) {
+    if (!fs::is_directory(a)) {
+      files.emplace_back(a);
+      continue;
+    }
+    for (const auto& e : fs::directory_iterator(a)) {
+      std::string ext = e.path().extension().string();
+      std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+      if (ext == ".jpg" || ext == ".jpeg") files.push_back(e.path());
+    }
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+#define SURROGATE_STRINGIFY2(x) #x
+#define SURROGATE_STRINGIFY(x) SURROGATE_STRINGIFY2(x)
+const char* libjpegVersion() {
+#ifdef LIBJPEG_TURBO_VERSION
+  return "turbo " SURROGATE_STRINGIFY(LIBJPEG_TURBO_VERSION);
+#else
+  return "API " SURROGATE_STRINGIFY(JPEG_LIB_VERSION);
+#endif
+}
+
+double seconds(const timeval& t) { return t.tv_sec + t.tv_usec / 1e6; }
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+  bool json = false;
+  std::vector<std::string> args;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--threads" && i + 1 < argc) threads = std::max(1, std::atoi(argv[++i]));
+    else if (a == "--json") json = true;
+    else args.push_back(a);
+  }
+  const std::vector<fs::path> files = listInputs(args);
+  if (files.empty()) {
+    std::fprintf(stderr, "usage: decode_floor [--threads N] [--json] FILE.jpg ... | DIR\n");
+    return 2;
+  }
+  // Reading the files is not decoding: they are in memory before the clock starts.
+  std::vector<std::vector<unsigned char>> data;
+  for (const fs::path& f : files) data.push_back(readBytes(f));
+
+  rusage before{};
+  getrusage(RUSAGE_SELF, &before);
+  std::atomic<std::size_t> next{0}, pixels{0}, failed{0};
+  const auto t0 = std::chrono::steady_clock::now();
+  std::vector<std::thread> pool;
+  for (unsigned t = 0; t < threads; ++t) {
+    pool.emplace_back([&] {
+      std::vector<unsigned char> buffer;
+      for (std::size_t i; (i = next++) < data.size();) {
+        const std::size_t n = decodeRgb(data[i], buffer);
+        pixels += n;
+        if (n == 0) ++failed;
+      }
+    });
+  }
+  for (std::thread& t : pool) t.join();
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  rusage after{};
+  getrusage(RUSAGE_SELF, &after);
+  const double user = seconds(after.ru_utime) - seconds(before.ru_utime);
+  const double sys = seconds(after.ru_stime) - seconds(before.ru_stime);
+  const double peakMiB = after.ru_maxrss / 1024.0;
+
+  if (json) {
+    std::printf("{\"files\":%zu,\"failed\":%zu,\"threads\":%u,\"megapixels\":%.3f,\"wall_s\":%.4f,"
+                "\"user_s\":%.4f,\"sys_s\":%.4f,\"peak_mib\":%.1f,\"libjpeg\":\"%s\"}\n",
+                files.size(), failed.load(), threads, pixels / 1e6, wall, user, sys, peakMiB, libjpegVersion());
+  } else {
+    std::printf("decoded %zu JPEG files (%.1f Mpx) to RGB on %u threads (libjpeg %s)\n", files.size(),
+                pixels / 1e6, threads, libjpegVersion());
+    std::printf("  wall %.3f s, CPU %.3f s (user %.3f, system %.3f), peak %.0f MiB\n", wall, user + sys, user,
+                sys, peakMiB);
+    if (failed) std::printf("  %zu files failed to decode\n", failed.load());
+  }
+  return failed ? 1 : 0;
+}
