@@ -658,6 +658,14 @@ void printWebLayout(const fs::path& path, bool json) {
   for (const std::string& p : s.missingPlanes) std::cout << "  missing: " << p << " (the viewers cannot show the model)\n";
 }
 
+// The folder `surrogate publish` writes for one model: an info.json, and none of a capture's
+// folders (a capture is described as one even if someone left an info.json in it).
+bool isWebLayoutFolder(const fs::path& path) {
+  std::error_code ec;
+  return fs::is_regular_file(path / "info.json", ec) && !fs::exists(path / capture::kAssemblyDir, ec) &&
+         !fs::exists(path / "original-captures", ec) && !fs::exists(path / capture::kExportsDir, ec);
+}
+
 }  // namespace
 
 int runCommandInfo(int argc, char** argv) {
@@ -670,8 +678,8 @@ int runCommandInfo(int argc, char** argv) {
                              "command to verify it), a carrier (carrier.xml: creators, metadata, "
                              "steps, decisions with who, when and why, runs), a capture folder, "
                              "an image (camera, lens, exposure, date; also one Surrogate cannot "
-                             "decode), an .xmp sidecar, a .ptm, .rti or .lp file, or the info.json of "
-                             "a web layout (surrogate publish).")
+                             "decode), an .xmp sidecar, a .ptm, .rti or .lp file, or a web layout "
+                             "(the folder surrogate publish writes, or its info.json).")
               << Args::describe(specs);
     return 0;
   }
@@ -688,6 +696,8 @@ int runCommandInfo(int argc, char** argv) {
   const std::string ext = lowerCase(path.extension().string());
   if (isPackage(path, st)) {
     printPackage(path, json);
+  } else if (fs::is_directory(st) && isWebLayoutFolder(path)) {
+    printWebLayout(path / "info.json", json);
   } else if (fs::is_directory(st)) {
     if (fs::exists(path / capture::kAssemblyDir / "carrier.xml", ec) && !json) {
       printCapture(path, false);

@@ -1,5 +1,6 @@
-// surrogate publish FILE.ptm|FILE.rti|CAPTURE -o DIR [--quality Q]: the web layout that
-// OpenLIME and Relight's web viewer read (publish/web_layout.h).
+// surrogate publish FILE.ptm|FILE.rti|CAPTURE -o DIR [--quality Q] [--tiles LAYOUT] [--tile-size N]:
+// the web layout that OpenLIME and Relight's web viewer read, with a viewer (publish/web_layout.h).
+#include <cctype>
 #include <iostream>
 
 #include "cli/args.h"
@@ -12,16 +13,19 @@ namespace surrogate::cli {
 
 namespace {
 void printJson(const std::string& out, const publish::PublishOptions& options,
-               const std::vector<publish::PublishedModel>& models) {
+               const std::vector<publish::PublishedModel>& models, const std::vector<std::string>& removed) {
   JsonWriter j;
   j.beginObject().key("output").value(out).key("quality").value(options.quality).key("models").beginArray();
   for (const publish::PublishedModel& m : models) {
     j.beginObject().key("source").value(m.source).key("folder").value(m.folder).key("type").value(m.type)
+        .key("tiles").value(m.tiles.empty() ? "none" : m.tiles).key("levels").value(m.levels)
         .key("colorspace").value(m.colorspace).key("width").value(m.width).key("height").value(m.height)
         .key("nplanes").value(m.nplanes).key("files").beginArray();
     for (const std::string& f : m.files) j.value(f);
     j.endArray().endObject();
   }
+  j.endArray().key("removedLeftovers").beginArray();
+  for (const std::string& r : removed) j.value(r);
   j.endArray().endObject();
   std::cout << j.str() << "\n";
 }
@@ -32,13 +36,18 @@ int runCommandPublish(int argc, char** argv) {
       {"o", true, false, "the folder to write (new, or empty)", "DIR"},
       {"output", true, false, "same as -o", "DIR"},
       {"quality", true, false, "JPEG quality 1..100 of the coefficient planes (default 95)", "Q"},
+      {"tiles", true, false,
+       "auto (default: Deep Zoom tiles when a side exceeds 4096 texels), none (whole plane images) or "
+       "deepzoom (always tiles)", "LAYOUT"},
+      {"tile-size", true, false, "side of a Deep Zoom tile in texels, 16..4096 (default 256)", "N"},
       {"json", false, false, "print what was written as JSON"},
   };
   Args args(argc, argv, 1, specs);
-  if (helpShown(args, specs, "surrogate publish FILE.ptm|FILE.rti|CAPTURE -o DIR [--quality Q]",
+  if (helpShown(args, specs, "surrogate publish FILE.ptm|FILE.rti|CAPTURE -o DIR [--quality Q] [--tiles LAYOUT] [--tile-size N]",
                 "Write a PTM or HSH model, or every one a capture's carrier records in finished-files/, "
                 "in the web layout OpenLIME and Relight's web viewer read: info.json and JPEG "
-                "coefficient planes."))
+                "coefficient planes (Deep Zoom tiles for a model larger than a screen), with index.html, "
+                "a viewer that relights the model in a browser, also from a local folder."))
     return 0;
   const auto out = outputOption(args);
   if (args.positional().size() != 1 || !out)
@@ -50,15 +59,25 @@ int runCommandPublish(int argc, char** argv) {
     if (options.quality < 1 || options.quality > 100)
       throw Error(ErrorKind::Usage, "--quality " + *q, "command line", "needs a JPEG quality from 1 to 100");
   }
-  const auto models = publish::publish(args.positional()[0], *out, options);
+  if (const auto t = args.value("tiles")) options.tiles = publish::parseTileLayout(*t);
+  if (args.value("tile-size")) options.tileSize = args.intValue("tile-size", 256);
+  std::vector<std::string> removed;
+  const auto models = publish::publish(args.positional()[0], *out, options, &removed);
   if (args.has("json")) {
-    printJson(*out, options, models);
+    printJson(*out, options, models, removed);
     return 0;
   }
-  for (const publish::PublishedModel& m : models)
-    std::cout << "wrote " << (std::filesystem::path(*out) / m.folder).generic_string() << "/ (" << m.type << " "
-              << m.colorspace << ", " << m.width << "x" << m.height << ", " << m.files.size() - 1
-              << " JPEG planes, quality " << options.quality << ") from " << m.source << "\n";
+  for (const std::string& r : removed)
+    std::cout << char(std::toupper(static_cast<unsigned char>(r[0]))) << r.substr(1) << ".\n";
+  for (const publish::PublishedModel& m : models) {
+    std::string folder = (std::filesystem::path(*out) / m.folder).generic_string();
+    if (folder.back() != '/') folder += '/';  // out / "" already ends with one
+    std::cout << "wrote " << folder << " (" << m.type << " "
+              << m.colorspace << ", " << m.width << "x" << m.height << ", " << (m.nplanes + 2) / 3
+              << " JPEG planes" << (m.tiles.empty() ? "" : " as Deep Zoom tiles (" + std::to_string(options.tileSize) +
+                                    " texels, " + std::to_string(m.levels) + " levels)")
+              << ", quality " << options.quality << ", viewer index.html) from " << m.source << "\n";
+  }
   return 0;
 }
 

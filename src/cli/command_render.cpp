@@ -1,5 +1,6 @@
-// surrogate render FILE.ptm|FILE.rti --light x,y,z -o OUT.png|OUT.jpg|OUT.tif [--gain g]
-// [--specular] [--quality Q]: the output's format is the one its name ends in.
+// surrogate render FILE.ptm|FILE.rti|DIR --light x,y,z -o OUT.png|OUT.jpg|OUT.tif [--gain g]
+// [--specular] [--quality Q]: the output's format is the one its name ends in. DIR (or
+// DIR/info.json) is a web layout, read back by publish/web_reader.h.
 #include <cmath>
 #include <iostream>
 
@@ -10,8 +11,21 @@
 #include "core/json.h"
 #include "fit/render.h"
 #include "image/write_any.h"
+#include "publish/web_reader.h"
 
 namespace surrogate::cli {
+
+namespace {
+// The model to relight: a .ptm or .rti, or a web layout's folder or info.json. `from` says
+// which web layout was read, for the output line ("" for a file).
+std::unique_ptr<fit::Relightable> openModel(const std::string& path, std::string* from) {
+  if (!publish::isWebLayoutPath(path)) return fit::openRelightable(path);
+  publish::WebLayoutModel web = publish::readWebLayout(path);
+  *from = "from the web layout " + web.infoJson.string();
+  if (web.requantised) *from += ", its coefficients re-quantised to 8 bits per term";
+  return web.isPtm ? fit::makeRelightable(std::move(web.ptm)) : fit::makeRelightable(std::move(web.hsh));
+}
+}  // namespace
 
 int runCommandRender(int argc, char** argv) {
   const std::vector<OptionSpec> specs = {
@@ -26,10 +40,10 @@ int runCommandRender(int argc, char** argv) {
       {"json", false, false, "print what was written as JSON"},
   };
   Args args(argc, argv, 1, specs);
-  if (helpShown(args, specs, "surrogate render FILE.ptm|FILE.rti --light x,y,z -o OUT.png|OUT.jpg|OUT.tif "
+  if (helpShown(args, specs, "surrogate render FILE.ptm|FILE.rti|DIR --light x,y,z -o OUT.png|OUT.jpg|OUT.tif "
                 "[--gain g] [--specular]",
-                "Relight a PTM or HSH file under any light and save the picture, in the "
-                "format its name ends in."))
+                "Relight a PTM or HSH file, or a web layout (a folder `surrogate publish` wrote, or its "
+                "info.json), under any light and save the picture, in the format its name ends in."))
     return 0;
   const auto out = outputOption(args);
   if (args.positional().size() != 1 || !out || !args.has("light"))
@@ -60,7 +74,8 @@ int runCommandRender(int argc, char** argv) {
     throw Error(ErrorKind::Usage, "--gain", "command line", "needs a number above 0");
   options.specular = args.has("specular");
   options.threads = threadsOption(args);
-  const auto model = fit::openRelightable(args.positional()[0]);
+  std::string from;
+  const auto model = openModel(args.positional()[0], &from);
   image::writePicture(model->render({l[0], l[1], l[2]}, options), *out, quality);
   if (args.has("json")) {
     JsonWriter j;
@@ -72,7 +87,7 @@ int runCommandRender(int argc, char** argv) {
     return 0;
   }
   std::cout << "wrote " << *out << " (" << image::pictureFormatName(*format) << ", " << model->width() << "x"
-            << model->height() << ", " << model->basis() << ")\n";
+            << model->height() << ", " << model->basis() << (from.empty() ? "" : ", " + from) << ")\n";
   return 0;
 }
 

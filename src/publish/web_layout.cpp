@@ -1,5 +1,6 @@
 #include "publish/web_layout.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdlib>
 #include <map>
@@ -11,7 +12,12 @@
 #include "core/error.h"
 #include "core/json.h"
 #include "core/temp_dir.h"
+#include "fit/normals.h"
+#include "publish/deep_zoom.h"
+#include "publish/interrupted_publish.h"
 #include "publish/rgb_jpeg.h"
+#include "publish/viewer.h"
+#include "publish/web_terms.h"
 
 namespace surrogate::publish {
 
@@ -20,21 +26,79 @@ namespace fs = std::filesystem;
 namespace {
 const char* const kStep = "publish";
 
-// The web viewers order the PTM terms (1, u, v, u^2, uv, v^2); a .ptm stores a0..a5 as
-// (u^2, v^2, uv, u, v, 1) (formats/ptm.h). kWebPtmTerm[j] is the .ptm index of web term j.
-constexpr std::array<int, 6> kWebPtmTerm = {5, 3, 4, 0, 2, 1};
-
 // The HSH orders the viewers evaluate: OpenLIME's shader has the first nine terms only.
 constexpr int kMaxWebHshTerms = 9;
 
-void checkQuality(const PublishOptions& options) {
+// Tile sides the viewers handle well: below 16 a screen needs thousands of requests, above
+// 4096 a tile is as large as the planes `auto` leaves whole.
+constexpr int kMinTileSize = 16, kMaxTileSize = 4096;
+
+void checkOptions(const PublishOptions& options) {
   if (options.quality < 1 || options.quality > 100)
     throw Error(ErrorKind::Usage, "--quality " + std::to_string(options.quality), kStep,
                 "needs a JPEG quality from 1 to 100");
+  if (options.tileSize < kMinTileSize || options.tileSize > kMaxTileSize)
+    throw Error(ErrorKind::Usage, "--tile-size " + std::to_string(options.tileSize), kStep,
+                "needs a tile side from 16 to 4096 texels");
+}
+
+// The normals and the albedo the viewer shows, from the project's own code (the pictures the
+// DerivedMaps stage writes), as 8-bit RGB at the size of the viewer's planes.
+struct DerivedPictures {
+  PlaneRaster normals, albedo;
+};
+
+PlaneRaster eightBit(const Image& image) {
+  PlaneRaster r;
+  r.width = image.width;
+  r.height = image.height;
+  r.rgb.resize(image.pixels.size());
+  for (std::size_t i = 0; i < image.pixels.size(); ++i)
+    r.rgb[i] = static_cast<std::uint8_t>((image.pixels[i] * 2 + 257) / 514);  // round(v / 257)
+  return r;
+}
+
+// A model halved as the planes are for the viewer: every coefficient the 2x2 mean of its bytes
+// (the byte-to-coefficient rule is affine, so this is the mean of the coefficients).
+formats::PtmFile halved(formats::PtmFile p) {
+  const std::size_t block = p.texels() * 6;
+  std::vector<std::uint8_t> coefficients;
+  for (std::size_t at = 0; at < p.coefficients.size(); at += block) {
+    const auto part = halveTexels(p.coefficients.data() + at, p.width, p.height, 6);
+    coefficients.insert(coefficients.end(), part.begin(), part.end());
+  }
+  if (!p.rgb.empty()) p.rgb = halveTexels(p.rgb.data(), p.width, p.height, 3);
+  p.coefficients = std::move(coefficients);
+  p.width = (p.width + 1) / 2;
+  p.height = (p.height + 1) / 2;
+  return p;
+}
+
+formats::HshFile halved(formats::HshFile h) {
+  h.coefficients = halveTexels(h.coefficients.data(), h.width, h.height, 3 * h.terms);
+  h.width = (h.width + 1) / 2;
+  h.height = (h.height + 1) / 2;
+  return h;
+}
+
+// Computed at the viewer's size: for a model larger than that, from the model halved (the
+// Lambertian fits cost seconds per million texels, and the viewer shows no more).
+template <typename Model>
+DerivedPictures derivedPictures(const Model& model, int threads) {
+  const int halvings = halvingsToFit(model.width, model.height, kViewerMaxSide);
+  if (halvings == 0) return {eightBit(fit::normalMap(model, nullptr, threads)), eightBit(fit::albedoMap(model, threads))};
+  Model small = halved(model);
+  for (int k = 1; k < halvings; ++k) small = halved(std::move(small));
+  return {eightBit(fit::normalMap(small, nullptr, threads)), eightBit(fit::albedoMap(small, threads))};
 }
 
 // One JPEG's worth of planes: three bytes per texel, rows top-first.
 using PlaneImage = std::vector<std::uint8_t>;
+
+bool tiled(const PublishedModel& m, const PublishOptions& o) {
+  if (o.tiles == TileLayout::Auto) return m.width > kAutoTileSide || m.height > kAutoTileSide;
+  return o.tiles == TileLayout::DeepZoom;
+}
 
 struct Layout {
   std::vector<double> scale, bias;  // nplanes values each
@@ -60,17 +124,60 @@ std::string infoJson(const PublishedModel& m, const Layout& layout, int quality)
 // The largest side a baseline JPEG can describe (libjpeg's JPEG_MAX_DIMENSION).
 constexpr int kMaxJpegSide = 65500;
 
-WebLayoutFiles assemble(PublishedModel model, const Layout& layout, int quality) {
+std::string planeName(std::size_t p) { return "plane_" + std::to_string(p); }
+
+// `picture` halved `halvings` times, as JPEG.
+std::string encodedAt(const PlaneRaster& picture, int halvings, int quality) {
+  if (halvings == 0) return encodeRgbJpeg(picture.rgb, picture.width, picture.height, quality);
+  PlaneRaster r = halfSize(picture);
+  for (int k = 1; k < halvings; ++k) r = halfSize(r);
+  return encodeRgbJpeg(r.rgb, r.width, r.height, quality);
+}
+
+// The viewer's copy: every picture halved until it fits in kViewerMaxSide (the Deep Zoom
+// level of that size when tiled); at full size the planes are plane_N.jpg's own bytes.
+std::string viewerData(const std::string& info, const std::vector<PlaneRaster>& planes,
+                       const std::vector<std::string>& wholeJpegs, const DerivedPictures& maps, int levels, int quality) {
+  ViewerData d;
+  d.infoJson = info;
+  d.halvings = halvingsToFit(planes.front().width, planes.front().height, kViewerMaxSide);
+  d.width = maps.normals.width;
+  d.height = maps.normals.height;
+  d.level = wholeJpegs.empty() ? std::max(-1, levels - 1 - d.halvings) : -1;
+  for (std::size_t p = 0; p < planes.size(); ++p)
+    d.planes.push_back(d.halvings == 0 && !wholeJpegs.empty() ? wholeJpegs[p] : encodedAt(planes[p], d.halvings, quality));
+  d.normals = encodedAt(maps.normals, 0, quality);
+  d.albedo = encodedAt(maps.albedo, 0, quality);
+  return viewerDataJs(d);
+}
+
+WebLayoutFiles assemble(PublishedModel model, Layout layout, const DerivedPictures& maps, const PublishOptions& options) {
   if (model.width > kMaxJpegSide || model.height > kMaxJpegSide)
     throw Error(ErrorKind::Input, "the model", kStep,
                 "is " + std::to_string(model.width) + "x" + std::to_string(model.height) +
                     " texels; a JPEG plane holds at most 65500 on a side: reduce it (run --resize) to publish it");
   WebLayoutFiles out;
   model.nplanes = static_cast<int>(layout.scale.size());
-  out.files.emplace_back("info.json", infoJson(model, layout, quality));
-  for (std::size_t p = 0; p < layout.images.size(); ++p)
-    out.files.emplace_back("plane_" + std::to_string(p) + ".jpg",
-                           encodeRgbJpeg(layout.images[p], model.width, model.height, quality));
+  const std::string info = infoJson(model, layout, options.quality);
+  out.files.emplace_back("info.json", info);
+  std::vector<PlaneRaster> planes;
+  for (PlaneImage& image : layout.images) planes.push_back({model.width, model.height, std::move(image)});
+  std::vector<std::string> wholeJpegs;
+  if (tiled(model, options)) {
+    model.tiles = "deepzoom";
+    model.levels = deepZoomLevelCount(model.width, model.height, options.tileSize);
+    for (std::size_t p = 0; p < planes.size(); ++p)
+      for (auto& file : deepZoomFiles(planes[p], planeName(p), options.tileSize, options.quality, options.threads))
+        out.files.push_back(std::move(file));
+  } else {
+    for (std::size_t p = 0; p < planes.size(); ++p) {
+      wholeJpegs.push_back(encodeRgbJpeg(planes[p].rgb, model.width, model.height, options.quality));
+      out.files.emplace_back(planeName(p) + ".jpg", wholeJpegs.back());
+    }
+  }
+  out.files.emplace_back("index.html", kViewerHtml);
+  out.files.emplace_back("viewer-data.js",
+                         viewerData(info, planes, wholeJpegs, maps, model.levels, options.quality));
   for (const auto& f : out.files) model.files.push_back(f.first);
   out.model = std::move(model);
   return out;
@@ -146,7 +253,7 @@ class StagingFolder {
  public:
   explicit StagingFolder(const fs::path& out) : out_(out) {
     const fs::path parent = out.parent_path().empty() ? fs::path(".") : out.parent_path();
-    std::string pattern = (parent / ("." + out.filename().string() + ".partial-XXXXXX")).string();
+    std::string pattern = stagingPattern(out);  // ".NAME.partial-PID-XXXXXX"
     if (!mkdtemp(pattern.data()))
       throw Error(ErrorKind::Input, parent.string(), kStep,
                   "cannot create a folder here; check that it exists and is writable");
@@ -190,7 +297,11 @@ void checkOutputFolder(const fs::path& out) {
 
 void writeLayout(const WebLayoutFiles& layout, const fs::path& folder) {
   fs::create_directories(folder);
-  for (const auto& [name, bytes] : layout.files) writeFileAtomically(folder / name, bytes);
+  for (const auto& [name, bytes] : layout.files) {
+    const fs::path file = folder / name;
+    fs::create_directories(file.parent_path());  // the tiles' level folders
+    writeFileAtomically(file, bytes);
+  }
 }
 
 bool startsWith(const std::string& s, const std::string& prefix) { return s.compare(0, prefix.size(), prefix) == 0; }
@@ -250,8 +361,24 @@ std::vector<CaptureModel> recordedModels(const fs::path& capture) {
 }
 }  // namespace
 
+const char* tileLayoutName(TileLayout tiles) {
+  switch (tiles) {
+    case TileLayout::Auto: return "auto";
+    case TileLayout::None: return "none";
+    case TileLayout::DeepZoom: return "deepzoom";
+  }
+  return "auto";
+}
+
+TileLayout parseTileLayout(const std::string& name) {
+  for (TileLayout t : {TileLayout::Auto, TileLayout::None, TileLayout::DeepZoom})
+    if (name == tileLayoutName(t)) return t;
+  throw Error(ErrorKind::Usage, "--tiles " + name, kStep,
+              "is not a tile layout; give auto (tiles for a side over 4096), none or deepzoom");
+}
+
 WebLayoutFiles webLayoutOf(const formats::PtmFile& ptm, const PublishOptions& options) {
-  checkQuality(options);
+  checkOptions(options);
   formats::validatePtm(ptm, "the PTM");
   PublishedModel m;
   m.type = "ptm";
@@ -259,11 +386,11 @@ WebLayoutFiles webLayoutOf(const formats::PtmFile& ptm, const PublishOptions& op
   m.height = ptm.height;
   const bool lrgb = ptm.format == formats::PtmFile::Format::Lrgb;
   m.colorspace = lrgb ? "lrgb" : "rgb";
-  return assemble(std::move(m), lrgb ? ptmLrgbLayout(ptm) : ptmRgbLayout(ptm), options.quality);
+  return assemble(std::move(m), lrgb ? ptmLrgbLayout(ptm) : ptmRgbLayout(ptm), derivedPictures(ptm, options.threads), options);
 }
 
 WebLayoutFiles webLayoutOf(const formats::HshFile& hsh, const PublishOptions& options) {
-  checkQuality(options);
+  checkOptions(options);
   formats::validateHsh(hsh, "the RTI");
   if (hsh.terms > kMaxWebHshTerms)
     throw Error(ErrorKind::Input, "the RTI", kStep,
@@ -274,12 +401,15 @@ WebLayoutFiles webLayoutOf(const formats::HshFile& hsh, const PublishOptions& op
   m.colorspace = "rgb";
   m.width = hsh.width;
   m.height = hsh.height;
-  return assemble(std::move(m), hshLayout(hsh), options.quality);
+  return assemble(std::move(m), hshLayout(hsh), derivedPictures(hsh, options.threads), options);
 }
 
-std::vector<PublishedModel> publish(const fs::path& source, const fs::path& out, const PublishOptions& options) {
-  checkQuality(options);
+std::vector<PublishedModel> publish(const fs::path& source, const fs::path& out, const PublishOptions& options,
+                                    std::vector<std::string>* removedLeftovers) {
+  checkOptions(options);
   checkOutputFolder(out);
+  const std::vector<std::string> removed = removeInterruptedPublishes(out);
+  if (removedLeftovers) *removedLeftovers = removed;
   std::error_code ec;
   if (!fs::exists(source, ec))
     throw Error(ErrorKind::Input, source.string(), kStep, "does not exist; give a .ptm, an .rti or a capture folder");
@@ -301,6 +431,11 @@ std::vector<PublishedModel> publish(const fs::path& source, const fs::path& out,
     writeLayout(layout, staging.path() / layout.model.folder);
     published.push_back(layout.model);
   }
+  // Fault injection for the test of the cleanup (tests/publish/test_render_web_e2e.cpp): with
+  // SURROGATE_FAULT_INJECTION=publish the process dies here, its folder written but not yet
+  // renamed, as a kill -9 or a power cut could leave it.
+  if (const char* fault = std::getenv("SURROGATE_FAULT_INJECTION"); fault && std::string(fault) == "publish")
+    std::_Exit(137);
   staging.commit();
   return published;
 }

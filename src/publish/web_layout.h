@@ -30,11 +30,33 @@
 
 namespace surrogate::publish {
 
+// How the planes are stored: whole images (plane_N.jpg), Deep Zoom tiles (plane_N.dzi and
+// plane_N_files/), or tiles only for a model with a side over kAutoTileSide.
+enum class TileLayout { Auto, None, DeepZoom };
+
+// A side beyond which `auto` tiles: about twice a large screen's width; below it a viewer
+// loads the whole plane at once without trouble.
+constexpr int kAutoTileSide = 4096;
+
 struct PublishOptions {
   // JPEG quality 1..100 of the planes: lower gives smaller files and a larger error in the
   // relit image (docs/formats.md, "The web layout", has the measured figures).
   int quality = 95;
+  // Tiles let a web viewer load only the part and the resolution on screen, at the cost of
+  // many small files and a third more bytes (the reduced levels).
+  TileLayout tiles = TileLayout::Auto;
+  // Side of a Deep Zoom tile in texels, 16..4096: larger tiles mean fewer files and requests,
+  // smaller ones less data loaded beyond the screen's edge.
+  int tileSize = 256;
+  // Worker threads for the tiles, normals and albedo (0 = all cores). Not a setting of the
+  // result: the bytes written are the same at any count.
+  int threads = 0;
 };
+
+// "auto", "none", "deepzoom" (the command line's and the carrier's spelling).
+const char* tileLayoutName(TileLayout tiles);
+// Throws Error(Usage) naming "--tiles" for any other name.
+TileLayout parseTileLayout(const std::string& name);
 
 // What one published model holds.
 struct PublishedModel {
@@ -44,7 +66,10 @@ struct PublishedModel {
   std::string colorspace;  // "lrgb" or "rgb"
   int width = 0, height = 0;
   int nplanes = 0;         // coefficients per texel (the JPEGs hold three each)
-  std::vector<std::string> files;  // info.json then the planes, relative to `folder`
+  std::string tiles;       // "deepzoom" when the planes are tiled, "" for whole images
+  int levels = 1;          // Deep Zoom levels (1 when not tiled)
+  std::vector<std::string> files;  // info.json, the planes (or .dzi and tiles), index.html,
+                                   // viewer-data.js; relative to `folder`
 };
 
 // The info.json and the planes of one model, in memory: name -> bytes, info.json first.
@@ -53,7 +78,8 @@ struct WebLayoutFiles {
   std::vector<std::pair<std::string, std::string>> files;
 };
 
-// Throws Error(Usage) naming "--quality" for a quality outside 1..100.
+// Throws Error(Usage) naming "--quality" for a quality outside 1..100, "--tile-size" for a tile
+// size outside 16..4096. Computes the normals and albedo the viewer shows (fit/normals.h).
 WebLayoutFiles webLayoutOf(const formats::PtmFile& ptm, const PublishOptions& options);
 // Throws Error(Input) for 16 terms (order 4): the web viewers evaluate HSH up to order 3.
 WebLayoutFiles webLayoutOf(const formats::HshFile& hsh, const PublishOptions& options);
@@ -64,8 +90,11 @@ WebLayoutFiles webLayoutOf(const formats::HshFile& hsh, const PublishOptions& op
 //   subfolder of `out` named after the file (finished-files/stela-hsh.rti -> out/stela-hsh/).
 // Throws Error(Input) for a source that is neither, or a capture with no such result, and
 // Error(Usage) naming `out` when it is a file or a folder that is not empty.
+// First removes the hidden partial folders that killed publishes left beside `out` (those whose
+// process no longer runs); `removedLeftovers`, when given, receives one sentence for each.
 std::vector<PublishedModel> publish(const std::filesystem::path& source, const std::filesystem::path& out,
-                                    const PublishOptions& options);
+                                    const PublishOptions& options,
+                                    std::vector<std::string>* removedLeftovers = nullptr);
 
 // What a web layout's info.json says (any writer's, Surrogate's or relight's), checked against
 // the plane files beside it, for `surrogate info DIR/info.json`.

@@ -68,10 +68,14 @@ TEST_CASE("surrogate publish of a capture renders as surrogate render within the
       for (std::size_t i = 0; i < kLights.size(); ++i)
         worst = std::min(worst, webtest::psnr(webtest::renderAt(web, kLights[i][0], kLights[i][1], kLights[i][2]),
                                               references[name][i]));
-      std::uintmax_t bytes = 0;
-      for (const auto& e : fs::directory_iterator(out / name)) bytes += fs::file_size(e.path());
+      std::uintmax_t bytes = 0, viewer = 0;  // the layout (info.json, planes), and the viewer beside it
+      for (const auto& e : fs::directory_iterator(out / name)) {
+        const bool ofViewer = e.path().extension() == ".html" || e.path().extension() == ".js";
+        (ofViewer ? viewer : bytes) += fs::file_size(e.path());
+      }
       WARN("quality " << quality << " " << name << ": worst PSNR " << worst << " dB, " << bytes << " bytes against "
-                      << fs::file_size(capture / "finished-files" / file) << " of " << file);
+                      << fs::file_size(capture / "finished-files" / file) << " of " << file << "; viewer " << viewer
+                      << " bytes");
       CHECK(worst >= threshold);
     }
   }
@@ -85,7 +89,7 @@ TEST_CASE("surrogate publish of a capture is deterministic and leaves the captur
   REQUIRE(e2e::surrogate("publish " + e2e::quote(capture) + " -o " + e2e::quote(work / "a")).exitCode == 0);
   REQUIRE(e2e::surrogate("publish " + e2e::quote(capture) + " -o " + e2e::quote(work / "b") + " --json").exitCode == 0);
   const auto a = e2e::snapshot(work / "a"), b = e2e::snapshot(work / "b");
-  CHECK(a.size() == 4 + 3 + 6 + 4 + 9);  // four info.json and their planes
+  CHECK(a.size() == 4 + 3 + 6 + 4 + 9 + 4 * 2);  // four info.json, their planes and their viewers
   CHECK(a == b);
   CHECK(e2e::snapshot(capture) == before);
   const auto info = e2e::surrogate("info " + e2e::quote(work / "a" / "ptm-rgb" / "info.json") + " --json");
@@ -108,5 +112,36 @@ TEST_CASE("surrogate publish refuses a capture with no recorded model and a non-
                                    " -o " + e2e::quote(work / "full"));
   CHECK(full.exitCode == 2);
   CHECK(full.output.find("not an empty folder") != std::string::npos);
+  fs::remove_all(work);
+}
+
+TEST_CASE("surrogate publish --tiles deepzoom writes tiles the independent reader assembles into the model and info reports") {
+  const fs::path capture = fittedCapture();
+  const fs::path work = e2e::freshDir("publish-tiles");
+  const auto r = e2e::surrogate("publish " + e2e::quote(capture) + " -o " + e2e::quote(work / "web") +
+                                " --tiles deepzoom --tile-size 128 --json");
+  INFO(r.output);
+  REQUIRE(r.exitCode == 0);
+  // 400x300 in tiles of 128: 400 -> 200 -> 100, three levels (OpenLIME: ceil(log2(400/128)) + 1).
+  CHECK(r.output.find(R"("tiles":"deepzoom","levels":3)") != std::string::npos);
+  for (const auto& [name, file] : kModels) {
+    INFO(name);
+    CHECK_FALSE(fs::exists(work / "web" / name / "plane_0.jpg"));
+    const webtest::WebModel web = webtest::readWebModel(work / "web" / name);
+    for (std::size_t i = 0; i < kLights.size(); ++i) {
+      const auto reference = renderedBySurrogate(capture / "finished-files" / file, kLights[i], work / "r.png");
+      CHECK(webtest::psnr(webtest::renderAt(web, kLights[i][0], kLights[i][1], kLights[i][2]), reference) >= 37);
+    }
+    const auto info = e2e::surrogate("info " + e2e::quote(work / "web" / name / "info.json") + " --json");
+    CHECK(info.exitCode == 0);
+    CHECK(info.output.find(R"("tiles":"deepzoom")") != std::string::npos);
+    CHECK(info.output.find(R"("missingPlanes":[])") != std::string::npos);
+  }
+  const auto badSize = e2e::surrogate("publish " + e2e::quote(capture) + " -o " + e2e::quote(work / "b") + " --tile-size 8");
+  CHECK(badSize.exitCode == 2);
+  CHECK(badSize.output.find("--tile-size") != std::string::npos);
+  const auto badLayout = e2e::surrogate("publish " + e2e::quote(capture) + " -o " + e2e::quote(work / "b") + " --tiles iiif");
+  CHECK(badLayout.exitCode == 2);
+  CHECK_FALSE(fs::exists(work / "b"));
   fs::remove_all(work);
 }

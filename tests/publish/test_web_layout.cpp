@@ -12,6 +12,8 @@
 
 #include <unistd.h>
 
+#include <opencv2/imgproc.hpp>
+
 #include "core/error.h"
 #include "fit/render.h"
 #include "publish/web_layout.h"
@@ -31,26 +33,26 @@ std::uint8_t field(int x, int y, int k, int c) {
   return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 255.0)));
 }
 
-formats::PtmFile makePtm(formats::PtmFile::Format format) {
+formats::PtmFile makePtm(formats::PtmFile::Format format, int w = kW, int h = kH) {
   formats::PtmFile p;
   p.format = format;
-  p.width = kW;
-  p.height = kH;
+  p.width = w;
+  p.height = h;
   p.scale = {0.4, 0.35, 0.3, 0.5, 0.45, 1.0};
   p.bias = {130, 125, 128, 120, 135, 0};
   const bool lrgb = format == formats::PtmFile::Format::Lrgb;
   const int channels = lrgb ? 1 : 3;
   p.coefficients.resize(p.texels() * 6 * channels);
   for (int c = 0; c < channels; ++c)
-    for (int y = 0; y < kH; ++y)
-      for (int x = 0; x < kW; ++x)
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
         for (int k = 0; k < 6; ++k)
-          p.coefficients[((static_cast<std::size_t>(c) * kH + y) * kW + x) * 6 + k] = field(x, y, k, c);
+          p.coefficients[((static_cast<std::size_t>(c) * h + y) * w + x) * 6 + k] = field(x, y, k, c);
   if (lrgb) {
     p.rgb.resize(p.texels() * 3);
-    for (int y = 0; y < kH; ++y)
-      for (int x = 0; x < kW; ++x)
-        for (int c = 0; c < 3; ++c) p.rgb[(static_cast<std::size_t>(y) * kW + x) * 3 + c] = field(x, y, 7, c);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        for (int c = 0; c < 3; ++c) p.rgb[(static_cast<std::size_t>(y) * w + x) * 3 + c] = field(x, y, 7, c);
   }
   return p;
 }
@@ -151,7 +153,9 @@ TEST_CASE("publish writes info.json and the planes the web viewers request for e
     CHECK(info["quality"].number == 95);
     std::size_t files = 0;
     for (const auto& e : fs::directory_iterator(out)) files += e.is_regular_file();
-    CHECK(files == 1 + static_cast<std::size_t>(c.nplanes / 3));
+    CHECK(files == 1 + static_cast<std::size_t>(c.nplanes / 3) + 2);  // and index.html, viewer-data.js
+    CHECK(fs::is_regular_file(out / "index.html"));
+    CHECK(fs::is_regular_file(out / "viewer-data.js"));
     for (int j = 0; j < c.nplanes / 3; ++j) CHECK(fs::is_regular_file(out / ("plane_" + std::to_string(j) + ".jpg")));
   }
   fs::remove_all(dir);
@@ -244,7 +248,7 @@ TEST_CASE("publishing twice gives identical bytes") {
     CHECK(webtest::slurp(e.path()) == webtest::slurp(dir / "b" / e.path().filename()));
     ++compared;
   }
-  CHECK(compared == 10);
+  CHECK(compared == 12);  // info.json, nine planes, index.html, viewer-data.js
   fs::remove_all(dir);
 }
 
@@ -295,8 +299,9 @@ TEST_CASE("describeWebLayout reads back what publish wrote and names a missing p
   CHECK(s.quality == 80);
   CHECK(s.planes == std::vector<std::string>{"plane_0.jpg", "plane_1.jpg", "plane_2.jpg", "plane_3.jpg"});
   CHECK(s.missingPlanes.empty());
-  std::uintmax_t bytes = 0;
-  for (const auto& e : fs::directory_iterator(dir / "web")) bytes += fs::file_size(e.path());
+  std::uintmax_t bytes = 0;  // the layout's own files: not the viewer beside them
+  for (const auto& e : fs::directory_iterator(dir / "web"))
+    if (e.path().extension() != ".html" && e.path().extension() != ".js") bytes += fs::file_size(e.path());
   CHECK(s.bytes == bytes);
   fs::remove(dir / "web" / "plane_2.jpg");
   s = publish::describeWebLayout(dir / "web" / "info.json");
@@ -399,5 +404,174 @@ TEST_CASE("describeWebLayout says what is wrong with malformed or hostile JSON, 
   says(refusal(R"({"type":"pt)" "\xED\xA0\x80" R"("})"), "not UTF-8");  // a UTF-16 surrogate
   says(refusal(R"({"type":"pt)" "\xC0\xAF" R"("})"), "not UTF-8");      // an overlong '/'
   says(refusal(std::string("\xFF\xFE{\0\"\0", 6)), "NUL byte");  // UTF-16
+  fs::remove_all(dir);
+}
+
+namespace {
+// Every file under `root`, relative path -> bytes.
+std::map<std::string, std::string> filesUnder(const fs::path& root) {
+  std::map<std::string, std::string> out;
+  for (const auto& e : fs::recursive_directory_iterator(root))
+    if (e.is_regular_file()) out[fs::relative(e.path(), root).generic_string()] = webtest::slurp(e.path());
+  return out;
+}
+
+std::vector<int> rgbOf(const cv::Mat& bgr) {
+  std::vector<int> out;
+  for (int y = 0; y < bgr.rows; ++y)
+    for (int x = 0; x < bgr.cols; ++x)
+      for (int c = 0; c < 3; ++c) out.push_back(bgr.at<cv::Vec3b>(y, x)[2 - c]);
+  return out;
+}
+
+// A number of viewer-data.js ("key": value), found by name.
+int viewerNumber(const std::string& js, const std::string& key) {
+  const std::size_t at = js.find("\"" + key + "\": ");
+  if (at == std::string::npos) throw std::runtime_error("viewer-data.js has no " + key);
+  return std::stoi(js.substr(at + key.size() + 4, 12));
+}
+}  // namespace
+
+// OpenLIME's "deepzoom" layout (LayoutTiles.js) counts ceil(log2(max side / tile size)) + 1
+// levels, numbers them from 0 (the one-tile level) and requests LEVEL/COL_ROW.jpg of
+// plane_j_files beside plane_j.dzi; the reader assembles every level from its tiles and checks
+// each tile's size and overlap.
+TEST_CASE("publish --tiles deepzoom writes the levels and tiles OpenLIME requests and the full level renders as surrogate render") {
+  const fs::path dir = freshDir("tiles");
+  const auto ptm = makePtm(formats::PtmFile::Format::Rgb);
+  writeModel(dir / "m.ptm", ptm);
+  publish::PublishOptions options;
+  options.quality = 100;
+  options.tiles = publish::TileLayout::DeepZoom;
+  options.tileSize = 32;
+  const auto models = publish::publish(dir / "m.ptm", dir / "web", options);
+  REQUIRE(models.size() == 1);
+  const int openLimeLevels = static_cast<int>(std::ceil(std::log2(double(std::max(kW, kH)) / 32))) + 1;
+  CHECK(models[0].tiles == "deepzoom");
+  CHECK(models[0].levels == openLimeLevels);
+  for (int j = 0; j < 6; ++j) {
+    const std::string stem = "plane_" + std::to_string(j);
+    INFO(stem);
+    CHECK_FALSE(fs::exists(dir / "web" / (stem + ".jpg")));
+    const webtest::DeepZoomInfo dzi = webtest::readDzi(dir / "web" / (stem + ".dzi"));
+    CHECK(dzi.tileSize == 32);
+    CHECK(dzi.overlap == 1);
+    CHECK(dzi.format == "jpg");
+    CHECK(dzi.width == kW);
+    CHECK(dzi.height == kH);
+    REQUIRE(dzi.levels == openLimeLevels);
+    std::size_t levelFolders = 0;
+    for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir / "web" / (stem + "_files"))) ++levelFolders;
+    CHECK(levelFolders == static_cast<std::size_t>(openLimeLevels));
+    CHECK(webtest::deepZoomLevelSize(dzi, 0).width <= 32);
+    // Each level below the top is the one above halved: 2x2 means, within the JPEG error.
+    for (int level = 0; level + 1 < dzi.levels; ++level) {
+      const cv::Mat below = webtest::assembleDeepZoomLevel(dir / "web", stem, level);
+      cv::Mat above = webtest::assembleDeepZoomLevel(dir / "web", stem, level + 1), halved;
+      cv::copyMakeBorder(above, above, 0, above.rows % 2, 0, above.cols % 2, cv::BORDER_REPLICATE);
+      cv::resize(above, halved, cv::Size(above.cols / 2, above.rows / 2), 0, 0, cv::INTER_AREA);
+      REQUIRE(halved.size() == below.size());
+      CHECK(webtest::maxAbsDifference(rgbOf(halved), rgbOf(below)) <= 3);
+    }
+  }
+  const webtest::WebModel web = webtest::readWebModel(dir / "web");  // the full level, from tiles
+  const auto reference = fit::openRelightable(dir / "m.ptm");
+  for (const auto& l : kLights) {
+    const auto a = webtest::renderAt(web, l[0], l[1], l[2]);
+    const auto b = renderedBySurrogate(*reference, l);
+    CHECK(webtest::maxAbsDifference(a, b) <= kMaxDifferenceAtQuality100);
+    CHECK(webtest::psnr(a, b) >= kMinPsnrAtQuality100);
+  }
+  fs::remove_all(dir);
+}
+
+TEST_CASE("publish writes the same bytes with one thread and with several tiles or not") {
+  const fs::path dir = freshDir("threads");
+  writeModel(dir / "m.rti", makeHsh(9));
+  for (const auto tiles : {publish::TileLayout::DeepZoom, publish::TileLayout::None}) {
+    publish::PublishOptions options;
+    options.tiles = tiles;
+    options.tileSize = 16;
+    options.threads = 1;
+    const std::string name = publish::tileLayoutName(tiles);
+    publish::publish(dir / "m.rti", dir / (name + "-1"), options);
+    options.threads = 5;
+    publish::publish(dir / "m.rti", dir / (name + "-5"), options);
+    const auto one = filesUnder(dir / (name + "-1")), five = filesUnder(dir / (name + "-5"));
+    CHECK(one.size() > 4);
+    CHECK(one == five);
+  }
+  fs::remove_all(dir);
+}
+
+TEST_CASE("auto tiles a model with a side over 4096 only and the viewer holds a level of at most 2048") {
+  const fs::path dir = freshDir("auto");
+  writeModel(dir / "wide.ptm", makePtm(formats::PtmFile::Format::Lrgb, 4097, 6));
+  writeModel(dir / "edge.ptm", makePtm(formats::PtmFile::Format::Lrgb, 4096, 6));
+  const auto wide = publish::publish(dir / "wide.ptm", dir / "wide", {});
+  const auto edge = publish::publish(dir / "edge.ptm", dir / "edge", {});
+  CHECK(wide[0].tiles == "deepzoom");
+  CHECK(fs::is_regular_file(dir / "wide" / "plane_0.dzi"));
+  CHECK(edge[0].tiles.empty());
+  CHECK(fs::is_regular_file(dir / "edge" / "plane_0.jpg"));
+  // 4097 -> 2049 -> 1025: the viewer's copy of the tiled model is its level of 1025 texels, the
+  // untiled one's its level of 2048.
+  const std::string wideJs = webtest::slurp(dir / "wide" / "viewer-data.js");
+  CHECK(viewerNumber(wideJs, "width") == 1025);
+  CHECK(viewerNumber(wideJs, "height") == 2);
+  CHECK(viewerNumber(wideJs, "halvings") == 2);
+  CHECK(viewerNumber(wideJs, "level") == wide[0].levels - 3);
+  // Three planes, the normals and the albedo, all at the viewer's size.
+  const std::vector<std::string> jpegs = webtest::jpegDataUris(wideJs);
+  REQUIRE(jpegs.size() == 5);
+  for (const std::string& jpeg : jpegs) {
+    std::vector<uchar> buffer(jpeg.begin(), jpeg.end());
+    const cv::Mat decoded = cv::imdecode(buffer, cv::IMREAD_COLOR);
+    CHECK(decoded.cols == 1025);
+    CHECK(decoded.rows == 2);
+  }
+  const std::string edgeJs = webtest::slurp(dir / "edge" / "viewer-data.js");
+  CHECK(viewerNumber(edgeJs, "width") == 2048);
+  CHECK(viewerNumber(edgeJs, "halvings") == 1);
+  CHECK(viewerNumber(edgeJs, "level") == -1);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("the viewer of a model that fits on a screen holds the plane files' own bytes") {
+  const fs::path dir = freshDir("viewer-bytes");
+  writeModel(dir / "m.ptm", makePtm(formats::PtmFile::Format::Lrgb));
+  publish::publish(dir / "m.ptm", dir / "web", {});
+  const std::string js = webtest::slurp(dir / "web" / "viewer-data.js");
+  CHECK(viewerNumber(js, "width") == kW);
+  CHECK(viewerNumber(js, "halvings") == 0);
+  CHECK(js.find(webtest::slurp(dir / "web" / "info.json")) != std::string::npos);
+  // Three planes, then the normals and the albedo; the planes are plane_j.jpg byte for byte.
+  const std::vector<std::string> jpegs = webtest::jpegDataUris(js);
+  REQUIRE(jpegs.size() == 3 + 2);
+  for (int j = 0; j < 3; ++j)
+    CHECK(jpegs[static_cast<std::size_t>(j)] == webtest::slurp(dir / "web" / ("plane_" + std::to_string(j) + ".jpg")));
+  for (std::size_t k = 3; k < 5; ++k) {
+    std::vector<uchar> buffer(jpegs[k].begin(), jpegs[k].end());
+    const cv::Mat decoded = cv::imdecode(buffer, cv::IMREAD_COLOR);
+    CHECK(decoded.cols == kW);
+    CHECK(decoded.rows == kH);
+  }
+  const std::string html = webtest::slurp(dir / "web" / "index.html");
+  CHECK(html.find("<script src=\"viewer-data.js\"></script>") != std::string::npos);
+  CHECK(html.find("default-src 'none'") != std::string::npos);  // no network access
+  CHECK(html.find("http://") == std::string::npos);
+  CHECK(html.find("https://") == std::string::npos);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("publish refuses a tile size outside 16 to 4096 and an unknown tile layout") {
+  const fs::path dir = freshDir("bad-tiles");
+  writeModel(dir / "m.ptm", makePtm(formats::PtmFile::Format::Lrgb));
+  publish::PublishOptions options;
+  options.tileSize = 8;
+  CHECK_THROWS_AS(publish::publish(dir / "m.ptm", dir / "web", options), Error);
+  CHECK_FALSE(fs::exists(dir / "web"));
+  CHECK_THROWS_AS(publish::parseTileLayout("iiif"), Error);
+  CHECK(publish::parseTileLayout("deepzoom") == publish::TileLayout::DeepZoom);
   fs::remove_all(dir);
 }

@@ -3,8 +3,12 @@
 // planes decoded with OpenCV, coefficient = (byte / 255 - bias) * scale, and the basis of
 // each type in the viewers' order (PTM: 1, u, v, u^2, uv, v^2; HSH: the RTIViewer table of
 // tests/fit/reference_basis.h). renderAt gives 8-bit display values as `surrogate render` does.
+// A plane stored as Deep Zoom tiles (plane_j.dzi and plane_j_files/LEVEL/COL_ROW.jpg, docs/formats.md,
+// "Deep Zoom tiles") is assembled from the tiles of its full-size level, each tile checked for
+// its size and its overlap.
 #pragma once
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
@@ -17,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include "../fit/reference_basis.h"
@@ -121,11 +126,123 @@ class JsonParser {
   std::size_t i_ = 0;
 };
 
+// Standard base64 (RFC 4648); padding and line breaks skipped.
+inline std::string decodeBase64(const std::string& text) {
+  static const std::string digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  int bits = 0, value = 0;
+  for (char ch : text) {
+    const std::size_t d = digits.find(ch);
+    if (d == std::string::npos) continue;
+    value = (value << 6 | static_cast<int>(d)) & 0xffffff;
+    bits += 6;
+    if (bits >= 8) {
+      bits -= 8;
+      out += static_cast<char>((value >> bits) & 0xff);
+    }
+  }
+  return out;
+}
+
+// The JPEG bytes of every "data:image/jpeg;base64,..." string in `text`, in order.
+inline std::vector<std::string> jpegDataUris(const std::string& text) {
+  const std::string prefix = "\"data:image/jpeg;base64,";
+  std::vector<std::string> out;
+  for (std::size_t at = text.find(prefix); at != std::string::npos; at = text.find(prefix, at + 1)) {
+    const std::size_t begin = at + prefix.size();
+    out.push_back(decodeBase64(text.substr(begin, text.find('"', begin) - begin)));
+  }
+  return out;
+}
+
 inline std::string slurp(const std::filesystem::path& p) {
   std::ifstream in(p, std::ios::binary);
   std::ostringstream s;
   s << in.rdbuf();
   return s.str();
+}
+
+// A .dzi's attributes (TileSize, Overlap, Format, Width, Height), found by name.
+struct DeepZoomInfo {
+  int tileSize = 0, overlap = 0, width = 0, height = 0;
+  std::string format;
+  int levels = 0;  // 1 + halvings (rounding up) until the image fits in one tile
+};
+
+inline std::string xmlAttribute(const std::string& xml, const std::string& name) {
+  const std::string key = name + "=\"";
+  const std::size_t at = xml.find(key);
+  if (at == std::string::npos) throw std::runtime_error(".dzi has no " + name);
+  const std::size_t begin = at + key.size();
+  return xml.substr(begin, xml.find('"', begin) - begin);
+}
+
+inline DeepZoomInfo readDzi(const std::filesystem::path& dzi) {
+  const std::string xml = slurp(dzi);
+  if (xml.find("http://schemas.microsoft.com/deepzoom/2008") == std::string::npos)
+    throw std::runtime_error(dzi.string() + " is not a Deep Zoom descriptor");
+  DeepZoomInfo d;
+  d.tileSize = std::stoi(xmlAttribute(xml, "TileSize"));
+  d.overlap = std::stoi(xmlAttribute(xml, "Overlap"));
+  d.format = xmlAttribute(xml, "Format");
+  d.width = std::stoi(xmlAttribute(xml, "Width"));
+  d.height = std::stoi(xmlAttribute(xml, "Height"));
+  int w = d.width, h = d.height;
+  d.levels = 1;
+  while (w > d.tileSize || h > d.tileSize) {
+    w = (w + 1) / 2;
+    h = (h + 1) / 2;
+    ++d.levels;
+  }
+  return d;
+}
+
+// The size of level `level` (levels - 1 is the full size; each level below halves, rounding up).
+inline cv::Size deepZoomLevelSize(const DeepZoomInfo& d, int level) {
+  int w = d.width, h = d.height;
+  for (int l = d.levels - 1; l > level; --l) {
+    w = (w + 1) / 2;
+    h = (h + 1) / 2;
+  }
+  return cv::Size(w, h);
+}
+
+// Level `level` of plane `stem` (e.g. "plane_0") assembled from its tiles, in OpenCV's B, G, R
+// order. Each tile must have exactly the texels its column and row cover plus the overlap on
+// each side that is not the level's edge; the level's folder holds no other file.
+inline cv::Mat assembleDeepZoomLevel(const std::filesystem::path& folder, const std::string& stem, int level) {
+  const DeepZoomInfo d = readDzi(folder / (stem + ".dzi"));
+  const cv::Size size = deepZoomLevelSize(d, level);
+  cv::Mat out(size, CV_8UC3);
+  const auto dir = folder / (stem + "_files") / std::to_string(level);
+  std::size_t tiles = 0;
+  for (int row = 0; row * d.tileSize < size.height; ++row)
+    for (int col = 0; col * d.tileSize < size.width; ++col, ++tiles) {
+      const auto file = dir / (std::to_string(col) + "_" + std::to_string(row) + "." + d.format);
+      const cv::Mat tile = cv::imread(file.string(), cv::IMREAD_COLOR);
+      const int x = col * d.tileSize, y = row * d.tileSize;
+      const int w = std::min(d.tileSize, size.width - x), h = std::min(d.tileSize, size.height - y);
+      const int left = col > 0 ? d.overlap : 0, top = row > 0 ? d.overlap : 0;
+      const int right = x + w < size.width ? d.overlap : 0, bottom = y + h < size.height ? d.overlap : 0;
+      if (tile.empty() || tile.cols != left + w + right || tile.rows != top + h + bottom)
+        throw std::runtime_error(file.string() + " is missing or not " + std::to_string(left + w + right) + "x" +
+                                 std::to_string(top + h + bottom));
+      tile(cv::Rect(left, top, w, h)).copyTo(out(cv::Rect(x, y, w, h)));
+    }
+  std::size_t present = 0;
+  for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++present;
+  if (present != tiles) throw std::runtime_error(dir.string() + " holds " + std::to_string(present) + " files for " +
+                                                 std::to_string(tiles) + " tiles");
+  return out;
+}
+
+// Plane j at full size: plane_j.jpg, or its Deep Zoom tiles when only plane_j.dzi is there.
+inline cv::Mat readPlaneImage(const std::filesystem::path& folder, int j) {
+  const std::string stem = "plane_" + std::to_string(j);
+  if (std::filesystem::exists(folder / (stem + ".jpg")) || !std::filesystem::exists(folder / (stem + ".dzi")))
+    return cv::imread((folder / (stem + ".jpg")).string(), cv::IMREAD_COLOR);  // OpenCV gives B, G, R
+  const DeepZoomInfo d = readDzi(folder / (stem + ".dzi"));
+  return assembleDeepZoomLevel(folder, stem, d.levels - 1);
 }
 
 struct WebModel {
@@ -158,7 +275,7 @@ inline WebModel readWebModel(const std::filesystem::path& folder) {
   m.coef.assign(static_cast<std::size_t>(m.nplanes), std::vector<double>(n));
   for (int j = 0; j * 3 < m.nplanes; ++j) {
     const auto file = folder / ("plane_" + std::to_string(j) + ".jpg");
-    cv::Mat bgr = cv::imread(file.string(), cv::IMREAD_COLOR);  // OpenCV gives B, G, R
+    const cv::Mat bgr = readPlaneImage(folder, j);
     if (bgr.empty() || bgr.cols != m.width || bgr.rows != m.height)
       throw std::runtime_error("cannot read " + file.string() + " at the size info.json gives");
     for (int y = 0; y < m.height; ++y)

@@ -1,0 +1,38 @@
+// Private to src/publish: the viewer written into every published model folder, index.html
+// and viewer-data.js (docs/formats.md, "The viewer").
+//
+// A page opened from file:// may neither fetch() a file nor give WebGL an image loaded from a
+// file:// address (it counts as another origin), so the page cannot read plane_N.jpg; it reads
+// viewer-data.js, loaded by a <script> tag, which holds the planes (and the normals and
+// albedo pictures) as data: URIs of JPEG bytes. These are the Deep Zoom level that fits in
+// kViewerMaxSide texels: the model itself when it fits (the same bytes as plane_N.jpg), a
+// reduced level of a larger one.
+//
+//   ViewerData data{infoJsonText, width, height, halvings, level, planeJpegs, normalsJpeg, albedoJpeg};
+//   files.emplace_back("index.html", kViewerHtml);
+//   files.emplace_back("viewer-data.js", viewerDataJs(data));
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace surrogate::publish {
+
+// The largest side the viewer holds: a large screen's width, which keeps viewer-data.js at a
+// quarter of the planes' size or less for any model larger than that.
+constexpr int kViewerMaxSide = 2048;
+
+extern const char* const kViewerHtml;
+
+struct ViewerData {
+  std::string infoJson;           // the folder's info.json, as written
+  int width = 0, height = 0;      // of the level held
+  int halvings = 0;               // 0: the model's own size; k: halved k times
+  int level = -1;                 // its Deep Zoom level when the planes are tiled, else -1
+  std::vector<std::string> planes;  // JPEG bytes of plane 0, 1, ... at that level
+  std::string normals, albedo;      // JPEG bytes, same size
+};
+
+std::string viewerDataJs(const ViewerData& data);
+
+}  // namespace surrogate::publish
