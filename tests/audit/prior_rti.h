@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/image.h"
+#include "../light_spiral.h"
 
 namespace surrogate::test {
 
@@ -23,15 +24,7 @@ using Light = std::array<double, 3>;
 
 // N lights at elevations 40..75 degrees, all azimuths (golden-angle spiral): none grazing, so a
 // Lambertian surface is lit everywhere and a biquadratic in (lx, ly) fits it closely.
-inline std::vector<Light> auditLights(int n) {
-  std::vector<Light> out;
-  for (int i = 0; i < n; ++i) {
-    const double el = (40.0 + 35.0 * (i + 0.5) / n) * M_PI / 180.0;
-    const double az = i * 2.399963229728653;
-    out.push_back({std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el)});
-  }
-  return out;
-}
+inline std::vector<Light> auditLights(int n) { return spiralLights(n, 40.0, 75.0); }
 
 // `l` tilted by `degrees` towards the viewing axis' opposite (its elevation raised): the
 // angle between the two unit vectors is exactly `degrees`.

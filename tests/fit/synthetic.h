@@ -12,21 +12,14 @@
 #include "core/stack.h"
 #include "fit/basis.h"
 #include "reference_basis.h"
+#include "../light_spiral.h"
 
 namespace surrogate::test {
 
 using Light = std::array<double, 3>;
 
 // N lights spread over elevations 20..80 degrees and all azimuths (a golden-angle spiral).
-inline std::vector<Light> spreadLights(int n) {
-  std::vector<Light> out;
-  for (int i = 0; i < n; ++i) {
-    const double el = (20.0 + 60.0 * (i + 0.5) / n) * M_PI / 180.0;
-    const double az = i * 2.399963229728653;
-    out.push_back({std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el)});
-  }
-  return out;
-}
+inline std::vector<Light> spreadLights(int n) { return spiralLights(n, 20.0, 80.0); }
 
 inline std::uint16_t sample255(double v) {  // 0..255 units -> 16-bit
   return static_cast<std::uint16_t>(std::lround(std::clamp(v, 0.0, 255.0) * 257.0));
