@@ -60,8 +60,12 @@ int unknownCommand(const std::string& how, const std::string& name) {
   return static_cast<int>(ErrorKind::Usage);
 }
 
-// surrogate help COMMAND: the command's own --help.
+// surrogate help COMMAND: the command's own --help ("help help": the general help).
 int helpFor(const std::string& name) {
+  if (name == "help") {
+    printUsage();
+    return 0;
+  }
   for (const cli::Command& c : cli::commands()) {
     if (name != c.name) continue;
     std::string command = c.name, help = "--help";

@@ -201,6 +201,9 @@ TEST_CASE("help COMMAND and COMMAND --help print the help of that command for ev
     CHECK_THAT(help.output, Contains("options:"));
     CHECK(help.output == option.output);
   }
+  const e2e::CommandResult helpHelp = e2e::surrogate("help help");
+  CHECK(helpHelp.exitCode == 0);
+  CHECK(helpHelp.output == e2e::surrogate("--help").output);
   const e2e::CommandResult unknown = e2e::surrogate("help frobnicate");
   INFO(unknown.output);
   CHECK(unknown.exitCode == 2);
