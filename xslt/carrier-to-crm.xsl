@@ -559,6 +559,10 @@
         <rdf:type rdf:resource="{$crm-ns}E36_Visual_Item"/>
         <crm:P138_represents rdf:resource="{$base}object"/>
       </xsl:if>
+      <xsl:if test="@role = 'result' and starts-with(@path, 'finished-files/web/')">
+        <!-- the web copy of a model (surrogate run with publish): the access copy of the package -->
+        <crm:P3_has_note><xsl:value-of select="concat('web access copy of the model (info.json, JPEG coefficient planes and a viewer that OpenLIME and Relight read): ', @format)"/></crm:P3_has_note>
+      </xsl:if>
       <xsl:for-each select="@pairedWith">
         <crm:P130_shows_features_of rdf:resource="{$base}file/{.}"/>
       </xsl:for-each>

@@ -13,7 +13,8 @@
                     it leaves out size and sha256 where the carrier's record of the same path,
                     data/ + @path, gives the same ones, and they are taken from there; and it
                     names each element after the file's group, the role of that record or
-                    "other" when there is none: <original .../>, <result .../>. A <file>'s
+                    "other" when there is none: <original .../>, <result .../>; a result in
+                    finished-files/web/ (the web copy) is <access .../>. A <file>'s
                     group is looked up here). When
                     the list has no file, the carrier's own file list is used instead (without
                     SHA-512). Give an absolute path or URI: a relative one is resolved against
@@ -157,6 +158,8 @@
         <xsl:call-template name="file-group"><xsl:with-param name="use" select="'sidecar'"/></xsl:call-template>
         <xsl:call-template name="file-group"><xsl:with-param name="use" select="'assembly'"/></xsl:call-template>
         <xsl:call-template name="file-group"><xsl:with-param name="use" select="'result'"/></xsl:call-template>
+        <!-- the web copy (surrogate run with publish): results in finished-files/web/, the access copy -->
+        <xsl:call-template name="file-group"><xsl:with-param name="use" select="'access'"/></xsl:call-template>
         <!-- files another tool made (RTIBuilder's .lp, log, .ptm), found in the output folders -->
         <xsl:call-template name="file-group"><xsl:with-param name="use" select="'prior'"/><xsl:with-param name="label" select="'prior-work'"/></xsl:call-template>
         <xsl:call-template name="file-group"><xsl:with-param name="use" select="'other'"/></xsl:call-template>
@@ -170,6 +173,7 @@
           <xsl:call-template name="struct-div"><xsl:with-param name="use" select="'sidecar'"/></xsl:call-template>
           <xsl:call-template name="struct-div"><xsl:with-param name="use" select="'assembly'"/></xsl:call-template>
           <xsl:call-template name="struct-div"><xsl:with-param name="use" select="'result'"/></xsl:call-template>
+          <xsl:call-template name="struct-div"><xsl:with-param name="use" select="'access'"/></xsl:call-template>
           <xsl:call-template name="struct-div"><xsl:with-param name="use" select="'prior'"/><xsl:with-param name="label" select="'prior-work'"/></xsl:call-template>
           <xsl:call-template name="struct-div"><xsl:with-param name="use" select="'other'"/></xsl:call-template>
         </mets:div>
@@ -397,12 +401,12 @@
             <xsl:variable name="path" select="@path"/>
             <xsl:for-each select="$carrier">
               <xsl:variable name="rec" select="key('file-by-bag-path', $path)"/>
-              <xsl:if test="($rec and $rec[1]/@role = $use) or (not($rec) and $use = 'other')">x</xsl:if>
+              <xsl:if test="($rec and $rec[1][((@role = $use and not(@role = 'result' and starts-with(@path, 'finished-files/web/'))) or ($use = 'access' and @role = 'result' and starts-with(@path, 'finished-files/web/')))]) or (not($rec) and $use = 'other')">x</xsl:if>
             </xsl:for-each>
           </xsl:for-each>
         </xsl:when>
         <xsl:otherwise>
-          <xsl:if test="$carrier/c:files/c:file[@role = $use]">x</xsl:if>
+          <xsl:if test="$carrier/c:files/c:file[((@role = $use and not(@role = 'result' and starts-with(@path, 'finished-files/web/'))) or ($use = 'access' and @role = 'result' and starts-with(@path, 'finished-files/web/')))]">x</xsl:if>
         </xsl:otherwise>
       </xsl:choose>
     </xsl:variable>
@@ -418,7 +422,7 @@
               <xsl:variable name="named" select="local-name() = $use"/>
               <xsl:for-each select="$carrier[$named or current()/self::file]">
                 <xsl:variable name="rec" select="key('file-by-bag-path', $path)"/>
-                <xsl:if test="$named or ($rec and $rec[1]/@role = $use) or (not($rec) and $use = 'other')">
+                <xsl:if test="$named or ($rec and $rec[1][((@role = $use and not(@role = 'result' and starts-with(@path, 'finished-files/web/'))) or ($use = 'access' and @role = 'result' and starts-with(@path, 'finished-files/web/')))]) or (not($rec) and $use = 'other')">
                   <xsl:call-template name="mets-file">
                     <xsl:with-param name="n" select="$n"/>
                     <xsl:with-param name="path" select="$path"/>
@@ -432,7 +436,7 @@
           </xsl:when>
           <xsl:otherwise>
             <xsl:for-each select="$carrier/c:files/c:file">
-              <xsl:if test="@role = $use">
+              <xsl:if test="((@role = $use and not(@role = 'result' and starts-with(@path, 'finished-files/web/'))) or ($use = 'access' and @role = 'result' and starts-with(@path, 'finished-files/web/')))">
                 <xsl:call-template name="mets-file">
                   <xsl:with-param name="n" select="position()"/>
                   <xsl:with-param name="path" select="concat('data/', @path)"/>
@@ -505,7 +509,7 @@
               <xsl:variable name="path" select="@path"/>
               <xsl:for-each select="$carrier">
                 <xsl:variable name="rec" select="key('file-by-bag-path', $path)"/>
-                <xsl:if test="($rec and $rec[1]/@role = $use) or (not($rec) and $use = 'other')">
+                <xsl:if test="($rec and $rec[1][((@role = $use and not(@role = 'result' and starts-with(@path, 'finished-files/web/'))) or ($use = 'access' and @role = 'result' and starts-with(@path, 'finished-files/web/')))]) or (not($rec) and $use = 'other')">
                   <mets:div TYPE="{$label}" LABEL="{$path}"><mets:fptr FILEID="file-{$n}"/></mets:div>
                 </xsl:if>
               </xsl:for-each>
@@ -515,7 +519,7 @@
       </xsl:when>
       <xsl:otherwise>
         <xsl:for-each select="$carrier/c:files/c:file">
-          <xsl:if test="@role = $use">
+          <xsl:if test="((@role = $use and not(@role = 'result' and starts-with(@path, 'finished-files/web/'))) or ($use = 'access' and @role = 'result' and starts-with(@path, 'finished-files/web/')))">
             <mets:div TYPE="{$label}" LABEL="data/{@path}"><mets:fptr FILEID="file-{position()}"/></mets:div>
           </xsl:if>
         </xsl:for-each>
@@ -955,6 +959,7 @@
         <xsl:when test="$step/@component = 'LightsFromFile'">|OpenSSL|</xsl:when>
         <xsl:when test="$step/@component = 'RtiFit'">|Eigen|OpenSSL|</xsl:when>
         <xsl:when test="$step/@component = 'DerivedMaps'">|OpenCV|Eigen|OpenSSL|</xsl:when>
+        <xsl:when test="$step/@component = 'WebCopy'">|libjpeg-turbo|libjpeg|OpenCV|OpenSSL|</xsl:when>
       </xsl:choose>
     </xsl:variable>
     <xsl:for-each select="$carrier/c:header/c:software[@name != 'Surrogate']">

@@ -10,6 +10,7 @@
 #include "stages/light_stages.h"
 #include "stages/preprocess.h"
 #include "stages/preprocess_stages.h"
+#include "stages/web_copy_stage.h"
 #include "core/text.h"
 
 namespace surrogate::cli {
@@ -54,6 +55,12 @@ std::vector<OptionSpec> pipelineOptions(bool withFit) {
     specs.push_back({"crop", true, false, "fit only this rectangle of the frame (pixels), or auto: the largest one clear of the spheres", "X,Y,W,H|auto"});
     specs.push_back({"crop-margin", true, false, "with --crop auto: clearance around each sphere, fraction of its radius (default 0.25)", "F"});
     specs.push_back({"resize", true, false, "reduce the fitted result: a factor (0.5) or a size (WxH), area averaging", "FACTOR|WxH"});
+    // The web copy of each model (WebCopy steps, stages/web_copy_stage.h), a standing decision.
+    specs.push_back({"publish", false, false, "also write each model's web copy to finished-files/web/ (kept for later runs)"});
+    specs.push_back({"no-publish", false, false, "withdraw the web copy (its files go to superseded-files/)"});
+    specs.push_back({"publish-quality", true, false, "JPEG quality 1..100 of the web copy's planes (default 95)", "Q"});
+    specs.push_back({"publish-tiles", true, false, "web copy tiles: auto (default), none or deepzoom", "LAYOUT"});
+    specs.push_back({"publish-tile-size", true, false, "side of the web copy's Deep Zoom tiles, 16..4096 (default 256)", "N"});
   }
   return specs;
 }
@@ -141,6 +148,27 @@ void preprocessing(stages::RunRequest& r, const Args& args) {
     throw Error(ErrorKind::Usage, "--crop/--resize/--wb", "command line", "pre-processing needs a fit (--basis)");
 }
 
+// --publish, --no-publish and the web copy's options, checked as WebCopy reads them.
+void webCopy(stages::RunRequest& r, const Args& args) {
+  if (args.has("publish") && args.has("no-publish"))
+    throw Error(ErrorKind::Usage, "--no-publish", "command line", "contradicts --publish: give one of them");
+  if (args.has("publish")) r.publish = true;
+  if (args.has("no-publish")) r.publish = false;
+  const char* component = stages::WebCopyStage::kComponent;
+  for (const auto& [option, name] : {std::pair<const char*, const char*>{"publish-quality", "quality"},
+                                     {"publish-tiles", "tiles"},
+                                     {"publish-tile-size", "tileSize"}}) {
+    const auto value = args.value(option);
+    if (!value) continue;
+    try {
+      stages::WebCopyOptions::fromParameters({{name, *value}});
+    } catch (const Error& e) {
+      throw Error(ErrorKind::Usage, std::string("--") + option + " " + *value, "command line", e.message());
+    }
+    param(r, component, {name, *value});
+  }
+}
+
 }  // namespace
 
 stages::RunRequest requestFrom(const Args& args) {
@@ -175,7 +203,8 @@ stages::RunRequest requestFrom(const Args& args) {
   if (const auto lp = args.value("lp")) r.lp = *lp == "none" ? std::string() : *lp;
   for (const auto& [name, value] : args.ordered()) {
     r.arguments.push_back("--" + name);
-    if (name != "quiet" && name != "json" && name != "no-report" && name != "reset")
+    if (name != "quiet" && name != "json" && name != "no-report" && name != "reset" && name != "publish" &&
+        name != "no-publish")
       r.arguments.push_back(value);
   }
   for (const std::string& s : args.values("raw")) r.decodeSettings.push_back(splitKeyValue(s, "--raw"));
@@ -196,6 +225,7 @@ stages::RunRequest requestFrom(const Args& args) {
   lightDirections(r, args);
   if (args.has("basis")) r.bases = args.values("basis");
   preprocessing(r, args);
+  webCopy(r, args);
 
   // Interventions, in the order given; a --reason belongs to the one just before it.
   int spheres = 0;

@@ -138,6 +138,12 @@ bool isGroupName(std::string_view role) {
   return false;
 }
 
+// The web copy (`run --publish`, stages/web_copy_stage.h): results in finished-files/web/, the
+// package's access copy (fileGrp USE="access"; docs/package.md).
+bool isAccessCopy(const RecordedFile& r) {
+  return r.role == "result" && r.path.rfind("finished-files/web/", 0) == 0;
+}
+
 // A payload file as the stylesheet reads it. Its size and SHA-256 are left out when the
 // carrier's record of the same path gives the same ones (the stylesheet then takes the
 // record's): two attributes fewer per file is about 50 MB less of tree for 100 000 files, and
@@ -149,7 +155,11 @@ bool isGroupName(std::string_view role) {
 std::string payloadEntry(const PayloadFile& f, const RecordedFiles* recorded = nullptr) {
   const RecordedFile* r = recorded ? recorded->find(f.path) : nullptr;
   const bool asRecorded = r && r->sha256 == f.sha256 && r->size == std::to_string(f.size);
-  const std::string_view group = !recorded ? "file" : !r ? "other" : isGroupName(r->role) ? r->role : "file";
+  const std::string_view group = !recorded            ? "file"
+                                 : !r                   ? "other"
+                                 : isAccessCopy(*r)     ? "access"
+                                 : isGroupName(r->role) ? r->role
+                                                        : "file";
   std::string out = "<" + std::string(group) + " path=\"" + attributeText(f.path, f.path) + "\"";
   if (!asRecorded)
     out += " size=\"" + std::to_string(f.size) + "\" sha256=\"" + attributeText(f.sha256, f.path) + "\"";

@@ -46,6 +46,8 @@ enum class PlanSlot {
   Preprocessing,      // only when the request asks for it, in the order asked
   EachModel,          // once per model fitted (`forModel` gives the parameters)
   AfterModels,        // once after the fits, for the first model (`forModel`, if set)
+  Publish,            // once per model fitted (`forModel`), only when the request asks for the
+                      // web copy (stages/plan.h: RunRequest::publish)
   PriorWork,          // last, only when the capture holds prior work to audit (stages/audit_stage.h)
   NotPlanned,         // never planned by `surrogate run` (a carrier may still name it)
 };

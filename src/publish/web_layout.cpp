@@ -306,8 +306,9 @@ void writeLayout(const WebLayoutFiles& layout, const fs::path& folder) {
 
 bool startsWith(const std::string& s, const std::string& prefix) { return s.compare(0, prefix.size(), prefix) == 0; }
 
-// The model file as Surrogate reads it: a .ptm (any variant) or an HSH .rti, by its first bytes.
-WebLayoutFiles layoutOfFile(const fs::path& file, const PublishOptions& options) {
+}  // namespace
+
+WebLayoutFiles webLayoutOfFile(const fs::path& file, const PublishOptions& options) {
   const std::string bytes = readFile(file, kStep);
   const auto* data = reinterpret_cast<const std::uint8_t*>(bytes.data());
   if (startsWith(bytes, "PTM_")) return webLayoutOf(formats::parsePtm(data, bytes.size(), file.string()), options);
@@ -316,6 +317,8 @@ WebLayoutFiles layoutOfFile(const fs::path& file, const PublishOptions& options)
   throw Error(ErrorKind::Input, file.string(), kStep,
               "is neither a PTM (.ptm) nor an HSH RTI (.rti) file, nor a capture folder; give one of these");
 }
+
+namespace {
 
 struct CaptureModel {
   std::string path;  // relative to the capture
@@ -416,13 +419,13 @@ std::vector<PublishedModel> publish(const fs::path& source, const fs::path& out,
   std::vector<WebLayoutFiles> layouts;
   if (fs::is_directory(source, ec)) {
     for (const CaptureModel& m : recordedModels(source)) {
-      WebLayoutFiles layout = layoutOfFile(source / m.path, options);
+      WebLayoutFiles layout = webLayoutOfFile(source / m.path, options);
       layout.model.source = m.path;
       layout.model.folder = m.folder;
       layouts.push_back(std::move(layout));
     }
   } else {
-    layouts.push_back(layoutOfFile(source, options));
+    layouts.push_back(webLayoutOfFile(source, options));
     layouts.back().model.source = source.string();
   }
   StagingFolder staging(out);

@@ -84,6 +84,11 @@ WebLayoutFiles webLayoutOf(const formats::PtmFile& ptm, const PublishOptions& op
 // Throws Error(Input) for 16 terms (order 4): the web viewers evaluate HSH up to order 3.
 WebLayoutFiles webLayoutOf(const formats::HshFile& hsh, const PublishOptions& options);
 
+// The layout of a model file as Surrogate reads it (a .ptm of any variant or an HSH .rti, told
+// by its first bytes), in memory; what `surrogate run --publish` records (stages/web_copy_stage.h).
+// Throws Error(Input) naming the file for any other file.
+WebLayoutFiles webLayoutOfFile(const std::filesystem::path& file, const PublishOptions& options);
+
 // Publishes `source` into the folder `out`, which must not exist or be empty:
 //   a .ptm (raw or JPEG-compressed) or an HSH .rti: `out` holds its layout;
 //   a capture folder: each PTM or HSH result its carrier records in finished-files/, in a

@@ -89,6 +89,30 @@ std::string recordedValue(const std::string& value) {
   return formatNumber(v);
 }
 
+// The options of a recorded web copy step that differ from the defaults, as stage parameters
+// (its model follows from the bases).
+void addPublishOptions(const carrier::Step& s, const pipeline::Parameters& defaults, RunRequest& r) {
+  for (const carrier::Param& p : s.params) {
+    if (p.name == "model") continue;
+    const auto d = std::find_if(defaults.begin(), defaults.end(), [&](const auto& kv) { return kv.first == p.name; });
+    if (d == defaults.end() || d->second != p.value) r.stageParams.push_back({s.component, p.name, p.value});
+  }
+}
+
+// Web copy options given without a web copy, standing or asked for, would do nothing: refused.
+// When the web copy is withdrawn, its standing options go with it.
+void settlePublishOptions(RunRequest& r, const RunRequest& given) {
+  if (r.publish.value_or(false)) return;
+  for (const RunRequest::StageParam& p : given.stageParams)
+    if (slotOf(p.component) == pipeline::PlanSlot::Publish)
+      throw Error(ErrorKind::Usage, "--publish-" + std::string(p.name == "tileSize" ? "tile-size" : p.name), "command line",
+                  "sets an option of the web copy, which this capture does not make; add --publish");
+  auto& params = r.stageParams;
+  params.erase(std::remove_if(params.begin(), params.end(),
+                              [](const RunRequest::StageParam& p) { return slotOf(p.component) == pipeline::PlanSlot::Publish; }),
+               params.end());
+}
+
 }  // namespace
 
 RunRequest standingDecisions(const carrier::Carrier& recorded) {
@@ -117,6 +141,10 @@ RunRequest standingDecisions(const carrier::Carrier& recorded) {
       PlannedStage p{s.component, {}};
       for (const carrier::Param& q : s.params) p.params.emplace_back(q.name, recordedValue(q.value));
       r.preprocessing.push_back(std::move(p));
+    } else if (slot == pipeline::PlanSlot::Publish) {
+      // One step per model, with the same options: those of the first, without its model.
+      if (!r.publish) addPublishOptions(s, info->defaults, r);
+      r.publish = true;
     } else if (s.component == RtiFitStage::kComponent) {
       bases.push_back(fit::basisName(RtiFitOptions::fromParameters(parametersOf(s)).fit.basis));
     } else if (!info || !info->forModel) {  // the plan derives a forModel stage's parameters
@@ -155,6 +183,7 @@ RunRequest applyDecisions(const RunRequest& standing, const RunRequest& given,
     r.preprocessing.clear();
     r.decodeSettings.clear();
     r.bases.reset();
+    r.publish.reset();
     r.lp.reset();
     r.source.clear();
     r.stageInterventions.erase(
@@ -288,6 +317,12 @@ RunRequest applyDecisions(const RunRequest& standing, const RunRequest& given,
     changes.push_back("bases: " + list);
     r.bases = given.bases;
   }
+
+  if (given.publish && given.publish.value_or(false) != r.publish.value_or(false)) {
+    changes.push_back(*given.publish ? "web copy of each model (finished-files/web/)" : "no web copy any more");
+    r.publish = given.publish;
+  }
+  settlePublishOptions(r, given);
 
   // A dome capture takes its lights from the .lp: sphere and highlight decisions would do
   // nothing, and dropping them silently would lose them.

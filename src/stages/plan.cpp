@@ -34,7 +34,7 @@ namespace fs = std::filesystem;
 std::vector<carrier::Software> softwareVersions() {
   return {
       {"LibRaw", image::librawVersion(), "camera raw decoding"},
-      {image::libjpegName(), image::libjpegVersion(), "JPEG decoding"},
+      {image::libjpegName(), image::libjpegVersion(), "JPEG decoding, and encoding of the web copy"},
       {"libpng", image::libpngVersion(), "PNG decoding"},
       {"libtiff", image::libtiffVersion(), "TIFF decoding"},
       {"OpenCV", image::opencvVersion(), "image writing and filtering"},
@@ -88,6 +88,8 @@ std::vector<PlannedStage> analysisStages(bool captureHasLp, const RunRequest& re
   const std::vector<std::string> bases = request.bases.value_or(std::vector<std::string>{"ptm-lrgb", "hsh2"});
   for (const std::string& basis : bases) addSlot(PlanSlot::EachModel, basis);
   if (!bases.empty()) addSlot(PlanSlot::AfterModels, bases.front());
+  if (request.publish.value_or(false))
+    for (const std::string& basis : bases) addSlot(PlanSlot::Publish, basis);
   if (request.auditPriorWork) addSlot(PlanSlot::PriorWork, "");
   return out;
 }

@@ -99,6 +99,10 @@ struct RunRequest {
   // Models to fit (RtiFit steps, in order): ptm-lrgb, ptm-rgb, hsh2, hsh3. Unset: keep (first
   // run: ptm-lrgb and hsh2).
   std::optional<std::vector<std::string>> bases;
+  // The web copy of each model (the Publish slot: WebCopy steps, stages/web_copy_stage.h),
+  // with its options as stage parameters of WebCopy. Unset: keep (first run: none); false
+  // withdraws it (and its options).
+  std::optional<bool> publish;
   // Run only up to light estimation (surrogate lights): the later steps are planned (so no
   // decision about them is lost) but not run.
   bool lightsOnly = false;

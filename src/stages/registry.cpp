@@ -10,6 +10,7 @@
 #include "stages/light_stages.h"
 #include "stages/plan.h"
 #include "stages/preprocess_stages.h"
+#include "stages/web_copy_stage.h"
 
 namespace surrogate::stages {
 
@@ -28,6 +29,7 @@ void registerBuiltinStages() {
     r.add<ResizeStage>();
     r.add<RtiFitStage>();
     r.add<DerivedMapsStage>();
+    r.add<WebCopyStage>();
     r.add<AuditStage>();
   });
 }

@@ -210,3 +210,46 @@ TEST_CASE("numbers from an older carrier's 17 digits are read as the same values
   stages::applyDecisions(r, given, changes);
   CHECK(changes.empty());
 }
+
+TEST_CASE("a recorded web copy stands with its options and is withdrawn with them", "[stages][decisions]") {
+  carrier::Carrier c = recorded();
+  for (const char* model : {"hsh3", "hsh3"}) {
+    carrier::Step& s = c.addStep("WebCopy", "1");
+    s.setParam("model", model);
+    s.setParam("quality", "80");
+    s.setParam("tiles", "auto");  // the default: not a decision
+    s.setParam("tileSize", "256");
+  }
+  const RunRequest standing = stages::standingDecisions(c);
+  REQUIRE(standing.publish);
+  CHECK(*standing.publish);
+  std::vector<std::string> web;
+  for (const auto& p : standing.stageParams)
+    if (p.component == "WebCopy") web.push_back(p.name + "=" + p.value);
+  CHECK(web == std::vector<std::string>{"quality=80"});  // once, though two steps record it
+
+  // Nothing said about it: it stays, and the plan has one step per basis with its quality.
+  std::vector<std::string> changes;
+  RunRequest kept = stages::applyDecisions(standing, RunRequest{}, changes);
+  CHECK(kept.publish.value_or(false));
+  const auto planned = stages::analysisStages(false, kept);
+  int steps = 0;
+  for (const auto& p : planned)
+    if (p.component == "WebCopy") {
+      ++steps;
+      CHECK(p.params == std::vector<std::pair<std::string, std::string>>{{"model", "hsh3"}});
+    }
+  CHECK(steps == 1);
+
+  // Withdrawn: its options go too, and options without a web copy are refused.
+  RunRequest off;
+  off.publish = false;
+  changes.clear();
+  const RunRequest withdrawn = stages::applyDecisions(standing, off, changes);
+  CHECK_FALSE(withdrawn.publish.value_or(false));
+  for (const auto& p : withdrawn.stageParams) CHECK(p.component != "WebCopy");
+  CHECK(changes == std::vector<std::string>{"no web copy any more"});
+  RunRequest quality;
+  quality.stageParams.push_back({"WebCopy", "quality", "50"});
+  CHECK_THROWS_AS(stages::applyDecisions(withdrawn, quality, changes), Error);
+}

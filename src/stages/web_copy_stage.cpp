@@ -1,0 +1,148 @@
+#include "stages/web_copy_stage.h"
+
+#include <charconv>
+#include <filesystem>
+
+#include "capture/capture.h"
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "fit/basis.h"
+#include "pipeline/context.h"
+#include "publish/web_layout.h"
+#include "stages/fit_stages.h"
+#include "stages/outputs.h"
+
+namespace surrogate::stages {
+
+namespace fs = std::filesystem;
+
+namespace {
+constexpr const char* kStep = "web copy";
+
+Error badParameter(const std::string& name, const std::string& value, const std::string& what) {
+  return Error(ErrorKind::Input, name + "=" + value, kStep, what);
+}
+
+int integerIn(const std::string& name, const std::string& value, int low, int high) {
+  int v = 0;
+  const char* end = value.data() + value.size();
+  const auto r = std::from_chars(value.data(), end, v);
+  if (r.ec != std::errc() || r.ptr != end || v < low || v > high)
+    throw badParameter(name, value, "needs a whole number from " + std::to_string(low) + " to " + std::to_string(high));
+  return v;
+}
+
+// What a file of the layout is, for the carrier: format, media type and the output's kind.
+struct FileKind {
+  const char* format;
+  const char* mediaType;
+  const char* kind;
+};
+
+FileKind kindOf(const std::string& name) {
+  const std::string ext = fs::path(name).extension().string();
+  if (name == "info.json") return {"JSON", "application/json", "web-info"};
+  if (ext == ".jpg") return {"JPEG", "image/jpeg", name.find('/') == std::string::npos ? "web-plane" : "web-tile"};
+  if (ext == ".dzi") return {"DZI", "application/xml", "web-tiles"};
+  if (ext == ".html") return {"HTML", "text/html", "web-viewer"};
+  if (ext == ".js") return {"JavaScript", "text/javascript", "web-viewer"};
+  return {"other", "application/octet-stream", "web"};
+}
+
+// The model file the RtiFit step of `basis` wrote (its recorded output, or the default).
+std::string fittedModelPath(const carrier::Carrier& c, const std::string& basis) {
+  for (const carrier::Step& s : c.process) {
+    if (s.component != RtiFitStage::kComponent) continue;
+    const RtiFitOptions o = RtiFitOptions::fromParameters(parametersOf(s));
+    if (fit::basisName(o.fit.basis) == basis) return o.output.empty() ? defaultFitOutput(basis) : o.output;
+  }
+  throw Error(ErrorKind::Input, basis, kStep,
+              "no RtiFit step of the process list fits this model; a web copy follows the fit of its model");
+}
+}  // namespace
+
+std::string webCopyFolder(const std::string& basis) {
+  return std::string(capture::kFinishedDir) + "/web/" + basis;
+}
+
+pipeline::Parameters WebCopyOptions::toParameters() const {
+  return {{"model", model},
+          {"quality", std::to_string(quality)},
+          {"tiles", tiles},
+          {"tileSize", std::to_string(tileSize)}};
+}
+
+WebCopyOptions WebCopyOptions::fromParameters(const pipeline::Parameters& parameters) {
+  WebCopyOptions o;
+  for (const auto& [name, value] : parameters) {
+    if (name == "model") {
+      try {
+        fit::parseBasis(value);
+      } catch (const Error&) {
+        throw badParameter(name, value, "is not a model Surrogate fits (ptm-lrgb, ptm-rgb, hsh2, hsh3)");
+      }
+      o.model = value;
+    } else if (name == "quality") {
+      o.quality = integerIn(name, value, 1, 100);
+    } else if (name == "tiles") {
+      if (value != "auto" && value != "none" && value != "deepzoom")
+        throw badParameter(name, value, "is not a tile layout (auto, none, deepzoom)");
+      o.tiles = value;
+    } else if (name == "tileSize") {
+      o.tileSize = integerIn(name, value, 16, 4096);
+    } else {
+      throw badParameter(name, value, "is not a parameter of WebCopy (model, quality, tiles, tileSize)");
+    }
+  }
+  return o;
+}
+
+pipeline::StageInfo WebCopyStage::info() {
+  // Version 1: the layout of publish/web_layout.h (docs/formats.md, "The web layout").
+  pipeline::StageInfo info = pipeline::withOptions<WebCopyOptions>(
+      {kComponent, "1", "Web copy of a model: info.json, JPEG coefficient planes and a viewer",
+       pipeline::PlanSlot::Publish});
+  info.forModel = [](const std::string& basis) {
+    return pipeline::Parameters{{"model", fit::basisName(fit::parseBasis(basis))}};
+  };
+  info.outputs = [](const carrier::Step& step) {
+    return std::vector<std::string>{webCopyFolder(WebCopyOptions::fromParameters(parametersOf(step)).model) + "/*"};
+  };
+  return info;
+}
+
+void WebCopyStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier::Result& result) {
+  const WebCopyOptions o = WebCopyOptions::fromParameters(parametersOf(step));
+  const std::string label = "Web copy of " + o.model;
+  ctx.progress(label, 0);
+  const std::string model = fittedModelPath(ctx.carrier, o.model);
+  const carrier::FileRecord* input = ctx.carrier.findFileByPath(model);
+  if (!input)
+    throw Error(ErrorKind::Input, model, kStep, "is not recorded: the fit of " + o.model + " did not run before");
+  result.add("input").set("file", input->id).set("kind", o.model);
+
+  publish::PublishOptions options;
+  options.quality = o.quality;
+  options.tiles = publish::parseTileLayout(o.tiles);
+  options.tileSize = o.tileSize;
+  options.threads = ctx.settings.threads;
+  const publish::WebLayoutFiles layout = publish::webLayoutOfFile(ctx.outputPath(model), options);
+  ctx.progress(label, 0.5);
+
+  const std::string folder = webCopyFolder(o.model);
+  for (const auto& [name, bytes] : layout.files) {
+    const std::string relative = checkedOutputPath(folder + "/" + name);
+    const fs::path file = ctx.outputPath(relative);
+    fs::create_directories(file.parent_path());
+    writeFileAtomically(file, bytes);
+    const FileKind k = kindOf(name);
+    recordOutput(ctx, step, result, relative, "result", k.format, k.kind, k.mediaType);
+  }
+  ctx.carrier.addLog("info", step.id,
+                     "web copy of " + model + " in " + folder + "/: " + std::to_string(layout.files.size()) +
+                         " files, JPEG quality " + std::to_string(o.quality) +
+                         (layout.model.tiles.empty() ? ", whole planes"
+                                                     : ", Deep Zoom tiles of " + std::to_string(o.tileSize) + " texels"));
+}
+
+}  // namespace surrogate::stages
