@@ -49,6 +49,7 @@ int runCommandRun(int argc, char** argv) {
   std::optional<report::Report> rep;
   if (!args.has("no-report")) {
     report::ReportOptions options;
+    options.threads = settings.threads;
     options.progress = bar.callback();
     rep = report::writeCaptureReport(capture, options);
     bar.finish();

@@ -7,6 +7,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/parallel.h"
 #include "core/version.h"
 #include "report/embed.h"
 #include "report/hemisphere.h"
@@ -126,14 +127,58 @@ std::vector<std::pair<std::string, const carrier::FileRecord*>> outputsByKind(co
   return out;
 }
 
-std::string figure(const ReportSource& source, const carrier::FileRecord& file,
-                   const std::string& caption, int maxSide, int* embedded) {
+// The pictures the page shows (overlays, overviews, normals, albedo, previews), each read,
+// decoded, downscaled and encoded as JPEG once. prepare() does a list of them on several
+// threads at once: decoding the PNGs and encoding the JPEGs is most of the report's time, and
+// each picture's JPEG depends on its own file's bytes alone, so the page is the same at any
+// thread count. A picture not prepared is done when the page asks for it.
+class Pictures {
+ public:
+  struct Picture {
+    bool found = false;                      // the source holds the file
+    std::optional<EmbeddedPicture> embedded;  // nullopt: not a readable picture
+  };
+
+  Pictures(const ReportSource& source, int maxSide) : source_(source), maxSide_(maxSide) {}
+
+  void prepare(const std::vector<std::string>& paths, int threads) {
+    std::vector<std::string> todo;
+    for (const std::string& p : paths)
+      if (!done_.count(p) && std::find(todo.begin(), todo.end(), p) == todo.end()) todo.push_back(p);
+    std::vector<Picture> made(todo.size());
+    parallelFor(todo.size(), 1, threads, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) made[i] = make(todo[i]);
+    });
+    for (std::size_t i = 0; i < todo.size(); ++i) done_.emplace(todo[i], std::move(made[i]));
+  }
+
+  Picture get(const std::string& path) const {
+    const auto it = done_.find(path);
+    return it != done_.end() ? it->second : make(path);
+  }
+
+ private:
+  Picture make(const std::string& path) const {
+    Picture p;
+    const std::optional<std::string> bytes = source_.read(path);
+    p.found = bytes.has_value();
+    if (bytes) p.embedded = embedPicture(*bytes, maxSide_);
+    return p;
+  }
+
+  const ReportSource& source_;
+  int maxSide_;
+  std::map<std::string, Picture> done_;
+};
+
+std::string figure(const Pictures& pictures, const carrier::FileRecord& file, const std::string& caption,
+                   int* embedded) {
   std::ostringstream s;
-  const std::optional<std::string> bytes = source.read(file.path);
-  const std::optional<EmbeddedPicture> p = bytes ? embedPicture(*bytes, maxSide) : std::nullopt;
+  const Pictures::Picture picture = pictures.get(file.path);
+  const std::optional<EmbeddedPicture>& p = picture.embedded;
   if (!p) {
     s << "<p class=\"bad\">" << escapeHtml(file.path) << ": "
-      << (bytes ? "not a readable picture" : "not found in this package or capture")
+      << (picture.found ? "not a readable picture" : "not found in this package or capture")
       << "</p>";
     return s.str();
   }
@@ -200,8 +245,8 @@ std::string lightsSection(const carrier::Carrier& c, const std::vector<LightPoin
   return s.str();
 }
 
-std::string detectionSection(const carrier::Carrier& c, const ReportSource& source,
-                             const ReportOptions& options, Report& report) {
+std::string detectionSection(const carrier::Carrier& c, const Pictures& pictures,
+                             Report& report) {
   std::ostringstream s;
   s << "<section id=\"detection\"><h2>Sphere and highlight detection</h2>";
   std::vector<const carrier::DataItem*> spheres, highlights, flagged;
@@ -270,10 +315,10 @@ std::string detectionSection(const carrier::Carrier& c, const ReportSource& sour
   bool any = false;
   for (const auto& [kind, file] : outputsByKind(c)) {
     if (kind == "sphere-overlay") {
-      s << figure(source, *file, "Sphere detection overlay", options.maxImageSide, &report.picturesEmbedded);
+      s << figure(pictures, *file, "Sphere detection overlay", &report.picturesEmbedded);
       any = true;
     } else if (kind == "highlight-overview") {
-      s << figure(source, *file, "Highlight overview", options.maxImageSide, &report.picturesEmbedded);
+      s << figure(pictures, *file, "Highlight overview", &report.picturesEmbedded);
       any = true;
     }
   }
@@ -283,8 +328,8 @@ std::string detectionSection(const carrier::Carrier& c, const ReportSource& sour
   return s.str();
 }
 
-std::string resultsSection(const carrier::Carrier& c, const ReportSource& source,
-                           const ReportOptions& options, Report& report) {
+std::string resultsSection(const carrier::Carrier& c, const Pictures& pictures,
+                           Report& report) {
   std::ostringstream s;
   s << "<section id=\"results\"><h2>Results</h2>";
   // Fit quality per model.
@@ -316,10 +361,10 @@ std::string resultsSection(const carrier::Carrier& c, const ReportSource& source
 
   s << "<div class=\"gallery\">";
   for (const auto& [kind, file] : outputsByKind(c)) {
-    if (kind == "normals") s << figure(source, *file, "Normal map", options.maxImageSide, &report.picturesEmbedded);
-    else if (kind == "albedo") s << figure(source, *file, "Albedo", options.maxImageSide, &report.picturesEmbedded);
+    if (kind == "normals") s << figure(pictures, *file, "Normal map", &report.picturesEmbedded);
+    else if (kind == "albedo") s << figure(pictures, *file, "Albedo", &report.picturesEmbedded);
     else if (kind == "preview")
-      s << figure(source, *file, previewCaption(file->path), options.maxImageSide, &report.picturesEmbedded);
+      s << figure(pictures, *file, previewCaption(file->path), &report.picturesEmbedded);
   }
   s << "</div></section>";
   return s.str();
@@ -379,16 +424,21 @@ std::string relightSection(const carrier::Carrier& c, const ReportSource& source
   return s.str();
 }
 
-// The share of the report's work done once the detection section is built: decoding,
-// downscaling and re-encoding the pictures is most of it, so the pictures are counted (the
-// interactive models as one more).
-double shareAfterDetection(const carrier::Carrier& c) {
-  int detection = 0, results = 1;
-  for (const auto& [kind, file] : outputsByKind(c)) {
-    if (kind == "sphere-overlay" || kind == "highlight-overview") ++detection;
-    else if (kind == "normals" || kind == "albedo" || kind == "preview") ++results;
-  }
-  return double(detection) / (detection + results);
+// The files the detection and results sections show as pictures, in carrier order.
+std::vector<std::string> shownPictures(const carrier::Carrier& c) {
+  std::vector<std::string> out;
+  for (const auto& [kind, file] : outputsByKind(c))
+    if (kind == "sphere-overlay" || kind == "highlight-overview" || kind == "normals" || kind == "albedo" ||
+        kind == "preview")
+      out.push_back(file->path);
+  return out;
+}
+
+// The share of the report's work done once the pictures are made: decoding, downscaling and
+// re-encoding them is most of it, so the pictures are counted (the interactive models as one
+// more).
+double shareAfterPictures(const std::vector<std::string>& pictures) {
+  return double(pictures.size()) / double(pictures.size() + 1);
 }
 
 }  // namespace
@@ -406,12 +456,15 @@ Report buildReport(const carrier::Carrier& c, const ReportSource& source, const 
   report.coverageGaps = coverage.sentences();
   const std::string lights = lightsSection(c, lightPoints, coverage, fitLabel);
   progress(0.05);
-  const std::string detection = detectionSection(c, source, options, report);
-  progress(0.05 + 0.9 * shareAfterDetection(c));
-  const std::string results = resultsSection(c, source, options, report);
+  Pictures pictures(source, options.maxImageSide);
+  const std::vector<std::string> shown = shownPictures(c);
+  pictures.prepare(shown, options.threads);
+  progress(0.05 + 0.9 * shareAfterPictures(shown));
+  const std::string detection = detectionSection(c, pictures, report);
+  const std::string results = resultsSection(c, pictures, report);
   const std::string relight = relightSection(c, source, options, report);
   const std::string priorWork = auditSection(c, [&](const carrier::FileRecord& f, const std::string& caption) {
-    return figure(source, f, caption, options.maxImageSide, &report.picturesEmbedded);
+    return figure(pictures, f, caption, &report.picturesEmbedded);
   });
   progress(0.95);
   const std::string generated = options.generatedAt.empty() ? carrier::timestampNow() : options.generatedAt;

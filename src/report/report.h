@@ -50,7 +50,8 @@ class ReportSource {
   ReportSource& operator=(const ReportSource&) = delete;
 
   virtual const carrier::Carrier& carrier() const = 0;
-  // The bytes of a file named by the carrier, or nullopt when it is not there.
+  // The bytes of a file named by the carrier, or nullopt when it is not there. Called from
+  // several threads at once (the pictures are made in parallel): it must not change the source.
   virtual std::optional<std::string> read(const std::string& relativePath) const = 0;
   // "capture folder /data/stela12", "bag stela12.zip", for the report's header.
   virtual std::string describe() const = 0;
@@ -73,6 +74,9 @@ struct ReportOptions {
   std::string generatedAt;   // shown in the header; empty = now (UTC)
   // The verifier's checks; absent = the section says the package was not verified here.
   std::optional<std::vector<VerificationCheck>> verification;
+  // Threads that make the embedded pictures at once; 0 = all cores. The page is the same at
+  // any count.
+  int threads = 0;
   // Called with (kProgressLabel, fraction done 0..1) as the page is built; may be empty.
   std::function<void(const std::string&, double)> progress;
 };

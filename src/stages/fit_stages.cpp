@@ -3,14 +3,18 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
+#include <future>
 #include <numeric>
 
 #include "capture/capture.h"
 #include "core/error.h"
+#include "core/parallel.h"
 #include "core/text.h"
 #include "fit/fit.h"
 #include "fit/render.h"
 #include "image/decode.h"
+#include "image/write.h"
 #include "pipeline/context.h"
 #include "stages/inputs.h"
 #include "stages/light_stages.h"
@@ -47,6 +51,50 @@ constexpr const char* kNormalsFile = "normals.png";
 constexpr const char* kAlbedoFile = "albedo.png";
 
 std::string finished(const std::string& name) { return std::string(capture::kFinishedDir) + "/" + name; }
+
+// PNG files written on a thread of their own while the next picture is computed: computing a
+// map already uses every core, but zlib encodes one file on one. Each file's bytes come from
+// its pixels alone, and the carrier records them on the caller's thread in the order given,
+// so the files and the carrier are the same at any thread count. At most one picture waits
+// to be written, so memory holds two pictures, not all five. With one thread, each is
+// written before the next is computed.
+class OverlappedPngWrites {
+ public:
+  explicit OverlappedPngWrites(int threads) : overlap_(effectiveThreads(threads) > 1) {}
+  OverlappedPngWrites(const OverlappedPngWrites&) = delete;
+  OverlappedPngWrites& operator=(const OverlappedPngWrites&) = delete;
+  ~OverlappedPngWrites() {
+    if (pending_.valid()) pending_.wait();  // an error is already on its way out; let the write end
+  }
+
+  // Writes `image` to `path`, then calls `record` (on this thread, after the previous record).
+  void add(Image image, std::filesystem::path path, std::function<void()> record) {
+    finish();
+    if (!overlap_) {
+      image::writePng(image, path);
+      record();
+      return;
+    }
+    pending_ = std::async(std::launch::async, [image = std::move(image), path = std::move(path)] {
+      image::writePng(image, path);
+    });
+    record_ = std::move(record);
+  }
+
+  // Waits for the pending write (rethrowing its error) and records it.
+  void finish() {
+    if (!pending_.valid()) return;
+    pending_.get();
+    const std::function<void()> record = std::move(record_);
+    record_ = nullptr;
+    record();
+  }
+
+ private:
+  bool overlap_;
+  std::future<void> pending_;
+  std::function<void()> record_;
+};
 }  // namespace
 
 pipeline::Parameters RtiFitOptions::toParameters() const {
@@ -190,32 +238,32 @@ void DerivedMapsStage::run(const carrier::Step& step, pipeline::Context& ctx, ca
   int pictures = 0;
   const auto written = [&ctx, &pictures] { ctx.progress("Normals, albedo and previews", pictures++ / 5.0); };
   written();
+  OverlappedPngWrites writes(ctx.settings.threads);
+  const auto record = [&](const std::string& name, const char* kind) {
+    recordOutput(ctx, step, result, finished(name), "result", "PNG", kind, "image/png");
+    written();
+  };
 
   int fallback = 0;
-  const Image normals = model->normalMap(&fallback, ctx.settings.threads);
-  image::writePng(normals, ctx.outputPath(finished(kNormalsFile)));
-  recordOutput(ctx, step, result, finished(kNormalsFile), "result", "PNG", "normals", "image/png");
-  result.add("value").set("name", "normalFallbackPixels").set("value", std::to_string(fallback));
-  const double fraction = double(fallback) / (double(model->width()) * model->height());
-  ctx.carrier.addLog(fraction > 0.05 ? "warning" : "info", step.id,
-                     std::to_string(fallback) + " pixels (" + fixedDecimals(100 * fraction, 2) +
-                         " %) had no valid PTM maximum and took the least-squares Lambertian normal");
-  written();
-
-  image::writePng(model->albedoMap(ctx.settings.threads), ctx.outputPath(finished(kAlbedoFile)));
-  recordOutput(ctx, step, result, finished(kAlbedoFile), "result", "PNG", "albedo", "image/png");
-  written();
-
+  writes.add(model->normalMap(&fallback, ctx.settings.threads), ctx.outputPath(finished(kNormalsFile)), [&] {
+    record(kNormalsFile, "normals");
+    result.add("value").set("name", "normalFallbackPixels").set("value", std::to_string(fallback));
+    const double fraction = double(fallback) / (double(model->width()) * model->height());
+    ctx.carrier.addLog(fraction > 0.05 ? "warning" : "info", step.id,
+                       std::to_string(fallback) + " pixels (" + fixedDecimals(100 * fraction, 2) +
+                           " %) had no valid PTM maximum and took the least-squares Lambertian normal");
+  });
+  writes.add(model->albedoMap(ctx.settings.threads), ctx.outputPath(finished(kAlbedoFile)),
+             [&] { record(kAlbedoFile, "albedo"); });
   for (const Preview& p : kPreviews) {
     const double e = p.elevationDeg * M_PI / 180, a = p.azimuthDeg * M_PI / 180;
     fit::RenderOptions options;
     options.specular = p.specular && basis.rfind("ptm", 0) == 0;
     options.threads = ctx.settings.threads;
     const std::array<double, 3> light{std::cos(e) * std::cos(a), std::cos(e) * std::sin(a), std::sin(e)};
-    image::writePng(model->render(light, options), ctx.outputPath(finished(p.name)));
-    recordOutput(ctx, step, result, finished(p.name), "result", "PNG", "preview", "image/png");
-    written();
+    writes.add(model->render(light, options), ctx.outputPath(finished(p.name)), [&record, &p] { record(p.name, "preview"); });
   }
+  writes.finish();
 }
 
 }  // namespace surrogate::stages

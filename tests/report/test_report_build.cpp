@@ -162,6 +162,39 @@ TEST_CASE("the report shows lights, pictures, relighting, provenance and camera 
   CHECK(r.html.find("href=\"http") == std::string::npos);
 }
 
+TEST_CASE("the page is byte-identical whether its pictures are made on 1 or 2 threads") {
+  // Pictures that differ from each other (a gradient per file), so that a picture shown in
+  // another's place would change the page.
+  const auto gradient = [](int width, int height, int seed) {
+    cv::Mat m(height, width, CV_8UC3);
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x) m.at<cv::Vec3b>(y, x) = cv::Vec3b(x * seed % 256, y * 3 % 256, (x + y + seed) % 256);
+    std::vector<unsigned char> out;
+    cv::imencode(".png", m, out);
+    return std::string(out.begin(), out.end());
+  };
+  MemorySource source(sampleCarrier());
+  source.files["assembly-files/spheres.png"] = gradient(1600, 1200, 1);
+  source.files["finished-files/normals.png"] = gradient(900, 600, 2);
+  source.files["finished-files/albedo.png"] = gradient(300, 200, 3);
+  source.files["finished-files/ptm-lrgb.ptm"] = smallPtm();
+  ReportOptions options;
+  options.generatedAt = "2026-02-03T04:05:06Z";
+  options.threads = 1;
+  const Report one = buildReport(source.carrier(), source, options);
+  options.threads = 2;
+  const Report two = buildReport(source.carrier(), source, options);
+  CHECK(one.picturesEmbedded == 3);
+  CHECK(two.picturesEmbedded == 3);
+  CHECK(one.html == two.html);
+  // In carrier order: the overlay (detection), then normals and albedo (results).
+  const std::size_t overlay = one.html.find("(1600\u00d71200"), normals = one.html.find("(900\u00d7600"),
+                    albedo = one.html.find("(300\u00d7200");
+  REQUIRE(overlay != std::string::npos);
+  CHECK(overlay < normals);
+  CHECK(normals < albedo);
+}
+
 TEST_CASE("every text from the carrier is escaped: hostile fields cannot inject markup") {
   MemorySource source(sampleCarrier());
   const Report r = buildReport(source.carrier(), source, ReportOptions());
