@@ -8,28 +8,16 @@
 #include <map>
 
 #include "../e2e/e2e_support.h"
+#include "fitted_capture.h"
 #include "web_reader.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-const std::array<std::array<double, 3>, 4> kLights = {{
-    {0, 0, 1}, {0.5, 0.5, 0.71}, {-0.7, 0.2, 0.69}, {0.1, -0.8, 0.59}}};
-const std::map<std::string, std::string> kModels = {
-    {"ptm-lrgb", "ptm-lrgb.ptm"}, {"ptm-rgb", "ptm-rgb.ptm"}, {"hsh2", "hsh2.rti"}, {"hsh3", "hsh3.rti"}};
-
-// A capture run once per process with the four bases.
-fs::path fittedCapture() {
-  static fs::path capture;
-  if (capture.empty()) {
-    capture = e2e::smallCapture(e2e::freshDir("publish"), 12);
-    const auto r = e2e::surrogate("run " + e2e::quote(capture) +
-                                  " --basis ptm-lrgb --basis ptm-rgb --basis hsh2 --basis hsh3");
-    if (r.exitCode != 0) throw std::runtime_error("surrogate run failed: " + r.output);
-  }
-  return capture;
-}
+using publishtest::fittedCapture;
+using publishtest::kLights;
+using publishtest::kModels;
 
 std::vector<int> renderedBySurrogate(const fs::path& model, const std::array<double, 3>& l, const fs::path& png) {
   const auto r = e2e::surrogate("render " + e2e::quote(model) + " --light " + std::to_string(l[0]) + "," +

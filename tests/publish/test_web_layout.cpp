@@ -17,6 +17,7 @@
 #include "core/error.h"
 #include "fit/render.h"
 #include "publish/web_layout.h"
+#include "synthetic_models.h"
 #include "web_reader.h"
 
 namespace fs = std::filesystem;
@@ -26,54 +27,13 @@ namespace {
 
 constexpr int kW = 96, kH = 64;
 
-// Smooth fields that differ along x and y and between terms and channels, so that a swapped
-// plane, channel or a flipped row order would show as a large error.
-std::uint8_t field(int x, int y, int k, int c) {
-  const double v = 128 + 80 * std::sin(0.07 * x + 0.9 * k + 0.5 * c) * std::cos(0.05 * y + 0.4 * k) + 40.0 * y / kH - 20;
-  return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 255.0)));
-}
-
+// Models of smooth coefficients (synthetic_models.h): a swapped plane, channel or a flipped
+// row order shows as a large error.
 formats::PtmFile makePtm(formats::PtmFile::Format format, int w = kW, int h = kH) {
-  formats::PtmFile p;
-  p.format = format;
-  p.width = w;
-  p.height = h;
-  p.scale = {0.4, 0.35, 0.3, 0.5, 0.45, 1.0};
-  p.bias = {130, 125, 128, 120, 135, 0};
-  const bool lrgb = format == formats::PtmFile::Format::Lrgb;
-  const int channels = lrgb ? 1 : 3;
-  p.coefficients.resize(p.texels() * 6 * channels);
-  for (int c = 0; c < channels; ++c)
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x)
-        for (int k = 0; k < 6; ++k)
-          p.coefficients[((static_cast<std::size_t>(c) * h + y) * w + x) * 6 + k] = field(x, y, k, c);
-  if (lrgb) {
-    p.rgb.resize(p.texels() * 3);
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x)
-        for (int c = 0; c < 3; ++c) p.rgb[(static_cast<std::size_t>(y) * w + x) * 3 + c] = field(x, y, 7, c);
-  }
-  return p;
+  return test::smoothPtm(format, w, h, 40.0);
 }
 
-formats::HshFile makeHsh(int terms) {
-  formats::HshFile h;
-  h.width = kW;
-  h.height = kH;
-  h.terms = terms;
-  for (int k = 0; k < terms; ++k) {
-    h.scale.push_back(k == 0 ? 1.5f : 0.6f);
-    h.bias.push_back(k == 0 ? 0.1f : -0.3f);
-  }
-  h.coefficients.resize(h.texels() * 3 * terms);
-  for (int y = 0; y < kH; ++y)
-    for (int x = 0; x < kW; ++x)
-      for (int c = 0; c < 3; ++c)
-        for (int k = 0; k < terms; ++k)
-          h.coefficients[((static_cast<std::size_t>(y) * kW + x) * 3 + c) * terms + k] = field(x, y, k, c);
-  return h;
-}
+formats::HshFile makeHsh(int terms) { return test::smoothHsh(terms, kW, kH, 40.0); }
 
 const std::array<std::array<double, 3>, 5> kLights = {{
     {0, 0, 1}, {0.6, 0.3, 0.74}, {-0.5, -0.6, 0.62}, {0.9, -0.1, 0.42}, {-0.2, 0.95, 0.24}}};

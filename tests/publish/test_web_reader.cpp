@@ -18,6 +18,7 @@
 #include "publish/interrupted_publish.h"
 #include "publish/web_layout.h"
 #include "publish/web_reader.h"
+#include "synthetic_models.h"
 #include "web_reader.h"
 
 namespace fs = std::filesystem;
@@ -28,51 +29,11 @@ namespace {
 constexpr int kW = 80, kH = 56;
 
 // Smooth fields that differ along x and y and between terms and channels.
-std::uint8_t field(int x, int y, int k, int c) {
-  const double v = 128 + 80 * std::sin(0.07 * x + 0.9 * k + 0.5 * c) * std::cos(0.05 * y + 0.4 * k) + 30.0 * y / kH - 15;
-  return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 255.0)));
-}
+std::uint8_t field(int x, int y, int k, int c) { return test::smoothField(x, y, k, c, kH, 30.0); }
 
-formats::PtmFile makePtm(formats::PtmFile::Format format) {
-  formats::PtmFile p;
-  p.format = format;
-  p.width = kW;
-  p.height = kH;
-  p.scale = {0.4, 0.35, 0.3, 0.5, 0.45, 1.0};
-  p.bias = {130, 125, 128, 120, 135, 0};
-  const int channels = format == formats::PtmFile::Format::Lrgb ? 1 : 3;
-  p.coefficients.resize(p.texels() * 6 * static_cast<std::size_t>(channels));
-  for (int c = 0; c < channels; ++c)
-    for (int y = 0; y < kH; ++y)
-      for (int x = 0; x < kW; ++x)
-        for (int k = 0; k < 6; ++k)
-          p.coefficients[((static_cast<std::size_t>(c) * kH + y) * kW + x) * 6 + k] = field(x, y, k, c);
-  if (channels == 1) {
-    p.rgb.resize(p.texels() * 3);
-    for (int y = 0; y < kH; ++y)
-      for (int x = 0; x < kW; ++x)
-        for (int c = 0; c < 3; ++c) p.rgb[(static_cast<std::size_t>(y) * kW + x) * 3 + c] = field(x, y, 7, c);
-  }
-  return p;
-}
+formats::PtmFile makePtm(formats::PtmFile::Format format) { return test::smoothPtm(format, kW, kH, 30.0); }
 
-formats::HshFile makeHsh(int terms) {
-  formats::HshFile h;
-  h.width = kW;
-  h.height = kH;
-  h.terms = terms;
-  for (int k = 0; k < terms; ++k) {
-    h.scale.push_back(k == 0 ? 1.5f : 0.6f);
-    h.bias.push_back(k == 0 ? 0.1f : -0.3f);
-  }
-  h.coefficients.resize(h.texels() * 3 * static_cast<std::size_t>(terms));
-  for (int y = 0; y < kH; ++y)
-    for (int x = 0; x < kW; ++x)
-      for (int c = 0; c < 3; ++c)
-        for (int k = 0; k < terms; ++k)
-          h.coefficients[((static_cast<std::size_t>(y) * kW + x) * 3 + c) * terms + k] = field(x, y, k, c);
-  return h;
-}
+formats::HshFile makeHsh(int terms) { return test::smoothHsh(terms, kW, kH, 30.0); }
 
 fs::path freshDir(const std::string& name) {
   static int counter = 0;
