@@ -21,64 +21,24 @@
 #include <opencv2/imgproc.hpp>
 
 #include "e2e_support.h"
+#include "headless_chromium.h"
 #include "web_reader.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-std::string chromium() {
-  std::vector<std::string> candidates = {"chromium", "chromium-browser"};
-  if (const char* env = std::getenv("SURROGATE_CHROMIUM"); env && *env) candidates = {env};
-  for (const std::string& name : candidates)
-    if (e2e::runShell("command -v " + e2e::quote(name) + " >/dev/null").exitCode == 0) return name;
-  std::cerr << "SKIPPED: chromium is not installed (apt-get install chromium, or run scripts/install-deps); "
-               "the viewer's browser test needs it\n";
-  std::exit(77);
-}
-
-struct BrowserRun {
-  int exitCode = -1;
-  std::string dom, log;
-};
+using e2e::bodyAttribute;
+using e2e::BrowserRun;
+using e2e::consoleLines;
 
 // Opens `page` with `query` (e.g. "?light=0.5,0.5,0.7&test") and returns the DOM after the
 // page's scripts ran. Software WebGL (SwiftShader) is asked for by name, as a machine without
 // a GPU needs.
 BrowserRun open(const fs::path& page, const std::string& query, const fs::path& work) {
-  const fs::path out = work / "dom.html", err = work / "chromium.log";
-  const std::string url = "file://" + fs::absolute(page).string() + query;
-  const std::string command = "timeout 120 " + chromium() +
-                              " --headless=new --no-sandbox --disable-gpu --enable-unsafe-swiftshader --no-first-run "
-                              "--enable-logging=stderr --v=0 --user-data-dir=" + e2e::quote(work / "chromium-profile") +
-                              " --window-size=1200,900 --dump-dom " + e2e::quote(url) + " > " + e2e::quote(out) +
-                              " 2> " + e2e::quote(err);
-  BrowserRun r;
-  r.exitCode = e2e::runShell(command).exitCode;
-  r.dom = e2e::bytesOf(out);
-  r.log = e2e::bytesOf(err);
-  return r;
-}
-
-std::string bodyAttribute(const std::string& dom, const std::string& name) {
-  // Plain search: the tag holds data URLs of hundreds of kilobytes, too long for std::regex.
-  const std::size_t open = dom.find("<body"), close = dom.find('>', open);
-  if (open == std::string::npos || close == std::string::npos) return "";
-  const std::string tag = dom.substr(open, close - open);
-  const std::string key = " " + name + "=\"";
-  const std::size_t at = tag.find(key);
-  if (at == std::string::npos) return "";
-  const std::size_t begin = at + key.size();
-  return tag.substr(begin, tag.find('"', begin) - begin);
-}
-
-// The page's console messages in chromium's log.
-std::vector<std::string> consoleLines(const std::string& log) {
-  std::vector<std::string> out;
-  std::istringstream in(log);
-  for (std::string line; std::getline(in, line);)
-    if (line.find(":CONSOLE") != std::string::npos) out.push_back(line);
-  return out;
+  static const std::string chromium = e2e::chromiumOrSkip("the viewer's browser test");
+  return e2e::runChromium(chromium, "--enable-unsafe-swiftshader --window-size=1200,900 --dump-dom",
+                          e2e::fileUrl(page) + query, work);
 }
 
 // 8-bit RGB, rows top-first, 3 values per pixel.

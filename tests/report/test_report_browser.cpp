@@ -15,7 +15,6 @@
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
-#include <regex>
 #include <sstream>
 
 #include <opencv2/core.hpp>
@@ -23,6 +22,7 @@
 
 #include "carrier/carrier.h"
 #include "e2e_support.h"
+#include "headless_chromium.h"
 #include "formats/lp.h"
 
 namespace fs = std::filesystem;
@@ -30,72 +30,27 @@ using namespace surrogate;
 
 namespace {
 
-std::string chromium() {
-  std::vector<std::string> candidates = {"chromium", "chromium-browser"};
-  if (const char* env = std::getenv("SURROGATE_CHROMIUM"); env && *env) candidates = {env};
-  for (const std::string& name : candidates) {
-    if (e2e::runShell("command -v " + e2e::quote(name) + " >/dev/null").exitCode == 0) return name;
-  }
-  std::cerr << "SKIPPED: chromium is not installed (apt-get install chromium, or run "
-               "scripts/install-deps); the report's browser test needs it\n";
-  std::exit(77);
+using e2e::bodyAttribute;
+using e2e::BrowserRun;
+using e2e::consoleLines;
+
+const std::string& chromium() {
+  static const std::string program = e2e::chromiumOrSkip("the report's browser test");
+  return program;
 }
 
-struct BrowserRun {
-  int exitCode = -1;
-  std::string dom;     // stdout of --dump-dom
-  std::string stderr_; // chromium's log, with the page's console messages
-};
-
-// Loads `page` in headless chromium with its own profile folder, after the page's scripts ran.
+// Loads `page` in headless chromium with `extra` flags, after the page's scripts ran.
 BrowserRun load(const fs::path& page, const fs::path& work, const std::string& extra) {
-  const fs::path profile = work / "chromium-profile";
-  const fs::path out = work / "dom.html", err = work / "chromium.log";
-  const std::string command = "timeout 120 " + chromium() +
-                              " --headless=new --no-sandbox --disable-gpu --no-first-run "
-                              "--enable-logging=stderr --v=0 --user-data-dir=" + e2e::quote(profile) + " " +
-                              extra + " " + e2e::quote("file://" + fs::absolute(page).string()) + " > " +
-                              e2e::quote(out) + " 2> " + e2e::quote(err);
-  BrowserRun r;
-  r.exitCode = e2e::runShell(command).exitCode;
-  r.dom = e2e::bytesOf(out);
-  r.stderr_ = e2e::bytesOf(err);
-  return r;
-}
-
-std::string bodyAttribute(const std::string& dom, const std::string& name) {
-  std::smatch body;
-  if (!std::regex_search(dom, body, std::regex("<body[^>]*>"))) return "";
-  std::smatch m;
-  const std::string tag = body.str();
-  if (!std::regex_search(tag, m, std::regex(name + "=\"([^\"]*)\""))) return "";
-  return m[1].str();
-}
-
-// Lines of chromium's log that are the page's console messages (errors, CSP violations...).
-std::vector<std::string> consoleLines(const std::string& log) {
-  std::vector<std::string> out;
-  std::istringstream in(log);
-  for (std::string line; std::getline(in, line);)
-    if (line.find(":CONSOLE") != std::string::npos) out.push_back(line);
-  return out;
+  return e2e::runChromium(chromium(), extra, e2e::fileUrl(page), work);
 }
 
 // Loads `page` (with `hash`, e.g. "#model=1&light=0.5,0.5,0.7") at `width` x `height` and
-// returns chromium's DOM after the page's scripts ran; fails the test on a load failure.
+// returns chromium's DOM after the page's scripts ran.
 BrowserRun loadAt(const fs::path& page, const fs::path& work, int width, int height, const std::string& hash = "") {
-  const fs::path out = work / "dom.html", err = work / "chromium.log";
-  const std::string url = "file://" + fs::absolute(page).string() + hash;
-  const std::string command = "timeout 120 " + chromium() +
-                              " --headless=new --no-sandbox --disable-gpu --no-first-run --hide-scrollbars "
-                              "--enable-logging=stderr --v=0 --user-data-dir=" + e2e::quote(work / "chromium-profile") +
-                              " --window-size=" + std::to_string(width) + "," + std::to_string(height) +
-                              " --dump-dom " + e2e::quote(url) + " > " + e2e::quote(out) + " 2> " + e2e::quote(err);
-  BrowserRun r;
-  r.exitCode = e2e::runShell(command).exitCode;
-  r.dom = e2e::bytesOf(out);
-  r.stderr_ = e2e::bytesOf(err);
-  return r;
+  return e2e::runChromium(chromium(),
+                          "--hide-scrollbars --window-size=" + std::to_string(width) + "," + std::to_string(height) +
+                              " --dump-dom",
+                          e2e::fileUrl(page) + hash, work);
 }
 
 int intAttribute(const std::string& dom, const std::string& name) {
@@ -148,11 +103,11 @@ TEST_CASE("the report of a run opens in headless chromium without errors, one po
   REQUIRE(formats::readLp(capture / "assembly-files/lights.lp").size() == 12u);
 
   const BrowserRun b = load(page, work, "--dump-dom");
-  INFO(b.stderr_);
+  INFO(b.log);
   REQUIRE(b.exitCode == 0);
   CHECK(bodyAttribute(b.dom, "data-ready") == "yes");
   CHECK(bodyAttribute(b.dom, "data-errors").empty());
-  CHECK(consoleLines(b.stderr_).empty());
+  CHECK(consoleLines(b.log).empty());
   CHECK(bodyAttribute(b.dom, "data-lights-plotted") == std::to_string(lights));
   CHECK(bodyAttribute(b.dom, "data-lights-expected") == std::to_string(lights));
   CHECK(bodyAttribute(b.dom, "data-relight") == "rendered");
@@ -179,7 +134,7 @@ TEST_CASE("at 1400 and 800 px wide the report shows the viewer on the first scre
   for (const int width : {1400, 800}) {
     INFO("window width " << width);
     const BrowserRun b = loadAt(page, work, width, windowHeight);
-    INFO(b.stderr_);
+    INFO(b.log);
     REQUIRE(b.exitCode == 0);
     REQUIRE(bodyAttribute(b.dom, "data-ready") == "yes");
     CHECK(bodyAttribute(b.dom, "data-errors").empty());
@@ -203,7 +158,7 @@ TEST_CASE("at 1400 and 800 px wide the report shows the viewer on the first scre
     fs::remove(shot);
     const BrowserRun s = load(page, work, "--hide-scrollbars --window-size=" + std::to_string(width) +
                                               ",1800 --screenshot=" + e2e::quote(shot));
-    INFO(s.stderr_);
+    INFO(s.log);
     CHECK(s.exitCode == 0);
     REQUIRE(fs::is_regular_file(shot));
     const cv::Mat picture = cv::imread(shot.string(), cv::IMREAD_COLOR);
@@ -238,7 +193,7 @@ TEST_CASE("the page relights PTM and HSH models with the pixels of surrogate ren
       for (const std::string& light : lights) {
         INFO("model " << c.models[m] << ", light " << light);
         const BrowserRun b = loadAt(page, dir, 1400, 900, "#model=" + std::to_string(m) + "&light=" + light);
-        INFO(b.stderr_);
+        INFO(b.log);
         REQUIRE(b.exitCode == 0);
         REQUIRE(bodyAttribute(b.dom, "data-relight") == "rendered");
         CHECK(bodyAttribute(b.dom, "data-errors").empty());
@@ -285,11 +240,11 @@ TEST_CASE("hostile text in the carrier shows as text in the browser and runs no 
   INFO(run.output);
   REQUIRE(run.exitCode == 0);
   const BrowserRun b = load(capture / "finished-files/report.html", work, "--dump-dom");
-  INFO(b.stderr_);
+  INFO(b.log);
   REQUIRE(b.exitCode == 0);
   CHECK(bodyAttribute(b.dom, "data-pwned").empty());
   CHECK(bodyAttribute(b.dom, "data-ready") == "yes");
-  CHECK(consoleLines(b.stderr_).empty());
+  CHECK(consoleLines(b.log).empty());
   CHECK_THAT(b.dom, Catch::Contains("&lt;img src=x onerror="));
 }
 
