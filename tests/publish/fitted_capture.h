@@ -8,7 +8,10 @@
 #include <stdexcept>
 #include <string>
 
+#include <opencv2/imgcodecs.hpp>
+
 #include "../e2e/e2e_support.h"
+#include "web_reader.h"
 
 namespace publishtest {
 
@@ -29,6 +32,15 @@ inline std::filesystem::path fittedCapture() {
     if (r.exitCode != 0) throw std::runtime_error("surrogate run failed: " + r.output);
   }
   return capture;
+}
+
+// `surrogate render MODEL --light L -o PNG` as 8-bit RGB values, rows top-first.
+inline std::vector<int> renderedBySurrogate(const std::filesystem::path& model, const std::array<double, 3>& l,
+                                            const std::filesystem::path& png) {
+  const auto r = e2e::surrogate("render " + e2e::quote(model) + " --light " + std::to_string(l[0]) + "," +
+                                std::to_string(l[1]) + "," + std::to_string(l[2]) + " -o " + e2e::quote(png));
+  if (r.exitCode != 0) throw std::runtime_error("surrogate render failed: " + r.output);
+  return webtest::rgbValues(cv::imread(png.string(), cv::IMREAD_COLOR));
 }
 
 }  // namespace publishtest

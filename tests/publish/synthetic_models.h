@@ -3,10 +3,14 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
+#include "core/image.h"
+#include "fit/render.h"
 #include "formats/ptm.h"
 #include "formats/rti_hsh.h"
 
@@ -63,6 +67,17 @@ inline formats::HshFile smoothHsh(int terms, int w, int h, double ramp) {
         for (int k = 0; k < terms; ++k)
           m.coefficients[((static_cast<std::size_t>(y) * w + x) * 3 + c) * terms + k] = smoothField(x, y, k, c, h, ramp);
   return m;
+}
+
+// fit::render (what `surrogate render` calls) of `model` at light `l`, as 8-bit RGB values,
+// rows top-first.
+inline std::vector<int> renderedValues(const fit::Relightable& model, const std::array<double, 3>& l) {
+  const Image img = model.render(l, {});
+  std::vector<int> out;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x)
+      for (int c = 0; c < 3; ++c) out.push_back(img.at(x, y, c) / 257);
+  return out;
 }
 
 }  // namespace surrogate::test

@@ -19,17 +19,7 @@ using publishtest::fittedCapture;
 using publishtest::kLights;
 using publishtest::kModels;
 
-std::vector<int> renderedBySurrogate(const fs::path& model, const std::array<double, 3>& l, const fs::path& png) {
-  const auto r = e2e::surrogate("render " + e2e::quote(model) + " --light " + std::to_string(l[0]) + "," +
-                                std::to_string(l[1]) + "," + std::to_string(l[2]) + " -o " + e2e::quote(png));
-  if (r.exitCode != 0) throw std::runtime_error("surrogate render failed: " + r.output);
-  const cv::Mat bgr = cv::imread(png.string(), cv::IMREAD_COLOR);
-  std::vector<int> out;
-  for (int y = 0; y < bgr.rows; ++y)
-    for (int x = 0; x < bgr.cols; ++x)
-      for (int c = 0; c < 3; ++c) out.push_back(bgr.at<cv::Vec3b>(y, x)[2 - c]);
-  return out;
-}
+using publishtest::renderedBySurrogate;
 
 }  // namespace
 

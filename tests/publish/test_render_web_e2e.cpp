@@ -24,21 +24,8 @@ using publishtest::fittedCapture;
 using publishtest::kLights;
 using publishtest::kModels;
 
-std::string lightArg(const std::array<double, 3>& l) {
-  return std::to_string(l[0]) + "," + std::to_string(l[1]) + "," + std::to_string(l[2]);
-}
 
-// `surrogate render MODEL` as 8-bit RGB values, rows top-first.
-std::vector<int> rendered(const fs::path& model, const std::array<double, 3>& l, const fs::path& png) {
-  const auto r = e2e::surrogate("render " + e2e::quote(model) + " --light " + lightArg(l) + " -o " + e2e::quote(png));
-  if (r.exitCode != 0) throw std::runtime_error("surrogate render failed: " + r.output);
-  const cv::Mat bgr = cv::imread(png.string(), cv::IMREAD_COLOR);
-  std::vector<int> out;
-  for (int y = 0; y < bgr.rows; ++y)
-    for (int x = 0; x < bgr.cols; ++x)
-      for (int c = 0; c < 3; ++c) out.push_back(bgr.at<cv::Vec3b>(y, x)[2 - c]);
-  return out;
-}
+using publishtest::renderedBySurrogate;
 
 // One published layout of the capture, made once per quality.
 fs::path published(int quality) {
@@ -99,9 +86,9 @@ TEST_CASE("surrogate render of a published folder renders as the model it came f
       int worstIndependent = 0;
       for (std::size_t i = 0; i < kLights.size(); ++i) {
         const std::string tag = name + "-" + std::to_string(quality) + "-" + std::to_string(i);
-        const auto fromFile = rendered(capture / "finished-files" / file, kLights[i], work / (tag + "-file.png"));
-        const auto fromDir = rendered(dir, kLights[i], work / (tag + "-dir.png"));
-        const auto fromInfo = rendered(dir / "info.json", kLights[i], work / (tag + "-info.png"));
+        const auto fromFile = renderedBySurrogate(capture / "finished-files" / file, kLights[i], work / (tag + "-file.png"));
+        const auto fromDir = renderedBySurrogate(dir, kLights[i], work / (tag + "-dir.png"));
+        const auto fromInfo = renderedBySurrogate(dir / "info.json", kLights[i], work / (tag + "-info.png"));
         CHECK(fromInfo == fromDir);
         worst = std::min(worst, webtest::psnr(fromDir, fromFile));
         worstIndependent = std::max(worstIndependent, webtest::maxAbsDifference(
@@ -134,8 +121,8 @@ TEST_CASE("surrogate render of a folder published as Deep Zoom tiles renders as 
     int worstIndependent = 0;
     for (std::size_t i = 0; i < kLights.size(); ++i) {
       const std::string tag = name + "-" + std::to_string(i);
-      const auto fromFile = rendered(capture / "finished-files" / file, kLights[i], work / (tag + "-file.png"));
-      const auto fromDir = rendered(dir, kLights[i], work / (tag + "-dir.png"));
+      const auto fromFile = renderedBySurrogate(capture / "finished-files" / file, kLights[i], work / (tag + "-file.png"));
+      const auto fromDir = renderedBySurrogate(dir, kLights[i], work / (tag + "-dir.png"));
       worst = std::min(worst, webtest::psnr(fromDir, fromFile));
       worstIndependent = std::max(worstIndependent, webtest::maxAbsDifference(
           fromDir, webtest::renderAt(independent, kLights[i][0], kLights[i][1], kLights[i][2])));

@@ -21,6 +21,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "e2e_support.h"
+#include "fitted_capture.h"
 #include "headless_chromium.h"
 #include "web_reader.h"
 
@@ -41,15 +42,6 @@ BrowserRun open(const fs::path& page, const std::string& query, const fs::path& 
                           e2e::fileUrl(page) + query, work);
 }
 
-// 8-bit RGB, rows top-first, 3 values per pixel.
-std::vector<int> rgbOf(const cv::Mat& bgr) {
-  std::vector<int> out;
-  for (int y = 0; y < bgr.rows; ++y)
-    for (int x = 0; x < bgr.cols; ++x)
-      for (int c = 0; c < 3; ++c) out.push_back(bgr.at<cv::Vec3b>(y, x)[2 - c]);
-  return out;
-}
-
 // A view the page recorded (data-pixels-NAME, a PNG data URL).
 std::vector<int> recordedView(const BrowserRun& b, const std::string& name, int width, int height) {
   const std::string uri = bodyAttribute(b.dom, "data-pixels-" + name);
@@ -59,14 +51,14 @@ std::vector<int> recordedView(const BrowserRun& b, const std::string& name, int 
   const cv::Mat bgr = cv::imdecode(cv::Mat(1, static_cast<int>(png.size()), CV_8U, const_cast<char*>(png.data())),
                                    cv::IMREAD_COLOR);
   if (bgr.cols != width || bgr.rows != height) throw std::runtime_error("the " + name + " view has the wrong size");
-  return rgbOf(bgr);
+  return webtest::rgbValues(bgr);
 }
 
 std::vector<int> picture(const fs::path& png) {
   cv::Mat m = cv::imread(png.string(), cv::IMREAD_UNCHANGED);
   if (m.depth() == CV_16U) m.convertTo(m, CV_8U, 1.0 / 257.0);  // round(v / 257), as the viewer's copy
   if (m.channels() == 1) cv::cvtColor(m, m, cv::COLOR_GRAY2BGR);
-  return rgbOf(m);
+  return webtest::rgbValues(m);
 }
 
 double meanAbsDifference(const std::vector<int>& a, const std::vector<int>& b) {
@@ -89,22 +81,8 @@ fs::path modelFile(const fs::path& capture, const std::string& name) {
   return capture / "finished-files" / (name + (name.rfind("ptm", 0) == 0 ? ".ptm" : ".rti"));
 }
 
-// A capture fitted with the four bases, once per process.
-fs::path fittedCapture() {
-  static fs::path capture;
-  if (capture.empty()) {
-    capture = e2e::smallCapture(e2e::freshDir("viewer"), 12);
-    const auto r = e2e::surrogate("run " + e2e::quote(capture) + " --quiet --basis ptm-lrgb --basis ptm-rgb --basis hsh2 --basis hsh3");
-    if (r.exitCode != 0) throw std::runtime_error("surrogate run failed: " + r.output);
-  }
-  return capture;
-}
-
-std::vector<int> renderedBySurrogate(const fs::path& model, const std::array<double, 3>& l, const fs::path& png) {
-  const auto r = e2e::surrogate("render " + e2e::quote(model) + " --light " + lightText(l) + " -o " + e2e::quote(png));
-  if (r.exitCode != 0) throw std::runtime_error("surrogate render failed: " + r.output);
-  return picture(png);
-}
+using publishtest::fittedCapture;
+using publishtest::renderedBySurrogate;
 
 // The viewer of `folder` against `surrogate render` of `model` at both lights, and against the
 // independent reader when the viewer holds the plane files' own bytes (`samePlanes`; tiles

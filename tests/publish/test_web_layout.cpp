@@ -38,15 +38,6 @@ formats::HshFile makeHsh(int terms) { return test::smoothHsh(terms, kW, kH, 40.0
 const std::array<std::array<double, 3>, 5> kLights = {{
     {0, 0, 1}, {0.6, 0.3, 0.74}, {-0.5, -0.6, 0.62}, {0.9, -0.1, 0.42}, {-0.2, 0.95, 0.24}}};
 
-std::vector<int> renderedBySurrogate(const fit::Relightable& model, const std::array<double, 3>& l) {
-  const Image img = model.render(l, {});
-  std::vector<int> out(static_cast<std::size_t>(img.width) * img.height * 3);
-  for (int y = 0; y < img.height; ++y)
-    for (int x = 0; x < img.width; ++x)
-      for (int c = 0; c < 3; ++c) out[(static_cast<std::size_t>(y) * img.width + x) * 3 + c] = img.at(x, y, c) / 257;
-  return out;
-}
-
 fs::path freshDir(const std::string& name) {
   static int counter = 0;
   const fs::path d = fs::temp_directory_path() /
@@ -77,7 +68,7 @@ Worst publishAndCompare(const Model& model, const std::string& fileName, int qua
   Worst worst;
   for (const auto& l : kLights) {
     const auto a = webtest::renderAt(web, l[0], l[1], l[2]);
-    const auto b = renderedBySurrogate(*reference, l);
+    const auto b = test::renderedValues(*reference, l);
     worst.psnr = std::min(worst.psnr, webtest::psnr(a, b));
     worst.maxDiff = std::max(worst.maxDiff, webtest::maxAbsDifference(a, b));
   }
@@ -376,14 +367,6 @@ std::map<std::string, std::string> filesUnder(const fs::path& root) {
   return out;
 }
 
-std::vector<int> rgbOf(const cv::Mat& bgr) {
-  std::vector<int> out;
-  for (int y = 0; y < bgr.rows; ++y)
-    for (int x = 0; x < bgr.cols; ++x)
-      for (int c = 0; c < 3; ++c) out.push_back(bgr.at<cv::Vec3b>(y, x)[2 - c]);
-  return out;
-}
-
 // A number of viewer-data.js ("key": value), found by name.
 int viewerNumber(const std::string& js, const std::string& key) {
   const std::size_t at = js.find("\"" + key + "\": ");
@@ -431,14 +414,14 @@ TEST_CASE("publish --tiles deepzoom writes the levels and tiles OpenLIME request
       cv::copyMakeBorder(above, above, 0, above.rows % 2, 0, above.cols % 2, cv::BORDER_REPLICATE);
       cv::resize(above, halved, cv::Size(above.cols / 2, above.rows / 2), 0, 0, cv::INTER_AREA);
       REQUIRE(halved.size() == below.size());
-      CHECK(webtest::maxAbsDifference(rgbOf(halved), rgbOf(below)) <= 3);
+      CHECK(webtest::maxAbsDifference(webtest::rgbValues(halved), webtest::rgbValues(below)) <= 3);
     }
   }
   const webtest::WebModel web = webtest::readWebModel(dir / "web");  // the full level, from tiles
   const auto reference = fit::openRelightable(dir / "m.ptm");
   for (const auto& l : kLights) {
     const auto a = webtest::renderAt(web, l[0], l[1], l[2]);
-    const auto b = renderedBySurrogate(*reference, l);
+    const auto b = test::renderedValues(*reference, l);
     CHECK(webtest::maxAbsDifference(a, b) <= kMaxDifferenceAtQuality100);
     CHECK(webtest::psnr(a, b) >= kMinPsnrAtQuality100);
   }

@@ -66,15 +66,6 @@ std::vector<std::uint8_t> openCvPlane(const fs::path& web, int j) {
   return rgb;
 }
 
-std::vector<int> rendered(const fit::Relightable& model, const std::array<double, 3>& l) {
-  const Image img = model.render(l, {});
-  std::vector<int> out;
-  for (int y = 0; y < img.height; ++y)
-    for (int x = 0; x < img.width; ++x)
-      for (int c = 0; c < 3; ++c) out.push_back(img.at(x, y, c) / 257);
-  return out;
-}
-
 const std::array<std::array<double, 3>, 4> kLights = {{{0, 0, 1}, {0.6, 0.3, 0.74}, {-0.5, -0.6, 0.62}, {0.9, -0.1, 0.42}}};
 
 void writeText(const fs::path& file, const std::string& text) {
@@ -177,7 +168,7 @@ TEST_CASE("a layout with a scale and bias per colour is re-quantised and renders
     const webtest::WebModel independent = webtest::readWebModel(web);
     double worst = INFINITY;
     for (const auto& l : kLights)
-      worst = std::min(worst, webtest::psnr(rendered(*model, l), webtest::renderAt(independent, l[0], l[1], l[2])));
+      worst = std::min(worst, webtest::psnr(test::renderedValues(*model, l), webtest::renderAt(independent, l[0], l[1], l[2])));
     const char* basis = !read.isPtm ? "HSH" : read.ptm.format == formats::PtmFile::Format::Lrgb ? "PTM LRGB" : "PTM RGB";
     WARN(basis << " re-quantised: worst PSNR " << worst << " dB against the independent reader");
     CHECK(worst >= 40);

@@ -327,6 +327,15 @@ inline std::vector<int> renderAt(const WebModel& m, double lx, double ly, double
   return out;
 }
 
+// An 8-bit BGR picture (as OpenCV reads it) as RGB values, rows top-first, 3 per pixel.
+inline std::vector<int> rgbValues(const cv::Mat& bgr) {
+  std::vector<int> out;
+  for (int y = 0; y < bgr.rows; ++y)
+    for (int x = 0; x < bgr.cols; ++x)
+      for (int c = 0; c < 3; ++c) out.push_back(bgr.at<cv::Vec3b>(y, x)[2 - c]);
+  return out;
+}
+
 // PSNR in dB of two 8-bit images of the same size (infinity when identical).
 inline double psnr(const std::vector<int>& a, const std::vector<int>& b) {
   double se = 0;
