@@ -16,11 +16,11 @@ namespace surrogate {
 namespace fs = std::filesystem;
 
 namespace {
-fs::path temporaryNameFor(const fs::path& finalPath) {
+fs::path temporaryNameFor(const fs::path& finalPath, const fs::path& folder) {
   static std::atomic<unsigned> counter{0};
   std::ostringstream name;
   name << "." << finalPath.filename().string() << ".part-" << ::getpid() << "-" << counter++;
-  return finalPath.parent_path() / name.str();
+  return folder / name.str();
 }
 
 void syncFile(const fs::path& path) {
@@ -32,7 +32,10 @@ void syncFile(const fs::path& path) {
 }  // namespace
 
 AtomicFile::AtomicFile(fs::path finalPath)
-    : final_(std::move(finalPath)), temp_(temporaryNameFor(final_)) {}
+    : final_(std::move(finalPath)), temp_(temporaryNameFor(final_, final_.parent_path())) {}
+
+AtomicFile::AtomicFile(fs::path finalPath, const fs::path& tempFolder)
+    : final_(std::move(finalPath)), temp_(temporaryNameFor(final_, tempFolder)) {}
 
 AtomicFile::~AtomicFile() {
   if (!committed_) {
@@ -52,8 +55,8 @@ void AtomicFile::commit() {
   committed_ = true;
 }
 
-void writeFileAtomically(const fs::path& path, const std::string& content) {
-  AtomicFile out(path);
+void writeFileAtomically(const fs::path& path, const std::string& content, const fs::path& tempFolder) {
+  AtomicFile out(path, tempFolder.empty() ? path.parent_path() : tempFolder);
   {
     std::ofstream f(out.tempPath(), std::ios::binary);
     f.write(content.data(), static_cast<std::streamsize>(content.size()));

@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <fstream>
 #include <map>
 #include <sstream>
 
+#include "capture/capture.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/parallel.h"
@@ -496,8 +499,24 @@ Report buildReport(const carrier::Carrier& c, const ReportSource& source, const 
 Report writeCaptureReport(const std::filesystem::path& capture, const ReportOptions& options) {
   const std::unique_ptr<ReportSource> source = openReportSource(capture);
   Report r = buildReport(source->carrier(), *source, options);
-  std::filesystem::create_directories(capture / "finished-files");
-  writeFileAtomically(capture / "finished-files" / "report.html", r.html);
+  std::filesystem::create_directories(capture / capture::kFinishedDir);
+  // The half-written page waits in the capture's work folder, not in finished-files/: a command
+  // killed while it writes leaves nothing there that the carrier does not describe (the next
+  // command removes the leftover, stages/run_commit.h).
+  std::filesystem::create_directories(capture / capture::kWorkDir);
+  AtomicFile page(capture / capture::kFinishedDir / "report.html", capture / capture::kWorkDir);
+  {
+    std::ofstream f(page.tempPath(), std::ios::binary);
+    f.write(r.html.data(), static_cast<std::streamsize>(r.html.size()));
+    if (!f.flush())
+      throw Error(ErrorKind::Internal, page.finalPath().string(), "report",
+                  "could not write the report; check free disk space and permissions");
+  }
+  // Fault injection for the test of this guarantee (tests/e2e/test_workflow_e2e.cpp): with
+  // SURROGATE_FAULT_INJECTION=report the process dies with the page written but not in place.
+  if (const char* fault = std::getenv("SURROGATE_FAULT_INJECTION"); fault && std::string(fault) == "report")
+    std::_Exit(137);
+  page.commit();
   return r;
 }
 

@@ -58,12 +58,13 @@ void finishCommit(const fs::path& capture, const carrier::Carrier* previous) {
 }
 
 // The temporary files of atomic writes (".NAME.part-PID-N", core/atomic_file.h) that a killed
-// command left in the output folders: a run killed while it wrote its report after the commit
-// leaves ".report.html.part-...". Under the capture's lock no other command is writing there,
-// so each one is a leftover. Returns their capture-relative paths.
+// command left in the output folders or in the work folder: a run killed while it wrote its
+// report after the commit leaves ".surrogate/.report.html.part-...". Under the capture's lock no
+// other command is writing there, so each one is a leftover. Returns their capture-relative
+// paths.
 std::vector<std::string> removeInterruptedWrites(const fs::path& capture) {
   std::vector<fs::path> leftovers;
-  for (const char* dir : {"assembly-files", "finished-files"}) {
+  for (const char* dir : {capture::kAssemblyDir, capture::kFinishedDir, capture::kWorkDir}) {
     std::error_code ec;
     if (!fs::is_directory(fs::symlink_status(capture / dir, ec))) continue;
     for (auto it = fs::recursive_directory_iterator(capture / dir, ec); !ec && it != fs::recursive_directory_iterator();

@@ -40,7 +40,8 @@ void commitRun(const std::filesystem::path& capture, const carrier::Carrier* pre
 // Under the capture's lock, before anything else: finishes a commit that a killed process left
 // (journal present), or removes the staging folder of a run that never reached its commit;
 // and removes the temporary files of atomic writes a killed command left in assembly-files/ and
-// finished-files/ (".NAME.part-PID-N": its report, written after the commit).
+// finished-files/, and in .surrogate/ (".NAME.part-PID-N": its report, written after the commit,
+// waits there until complete).
 // Returns a sentence for the run history when it found an interrupted run, else nothing.
 std::optional<std::string> recoverRun(const std::filesystem::path& capture);
 
