@@ -13,6 +13,7 @@
 #include "capture/capture.h"
 #include "carrier/carrier.h"
 #include "core/atomic_file.h"
+#include "core/background_sink.h"
 #include "core/digest.h"
 #include "core/error.h"
 #include "core/resources.h"
@@ -256,10 +257,17 @@ PackResult packCapture(const fs::path& capture, const fs::path& out, const PackO
     std::unique_ptr<mapping::MetsValidator> validator;
     const bool streamed = deriveInto(metsFile.tempPath(), [&](const mapping::TextSink& sink) {
       validator = std::make_unique<mapping::MetsValidator>("metadata/mets.xml");
-      return mapping::deriveMetsTo(carrierXml, facts, [&](const char* data, std::size_t n) {
+      // The file and the schema validator take the text on the other core while the
+      // stylesheet makes it.
+      BackgroundSink reader([&](const char* data, std::size_t n) {
         sink(data, n);
         validator->feed(data, n);
+      });
+      const bool whole = mapping::deriveMetsTo(carrierXml, facts, [&](const char* data, std::size_t n) {
+        reader.write(data, n);
       }, carrierFile.string());
+      reader.finish();
+      return whole;
     });
     if (!streamed) {
       const std::string mets = mapping::deriveMets(carrierXml, facts, carrierFile.string());
