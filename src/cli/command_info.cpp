@@ -1,4 +1,5 @@
 // surrogate info FILE: what a package, carrier, capture folder, image, .ptm, .rti or .lp holds.
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -19,10 +20,13 @@
 #include "core/json.h"
 #include "core/text.h"
 #include "image/decode.h"
+#include "image/raw_settings.h"
 #include "meta/camera_text.h"
 #include "meta/metadata.h"
 #include "formats/summary.h"
 #include "publish/web_layout.h"
+#include "stages/plan.h"
+#include "stages/web_copy_stage.h"
 
 namespace surrogate::cli {
 
@@ -63,6 +67,81 @@ std::string interventionWhat(const carrier::Intervention& i) {
   return i.target + (i.value.empty() ? "" : " = " + shownValue(i.value));
 }
 
+// The processing choices a carrier records besides the human interventions: what a run without
+// options repeats (stages::standingDecisions), and the web copy with its recorded options.
+struct Choices {
+  stages::RunRequest standing;
+  const carrier::Step* webCopy = nullptr;  // the first WebCopy step: every model's has the same options
+  std::vector<std::string> webModels;
+};
+
+Choices choicesOf(const carrier::Carrier& c) {
+  Choices out;
+  out.standing = stages::standingDecisions(c);
+  // The decoding step records every LibRaw setting; the choices are those that differ from
+  // the defaults.
+  const auto defaults = image::RawDecodeSettings{}.toParameters();
+  auto& decode = out.standing.decodeSettings;
+  decode.erase(std::remove_if(decode.begin(), decode.end(),
+                              [&](const auto& kv) { return std::find(defaults.begin(), defaults.end(), kv) != defaults.end(); }),
+               decode.end());
+  // The web copy's options are shown with it.
+  auto& params = out.standing.stageParams;
+  params.erase(std::remove_if(params.begin(), params.end(),
+                              [](const auto& p) { return p.component == stages::WebCopyStage::kComponent; }),
+               params.end());
+  for (const carrier::Step& s : c.process) {
+    if (s.component != stages::WebCopyStage::kComponent) continue;
+    if (!out.webCopy) out.webCopy = &s;
+    out.webModels.push_back(s.param("model"));
+  }
+  return out;
+}
+
+std::string joined(const std::vector<std::string>& items) {
+  std::string out;
+  for (const std::string& i : items) out += (out.empty() ? "" : ", ") + i;
+  return out;
+}
+
+std::string paramsText(const std::vector<std::pair<std::string, std::string>>& params) {
+  std::string out;
+  for (const auto& [name, value] : params) out += (out.empty() ? "" : ", ") + name + " " + shownValue(value);
+  return out;
+}
+
+void choicesJson(JsonWriter& j, const carrier::Carrier& c) {
+  const Choices ch = choicesOf(c);
+  const stages::RunRequest& r = ch.standing;
+  j.key("choices").beginObject().key("source").value(r.source.empty() ? "auto" : r.source).key("bases").beginArray();
+  for (const std::string& b : r.bases.value_or(std::vector<std::string>{})) j.value(b);
+  j.endArray().key("decode").beginArray();
+  for (const auto& [name, value] : r.decodeSettings)
+    j.beginObject().key("name").value(name).key("value").value(value).endObject();
+  j.endArray().key("preprocessing").beginArray();
+  for (const stages::PlannedStage& p : r.preprocessing) {
+    j.beginObject().key("component").value(p.component).key("parameters").beginArray();
+    for (const auto& [name, value] : p.params)
+      j.beginObject().key("name").value(name).key("value").value(value).endObject();
+    j.endArray().endObject();
+  }
+  j.endArray().key("options").beginArray();
+  for (const stages::RunRequest::StageParam& p : r.stageParams)
+    j.beginObject().key("component").value(p.component).key("name").value(p.name).key("value").value(p.value).endObject();
+  j.endArray().key("webCopy");
+  if (!ch.webCopy) {
+    j.null();
+  } else {
+    j.beginObject().key("models").beginArray();
+    for (const std::string& m : ch.webModels) j.value(m);
+    j.endArray().key("parameters").beginArray();
+    for (const carrier::Param& p : ch.webCopy->params)
+      if (p.name != "model") j.beginObject().key("name").value(p.name).key("value").value(p.value).endObject();
+    j.endArray().endObject();
+  }
+  j.endObject();
+}
+
 // The carrier as a JSON object, written into `j` (alone, or nested in a capture's object).
 void carrierJson(JsonWriter& j, const carrier::Carrier& c) {
   int images = 0;
@@ -82,7 +161,9 @@ void carrierJson(JsonWriter& j, const carrier::Carrier& c) {
         .key("seconds").value(r ? r->seconds : 0.0)
         .key("interventions").value(static_cast<int>(s.interventions.size())).endObject();
   }
-  j.endArray().key("creators").beginArray();
+  j.endArray();
+  choicesJson(j, c);
+  j.key("creators").beginArray();
   for (const carrier::Creator& cr : c.header.creators)
     j.beginObject().key("name").value(cr.name).key("role").value(cr.role).endObject();
   j.endArray().key("decisions").beginArray();
@@ -110,6 +191,29 @@ void carrierJson(JsonWriter& j, const carrier::Carrier& c) {
   j.endArray().endObject();
 }
 
+// The processing choices, as text: what a run without options repeats.
+void printChoices(const carrier::Carrier& c) {
+  const Choices ch = choicesOf(c);
+  const stages::RunRequest& r = ch.standing;
+  std::cout << "  processing choices (a run without options repeats them):\n"
+            << "    image source: " << (r.source.empty() ? "auto" : r.source) << "\n";
+  if (r.bases) std::cout << "    models: " << joined(*r.bases) << "\n";
+  for (const auto& [name, value] : r.decodeSettings) std::cout << "    LibRaw " << name << " = " << value << "\n";
+  for (const stages::PlannedStage& p : r.preprocessing)
+    std::cout << "    pre-processing " << p.component << ": " << paramsText(p.params) << "\n";
+  for (const stages::RunRequest::StageParam& p : r.stageParams)
+    std::cout << "    " << p.component << " " << p.name << " = " << shownValue(p.value) << "\n";
+  if (!ch.webCopy) {
+    std::cout << "    web copy: none (run --publish makes one of each model)\n";
+    return;
+  }
+  std::vector<std::pair<std::string, std::string>> options;
+  for (const carrier::Param& p : ch.webCopy->params)
+    if (p.name != "model") options.emplace_back(p.name, p.value);
+  std::cout << "    web copy of " << joined(ch.webModels) << " in finished-files/web/ (" << paramsText(options)
+            << "); run --no-publish withdraws it\n";
+}
+
 // The standing decisions (human interventions: what, in which step, who, when and why), the
 // excluded images and the run history, as text.
 void printDecisionsAndRuns(const carrier::Carrier& c) {
@@ -129,6 +233,7 @@ void printDecisionsAndRuns(const carrier::Carrier& c) {
       std::cout << "\n    lights from " << s.param("lp") << " (dome capture)", ++n;
   std::cout << (n ? "\n" : " none\n");
   std::cout << "  excluded images: " << (excluded.empty() ? "none" : excluded) << "\n";
+  printChoices(c);
   if (c.header.runs.empty()) return;
   std::cout << "  runs:\n";
   for (const carrier::RunRecord& r : c.header.runs) {

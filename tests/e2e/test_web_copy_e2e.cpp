@@ -129,6 +129,12 @@ TEST_CASE("the web copy is a standing decision and its quality re-runs it", "[e2
   // It stands for the next run too.
   REQUIRE(e2e::surrogate("run " + e2e::quote(capture) + " --quiet --threads 2").exitCode == 0);
   CHECK(carrierOf(capture).find("<param name=\"quality\" value=\"40\"/>") != std::string::npos);
+  // info lists it among the choices a run repeats, with its options, in text and JSON.
+  const e2e::CommandResult info = e2e::surrogate("info " + e2e::quote(capture));
+  CHECK_THAT(info.output, Catch::Contains("web copy of ptm-lrgb in finished-files/web/ (quality 40, tiles auto, tileSize 256)"));
+  CHECK_THAT(info.output, Catch::Contains("models: ptm-lrgb\n"));
+  const e2e::CommandResult json = e2e::surrogate("info " + e2e::quote(capture) + " --json");
+  CHECK_THAT(json.output, Catch::Contains("\"webCopy\":{\"models\":[\"ptm-lrgb\"],\"parameters\":[{\"name\":\"quality\",\"value\":\"40\"}"));
 
   // Whole planes to Deep Zoom tiles: the whole planes are no longer made and are moved aside.
   REQUIRE(e2e::surrogate("run " + e2e::quote(capture) + " --publish-tiles deepzoom --quiet --threads 2").exitCode == 0);
@@ -141,6 +147,8 @@ TEST_CASE("the web copy is a standing decision and its quality re-runs it", "[e2
   CHECK(webCopyStepId(carrierOf(capture)).empty());
   CHECK(!fs::exists(capture / "finished-files" / "web" / "ptm-lrgb" / "info.json"));
   CHECK(fs::is_regular_file(capture / "superseded-files" / "r6" / "finished-files" / "web" / "ptm-lrgb" / "info.json"));
+  CHECK_THAT(e2e::surrogate("info " + e2e::quote(capture)).output, Catch::Contains("web copy: none"));
+  CHECK_THAT(e2e::surrogate("info " + e2e::quote(capture) + " --json").output, Catch::Contains("\"webCopy\":null"));
   const e2e::CommandResult refused = e2e::surrogate("run " + e2e::quote(capture) + " --publish-quality 50 --quiet");
   CHECK(refused.exitCode == 2);
   CHECK(refused.output.find("--publish") != std::string::npos);
