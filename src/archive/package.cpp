@@ -26,9 +26,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr const char* kCarrierPath = "assembly-files/carrier.xml";
+using capture::kCarrierPath;
 
-constexpr const char* kReportPath = "finished-files/report.html";
+using capture::kReportPath;
 
 std::string relativeSlash(const fs::path& p, const fs::path& root) {
   return p.lexically_relative(root).generic_u8string();

@@ -152,7 +152,7 @@ void collectOutputFolder(const fs::path& dir, CaptureLayout& layout) {
     }
     if (!fs::is_regular_file(st))
       throwInputError(rel, kStep, "is not a regular file (a device, pipe or socket); remove it from the capture");
-    if (rel == std::string(kAssemblyDir) + "/carrier.xml" || isInterruptedWrite(p.filename().string())) continue;
+    if (rel == kCarrierPath || isInterruptedWrite(p.filename().string())) continue;
     layout.outputFolderFiles.push_back(rel);
   }
 }

@@ -26,6 +26,10 @@ namespace surrogate::capture {
 inline constexpr const char* kAssemblyDir = "assembly-files";
 inline constexpr const char* kFinishedDir = "finished-files";
 inline constexpr const char* kExportsDir = "jpeg-exports";
+// The record and its view, relative to the capture: the carrier (the provenance document) and
+// the HTML report made from it (never listed in the carrier: it holds the time it was made).
+inline constexpr const char* kCarrierPath = "assembly-files/carrier.xml";
+inline constexpr const char* kReportPath = "finished-files/report.html";
 // Surrogate's own working area inside a capture: the lock that lets one process at a time work
 // on it and the staging folder of a run in progress. Never recorded, never bagged.
 inline constexpr const char* kWorkDir = ".surrogate";

@@ -26,7 +26,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr const char* kCarrierPath = "assembly-files/carrier.xml";
+using capture::kCarrierPath;
 
 // The recorded Audit result and whether it was made with `threshold` (unset: any).
 const carrier::Result* usableResult(const carrier::Carrier& c, const std::optional<double>& threshold) {

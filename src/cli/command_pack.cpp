@@ -42,7 +42,7 @@ void runPipeline(const std::string& capture, const Args& args, ProgressBar& bar)
 // would find the package invalid): the capture is processed again with its recorded decisions.
 std::string outdatedStep(const std::string& capture) {
   stages::registerBuiltinStages();
-  const carrier::Carrier c = carrier::loadCarrier(std::filesystem::path(capture) / "assembly-files/carrier.xml");
+  const carrier::Carrier c = carrier::loadCarrier(std::filesystem::path(capture) / capture::kCarrierPath);
   for (const carrier::Step& s : c.process) {
     const std::string now = pipeline::StageRegistry::instance().create(s.component)->version();
     if (now != s.version)
@@ -139,7 +139,7 @@ archive::PackResult packOnce(const std::string& capture, const std::string& out,
     return archive::packCapture(capture, out, options);
   } catch (const archive::PayloadChanged& e) {
     const std::string path = e.bagPath().substr(5);  // without "data/"
-    const carrier::Carrier recorded = carrier::loadCarrier(std::filesystem::path(capture) / "assembly-files/carrier.xml");
+    const carrier::Carrier recorded = carrier::loadCarrier(std::filesystem::path(capture) / capture::kCarrierPath);
     const carrier::FileRecord* f = recorded.findFileByPath(path);
     if (f && carrier::isEvidenceRole(f->role))
       refuseChangedInput(capture, path + " no longer matches the SHA-256 its carrier records", path);

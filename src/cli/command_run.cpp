@@ -53,10 +53,10 @@ int runCommandRun(int argc, char** argv) {
     options.progress = bar.callback();
     rep = report::writeCaptureReport(capture, options);
     bar.finish();
-  } else std::filesystem::remove(std::filesystem::path(capture) / capture::kFinishedDir / "report.html");
-  const std::string reportPath = capture + "/finished-files/report.html";
+  } else std::filesystem::remove(std::filesystem::path(capture) / capture::kReportPath);
+  const std::string reportPath = capture + "/" + capture::kReportPath;
 
-  const std::string carrierPath = capture + "/" + capture::kAssemblyDir + "/carrier.xml";
+  const std::string carrierPath = capture + "/" + capture::kCarrierPath;
   if (args.has("json")) {
     JsonWriter j;
     j.beginObject().key("capture").value(capture).key("carrier").value(carrierPath);

@@ -504,7 +504,7 @@ Report writeCaptureReport(const std::filesystem::path& capture, const ReportOpti
   // killed while it writes leaves nothing there that the carrier does not describe (the next
   // command removes the leftover, stages/run_commit.h).
   std::filesystem::create_directories(capture / capture::kWorkDir);
-  AtomicFile page(capture / capture::kFinishedDir / "report.html", capture / capture::kWorkDir);
+  AtomicFile page(capture / capture::kReportPath, capture / capture::kWorkDir);
   {
     std::ofstream f(page.tempPath(), std::ios::binary);
     f.write(r.html.data(), static_cast<std::streamsize>(r.html.size()));

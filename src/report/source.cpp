@@ -8,6 +8,7 @@
 #include <system_error>
 
 #include "archive/package_reader.h"
+#include "capture/capture.h"
 #include "core/error.h"
 #include "core/temp_dir.h"
 #include "core/text.h"
@@ -20,7 +21,7 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* kStep = "report";
-constexpr const char* kCarrierPath = "assembly-files/carrier.xml";
+using capture::kCarrierPath;
 
 // A relative carrier path that stays inside its root.
 bool safeRelative(const std::string& path) {

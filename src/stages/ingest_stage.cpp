@@ -22,7 +22,7 @@ namespace {
 
 constexpr const char* kStep = "capture ingest";
 // The report: written after every run, never recorded (a view of the carrier).
-constexpr const char* kReportPath = "finished-files/report.html";
+using capture::kReportPath;
 
 struct KnownFormat {
   const char* ext;

@@ -163,7 +163,6 @@ carrier::Carrier planRun(const fs::path& capture, const RunRequest& request) {
 
 namespace {
 
-constexpr const char* kCarrierFile = "assembly-files/carrier.xml";
 
 // The number of steps a lights-only run executes: up to the last step of light estimation.
 std::size_t lightStepCount(const carrier::Carrier& c) {
@@ -278,11 +277,11 @@ carrier::Carrier runCapture(const fs::path& captureArg, const RunRequest& reques
   const std::optional<std::string> interrupted = recoverRun(capture);
 
   std::optional<carrier::Carrier> previous;
-  if (fs::exists(capture / kCarrierFile)) {
+  if (fs::exists(capture / capture::kCarrierPath)) {
     try {
-      previous = carrier::loadCarrier(capture / kCarrierFile);
+      previous = carrier::loadCarrier(capture / capture::kCarrierPath);
     } catch (const Error& e) {
-      throw Error(ErrorKind::Input, (capture / kCarrierFile).string(), "plan",
+      throw Error(ErrorKind::Input, (capture / capture::kCarrierPath).string(), "plan",
                   "the capture's carrier cannot be read (" + e.message() + "); it is the "
                   "capture's memory, so Surrogate will not start a new one over it: restore it "
                   "from a backup or package, or move it out of the capture to start afresh");
@@ -324,7 +323,7 @@ carrier::Carrier runCapture(const fs::path& captureArg, const RunRequest& reques
   ctx.outputRoot = staging;
   ctx.previous = previous ? &*previous : nullptr;
   const std::size_t steps = request.lightsOnly ? lightStepCount(c) : c.process.size();
-  const fs::path stagedCarrier = staging / kCarrierFile;
+  const fs::path stagedCarrier = staging / capture::kCarrierPath;
   try {
     pipeline::runProcess(ctx, stagedCarrier, steps);
   } catch (const Error& e) {
@@ -337,7 +336,7 @@ carrier::Carrier runCapture(const fs::path& captureArg, const RunRequest& reques
       // run failed.
       previous->header.runs.push_back(record);
       previous->header.modified = carrier::timestampNow();
-      carrier::saveCarrier(*previous, capture / kCarrierFile);
+      carrier::saveCarrier(*previous, capture / capture::kCarrierPath);
       fs::remove_all(staging);
     } else {
       // A first run: its failed record (and what it made) becomes the state, so the capture

@@ -2,6 +2,7 @@
 
 #include <cctype>
 
+#include "capture/capture.h"
 #include "carrier/xml.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -15,8 +16,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr const char* kCarrierPath = "assembly-files/carrier.xml";
-constexpr const char* kReportPath = "finished-files/report.html";
+using capture::kCarrierPath;
+using capture::kReportPath;
 // A processing log larger than this is recorded without reading its root element: RTIBuilder's
 // logs are a few kilobytes, and the whole document is parsed to find the root.
 constexpr std::uintmax_t kMaxLogBytes = 64u << 20;

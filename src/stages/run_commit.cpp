@@ -14,8 +14,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr const char* kCarrierPath = "assembly-files/carrier.xml";
-constexpr const char* kReportPath = "finished-files/report.html";
+using capture::kCarrierPath;
+using capture::kReportPath;
 
 fs::path journalPath(const fs::path& capture) { return capture / capture::kWorkDir / "commit"; }
 

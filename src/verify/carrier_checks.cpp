@@ -7,6 +7,7 @@
 #include <unordered_set>
 
 #include "archive/bag_text.h"
+#include "capture/capture.h"
 #include "carrier/xml.h"
 #include "core/background_sink.h"
 #include "core/digest.h"
@@ -87,7 +88,7 @@ std::optional<carrier::Carrier> checkCarrier(const Inventory& inv, std::vector<C
     if (!pathProblems.empty()) break;  // one cause, one failure: the unsafe path
     if (path.compare(0, 5, "data/") != 0) continue;
     const std::string relative = path.substr(5);
-    if (relative == "finished-files/report.html" || path == kCarrierPath) continue;
+    if (relative == capture::kReportPath || path == kCarrierPath) continue;
     if (!recordedPaths.count(relative))
       fixity.push_back(path + ": in the payload but not recorded in the carrier" +
                        (relative.compare(0, 15, "assembly-files/") == 0 ||
