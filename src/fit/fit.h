@@ -20,15 +20,20 @@
 // Streaming and memory: the photographs are read in row bands (ImageStack::readRows), all N
 // images' rows of a band at once. The band height is the largest that keeps the result object
 // (9 or 18 bytes per pixel for PTM, 3*T for HSH), the band buffers and the per-thread scratch
-// within FitOptions::memoryBudgetBytes (at least one row). The
-// quantisation needs each coefficient's range over the whole image before any byte can be
-// written, so the fit makes TWO passes: pass 1 fits every pixel and keeps only the per-row
-// minima and maxima; pass 2 reads the bands again, fits again (the same code on the same
-// samples gives the same doubles), quantises into the result and measures the fit error.
-// Trade: the stack is read twice (when the whole stack fits in one band it is read once)
-// instead of spilling 4-8 bytes per coefficient to a temporary file (1.7 GB of floats for an
-// RGB PTM of 24 Mpx); fitting itself is cheap next to decoding. O(height * N) statistics come
-// on top of the budget.
+// within FitOptions::memoryBudgetBytes (at least one row). The quantisation needs each
+// coefficient's range over the whole image before any byte can be written, so the fit makes
+// TWO passes: pass 1 fits every pixel, keeps the per-row minima and maxima and, in what the
+// budget leaves after the bands (nothing of it when the stack is held in memory), the
+// coefficients of the top rows as floats (6 per pixel for LRGB, 3*T for RGB PTM and HSH);
+// pass 2 quantises the kept coefficients, fits the other rows again (the same code on the
+// same samples gives the same doubles, rounded to float like the kept ones, so the bytes do
+// not depend on how many rows were kept) and measures the fit error, which needs the samples:
+// the bands are read again unless the whole stack was one band. Floats, not doubles: the
+// quantisation step is at least 1/255 of the range, and rounding to float moves a coefficient
+// by at most 2^-24 of its value, which moves about one byte in a million by one level.
+// Trade: without the memory to keep them, the stack is read twice instead of spilling 4 bytes
+// per coefficient to a temporary file (1.7 GB of floats for an RGB PTM of 24 Mpx). O(height * N)
+// statistics come on top of the budget.
 //
 // Determinism: every pixel is computed by the same sequence of floating-point operations
 // whatever the band height or thread count; reductions are kept per row and combined in row

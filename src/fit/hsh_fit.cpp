@@ -23,11 +23,15 @@ class HshFitter : public ChannelFitter {
   }
 
  protected:
-  std::uint8_t quantiseValue(int k, double a) const override { return q_[k].quantise(a); }
-  double decodeValue(int k, std::uint8_t b) const override { return q_[k].decode(b); }
-  void store(int x, int y, int c, int k, std::uint8_t b) const override {
-    out_->coefficients[((static_cast<std::size_t>(y) * out_->width + x) * 3 + c) * out_->terms +
-                       k] = b;
+  void quantiseRow(int k, int y, const double* a, std::size_t m, double* decoded) const override {
+    const HshQuantisation q = q_[k];
+    const std::size_t terms = out_->terms;
+    std::uint8_t* dst = out_->coefficients.data() + static_cast<std::size_t>(y) * m * terms + k;
+    for (std::size_t j = 0; j < m; ++j) {  // sample j = pixel j / 3, channel j % 3
+      const std::uint8_t b = q.quantise(a[j]);
+      dst[j * terms] = b;
+      decoded[j] = q.decode(b);
+    }
   }
 
  private:

@@ -54,14 +54,21 @@ class LrgbFitter : public RowFitter {
   int ranges() const override { return 6; }
   // Scratch layout (doubles): acc 6w | chroma 3w | mean 3w | sum w | decoded 6w | lum w.
   std::size_t scratchDoubles(int width) const override { return 20 * std::size_t(width); }
+  int keptFloats() const override { return 6; }  // the luminance coefficients
 
-  void measure(const RowView& row, double* scratch, double* lo, double* hi) const override {
+  // The stored colour bytes are final after pass 1: they are written to the result here.
+  void measure(const RowView& row, double* scratch, double* lo, double* hi,
+               float* kept) const override {
+    const int w = row.width;
     fitRow(row, scratch);
     for (int k = 0; k < 6; ++k) {
-      const double* a = scratch + k * row.width;
-      lo[k] = *std::min_element(a, a + row.width);
-      hi[k] = *std::max_element(a, a + row.width);
+      const double* a = scratch + k * w;
+      lo[k] = *std::min_element(a, a + w);
+      hi[k] = *std::max_element(a, a + w);
     }
+    const double* chroma = scratch + 6 * w;
+    std::copy(chroma, chroma + 3 * w, out_->rgb.begin() + static_cast<std::size_t>(row.y) * w * 3);
+    if (kept) std::copy(scratch, scratch + 6 * w, kept);
   }
 
   void setRanges(const std::vector<double>& lo, const std::vector<double>& hi) override {
@@ -72,22 +79,28 @@ class LrgbFitter : public RowFitter {
     }
   }
 
-  void quantise(const RowView& row, double* scratch, double* sqErr) const override {
+  void quantise(const RowView& row, double* scratch, double* sqErr,
+                const float* kept) const override {
     const int w = row.width;
-    const double* acc = scratch;
-    const double* chroma = scratch + 6 * w;
+    double* acc = scratch;
+    double* chroma = scratch + 6 * w;
     double* decoded = scratch + 13 * w;
     double* lum = scratch + 19 * w;
-    fitRow(row, scratch);
     const std::size_t base = static_cast<std::size_t>(row.y) * w;
+    if (kept) {
+      std::copy(kept, kept + 6 * w, acc);
+      const std::uint8_t* stored = out_->rgb.data() + base * 3;
+      std::copy(stored, stored + 3 * w, chroma);
+    } else {  // the values pass 1 would have kept
+      fitRow(row, scratch);
+      for (int j = 0; j < 6 * w; ++j) acc[j] = static_cast<float>(acc[j]);
+    }
     for (int x = 0; x < w; ++x) {
       for (int k = 0; k < 6; ++k) {
         const std::uint8_t b = q_[k].quantise(acc[k * w + x]);
         out_->coefficients[(base + x) * 6 + k] = b;
         decoded[k * w + x] = q_[k].decode(b);
       }
-      for (int c = 0; c < 3; ++c)
-        out_->rgb[(base + x) * 3 + c] = static_cast<std::uint8_t>(chroma[3 * x + c]);
     }
     const double lr[3] = {kLumR, kLumG, kLumB};
     for (int i = 0; i < n_; ++i) {
@@ -165,11 +178,18 @@ class RgbPtmFitter : public ChannelFitter {
   }
 
  protected:
-  std::uint8_t quantiseValue(int k, double a) const override { return q_[k].quantise(a); }
-  double decodeValue(int k, std::uint8_t b) const override { return q_[k].decode(b); }
-  void store(int x, int y, int c, int k, std::uint8_t b) const override {
-    out_->coefficients[((static_cast<std::size_t>(c) * out_->height + y) * out_->width + x) * 6 +
-                       k] = b;
+  void quantiseRow(int k, int y, const double* a, std::size_t /*m*/,
+                   double* decoded) const override {
+    const PtmQuantisation q = q_[k];
+    const std::size_t w = out_->width, plane = static_cast<std::size_t>(out_->height) * w;
+    for (int c = 0; c < 3; ++c) {  // one plane of 6 coefficients per channel
+      std::uint8_t* dst = out_->coefficients.data() + ((c * plane + y * w) * 6 + k);
+      for (std::size_t x = 0; x < w; ++x) {
+        const std::uint8_t b = q.quantise(a[3 * x + c]);
+        dst[x * 6] = b;
+        decoded[3 * x + c] = q.decode(b);
+      }
+    }
   }
 
  private:

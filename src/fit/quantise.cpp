@@ -5,21 +5,6 @@
 
 namespace surrogate::fit {
 
-namespace {
-std::uint8_t toByte(double v) {
-  if (!(v > 0)) return 0;  // also NaN
-  if (v >= 255) return 255;
-  return static_cast<std::uint8_t>(std::lround(v));
-}
-}  // namespace
-
-std::uint8_t PtmQuantisation::quantise(double a) const { return toByte(a / scale + bias); }
-
-std::uint8_t HshQuantisation::quantise(double a) const {
-  if (scale == 0) return 0;
-  return toByte((a - static_cast<double>(bias)) / static_cast<double>(scale) * 255.0);
-}
-
 PtmQuantisation choosePtmQuantisation(double lo, double hi) {
   lo = std::min(lo, 0.0);
   hi = std::max(hi, 0.0);

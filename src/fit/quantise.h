@@ -18,17 +18,31 @@
 
 namespace surrogate::fit {
 
+namespace detail {
+// round(v) clamped to 0..255 (NaN gives 0), rounding halves away from zero as std::lround
+// does; inline because it runs once per coefficient. v - trunc(v) is exact for |v| < 2^52.
+inline std::uint8_t toByte(double v) {
+  if (!(v > 0)) return 0;
+  if (v >= 255) return 255;
+  const double whole = static_cast<double>(static_cast<int>(v));
+  return static_cast<std::uint8_t>(static_cast<int>(whole) + (v - whole >= 0.5 ? 1 : 0));
+}
+}  // namespace detail
+
 struct PtmQuantisation {
   double scale = 1;
   int bias = 0;
-  std::uint8_t quantise(double a) const;
+  std::uint8_t quantise(double a) const { return detail::toByte(a / scale + bias); }
   double decode(std::uint8_t byte) const { return (byte - bias) * scale; }
 };
 
 struct HshQuantisation {
   float scale = 0;
   float bias = 0;
-  std::uint8_t quantise(double a) const;
+  std::uint8_t quantise(double a) const {
+    if (scale == 0) return 0;
+    return detail::toByte((a - static_cast<double>(bias)) / static_cast<double>(scale) * 255.0);
+  }
   double decode(std::uint8_t byte) const {
     return byte / 255.0 * static_cast<double>(scale) + static_cast<double>(bias);
   }

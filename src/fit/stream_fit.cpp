@@ -11,7 +11,13 @@ namespace surrogate::fit {
 
 namespace {
 const char* const kStep = "fit";
+
+// Rows whose pass-1 coefficients (floats) fit in `spareBytes`, counted from the top.
+int keptRows(int floatsPerPixel, int width, int height, std::size_t spareBytes) {
+  const std::size_t rowBytes = static_cast<std::size_t>(floatsPerPixel) * width * sizeof(float);
+  return static_cast<int>(std::min<std::size_t>(spareBytes / rowBytes, height));
 }
+}  // namespace
 
 std::vector<std::array<double, 3>> checkedLights(const ImageStack& stack,
                                                  const std::vector<std::array<double, 3>>& lights,
@@ -64,6 +70,15 @@ std::vector<double> streamFit(const ImageStack& stack, RowFitter& fitter,
   // they are, band by band as the others: no band buffer, no copy.
   const auto* held = ch == 3 ? dynamic_cast<const MemoryImageStack*>(&stack) : nullptr;
   std::vector<std::uint16_t> buffer(held ? 0 : static_cast<std::size_t>(n) * band * rowSamples);
+  // Pass 1 keeps the coefficients of the top rows in what the bands leave of the budget, so
+  // that pass 2 does not fit them again.
+  const int kept = keptRows(fitter.keptFloats(), w, h,
+                            available - std::min(available, held ? 0 : band * bandRowBytes));
+  std::vector<float> keptCoefficients(static_cast<std::size_t>(kept) * fitter.keptFloats() * w);
+  auto keptRow = [&](int y) -> float* {
+    if (y >= kept) return nullptr;
+    return keptCoefficients.data() + static_cast<std::size_t>(y) * fitter.keptFloats() * w;
+  };
 
   auto readBand = [&](int y0, int y1) {
     if (held) return;
@@ -109,7 +124,7 @@ std::vector<double> streamFit(const ImageStack& stack, RowFitter& fitter,
     readBand(y0, y1);
     forRows(y0, y1, [&](const RowView& row, double* scratch) {
       fitter.measure(row, scratch, &rowLo[static_cast<std::size_t>(row.y) * r],
-                     &rowHi[static_cast<std::size_t>(row.y) * r]);
+                     &rowHi[static_cast<std::size_t>(row.y) * r], keptRow(row.y));
     });
     report(0.5 * (bi + 1) / bands);
   }
@@ -129,7 +144,7 @@ std::vector<double> streamFit(const ImageStack& stack, RowFitter& fitter,
     const int y0 = bi * band, y1 = std::min(h, y0 + band);
     if (bands > 1) readBand(y0, y1);
     forRows(y0, y1, [&](const RowView& row, double* scratch) {
-      fitter.quantise(row, scratch, &rowErr[static_cast<std::size_t>(row.y) * n]);
+      fitter.quantise(row, scratch, &rowErr[static_cast<std::size_t>(row.y) * n], keptRow(row.y));
     });
     report(0.5 + 0.5 * (bi + 1) / bands);
   }

@@ -123,7 +123,9 @@ RtiFitOptions RtiFitOptions::forBasis(const std::string& basis) {
 
 pipeline::StageInfo RtiFitStage::info() {
   pipeline::StageInfo info = pipeline::withOptions<RtiFitOptions>(
-      {kComponent, "1", "Least-squares fit of a per-pixel reflectance model over the light directions",
+      // Version 2: coefficients are quantised from their float values (kept between the passes
+      // when memory allows, src/fit/fit.h), which moves a few bytes by one level.
+      {kComponent, "2", "Least-squares fit of a per-pixel reflectance model over the light directions",
        pipeline::PlanSlot::EachModel});
   info.forModel = [](const std::string& basis) { return RtiFitOptions::forBasis(basis).toParameters(); };
   info.outputs = [](const carrier::Step& step) {

@@ -1,6 +1,8 @@
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "core/error.h"
 #include "fit/basis.h"
@@ -84,6 +86,20 @@ TEST_CASE("quantise: no value of the range clips, error at most half a step") {
       const double a = (lo + (hi - lo) * i / 1000.0) / 255;
       CHECK(std::fabs(hq.decode(hq.quantise(a)) - a) <= hq.scale / 510.0 + 1e-6);
     }
+  }
+}
+
+TEST_CASE("quantise: bytes round halves away from zero as std::lround and clamp to 0..255") {
+  const PtmQuantisation unit;  // scale 1, bias 0: the byte is the rounded value itself
+  std::vector<double> values = {-1.0, -0.5, 0.0, 254.5, 254.49999999999997, 255.0, 300.0,
+                                std::nan("")};
+  for (int i = 0; i <= 255 * 8; ++i) {
+    const double v = i / 8.0;  // every quarter, half and three quarters
+    values.insert(values.end(), {v, std::nextafter(v, -1.0), std::nextafter(v, 1000.0)});
+  }
+  for (double v : values) {
+    const long expected = std::isnan(v) ? 0 : std::clamp(std::lround(v), 0L, 255L);
+    CHECK(unit.quantise(v) == expected);
   }
 }
 

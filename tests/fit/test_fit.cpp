@@ -154,21 +154,33 @@ TEST_CASE("fit: results are bit-identical for 1 or 2 threads and any memory budg
     FitOptions mid = big;
     mid.memoryBudgetBytes = 20 * 40 * 3 * 2 * 7 + 200000;  // a few rows per band
     mid.threads = 2;
-    FitStatistics s1, s2, s3;
+    // Budgets under which pass 1 keeps the coefficients of part of the rows and pass 2 fits the
+    // others again (15 of the 33 rows for LRGB at 40000 bytes, 17 for RGB and 6 for HSH at
+    // 100000).
+    FitOptions someKept = mid;
+    someKept.memoryBudgetBytes = 40000;
+    FitOptions moreKept = mid;
+    moreKept.memoryBudgetBytes = 100000;
+    FitStatistics s1, s2, s3, s4;
     if (isPtm(b)) {
       const auto a = fitPtm(stack, lights, big, &s1);
       CHECK(a == fitPtm(stack, lights, small, &s2));
       CHECK(a == fitPtm(stack, lights, mid, &s3));
+      CHECK(a == fitPtm(stack, lights, someKept, &s4));
+      CHECK(a == fitPtm(stack, lights, moreKept));
     } else {
       const auto a = fitHsh(stack, lights, big, &s1);
       CHECK(a == fitHsh(stack, lights, small, &s2));
       CHECK(a == fitHsh(stack, lights, mid, &s3));
+      CHECK(a == fitHsh(stack, lights, someKept, &s4));
+      CHECK(a == fitHsh(stack, lights, moreKept));
     }
     CHECK(s1.passes == 1);
     CHECK(s2.passes == 2);
     CHECK(s1.rmse == s2.rmse);
     CHECK(s1.perImageRmse == s2.perImageRmse);
     CHECK(s1.perImageRmse == s3.perImageRmse);
+    CHECK(s1.perImageRmse == s4.perImageRmse);
   }
 }
 
