@@ -2,12 +2,17 @@
 
 #include <algorithm>
 
+#include <Eigen/Core>
+
 namespace surrogate::fit {
 
 namespace {
-// Samples per block: a multiple of 3 (whole pixels); the block's samples of every photograph
-// (36 x 192 x 2 bytes) and its accumulators stay in a 32 KiB L1 cache.
+// Samples per block: a multiple of 3 (whole pixels); a block of every photograph as doubles
+// (36 x 192 x 8 bytes) stays in the cache next to the row's coefficients.
 constexpr std::size_t kBlockSamples = 192;
+
+using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+using Strided = Eigen::Map<RowMajor, 0, Eigen::OuterStride<>>;
 }  // namespace
 
 ChannelFitter::ChannelFitter(std::vector<double> p, std::vector<double> basisAtLights, int n,
@@ -17,30 +22,27 @@ ChannelFitter::ChannelFitter(std::vector<double> p, std::vector<double> basisAtL
 
 std::size_t ChannelFitter::scratchDoubles(int width) const {
   const std::size_t row = static_cast<std::size_t>(width) * 3;
-  return 2 * terms_ * row + kBlockSamples;  // coefficients, decoded coefficients, prediction
+  // Coefficients, decoded coefficients, one N x kBlockSamples block (samples or re-rendering).
+  return 2 * terms_ * row + static_cast<std::size_t>(n_) * kBlockSamples;
 }
 
-void ChannelFitter::fitRow(const RowView& row, double* acc) const {
+// coefficients (T x block) = P (T x N) * samples (N x block), block after block.
+void ChannelFitter::fitRow(const RowView& row, double* acc, double* block) const {
   const std::size_t m = static_cast<std::size_t>(row.width) * 3;
+  const Eigen::Map<const RowMajor> p(p_.data(), terms_, n_);
   for (std::size_t j0 = 0; j0 < m; j0 += kBlockSamples) {
     const std::size_t len = std::min(kBlockSamples, m - j0);
-    for (int k = 0; k < terms_; ++k) {
-      double* a = acc + k * m + j0;
-      const double* p = &p_[static_cast<std::size_t>(k) * n_];
-      std::fill(a, a + len, 0.0);
-      for (int i = 0; i < n_; ++i) {
-        const std::uint16_t* s = row.images[i] + j0;
-        const double pi = p[i];
-        for (std::size_t j = 0; j < len; ++j) a[j] += pi * s[j];
-      }
-    }
+    Strided samples(block, n_, len, Eigen::OuterStride<>(kBlockSamples));
+    for (int i = 0; i < n_; ++i)
+      std::copy(row.images[i] + j0, row.images[i] + j0 + len, block + i * kBlockSamples);
+    Strided(acc + j0, terms_, len, Eigen::OuterStride<>(m)).noalias() = p * samples;
   }
 }
 
 void ChannelFitter::measure(const RowView& row, double* scratch, double* lo, double* hi,
                             float* kept) const {
   const std::size_t m = static_cast<std::size_t>(row.width) * 3;
-  fitRow(row, scratch);
+  fitRow(row, scratch, scratch + 2 * terms_ * m);
   for (int k = 0; k < terms_; ++k) {
     const double* a = scratch + k * m;
     lo[k] = *std::min_element(a, a + m);
@@ -54,11 +56,11 @@ void ChannelFitter::quantise(const RowView& row, double* scratch, double* sqErr,
   const std::size_t m = static_cast<std::size_t>(row.width) * 3;
   double* acc = scratch;
   double* decoded = scratch + terms_ * m;
-  double* pred = decoded + terms_ * m;
+  double* block = decoded + terms_ * m;
   if (kept) {
     std::copy(kept, kept + terms_ * m, acc);
   } else {  // the values pass 1 would have kept
-    fitRow(row, acc);
+    fitRow(row, acc, block);
     for (std::size_t j = 0; j < terms_ * m; ++j) acc[j] = static_cast<float>(acc[j]);
   }
   for (int k = 0; k < terms_; ++k) {
@@ -66,30 +68,29 @@ void ChannelFitter::quantise(const RowView& row, double* scratch, double* sqErr,
     quantiseRow(k, row.y, acc + k * m, m, d);
     for (std::size_t j = 0; j < m; ++j) d[j] *= displayScale_;
   }
-  measureError(row, decoded, pred, sqErr);
+  measureError(row, decoded, block, sqErr);
 }
 
-// Re-renders the stored model at every captured light and compares luminance, block by block;
-// each sqErr[i] still sums the pixels in row order.
-void ChannelFitter::measureError(const RowView& row, const double* decoded, double* pred,
+// Re-renders the stored model at every captured light (N x block = basis (N x T) * decoded
+// (T x block)) and compares luminance; each sqErr[i] still sums the pixels in row order.
+void ChannelFitter::measureError(const RowView& row, const double* decoded, double* block,
                                  double* sqErr) const {
   const std::size_t m = static_cast<std::size_t>(row.width) * 3;
+  const Eigen::Map<const RowMajor> basis(basis_.data(), n_, terms_);
   std::fill(sqErr, sqErr + n_, 0.0);
   for (std::size_t j0 = 0; j0 < m; j0 += kBlockSamples) {
     const std::size_t len = std::min(kBlockSamples, m - j0);
+    const Eigen::Map<const RowMajor, 0, Eigen::OuterStride<>> d(decoded + j0, terms_, len,
+                                                                Eigen::OuterStride<>(m));
+    Strided(block, n_, len, Eigen::OuterStride<>(kBlockSamples)).noalias() = basis * d;
     for (int i = 0; i < n_; ++i) {
-      std::fill(pred, pred + len, 0.0);
-      for (int k = 0; k < terms_; ++k) {
-        const double wk = basis_[static_cast<std::size_t>(i) * terms_ + k];
-        const double* d = decoded + k * m + j0;
-        for (std::size_t j = 0; j < len; ++j) pred[j] += wk * d[j];
-      }
+      const double* p = block + static_cast<std::size_t>(i) * kBlockSamples;
       const std::uint16_t* s = row.images[i] + j0;
       double err = sqErr[i];
       for (std::size_t x = 0; x < len / 3; ++x) {
-        const double r = std::clamp(pred[3 * x], 0.0, 255.0);
-        const double g = std::clamp(pred[3 * x + 1], 0.0, 255.0);
-        const double b = std::clamp(pred[3 * x + 2], 0.0, 255.0);
+        const double r = std::clamp(p[3 * x], 0.0, 255.0);
+        const double g = std::clamp(p[3 * x + 1], 0.0, 255.0);
+        const double b = std::clamp(p[3 * x + 2], 0.0, 255.0);
         const double model = kLumR * r + kLumG * g + kLumB * b;
         const double captured =
             (kLumR * s[3 * x] + kLumG * s[3 * x + 1] + kLumB * s[3 * x + 2]) / 257.0;

@@ -1,9 +1,11 @@
 // Private to src/fit: the per-channel linear fit shared by PTM RGB and HSH.
 //
 // For each pixel and colour channel c:  a_{c,k} = sum_i P[k][i] * s_i,c   (k < T)
-// computed for a row at once, in blocks of kBlockSamples samples that stay in the L1 cache
-// (loop over blocks, then terms, then lights, then the block's samples), so the compiler
-// vectorises across pixels while each coefficient still sums the lights in order.
+// computed for a row as matrix products with Eigen, a block of samples at a time:
+// coefficients (T x block) = P (T x N) * samples (N x block), where the block holds
+// consecutive R, G, B samples of the row (kBlockSamples in channel_fit.cpp); the fit error
+// re-renders the stored model the same way. Each row is computed alone with the same shapes,
+// so the result does not depend on the thread count.
 #pragma once
 
 #include <cstdint>
@@ -35,8 +37,9 @@ class ChannelFitter : public RowFitter {
                            double* decoded) const = 0;
 
  private:
-  void fitRow(const RowView& row, double* acc) const;  // acc: T x (3 width)
-  void measureError(const RowView& row, const double* decoded, double* pred,
+  // acc: T x (3 width); block: N x kBlockSamples doubles of scratch.
+  void fitRow(const RowView& row, double* acc, double* block) const;
+  void measureError(const RowView& row, const double* decoded, double* block,
                     double* sqErr) const;
   std::vector<double> p_, basis_;
   int n_, terms_;
