@@ -22,13 +22,13 @@
 // (9 or 18 bytes per pixel for PTM, 3*T for HSH), the band buffers and the per-thread scratch
 // within FitOptions::memoryBudgetBytes (at least one row). The quantisation needs each
 // coefficient's range over the whole image before any byte can be written, so the fit makes
-// TWO passes: pass 1 fits every pixel, keeps the per-row minima and maxima and, in what the
-// budget leaves after the bands (nothing of it when the stack is held in memory), the
-// coefficients of the top rows as floats (6 per pixel for LRGB, 3*T for RGB PTM and HSH);
-// pass 2 quantises the kept coefficients, fits the other rows again (the same code on the
-// same samples gives the same doubles, rounded to float like the kept ones, so the bytes do
-// not depend on how many rows were kept) and measures the fit error, which needs the samples:
-// the bands are read again unless the whole stack was one band. Floats, not doubles: the
+// TWO passes: pass 1 fits every pixel and keeps the per-row minima and maxima and, when they
+// fit in what the budget leaves after the bands (a stack held in memory takes no band), the
+// image's coefficients as floats (6 per pixel for LRGB, 3*T for RGB PTM and HSH); pass 2
+// quantises the kept coefficients, or fits every pixel again when there were none (the same
+// code on the same samples gives the same doubles, rounded to float like the kept ones, so
+// the bytes do not depend on the budget), and measures the fit error, which needs the
+// samples: the bands are read again unless the whole stack was one band. Floats, not doubles: the
 // quantisation step is at least 1/255 of the range, and rounding to float moves a coefficient
 // by at most 2^-24 of its value, which moves about one byte in a million by one level.
 // Trade: without the memory to keep them, the stack is read twice instead of spilling 4 bytes

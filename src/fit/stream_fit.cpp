@@ -12,10 +12,12 @@ namespace surrogate::fit {
 namespace {
 const char* const kStep = "fit";
 
-// Rows whose pass-1 coefficients (floats) fit in `spareBytes`, counted from the top.
+// All rows when the whole image's pass-1 coefficients (floats) fit in `spareBytes`, else none:
+// keeping part of them would raise the peak memory for a part of the saving.
 int keptRows(int floatsPerPixel, int width, int height, std::size_t spareBytes) {
-  const std::size_t rowBytes = static_cast<std::size_t>(floatsPerPixel) * width * sizeof(float);
-  return static_cast<int>(std::min<std::size_t>(spareBytes / rowBytes, height));
+  const std::size_t bytes =
+      static_cast<std::size_t>(floatsPerPixel) * width * height * sizeof(float);
+  return bytes <= spareBytes ? height : 0;
 }
 }  // namespace
 
@@ -70,8 +72,8 @@ std::vector<double> streamFit(const ImageStack& stack, RowFitter& fitter,
   // they are, band by band as the others: no band buffer, no copy.
   const auto* held = ch == 3 ? dynamic_cast<const MemoryImageStack*>(&stack) : nullptr;
   std::vector<std::uint16_t> buffer(held ? 0 : static_cast<std::size_t>(n) * band * rowSamples);
-  // Pass 1 keeps the coefficients of the top rows in what the bands leave of the budget, so
-  // that pass 2 does not fit them again.
+  // Pass 1 keeps the coefficients when they fit in what the bands leave of the budget, so that
+  // pass 2 does not fit the pixels again.
   const int kept = keptRows(fitter.keptFloats(), w, h,
                             available - std::min(available, held ? 0 : band * bandRowBytes));
   std::vector<float> keptCoefficients(static_cast<std::size_t>(kept) * fitter.keptFloats() * w);

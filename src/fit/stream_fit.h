@@ -47,9 +47,9 @@ std::vector<std::array<double, 3>> checkedLights(const ImageStack& stack,
 
 // Runs both passes; returns the per-image squared luminance errors (summed over pixels in row
 // order) and sets stats->passes. `modelBytes`, the model already allocated for the output,
-// counts against options.memoryBudgetBytes like the bands do. Pass 1 keeps the coefficients
-// of as many rows as fit in the budget the bands leave (keptRows); pass 2 fits only the other
-// rows again.
+// counts against options.memoryBudgetBytes like the bands do. Pass 1 keeps the whole image's
+// coefficients when they fit in what the bands leave of the budget; pass 2 then fits nothing
+// again.
 std::vector<double> streamFit(const ImageStack& stack, RowFitter& fitter,
                               const FitOptions& options, std::size_t modelBytes, int* passes);
 

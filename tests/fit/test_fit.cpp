@@ -154,9 +154,8 @@ TEST_CASE("fit: results are bit-identical for 1 or 2 threads and any memory budg
     FitOptions mid = big;
     mid.memoryBudgetBytes = 20 * 40 * 3 * 2 * 7 + 200000;  // a few rows per band
     mid.threads = 2;
-    // Budgets under which pass 1 keeps the coefficients of part of the rows and pass 2 fits the
-    // others again (15 of the 33 rows for LRGB at 40000 bytes, 17 for RGB and 6 for HSH at
-    // 100000).
+    // More budgets around what keeping every pixel's coefficients takes: at 100000 bytes LRGB
+    // keeps them (in three bands), RGB and HSH fit every pixel again; none keeps them at 40000.
     FitOptions someKept = mid;
     someKept.memoryBudgetBytes = 40000;
     FitOptions moreKept = mid;
