@@ -110,8 +110,24 @@ std::string paramsText(const std::vector<std::pair<std::string, std::string>>& p
   return out;
 }
 
+// A carrier whose steps this version cannot read (another version's, or a forged one) still
+// gets described: its choices are then left out, saying why, and `verify` judges it.
+std::optional<Choices> readableChoices(const carrier::Carrier& c, std::string* why) {
+  try {
+    return choicesOf(c);
+  } catch (const Error& e) {
+    if (why) *why = e.message();
+    return std::nullopt;
+  }
+}
+
 void choicesJson(JsonWriter& j, const carrier::Carrier& c) {
-  const Choices ch = choicesOf(c);
+  const std::optional<Choices> readable = readableChoices(c, nullptr);
+  if (!readable) {
+    j.key("choices").null();
+    return;
+  }
+  const Choices& ch = *readable;
   const stages::RunRequest& r = ch.standing;
   j.key("choices").beginObject().key("source").value(r.source.empty() ? "auto" : r.source).key("bases").beginArray();
   for (const std::string& b : r.bases.value_or(std::vector<std::string>{})) j.value(b);
@@ -193,7 +209,13 @@ void carrierJson(JsonWriter& j, const carrier::Carrier& c) {
 
 // The processing choices, as text: what a run without options repeats.
 void printChoices(const carrier::Carrier& c) {
-  const Choices ch = choicesOf(c);
+  std::string why;
+  const std::optional<Choices> readable = readableChoices(c, &why);
+  if (!readable) {
+    std::cout << "  processing choices: not readable by this version of Surrogate (" << why << ")\n";
+    return;
+  }
+  const Choices& ch = *readable;
   const stages::RunRequest& r = ch.standing;
   std::cout << "  processing choices (a run without options repeats them):\n"
             << "    image source: " << (r.source.empty() ? "auto" : r.source) << "\n";

@@ -165,6 +165,23 @@ TEST_CASE("info on a carrier lists decisions with what and who and when and why 
   REQUIRE(o.exitCode == 0);
   CHECK_THAT(o.output, Contains("given by hand (x,y,r 339,57,45)\n"));
   CHECK_THAT(o.output, !Contains("339.00000000000006"));
+  CHECK_THAT(o.output, Contains("  processing choices (a run without options repeats them):\n    image source: auto\n"));
+
+  // A carrier whose steps this version cannot read (here a fit of an unknown basis) is still
+  // described, its choices left out with the reason.
+  const std::string basis = "<param name=\"basis\" value=\"hsh2\"/>";
+  REQUIRE(xml.find(basis) != std::string::npos);
+  xml.replace(xml.find(basis), basis.size(), "<param name=\"basis\" value=\"bogus\"/>");
+  const fs::path odd = e2e::freshDir("info-carrier-odd") / "carrier.xml";
+  std::ofstream(odd, std::ios::binary) << xml;
+  const e2e::CommandResult d = info(odd);
+  INFO(d.output);
+  CHECK(d.exitCode == 0);
+  CHECK_THAT(d.output, Contains("processing choices: not readable by this version of Surrogate (") && Contains("bogus"));
+  CHECK_THAT(d.output, Contains("  runs:\n"));
+  const e2e::CommandResult dj = info(odd, " --json");
+  CHECK(dj.exitCode == 0);
+  CHECK_THAT(dj.output, Contains("\"choices\":null"));
 }
 
 TEST_CASE("info on a capture of exports alone calls the exports the originals the pipeline reads") {
