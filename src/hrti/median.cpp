@@ -14,6 +14,21 @@ Image medianImage(const ImageStack& stack, int bandRows, int threads) {
   const int n = stack.size(), w = stack.width(), h = stack.height();
   Image out(w, h, 1);
   out.transfer = stack.transfer();
+  // A stack already in memory (the decoded stacks when they fit --memory) is read where it is:
+  // a band copy of every image would double its memory for nothing.
+  if (const auto* held = dynamic_cast<const MemoryImageStack*>(&stack)) {
+    const std::size_t pixels = std::size_t(w) * h;
+    parallelFor(pixels, 4096, effectiveThreads(threads), [&](std::size_t b, std::size_t e) {
+      std::vector<std::uint16_t> samples(n);
+      for (std::size_t p = b; p < e; ++p) {
+        for (int i = 0; i < n; ++i) samples[i] = held->image(i).pixels[p];
+        const auto mid = samples.begin() + (n - 1) / 2;
+        std::nth_element(samples.begin(), mid, samples.end());
+        out.pixels[p] = *mid;
+      }
+    });
+    return out;
+  }
   bandRows = std::clamp(bandRows, 1, h);
   std::vector<std::uint16_t> band(std::size_t(n) * bandRows * w);
   for (int y0 = 0; y0 < h; y0 += bandRows) {
