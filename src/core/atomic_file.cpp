@@ -55,18 +55,20 @@ void AtomicFile::commit() {
   committed_ = true;
 }
 
+void writeTemporary(const AtomicFile& file, const std::string& content) {
+  std::ofstream f(file.tempPath(), std::ios::binary);
+  f.write(content.data(), static_cast<std::streamsize>(content.size()));
+  f.flush();
+  if (!f) {
+    throw Error(ErrorKind::Internal, file.finalPath().string(), "write",
+                std::string("could not write the file (") + std::strerror(errno) +
+                    "); check free disk space and permissions");
+  }
+}
+
 void writeFileAtomically(const fs::path& path, const std::string& content, const fs::path& tempFolder) {
   AtomicFile out(path, tempFolder.empty() ? path.parent_path() : tempFolder);
-  {
-    std::ofstream f(out.tempPath(), std::ios::binary);
-    f.write(content.data(), static_cast<std::streamsize>(content.size()));
-    f.flush();
-    if (!f) {
-      throw Error(ErrorKind::Internal, path.string(), "write",
-                  std::string("could not write the file (") + std::strerror(errno) +
-                      "); check free disk space and permissions");
-    }
-  }
+  writeTemporary(out, content);
   out.commit();
 }
 

@@ -34,6 +34,10 @@ class AtomicFile {
   bool committed_ = false;
 };
 
+// Writes `content` to `file`'s temporary file (not yet in place: commit() does that). Throws
+// Error naming the final path when the bytes cannot be written.
+void writeTemporary(const AtomicFile& file, const std::string& content);
+
 // Writes `content` to `path` atomically (temporary name, fsync, rename); the temporary file
 // goes in `tempFolder` when one is given (see AtomicFile).
 void writeFileAtomically(const std::filesystem::path& path, const std::string& content,

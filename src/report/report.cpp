@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <map>
 #include <sstream>
 
@@ -505,13 +504,7 @@ Report writeCaptureReport(const std::filesystem::path& capture, const ReportOpti
   // command removes the leftover, stages/run_commit.h).
   std::filesystem::create_directories(capture / capture::kWorkDir);
   AtomicFile page(capture / capture::kReportPath, capture / capture::kWorkDir);
-  {
-    std::ofstream f(page.tempPath(), std::ios::binary);
-    f.write(r.html.data(), static_cast<std::streamsize>(r.html.size()));
-    if (!f.flush())
-      throw Error(ErrorKind::Internal, page.finalPath().string(), "report",
-                  "could not write the report; check free disk space and permissions");
-  }
+  writeTemporary(page, r.html);
   // Fault injection for the test of this guarantee (tests/e2e/test_workflow_e2e.cpp): with
   // SURROGATE_FAULT_INJECTION=report the process dies with the page written but not in place.
   if (const char* fault = std::getenv("SURROGATE_FAULT_INJECTION"); fault && std::string(fault) == "report")
