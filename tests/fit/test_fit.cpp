@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "fit/fit.h"
 #include "fit/pseudo_inverse.h"
+#include "../rows_only_stack.h"
 #include "synthetic.h"
 
 using namespace surrogate;
@@ -183,28 +184,12 @@ TEST_CASE("fit: results are bit-identical for 1 or 2 threads and any memory budg
   }
 }
 
-namespace {
-// The same images behind another ImageStack: the fit copies them into row bands instead of
-// reading a MemoryImageStack in place.
-class CopiedStack : public ImageStack {
- public:
-  explicit CopiedStack(const MemoryImageStack& s) : s_(s) {}
-  int size() const override { return s_.size(); }
-  int width() const override { return s_.width(); }
-  int height() const override { return s_.height(); }
-  int channels() const override { return s_.channels(); }
-  Transfer transfer() const override { return s_.transfer(); }
-  void readRows(int index, int y0, int y1, std::uint16_t* out) const override { s_.readRows(index, y0, y1, out); }
-
- private:
-  const MemoryImageStack& s_;
-};
-}  // namespace
-
 TEST_CASE("fit: images read in place give the model they give copied in bands") {
   const auto lights = test::spreadLights(20);
   const auto stack = test::ptmImages(test::randomPtm(40, 33, 9), lights);
-  const CopiedStack copied(stack);
+  // The same images behind another ImageStack: the fit copies them into row bands instead of
+  // reading the MemoryImageStack in place.
+  const test::RowsOnlyStack copied(stack);
   for (Basis b : {Basis::PtmLrgb, Basis::PtmRgb, Basis::Hsh3}) {
     FitOptions whole;
     whole.basis = b;

@@ -7,29 +7,11 @@
 
 #include <catch2/catch.hpp>
 
+#include "../rows_only_stack.h"
 #include "core/stack.h"
 #include "hrti/median.h"
 
 using namespace surrogate;
-
-namespace {
-
-// The same images, but only through readRows: the path of a stack that is not in memory.
-class RowsOnlyStack : public ImageStack {
- public:
-  explicit RowsOnlyStack(const MemoryImageStack& s) : s_(s) {}
-  int size() const override { return s_.size(); }
-  int width() const override { return s_.width(); }
-  int height() const override { return s_.height(); }
-  int channels() const override { return s_.channels(); }
-  Transfer transfer() const override { return s_.transfer(); }
-  void readRows(int index, int y0, int y1, std::uint16_t* out) const override { s_.readRows(index, y0, y1, out); }
-
- private:
-  const MemoryImageStack& s_;
-};
-
-}  // namespace
 
 TEST_CASE("the median image of a stack in memory and of one read by rows is each pixel's middle sample") {
   const int w = 37, h = 23;
@@ -49,7 +31,7 @@ TEST_CASE("the median image of a stack in memory and of one read by rows is each
       expected.pixels[p] = v[(v.size() - 1) / 2];  // the lower middle for an even count
     }
     const MemoryImageStack held(images);
-    const RowsOnlyStack rows(held);
+    const test::RowsOnlyStack rows(held);  // read by rows, as a spilled stack
     INFO(n << " images");
     CHECK(hrti::medianImage(held, 5, 1).pixels == expected.pixels);
     CHECK(hrti::medianImage(held, 5, 2).pixels == expected.pixels);

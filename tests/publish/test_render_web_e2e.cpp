@@ -4,7 +4,6 @@
 // layouts are refused naming the file; a publish removes what a killed publish left.
 #include <catch2/catch.hpp>
 
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <array>
@@ -13,6 +12,7 @@
 #include <map>
 
 #include "../e2e/e2e_support.h"
+#include "dead_pid.h"
 #include "fitted_capture.h"
 #include "web_reader.h"
 
@@ -54,15 +54,6 @@ void writeText(const fs::path& file, const std::string& text) {
 
 e2e::CommandResult renderLayout(const fs::path& dir) {
   return e2e::surrogate("render " + e2e::quote(dir) + " --light 0,0,1 -o " + e2e::quote(dir.parent_path() / "out.png"));
-}
-
-// A process id that no longer runs: a child that has exited and been reaped.
-pid_t deadPid() {
-  const pid_t child = ::fork();
-  if (child == 0) ::_exit(0);
-  int status = 0;
-  ::waitpid(child, &status, 0);
-  return child;
 }
 
 }  // namespace
@@ -248,7 +239,7 @@ TEST_CASE("surrogate render refuses absurd sizes before decoding and layouts it 
 
 TEST_CASE("surrogate publish removes the partial folder a dead publish left and keeps a live one") {
   const fs::path parent = e2e::freshDir("leftovers");
-  const pid_t dead = deadPid();
+  const pid_t dead = publishtest::deadPid();
   const fs::path leftover = parent / (".web.partial-" + std::to_string(dead) + "-Ab12Cd");
   const fs::path otherName = parent / (".old.partial-" + std::to_string(dead) + "-Zz99aa");
   const fs::path live = parent / (".web.partial-" + std::to_string(::getpid()) + "-Ab12Cd");

@@ -5,7 +5,6 @@
 // removes only a dead writer's own folders.
 #include <catch2/catch.hpp>
 
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <array>
@@ -18,6 +17,7 @@
 #include "publish/interrupted_publish.h"
 #include "publish/web_layout.h"
 #include "publish/web_reader.h"
+#include "dead_pid.h"
 #include "synthetic_models.h"
 #include "web_reader.h"
 
@@ -77,14 +77,6 @@ std::string replaced(std::string text, const std::string& from, const std::strin
   const std::size_t at = text.find(from);
   REQUIRE(at != std::string::npos);
   return text.replace(at, from.size(), to);
-}
-
-pid_t deadPid() {
-  const pid_t child = ::fork();
-  if (child == 0) ::_exit(0);
-  int status = 0;
-  ::waitpid(child, &status, 0);
-  return child;
 }
 
 }  // namespace
@@ -177,7 +169,7 @@ TEST_CASE("a layout with a scale and bias per colour is re-quantised and renders
 
 TEST_CASE("removeInterruptedPublishes removes only the folders of a writer that no longer runs") {
   const fs::path parent = freshDir("leftovers");
-  const std::string dead = std::to_string(deadPid());
+  const std::string dead = std::to_string(publishtest::deadPid());
   const std::string alive = std::to_string(::getppid());
   const fs::path gone = parent / (".web.partial-" + dead + "-Ab12Cd");
   const fs::path running = parent / (".web.partial-" + alive + "-Ab12Cd");
