@@ -1,23 +1,65 @@
 #include "core/image.h"
 
+#include <array>
+
 namespace surrogate {
+
+namespace {
+
+// Weights 0.2126, 0.7152, 0.0722 in 1/65536 units (they sum to 65536 exactly), so a sum of
+// three weighted 16-bit samples plus the rounding half stays below 2^32.
+constexpr std::uint32_t kWr = 13933, kWg = 46871, kWb = 4732;
+
+std::uint16_t weighted(std::uint32_t r, std::uint32_t g, std::uint32_t b) {
+  return static_cast<std::uint16_t>((kWr * r + kWg * g + kWb * b + 32768u) >> 16);
+}
+
+// Each channel's weighted term for every 8-bit sample (widened by 257): one table look-up a
+// sample instead of a multiplication, the same sums.
+struct Weighted8 {
+  std::array<std::uint32_t, 256> r, g, b;
+  Weighted8() {
+    for (std::uint32_t v = 0; v < 256; ++v) {
+      r[v] = kWr * v * 257;
+      g[v] = kWg * v * 257;
+      b[v] = kWb * v * 257;
+    }
+  }
+};
+
+}  // namespace
+
+Image widen(const Image8& narrow) {
+  Image out(narrow.width, narrow.height, narrow.channels);
+  out.bitsPerSample = 8;
+  out.transfer = narrow.transfer;
+  widenSamples(narrow.pixels.data(), narrow.pixels.size(), out.pixels.data());
+  return out;
+}
+
+void widenSamples(const std::uint8_t* in, std::size_t count, std::uint16_t* out) {
+  for (std::size_t k = 0; k < count; ++k) out[k] = static_cast<std::uint16_t>(in[k] * 257);
+}
+
+void luminanceOfPixels(const std::uint16_t* rgb, std::size_t count, std::uint16_t* out) {
+  for (std::size_t i = 0; i < count; ++i, rgb += 3) out[i] = weighted(rgb[0], rgb[1], rgb[2]);
+}
+
+void luminanceOfPixels(const std::uint8_t* rgb, std::size_t count, std::uint16_t* out) {
+  static const Weighted8 table;
+  for (std::size_t i = 0; i < count; ++i, rgb += 3)
+    out[i] = static_cast<std::uint16_t>((table.r[rgb[0]] + table.g[rgb[1]] + table.b[rgb[2]] + 32768u) >> 16);
+}
 
 Image luminance(const Image& in) {
   Image out(in.width, in.height, 1);
   out.bitsPerSample = in.bitsPerSample;
   out.transfer = in.transfer;
-  const std::size_t n = static_cast<std::size_t>(in.width) * in.height;
   if (in.channels == 1) {
     out.pixels = in.pixels;
     return out;
   }
-  // Weights 0.2126, 0.7152, 0.0722 in 1/65536 units (they sum to 65536 exactly).
-  const std::uint32_t wr = 13933, wg = 46871, wb = 4732;
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::uint16_t* p = &in.pixels[i * in.channels];
-    const std::uint64_t v = wr * p[0] + wg * p[1] + wb * p[2];
-    out.pixels[i] = static_cast<std::uint16_t>((v + 32768) >> 16);
-  }
+  luminanceOfPixels(in.pixels.data(), static_cast<std::size_t>(in.width) * in.height, out.pixels.data());
   return out;
 }
 

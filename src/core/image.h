@@ -37,8 +37,31 @@ struct Image {
   std::uint16_t& at(int x, int y, int c = 0) { return pixels[index(x, y, c)]; }
 };
 
+// The samples of an 8-bit source as its decoder gave them, one byte each: what the pipeline
+// keeps of a JPEG (and of an 8-bit PNG or TIFF), half the memory of the same image as an Image.
+// Same layout as Image::pixels.
+struct Image8 {
+  int width = 0;
+  int height = 0;
+  int channels = 0;  // 1 or 3
+  Transfer transfer = Transfer::Srgb;
+  std::vector<std::uint8_t> pixels;
+
+  Image8() = default;
+  Image8(int w, int h, int c) : width(w), height(h), channels(c),
+         pixels(static_cast<std::size_t>(w) * h * c, 0) {}
+};
+
+// The Image of an 8-bit source: every sample * 257, bitsPerSample 8.
+Image widen(const Image8& narrow);
+// `count` 8-bit samples widened by 257 into `out` (which must not overlap `in`).
+void widenSamples(const std::uint8_t* in, std::size_t count, std::uint16_t* out);
+
 // Rec. 709 luminance of an RGB image (or a copy of a grey one), same 16-bit encoding,
 // rounded to nearest. Deterministic: integer arithmetic only.
 Image luminance(const Image& rgb);
+// The same for `count` RGB pixels, 16-bit or 8-bit (taken as widened by 257).
+void luminanceOfPixels(const std::uint16_t* rgb, std::size_t count, std::uint16_t* out);
+void luminanceOfPixels(const std::uint8_t* rgb, std::size_t count, std::uint16_t* out);
 
 }  // namespace surrogate

@@ -9,9 +9,10 @@
 //     ... per-pixel work on the band ...
 //   }
 //
-// Implementations: MemoryImageStack (tests, and decoded images that fit the memory budget) and
-// the pipeline's SpillStack (images decoded once and spilled to a temporary file when they do
-// not). readRows must be safe to call from several threads at once.
+// Implementations: MemoryImageStack (16-bit images in memory: tests, models re-rendered by the
+// audit), the pipeline's DecodedStack (the decoded photographs at their source's depth, in
+// memory or in a temporary file) and the views over it in stages/stack_views.h. readRows must
+// be safe to call from several threads at once.
 #pragma once
 
 #include <cstdint>

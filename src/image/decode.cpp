@@ -89,11 +89,30 @@ ImageProbe probeImage(const std::filesystem::path& path) {
   return probe;
 }
 
+const void* DecodedPixels::data() const {
+  return isNarrow() ? static_cast<const void*>(narrow.pixels.data()) : static_cast<const void*>(wide.pixels.data());
+}
+
+std::size_t DecodedPixels::bytes() const {
+  return isNarrow() ? narrow.pixels.size() : wide.pixels.size() * sizeof(std::uint16_t);
+}
+
+Image DecodedPixels::widened() const { return isNarrow() ? widen(narrow) : wide; }
+
+DecodedPixels decodePixels(const std::filesystem::path& path, const RawDecodeSettings& settings,
+                           DecodeReport* report, const DecodeOptions& options) {
+  const SourceKind kind = classifyImageFile(path);
+  if (kind != SourceKind::CameraRaw) return decodeExport(path, kind, report, options);
+  DecodedPixels out;
+  out.wide = decodeCameraRaw(path, settings, report, options);
+  return out;
+}
+
 Image decodeImage(const std::filesystem::path& path, const RawDecodeSettings& settings,
                   DecodeReport* report, const DecodeOptions& options) {
-  const SourceKind kind = classifyImageFile(path);
-  return kind == SourceKind::CameraRaw ? decodeCameraRaw(path, settings, report, options)
-                                       : decodeExport(path, kind, report, options);
+  DecodedPixels pixels = decodePixels(path, settings, report, options);
+  if (pixels.isNarrow()) return widen(pixels.narrow);
+  return std::move(pixels.wide);
 }
 
 }  // namespace surrogate::image

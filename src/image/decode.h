@@ -98,6 +98,31 @@ class DamagedImageError : public Error {
   std::vector<std::string> warnings_;
 };
 
+// An image at its source's depth, as decodePixels gives it: 8-bit sources (JPEG, 8-bit PNG and
+// TIFF) one byte a sample in `narrow`, camera raw and 16-bit sources in `wide`; the other is
+// empty. The pipeline keeps images this way: a JPEG takes half the memory of its Image.
+struct DecodedPixels {
+  Image8 narrow;
+  Image wide;
+
+  bool isNarrow() const { return !narrow.pixels.empty(); }
+  int width() const { return isNarrow() ? narrow.width : wide.width; }
+  int height() const { return isNarrow() ? narrow.height : wide.height; }
+  int channels() const { return isNarrow() ? narrow.channels : wide.channels; }
+  int bitsPerSample() const { return isNarrow() ? 8 : wide.bitsPerSample; }
+  int bytesPerSample() const { return isNarrow() ? 1 : 2; }
+  Transfer transfer() const { return isNarrow() ? narrow.transfer : wide.transfer; }
+  // The samples' bytes, as stored in memory (16-bit samples in the machine's byte order).
+  const void* data() const;
+  std::size_t bytes() const;
+  // As decodeImage returns it: `wide`, or `narrow` widened by 257.
+  Image widened() const;
+};
+
+// Decodes the whole image, at the source's depth (see DecodedPixels); otherwise as decodeImage.
+DecodedPixels decodePixels(const std::filesystem::path& path, const RawDecodeSettings& settings,
+                           DecodeReport* report = nullptr, const DecodeOptions& options = {});
+
 // Decodes the whole image. Camera raw: linear 16-bit RGB (or grey for monochrome sensors).
 // Others: as stored (8-bit widened by 257, bitsPerSample kept; grey stays one channel; alpha
 // dropped; the EXIF orientation tag is not applied), the same values OpenCV's imread gave

@@ -67,9 +67,10 @@ ImageProbe checkExportStructure(const fs::path& path, SourceKind kind) {
   return checkStructure(path, kind, nullptr);
 }
 
-Image decodeExport(const fs::path& path, SourceKind kind, DecodeReport* report, const DecodeOptions& options) {
+DecodedPixels decodeExport(const fs::path& path, SourceKind kind, DecodeReport* report,
+                           const DecodeOptions& options) {
   DecoderMessages messages(libraryOf(kind));
-  Image im;
+  DecodedPixels im;
   if (kind == SourceKind::Tiff) {
     const ImageProbe probe = checkStructure(path, kind, nullptr);
     checkDeclaredSize(path, static_cast<std::uint64_t>(probe.width), static_cast<std::uint64_t>(probe.height), options);

@@ -4,7 +4,8 @@
 // checked first by walking the format's own structure).
 //
 //   structure check -> libjpeg / libpng / libtiff, every warning through the library's own
-//   hook (DecoderMessages) -> Image (8-bit widened by 257, Transfer::Srgb)
+//   hook (DecoderMessages) -> DecodedPixels (8-bit samples kept as bytes, 16-bit as Image;
+//   Transfer::Srgb)
 //
 // The values are those OpenCV's imread gave (IMREAD_UNCHANGED | IMREAD_ANYDEPTH |
 // IMREAD_IGNORE_ORIENTATION), which decoded these files before; OpenCV hides the libraries'
@@ -24,15 +25,16 @@ namespace surrogate::image {
 // size the structure declares.
 ImageProbe checkExportStructure(const std::filesystem::path& path, SourceKind kind);
 
-Image decodeExport(const std::filesystem::path& path, SourceKind kind, DecodeReport* report,
-                   const DecodeOptions& options);
+DecodedPixels decodeExport(const std::filesystem::path& path, SourceKind kind, DecodeReport* report,
+                           const DecodeOptions& options);
 
 // The decoders, on a file whose structure was checked (JPEG and PNG: its bytes, read once).
-// Messages are collected into `messages`; the caller settles them.
-Image decodeJpeg(const std::filesystem::path& path, const std::uint8_t* data, std::size_t size,
-                 const DecodeOptions& options, DecoderMessages& messages);
-Image decodePng(const std::filesystem::path& path, const std::uint8_t* data, std::size_t size,
-                const DecodeOptions& options, DecoderMessages& messages);
-Image decodeTiff(const std::filesystem::path& path, const DecodeOptions& options, DecoderMessages& messages);
+// Messages are collected into `messages`; the caller settles them. A decode stopped by a
+// warning (refused by the caller) returns empty pixels.
+DecodedPixels decodeJpeg(const std::filesystem::path& path, const std::uint8_t* data, std::size_t size,
+                         const DecodeOptions& options, DecoderMessages& messages);
+DecodedPixels decodePng(const std::filesystem::path& path, const std::uint8_t* data, std::size_t size,
+                        const DecodeOptions& options, DecoderMessages& messages);
+DecodedPixels decodeTiff(const std::filesystem::path& path, const DecodeOptions& options, DecoderMessages& messages);
 
 }  // namespace surrogate::image

@@ -122,44 +122,43 @@ std::unique_ptr<Job, JobCloser> newJob(DecoderMessages& messages, bool stopOnWar
 
 }  // namespace
 
-Image decodeJpeg(const fs::path& path, const std::uint8_t* data, std::size_t size,
-                 const DecodeOptions& options, DecoderMessages& messages) {
+DecodedPixels decodeJpeg(const fs::path& path, const std::uint8_t* data, std::size_t size,
+                         const DecodeOptions& options, DecoderMessages& messages) {
   std::unique_ptr<Job, JobCloser> job = newJob(messages, !options.acceptDamage);
 
   int status = startJob(job.get(), data, size);
   if (status == 0) fatal(path, *job);
-  if (status == 2) return Image();  // refused by the caller (settle)
+  if (status == 2) return {};  // refused by the caller (settle)
   jpeg_decompress_struct& c = job->cinfo;
   checkDeclaredSize(path, c.image_width, c.image_height, options);
   // As OpenCV: grey stays grey, CMYK/YCCK comes out as CMYK (converted below), anything else RGB.
   const int components = c.num_components == 1 ? 1 : c.num_components == 4 ? 4 : 3;
   c.out_color_space = components == 1 ? JCS_GRAYSCALE : components == 4 ? JCS_CMYK : JCS_RGB;
-  const std::size_t stride = static_cast<std::size_t>(c.image_width) * components;
-  std::vector<std::uint8_t> pixels(stride * c.image_height);
-  status = readPixels(job.get(), pixels.data(), stride);
+  const int w = static_cast<int>(c.image_width), h = static_cast<int>(c.image_height);
+  DecodedPixels out;
+  out.narrow = Image8(w, h, components == 1 ? 1 : 3);
+  out.narrow.transfer = Transfer::Srgb;
+  // Grey and RGB are decoded straight into the image; CMYK into a buffer of its own first.
+  std::vector<std::uint8_t> cmyk(components == 4 ? std::size_t(w) * h * 4 : 0);
+  std::uint8_t* target = components == 4 ? cmyk.data() : out.narrow.pixels.data();
+  status = readPixels(job.get(), target, static_cast<std::size_t>(w) * components);
   if (status == 0) fatal(path, *job);
-  if (status == 2) return Image();
+  if (status == 2) return {};
   if (c.output_width != c.image_width || c.output_height != c.image_height ||
       c.output_components != components)
     throw Error(ErrorKind::Internal, path.string(), kStep, "libjpeg gave another layout than asked for");
-
-  const int w = static_cast<int>(c.image_width), h = static_cast<int>(c.image_height);
-  Image im(w, h, components == 1 ? 1 : 3);
-  im.bitsPerSample = 8;
-  im.transfer = Transfer::Srgb;
-  const std::size_t n = static_cast<std::size_t>(w) * h;
   if (components == 4) {
     // OpenCV's icvCvt_CMYK2BGR_8u_C4C3R, to the same values.
+    std::uint8_t* rgb = out.narrow.pixels.data();
+    const std::size_t n = static_cast<std::size_t>(w) * h;
     for (std::size_t i = 0; i < n; ++i) {
-      const int cy = pixels[4 * i], m = pixels[4 * i + 1], y = pixels[4 * i + 2], k = pixels[4 * i + 3];
-      im.pixels[3 * i] = static_cast<std::uint16_t>(static_cast<std::uint8_t>(k - ((255 - cy) * k >> 8)) * 257);
-      im.pixels[3 * i + 1] = static_cast<std::uint16_t>(static_cast<std::uint8_t>(k - ((255 - m) * k >> 8)) * 257);
-      im.pixels[3 * i + 2] = static_cast<std::uint16_t>(static_cast<std::uint8_t>(k - ((255 - y) * k >> 8)) * 257);
+      const int cy = cmyk[4 * i], m = cmyk[4 * i + 1], y = cmyk[4 * i + 2], k = cmyk[4 * i + 3];
+      rgb[3 * i] = static_cast<std::uint8_t>(k - ((255 - cy) * k >> 8));
+      rgb[3 * i + 1] = static_cast<std::uint8_t>(k - ((255 - m) * k >> 8));
+      rgb[3 * i + 2] = static_cast<std::uint8_t>(k - ((255 - y) * k >> 8));
     }
-  } else {
-    for (std::size_t i = 0; i < pixels.size(); ++i) im.pixels[i] = static_cast<std::uint16_t>(pixels[i] * 257);
   }
-  return im;
+  return out;
 }
 
 JpegSamples decodeJpegSamples(const std::uint8_t* data, std::size_t size, std::uint64_t maxPixels) {

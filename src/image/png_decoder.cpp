@@ -119,8 +119,8 @@ int readPixels(Job* job, png_bytep* rows) {
 
 }  // namespace
 
-Image decodePng(const fs::path& path, const std::uint8_t* data, std::size_t size,
-                const DecodeOptions& options, DecoderMessages& messages) {
+DecodedPixels decodePng(const fs::path& path, const std::uint8_t* data, std::size_t size,
+                        const DecodeOptions& options, DecoderMessages& messages) {
   auto job = std::make_unique<Job>();
   job->sink.fatal[0] = '\0';
   job->sink.messages = &messages;
@@ -134,7 +134,7 @@ Image decodePng(const fs::path& path, const std::uint8_t* data, std::size_t size
 
   int status = readHeader(job.get());
   if (status == 0) fatal(path, *job);
-  if (status == 2) return Image();
+  if (status == 2) return {};
   checkDeclaredSize(path, job->width, job->height, options);
   if (job->bitDepth > 8 && job->bitDepth != 16)  // libpng refuses these itself; a guard
     throwInputError(path.string(), kStep, "unsupported PNG bit depth " + std::to_string(job->bitDepth));
@@ -156,25 +156,34 @@ Image decodePng(const fs::path& path, const std::uint8_t* data, std::size_t size
   for (png_uint_32 y = 0; y < job->height; ++y) rows[y] = pixels.data() + y * stride;
   status = readPixels(job.get(), rows.data());
   if (status == 0) fatal(path, *job);
-  if (status == 2) return Image();
+  if (status == 2) return {};
   if (png_get_rowbytes(job->png, job->info) != stride)
     throw Error(ErrorKind::Internal, path.string(), kStep, "libpng gave another row layout than asked for");
 
   const int w = static_cast<int>(job->width), h = static_cast<int>(job->height);
   const int kept = job->channels == 4 ? 3 : job->channels;
-  Image im(w, h, kept);
-  im.bitsPerSample = job->bitDepth == 16 ? 16 : 8;
-  im.transfer = Transfer::Srgb;
   const std::size_t n = static_cast<std::size_t>(w) * h;
-  for (std::size_t i = 0; i < n; ++i)
-    for (int c = 0; c < kept; ++c) {
-      const std::size_t s = i * job->channels + c;
-      std::uint16_t v;
-      if (bytesPerSample == 2) std::memcpy(&v, pixels.data() + 2 * s, 2);
-      else v = static_cast<std::uint16_t>(pixels[s] * 257);
-      im.pixels[i * kept + c] = v;
+  DecodedPixels out;
+  if (bytesPerSample == 1) {
+    if (kept == job->channels) {
+      out.narrow.pixels = std::move(pixels);  // already the layout: no copy
+    } else {
+      out.narrow.pixels.resize(n * kept);
+      for (std::size_t i = 0; i < n; ++i)
+        for (int c = 0; c < kept; ++c) out.narrow.pixels[i * kept + c] = pixels[i * job->channels + c];
     }
-  return im;
+    out.narrow.width = w;
+    out.narrow.height = h;
+    out.narrow.channels = kept;
+    out.narrow.transfer = Transfer::Srgb;
+    return out;
+  }
+  out.wide = Image(w, h, kept);
+  out.wide.bitsPerSample = 16;
+  out.wide.transfer = Transfer::Srgb;
+  for (std::size_t i = 0; i < n; ++i)
+    for (int c = 0; c < kept; ++c) std::memcpy(&out.wide.pixels[i * kept + c], pixels.data() + 2 * (i * job->channels + c), 2);
+  return out;
 }
 
 std::string libpngVersion() { return png_get_libpng_ver(nullptr); }

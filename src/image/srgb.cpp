@@ -5,15 +5,12 @@
 #include <cstdint>
 #include <vector>
 
-
 namespace surrogate::image {
-
-namespace {
 
 // Built once (thread-safe static initialisation). std::pow on the same doubles gives the same
 // result on a given platform, and rounding to 16 bits absorbs the last-ulp differences between
 // libm versions for all but values sitting exactly on a rounding boundary.
-const std::vector<std::uint16_t>& encodingTable() {
+const std::vector<std::uint16_t>& srgbEncodingTable() {
   static const std::vector<std::uint16_t> table = [] {
     std::vector<std::uint16_t> t(65536);
     for (int i = 0; i < 65536; ++i) {
@@ -26,10 +23,8 @@ const std::vector<std::uint16_t>& encodingTable() {
   return table;
 }
 
-}  // namespace
-
 Image srgbEncode(const Image& linear) {
-  const std::vector<std::uint16_t>& table = encodingTable();
+  const std::vector<std::uint16_t>& table = srgbEncodingTable();
   Image out = linear;
   out.transfer = Transfer::Srgb;
   for (std::uint16_t& v : out.pixels) v = table[v];

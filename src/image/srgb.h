@@ -8,6 +8,9 @@
 //   Image display = srgbEncode(decodeImage(raw, settings));   // Transfer::Linear -> Srgb
 #pragma once
 
+#include <cstdint>
+#include <vector>
+
 #include "core/image.h"
 
 namespace surrogate::image {
@@ -16,5 +19,7 @@ namespace surrogate::image {
 // The values are taken as linear whatever `transfer` says (callers build images, such as a
 // median of linear photographs, without always setting it); the result is Transfer::Srgb.
 Image srgbEncode(const Image& linear);
+// The table srgbEncode applies: entry v is the sRGB encoding of linear value v (65536 entries).
+const std::vector<std::uint16_t>& srgbEncodingTable();
 
 }  // namespace surrogate::image

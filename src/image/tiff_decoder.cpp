@@ -219,9 +219,24 @@ Image readRgba(const fs::path& path, TIFF* tif, int w, int h, bool grey, bool st
   return im;
 }
 
+// 8-bit images back to their bytes (the readers above widen as they go: the samples are
+// multiples of 257, so the division is exact); 16-bit ones as they are.
+DecodedPixels atSourceDepth(Image im) {
+  DecodedPixels out;
+  if (im.bitsPerSample != 8) {
+    out.wide = std::move(im);
+    return out;
+  }
+  out.narrow = Image8(im.width, im.height, im.channels);
+  out.narrow.transfer = im.transfer;
+  for (std::size_t i = 0; i < im.pixels.size(); ++i)
+    out.narrow.pixels[i] = static_cast<std::uint8_t>(im.pixels[i] / 257);
+  return out;
+}
+
 }  // namespace
 
-Image decodeTiff(const fs::path& path, const DecodeOptions& options, DecoderMessages& messages) {
+DecodedPixels decodeTiff(const fs::path& path, const DecodeOptions& options, DecoderMessages& messages) {
   Sink sink;
   sink.messages = &messages;
   ThreadSinkScope scope(&sink);
@@ -235,7 +250,7 @@ Image decodeTiff(const fs::path& path, const DecodeOptions& options, DecoderMess
                     "libtiff cannot read it" + (sink.fatal.empty() ? std::string() : ": " + sink.fatal) +
                         "; the file is damaged: copy it again");
   const bool stop = !options.acceptDamage;
-  if (stop && messages.count() > 0) return Image();  // a warning reading the directory: refused
+  if (stop && messages.count() > 0) return {};  // a warning reading the directory: refused
 
   const auto w = field<std::uint32_t>(tif.get(), TIFFTAG_IMAGEWIDTH, 0);
   const auto h = field<std::uint32_t>(tif.get(), TIFFTAG_IMAGELENGTH, 0);
@@ -257,7 +272,7 @@ Image decodeTiff(const fs::path& path, const DecodeOptions& options, DecoderMess
   Image im = stored ? readSamples(path, tif.get(), static_cast<int>(w), static_cast<int>(h), spp, bits,
                                   photometric == PHOTOMETRIC_RGB ? 3 : 1, sink, stop)
                     : readRgba(path, tif.get(), static_cast<int>(w), static_cast<int>(h), grey, stop);
-  return im;
+  return atSourceDepth(std::move(im));
 }
 
 std::string libtiffVersion() {

@@ -9,7 +9,9 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "fit/basis.h"
-#include "pipeline/spill_stack.h"
+#include "image/srgb.h"
+#include "pipeline/decoded_stack.h"
+#include "stages/stack_views.h"
 
 namespace surrogate::stages {
 
@@ -17,24 +19,35 @@ namespace {
 
 constexpr const char* kStep = "image decode";
 
-std::string pixelDigest(const Image& im) {
+std::string pixelDigest(const image::DecodedPixels& pixels) {
   MultiDigest d({DigestAlgorithm::Sha256});
-  d.update(im.pixels.data(), im.pixels.size() * sizeof(std::uint16_t));
+  d.update(pixels.data(), pixels.bytes());
   return d.hex(DigestAlgorithm::Sha256);
 }
 
-Image toRgb(const Image& im) {
-  if (im.channels == 3) return im;
-  Image rgb(im.width, im.height, 3);
-  rgb.bitsPerSample = im.bitsPerSample;
-  rgb.transfer = im.transfer;
-  for (std::size_t i = 0; i < im.pixels.size(); ++i)
-    rgb.pixels[3 * i] = rgb.pixels[3 * i + 1] = rgb.pixels[3 * i + 2] = im.pixels[i];
-  return rgb;
+pipeline::DecodedStack::Format formatOf(const image::DecodedPixels& p) {
+  return {p.width(), p.height(), p.channels(), p.bytesPerSample(), p.transfer()};
 }
 
-// The two stacks, 16-bit RGB and 16-bit luminance, per pixel of one image.
-constexpr std::uint64_t kStackBytesPerPixel = (3 + 1) * sizeof(std::uint16_t);
+std::string describe(const pipeline::DecodedStack::Format& f) {
+  return std::to_string(f.width) + "x" + std::to_string(f.height) + " pixels, " +
+         (f.channels == 1 ? "grey" : "RGB") + ", " + std::to_string(8 * f.bytesPerSample) + "-bit, " +
+         (f.transfer == Transfer::Linear ? "linear" : "sRGB");
+}
+
+bool sameFormat(const pipeline::DecodedStack::Format& a, const pipeline::DecodedStack::Format& b) {
+  return a.width == b.width && a.height == b.height && a.channels == b.channels &&
+         a.bytesPerSample == b.bytesPerSample && a.transfer == b.transfer;
+}
+
+// The fitters' view (display-referred RGB) and the detectors' (luminance) of the stack.
+std::shared_ptr<ImageStack> rgbView(const std::shared_ptr<pipeline::DecodedStack>& decoded) {
+  std::shared_ptr<ImageStack> rgb = decoded;
+  if (decoded->channels() == 1) rgb = std::make_shared<GreyAsRgbStack>(rgb);
+  if (decoded->transfer() == Transfer::Srgb) return rgb;
+  const TableStack::Table& encode = image::srgbEncodingTable();
+  return std::make_shared<TableStack>(rgb, std::array<TableStack::Table, 3>{encode, encode, encode}, Transfer::Srgb);
+}
 
 // How many images to decode at once: the threads, but no more than `budget` (what --memory
 // leaves besides stacks held in memory) allows.
@@ -65,8 +78,7 @@ void checkResources(const std::vector<std::filesystem::path>& files, const image
   const std::uint64_t pixels = std::uint64_t(first.width) * std::uint64_t(first.height);
   const std::uint64_t resident = residentBytesPerImage(pixels) + pixels * laterBytesPerPixel;
   const std::string declared = std::to_string(first.width) + "x" + std::to_string(first.height);
-  const std::uint64_t stackBytes = pipeline::spillBytes(static_cast<int>(files.size()), first.width, first.height, 3) +
-                                   pipeline::spillBytes(static_cast<int>(files.size()), first.width, first.height, 1);
+  const std::uint64_t stackBytes = std::uint64_t(files.size()) * pixels * storedBytesPerPixel(first.kind);
   if (resident > run.memoryBudget) {
     const std::uint64_t gib = (resident + (1ull << 30) - 1) >> 30;
     throw Error(ErrorKind::Usage, "--memory " + size(run.memoryBudget), kStep,
@@ -95,10 +107,13 @@ void checkResources(const std::vector<std::filesystem::path>& files, const image
 
 std::uint64_t residentBytesPerImage(std::uint64_t pixels) { return pixels * kResidentBytesPerPixel; }
 
-bool stacksFitInMemory(int count, std::uint64_t pixels, std::uint64_t budget, std::uint64_t laterBytesPerPixel) {
-  const std::uint64_t stacks = static_cast<std::uint64_t>(std::max(count, 0)) * pixels * kStackBytesPerPixel;
+std::uint64_t storedBytesPerPixel(image::SourceKind kind) { return kind == image::SourceKind::Jpeg ? 3 : 6; }
+
+bool stackFitsInMemory(int count, std::uint64_t pixels, std::uint64_t bytesPerPixel, std::uint64_t budget,
+                       std::uint64_t laterBytesPerPixel) {
+  const std::uint64_t stack = static_cast<std::uint64_t>(std::max(count, 0)) * pixels * bytesPerPixel;
   const std::uint64_t besides = residentBytesPerImage(pixels) + pixels * laterBytesPerPixel;
-  return besides < budget && stacks <= (budget - besides) / 2;
+  return besides < budget && stack <= (budget - besides) / 2;
 }
 
 std::uint64_t modelBytesPerPixel(const std::string& basis) {
@@ -119,19 +134,13 @@ DecodedStacks decodeImages(const std::vector<std::filesystem::path>& files,
   // declare are known to fit in memory and on disk.
   const image::ImageProbe first = image::probeImage(files.front());
   const std::uint64_t declared = std::uint64_t(first.width) * std::uint64_t(first.height);
-  const bool inMemory = stacksFitInMemory(n, declared, run.memoryBudget, laterBytesPerPixel);
+  const bool inMemory =
+      stackFitsInMemory(n, declared, storedBytesPerPixel(first.kind), run.memoryBudget, laterBytesPerPixel);
   checkResources(files, first, run, laterBytesPerPixel, !inMemory);
 
   DecodedStacks out;
   out.images.resize(n);
-  // In memory: the images as decoded, moved into MemoryImageStacks at the end. Spilled: the
-  // temporary files, created when the first image gives the size.
-  std::vector<Image> rgbImages(inMemory ? n : 0), lumImages(inMemory ? n : 0);
-  std::shared_ptr<pipeline::SpillStack> rgb, lum;
-  struct Shape {
-    int width = 0, height = 0;
-    Transfer transfer = Transfer::Srgb;
-  } shape;
+  std::shared_ptr<pipeline::DecodedStack> stack;  // made when the first image gives its format
   std::atomic<int> done{0};
 
   auto decodeOne = [&](int i) {
@@ -139,53 +148,38 @@ DecodedStacks decodeImages(const std::vector<std::filesystem::path>& files,
     image::DecodeOptions options;
     options.acceptDamage = i < static_cast<int>(acceptDamage.size()) && acceptDamage[i];
     options.maxPixels = declared;  // all images are alike: a larger header is damaged
-    const Image im = image::decodeImage(files[i], settings, &d.report, options);
-    d.width = im.width;
-    d.height = im.height;
-    d.channels = im.channels;
-    d.bitsPerSample = im.bitsPerSample;
-    d.transfer = im.transfer;
-    d.pixelSha256 = pixelDigest(im);
-    if (i == 0) {  // decoded alone, before the others start
-      shape = {im.width, im.height, im.transfer};
-      if (!inMemory) {
-        rgb = std::make_shared<pipeline::SpillStack>(n, im.width, im.height, 3, Transfer::Srgb);
-        lum = std::make_shared<pipeline::SpillStack>(n, im.width, im.height, 1, im.transfer);
-      }
-    }
-    if (im.width != shape.width || im.height != shape.height || im.transfer != shape.transfer) {
+    image::DecodedPixels pixels = image::decodePixels(files[i], settings, &d.report, options);
+    d.width = pixels.width();
+    d.height = pixels.height();
+    d.channels = pixels.channels();
+    d.bitsPerSample = pixels.bitsPerSample();
+    d.transfer = pixels.transfer();
+    d.pixelSha256 = pixelDigest(pixels);
+    const pipeline::DecodedStack::Format format = formatOf(pixels);
+    if (i == 0)  // decoded alone, before the others start
+      stack = std::make_shared<pipeline::DecodedStack>(
+          n, format, inMemory ? pipeline::DecodedStack::Placement::Memory : pipeline::DecodedStack::Placement::TemporaryFile);
+    if (!sameFormat(format, stack->format())) {
       throwInputError(files[i].string(), kStep,
-                      "decodes to " + std::to_string(im.width) + "x" + std::to_string(im.height) +
-                          " pixels of another kind than the first image (" +
-                          std::to_string(shape.width) + "x" + std::to_string(shape.height) +
-                          "); all images of a capture must be alike");
+                      "decodes to " + describe(format) + ", another kind of image than the first (" +
+                          describe(stack->format()) + "); all images of a capture must be alike: "
+                          "export them all the same way");
     }
-    Image l = luminance(im);
-    Image c = im.transfer == Transfer::Linear ? image::srgbEncode(toRgb(im)) : toRgb(im);
-    if (inMemory) {
-      lumImages[i] = std::move(l);
-      rgbImages[i] = std::move(c);
-    } else {
-      lum->write(i, l);
-      rgb->write(i, c);
-    }
+    if (pixels.isNarrow()) stack->store(i, std::move(pixels.narrow.pixels));
+    else stack->store(i, std::move(pixels.wide.pixels));
     if (run.progress) run.progress("Decoding images", double(++done) / n);
   };
 
-  decodeOne(0);  // fixes the stacks' size
-  const std::uint64_t held = inMemory ? n * declared * kStackBytesPerPixel : 0;
+  decodeOne(0);  // fixes the stack's format
+  const std::uint64_t held = inMemory ? pipeline::DecodedStack::bytesFor(n, stack->format()) : 0;
   const int workers = concurrentDecodes(run.threads, run.memoryBudget - held, declared);
   parallelFor(static_cast<std::size_t>(n - 1), 1, workers, [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) decodeOne(static_cast<int>(i) + 1);
   });
-  if (inMemory) {
-    out.rgb = std::make_shared<MemoryImageStack>(std::move(rgbImages));
-    out.luminance = std::make_shared<MemoryImageStack>(std::move(lumImages));
-    out.bytesInMemory = held;
-  } else {
-    out.rgb = rgb;
-    out.luminance = lum;
-  }
+  out.decoded = stack;
+  out.rgb = rgbView(stack);
+  out.luminance = std::make_shared<LuminanceStack>(stack);
+  out.bytesInMemory = held;
   return out;
 }
 

@@ -1,21 +1,25 @@
-// Decoding a list of images once into the two streaming stacks the pipeline reads:
-//   rgb        display-referred (sRGB-encoded) 16-bit RGB: what the fitters read
+// Decoding a list of images once into the stack the pipeline reads, with two views of it:
+//   rgb        display-referred (sRGB-encoded) RGB, as 16-bit samples: what the fitters read
 //   luminance  Rec. 709 luminance of the decoded values (linear for camera raw): what sphere
 //              and highlight detection read
-// Images are decoded in parallel, as many at once as the threads and the memory budget allow;
-// the stacks and the per-image reports are in input order whatever the thread count.
+// Each image is kept once, at its source's depth (pipeline::DecodedStack: a JPEG one byte a
+// sample); the views compute their rows from it as they are read (stages/stack_views.h), with
+// the values 16-bit copies of both would hold. Images are decoded in parallel, as many at once
+// as the threads and the memory budget allow; the stack and the per-image reports are in input
+// order whatever the thread count.
 //
-// The stacks stay in memory when they fit the budget (stacksFitInMemory: at most half of what
-// --memory leaves after decoding one image and the fitted models), and only otherwise go to a
-// temporary file (pipeline::SpillStack). Held in memory, they count against the budget for the
-// rest of the run: DecodedStacks::bytesInMemory, which the caller adds to
-// RunSettings::heldBytes so that the bands of later steps are sized to what is left.
+// The stack stays in memory when it fits the budget (stackFitsInMemory: at most half of what
+// --memory leaves after decoding one image and the fitted models), and only otherwise goes to
+// a temporary file. Held in memory, it counts against the budget for the rest of the run:
+// DecodedStacks::bytesInMemory, which the caller adds to RunSettings::heldBytes so that the
+// bands of later steps are sized to what is left.
 //
 // Bounded for any input: before anything is decoded, the first image's header gives the size;
 // if decoding one such image needs more memory than --memory (residentBytesPerImage), or the
-// two stacks more than the free space of the folder they spill to ($TMPDIR), it is refused
+// stack more than the free space of the folder it spills to ($TMPDIR), it is refused
 // (Error(Usage), naming --memory or the folder); an image whose header declares more pixels
-// than the first is refused before its pixels are allocated.
+// than the first is refused before its pixels are allocated, and one that decodes to another
+// size, depth, channel count or transfer than the first is refused once decoded.
 #pragma once
 
 #include <cstdint>
@@ -27,6 +31,7 @@
 #include "core/stack.h"
 #include "image/decode.h"
 #include "pipeline/context.h"
+#include "pipeline/decoded_stack.h"
 
 namespace surrogate::stages {
 
@@ -34,20 +39,29 @@ struct DecodedImage {
   image::DecodeReport report;
   int width = 0, height = 0, channels = 0, bitsPerSample = 0;
   Transfer transfer = Transfer::Srgb;
-  std::string pixelSha256;  // of the decoded pixels, before any conversion
+  // SHA-256 of the decoded samples as the decoder gave them, before any conversion: one byte a
+  // sample for 8-bit sources, two (little-endian) for 16-bit ones and camera raw.
+  std::string pixelSha256;
 };
 
 struct DecodedStacks {
-  std::shared_ptr<ImageStack> rgb;
+  std::shared_ptr<ImageStack> rgb;        // views of `decoded`
   std::shared_ptr<ImageStack> luminance;
+  std::shared_ptr<pipeline::DecodedStack> decoded;
   std::vector<DecodedImage> images;
-  std::uint64_t bytesInMemory = 0;  // what rgb and luminance hold in memory; 0 when spilled
+  std::uint64_t bytesInMemory = 0;  // what `decoded` holds in memory; 0 when spilled
 };
 
-// Whether the two stacks of `count` images of `pixels` pixels stay in memory under `budget`
-// (bytes), with `laterBytesPerPixel` held besides (see decodeImages). The other half of the
-// budget is for the bands the later steps stream and for decoding several images at once.
-bool stacksFitInMemory(int count, std::uint64_t pixels, std::uint64_t budget,
+// Bytes a pixel of the decoded stack takes, told from the first image's kind before anything
+// is decoded: 3 for JPEG (8-bit RGB), at most 6 for the others (16-bit RGB; an 8-bit PNG or
+// TIFF takes 3 once decoded).
+std::uint64_t storedBytesPerPixel(image::SourceKind kind);
+
+// Whether the stack of `count` images of `pixels` pixels, `bytesPerPixel` each, stays in
+// memory under `budget` (bytes), with `laterBytesPerPixel` held besides (see decodeImages).
+// The other half of the budget is for the bands the later steps stream and for decoding
+// several images at once.
+bool stackFitsInMemory(int count, std::uint64_t pixels, std::uint64_t bytesPerPixel, std::uint64_t budget,
                        std::uint64_t laterBytesPerPixel = 0);
 
 // `acceptDamage[i]`: decode image i even if its decoder reports damaged data (the warnings are
@@ -62,10 +76,10 @@ DecodedStacks decodeImages(const std::vector<std::filesystem::path>& files,
                            const std::vector<bool>& acceptDamage = {},
                            std::uint64_t laterBytesPerPixel = 0);
 
-// What decoding one image of `pixels` pixels holds in memory at once: the decoded image, its
-// luminance and sRGB copies and the decoder's working memory, about 4 copies of 16-bit RGB
-// (measured: see kResidentBytesPerPixel). Everything else of a run streams in bands sized to
-// the budget; the stacks are in memory or in temporary files (stacksFitInMemory).
+// What decoding one image of `pixels` pixels holds in memory at once: the decoded image, a
+// 16-bit copy where the source is raw, and the decoder's working memory (measured: see
+// kResidentBytesPerPixel). Everything else of a run streams in bands sized to the budget; the
+// stack is in memory or in a temporary file (stackFitsInMemory).
 // Measured (surrogate run, --threads 1, 10 x 3 Mpx): 16 bytes per pixel above the process's
 // own 80 MB for decoding and light estimation; a whole run 33 (ptm-lrgb), 33 (hsh2), 47 (hsh3)
 // and 42 (ptm-lrgb and hsh2), i.e. at most this plus the fitted models' bytes per pixel.

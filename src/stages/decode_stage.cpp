@@ -50,13 +50,14 @@ std::vector<const carrier::Intervention*> acceptedDamage(const carrier::Step& st
 std::string mebibytes(std::uint64_t bytes) { return std::to_string((bytes + (1u << 19)) >> 20) + " MiB"; }
 
 std::string stackPlacement(const DecodedStacks& d, std::size_t count, std::uint64_t budget) {
+  const std::uint64_t bytes = pipeline::DecodedStack::bytesFor(static_cast<int>(count), d.decoded->format());
+  const std::string what = std::to_string(8 * d.decoded->format().bytesPerSample) + "-bit samples, " + mebibytes(bytes);
   if (d.bytesInMemory > 0)
-    return "the " + std::to_string(count) + " decoded images are held in memory (" + mebibytes(d.bytesInMemory) +
-           " of the " + mebibytes(budget) + " --memory budget)";
-  const std::uint64_t bytes = std::uint64_t(count) * d.rgb->width() * d.rgb->height() * (3 + 1) * 2;
-  return "the " + std::to_string(count) + " decoded images (" + mebibytes(bytes) +
-         ") are in a temporary file: with room for the rest of the run they do not fit the " +
-         mebibytes(budget) + " --memory budget; a larger --memory keeps them in memory and runs faster";
+    return "the " + std::to_string(count) + " decoded images are held in memory (" + what + " of the " +
+           mebibytes(budget) + " --memory budget)";
+  return "the " + std::to_string(count) + " decoded images (" + what +
+         ") are in a temporary file: with room for the rest of the run they do not fit the " + mebibytes(budget) +
+         " --memory budget; a larger --memory keeps them in memory and runs faster";
 }
 
 }  // namespace
@@ -65,8 +66,10 @@ pipeline::StageInfo DecodeStage::info() {
   // 2: JPEG, PNG and TIFF decoded by libjpeg, libpng and libtiff called directly (the same
   // pixels as OpenCV's imread gave, so the same pixelSha256; `decoded/@decoder` names the
   // library); images whose decoder reports damaged data refused unless accepted.
+  // 3: 8-bit sources kept at one byte a sample, and pixelSha256 taken over those bytes (it was
+  // over the samples widened to 16 bits); the pixels the later steps read are unchanged.
   return pipeline::withOptions<image::RawDecodeSettings>(
-      {kComponent, "2",
+      {kComponent, "3",
        "Decode each image once (LibRaw for raw/DNG; libjpeg, libpng, libtiff for JPEG, PNG, TIFF)",
        pipeline::PlanSlot::Decode});
 }

@@ -47,6 +47,41 @@ void CropStack::readRows(int index, int y0, int y1, std::uint16_t* out) const {
                 out + y * outRow);
 }
 
+// ---- LuminanceStack -------------------------------------------------------------------------
+
+LuminanceStack::LuminanceStack(std::shared_ptr<const pipeline::DecodedStack> decoded)
+    : decoded_(std::move(decoded)) {}
+
+void LuminanceStack::readRows(int index, int y0, int y1, std::uint16_t* out) const {
+  if (decoded_->channels() == 1) {
+    decoded_->readRows(index, y0, y1, out);
+    return;
+  }
+  const std::size_t pixels = static_cast<std::size_t>(y1 - y0) * width();
+  if (decoded_->format().bytesPerSample == 1) {
+    std::vector<std::uint8_t> rgb(pixels * 3);
+    decoded_->readSamples(index, y0, y1, rgb.data());
+    luminanceOfPixels(rgb.data(), pixels, out);
+  } else {
+    std::vector<std::uint16_t> rgb(pixels * 3);
+    decoded_->readRows(index, y0, y1, rgb.data());
+    luminanceOfPixels(rgb.data(), pixels, out);
+  }
+}
+
+// ---- GreyAsRgbStack -------------------------------------------------------------------------
+
+GreyAsRgbStack::GreyAsRgbStack(std::shared_ptr<const ImageStack> grey) : grey_(std::move(grey)) {
+  if (grey_->channels() != 1) throw Error(ErrorKind::Internal, "", "image stack", "not a grey stack");
+}
+
+void GreyAsRgbStack::readRows(int index, int y0, int y1, std::uint16_t* out) const {
+  const std::size_t pixels = static_cast<std::size_t>(y1 - y0) * width();
+  std::vector<std::uint16_t> grey(pixels);
+  grey_->readRows(index, y0, y1, grey.data());
+  for (std::size_t p = 0; p < pixels; ++p) out[3 * p] = out[3 * p + 1] = out[3 * p + 2] = grey[p];
+}
+
 // ---- TableStack -----------------------------------------------------------------------------
 
 TableStack::TableStack(std::shared_ptr<const ImageStack> inner, std::array<Table, 3> tables,

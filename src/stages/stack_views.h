@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "core/stack.h"
+#include "pipeline/decoded_stack.h"
 #include "stages/preprocess.h"
 
 namespace surrogate::stages {
@@ -35,6 +36,38 @@ class CropStack : public ImageStack {
  private:
   std::shared_ptr<const ImageStack> inner_;
   PixelRect rect_;
+};
+
+// Rec. 709 luminance of every decoded image (core/image.h luminanceOfPixels: the same values as
+// `luminance` of the image), computed from the stored samples as rows are read; a grey stack
+// is its own luminance. What sphere and highlight detection read.
+class LuminanceStack : public ImageStack {
+ public:
+  explicit LuminanceStack(std::shared_ptr<const pipeline::DecodedStack> decoded);
+  int size() const override { return decoded_->size(); }
+  int width() const override { return decoded_->width(); }
+  int height() const override { return decoded_->height(); }
+  int channels() const override { return 1; }
+  Transfer transfer() const override { return decoded_->transfer(); }
+  void readRows(int index, int y0, int y1, std::uint16_t* out) const override;
+
+ private:
+  std::shared_ptr<const pipeline::DecodedStack> decoded_;
+};
+
+// A grey stack as RGB: each sample three times.
+class GreyAsRgbStack : public ImageStack {
+ public:
+  explicit GreyAsRgbStack(std::shared_ptr<const ImageStack> grey);
+  int size() const override { return grey_->size(); }
+  int width() const override { return grey_->width(); }
+  int height() const override { return grey_->height(); }
+  int channels() const override { return 3; }
+  Transfer transfer() const override { return grey_->transfer(); }
+  void readRows(int index, int y0, int y1, std::uint16_t* out) const override;
+
+ private:
+  std::shared_ptr<const ImageStack> grey_;
 };
 
 // Per-channel tables applied to every sample: out = table[c][in]. Used for white-balance gains

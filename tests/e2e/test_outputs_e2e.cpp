@@ -84,9 +84,9 @@ TEST_CASE("results are bit-identical with 1 and 2 threads") {
 }
 
 TEST_CASE("a memory budget too small to hold the decoded images gives bit-identical results") {
-  // 16 x 800x600: 61 MB of stacks, held in memory under the default 2G; under 64M (the least
-  // --memory takes), beside decoding one image and the two models kept, they go to a
-  // temporary file.
+  // 16 x 800x600 JPEGs: 23 MB of 8-bit samples, held in memory under the default 2G; under 64M
+  // (the least --memory takes), beside decoding one image and the two models kept, they go to
+  // a temporary file.
   const fs::path dir = e2e::freshDir("memory");
   const fs::path a = dir / "held", b = dir / "spilled";
   REQUIRE(e2e::runShell(std::string(GENERATOR_EXE) + " --out " + e2e::quote(a) +

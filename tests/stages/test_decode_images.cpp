@@ -1,15 +1,19 @@
-// Where decodeImages keeps the decoded stacks: in memory when they fit --memory, in a temporary
-// file only when they do not. The bytes the process writes are read from the kernel's own
-// count (/proc/self/io), not from anything the code under test reports.
+// Where decodeImages keeps the decoded stack: in memory when it fits --memory, in a temporary
+// file only when it does not; and what its views give. The bytes the process writes are read
+// from the kernel's own count (/proc/self/io), not from anything the code under test reports;
+// the views are compared with the decoded images (image::decodeImage) and with luminance and
+// sRGB encoding computed in the test.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
 
 #include "generator/capture_generator.h"
-#include "pipeline/spill_stack.h"
+#include "pipeline/decoded_stack.h"
+#include "image/write.h"
 #include "stages/decode_images.h"
 
 namespace fs = std::filesystem;
@@ -18,8 +22,8 @@ using namespace surrogate;
 namespace {
 
 constexpr int kImages = 6, kWidth = 320, kHeight = 240;
-// Both stacks as 16-bit samples: RGB and luminance.
-constexpr std::uint64_t kStackBytes = std::uint64_t(kImages) * kWidth * kHeight * (3 + 1) * 2;
+// The JPEGs' samples, one byte each.
+constexpr std::uint64_t kStackBytes = std::uint64_t(kImages) * kWidth * kHeight * 3;
 
 // Bytes this process has passed to write(2)-like calls so far (pwrite included).
 std::uint64_t bytesWritten() {
@@ -74,13 +78,32 @@ std::vector<std::uint16_t> allRows(const ImageStack& s, int index) {
 
 }  // namespace
 
-TEST_CASE("decoded stacks that fit the memory budget stay in memory and write nothing to disk") {
+TEST_CASE("a decoded stack that fits the memory budget stays in memory, 8-bit, and writes nothing to disk") {
   const auto files = generatedJpegs();
   const Decoded d = decodeUnder(files, std::size_t(2) << 30, 2);
   CHECK(d.written == 0);
   CHECK(d.stacks.bytesInMemory == kStackBytes);
-  CHECK(dynamic_cast<const pipeline::SpillStack*>(d.stacks.rgb.get()) == nullptr);
-  CHECK(dynamic_cast<const pipeline::SpillStack*>(d.stacks.luminance.get()) == nullptr);
+  CHECK(d.stacks.decoded->placement() == pipeline::DecodedStack::Placement::Memory);
+  CHECK(d.stacks.decoded->format().bytesPerSample == 1);
+}
+
+TEST_CASE("the views of the stack give the decoded images and their Rec. 709 luminance") {
+  const auto files = generatedJpegs();
+  const Decoded d = decodeUnder(files, std::size_t(2) << 30, 2);
+  for (int i : {0, kImages - 1}) {
+    INFO("image " << i);
+    const Image im = image::decodeImage(files[i], image::RawDecodeSettings());
+    REQUIRE(im.channels == 3);
+    CHECK(allRows(*d.stacks.rgb, i) == im.pixels);
+    // Luminance written out here: weights 0.2126, 0.7152, 0.0722, rounded to nearest.
+    const std::vector<std::uint16_t> lum = allRows(*d.stacks.luminance, i);
+    std::size_t off = 0;
+    for (std::size_t p = 0; p < lum.size(); ++p) {
+      const double y = 0.2126 * im.pixels[3 * p] + 0.7152 * im.pixels[3 * p + 1] + 0.0722 * im.pixels[3 * p + 2];
+      off += std::abs(lum[p] - y) > 1.0 ? 1 : 0;  // the weights in 1/65536 differ by < 0.4 level
+    }
+    CHECK(off == 0);
+  }
 }
 
 TEST_CASE("a budget too small for the stacks spills them to a temporary file with the same pixels") {
@@ -88,7 +111,7 @@ TEST_CASE("a budget too small for the stacks spills them to a temporary file wit
   // Decoding one image needs 24 bytes per pixel (1.8 MB here): 4 MiB lets it run but leaves
   // less than the stacks' 3.7 MB.
   const std::size_t tiny = std::size_t(4) << 20;
-  REQUIRE_FALSE(stages::stacksFitInMemory(kImages, std::uint64_t(kWidth) * kHeight, tiny));
+  REQUIRE_FALSE(stages::stackFitsInMemory(kImages, std::uint64_t(kWidth) * kHeight, 3, tiny));
   const Decoded spilled = decodeUnder(files, tiny, 1);
   CHECK(spilled.written >= kStackBytes);
   CHECK(spilled.stacks.bytesInMemory == 0);
@@ -102,12 +125,79 @@ TEST_CASE("a budget too small for the stacks spills them to a temporary file wit
   CHECK(spilled.stacks.rgb->transfer() == held.stacks.rgb->transfer());
 }
 
-TEST_CASE("the stacks stay in memory only with room besides them for the rest of the run") {
-  const std::uint64_t pixels = 1200 * 800;  // 36 shots: 276 MB of stacks
-  CHECK(stages::stacksFitInMemory(36, pixels, std::size_t(2) << 30));
-  CHECK_FALSE(stages::stacksFitInMemory(36, pixels, std::size_t(400) << 20));
-  // The fitted models kept for the derived maps count too: 200 bytes per pixel of them leave
+TEST_CASE("the stack stays in memory only with room besides it for the rest of the run") {
+  const std::uint64_t pixels = 1200 * 800;  // 36 shots of 16-bit RGB: 207 MB
+  CHECK(stages::stackFitsInMemory(36, pixels, 6, std::size_t(2) << 30));
+  CHECK_FALSE(stages::stackFitsInMemory(36, pixels, 6, std::size_t(400) << 20));
+  // The fitted models kept for the derived maps count too: 400 bytes per pixel of them leave
   // too little of 700 MiB.
-  CHECK(stages::stacksFitInMemory(36, pixels, std::size_t(700) << 20));
-  CHECK_FALSE(stages::stacksFitInMemory(36, pixels, std::size_t(700) << 20, 200));
+  CHECK(stages::stackFitsInMemory(36, pixels, 6, std::size_t(700) << 20));
+  CHECK_FALSE(stages::stackFitsInMemory(36, pixels, 6, std::size_t(700) << 20, 400));
+  // 8-bit JPEG samples take half: 36 x 6 Mpx (648 MB) fit the default 2 GiB with the default
+  // models (21 bytes per pixel), where 16-bit ones do not.
+  CHECK(stages::stackFitsInMemory(36, 3000 * 2000, stages::storedBytesPerPixel(image::SourceKind::Jpeg),
+                                  std::size_t(2) << 30, 21));
+  CHECK_FALSE(stages::stackFitsInMemory(36, 3000 * 2000, stages::storedBytesPerPixel(image::SourceKind::CameraRaw),
+                                        std::size_t(2) << 30, 21));
+}
+
+namespace {
+
+// `count` PNGs of `channels` at `bits` in a fresh folder, with values written out here.
+std::vector<fs::path> pngs(const std::string& name, int count, int channels, int bits) {
+  const fs::path dir = fs::temp_directory_path() / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::vector<fs::path> files;
+  for (int i = 0; i < count; ++i) {
+    Image im(40, 30, channels);
+    im.bitsPerSample = bits;
+    for (std::size_t k = 0; k < im.pixels.size(); ++k) {
+      const unsigned v = static_cast<unsigned>(k * 13 + i * 101);
+      im.pixels[k] = static_cast<std::uint16_t>(bits == 8 ? (v % 256) * 257 : (v * 977) % 65536);
+    }
+    files.push_back(dir / ("IMG_" + std::to_string(i) + ".png"));
+    image::writePng(im, files.back());
+  }
+  return files;
+}
+
+}  // namespace
+
+TEST_CASE("grey 8-bit images are kept one byte a pixel and read as RGB with R = G = B") {
+  const auto files = pngs("decode-grey", 3, 1, 8);
+  const Decoded d = decodeUnder(files, std::size_t(2) << 30, 2);
+  CHECK(d.stacks.decoded->format().channels == 1);
+  CHECK(d.stacks.decoded->format().bytesPerSample == 1);
+  CHECK(d.stacks.bytesInMemory == 3u * 40 * 30);
+  for (int i = 0; i < 3; ++i) {
+    const std::vector<std::uint16_t> rgb = allRows(*d.stacks.rgb, i), lum = allRows(*d.stacks.luminance, i);
+    REQUIRE(rgb.size() == 3 * lum.size());
+    for (std::size_t p = 0; p < lum.size(); ++p) {
+      const std::uint16_t grey = static_cast<std::uint16_t>(((p * 13 + i * 101) % 256) * 257);
+      CHECK(lum[p] == grey);
+      CHECK((rgb[3 * p] == grey && rgb[3 * p + 1] == grey && rgb[3 * p + 2] == grey));
+      if (lum[p] != grey) break;
+    }
+  }
+}
+
+TEST_CASE("16-bit images are kept as they are, and a capture mixing depths is refused by name") {
+  const auto wide = pngs("decode-16", 2, 3, 16);
+  const Decoded d = decodeUnder(wide, std::size_t(2) << 30, 1);
+  CHECK(d.stacks.decoded->format().bytesPerSample == 2);
+  std::vector<std::uint16_t> expected(40 * 30 * 3);
+  for (std::size_t k = 0; k < expected.size(); ++k) expected[k] = static_cast<std::uint16_t>(((k * 13 + 101) * 977) % 65536);
+  CHECK(allRows(*d.stacks.rgb, 1) == expected);
+
+  std::vector<fs::path> mixed = pngs("decode-mixed", 2, 3, 8);
+  mixed.push_back(wide[0]);
+  try {
+    decodeUnder(mixed, std::size_t(2) << 30, 1);
+    FAIL("a 16-bit image among 8-bit ones was decoded");
+  } catch (const Error& e) {
+    CHECK(e.kind() == ErrorKind::Input);
+    CHECK(std::string(e.what()).find(wide[0].string()) != std::string::npos);
+    CHECK(std::string(e.what()).find("16-bit") != std::string::npos);
+  }
 }

@@ -1,0 +1,157 @@
+#include "pipeline/decoded_stack.h"
+
+#include <fcntl.h>
+#include <sys/statvfs.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+#include "core/error.h"
+
+namespace surrogate::pipeline {
+
+namespace fs = std::filesystem;
+
+fs::path spillDirectory(const fs::path& requested) {
+  if (!requested.empty()) return requested;
+  const char* tmp = std::getenv("TMPDIR");
+  return tmp && *tmp ? fs::path(tmp) : fs::path("/tmp");
+}
+
+std::optional<std::uint64_t> spillSpaceAvailable(const fs::path& directory) {
+  struct statvfs st {};
+  if (::statvfs(spillDirectory(directory).c_str(), &st) != 0) return std::nullopt;
+  return static_cast<std::uint64_t>(st.f_bavail) * st.f_frsize;
+}
+
+namespace {
+
+[[noreturn]] void spillFailure(const fs::path& dir, const char* what) {
+  throw Error(ErrorKind::Internal, dir.string(), "image stack",
+              std::string("could not ") + what + " the temporary pixel file (" +
+                  std::strerror(errno) + "); check free space in that folder or set TMPDIR");
+}
+
+[[noreturn]] void misuse(const char* what) { throw Error(ErrorKind::Internal, "", "image stack", what); }
+
+int temporaryFile(const fs::path& dir) {
+  int fd = ::open(dir.c_str(), O_TMPFILE | O_RDWR | O_CLOEXEC, 0600);
+  if (fd >= 0) return fd;
+  // Filesystems without O_TMPFILE: create and unlink at once.
+  std::string pattern = (dir / "surrogate-stack-XXXXXX").string();
+  fd = ::mkstemp(pattern.data());
+  if (fd < 0) spillFailure(dir, "create");
+  ::unlink(pattern.c_str());
+  return fd;
+}
+
+// pwrite/pread until all `bytes` moved (they may move less at once, or be interrupted).
+template <typename Call, typename Pointer>
+void transferAll(Call call, int fd, Pointer data, std::uint64_t bytes, off_t offset, const char* what) {
+  while (bytes > 0) {
+    const ssize_t n = call(fd, data, bytes, offset);
+    if (n <= 0) {
+      if (n < 0 && errno == EINTR) continue;
+      spillFailure(spillDirectory({}), what);
+    }
+    data += n;
+    bytes -= static_cast<std::uint64_t>(n);
+    offset += n;
+  }
+}
+
+}  // namespace
+
+std::uint64_t DecodedStack::bytesFor(int count, const Format& f) {
+  return static_cast<std::uint64_t>(count) * static_cast<std::uint64_t>(f.width) *
+         static_cast<std::uint64_t>(f.height) * static_cast<std::uint64_t>(f.channels) *
+         static_cast<std::uint64_t>(f.bytesPerSample);
+}
+
+DecodedStack::DecodedStack(int count, Format format, Placement placement, const fs::path& directory)
+    : count_(count), format_(format), placement_(placement) {
+  if (count < 0 || format.width <= 0 || format.height <= 0 || (format.channels != 1 && format.channels != 3) ||
+      (format.bytesPerSample != 1 && format.bytesPerSample != 2))
+    misuse("a stack of images of no size or an unknown layout");
+  if (placement == Placement::TemporaryFile) {
+    fd_ = temporaryFile(spillDirectory(directory));
+  } else if (format.bytesPerSample == 1) {
+    narrow_.resize(static_cast<std::size_t>(count));
+  } else {
+    wide_.resize(static_cast<std::size_t>(count));
+  }
+}
+
+DecodedStack::~DecodedStack() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+std::uint64_t DecodedStack::rowBytes() const {
+  return static_cast<std::uint64_t>(format_.width) * format_.channels * format_.bytesPerSample;
+}
+
+std::uint64_t DecodedStack::imageBytes() const { return rowBytes() * format_.height; }
+
+void DecodedStack::store(int index, std::vector<std::uint8_t> samples) {
+  if (format_.bytesPerSample != 1 || index < 0 || index >= count_ || samples.size() != imageBytes())
+    misuse("8-bit image does not fit the stack");
+  if (placement_ == Placement::Memory) {
+    narrow_[static_cast<std::size_t>(index)] = std::move(samples);
+    return;
+  }
+  transferAll(::pwrite, fd_, reinterpret_cast<const char*>(samples.data()), imageBytes(),
+              static_cast<off_t>(imageBytes() * index), "write");
+}
+
+void DecodedStack::store(int index, std::vector<std::uint16_t> samples) {
+  if (format_.bytesPerSample != 2 || index < 0 || index >= count_ || samples.size() * 2 != imageBytes())
+    misuse("16-bit image does not fit the stack");
+  if (placement_ == Placement::Memory) {
+    wide_[static_cast<std::size_t>(index)] = std::move(samples);
+    return;
+  }
+  transferAll(::pwrite, fd_, reinterpret_cast<const char*>(samples.data()), imageBytes(),
+              static_cast<off_t>(imageBytes() * index), "write");
+}
+
+void DecodedStack::checkRows(int index, int y0, int y1) const {
+  if (index < 0 || index >= count_ || y0 < 0 || y1 > format_.height || y0 > y1) misuse("row range outside the stack");
+}
+
+void DecodedStack::readSamples(int index, int y0, int y1, void* out) const {
+  checkRows(index, y0, y1);
+  const std::uint64_t offset = rowBytes() * y0, bytes = rowBytes() * (y1 - y0);
+  if (placement_ == Placement::TemporaryFile) {
+    transferAll(::pread, fd_, static_cast<char*>(out), bytes, static_cast<off_t>(imageBytes() * index + offset),
+                "read");
+    return;
+  }
+  const auto* image = format_.bytesPerSample == 1
+                          ? narrow_[static_cast<std::size_t>(index)].data()
+                          : reinterpret_cast<const std::uint8_t*>(wide_[static_cast<std::size_t>(index)].data());
+  if (!image) misuse("image read before it was stored");
+  std::memcpy(out, image + offset, bytes);
+}
+
+void DecodedStack::readRows(int index, int y0, int y1, std::uint16_t* out) const {
+  if (format_.bytesPerSample == 2) {
+    readSamples(index, y0, y1, out);
+    return;
+  }
+  checkRows(index, y0, y1);
+  const std::size_t samples = static_cast<std::size_t>(rowBytes()) * (y1 - y0);
+  if (placement_ == Placement::Memory) {
+    const std::vector<std::uint8_t>& image = narrow_[static_cast<std::size_t>(index)];
+    if (image.empty()) misuse("image read before it was stored");
+    widenSamples(image.data() + rowBytes() * y0, samples, out);
+    return;
+  }
+  std::vector<std::uint8_t> bytes(samples);
+  readSamples(index, y0, y1, bytes.data());
+  widenSamples(bytes.data(), samples, out);
+}
+
+}  // namespace surrogate::pipeline
