@@ -1,6 +1,7 @@
 #include "fit/lambert.h"
 
 #include <cmath>
+#include <vector>
 
 #include "fit/pseudo_inverse.h"
 
@@ -36,6 +37,16 @@ std::array<double, 3> lambertFit(const double* values) {
   for (int r = 0; r < 3; ++r)
     for (std::size_t j = 0; j < k; ++j) b[r] += d.q[r * k + j] * values[j];
   return b;
+}
+
+std::vector<double> lambertOfBasis(const std::vector<double>& basisTable, int terms) {
+  const LambertDirections& d = lambertDirections();
+  const std::size_t k = d.directions.size();
+  std::vector<double> out(3 * static_cast<std::size_t>(terms), 0.0);
+  for (int r = 0; r < 3; ++r)
+    for (int t = 0; t < terms; ++t)
+      for (std::size_t j = 0; j < k; ++j) out[r * terms + t] += d.q[r * k + j] * basisTable[j * terms + t];
+  return out;
 }
 
 bool normalFromLambert(const std::array<double, 3>& b, std::array<double, 3>* n) {

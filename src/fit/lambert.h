@@ -7,6 +7,10 @@
 // 330 degrees), plus the zenith. Used where a model has no usable analytic maximum (PTM
 // fallback) and for every HSH texel, always with the model's own values at these directions,
 // so normals and albedo depend only on the file, not on the capture.
+//
+// The model's values at the directions are linear in its coefficients a (values = B a, B the
+// K x terms table of the basis at the directions), so b = (Q B) a: texel code multiplies by
+// the 3 x terms product, made once, instead of evaluating the model K times per texel.
 #pragma once
 
 #include <array>
@@ -23,6 +27,10 @@ const LambertDirections& lambertDirections();
 
 // b = Q values (values: K intensities at the directions, in order).
 std::array<double, 3> lambertFit(const double* values);
+
+// Q B for a basis table B (K x terms, row-major; K the number of directions): 3 x terms,
+// row-major.
+std::vector<double> lambertOfBasis(const std::vector<double>& basisTable, int terms);
 
 // n = b / |b| when |b| > 1e-9 and b_z > 0 (a surface facing the camera); otherwise
 // n = (0, 0, 1) and false.

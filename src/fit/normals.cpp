@@ -53,13 +53,6 @@ double length(const std::array<double, 3>& b) {
   return std::sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
 }
 
-std::array<double, 3> ptmLambert(const PtmCoefficients& a) {
-  const auto& dirs = lambertDirections().directions;
-  std::vector<double> values(dirs.size());
-  for (std::size_t j = 0; j < dirs.size(); ++j) values[j] = evaluatePtm(a, dirs[j][0], dirs[j][1]);
-  return lambertFit(values.data());
-}
-
 }  // namespace
 
 std::array<double, 3> ptmNormal(const PtmCoefficients& a, bool* usedFallback) {

@@ -15,8 +15,8 @@ PtmCoefficients ptmChannel(const formats::PtmFile& ptm, int x, int y, int c);
 // The polynomial that drives normals: Lrgb's luminance, or the mean of Rgb's three channels.
 PtmCoefficients ptmLuminance(const formats::PtmFile& ptm, int x, int y);
 
-// H_k at the Lambert directions (lambert.h), K x terms row-major; cached per term count.
-const std::vector<double>& hshAtLambertDirections(int terms);
+// Lambertian fit b (0..255 units) of a PTM polynomial (lambert.h).
+std::array<double, 3> ptmLambert(const PtmCoefficients& a);
 
 // Lambertian fit b_c (0..255 units) of each colour channel of an HSH texel.
 void hshLambert(const formats::HshFile& hsh, int x, int y, std::array<double, 3> b[3]);

@@ -217,7 +217,10 @@ DerivedMapsOptions DerivedMapsOptions::fromParameters(const pipeline::Parameters
 
 pipeline::StageInfo DerivedMapsStage::info() {
   pipeline::StageInfo info = pipeline::withOptions<DerivedMapsOptions>(
-      {kComponent, "1", "Surface normals, albedo and relit previews from a model",
+      // Version 2: the Lambertian fit of normals and albedo multiplies the coefficients by the
+      // fit matrix composed with the basis (src/fit/lambert.h), a different rounding that can
+      // move a sample by one level.
+      {kComponent, "2", "Surface normals, albedo and relit previews from a model",
        pipeline::PlanSlot::AfterModels});
   info.forModel = [](const std::string& basis) {
     DerivedMapsOptions o;

@@ -99,8 +99,10 @@ WebCopyOptions WebCopyOptions::fromParameters(const pipeline::Parameters& parame
 
 pipeline::StageInfo WebCopyStage::info() {
   // Version 1: the layout of publish/web_layout.h (docs/formats.md, "The web layout").
+  // Version 2: the normals and albedo in viewer-data.js come from the Lambertian fit composed
+  //            with the basis (src/fit/lambert.h), a different rounding that can move a sample.
   pipeline::StageInfo info = pipeline::withOptions<WebCopyOptions>(
-      {kComponent, "1", "Web copy of a model: info.json, JPEG coefficient planes and a viewer",
+      {kComponent, "2", "Web copy of a model: info.json, JPEG coefficient planes and a viewer",
        pipeline::PlanSlot::Publish});
   info.forModel = [](const std::string& basis) {
     return pipeline::Parameters{{"model", fit::basisName(fit::parseBasis(basis))}};
