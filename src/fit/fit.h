@@ -18,9 +18,9 @@
 // coefficients are set to 0 so that it does not widen the quantisation range.
 //
 // Streaming and memory: the photographs are read in row bands (ImageStack::readRows), all N
-// images' rows of a band at once. The band height is the largest that keeps the result object
-// (9 or 18 bytes per pixel for PTM, 3*T for HSH), the band buffers and the per-thread scratch
-// within FitOptions::memoryBudgetBytes (at least one row). The quantisation needs each
+// images' rows of a band at once. The band height is the largest that keeps the band buffers
+// within 32 MiB and, with the result object (9 or 18 bytes per pixel for PTM, 3*T for HSH) and
+// the per-thread scratch, within FitOptions::memoryBudgetBytes (at least one row). The quantisation needs each
 // coefficient's range over the whole image before any byte can be written, so the fit makes
 // TWO passes: pass 1 fits every pixel and keeps the per-row minima and maxima and, when they
 // fit in what the budget leaves after the bands (a stack held in memory takes no band), the

@@ -11,6 +11,7 @@ namespace surrogate::fit {
 
 namespace {
 const char* const kStep = "fit";
+constexpr std::size_t kBandBytes = std::size_t(32) << 20;  // see streamFit
 
 // All rows when the whole image's pass-1 coefficients (floats) fit in `spareBytes`, else none:
 // keeping part of them would raise the peak memory for a part of the saving.
@@ -65,8 +66,13 @@ std::vector<double> streamFit(const ImageStack& stack, RowFitter& fitter,
   const std::size_t fixedBytes = scratchBytes + modelBytes;
   const std::size_t available =
       options.memoryBudgetBytes > fixedBytes ? options.memoryBudgetBytes - fixedBytes : 0;
+  // Bands of at most kBandBytes even when the budget would hold the whole stack: a band is
+  // written once and read a few times while it is hot, and pages of a buffer the size of the
+  // stack cost more to fault in than reading the stack twice (the decoded stack is in memory
+  // when it fits the budget, or read back sequentially from its file when it does not).
+  const std::size_t bandBytes = std::min(available, kBandBytes);
   const int band = static_cast<int>(
-      std::clamp<std::size_t>(available / bandRowBytes, 1, static_cast<std::size_t>(h)));
+      std::clamp<std::size_t>(bandBytes / bandRowBytes, 1, static_cast<std::size_t>(h)));
   const int bands = (h + band - 1) / band;
   // RGB images already in memory (the decoded stacks when they fit --memory) are read where
   // they are, band by band as the others: no band buffer, no copy.
