@@ -11,6 +11,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "image/opencv_bridge.h"
+#include "image/png_encoder.h"
 
 namespace surrogate::image {
 
@@ -58,12 +59,7 @@ void encode(const Image& image, const fs::path& path, const std::string& ext, bo
 }  // namespace
 
 void writePng(const Image& image, const fs::path& path) {
-  // Level 1 with the default zlib strategy, fixed so the bytes are the same for the same
-  // pixels. Normals and renders of a relief are noisy data that deflate hardly shrinks: on a
-  // 24 Mpx capture level 6 took 7.9 s (normals, 16-bit) and 8.2 s (a preview) for files 1-9 %
-  // smaller than level 1's 4.4 s and 1.5 s (bench: 60 x 24 Mpx, pipeline_bench).
-  encode(image, path, ".png", image.bitsPerSample <= 8,
-         {cv::IMWRITE_PNG_COMPRESSION, 1, cv::IMWRITE_PNG_STRATEGY, cv::IMWRITE_PNG_STRATEGY_DEFAULT});
+  writeFileAtomically(path, encodePng(image, path.string()));
 }
 
 void writeJpeg(const Image& image, const fs::path& path, int quality) {

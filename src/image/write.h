@@ -5,8 +5,9 @@
 //   Image overlay = ...;                 // bitsPerSample 8 -> 8-bit PNG, 16 -> 16-bit PNG
 //   writePng(overlay, "assembly-files/sphere-overlay.png");
 //
-// PNG bytes are deterministic for a given image and zlib version: fixed compression level
-// and strategy, no timestamp chunk. 16 -> 8 bits rounds to nearest: v8 = (v16 + 128) / 257.
+// PNG bytes are deterministic for a given image and zlib version: fixed filter, compression
+// level and strategy, no timestamp chunk (src/image/png_encoder.h). 16 -> 8 bits rounds to
+// nearest: v8 = (v16 + 128) / 257.
 #pragma once
 
 #include <filesystem>

@@ -114,8 +114,10 @@ AuditStageOptions AuditStageOptions::fromParameters(const pipeline::Parameters& 
 pipeline::StageInfo AuditStage::info() {
   // Version 1: light angles, model errors against the photographs, refits, clipped planes and
   // the verdict as docs/hrti-math.md "Auditing a prior RTI" defines them.
+  // Version 2: the difference pictures are PNG files encoded with fixed Up filters and
+  // run-length deflate (src/image/png_encoder.h).
   pipeline::StageInfo info = pipeline::withOptions<AuditStageOptions>(
-      {kComponent, "1",
+      {kComponent, "2",
        "Audit of prior work: its light file against Surrogate's lights, its model against the "
        "photographs beside Surrogate's refits, and a verdict",
        pipeline::PlanSlot::PriorWork});

@@ -219,7 +219,8 @@ pipeline::StageInfo DerivedMapsStage::info() {
   pipeline::StageInfo info = pipeline::withOptions<DerivedMapsOptions>(
       // Version 2: the Lambertian fit of normals and albedo multiplies the coefficients by the
       // fit matrix composed with the basis (src/fit/lambert.h), a different rounding that can
-      // move a sample by one level.
+      // move a sample by one level; its PNG files are encoded with fixed Up filters and
+      // run-length deflate (src/image/png_encoder.h).
       {kComponent, "2", "Surface normals, albedo and relit previews from a model",
        pipeline::PlanSlot::AfterModels});
   info.forModel = [](const std::string& basis) {

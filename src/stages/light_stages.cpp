@@ -84,8 +84,9 @@ Image displayable(const Image& median, const ImageStack& lum) {
 pipeline::StageInfo SphereDetectionStage::info() {
   // 2: the overlay numbers spheres from 1 and keeps its label inside the picture, so its bytes
   //    differ from version 1's for the same images
+  // 3: PNG files encoded with fixed Up filters and run-length deflate (src/image/png_encoder.h)
   pipeline::StageInfo info = pipeline::withOptions<hrti::SphereDetectionOptions>(
-      {kComponent, "2",
+      {kComponent, "3",
        "Find the reflective spheres: per-pixel median of the stack, circle Hough transform on "
        "the gradient, sub-pixel circle fit",
        pipeline::PlanSlot::LightsFromSpheres});
@@ -186,8 +187,9 @@ pipeline::StageInfo HighlightDetectionStage::info() {
   // 2: every highlight judged (confidence, reason, refused flags), refusals stop the run
   // 3: the overview labels each highlight with its image's file name (it numbered them by
   //    position among the processed images), larger and kept inside the picture
+  // 4: PNG files encoded with fixed Up filters and run-length deflate (src/image/png_encoder.h)
   pipeline::StageInfo info = pipeline::withOptions<hrti::HighlightOptions>(
-      {kComponent, "3",
+      {kComponent, "4",
        "Find the specular highlight on each sphere in each image: threshold, 8-connected "
        "components, value-weighted centroid nearest the sphere centre",
        pipeline::PlanSlot::LightsFromSpheres});
