@@ -1,0 +1,196 @@
+#include "hrti/stack_median.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "core/error.h"
+#include "core/parallel.h"
+
+namespace surrogate::hrti {
+
+namespace {
+
+constexpr const char* kStep = "median";
+// Full-resolution rows one thread reads at once when reducing an image that is not in memory.
+constexpr std::size_t kReadBytes = std::size_t(1) << 20;
+
+// The lower middle of the samples (the middle one for an odd count); reorders them.
+std::uint16_t lowerMedian(std::vector<std::uint16_t>& samples) {
+  const auto mid = samples.begin() + (samples.size() - 1) / 2;
+  std::nth_element(samples.begin(), mid, samples.end());
+  return *mid;
+}
+
+const ImageStack& checked(const ImageStack* stack) {
+  if (!stack || stack->channels() != 1 || stack->size() == 0 || stack->width() == 0 || stack->height() == 0)
+    throw Error(ErrorKind::Internal, "", kStep, "the median needs a non-empty one-channel stack");
+  return *stack;
+}
+
+// The block means of full-resolution rows [y0, y1) (whole blocks of `factor` rows, the last
+// one possibly partial) as coarse rows: each the rounded mean of its block's pixels.
+void reduceRows(const std::uint16_t* rows, int y0, int y1, int width, int factor, std::uint16_t* out) {
+  const int coarseWidth = (width + factor - 1) / factor;
+  std::vector<std::uint64_t> sums(coarseWidth);
+  for (int by = y0; by < y1; by += factor) {
+    const int blockRows = std::min(factor, y1 - by);
+    std::fill(sums.begin(), sums.end(), 0);
+    for (int y = by; y < by + blockRows; ++y) {
+      const std::uint16_t* row = rows + std::size_t(y - y0) * width;
+      for (int cx = 0; cx < coarseWidth; ++cx) {
+        const int x1 = std::min(width, (cx + 1) * factor);
+        std::uint64_t s = 0;
+        for (int x = cx * factor; x < x1; ++x) s += row[x];
+        sums[cx] += s;
+      }
+    }
+    for (int cx = 0; cx < coarseWidth; ++cx) {
+      const std::uint64_t count = std::uint64_t(blockRows) * (std::min(width, (cx + 1) * factor) - cx * factor);
+      *out++ = static_cast<std::uint16_t>((sums[cx] + count / 2) / count);
+    }
+  }
+}
+
+}  // namespace
+
+int StackMedian::factorFor(int width, int coarseWidth) {
+  if (coarseWidth <= 0) throw Error(ErrorKind::Internal, "", kStep, "the coarse width must be above 0");
+  return std::max(1, static_cast<int>(std::lround(double(width) / coarseWidth)));
+}
+
+StackMedian::StackMedian(std::shared_ptr<const ImageStack> luminance, int coarseWidth, int threads,
+                         std::size_t coarseBudget)
+    : owner_(std::move(luminance)),
+      stack_(checked(owner_.get())),
+      threads_(threads),
+      factor_(factorFor(stack_.width(), coarseWidth)),
+      tilesX_((stack_.width() + kTile - 1) / kTile),
+      tilesY_((stack_.height() + kTile - 1) / kTile),
+      tiles_(std::size_t(tilesX_) * tilesY_) {
+  computeCoarse(coarseBudget);
+}
+
+StackMedian::StackMedian(const ImageStack& luminance, int coarseWidth, int threads, std::size_t coarseBudget)
+    : stack_(checked(&luminance)),
+      threads_(threads),
+      factor_(factorFor(stack_.width(), coarseWidth)),
+      tilesX_((stack_.width() + kTile - 1) / kTile),
+      tilesY_((stack_.height() + kTile - 1) / kTile),
+      tiles_(std::size_t(tilesX_) * tilesY_) {
+  computeCoarse(coarseBudget);
+}
+
+// Bands of coarse rows: every image's reduced band (each image reduced by one thread, into its
+// own plane), then the median of each coarse pixel over the planes.
+void StackMedian::computeCoarse(std::size_t coarseBudget) {
+  const int n = stack_.size(), w = width(), h = height(), f = factor_;
+  const int cw = (w + f - 1) / f, ch = (h + f - 1) / f;
+  coarse_ = Image(cw, ch, 1);
+  coarse_.transfer = transfer();
+  // A stack already in memory is read where it is: a copy of its rows would cost time for nothing.
+  const auto* held = dynamic_cast<const MemoryImageStack*>(&stack_);
+  const std::size_t perCoarseRow = std::size_t(n) * cw * sizeof(std::uint16_t);
+  const int bandRows = static_cast<int>(std::clamp<std::size_t>(coarseBudget / perCoarseRow, 1, std::size_t(ch)));
+  const int rowsPerRead = static_cast<int>(std::max<std::size_t>(1, kReadBytes / (std::size_t(f) * w * 2)));
+  std::vector<std::uint16_t> reduced(std::size_t(n) * bandRows * cw);
+  for (int cy0 = 0; cy0 < ch; cy0 += bandRows) {
+    const int count = std::min(bandRows, ch - cy0);
+    const std::size_t plane = std::size_t(count) * cw;
+    parallelFor(n, 1, effectiveThreads(threads_), [&](std::size_t b, std::size_t e) {
+      std::vector<std::uint16_t> rows(held ? 0 : std::size_t(rowsPerRead) * f * w);
+      for (std::size_t i = b; i < e; ++i) {
+        std::uint16_t* out = &reduced[i * plane];
+        for (int cy = cy0; cy < cy0 + count; cy += rowsPerRead) {
+          const int y0 = cy * f, y1 = std::min(h, std::min(cy + rowsPerRead, cy0 + count) * f);
+          const std::uint16_t* from = rows.data();
+          if (held)
+            from = held->image(static_cast<int>(i)).pixels.data() + std::size_t(y0) * w;
+          else
+            stack_.readRows(static_cast<int>(i), y0, y1, rows.data());
+          reduceRows(from, y0, y1, w, f, out + std::size_t(cy - cy0) * cw);
+        }
+      }
+    });
+    parallelFor(plane, 4096, effectiveThreads(threads_), [&](std::size_t b, std::size_t e) {
+      std::vector<std::uint16_t> samples(n);
+      for (std::size_t p = b; p < e; ++p) {
+        for (int i = 0; i < n; ++i) samples[i] = reduced[i * plane + p];
+        coarse_.pixels[std::size_t(cy0) * cw + p] = lowerMedian(samples);
+      }
+    });
+  }
+}
+
+// Tiles firstTile..lastTile of one tile row: that row band of every image (whole rows are what
+// readRows gives; only the tiles' columns are kept), then each pixel's median.
+void StackMedian::computeTiles(int tileRow, int firstTile, int lastTile) const {
+  const int n = stack_.size(), w = width();
+  const int y0 = tileRow * kTile, y1 = std::min(height(), y0 + kTile), rows = y1 - y0;
+  const int x0 = firstTile * kTile, x1 = std::min(w, (lastTile + 1) * kTile), span = x1 - x0;
+  const std::size_t plane = std::size_t(rows) * span;
+  const auto* held = dynamic_cast<const MemoryImageStack*>(&stack_);
+  std::vector<std::uint16_t> band(std::size_t(n) * plane);
+  parallelFor(n, 1, effectiveThreads(threads_), [&](std::size_t b, std::size_t e) {
+    std::vector<std::uint16_t> read(held ? 0 : std::size_t(rows) * w);
+    for (std::size_t i = b; i < e; ++i) {
+      const std::uint16_t* from = read.data();
+      if (held)
+        from = held->image(static_cast<int>(i)).pixels.data() + std::size_t(y0) * w;
+      else
+        stack_.readRows(static_cast<int>(i), y0, y1, read.data());
+      for (int y = 0; y < rows; ++y)
+        std::copy_n(from + std::size_t(y) * w + x0, span, &band[i * plane + std::size_t(y) * span]);
+    }
+  });
+  std::vector<std::uint16_t> medians(plane);
+  parallelFor(plane, 4096, effectiveThreads(threads_), [&](std::size_t b, std::size_t e) {
+    std::vector<std::uint16_t> samples(n);
+    for (std::size_t p = b; p < e; ++p) {
+      for (int i = 0; i < n; ++i) samples[i] = band[i * plane + p];
+      medians[p] = lowerMedian(samples);
+    }
+  });
+  for (int tx = firstTile; tx <= lastTile; ++tx) {
+    std::vector<std::uint16_t>& tile = tiles_[std::size_t(tileRow) * tilesX_ + tx];
+    if (!tile.empty()) continue;
+    const int tx0 = tx * kTile, tw = std::min(w, tx0 + kTile) - tx0;
+    tile.resize(std::size_t(tw) * rows);
+    for (int y = 0; y < rows; ++y)
+      std::copy_n(&medians[std::size_t(y) * span + (tx0 - x0)], tw, &tile[std::size_t(y) * tw]);
+  }
+}
+
+Image StackMedian::window(const Rect& r) const {
+  if (r.w <= 0 || r.h <= 0 || r.x < 0 || r.y < 0 || r.x + r.w > width() || r.y + r.h > height())
+    throw Error(ErrorKind::Internal, "", kStep,
+                "a median window (" + std::to_string(r.x) + ", " + std::to_string(r.y) + ", " + std::to_string(r.w) +
+                    " x " + std::to_string(r.h) + ") outside the " + std::to_string(width()) + "x" +
+                    std::to_string(height()) + " frame");
+  const int tx0 = r.x / kTile, tx1 = (r.x + r.w - 1) / kTile;
+  const int ty0 = r.y / kTile, ty1 = (r.y + r.h - 1) / kTile;
+  Image out(r.w, r.h, 1);
+  out.transfer = transfer();
+  std::lock_guard<std::mutex> lock(mutex_);
+  for (int ty = ty0; ty <= ty1; ++ty) {
+    int first = tx1 + 1, last = tx0 - 1;  // the tiles of this row not computed yet
+    for (int tx = tx0; tx <= tx1; ++tx)
+      if (tiles_[std::size_t(ty) * tilesX_ + tx].empty()) {
+        first = std::min(first, tx);
+        last = tx;
+      }
+    if (first <= last) computeTiles(ty, first, last);
+    for (int tx = tx0; tx <= tx1; ++tx) {
+      const std::vector<std::uint16_t>& tile = tiles_[std::size_t(ty) * tilesX_ + tx];
+      const int tileX = tx * kTile, tileY = ty * kTile, tw = std::min(width(), tileX + kTile) - tileX;
+      const int xa = std::max(r.x, tileX), xb = std::min(r.x + r.w, tileX + tw);
+      const int ya = std::max(r.y, tileY), yb = std::min(r.y + r.h, std::min(height(), tileY + kTile));
+      for (int y = ya; y < yb; ++y)
+        std::copy_n(&tile[std::size_t(y - tileY) * tw + (xa - tileX)], xb - xa,
+                    &out.pixels[std::size_t(y - r.y) * r.w + (xa - r.x)]);
+    }
+  }
+  return out;
+}
+
+}  // namespace surrogate::hrti

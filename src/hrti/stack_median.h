@@ -1,0 +1,77 @@
+// Per-pixel median of an image stack (docs/hrti-math.md, "Spheres in the median image"), at the
+// two resolutions sphere detection needs and no more.
+//
+// Shadows and highlights move from image to image; the spheres do not. The median over the
+// stack keeps the spheres and drops both. The sphere search (hrti/sphere_detection.h) looks at
+// a reduced frame, and only the surroundings of a sphere are needed at full resolution, so a
+// full-resolution median of the whole frame (most of the stage's time on a large capture) is
+// never made:
+//
+//   coarse()      every image reduced `factor()` times (the mean of each factor x factor block;
+//                 the blocks at the right and bottom edges may be partial), then the per-pixel
+//                 median of those reduced images. Computed once, on construction, reading the
+//                 stack in row bands: memory O(N * band * coarse width), at most coarseBudget
+//                 bytes of reduced images.
+//   window(rect)  the per-pixel median at full resolution over a rectangle, computed on demand
+//                 in 64 x 64 tiles that are kept for later calls (the highlight overview crops
+//                 the surroundings the sphere refinement has already computed).
+//
+// For an even count the median is the lower of the two middle values (no averaging: a window's
+// value is one of the measured values, exactly reproducible). Results are identical at any
+// thread count.
+//
+//   StackMedian m(luminance, 800, threads);     // coarse() about 800 pixels wide
+//   Image around = m.window({x, y, 300, 300});  // full-resolution median there
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <vector>
+
+#include "core/image.h"
+#include "core/stack.h"
+#include "hrti/sphere_detection.h"
+
+namespace surrogate::hrti {
+
+class StackMedian {
+ public:
+  static constexpr int kTile = 64;
+  static constexpr std::size_t kCoarseBudget = std::size_t(16) << 20;
+
+  // The integer reduction that brings `width` nearest to `coarseWidth` pixels (at least 1).
+  static int factorFor(int width, int coarseWidth);
+
+  // A one-channel, non-empty stack; kept (shared) for the full-resolution windows.
+  StackMedian(std::shared_ptr<const ImageStack> luminance, int coarseWidth, int threads,
+              std::size_t coarseBudget = kCoarseBudget);
+  // The same over a stack the caller keeps alive as long as this median.
+  StackMedian(const ImageStack& luminance, int coarseWidth, int threads, std::size_t coarseBudget = kCoarseBudget);
+
+  int width() const { return stack_.width(); }  // full resolution
+  int height() const { return stack_.height(); }
+  Transfer transfer() const { return stack_.transfer(); }
+  int factor() const { return factor_; }
+  const Image& coarse() const { return coarse_; }  // ceil(width / factor) x ceil(height / factor)
+
+  // The full-resolution median over `rect`, which must lie inside the frame. Safe to call
+  // from several threads.
+  Image window(const Rect& rect) const;
+
+ private:
+  void computeCoarse(std::size_t coarseBudget);
+  void computeTiles(int tileRow, int firstTile, int lastTile) const;
+
+  std::shared_ptr<const ImageStack> owner_;  // empty when the caller keeps the stack
+  const ImageStack& stack_;
+  int threads_;
+  int factor_;
+  Image coarse_;
+  int tilesX_, tilesY_;
+  mutable std::mutex mutex_;
+  mutable std::vector<std::vector<std::uint16_t>> tiles_;  // row-major tiles; empty: not yet computed
+};
+
+}  // namespace surrogate::hrti

@@ -1,0 +1,127 @@
+// hrti::StackMedian: its full-resolution windows are each pixel's middle sample and its reduced
+// median the middle of each reduced pixel's samples, both computed plainly here, whether the
+// stack is in memory (read where it is) or read by rows (a spilled stack), at 1 and 2 threads.
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "../rows_only_stack.h"
+#include "core/error.h"
+#include "core/stack.h"
+#include "hrti/stack_median.h"
+
+using namespace surrogate;
+using hrti::StackMedian;
+
+namespace {
+
+std::vector<Image> noise(int n, int w, int h, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::vector<Image> images;
+  for (int i = 0; i < n; ++i) {
+    Image im(w, h, 1);
+    for (auto& v : im.pixels) v = static_cast<std::uint16_t>(rng() % 65536);
+    images.push_back(im);
+  }
+  return images;
+}
+
+// The lower middle value of each pixel's samples (the middle one for an odd count).
+Image plainMedian(const std::vector<Image>& images) {
+  Image out(images[0].width, images[0].height, 1);
+  for (std::size_t p = 0; p < out.pixels.size(); ++p) {
+    std::vector<std::uint16_t> v;
+    for (const Image& im : images) v.push_back(im.pixels[p]);
+    std::nth_element(v.begin(), v.begin() + (v.size() - 1) / 2, v.end());
+    out.pixels[p] = v[(v.size() - 1) / 2];
+  }
+  return out;
+}
+
+// Each f x f block's mean (the blocks at the right and bottom edges cut by the frame),
+// rounded to the nearest integer, halves up.
+Image plainReduced(const Image& im, int f) {
+  Image out((im.width + f - 1) / f, (im.height + f - 1) / f, 1);
+  for (int cy = 0; cy < out.height; ++cy)
+    for (int cx = 0; cx < out.width; ++cx) {
+      double sum = 0;
+      int count = 0;
+      for (int y = cy * f; y < std::min(im.height, cy * f + f); ++y)
+        for (int x = cx * f; x < std::min(im.width, cx * f + f); ++x) {
+          sum += im.at(x, y);
+          ++count;
+        }
+      out.at(cx, cy) = static_cast<std::uint16_t>(std::floor(sum / count + 0.5));
+    }
+  return out;
+}
+
+Image crop(const Image& im, const hrti::Rect& r) {
+  Image out(r.w, r.h, 1);
+  for (int y = 0; y < r.h; ++y)
+    for (int x = 0; x < r.w; ++x) out.at(x, y) = im.at(r.x + x, r.y + y);
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("full-resolution windows of the median are each pixel's middle sample") {
+  const int w = 150, h = 97;  // tiles cut by both edges
+  for (int n : {1, 2, 7, 12}) {
+    const std::vector<Image> images = noise(n, w, h, 5 + n);
+    const Image expected = plainMedian(images);
+    const MemoryImageStack held(images);
+    const test::RowsOnlyStack rows(held);  // read by rows, as a spilled stack
+    for (const ImageStack* stack : {static_cast<const ImageStack*>(&held), static_cast<const ImageStack*>(&rows)})
+      for (int threads : {1, 2}) {
+        INFO(n << " images, " << threads << " threads, " << (stack == &held ? "in memory" : "by rows"));
+        const StackMedian median(*stack, 50, threads);
+        // Overlapping windows: later ones partly from tiles an earlier one computed.
+        for (const hrti::Rect& r : {hrti::Rect{70, 10, 20, 60}, hrti::Rect{60, 0, 90, 30}, hrti::Rect{149, 96, 1, 1},
+                                    hrti::Rect{0, 0, w, h}, hrti::Rect{63, 63, 2, 2}})
+          CHECK(median.window(r).pixels == crop(expected, r).pixels);
+      }
+  }
+}
+
+TEST_CASE("the reduced median is the middle of each reduced pixel's samples") {
+  for (int n : {1, 2, 7, 12}) {
+    for (int w : {150, 151}) {  // 151: the right blocks cut by the frame
+      const int h = 97;         // the bottom blocks cut by the frame
+      const std::vector<Image> images = noise(n, w, h, 11 + n);
+      std::vector<Image> reduced;
+      for (const Image& im : images) reduced.push_back(plainReduced(im, 3));
+      const Image expected = plainMedian(reduced);
+      const MemoryImageStack held(images);
+      const test::RowsOnlyStack rows(held);
+      for (const ImageStack* stack : {static_cast<const ImageStack*>(&held), static_cast<const ImageStack*>(&rows)})
+        for (int threads : {1, 2})
+          for (std::size_t budget : {std::size_t(1), StackMedian::kCoarseBudget}) {  // one coarse row a band, or all
+            INFO(n << " images, " << w << " wide, " << threads << " threads, budget " << budget);
+            const StackMedian median(*stack, 50, threads, budget);
+            REQUIRE(median.factor() == 3);
+            CHECK(median.coarse().width == expected.width);
+            CHECK(median.coarse().height == expected.height);
+            CHECK(median.coarse().pixels == expected.pixels);
+          }
+    }
+  }
+}
+
+TEST_CASE("the reduction is the integer factor nearest the coarse width, at least 1") {
+  CHECK(StackMedian::factorFor(3000, 800) == 4);  // 3.75
+  CHECK(StackMedian::factorFor(6000, 800) == 8);  // 7.5
+  CHECK(StackMedian::factorFor(1200, 800) == 2);  // 1.5
+  CHECK(StackMedian::factorFor(480, 800) == 1);
+}
+
+TEST_CASE("a window outside the frame is an Error, not a read past the images") {
+  const MemoryImageStack held(noise(3, 40, 30, 1));
+  const StackMedian median(held, 800, 1);
+  CHECK_THROWS_AS(median.window({30, 0, 20, 10}), Error);
+  CHECK_THROWS_AS(median.window({-1, 0, 5, 5}), Error);
+  CHECK_THROWS_AS(median.window({0, 0, 0, 5}), Error);
+}
