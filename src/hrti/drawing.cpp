@@ -75,11 +75,14 @@ cv::Point sub(double x, double y) { return {static_cast<int>(std::lround(x * kUn
 
 }  // namespace
 
-Image drawSphereOverlay(const Image& median, const std::vector<DetectedSphere>& spheres) {
+Image drawSphereOverlay(const Image& median, const std::vector<DetectedSphere>& spheres, int factor) {
   cv::Mat bgr = greyToBgr8(median);
   const int thickness = std::max(1, median.width / 600);
   for (std::size_t k = 0; k < spheres.size(); ++k) {
-    const DetectedSphere& s = spheres[k];
+    const DetectedSphere& full = spheres[k];
+    // A reduced pixel is the mean of factor x factor pixels: its centre is their centre.
+    const DetectedSphere s{(full.cx + 0.5) / factor - 0.5, (full.cy + 0.5) / factor - 0.5, full.r / factor,
+                           full.confidence};
     checkDrawable(s, median.width, median.height);
     cv::circle(bgr, sub(s.cx, s.cy), static_cast<int>(std::lround(s.r * kUnit)), cv::Scalar(0, 220, 0), thickness, cv::LINE_AA, kShift);
     const double arm = std::max(4.0, s.r / 8);
@@ -87,7 +90,7 @@ Image drawSphereOverlay(const Image& median, const std::vector<DetectedSphere>& 
     cv::line(bgr, sub(s.cx, s.cy - arm), sub(s.cx, s.cy + arm), cv::Scalar(0, 220, 0), thickness, cv::LINE_AA, kShift);
     char label[64];
     // Spheres are numbered from 1, as in the file names (highlights-sphere1.png) and the report.
-    std::snprintf(label, sizeof label, "sphere %zu  r=%.1f  conf %.2f", k + 1, s.r, s.confidence);
+    std::snprintf(label, sizeof label, "sphere %zu  r=%.1f  conf %.2f", k + 1, full.r, s.confidence);
     const double scale = std::max(0.4, median.width / 2000.0);
     const int ty = static_cast<int>(s.cy + s.r + 20 * scale) < median.height ? static_cast<int>(s.cy + s.r + 20 * scale)
                                                                              : static_cast<int>(s.cy - s.r - 6);
@@ -99,13 +102,25 @@ Image drawSphereOverlay(const Image& median, const std::vector<DetectedSphere>& 
 
 Image drawHighlightOverview(const Image& median, const DetectedSphere& s, const std::vector<Highlight>& perImage,
                             const std::vector<std::string>& labels) {
-  checkDrawable(s, median.width, median.height);
+  const MedianCrop crop = [&](const Rect& r) {
+    Image out(r.w, r.h, 1);
+    out.transfer = median.transfer;
+    for (int y = 0; y < r.h; ++y)
+      for (int x = 0; x < r.w; ++x) out.at(x, y) = median.at(r.x + x, r.y + y);
+    return out;
+  };
+  return drawHighlightOverview(median.width, median.height, crop, s, perImage, labels);
+}
+
+Image drawHighlightOverview(int width, int height, const MedianCrop& medianCrop, const DetectedSphere& s,
+                            const std::vector<Highlight>& perImage, const std::vector<std::string>& labels) {
+  checkDrawable(s, width, height);
   const double margin = s.r * 0.15;
   const int x0 = std::max(0, static_cast<int>(std::floor(s.cx - s.r - margin)));
   const int y0 = std::max(0, static_cast<int>(std::floor(s.cy - s.r - margin)));
-  const int x1 = std::min(median.width, static_cast<int>(std::ceil(s.cx + s.r + margin)) + 1);
-  const int y1 = std::min(median.height, static_cast<int>(std::ceil(s.cy + s.r + margin)) + 1);
-  cv::Mat crop = greyToBgr8(median)(cv::Rect(x0, y0, x1 - x0, y1 - y0)).clone();
+  const int x1 = std::min(width, static_cast<int>(std::ceil(s.cx + s.r + margin)) + 1);
+  const int y1 = std::min(height, static_cast<int>(std::ceil(s.cy + s.r + margin)) + 1);
+  cv::Mat crop = greyToBgr8(medianCrop({x0, y0, x1 - x0, y1 - y0}));
   // Brighten the dark sphere so the marks read against it.
   crop.convertTo(crop, -1, 1.0, 40);
   const double zoom = 600.0 / std::max(crop.cols, crop.rows);

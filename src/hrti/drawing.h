@@ -3,6 +3,7 @@
 // sphere. 8-bit RGB, deterministic.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -12,12 +13,20 @@
 namespace surrogate::hrti {
 
 // Spheres numbered from 1 ("sphere 1  r=45.3  conf 0.96"), every label inside the picture.
-Image drawSphereOverlay(const Image& medianLuminance, const std::vector<DetectedSphere>& spheres);
+// `medianLuminance` may be the frame reduced `factor` times (StackMedian::coarse()): the
+// spheres, in full-resolution pixels, are drawn reduced with it; their labels give the
+// full-resolution radius.
+Image drawSphereOverlay(const Image& medianLuminance, const std::vector<DetectedSphere>& spheres, int factor = 1);
 
 // Highlights in red, flagged ones in yellow, refused ones left out; the circle in green. Each
 // highlight is labelled labels[i] (the image's file name), or i + 1 where labels has no entry;
 // every label lies inside the picture.
 Image drawHighlightOverview(const Image& medianLuminance, const DetectedSphere& sphere,
+                            const std::vector<Highlight>& perImage, const std::vector<std::string>& labels = {});
+// The same for a width x height frame of which only the part around the sphere is read:
+// crop(rect) gives the median's pixels over rect (StackMedian::window()).
+using MedianCrop = std::function<Image(const Rect&)>;
+Image drawHighlightOverview(int width, int height, const MedianCrop& crop, const DetectedSphere& sphere,
                             const std::vector<Highlight>& perImage, const std::vector<std::string>& labels = {});
 
 }  // namespace surrogate::hrti

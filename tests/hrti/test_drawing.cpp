@@ -77,3 +77,37 @@ TEST_CASE("highlight overview labels are the given names, inside the picture") {
     CHECK_FALSE((named.at(x, y, 0) > 150 * 257 && named.at(x, y, 1) < 100 * 257));
   }
 }
+
+TEST_CASE("the highlight overview from a crop of the median is the one from the whole median") {
+  // The stage reads only the sphere's surroundings (StackMedian::window); the picture must not
+  // depend on it.
+  Image median(400, 300, 1);
+  for (int y = 0; y < median.height; ++y)
+    for (int x = 0; x < median.width; ++x) median.at(x, y) = static_cast<std::uint16_t>((x * 131 + y * 977) % 65536);
+  Highlight h;
+  h.x = 372;
+  h.y = 20;
+  for (const DetectedSphere& s : {DetectedSphere{380.3, 40.7, 30.2, 0.9}, DetectedSphere{120.5, 150.25, 61, 1}}) {
+    const MedianCrop crop = [&](const Rect& r) {
+      REQUIRE(r.x >= 0);
+      REQUIRE(r.x + r.w <= median.width);
+      Image out(r.w, r.h, 1);
+      for (int y = 0; y < r.h; ++y)
+        for (int x = 0; x < r.w; ++x) out.at(x, y) = median.at(r.x + x, r.y + y);
+      return out;
+    };
+    CHECK(drawHighlightOverview(median.width, median.height, crop, s, {h}, {"IMG_1"}).pixels ==
+          drawHighlightOverview(median, s, {h}, {"IMG_1"}).pixels);
+  }
+}
+
+TEST_CASE("the overlay on a reduced median draws the circle reduced with it") {
+  // A black frame reduced 4 times: the circle of radius 40 around (201.5, 101.5) is drawn
+  // around the reduced pixel (50, 25) with radius 10.
+  const Image reduced(100, 75, 1);
+  const Image overlay = drawSphereOverlay(reduced, {{201.5, 101.5, 40, 1}}, 4);
+  REQUIRE(overlay.width == 100);
+  CHECK(overlay.at(60, 25, 1) > 150 * 257);  // on the circle, right of the centre
+  CHECK(overlay.at(40, 25, 1) > 150 * 257);
+  CHECK(overlay.at(70, 25, 1) < 50 * 257);   // outside it
+}
