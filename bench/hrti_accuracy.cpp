@@ -20,8 +20,8 @@
 #include "generator/capture_generator.h"
 #include "hrti/highlight_detection.h"
 #include "hrti/light_direction.h"
-#include "hrti/median.h"
 #include "hrti/sphere_detection.h"
+#include "hrti/stack_median.h"
 #include "stages/decode_images.h"
 
 namespace fs = std::filesystem;
@@ -89,8 +89,9 @@ int main(int argc, char** argv) {
     const auto t0 = std::chrono::steady_clock::now();
     try {
       const stages::DecodedStacks stacks = stages::decodeImages(files, image::RawDecodeSettings(), pipeline::RunSettings());
-      const Image median = hrti::medianImage(*stacks.luminance, 256, 0);
-      const auto spheres = hrti::detectSpheres(median, hrti::SphereDetectionOptions());
+      const hrti::SphereDetectionOptions detection;
+      const hrti::StackMedian median(stacks.luminance, detection.coarseWidth, 0);
+      const auto spheres = hrti::detectSpheres(median, detection);
       const auto highlights = hrti::detectHighlights(*stacks.luminance, spheres, hrti::HighlightOptions(), 0);
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       double centreErr = 0, radiusErr = 0;

@@ -9,8 +9,9 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
-#include "hrti/circle_fit.h"
 #include "core/text.h"
+#include "hrti/circle_fit.h"
+#include "hrti/stack_median.h"
 
 namespace surrogate::hrti {
 
@@ -23,6 +24,34 @@ cv::Mat toFloat(const Image& im) {
   for (int y = 0; y < im.height; ++y)
     for (int x = 0; x < im.width; ++x) m.at<float>(y, x) = im.at(x, y) / 65535.0f;
   return m;
+}
+
+// Values the full-resolution median gives over rows [y0, y1) and columns [x0, x1) (clipped to
+// the frame), as floats in 0..1, and where that window lies.
+struct FullWindow {
+  cv::Mat values;
+  int x0 = 0, y0 = 0;
+};
+
+FullWindow fullWindow(const StackMedian& median, int x0, int y0, int x1, int y1) {
+  x0 = std::max(0, x0);
+  y0 = std::max(0, y0);
+  x1 = std::min(median.width(), x1);
+  y1 = std::min(median.height(), y1);
+  if (x1 <= x0 || y1 <= y0) return {cv::Mat(), x0, y0};
+  return {toFloat(median.window({x0, y0, x1 - x0, y1 - y0})), x0, y0};
+}
+
+// The Gaussian blur (sigma 1) of the full-resolution median over [x0, x1) x [y0, y1), as a
+// blur of the whole frame would give it there: the window is read with the kernel's reach
+// around it (OpenCV's kernel for sigma 1 on floats is 9 wide), and reflected only at the frame's
+// edges.
+cv::Mat blurredWindow(const StackMedian& median, int x0, int y0, int x1, int y1) {
+  constexpr int kReach = 4;
+  const FullWindow padded = fullWindow(median, x0 - kReach, y0 - kReach, x1 + kReach, y1 + kReach);
+  cv::Mat blurred;
+  cv::GaussianBlur(padded.values, blurred, cv::Size(0, 0), 1.0);
+  return blurred(cv::Rect(x0 - padded.x0, y0 - padded.y0, x1 - x0, y1 - y0)).clone();
 }
 
 struct Candidate {
@@ -119,16 +148,16 @@ std::vector<Candidate> hough(const Gradients& g, cv::Rect area, int r0, int r1, 
 }
 
 // Sub-pixel edge points along rays from the centre, and the circle through them.
-DetectedSphere refine(const cv::Mat& full, Candidate start, double margin) {
+DetectedSphere refine(const StackMedian& median, Candidate start, double margin) {
   DetectedSphere out{start.x, start.y, start.r, 0};
   for (int pass = 0; pass < 2; ++pass) {
     const int x0 = std::max(0, static_cast<int>(out.cx - out.r - margin - 3));
     const int y0 = std::max(0, static_cast<int>(out.cy - out.r - margin - 3));
-    const int x1 = std::min(full.cols, static_cast<int>(out.cx + out.r + margin + 4));
-    const int y1 = std::min(full.rows, static_cast<int>(out.cy + out.r + margin + 4));
+    const int x1 = std::min(median.width(), static_cast<int>(out.cx + out.r + margin + 4));
+    const int y1 = std::min(median.height(), static_cast<int>(out.cy + out.r + margin + 4));
     if (x1 - x0 < 8 || y1 - y0 < 8) return out;
-    cv::Mat window, gx, gy;
-    cv::GaussianBlur(full(cv::Rect(x0, y0, x1 - x0, y1 - y0)), window, cv::Size(0, 0), 1.0);
+    const cv::Mat window = blurredWindow(median, x0, y0, x1, y1);
+    cv::Mat gx, gy;
     cv::Sobel(window, gx, CV_32F, 1, 0, 3);
     cv::Sobel(window, gy, CV_32F, 0, 1, 3);
     auto sample = [&](const cv::Mat& m, double x, double y) {
@@ -190,19 +219,20 @@ DetectedSphere refine(const cv::Mat& full, Candidate start, double margin) {
 
 // A glossy black sphere is much darker than its surroundings: the mean inside 0.8 r against the
 // mean of the ring between 1.15 r and 1.4 r. Round patches of texture fail this test.
-bool isDarkDisc(const cv::Mat& full, const DetectedSphere& s) {
+bool isDarkDisc(const StackMedian& median, const DetectedSphere& s) {
   double inside = 0, outside = 0;
   int nIn = 0, nOut = 0;
-  const int x0 = std::max(0, static_cast<int>(s.cx - 1.4 * s.r)), x1 = std::min(full.cols - 1, static_cast<int>(s.cx + 1.4 * s.r));
-  const int y0 = std::max(0, static_cast<int>(s.cy - 1.4 * s.r)), y1 = std::min(full.rows - 1, static_cast<int>(s.cy + 1.4 * s.r));
+  const int x0 = std::max(0, static_cast<int>(s.cx - 1.4 * s.r)), x1 = std::min(median.width() - 1, static_cast<int>(s.cx + 1.4 * s.r));
+  const int y0 = std::max(0, static_cast<int>(s.cy - 1.4 * s.r)), y1 = std::min(median.height() - 1, static_cast<int>(s.cy + 1.4 * s.r));
+  const FullWindow full = fullWindow(median, x0, y0, x1 + 1, y1 + 1);
   for (int y = y0; y <= y1; ++y) {
     for (int x = x0; x <= x1; ++x) {
       const double d = std::hypot(x - s.cx, y - s.cy) / s.r;
       if (d < 0.8) {
-        inside += full.at<float>(y, x);
+        inside += full.values.at<float>(y - full.y0, x - full.x0);
         ++nIn;
       } else if (d > 1.15 && d < 1.4) {
-        outside += full.at<float>(y, x);
+        outside += full.values.at<float>(y - full.y0, x - full.x0);
         ++nOut;
       }
     }
@@ -262,17 +292,21 @@ SphereDetectionOptions SphereDetectionOptions::fromParameters(
 std::vector<DetectedSphere> detectSpheres(const Image& median, const SphereDetectionOptions& o) {
   if (median.channels != 1 || median.empty())
     throw Error(ErrorKind::Internal, "", kStep, "needs a one-channel median image");
-  const cv::Mat full = toFloat(median);
+  // The median of a one-image stack is that image.
+  return detectSpheres(StackMedian(MemoryImageStack({median}), o.coarseWidth, o.threads), o);
+}
+
+std::vector<DetectedSphere> detectSpheres(const StackMedian& median, const SphereDetectionOptions& o) {
+  if (median.factor() != StackMedian::factorFor(median.width(), o.coarseWidth))
+    throw Error(ErrorKind::Internal, "", kStep, "the median was reduced for another coarse width");
+  const cv::Mat coarse = toFloat(median.coarse());
   double maxValue = 0;
-  cv::minMaxLoc(full, nullptr, &maxValue);
-  const double scale = std::max(1.0, double(median.width) / o.coarseWidth);
-  cv::Mat coarse, coarse8;
-  cv::resize(full, coarse, cv::Size(static_cast<int>(std::lround(median.width / scale)),
-                                    static_cast<int>(std::lround(median.height / scale))),
-             0, 0, cv::INTER_AREA);
+  cv::minMaxLoc(coarse, nullptr, &maxValue);
+  const double scale = median.factor();
+  cv::Mat coarse8;
   coarse.convertTo(coarse8, CV_8U, maxValue > 0 ? 255.0 / maxValue : 1.0);
   const Gradients g = gradients(coarse8);
-  const double maxRadius = o.maxRadius > 0 ? o.maxRadius : std::min(median.width, median.height) / 4.0;
+  const double maxRadius = o.maxRadius > 0 ? o.maxRadius : std::min(median.width(), median.height()) / 4.0;
   // Below 6 coarse pixels a circle is a handful of accumulator cells: noise, not a sphere.
   const int r0 = std::max(6, static_cast<int>(std::floor(o.minRadius / scale)));
   auto toFull = [&](Candidate c) {
@@ -295,8 +329,8 @@ std::vector<DetectedSphere> detectSpheres(const Image& median, const SphereDetec
       for (const DetectedSphere& s : into) overlaps = overlaps || std::hypot(s.cx - f.x, s.cy - f.y) < s.r + f.r;
       if (overlaps) continue;
       ++tried;
-      const DetectedSphere s = refine(full, f, margin);
-      if (s.confidence < o.minConfidence || !isDarkDisc(full, s)) continue;
+      const DetectedSphere s = refine(median, f, margin);
+      if (s.confidence < o.minConfidence || !isDarkDisc(median, s)) continue;
       bool duplicate = false;
       for (const DetectedSphere& q : into) duplicate = duplicate || std::hypot(s.cx - q.cx, s.cy - q.cy) < q.r;
       if (duplicate) continue;

@@ -1,4 +1,5 @@
-// The reflective spheres in the median image (docs/hrti-math.md, "Spheres in the median image").
+// The reflective spheres in the median of the stack (docs/hrti-math.md, "Spheres in the median
+// image"; the median: hrti/stack_median.h).
 //
 //   1. 7x7 median filter: flattens texture, keeps the sphere's outline sharp
 //   2. Sobel gradient, magnitude and direction
@@ -12,8 +13,9 @@
 //      radial gradient (parabola through 3 samples) gives an edge point; a least-squares
 //      circle fit (algebraic, then geometric Gauss-Newton) with outlier rejection gives
 //      (cx, cy, r).
-// Steps 1-3 run on a copy downscaled to about `coarseWidth` pixels (the Hough transform is
-// the expensive part), step 4 at full resolution.
+// Steps 1-3 run on the median reduced by an integer factor to about `coarseWidth` pixels
+// (StackMedian::coarse(); the Hough transform is the expensive part), step 4 and the darkness
+// test below on the full-resolution median around each candidate (StackMedian::window()).
 //
 // Confidence (0..1): the fraction of 360 rays from the centre whose strongest outward edge is
 // strong (above a quarter of the median edge strength) and lies on the fitted circle (an
@@ -24,6 +26,7 @@
 //
 //   SphereDetectionOptions o;                     // whole frame, up to 4 spheres
 //   o.regions.push_back({900, 0, 300, 250});      // or: one sphere in this region
+//   StackMedian median(luminance, o.coarseWidth, o.threads);
 //   std::vector<DetectedSphere> s = detectSpheres(median, o);
 #pragma once
 
@@ -39,6 +42,8 @@ struct Rect {
   int x = 0, y = 0, w = 0, h = 0;
 };
 
+class StackMedian;
+
 struct DetectedSphere {
   double cx = 0, cy = 0, r = 0;  // pixels; origin at the centre of the top-left pixel, y down
   double confidence = 0;
@@ -50,14 +55,17 @@ struct SphereDetectionOptions {
   std::vector<Rect> regions;    // user regions, one sphere each; empty = search the frame
   int maxSpheres = 4;           // when searching the whole frame
   double minConfidence = 0.5;   // weaker candidates are not spheres
-  int coarseWidth = 800;        // width of the copy the Hough transform runs on
+  int coarseWidth = 800;        // about the width of the reduced median the Hough transform runs on
   int threads = 0;              // not recorded: results are identical at any count
 
   std::vector<std::pair<std::string, std::string>> toParameters() const;
   static SphereDetectionOptions fromParameters(const std::vector<std::pair<std::string, std::string>>& p);
 };
 
-// Throws Error(Input) when no sphere is found, suggesting --sphere-roi or --sphere.
+// Throws Error(Input) when no sphere is found, suggesting --sphere-roi or --sphere. The median
+// must have been reduced for options.coarseWidth.
+std::vector<DetectedSphere> detectSpheres(const StackMedian& median, const SphereDetectionOptions& options);
+// The same on one image taken as the median (tests on drawn images).
 std::vector<DetectedSphere> detectSpheres(const Image& median, const SphereDetectionOptions& options);
 
 }  // namespace surrogate::hrti

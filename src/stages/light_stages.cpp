@@ -15,9 +15,9 @@
 #include "hrti/highlight_detection.h"
 #include "hrti/light_direction.h"
 #include "hrti/light_position.h"
-#include "hrti/median.h"
 #include "hrti/drawing.h"
 #include "hrti/sphere_detection.h"
+#include "hrti/stack_median.h"
 #include "image/decode.h"
 #include "pipeline/context.h"
 #include "stages/inputs.h"
@@ -65,13 +65,6 @@ std::vector<double> numbers(const std::string& text, std::size_t count, const st
   return out;
 }
 
-// Rows per band so that one band of every image fits in a quarter of the memory budget.
-int bandRowsFor(const ImageStack& stack, std::size_t budget) {
-  const std::size_t perRow = std::size_t(stack.size()) * stack.width() * stack.channels() * 2;
-  return static_cast<int>(std::clamp<std::size_t>(budget / 4 / std::max<std::size_t>(perRow, 1), 1,
-                                                  static_cast<std::size_t>(stack.height())));
-}
-
 // The median image made viewable: camera-raw luminance is linear and would look black.
 Image displayable(const Image& median, const ImageStack& lum) {
   return lum.transfer() == Transfer::Linear ? image::srgbEncode(median) : median;
@@ -84,7 +77,10 @@ Image displayable(const Image& median, const ImageStack& lum) {
 pipeline::StageInfo SphereDetectionStage::info() {
   // 2: the overlay numbers spheres from 1 and keeps its label inside the picture, so its bytes
   //    differ from version 1's for the same images
-  // 3: PNG files encoded with fixed Up filters and run-length deflate (src/image/png_encoder.h)
+  // 3: the median is taken of the reduced images for the circle search and at full resolution
+  //    only around the spheres (hrti/stack_median.h); the overlay is drawn on the reduced
+  //    median, and PNG files are encoded with fixed Up filters and run-length deflate
+  //    (src/image/png_encoder.h), so its bytes differ from version 2's
   pipeline::StageInfo info = pipeline::withOptions<hrti::SphereDetectionOptions>(
       {kComponent, "3",
        "Find the reflective spheres: per-pixel median of the stack, circle Hough transform on "
@@ -99,10 +95,9 @@ void SphereDetectionStage::run(const carrier::Step& step, pipeline::Context& ctx
   const auto lum = ctx.get<ImageStack>(kLuminanceStack);
   hrti::SphereDetectionOptions options = hrti::SphereDetectionOptions::fromParameters(parametersOf(step));
   options.threads = ctx.settings.threads;
-  // The median of the stack is most of the work; the circle search follows it.
+  // The reduced median of the stack is most of the work; the circle search follows it.
   ctx.progress("Sphere detection", 0);
-  auto median = std::make_shared<Image>(
-      hrti::medianImage(*lum, bandRowsFor(*lum, ctx.settings.streamingBudget()), ctx.settings.threads));
+  auto median = std::make_shared<hrti::StackMedian>(lum, options.coarseWidth, ctx.settings.threads);
 
   auto spheres = std::make_shared<Spheres>();
   const auto manual = step.interventionsOfKind("manual-sphere");
@@ -111,7 +106,7 @@ void SphereDetectionStage::run(const carrier::Step& step, pipeline::Context& ctx
       const std::vector<double> v = numbers(i->value, 3, "manual sphere");
       // Checked here too, not only on the command line: a recorded carrier (re-execution) or
       // a standing decision meets images of another size than it was given for.
-      const std::string why = sphereCircleProblem(v[0], v[1], v[2], median->width, median->height);
+      const std::string why = sphereCircleProblem(v[0], v[1], v[2], median->width(), median->height());
       if (!why.empty())
         throw Error(ErrorKind::Input, "sphere " + i->target + " given by hand (" + i->value + ")",
                     "sphere detection", why + "; give the sphere's circle again with --sphere CX,CY,R");
@@ -132,10 +127,11 @@ void SphereDetectionStage::run(const carrier::Step& step, pipeline::Context& ctx
   result.add("value").set("name", "spheres").set("value", std::to_string(spheres->size()));
 
   const std::string& overlay = kSphereOverlay;
-  image::writePng(hrti::drawSphereOverlay(displayable(*median, *lum), *spheres), ctx.outputPath(overlay));
+  image::writePng(hrti::drawSphereOverlay(displayable(median->coarse(), *lum), *spheres, median->factor()),
+                  ctx.outputPath(overlay));
   recordOutput(ctx, step, result, overlay, "assembly", "PNG", "sphere-overlay", "image/png");
   ctx.put(kSpheres, spheres);
-  ctx.put(kMedianImage, median);
+  ctx.put(kStackMedian, median);
   ctx.progress("Sphere detection", 1);
 }
 
@@ -202,7 +198,7 @@ void HighlightDetectionStage::run(const carrier::Step& step, pipeline::Context& 
   const auto lum = ctx.get<ImageStack>(kLuminanceStack);
   const auto inputs = ctx.get<InputImages>(kInputImages);
   const auto spheres = ctx.get<Spheres>(kSpheres);
-  const auto median = ctx.get<Image>(kMedianImage);
+  const auto median = ctx.get<hrti::StackMedian>(kStackMedian);
   const hrti::HighlightOptions options = hrti::HighlightOptions::fromParameters(parametersOf(step));
   ctx.progress("Highlight detection", 0);
   auto highlights = std::make_shared<Highlights>(
@@ -277,11 +273,14 @@ void HighlightDetectionStage::run(const carrier::Step& step, pipeline::Context& 
   // Highlights labelled by the image's file name, as every table of the report names them.
   std::vector<std::string> imageLabels;
   for (const InputImage& in : *inputs) imageLabels.push_back(in.stem);
+  // Only the sphere's surroundings of the median are read, at full resolution.
+  const hrti::MedianCrop crop = [&](const hrti::Rect& r) { return displayable(median->window(r), *lum); };
   for (std::size_t k = 0; k < spheres->size(); ++k) {
     std::vector<hrti::Highlight> perImage;
     for (const auto& row : *highlights) perImage.push_back(row[k]);
     const std::string overview = highlightOverview(std::to_string(k + 1));
-    image::writePng(hrti::drawHighlightOverview(displayable(*median, *lum), (*spheres)[k], perImage, imageLabels),
+    image::writePng(hrti::drawHighlightOverview(median->width(), median->height(), crop, (*spheres)[k], perImage,
+                                                imageLabels),
                     ctx.outputPath(overview));
     recordOutput(ctx, step, result, overview, "assembly", "PNG", "highlight-overview", "image/png");
   }

@@ -1,8 +1,9 @@
 // The light-estimation stages (the mathematics: docs/hrti-math.md):
 //
-//   SphereDetection     per-pixel median of the luminance stack, circle Hough, sub-pixel
-//                       refinement; or the user's circles (intervention manual-sphere).
-//                       Writes assembly-files/spheres.png (the detection drawn on the median).
+//   SphereDetection     per-pixel median of the luminance stack (reduced, and at full
+//                       resolution around the spheres), circle Hough, sub-pixel refinement; or
+//                       the user's circles (intervention manual-sphere). Writes
+//                       assembly-files/spheres.png (the detection drawn on the reduced median).
 //   HighlightDetection  the specular highlight on each sphere in each image, judged (flag,
 //                       confidence 0..1 and the reason when refused or doubtful, see
 //                       hrti/highlight_detection.h); manual-highlight interventions override
@@ -29,7 +30,7 @@
 namespace surrogate::stages {
 
 inline constexpr const char* kSpheres = "spheres";
-inline constexpr const char* kMedianImage = "median-image";
+inline constexpr const char* kStackMedian = "stack-median";  // hrti::StackMedian
 inline constexpr const char* kHighlights = "highlights";
 inline constexpr const char* kLights = "lights";
 

@@ -11,8 +11,8 @@
 #include "generator/scene.h"
 #include "hrti/highlight_detection.h"
 #include "hrti/light_direction.h"
-#include "hrti/median.h"
 #include "hrti/sphere_detection.h"
+#include "hrti/stack_median.h"
 
 using namespace surrogate;
 using namespace surrogate::hrti;
@@ -50,8 +50,8 @@ double angleDeg(const std::array<double, 3>& a, const LightDirection& b) {
 // Detects the spheres in the shots' median: exactly one, at the generator's sphere to a
 // fraction of a pixel.
 std::vector<DetectedSphere> detectOneSphereAtTruth(const Shots& s) {
-  const Image median = medianImage(s.luminanceStack, 16, 2);
-  const auto spheres = detectSpheres(median, SphereDetectionOptions());
+  const SphereDetectionOptions o;
+  const auto spheres = detectSpheres(StackMedian(s.luminanceStack, o.coarseWidth, 2), o);
   REQUIRE(spheres.size() == 1);
   const auto& truth = s.truth.spheres[0];
   CHECK(std::hypot(spheres[0].cx - truth.cx, spheres[0].cy - truth.cy) < 0.3);
@@ -88,8 +88,8 @@ TEST_CASE("a large frame: the sphere near its edge is found, not small circles o
 
 TEST_CASE("two spheres and strong background texture are both found") {
   const Shots s = render(2, true);
-  const Image median = medianImage(s.luminanceStack, 1000, 1);
-  const auto spheres = detectSpheres(median, SphereDetectionOptions());
+  const SphereDetectionOptions o;
+  const auto spheres = detectSpheres(StackMedian(s.luminanceStack, o.coarseWidth, 1), o);
   REQUIRE(spheres.size() == 2);
   for (const auto& truth : s.truth.spheres) {
     double nearest = 1e9;
@@ -100,8 +100,8 @@ TEST_CASE("two spheres and strong background texture are both found") {
 
 TEST_CASE("a user region limits the search to one sphere") {
   const Shots s = render(2, false, 12);
-  const Image median = medianImage(s.luminanceStack, 64, 2);
   SphereDetectionOptions o;
+  const StackMedian median(s.luminanceStack, o.coarseWidth, 2);
   const auto& t = s.truth.spheres[1];
   o.regions.push_back({static_cast<int>(t.cx - t.r - 20), static_cast<int>(t.cy - t.r - 20),
                        static_cast<int>(2 * t.r + 40), static_cast<int>(2 * t.r + 40)});
@@ -124,11 +124,11 @@ TEST_CASE("no sphere: a clear error that suggests giving a region") {
 
 TEST_CASE("median, spheres and highlights are bit-identical with 1 and 2 threads") {
   const Shots s = render(2, false, 8);
-  const Image m1 = medianImage(s.luminanceStack, 7, 1), m2 = medianImage(s.luminanceStack, 50, 2);
-  REQUIRE(m1.pixels == m2.pixels);
   SphereDetectionOptions o1, o2;
   o1.threads = 1;
   o2.threads = 2;
+  const StackMedian m1(s.luminanceStack, o1.coarseWidth, 1), m2(s.luminanceStack, o2.coarseWidth, 2);
+  REQUIRE(m1.coarse().pixels == m2.coarse().pixels);
   const auto s1 = detectSpheres(m1, o1), s2 = detectSpheres(m2, o2);
   REQUIRE(s1.size() == s2.size());
   for (std::size_t k = 0; k < s1.size(); ++k) {

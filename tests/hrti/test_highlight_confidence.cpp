@@ -10,8 +10,8 @@
 #include "core/stack.h"
 #include "generator/capture_generator.h"
 #include "hrti/highlight_detection.h"
-#include "hrti/median.h"
 #include "hrti/sphere_detection.h"
+#include "hrti/stack_median.h"
 
 using namespace surrogate;
 using namespace surrogate::hrti;
@@ -195,7 +195,8 @@ TEST_CASE("generated captures: every highlight confident, with a margin to every
     const auto [linear, encoded] = shots(o);
     for (const bool encode : {false, true}) {
       const MemoryImageStack& stack = encode ? encoded : linear;
-      const auto spheres = detectSpheres(medianImage(stack, 64, 2), SphereDetectionOptions());
+      const SphereDetectionOptions detection;
+      const auto spheres = detectSpheres(StackMedian(stack, detection.coarseWidth, 2), detection);
       REQUIRE(static_cast<int>(spheres.size()) == c.spheres);
       for (const auto& row : detectHighlights(stack, spheres, HighlightOptions(), 2))
         for (const Highlight& h : row) {
