@@ -75,10 +75,18 @@ void writeFileAtomically(const fs::path& path, const std::string& content, const
 std::string readFile(const fs::path& path, const std::string& step) {
   std::ifstream f(path, std::ios::binary);
   if (!f) throwInputError(path.string(), step, "cannot open the file for reading");
-  std::ostringstream s;
-  s << f.rdbuf();
+  // One read of the size the file says it has, straight into the string (a stream copy grows
+  // and copies a photograph's bytes several times); then whatever is left, if it has grown or
+  // has no size to tell (a pipe).
+  std::error_code ec;
+  const std::uintmax_t size = fs::file_size(path, ec);
+  std::string out(ec ? 0 : static_cast<std::size_t>(size), '\0');
+  f.read(out.data(), static_cast<std::streamsize>(out.size()));
+  out.resize(static_cast<std::size_t>(f.gcount()));
+  char more[65536];
+  while (f && f.read(more, sizeof more).gcount() > 0) out.append(more, static_cast<std::size_t>(f.gcount()));
   if (f.bad()) throwInputError(path.string(), step, "reading the file failed");
-  return s.str();
+  return out;
 }
 
 }  // namespace surrogate
