@@ -61,18 +61,15 @@ int StackMedian::factorFor(int width, int coarseWidth) {
 
 StackMedian::StackMedian(std::shared_ptr<const ImageStack> luminance, int coarseWidth, int threads,
                          std::size_t coarseBudget)
-    : owner_(std::move(luminance)),
-      stack_(checked(owner_.get())),
-      threads_(threads),
-      factor_(factorFor(stack_.width(), coarseWidth)),
-      tilesX_((stack_.width() + kTile - 1) / kTile),
-      tilesY_((stack_.height() + kTile - 1) / kTile),
-      tiles_(std::size_t(tilesX_) * tilesY_) {
-  computeCoarse(coarseBudget);
-}
+    : StackMedian(luminance, luminance.get(), coarseWidth, threads, coarseBudget) {}
 
 StackMedian::StackMedian(const ImageStack& luminance, int coarseWidth, int threads, std::size_t coarseBudget)
-    : stack_(checked(&luminance)),
+    : StackMedian(nullptr, &luminance, coarseWidth, threads, coarseBudget) {}
+
+StackMedian::StackMedian(std::shared_ptr<const ImageStack> owner, const ImageStack* luminance, int coarseWidth,
+                         int threads, std::size_t coarseBudget)
+    : owner_(std::move(owner)),
+      stack_(checked(luminance)),
       threads_(threads),
       factor_(factorFor(stack_.width(), coarseWidth)),
       tilesX_((stack_.width() + kTile - 1) / kTile),

@@ -61,6 +61,9 @@ class StackMedian {
   Image window(const Rect& rect) const;
 
  private:
+  // `owner` keeps `luminance` alive, or is empty when the caller does.
+  StackMedian(std::shared_ptr<const ImageStack> owner, const ImageStack* luminance, int coarseWidth, int threads,
+              std::size_t coarseBudget);
   void computeCoarse(std::size_t coarseBudget);
   void computeTiles(int tileRow, int firstTile, int lastTile) const;
 
