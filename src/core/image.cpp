@@ -41,6 +41,10 @@ void widenSamples(const std::uint8_t* in, std::size_t count, std::uint16_t* out)
   for (std::size_t k = 0; k < count; ++k) out[k] = static_cast<std::uint16_t>(in[k] * 257);
 }
 
+void narrowSamples(const std::uint16_t* in, std::size_t count, std::uint8_t* out) {
+  for (std::size_t k = 0; k < count; ++k) out[k] = static_cast<std::uint8_t>((in[k] + 128u) / 257u);
+}
+
 void luminanceOfPixels(const std::uint16_t* rgb, std::size_t count, std::uint16_t* out) {
   for (std::size_t i = 0; i < count; ++i, rgb += 3) out[i] = weighted(rgb[0], rgb[1], rgb[2]);
 }

@@ -56,6 +56,10 @@ struct Image8 {
 Image widen(const Image8& narrow);
 // `count` 8-bit samples widened by 257 into `out` (which must not overlap `in`).
 void widenSamples(const std::uint8_t* in, std::size_t count, std::uint16_t* out);
+// `count` 16-bit samples rounded to nearest 8-bit ones, v8 = (v16 + 128) / 257 (integer
+// arithmetic, so the bytes never depend on floating-point rounding): how every 8-bit file is
+// written.
+void narrowSamples(const std::uint16_t* in, std::size_t count, std::uint8_t* out);
 
 // Rec. 709 luminance of an RGB image (or a copy of a grey one), same 16-bit encoding,
 // rounded to nearest. Deterministic: integer arithmetic only.

@@ -53,7 +53,7 @@ void packRow(const Image& image, int y, bool eightBit, std::uint8_t* row) {
   const std::size_t n = static_cast<std::size_t>(image.width) * image.channels;
   const std::uint16_t* in = image.pixels.data() + static_cast<std::size_t>(y) * n;
   if (eightBit) {
-    for (std::size_t i = 0; i < n; ++i) row[i] = static_cast<std::uint8_t>((in[i] + 128u) / 257u);
+    narrowSamples(in, n, row);
   } else {
     for (std::size_t i = 0; i < n; ++i) {
       row[2 * i] = static_cast<std::uint8_t>(in[i] >> 8);

@@ -45,13 +45,9 @@ void writeTiff(const Image& image, const fs::path& path) {
                 "cannot write an empty image or one with " + std::to_string(image.channels) + " channels");
   cv::Mat m = toMat(image);
   if (image.bitsPerSample <= 8) {
-    // Rounded to nearest as writePng does: v8 = (v16 + 128) / 257.
+    // Rounded to nearest as writePng does.
     cv::Mat m8(m.rows, m.cols, CV_MAKETYPE(CV_8U, m.channels()));
-    for (int y = 0; y < m.rows; ++y) {
-      const std::uint16_t* in = m.ptr<std::uint16_t>(y);
-      std::uint8_t* out = m8.ptr<std::uint8_t>(y);
-      for (int i = 0; i < m.cols * m.channels(); ++i) out[i] = static_cast<std::uint8_t>((in[i] + 128u) / 257u);
-    }
+    narrowSamples(image.pixels.data(), image.pixels.size(), m8.ptr<std::uint8_t>());
     m = m8;
   }
   if (m.channels() == 3) cv::cvtColor(m, m, cv::COLOR_RGB2BGR);
