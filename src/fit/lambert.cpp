@@ -30,15 +30,6 @@ const LambertDirections& lambertDirections() {
   return directions;
 }
 
-std::array<double, 3> lambertFit(const double* values) {
-  const LambertDirections& d = lambertDirections();
-  const std::size_t k = d.directions.size();
-  std::array<double, 3> b{0, 0, 0};
-  for (int r = 0; r < 3; ++r)
-    for (std::size_t j = 0; j < k; ++j) b[r] += d.q[r * k + j] * values[j];
-  return b;
-}
-
 std::vector<double> lambertOfBasis(const std::vector<double>& basisTable, int terms) {
   const LambertDirections& d = lambertDirections();
   const std::size_t k = d.directions.size();

@@ -25,9 +25,6 @@ struct LambertDirections {
 
 const LambertDirections& lambertDirections();
 
-// b = Q values (values: K intensities at the directions, in order).
-std::array<double, 3> lambertFit(const double* values);
-
 // Q B for a basis table B (K x terms, row-major; K the number of directions): 3 x terms,
 // row-major.
 std::vector<double> lambertOfBasis(const std::vector<double>& basisTable, int terms);
