@@ -22,6 +22,17 @@ std::uint16_t lowerMedian(std::vector<std::uint16_t>& samples) {
   return *mid;
 }
 
+// out[p] = the lower median of planes[i * plane + p] over the n planes, for every p < plane.
+void mediansOfPlanes(const std::uint16_t* planes, int n, std::size_t plane, int threads, std::uint16_t* out) {
+  parallelFor(plane, 4096, effectiveThreads(threads), [&](std::size_t b, std::size_t e) {
+    std::vector<std::uint16_t> samples(n);
+    for (std::size_t p = b; p < e; ++p) {
+      for (int i = 0; i < n; ++i) samples[i] = planes[i * plane + p];
+      out[p] = lowerMedian(samples);
+    }
+  });
+}
+
 const ImageStack& checked(const ImageStack* stack) {
   if (!stack || stack->channels() != 1 || stack->size() == 0 || stack->width() == 0 || stack->height() == 0)
     throw Error(ErrorKind::Internal, "", kStep, "the median needs a non-empty one-channel stack");
@@ -109,13 +120,7 @@ void StackMedian::computeCoarse(std::size_t coarseBudget) {
         }
       }
     });
-    parallelFor(plane, 4096, effectiveThreads(threads_), [&](std::size_t b, std::size_t e) {
-      std::vector<std::uint16_t> samples(n);
-      for (std::size_t p = b; p < e; ++p) {
-        for (int i = 0; i < n; ++i) samples[i] = reduced[i * plane + p];
-        coarse_.pixels[std::size_t(cy0) * cw + p] = lowerMedian(samples);
-      }
-    });
+    mediansOfPlanes(reduced.data(), n, plane, threads_, &coarse_.pixels[std::size_t(cy0) * cw]);
   }
 }
 
@@ -141,13 +146,7 @@ void StackMedian::computeTiles(int tileRow, int firstTile, int lastTile) const {
     }
   });
   std::vector<std::uint16_t> medians(plane);
-  parallelFor(plane, 4096, effectiveThreads(threads_), [&](std::size_t b, std::size_t e) {
-    std::vector<std::uint16_t> samples(n);
-    for (std::size_t p = b; p < e; ++p) {
-      for (int i = 0; i < n; ++i) samples[i] = band[i * plane + p];
-      medians[p] = lowerMedian(samples);
-    }
-  });
+  mediansOfPlanes(band.data(), n, plane, threads_, medians.data());
   for (int tx = firstTile; tx <= lastTile; ++tx) {
     std::vector<std::uint16_t>& tile = tiles_[std::size_t(tileRow) * tilesX_ + tx];
     if (!tile.empty()) continue;
