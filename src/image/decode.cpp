@@ -90,14 +90,23 @@ ImageProbe probeImage(const std::filesystem::path& path) {
 }
 
 const void* DecodedPixels::data() const {
+  if (placed) return placed;
   return isNarrow() ? static_cast<const void*>(narrow.pixels.data()) : static_cast<const void*>(wide.pixels.data());
 }
 
 std::size_t DecodedPixels::bytes() const {
+  if (placed) return std::size_t(narrow.width) * narrow.height * narrow.channels;
   return isNarrow() ? narrow.pixels.size() : wide.pixels.size() * sizeof(std::uint16_t);
 }
 
-Image DecodedPixels::widened() const { return isNarrow() ? widen(narrow) : wide; }
+Image DecodedPixels::widened() const {
+  if (!placed) return isNarrow() ? widen(narrow) : wide;
+  Image out(narrow.width, narrow.height, narrow.channels);
+  out.bitsPerSample = 8;
+  out.transfer = narrow.transfer;
+  widenSamples(placed, bytes(), out.pixels.data());
+  return out;
+}
 
 DecodedPixels decodePixels(const std::filesystem::path& path, const RawDecodeSettings& settings,
                            DecodeReport* report, const DecodeOptions& options) {
@@ -111,7 +120,7 @@ DecodedPixels decodePixels(const std::filesystem::path& path, const RawDecodeSet
 Image decodeImage(const std::filesystem::path& path, const RawDecodeSettings& settings,
                   DecodeReport* report, const DecodeOptions& options) {
   DecodedPixels pixels = decodePixels(path, settings, report, options);
-  if (pixels.isNarrow()) return widen(pixels.narrow);
+  if (pixels.isNarrow()) return pixels.widened();
   return std::move(pixels.wide);
 }
 

@@ -30,6 +30,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -83,6 +84,12 @@ struct DecodeOptions {
   // Refused (Error(Input)) before decoding when its header declares more pixels than this
   // (never more than kMaxImagePixels).
   std::uint64_t maxPixels = kMaxImagePixels;
+  // Where an 8-bit JPEG is decoded to: asked, once the header is read, for a buffer of
+  // width * height * channels bytes (channels of the output: 1 grey, 3 RGB) that the decoder
+  // writes the samples into directly; nullptr (or no function) for a buffer of the decoder's
+  // own. The pipeline passes its stack's slot: no copy, no zeroing of memory about to be
+  // written. Other formats decode into their own buffers.
+  std::function<std::uint8_t*(int width, int height, int channels)> narrowDestination;
 };
 
 // The library reported damaged data and the caller did not accept damage: Error(Input) naming
@@ -101,11 +108,15 @@ class DamagedImageError : public Error {
 // An image at its source's depth, as decodePixels gives it: 8-bit sources (JPEG, 8-bit PNG and
 // TIFF) one byte a sample in `narrow`, camera raw and 16-bit sources in `wide`; the other is
 // empty. The pipeline keeps images this way: a JPEG takes half the memory of its Image.
+//
+// Decoded into DecodeOptions::narrowDestination's buffer, the samples are at `placed` and
+// narrow.pixels is empty (narrow still gives the size and transfer).
 struct DecodedPixels {
   Image8 narrow;
   Image wide;
+  std::uint8_t* placed = nullptr;
 
-  bool isNarrow() const { return !narrow.pixels.empty(); }
+  bool isNarrow() const { return placed || !narrow.pixels.empty(); }
   int width() const { return isNarrow() ? narrow.width : wide.width; }
   int height() const { return isNarrow() ? narrow.height : wide.height; }
   int channels() const { return isNarrow() ? narrow.channels : wide.channels; }

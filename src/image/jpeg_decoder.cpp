@@ -82,9 +82,14 @@ int readPixels(Job* job, std::uint8_t* out, std::size_t stride) {
     default: return 0;
   }
   jpeg_start_decompress(&job->cinfo);
+  // Several rows a call: libjpeg then hands out whole row groups of its upsampler at once.
+  constexpr unsigned kRowsPerCall = 16;
+  JSAMPROW rows[kRowsPerCall];
   while (job->cinfo.output_scanline < job->cinfo.output_height) {
-    JSAMPROW row = out + static_cast<std::size_t>(job->cinfo.output_scanline) * stride;
-    jpeg_read_scanlines(&job->cinfo, &row, 1);
+    const unsigned first = job->cinfo.output_scanline;
+    const unsigned n = std::min(kRowsPerCall, job->cinfo.output_height - first);
+    for (unsigned r = 0; r < n; ++r) rows[r] = out + static_cast<std::size_t>(first + r) * stride;
+    jpeg_read_scanlines(&job->cinfo, rows, n);
   }
   jpeg_finish_decompress(&job->cinfo);
   return 1;
@@ -135,12 +140,21 @@ DecodedPixels decodeJpeg(const fs::path& path, const std::uint8_t* data, std::si
   const int components = c.num_components == 1 ? 1 : c.num_components == 4 ? 4 : 3;
   c.out_color_space = components == 1 ? JCS_GRAYSCALE : components == 4 ? JCS_CMYK : JCS_RGB;
   const int w = static_cast<int>(c.image_width), h = static_cast<int>(c.image_height);
+  const int channels = components == 1 ? 1 : 3;
   DecodedPixels out;
-  out.narrow = Image8(w, h, components == 1 ? 1 : 3);
+  if (options.narrowDestination) out.placed = options.narrowDestination(w, h, channels);
+  if (out.placed) {
+    out.narrow.width = w;
+    out.narrow.height = h;
+    out.narrow.channels = channels;
+  } else {
+    out.narrow = Image8(w, h, channels);
+  }
   out.narrow.transfer = Transfer::Srgb;
-  // Grey and RGB are decoded straight into the image; CMYK into a buffer of its own first.
+  std::uint8_t* const samples = out.placed ? out.placed : out.narrow.pixels.data();
+  // Grey and RGB are decoded straight into the samples; CMYK into a buffer of its own first.
   std::vector<std::uint8_t> cmyk(components == 4 ? std::size_t(w) * h * 4 : 0);
-  std::uint8_t* target = components == 4 ? cmyk.data() : out.narrow.pixels.data();
+  std::uint8_t* target = components == 4 ? cmyk.data() : samples;
   status = readPixels(job.get(), target, static_cast<std::size_t>(w) * components);
   if (status == 0) fatal(path, *job);
   if (status == 2) return {};
@@ -149,7 +163,7 @@ DecodedPixels decodeJpeg(const fs::path& path, const std::uint8_t* data, std::si
     throw Error(ErrorKind::Internal, path.string(), kStep, "libjpeg gave another layout than asked for");
   if (components == 4) {
     // OpenCV's icvCvt_CMYK2BGR_8u_C4C3R, to the same values.
-    std::uint8_t* rgb = out.narrow.pixels.data();
+    std::uint8_t* rgb = samples;
     const std::size_t n = static_cast<std::size_t>(w) * h;
     for (std::size_t i = 0; i < n; ++i) {
       const int cy = cmyk[4 * i], m = cmyk[4 * i + 1], y = cmyk[4 * i + 2], k = cmyk[4 * i + 3];

@@ -78,11 +78,12 @@ DecodedStack::DecodedStack(int count, Format format, Placement placement, const 
     misuse("a stack of images of no size or an unknown layout");
   if (placement == Placement::TemporaryFile) {
     fd_ = temporaryFile(spillDirectory(directory));
-  } else if (format.bytesPerSample == 1) {
-    narrow_.resize(static_cast<std::size_t>(count));
   } else {
-    wide_.resize(static_cast<std::size_t>(count));
+    // new[] of a scalar type leaves the bytes uninitialised: each page is first touched by the
+    // decoder that fills it (new[] aligns for any scalar, so 16-bit samples are aligned too).
+    block_.reset(new std::uint8_t[static_cast<std::size_t>(bytesFor(count, format))]);
   }
+  stored_.assign(static_cast<std::size_t>(count), 0);
 }
 
 DecodedStack::~DecodedStack() {
@@ -95,30 +96,51 @@ std::uint64_t DecodedStack::rowBytes() const {
 
 std::uint64_t DecodedStack::imageBytes() const { return rowBytes() * format_.height; }
 
-void DecodedStack::store(int index, std::vector<std::uint8_t> samples) {
-  if (format_.bytesPerSample != 1 || index < 0 || index >= count_ || samples.size() != imageBytes())
-    misuse("8-bit image does not fit the stack");
-  if (placement_ == Placement::Memory) {
-    narrow_[static_cast<std::size_t>(index)] = std::move(samples);
-    return;
-  }
-  transferAll(::pwrite, fd_, reinterpret_cast<const char*>(samples.data()), imageBytes(),
-              static_cast<off_t>(imageBytes() * index), "write");
+void DecodedStack::checkIndex(int index) const {
+  if (index < 0 || index >= count_) misuse("image index outside the stack");
 }
 
-void DecodedStack::store(int index, std::vector<std::uint16_t> samples) {
+std::uint8_t* DecodedStack::slot(int index) {
+  checkIndex(index);
+  if (placement_ != Placement::Memory) return nullptr;
+  return block_.get() + imageBytes() * static_cast<std::uint64_t>(index);
+}
+
+void DecodedStack::markStored(int index) {
+  checkIndex(index);
+  if (placement_ != Placement::Memory) misuse("an image marked stored in a stack kept in a file");
+  stored_[static_cast<std::size_t>(index)] = 1;
+}
+
+void DecodedStack::storeBytes(int index, const void* samples) {
+  if (placement_ == Placement::Memory) {
+    std::memcpy(slot(index), samples, static_cast<std::size_t>(imageBytes()));
+  } else {
+    transferAll(::pwrite, fd_, static_cast<const char*>(samples), imageBytes(),
+                static_cast<off_t>(imageBytes() * index), "write");
+  }
+  stored_[static_cast<std::size_t>(index)] = 1;
+}
+
+void DecodedStack::store(int index, const std::vector<std::uint8_t>& samples) {
+  if (format_.bytesPerSample != 1 || index < 0 || index >= count_ || samples.size() != imageBytes())
+    misuse("8-bit image does not fit the stack");
+  storeBytes(index, samples.data());
+}
+
+void DecodedStack::store(int index, const std::vector<std::uint16_t>& samples) {
   if (format_.bytesPerSample != 2 || index < 0 || index >= count_ || samples.size() * 2 != imageBytes())
     misuse("16-bit image does not fit the stack");
-  if (placement_ == Placement::Memory) {
-    wide_[static_cast<std::size_t>(index)] = std::move(samples);
-    return;
-  }
-  transferAll(::pwrite, fd_, reinterpret_cast<const char*>(samples.data()), imageBytes(),
-              static_cast<off_t>(imageBytes() * index), "write");
+  storeBytes(index, samples.data());
 }
 
 void DecodedStack::checkRows(int index, int y0, int y1) const {
   if (index < 0 || index >= count_ || y0 < 0 || y1 > format_.height || y0 > y1) misuse("row range outside the stack");
+  if (!stored_[static_cast<std::size_t>(index)]) misuse("image read before it was stored");
+}
+
+const std::uint8_t* DecodedStack::storedImage(int index) const {
+  return block_.get() + imageBytes() * static_cast<std::uint64_t>(index);
 }
 
 void DecodedStack::readSamples(int index, int y0, int y1, void* out) const {
@@ -129,11 +151,7 @@ void DecodedStack::readSamples(int index, int y0, int y1, void* out) const {
                 "read");
     return;
   }
-  const auto* image = format_.bytesPerSample == 1
-                          ? narrow_[static_cast<std::size_t>(index)].data()
-                          : reinterpret_cast<const std::uint8_t*>(wide_[static_cast<std::size_t>(index)].data());
-  if (!image) misuse("image read before it was stored");
-  std::memcpy(out, image + offset, bytes);
+  std::memcpy(out, storedImage(index) + offset, bytes);
 }
 
 void DecodedStack::readRows(int index, int y0, int y1, std::uint16_t* out) const {
@@ -144,9 +162,7 @@ void DecodedStack::readRows(int index, int y0, int y1, std::uint16_t* out) const
   checkRows(index, y0, y1);
   const std::size_t samples = static_cast<std::size_t>(rowBytes()) * (y1 - y0);
   if (placement_ == Placement::Memory) {
-    const std::vector<std::uint8_t>& image = narrow_[static_cast<std::size_t>(index)];
-    if (image.empty()) misuse("image read before it was stored");
-    widenSamples(image.data() + rowBytes() * y0, samples, out);
+    widenSamples(storedImage(index) + rowBytes() * y0, samples, out);
     return;
   }
   std::vector<std::uint8_t> bytes(samples);

@@ -6,18 +6,21 @@
 // the depth; readSamples gives them as stored, for readers that work on bytes.
 //
 // Placement is decided once, before decoding (stages::stackFitsInMemory): in memory when the
-// stack fits --memory, where each decoded image is moved in without a copy; otherwise in an
-// anonymous temporary file, each image written once with pwrite and read back by row bands
-// with pread, so resident memory stays at the bands being processed. The file is unlinked at
-// creation: nothing is left behind even if the process is killed.
+// stack fits --memory, as one block with a slot per image that a decoder can write into
+// directly (slot, then markStored: no copy, and no zeroing of memory about to be overwritten);
+// otherwise in an anonymous temporary file, each image written once with pwrite and read back
+// by row bands with pread, so resident memory stays at the bands being processed. The file is
+// unlinked at creation: nothing is left behind even if the process is killed.
 //
 //   DecodedStack stack(36, {3000, 2000, 3, 1, Transfer::Srgb}, DecodedStack::Placement::Memory);
-//   stack.store(i, std::move(pixels.narrow.pixels));   // from any thread, each index once
+//   decodeInto(stack.slot(i)); stack.markStored(i);   // from any thread, each index once
+//   stack.store(i, std::move(pixels.narrow.pixels));   // or: a copy of pixels decoded elsewhere
 //   stack.readRows(i, y0, y1, rows);                   // 16-bit, as Image
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -50,8 +53,15 @@ class DecodedStack : public ImageStack {
 
   // Stores image `index`: its samples in Image's layout, of the stack's depth (8-bit samples
   // for bytesPerSample 1, 16-bit for 2) and size. Thread-safe for distinct indices.
-  void store(int index, std::vector<std::uint8_t> samples);
-  void store(int index, std::vector<std::uint16_t> samples);
+  void store(int index, const std::vector<std::uint8_t>& samples);
+  void store(int index, const std::vector<std::uint16_t>& samples);
+  // In memory: where image `index`'s imageBytes() bytes go, for a decoder to write them in
+  // place; nullptr in a temporary file. The image counts as stored once markStored(index) is
+  // called. Thread-safe for distinct indices.
+  std::uint8_t* slot(int index);
+  void markStored(int index);
+  // The bytes one image takes: width * height * channels * bytesPerSample.
+  std::uint64_t imageBytes() const;
 
   const Format& format() const { return format_; }
   Placement placement() const { return placement_; }
@@ -70,14 +80,19 @@ class DecodedStack : public ImageStack {
 
  private:
   std::uint64_t rowBytes() const;
-  std::uint64_t imageBytes() const;
   void checkRows(int index, int y0, int y1) const;
+  void checkIndex(int index) const;
+  // Image `index` in memory, once stored.
+  const std::uint8_t* storedImage(int index) const;
+  void storeBytes(int index, const void* samples);
   int count_;
   Format format_;
   Placement placement_;
-  std::vector<std::vector<std::uint8_t>> narrow_;  // in memory, 8-bit
-  std::vector<std::vector<std::uint16_t>> wide_;   // in memory, 16-bit
-  int fd_ = -1;                                    // the temporary file
+  // In memory: count_ images of imageBytes() each, left uninitialised until decoded into
+  // (16-bit samples in the machine's byte order); stored_[i] says image i was stored.
+  std::unique_ptr<std::uint8_t[]> block_;
+  std::vector<std::uint8_t> stored_;
+  int fd_ = -1;  // the temporary file
 };
 
 }  // namespace surrogate::pipeline

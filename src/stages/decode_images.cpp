@@ -148,6 +148,13 @@ DecodedStacks decodeImages(const std::vector<std::filesystem::path>& files,
     image::DecodeOptions options;
     options.acceptDamage = i < static_cast<int>(acceptDamage.size()) && acceptDamage[i];
     options.maxPixels = declared;  // all images are alike: a larger header is damaged
+    if (i > 0)  // straight into the stack's slot, when the image is as the first
+      options.narrowDestination = [&stack, i](int width, int height, int channels) -> std::uint8_t* {
+        const pipeline::DecodedStack::Format& f = stack->format();
+        const bool alike = f.bytesPerSample == 1 && f.transfer == Transfer::Srgb && f.width == width &&
+                           f.height == height && f.channels == channels;
+        return alike ? stack->slot(i) : nullptr;
+      };
     image::DecodedPixels pixels = image::decodePixels(files[i], settings, &d.report, options);
     d.width = pixels.width();
     d.height = pixels.height();
@@ -165,8 +172,9 @@ DecodedStacks decodeImages(const std::vector<std::filesystem::path>& files,
                           describe(stack->format()) + "); all images of a capture must be alike: "
                           "export them all the same way");
     }
-    if (pixels.isNarrow()) stack->store(i, std::move(pixels.narrow.pixels));
-    else stack->store(i, std::move(pixels.wide.pixels));
+    if (pixels.placed) stack->markStored(i);
+    else if (pixels.isNarrow()) stack->store(i, pixels.narrow.pixels);
+    else stack->store(i, pixels.wide.pixels);
     if (run.progress) run.progress("Decoding images", double(++done) / n);
   };
 

@@ -68,3 +68,32 @@ TEST_CASE("a DecodedStack gives 8-bit images widened by 257 and 16-bit ones as s
   CHECK(DecodedStack::bytesFor(kCount, {kWidth, kHeight, 3, 1, Transfer::Srgb}) == std::uint64_t(kCount) * kWidth * kHeight * 3);
   CHECK(DecodedStack::bytesFor(kCount, {kWidth, kHeight, 1, 2, Transfer::Srgb}) == std::uint64_t(kCount) * kWidth * kHeight * 2);
 }
+
+TEST_CASE("a DecodedStack in memory is written in place through its slots, one in a file has none") {
+  DecodedStack stack(kCount, {kWidth, kHeight, 3, 1, Transfer::Srgb}, DecodedStack::Placement::Memory);
+  const std::size_t row = std::size_t(kWidth) * 3;
+  REQUIRE(stack.imageBytes() == row * kHeight);
+  // Slots are distinct, in order, and each exactly one image long.
+  for (int i = 0; i + 1 < kCount; ++i) CHECK(stack.slot(i + 1) - stack.slot(i) == std::ptrdiff_t(row * kHeight));
+  // Before it is marked stored, an image written into its slot cannot be read: a decoder that
+  // failed halfway leaves nothing that passes for an image.
+  const std::vector<std::uint8_t> image = narrowImage(4);
+  std::copy(image.begin(), image.end(), stack.slot(4));
+  std::vector<std::uint16_t> out(row * kHeight);
+  CHECK_THROWS(stack.readRows(4, 0, kHeight, out.data()));
+  stack.markStored(4);
+  std::vector<std::uint8_t> stored(row * kHeight);
+  stack.readSamples(4, 0, kHeight, stored.data());
+  CHECK(stored == image);
+  CHECK(rows(stack, 4, 7, 8)[5] == image[7 * row + 5] * 257);
+  // store() copies into the same place.
+  stack.store(1, narrowImage(1));
+  CHECK(std::equal(stack.slot(1), stack.slot(1) + row * kHeight, narrowImage(1).begin()));
+  CHECK_THROWS(stack.slot(kCount));
+  CHECK_THROWS(stack.markStored(-1));
+
+  DecodedStack spilled(kCount, {kWidth, kHeight, 3, 1, Transfer::Srgb}, DecodedStack::Placement::TemporaryFile);
+  CHECK(spilled.slot(0) == nullptr);
+  CHECK_THROWS(spilled.markStored(0));
+  CHECK_THROWS(spilled.readSamples(0, 0, 1, stored.data()));  // never stored
+}
