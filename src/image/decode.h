@@ -158,6 +158,13 @@ struct JpegSamples {
 };
 JpegSamples decodeJpegSamples(const std::uint8_t* data, std::size_t size, std::uint64_t maxPixels);
 
+// A PNG or JPEG picture held in memory (one a report shows from a capture or a package),
+// decoded as decodeImage decodes such files: structure checked, any warning of damage refusing
+// it, at its own depth (8-bit in `narrow`, 16-bit in `wide`). Error(Input) naming `name` when
+// it is neither, is incomplete or damaged, or declares more than maxPixels.
+DecodedPixels decodePicture(const std::uint8_t* data, std::size_t size, const std::string& name,
+                            std::uint64_t maxPixels);
+
 std::string librawVersion();   // "0.20.2-Release" (LibRaw::version())
 std::string opencvVersion();   // "4.6.0"
 std::string libjpegName();     // "libjpeg-turbo" (the libjpeg JPEGs are decoded with)

@@ -1,5 +1,6 @@
 #include "image/export_decoder.h"
 
+#include <algorithm>
 #include <string>
 
 #include "core/atomic_file.h"
@@ -18,15 +19,14 @@ constexpr const char* kStep = "image decode";
 
 // The structure check on the file's bytes (JPEG, PNG) or the file itself (TIFF: libtiff reads
 // only the directories and the strip tables).
-ImageProbe checkStructure(const fs::path& path, SourceKind kind, const std::string* bytes) {
+ImageProbe checkStructure(const fs::path& path, SourceKind kind, const std::uint8_t* data, std::size_t size) {
   ImageProbe probe;
   probe.kind = kind;
   std::string problem;
   switch (kind) {
     case SourceKind::Jpeg: {
       const JpegStructure s =
-          bytes ? readJpegStructure(reinterpret_cast<const std::uint8_t*>(bytes->data()), bytes->size())
-                : readJpegStructure(path);
+          data ? readJpegStructure(data, size) : readJpegStructure(path);
       probe.width = s.width;
       probe.height = s.height;
       problem = s.problem;
@@ -34,8 +34,7 @@ ImageProbe checkStructure(const fs::path& path, SourceKind kind, const std::stri
     }
     case SourceKind::Png: {
       const PngStructure s =
-          bytes ? readPngStructure(reinterpret_cast<const std::uint8_t*>(bytes->data()), bytes->size())
-                : readPngStructure(path);
+          data ? readPngStructure(data, size) : readPngStructure(path);
       probe.width = s.width;
       probe.height = s.height;
       problem = s.problem;
@@ -64,7 +63,7 @@ const char* libraryOf(SourceKind kind) {
 }  // namespace
 
 ImageProbe checkExportStructure(const fs::path& path, SourceKind kind) {
-  return checkStructure(path, kind, nullptr);
+  return checkStructure(path, kind, nullptr, 0);
 }
 
 DecodedPixels decodeExport(const fs::path& path, SourceKind kind, DecodeReport* report,
@@ -72,14 +71,14 @@ DecodedPixels decodeExport(const fs::path& path, SourceKind kind, DecodeReport* 
   DecoderMessages messages(libraryOf(kind));
   DecodedPixels im;
   if (kind == SourceKind::Tiff) {
-    const ImageProbe probe = checkStructure(path, kind, nullptr);
+    const ImageProbe probe = checkStructure(path, kind, nullptr, 0);
     checkDeclaredSize(path, static_cast<std::uint64_t>(probe.width), static_cast<std::uint64_t>(probe.height), options);
     im = decodeTiff(path, options, messages);
   } else {
     const std::string bytes = readFile(path, kStep);
-    const ImageProbe probe = checkStructure(path, kind, &bytes);
-    checkDeclaredSize(path, static_cast<std::uint64_t>(probe.width), static_cast<std::uint64_t>(probe.height), options);
     const auto* data = reinterpret_cast<const std::uint8_t*>(bytes.data());
+    const ImageProbe probe = checkStructure(path, kind, data, bytes.size());
+    checkDeclaredSize(path, static_cast<std::uint64_t>(probe.width), static_cast<std::uint64_t>(probe.height), options);
     im = kind == SourceKind::Jpeg ? decodeJpeg(path, data, bytes.size(), options, messages)
                                   : decodePng(path, data, bytes.size(), options, messages);
   }
@@ -90,6 +89,24 @@ DecodedPixels decodeExport(const fs::path& path, SourceKind kind, DecodeReport* 
                                                 : "libtiff " + libtiffVersion();
   }
   settle(messages, path, options, report);
+  return im;
+}
+
+DecodedPixels decodePicture(const std::uint8_t* data, std::size_t size, const std::string& name,
+                            std::uint64_t maxPixels) {
+  static constexpr std::uint8_t kPngSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  SourceKind kind;
+  if (size >= 8 && std::equal(kPngSignature, kPngSignature + 8, data)) kind = SourceKind::Png;
+  else if (size >= 2 && data[0] == 0xFF && data[1] == 0xD8) kind = SourceKind::Jpeg;
+  else throwInputError(name, kStep, "is not a PNG or JPEG picture");
+  DecodeOptions options;
+  options.maxPixels = maxPixels;
+  const ImageProbe probe = checkStructure(name, kind, data, size);
+  checkDeclaredSize(name, static_cast<std::uint64_t>(probe.width), static_cast<std::uint64_t>(probe.height), options);
+  DecoderMessages messages(libraryOf(kind));
+  DecodedPixels im = kind == SourceKind::Jpeg ? decodeJpeg(name, data, size, options, messages)
+                                              : decodePng(name, data, size, options, messages);
+  settle(messages, name, options, nullptr);
   return im;
 }
 

@@ -1,5 +1,5 @@
 // Writing images for people to look at: PNG for results (normal maps, overlays, relit
-// previews), JPEG for small previews. Atomic (temporary file, then rename), so a failed
+// previews), JPEG for small previews, through libpng and libjpeg called directly. Atomic (temporary file, then rename), so a failed
 // write never leaves a half file under the final name.
 //
 //   Image overlay = ...;                 // bitsPerSample 8 -> 8-bit PNG, 16 -> 16-bit PNG
@@ -11,6 +11,7 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 
 #include "core/image.h"
 
@@ -21,5 +22,10 @@ void writePng(const Image& image, const std::filesystem::path& path);
 
 // 8-bit JPEG (always; 16-bit values are rounded to 8), quality 1..100.
 void writeJpeg(const Image& image, const std::filesystem::path& path, int quality);
+
+// The JPEG file of 8-bit samples (1 or 3 channels, RGB), quality 1..100, with libjpeg's
+// baseline defaults (4:2:0 chroma, standard Huffman tables): the bytes OpenCV's imencode gave
+// with IMWRITE_JPEG_QUALITY alone. Throws Error naming `what` when it cannot be encoded.
+std::string encodeJpeg(const Image8& image, int quality, const std::string& what);
 
 }  // namespace surrogate::image

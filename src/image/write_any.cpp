@@ -1,16 +1,17 @@
 #include "image/write_any.h"
 
-#include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
+#include <tiffio.h>
 
+#include <algorithm>
+#include <cstdarg>
+#include <cstdio>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/text.h"
-#include "image/opencv_bridge.h"
 #include "image/write.h"
 
 namespace surrogate::image {
@@ -38,28 +39,70 @@ const char* pictureFormatName(PictureFormat format) {
   return "PNG";
 }
 
+namespace {
+
+int collectTiffError(TIFF*, void* user, const char*, const char* fmt, va_list ap) {
+  auto* text = static_cast<std::string*>(user);
+  if (text->empty()) {
+    char buf[512];
+    std::vsnprintf(buf, sizeof buf, fmt, ap);
+    *text = buf;
+  }
+  return 1;
+}
+
+int ignoreTiffWarning(TIFF*, void*, const char*, const char*, va_list) { return 1; }
+
+// The image's rows into the open TIFF `tif`; false when libtiff fails (its words are kept by
+// collectTiffError).
+bool writeTiffRows(TIFF* tif, const Image& image, bool eightBit) {
+  const std::uint32_t w = static_cast<std::uint32_t>(image.width), h = static_cast<std::uint32_t>(image.height);
+  const std::uint16_t samples = static_cast<std::uint16_t>(image.channels);
+  const std::uint16_t bits = eightBit ? 8 : 16;
+  bool ok = TIFFSetField(tif, TIFFTAG_IMAGEWIDTH, w) && TIFFSetField(tif, TIFFTAG_IMAGELENGTH, h) &&
+            TIFFSetField(tif, TIFFTAG_BITSPERSAMPLE, bits) && TIFFSetField(tif, TIFFTAG_SAMPLESPERPIXEL, samples) &&
+            TIFFSetField(tif, TIFFTAG_PHOTOMETRIC, samples == 3 ? PHOTOMETRIC_RGB : PHOTOMETRIC_MINISBLACK) &&
+            TIFFSetField(tif, TIFFTAG_PLANARCONFIG, PLANARCONFIG_CONTIG) &&
+            TIFFSetField(tif, TIFFTAG_COMPRESSION, COMPRESSION_NONE) &&
+            TIFFSetField(tif, TIFFTAG_ORIENTATION, ORIENTATION_TOPLEFT) &&
+            TIFFSetField(tif, TIFFTAG_ROWSPERSTRIP, TIFFDefaultStripSize(tif, 0));
+  const std::size_t n = static_cast<std::size_t>(image.width) * image.channels;
+  std::vector<std::uint8_t> row8(eightBit ? n : 0);
+  std::vector<std::uint16_t> row16(eightBit ? 0 : n);
+  for (std::uint32_t y = 0; ok && y < h; ++y) {
+    const std::uint16_t* in = image.pixels.data() + y * n;
+    if (eightBit) narrowSamples(in, n, row8.data());  // rounded to nearest, as writePng
+    else std::copy(in, in + n, row16.begin());
+    ok = TIFFWriteScanline(tif, eightBit ? static_cast<void*>(row8.data()) : static_cast<void*>(row16.data()), y, 0) == 1;
+  }
+  return ok;
+}
+
+}  // namespace
+
 void writeTiff(const Image& image, const fs::path& path) {
   if (image.empty() || (image.channels != 1 && image.channels != 3) ||
       image.pixels.size() != std::size_t(image.width) * image.height * image.channels)
     throw Error(ErrorKind::Internal, path.string(), kStep,
                 "cannot write an empty image or one with " + std::to_string(image.channels) + " channels");
-  cv::Mat m = toMat(image);
-  if (image.bitsPerSample <= 8) {
-    // Rounded to nearest as writePng does.
-    cv::Mat m8(m.rows, m.cols, CV_MAKETYPE(CV_8U, m.channels()));
-    narrowSamples(image.pixels.data(), image.pixels.size(), m8.ptr<std::uint8_t>());
-    m = m8;
-  }
-  if (m.channels() == 3) cv::cvtColor(m, m, cv::COLOR_RGB2BGR);
-  std::vector<unsigned char> bytes;
-  bool ok = false;
-  try {
-    ok = cv::imencode(".tiff", m, bytes, {cv::IMWRITE_TIFF_COMPRESSION, 1});  // 1: none
-  } catch (const cv::Exception& e) {
-    throw Error(ErrorKind::Internal, path.string(), kStep, "OpenCV could not encode the TIFF: " + e.msg);
-  }
-  if (!ok) throw Error(ErrorKind::Internal, path.string(), kStep, "OpenCV could not encode the TIFF");
-  writeFileAtomically(path, std::string(bytes.begin(), bytes.end()));
+  AtomicFile out(path);
+  std::string libtiffError;
+  std::unique_ptr<TIFFOpenOptions, void (*)(TIFFOpenOptions*)> options(TIFFOpenOptionsAlloc(), TIFFOpenOptionsFree);
+  TIFFOpenOptionsSetErrorHandlerExtR(options.get(), collectTiffError, &libtiffError);
+  TIFFOpenOptionsSetWarningHandlerExtR(options.get(), ignoreTiffWarning, nullptr);
+  TIFF* tif = TIFFOpenExt(out.tempPath().c_str(), "w", options.get());
+  if (!tif)
+    throw Error(ErrorKind::Input, path.string(), kStep,
+                "cannot create the file (" + (libtiffError.empty() ? std::string("libtiff cannot open it") : libtiffError) +
+                    "); check that its folder exists and can be written");
+  const bool rowsWritten = writeTiffRows(tif, image, image.bitsPerSample <= 8);
+  const bool flushed = rowsWritten && TIFFFlush(tif) == 1;
+  TIFFClose(tif);
+  if (!flushed)
+    throw Error(ErrorKind::Input, path.string(), kStep,
+                "libtiff could not write the TIFF (" + (libtiffError.empty() ? std::string("no reason given") : libtiffError) +
+                    "); check the free space of its folder");
+  out.commit();
 }
 
 void writePicture(const Image& image, const fs::path& path, int jpegQuality) {

@@ -6,42 +6,56 @@
 #include <vector>
 
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "core/error.h"
+#include "core/image.h"
 #include "formats/ptm.h"
+#include "image/decode.h"
+#include "image/write.h"
 #include "formats/rti_hsh.h"
 #include "report/html.h"
 
 namespace surrogate::report {
 
 namespace {
-// A PNG whose header claims more pixels than this is not decoded (a package is untrusted: a
-// small file can claim a huge image).
-constexpr std::uint64_t kMaxPngPixels = 1ull << 28;
+// A picture whose header claims more pixels than this is not decoded (a package is untrusted:
+// a small file can claim a huge image).
+constexpr std::uint64_t kMaxPicturePixels = 1ull << 28;
 
-bool plausiblePng(const std::string& bytes) {
-  if (bytes.size() < 24 || bytes.compare(0, 8, "\x89PNG\r\n\x1a\n") != 0) return true;  // not a PNG
-  auto be32 = [&](std::size_t at) {
-    std::uint64_t v = 0;
-    for (std::size_t i = 0; i < 4; ++i) v = (v << 8) | static_cast<unsigned char>(bytes[at + i]);
-    return v;
-  };
-  return be32(16) * be32(20) <= kMaxPngPixels;  // IHDR width, height
+// The decoded picture as 8-bit RGB: 16-bit samples rounded to nearest, grey repeated.
+cv::Mat displayRgb(const image::DecodedPixels& pixels) {
+  const int w = pixels.width(), h = pixels.height(), c = pixels.channels();
+  const std::size_t n = static_cast<std::size_t>(w) * h * c;
+  std::vector<std::uint8_t> narrowed;
+  const std::uint8_t* samples = nullptr;
+  if (pixels.isNarrow()) {
+    samples = static_cast<const std::uint8_t*>(pixels.data());
+  } else {
+    narrowed.resize(n);
+    narrowSamples(pixels.wide.pixels.data(), n, narrowed.data());
+    samples = narrowed.data();
+  }
+  cv::Mat rgb(h, w, CV_8UC3);
+  if (c == 3) {
+    std::copy(samples, samples + n, rgb.ptr<std::uint8_t>());
+  } else {
+    std::uint8_t* out = rgb.ptr<std::uint8_t>();
+    for (std::size_t i = 0; i < n; ++i) out[3 * i] = out[3 * i + 1] = out[3 * i + 2] = samples[i];
+  }
+  return rgb;
 }
 }  // namespace
 
 std::optional<EmbeddedPicture> embedPicture(const std::string& bytes, int maxSide) {
-  if (bytes.empty() || !plausiblePng(bytes)) return std::nullopt;
+  if (bytes.empty()) return std::nullopt;
   cv::Mat image;
   try {
-    const cv::Mat raw(1, static_cast<int>(bytes.size()), CV_8UC1,
-                      const_cast<char*>(bytes.data()));
-    image = cv::imdecode(raw, cv::IMREAD_COLOR);  // 8-bit BGR, whatever the file's depth
-  } catch (const cv::Exception&) {
-    return std::nullopt;
+    image = displayRgb(image::decodePicture(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size(),
+                                            "picture", kMaxPicturePixels));
+  } catch (const Error&) {
+    return std::nullopt;  // not a complete PNG or JPEG: the page says so
   }
-  if (image.empty()) return std::nullopt;
   EmbeddedPicture p;
   p.originalWidth = image.cols;
   p.originalHeight = image.rows;
@@ -55,11 +69,20 @@ std::optional<EmbeddedPicture> embedPicture(const std::string& bytes, int maxSid
                0, 0, cv::INTER_AREA);
     image = small;
   }
-  std::vector<unsigned char> jpeg;
-  if (!cv::imencode(".jpg", image, jpeg, {cv::IMWRITE_JPEG_QUALITY, 88})) return std::nullopt;
-  p.width = image.cols;
-  p.height = image.rows;
-  p.dataUri = "data:image/jpeg;base64," + base64(std::string(jpeg.begin(), jpeg.end()));
+  Image8 small;
+  small.width = image.cols;
+  small.height = image.rows;
+  small.channels = 3;
+  small.pixels.assign(image.ptr<std::uint8_t>(), image.ptr<std::uint8_t>() + image.total() * 3);
+  std::string jpeg;
+  try {
+    jpeg = image::encodeJpeg(small, 88, "picture");
+  } catch (const Error&) {
+    return std::nullopt;
+  }
+  p.width = small.width;
+  p.height = small.height;
+  p.dataUri = "data:image/jpeg;base64," + base64(jpeg);
   return p;
 }
 

@@ -1,4 +1,4 @@
-// What the page embeds: pictures downscaled with OpenCV as data: URIs, and a copy of each fitted
+// What the page embeds: pictures downscaled as JPEG data: URIs, and a copy of each fitted
 // model (PTM or HSH) for the interactive relighting view.
 #pragma once
 
@@ -13,9 +13,10 @@ struct EmbeddedPicture {
   int originalWidth = 0, originalHeight = 0;
 };
 
-// Decodes an image file's bytes (PNG, JPEG, TIFF; 16-bit is reduced to 8), downscales it so its
-// longer side is at most `maxSide` (area averaging), and encodes it as JPEG. nullopt when the
-// bytes are not an image OpenCV can read.
+// Decodes a picture file's bytes (PNG or JPEG, strictly as image::decodePicture; 16-bit
+// rounded to 8, grey shown as RGB), downscales it so its longer side is at most `maxSide`
+// (OpenCV's area averaging), and encodes it as JPEG (libjpeg, quality 88). nullopt when the
+// bytes are not a complete, undamaged PNG or JPEG.
 std::optional<EmbeddedPicture> embedPicture(const std::string& bytes, int maxSide);
 
 // A fitted model's bytes (.ptm, or .rti HSH chosen by the first bytes "PTM_") as a JSON object

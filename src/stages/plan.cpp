@@ -34,10 +34,10 @@ namespace fs = std::filesystem;
 std::vector<carrier::Software> softwareVersions() {
   return {
       {"LibRaw", image::librawVersion(), "camera raw decoding"},
-      {image::libjpegName(), image::libjpegVersion(), "JPEG decoding, and encoding of the web copy"},
-      {"libpng", image::libpngVersion(), "PNG decoding"},
-      {"libtiff", image::libtiffVersion(), "TIFF decoding"},
-      {"OpenCV", image::opencvVersion(), "image writing and filtering"},
+      {image::libjpegName(), image::libjpegVersion(), "JPEG decoding and encoding"},
+      {"libpng", image::libpngVersion(), "PNG decoding and encoding"},
+      {"libtiff", image::libtiffVersion(), "TIFF decoding and writing"},
+      {"OpenCV", image::opencvVersion(), "image filtering and resampling"},
       {"Exiv2", meta::exiv2Version(), "EXIF/XMP metadata"},
       {"libxml2", xml::libxml2Version(), "XML and schema validation"},
       {"OpenSSL", opensslVersion(), "message digests"},

@@ -1,7 +1,15 @@
-// PNG and JPEG writing: exact round trips, deterministic bytes, no partial files.
+// PNG, JPEG and TIFF writing: exact round trips, deterministic bytes, no partial files. OpenCV's
+// imencode and imread, which wrote and read these files before, are the independent reference.
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "damage.h"
 #include "fixtures.h"
 #include "core/atomic_file.h"
 #include "image/decode.h"
+#include "image/write.h"
+#include "image/write_any.h"
 
 using namespace surrogate;
 namespace fs = std::filesystem;
@@ -68,5 +76,104 @@ TEST_CASE("writing an empty image is an error and leaves no file") {
   const fs::path dir = test::scratchDir("write-empty");
   CHECK_THROWS_AS(image::writePng(Image(), dir / "x.png"), Error);
   CHECK(fs::is_empty(dir));
+  fs::remove_all(dir);
+}
+
+namespace {
+// A noisy 8-bit picture (smooth ramps plus a hash), so the encoder's every stage has work.
+Image8 noisy(int w, int h, int channels) {
+  Image8 im;
+  im.width = w;
+  im.height = h;
+  im.channels = channels;
+  im.pixels.resize(std::size_t(w) * h * channels);
+  for (std::size_t i = 0; i < im.pixels.size(); ++i)
+    im.pixels[i] = static_cast<std::uint8_t>((i * 7 + (i / 97) * 13 + ((i * 2654435761u) >> 27)) & 0xff);
+  return im;
+}
+
+std::string opencvJpeg(const Image8& im, int quality) {
+  const cv::Mat m(im.height, im.width, CV_MAKETYPE(CV_8U, im.channels), const_cast<std::uint8_t*>(im.pixels.data()));
+  cv::Mat bgr;  // a copy: `im` stays as it is
+  if (im.channels == 3) cv::cvtColor(m, bgr, cv::COLOR_RGB2BGR);
+  else bgr = m.clone();
+  std::vector<unsigned char> out;
+  REQUIRE(cv::imencode(".jpg", bgr, out, {cv::IMWRITE_JPEG_QUALITY, quality}));
+  return std::string(out.begin(), out.end());
+}
+}  // namespace
+
+TEST_CASE("encodeJpeg gives the bytes OpenCV's imencode gave, RGB and grey, at several qualities") {
+  for (const int channels : {3, 1})
+    for (const int quality : {50, 88, 95, 100}) {
+      INFO("channels " << channels << ", quality " << quality);
+      const Image8 im = noisy(67, 41, channels);  // sizes not multiples of the 16-pixel MCU
+      CHECK(image::encodeJpeg(im, quality, "test") == opencvJpeg(im, quality));
+    }
+  CHECK_THROWS_AS(image::encodeJpeg(noisy(4, 4, 3), 101, "test"), Error);
+  CHECK_THROWS_AS(image::encodeJpeg(Image8(), 90, "test"), Error);
+}
+
+TEST_CASE("a TIFF round-trips exactly through OpenCV's reader, 8 and 16 bits, RGB and grey") {
+  const fs::path dir = test::scratchDir("write-tiff");
+  for (const int bits : {8, 16}) {
+    const Image im = ramp(bits);
+    image::writeTiff(im, dir / "rgb.tif");
+    const cv::Mat back = cv::imread((dir / "rgb.tif").string(), cv::IMREAD_UNCHANGED);
+    REQUIRE(back.rows == im.height);
+    REQUIRE(back.cols == im.width);
+    REQUIRE(back.channels() == 3);
+    CHECK(back.depth() == (bits == 8 ? CV_8U : CV_16U));
+    int wrong = 0;
+    for (int y = 0; y < im.height; ++y)
+      for (int x = 0; x < im.width; ++x)
+        for (int c = 0; c < 3; ++c) {
+          const int expected = bits == 8 ? (im.at(x, y, c) + 128) / 257 : im.at(x, y, c);
+          const int got = bits == 8 ? back.at<cv::Vec3b>(y, x)[2 - c] : back.at<cv::Vec3w>(y, x)[2 - c];
+          wrong += got != expected;
+        }
+    CHECK(wrong == 0);
+  }
+  Image grey(5, 3, 1);
+  for (std::size_t i = 0; i < grey.pixels.size(); ++i) grey.pixels[i] = static_cast<std::uint16_t>(i * 4000);
+  image::writeTiff(grey, dir / "grey.tif");
+  image::writeTiff(grey, dir / "grey2.tif");
+  const cv::Mat g = cv::imread((dir / "grey.tif").string(), cv::IMREAD_UNCHANGED);
+  REQUIRE(g.type() == CV_16UC1);
+  CHECK(g.at<std::uint16_t>(2, 4) == 14 * 4000);
+  CHECK(readFile(dir / "grey.tif", "test") == readFile(dir / "grey2.tif", "test"));  // no time stamp
+  // Only the files: no temporary left behind; a folder that does not exist is an error.
+  CHECK(std::distance(fs::directory_iterator(dir), fs::directory_iterator()) == 3);
+  CHECK_THROWS_AS(image::writeTiff(grey, dir / "missing" / "x.tif"), Error);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("decodePicture reads PNG and JPEG bytes as decodeImage reads their files, and refuses the rest") {
+  const fs::path dir = test::scratchDir("decode-picture");
+  const Image im = ramp(16);
+  image::writePng(im, dir / "a.png");
+  const std::string png = readFile(dir / "a.png", "test");
+  const image::DecodedPixels p =
+      image::decodePicture(reinterpret_cast<const std::uint8_t*>(png.data()), png.size(), "a.png", 1000);
+  CHECK_FALSE(p.isNarrow());
+  CHECK(p.wide.pixels == im.pixels);
+  const Image8 rgb = noisy(30, 20, 3);
+  const std::string jpeg = image::encodeJpeg(rgb, 90, "test");
+  test::writeBytes(dir / "b.jpg", jpeg);
+  const image::DecodedPixels j =
+      image::decodePicture(reinterpret_cast<const std::uint8_t*>(jpeg.data()), jpeg.size(), "b.jpg", 1000);
+  REQUIRE(j.isNarrow());
+  CHECK(j.widened().pixels == image::decodeImage(dir / "b.jpg", image::RawDecodeSettings()).pixels);
+  // Too many pixels for the caller, cut short, or not a picture: Error(Input) naming it.
+  test::inputErrorOf("a.png", [&] {
+    image::decodePicture(reinterpret_cast<const std::uint8_t*>(png.data()), png.size(), "a.png", 399);
+  });
+  test::inputErrorOf("b.jpg", [&] {
+    image::decodePicture(reinterpret_cast<const std::uint8_t*>(jpeg.data()), jpeg.size() / 2, "b.jpg", 1000);
+  });
+  const std::string text = "GIF89a, or anything else";
+  test::inputErrorOf("c", [&] {
+    image::decodePicture(reinterpret_cast<const std::uint8_t*>(text.data()), text.size(), "c", 1000);
+  });
   fs::remove_all(dir);
 }
