@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <future>
 #include <map>
 #include <sstream>
 
@@ -381,29 +382,58 @@ std::vector<const carrier::FileRecord*> fittedModels(const carrier::Carrier& c) 
   return out;
 }
 
+// A fitted model as the interactive view shows it: its JSON (relightJson), or why it cannot
+// be shown.
+struct RelightModel {
+  const carrier::FileRecord* file = nullptr;
+  bool found = false;      // the source holds the file
+  std::string json;        // empty when it cannot be shown
+  std::string problem;     // why, when found but not shown
+};
+
+// Every fitted model the carrier lists, read and converted for the page. Reading a model and
+// reducing it to the page's size is a large part of a report (the models of 36 x 3000x2000
+// are 54 and 108 MB), so buildReport does it while the pictures are made.
+std::vector<RelightModel> relightModels(const carrier::Carrier& c, const ReportSource& source,
+                                        const ReportOptions& options) {
+  std::vector<RelightModel> out;
+  for (const carrier::FileRecord* model : fittedModels(c)) {
+    RelightModel m;
+    m.file = model;
+    const std::optional<std::string> bytes = source.read(model->path);
+    m.found = bytes.has_value();
+    if (bytes) {
+      try {
+        m.json = relightJson(*bytes, options.relightMaxSide, model->path);
+      } catch (const Error& e) {
+        m.problem = e.what();
+      }
+    }
+    out.push_back(std::move(m));
+  }
+  return out;
+}
+
 // The interactive view: every fitted model the source holds, as JSON for the page's script,
 // drawn at the model's resolution (or options.relightMaxSide); the first model is shown first.
-std::string relightSection(const carrier::Carrier& c, const ReportSource& source,
-                           const ReportOptions& options, Report& report) {
+std::string relightSection(const carrier::Carrier& c, const std::vector<RelightModel>& models, Report& report) {
   std::ostringstream s, notes, buttons, data;
   s << "<section id=\"relight\"><h2>Relight it yourself</h2>";
   int shown = 0;
-  for (const carrier::FileRecord* model : fittedModels(c)) {
-    const std::optional<std::string> bytes = source.read(model->path);
-    if (!bytes) {
-      notes << "<p class=\"note\">The model " << escapeHtml(model->path) << " is not in this package or capture.</p>";
+  for (const RelightModel& model : models) {
+    if (!model.found) {
+      notes << "<p class=\"note\">The model " << escapeHtml(model.file->path) << " is not in this package or capture.</p>";
       continue;
     }
-    try {
-      const std::string json = relightJson(*bytes, options.relightMaxSide, model->path);
-      data << (shown ? "," : "") << json;
-      const carrier::Step* fit = c.findStep(model->createdBy);
-      buttons << "<button type=\"button\" data-model=\"" << shown << "\" title=\"" << escapeHtml(model->path)
-              << "\">" << escapeHtml(fit ? modelTitle(fit->param("basis", "")) : model->path) << "</button>";
-      ++shown;
-    } catch (const Error& e) {
-      notes << "<p class=\"bad\">The model cannot be shown: " << escapeHtml(e.what()) << "</p>";
+    if (model.json.empty()) {
+      notes << "<p class=\"bad\">The model cannot be shown: " << escapeHtml(model.problem) << "</p>";
+      continue;
     }
+    data << (shown ? "," : "") << model.json;
+    const carrier::Step* fit = c.findStep(model.file->createdBy);
+    buttons << "<button type=\"button\" data-model=\"" << shown << "\" title=\"" << escapeHtml(model.file->path)
+            << "\">" << escapeHtml(fit ? modelTitle(fit->param("basis", "")) : model.file->path) << "</button>";
+    ++shown;
   }
   if (shown == 0) {
     const std::string none = notes.str().empty()
@@ -460,11 +490,22 @@ Report buildReport(const carrier::Carrier& c, const ReportSource& source, const 
   progress(0.05);
   Pictures pictures(source, options.maxImageSide);
   const std::vector<std::string> shown = shownPictures(c);
-  pictures.prepare(shown, options.threads);
+  // The models for the interactive view on a thread of their own while the pictures are made
+  // on the others: neither depends on the other, so the page is the same at any thread count.
+  std::vector<RelightModel> models;
+  if (effectiveThreads(options.threads) > 1) {
+    std::future<std::vector<RelightModel>> modelsMade =
+        std::async(std::launch::async, [&] { return relightModels(c, source, options); });
+    pictures.prepare(shown, options.threads);
+    models = modelsMade.get();
+  } else {
+    pictures.prepare(shown, options.threads);
+    models = relightModels(c, source, options);
+  }
   progress(0.05 + 0.9 * shareAfterPictures(shown));
   const std::string detection = detectionSection(c, pictures, report);
   const std::string results = resultsSection(c, pictures, report);
-  const std::string relight = relightSection(c, source, options, report);
+  const std::string relight = relightSection(c, models, report);
   const std::string priorWork = auditSection(c, [&](const carrier::FileRecord& f, const std::string& caption) {
     return figure(pictures, f, caption, &report.picturesEmbedded);
   });
