@@ -39,8 +39,7 @@ void ChannelFitter::fitRow(const RowView& row, double* acc, double* block) const
   }
 }
 
-void ChannelFitter::measure(const RowView& row, double* scratch, double* lo, double* hi,
-                            float* kept) const {
+void ChannelFitter::measure(const RowView& row, double* scratch, double* lo, double* hi) const {
   const std::size_t m = static_cast<std::size_t>(row.width) * 3;
   fitRow(row, scratch, scratch + 2 * terms_ * m);
   for (int k = 0; k < terms_; ++k) {
@@ -48,21 +47,16 @@ void ChannelFitter::measure(const RowView& row, double* scratch, double* lo, dou
     lo[k] = *std::min_element(a, a + m);
     hi[k] = *std::max_element(a, a + m);
   }
-  if (kept) std::copy(scratch, scratch + terms_ * m, kept);
 }
 
-void ChannelFitter::quantise(const RowView& row, double* scratch, double* sqErr,
-                             const float* kept) const {
+void ChannelFitter::quantise(const RowView& row, double* scratch, double* sqErr) const {
   const std::size_t m = static_cast<std::size_t>(row.width) * 3;
   double* acc = scratch;
   double* decoded = scratch + terms_ * m;
   double* block = decoded + terms_ * m;
-  if (kept) {
-    std::copy(kept, kept + terms_ * m, acc);
-  } else {  // the values pass 1 would have kept
-    fitRow(row, acc, block);
-    for (std::size_t j = 0; j < terms_ * m; ++j) acc[j] = static_cast<float>(acc[j]);
-  }
+  // Rounded to float, as RtiFit version 2 kept them between the passes (fit.h).
+  fitRow(row, acc, block);
+  for (std::size_t j = 0; j < terms_ * m; ++j) acc[j] = static_cast<float>(acc[j]);
   for (int k = 0; k < terms_; ++k) {
     double* d = decoded + k * m;
     quantiseRow(k, row.y, acc + k * m, m, d);

@@ -23,12 +23,9 @@ class ChannelFitter : public RowFitter {
                 double displayScale);
 
   int ranges() const override { return terms_; }
-  int keptFloats() const override { return 3 * terms_; }
   std::size_t scratchDoubles(int width) const override;
-  void measure(const RowView& row, double* scratch, double* lo, double* hi,
-               float* kept) const override;
-  void quantise(const RowView& row, double* scratch, double* sqErr,
-                const float* kept) const override;
+  void measure(const RowView& row, double* scratch, double* lo, double* hi) const override;
+  void quantise(const RowView& row, double* scratch, double* sqErr) const override;
 
  protected:
   // Quantises coefficient k of row y, a[j] for the m = 3 width samples (pixel j / 3, channel

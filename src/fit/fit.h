@@ -22,18 +22,18 @@
 // within 32 MiB and, with the result object (9 or 18 bytes per pixel for PTM, 3*T for HSH) and
 // the per-thread scratch, within FitOptions::memoryBudgetBytes (at least one row). The quantisation needs each
 // coefficient's range over the whole image before any byte can be written, so the fit makes
-// TWO passes: pass 1 fits every pixel and keeps the per-row minima and maxima and, when they
-// fit in what the budget leaves after the bands (a stack held in memory takes no band), the
-// image's coefficients as floats (6 per pixel for LRGB, 3*T for RGB PTM and HSH); pass 2
-// quantises the kept coefficients, or fits every pixel again when there were none (the same
-// code on the same samples gives the same doubles, rounded to float like the kept ones, so
-// the bytes do not depend on the budget), and measures the fit error, which needs the
-// samples: the bands are read again unless the whole stack was one band. Floats, not doubles: the
-// quantisation step is at least 1/255 of the range, and rounding to float moves a coefficient
-// by at most 2^-24 of its value, which moves about one byte in a million by one level.
-// Trade: without the memory to keep them, the stack is read twice instead of spilling 4 bytes
-// per coefficient to a temporary file (1.7 GB of floats for an RGB PTM of 24 Mpx). O(height * N)
-// statistics come on top of the budget.
+// TWO passes: pass 1 fits every pixel and keeps the per-row minima and maxima; pass 2 fits
+// every pixel again, rounds the coefficients to float and quantises them, and measures the fit
+// error, which needs the samples: the bands are read again unless the whole stack was one
+// band. Floats, not doubles, because RtiFit version 2 kept the coefficients between the passes
+// as floats and the bytes stay those: the quantisation step is at least 1/255 of the range,
+// and rounding to float moves a coefficient by at most 2^-24 of its value, which moves about
+// one byte in a million by one level.
+// Why fit twice rather than keep the coefficients (6 floats a pixel for LRGB, 3*T for RGB PTM
+// and HSH: 648 MB for HSH of 36 x 3000x2000): the memory holding them had to be faulted in
+// page by page, which on the 2-core virtual machines Surrogate is measured on cost more than
+// fitting again (docs/developer-guide.md, "Benchmarks"), and it raised the peak by as much.
+// O(height * N) statistics come on top of the budget.
 //
 // Determinism: every pixel is computed by the same sequence of floating-point operations
 // whatever the band height or thread count; reductions are kept per row and combined in row

@@ -54,11 +54,9 @@ class LrgbFitter : public RowFitter {
   int ranges() const override { return 6; }
   // Scratch layout (doubles): acc 6w | chroma 3w | mean 3w | sum w | decoded 6w | lum w.
   std::size_t scratchDoubles(int width) const override { return 20 * std::size_t(width); }
-  int keptFloats() const override { return 6; }  // the luminance coefficients
 
   // The stored colour bytes are final after pass 1: they are written to the result here.
-  void measure(const RowView& row, double* scratch, double* lo, double* hi,
-               float* kept) const override {
+  void measure(const RowView& row, double* scratch, double* lo, double* hi) const override {
     const int w = row.width;
     fitRow(row, scratch);
     for (int k = 0; k < 6; ++k) {
@@ -68,7 +66,6 @@ class LrgbFitter : public RowFitter {
     }
     const double* chroma = scratch + 6 * w;
     std::copy(chroma, chroma + 3 * w, out_->rgb.begin() + static_cast<std::size_t>(row.y) * w * 3);
-    if (kept) std::copy(scratch, scratch + 6 * w, kept);
   }
 
   void setRanges(const std::vector<double>& lo, const std::vector<double>& hi) override {
@@ -79,22 +76,16 @@ class LrgbFitter : public RowFitter {
     }
   }
 
-  void quantise(const RowView& row, double* scratch, double* sqErr,
-                const float* kept) const override {
+  void quantise(const RowView& row, double* scratch, double* sqErr) const override {
     const int w = row.width;
     double* acc = scratch;
     double* chroma = scratch + 6 * w;
     double* decoded = scratch + 13 * w;
     double* lum = scratch + 19 * w;
     const std::size_t base = static_cast<std::size_t>(row.y) * w;
-    if (kept) {
-      std::copy(kept, kept + 6 * w, acc);
-      const std::uint8_t* stored = out_->rgb.data() + base * 3;
-      std::copy(stored, stored + 3 * w, chroma);
-    } else {  // the values pass 1 would have kept
-      fitRow(row, scratch);
-      for (int j = 0; j < 6 * w; ++j) acc[j] = static_cast<float>(acc[j]);
-    }
+    // Rounded to float, as RtiFit version 2 kept them between the passes (fit.h).
+    fitRow(row, scratch);
+    for (int j = 0; j < 6 * w; ++j) acc[j] = static_cast<float>(acc[j]);
     for (int x = 0; x < w; ++x) {
       for (int k = 0; k < 6; ++k) {
         const std::uint8_t b = q_[k].quantise(acc[k * w + x]);

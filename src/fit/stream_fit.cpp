@@ -12,14 +12,6 @@ namespace surrogate::fit {
 namespace {
 const char* const kStep = "fit";
 constexpr std::size_t kBandBytes = std::size_t(32) << 20;  // see streamFit
-
-// All rows when the whole image's pass-1 coefficients (floats) fit in `spareBytes`, else none:
-// keeping part of them would raise the peak memory for a part of the saving.
-int keptRows(int floatsPerPixel, int width, int height, std::size_t spareBytes) {
-  const std::size_t bytes =
-      static_cast<std::size_t>(floatsPerPixel) * width * height * sizeof(float);
-  return bytes <= spareBytes ? height : 0;
-}
 }  // namespace
 
 std::vector<std::array<double, 3>> checkedLights(const ImageStack& stack,
@@ -78,15 +70,6 @@ std::vector<double> streamFit(const ImageStack& stack, RowFitter& fitter,
   // they are, band by band as the others: no band buffer, no copy.
   const auto* held = ch == 3 ? dynamic_cast<const MemoryImageStack*>(&stack) : nullptr;
   std::vector<std::uint16_t> buffer(held ? 0 : static_cast<std::size_t>(n) * band * rowSamples);
-  // Pass 1 keeps the coefficients when they fit in what the bands leave of the budget, so that
-  // pass 2 does not fit the pixels again.
-  const int kept = keptRows(fitter.keptFloats(), w, h,
-                            available - std::min(available, held ? 0 : band * bandRowBytes));
-  std::vector<float> keptCoefficients(static_cast<std::size_t>(kept) * fitter.keptFloats() * w);
-  auto keptRow = [&](int y) -> float* {
-    if (y >= kept) return nullptr;
-    return keptCoefficients.data() + static_cast<std::size_t>(y) * fitter.keptFloats() * w;
-  };
 
   auto readBand = [&](int y0, int y1) {
     if (held) return;
@@ -132,7 +115,7 @@ std::vector<double> streamFit(const ImageStack& stack, RowFitter& fitter,
     readBand(y0, y1);
     forRows(y0, y1, [&](const RowView& row, double* scratch) {
       fitter.measure(row, scratch, &rowLo[static_cast<std::size_t>(row.y) * r],
-                     &rowHi[static_cast<std::size_t>(row.y) * r], keptRow(row.y));
+                     &rowHi[static_cast<std::size_t>(row.y) * r]);
     });
     report(0.5 * (bi + 1) / bands);
   }
@@ -152,7 +135,7 @@ std::vector<double> streamFit(const ImageStack& stack, RowFitter& fitter,
     const int y0 = bi * band, y1 = std::min(h, y0 + band);
     if (bands > 1) readBand(y0, y1);
     forRows(y0, y1, [&](const RowView& row, double* scratch) {
-      fitter.quantise(row, scratch, &rowErr[static_cast<std::size_t>(row.y) * n], keptRow(row.y));
+      fitter.quantise(row, scratch, &rowErr[static_cast<std::size_t>(row.y) * n]);
     });
     report(0.5 + 0.5 * (bi + 1) / bands);
   }

@@ -25,19 +25,14 @@ class RowFitter {
   virtual ~RowFitter() = default;
   virtual int ranges() const = 0;                            // coefficient ranges tracked
   virtual std::size_t scratchDoubles(int width) const = 0;   // per worker
-  // Floats per pixel that hold a row's fit between the passes (keptFloats() * width per row).
-  virtual int keptFloats() const = 0;
-  // Pass 1: fits the row; lo/hi (ranges() each) receive the row's minima and maxima. When
-  // `kept` is not null it receives the row's coefficients, rounded to float.
-  virtual void measure(const RowView& row, double* scratch, double* lo, double* hi,
-                       float* kept) const = 0;
+  // Pass 1: fits the row; lo/hi (ranges() each) receive the row's minima and maxima.
+  virtual void measure(const RowView& row, double* scratch, double* lo, double* hi) const = 0;
   // Between the passes: the whole image's ranges.
   virtual void setRanges(const std::vector<double>& lo, const std::vector<double>& hi) = 0;
-  // Pass 2: quantises the row's coefficients (those pass 1 kept, or the row fitted again and
-  // rounded to float: the same values) into the result's row `row.y` and writes sqErr[i] = sum
-  // over the row of the squared luminance error at light i.
-  virtual void quantise(const RowView& row, double* scratch, double* sqErr,
-                        const float* kept) const = 0;
+  // Pass 2: fits the row again, rounds its coefficients to float and quantises them into the
+  // result's row `row.y`, and writes sqErr[i] = sum over the row of the squared luminance
+  // error at light i.
+  virtual void quantise(const RowView& row, double* scratch, double* sqErr) const = 0;
 };
 
 // Validated light vectors, normalised. Throws Error(Input) (see fitPtm).
@@ -47,9 +42,7 @@ std::vector<std::array<double, 3>> checkedLights(const ImageStack& stack,
 
 // Runs both passes; returns the per-image squared luminance errors (summed over pixels in row
 // order) and sets stats->passes. `modelBytes`, the model already allocated for the output,
-// counts against options.memoryBudgetBytes like the bands do. Pass 1 keeps the whole image's
-// coefficients when they fit in what the bands leave of the budget; pass 2 then fits nothing
-// again.
+// counts against options.memoryBudgetBytes like the bands do.
 std::vector<double> streamFit(const ImageStack& stack, RowFitter& fitter,
                               const FitOptions& options, std::size_t modelBytes, int* passes);
 

@@ -134,8 +134,8 @@ RtiFitOptions RtiFitOptions::forBasis(const std::string& basis) {
 
 pipeline::StageInfo RtiFitStage::info() {
   pipeline::StageInfo info = pipeline::withOptions<RtiFitOptions>(
-      // Version 2: coefficients are quantised from their float values (kept between the passes
-      // when memory allows, src/fit/fit.h), which moves a few bytes by one level.
+      // Version 2: coefficients are quantised from their values rounded to float (src/fit/fit.h),
+      // which moves a few bytes by one level.
       {kComponent, "2", "Least-squares fit of a per-pixel reflectance model over the light directions",
        pipeline::PlanSlot::EachModel});
   info.forModel = [](const std::string& basis) { return RtiFitOptions::forBasis(basis).toParameters(); };

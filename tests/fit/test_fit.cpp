@@ -155,25 +155,24 @@ TEST_CASE("fit: results are bit-identical for 1 or 2 threads and any memory budg
     FitOptions mid = big;
     mid.memoryBudgetBytes = 20 * 40 * 3 * 2 * 7 + 200000;  // a few rows per band
     mid.threads = 2;
-    // More budgets around what keeping every pixel's coefficients takes: at 100000 bytes LRGB
-    // keeps them (in three bands), RGB and HSH fit every pixel again; none keeps them at 40000.
-    FitOptions someKept = mid;
-    someKept.memoryBudgetBytes = 40000;
-    FitOptions moreKept = mid;
-    moreKept.memoryBudgetBytes = 100000;
+    // More budgets, for other band heights.
+    FitOptions tight = mid;
+    tight.memoryBudgetBytes = 40000;
+    FitOptions roomy = mid;
+    roomy.memoryBudgetBytes = 100000;
     FitStatistics s1, s2, s3, s4;
     if (isPtm(b)) {
       const auto a = fitPtm(stack, lights, big, &s1);
       CHECK(a == fitPtm(stack, lights, small, &s2));
       CHECK(a == fitPtm(stack, lights, mid, &s3));
-      CHECK(a == fitPtm(stack, lights, someKept, &s4));
-      CHECK(a == fitPtm(stack, lights, moreKept));
+      CHECK(a == fitPtm(stack, lights, tight, &s4));
+      CHECK(a == fitPtm(stack, lights, roomy));
     } else {
       const auto a = fitHsh(stack, lights, big, &s1);
       CHECK(a == fitHsh(stack, lights, small, &s2));
       CHECK(a == fitHsh(stack, lights, mid, &s3));
-      CHECK(a == fitHsh(stack, lights, someKept, &s4));
-      CHECK(a == fitHsh(stack, lights, moreKept));
+      CHECK(a == fitHsh(stack, lights, tight, &s4));
+      CHECK(a == fitHsh(stack, lights, roomy));
     }
     CHECK(s1.passes == 1);
     CHECK(s2.passes == 2);
