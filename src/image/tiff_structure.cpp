@@ -14,8 +14,8 @@ namespace {
 // Bounds the walk: no real file has more directories, and a crafted file cannot make it long.
 constexpr int kMaxDirectories = 64;
 
-// Per-handle handlers (libtiff >= 4.5): thread-safe, and they leave the process-wide handlers,
-// which OpenCV installs for its own TIFF codec, untouched. Returning 1 stops the global handler.
+// Per-handle handlers (libtiff >= 4.5): thread-safe, and they leave the process-wide handlers
+// untouched. Returning 1 stops the global handler.
 int collectError(TIFF*, void* user, const char*, const char* fmt, va_list ap) {
   auto* text = static_cast<std::string*>(user);
   if (text->empty()) {
@@ -68,10 +68,7 @@ bool allDataInsideFile(TIFF* tif, std::uint64_t fileSize) {
 TiffStructure readTiffStructure(const std::filesystem::path& path) {
   TiffStructure s;
   std::string libtiffError;
-  std::unique_ptr<TIFFOpenOptions, void (*)(TIFFOpenOptions*)> options(TIFFOpenOptionsAlloc(),
-                                                                        TIFFOpenOptionsFree);
-  TIFFOpenOptionsSetErrorHandlerExtR(options.get(), collectError, &libtiffError);
-  TIFFOpenOptionsSetWarningHandlerExtR(options.get(), ignoreWarning, nullptr);
+  const TiffOpenOptionsPtr options = quietTiffOptions(&libtiffError);
   // Opening reads the header and IFD0 only. "m": no memory-mapping, so a file shrinking while
   // it is read gives an error, not a fault.
   std::unique_ptr<TIFF, TiffCloser> tif(TIFFOpenExt(path.c_str(), "rm", options.get()));
@@ -95,6 +92,13 @@ TiffStructure readTiffStructure(const std::filesystem::path& path) {
   if (!ec) s.truncated = !allDataInsideFile(tif.get(), fileSize);
   s.unreadable = libtiffError;
   return s;
+}
+
+TiffOpenOptionsPtr quietTiffOptions(std::string* firstError) {
+  TiffOpenOptionsPtr options(TIFFOpenOptionsAlloc(), TIFFOpenOptionsFree);
+  TIFFOpenOptionsSetErrorHandlerExtR(options.get(), collectError, firstError);
+  TIFFOpenOptionsSetWarningHandlerExtR(options.get(), ignoreWarning, nullptr);
+  return options;
 }
 
 std::string tiffProblem(const TiffStructure& s) {

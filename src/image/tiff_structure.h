@@ -11,7 +11,10 @@
 // without any error.
 #pragma once
 
+#include <tiffio.h>
+
 #include <filesystem>
+#include <memory>
 #include <string>
 
 namespace surrogate::image {
@@ -27,6 +30,12 @@ struct TiffStructure {
 
 // Never prints: libtiff's messages are collected into `unreadable`.
 TiffStructure readTiffStructure(const std::filesystem::path& path);
+
+// libtiff open options (TIFFOpenExt) whose per-handle handlers keep libtiff's first error
+// message in `*firstError` and drop its warnings: nothing reaches stderr, and the process-wide
+// handlers stay as they are. Thread-safe (libtiff >= 4.5).
+using TiffOpenOptionsPtr = std::unique_ptr<TIFFOpenOptions, void (*)(TIFFOpenOptions*)>;
+TiffOpenOptionsPtr quietTiffOptions(std::string* firstError);
 
 // A sentence for the user when the structure is unusable as a TIFF export (unreadable or
 // truncated), else empty.

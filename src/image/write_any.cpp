@@ -3,15 +3,13 @@
 #include <tiffio.h>
 
 #include <algorithm>
-#include <cstdarg>
-#include <cstdio>
-#include <memory>
 #include <string>
 #include <vector>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/text.h"
+#include "image/tiff_structure.h"
 #include "image/write.h"
 
 namespace surrogate::image {
@@ -41,20 +39,8 @@ const char* pictureFormatName(PictureFormat format) {
 
 namespace {
 
-int collectTiffError(TIFF*, void* user, const char*, const char* fmt, va_list ap) {
-  auto* text = static_cast<std::string*>(user);
-  if (text->empty()) {
-    char buf[512];
-    std::vsnprintf(buf, sizeof buf, fmt, ap);
-    *text = buf;
-  }
-  return 1;
-}
-
-int ignoreTiffWarning(TIFF*, void*, const char*, const char*, va_list) { return 1; }
-
 // The image's rows into the open TIFF `tif`; false when libtiff fails (its words are kept by
-// collectTiffError).
+// quietTiffOptions).
 bool writeTiffRows(TIFF* tif, const Image& image, bool eightBit) {
   const std::uint32_t w = static_cast<std::uint32_t>(image.width), h = static_cast<std::uint32_t>(image.height);
   const std::uint16_t samples = static_cast<std::uint16_t>(image.channels);
@@ -87,9 +73,7 @@ void writeTiff(const Image& image, const fs::path& path) {
                 "cannot write an empty image or one with " + std::to_string(image.channels) + " channels");
   AtomicFile out(path);
   std::string libtiffError;
-  std::unique_ptr<TIFFOpenOptions, void (*)(TIFFOpenOptions*)> options(TIFFOpenOptionsAlloc(), TIFFOpenOptionsFree);
-  TIFFOpenOptionsSetErrorHandlerExtR(options.get(), collectTiffError, &libtiffError);
-  TIFFOpenOptionsSetWarningHandlerExtR(options.get(), ignoreTiffWarning, nullptr);
+  const TiffOpenOptionsPtr options = quietTiffOptions(&libtiffError);
   TIFF* tif = TIFFOpenExt(out.tempPath().c_str(), "w", options.get());
   if (!tif)
     throw Error(ErrorKind::Input, path.string(), kStep,
