@@ -19,7 +19,7 @@
 //
 // Streaming and memory: the photographs are read in row bands (ImageStack::readRows), all N
 // images' rows of a band at once. The band height is the largest that keeps the band buffers
-// within 32 MiB and, with the result object (9 or 18 bytes per pixel for PTM, 3*T for HSH) and
+// within 8 MiB and, with the result object (9 or 18 bytes per pixel for PTM, 3*T for HSH) and
 // the per-thread scratch, within FitOptions::memoryBudgetBytes (at least one row). The quantisation needs each
 // coefficient's range over the whole image before any byte can be written, so the fit makes
 // TWO passes: pass 1 fits every pixel and keeps the per-row minima and maxima; pass 2 fits

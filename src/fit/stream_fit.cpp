@@ -11,7 +11,7 @@ namespace surrogate::fit {
 
 namespace {
 const char* const kStep = "fit";
-constexpr std::size_t kBandBytes = std::size_t(32) << 20;  // see streamFit
+constexpr std::size_t kBandBytes = std::size_t(8) << 20;  // see streamFit
 }  // namespace
 
 std::vector<std::array<double, 3>> checkedLights(const ImageStack& stack,
@@ -61,7 +61,9 @@ std::vector<double> streamFit(const ImageStack& stack, RowFitter& fitter,
   // Bands of at most kBandBytes even when the budget would hold the whole stack: a band is
   // written once and read a few times while it is hot, and pages of a buffer the size of the
   // stack cost more to fault in than reading the stack twice (the decoded stack is in memory
-  // when it fits the budget, or read back sequentially from its file when it does not).
+  // when it fits the budget, or read back sequentially from its file when it does not). 8 MiB
+  // rather than 32: as fast (36 x 3000x2000, 1200x800, every basis, three paired runs) and
+  // 24 MiB less at the peak.
   const std::size_t bandBytes = std::min(available, kBandBytes);
   const int band = static_cast<int>(
       std::clamp<std::size_t>(bandBytes / bandRowBytes, 1, static_cast<std::size_t>(h)));
