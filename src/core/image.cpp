@@ -30,10 +30,14 @@ struct Weighted8 {
 }  // namespace
 
 Image widen(const Image8& narrow) {
-  Image out(narrow.width, narrow.height, narrow.channels);
+  return widen(narrow.pixels.data(), narrow.width, narrow.height, narrow.channels, narrow.transfer);
+}
+
+Image widen(const std::uint8_t* samples, int width, int height, int channels, Transfer transfer) {
+  Image out(width, height, channels);
   out.bitsPerSample = 8;
-  out.transfer = narrow.transfer;
-  widenSamples(narrow.pixels.data(), narrow.pixels.size(), out.pixels.data());
+  out.transfer = transfer;
+  widenSamples(samples, out.pixels.size(), out.pixels.data());
   return out;
 }
 

@@ -54,6 +54,8 @@ struct Image8 {
 
 // The Image of an 8-bit source: every sample * 257, bitsPerSample 8.
 Image widen(const Image8& narrow);
+// The same of width * height * channels samples held elsewhere (a decoded stack's slot).
+Image widen(const std::uint8_t* samples, int width, int height, int channels, Transfer transfer);
 // `count` 8-bit samples widened by 257 into `out` (which must not overlap `in`).
 void widenSamples(const std::uint8_t* in, std::size_t count, std::uint16_t* out);
 // `count` 16-bit samples rounded to nearest 8-bit ones, v8 = (v16 + 128) / 257 (integer

@@ -100,12 +100,9 @@ std::size_t DecodedPixels::bytes() const {
 }
 
 Image DecodedPixels::widened() const {
-  if (!placed) return isNarrow() ? widen(narrow) : wide;
-  Image out(narrow.width, narrow.height, narrow.channels);
-  out.bitsPerSample = 8;
-  out.transfer = narrow.transfer;
-  widenSamples(placed, bytes(), out.pixels.data());
-  return out;
+  if (!isNarrow()) return wide;
+  return widen(static_cast<const std::uint8_t*>(data()), narrow.width, narrow.height, narrow.channels,
+               narrow.transfer);
 }
 
 DecodedPixels decodePixels(const std::filesystem::path& path, const RawDecodeSettings& settings,

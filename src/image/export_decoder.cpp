@@ -1,6 +1,6 @@
 #include "image/export_decoder.h"
 
-#include <algorithm>
+#include <optional>
 #include <string>
 
 #include "core/atomic_file.h"
@@ -60,6 +60,17 @@ const char* libraryOf(SourceKind kind) {
   return kind == SourceKind::Jpeg ? "libjpeg" : kind == SourceKind::Png ? "libpng" : "libtiff";
 }
 
+// A JPEG or PNG held in memory: its structure checked and its declared size against
+// options.maxPixels before the decoder allocates anything; the decoder's messages go to
+// `messages`, for the caller to settle.
+DecodedPixels decodeHeldBytes(const fs::path& path, SourceKind kind, const std::uint8_t* data, std::size_t size,
+                              const DecodeOptions& options, DecoderMessages& messages) {
+  const ImageProbe probe = checkStructure(path, kind, data, size);
+  checkDeclaredSize(path, static_cast<std::uint64_t>(probe.width), static_cast<std::uint64_t>(probe.height), options);
+  return kind == SourceKind::Jpeg ? decodeJpeg(path, data, size, options, messages)
+                                  : decodePng(path, data, size, options, messages);
+}
+
 }  // namespace
 
 ImageProbe checkExportStructure(const fs::path& path, SourceKind kind) {
@@ -76,11 +87,8 @@ DecodedPixels decodeExport(const fs::path& path, SourceKind kind, DecodeReport* 
     im = decodeTiff(path, options, messages);
   } else {
     const std::string bytes = readFile(path, kStep);
-    const auto* data = reinterpret_cast<const std::uint8_t*>(bytes.data());
-    const ImageProbe probe = checkStructure(path, kind, data, bytes.size());
-    checkDeclaredSize(path, static_cast<std::uint64_t>(probe.width), static_cast<std::uint64_t>(probe.height), options);
-    im = kind == SourceKind::Jpeg ? decodeJpeg(path, data, bytes.size(), options, messages)
-                                  : decodePng(path, data, bytes.size(), options, messages);
+    im = decodeHeldBytes(path, kind, reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size(), options,
+                         messages);
   }
   if (report) {
     *report = DecodeReport{};
@@ -94,18 +102,12 @@ DecodedPixels decodeExport(const fs::path& path, SourceKind kind, DecodeReport* 
 
 DecodedPixels decodePicture(const std::uint8_t* data, std::size_t size, const std::string& name,
                             std::uint64_t maxPixels) {
-  static constexpr std::uint8_t kPngSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-  SourceKind kind;
-  if (size >= 8 && std::equal(kPngSignature, kPngSignature + 8, data)) kind = SourceKind::Png;
-  else if (size >= 2 && data[0] == 0xFF && data[1] == 0xD8) kind = SourceKind::Jpeg;
-  else throwInputError(name, kStep, "is not a PNG or JPEG picture");
+  const std::optional<SourceKind> kind = jpegOrPngBySignature(data, size);
+  if (!kind) throwInputError(name, kStep, "is not a PNG or JPEG picture");
   DecodeOptions options;
   options.maxPixels = maxPixels;
-  const ImageProbe probe = checkStructure(name, kind, data, size);
-  checkDeclaredSize(name, static_cast<std::uint64_t>(probe.width), static_cast<std::uint64_t>(probe.height), options);
-  DecoderMessages messages(libraryOf(kind));
-  DecodedPixels im = kind == SourceKind::Jpeg ? decodeJpeg(name, data, size, options, messages)
-                                              : decodePng(name, data, size, options, messages);
+  DecoderMessages messages(libraryOf(*kind));
+  DecodedPixels im = decodeHeldBytes(name, *kind, data, size, options, messages);
   settle(messages, name, options, nullptr);
   return im;
 }

@@ -36,6 +36,12 @@ bool isCameraRawExtension(const fs::path& path) {
   return std::any_of(std::begin(kRaw), std::end(kRaw), [&](const char* e) { return ext == e; });
 }
 
+std::optional<SourceKind> jpegOrPngBySignature(const std::uint8_t* head, std::size_t size) {
+  if (size >= 3 && std::memcmp(head, "\xFF\xD8\xFF", 3) == 0) return SourceKind::Jpeg;
+  if (size >= 8 && std::memcmp(head, "\x89PNG\r\n\x1A\n", 8) == 0) return SourceKind::Png;
+  return std::nullopt;
+}
+
 SourceKind classifyImageFile(const fs::path& path) {
   std::error_code ec;
   if (!fs::exists(path, ec)) throwInputError(path.string(), kStep, "does not exist");
@@ -47,8 +53,7 @@ SourceKind classifyImageFile(const fs::path& path) {
   const std::size_t n = static_cast<std::size_t>(in.gcount());
   if (n == 0) throwInputError(path.string(), kStep, "is empty (0 bytes); copy it from the card again");
 
-  if (startsWith(head, n, "\xFF\xD8\xFF", 3)) return SourceKind::Jpeg;
-  if (startsWith(head, n, "\x89PNG\r\n\x1A\n", 8)) return SourceKind::Png;
+  if (const auto kind = jpegOrPngBySignature(head.data(), n)) return *kind;
   if (startsWith(head, n, "II*\0", 4) || startsWith(head, n, "MM\0*", 4)) {
     if (isCameraRawExtension(path)) return SourceKind::CameraRaw;
     // A DNG renamed .tif is still a raw mosaic: OpenCV would show its preview or fail.

@@ -9,7 +9,10 @@
 //   if (classifyImageFile(p) == SourceKind::CameraRaw) ...   // LibRaw decodes it
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <filesystem>
+#include <optional>
 
 namespace surrogate::image {
 
@@ -17,6 +20,10 @@ enum class SourceKind { CameraRaw, Jpeg, Tiff, Png };
 
 // True for the extensions of camera raw formats (.cr2, .nef, .dng, ...), case-insensitive.
 bool isCameraRawExtension(const std::filesystem::path& path);
+
+// Jpeg or Png when the bytes start with that format's signature (above), else nothing: how
+// both files and pictures held in memory are told apart.
+std::optional<SourceKind> jpegOrPngBySignature(const std::uint8_t* head, std::size_t size);
 
 // Throws Error(Input) naming the file when it is missing, unreadable, empty, or not an image
 // Surrogate reads.
