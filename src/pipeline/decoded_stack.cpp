@@ -154,6 +154,12 @@ void DecodedStack::readSamples(int index, int y0, int y1, void* out) const {
   std::memcpy(out, storedImage(index) + offset, bytes);
 }
 
+const std::uint8_t* DecodedStack::heldSamples(int index, int y0, int y1) const {
+  checkRows(index, y0, y1);
+  if (placement_ != Placement::Memory) return nullptr;
+  return storedImage(index) + rowBytes() * y0;
+}
+
 void DecodedStack::readRows(int index, int y0, int y1, std::uint16_t* out) const {
   if (format_.bytesPerSample == 2) {
     readSamples(index, y0, y1, out);

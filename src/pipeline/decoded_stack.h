@@ -77,6 +77,10 @@ class DecodedStack : public ImageStack {
   // Rows [y0, y1) of image `index` as stored: (y1 - y0) * width * channels samples of
   // bytesPerSample bytes each.
   void readSamples(int index, int y0, int y1, void* out) const;
+  // Rows [y0, y1) of image `index` where they are held, for readers that need no copy: the
+  // stored samples (as readSamples gives them) in memory, or nullptr for a stack kept in a
+  // temporary file.
+  const std::uint8_t* heldSamples(int index, int y0, int y1) const;
 
  private:
   std::uint64_t rowBytes() const;

@@ -91,9 +91,15 @@ TEST_CASE("a DecodedStack in memory is written in place through its slots, one i
   CHECK(std::equal(stack.slot(1), stack.slot(1) + row * kHeight, narrowImage(1).begin()));
   CHECK_THROWS(stack.slot(kCount));
   CHECK_THROWS(stack.markStored(-1));
+  // Held rows are the stored bytes themselves, once stored, and only then.
+  CHECK(stack.heldSamples(4, 7, 9) == stack.slot(4) + 7 * row);
+  CHECK_THROWS(stack.heldSamples(0, 0, 1));  // never stored
+  CHECK_THROWS(stack.heldSamples(4, 5, kHeight + 1));
 
   DecodedStack spilled(kCount, {kWidth, kHeight, 3, 1, Transfer::Srgb}, DecodedStack::Placement::TemporaryFile);
   CHECK(spilled.slot(0) == nullptr);
   CHECK_THROWS(spilled.markStored(0));
   CHECK_THROWS(spilled.readSamples(0, 0, 1, stored.data()));  // never stored
+  spilled.store(2, narrowImage(2));
+  CHECK(spilled.heldSamples(2, 0, kHeight) == nullptr);  // in the file: read it with readSamples
 }

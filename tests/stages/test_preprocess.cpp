@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "core/stack.h"
+#include "pipeline/decoded_stack.h"
 #include "stages/preprocess.h"
 #include "stages/stack_views.h"
 
@@ -217,4 +218,44 @@ TEST_CASE("area reduction by a non-integer factor matches a floating-point refer
             best = v;
         REQUIRE(std::abs(int(out.at(X, Y, c)) - best) <= 1);
       }
+}
+
+TEST_CASE("the luminance view gives Rec. 709 luminance of 8- and 16-bit stacks, in memory or in a file") {
+  using pipeline::DecodedStack;
+  constexpr int kCount = 3, kW = 29, kH = 11;
+  // Reference: the Rec. 709 weights in 1/65536 units (13933, 46871, 4732; docs/hrti-math.md),
+  // applied to 16-bit samples (8-bit ones times 257) with the sum rounded half up.
+  const auto reference = [](std::uint32_t r, std::uint32_t g, std::uint32_t b) {
+    return static_cast<std::uint16_t>((13933 * r + 46871 * g + 4732 * b + 32768) / 65536);
+  };
+  for (const auto placement : {DecodedStack::Placement::Memory, DecodedStack::Placement::TemporaryFile}) {
+    INFO("placement " << (placement == DecodedStack::Placement::Memory ? "memory" : "file"));
+    auto narrow = std::make_shared<DecodedStack>(kCount, DecodedStack::Format{kW, kH, 3, 1, Transfer::Srgb}, placement);
+    auto wide = std::make_shared<DecodedStack>(kCount, DecodedStack::Format{kW, kH, 3, 2, Transfer::Linear}, placement);
+    std::vector<std::vector<std::uint8_t>> bytes(kCount);
+    std::vector<std::vector<std::uint16_t>> words(kCount);
+    for (int i = 0; i < kCount; ++i) {
+      bytes[i].resize(std::size_t(kW) * kH * 3);
+      words[i].resize(bytes[i].size());
+      for (std::size_t k = 0; k < bytes[i].size(); ++k) {
+        bytes[i][k] = static_cast<std::uint8_t>(k * 37 + i * 101);
+        words[i][k] = static_cast<std::uint16_t>(k * 7919 + i * 4001);
+      }
+      narrow->store(i, bytes[i]);
+      wide->store(i, words[i]);
+    }
+    const LuminanceStack narrowLum(narrow), wideLum(wide);
+    REQUIRE(narrowLum.channels() == 1);
+    const int y0 = 3, y1 = 9;
+    for (int i = 0; i < kCount; ++i) {
+      std::vector<std::uint16_t> a(std::size_t(kW) * (y1 - y0)), b(a.size());
+      narrowLum.readRows(i, y0, y1, a.data());
+      wideLum.readRows(i, y0, y1, b.data());
+      for (std::size_t p = 0; p < a.size(); ++p) {
+        const std::size_t k = (std::size_t(y0) * kW + p) * 3;
+        CHECK(a[p] == reference(bytes[i][k] * 257u, bytes[i][k + 1] * 257u, bytes[i][k + 2] * 257u));
+        CHECK(b[p] == reference(words[i][k], words[i][k + 1], words[i][k + 2]));
+      }
+    }
+  }
 }
