@@ -1,8 +1,11 @@
 #include "fit/channel_fit.h"
 
 #include <algorithm>
+#include <array>
 
 #include <Eigen/Core>
+
+#include "fit/row_kernels.h"
 
 namespace surrogate::fit {
 
@@ -72,6 +75,7 @@ void ChannelFitter::measureError(const RowView& row, const double* decoded, doub
   const std::size_t m = static_cast<std::size_t>(row.width) * 3;
   const Eigen::Map<const RowMajor> basis(basis_.data(), n_, terms_);
   std::fill(sqErr, sqErr + n_, 0.0);
+  std::array<double, kBlockSamples / 3> d2;
   for (std::size_t j0 = 0; j0 < m; j0 += kBlockSamples) {
     const std::size_t len = std::min(kBlockSamples, m - j0);
     const Eigen::Map<const RowMajor, 0, Eigen::OuterStride<>> d(decoded + j0, terms_, len,
@@ -79,17 +83,9 @@ void ChannelFitter::measureError(const RowView& row, const double* decoded, doub
     Strided(block, n_, len, Eigen::OuterStride<>(kBlockSamples)).noalias() = basis * d;
     for (int i = 0; i < n_; ++i) {
       const double* p = block + static_cast<std::size_t>(i) * kBlockSamples;
-      const std::uint16_t* s = row.images[i] + j0;
+      squaredErrorsRgb(p, row.images[i] + j0, len / 3, d2.data());
       double err = sqErr[i];
-      for (std::size_t x = 0; x < len / 3; ++x) {
-        const double r = std::clamp(p[3 * x], 0.0, 255.0);
-        const double g = std::clamp(p[3 * x + 1], 0.0, 255.0);
-        const double b = std::clamp(p[3 * x + 2], 0.0, 255.0);
-        const double model = kLumR * r + kLumG * g + kLumB * b;
-        const double captured =
-            (kLumR * s[3 * x] + kLumG * s[3 * x + 1] + kLumB * s[3 * x + 2]) / 257.0;
-        err += (model - captured) * (model - captured);
-      }
+      for (std::size_t x = 0; x < len / 3; ++x) err += d2[x];  // in pixel order, whichever kernel ran
       sqErr[i] = err;
     }
   }

@@ -4,6 +4,7 @@
 
 #include "core/error.h"
 #include "fit/channel_fit.h"
+#include "fit/row_kernels.h"
 #include "fit/fit.h"
 #include "fit/pseudo_inverse.h"
 #include "fit/quantise.h"
@@ -25,6 +26,10 @@ std::vector<double> ptmDesign(const std::vector<std::array<double, 3>>& lights) 
 std::uint8_t chromaByte(double v) {
   return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 255.0)));
 }
+
+// Pixels per block of the LRGB accumulation: its six coefficients, colour sums and sample sums
+// (10 doubles a pixel) take 20 KiB, in the first-level cache.
+constexpr int kAccumulateBlock = 256;
 
 // LRGB (docs/formats.md, "LRGB: colour and luminance"): weighted mean colour, relative luminance.
 class LrgbFitter : public RowFitter {
@@ -52,7 +57,8 @@ class LrgbFitter : public RowFitter {
   }
 
   int ranges() const override { return 6; }
-  // Scratch layout (doubles): acc 6w | chroma 3w | mean 3w | sum w | decoded 6w | lum w.
+  // Scratch layout (doubles): acc 6w | chroma 3w | mean 3w | sum w | decoded 6w | lum w. Pass 2
+  // reuses mean for the colour bytes in planes and sum for the squared errors.
   std::size_t scratchDoubles(int width) const override { return 20 * std::size_t(width); }
 
   // The stored colour bytes are final after pass 1: they are written to the result here.
@@ -93,23 +99,20 @@ class LrgbFitter : public RowFitter {
         decoded[k * w + x] = q_[k].decode(b);
       }
     }
-    const double lr[3] = {kLumR, kLumG, kLumB};
+    // The colour bytes in three planes (where fitRow kept the means), for the error kernel.
+    double* planes = scratch + 9 * w;
+    for (int x = 0; x < w; ++x)
+      for (int c = 0; c < 3; ++c) planes[c * w + x] = chroma[3 * x + c];
+    double* d2 = scratch + 12 * w;  // where fitRow kept the sums
     for (int i = 0; i < n_; ++i) {
       std::fill(lum, lum + w, 0.0);
       for (int k = 0; k < 6; ++k) {
         const double wk = basis_[static_cast<std::size_t>(i) * 6 + k];
         for (int x = 0; x < w; ++x) lum[x] += wk * decoded[k * w + x];
       }
-      const std::uint16_t* s = row.images[i];
+      squaredErrorsLrgb(planes, planes + w, planes + 2 * w, lum, row.images[i], w, d2);
       double err = 0;
-      for (int x = 0; x < w; ++x) {
-        double model = 0;
-        for (int c = 0; c < 3; ++c)
-          model += lr[c] * std::clamp(chroma[3 * x + c] * lum[x] / 255.0, 0.0, 255.0);
-        const double captured =
-            (lr[0] * s[3 * x] + lr[1] * s[3 * x + 1] + lr[2] * s[3 * x + 2]) / 257.0;
-        err += (model - captured) * (model - captured);
-      }
+      for (int x = 0; x < w; ++x) err += d2[x];  // in pixel order, whichever kernel ran
       sqErr[i] = err;
     }
   }
@@ -126,19 +129,11 @@ class LrgbFitter : public RowFitter {
     double* sum = scratch + 12 * w;
     std::fill(acc, acc + 6 * w, 0.0);
     std::fill(mean, mean + m, 0.0);
-    for (int i = 0; i < n_; ++i) {
-      const std::uint16_t* s = row.images[i];
-      for (int x = 0; x < w; ++x)
-        sum[x] = static_cast<double>(s[3 * x] + s[3 * x + 1] + s[3 * x + 2]);
-      for (int k = 0; k < 6; ++k) {
-        const double p = p_[static_cast<std::size_t>(k) * n_ + i];
-        double* a = acc + k * w;
-        for (int x = 0; x < w; ++x) a[x] += p * sum[x];
-      }
-      const double wi = weight_[i];
-      if (wi != 0)
-        for (std::size_t j = 0; j < m; ++j) mean[j] += wi * s[j];
-    }
+    // Blocks of pixels, each through every photograph: the block's sums stay in the cache
+    // (each value still adds the photographs in order, as the whole row at once would).
+    for (int x0 = 0; x0 < w; x0 += kAccumulateBlock)
+      accumulateLrgb(row.images, n_, w, x0, std::min(w, x0 + kAccumulateBlock), p_.data(), weight_.data(), acc,
+                     mean, sum);
     for (int x = 0; x < w; ++x) {
       double total = 0;
       for (int c = 0; c < 3; ++c) {

@@ -1,0 +1,52 @@
+// Private to src/fit: the per-pixel loops that bound the fits' time: the LRGB accumulation
+// (every photograph's samples into the six luminance coefficients and the mean colour) and the
+// error measurement (re-rendering the stored model at a captured light and comparing Rec. 709
+// luminance with the photograph).
+//
+// These loops are bound by arithmetic (division, for the errors: four per pixel and light for
+// LRGB), and the baseline x86-64 instruction set works on two doubles at once where AVX2 works
+// on four. So each loop is compiled twice, for the baseline and for AVX2 without FMA, and the
+// variant is chosen once at run time. Both evaluate the same IEEE-754 operations in the same
+// order for each value (no fused multiply-add, no reassociation, sums over photographs in
+// photograph order), and the error kernels write one squared error per pixel, leaving the sum
+// over the row to the caller, in pixel order. The results are therefore bit-identical whichever
+// variant runs, on any machine; tests/fit/test_row_kernels.cpp compares the two.
+//
+//   std::vector<double> d2(width);
+//   squaredErrorsLrgb(cr, cg, cb, lum, row, width, d2.data());
+//   for (double v : d2) err += v;   // in order
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+namespace surrogate::fit {
+
+enum class KernelIsa { Baseline, Avx2 };
+
+// The variant this machine runs: Avx2 where the processor has it.
+KernelIsa activeKernelIsa();
+
+// LRGB accumulation over pixels [x0, x1) of a row of n photographs (images[i]: 16-bit
+// interleaved RGB): for each photograph i in order, with S = R + G + B of the pixel,
+//   acc[k * w + x] += p[k * n + i] * S   (k < 6),
+//   mean[3 x + c] += weight[i] * sample_c  (skipped where weight[i] is 0).
+// `sum` is w doubles of scratch.
+void accumulateLrgb(const std::uint16_t* const* images, int n, std::size_t w, std::size_t x0, std::size_t x1,
+                    const double* p, const double* weight, double* acc, double* mean, double* sum,
+                    KernelIsa isa = activeKernelIsa());
+
+// LRGB: d2[x] = (model - captured)^2 with model = sum over c of kLum[c] * clamp(chroma_c[x] *
+// lum[x] / 255, 0, 255) (chroma bytes as doubles in three planes, lum the decoded luminance
+// polynomial at the light) and captured = (kLumR R + kLumG G + kLumB B) / 257 of the 16-bit
+// interleaved samples s.
+void squaredErrorsLrgb(const double* cr, const double* cg, const double* cb, const double* lum,
+                       const std::uint16_t* s, std::size_t pixels, double* d2,
+                       KernelIsa isa = activeKernelIsa());
+
+// Per channel (PTM RGB, HSH): the same with model = sum over c of kLum[c] * clamp(rendered[3x +
+// c], 0, 255), the rendered model interleaved like the samples.
+void squaredErrorsRgb(const double* rendered, const std::uint16_t* s, std::size_t pixels, double* d2,
+                      KernelIsa isa = activeKernelIsa());
+
+}  // namespace surrogate::fit

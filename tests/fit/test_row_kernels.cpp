@@ -1,0 +1,133 @@
+// The fits' row kernels (src/fit/row_kernels.h): each variant against the plain scalar loops
+// written out here from the formulas (docs/hrti-math.md, "What the fit minimises"), bit for bit,
+// and so the variants against each other.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "fit/row_kernels.h"
+
+using namespace surrogate;
+using namespace surrogate::fit;
+
+namespace {
+
+constexpr double kR = 0.2126, kG = 0.7152, kB = 0.0722;
+
+bool sameBits(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+}
+
+std::vector<KernelIsa> variants() {
+  std::vector<KernelIsa> out = {KernelIsa::Baseline};
+  if (activeKernelIsa() == KernelIsa::Avx2) out.push_back(KernelIsa::Avx2);
+  return out;
+}
+
+const char* name(KernelIsa isa) { return isa == KernelIsa::Avx2 ? "avx2" : "baseline"; }
+
+// Samples over the whole 16-bit range and model values below 0, inside and above 0..255
+// (the clamps), with an odd pixel count (the vector loops' tails).
+struct Row {
+  explicit Row(std::size_t pixels, unsigned seed) : samples(3 * pixels), model(3 * pixels), lum(pixels) {
+    std::mt19937 random(seed);
+    std::uniform_int_distribution<int> sample(0, 65535);
+    std::uniform_real_distribution<double> value(-40.0, 300.0), luminance(-3000.0, 70000.0);
+    for (auto& s : samples) s = static_cast<std::uint16_t>(sample(random));
+    for (auto& m : model) m = value(random);
+    for (auto& l : lum) l = luminance(random);
+    for (std::size_t j = 0; j < std::min<std::size_t>(12, model.size()); ++j) model[j] = (j % 2 ? -0.0 : 255.0);
+    samples[0] = 0;
+    samples[1] = 65535;
+  }
+  std::vector<std::uint16_t> samples;
+  std::vector<double> model, lum;
+};
+
+}  // namespace
+
+TEST_CASE("the per-channel error kernel gives the squared luminance errors of the clamped model, in every variant") {
+  const std::size_t pixels = 1001;
+  const Row row(pixels, 7);
+  std::vector<double> expected(pixels);
+  for (std::size_t x = 0; x < pixels; ++x) {
+    const double r = std::clamp(row.model[3 * x], 0.0, 255.0), g = std::clamp(row.model[3 * x + 1], 0.0, 255.0),
+                 b = std::clamp(row.model[3 * x + 2], 0.0, 255.0);
+    const double model = kR * r + kG * g + kB * b;
+    const double captured =
+        (kR * row.samples[3 * x] + kG * row.samples[3 * x + 1] + kB * row.samples[3 * x + 2]) / 257.0;
+    expected[x] = (model - captured) * (model - captured);
+  }
+  for (const KernelIsa isa : variants()) {
+    INFO("variant " << name(isa));
+    std::vector<double> d2(pixels, -1);
+    squaredErrorsRgb(row.model.data(), row.samples.data(), pixels, d2.data(), isa);
+    CHECK(sameBits(d2, expected));
+  }
+}
+
+TEST_CASE("the LRGB error kernel gives the squared luminance errors of colour times luminance, in every variant") {
+  const std::size_t pixels = 999;
+  const Row row(pixels, 11);
+  std::vector<double> cr(pixels), cg(pixels), cb(pixels), expected(pixels);
+  for (std::size_t x = 0; x < pixels; ++x) {  // colour bytes
+    cr[x] = std::round(std::clamp(row.model[3 * x], 0.0, 255.0));
+    cg[x] = std::round(std::clamp(row.model[3 * x + 1], 0.0, 255.0));
+    cb[x] = std::round(std::clamp(row.model[3 * x + 2], 0.0, 255.0));
+    const double l = row.lum[x];
+    double model = 0;
+    model += kR * std::clamp(cr[x] * l / 255.0, 0.0, 255.0);
+    model += kG * std::clamp(cg[x] * l / 255.0, 0.0, 255.0);
+    model += kB * std::clamp(cb[x] * l / 255.0, 0.0, 255.0);
+    const double captured =
+        (kR * row.samples[3 * x] + kG * row.samples[3 * x + 1] + kB * row.samples[3 * x + 2]) / 257.0;
+    expected[x] = (model - captured) * (model - captured);
+  }
+  for (const KernelIsa isa : variants()) {
+    INFO("variant " << name(isa));
+    std::vector<double> d2(pixels, -1);
+    squaredErrorsLrgb(cr.data(), cg.data(), cb.data(), row.lum.data(), row.samples.data(), pixels, d2.data(), isa);
+    CHECK(sameBits(d2, expected));
+  }
+}
+
+TEST_CASE("the LRGB accumulation adds every photograph in order over the pixels asked for, in every variant") {
+  const int n = 9;
+  const std::size_t w = 203, x0 = 17, x1 = 190;
+  std::vector<Row> rows;
+  std::vector<const std::uint16_t*> images;
+  for (int i = 0; i < n; ++i) rows.emplace_back(w, 100 + i);
+  for (const Row& r : rows) images.push_back(r.samples.data());
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> coefficient(-0.01, 0.01);
+  std::vector<double> p(6 * n), weight(n);
+  for (double& v : p) v = coefficient(random);
+  for (int i = 0; i < n; ++i) weight[i] = i == 4 ? 0.0 : 0.001 * (i + 1);  // one light weighs nothing
+
+  // Start from non-zero sums: the kernel adds to what is there.
+  std::vector<double> accStart(6 * w), meanStart(3 * w);
+  for (std::size_t j = 0; j < accStart.size(); ++j) accStart[j] = 0.5 * j;
+  for (std::size_t j = 0; j < meanStart.size(); ++j) meanStart[j] = 0.25 * j;
+  std::vector<double> acc = accStart, mean = meanStart;
+  for (int i = 0; i < n; ++i) {
+    const std::uint16_t* s = images[i];
+    for (std::size_t x = x0; x < x1; ++x) {
+      const double sum = static_cast<double>(s[3 * x] + s[3 * x + 1] + s[3 * x + 2]);
+      for (int k = 0; k < 6; ++k) acc[k * w + x] += p[k * n + i] * sum;
+      if (weight[i] != 0)
+        for (int c = 0; c < 3; ++c) mean[3 * x + c] += weight[i] * s[3 * x + c];
+    }
+  }
+  for (const KernelIsa isa : variants()) {
+    INFO("variant " << name(isa));
+    std::vector<double> a = accStart, m = meanStart, scratch(w);
+    accumulateLrgb(images.data(), n, w, x0, x1, p.data(), weight.data(), a.data(), m.data(), scratch.data(), isa);
+    CHECK(sameBits(a, acc));  // pixels outside [x0, x1) untouched
+    CHECK(sameBits(m, mean));
+  }
+}
