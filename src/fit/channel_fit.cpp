@@ -25,8 +25,9 @@ ChannelFitter::ChannelFitter(std::vector<double> p, std::vector<double> basisAtL
 
 std::size_t ChannelFitter::scratchDoubles(int width) const {
   const std::size_t row = static_cast<std::size_t>(width) * 3;
-  // Coefficients, decoded coefficients, one N x kBlockSamples block (samples or re-rendering).
-  return 2 * terms_ * row + static_cast<std::size_t>(n_) * kBlockSamples;
+  // Coefficients, decoded coefficients, one N x kBlockSamples block (samples or re-rendering),
+  // a row of quantised bytes.
+  return 2 * terms_ * row + static_cast<std::size_t>(n_) * kBlockSamples + (row + 7) / 8;
 }
 
 // coefficients (T x block) = P (T x N) * samples (N x block), block after block.
@@ -57,12 +58,13 @@ void ChannelFitter::quantise(const RowView& row, double* scratch, double* sqErr)
   double* acc = scratch;
   double* decoded = scratch + terms_ * m;
   double* block = decoded + terms_ * m;
+  auto* bytes = reinterpret_cast<std::uint8_t*>(block + static_cast<std::size_t>(n_) * kBlockSamples);
   // Rounded to float, as RtiFit version 2 kept them between the passes (fit.h).
   fitRow(row, acc, block);
   for (std::size_t j = 0; j < terms_ * m; ++j) acc[j] = static_cast<float>(acc[j]);
   for (int k = 0; k < terms_; ++k) {
     double* d = decoded + k * m;
-    quantiseRow(k, row.y, acc + k * m, m, d);
+    quantiseRow(k, row.y, acc + k * m, m, bytes, d);
     for (std::size_t j = 0; j < m; ++j) d[j] *= displayScale_;
   }
   measureError(row, decoded, block, sqErr);

@@ -30,7 +30,8 @@ class ChannelFitter : public RowFitter {
  protected:
   // Quantises coefficient k of row y, a[j] for the m = 3 width samples (pixel j / 3, channel
   // j % 3): stores the bytes in the result and writes their decoded values to decoded[j].
-  virtual void quantiseRow(int k, int y, const double* a, std::size_t m,
+  // `bytes` is m bytes of scratch.
+  virtual void quantiseRow(int k, int y, const double* a, std::size_t m, std::uint8_t* bytes,
                            double* decoded) const = 0;
 
  private:

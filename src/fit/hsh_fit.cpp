@@ -4,6 +4,7 @@
 #include "fit/fit.h"
 #include "fit/pseudo_inverse.h"
 #include "fit/quantise.h"
+#include "fit/row_kernels.h"
 
 namespace surrogate::fit {
 
@@ -23,15 +24,12 @@ class HshFitter : public ChannelFitter {
   }
 
  protected:
-  void quantiseRow(int k, int y, const double* a, std::size_t m, double* decoded) const override {
-    const HshQuantisation q = q_[k];
+  void quantiseRow(int k, int y, const double* a, std::size_t m, std::uint8_t* bytes,
+                   double* decoded) const override {
+    quantiseHsh(a, m, q_[k], bytes, decoded);
     const std::size_t terms = out_->terms;
     std::uint8_t* dst = out_->coefficients.data() + static_cast<std::size_t>(y) * m * terms + k;
-    for (std::size_t j = 0; j < m; ++j) {  // sample j = pixel j / 3, channel j % 3
-      const std::uint8_t b = q.quantise(a[j]);
-      dst[j * terms] = b;
-      decoded[j] = q.decode(b);
-    }
+    for (std::size_t j = 0; j < m; ++j) dst[j * terms] = bytes[j];  // sample j = pixel j / 3, channel j % 3
   }
 
  private:

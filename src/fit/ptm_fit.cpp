@@ -57,9 +57,9 @@ class LrgbFitter : public RowFitter {
   }
 
   int ranges() const override { return 6; }
-  // Scratch layout (doubles): acc 6w | chroma 3w | mean 3w | sum w | decoded 6w | lum w. Pass 2
-  // reuses mean for the colour bytes in planes and sum for the squared errors.
-  std::size_t scratchDoubles(int width) const override { return 20 * std::size_t(width); }
+  // Scratch layout (doubles): acc 6w | chroma 3w | mean 3w | sum w | decoded 6w. Pass 2 reuses
+  // mean for the colour bytes in planes and sum for the squared errors.
+  std::size_t scratchDoubles(int width) const override { return 19 * std::size_t(width); }
 
   // The stored colour bytes are final after pass 1: they are written to the result here.
   void measure(const RowView& row, double* scratch, double* lo, double* hi) const override {
@@ -87,30 +87,24 @@ class LrgbFitter : public RowFitter {
     double* acc = scratch;
     double* chroma = scratch + 6 * w;
     double* decoded = scratch + 13 * w;
-    double* lum = scratch + 19 * w;
     const std::size_t base = static_cast<std::size_t>(row.y) * w;
     // Rounded to float, as RtiFit version 2 kept them between the passes (fit.h).
     fitRow(row, scratch);
     for (int j = 0; j < 6 * w; ++j) acc[j] = static_cast<float>(acc[j]);
-    for (int x = 0; x < w; ++x) {
-      for (int k = 0; k < 6; ++k) {
-        const std::uint8_t b = q_[k].quantise(acc[k * w + x]);
-        out_->coefficients[(base + x) * 6 + k] = b;
-        decoded[k * w + x] = q_[k].decode(b);
-      }
-    }
+    // The bytes go where fitRow kept the sums (8w bytes), free until the errors are measured.
+    auto* bytes = reinterpret_cast<std::uint8_t*>(scratch + 12 * w);
+    for (int k = 0; k < 6; ++k) quantisePtm(acc + k * w, w, q_[k], bytes + k * w, decoded + k * w);
+    std::uint8_t* dst = out_->coefficients.data() + base * 6;
+    for (int x = 0; x < w; ++x)
+      for (int k = 0; k < 6; ++k) dst[x * 6 + k] = bytes[k * w + x];
     // The colour bytes in three planes (where fitRow kept the means), for the error kernel.
     double* planes = scratch + 9 * w;
     for (int x = 0; x < w; ++x)
       for (int c = 0; c < 3; ++c) planes[c * w + x] = chroma[3 * x + c];
     double* d2 = scratch + 12 * w;  // where fitRow kept the sums
     for (int i = 0; i < n_; ++i) {
-      std::fill(lum, lum + w, 0.0);
-      for (int k = 0; k < 6; ++k) {
-        const double wk = basis_[static_cast<std::size_t>(i) * 6 + k];
-        for (int x = 0; x < w; ++x) lum[x] += wk * decoded[k * w + x];
-      }
-      squaredErrorsLrgb(planes, planes + w, planes + 2 * w, lum, row.images[i], w, d2);
+      squaredErrorsLrgb(planes, planes + w, planes + 2 * w, decoded, w, &basis_[static_cast<std::size_t>(i) * 6],
+                        row.images[i], w, d2);
       double err = 0;
       for (int x = 0; x < w; ++x) err += d2[x];  // in pixel order, whichever kernel ran
       sqErr[i] = err;
@@ -164,17 +158,13 @@ class RgbPtmFitter : public ChannelFitter {
   }
 
  protected:
-  void quantiseRow(int k, int y, const double* a, std::size_t /*m*/,
+  void quantiseRow(int k, int y, const double* a, std::size_t m, std::uint8_t* bytes,
                    double* decoded) const override {
-    const PtmQuantisation q = q_[k];
+    quantisePtm(a, m, q_[k], bytes, decoded);
     const std::size_t w = out_->width, plane = static_cast<std::size_t>(out_->height) * w;
     for (int c = 0; c < 3; ++c) {  // one plane of 6 coefficients per channel
       std::uint8_t* dst = out_->coefficients.data() + ((c * plane + y * w) * 6 + k);
-      for (std::size_t x = 0; x < w; ++x) {
-        const std::uint8_t b = q.quantise(a[3 * x + c]);
-        dst[x * 6] = b;
-        decoded[3 * x + c] = q.decode(b);
-      }
+      for (std::size_t x = 0; x < w; ++x) dst[x * 6] = bytes[3 * x + c];
     }
   }
 

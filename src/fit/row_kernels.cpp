@@ -1,5 +1,7 @@
 #include "fit/row_kernels.h"
 
+#include <algorithm>
+
 #include "fit/stream_fit.h"
 
 // This file is compiled with -fno-trapping-math (src/fit/CMakeLists.txt): it lets the
@@ -19,11 +21,19 @@ inline double clamp255(double v) {
 
 // The operations and their order per value are the whole contract (see the header).
 __attribute__((always_inline)) inline void lrgbBody(const double* __restrict cr, const double* __restrict cg,
-                                                    const double* __restrict cb, const double* __restrict lum,
+                                                    const double* __restrict cb, const double* __restrict decoded,
+                                                    std::size_t stride, const double* basis,
                                                     const std::uint16_t* __restrict s, std::size_t pixels,
                                                     double* __restrict d2) {
+  const double b0 = basis[0], b1 = basis[1], b2 = basis[2], b3 = basis[3], b4 = basis[4], b5 = basis[5];
   for (std::size_t x = 0; x < pixels; ++x) {
-    const double l = lum[x];
+    double l = 0;
+    l += b0 * decoded[x];
+    l += b1 * decoded[stride + x];
+    l += b2 * decoded[2 * stride + x];
+    l += b3 * decoded[3 * stride + x];
+    l += b4 * decoded[4 * stride + x];
+    l += b5 * decoded[5 * stride + x];
     double model = 0;
     model += kLumR * clamp255(cr[x] * l / 255.0);
     model += kLumG * clamp255(cg[x] * l / 255.0);
@@ -64,13 +74,51 @@ __attribute__((always_inline)) inline void accumulateBody(const std::uint16_t* c
   }
 }
 
+// detail::toByte (fit/quantise.h) on values: the same byte for every double, NaN included,
+// with the branches as selects. The clamp comes first so that the conversion to int is always
+// defined.
+inline std::uint8_t toByte(double v) {
+  const double c = v > 0.0 ? (v < 255.0 ? v : 255.0) : 0.0;
+  const int whole = static_cast<int>(c);
+  return static_cast<std::uint8_t>(whole + (c - static_cast<double>(whole) >= 0.5 ? 1 : 0));
+}
+
+__attribute__((always_inline)) inline void ptmBody(const double* __restrict a, std::size_t count, double scale,
+                                                   int bias, std::uint8_t* __restrict bytes,
+                                                   double* __restrict decoded) {
+  const double biasValue = bias;
+  for (std::size_t j = 0; j < count; ++j) {
+    const std::uint8_t b = toByte(a[j] / scale + biasValue);
+    bytes[j] = b;
+    decoded[j] = static_cast<double>(static_cast<int>(b) - bias) * scale;
+  }
+}
+
+__attribute__((always_inline)) inline void hshBody(const double* __restrict a, std::size_t count, double scale,
+                                                   double bias, std::uint8_t* __restrict bytes,
+                                                   double* __restrict decoded) {
+  for (std::size_t j = 0; j < count; ++j) {
+    const std::uint8_t b = toByte((a[j] - bias) / scale * 255.0);
+    bytes[j] = b;
+    decoded[j] = b / 255.0 * scale + bias;
+  }
+}
+
+void ptmBaseline(const double* a, std::size_t count, double scale, int bias, std::uint8_t* bytes, double* decoded) {
+  ptmBody(a, count, scale, bias, bytes, decoded);
+}
+void hshBaseline(const double* a, std::size_t count, double scale, double bias, std::uint8_t* bytes,
+                 double* decoded) {
+  hshBody(a, count, scale, bias, bytes, decoded);
+}
+
 void accumulateBaseline(const std::uint16_t* const* images, int n, std::size_t w, std::size_t x0, std::size_t x1,
                         const double* p, const double* weight, double* acc, double* mean, double* sum) {
   accumulateBody(images, n, w, x0, x1, p, weight, acc, mean, sum);
 }
-void lrgbBaseline(const double* cr, const double* cg, const double* cb, const double* lum, const std::uint16_t* s,
-                  std::size_t pixels, double* d2) {
-  lrgbBody(cr, cg, cb, lum, s, pixels, d2);
+void lrgbBaseline(const double* cr, const double* cg, const double* cb, const double* decoded, std::size_t stride,
+                  const double* basis, const std::uint16_t* s, std::size_t pixels, double* d2) {
+  lrgbBody(cr, cg, cb, decoded, stride, basis, s, pixels, d2);
 }
 void rgbBaseline(const double* p, const std::uint16_t* s, std::size_t pixels, double* d2) {
   rgbBody(p, s, pixels, d2);
@@ -86,9 +134,17 @@ __attribute__((target("avx2"))) void accumulateAvx2(const std::uint16_t* const* 
   accumulateBody(images, n, w, x0, x1, p, weight, acc, mean, sum);
 }
 __attribute__((target("avx2"))) void lrgbAvx2(const double* cr, const double* cg, const double* cb,
-                                              const double* lum, const std::uint16_t* s, std::size_t pixels,
-                                              double* d2) {
-  lrgbBody(cr, cg, cb, lum, s, pixels, d2);
+                                              const double* decoded, std::size_t stride, const double* basis,
+                                              const std::uint16_t* s, std::size_t pixels, double* d2) {
+  lrgbBody(cr, cg, cb, decoded, stride, basis, s, pixels, d2);
+}
+__attribute__((target("avx2"))) void ptmAvx2(const double* a, std::size_t count, double scale, int bias,
+                                             std::uint8_t* bytes, double* decoded) {
+  ptmBody(a, count, scale, bias, bytes, decoded);
+}
+__attribute__((target("avx2"))) void hshAvx2(const double* a, std::size_t count, double scale, double bias,
+                                             std::uint8_t* bytes, double* decoded) {
+  hshBody(a, count, scale, bias, bytes, decoded);
 }
 __attribute__((target("avx2"))) void rgbAvx2(const double* p, const std::uint16_t* s, std::size_t pixels,
                                              double* d2) {
@@ -116,13 +172,14 @@ void accumulateLrgb(const std::uint16_t* const* images, int n, std::size_t w, st
   accumulateBaseline(images, n, w, x0, x1, p, weight, acc, mean, sum);
 }
 
-void squaredErrorsLrgb(const double* cr, const double* cg, const double* cb, const double* lum,
-                       const std::uint16_t* s, std::size_t pixels, double* d2, KernelIsa isa) {
+void squaredErrorsLrgb(const double* cr, const double* cg, const double* cb, const double* decoded,
+                       std::size_t stride, const double* basis, const std::uint16_t* s, std::size_t pixels,
+                       double* d2, KernelIsa isa) {
 #ifdef SURROGATE_HAVE_AVX2_KERNELS
-  if (isa == KernelIsa::Avx2) return lrgbAvx2(cr, cg, cb, lum, s, pixels, d2);
+  if (isa == KernelIsa::Avx2) return lrgbAvx2(cr, cg, cb, decoded, stride, basis, s, pixels, d2);
 #endif
   (void)isa;
-  lrgbBaseline(cr, cg, cb, lum, s, pixels, d2);
+  lrgbBaseline(cr, cg, cb, decoded, stride, basis, s, pixels, d2);
 }
 
 void squaredErrorsRgb(const double* rendered, const std::uint16_t* s, std::size_t pixels, double* d2,
@@ -132,6 +189,29 @@ void squaredErrorsRgb(const double* rendered, const std::uint16_t* s, std::size_
 #endif
   (void)isa;
   rgbBaseline(rendered, s, pixels, d2);
+}
+
+void quantisePtm(const double* a, std::size_t count, const PtmQuantisation& q, std::uint8_t* bytes, double* decoded,
+                 KernelIsa isa) {
+#ifdef SURROGATE_HAVE_AVX2_KERNELS
+  if (isa == KernelIsa::Avx2) return ptmAvx2(a, count, q.scale, q.bias, bytes, decoded);
+#endif
+  (void)isa;
+  ptmBaseline(a, count, q.scale, q.bias, bytes, decoded);
+}
+
+void quantiseHsh(const double* a, std::size_t count, const HshQuantisation& q, std::uint8_t* bytes, double* decoded,
+                 KernelIsa isa) {
+  if (q.scale == 0) {  // one value: every byte 0 (HshQuantisation::quantise)
+    std::fill(bytes, bytes + count, std::uint8_t(0));
+    std::fill(decoded, decoded + count, q.decode(0));
+    return;
+  }
+#ifdef SURROGATE_HAVE_AVX2_KERNELS
+  if (isa == KernelIsa::Avx2) return hshAvx2(a, count, q.scale, q.bias, bytes, decoded);
+#endif
+  (void)isa;
+  hshBaseline(a, count, q.scale, q.bias, bytes, decoded);
 }
 
 }  // namespace surrogate::fit

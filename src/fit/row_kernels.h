@@ -1,6 +1,6 @@
 // Private to src/fit: the per-pixel loops that bound the fits' time: the LRGB accumulation
-// (every photograph's samples into the six luminance coefficients and the mean colour) and the
-// error measurement (re-rendering the stored model at a captured light and comparing Rec. 709
+// (every photograph's samples into the six luminance coefficients and the mean colour), the
+// quantisation of coefficients to bytes, and the error measurement (re-rendering the stored model at a captured light and comparing Rec. 709
 // luminance with the photograph).
 //
 // These loops are bound by arithmetic (division, for the errors: four per pixel and light for
@@ -13,12 +13,14 @@
 // variant runs, on any machine; tests/fit/test_row_kernels.cpp compares the two.
 //
 //   std::vector<double> d2(width);
-//   squaredErrorsLrgb(cr, cg, cb, lum, row, width, d2.data());
+//   squaredErrorsLrgb(cr, cg, cb, decoded, width, basisAtLight, row, width, d2.data());
 //   for (double v : d2) err += v;   // in order
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
+
+#include "fit/quantise.h"
 
 namespace surrogate::fit {
 
@@ -36,17 +38,26 @@ void accumulateLrgb(const std::uint16_t* const* images, int n, std::size_t w, st
                     const double* p, const double* weight, double* acc, double* mean, double* sum,
                     KernelIsa isa = activeKernelIsa());
 
-// LRGB: d2[x] = (model - captured)^2 with model = sum over c of kLum[c] * clamp(chroma_c[x] *
-// lum[x] / 255, 0, 255) (chroma bytes as doubles in three planes, lum the decoded luminance
-// polynomial at the light) and captured = (kLumR R + kLumG G + kLumB B) / 257 of the 16-bit
-// interleaved samples s.
-void squaredErrorsLrgb(const double* cr, const double* cg, const double* cb, const double* lum,
-                       const std::uint16_t* s, std::size_t pixels, double* d2,
-                       KernelIsa isa = activeKernelIsa());
+// LRGB: d2[x] = (model - captured)^2 for pixels x < `pixels`, where
+//   lum      = sum over k < 6, in order from 0, of basis[k] * decoded[k * stride + x] (the stored
+//              luminance polynomial at the light),
+//   model    = sum over c of kLum[c] * clamp(chroma_c[x] * lum / 255, 0, 255) (the colour bytes
+//              as doubles in three planes cr, cg, cb),
+//   captured = (kLumR R + kLumG G + kLumB B) / 257 of the 16-bit interleaved samples s.
+void squaredErrorsLrgb(const double* cr, const double* cg, const double* cb, const double* decoded,
+                       std::size_t stride, const double* basis, const std::uint16_t* s, std::size_t pixels,
+                       double* d2, KernelIsa isa = activeKernelIsa());
 
 // Per channel (PTM RGB, HSH): the same with model = sum over c of kLum[c] * clamp(rendered[3x +
 // c], 0, 255), the rendered model interleaved like the samples.
 void squaredErrorsRgb(const double* rendered, const std::uint16_t* s, std::size_t pixels, double* d2,
                       KernelIsa isa = activeKernelIsa());
+
+// Quantisation of `count` coefficients (fit/quantise.h): bytes[j] = q.quantise(a[j]) and
+// decoded[j] = q.decode(bytes[j]).
+void quantisePtm(const double* a, std::size_t count, const PtmQuantisation& q, std::uint8_t* bytes, double* decoded,
+                 KernelIsa isa = activeKernelIsa());
+void quantiseHsh(const double* a, std::size_t count, const HshQuantisation& q, std::uint8_t* bytes, double* decoded,
+                 KernelIsa isa = activeKernelIsa());
 
 }  // namespace surrogate::fit

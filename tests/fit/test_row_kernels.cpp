@@ -34,19 +34,18 @@ const char* name(KernelIsa isa) { return isa == KernelIsa::Avx2 ? "avx2" : "base
 // Samples over the whole 16-bit range and model values below 0, inside and above 0..255
 // (the clamps), with an odd pixel count (the vector loops' tails).
 struct Row {
-  explicit Row(std::size_t pixels, unsigned seed) : samples(3 * pixels), model(3 * pixels), lum(pixels) {
+  explicit Row(std::size_t pixels, unsigned seed) : samples(3 * pixels), model(3 * pixels) {
     std::mt19937 random(seed);
     std::uniform_int_distribution<int> sample(0, 65535);
-    std::uniform_real_distribution<double> value(-40.0, 300.0), luminance(-3000.0, 70000.0);
+    std::uniform_real_distribution<double> value(-40.0, 300.0);
     for (auto& s : samples) s = static_cast<std::uint16_t>(sample(random));
     for (auto& m : model) m = value(random);
-    for (auto& l : lum) l = luminance(random);
     for (std::size_t j = 0; j < std::min<std::size_t>(12, model.size()); ++j) model[j] = (j % 2 ? -0.0 : 255.0);
     samples[0] = 0;
     samples[1] = 65535;
   }
   std::vector<std::uint16_t> samples;
-  std::vector<double> model, lum;
+  std::vector<double> model;
 };
 
 }  // namespace
@@ -74,12 +73,20 @@ TEST_CASE("the per-channel error kernel gives the squared luminance errors of th
 TEST_CASE("the LRGB error kernel gives the squared luminance errors of colour times luminance, in every variant") {
   const std::size_t pixels = 999;
   const Row row(pixels, 11);
+  // Six decoded coefficient planes (the luminance polynomial) and their basis at one light.
+  const std::size_t stride = pixels + 5;
+  std::vector<double> decoded(6 * stride);
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> coefficient(-9000.0, 40000.0);
+  for (double& v : decoded) v = coefficient(random);
+  const double basis[6] = {0.31, -0.27, 0.093, 0.5, -0.61, 1.0};
   std::vector<double> cr(pixels), cg(pixels), cb(pixels), expected(pixels);
   for (std::size_t x = 0; x < pixels; ++x) {  // colour bytes
     cr[x] = std::round(std::clamp(row.model[3 * x], 0.0, 255.0));
     cg[x] = std::round(std::clamp(row.model[3 * x + 1], 0.0, 255.0));
     cb[x] = std::round(std::clamp(row.model[3 * x + 2], 0.0, 255.0));
-    const double l = row.lum[x];
+    double l = 0;
+    for (int k = 0; k < 6; ++k) l += basis[k] * decoded[k * stride + x];
     double model = 0;
     model += kR * std::clamp(cr[x] * l / 255.0, 0.0, 255.0);
     model += kG * std::clamp(cg[x] * l / 255.0, 0.0, 255.0);
@@ -91,7 +98,8 @@ TEST_CASE("the LRGB error kernel gives the squared luminance errors of colour ti
   for (const KernelIsa isa : variants()) {
     INFO("variant " << name(isa));
     std::vector<double> d2(pixels, -1);
-    squaredErrorsLrgb(cr.data(), cg.data(), cb.data(), row.lum.data(), row.samples.data(), pixels, d2.data(), isa);
+    squaredErrorsLrgb(cr.data(), cg.data(), cb.data(), decoded.data(), stride, basis, row.samples.data(), pixels,
+                      d2.data(), isa);
     CHECK(sameBits(d2, expected));
   }
 }
@@ -129,5 +137,52 @@ TEST_CASE("the LRGB accumulation adds every photograph in order over the pixels 
     accumulateLrgb(images.data(), n, w, x0, x1, p.data(), weight.data(), a.data(), m.data(), scratch.data(), isa);
     CHECK(sameBits(a, acc));  // pixels outside [x0, x1) untouched
     CHECK(sameBits(m, mean));
+  }
+}
+
+TEST_CASE("the quantisation kernels give the bytes and decoded values of the scalar quantisers, in every variant") {
+  // Values below, inside and above the range, exact halves (rounding away from zero), huge
+  // values and NaN (byte 0).
+  std::vector<double> a = {-1e300, -7.5, -0.0, 0.0, 1e-300, 12.5, 13.5, 99.49999999999999, 254.5, 255, 1e300,
+                           std::numeric_limits<double>::quiet_NaN()};
+  std::mt19937 random(17);
+  std::uniform_real_distribution<double> value(-50.0, 400.0);
+  for (int j = 0; j < 301; ++j) a.push_back(value(random));
+
+  const PtmQuantisation ptm = choosePtmQuantisation(-40.0, 310.0);
+  const HshQuantisation hsh = chooseHshQuantisation(-40.0, 310.0);
+  // Closed form for one value: with scale 350/255 and bias round(40 / scale) = 29, 12.5 maps to
+  // round(12.5 / scale + 29) = round(38.107...) = 38.
+  REQUIRE(ptm.bias == 29);
+  CHECK(ptm.quantise(12.5) == 38);
+  for (const KernelIsa isa : variants()) {
+    INFO("variant " << name(isa));
+    std::vector<std::uint8_t> bytes(a.size());
+    std::vector<double> decoded(a.size());
+    quantisePtm(a.data(), a.size(), ptm, bytes.data(), decoded.data(), isa);
+    bool same = true;
+    for (std::size_t j = 0; j < a.size(); ++j) {
+      const std::uint8_t b = ptm.quantise(a[j]);
+      const double d = ptm.decode(b);
+      same = same && bytes[j] == b && std::memcmp(&decoded[j], &d, sizeof d) == 0;
+    }
+    CHECK(same);
+    CHECK(bytes[5] == 38);  // 12.5
+
+    quantiseHsh(a.data(), a.size(), hsh, bytes.data(), decoded.data(), isa);
+    same = true;
+    for (std::size_t j = 0; j < a.size(); ++j) {
+      const std::uint8_t b = hsh.quantise(a[j]);
+      const double d = hsh.decode(b);
+      same = same && bytes[j] == b && std::memcmp(&decoded[j], &d, sizeof d) == 0;
+    }
+    CHECK(same);
+    CHECK(bytes[11] == 0);  // NaN
+
+    // A coefficient with one value over the image: every byte 0, decoded to that value.
+    const HshQuantisation flat = chooseHshQuantisation(0.25, 0.25);
+    quantiseHsh(a.data(), a.size(), flat, bytes.data(), decoded.data(), isa);
+    CHECK(std::all_of(bytes.begin(), bytes.end(), [](std::uint8_t b) { return b == 0; }));
+    CHECK(std::all_of(decoded.begin(), decoded.end(), [](double d) { return d == 0.25; }));
   }
 }
