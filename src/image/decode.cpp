@@ -1,5 +1,7 @@
 #include "image/decode.h"
 
+#include <cstring>
+
 #include <algorithm>
 
 #include "image/decoder_messages.h"
@@ -95,11 +97,19 @@ const void* DecodedPixels::data() const {
 }
 
 std::size_t DecodedPixels::bytes() const {
-  if (placed) return std::size_t(narrow.width) * narrow.height * narrow.channels;
+  if (placed && placedNarrow) return std::size_t(narrow.width) * narrow.height * narrow.channels;
+  if (placed) return std::size_t(wide.width) * wide.height * wide.channels * sizeof(std::uint16_t);
   return isNarrow() ? narrow.pixels.size() : wide.pixels.size() * sizeof(std::uint16_t);
 }
 
 Image DecodedPixels::widened() const {
+  if (!isNarrow() && placed) {
+    Image out(wide.width, wide.height, wide.channels);
+    out.bitsPerSample = wide.bitsPerSample;
+    out.transfer = wide.transfer;
+    std::memcpy(out.pixels.data(), placed, bytes());
+    return out;
+  }
   if (!isNarrow()) return wide;
   return widen(static_cast<const std::uint8_t*>(data()), narrow.width, narrow.height, narrow.channels,
                narrow.transfer);
@@ -109,9 +119,7 @@ DecodedPixels decodePixels(const std::filesystem::path& path, const RawDecodeSet
                            DecodeReport* report, const DecodeOptions& options) {
   const SourceKind kind = classifyImageFile(path);
   if (kind != SourceKind::CameraRaw) return decodeExport(path, kind, report, options);
-  DecodedPixels out;
-  out.wide = decodeCameraRaw(path, settings, report, options);
-  return out;
+  return decodeCameraRaw(path, settings, report, options);
 }
 
 Image decodeImage(const std::filesystem::path& path, const RawDecodeSettings& settings,

@@ -84,12 +84,13 @@ struct DecodeOptions {
   // Refused (Error(Input)) before decoding when its header declares more pixels than this
   // (never more than kMaxImagePixels).
   std::uint64_t maxPixels = kMaxImagePixels;
-  // Where an 8-bit JPEG is decoded to: asked, once the header is read, for a buffer of
-  // width * height * channels bytes (channels of the output: 1 grey, 3 RGB) that the decoder
-  // writes the samples into directly; nullptr (or no function) for a buffer of the decoder's
-  // own. The pipeline passes its stack's slot: no copy, no zeroing of memory about to be
-  // written. Other formats decode into their own buffers.
-  std::function<std::uint8_t*(int width, int height, int channels)> narrowDestination;
+  // Where an 8-bit JPEG or a camera raw image (16-bit samples in the machine's byte order) is
+  // decoded to: asked, once the decoder knows the output's layout, for a buffer of width *
+  // height * channels * bytesPerSample bytes (channels of the output: 1 grey, 3 RGB) that the
+  // decoder writes the samples into directly; nullptr (or no function) for a buffer of the
+  // decoder's own. The pipeline passes its stack's slot: no copy, no zeroing of memory about
+  // to be written. Other formats decode into their own buffers.
+  std::function<std::uint8_t*(int width, int height, int channels, int bytesPerSample)> destination;
 };
 
 // The library reported damaged data and the caller did not accept damage: Error(Input) naming
@@ -109,14 +110,16 @@ class DamagedImageError : public Error {
 // TIFF) one byte a sample in `narrow`, camera raw and 16-bit sources in `wide`; the other is
 // empty. The pipeline keeps images this way: a JPEG takes half the memory of its Image.
 //
-// Decoded into DecodeOptions::narrowDestination's buffer, the samples are at `placed` and
-// narrow.pixels is empty (narrow still gives the size and transfer).
+// Decoded into DecodeOptions::destination's buffer, the samples are at `placed`, and the image
+// that describes them (narrow for 8-bit samples, wide for 16-bit) has no pixels of its own but
+// still gives the size, depth and transfer.
 struct DecodedPixels {
   Image8 narrow;
   Image wide;
   std::uint8_t* placed = nullptr;
+  bool placedNarrow = false;  // with `placed`: 8-bit samples (else 16-bit)
 
-  bool isNarrow() const { return placed || !narrow.pixels.empty(); }
+  bool isNarrow() const { return placed ? placedNarrow : !narrow.pixels.empty(); }
   int width() const { return isNarrow() ? narrow.width : wide.width; }
   int height() const { return isNarrow() ? narrow.height : wide.height; }
   int channels() const { return isNarrow() ? narrow.channels : wide.channels; }

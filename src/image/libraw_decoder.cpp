@@ -203,8 +203,8 @@ void fillReport(const LibRaw& raw, const RawDecodeSettings& s, DecodeReport& rep
 
 }  // namespace
 
-Image decodeCameraRaw(const fs::path& path, const RawDecodeSettings& settings, DecodeReport* report,
-                      const DecodeOptions& options) {
+DecodedPixels decodeCameraRaw(const fs::path& path, const RawDecodeSettings& settings, DecodeReport* report,
+                              const DecodeOptions& options) {
   Decoder d(path);
   // Before LibRaw allocates anything for pixels: the visible size against the caller's limit,
   // the stored mosaic (with its margins) against Surrogate's.
@@ -214,23 +214,30 @@ Image decodeCameraRaw(const fs::path& path, const RawDecodeSettings& settings, D
   check(d.raw->unpack(), path, d.errors);
   if (!options.acceptDamage) settle(d.errors.corrupt, path, options, report);  // refused: no need to go on
   check(d.raw->dcraw_process(), path, d.errors);
-  int code = LIBRAW_SUCCESS;
-  std::unique_ptr<libraw_processed_image_t, void (*)(libraw_processed_image_t*)> processed(
-      d.raw->dcraw_make_mem_image(&code), LibRaw::dcraw_clear_mem);
-  if (!processed) check(code == LIBRAW_SUCCESS ? LIBRAW_UNSPECIFIED_ERROR : code, path, d.errors);
-  if (processed->type != LIBRAW_IMAGE_BITMAP || processed->bits != 16 ||
-      (processed->colors != 3 && processed->colors != 1))
+  // What dcraw_make_mem_image would allocate and fill (the layout, then copy_mem_image), but
+  // into the caller's buffer when it gives one: a raw image is 36 MB at 6 Mpx, and each copy
+  // of it costs fresh memory.
+  int width = 0, height = 0, colors = 0, bits = 0;
+  d.raw->get_mem_image_format(&width, &height, &colors, &bits);
+  if (bits != 16 || (colors != 3 && colors != 1) || width <= 0 || height <= 0)
     throwInputError(path.string(), kStep,
-                    "LibRaw returned an image layout Surrogate does not handle (" +
-                        std::to_string(processed->colors) + " colours, " +
-                        std::to_string(processed->bits) + " bits)");
-  Image im(processed->width, processed->height, processed->colors);
-  im.bitsPerSample = 16;
-  im.transfer = Transfer::Linear;
-  std::memcpy(im.pixels.data(), processed->data, im.pixels.size() * sizeof(std::uint16_t));
+                    "LibRaw returned an image layout Surrogate does not handle (" + std::to_string(colors) +
+                        " colours, " + std::to_string(bits) + " bits)");
+  DecodedPixels out;
+  out.wide.width = width;
+  out.wide.height = height;
+  out.wide.channels = colors;
+  out.wide.bitsPerSample = 16;
+  out.wide.transfer = Transfer::Linear;
+  if (options.destination) out.placed = options.destination(width, height, colors, 2);
+  if (!out.placed) out.wide = Image(width, height, colors);
+  out.wide.bitsPerSample = 16;
+  out.wide.transfer = Transfer::Linear;
+  void* samples = out.placed ? static_cast<void*>(out.placed) : static_cast<void*>(out.wide.pixels.data());
+  check(d.raw->copy_mem_image(samples, width * colors * 2, 0), path, d.errors);
   if (report) fillReport(*d.raw, settings, *report);
   settle(d.errors.corrupt, path, options, report);
-  return im;
+  return out;
 }
 
 ImageProbe probeCameraRaw(const fs::path& path) {

@@ -1,7 +1,8 @@
 // Private to src/image: camera raw and DNG through LibRaw (the thread-safe libraw_r build).
 //
 //   open_file (parse headers) -> unpack (read the mosaic) -> dcraw_process (black, white balance,
-//   demosaic, colour matrix) -> dcraw_make_mem_image (16-bit RGB, linear gamma)
+//   demosaic, colour matrix) -> copy_mem_image (16-bit RGB, linear gamma), into
+//   DecodeOptions::destination's buffer when it gives one
 //
 // One LibRaw object per call, on the heap (it is several hundred kilobytes), so calls from
 // several threads never share state. LibRaw's data-error callback is collected rather than
@@ -15,8 +16,9 @@
 
 namespace surrogate::image {
 
-Image decodeCameraRaw(const std::filesystem::path& path, const RawDecodeSettings& settings,
-                      DecodeReport* report, const DecodeOptions& options);
+// 16-bit samples in `wide`, or at `placed` (see DecodedPixels).
+DecodedPixels decodeCameraRaw(const std::filesystem::path& path, const RawDecodeSettings& settings,
+                              DecodeReport* report, const DecodeOptions& options);
 
 // Header parse only (open_file): the size decodeCameraRaw gives with default settings.
 // Reading the mosaic (unpack) would find damaged pixel data, but costs about 0.2 s per 24 Mpx

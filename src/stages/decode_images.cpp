@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <condition_variable>
 #include <cstdio>
+#include <mutex>
 
 #include "core/digest.h"
 #include "core/error.h"
@@ -140,7 +142,18 @@ DecodedStacks decodeImages(const std::vector<std::filesystem::path>& files,
 
   DecodedStacks out;
   out.images.resize(n);
-  std::shared_ptr<pipeline::DecodedStack> stack;  // made when the first image gives its format
+  // The stack is made when the first image gives its format. The others are decoded meanwhile
+  // (a camera raw image takes about 0.7 s at 6 Mpx, and waiting for the first one left a core
+  // idle) and wait for the stack only where they need it: for their slot, or to be stored.
+  std::shared_ptr<pipeline::DecodedStack> stack;
+  std::mutex stackMutex;
+  std::condition_variable stackMade;
+  bool firstSettled = false;  // the stack is made, or the first image failed (stack stays empty)
+  auto awaitStack = [&]() -> std::shared_ptr<pipeline::DecodedStack> {
+    std::unique_lock<std::mutex> lock(stackMutex);
+    stackMade.wait(lock, [&] { return firstSettled; });
+    return stack;
+  };
   std::atomic<int> done{0};
 
   auto decodeOne = [&](int i) {
@@ -149,11 +162,16 @@ DecodedStacks decodeImages(const std::vector<std::filesystem::path>& files,
     options.acceptDamage = i < static_cast<int>(acceptDamage.size()) && acceptDamage[i];
     options.maxPixels = declared;  // all images are alike: a larger header is damaged
     if (i > 0)  // straight into the stack's slot, when the image is as the first
-      options.narrowDestination = [&stack, i](int width, int height, int channels) -> std::uint8_t* {
-        const pipeline::DecodedStack::Format& f = stack->format();
-        const bool alike = f.bytesPerSample == 1 && f.transfer == Transfer::Srgb && f.width == width &&
+      options.destination = [&awaitStack, i](int width, int height, int channels,
+                                             int bytesPerSample) -> std::uint8_t* {
+        const std::shared_ptr<pipeline::DecodedStack> made = awaitStack();
+        if (!made) return nullptr;  // the first image failed: its error ends the step
+        const pipeline::DecodedStack::Format& f = made->format();
+        // 8-bit samples are JPEG's (sRGB), 16-bit ones camera raw's (linear).
+        const Transfer transfer = bytesPerSample == 1 ? Transfer::Srgb : Transfer::Linear;
+        const bool alike = f.bytesPerSample == bytesPerSample && f.transfer == transfer && f.width == width &&
                            f.height == height && f.channels == channels;
-        return alike ? stack->slot(i) : nullptr;
+        return alike ? made->slot(i) : nullptr;
       };
     image::DecodedPixels pixels = image::decodePixels(files[i], settings, &d.report, options);
     d.width = pixels.width();
@@ -163,31 +181,55 @@ DecodedStacks decodeImages(const std::vector<std::filesystem::path>& files,
     d.transfer = pixels.transfer();
     d.pixelSha256 = pixelDigest(pixels);
     const pipeline::DecodedStack::Format format = formatOf(pixels);
-    if (i == 0)  // decoded alone, before the others start
+    if (i == 0) {
+      std::lock_guard<std::mutex> lock(stackMutex);
       stack = std::make_shared<pipeline::DecodedStack>(
           n, format, inMemory ? pipeline::DecodedStack::Placement::Memory : pipeline::DecodedStack::Placement::TemporaryFile);
-    if (!sameFormat(format, stack->format())) {
+    }
+    const std::shared_ptr<pipeline::DecodedStack> made = i == 0 ? stack : awaitStack();
+    if (!made) return;  // the first image failed: its error ends the step
+    if (!sameFormat(format, made->format())) {
       throwInputError(files[i].string(), kStep,
                       "decodes to " + describe(format) + ", another kind of image than the first (" +
-                          describe(stack->format()) + "); all images of a capture must be alike: "
+                          describe(made->format()) + "); all images of a capture must be alike: "
                           "export them all the same way");
     }
-    if (pixels.placed) stack->markStored(i);
-    else if (pixels.isNarrow()) stack->store(i, pixels.narrow.pixels);
-    else stack->store(i, pixels.wide.pixels);
+    if (pixels.placed) made->markStored(i);  // decoded into its slot, already checked alike
+    else if (pixels.isNarrow()) made->store(i, pixels.narrow.pixels);
+    else made->store(i, pixels.wide.pixels);
     if (run.progress) run.progress("Decoding images", double(++done) / n);
   };
+  // Settles the first image whichever way its decode ends, so that no other waits for ever.
+  auto decodeFirst = [&] {
+    struct Settle {
+      std::mutex& mutex;
+      std::condition_variable& made;
+      bool& settled;
+      ~Settle() {
+        {
+          std::lock_guard<std::mutex> lock(mutex);
+          settled = true;
+        }
+        made.notify_all();
+      }
+    } settle{stackMutex, stackMade, firstSettled};
+    decodeOne(0);
+  };
 
-  decodeOne(0);  // fixes the stack's format
-  const std::uint64_t held = inMemory ? pipeline::DecodedStack::bytesFor(n, stack->format()) : 0;
+  // What the stack will hold in memory, from the first header (the decoded format may hold
+  // less: a grey JPEG), for the number of images decoded at once.
+  const std::uint64_t held = inMemory ? std::uint64_t(n) * declared * storedBytesPerPixel(first.kind) : 0;
   const int workers = concurrentDecodes(run.threads, run.memoryBudget - held, declared);
-  parallelFor(static_cast<std::size_t>(n - 1), 1, workers, [&](std::size_t b, std::size_t e) {
-    for (std::size_t i = b; i < e; ++i) decodeOne(static_cast<int>(i) + 1);
+  parallelFor(static_cast<std::size_t>(n), 1, workers, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) {
+      if (i == 0) decodeFirst();
+      else decodeOne(static_cast<int>(i));
+    }
   });
+  out.bytesInMemory = inMemory ? pipeline::DecodedStack::bytesFor(n, stack->format()) : 0;
   out.decoded = stack;
   out.rgb = rgbView(stack);
   out.luminance = std::make_shared<LuminanceStack>(stack);
-  out.bytesInMemory = held;
   return out;
 }
 

@@ -201,3 +201,64 @@ TEST_CASE("16-bit images are kept as they are, and a capture mixing depths is re
     CHECK(std::string(e.what()).find("16-bit") != std::string::npos);
   }
 }
+
+namespace {
+
+// CRC-32 of PNG chunks (ISO 3309, polynomial 0xEDB88320), written out here.
+std::uint32_t crc32Of(const std::string& bytes) {
+  std::uint32_t c = 0xFFFFFFFFu;
+  for (unsigned char b : bytes) {
+    c ^= b;
+    for (int k = 0; k < 8; ++k) c = (c >> 1) ^ (0xEDB88320u & (0u - (c & 1u)));
+  }
+  return c ^ 0xFFFFFFFFu;
+}
+
+// The PNG with its image data replaced by bytes that do not inflate, its chunk CRC made right:
+// the file's structure is sound, its pixels cannot be decoded.
+void spoilImageData(const fs::path& png) {
+  std::ifstream in(png, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  in.close();
+  const std::size_t type = bytes.find("IDAT");
+  REQUIRE(type != std::string::npos);
+  const std::size_t length = (std::size_t(std::uint8_t(bytes[type - 4])) << 24) |
+                             (std::size_t(std::uint8_t(bytes[type - 3])) << 16) |
+                             (std::size_t(std::uint8_t(bytes[type - 2])) << 8) | std::uint8_t(bytes[type - 1]);
+  for (std::size_t k = 0; k < length; ++k) bytes[type + 4 + k] = static_cast<char>(0xA5 ^ k);
+  const std::uint32_t crc = crc32Of(bytes.substr(type, 4 + length));
+  for (int k = 0; k < 4; ++k) bytes[type + 4 + length + k] = static_cast<char>(crc >> (24 - 8 * k));
+  std::ofstream(png, std::ios::binary | std::ios::trunc) << bytes;
+}
+
+}  // namespace
+
+TEST_CASE("while the first image decodes the others decode too, and its failure is the step's error") {
+  for (const int threads : {1, 2}) {
+    INFO(threads << " threads");
+    // The first image, which gives the stack its format, cannot be decoded: its own error ends
+    // the step (the others, decoded meanwhile, do not wait for it for ever).
+    std::vector<fs::path> files = pngs("decode-first-fails", 5, 3, 8);
+    spoilImageData(files[0]);
+    try {
+      decodeUnder(files, std::size_t(2) << 30, threads);
+      FAIL("a first image whose data does not inflate was decoded");
+    } catch (const Error& e) {
+      CHECK(e.kind() == ErrorKind::Input);
+      CHECK(std::string(e.what()).find(files[0].string()) != std::string::npos);
+    }
+    // A later image that cannot be decoded: its error, whichever image finished first.
+    files = pngs("decode-later-fails", 5, 3, 8);
+    spoilImageData(files[3]);
+    try {
+      decodeUnder(files, std::size_t(2) << 30, threads);
+      FAIL("an image whose data does not inflate was decoded");
+    } catch (const Error& e) {
+      CHECK(std::string(e.what()).find(files[3].string()) != std::string::npos);
+    }
+    // Sound images: every one in its place.
+    files = pngs("decode-all-sound", 5, 3, 8);
+    const Decoded d = decodeUnder(files, std::size_t(2) << 30, threads);
+    for (int i = 0; i < 5; ++i) CHECK(allRows(*d.stacks.rgb, i) == image::decodeImage(files[i], {}).pixels);
+  }
+}
