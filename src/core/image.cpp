@@ -2,6 +2,8 @@
 
 #include <array>
 
+#include "core/cpu_features.h"
+
 namespace surrogate {
 
 namespace {
@@ -53,10 +55,34 @@ void luminanceOfPixels(const std::uint16_t* rgb, std::size_t count, std::uint16_
   for (std::size_t i = 0; i < count; ++i, rgb += 3) out[i] = weighted(rgb[0], rgb[1], rgb[2]);
 }
 
-void luminanceOfPixels(const std::uint8_t* rgb, std::size_t count, std::uint16_t* out) {
+namespace detail {
+
+void luminanceOfPixelsBaseline(const std::uint8_t* rgb, std::size_t count, std::uint16_t* out) {
   static const Weighted8 table;
   for (std::size_t i = 0; i < count; ++i, rgb += 3)
     out[i] = static_cast<std::uint16_t>((table.r[rgb[0]] + table.g[rgb[1]] + table.b[rgb[2]] + 32768u) >> 16);
+}
+
+#if defined(__x86_64__) && defined(__GNUC__)
+// The same sums as the table's, multiplied out: AVX2 multiplies eight 32-bit integers at once,
+// where the baseline instruction set has no such multiplication and the table is faster.
+__attribute__((target("avx2"))) void luminanceOfPixelsAvx2(const std::uint8_t* __restrict rgb, std::size_t count,
+                                                           std::uint16_t* __restrict out) {
+  constexpr std::uint32_t r = kWr * 257, g = kWg * 257, b = kWb * 257;
+  for (std::size_t i = 0; i < count; ++i)
+    out[i] = static_cast<std::uint16_t>((r * rgb[3 * i] + g * rgb[3 * i + 1] + b * rgb[3 * i + 2] + 32768u) >> 16);
+}
+#else
+void luminanceOfPixelsAvx2(const std::uint8_t* rgb, std::size_t count, std::uint16_t* out) {
+  luminanceOfPixelsBaseline(rgb, count, out);
+}
+#endif
+
+}  // namespace detail
+
+void luminanceOfPixels(const std::uint8_t* rgb, std::size_t count, std::uint16_t* out) {
+  if (cpuHasAvx2()) detail::luminanceOfPixelsAvx2(rgb, count, out);
+  else detail::luminanceOfPixelsBaseline(rgb, count, out);
 }
 
 Image luminance(const Image& in) {

@@ -69,5 +69,11 @@ Image luminance(const Image& rgb);
 // The same for `count` RGB pixels, 16-bit or 8-bit (taken as widened by 257).
 void luminanceOfPixels(const std::uint16_t* rgb, std::size_t count, std::uint16_t* out);
 void luminanceOfPixels(const std::uint8_t* rgb, std::size_t count, std::uint16_t* out);
+namespace detail {
+// The two variants luminanceOfPixels chooses between (core/cpu_features.h), for the test that
+// compares them; the AVX2 one only where the processor has AVX2.
+void luminanceOfPixelsBaseline(const std::uint8_t* rgb, std::size_t count, std::uint16_t* out);
+void luminanceOfPixelsAvx2(const std::uint8_t* rgb, std::size_t count, std::uint16_t* out);
+}  // namespace detail
 
 }  // namespace surrogate

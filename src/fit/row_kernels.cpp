@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "core/cpu_features.h"
 #include "fit/stream_fit.h"
 
 // This file is compiled with -fno-trapping-math (src/fit/CMakeLists.txt): it lets the
@@ -156,8 +157,7 @@ __attribute__((target("avx2"))) void rgbAvx2(const double* p, const std::uint16_
 
 KernelIsa activeKernelIsa() {
 #ifdef SURROGATE_HAVE_AVX2_KERNELS
-  static const KernelIsa isa = __builtin_cpu_supports("avx2") ? KernelIsa::Avx2 : KernelIsa::Baseline;
-  return isa;
+  return cpuHasAvx2() ? KernelIsa::Avx2 : KernelIsa::Baseline;
 #else
   return KernelIsa::Baseline;
 #endif

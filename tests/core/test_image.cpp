@@ -14,6 +14,36 @@ TEST_CASE("luminance of white is white and of pure green is its Rec.709 weight")
   CHECK(y.at(1, 0) == Approx(0.7152 * 65535).margin(1));
 }
 
+#include <vector>
+
+#include "core/cpu_features.h"
+
+TEST_CASE("8-bit luminance: every colour against the integer Rec. 709 weights, in both variants") {
+  // All 2^24 colours: the reference is the formula (docs/hrti-math.md, "Spheres in the median
+  // image"), on samples widened by 257.
+  const std::size_t count = std::size_t(1) << 24;
+  std::vector<std::uint8_t> rgb(3 * count);
+  std::vector<std::uint16_t> expected(count);
+  for (std::size_t c = 0; c < count; ++c) {
+    const std::uint32_t r = c >> 16, g = (c >> 8) & 255, b = c & 255;
+    rgb[3 * c] = static_cast<std::uint8_t>(r);
+    rgb[3 * c + 1] = static_cast<std::uint8_t>(g);
+    rgb[3 * c + 2] = static_cast<std::uint8_t>(b);
+    expected[c] = static_cast<std::uint16_t>((13933 * 257 * r + 46871 * 257 * g + 4732 * 257 * b + 32768) / 65536);
+  }
+  std::vector<std::uint16_t> out(count);
+  surrogate::detail::luminanceOfPixelsBaseline(rgb.data(), count, out.data());
+  CHECK(out == expected);
+  if (surrogate::cpuHasAvx2()) {
+    std::fill(out.begin(), out.end(), 0);
+    surrogate::detail::luminanceOfPixelsAvx2(rgb.data(), count, out.data());
+    CHECK(out == expected);
+  }
+  std::fill(out.begin(), out.end(), 0);
+  surrogate::luminanceOfPixels(rgb.data(), count, out.data());
+  CHECK(out == expected);
+}
+
 #include "core/json.h"
 
 TEST_CASE("JsonWriter separates members and escapes control characters") {
