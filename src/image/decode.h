@@ -86,11 +86,12 @@ struct DecodeOptions {
   std::uint64_t maxPixels = kMaxImagePixels;
   // Where an 8-bit JPEG or a camera raw image (16-bit samples in the machine's byte order) is
   // decoded to: asked, once the decoder knows the output's layout, for a buffer of width *
-  // height * channels * bytesPerSample bytes (channels of the output: 1 grey, 3 RGB) that the
-  // decoder writes the samples into directly; nullptr (or no function) for a buffer of the
-  // decoder's own. The pipeline passes its stack's slot: no copy, no zeroing of memory about
-  // to be written. Other formats decode into their own buffers.
-  std::function<std::uint8_t*(int width, int height, int channels, int bytesPerSample)> destination;
+  // height * channels * bytesPerSample bytes (channels of the output: 1 grey, 3 RGB; the
+  // samples' transfer) that the decoder writes the samples into directly; nullptr (or no
+  // function) for a buffer of the decoder's own. The pipeline passes its stack's slot: no copy,
+  // no zeroing of memory about to be written. Other formats decode into their own buffers.
+  std::function<std::uint8_t*(int width, int height, int channels, int bytesPerSample, Transfer transfer)>
+      destination;
 };
 
 // The library reported damaged data and the caller did not accept damage: Error(Input) naming

@@ -142,7 +142,7 @@ DecodedPixels decodeJpeg(const fs::path& path, const std::uint8_t* data, std::si
   const int w = static_cast<int>(c.image_width), h = static_cast<int>(c.image_height);
   const int channels = components == 1 ? 1 : 3;
   DecodedPixels out;
-  if (options.destination) out.placed = options.destination(w, h, channels, 1);
+  if (options.destination) out.placed = options.destination(w, h, channels, 1, Transfer::Srgb);
   if (out.placed) {
     out.placedNarrow = true;
     out.narrow.width = w;

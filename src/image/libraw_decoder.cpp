@@ -229,7 +229,7 @@ DecodedPixels decodeCameraRaw(const fs::path& path, const RawDecodeSettings& set
   out.wide.channels = colors;
   out.wide.bitsPerSample = 16;
   out.wide.transfer = Transfer::Linear;
-  if (options.destination) out.placed = options.destination(width, height, colors, 2);
+  if (options.destination) out.placed = options.destination(width, height, colors, 2, Transfer::Linear);
   if (!out.placed) out.wide = Image(width, height, colors);
   out.wide.bitsPerSample = 16;
   out.wide.transfer = Transfer::Linear;

@@ -162,13 +162,11 @@ DecodedStacks decodeImages(const std::vector<std::filesystem::path>& files,
     options.acceptDamage = i < static_cast<int>(acceptDamage.size()) && acceptDamage[i];
     options.maxPixels = declared;  // all images are alike: a larger header is damaged
     if (i > 0)  // straight into the stack's slot, when the image is as the first
-      options.destination = [&awaitStack, i](int width, int height, int channels,
-                                             int bytesPerSample) -> std::uint8_t* {
+      options.destination = [&awaitStack, i](int width, int height, int channels, int bytesPerSample,
+                                             Transfer transfer) -> std::uint8_t* {
         const std::shared_ptr<pipeline::DecodedStack> made = awaitStack();
         if (!made) return nullptr;  // the first image failed: its error ends the step
         const pipeline::DecodedStack::Format& f = made->format();
-        // 8-bit samples are JPEG's (sRGB), 16-bit ones camera raw's (linear).
-        const Transfer transfer = bytesPerSample == 1 ? Transfer::Srgb : Transfer::Linear;
         const bool alike = f.bytesPerSample == bytesPerSample && f.transfer == transfer && f.width == width &&
                            f.height == height && f.channels == channels;
         return alike ? made->slot(i) : nullptr;
