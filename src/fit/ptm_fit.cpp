@@ -4,10 +4,10 @@
 
 #include "core/error.h"
 #include "fit/channel_fit.h"
-#include "fit/row_kernels.h"
 #include "fit/fit.h"
 #include "fit/pseudo_inverse.h"
 #include "fit/quantise.h"
+#include "fit/row_kernels.h"
 #include "fit/stream_fit.h"
 
 namespace surrogate::fit {

@@ -31,6 +31,12 @@ std::vector<KernelIsa> variants() {
 
 const char* name(KernelIsa isa) { return isa == KernelIsa::Avx2 ? "avx2" : "baseline"; }
 
+// (model - captured)^2, the captured luminance of one pixel's 16-bit samples in 0..255 units.
+double squaredError(double model, const std::uint16_t* s) {
+  const double captured = (kR * s[0] + kG * s[1] + kB * s[2]) / 257.0;
+  return (model - captured) * (model - captured);
+}
+
 // Samples over the whole 16-bit range and model values below 0, inside and above 0..255
 // (the clamps), with an odd pixel count (the vector loops' tails).
 struct Row {
@@ -57,10 +63,7 @@ TEST_CASE("the per-channel error kernel gives the squared luminance errors of th
   for (std::size_t x = 0; x < pixels; ++x) {
     const double r = std::clamp(row.model[3 * x], 0.0, 255.0), g = std::clamp(row.model[3 * x + 1], 0.0, 255.0),
                  b = std::clamp(row.model[3 * x + 2], 0.0, 255.0);
-    const double model = kR * r + kG * g + kB * b;
-    const double captured =
-        (kR * row.samples[3 * x] + kG * row.samples[3 * x + 1] + kB * row.samples[3 * x + 2]) / 257.0;
-    expected[x] = (model - captured) * (model - captured);
+    expected[x] = squaredError(kR * r + kG * g + kB * b, &row.samples[3 * x]);
   }
   for (const KernelIsa isa : variants()) {
     INFO("variant " << name(isa));
@@ -91,9 +94,7 @@ TEST_CASE("the LRGB error kernel gives the squared luminance errors of colour ti
     model += kR * std::clamp(cr[x] * l / 255.0, 0.0, 255.0);
     model += kG * std::clamp(cg[x] * l / 255.0, 0.0, 255.0);
     model += kB * std::clamp(cb[x] * l / 255.0, 0.0, 255.0);
-    const double captured =
-        (kR * row.samples[3 * x] + kG * row.samples[3 * x + 1] + kB * row.samples[3 * x + 2]) / 257.0;
-    expected[x] = (model - captured) * (model - captured);
+    expected[x] = squaredError(model, &row.samples[3 * x]);
   }
   for (const KernelIsa isa : variants()) {
     INFO("variant " << name(isa));
