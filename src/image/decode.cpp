@@ -1,8 +1,7 @@
 #include "image/decode.h"
 
-#include <cstring>
-
 #include <algorithm>
+#include <cstring>
 
 #include "image/decoder_messages.h"
 #include "image/export_decoder.h"

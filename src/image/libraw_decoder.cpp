@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
-#include <cstring>
 #include <memory>
 #include <string>
 
@@ -224,13 +223,14 @@ DecodedPixels decodeCameraRaw(const fs::path& path, const RawDecodeSettings& set
                     "LibRaw returned an image layout Surrogate does not handle (" + std::to_string(colors) +
                         " colours, " + std::to_string(bits) + " bits)");
   DecodedPixels out;
-  out.wide.width = width;
-  out.wide.height = height;
-  out.wide.channels = colors;
-  out.wide.bitsPerSample = 16;
-  out.wide.transfer = Transfer::Linear;
   if (options.destination) out.placed = options.destination(width, height, colors, 2, Transfer::Linear);
-  if (!out.placed) out.wide = Image(width, height, colors);
+  if (out.placed) {  // `wide` only describes them
+    out.wide.width = width;
+    out.wide.height = height;
+    out.wide.channels = colors;
+  } else {
+    out.wide = Image(width, height, colors);
+  }
   out.wide.bitsPerSample = 16;
   out.wide.transfer = Transfer::Linear;
   void* samples = out.placed ? static_cast<void*>(out.placed) : static_cast<void*>(out.wide.pixels.data());
