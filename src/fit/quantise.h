@@ -21,11 +21,12 @@ namespace surrogate::fit {
 namespace detail {
 // round(v) clamped to 0..255 (NaN gives 0), rounding halves away from zero as std::lround
 // does; inline because it runs once per coefficient. v - trunc(v) is exact for |v| < 2^52.
+// Written as selects on values, clamping before the conversion to int (always defined then),
+// so that the row kernels' loops over it vectorise (src/fit/row_kernels.h).
 inline std::uint8_t toByte(double v) {
-  if (!(v > 0)) return 0;
-  if (v >= 255) return 255;
-  const double whole = static_cast<double>(static_cast<int>(v));
-  return static_cast<std::uint8_t>(static_cast<int>(whole) + (v - whole >= 0.5 ? 1 : 0));
+  const double c = v > 0.0 ? (v < 255.0 ? v : 255.0) : 0.0;
+  const int whole = static_cast<int>(c);
+  return static_cast<std::uint8_t>(whole + (c - static_cast<double>(whole) >= 0.5 ? 1 : 0));
 }
 }  // namespace detail
 

@@ -1,7 +1,5 @@
 #include "fit/row_kernels.h"
 
-#include <algorithm>
-
 #include "core/cpu_features.h"
 #include "fit/stream_fit.h"
 
@@ -75,143 +73,94 @@ __attribute__((always_inline)) inline void accumulateBody(const std::uint16_t* c
   }
 }
 
-// detail::toByte (fit/quantise.h) on values: the same byte for every double, NaN included,
-// with the branches as selects. The clamp comes first so that the conversion to int is always
-// defined.
-inline std::uint8_t toByte(double v) {
-  const double c = v > 0.0 ? (v < 255.0 ? v : 255.0) : 0.0;
-  const int whole = static_cast<int>(c);
-  return static_cast<std::uint8_t>(whole + (c - static_cast<double>(whole) >= 0.5 ? 1 : 0));
-}
-
-__attribute__((always_inline)) inline void ptmBody(const double* __restrict a, std::size_t count, double scale,
-                                                   int bias, std::uint8_t* __restrict bytes,
+// The quantisers themselves (fit/quantise.h), a row at a time.
+__attribute__((always_inline)) inline void ptmBody(const double* __restrict a, std::size_t count,
+                                                   const PtmQuantisation q, std::uint8_t* __restrict bytes,
                                                    double* __restrict decoded) {
-  const double biasValue = bias;
   for (std::size_t j = 0; j < count; ++j) {
-    const std::uint8_t b = toByte(a[j] / scale + biasValue);
+    const std::uint8_t b = q.quantise(a[j]);
     bytes[j] = b;
-    decoded[j] = static_cast<double>(static_cast<int>(b) - bias) * scale;
+    decoded[j] = q.decode(b);
   }
 }
 
-__attribute__((always_inline)) inline void hshBody(const double* __restrict a, std::size_t count, double scale,
-                                                   double bias, std::uint8_t* __restrict bytes,
+__attribute__((always_inline)) inline void hshBody(const double* __restrict a, std::size_t count,
+                                                   const HshQuantisation q, std::uint8_t* __restrict bytes,
                                                    double* __restrict decoded) {
   for (std::size_t j = 0; j < count; ++j) {
-    const std::uint8_t b = toByte((a[j] - bias) / scale * 255.0);
+    const std::uint8_t b = q.quantise(a[j]);
     bytes[j] = b;
-    decoded[j] = b / 255.0 * scale + bias;
+    decoded[j] = q.decode(b);
   }
 }
 
-void ptmBaseline(const double* a, std::size_t count, double scale, int bias, std::uint8_t* bytes, double* decoded) {
-  ptmBody(a, count, scale, bias, bytes, decoded);
-}
-void hshBaseline(const double* a, std::size_t count, double scale, double bias, std::uint8_t* bytes,
-                 double* decoded) {
-  hshBody(a, count, scale, bias, bytes, decoded);
-}
-
-void accumulateBaseline(const std::uint16_t* const* images, int n, std::size_t w, std::size_t x0, std::size_t x1,
-                        const double* p, const double* weight, double* acc, double* mean, double* sum) {
-  accumulateBody(images, n, w, x0, x1, p, weight, acc, mean, sum);
-}
-void lrgbBaseline(const double* cr, const double* cg, const double* cb, const double* decoded, std::size_t stride,
-                  const double* basis, const std::uint16_t* s, std::size_t pixels, double* d2) {
-  lrgbBody(cr, cg, cb, decoded, stride, basis, s, pixels, d2);
-}
-void rgbBaseline(const double* p, const std::uint16_t* s, std::size_t pixels, double* d2) {
-  rgbBody(p, s, pixels, d2);
-}
-
+// The bodies compiled for AVX2 where the compiler can target it. "avx2" alone: the compiler may
+// not fuse a multiply and an add (that needs "fma"), so every operation rounds as in the
+// baseline variant, which is the same body inlined into the public functions below. Elsewhere
+// these are plain copies that activeKernelIsa never picks.
 #if defined(__x86_64__) && defined(__GNUC__)
-#define SURROGATE_HAVE_AVX2_KERNELS 1
-// "avx2" alone: the compiler may not fuse a multiply and an add (that needs "fma"), so every
-// operation rounds as in the baseline variant.
-__attribute__((target("avx2"))) void accumulateAvx2(const std::uint16_t* const* images, int n, std::size_t w,
-                                                    std::size_t x0, std::size_t x1, const double* p,
-                                                    const double* weight, double* acc, double* mean, double* sum) {
+#define SURROGATE_AVX2_TARGET __attribute__((target("avx2")))
+constexpr bool kAvx2Compiled = true;
+#else
+#define SURROGATE_AVX2_TARGET
+constexpr bool kAvx2Compiled = false;
+#endif
+
+SURROGATE_AVX2_TARGET void accumulateAvx2(const std::uint16_t* const* images, int n, std::size_t w, std::size_t x0,
+                                          std::size_t x1, const double* p, const double* weight, double* acc,
+                                          double* mean, double* sum) {
   accumulateBody(images, n, w, x0, x1, p, weight, acc, mean, sum);
 }
-__attribute__((target("avx2"))) void lrgbAvx2(const double* cr, const double* cg, const double* cb,
-                                              const double* decoded, std::size_t stride, const double* basis,
-                                              const std::uint16_t* s, std::size_t pixels, double* d2) {
+SURROGATE_AVX2_TARGET void lrgbAvx2(const double* cr, const double* cg, const double* cb, const double* decoded,
+                                    std::size_t stride, const double* basis, const std::uint16_t* s,
+                                    std::size_t pixels, double* d2) {
   lrgbBody(cr, cg, cb, decoded, stride, basis, s, pixels, d2);
 }
-__attribute__((target("avx2"))) void ptmAvx2(const double* a, std::size_t count, double scale, int bias,
-                                             std::uint8_t* bytes, double* decoded) {
-  ptmBody(a, count, scale, bias, bytes, decoded);
-}
-__attribute__((target("avx2"))) void hshAvx2(const double* a, std::size_t count, double scale, double bias,
-                                             std::uint8_t* bytes, double* decoded) {
-  hshBody(a, count, scale, bias, bytes, decoded);
-}
-__attribute__((target("avx2"))) void rgbAvx2(const double* p, const std::uint16_t* s, std::size_t pixels,
-                                             double* d2) {
+SURROGATE_AVX2_TARGET void rgbAvx2(const double* p, const std::uint16_t* s, std::size_t pixels, double* d2) {
   rgbBody(p, s, pixels, d2);
 }
-#endif
+SURROGATE_AVX2_TARGET void ptmAvx2(const double* a, std::size_t count, const PtmQuantisation& q, std::uint8_t* bytes,
+                                   double* decoded) {
+  ptmBody(a, count, q, bytes, decoded);
+}
+SURROGATE_AVX2_TARGET void hshAvx2(const double* a, std::size_t count, const HshQuantisation& q, std::uint8_t* bytes,
+                                   double* decoded) {
+  hshBody(a, count, q, bytes, decoded);
+}
 
 }  // namespace
 
-KernelIsa activeKernelIsa() {
-#ifdef SURROGATE_HAVE_AVX2_KERNELS
-  return cpuHasAvx2() ? KernelIsa::Avx2 : KernelIsa::Baseline;
-#else
-  return KernelIsa::Baseline;
-#endif
-}
+KernelIsa activeKernelIsa() { return kAvx2Compiled && cpuHasAvx2() ? KernelIsa::Avx2 : KernelIsa::Baseline; }
 
 void accumulateLrgb(const std::uint16_t* const* images, int n, std::size_t w, std::size_t x0, std::size_t x1,
                     const double* p, const double* weight, double* acc, double* mean, double* sum, KernelIsa isa) {
-#ifdef SURROGATE_HAVE_AVX2_KERNELS
   if (isa == KernelIsa::Avx2) return accumulateAvx2(images, n, w, x0, x1, p, weight, acc, mean, sum);
-#endif
-  (void)isa;
-  accumulateBaseline(images, n, w, x0, x1, p, weight, acc, mean, sum);
+  accumulateBody(images, n, w, x0, x1, p, weight, acc, mean, sum);
 }
 
 void squaredErrorsLrgb(const double* cr, const double* cg, const double* cb, const double* decoded,
                        std::size_t stride, const double* basis, const std::uint16_t* s, std::size_t pixels,
                        double* d2, KernelIsa isa) {
-#ifdef SURROGATE_HAVE_AVX2_KERNELS
   if (isa == KernelIsa::Avx2) return lrgbAvx2(cr, cg, cb, decoded, stride, basis, s, pixels, d2);
-#endif
-  (void)isa;
-  lrgbBaseline(cr, cg, cb, decoded, stride, basis, s, pixels, d2);
+  lrgbBody(cr, cg, cb, decoded, stride, basis, s, pixels, d2);
 }
 
 void squaredErrorsRgb(const double* rendered, const std::uint16_t* s, std::size_t pixels, double* d2,
                       KernelIsa isa) {
-#ifdef SURROGATE_HAVE_AVX2_KERNELS
   if (isa == KernelIsa::Avx2) return rgbAvx2(rendered, s, pixels, d2);
-#endif
-  (void)isa;
-  rgbBaseline(rendered, s, pixels, d2);
+  rgbBody(rendered, s, pixels, d2);
 }
 
 void quantisePtm(const double* a, std::size_t count, const PtmQuantisation& q, std::uint8_t* bytes, double* decoded,
                  KernelIsa isa) {
-#ifdef SURROGATE_HAVE_AVX2_KERNELS
-  if (isa == KernelIsa::Avx2) return ptmAvx2(a, count, q.scale, q.bias, bytes, decoded);
-#endif
-  (void)isa;
-  ptmBaseline(a, count, q.scale, q.bias, bytes, decoded);
+  if (isa == KernelIsa::Avx2) return ptmAvx2(a, count, q, bytes, decoded);
+  ptmBody(a, count, q, bytes, decoded);
 }
 
 void quantiseHsh(const double* a, std::size_t count, const HshQuantisation& q, std::uint8_t* bytes, double* decoded,
                  KernelIsa isa) {
-  if (q.scale == 0) {  // one value: every byte 0 (HshQuantisation::quantise)
-    std::fill(bytes, bytes + count, std::uint8_t(0));
-    std::fill(decoded, decoded + count, q.decode(0));
-    return;
-  }
-#ifdef SURROGATE_HAVE_AVX2_KERNELS
-  if (isa == KernelIsa::Avx2) return hshAvx2(a, count, q.scale, q.bias, bytes, decoded);
-#endif
-  (void)isa;
-  hshBaseline(a, count, q.scale, q.bias, bytes, decoded);
+  if (isa == KernelIsa::Avx2) return hshAvx2(a, count, q, bytes, decoded);
+  hshBody(a, count, q, bytes, decoded);
 }
 
 }  // namespace surrogate::fit

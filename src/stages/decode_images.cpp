@@ -198,20 +198,21 @@ DecodedStacks decodeImages(const std::vector<std::filesystem::path>& files,
     if (run.progress) run.progress("Decoding images", double(++done) / n);
   };
   // Settles the first image whichever way its decode ends, so that no other waits for ever.
+  auto settleFirst = [&] {
+    {
+      std::lock_guard<std::mutex> lock(stackMutex);
+      firstSettled = true;
+    }
+    stackMade.notify_all();
+  };
   auto decodeFirst = [&] {
-    struct Settle {
-      std::mutex& mutex;
-      std::condition_variable& made;
-      bool& settled;
-      ~Settle() {
-        {
-          std::lock_guard<std::mutex> lock(mutex);
-          settled = true;
-        }
-        made.notify_all();
-      }
-    } settle{stackMutex, stackMade, firstSettled};
-    decodeOne(0);
+    try {
+      decodeOne(0);
+    } catch (...) {
+      settleFirst();
+      throw;
+    }
+    settleFirst();
   };
 
   // What the stack will hold in memory, from the first header (the decoded format may hold
