@@ -73,20 +73,11 @@ __attribute__((always_inline)) inline void accumulateBody(const std::uint16_t* c
   }
 }
 
-// The quantisers themselves (fit/quantise.h), a row at a time.
-__attribute__((always_inline)) inline void ptmBody(const double* __restrict a, std::size_t count,
-                                                   const PtmQuantisation q, std::uint8_t* __restrict bytes,
-                                                   double* __restrict decoded) {
-  for (std::size_t j = 0; j < count; ++j) {
-    const std::uint8_t b = q.quantise(a[j]);
-    bytes[j] = b;
-    decoded[j] = q.decode(b);
-  }
-}
-
-__attribute__((always_inline)) inline void hshBody(const double* __restrict a, std::size_t count,
-                                                   const HshQuantisation q, std::uint8_t* __restrict bytes,
-                                                   double* __restrict decoded) {
+// The quantisers themselves (fit/quantise.h: PtmQuantisation, HshQuantisation), a row at a time.
+template <typename Quantisation>
+__attribute__((always_inline)) inline void quantiseBody(const double* __restrict a, std::size_t count,
+                                                        const Quantisation q, std::uint8_t* __restrict bytes,
+                                                        double* __restrict decoded) {
   for (std::size_t j = 0; j < count; ++j) {
     const std::uint8_t b = q.quantise(a[j]);
     bytes[j] = b;
@@ -121,11 +112,11 @@ SURROGATE_AVX2_TARGET void rgbAvx2(const double* p, const std::uint16_t* s, std:
 }
 SURROGATE_AVX2_TARGET void ptmAvx2(const double* a, std::size_t count, const PtmQuantisation& q, std::uint8_t* bytes,
                                    double* decoded) {
-  ptmBody(a, count, q, bytes, decoded);
+  quantiseBody(a, count, q, bytes, decoded);
 }
 SURROGATE_AVX2_TARGET void hshAvx2(const double* a, std::size_t count, const HshQuantisation& q, std::uint8_t* bytes,
                                    double* decoded) {
-  hshBody(a, count, q, bytes, decoded);
+  quantiseBody(a, count, q, bytes, decoded);
 }
 
 }  // namespace
@@ -154,13 +145,13 @@ void squaredErrorsRgb(const double* rendered, const std::uint16_t* s, std::size_
 void quantisePtm(const double* a, std::size_t count, const PtmQuantisation& q, std::uint8_t* bytes, double* decoded,
                  KernelIsa isa) {
   if (isa == KernelIsa::Avx2) return ptmAvx2(a, count, q, bytes, decoded);
-  ptmBody(a, count, q, bytes, decoded);
+  quantiseBody(a, count, q, bytes, decoded);
 }
 
 void quantiseHsh(const double* a, std::size_t count, const HshQuantisation& q, std::uint8_t* bytes, double* decoded,
                  KernelIsa isa) {
   if (isa == KernelIsa::Avx2) return hshAvx2(a, count, q, bytes, decoded);
-  hshBody(a, count, q, bytes, decoded);
+  quantiseBody(a, count, q, bytes, decoded);
 }
 
 }  // namespace surrogate::fit
