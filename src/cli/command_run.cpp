@@ -1,6 +1,9 @@
 // surrogate run CAPTURE [options]
 #include <filesystem>
 #include <iostream>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <optional>
 
 #include "capture/capture.h"
@@ -17,6 +20,29 @@
 
 namespace surrogate::cli {
 
+namespace {
+// Display copies of the pictures the run's steps write, made as each is written, for the
+// report that follows: the report then does not decode the files again
+// (report::ReportOptions::displayed). Steps may write from several threads.
+class DisplayedPictures {
+ public:
+  explicit DisplayedPictures(int maxSide) : maxSide_(maxSide) {}
+
+  void add(const std::string& path, const Image& picture) {
+    report::DisplayPicture copy = report::displayPicture(picture, maxSide_);
+    const std::lock_guard<std::mutex> lock(mutex_);
+    (*pictures_)[path] = std::move(copy);  // a file written again: its last pixels
+  }
+
+  std::shared_ptr<const std::map<std::string, report::DisplayPicture>> pictures() const { return pictures_; }
+
+ private:
+  int maxSide_;
+  std::mutex mutex_;
+  std::shared_ptr<std::map<std::string, report::DisplayPicture>> pictures_ =
+      std::make_shared<std::map<std::string, report::DisplayPicture>>();
+};
+}  // namespace
 
 int runCommandRun(int argc, char** argv) {
   std::vector<OptionSpec> specs = pipelineOptions(true);
@@ -37,7 +63,13 @@ int runCommandRun(int argc, char** argv) {
   const stages::RunRequest request = requestFrom(args);
 
   ProgressBar bar(args.has("quiet") || args.has("json"));
-  const pipeline::RunSettings settings = settingsFrom(args, bar);
+  pipeline::RunSettings settings = settingsFrom(args, bar);
+  report::ReportOptions reportOptions;
+  DisplayedPictures displayed(reportOptions.maxImageSide);
+  if (!args.has("no-report"))
+    settings.pictureWritten = [&displayed](const std::string& path, const Image& picture) {
+      displayed.add(path, picture);
+    };
   // A folder that is not a capture is refused before anything is written in it, lock included.
   capture::requireCaptureFolder(capture);
   // The lock covers the report too: it is written from the carrier this run committed.
@@ -48,10 +80,10 @@ int runCommandRun(int argc, char** argv) {
   // made): written after the run, never listed in the carrier.
   std::optional<report::Report> rep;
   if (!args.has("no-report")) {
-    report::ReportOptions options;
-    options.threads = settings.threads;
-    options.progress = bar.callback();
-    rep = report::writeCaptureReport(capture, options);
+    reportOptions.threads = settings.threads;
+    reportOptions.progress = bar.callback();
+    reportOptions.displayed = displayed.pictures();
+    rep = report::writeCaptureReport(capture, reportOptions);
     bar.finish();
   } else std::filesystem::remove(std::filesystem::path(capture) / capture::kReportPath);
   const std::string reportPath = capture + "/" + capture::kReportPath;

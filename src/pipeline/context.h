@@ -17,6 +17,7 @@
 
 #include "carrier/carrier.h"
 #include "core/error.h"
+#include "core/image.h"
 
 namespace surrogate::pipeline {
 
@@ -35,6 +36,10 @@ struct RunSettings {
   std::string who;                                // the person running it (interventions, log)
   // Called with (step label, fraction done 0..1) for progress display; may be empty.
   std::function<void(const std::string&, double)> progress;
+  // Called with each picture a step has written (stages::writePicture): its path relative to
+  // the capture and the pixels its PNG holds. May be empty; called from any thread, after the
+  // file is complete. surrogate run keeps display copies of them for its report.
+  std::function<void(const std::string&, const Image&)> pictureWritten;
 };
 
 class Context {

@@ -23,67 +23,98 @@ namespace {
 // a small file can claim a huge image).
 constexpr std::uint64_t kMaxPicturePixels = 1ull << 28;
 
-// The decoded picture as 8-bit RGB: 16-bit samples rounded to nearest, grey repeated.
-cv::Mat displayRgb(const image::DecodedPixels& pixels) {
-  const int w = pixels.width(), h = pixels.height(), c = pixels.channels();
-  const std::size_t n = static_cast<std::size_t>(w) * h * c;
-  std::vector<std::uint8_t> narrowed;
-  const std::uint8_t* samples = nullptr;
-  if (pixels.isNarrow()) {
-    samples = static_cast<const std::uint8_t*>(pixels.data());
-  } else {
-    narrowed.resize(n);
-    narrowSamples(pixels.wide.pixels.data(), n, narrowed.data());
-    samples = narrowed.data();
+// 8-bit RGB at full size as the display copy: downscaled so the longer side is at most maxSide.
+DisplayPicture displayOf(const cv::Mat& rgb, int maxSide) {
+  DisplayPicture d;
+  d.originalWidth = rgb.cols;
+  d.originalHeight = rgb.rows;
+  d.maxSide = maxSide;
+  cv::Mat image = rgb;
+  const int side = std::max(rgb.cols, rgb.rows);
+  if (maxSide > 0 && side > maxSide) {
+    const double f = static_cast<double>(maxSide) / side;
+    cv::resize(rgb, image,
+               cv::Size(std::max(1, static_cast<int>(std::lround(rgb.cols * f))),
+                        std::max(1, static_cast<int>(std::lround(rgb.rows * f)))),
+               0, 0, cv::INTER_AREA);
   }
+  d.rgb.width = image.cols;
+  d.rgb.height = image.rows;
+  d.rgb.channels = 3;
+  d.rgb.pixels.assign(image.ptr<std::uint8_t>(), image.ptr<std::uint8_t>() + image.total() * 3);
+  return d;
+}
+
+// Fills an 8-bit RGB picture of w x h from 1- or 3-channel samples, row by row:
+// narrowRow(y, out) writes row y's w * c 8-bit samples. Grey is repeated.
+template <typename NarrowRow>
+cv::Mat rgbOf(int w, int h, int c, NarrowRow narrowRow) {
   cv::Mat rgb(h, w, CV_8UC3);
-  if (c == 3) {
-    std::copy(samples, samples + n, rgb.ptr<std::uint8_t>());
-  } else {
-    std::uint8_t* out = rgb.ptr<std::uint8_t>();
-    for (std::size_t i = 0; i < n; ++i) out[3 * i] = out[3 * i + 1] = out[3 * i + 2] = samples[i];
+  std::vector<std::uint8_t> grey(c == 3 ? 0 : static_cast<std::size_t>(w));
+  for (int y = 0; y < h; ++y) {
+    std::uint8_t* out = rgb.ptr<std::uint8_t>(y);
+    if (c == 3) {
+      narrowRow(y, out);
+      continue;
+    }
+    narrowRow(y, grey.data());
+    for (int x = 0; x < w; ++x) out[3 * x] = out[3 * x + 1] = out[3 * x + 2] = grey[x];
   }
   return rgb;
 }
+
+DisplayPicture displayOf(const image::DecodedPixels& pixels, int maxSide) {
+  const int w = pixels.width(), c = pixels.channels();
+  const std::size_t row = static_cast<std::size_t>(w) * c;
+  return displayOf(rgbOf(w, pixels.height(), c,
+                         [&](int y, std::uint8_t* out) {
+                           if (pixels.isNarrow()) {
+                             const auto* in = static_cast<const std::uint8_t*>(pixels.data()) + y * row;
+                             std::copy(in, in + row, out);
+                           } else {
+                             narrowSamples(pixels.wide.pixels.data() + y * row, row, out);
+                           }
+                         }),
+                   maxSide);
+}
 }  // namespace
 
-std::optional<EmbeddedPicture> embedPicture(const std::string& bytes, int maxSide) {
-  if (bytes.empty()) return std::nullopt;
-  cv::Mat image;
-  try {
-    image = displayRgb(image::decodePicture(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size(),
-                                            "picture", kMaxPicturePixels));
-  } catch (const Error&) {
-    return std::nullopt;  // not a complete PNG or JPEG: the page says so
-  }
-  EmbeddedPicture p;
-  p.originalWidth = image.cols;
-  p.originalHeight = image.rows;
-  const int side = std::max(image.cols, image.rows);
-  if (maxSide > 0 && side > maxSide) {
-    const double f = static_cast<double>(maxSide) / side;
-    cv::Mat small;
-    cv::resize(image, small,
-               cv::Size(std::max(1, static_cast<int>(std::lround(image.cols * f))),
-                        std::max(1, static_cast<int>(std::lround(image.rows * f)))),
-               0, 0, cv::INTER_AREA);
-    image = small;
-  }
-  Image8 small;
-  small.width = image.cols;
-  small.height = image.rows;
-  small.channels = 3;
-  small.pixels.assign(image.ptr<std::uint8_t>(), image.ptr<std::uint8_t>() + image.total() * 3);
+DisplayPicture displayPicture(const Image& picture, int maxSide) {
+  // The PNG of an 8-bit picture holds narrowSamples of its values, which decode as they are;
+  // that of a 16-bit picture holds the values, which the display copy narrows the same way.
+  const std::size_t row = static_cast<std::size_t>(picture.width) * picture.channels;
+  return displayOf(rgbOf(picture.width, picture.height, picture.channels,
+                         [&](int y, std::uint8_t* out) { narrowSamples(picture.pixels.data() + y * row, row, out); }),
+                   maxSide);
+}
+
+std::optional<EmbeddedPicture> embedPicture(const DisplayPicture& picture) {
   std::string jpeg;
   try {
-    jpeg = image::encodeJpeg(small, 88, "picture");
+    jpeg = image::encodeJpeg(picture.rgb, 88, "picture");
   } catch (const Error&) {
     return std::nullopt;
   }
-  p.width = small.width;
-  p.height = small.height;
+  EmbeddedPicture p;
+  p.originalWidth = picture.originalWidth;
+  p.originalHeight = picture.originalHeight;
+  p.width = picture.rgb.width;
+  p.height = picture.rgb.height;
   p.dataUri = "data:image/jpeg;base64," + base64(jpeg);
   return p;
+}
+
+std::optional<EmbeddedPicture> embedPicture(const std::string& bytes, int maxSide) {
+  if (bytes.empty()) return std::nullopt;
+  DisplayPicture display;
+  try {
+    display = displayOf(image::decodePicture(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size(),
+                                             "picture", kMaxPicturePixels),
+                        maxSide);
+  } catch (const Error&) {
+    return std::nullopt;  // not a complete PNG or JPEG: the page says so
+  }
+  return embedPicture(display);
 }
 
 namespace {

@@ -5,6 +5,8 @@
 #include <optional>
 #include <string>
 
+#include "core/image.h"
+
 namespace surrogate::report {
 
 struct EmbeddedPicture {
@@ -13,10 +15,26 @@ struct EmbeddedPicture {
   int originalWidth = 0, originalHeight = 0;
 };
 
-// Decodes a picture file's bytes (PNG or JPEG, strictly as image::decodePicture; 16-bit
-// rounded to 8, grey shown as RGB), downscales it so its longer side is at most `maxSide`
-// (OpenCV's area averaging), and encodes it as JPEG (libjpeg, quality 88). nullopt when the
-// bytes are not a complete, undamaged PNG or JPEG.
+// A picture as the page shows it before it is encoded: 8-bit RGB (16-bit samples rounded to 8
+// as narrowSamples does, grey repeated), downscaled so its longer side is at most `maxSide`
+// (OpenCV's area averaging; 0 = not downscaled).
+struct DisplayPicture {
+  Image8 rgb;
+  int originalWidth = 0, originalHeight = 0;
+  int maxSide = 0;  // what it was made for
+};
+
+// The display copy of pixels a step holds (a PNG's pixels: 8-bit samples as value * 257 when
+// image.bitsPerSample <= 8): the same as the display copy of the PNG file image::writePng makes
+// of them, decoded, without writing or decoding it.
+DisplayPicture displayPicture(const Image& picture, int maxSide);
+
+// A display copy encoded as JPEG (libjpeg, quality 88); nullopt if the encoder fails.
+std::optional<EmbeddedPicture> embedPicture(const DisplayPicture& picture);
+
+// Decodes a picture file's bytes (PNG or JPEG, strictly as image::decodePicture), makes its
+// display copy and encodes it as above. nullopt when the bytes are not a complete, undamaged
+// PNG or JPEG.
 std::optional<EmbeddedPicture> embedPicture(const std::string& bytes, int maxSide);
 
 // A fitted model's bytes (.ptm, or .rti HSH chosen by the first bytes "PTM_") as a JSON object

@@ -131,7 +131,8 @@ std::vector<std::pair<std::string, const carrier::FileRecord*>> outputsByKind(co
 }
 
 // The pictures the page shows (overlays, overviews, normals, albedo, previews), each read,
-// decoded, downscaled and encoded as JPEG once. prepare() does a list of them on several
+// decoded, downscaled and encoded as JPEG once (or only encoded, when the options hold its
+// display copy). prepare() does a list of them on several
 // threads at once: decoding the PNGs and encoding the JPEGs is most of the report's time, and
 // each picture's JPEG depends on its own file's bytes alone, so the page is the same at any
 // thread count. A picture not prepared is done when the page asks for it.
@@ -142,7 +143,9 @@ class Pictures {
     std::optional<EmbeddedPicture> embedded;  // nullopt: not a readable picture
   };
 
-  Pictures(const ReportSource& source, int maxSide) : source_(source), maxSide_(maxSide) {}
+  Pictures(const ReportSource& source, int maxSide,
+           std::shared_ptr<const std::map<std::string, DisplayPicture>> displayed)
+      : source_(source), maxSide_(maxSide), displayed_(std::move(displayed)) {}
 
   void prepare(const std::vector<std::string>& paths, int threads) {
     std::vector<std::string> todo;
@@ -163,6 +166,14 @@ class Pictures {
  private:
   Picture make(const std::string& path) const {
     Picture p;
+    if (displayed_) {
+      const auto it = displayed_->find(path);
+      if (it != displayed_->end() && it->second.maxSide == maxSide_) {
+        p.found = true;
+        p.embedded = embedPicture(it->second);
+        return p;
+      }
+    }
     const std::optional<std::string> bytes = source_.read(path);
     p.found = bytes.has_value();
     if (bytes) p.embedded = embedPicture(*bytes, maxSide_);
@@ -171,6 +182,7 @@ class Pictures {
 
   const ReportSource& source_;
   int maxSide_;
+  std::shared_ptr<const std::map<std::string, DisplayPicture>> displayed_;  // may be null
   std::map<std::string, Picture> done_;
 };
 
@@ -488,7 +500,7 @@ Report buildReport(const carrier::Carrier& c, const ReportSource& source, const 
   report.coverageGaps = coverage.sentences();
   const std::string lights = lightsSection(c, lightPoints, coverage, fitLabel);
   progress(0.05);
-  Pictures pictures(source, options.maxImageSide);
+  Pictures pictures(source, options.maxImageSide, options.displayed);
   const std::vector<std::string> shown = shownPictures(c);
   // The models for the interactive view on a thread of their own while the pictures are made
   // on the others: neither depends on the other, so the page is the same at any thread count.

@@ -22,12 +22,14 @@
 
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "carrier/carrier.h"
+#include "report/embed.h"
 
 namespace surrogate::report {
 
@@ -77,6 +79,12 @@ struct ReportOptions {
   // Threads that make the embedded pictures at once; 0 = all cores. The page is the same at
   // any count.
   int threads = 0;
+  // Display copies of pictures already in memory, by carrier path ("finished-files/normals.png"):
+  // surrogate run passes those of the pictures its steps have just written (displayPicture of
+  // the pixels each PNG holds), which spares decoding the files again. One made for another
+  // maxImageSide is not used; the other pictures are read from the source and decoded. The
+  // page is the same either way.
+  std::shared_ptr<const std::map<std::string, DisplayPicture>> displayed;
   // Called with (kProgressLabel, fraction done 0..1) as the page is built; may be empty.
   std::function<void(const std::string&, double)> progress;
 };

@@ -15,7 +15,6 @@
 #include "fit/fit.h"
 #include "fit/render.h"
 #include "image/decode.h"
-#include "image/write.h"
 #include "pipeline/context.h"
 #include "stages/inputs.h"
 #include "stages/light_stages.h"
@@ -63,7 +62,8 @@ std::string finished(const std::string& name) { return std::string(capture::kFin
 // each is written before the next is computed.
 class OverlappedPngWrites {
  public:
-  explicit OverlappedPngWrites(int threads) : maxPending_(effectiveThreads(threads) > 1 ? effectiveThreads(threads) : 0) {}
+  explicit OverlappedPngWrites(const pipeline::Context& ctx)
+      : ctx_(ctx), maxPending_(effectiveThreads(ctx.settings.threads) > 1 ? effectiveThreads(ctx.settings.threads) : 0) {}
   OverlappedPngWrites(const OverlappedPngWrites&) = delete;
   OverlappedPngWrites& operator=(const OverlappedPngWrites&) = delete;
   ~OverlappedPngWrites() {
@@ -71,17 +71,19 @@ class OverlappedPngWrites {
       if (p.write.valid()) p.write.wait();  // an error is already on its way out; let the writes end
   }
 
-  // Writes `image` to `path`, then calls `record` (on this thread, after the previous records).
-  void add(Image image, std::filesystem::path path, std::function<void()> record) {
+  // Writes `image` as the file `relativePath` (writePicture), then calls `record` (on this
+  // thread, after the previous records).
+  void add(Image image, std::string relativePath, std::function<void()> record) {
     if (maxPending_ == 0) {
-      image::writePng(image, path);
+      writePicture(ctx_, image, relativePath);
       record();
       return;
     }
     while (static_cast<int>(pending_.size()) >= maxPending_) finishOldest();
-    pending_.push_back({std::async(std::launch::async, [image = std::move(image), path = std::move(path)] {
-                          image::writePng(image, path);
-                        }),
+    pending_.push_back({std::async(std::launch::async,
+                                   [this, image = std::move(image), path = std::move(relativePath)] {
+                                     writePicture(ctx_, image, path);
+                                   }),
                         std::move(record)});
   }
 
@@ -103,6 +105,7 @@ class OverlappedPngWrites {
     p.record();
   }
 
+  const pipeline::Context& ctx_;
   int maxPending_;  // 0: write each file at once, on the caller's thread
   std::deque<Pending> pending_;
 };
@@ -255,14 +258,14 @@ void DerivedMapsStage::run(const carrier::Step& step, pipeline::Context& ctx, ca
   int pictures = 0;
   const auto written = [&ctx, &pictures] { ctx.progress("Normals, albedo and previews", pictures++ / 5.0); };
   written();
-  OverlappedPngWrites writes(ctx.settings.threads);
+  OverlappedPngWrites writes(ctx);
   const auto record = [&](const std::string& name, const char* kind) {
     recordOutput(ctx, step, result, finished(name), "result", "PNG", kind, "image/png");
     written();
   };
 
   int fallback = 0;
-  writes.add(model->normalMap(&fallback, ctx.settings.threads), ctx.outputPath(finished(kNormalsFile)), [&] {
+  writes.add(model->normalMap(&fallback, ctx.settings.threads), finished(kNormalsFile), [&] {
     record(kNormalsFile, "normals");
     result.add("value").set("name", "normalFallbackPixels").set("value", std::to_string(fallback));
     const double fraction = double(fallback) / (double(model->width()) * model->height());
@@ -270,7 +273,7 @@ void DerivedMapsStage::run(const carrier::Step& step, pipeline::Context& ctx, ca
                        std::to_string(fallback) + " pixels (" + fixedDecimals(100 * fraction, 2) +
                            " %) had no valid PTM maximum and took the least-squares Lambertian normal");
   });
-  writes.add(model->albedoMap(ctx.settings.threads), ctx.outputPath(finished(kAlbedoFile)),
+  writes.add(model->albedoMap(ctx.settings.threads), finished(kAlbedoFile),
              [&] { record(kAlbedoFile, "albedo"); });
   for (const Preview& p : kPreviews) {
     const double e = p.elevationDeg * M_PI / 180, a = p.azimuthDeg * M_PI / 180;
@@ -278,7 +281,7 @@ void DerivedMapsStage::run(const carrier::Step& step, pipeline::Context& ctx, ca
     options.specular = p.specular && basis.rfind("ptm", 0) == 0;
     options.threads = ctx.settings.threads;
     const std::array<double, 3> light{std::cos(e) * std::cos(a), std::cos(e) * std::sin(a), std::sin(e)};
-    writes.add(model->render(light, options), ctx.outputPath(finished(p.name)), [&record, &p] { record(p.name, "preview"); });
+    writes.add(model->render(light, options), finished(p.name), [&record, &p] { record(p.name, "preview"); });
   }
   writes.finish();
 }

@@ -127,8 +127,8 @@ void SphereDetectionStage::run(const carrier::Step& step, pipeline::Context& ctx
   result.add("value").set("name", "spheres").set("value", std::to_string(spheres->size()));
 
   const std::string& overlay = kSphereOverlay;
-  image::writePng(hrti::drawSphereOverlay(displayable(median->coarse(), *lum), *spheres, median->factor()),
-                  ctx.outputPath(overlay));
+  writePicture(ctx, hrti::drawSphereOverlay(displayable(median->coarse(), *lum), *spheres, median->factor()),
+               overlay);
   recordOutput(ctx, step, result, overlay, "assembly", "PNG", "sphere-overlay", "image/png");
   ctx.put(kSpheres, spheres);
   ctx.put(kStackMedian, median);
@@ -279,9 +279,10 @@ void HighlightDetectionStage::run(const carrier::Step& step, pipeline::Context& 
     std::vector<hrti::Highlight> perImage;
     for (const auto& row : *highlights) perImage.push_back(row[k]);
     const std::string overview = highlightOverview(std::to_string(k + 1));
-    image::writePng(hrti::drawHighlightOverview(median->width(), median->height(), crop, (*spheres)[k], perImage,
-                                                imageLabels),
-                    ctx.outputPath(overview));
+    writePicture(ctx,
+                 hrti::drawHighlightOverview(median->width(), median->height(), crop, (*spheres)[k], perImage,
+                                             imageLabels),
+                 overview);
     recordOutput(ctx, step, result, overview, "assembly", "PNG", "highlight-overview", "image/png");
   }
 

@@ -2,6 +2,7 @@
 
 #include "core/digest.h"
 #include "core/error.h"
+#include "image/write.h"
 
 namespace surrogate::stages {
 
@@ -28,6 +29,11 @@ std::string recordOutput(pipeline::Context& ctx, const carrier::Step& step,
   const std::string id = ctx.carrier.putFile(std::move(f));
   result.add("output").set("file", id).set("kind", kind);
   return id;
+}
+
+void writePicture(const pipeline::Context& ctx, const Image& picture, const std::string& relativePath) {
+  image::writePng(picture, ctx.outputPath(relativePath));
+  if (ctx.settings.pictureWritten) ctx.settings.pictureWritten(relativePath, picture);
 }
 
 std::string checkedOutputPath(const std::string& relativePath) {

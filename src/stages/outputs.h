@@ -6,6 +6,7 @@
 #include <string>
 
 #include "carrier/carrier.h"
+#include "core/image.h"
 #include "pipeline/context.h"
 
 namespace surrogate::stages {
@@ -16,6 +17,11 @@ std::string recordOutput(pipeline::Context& ctx, const carrier::Step& step,
                          carrier::Result& result, const std::string& relativePath,
                          const std::string& role, const std::string& format,
                          const std::string& kind, const std::string& mediaType = "");
+
+// Writes `picture` as the PNG file `relativePath` (image::writePng, under the context's output
+// folder) and hands it to ctx.settings.pictureWritten. Record it with recordOutput afterwards.
+// Safe to call from several threads at once for different files.
+void writePicture(const pipeline::Context& ctx, const Image& picture, const std::string& relativePath);
 
 // A file name from the carrier, checked before writing: relative, inside assembly-files/ or
 // finished-files/, no ".." (a re-executed carrier from elsewhere must not write anywhere else).

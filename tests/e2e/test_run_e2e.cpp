@@ -1,6 +1,7 @@
 #include <catch2/catch.hpp>
 
 #include <fstream>
+#include <regex>
 
 #include "carrier/carrier.h"
 #include "core/digest.h"
@@ -64,6 +65,19 @@ TEST_CASE("surrogate run records every file with its hash, metadata and decode p
     INFO(path);
     CHECK(ours);
   }
+
+  // The run's report shows its pictures from the pixels the steps held; `surrogate report`
+  // decodes them from the files. The two pages differ only in the time they were made.
+  const fs::path again = e2e::freshDir("run-report") / "report.html";
+  const e2e::CommandResult rep = e2e::surrogate("report " + e2e::quote(capture) + " -o " + e2e::quote(again));
+  INFO(rep.output);
+  REQUIRE(rep.exitCode == 0);
+  const auto withoutTime = [](const std::string& page) {
+    return std::regex_replace(page, std::regex("report made [^<]* by Surrogate"), "report made (time) by Surrogate");
+  };
+  const std::string fromRun = e2e::bytesOf(capture / "finished-files/report.html");
+  CHECK(fromRun.find("src=\"data:image/jpeg;base64,") != std::string::npos);
+  CHECK(withoutTime(fromRun) == withoutTime(e2e::bytesOf(again)));
 }
 
 TEST_CASE("decoding is deterministic: two runs decode identical pixels") {

@@ -3,10 +3,12 @@
 #include <catch2/catch.hpp>
 
 #include <map>
+#include <memory>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include "carrier/carrier.h"
+#include "core/image.h"
 #include "formats/ptm.h"
 #include "formats/rti_hsh.h"
 #include "report/report.h"
@@ -122,7 +124,65 @@ carrier::Carrier sampleCarrier() {
   return c;
 }
 
+// A picture as a pipeline step holds it (Image: 16-bit values, or 8-bit values * 257), and the
+// same pixels as a PNG file written by OpenCV, a writer independent of Surrogate's.
+struct HeldPicture {
+  Image pixels;
+  std::string png;
+};
+
+HeldPicture heldPicture(int width, int height, int channels, bool sixteenBit, int seed) {
+  HeldPicture p;
+  p.pixels = Image(width, height, channels);
+  p.pixels.bitsPerSample = sixteenBit ? 16 : 8;
+  cv::Mat m(height, width, CV_MAKETYPE(sixteenBit ? CV_16U : CV_8U, channels));
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      for (int c = 0; c < channels; ++c) {
+        const int value = (x * 977 + y * 131 + c * 4099 + seed * 7919) % 65536;
+        const int stored = sixteenBit ? value : value % 256 * 257;
+        p.pixels.at(x, y, c) = static_cast<std::uint16_t>(stored);
+        const int bgr = x * channels + (channels == 3 ? 2 - c : 0);  // OpenCV keeps BGR
+        if (sixteenBit) m.at<std::uint16_t>(y, bgr) = static_cast<std::uint16_t>(stored);
+        else m.at<std::uint8_t>(y, bgr) = static_cast<std::uint8_t>(stored / 257);
+      }
+  std::vector<unsigned char> out;
+  cv::imencode(".png", m, out);
+  p.png.assign(out.begin(), out.end());
+  return p;
+}
+
 }  // namespace
+
+TEST_CASE("pictures given as display copies of their pixels make the page their PNG files make") {
+  const std::map<std::string, HeldPicture> held = {
+      {"assembly-files/spheres.png", heldPicture(1600, 1200, 3, false, 1)},
+      {"finished-files/normals.png", heldPicture(900, 600, 3, true, 2)},
+      {"finished-files/albedo.png", heldPicture(300, 200, 1, false, 3)}};
+  ReportOptions options;
+  options.generatedAt = "2026-02-03T04:05:06Z";
+  MemorySource files(sampleCarrier());
+  for (const auto& [path, picture] : held) files.files[path] = picture.png;
+  files.files["finished-files/ptm-lrgb.ptm"] = smallPtm();
+  const Report fromFiles = buildReport(files.carrier(), files, options);
+  REQUIRE(fromFiles.picturesEmbedded == 3);
+
+  // From the copies alone (the source has no picture files): the same page.
+  MemorySource modelOnly(sampleCarrier());
+  modelOnly.files["finished-files/ptm-lrgb.ptm"] = smallPtm();
+  auto copies = std::make_shared<std::map<std::string, DisplayPicture>>();
+  for (const auto& [path, picture] : held) (*copies)[path] = displayPicture(picture.pixels, options.maxImageSide);
+  options.displayed = copies;
+  const Report fromCopies = buildReport(modelOnly.carrier(), modelOnly, options);
+  CHECK(fromCopies.picturesEmbedded == 3);
+  CHECK(fromCopies.html == fromFiles.html);
+
+  // Copies made for another size are not used: the pictures are then read, here missing.
+  options.maxImageSide = 500;
+  const Report otherSize = buildReport(modelOnly.carrier(), modelOnly, options);
+  CHECK(otherSize.picturesEmbedded == 0);
+  CHECK(count(otherSize.html, "not found in this package or capture") == 3);
+}
 
 TEST_CASE("the report shows lights, pictures, relighting, provenance and camera of a carrier") {
   MemorySource source(sampleCarrier());
