@@ -2,12 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
+#include <utility>
 #include <sstream>
 #include <vector>
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "core/base64.h"
 #include "core/error.h"
 #include "core/image.h"
 #include "formats/ptm.h"
@@ -131,6 +134,22 @@ void writeNumbers(std::ostringstream& j, const char* name, const std::vector<dou
   j << "]";
 }
 
+// The JSON object `head` (open: its fields so far) closed with the given fields as base64
+// strings, appended in place: the model's copy is tens of megabytes at 1200 pixels a side, and
+// a stream would grow and copy it several times.
+std::string withBase64(std::string head, std::initializer_list<std::pair<const char*, const std::string*>> fields) {
+  std::size_t size = head.size() + 2;
+  for (const auto& [name, bytes] : fields) size += std::char_traits<char>::length(name) + 6 + 4 * (bytes->size() + 2) / 3;
+  head.reserve(size);
+  for (const auto& [name, bytes] : fields) {
+    head.append(",\"").append(name).append("\":\"");
+    appendBase64(head, bytes->data(), bytes->size());
+    head += '"';
+  }
+  head += '}';
+  return head;
+}
+
 std::string ptmRelightJson(const std::string& ptmBytes, int maxSide, const std::string& name) {
   const formats::PtmFile ptm = formats::parsePtm(
       reinterpret_cast<const std::uint8_t*>(ptmBytes.data()), ptmBytes.size(), name);
@@ -172,8 +191,7 @@ std::string ptmRelightJson(const std::string& ptmBytes, int maxSide, const std::
     << ",\"originalWidth\":" << ptm.width << ",\"originalHeight\":" << ptm.height;
   writeNumbers(j, "scale", std::vector<double>(ptm.scale.begin(), ptm.scale.end()));
   writeNumbers(j, "bias", std::vector<double>(ptm.bias.begin(), ptm.bias.end()));
-  j << ",\"coefficients\":\"" << base64(coefficients) << "\",\"rgb\":\"" << base64(rgb) << "\"}";
-  return j.str();
+  return withBase64(j.str(), {{"coefficients", &coefficients}, {"rgb", &rgb}});
 }
 
 std::string hshRelightJson(const std::string& rtiBytes, int maxSide, const std::string& name) {
@@ -207,8 +225,7 @@ std::string hshRelightJson(const std::string& rtiBytes, int maxSide, const std::
     << ",\"originalWidth\":" << hsh.width << ",\"originalHeight\":" << hsh.height;
   writeNumbers(j, "scale", std::vector<double>(hsh.scale.begin(), hsh.scale.end()));
   writeNumbers(j, "bias", std::vector<double>(hsh.bias.begin(), hsh.bias.end()));
-  j << ",\"coefficients\":\"" << base64(coefficients) << "\"}";
-  return j.str();
+  return withBase64(j.str(), {{"coefficients", &coefficients}});
 }
 
 }  // namespace

@@ -12,9 +12,6 @@ std::string escapeHtml(const std::string& text);
 // U+2028/U+2029, so no carrier text can close the script element.
 std::string scriptString(const std::string& text);
 
-// Standard base64 (RFC 4648, with padding).
-std::string base64(const std::string& bytes);
-
 // A number for display: up to `digits` decimals, trailing zeros removed ("12.5", "3").
 std::string displayNumber(double value, int digits = 1);
 

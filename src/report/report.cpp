@@ -429,7 +429,9 @@ std::vector<RelightModel> relightModels(const carrier::Carrier& c, const ReportS
 // The interactive view: every fitted model the source holds, as JSON for the page's script,
 // drawn at the model's resolution (or options.relightMaxSide); the first model is shown first.
 std::string relightSection(const carrier::Carrier& c, const std::vector<RelightModel>& models, Report& report) {
-  std::ostringstream s, notes, buttons, data;
+  std::ostringstream s, notes, buttons;
+  std::string data;  // the models' JSON, tens of megabytes: appended, not streamed
+  for (const RelightModel& model : models) data.reserve(data.size() + model.json.size() + 1);
   s << "<section id=\"relight\"><h2>Relight it yourself</h2>";
   int shown = 0;
   for (const RelightModel& model : models) {
@@ -441,7 +443,8 @@ std::string relightSection(const carrier::Carrier& c, const std::vector<RelightM
       notes << "<p class=\"bad\">The model cannot be shown: " << escapeHtml(model.problem) << "</p>";
       continue;
     }
-    data << (shown ? "," : "") << model.json;
+    if (shown) data += ',';
+    data += model.json;
     const carrier::Step* fit = c.findStep(model.file->createdBy);
     buttons << "<button type=\"button\" data-model=\"" << shown << "\" title=\"" << escapeHtml(model.file->path)
             << "\">" << escapeHtml(fit ? modelTitle(fit->param("basis", "")) : model.file->path) << "</button>";
@@ -463,9 +466,10 @@ std::string relightSection(const carrier::Carrier& c, const std::vector<RelightM
        "light. The disc is drawn as the light directions' plot: the centre is a light on the camera's "
        "axis, the rim grazing light, rings every 30\u00b0 of elevation; azimuth 0\u00b0 to the right, 90\u00b0 at "
        "the top, \u221290\u00b0 at the bottom.</p>"
-    << notes.str() << "</div></div><script type=\"application/json\" id=\"relight-data\">[" << data.str()
-    << "]</script></section>";
-  return s.str();
+    << notes.str() << "</div></div><script type=\"application/json\" id=\"relight-data\">[";
+  std::string section = s.str();
+  section.reserve(section.size() + data.size() + 16);
+  return section.append(data).append("]</script></section>");
 }
 
 // The files the detection and results sections show as pictures, in carrier order.
@@ -524,26 +528,32 @@ Report buildReport(const carrier::Carrier& c, const ReportSource& source, const 
   progress(0.95);
   const std::string generated = options.generatedAt.empty() ? carrier::timestampNow() : options.generatedAt;
 
-  std::ostringstream h;
-  h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
-       "<meta http-equiv=\"Content-Security-Policy\" content=\"default-src 'none'; img-src data:; "
-       "style-src 'unsafe-inline'; script-src 'unsafe-inline'\">"
-       "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">"
-       "<meta name=\"generator\" content=\"Surrogate " << escapeHtml(surrogateVersion()) << "\">"
-    << "<title>" << escapeHtml(c.header.title) << " \u2014 Surrogate report</title><style>" << kReportCss
-    << "</style></head>\n<body data-lights-expected=\"" << report.lightsPlotted << "\">\n<header><h1>"
-    << escapeHtml(c.header.title) << "</h1><p class=\"note\">From the " << escapeHtml(source.describe())
-    << "; report made " << escapeHtml(generated) << " by Surrogate " << escapeHtml(surrogateVersion())
-    << ".</p></header>\n<main>"
-    << summarySection(c, lightPoints, coverage, options.verification)
-    // Side by side when the window has room for both (a small model and its light plot).
-    << "<div class=\"first-row\">" << relight << lights << "</div>" << detection << results
-    << priorWork << provenanceSection(c) << "<div class=\"columns\">" << cameraSection(c)
-    << verificationSection(options.verification) << filesSection(c) << "</div></main>\n<footer class=\"note\">Carrier created "
-    << escapeHtml(c.header.created) << ", last changed " << escapeHtml(c.header.modified)
-    << ". This page is a view of the carrier (assembly-files/carrier.xml), which is the record; the "
-       "report itself is not part of the recorded provenance.</footer>\n<script>" << kReportJs << "</script>\n</body></html>\n";
-  report.html = h.str();
+  std::ostringstream head, tail;
+  head << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
+          "<meta http-equiv=\"Content-Security-Policy\" content=\"default-src 'none'; img-src data:; "
+          "style-src 'unsafe-inline'; script-src 'unsafe-inline'\">"
+          "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">"
+          "<meta name=\"generator\" content=\"Surrogate " << escapeHtml(surrogateVersion()) << "\">"
+       << "<title>" << escapeHtml(c.header.title) << " \u2014 Surrogate report</title><style>" << kReportCss
+       << "</style></head>\n<body data-lights-expected=\"" << report.lightsPlotted << "\">\n<header><h1>"
+       << escapeHtml(c.header.title) << "</h1><p class=\"note\">From the " << escapeHtml(source.describe())
+       << "; report made " << escapeHtml(generated) << " by Surrogate " << escapeHtml(surrogateVersion())
+       << ".</p></header>\n<main>"
+       << summarySection(c, lightPoints, coverage, options.verification)
+       // Side by side when the window has room for both (a small model and its light plot).
+       << "<div class=\"first-row\">";
+  tail << provenanceSection(c) << "<div class=\"columns\">" << cameraSection(c)
+       << verificationSection(options.verification) << filesSection(c) << "</div></main>\n<footer class=\"note\">Carrier created "
+       << escapeHtml(c.header.created) << ", last changed " << escapeHtml(c.header.modified)
+       << ". This page is a view of the carrier (assembly-files/carrier.xml), which is the record; the "
+          "report itself is not part of the recorded provenance.</footer>\n<script>" << kReportJs << "</script>\n</body></html>\n";
+  // The sections with pictures and models are megabytes: appended once each to a page of
+  // the right size, not streamed.
+  const std::string first = head.str(), last = tail.str();
+  report.html.reserve(first.size() + relight.size() + lights.size() + detection.size() + results.size() +
+                      priorWork.size() + last.size() + 8);
+  report.html.append(first).append(relight).append(lights).append("</div>").append(detection).append(results)
+      .append(priorWork).append(last);
   progress(1);
   return report;
 }

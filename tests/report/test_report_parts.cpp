@@ -1,9 +1,10 @@
-// The report's building blocks: escaping, base64, coverage analysis, the hemisphere plot and the
+// The report's building blocks: escaping, coverage analysis, the hemisphere plot and the
 // PTM copy for the relighting view.
 #include <catch2/catch.hpp>
 
 #include <regex>
 
+#include "core/base64.h"
 #include "core/error.h"
 #include "formats/ptm.h"
 #include "formats/rti_hsh.h"
@@ -43,17 +44,6 @@ TEST_CASE("scriptString cannot close the script element it is embedded in") {
   CHECK(s.find("\\u2028") != std::string::npos);
   CHECK(s.front() == '"');
   CHECK(s.back() == '"');
-}
-
-TEST_CASE("base64 matches the RFC 4648 test vectors") {
-  CHECK(base64("") == "");
-  CHECK(base64("f") == "Zg==");
-  CHECK(base64("fo") == "Zm8=");
-  CHECK(base64("foo") == "Zm9v");
-  CHECK(base64("foob") == "Zm9vYg==");
-  CHECK(base64("fooba") == "Zm9vYmE=");
-  CHECK(base64("foobar") == "Zm9vYmFy");
-  CHECK(base64(std::string("\xff\x00\x10", 3)) == "/wAQ");
 }
 
 TEST_CASE("coverage: a capture without lights below 20 degrees is missing raking light") {
