@@ -7,19 +7,20 @@
 
 #include "core/parallel.h"
 #include "fit/lambert.h"
+#include "fit/quantise.h"
 #include "fit/texel.h"
 
 namespace surrogate::fit {
 
 namespace {
 
+// A normal's component -1..1 as 0..65535, rounded half away from zero.
 std::uint16_t encodeUnit(double v) {
-  return static_cast<std::uint16_t>(std::lround(std::clamp((v + 1.0) / 2.0, 0.0, 1.0) * 65535.0));
+  return static_cast<std::uint16_t>(detail::roundClamped(std::clamp((v + 1.0) / 2.0, 0.0, 1.0) * 65535.0, 65535.0));
 }
 
-std::uint16_t encodeByte(double v) {
-  return static_cast<std::uint16_t>(std::lround(std::clamp(v, 0.0, 255.0)) * 257);
-}
+// An 8-bit value as a 16-bit sample: round(v) clamped to 0..255, times 257.
+std::uint16_t encodeByte(double v) { return static_cast<std::uint16_t>(detail::toByte(v) * 257); }
 
 // Runs fn(x, y) over every texel, rows split over threads; returns the sum of fn's results
 // (per-row counts added in row order).

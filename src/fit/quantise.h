@@ -19,15 +19,18 @@
 namespace surrogate::fit {
 
 namespace detail {
-// round(v) clamped to 0..255 (NaN gives 0), rounding halves away from zero as std::lround
-// does; inline because it runs once per coefficient. v - trunc(v) is exact for |v| < 2^52.
-// Written as selects on values, clamping before the conversion to int (always defined then),
-// so that the row kernels' loops over it vectorise (src/fit/row_kernels.h).
-inline std::uint8_t toByte(double v) {
-  const double c = v > 0.0 ? (v < 255.0 ? v : 255.0) : 0.0;
+// round(v) clamped to 0..top (NaN gives 0; top at most 2^31 - 1), rounding halves away from
+// zero as std::lround does, which is a call into libm; inline because it runs once per
+// coefficient or sample. v - trunc(v) is exact for |v| < 2^52. Written as selects on values,
+// clamping before the conversion to int (always defined then), so that the row kernels' loops
+// over it vectorise (src/fit/row_kernels.h).
+inline int roundClamped(double v, double top) {
+  const double c = v > 0.0 ? (v < top ? v : top) : 0.0;
   const int whole = static_cast<int>(c);
-  return static_cast<std::uint8_t>(whole + (c - static_cast<double>(whole) >= 0.5 ? 1 : 0));
+  return whole + (c - static_cast<double>(whole) >= 0.5 ? 1 : 0);
 }
+
+inline std::uint8_t toByte(double v) { return static_cast<std::uint8_t>(roundClamped(v, 255.0)); }
 }  // namespace detail
 
 struct PtmQuantisation {

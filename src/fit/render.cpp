@@ -11,6 +11,7 @@
 #include "fit/basis.h"
 #include "fit/lambert.h"
 #include "fit/normals.h"
+#include "fit/quantise.h"
 #include "fit/texel.h"
 
 namespace surrogate::fit {
@@ -52,9 +53,8 @@ Image outputImage(int w, int h) {
   return out;
 }
 
-std::uint16_t toSample(double v) {
-  return static_cast<std::uint16_t>(std::lround(std::clamp(v, 0.0, 255.0)) * 257);
-}
+// The 8-bit value as a 16-bit sample: round(v) clamped to 0..255, times 257.
+std::uint16_t toSample(double v) { return static_cast<std::uint16_t>(detail::toByte(v) * 257); }
 
 void forRows(int height, int threads, const std::function<void(int)>& fn) {
   parallelFor(static_cast<std::size_t>(height), 8, effectiveThreads(threads),

@@ -103,6 +103,20 @@ TEST_CASE("quantise: bytes round halves away from zero as std::lround and clamp 
   }
 }
 
+TEST_CASE("16-bit samples round halves away from zero as std::lround and clamp to 0..65535") {
+  // The normal map's samples (src/fit/normals.cpp): every half and its neighbours, the ends.
+  std::vector<double> values = {-3.0, -0.5, 0.0, 65534.5, 65534.49999999999, 65535.0, 70000.0, 1e15};
+  for (int i = 0; i <= 65535 * 2; ++i) {
+    const double v = i / 2.0;
+    values.insert(values.end(), {v, std::nextafter(v, -1.0), std::nextafter(v, 1e6)});
+  }
+  for (double v : values) {
+    INFO(v);
+    CHECK(fit::detail::roundClamped(v, 65535.0) == std::clamp(std::lround(v), 0L, 65535L));
+  }
+  CHECK(fit::detail::roundClamped(std::nan(""), 65535.0) == 0);
+}
+
 TEST_CASE("pseudo-inverse: recovers an exact linear model, reports rank deficiency") {
   // Lights all at one elevation: lu^2 + lv^2 is constant, so the PTM matrix has rank 5.
   std::vector<double> a;
