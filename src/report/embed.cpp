@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <initializer_list>
-#include <utility>
 #include <sstream>
+#include <utility>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -139,7 +139,7 @@ void writeNumbers(std::ostringstream& j, const char* name, const std::vector<dou
 // a stream would grow and copy it several times.
 std::string withBase64(std::string head, std::initializer_list<std::pair<const char*, const std::string*>> fields) {
   std::size_t size = head.size() + 2;
-  for (const auto& [name, bytes] : fields) size += std::char_traits<char>::length(name) + 6 + 4 * (bytes->size() + 2) / 3;
+  for (const auto& [name, bytes] : fields) size += std::char_traits<char>::length(name) + 6 + 4 * ((bytes->size() + 2) / 3);
   head.reserve(size);
   for (const auto& [name, bytes] : fields) {
     head.append(",\"").append(name).append("\":\"");

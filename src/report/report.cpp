@@ -131,11 +131,11 @@ std::vector<std::pair<std::string, const carrier::FileRecord*>> outputsByKind(co
 }
 
 // The pictures the page shows (overlays, overviews, normals, albedo, previews), each read,
-// decoded, downscaled and encoded as JPEG once (or only encoded, when the options hold its
-// display copy). prepare() does a list of them on several
-// threads at once: decoding the PNGs and encoding the JPEGs is most of the report's time, and
-// each picture's JPEG depends on its own file's bytes alone, so the page is the same at any
-// thread count. A picture not prepared is done when the page asks for it.
+// decoded, downscaled and encoded as JPEG once (only encoded when the options hold its display
+// copy). prepare() does a list of them on several threads at once: decoding the PNGs and
+// encoding the JPEGs is most of the report's time, and each picture's JPEG depends on its own
+// file's bytes alone, so the page is the same at any thread count. A picture not prepared is
+// done when the page asks for it.
 class Pictures {
  public:
   struct Picture {
@@ -431,7 +431,9 @@ std::vector<RelightModel> relightModels(const carrier::Carrier& c, const ReportS
 std::string relightSection(const carrier::Carrier& c, const std::vector<RelightModel>& models, Report& report) {
   std::ostringstream s, notes, buttons;
   std::string data;  // the models' JSON, tens of megabytes: appended, not streamed
-  for (const RelightModel& model : models) data.reserve(data.size() + model.json.size() + 1);
+  std::size_t dataSize = 0;
+  for (const RelightModel& model : models) dataSize += model.json.size() + 1;
+  data.reserve(dataSize);
   s << "<section id=\"relight\"><h2>Relight it yourself</h2>";
   int shown = 0;
   for (const RelightModel& model : models) {
