@@ -36,10 +36,12 @@ DisplayPicture displayOf(const cv::Mat& rgb, int maxSide) {
   const int side = std::max(rgb.cols, rgb.rows);
   if (maxSide > 0 && side > maxSide) {
     const double f = static_cast<double>(maxSide) / side;
-    cv::resize(rgb, image,
+    cv::Mat small;  // a buffer of its own: `image` still shares rgb's pixels here
+    cv::resize(rgb, small,
                cv::Size(std::max(1, static_cast<int>(std::lround(rgb.cols * f))),
                         std::max(1, static_cast<int>(std::lround(rgb.rows * f)))),
                0, 0, cv::INTER_AREA);
+    image = small;
   }
   d.rgb.width = image.cols;
   d.rgb.height = image.rows;
