@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -12,7 +13,8 @@ namespace surrogate::fit {
 namespace {
 // Samples per block: a multiple of 3 (whole pixels); a block of every photograph as doubles
 // (36 x 192 x 8 bytes) stays in the cache next to the row's coefficients.
-constexpr std::size_t kBlockSamples = 192;
+constexpr std::size_t kBlockSamples = kProductBlock;
+static_assert(kBlockSamples % 3 == 0, "a block holds whole pixels");
 
 using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 using Strided = Eigen::Map<RowMajor, 0, Eigen::OuterStride<>>;
@@ -30,12 +32,19 @@ std::size_t ChannelFitter::scratchDoubles(int width) const {
   return 2 * terms_ * row + static_cast<std::size_t>(n_) * kBlockSamples + (row + 7) / 8;
 }
 
-// coefficients (T x block) = P (T x N) * samples (N x block), block after block.
+// coefficients (T x block) = P (T x N) * samples (N x block), block after block. Whole blocks
+// go through multiplyBlock, which adds as Eigen's product does; the row's last, partial block
+// stays with Eigen, which adds the last two or three samples of some lengths in another order
+// (vectorised over the photographs), so that the models keep their bytes for every width.
 void ChannelFitter::fitRow(const RowView& row, double* acc, double* block) const {
   const std::size_t m = static_cast<std::size_t>(row.width) * 3;
   const Eigen::Map<const RowMajor> p(p_.data(), terms_, n_);
   for (std::size_t j0 = 0; j0 < m; j0 += kBlockSamples) {
     const std::size_t len = std::min(kBlockSamples, m - j0);
+    if (len == kBlockSamples) {
+      multiplyBlock(p_.data(), terms_, n_, row.images, j0, acc + j0, m);
+      continue;
+    }
     Strided samples(block, n_, len, Eigen::OuterStride<>(kBlockSamples));
     for (int i = 0; i < n_; ++i)
       std::copy(row.images[i] + j0, row.images[i] + j0 + len, block + i * kBlockSamples);
@@ -78,11 +87,17 @@ void ChannelFitter::measureError(const RowView& row, const double* decoded, doub
   const Eigen::Map<const RowMajor> basis(basis_.data(), n_, terms_);
   std::fill(sqErr, sqErr + n_, 0.0);
   std::array<double, kBlockSamples / 3> d2;
+  std::vector<const double*> decodedRows(terms_);
+  for (int k = 0; k < terms_; ++k) decodedRows[k] = decoded + k * m;
   for (std::size_t j0 = 0; j0 < m; j0 += kBlockSamples) {
     const std::size_t len = std::min(kBlockSamples, m - j0);
-    const Eigen::Map<const RowMajor, 0, Eigen::OuterStride<>> d(decoded + j0, terms_, len,
-                                                                Eigen::OuterStride<>(m));
-    Strided(block, n_, len, Eigen::OuterStride<>(kBlockSamples)).noalias() = basis * d;
+    if (len == kBlockSamples) {  // as in fitRow
+      multiplyBlock(basis_.data(), n_, terms_, decodedRows.data(), j0, block, kBlockSamples);
+    } else {
+      const Eigen::Map<const RowMajor, 0, Eigen::OuterStride<>> d(decoded + j0, terms_, len,
+                                                                  Eigen::OuterStride<>(m));
+      Strided(block, n_, len, Eigen::OuterStride<>(kBlockSamples)).noalias() = basis * d;
+    }
     for (int i = 0; i < n_; ++i) {
       const double* p = block + static_cast<std::size_t>(i) * kBlockSamples;
       squaredErrorsRgb(p, row.images[i] + j0, len / 3, d2.data());

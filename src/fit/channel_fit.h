@@ -1,11 +1,12 @@
 // Private to src/fit: the per-channel linear fit shared by PTM RGB and HSH.
 //
 // For each pixel and colour channel c:  a_{c,k} = sum_i P[k][i] * s_i,c   (k < T)
-// computed for a row as matrix products with Eigen, a block of samples at a time:
+// computed for a row as matrix products, a block of samples at a time:
 // coefficients (T x block) = P (T x N) * samples (N x block), where the block holds
 // consecutive R, G, B samples of the row (kBlockSamples in channel_fit.cpp); the fit error
-// re-renders the stored model the same way. Each row is computed alone with the same shapes,
-// so the result does not depend on the thread count.
+// re-renders the stored model the same way. Whole blocks go through fit::multiplyBlock
+// (row_kernels.h), the row's last partial block through Eigen, whose sums they reproduce. Each
+// row is computed alone with the same shapes, so the result does not depend on the thread count.
 #pragma once
 
 #include <cstdint>

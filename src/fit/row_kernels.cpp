@@ -1,5 +1,9 @@
 #include "fit/row_kernels.h"
 
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#endif
+
 #include "core/cpu_features.h"
 #include "fit/stream_fit.h"
 
@@ -85,6 +89,22 @@ __attribute__((always_inline)) inline void quantiseBody(const double* __restrict
   }
 }
 
+// multiplyBlock's sums, written plainly: the baseline variant.
+template <typename Sample>
+__attribute__((always_inline)) inline void multiplyBody(const double* m, int rows, int cols, const Sample* const* src,
+                                                        std::size_t offset, double* out, std::size_t outStride) {
+  for (int r = 0; r < rows; ++r) {
+    double* __restrict o = out + r * outStride;
+    for (std::size_t j = 0; j < kProductBlock; ++j) o[j] = 0.0;
+    for (int c = 0; c < cols; ++c) {
+      const double mc = m[static_cast<std::size_t>(r) * cols + c];
+      const Sample* __restrict s = src[c] + offset;
+      for (std::size_t j = 0; j < kProductBlock; ++j) o[j] += mc * static_cast<double>(s[j]);
+    }
+    for (std::size_t j = 0; j < kProductBlock; ++j) o[j] = 0.0 + o[j];
+  }
+}
+
 // The bodies compiled for AVX2 where the compiler can target it. "avx2" alone: the compiler may
 // not fuse a multiply and an add (that needs "fma"), so every operation rounds as in the
 // baseline variant, which is the same body inlined into the public functions below. Elsewhere
@@ -119,6 +139,67 @@ SURROGATE_AVX2_TARGET void hshAvx2(const double* a, std::size_t count, const Hsh
   quantiseBody(a, count, q, bytes, decoded);
 }
 
+
+#if defined(__x86_64__) && defined(__GNUC__)
+// Eight samples as doubles (exact for 16-bit integers).
+SURROGATE_AVX2_TARGET inline void loadEight(const std::uint16_t* s, __m256d* x0, __m256d* x1) {
+  const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(s));
+  *x0 = _mm256_cvtepi32_pd(_mm_cvtepu16_epi32(v));
+  *x1 = _mm256_cvtepi32_pd(_mm_cvtepu16_epi32(_mm_srli_si128(v, 8)));
+}
+SURROGATE_AVX2_TARGET inline void loadEight(const double* s, __m256d* x0, __m256d* x1) {
+  *x0 = _mm256_loadu_pd(s);
+  *x1 = _mm256_loadu_pd(s + 4);
+}
+
+// G rows of m (G <= 4) over a whole block, eight samples at a time: 2G accumulators stay in
+// registers while the columns are run through once, each column's samples converted once for
+// all G rows.
+template <int G, typename Sample>
+SURROGATE_AVX2_TARGET inline void multiplyRowsAvx2(const double* m, int cols, const Sample* const* src,
+                                                   std::size_t offset, double* out, std::size_t outStride) {
+  for (std::size_t j = 0; j < kProductBlock; j += 8) {
+    __m256d a[G][2];
+    for (int q = 0; q < G; ++q) a[q][0] = a[q][1] = _mm256_setzero_pd();
+    for (int c = 0; c < cols; ++c) {
+      __m256d x0, x1;
+      loadEight(src[c] + offset + j, &x0, &x1);
+      for (int q = 0; q < G; ++q) {
+        const __m256d mq = _mm256_broadcast_sd(m + static_cast<std::size_t>(q) * cols + c);
+        a[q][0] = _mm256_add_pd(a[q][0], _mm256_mul_pd(mq, x0));
+        a[q][1] = _mm256_add_pd(a[q][1], _mm256_mul_pd(mq, x1));
+      }
+    }
+    for (int q = 0; q < G; ++q) {
+      _mm256_storeu_pd(out + q * outStride + j, _mm256_add_pd(_mm256_setzero_pd(), a[q][0]));
+      _mm256_storeu_pd(out + q * outStride + j + 4, _mm256_add_pd(_mm256_setzero_pd(), a[q][1]));
+    }
+  }
+}
+
+template <typename Sample>
+SURROGATE_AVX2_TARGET void multiplyAvx2(const double* m, int rows, int cols, const Sample* const* src,
+                                        std::size_t offset, double* out, std::size_t outStride) {
+  int r = 0;
+  for (; r + 4 <= rows; r += 4)
+    multiplyRowsAvx2<4>(m + static_cast<std::size_t>(r) * cols, cols, src, offset, out + r * outStride, outStride);
+  const double* mr = m + static_cast<std::size_t>(r) * cols;
+  double* o = out + r * outStride;
+  switch (rows - r) {
+    case 3: multiplyRowsAvx2<3>(mr, cols, src, offset, o, outStride); break;
+    case 2: multiplyRowsAvx2<2>(mr, cols, src, offset, o, outStride); break;
+    case 1: multiplyRowsAvx2<1>(mr, cols, src, offset, o, outStride); break;
+    default: break;
+  }
+}
+#else
+template <typename Sample>
+void multiplyAvx2(const double* m, int rows, int cols, const Sample* const* src, std::size_t offset, double* out,
+                  std::size_t outStride) {
+  multiplyBody(m, rows, cols, src, offset, out, outStride);
+}
+#endif
+
 }  // namespace
 
 KernelIsa activeKernelIsa() { return kAvx2Compiled && cpuHasAvx2() ? KernelIsa::Avx2 : KernelIsa::Baseline; }
@@ -152,6 +233,18 @@ void quantiseHsh(const double* a, std::size_t count, const HshQuantisation& q, s
                  KernelIsa isa) {
   if (isa == KernelIsa::Avx2) return hshAvx2(a, count, q, bytes, decoded);
   quantiseBody(a, count, q, bytes, decoded);
+}
+
+void multiplyBlock(const double* m, int rows, int cols, const std::uint16_t* const* src, std::size_t offset,
+                   double* out, std::size_t outStride, KernelIsa isa) {
+  if (isa == KernelIsa::Avx2) return multiplyAvx2(m, rows, cols, src, offset, out, outStride);
+  multiplyBody(m, rows, cols, src, offset, out, outStride);
+}
+
+void multiplyBlock(const double* m, int rows, int cols, const double* const* src, std::size_t offset,
+                   double* out, std::size_t outStride, KernelIsa isa) {
+  if (isa == KernelIsa::Avx2) return multiplyAvx2(m, rows, cols, src, offset, out, outStride);
+  multiplyBody(m, rows, cols, src, offset, out, outStride);
 }
 
 }  // namespace surrogate::fit

@@ -53,6 +53,24 @@ void squaredErrorsLrgb(const double* cr, const double* cg, const double* cb, con
 void squaredErrorsRgb(const double* rendered, const std::uint16_t* s, std::size_t pixels, double* d2,
                       KernelIsa isa = activeKernelIsa());
 
+// The matrix products of the per-channel fits (PTM RGB, HSH; fit/channel_fit.h), a block of
+// kProductBlock samples at a time:
+//   out[r * outStride + j] = 0 + (sum over c < cols, in order from c = 0 and from +0, of
+//                                 m[r * cols + c] * src[c][offset + j])
+// for r < rows and j < kProductBlock. Fitting: m = P (T x N), src = the photographs' rows;
+// re-rendering: m = the basis at the lights (N x T), src = the rows of decoded coefficients.
+// This is how Eigen's matrix product adds up a whole block (each value's terms in order into an
+// accumulator started at zero, then added to the zeroed destination), which the fits used
+// before and whose bytes these keep; tests/fit/test_row_kernels.cpp checks both variants
+// against the formula. The AVX2 variant is written with intrinsics: the compiler's own
+// vectorisation of the loops ran at about Eigen's speed, the intrinsics two to three times
+// faster (docs/developer-guide.md, "Benchmarks").
+constexpr std::size_t kProductBlock = 192;
+void multiplyBlock(const double* m, int rows, int cols, const std::uint16_t* const* src, std::size_t offset,
+                   double* out, std::size_t outStride, KernelIsa isa = activeKernelIsa());
+void multiplyBlock(const double* m, int rows, int cols, const double* const* src, std::size_t offset,
+                   double* out, std::size_t outStride, KernelIsa isa = activeKernelIsa());
+
 // Quantisation of `count` coefficients (fit/quantise.h): bytes[j] = q.quantise(a[j]) and
 // decoded[j] = q.decode(bytes[j]).
 void quantisePtm(const double* a, std::size_t count, const PtmQuantisation& q, std::uint8_t* bytes, double* decoded,

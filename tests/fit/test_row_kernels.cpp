@@ -3,6 +3,8 @@
 // and so the variants against each other.
 #include <catch2/catch.hpp>
 
+#include <Eigen/Core>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -185,5 +187,84 @@ TEST_CASE("the quantisation kernels give the bytes and decoded values of the sca
     quantiseHsh(a.data(), a.size(), flat, bytes.data(), decoded.data(), isa);
     CHECK(std::all_of(bytes.begin(), bytes.end(), [](std::uint8_t b) { return b == 0; }));
     CHECK(std::all_of(decoded.begin(), decoded.end(), [](double d) { return d == 0.25; }));
+  }
+}
+
+namespace {
+
+// The block product written from its formula: each sum from +0, in column order, then 0 + sum.
+template <typename Sample>
+std::vector<double> blockProduct(const std::vector<double>& m, int rows, int cols, const std::vector<const Sample*>& src,
+                                 std::size_t offset, std::size_t outStride) {
+  std::vector<double> out(rows * outStride, -7.0);
+  for (int r = 0; r < rows; ++r)
+    for (std::size_t j = 0; j < kProductBlock; ++j) {
+      double sum = 0.0;
+      for (int c = 0; c < cols; ++c) sum += m[r * cols + c] * static_cast<double>(src[c][offset + j]);
+      out[r * outStride + j] = 0.0 + sum;
+    }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("the block products add every column in order from zero, in every variant, as Eigen's product does") {
+  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  std::mt19937 random(11);
+  std::uniform_int_distribution<int> sample(0, 65535);
+  std::uniform_real_distribution<double> coefficient(-1.0, 1.0);
+  const std::size_t offset = 3 * 97, width = offset + kProductBlock + 5;
+  // The fits' shapes: T = 4, 6, 9 (16 for HSH of order 4) against N photographs, and back.
+  for (const int rows : {1, 2, 3, 4, 5, 6, 9, 16, 36}) {
+    for (const int cols : {1, 4, 6, 9, 16, 36, 37, 101, 300}) {
+      INFO(rows << " x " << cols);
+      std::vector<double> m(static_cast<std::size_t>(rows) * cols);
+      for (double& v : m) v = coefficient(random) / 65535.0;
+      m[0] = -1.0;  // with a zero sample first: -0 + ... the sums start from +0
+      std::vector<std::vector<std::uint16_t>> samples(cols, std::vector<std::uint16_t>(width));
+      std::vector<std::vector<double>> values(cols, std::vector<double>(width));
+      for (int c = 0; c < cols; ++c)
+        for (std::size_t j = 0; j < width; ++j) {
+          samples[c][j] = static_cast<std::uint16_t>(sample(random));
+          values[c][j] = coefficient(random) * 300.0;
+        }
+      samples[0][offset] = 0;
+      values[0][offset] = 0.0;
+      std::vector<const std::uint16_t*> s16;
+      std::vector<const double*> sd;
+      for (int c = 0; c < cols; ++c) {
+        s16.push_back(samples[c].data());
+        sd.push_back(values[c].data());
+      }
+      const std::size_t outStride = kProductBlock + 3;
+      const std::vector<double> expected16 = blockProduct(m, rows, cols, s16, offset, outStride);
+      const std::vector<double> expectedD = blockProduct(m, rows, cols, sd, offset, outStride);
+      if (rows == 1 && cols == 1) CHECK(!std::signbit(expected16[0]));  // 0 + (-1 * 0) is +0
+
+      // Eigen's product of the same matrices, as the fits computed every block before: it
+      // adds the same way for whole blocks at the fits' shapes (T of 3 or more rows; up to the
+      // columns its blocking keeps in one pass, several hundred).
+      if (rows >= 3) {
+        Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> block(cols, kProductBlock);
+        for (int c = 0; c < cols; ++c)
+          for (std::size_t j = 0; j < kProductBlock; ++j) block(c, j) = samples[c][offset + j];
+        RowMajor product(rows, kProductBlock);
+        product.noalias() = Eigen::Map<const RowMajor>(m.data(), rows, cols) * block;
+        bool same = true;
+        for (int r = 0; r < rows; ++r)
+          same = same && std::memcmp(&product(r, 0), &expected16[r * outStride], kProductBlock * sizeof(double)) == 0;
+        CHECK(same);
+      }
+
+      for (const KernelIsa isa : variants()) {
+        INFO("variant " << name(isa));
+        std::vector<double> out(rows * outStride, -7.0);  // the gaps between the rows stay as they are
+        multiplyBlock(m.data(), rows, cols, s16.data(), offset, out.data(), outStride, isa);
+        CHECK(sameBits(out, expected16));
+        std::fill(out.begin(), out.end(), -7.0);
+        multiplyBlock(m.data(), rows, cols, sd.data(), offset, out.data(), outStride, isa);
+        CHECK(sameBits(out, expectedD));
+      }
+    }
   }
 }
