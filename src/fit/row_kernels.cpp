@@ -117,11 +117,103 @@ constexpr bool kAvx2Compiled = true;
 constexpr bool kAvx2Compiled = false;
 #endif
 
+#if defined(__x86_64__) && defined(__GNUC__)
+// Lanes of v0, v1, v2 picked by three byte shuffles (a -1 in a mask gives a zero byte) and
+// widened to 32 bits.
+SURROGATE_AVX2_TARGET inline __m256i channelOfEight(__m128i v0, __m128i v1, __m128i v2, __m128i m0, __m128i m1,
+                                                    __m128i m2) {
+  return _mm256_cvtepu16_epi32(
+      _mm_or_si128(_mm_or_si128(_mm_shuffle_epi8(v0, m0), _mm_shuffle_epi8(v1, m1)), _mm_shuffle_epi8(v2, m2)));
+}
+
+// R + G + B of eight interleaved 16-bit RGB pixels, as doubles (exact: at most 3 x 65535).
+SURROGATE_AVX2_TARGET inline void pixelSumsOfEight(const std::uint16_t* s, __m256d* low, __m256d* high) {
+  const __m128i v0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(s));
+  const __m128i v1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(s + 8));
+  const __m128i v2 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(s + 16));
+  // Sample 3p + c of the 24 is lane (3p + c) % 8 of v[(3p + c) / 8]: each channel's eight
+  // samples gathered from the three registers by byte shuffles (-1: a zero byte).
+  const __m256i r = channelOfEight(v0, v1, v2, _mm_setr_epi8(0, 1, 6, 7, 12, 13, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1),
+                            _mm_setr_epi8(-1, -1, -1, -1, -1, -1, 2, 3, 8, 9, 14, 15, -1, -1, -1, -1),
+                            _mm_setr_epi8(-1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, 4, 5, 10, 11));
+  const __m256i g = channelOfEight(v0, v1, v2, _mm_setr_epi8(2, 3, 8, 9, 14, 15, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1),
+                            _mm_setr_epi8(-1, -1, -1, -1, -1, -1, 4, 5, 10, 11, -1, -1, -1, -1, -1, -1),
+                            _mm_setr_epi8(-1, -1, -1, -1, -1, -1, -1, -1, -1, -1, 0, 1, 6, 7, 12, 13));
+  const __m256i b = channelOfEight(v0, v1, v2, _mm_setr_epi8(4, 5, 10, 11, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1),
+                            _mm_setr_epi8(-1, -1, -1, -1, 0, 1, 6, 7, 12, 13, -1, -1, -1, -1, -1, -1),
+                            _mm_setr_epi8(-1, -1, -1, -1, -1, -1, -1, -1, -1, -1, 2, 3, 8, 9, 14, 15));
+  const __m256i sum = _mm256_add_epi32(_mm256_add_epi32(r, g), b);
+  *low = _mm256_cvtepi32_pd(_mm256_castsi256_si128(sum));
+  *high = _mm256_cvtepi32_pd(_mm256_extracti128_si256(sum, 1));
+}
+
+// accumulateBody with the sums of eight pixels in registers while every photograph is added
+// (the body loads and stores each sum once per photograph): the same operations on each value
+// in the same order. Pixels past the last whole eight, and the mean colour's samples past the
+// last whole sixteen, go through the body's loops.
 SURROGATE_AVX2_TARGET void accumulateAvx2(const std::uint16_t* const* images, int n, std::size_t w, std::size_t x0,
                                           std::size_t x1, const double* p, const double* weight, double* acc,
                                           double* mean, double* sum) {
+  std::size_t x = x0;
+  for (; x + 8 <= x1; x += 8) {
+    __m256d a[6][2];
+    for (int k = 0; k < 6; ++k) {
+      a[k][0] = _mm256_loadu_pd(acc + k * w + x);
+      a[k][1] = _mm256_loadu_pd(acc + k * w + x + 4);
+    }
+    for (int i = 0; i < n; ++i) {
+      __m256d s0, s1;
+      pixelSumsOfEight(images[i] + 3 * x, &s0, &s1);
+      for (int k = 0; k < 6; ++k) {
+        const __m256d pk = _mm256_broadcast_sd(p + static_cast<std::size_t>(k) * n + i);
+        a[k][0] = _mm256_add_pd(a[k][0], _mm256_mul_pd(pk, s0));
+        a[k][1] = _mm256_add_pd(a[k][1], _mm256_mul_pd(pk, s1));
+      }
+    }
+    for (int k = 0; k < 6; ++k) {
+      _mm256_storeu_pd(acc + k * w + x, a[k][0]);
+      _mm256_storeu_pd(acc + k * w + x + 4, a[k][1]);
+    }
+  }
+  std::size_t j = 3 * x0;
+  for (; j + 16 <= 3 * x1; j += 16) {
+    __m256d m[4];
+    for (int u = 0; u < 4; ++u) m[u] = _mm256_loadu_pd(mean + j + 4 * u);
+    for (int i = 0; i < n; ++i) {
+      const double wi = weight[i];
+      if (wi == 0) continue;
+      const __m256d wv = _mm256_set1_pd(wi);
+      const __m128i v0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(images[i] + j));
+      const __m128i v1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(images[i] + j + 8));
+      const __m256d x4[4] = {_mm256_cvtepi32_pd(_mm_cvtepu16_epi32(v0)),
+                             _mm256_cvtepi32_pd(_mm_cvtepu16_epi32(_mm_srli_si128(v0, 8))),
+                             _mm256_cvtepi32_pd(_mm_cvtepu16_epi32(v1)),
+                             _mm256_cvtepi32_pd(_mm_cvtepu16_epi32(_mm_srli_si128(v1, 8)))};
+      for (int u = 0; u < 4; ++u) m[u] = _mm256_add_pd(m[u], _mm256_mul_pd(wv, x4[u]));
+    }
+    for (int u = 0; u < 4; ++u) _mm256_storeu_pd(mean + j + 4 * u, m[u]);
+  }
+  // The rest: the body's loops over what is left (pixels [x, x1) of the sums; samples [j, 3 x1)
+  // of the mean, which need not be whole pixels).
+  for (int i = 0; i < n; ++i) {
+    const std::uint16_t* s = images[i];
+    for (std::size_t t = x; t < x1; ++t) sum[t] = static_cast<double>(s[3 * t] + s[3 * t + 1] + s[3 * t + 2]);
+    for (int k = 0; k < 6; ++k) {
+      const double pk = p[static_cast<std::size_t>(k) * n + i];
+      double* a = acc + k * w;
+      for (std::size_t t = x; t < x1; ++t) a[t] += pk * sum[t];
+    }
+    const double wi = weight[i];
+    if (wi != 0)
+      for (std::size_t t = j; t < 3 * x1; ++t) mean[t] += wi * s[t];
+  }
+}
+#else
+void accumulateAvx2(const std::uint16_t* const* images, int n, std::size_t w, std::size_t x0, std::size_t x1,
+                    const double* p, const double* weight, double* acc, double* mean, double* sum) {
   accumulateBody(images, n, w, x0, x1, p, weight, acc, mean, sum);
 }
+#endif
 SURROGATE_AVX2_TARGET void lrgbAvx2(const double* cr, const double* cg, const double* cb, const double* decoded,
                                     std::size_t stride, const double* basis, const std::uint16_t* s,
                                     std::size_t pixels, double* d2) {
