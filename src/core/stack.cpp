@@ -21,4 +21,10 @@ void MemoryImageStack::readRows(int index, int y0, int y1, std::uint16_t* out) c
   std::copy(im.pixels.begin() + y0 * rowSamples, im.pixels.begin() + y1 * rowSamples, out);
 }
 
+const std::uint16_t* MemoryImageStack::heldRow(int index, int y) const {
+  const Image& im = images_.at(index);
+  if (y < 0 || y >= im.height) throw std::out_of_range("heldRow: bad row");
+  return im.pixels.data() + static_cast<std::size_t>(y) * im.width * im.channels;
+}
+
 }  // namespace surrogate

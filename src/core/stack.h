@@ -33,6 +33,13 @@ class ImageStack {
   // Copies rows [y0, y1) of image `index` into `out`, interleaved like Image::pixels:
   // (y1 - y0) * width() * channels() samples.
   virtual void readRows(int index, int y0, int y1, std::uint16_t* out) const = 0;
+  // Row y of image `index` where the stack holds it in memory, for readers that need no copy:
+  // width() * channels() samples as readRows gives them (heldRow), or as bytes b that stand for
+  // the 16-bit values 257 b readRows gives (heldByteRow: stacks of 8-bit sources). nullptr where
+  // the stack holds no such row (the default: rows computed as they are read, or kept in a
+  // file); a stack holds all its rows or none. Valid as long as the stack.
+  virtual const std::uint16_t* heldRow(int /*index*/, int /*y*/) const { return nullptr; }
+  virtual const std::uint8_t* heldByteRow(int /*index*/, int /*y*/) const { return nullptr; }
 };
 
 // An ImageStack over images held in memory. All images must have the same size and channels.
@@ -47,6 +54,7 @@ class MemoryImageStack : public ImageStack {
     return images_.empty() ? Transfer::Srgb : images_[0].transfer;
   }
   void readRows(int index, int y0, int y1, std::uint16_t* out) const override;
+  const std::uint16_t* heldRow(int index, int y) const override;
   const Image& image(int index) const { return images_[index]; }
 
  private:

@@ -42,12 +42,14 @@ void ChannelFitter::fitRow(const RowView& row, double* acc, double* block) const
   for (std::size_t j0 = 0; j0 < m; j0 += kBlockSamples) {
     const std::size_t len = std::min(kBlockSamples, m - j0);
     if (len == kBlockSamples) {
-      multiplyBlock(p_.data(), terms_, n_, row.images, j0, acc + j0, m);
+      withSamples(row, [&](auto images) { multiplyBlock(p_.data(), terms_, n_, images, j0, acc + j0, m); });
       continue;
     }
     Strided samples(block, n_, len, Eigen::OuterStride<>(kBlockSamples));
-    for (int i = 0; i < n_; ++i)
-      std::copy(row.images[i] + j0, row.images[i] + j0 + len, block + i * kBlockSamples);
+    withSamples(row, [&](auto images) {
+      for (int i = 0; i < n_; ++i)
+        for (std::size_t t = 0; t < len; ++t) block[i * kBlockSamples + t] = sampleValue(images[i][j0 + t]);
+    });
     Strided(acc + j0, terms_, len, Eigen::OuterStride<>(m)).noalias() = p * samples;
   }
 }
@@ -100,7 +102,7 @@ void ChannelFitter::measureError(const RowView& row, const double* decoded, doub
     }
     for (int i = 0; i < n_; ++i) {
       const double* p = block + static_cast<std::size_t>(i) * kBlockSamples;
-      squaredErrorsRgb(p, row.images[i] + j0, len / 3, d2.data());
+      withSamples(row, [&](auto images) { squaredErrorsRgb(p, images[i] + j0, len / 3, d2.data()); });
       double err = sqErr[i];
       for (std::size_t x = 0; x < len / 3; ++x) err += d2[x];  // in pixel order, whichever kernel ran
       sqErr[i] = err;

@@ -18,7 +18,9 @@
 // coefficients are set to 0 so that it does not widen the quantisation range.
 //
 // Streaming and memory: the photographs are read in row bands (ImageStack::readRows), all N
-// images' rows of a band at once. The band height is the largest that keeps the band buffers
+// images' rows of a band at once, unless the stack holds its RGB rows in memory
+// (ImageStack::heldRow, heldByteRow): then each row is read where it is, 8-bit sources as their
+// bytes, with no band buffer and no copy. The band height is the largest that keeps the band buffers
 // within 8 MiB and, with the result object (9 or 18 bytes per pixel for PTM, 3*T for HSH) and
 // the per-thread scratch, within FitOptions::memoryBudgetBytes (at least one row). The quantisation needs each
 // coefficient's range over the whole image before any byte can be written, so the fit makes

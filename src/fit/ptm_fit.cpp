@@ -103,8 +103,10 @@ class LrgbFitter : public RowFitter {
       for (int c = 0; c < 3; ++c) planes[c * w + x] = chroma[3 * x + c];
     double* d2 = scratch + 12 * w;  // where fitRow kept the sums
     for (int i = 0; i < n_; ++i) {
-      squaredErrorsLrgb(planes, planes + w, planes + 2 * w, decoded, w, &basis_[static_cast<std::size_t>(i) * 6],
-                        row.images[i], w, d2);
+      withSamples(row, [&](auto images) {
+        squaredErrorsLrgb(planes, planes + w, planes + 2 * w, decoded, w, &basis_[static_cast<std::size_t>(i) * 6],
+                          images[i], w, d2);
+      });
       double err = 0;
       for (int x = 0; x < w; ++x) err += d2[x];  // in pixel order, whichever kernel ran
       sqErr[i] = err;
@@ -125,9 +127,11 @@ class LrgbFitter : public RowFitter {
     std::fill(mean, mean + m, 0.0);
     // Blocks of pixels, each through every photograph: the block's sums stay in the cache
     // (each value still adds the photographs in order, as the whole row at once would).
-    for (int x0 = 0; x0 < w; x0 += kAccumulateBlock)
-      accumulateLrgb(row.images, n_, w, x0, std::min(w, x0 + kAccumulateBlock), p_.data(), weight_.data(), acc,
-                     mean, sum);
+    withSamples(row, [&](auto images) {
+      for (int x0 = 0; x0 < w; x0 += kAccumulateBlock)
+        accumulateLrgb(images, n_, w, x0, std::min(w, x0 + kAccumulateBlock), p_.data(), weight_.data(), acc, mean,
+                       sum);
+    });
     for (int x = 0; x < w; ++x) {
       double total = 0;
       for (int c = 0; c < 3; ++c) {

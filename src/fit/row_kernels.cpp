@@ -15,6 +15,12 @@ namespace surrogate::fit {
 
 namespace {
 
+// What the block products multiply: the samples' values (row_kernels.h), the decoded
+// coefficients as they are.
+inline double productValue(std::uint16_t s) { return sampleValue(s); }
+inline double productValue(std::uint8_t b) { return sampleValue(b); }
+inline double productValue(double v) { return v; }
+
 // clamp(v, 0, 255) as std::clamp computes it (NaN passes through), written on values so that
 // it vectorises.
 inline double clamp255(double v) {
@@ -23,10 +29,11 @@ inline double clamp255(double v) {
 }
 
 // The operations and their order per value are the whole contract (see the header).
+template <typename Sample>
 __attribute__((always_inline)) inline void lrgbBody(const double* __restrict cr, const double* __restrict cg,
                                                     const double* __restrict cb, const double* __restrict decoded,
                                                     std::size_t stride, const double* basis,
-                                                    const std::uint16_t* __restrict s, std::size_t pixels,
+                                                    const Sample* __restrict s, std::size_t pixels,
                                                     double* __restrict d2) {
   const double b0 = basis[0], b1 = basis[1], b2 = basis[2], b3 = basis[3], b4 = basis[4], b5 = basis[5];
   for (std::size_t x = 0; x < pixels; ++x) {
@@ -41,31 +48,38 @@ __attribute__((always_inline)) inline void lrgbBody(const double* __restrict cr,
     model += kLumR * clamp255(cr[x] * l / 255.0);
     model += kLumG * clamp255(cg[x] * l / 255.0);
     model += kLumB * clamp255(cb[x] * l / 255.0);
-    const double captured = (kLumR * s[3 * x] + kLumG * s[3 * x + 1] + kLumB * s[3 * x + 2]) / 257.0;
+    const double captured =
+        (kLumR * sampleValue(s[3 * x]) + kLumG * sampleValue(s[3 * x + 1]) + kLumB * sampleValue(s[3 * x + 2])) /
+        257.0;
     d2[x] = (model - captured) * (model - captured);
   }
 }
 
-__attribute__((always_inline)) inline void rgbBody(const double* __restrict p, const std::uint16_t* __restrict s,
+template <typename Sample>
+__attribute__((always_inline)) inline void rgbBody(const double* __restrict p, const Sample* __restrict s,
                                                    std::size_t pixels, double* __restrict d2) {
   for (std::size_t x = 0; x < pixels; ++x) {
     const double r = clamp255(p[3 * x]);
     const double g = clamp255(p[3 * x + 1]);
     const double b = clamp255(p[3 * x + 2]);
     const double model = kLumR * r + kLumG * g + kLumB * b;
-    const double captured = (kLumR * s[3 * x] + kLumG * s[3 * x + 1] + kLumB * s[3 * x + 2]) / 257.0;
+    const double captured =
+        (kLumR * sampleValue(s[3 * x]) + kLumG * sampleValue(s[3 * x + 1]) + kLumB * sampleValue(s[3 * x + 2])) /
+        257.0;
     d2[x] = (model - captured) * (model - captured);
   }
 }
 
-__attribute__((always_inline)) inline void accumulateBody(const std::uint16_t* const* images, int n,
+template <typename Sample>
+__attribute__((always_inline)) inline void accumulateBody(const Sample* const* images, int n,
                                                           std::size_t w, std::size_t x0, std::size_t x1,
                                                           const double* p, const double* weight,
                                                           double* __restrict acc, double* __restrict mean,
                                                           double* __restrict sum) {
   for (int i = 0; i < n; ++i) {
-    const std::uint16_t* __restrict s = images[i];
-    for (std::size_t x = x0; x < x1; ++x) sum[x] = static_cast<double>(s[3 * x] + s[3 * x + 1] + s[3 * x + 2]);
+    const Sample* __restrict s = images[i];
+    for (std::size_t x = x0; x < x1; ++x)
+      sum[x] = static_cast<double>(sampleValue(s[3 * x]) + sampleValue(s[3 * x + 1]) + sampleValue(s[3 * x + 2]));
     for (int k = 0; k < 6; ++k) {
       const double pk = p[static_cast<std::size_t>(k) * n + i];
       double* __restrict a = acc + k * w;
@@ -73,7 +87,7 @@ __attribute__((always_inline)) inline void accumulateBody(const std::uint16_t* c
     }
     const double wi = weight[i];
     if (wi != 0)
-      for (std::size_t j = 3 * x0; j < 3 * x1; ++j) mean[j] += wi * s[j];
+      for (std::size_t j = 3 * x0; j < 3 * x1; ++j) mean[j] += wi * sampleValue(s[j]);
   }
 }
 
@@ -99,7 +113,7 @@ __attribute__((always_inline)) inline void multiplyBody(const double* m, int row
     for (int c = 0; c < cols; ++c) {
       const double mc = m[static_cast<std::size_t>(r) * cols + c];
       const Sample* __restrict s = src[c] + offset;
-      for (std::size_t j = 0; j < kProductBlock; ++j) o[j] += mc * static_cast<double>(s[j]);
+      for (std::size_t j = 0; j < kProductBlock; ++j) o[j] += mc * productValue(s[j]);
     }
     for (std::size_t j = 0; j < kProductBlock; ++j) o[j] = 0.0 + o[j];
   }
@@ -117,41 +131,98 @@ constexpr bool kAvx2Compiled = true;
 constexpr bool kAvx2Compiled = false;
 #endif
 
-#if defined(__x86_64__) && defined(__GNUC__)
-// Lanes of v0, v1, v2 picked by three byte shuffles (a -1 in a mask gives a zero byte) and
-// widened to 32 bits.
-SURROGATE_AVX2_TARGET inline __m256i channelOfEight(__m128i v0, __m128i v1, __m128i v2, __m128i m0, __m128i m1,
-                                                    __m128i m2) {
-  return _mm256_cvtepu16_epi32(
-      _mm_or_si128(_mm_or_si128(_mm_shuffle_epi8(v0, m0), _mm_shuffle_epi8(v1, m1)), _mm_shuffle_epi8(v2, m2)));
+// The plain copies of the compiler-vectorised bodies for AVX2.
+template <typename Sample>
+SURROGATE_AVX2_TARGET void lrgbAvx2(const double* cr, const double* cg, const double* cb, const double* decoded,
+                                    std::size_t stride, const double* basis, const Sample* s, std::size_t pixels,
+                                    double* d2) {
+  lrgbBody(cr, cg, cb, decoded, stride, basis, s, pixels, d2);
+}
+template <typename Sample>
+SURROGATE_AVX2_TARGET void rgbAvx2(const double* p, const Sample* s, std::size_t pixels, double* d2) {
+  rgbBody(p, s, pixels, d2);
+}
+SURROGATE_AVX2_TARGET void ptmAvx2(const double* a, std::size_t count, const PtmQuantisation& q, std::uint8_t* bytes,
+                                   double* decoded) {
+  quantiseBody(a, count, q, bytes, decoded);
+}
+SURROGATE_AVX2_TARGET void hshAvx2(const double* a, std::size_t count, const HshQuantisation& q, std::uint8_t* bytes,
+                                   double* decoded) {
+  quantiseBody(a, count, q, bytes, decoded);
 }
 
-// R + G + B of eight interleaved 16-bit RGB pixels, as doubles (exact: at most 3 x 65535).
+// The LRGB accumulation and the block products, written with intrinsics: the accumulators stay
+// in registers while every photograph is added, where the compiled bodies load and store them
+// once per photograph.
+#if defined(__x86_64__) && defined(__GNUC__)
+// Eight samples as doubles, exact: 16-bit values, bytes b as 257 b, doubles as they are.
+SURROGATE_AVX2_TARGET inline void loadEight(const std::uint16_t* s, __m256d* x0, __m256d* x1) {
+  const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(s));
+  *x0 = _mm256_cvtepi32_pd(_mm_cvtepu16_epi32(v));
+  *x1 = _mm256_cvtepi32_pd(_mm_cvtepu16_epi32(_mm_srli_si128(v, 8)));
+}
+SURROGATE_AVX2_TARGET inline void loadEight(const std::uint8_t* s, __m256d* x0, __m256d* x1) {
+  const __m256i v = _mm256_mullo_epi32(_mm256_cvtepu8_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(s))),
+                                       _mm256_set1_epi32(257));
+  *x0 = _mm256_cvtepi32_pd(_mm256_castsi256_si128(v));
+  *x1 = _mm256_cvtepi32_pd(_mm256_extracti128_si256(v, 1));
+}
+SURROGATE_AVX2_TARGET inline void loadEight(const double* s, __m256d* x0, __m256d* x1) {
+  *x0 = _mm256_loadu_pd(s);
+  *x1 = _mm256_loadu_pd(s + 4);
+}
+
+// Bytes of a, b (and c) picked by byte shuffles with the masks given (-1: a zero byte), ORed.
+SURROGATE_AVX2_TARGET inline __m128i pickBytes(__m128i a, __m128i ma, __m128i b, __m128i mb) {
+  return _mm_or_si128(_mm_shuffle_epi8(a, ma), _mm_shuffle_epi8(b, mb));
+}
+SURROGATE_AVX2_TARGET inline __m128i pickBytes(__m128i a, __m128i ma, __m128i b, __m128i mb, __m128i c, __m128i mc) {
+  return _mm_or_si128(pickBytes(a, ma, b, mb), _mm_shuffle_epi8(c, mc));
+}
+
+// R + G + B of eight interleaved RGB pixels (their 16-bit values), as doubles, exact.
 SURROGATE_AVX2_TARGET inline void pixelSumsOfEight(const std::uint16_t* s, __m256d* low, __m256d* high) {
+  // Sample 3p + c of the 24 is lane (3p + c) % 8 of v[(3p + c) / 8].
   const __m128i v0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(s));
   const __m128i v1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(s + 8));
   const __m128i v2 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(s + 16));
-  // Sample 3p + c of the 24 is lane (3p + c) % 8 of v[(3p + c) / 8]: each channel's eight
-  // samples gathered from the three registers by byte shuffles (-1: a zero byte).
-  const __m256i r = channelOfEight(v0, v1, v2, _mm_setr_epi8(0, 1, 6, 7, 12, 13, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1),
-                            _mm_setr_epi8(-1, -1, -1, -1, -1, -1, 2, 3, 8, 9, 14, 15, -1, -1, -1, -1),
-                            _mm_setr_epi8(-1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, 4, 5, 10, 11));
-  const __m256i g = channelOfEight(v0, v1, v2, _mm_setr_epi8(2, 3, 8, 9, 14, 15, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1),
-                            _mm_setr_epi8(-1, -1, -1, -1, -1, -1, 4, 5, 10, 11, -1, -1, -1, -1, -1, -1),
-                            _mm_setr_epi8(-1, -1, -1, -1, -1, -1, -1, -1, -1, -1, 0, 1, 6, 7, 12, 13));
-  const __m256i b = channelOfEight(v0, v1, v2, _mm_setr_epi8(4, 5, 10, 11, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1),
-                            _mm_setr_epi8(-1, -1, -1, -1, 0, 1, 6, 7, 12, 13, -1, -1, -1, -1, -1, -1),
-                            _mm_setr_epi8(-1, -1, -1, -1, -1, -1, -1, -1, -1, -1, 2, 3, 8, 9, 14, 15));
-  const __m256i sum = _mm256_add_epi32(_mm256_add_epi32(r, g), b);
+  const __m128i r = pickBytes(v0, _mm_setr_epi8(0, 1, 6, 7, 12, 13, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1),
+                              v1, _mm_setr_epi8(-1, -1, -1, -1, -1, -1, 2, 3, 8, 9, 14, 15, -1, -1, -1, -1),
+                              v2, _mm_setr_epi8(-1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, 4, 5, 10, 11));
+  const __m128i g = pickBytes(v0, _mm_setr_epi8(2, 3, 8, 9, 14, 15, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1),
+                              v1, _mm_setr_epi8(-1, -1, -1, -1, -1, -1, 4, 5, 10, 11, -1, -1, -1, -1, -1, -1),
+                              v2, _mm_setr_epi8(-1, -1, -1, -1, -1, -1, -1, -1, -1, -1, 0, 1, 6, 7, 12, 13));
+  const __m128i b = pickBytes(v0, _mm_setr_epi8(4, 5, 10, 11, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1),
+                              v1, _mm_setr_epi8(-1, -1, -1, -1, 0, 1, 6, 7, 12, 13, -1, -1, -1, -1, -1, -1),
+                              v2, _mm_setr_epi8(-1, -1, -1, -1, -1, -1, -1, -1, -1, -1, 2, 3, 8, 9, 14, 15));
+  const __m256i sum = _mm256_add_epi32(_mm256_add_epi32(_mm256_cvtepu16_epi32(r), _mm256_cvtepu16_epi32(g)),
+                                       _mm256_cvtepu16_epi32(b));
+  *low = _mm256_cvtepi32_pd(_mm256_castsi256_si128(sum));
+  *high = _mm256_cvtepi32_pd(_mm256_extracti128_si256(sum, 1));
+}
+SURROGATE_AVX2_TARGET inline void pixelSumsOfEight(const std::uint8_t* s, __m256d* low, __m256d* high) {
+  // Sample j of the 24 is byte j % 16 of v[j / 16]; 257 (r + g + b) = 257 r + 257 g + 257 b.
+  const __m128i v0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(s));
+  const __m128i v1 = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(s + 16));
+  const __m128i r = pickBytes(v0, _mm_setr_epi8(0, 3, 6, 9, 12, 15, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1),
+                              v1, _mm_setr_epi8(-1, -1, -1, -1, -1, -1, 2, 5, -1, -1, -1, -1, -1, -1, -1, -1));
+  const __m128i g = pickBytes(v0, _mm_setr_epi8(1, 4, 7, 10, 13, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1),
+                              v1, _mm_setr_epi8(-1, -1, -1, -1, -1, 0, 3, 6, -1, -1, -1, -1, -1, -1, -1, -1));
+  const __m128i b = pickBytes(v0, _mm_setr_epi8(2, 5, 8, 11, 14, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1),
+                              v1, _mm_setr_epi8(-1, -1, -1, -1, -1, 1, 4, 7, -1, -1, -1, -1, -1, -1, -1, -1));
+  const __m256i sum = _mm256_mullo_epi32(
+      _mm256_add_epi32(_mm256_add_epi32(_mm256_cvtepu8_epi32(r), _mm256_cvtepu8_epi32(g)), _mm256_cvtepu8_epi32(b)),
+      _mm256_set1_epi32(257));
   *low = _mm256_cvtepi32_pd(_mm256_castsi256_si128(sum));
   *high = _mm256_cvtepi32_pd(_mm256_extracti128_si256(sum, 1));
 }
 
-// accumulateBody with the sums of eight pixels in registers while every photograph is added
-// (the body loads and stores each sum once per photograph): the same operations on each value
-// in the same order. Pixels past the last whole eight, and the mean colour's samples past the
-// last whole sixteen, go through the body's loops.
-SURROGATE_AVX2_TARGET void accumulateAvx2(const std::uint16_t* const* images, int n, std::size_t w, std::size_t x0,
+// accumulateBody with the sums of eight pixels in twelve registers while every photograph is
+// added, and sixteen samples of the mean colour in four: the same operations on each value in
+// the same order. Pixels past the last whole eight, and the mean colour's samples past the last
+// whole sixteen, go through the body's loops.
+template <typename Sample>
+SURROGATE_AVX2_TARGET void accumulateAvx2(const Sample* const* images, int n, std::size_t w, std::size_t x0,
                                           std::size_t x1, const double* p, const double* weight, double* acc,
                                           double* mean, double* sum) {
   std::size_t x = x0;
@@ -183,21 +254,19 @@ SURROGATE_AVX2_TARGET void accumulateAvx2(const std::uint16_t* const* images, in
       const double wi = weight[i];
       if (wi == 0) continue;
       const __m256d wv = _mm256_set1_pd(wi);
-      const __m128i v0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(images[i] + j));
-      const __m128i v1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(images[i] + j + 8));
-      const __m256d x4[4] = {_mm256_cvtepi32_pd(_mm_cvtepu16_epi32(v0)),
-                             _mm256_cvtepi32_pd(_mm_cvtepu16_epi32(_mm_srli_si128(v0, 8))),
-                             _mm256_cvtepi32_pd(_mm_cvtepu16_epi32(v1)),
-                             _mm256_cvtepi32_pd(_mm_cvtepu16_epi32(_mm_srli_si128(v1, 8)))};
-      for (int u = 0; u < 4; ++u) m[u] = _mm256_add_pd(m[u], _mm256_mul_pd(wv, x4[u]));
+      __m256d v[4];
+      loadEight(images[i] + j, &v[0], &v[1]);
+      loadEight(images[i] + j + 8, &v[2], &v[3]);
+      for (int u = 0; u < 4; ++u) m[u] = _mm256_add_pd(m[u], _mm256_mul_pd(wv, v[u]));
     }
     for (int u = 0; u < 4; ++u) _mm256_storeu_pd(mean + j + 4 * u, m[u]);
   }
   // The rest: the body's loops over what is left (pixels [x, x1) of the sums; samples [j, 3 x1)
   // of the mean, which need not be whole pixels).
   for (int i = 0; i < n; ++i) {
-    const std::uint16_t* s = images[i];
-    for (std::size_t t = x; t < x1; ++t) sum[t] = static_cast<double>(s[3 * t] + s[3 * t + 1] + s[3 * t + 2]);
+    const Sample* s = images[i];
+    for (std::size_t t = x; t < x1; ++t)
+      sum[t] = static_cast<double>(sampleValue(s[3 * t]) + sampleValue(s[3 * t + 1]) + sampleValue(s[3 * t + 2]));
     for (int k = 0; k < 6; ++k) {
       const double pk = p[static_cast<std::size_t>(k) * n + i];
       double* a = acc + k * w;
@@ -205,43 +274,8 @@ SURROGATE_AVX2_TARGET void accumulateAvx2(const std::uint16_t* const* images, in
     }
     const double wi = weight[i];
     if (wi != 0)
-      for (std::size_t t = j; t < 3 * x1; ++t) mean[t] += wi * s[t];
+      for (std::size_t t = j; t < 3 * x1; ++t) mean[t] += wi * sampleValue(s[t]);
   }
-}
-#else
-void accumulateAvx2(const std::uint16_t* const* images, int n, std::size_t w, std::size_t x0, std::size_t x1,
-                    const double* p, const double* weight, double* acc, double* mean, double* sum) {
-  accumulateBody(images, n, w, x0, x1, p, weight, acc, mean, sum);
-}
-#endif
-SURROGATE_AVX2_TARGET void lrgbAvx2(const double* cr, const double* cg, const double* cb, const double* decoded,
-                                    std::size_t stride, const double* basis, const std::uint16_t* s,
-                                    std::size_t pixels, double* d2) {
-  lrgbBody(cr, cg, cb, decoded, stride, basis, s, pixels, d2);
-}
-SURROGATE_AVX2_TARGET void rgbAvx2(const double* p, const std::uint16_t* s, std::size_t pixels, double* d2) {
-  rgbBody(p, s, pixels, d2);
-}
-SURROGATE_AVX2_TARGET void ptmAvx2(const double* a, std::size_t count, const PtmQuantisation& q, std::uint8_t* bytes,
-                                   double* decoded) {
-  quantiseBody(a, count, q, bytes, decoded);
-}
-SURROGATE_AVX2_TARGET void hshAvx2(const double* a, std::size_t count, const HshQuantisation& q, std::uint8_t* bytes,
-                                   double* decoded) {
-  quantiseBody(a, count, q, bytes, decoded);
-}
-
-
-#if defined(__x86_64__) && defined(__GNUC__)
-// Eight samples as doubles (exact for 16-bit integers).
-SURROGATE_AVX2_TARGET inline void loadEight(const std::uint16_t* s, __m256d* x0, __m256d* x1) {
-  const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(s));
-  *x0 = _mm256_cvtepi32_pd(_mm_cvtepu16_epi32(v));
-  *x1 = _mm256_cvtepi32_pd(_mm_cvtepu16_epi32(_mm_srli_si128(v, 8)));
-}
-SURROGATE_AVX2_TARGET inline void loadEight(const double* s, __m256d* x0, __m256d* x1) {
-  *x0 = _mm256_loadu_pd(s);
-  *x1 = _mm256_loadu_pd(s + 4);
 }
 
 // G rows of m (G <= 4) over a whole block, eight samples at a time: 2G accumulators stay in
@@ -286,11 +320,45 @@ SURROGATE_AVX2_TARGET void multiplyAvx2(const double* m, int rows, int cols, con
 }
 #else
 template <typename Sample>
+void accumulateAvx2(const Sample* const* images, int n, std::size_t w, std::size_t x0, std::size_t x1,
+                    const double* p, const double* weight, double* acc, double* mean, double* sum) {
+  accumulateBody(images, n, w, x0, x1, p, weight, acc, mean, sum);
+}
+template <typename Sample>
 void multiplyAvx2(const double* m, int rows, int cols, const Sample* const* src, std::size_t offset, double* out,
                   std::size_t outStride) {
   multiplyBody(m, rows, cols, src, offset, out, outStride);
 }
 #endif
+
+// The public functions' bodies, for either kind of sample.
+template <typename Sample>
+void accumulateLrgbOf(const Sample* const* images, int n, std::size_t w, std::size_t x0, std::size_t x1,
+                      const double* p, const double* weight, double* acc, double* mean, double* sum, KernelIsa isa) {
+  if (isa == KernelIsa::Avx2) return accumulateAvx2(images, n, w, x0, x1, p, weight, acc, mean, sum);
+  accumulateBody(images, n, w, x0, x1, p, weight, acc, mean, sum);
+}
+
+template <typename Sample>
+void squaredErrorsLrgbOf(const double* cr, const double* cg, const double* cb, const double* decoded,
+                         std::size_t stride, const double* basis, const Sample* s, std::size_t pixels, double* d2,
+                         KernelIsa isa) {
+  if (isa == KernelIsa::Avx2) return lrgbAvx2(cr, cg, cb, decoded, stride, basis, s, pixels, d2);
+  lrgbBody(cr, cg, cb, decoded, stride, basis, s, pixels, d2);
+}
+
+template <typename Sample>
+void squaredErrorsRgbOf(const double* rendered, const Sample* s, std::size_t pixels, double* d2, KernelIsa isa) {
+  if (isa == KernelIsa::Avx2) return rgbAvx2(rendered, s, pixels, d2);
+  rgbBody(rendered, s, pixels, d2);
+}
+
+template <typename Sample>
+void multiplyBlockOf(const double* m, int rows, int cols, const Sample* const* src, std::size_t offset, double* out,
+                     std::size_t outStride, KernelIsa isa) {
+  if (isa == KernelIsa::Avx2) return multiplyAvx2(m, rows, cols, src, offset, out, outStride);
+  multiplyBody(m, rows, cols, src, offset, out, outStride);
+}
 
 }  // namespace
 
@@ -298,21 +366,31 @@ KernelIsa activeKernelIsa() { return kAvx2Compiled && cpuHasAvx2() ? KernelIsa::
 
 void accumulateLrgb(const std::uint16_t* const* images, int n, std::size_t w, std::size_t x0, std::size_t x1,
                     const double* p, const double* weight, double* acc, double* mean, double* sum, KernelIsa isa) {
-  if (isa == KernelIsa::Avx2) return accumulateAvx2(images, n, w, x0, x1, p, weight, acc, mean, sum);
-  accumulateBody(images, n, w, x0, x1, p, weight, acc, mean, sum);
+  accumulateLrgbOf(images, n, w, x0, x1, p, weight, acc, mean, sum, isa);
+}
+void accumulateLrgb(const std::uint8_t* const* images, int n, std::size_t w, std::size_t x0, std::size_t x1,
+                    const double* p, const double* weight, double* acc, double* mean, double* sum, KernelIsa isa) {
+  accumulateLrgbOf(images, n, w, x0, x1, p, weight, acc, mean, sum, isa);
 }
 
 void squaredErrorsLrgb(const double* cr, const double* cg, const double* cb, const double* decoded,
                        std::size_t stride, const double* basis, const std::uint16_t* s, std::size_t pixels,
                        double* d2, KernelIsa isa) {
-  if (isa == KernelIsa::Avx2) return lrgbAvx2(cr, cg, cb, decoded, stride, basis, s, pixels, d2);
-  lrgbBody(cr, cg, cb, decoded, stride, basis, s, pixels, d2);
+  squaredErrorsLrgbOf(cr, cg, cb, decoded, stride, basis, s, pixels, d2, isa);
+}
+void squaredErrorsLrgb(const double* cr, const double* cg, const double* cb, const double* decoded,
+                       std::size_t stride, const double* basis, const std::uint8_t* s, std::size_t pixels,
+                       double* d2, KernelIsa isa) {
+  squaredErrorsLrgbOf(cr, cg, cb, decoded, stride, basis, s, pixels, d2, isa);
 }
 
 void squaredErrorsRgb(const double* rendered, const std::uint16_t* s, std::size_t pixels, double* d2,
                       KernelIsa isa) {
-  if (isa == KernelIsa::Avx2) return rgbAvx2(rendered, s, pixels, d2);
-  rgbBody(rendered, s, pixels, d2);
+  squaredErrorsRgbOf(rendered, s, pixels, d2, isa);
+}
+void squaredErrorsRgb(const double* rendered, const std::uint8_t* s, std::size_t pixels, double* d2,
+                      KernelIsa isa) {
+  squaredErrorsRgbOf(rendered, s, pixels, d2, isa);
 }
 
 void quantisePtm(const double* a, std::size_t count, const PtmQuantisation& q, std::uint8_t* bytes, double* decoded,
@@ -329,14 +407,15 @@ void quantiseHsh(const double* a, std::size_t count, const HshQuantisation& q, s
 
 void multiplyBlock(const double* m, int rows, int cols, const std::uint16_t* const* src, std::size_t offset,
                    double* out, std::size_t outStride, KernelIsa isa) {
-  if (isa == KernelIsa::Avx2) return multiplyAvx2(m, rows, cols, src, offset, out, outStride);
-  multiplyBody(m, rows, cols, src, offset, out, outStride);
+  multiplyBlockOf(m, rows, cols, src, offset, out, outStride, isa);
 }
-
+void multiplyBlock(const double* m, int rows, int cols, const std::uint8_t* const* src, std::size_t offset,
+                   double* out, std::size_t outStride, KernelIsa isa) {
+  multiplyBlockOf(m, rows, cols, src, offset, out, outStride, isa);
+}
 void multiplyBlock(const double* m, int rows, int cols, const double* const* src, std::size_t offset,
                    double* out, std::size_t outStride, KernelIsa isa) {
-  if (isa == KernelIsa::Avx2) return multiplyAvx2(m, rows, cols, src, offset, out, outStride);
-  multiplyBody(m, rows, cols, src, offset, out, outStride);
+  multiplyBlockOf(m, rows, cols, src, offset, out, outStride, isa);
 }
 
 }  // namespace surrogate::fit

@@ -29,12 +29,21 @@ enum class KernelIsa { Baseline, Avx2 };
 // The variant this machine runs: Avx2 where the processor has it.
 KernelIsa activeKernelIsa();
 
+// Samples come as 16-bit values or, where the photographs are held at 8 bits, as bytes b that
+// stand for the 16-bit values 257 b (core/image.h widenSamples): every kernel taking samples has
+// both forms, and gives the same bits for bytes as for their 16-bit values.
+inline unsigned sampleValue(std::uint16_t s) { return s; }
+inline unsigned sampleValue(std::uint8_t b) { return 257u * b; }
+
 // LRGB accumulation over pixels [x0, x1) of a row of n photographs (images[i]: 16-bit
 // interleaved RGB): for each photograph i in order, with S = R + G + B of the pixel,
 //   acc[k * w + x] += p[k * n + i] * S   (k < 6),
 //   mean[3 x + c] += weight[i] * sample_c  (skipped where weight[i] is 0).
 // `sum` is w doubles of scratch.
 void accumulateLrgb(const std::uint16_t* const* images, int n, std::size_t w, std::size_t x0, std::size_t x1,
+                    const double* p, const double* weight, double* acc, double* mean, double* sum,
+                    KernelIsa isa = activeKernelIsa());
+void accumulateLrgb(const std::uint8_t* const* images, int n, std::size_t w, std::size_t x0, std::size_t x1,
                     const double* p, const double* weight, double* acc, double* mean, double* sum,
                     KernelIsa isa = activeKernelIsa());
 
@@ -47,10 +56,15 @@ void accumulateLrgb(const std::uint16_t* const* images, int n, std::size_t w, st
 void squaredErrorsLrgb(const double* cr, const double* cg, const double* cb, const double* decoded,
                        std::size_t stride, const double* basis, const std::uint16_t* s, std::size_t pixels,
                        double* d2, KernelIsa isa = activeKernelIsa());
+void squaredErrorsLrgb(const double* cr, const double* cg, const double* cb, const double* decoded,
+                       std::size_t stride, const double* basis, const std::uint8_t* s, std::size_t pixels,
+                       double* d2, KernelIsa isa = activeKernelIsa());
 
 // Per channel (PTM RGB, HSH): the same with model = sum over c of kLum[c] * clamp(rendered[3x +
 // c], 0, 255), the rendered model interleaved like the samples.
 void squaredErrorsRgb(const double* rendered, const std::uint16_t* s, std::size_t pixels, double* d2,
+                      KernelIsa isa = activeKernelIsa());
+void squaredErrorsRgb(const double* rendered, const std::uint8_t* s, std::size_t pixels, double* d2,
                       KernelIsa isa = activeKernelIsa());
 
 // The matrix products of the per-channel fits (PTM RGB, HSH; fit/channel_fit.h), a block of
@@ -67,6 +81,8 @@ void squaredErrorsRgb(const double* rendered, const std::uint16_t* s, std::size_
 // faster (docs/developer-guide.md, "Benchmarks").
 constexpr std::size_t kProductBlock = 192;
 void multiplyBlock(const double* m, int rows, int cols, const std::uint16_t* const* src, std::size_t offset,
+                   double* out, std::size_t outStride, KernelIsa isa = activeKernelIsa());
+void multiplyBlock(const double* m, int rows, int cols, const std::uint8_t* const* src, std::size_t offset,
                    double* out, std::size_t outStride, KernelIsa isa = activeKernelIsa());
 void multiplyBlock(const double* m, int rows, int cols, const double* const* src, std::size_t offset,
                    double* out, std::size_t outStride, KernelIsa isa = activeKernelIsa());

@@ -69,8 +69,10 @@ std::vector<double> streamFit(const ImageStack& stack, RowFitter& fitter,
       std::clamp<std::size_t>(bandBytes / bandRowBytes, 1, static_cast<std::size_t>(h)));
   const int bands = (h + band - 1) / band;
   // RGB images already in memory (the decoded stacks when they fit --memory) are read where
-  // they are, band by band as the others: no band buffer, no copy.
-  const auto* held = ch == 3 ? dynamic_cast<const MemoryImageStack*>(&stack) : nullptr;
+  // they are, band by band as the others: no band buffer, no copy, and 8-bit sources stay
+  // bytes (ImageStack::heldByteRow).
+  const bool heldBytes = ch == 3 && stack.heldByteRow(0, 0) != nullptr;
+  const bool held = heldBytes || (ch == 3 && stack.heldRow(0, 0) != nullptr);
   std::vector<std::uint16_t> buffer(held ? 0 : static_cast<std::size_t>(n) * band * rowSamples);
 
   auto readBand = [&](int y0, int y1) {
@@ -97,11 +99,17 @@ std::vector<double> streamFit(const ImageStack& stack, RowFitter& fitter,
     parallelFor(rows, chunk, threads, [&](std::size_t b, std::size_t e) {
       std::vector<double> scratch(fitter.scratchDoubles(w));
       std::vector<const std::uint16_t*> images(n);
+      std::vector<const std::uint8_t*> bytes(n);
       for (std::size_t r = b; r < e; ++r) {
-        for (int i = 0; i < n; ++i)
-          images[i] = held ? held->image(i).pixels.data() + (y0 + r) * rowSamples
-                           : buffer.data() + (static_cast<std::size_t>(i) * band + r) * rowSamples;
-        fn(RowView{images.data(), w, y0 + static_cast<int>(r)}, scratch.data());
+        const int y = y0 + static_cast<int>(r);
+        for (int i = 0; i < n; ++i) {
+          if (heldBytes) bytes[i] = stack.heldByteRow(i, y);
+          else if (held) images[i] = stack.heldRow(i, y);
+          else images[i] = buffer.data() + (static_cast<std::size_t>(i) * band + r) * rowSamples;
+          if (heldBytes ? !bytes[i] : !images[i])
+            throw Error(ErrorKind::Internal, "", kStep, "a photograph's row is not held where the others are");
+        }
+        fn(RowView{heldBytes ? nullptr : images.data(), heldBytes ? bytes.data() : nullptr, w, y}, scratch.data());
       }
     });
   };

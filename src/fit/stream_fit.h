@@ -12,13 +12,21 @@
 
 namespace surrogate::fit {
 
-// One image row of every photograph: images[i] points at width*3 interleaved RGB samples
-// (16-bit; grey stacks are expanded to RGB by the driver).
+// One image row of every photograph: width*3 interleaved RGB samples each (grey stacks are
+// expanded to RGB by the driver), as 16-bit samples (images) or, when the stack holds 8-bit
+// sources in memory, as the bytes themselves (bytes; b stands for the 16-bit value 257 b). One of
+// the two is null. withSamples(row, f) calls f with whichever the row has.
 struct RowView {
   const std::uint16_t* const* images;
+  const std::uint8_t* const* bytes;
   int width;
   int y;
 };
+
+template <typename F>
+decltype(auto) withSamples(const RowView& row, F&& f) {
+  return row.bytes ? f(row.bytes) : f(row.images);
+}
 
 class RowFitter {
  public:

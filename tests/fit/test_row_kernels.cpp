@@ -268,3 +268,64 @@ TEST_CASE("the block products add every column in order from zero, in every vari
     }
   }
 }
+
+TEST_CASE("every kernel gives the same bits for bytes as for their 16-bit values 257 b, in every variant") {
+  // Photographs of 8-bit sources held as bytes (stream_fit.h RowView::bytes): the kernels read
+  // them as the 16-bit values readRows would give, which the tests above check against the
+  // formulas.
+  const int n = 7;
+  const std::size_t w = 403;  // two whole product blocks of samples, ragged ends everywhere
+  std::mt19937 random(17);
+  std::uniform_int_distribution<int> byte(0, 255);
+  std::vector<std::vector<std::uint8_t>> bytes(n, std::vector<std::uint8_t>(3 * w));
+  std::vector<std::vector<std::uint16_t>> wide(n, std::vector<std::uint16_t>(3 * w));
+  std::vector<const std::uint8_t*> bytePointers;
+  std::vector<const std::uint16_t*> widePointers;
+  for (int i = 0; i < n; ++i) {
+    for (std::size_t j = 0; j < 3 * w; ++j) {
+      bytes[i][j] = static_cast<std::uint8_t>(j < 6 ? (i % 2 ? 255 : 0) : byte(random));  // both ends of the range
+      wide[i][j] = static_cast<std::uint16_t>(bytes[i][j] * 257);
+    }
+    bytePointers.push_back(bytes[i].data());
+    widePointers.push_back(wide[i].data());
+  }
+  const Row model(w, 23);
+  std::uniform_real_distribution<double> coefficient(-0.01, 0.01);
+  std::vector<double> p(6 * n), weight(n), decoded(6 * w);
+  for (double& v : p) v = coefficient(random);
+  for (int i = 0; i < n; ++i) weight[i] = i == 2 ? 0.0 : 0.001 * (i + 1);
+  for (double& v : decoded) v = coefficient(random) * 1e6;
+  const double basis[6] = {0.31, -0.27, 0.093, 0.5, -0.61, 1.0};
+  std::vector<double> planes(3 * w);
+  for (std::size_t j = 0; j < planes.size(); ++j) planes[j] = static_cast<double>(byte(random));
+
+  for (const KernelIsa isa : variants()) {
+    INFO("variant " << name(isa));
+    std::vector<double> fromBytes(w, -1), fromWide(w, -1);
+    squaredErrorsRgb(model.model.data(), bytes[3].data(), w, fromBytes.data(), isa);
+    squaredErrorsRgb(model.model.data(), wide[3].data(), w, fromWide.data(), isa);
+    CHECK(sameBits(fromBytes, fromWide));
+
+    squaredErrorsLrgb(planes.data(), planes.data() + w, planes.data() + 2 * w, decoded.data(), w, basis,
+                      bytes[4].data(), w, fromBytes.data(), isa);
+    squaredErrorsLrgb(planes.data(), planes.data() + w, planes.data() + 2 * w, decoded.data(), w, basis,
+                      wide[4].data(), w, fromWide.data(), isa);
+    CHECK(sameBits(fromBytes, fromWide));
+
+    std::vector<double> accBytes(6 * w, 0.5), meanBytes(3 * w, 0.25), accWide = accBytes, meanWide = meanBytes,
+                        scratch(w);
+    accumulateLrgb(bytePointers.data(), n, w, 5, w - 3, p.data(), weight.data(), accBytes.data(), meanBytes.data(),
+                   scratch.data(), isa);
+    accumulateLrgb(widePointers.data(), n, w, 5, w - 3, p.data(), weight.data(), accWide.data(), meanWide.data(),
+                   scratch.data(), isa);
+    CHECK(sameBits(accBytes, accWide));
+    CHECK(sameBits(meanBytes, meanWide));
+
+    for (const std::size_t offset : {std::size_t(0), std::size_t(3 * w - kProductBlock)}) {
+      std::vector<double> productBytes(6 * kProductBlock), productWide(6 * kProductBlock);
+      multiplyBlock(p.data(), 6, n, bytePointers.data(), offset, productBytes.data(), kProductBlock, isa);
+      multiplyBlock(p.data(), 6, n, widePointers.data(), offset, productWide.data(), kProductBlock, isa);
+      CHECK(sameBits(productBytes, productWide));
+    }
+  }
+}

@@ -2,7 +2,12 @@
 
 #include <algorithm>
 
+#include <cmath>
+#include <cstring>
+#include <random>
+
 #include "core/parallel.h"
+#include "fit/fit.h"
 #include "pipeline/decoded_stack.h"
 
 using namespace surrogate;
@@ -59,6 +64,20 @@ TEST_CASE("a DecodedStack gives 8-bit images widened by 257 and 16-bit ones as s
     CHECK(std::equal(stored.begin(), stored.end(), narrowImage(3).begin() + 5 * row));
     CHECK(narrow.transfer() == Transfer::Srgb);
     CHECK(wide.transfer() == Transfer::Linear);
+    // Rows held where they are: bytes for 8-bit images, 16-bit samples for the others, in
+    // memory only.
+    const bool memory = placement == DecodedStack::Placement::Memory;
+    CHECK(narrow.heldRow(1, 4) == nullptr);
+    CHECK(wide.heldByteRow(1, 4) == nullptr);
+    if (memory) {
+      REQUIRE(narrow.heldByteRow(1, 4) != nullptr);
+      REQUIRE(wide.heldRow(1, 4) != nullptr);
+      CHECK(std::equal(narrow.heldByteRow(1, 4), narrow.heldByteRow(1, 4) + row, narrowImage(1).begin() + 4 * row));
+      CHECK(std::equal(wide.heldRow(1, 4), wide.heldRow(1, 4) + row, wideImage(1).begin() + 4 * row));
+    } else {
+      CHECK(narrow.heldByteRow(1, 4) == nullptr);
+      CHECK(wide.heldRow(1, 4) == nullptr);
+    }
     // Misuse is an internal error, not a silent wrong read.
     CHECK_THROWS(narrow.readRows(0, 20, 24, std::vector<std::uint16_t>(row * 4).data()));
     CHECK_THROWS(narrow.store(0, wideImage(0)));
@@ -102,4 +121,73 @@ TEST_CASE("a DecodedStack in memory is written in place through its slots, one i
   CHECK_THROWS(spilled.readSamples(0, 0, 1, stored.data()));  // never stored
   spilled.store(2, narrowImage(2));
   CHECK(spilled.heldSamples(2, 0, kHeight) == nullptr);  // in the file: read it with readSamples
+}
+
+namespace {
+// The bytes of a model's scales or biases, to compare models whole.
+template <typename Values>
+void appendBytes(const Values& values, std::vector<std::uint8_t>* out) {
+  const auto* bytes = reinterpret_cast<const std::uint8_t*>(values.data());
+  out->insert(out->end(), bytes, bytes + values.size() * sizeof(values[0]));
+}
+}  // namespace
+
+TEST_CASE("the fits give the same model from bytes held in memory, from a stack in a file and from 16-bit images") {
+  // 211 pixels a row: three whole blocks of the per-channel products and a ragged end.
+  constexpr int n = 12, w = 211, h = 9;
+  std::mt19937 random(5);
+  std::uniform_int_distribution<int> byte(0, 255);
+  std::vector<std::vector<std::uint8_t>> images(n, std::vector<std::uint8_t>(std::size_t(w) * h * 3));
+  for (auto& image : images)
+    for (auto& b : image) b = static_cast<std::uint8_t>(byte(random));
+  std::vector<std::array<double, 3>> lights;
+  for (int i = 0; i < n; ++i) {
+    const double azimuth = 2 * M_PI * i / n, elevation = (30.0 + 20.0 * (i % 3)) * M_PI / 180;
+    lights.push_back({std::cos(elevation) * std::cos(azimuth), std::cos(elevation) * std::sin(azimuth), std::sin(elevation)});
+  }
+  const DecodedStack::Format format{w, h, 3, 1, Transfer::Srgb};
+  DecodedStack held(n, format, DecodedStack::Placement::Memory);
+  DecodedStack spilled(n, format, DecodedStack::Placement::TemporaryFile);
+  std::vector<Image> widened;
+  for (int i = 0; i < n; ++i) {
+    held.store(i, images[i]);
+    spilled.store(i, images[i]);
+    widened.push_back(widen(images[i].data(), w, h, 3, Transfer::Srgb));
+  }
+  const MemoryImageStack wide(std::move(widened));
+  REQUIRE(held.heldByteRow(0, 0) != nullptr);
+  REQUIRE(spilled.heldByteRow(0, 0) == nullptr);
+  REQUIRE(wide.heldRow(0, 0) != nullptr);
+
+  for (const fit::Basis basis : {fit::Basis::PtmLrgb, fit::Basis::PtmRgb, fit::Basis::Hsh2, fit::Basis::Hsh3}) {
+    INFO("basis " << fit::basisName(basis));
+    auto fitted = [&](const ImageStack& stack, int threads, fit::FitStatistics* stats) {
+      fit::FitOptions options;
+      options.basis = basis;
+      options.threads = threads;
+      if (basis == fit::Basis::PtmLrgb || basis == fit::Basis::PtmRgb) {
+        const formats::PtmFile ptm = fit::fitPtm(stack, lights, options, stats);
+        std::vector<std::uint8_t> out = ptm.coefficients;
+        out.insert(out.end(), ptm.rgb.begin(), ptm.rgb.end());
+        appendBytes(ptm.scale, &out);
+        appendBytes(ptm.bias, &out);
+        return out;
+      }
+      const formats::HshFile hsh = fit::fitHsh(stack, lights, options, stats);
+      std::vector<std::uint8_t> out = hsh.coefficients;
+      appendBytes(hsh.scale, &out);
+      appendBytes(hsh.bias, &out);
+      return out;
+    };
+    fit::FitStatistics fromWide, fromHeld, fromFile, fromHeldOneThread;
+    const std::vector<std::uint8_t> reference = fitted(wide, 2, &fromWide);
+    CHECK(fitted(held, 2, &fromHeld) == reference);
+    CHECK(fitted(spilled, 2, &fromFile) == reference);
+    CHECK(fitted(held, 1, &fromHeldOneThread) == reference);
+    for (const fit::FitStatistics* stats : {&fromHeld, &fromFile, &fromHeldOneThread}) {
+      CHECK(std::memcmp(&stats->rmse, &fromWide.rmse, sizeof(double)) == 0);
+      CHECK(stats->perImageRmse == fromWide.perImageRmse);
+    }
+    CHECK(fromWide.rmse > 0);
+  }
 }
