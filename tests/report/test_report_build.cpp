@@ -4,6 +4,7 @@
 
 #include <map>
 #include <memory>
+#include <tuple>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
@@ -222,7 +223,7 @@ TEST_CASE("the report shows lights, pictures, relighting, provenance and camera 
   CHECK(r.html.find("href=\"http") == std::string::npos);
 }
 
-TEST_CASE("the page is byte-identical whether its pictures are made on 1 or 2 threads") {
+TEST_CASE("the page is byte-identical whether its pictures and models are made on 1 or 2 threads") {
   // Pictures that differ from each other (a gradient per file), so that a picture shown in
   // another's place would change the page.
   const auto gradient = [](int width, int height, int seed) {
@@ -233,11 +234,34 @@ TEST_CASE("the page is byte-identical whether its pictures are made on 1 or 2 th
     cv::imencode(".png", m, out);
     return std::string(out.begin(), out.end());
   };
-  MemorySource source(sampleCarrier());
+  // Three models, made at once on two threads: an HSH fit and a damaged PTM besides the LRGB
+  // one; the page keeps them in carrier order.
+  carrier::Carrier c = sampleCarrier();
+  for (const auto& [basis, path, format] :
+       {std::tuple<std::string, std::string, std::string>{"hsh2", "finished-files/hsh2.rti", "RTI_HSH"},
+        {"ptm-rgb", "finished-files/ptm-rgb.ptm", "PTM_FORMAT_RGB"}}) {
+    carrier::Step& fit = c.addStep("RtiFit", "1");
+    fit.setParam("basis", basis);
+    carrier::Result r;
+    r.step = fit.id;
+    r.add("output").set("file", c.putFile(output(path, "result", format))).set("kind", basis);
+    c.data.push_back(r);
+  }
+  formats::HshFile hsh;
+  hsh.width = 10;
+  hsh.height = 4;
+  hsh.terms = 4;
+  hsh.scale.assign(4, 0.01f);
+  hsh.bias.assign(4, 0.5f);
+  hsh.coefficients.resize(hsh.texels() * 3 * 4);
+  for (std::size_t k = 0; k < hsh.coefficients.size(); ++k) hsh.coefficients[k] = static_cast<std::uint8_t>(k * 7);
+  MemorySource source(c);
   source.files["assembly-files/spheres.png"] = gradient(1600, 1200, 1);
   source.files["finished-files/normals.png"] = gradient(900, 600, 2);
   source.files["finished-files/albedo.png"] = gradient(300, 200, 3);
   source.files["finished-files/ptm-lrgb.ptm"] = smallPtm();
+  source.files["finished-files/hsh2.rti"] = formats::serializeRti(hsh);
+  source.files["finished-files/ptm-rgb.ptm"] = smallPtm().substr(0, 40);  // cut short
   ReportOptions options;
   options.generatedAt = "2026-02-03T04:05:06Z";
   options.threads = 1;
@@ -247,6 +271,11 @@ TEST_CASE("the page is byte-identical whether its pictures are made on 1 or 2 th
   CHECK(one.picturesEmbedded == 3);
   CHECK(two.picturesEmbedded == 3);
   CHECK(one.html == two.html);
+  const std::size_t lrgb = one.html.find("\"basis\":\"ptm-lrgb\""), hsh2 = one.html.find("\"basis\":\"hsh2\"");
+  REQUIRE(lrgb != std::string::npos);
+  REQUIRE(hsh2 != std::string::npos);
+  CHECK(lrgb < hsh2);
+  CHECK_THAT(one.html, Catch::Contains("The model cannot be shown"));
   // In carrier order: the overlay (detection), then normals and albedo (results).
   const std::size_t overlay = one.html.find("(1600\u00d71200"), normals = one.html.find("(900\u00d7600"),
                     albedo = one.html.find("(300\u00d7200");
