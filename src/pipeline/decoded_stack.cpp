@@ -160,12 +160,6 @@ const std::uint8_t* DecodedStack::heldSamples(int index, int y0, int y1) const {
   return storedImage(index) + rowBytes() * y0;
 }
 
-const std::uint16_t* DecodedStack::heldRow(int index, int y) const {
-  if (format_.bytesPerSample != 2) return nullptr;
-  // 16-bit samples in the machine's byte order, at an even offset of a block from new[].
-  return reinterpret_cast<const std::uint16_t*>(heldSamples(index, y, y + 1));
-}
-
 const std::uint8_t* DecodedStack::heldByteRow(int index, int y) const {
   return format_.bytesPerSample == 1 ? heldSamples(index, y, y + 1) : nullptr;
 }

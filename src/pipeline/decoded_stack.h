@@ -74,8 +74,8 @@ class DecodedStack : public ImageStack {
   int channels() const override { return format_.channels; }
   Transfer transfer() const override { return format_.transfer; }
   void readRows(int index, int y0, int y1, std::uint16_t* out) const override;
-  // In memory, the stored row: heldRow for 16-bit samples, heldByteRow for bytes.
-  const std::uint16_t* heldRow(int index, int y) const override;
+  // In memory, a stored row of bytes (8-bit sources). 16-bit samples are not given in place
+  // (heldRow stays nullptr): the block holds bytes, which readRows copies out as 16-bit values.
   const std::uint8_t* heldByteRow(int index, int y) const override;
   // Rows [y0, y1) of image `index` as stored: (y1 - y0) * width * channels samples of
   // bytesPerSample bytes each.

@@ -64,19 +64,16 @@ TEST_CASE("a DecodedStack gives 8-bit images widened by 257 and 16-bit ones as s
     CHECK(std::equal(stored.begin(), stored.end(), narrowImage(3).begin() + 5 * row));
     CHECK(narrow.transfer() == Transfer::Srgb);
     CHECK(wide.transfer() == Transfer::Linear);
-    // Rows held where they are: bytes for 8-bit images, 16-bit samples for the others, in
-    // memory only.
+    // Rows of bytes held where they are, in memory only; 16-bit rows are read as copies.
     const bool memory = placement == DecodedStack::Placement::Memory;
     CHECK(narrow.heldRow(1, 4) == nullptr);
     CHECK(wide.heldByteRow(1, 4) == nullptr);
+    CHECK(wide.heldRow(1, 4) == nullptr);
     if (memory) {
       REQUIRE(narrow.heldByteRow(1, 4) != nullptr);
-      REQUIRE(wide.heldRow(1, 4) != nullptr);
       CHECK(std::equal(narrow.heldByteRow(1, 4), narrow.heldByteRow(1, 4) + row, narrowImage(1).begin() + 4 * row));
-      CHECK(std::equal(wide.heldRow(1, 4), wide.heldRow(1, 4) + row, wideImage(1).begin() + 4 * row));
     } else {
       CHECK(narrow.heldByteRow(1, 4) == nullptr);
-      CHECK(wide.heldRow(1, 4) == nullptr);
     }
     // Misuse is an internal error, not a silent wrong read.
     CHECK_THROWS(narrow.readRows(0, 20, 24, std::vector<std::uint16_t>(row * 4).data()));
