@@ -56,6 +56,19 @@ std::string smallPtm() {
   return formats::serializePtm(ptm);
 }
 
+// An HSH of order 2 whose bytes differ from texel to texel, as an .rti file.
+std::string smallHsh(int width, int height) {
+  formats::HshFile hsh;
+  hsh.width = width;
+  hsh.height = height;
+  hsh.terms = 4;
+  hsh.scale.assign(4, 0.01f);
+  hsh.bias.assign(4, 0.5f);
+  hsh.coefficients.resize(hsh.texels() * 3 * 4);
+  for (std::size_t k = 0; k < hsh.coefficients.size(); ++k) hsh.coefficients[k] = static_cast<std::uint8_t>(k * 7);
+  return formats::serializeRti(hsh);
+}
+
 carrier::FileRecord output(const std::string& path, const std::string& role, const std::string& format) {
   carrier::FileRecord f;
   f.path = path;
@@ -247,20 +260,12 @@ TEST_CASE("the page is byte-identical whether its pictures and models are made o
     r.add("output").set("file", c.putFile(output(path, "result", format))).set("kind", basis);
     c.data.push_back(r);
   }
-  formats::HshFile hsh;
-  hsh.width = 10;
-  hsh.height = 4;
-  hsh.terms = 4;
-  hsh.scale.assign(4, 0.01f);
-  hsh.bias.assign(4, 0.5f);
-  hsh.coefficients.resize(hsh.texels() * 3 * 4);
-  for (std::size_t k = 0; k < hsh.coefficients.size(); ++k) hsh.coefficients[k] = static_cast<std::uint8_t>(k * 7);
   MemorySource source(c);
   source.files["assembly-files/spheres.png"] = gradient(1600, 1200, 1);
   source.files["finished-files/normals.png"] = gradient(900, 600, 2);
   source.files["finished-files/albedo.png"] = gradient(300, 200, 3);
   source.files["finished-files/ptm-lrgb.ptm"] = smallPtm();
-  source.files["finished-files/hsh2.rti"] = formats::serializeRti(hsh);
+  source.files["finished-files/hsh2.rti"] = smallHsh(10, 4);
   source.files["finished-files/ptm-rgb.ptm"] = smallPtm().substr(0, 40);  // cut short
   ReportOptions options;
   options.generatedAt = "2026-02-03T04:05:06Z";
@@ -440,14 +445,7 @@ TEST_CASE("an HSH-only carrier is relightable in the page") {
   fr.add("output").set("file", id).set("kind", "hsh2");
   c.data.push_back(fr);
   MemorySource source(std::move(c));
-  formats::HshFile hsh;
-  hsh.width = 3;
-  hsh.height = 2;
-  hsh.terms = 4;
-  hsh.scale = {1, 1, 1, 1};
-  hsh.bias = {0, 0, 0, 0};
-  hsh.coefficients.assign(hsh.texels() * 3 * 4, 100);
-  source.files["finished-files/hsh2.rti"] = formats::serializeRti(hsh);
+  source.files["finished-files/hsh2.rti"] = smallHsh(3, 2);
   const Report r = buildReport(source.carrier(), source, ReportOptions());
   CHECK(r.relightable);
   CHECK_THAT(r.html, Catch::Contains("\"model\":\"hsh\",\"basis\":\"hsh2\""));
