@@ -13,7 +13,9 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
+#include <vector>
 
 #include "carrier/carrier.h"
 #include "core/error.h"
@@ -69,6 +71,7 @@ class Context {
   template <typename T>
   void put(const std::string& key, std::shared_ptr<T> value) {
     blackboard_[key] = std::move(value);
+    released_.erase(key);
   }
   // The cached value. Error(Input) naming the key when no earlier step put it (a process list
   // in the wrong order, e.g. fitting before decoding); Error(Internal) naming the key when it
@@ -76,6 +79,10 @@ class Context {
   template <typename T>
   std::shared_ptr<T> get(const std::string& key) const {
     auto it = blackboard_.find(key);
+    if (it == blackboard_.end() && released_.count(key))
+      throw Error(ErrorKind::Internal, key, "pipeline",
+                  "a step reads shared data its stage does not list in StageInfo::reads, and the "
+                  "runner has let go of it; this is a bug in Surrogate, please report it");
     if (it == blackboard_.end())
       throw Error(ErrorKind::Input, "carrier", "pipeline",
                   "a step needs \"" + key + "\", which no earlier step of the process list "
@@ -86,6 +93,16 @@ class Context {
                 "that put it there; this is a bug in Surrogate, please report it");
   }
   bool has(const std::string& key) const { return blackboard_.count(key) != 0; }
+  // Lets go of the value under `key` (freed once nothing else holds it); the runner does this
+  // when no later step reads it.
+  void release(const std::string& key) {
+    if (blackboard_.erase(key)) released_.insert(key);
+  }
+  std::vector<std::string> keys() const {
+    std::vector<std::string> out;
+    for (const auto& [key, value] : blackboard_) out.push_back(key);
+    return out;
+  }
 
   void progress(const std::string& label, double fraction) const {
     if (settings.progress) settings.progress(label, fraction);
@@ -93,6 +110,7 @@ class Context {
 
  private:
   std::map<std::string, std::any> blackboard_;
+  std::set<std::string> released_;  // keys let go of, for get's message
 };
 
 }  // namespace surrogate::pipeline

@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <exception>
 #include <mutex>
+#include <set>
+#include <vector>
 
 #include "carrier/carrier.h"
 #include "pipeline/stage.h"
@@ -77,6 +79,24 @@ class ProgressRouting {
   std::function<void(const std::string&, double)> saved_;
 };
 
+// Lets go of every value of the blackboard that no step of `later` reads; nothing while one
+// of them may read anything (a stage without StageInfo::reads, or a step whose parameters do
+// not say: they are refused when that step runs, with the step named).
+void releaseUnread(Context& context, const std::vector<carrier::Step>& later) {
+  std::set<std::string> read;
+  for (const carrier::Step& step : later) {
+    const StageInfo* info = StageRegistry::instance().info(step.component);
+    if (!info || !info->reads) return;
+    try {
+      for (std::string& key : info->reads(step)) read.insert(std::move(key));
+    } catch (const Error&) {
+      return;
+    }
+  }
+  for (const std::string& key : context.keys())
+    if (!read.count(key)) context.release(key);
+}
+
 }  // namespace
 
 void runProcess(Context& context, const fs::path& carrierPath, std::size_t steps) {
@@ -90,7 +110,8 @@ void runProcess(Context& context, const fs::path& carrierPath, std::size_t steps
   std::vector<carrier::Step> list = c.process;
   if (steps < list.size()) list.resize(steps);
   const auto userProgress = context.settings.progress;
-  for (const carrier::Step& step : list) {
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    const carrier::Step& step = list[k];
     StepProgress progress(userProgress);
     const ProgressRouting routing(context.settings, progress);
     std::unique_ptr<Stage> stage = StageRegistry::instance().create(step.component);
@@ -130,6 +151,7 @@ void runProcess(Context& context, const fs::path& carrierPath, std::size_t steps
     std::snprintf(seconds, sizeof seconds, "%.3f", c.data.back().seconds);
     c.addLog("timing", step.id, step.component + " completed in " + seconds + " s");
     save();
+    releaseUnread(context, std::vector<carrier::Step>(list.begin() + k + 1, list.end()));
   }
 }
 

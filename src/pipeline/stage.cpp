@@ -16,6 +16,10 @@ StageRegistry& StageRegistry::instance() {
   return registry;
 }
 
+std::function<std::vector<std::string>(const carrier::Step&)> alwaysReads(std::vector<std::string> keys) {
+  return [keys = std::move(keys)](const carrier::Step&) { return keys; };
+}
+
 void StageRegistry::add(StageInfo info, Factory factory) {
   if (has(info.component))
     throw Error(ErrorKind::Internal, info.component, "pipeline", "is registered twice");

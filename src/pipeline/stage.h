@@ -75,7 +75,15 @@ struct StageInfo {
   // it runs; a '*' stands for any text (one overview per sphere found). `surrogate run`
   // refuses a plan that would write over prior work (stages/prior_work.h). Empty: no file.
   std::function<std::vector<std::string>(const carrier::Step& step)> outputs;
+  // The shared data a step of this stage reads (Context::get keys), known from the step before
+  // it runs. The runner lets go of what no later step reads (runner.h), so that the decoded
+  // photographs do not outlive the last step that needs them. Empty: the stage may read
+  // anything, and nothing is let go while a step of it is still to come.
+  std::function<std::vector<std::string>(const carrier::Step& step)> reads;
 };
+
+// A `reads` for a stage that always reads the same keys.
+std::function<std::vector<std::string>(const carrier::Step&)> alwaysReads(std::vector<std::string> keys);
 
 // `info` with the defaults and check of an options struct that has toParameters() and
 // fromParameters(const Parameters&).

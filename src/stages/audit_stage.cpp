@@ -124,6 +124,7 @@ pipeline::StageInfo AuditStage::info() {
   info.outputs = [](const carrier::Step&) {
     return std::vector<std::string>{std::string(kDifferenceFolder) + "/*-difference.png"};
   };
+  info.reads = pipeline::alwaysReads({kDecodedRgbStack, kRgbStack, kLights, kInputImages});
   return info;
 }
 

@@ -68,10 +68,12 @@ pipeline::StageInfo DecodeStage::info() {
   // library); images whose decoder reports damaged data refused unless accepted.
   // 3: 8-bit sources kept at one byte a sample, and pixelSha256 taken over those bytes (it was
   // over the samples widened to 16 bits); the pixels the later steps read are unchanged.
-  return pipeline::withOptions<image::RawDecodeSettings>(
+  pipeline::StageInfo info = pipeline::withOptions<image::RawDecodeSettings>(
       {kComponent, "3",
        "Decode each image once (LibRaw for raw/DNG; libjpeg, libpng, libtiff for JPEG, PNG, TIFF)",
        pipeline::PlanSlot::Decode});
+  info.reads = pipeline::alwaysReads({kInputImages});
+  return info;
 }
 
 void DecodeStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier::Result& result) {

@@ -146,6 +146,7 @@ pipeline::StageInfo RtiFitStage::info() {
     const RtiFitOptions o = RtiFitOptions::fromParameters(parametersOf(step));
     return std::vector<std::string>{o.output.empty() ? defaultFitOutput(fit::basisName(o.fit.basis)) : o.output};
   };
+  info.reads = pipeline::alwaysReads({kRgbStack, kLights, kInputImages});
   return info;
 }
 
@@ -246,6 +247,9 @@ pipeline::StageInfo DerivedMapsStage::info() {
     std::vector<std::string> out = {finished(kNormalsFile), finished(kAlbedoFile)};
     for (const Preview& p : kPreviews) out.push_back(finished(p.name));
     return out;
+  };
+  info.reads = [](const carrier::Step& step) {
+    return std::vector<std::string>{modelKey(DerivedMapsOptions::fromParameters(parametersOf(step)).model)};
   };
   return info;
 }

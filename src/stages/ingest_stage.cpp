@@ -381,8 +381,10 @@ pipeline::StageInfo IngestStage::info() {
   // 2: other files of the capture recorded (role "other"), system files left out, links
   // refused, the dome .lp chosen by the "lp" parameter, recorded originals compared.
   // Its parameters (source, lp) come from the request, not from defaults (stages/plan.cpp).
-  return {kComponent, "2", "Read the capture folder, hash every file, read EXIF/XMP",
-          pipeline::PlanSlot::Ingest};
+  pipeline::StageInfo info{kComponent, "2", "Read the capture folder, hash every file, read EXIF/XMP",
+                           pipeline::PlanSlot::Ingest};
+  info.reads = pipeline::alwaysReads({});
+  return info;
 }
 
 void IngestStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier::Result& result) {

@@ -87,6 +87,7 @@ pipeline::StageInfo SphereDetectionStage::info() {
        "the gradient, sub-pixel circle fit",
        pipeline::PlanSlot::LightsFromSpheres});
   info.outputs = [](const carrier::Step&) { return std::vector<std::string>{kSphereOverlay}; };
+  info.reads = pipeline::alwaysReads({kLuminanceStack});
   return info;
 }
 
@@ -190,6 +191,7 @@ pipeline::StageInfo HighlightDetectionStage::info() {
        "components, value-weighted centroid nearest the sphere centre",
        pipeline::PlanSlot::LightsFromSpheres});
   info.outputs = [](const carrier::Step&) { return std::vector<std::string>{highlightOverview("*")}; };
+  info.reads = pipeline::alwaysReads({kLuminanceStack, kInputImages, kSpheres, kStackMedian});
   return info;
 }
 
@@ -439,6 +441,7 @@ pipeline::StageInfo LightDirectionsStage::info() {
       {kComponent, "3", "Light direction of each image from its highlights by the law of reflection",
        pipeline::PlanSlot::LightsFromSpheres});
   info.outputs = lightsFileOutput;
+  info.reads = pipeline::alwaysReads({kLuminanceStack, kInputImages, kSpheres, kHighlights});
   return info;
 }
 
@@ -530,6 +533,7 @@ pipeline::StageInfo LightsFromFileStage::info() {
   pipeline::StageInfo info = pipeline::withOptions<pipeline::NoOptions>(
       {kComponent, "3", "Light directions given by the capture's .lp file", pipeline::PlanSlot::LightsFromFile});
   info.outputs = lightsFileOutput;
+  info.reads = pipeline::alwaysReads({kInputImages});
   return info;
 }
 

@@ -93,11 +93,13 @@ std::vector<std::array<double, 3>> regionMeans(const ImageStack& stack, const Pi
 // ---- WhiteBalance ---------------------------------------------------------------------------
 
 pipeline::StageInfo WhiteBalanceStage::info() {
-  return pipeline::withOptions<WhiteBalanceOptions>(
+  pipeline::StageInfo info = pipeline::withOptions<WhiteBalanceOptions>(
       {kComponent, "1",
        "White balance of the images the fit reads: per-channel gains in linear light (as "
        "shot, from a grey region, or given), and the encoding the fit reads (sRGB or linear)",
        pipeline::PlanSlot::Preprocessing});
+  info.reads = pipeline::alwaysReads({kRgbStack, kInputImages});
+  return info;
 }
 
 void WhiteBalanceStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier::Result& result) {
@@ -153,11 +155,13 @@ void WhiteBalanceStage::run(const carrier::Step& step, pipeline::Context& ctx, c
 
 pipeline::StageInfo CropStage::info() {
   // No defaults: the plan gives every parameter (a crop has no rectangle by default).
-  return pipeline::checkedBy<CropOptions>(
+  pipeline::StageInfo info = pipeline::checkedBy<CropOptions>(
       {kComponent, "1",
        "Crop the images the fit reads to a rectangle (given, or the largest clear of the "
        "spheres); light estimation keeps the full frame",
        pipeline::PlanSlot::Preprocessing});
+  info.reads = pipeline::alwaysReads({kRgbStack, kLuminanceStack});
+  return info;
 }
 
 void CropStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier::Result& result) {
@@ -214,11 +218,13 @@ void CropStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier::
 
 pipeline::StageInfo ResizeStage::info() {
   // No defaults: the plan gives every parameter (a factor or a size).
-  return pipeline::checkedBy<ResizeOptions>(
+  pipeline::StageInfo info = pipeline::checkedBy<ResizeOptions>(
       {kComponent, "1",
        "Reduce the images the fit reads: area-weighted mean in linear light, exact integer "
        "weights",
        pipeline::PlanSlot::Preprocessing});
+  info.reads = pipeline::alwaysReads({kRgbStack});
+  return info;
 }
 
 void ResizeStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier::Result& result) {

@@ -110,6 +110,7 @@ pipeline::StageInfo WebCopyStage::info() {
   info.outputs = [](const carrier::Step& step) {
     return std::vector<std::string>{webCopyFolder(WebCopyOptions::fromParameters(parametersOf(step)).model) + "/*"};
   };
+  info.reads = pipeline::alwaysReads({});  // the model's file, not the fit's object
   return info;
 }
 

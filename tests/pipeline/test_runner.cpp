@@ -50,6 +50,27 @@ class ReportingStage : public Stage {
   }
 };
 
+// A value that says when it is freed.
+struct Tracked {
+  explicit Tracked(bool* freed) : freed(freed) {}
+  ~Tracked() { *freed = true; }
+  bool* freed;
+};
+
+// Puts a Tracked under "tracked" (parameter "put"), or reads it and records whether it was
+// there; declares that it reads "tracked" only when its "reads" parameter is "yes".
+bool gTrackedFreed = false;
+class TrackingStage : public Stage {
+ public:
+  std::string component() const override { return "TestTracking"; }
+  std::string version() const override { return "1"; }
+  void run(const carrier::Step& step, Context& ctx, carrier::Result& result) override {
+    result.add("value").set("name", "freedBefore").set("value", gTrackedFreed ? "yes" : "no");
+    if (step.hasParam("put")) ctx.put("tracked", std::make_shared<Tracked>(&gTrackedFreed));
+    else if (step.param("reads", "") == "yes") ctx.get<Tracked>("tracked");
+  }
+};
+
 void registerTestStages() {
   static bool done = false;
   if (done) return;
@@ -57,6 +78,11 @@ void registerTestStages() {
   StageRegistry::instance().add("TestDoubling", [] { return std::make_unique<DoublingStage>(); });
   StageRegistry::instance().add("TestFailing", [] { return std::make_unique<FailingStage>(); });
   StageRegistry::instance().add("TestReporting", [] { return std::make_unique<ReportingStage>(); });
+  StageInfo tracking("TestTracking", "1", "puts or reads a tracked value", PlanSlot::NotPlanned);
+  tracking.reads = [](const carrier::Step& step) {
+    return step.param("reads", "") == "yes" ? std::vector<std::string>{"tracked"} : std::vector<std::string>{};
+  };
+  StageRegistry::instance().add(tracking, [] { return std::make_unique<TrackingStage>(); });
 }
 
 }  // namespace
@@ -212,4 +238,47 @@ TEST_CASE("the runner ends each part of a step's progress at 100 percent, once t
       {"Reading", 0}};  // the failed step's part is not said to be done
   CHECK(seen == expected);
   CHECK(ctx.settings.progress);  // the caller's callback is back in place after the failure
+}
+
+TEST_CASE("the runner lets go of shared data after the last step that reads it, and not before") {
+  registerTestStages();
+  const auto freedBefore = [](const carrier::Carrier& c, const std::string& step) {
+    return c.findResult(step)->items[0].get("value").value_or("");
+  };
+  {
+    // put, read, read, then a step that reads nothing: freed after s3, before s4 runs.
+    carrier::Carrier c = carrier::newCarrier("release", {});
+    c.addStep("TestTracking", "1").setParam("put", "1");
+    c.addStep("TestTracking", "1").setParam("reads", "yes");
+    c.addStep("TestTracking", "1").setParam("reads", "yes");
+    c.addStep("TestTracking", "1").setParam("reads", "no");
+    gTrackedFreed = false;
+    Context ctx(fs::temp_directory_path(), c, RunSettings{});
+    runProcess(ctx, {});
+    CHECK(freedBefore(c, "s2") == "no");
+    CHECK(freedBefore(c, "s3") == "no");
+    CHECK(freedBefore(c, "s4") == "yes");
+    CHECK_FALSE(ctx.has("tracked"));
+    // A stage reading what it did not declare meets a plain internal error, not a wrong one.
+    try {
+      ctx.get<Tracked>("tracked");
+      FAIL("no error");
+    } catch (const Error& e) {
+      CHECK(e.kind() == ErrorKind::Internal);
+      CHECK_THAT(e.what(), Catch::Contains("StageInfo::reads"));
+    }
+  }
+  {
+    // A later step of a stage that does not say what it reads keeps everything until it has run.
+    carrier::Carrier c = carrier::newCarrier("release", {});
+    c.addStep("TestTracking", "1").setParam("put", "1");
+    c.addStep("TestTracking", "1").setParam("reads", "no");
+    c.addStep("TestDoubling", "1").setParam("value", "1");
+    c.addStep("TestTracking", "1").setParam("reads", "no");
+    gTrackedFreed = false;
+    Context ctx(fs::temp_directory_path(), c, RunSettings{});
+    runProcess(ctx, {});
+    CHECK(freedBefore(c, "s2") == "no");
+    CHECK(freedBefore(c, "s4") == "yes");
+  }
 }

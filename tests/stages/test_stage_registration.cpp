@@ -152,3 +152,12 @@ TEST_CASE("a bad parameter value in a recorded step is a failed step naming it, 
   }
   fs::remove_all(dir);
 }
+
+TEST_CASE("every built-in stage says what shared data it reads, so the runner can let go of the photographs", "[stages][registry]") {
+  stages::registerBuiltinStages();
+  for (const pipeline::StageInfo* info : pipeline::StageRegistry::instance().stages()) {
+    if (info->component.rfind("Test", 0) == 0) continue;  // stages registered by tests
+    INFO(info->component);
+    CHECK(static_cast<bool>(info->reads));
+  }
+}
