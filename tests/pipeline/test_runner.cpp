@@ -1,6 +1,9 @@
 #include <catch2/catch.hpp>
 
+#include <array>
 #include <filesystem>
+#include <memory>
+#include <vector>
 #include <string>
 
 #include "pipeline/context.h"
@@ -242,43 +245,38 @@ TEST_CASE("the runner ends each part of a step's progress at 100 percent, once t
 
 TEST_CASE("the runner lets go of shared data after the last step that reads it, and not before") {
   registerTestStages();
-  const auto freedBefore = [](const carrier::Carrier& c, const std::string& step) {
-    return c.findResult(step)->items[0].get("value").value_or("");
+  // Runs the steps (component, parameter, value) in order; returns, per step, whether the
+  // tracked value had been freed before it ran.
+  const auto run = [](const std::vector<std::array<std::string, 3>>& steps, carrier::Carrier* c,
+                      std::unique_ptr<Context>* ctx) {
+    *c = carrier::newCarrier("release", {});
+    for (const auto& [component, name, value] : steps) c->addStep(component, "1").setParam(name, value);
+    gTrackedFreed = false;
+    *ctx = std::make_unique<Context>(fs::temp_directory_path(), *c, RunSettings{});
+    runProcess(**ctx, {});
+    std::vector<std::string> freed;
+    for (const carrier::Step& step : c->process)
+      if (step.component == "TestTracking") freed.push_back(c->findResult(step.id)->items[0].get("value").value_or(""));
+    return freed;
   };
-  {
-    // put, read, read, then a step that reads nothing: freed after s3, before s4 runs.
-    carrier::Carrier c = carrier::newCarrier("release", {});
-    c.addStep("TestTracking", "1").setParam("put", "1");
-    c.addStep("TestTracking", "1").setParam("reads", "yes");
-    c.addStep("TestTracking", "1").setParam("reads", "yes");
-    c.addStep("TestTracking", "1").setParam("reads", "no");
-    gTrackedFreed = false;
-    Context ctx(fs::temp_directory_path(), c, RunSettings{});
-    runProcess(ctx, {});
-    CHECK(freedBefore(c, "s2") == "no");
-    CHECK(freedBefore(c, "s3") == "no");
-    CHECK(freedBefore(c, "s4") == "yes");
-    CHECK_FALSE(ctx.has("tracked"));
-    // A stage reading what it did not declare meets a plain internal error, not a wrong one.
-    try {
-      ctx.get<Tracked>("tracked");
-      FAIL("no error");
-    } catch (const Error& e) {
-      CHECK(e.kind() == ErrorKind::Internal);
-      CHECK_THAT(e.what(), Catch::Contains("StageInfo::reads"));
-    }
+  carrier::Carrier c;
+  std::unique_ptr<Context> ctx;
+  // put, read, read, then a step that reads nothing: freed after the last read, before the
+  // step after it runs.
+  CHECK(run({{{"TestTracking", "put", "1"}, {"TestTracking", "reads", "yes"}, {"TestTracking", "reads", "yes"},
+              {"TestTracking", "reads", "no"}}},
+            &c, &ctx) == std::vector<std::string>{"no", "no", "no", "yes"});
+  CHECK_FALSE(ctx->has("tracked"));
+  // A stage reading what it did not declare meets a plain internal error, not a wrong one.
+  try {
+    ctx->get<Tracked>("tracked");
+    FAIL("no error");
+  } catch (const Error& e) {
+    CHECK(e.kind() == ErrorKind::Internal);
+    CHECK_THAT(e.what(), Catch::Contains("StageInfo::reads"));
   }
-  {
-    // A later step of a stage that does not say what it reads keeps everything until it has run.
-    carrier::Carrier c = carrier::newCarrier("release", {});
-    c.addStep("TestTracking", "1").setParam("put", "1");
-    c.addStep("TestTracking", "1").setParam("reads", "no");
-    c.addStep("TestDoubling", "1").setParam("value", "1");
-    c.addStep("TestTracking", "1").setParam("reads", "no");
-    gTrackedFreed = false;
-    Context ctx(fs::temp_directory_path(), c, RunSettings{});
-    runProcess(ctx, {});
-    CHECK(freedBefore(c, "s2") == "no");
-    CHECK(freedBefore(c, "s4") == "yes");
-  }
+  // A later step of a stage that does not say what it reads keeps everything until it has run.
+  CHECK(run({{{"TestTracking", "put", "1"}, {"TestTracking", "reads", "no"}, {"TestDoubling", "value", "1"},
+              {"TestTracking", "reads", "no"}}},
+            &c, &ctx) == std::vector<std::string>{"no", "no", "yes"});
 }
