@@ -218,9 +218,8 @@ SURROGATE_AVX2_TARGET inline void pixelSumsOfEight(const std::uint8_t* s, __m256
 }
 
 // accumulateBody with the sums of eight pixels in twelve registers while every photograph is
-// added, and sixteen samples of the mean colour in four: the same operations on each value in
-// the same order. Pixels past the last whole eight, and the mean colour's samples past the last
-// whole sixteen, go through the body's loops.
+// added, then the same eight pixels' 24 samples of the mean colour in six: the same operations
+// on each value in the same order. Pixels past the last whole eight go through the body.
 template <typename Sample>
 SURROGATE_AVX2_TARGET void accumulateAvx2(const Sample* const* images, int n, std::size_t w, std::size_t x0,
                                           std::size_t x1, const double* p, const double* weight, double* acc,
@@ -245,37 +244,20 @@ SURROGATE_AVX2_TARGET void accumulateAvx2(const Sample* const* images, int n, st
       _mm256_storeu_pd(acc + k * w + x, a[k][0]);
       _mm256_storeu_pd(acc + k * w + x + 4, a[k][1]);
     }
-  }
-  std::size_t j = 3 * x0;
-  for (; j + 16 <= 3 * x1; j += 16) {
-    __m256d m[4];
-    for (int u = 0; u < 4; ++u) m[u] = _mm256_loadu_pd(mean + j + 4 * u);
+    double* m = mean + 3 * x;
+    __m256d mv[6];
+    for (int u = 0; u < 6; ++u) mv[u] = _mm256_loadu_pd(m + 4 * u);
     for (int i = 0; i < n; ++i) {
       const double wi = weight[i];
       if (wi == 0) continue;
       const __m256d wv = _mm256_set1_pd(wi);
-      __m256d v[4];
-      loadEight(images[i] + j, &v[0], &v[1]);
-      loadEight(images[i] + j + 8, &v[2], &v[3]);
-      for (int u = 0; u < 4; ++u) m[u] = _mm256_add_pd(m[u], _mm256_mul_pd(wv, v[u]));
+      __m256d v[6];
+      for (int u = 0; u < 3; ++u) loadEight(images[i] + 3 * x + 8 * u, &v[2 * u], &v[2 * u + 1]);
+      for (int u = 0; u < 6; ++u) mv[u] = _mm256_add_pd(mv[u], _mm256_mul_pd(wv, v[u]));
     }
-    for (int u = 0; u < 4; ++u) _mm256_storeu_pd(mean + j + 4 * u, m[u]);
+    for (int u = 0; u < 6; ++u) _mm256_storeu_pd(m + 4 * u, mv[u]);
   }
-  // The rest: the body's loops over what is left (pixels [x, x1) of the sums; samples [j, 3 x1)
-  // of the mean, which need not be whole pixels).
-  for (int i = 0; i < n; ++i) {
-    const Sample* s = images[i];
-    for (std::size_t t = x; t < x1; ++t)
-      sum[t] = static_cast<double>(sampleValue(s[3 * t]) + sampleValue(s[3 * t + 1]) + sampleValue(s[3 * t + 2]));
-    for (int k = 0; k < 6; ++k) {
-      const double pk = p[static_cast<std::size_t>(k) * n + i];
-      double* a = acc + k * w;
-      for (std::size_t t = x; t < x1; ++t) a[t] += pk * sum[t];
-    }
-    const double wi = weight[i];
-    if (wi != 0)
-      for (std::size_t t = j; t < 3 * x1; ++t) mean[t] += wi * sampleValue(s[t]);
-  }
+  accumulateBody(images, n, w, x, x1, p, weight, acc, mean, sum);
 }
 
 // G rows of m (G <= 4) over a whole block, eight samples at a time: 2G accumulators stay in
