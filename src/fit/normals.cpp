@@ -14,9 +14,10 @@ namespace surrogate::fit {
 
 namespace {
 
-// A normal's component -1..1 as 0..65535, rounded half away from zero.
+// A normal's component -1..1 as 0..65535, rounded half away from zero (roundClamped clamps:
+// (v + 1) / 2 outside 0..1 scales to outside 0..65535).
 std::uint16_t encodeUnit(double v) {
-  return static_cast<std::uint16_t>(detail::roundClamped(std::clamp((v + 1.0) / 2.0, 0.0, 1.0) * 65535.0, 65535.0));
+  return static_cast<std::uint16_t>(detail::roundClamped((v + 1.0) / 2.0 * 65535.0, 65535.0));
 }
 
 // An 8-bit value as a 16-bit sample: round(v) clamped to 0..255, times 257.
