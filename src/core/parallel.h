@@ -20,4 +20,10 @@ int effectiveThreads(int requested);
 void parallelFor(std::size_t n, std::size_t chunk, int threads,
                  const std::function<void(std::size_t, std::size_t)>& fn);
 
+// As parallelFor, with fn(worker, begin, end) also told which worker runs the chunk: 0 to
+// max(1, threads) - 1, each worker one thread, so scratch memory allocated once per worker
+// before the loop can be handed to every chunk that worker runs.
+void parallelForWorkers(std::size_t n, std::size_t chunk, int threads,
+                        const std::function<void(int, std::size_t, std::size_t)>& fn);
+
 }  // namespace surrogate

@@ -22,7 +22,9 @@
 // (ImageStack::heldRow, heldByteRow): then each row is read where it is, 8-bit sources as their
 // bytes, with no band buffer and no copy. The band height is the largest that keeps the band buffers
 // within 8 MiB and, with the result object (9 or 18 bytes per pixel for PTM, 3*T for HSH) and
-// the per-thread scratch, within FitOptions::memoryBudgetBytes (at least one row). The quantisation needs each
+// the per-thread scratch, within FitOptions::memoryBudgetBytes (at least one row); rows held in
+// memory go in bands of at least 1/32 of the height, the steps of the progress bar. Rows are
+// handed to the threads one at a time. The quantisation needs each
 // coefficient's range over the whole image before any byte can be written, so the fit makes
 // TWO passes: pass 1 fits every pixel and keeps the per-row minima and maxima; pass 2 fits
 // every pixel again, rounds the coefficients to float and quantises them, and measures the fit

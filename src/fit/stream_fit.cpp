@@ -12,6 +12,7 @@ namespace surrogate::fit {
 namespace {
 const char* const kStep = "fit";
 constexpr std::size_t kBandBytes = std::size_t(8) << 20;  // see streamFit
+constexpr int kHeldBands = 32;  // bands of a pass over images held in memory (see streamFit)
 }  // namespace
 
 std::vector<std::array<double, 3>> checkedLights(const ImageStack& stack,
@@ -65,14 +66,16 @@ std::vector<double> streamFit(const ImageStack& stack, RowFitter& fitter,
   // rather than 32: as fast (36 x 3000x2000, 1200x800, every basis, three paired runs) and
   // 24 MiB less at the peak.
   const std::size_t bandBytes = std::min(available, kBandBytes);
-  const int band = static_cast<int>(
-      std::clamp<std::size_t>(bandBytes / bandRowBytes, 1, static_cast<std::size_t>(h)));
-  const int bands = (h + band - 1) / band;
   // RGB images already in memory (the decoded stacks when they fit --memory) are read where
-  // they are, band by band as the others: no band buffer, no copy, and 8-bit sources stay
-  // bytes (ImageStack::heldByteRow).
+  // they are: no band buffer, no copy, and 8-bit sources stay bytes (ImageStack::heldByteRow).
   const bool heldBytes = ch == 3 && stack.heldByteRow(0, 0) != nullptr;
   const bool held = heldBytes || (ch == 3 && stack.heldRow(0, 0) != nullptr);
+  int band = static_cast<int>(std::clamp<std::size_t>(bandBytes / bandRowBytes, 1, static_cast<std::size_t>(h)));
+  // Held images need no buffer, so their bands are only the steps of the progress bar: each
+  // band ends with the workers waiting for the slowest row, and bands of a buffer's height
+  // (12 rows of 36 x 3000x2000) made 167 such waits a pass.
+  if (held) band = std::max(band, (h + kHeldBands - 1) / kHeldBands);
+  const int bands = (h + band - 1) / band;
   std::vector<std::uint16_t> buffer(held ? 0 : static_cast<std::size_t>(n) * band * rowSamples);
 
   auto readBand = [&](int y0, int y1) {
@@ -92,12 +95,20 @@ std::vector<double> streamFit(const ImageStack& stack, RowFitter& fitter,
       }
     });
   };
+  // Each worker's scratch, allocated (zeroed) at its first row of a pass and handed to its
+  // later rows: hundreds of kilobytes, which allocated and zeroed for every row cost 2 % of a fit.
+  std::vector<std::vector<double>> scratches(static_cast<std::size_t>(threads));
+  auto startPass = [&] {
+    for (auto& s : scratches) std::vector<double>().swap(s);
+  };
   // Runs fn(row, scratch) for rows [y0, y1) of the band in memory, on the workers.
   auto forRows = [&](int y0, int y1, const std::function<void(const RowView&, double*)>& fn) {
     const std::size_t rows = static_cast<std::size_t>(y1 - y0);
-    const std::size_t chunk = std::max<std::size_t>(1, rows / (4 * threads));
-    parallelFor(rows, chunk, threads, [&](std::size_t b, std::size_t e) {
-      std::vector<double> scratch(fitter.scratchDoubles(w));
+    // Rows one at a time: a row is a millisecond or more of work against one atomic increment,
+    // and the band's end waits at most one row for the slowest worker.
+    parallelForWorkers(rows, 1, threads, [&](int worker, std::size_t b, std::size_t e) {
+      std::vector<double>& scratch = scratches[static_cast<std::size_t>(worker)];
+      if (scratch.empty()) scratch.resize(fitter.scratchDoubles(w));
       std::vector<const std::uint16_t*> images(n);
       std::vector<const std::uint8_t*> bytes(n);
       for (std::size_t r = b; r < e; ++r) {
@@ -120,6 +131,7 @@ std::vector<double> streamFit(const ImageStack& stack, RowFitter& fitter,
   // Pass 1: ranges, kept per row and combined afterwards (min/max are exact in any order).
   const int r = fitter.ranges();
   std::vector<double> rowLo(static_cast<std::size_t>(h) * r), rowHi(rowLo.size());
+  startPass();
   for (int bi = 0; bi < bands; ++bi) {
     const int y0 = bi * band, y1 = std::min(h, y0 + band);
     readBand(y0, y1);
@@ -141,6 +153,7 @@ std::vector<double> streamFit(const ImageStack& stack, RowFitter& fitter,
 
   // Pass 2: quantise and measure; a single band is still in memory and is not read again.
   std::vector<double> rowErr(static_cast<std::size_t>(h) * n);
+  startPass();
   for (int bi = 0; bi < bands; ++bi) {
     const int y0 = bi * band, y1 = std::min(h, y0 + band);
     if (bands > 1) readBand(y0, y1);
