@@ -40,25 +40,25 @@ const ImageStack& checked(const ImageStack* stack) {
 }
 
 // The block means of full-resolution rows [y0, y1) (whole blocks of `factor` rows, the last
-// one possibly partial) as coarse rows: each the rounded mean of its block's pixels.
+// one possibly partial) as coarse rows: each the rounded mean of its block's pixels. The
+// block's rows are added column by column first (a loop the compiler vectorises), then each
+// block's columns: integer sums, the same in any order.
 void reduceRows(const std::uint16_t* rows, int y0, int y1, int width, int factor, std::uint16_t* out) {
   const int coarseWidth = (width + factor - 1) / factor;
-  std::vector<std::uint64_t> sums(coarseWidth);
+  std::vector<std::uint32_t> columns(width);  // at most factor * 65535 each
   for (int by = y0; by < y1; by += factor) {
     const int blockRows = std::min(factor, y1 - by);
-    std::fill(sums.begin(), sums.end(), 0);
+    std::fill(columns.begin(), columns.end(), 0);
     for (int y = by; y < by + blockRows; ++y) {
       const std::uint16_t* row = rows + std::size_t(y - y0) * width;
-      for (int cx = 0; cx < coarseWidth; ++cx) {
-        const int x1 = std::min(width, (cx + 1) * factor);
-        std::uint64_t s = 0;
-        for (int x = cx * factor; x < x1; ++x) s += row[x];
-        sums[cx] += s;
-      }
+      for (int x = 0; x < width; ++x) columns[x] += row[x];
     }
     for (int cx = 0; cx < coarseWidth; ++cx) {
-      const std::uint64_t count = std::uint64_t(blockRows) * (std::min(width, (cx + 1) * factor) - cx * factor);
-      *out++ = static_cast<std::uint16_t>((sums[cx] + count / 2) / count);
+      const int x0 = cx * factor, x1 = std::min(width, x0 + factor);
+      std::uint64_t sum = 0;
+      for (int x = x0; x < x1; ++x) sum += columns[x];
+      const std::uint64_t count = std::uint64_t(blockRows) * (x1 - x0);
+      *out++ = static_cast<std::uint16_t>((sum + count / 2) / count);
     }
   }
 }
