@@ -45,7 +45,7 @@ const ImageStack& checked(const ImageStack* stack) {
 // block's columns: integer sums, the same in any order.
 void reduceRows(const std::uint16_t* rows, int y0, int y1, int width, int factor, std::uint16_t* out) {
   const int coarseWidth = (width + factor - 1) / factor;
-  std::vector<std::uint32_t> columns(width);  // at most factor * 65535 each
+  std::vector<std::uint32_t> columns(width);  // at most kMaxFactor * 65535 each
   for (int by = y0; by < y1; by += factor) {
     const int blockRows = std::min(factor, y1 - by);
     std::fill(columns.begin(), columns.end(), 0);
@@ -67,7 +67,7 @@ void reduceRows(const std::uint16_t* rows, int y0, int y1, int width, int factor
 
 int StackMedian::factorFor(int width, int coarseWidth) {
   if (coarseWidth <= 0) throw Error(ErrorKind::Internal, "", kStep, "the coarse width must be above 0");
-  return std::max(1, static_cast<int>(std::lround(double(width) / coarseWidth)));
+  return static_cast<int>(std::clamp<long>(std::lround(double(width) / coarseWidth), 1, kMaxFactor));
 }
 
 StackMedian::StackMedian(std::shared_ptr<const ImageStack> luminance, int coarseWidth, int threads,

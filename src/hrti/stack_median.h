@@ -41,7 +41,9 @@ class StackMedian {
   static constexpr int kTile = 64;
   static constexpr std::size_t kCoarseBudget = std::size_t(16) << 20;
 
-  // The integer reduction that brings `width` nearest to `coarseWidth` pixels (at least 1).
+  static constexpr int kMaxFactor = 65536;  // keeps a block's column sums within 32 bits
+  // The integer reduction that brings `width` nearest to `coarseWidth` pixels (at least 1, at
+  // most kMaxFactor).
   static int factorFor(int width, int coarseWidth);
 
   // A one-channel, non-empty stack; kept (shared) for the full-resolution windows.

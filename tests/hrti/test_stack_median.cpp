@@ -111,11 +111,12 @@ TEST_CASE("the reduced median is the middle of each reduced pixel's samples") {
   }
 }
 
-TEST_CASE("the reduction is the integer factor nearest the coarse width, at least 1") {
+TEST_CASE("the reduction is the integer factor nearest the coarse width, at least 1 and at most kMaxFactor") {
   CHECK(StackMedian::factorFor(3000, 800) == 4);  // 3.75
   CHECK(StackMedian::factorFor(6000, 800) == 8);  // 7.5
   CHECK(StackMedian::factorFor(1200, 800) == 2);  // 1.5
   CHECK(StackMedian::factorFor(480, 800) == 1);
+  CHECK(StackMedian::factorFor(1 << 30, 1) == StackMedian::kMaxFactor);  // block sums stay within 32 bits
 }
 
 TEST_CASE("a window outside the frame is an Error, not a read past the images") {
