@@ -1,14 +1,17 @@
 #include "image/png_encoder.h"
 
+#include <algorithm>
 #include <csetjmp>
 #include <cstdint>
 #include <cstdio>
+#include <memory>
 #include <vector>
 
+#include <libdeflate.h>
 #include <png.h>
-#include <zlib.h>
 
 #include "core/error.h"
+#include "image/write.h"
 
 namespace surrogate::image {
 
@@ -16,8 +19,12 @@ namespace {
 
 constexpr const char* kStep = "image write";
 
-// libpng reports errors by calling back; the callback jumps back to encodePng's setjmp with
-// the message kept here. No C++ object with a destructor lives between the two.
+// The compressed stream goes into IDAT chunks of at most this many bytes (decoders take any
+// size up to 2^31 - 1; libpng's own encoder writes 8 KiB).
+constexpr std::size_t kIdatBytes = 1 << 20;
+
+// libpng reports errors by calling back; the callback jumps back to writeContainer's setjmp
+// with the message kept here. No C++ object with a destructor lives between the two.
 struct Sink {
   std::jmp_buf jump;
   char message[256] = {};
@@ -47,6 +54,10 @@ struct WriteStruct {
   }
 };
 
+struct CompressorFree {
+  void operator()(libdeflate_compressor* c) const { libdeflate_free_compressor(c); }
+};
+
 // Row y of `image` as the PNG stores it: 8-bit samples rounded from 16-bit, or 16-bit samples
 // big-endian.
 void packRow(const Image& image, int y, bool eightBit, std::uint8_t* row) {
@@ -62,23 +73,51 @@ void packRow(const Image& image, int y, bool eightBit, std::uint8_t* row) {
   }
 }
 
-// 0 when done, 1 after a libpng error (the message is in sink->message).
-int encodeRows(WriteStruct* ws, Sink* sink, const Image& image, bool eightBit, std::uint8_t* row) {
+// The image data before compression: each row as its filter type byte (2, Up) and the row's
+// bytes minus those of the row above (the first row's, minus zero), modulo 256.
+std::vector<std::uint8_t> filteredRows(const Image& image, bool eightBit) {
+  const std::size_t rowBytes = static_cast<std::size_t>(image.width) * image.channels * (eightBit ? 1 : 2);
+  std::vector<std::uint8_t> out(static_cast<std::size_t>(image.height) * (rowBytes + 1));
+  std::vector<std::uint8_t> above(rowBytes, 0), row(rowBytes);
+  for (int y = 0; y < image.height; ++y) {
+    packRow(image, y, eightBit, row.data());
+    std::uint8_t* f = out.data() + static_cast<std::size_t>(y) * (rowBytes + 1);
+    f[0] = 2;
+    for (std::size_t i = 0; i < rowBytes; ++i) f[1 + i] = static_cast<std::uint8_t>(row[i] - above[i]);
+    row.swap(above);
+  }
+  return out;
+}
+
+// The zlib stream of `data`, by libdeflate at level 1.
+std::vector<std::uint8_t> deflated(const std::vector<std::uint8_t>& data, const std::string& what) {
+  std::unique_ptr<libdeflate_compressor, CompressorFree> compressor(libdeflate_alloc_compressor(1));
+  if (!compressor) throw Error(ErrorKind::Internal, what, kStep, "libdeflate could not start a compressor");
+  std::vector<std::uint8_t> out(libdeflate_zlib_compress_bound(compressor.get(), data.size()));
+  const std::size_t n =
+      libdeflate_zlib_compress(compressor.get(), data.data(), data.size(), out.data(), out.size());
+  if (n == 0) throw Error(ErrorKind::Internal, what, kStep, "libdeflate could not compress the image");
+  out.resize(n);
+  return out;
+}
+
+// 0 when done, 1 after a libpng error (the message is in sink->message). libpng writes the
+// signature and header, and frames the compressed stream given as IDAT chunks and the end
+// chunk with their lengths and CRCs (png_write_chunk, its call for chunks it does not make
+// itself): its own compression, one row at a time through zlib, is never used.
+int writeContainer(WriteStruct* ws, Sink* sink, const Image& image, bool eightBit,
+                   const std::vector<std::uint8_t>& stream) {
   if (setjmp(sink->jump)) return 1;
   png_structp png = ws->png;
   png_set_write_fn(png, sink, appendBytes, flushNothing);
   png_set_IHDR(png, ws->info, image.width, image.height, eightBit ? 8 : 16,
                image.channels == 3 ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_GRAY, PNG_INTERLACE_NONE,
                PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-  png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_UP);
-  png_set_compression_level(png, 1);
-  png_set_compression_strategy(png, Z_RLE);
   png_write_info(png, ws->info);
-  for (int y = 0; y < image.height; ++y) {
-    packRow(image, y, eightBit, row);
-    png_write_row(png, row);
-  }
-  png_write_end(png, ws->info);
+  static const png_byte idat[5] = "IDAT", iend[5] = "IEND";
+  for (std::size_t at = 0; at < stream.size(); at += kIdatBytes)
+    png_write_chunk(png, idat, stream.data() + at, std::min(kIdatBytes, stream.size() - at));
+  png_write_chunk(png, iend, nullptr, 0);
   return 0;
 }
 
@@ -90,19 +129,21 @@ std::string encodePng(const Image& image, const std::string& what) {
     throw Error(ErrorKind::Internal, what, kStep,
                 "cannot write an empty image or one with " + std::to_string(image.channels) + " channels");
   const bool eightBit = image.bitsPerSample <= 8;
+  const std::vector<std::uint8_t> stream = deflated(filteredRows(image, eightBit), what);
   std::string out;
-  // Noisy pictures hardly shrink: room for the samples spares the string's regrowth.
-  out.reserve(static_cast<std::size_t>(image.width) * image.height * image.channels * (eightBit ? 1 : 2) + 4096);
-  std::vector<std::uint8_t> row(static_cast<std::size_t>(image.width) * image.channels * (eightBit ? 1 : 2));
+  out.reserve(stream.size() + (stream.size() / kIdatBytes + 1) * 12 + 4096);
   Sink sink;
   sink.out = &out;
   WriteStruct ws;
   ws.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &sink, onError, onWarning);
   if (ws.png) ws.info = png_create_info_struct(ws.png);
   if (!ws.png || !ws.info) throw Error(ErrorKind::Internal, what, kStep, "libpng could not start an encoder");
-  if (encodeRows(&ws, &sink, image, eightBit, row.data()) != 0)
+  if (writeContainer(&ws, &sink, image, eightBit, stream) != 0)
     throw Error(ErrorKind::Internal, what, kStep, std::string("libpng could not encode the image: ") + sink.message);
   return out;
 }
+
+// The header's version: libdeflate has no call that tells.
+std::string libdeflateVersion() { return LIBDEFLATE_VERSION_STRING; }
 
 }  // namespace surrogate::image

@@ -5,8 +5,8 @@
 //   Image overlay = ...;                 // bitsPerSample 8 -> 8-bit PNG, 16 -> 16-bit PNG
 //   writePng(overlay, "assembly-files/sphere-overlay.png");
 //
-// PNG bytes are deterministic for a given image and zlib version: fixed filter, compression
-// level and strategy, no timestamp chunk (src/image/png_encoder.h). 16 -> 8 bits rounds to
+// PNG bytes are deterministic for a given image and libdeflate version: fixed filter and
+// compression level, no timestamp chunk (src/image/png_encoder.h). 16 -> 8 bits rounds to
 // nearest: v8 = (v16 + 128) / 257.
 #pragma once
 
@@ -27,5 +27,7 @@ void writeJpeg(const Image& image, const std::filesystem::path& path, int qualit
 // baseline defaults (4:2:0 chroma, standard Huffman tables): the bytes OpenCV's imencode gave
 // with IMWRITE_JPEG_QUALITY alone. Throws Error naming `what` when it cannot be encoded.
 std::string encodeJpeg(const Image8& image, int quality, const std::string& what);
+
+std::string libdeflateVersion();  // "1.14": what compresses the PNG files written here
 
 }  // namespace surrogate::image

@@ -116,8 +116,9 @@ pipeline::StageInfo AuditStage::info() {
   // the verdict as docs/hrti-math.md "Auditing a prior RTI" defines them.
   // Version 2: the difference pictures are PNG files encoded with fixed Up filters and
   // run-length deflate (src/image/png_encoder.h).
+  // Version 3: those PNG files compressed by libdeflate at level 1 (src/image/png_encoder.h).
   pipeline::StageInfo info = pipeline::withOptions<AuditStageOptions>(
-      {kComponent, "2",
+      {kComponent, "3",
        "Audit of prior work: its light file against Surrogate's lights, its model against the "
        "photographs beside Surrogate's refits, and a verdict",
        pipeline::PlanSlot::PriorWork});

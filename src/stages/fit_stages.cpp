@@ -53,7 +53,7 @@ constexpr const char* kAlbedoFile = "albedo.png";
 std::string finished(const std::string& name) { return std::string(capture::kFinishedDir) + "/" + name; }
 
 // PNG files written on threads of their own while the next picture is computed: computing a
-// map already uses every core, but zlib encodes one file on one core, and encoding is most of
+// map already uses every core, but libdeflate compresses one file on one core, and encoding is most of
 // the stage's time (the 16-bit normals of 3000x2000 take about 0.6 s). As many files are
 // encoded at once as there are threads, each on its own thread. Each file's bytes come from
 // its pixels alone, and the carrier records them on the caller's thread in the order given, so
@@ -235,8 +235,9 @@ pipeline::StageInfo DerivedMapsStage::info() {
       // Version 2: the Lambertian fit of normals and albedo multiplies the coefficients by the
       // fit matrix composed with the basis (src/fit/lambert.h), a different rounding that can
       // move a sample by one level; its PNG files are encoded with fixed Up filters and
-      // run-length deflate (src/image/png_encoder.h).
-      {kComponent, "2", "Surface normals, albedo and relit previews from a model",
+      // run-length deflate (src/image/png_encoder.h). Version 3: those PNG files compressed by
+      // libdeflate at level 1 (src/image/png_encoder.h).
+      {kComponent, "3", "Surface normals, albedo and relit previews from a model",
        pipeline::PlanSlot::AfterModels});
   info.forModel = [](const std::string& basis) {
     DerivedMapsOptions o;

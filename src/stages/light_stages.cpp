@@ -81,8 +81,9 @@ pipeline::StageInfo SphereDetectionStage::info() {
   //    only around the spheres (hrti/stack_median.h); the overlay is drawn on the reduced
   //    median, and PNG files are encoded with fixed Up filters and run-length deflate
   //    (src/image/png_encoder.h), so its bytes differ from version 2's
+  // 4: PNG files compressed by libdeflate at level 1 (src/image/png_encoder.h)
   pipeline::StageInfo info = pipeline::withOptions<hrti::SphereDetectionOptions>(
-      {kComponent, "3",
+      {kComponent, "4",
        "Find the reflective spheres: per-pixel median of the stack, circle Hough transform on "
        "the gradient, sub-pixel circle fit",
        pipeline::PlanSlot::LightsFromSpheres});
@@ -185,8 +186,9 @@ pipeline::StageInfo HighlightDetectionStage::info() {
   // 3: the overview labels each highlight with its image's file name (it numbered them by
   //    position among the processed images), larger and kept inside the picture
   // 4: PNG files encoded with fixed Up filters and run-length deflate (src/image/png_encoder.h)
+  // 5: PNG files compressed by libdeflate at level 1 (src/image/png_encoder.h)
   pipeline::StageInfo info = pipeline::withOptions<hrti::HighlightOptions>(
-      {kComponent, "4",
+      {kComponent, "5",
        "Find the specular highlight on each sphere in each image: threshold, 8-connected "
        "components, value-weighted centroid nearest the sphere centre",
        pipeline::PlanSlot::LightsFromSpheres});

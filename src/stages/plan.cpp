@@ -17,6 +17,7 @@
 #include "fit/basis.h"
 #include "stages/fit_stages.h"
 #include "image/decode.h"
+#include "image/write.h"
 #include "meta/metadata.h"
 #include "pipeline/runner.h"
 #include "pipeline/stage.h"
@@ -36,6 +37,7 @@ std::vector<carrier::Software> softwareVersions() {
       {"LibRaw", image::librawVersion(), "camera raw decoding"},
       {image::libjpegName(), image::libjpegVersion(), "JPEG decoding and encoding"},
       {"libpng", image::libpngVersion(), "PNG decoding and encoding"},
+      {"libdeflate", image::libdeflateVersion(), "PNG compression"},
       {"libtiff", image::libtiffVersion(), "TIFF decoding and writing"},
       {"OpenCV", image::opencvVersion(), "image filtering and resampling"},
       {"Exiv2", meta::exiv2Version(), "EXIF/XMP metadata"},
