@@ -53,8 +53,8 @@ constexpr const char* kAlbedoFile = "albedo.png";
 std::string finished(const std::string& name) { return std::string(capture::kFinishedDir) + "/" + name; }
 
 // PNG files written on threads of their own while the next picture is computed: computing a
-// map already uses every core, but libdeflate compresses one file on one core, and encoding is most of
-// the stage's time (the 16-bit normals of 3000x2000 take about 0.6 s). As many files are
+// map already uses every core, but libdeflate compresses one file on one core, and encoding is
+// most of the stage's time (the 16-bit normals of 3000x2000 take about 0.5 s). As many files are
 // encoded at once as there are threads, each on its own thread. Each file's bytes come from
 // its pixels alone, and the carrier records them on the caller's thread in the order given, so
 // the files and the carrier are the same at any thread count. Memory holds the pictures being
