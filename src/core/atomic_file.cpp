@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/resident.h"
 
 namespace surrogate {
 
@@ -80,7 +81,8 @@ std::string readFile(const fs::path& path, const std::string& step) {
   // has no size to tell (a pipe).
   std::error_code ec;
   const std::uintmax_t size = fs::file_size(path, ec);
-  std::string out(ec ? 0 : static_cast<std::size_t>(size), '\0');
+  std::string out;
+  resizeResident(out, ec ? 0 : static_cast<std::size_t>(size));
   f.read(out.data(), static_cast<std::streamsize>(out.size()));
   out.resize(static_cast<std::size_t>(f.gcount()));
   char more[65536];

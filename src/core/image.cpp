@@ -3,6 +3,7 @@
 #include <array>
 
 #include "core/cpu_features.h"
+#include "core/resident.h"
 
 namespace surrogate {
 
@@ -30,6 +31,14 @@ struct Weighted8 {
 };
 
 }  // namespace
+
+Image::Image(int w, int h, int c) : width(w), height(h), channels(c) {
+  resizeResident(pixels, static_cast<std::size_t>(w) * h * c);
+}
+
+Image8::Image8(int w, int h, int c) : width(w), height(h), channels(c) {
+  resizeResident(pixels, static_cast<std::size_t>(w) * h * c);
+}
 
 Image widen(const Image8& narrow) {
   return widen(narrow.pixels.data(), narrow.width, narrow.height, narrow.channels, narrow.transfer);

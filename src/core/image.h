@@ -26,8 +26,8 @@ struct Image {
   std::vector<std::uint16_t> pixels;
 
   Image() = default;
-  Image(int w, int h, int c) : width(w), height(h), channels(c),
-        pixels(static_cast<std::size_t>(w) * h * c, 0) {}
+  // Zeroed pixels (their memory backed at once: core/resident.h).
+  Image(int w, int h, int c);
 
   bool empty() const { return pixels.empty(); }
   std::size_t index(int x, int y, int c = 0) const {
@@ -48,8 +48,7 @@ struct Image8 {
   std::vector<std::uint8_t> pixels;
 
   Image8() = default;
-  Image8(int w, int h, int c) : width(w), height(h), channels(c),
-         pixels(static_cast<std::size_t>(w) * h * c, 0) {}
+  Image8(int w, int h, int c);  // zeroed, as Image's
 };
 
 // The Image of an 8-bit source: every sample * 257, bitsPerSample 8.

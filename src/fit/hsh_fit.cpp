@@ -1,5 +1,6 @@
 // HshFit: .rti HSH from an ImageStack (the method is described in fit.h).
 #include "core/error.h"
+#include "core/resident.h"
 #include "fit/channel_fit.h"
 #include "fit/fit.h"
 #include "fit/pseudo_inverse.h"
@@ -59,7 +60,7 @@ formats::HshFile fitHsh(const ImageStack& stack, const std::vector<std::array<do
   hsh.terms = terms;
   hsh.scale.assign(terms, 0.0f);
   hsh.bias.assign(terms, 0.0f);
-  hsh.coefficients.resize(hsh.texels() * 3 * terms);
+  resizeResident(hsh.coefficients, hsh.texels() * 3 * terms);
   std::vector<double> p = pinv.matrix;
   for (double& v : p) v /= 65535.0;  // 16-bit samples -> 0..1 units
   HshFitter fitter(std::move(p), design, n, terms, &hsh);

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "core/resident.h"
 #include "fit/channel_fit.h"
 #include "fit/fit.h"
 #include "fit/pseudo_inverse.h"
@@ -198,13 +199,13 @@ formats::PtmFile fitPtm(const ImageStack& stack, const std::vector<std::array<do
   std::vector<double> sqErr;
   if (options.basis == Basis::PtmLrgb) {
     ptm.format = formats::PtmFile::Format::Lrgb;
-    ptm.coefficients.resize(ptm.texels() * 6);
-    ptm.rgb.resize(ptm.texels() * 3);
+    resizeResident(ptm.coefficients, ptm.texels() * 6);
+    resizeResident(ptm.rgb, ptm.texels() * 3);
     LrgbFitter fitter(pinv.matrix, l, &ptm);
     sqErr = streamFit(stack, fitter, options, ptm.coefficients.size() + ptm.rgb.size(), &passes);
   } else {
     ptm.format = formats::PtmFile::Format::Rgb;
-    ptm.coefficients.resize(ptm.texels() * 18);
+    resizeResident(ptm.coefficients, ptm.texels() * 18);
     std::vector<double> p = pinv.matrix;
     for (double& v : p) v /= 257.0;  // 16-bit samples -> 0..255 units
     RgbPtmFitter fitter(std::move(p), design, n, &ptm);

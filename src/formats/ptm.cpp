@@ -7,6 +7,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/resident.h"
 #include "formats/ptm_jpeg.h"
 #include "formats/text_parse.h"
 
@@ -152,8 +153,8 @@ PtmFile parsePtm(const std::uint8_t* data, std::size_t size, const std::string& 
   // Stored row r is image row height-1-r (the file is bottom-up).
   auto fileRow = [&](std::size_t y) { return static_cast<std::size_t>(h.height) - 1 - y; };
   if (h.format == PtmFile::Format::Lrgb) {
-    ptm.coefficients.resize(texels * 6);
-    ptm.rgb.resize(texels * 3);
+    resizeResident(ptm.coefficients, texels * 6);
+    resizeResident(ptm.rgb, texels * 3);
     const bool interleaved = h.report.version == "PTM_1.1";  // 9 bytes per texel
     for (std::size_t y = 0; y < static_cast<std::size_t>(h.height); ++y) {
       const std::size_t src = fileRow(y) * w;
@@ -169,7 +170,7 @@ PtmFile parsePtm(const std::uint8_t* data, std::size_t size, const std::string& 
       }
     }
   } else {
-    ptm.coefficients.resize(texels * 18);
+    resizeResident(ptm.coefficients, texels * 18);
     for (std::size_t c = 0; c < 3; ++c) {
       for (std::size_t y = 0; y < static_cast<std::size_t>(h.height); ++y) {
         std::memcpy(&ptm.coefficients[(c * texels + y * w) * 6],

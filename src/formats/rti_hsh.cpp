@@ -1,5 +1,6 @@
 #include "formats/rti_hsh.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -7,6 +8,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/resident.h"
 #include "formats/ptm.h"  // kMaxSide, kMaxTexels
 #include "formats/text_parse.h"
 
@@ -150,7 +152,8 @@ HshFile parseRti(const std::uint8_t* data, std::size_t size, const std::string& 
     }
   }
   const std::uint8_t* bytes = p + 8 * h.terms;
-  hsh.coefficients.assign(bytes, bytes + (h.payloadBytes - 8 * static_cast<std::size_t>(h.terms)));
+  resizeResident(hsh.coefficients, h.payloadBytes - 8 * static_cast<std::size_t>(h.terms));
+  std::copy(bytes, bytes + hsh.coefficients.size(), hsh.coefficients.begin());
   if (report) {
     *report = h.report;
     report->trailingBytes = available - h.payloadBytes;

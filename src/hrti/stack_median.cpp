@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
+#include "core/resident.h"
 
 namespace surrogate::hrti {
 
@@ -101,7 +102,8 @@ void StackMedian::computeCoarse(std::size_t coarseBudget) {
   const std::size_t perCoarseRow = std::size_t(n) * cw * sizeof(std::uint16_t);
   const int bandRows = static_cast<int>(std::clamp<std::size_t>(coarseBudget / perCoarseRow, 1, std::size_t(ch)));
   const int rowsPerRead = static_cast<int>(std::max<std::size_t>(1, kReadBytes / (std::size_t(f) * w * 2)));
-  std::vector<std::uint16_t> reduced(std::size_t(n) * bandRows * cw);
+  std::vector<std::uint16_t> reduced;
+  resizeResident(reduced, std::size_t(n) * bandRows * cw);
   for (int cy0 = 0; cy0 < ch; cy0 += bandRows) {
     const int count = std::min(bandRows, ch - cy0);
     const std::size_t plane = std::size_t(count) * cw;

@@ -11,6 +11,7 @@
 #include <png.h>
 
 #include "core/error.h"
+#include "core/resident.h"
 #include "image/write.h"
 
 namespace surrogate::image {
@@ -77,7 +78,8 @@ void packRow(const Image& image, int y, bool eightBit, std::uint8_t* row) {
 // bytes minus those of the row above (the first row's, minus zero), modulo 256.
 std::vector<std::uint8_t> filteredRows(const Image& image, bool eightBit) {
   const std::size_t rowBytes = static_cast<std::size_t>(image.width) * image.channels * (eightBit ? 1 : 2);
-  std::vector<std::uint8_t> out(static_cast<std::size_t>(image.height) * (rowBytes + 1));
+  std::vector<std::uint8_t> out;
+  resizeResident(out, static_cast<std::size_t>(image.height) * (rowBytes + 1));
   std::vector<std::uint8_t> above(rowBytes, 0), row(rowBytes);
   for (int y = 0; y < image.height; ++y) {
     packRow(image, y, eightBit, row.data());
@@ -89,15 +91,23 @@ std::vector<std::uint8_t> filteredRows(const Image& image, bool eightBit) {
   return out;
 }
 
+// A zlib stream in a buffer of the largest size it could have, of which only `size` bytes are
+// written: the buffer is left uninitialised, so that only the pages the stream fills are ever
+// backed by memory (a zeroed vector of that size had touched all of it).
+struct ZlibStream {
+  std::unique_ptr<std::uint8_t[]> bytes;
+  std::size_t size = 0;
+};
+
 // The zlib stream of `data`, by libdeflate at level 1.
-std::vector<std::uint8_t> deflated(const std::vector<std::uint8_t>& data, const std::string& what) {
+ZlibStream deflated(const std::vector<std::uint8_t>& data, const std::string& what) {
   std::unique_ptr<libdeflate_compressor, CompressorFree> compressor(libdeflate_alloc_compressor(1));
   if (!compressor) throw Error(ErrorKind::Internal, what, kStep, "libdeflate could not start a compressor");
-  std::vector<std::uint8_t> out(libdeflate_zlib_compress_bound(compressor.get(), data.size()));
-  const std::size_t n =
-      libdeflate_zlib_compress(compressor.get(), data.data(), data.size(), out.data(), out.size());
-  if (n == 0) throw Error(ErrorKind::Internal, what, kStep, "libdeflate could not compress the image");
-  out.resize(n);
+  const std::size_t bound = libdeflate_zlib_compress_bound(compressor.get(), data.size());
+  ZlibStream out;
+  out.bytes.reset(new std::uint8_t[bound]);
+  out.size = libdeflate_zlib_compress(compressor.get(), data.data(), data.size(), out.bytes.get(), bound);
+  if (out.size == 0) throw Error(ErrorKind::Internal, what, kStep, "libdeflate could not compress the image");
   return out;
 }
 
@@ -106,7 +116,7 @@ std::vector<std::uint8_t> deflated(const std::vector<std::uint8_t>& data, const 
 // chunk with their lengths and CRCs (png_write_chunk, its call for chunks it does not make
 // itself): its own compression, one row at a time through zlib, is never used.
 int writeContainer(WriteStruct* ws, Sink* sink, const Image& image, bool eightBit,
-                   const std::vector<std::uint8_t>& stream) {
+                   const ZlibStream& stream) {
   if (setjmp(sink->jump)) return 1;
   png_structp png = ws->png;
   png_set_write_fn(png, sink, appendBytes, flushNothing);
@@ -115,8 +125,8 @@ int writeContainer(WriteStruct* ws, Sink* sink, const Image& image, bool eightBi
                PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   png_write_info(png, ws->info);
   static const png_byte idat[5] = "IDAT", iend[5] = "IEND";
-  for (std::size_t at = 0; at < stream.size(); at += kIdatBytes)
-    png_write_chunk(png, idat, stream.data() + at, std::min(kIdatBytes, stream.size() - at));
+  for (std::size_t at = 0; at < stream.size; at += kIdatBytes)
+    png_write_chunk(png, idat, stream.bytes.get() + at, std::min(kIdatBytes, stream.size - at));
   png_write_chunk(png, iend, nullptr, 0);
   return 0;
 }
@@ -129,9 +139,9 @@ std::string encodePng(const Image& image, const std::string& what) {
     throw Error(ErrorKind::Internal, what, kStep,
                 "cannot write an empty image or one with " + std::to_string(image.channels) + " channels");
   const bool eightBit = image.bitsPerSample <= 8;
-  const std::vector<std::uint8_t> stream = deflated(filteredRows(image, eightBit), what);
+  const ZlibStream stream = deflated(filteredRows(image, eightBit), what);
   std::string out;
-  out.reserve(stream.size() + (stream.size() / kIdatBytes + 1) * 12 + 4096);
+  reserveResident(out, stream.size + (stream.size / kIdatBytes + 1) * 12 + 4096);  // libpng appends the chunks
   Sink sink;
   sink.out = &out;
   WriteStruct ws;

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/resident.h"
 
 namespace surrogate::pipeline {
 
@@ -79,8 +80,9 @@ DecodedStack::DecodedStack(int count, Format format, Placement placement, const 
   if (placement == Placement::TemporaryFile) {
     fd_ = temporaryFile(spillDirectory(directory));
   } else {
-    // new[] of a scalar type leaves the bytes uninitialised: each page is first touched by the
-    // decoder that fills it (new[] aligns for any scalar, so 16-bit samples are aligned too).
+    // new[] of a scalar type leaves the bytes uninitialised: each slot's pages are backed by
+    // the thread that fills it, just before (core/resident.h), not zeroed here (new[] aligns
+    // for any scalar, so 16-bit samples are aligned too).
     block_.reset(new std::uint8_t[static_cast<std::size_t>(bytesFor(count, format))]);
   }
   stored_.assign(static_cast<std::size_t>(count), 0);
@@ -114,6 +116,7 @@ void DecodedStack::markStored(int index) {
 
 void DecodedStack::storeBytes(int index, const void* samples) {
   if (placement_ == Placement::Memory) {
+    makeResident(slot(index), static_cast<std::size_t>(imageBytes()));
     std::memcpy(slot(index), samples, static_cast<std::size_t>(imageBytes()));
   } else {
     transferAll(::pwrite, fd_, static_cast<const char*>(samples), imageBytes(),

@@ -13,6 +13,7 @@
 #include "core/base64.h"
 #include "core/error.h"
 #include "core/image.h"
+#include "core/resident.h"
 #include "formats/ptm.h"
 #include "image/decode.h"
 #include "image/write.h"
@@ -55,6 +56,7 @@ DisplayPicture displayOf(const cv::Mat& rgb, int maxSide) {
 template <typename NarrowRow>
 cv::Mat rgbOf(int w, int h, int c, NarrowRow narrowRow) {
   cv::Mat rgb(h, w, CV_8UC3);
+  makeResident(rgb.data, rgb.total() * rgb.elemSize());  // every row is written below
   std::vector<std::uint8_t> grey(c == 3 ? 0 : static_cast<std::size_t>(w));
   for (int y = 0; y < h; ++y) {
     std::uint8_t* out = rgb.ptr<std::uint8_t>(y);

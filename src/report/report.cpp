@@ -11,6 +11,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/parallel.h"
+#include "core/resident.h"
 #include "core/version.h"
 #include "report/embed.h"
 #include "report/hemisphere.h"
@@ -436,7 +437,7 @@ std::string relightSection(const carrier::Carrier& c, const std::vector<RelightM
   std::string data;  // the models' JSON, tens of megabytes: appended, not streamed
   std::size_t dataSize = 0;
   for (const RelightModel& model : models) dataSize += model.json.size() + 1;
-  data.reserve(dataSize);
+  reserveResident(data, dataSize);
   s << "<section id=\"relight\"><h2>Relight it yourself</h2>";
   int shown = 0;
   for (const RelightModel& model : models) {
@@ -473,7 +474,7 @@ std::string relightSection(const carrier::Carrier& c, const std::vector<RelightM
        "the top, \u221290\u00b0 at the bottom.</p>"
     << notes.str() << "</div></div><script type=\"application/json\" id=\"relight-data\">[";
   std::string section = s.str();
-  section.reserve(section.size() + data.size() + 16);
+  reserveResident(section, section.size() + data.size() + 16);
   return section.append(data).append("]</script></section>");
 }
 
@@ -555,7 +556,7 @@ Report buildReport(const carrier::Carrier& c, const ReportSource& source, const 
   // The sections with pictures and models are megabytes: appended once each to a page of
   // the right size, not streamed.
   const std::string first = head.str(), last = tail.str();
-  report.html.reserve(first.size() + relight.size() + lights.size() + detection.size() + results.size() +
+  reserveResident(report.html, first.size() + relight.size() + lights.size() + detection.size() + results.size() +
                       priorWork.size() + last.size() + 8);
   report.html.append(first).append(relight).append(lights).append("</div>").append(detection).append(results)
       .append(priorWork).append(last);

@@ -10,6 +10,7 @@
 #include "core/digest.h"
 #include "core/error.h"
 #include "core/parallel.h"
+#include "core/resident.h"
 #include "fit/basis.h"
 #include "image/srgb.h"
 #include "pipeline/decoded_stack.h"
@@ -169,7 +170,10 @@ DecodedStacks decodeImages(const std::vector<std::filesystem::path>& files,
         const pipeline::DecodedStack::Format& f = made->format();
         const bool alike = f.bytesPerSample == bytesPerSample && f.transfer == transfer && f.width == width &&
                            f.height == height && f.channels == channels;
-        return alike ? made->slot(i) : nullptr;
+        if (!alike) return nullptr;
+        // Backed in one call rather than a fault a page as libjpeg or LibRaw writes it.
+        makeResident(made->slot(i), static_cast<std::size_t>(made->imageBytes()));
+        return made->slot(i);
       };
     image::DecodedPixels pixels = image::decodePixels(files[i], settings, &d.report, options);
     d.width = pixels.width();

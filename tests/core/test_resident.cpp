@@ -1,0 +1,107 @@
+// Fresh memory made resident (core/resident.h): the kernel's own account of which pages are
+// backed (mincore) before and after, and the bytes left as they were.
+#include <catch2/catch.hpp>
+
+#include <sys/mman.h>
+#include <sys/utsname.h>
+#include <unistd.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "core/resident.h"
+
+using namespace surrogate;
+
+namespace {
+
+const std::size_t kPage = static_cast<std::size_t>(::sysconf(_SC_PAGESIZE));
+
+// Pages of [p, p + bytes) (page-aligned p) the kernel says are in memory.
+std::size_t residentPages(void* p, std::size_t bytes) {
+  std::vector<unsigned char> in((bytes + kPage - 1) / kPage);
+  REQUIRE(::mincore(p, bytes, in.data()) == 0);
+  std::size_t n = 0;
+  for (unsigned char c : in) n += c & 1;
+  return n;
+}
+
+// MADV_POPULATE_WRITE came with Linux 5.14; before it makeResident does nothing.
+bool kernelPopulates() {
+  utsname u{};
+  if (::uname(&u) != 0) return false;
+  int major = 0, minor = 0;
+  if (std::sscanf(u.release, "%d.%d", &major, &minor) != 2) return false;
+  return major > 5 || (major == 5 && minor >= 14);
+}
+
+// A fresh anonymous mapping: no page backed until touched. Never in huge pages, which would
+// back the neighbours of a touched page too (where transparent huge pages are "always").
+struct Mapping {
+  std::size_t bytes;
+  void* p;
+  explicit Mapping(std::size_t n) : bytes(n), p(::mmap(nullptr, n, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0)) {
+    REQUIRE(p != MAP_FAILED);
+    ::madvise(p, n, MADV_NOHUGEPAGE);
+  }
+  ~Mapping() { ::munmap(p, bytes); }
+  std::uint8_t* bytesAt(std::size_t offset) const { return static_cast<std::uint8_t*>(p) + offset; }
+};
+
+}  // namespace
+
+TEST_CASE("makeResident backs every whole page of the range, and no page outside it") {
+  const std::size_t pages = 1024;  // 4 MiB of 4 KiB pages
+  Mapping m(pages * kPage);
+  REQUIRE(residentPages(m.p, m.bytes) == 0);
+  // From the middle of page 10 to the middle of page 1000: pages 11..999 are whole.
+  makeResident(m.bytesAt(10 * kPage + kPage / 2), 990 * kPage);
+  if (!kernelPopulates()) {
+    CHECK(residentPages(m.p, m.bytes) == 0);
+    return;
+  }
+  CHECK(residentPages(m.bytesAt(11 * kPage), 989 * kPage) == 989);
+  CHECK(residentPages(m.p, 11 * kPage) == 0);
+  CHECK(residentPages(m.bytesAt(1000 * kPage), 24 * kPage) == 0);
+}
+
+TEST_CASE("makeResident leaves what is written as it was, and fresh pages zero") {
+  const std::size_t pages = 512;
+  Mapping m(pages * kPage);
+  for (std::size_t k = 0; k < pages; k += 3) *m.bytesAt(k * kPage + 7) = static_cast<std::uint8_t>(k + 1);
+  makeResident(m.p, m.bytes);
+  for (std::size_t k = 0; k < pages; ++k) {
+    INFO("page " << k);
+    CHECK(*m.bytesAt(k * kPage + 7) == (k % 3 == 0 ? static_cast<std::uint8_t>(k + 1) : 0));
+    CHECK(*m.bytesAt(k * kPage) == 0);
+  }
+}
+
+TEST_CASE("makeResident leaves a range under a megabyte to be backed as it is written") {
+  Mapping m(256 * kPage);  // 1 MiB: the range below is 255 pages
+  makeResident(m.bytesAt(kPage), 255 * kPage - 1);
+  CHECK(residentPages(m.p, m.bytes) == 0);
+}
+
+TEST_CASE("resizeResident and reserveResident are resize and reserve: content and size") {
+  std::vector<std::uint16_t> v = {1, 2, 3};
+  resizeResident(v, 3'000'000);  // 6 MB
+  REQUIRE(v.size() == 3'000'000);
+  CHECK(v[0] == 1);
+  CHECK(v[2] == 3);
+  std::size_t nonZero = 0;
+  for (std::size_t i = 3; i < v.size(); ++i) nonZero += v[i] != 0;
+  CHECK(nonZero == 0);
+  resizeResident(v, 2);  // shrinking as resize does
+  CHECK(v == std::vector<std::uint16_t>{1, 2});
+
+  std::string s = "head";
+  reserveResident(s, 5'000'000);
+  CHECK(s == "head");
+  CHECK(s.capacity() >= 5'000'000);
+  s.append(4'999'996, 'x');
+  CHECK(s.size() == 5'000'000);
+  CHECK(s.compare(0, 5, "headx") == 0);
+}
