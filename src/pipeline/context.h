@@ -21,6 +21,11 @@
 #include "core/error.h"
 #include "core/image.h"
 
+namespace surrogate::formats {
+struct PtmFile;
+struct HshFile;
+}  // namespace surrogate::formats
+
 namespace surrogate::pipeline {
 
 // What the user asked of the run (not recorded as parameters: they do not change results).
@@ -42,6 +47,10 @@ struct RunSettings {
   // the capture and the pixels its PNG holds. May be empty; called from any thread, after the
   // file is complete. surrogate run keeps display copies of them for its report.
   std::function<void(const std::string&, const Image&)> pictureWritten;
+  // The same for each fitted model a step has written (.ptm or .rti): its path and the model
+  // the file holds. surrogate run makes the report's interactive copies of them.
+  std::function<void(const std::string&, const formats::PtmFile&)> ptmWritten;
+  std::function<void(const std::string&, const formats::HshFile&)> hshWritten;
 };
 
 class Context {

@@ -138,6 +138,36 @@ void writeNumbers(std::ostringstream& j, const char* name, const std::vector<dou
   j << "]";
 }
 
+// Block averages of `values` bytes a texel (held together, rows of `width` texels one after
+// the other): each value averaged over the texels of each block of step x step (fewer at the
+// right and bottom edges), rounded half up, (sum + n/2) / n. Written row by row of the model,
+// which it reads once in order; integer sums, so the order of the additions changes nothing.
+void blockAverage(const std::uint8_t* in, int width, int height, int values, int step, char* out) {
+  const int w = (width + step - 1) / step, h = (height + step - 1) / step;
+  const std::size_t rowValues = static_cast<std::size_t>(width) * values;
+  std::vector<std::uint64_t> sums(static_cast<std::size_t>(w) * values);
+  for (int by = 0; by < h; ++by) {
+    std::fill(sums.begin(), sums.end(), 0);
+    const int y0 = by * step, y1 = std::min(height, y0 + step);
+    for (int y = y0; y < y1; ++y) {
+      const std::uint8_t* row = in + static_cast<std::size_t>(y) * rowValues;
+      for (int bx = 0; bx < w; ++bx) {
+        std::uint64_t* sum = &sums[static_cast<std::size_t>(bx) * values];
+        const std::uint8_t* texel = row + static_cast<std::size_t>(bx) * step * values;
+        const std::uint8_t* end = row + static_cast<std::size_t>(std::min(width, (bx + 1) * step)) * values;
+        for (; texel < end; texel += values)
+          for (int v = 0; v < values; ++v) sum[v] += texel[v];
+      }
+    }
+    for (int bx = 0; bx < w; ++bx) {
+      const std::uint64_t n = static_cast<std::uint64_t>(std::min(width, (bx + 1) * step) - bx * step) * (y1 - y0);
+      char* block = out + (static_cast<std::size_t>(by) * w + bx) * values;
+      for (int v = 0; v < values; ++v)
+        block[v] = static_cast<char>((sums[static_cast<std::size_t>(bx) * values + v] + n / 2) / n);
+    }
+  }
+}
+
 // The JSON object `head` (open: its fields so far) closed with the given fields as base64
 // strings, appended in place: the model's copy is tens of megabytes at 1200 pixels a side, and
 // a stream would grow and copy it several times.
@@ -154,40 +184,22 @@ std::string withBase64(std::string head, std::initializer_list<std::pair<const c
   return head;
 }
 
-std::string ptmRelightJson(const std::string& ptmBytes, int maxSide, const std::string& name) {
-  const formats::PtmFile ptm = formats::parsePtm(
-      reinterpret_cast<const std::uint8_t*>(ptmBytes.data()), ptmBytes.size(), name);
+}  // namespace
+
+std::string relightJson(const formats::PtmFile& ptm, int maxSide) {
   const int step = blockSide(ptm.width, ptm.height, maxSide);
   const int w = (ptm.width + step - 1) / step, h = (ptm.height + step - 1) / step;
   const bool lrgb = ptm.format == formats::PtmFile::Format::Lrgb;
   const int channels = lrgb ? 1 : 3;
 
-  // Block average of bytes; rows top-first, texel-interleaved: ((c*h + y)*w + x)*6 + k.
+  // Block averages; rows top-first, texel-interleaved: ((c*h + y)*w + x)*6 + k, as the
+  // model's planes are (the 6 bytes of a texel together, one plane per channel).
   std::string coefficients(static_cast<std::size_t>(channels) * w * h * 6, '\0');
+  const std::size_t plane = ptm.texels() * 6, copyPlane = static_cast<std::size_t>(w) * h * 6;
+  for (int c = 0; c < channels; ++c)
+    blockAverage(ptm.coefficients.data() + c * plane, ptm.width, ptm.height, 6, step, &coefficients[c * copyPlane]);
   std::string rgb(lrgb ? static_cast<std::size_t>(w) * h * 3 : 0, '\0');
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) {
-      const int x0 = x * step, y0 = y * step;
-      const int x1 = std::min(ptm.width, x0 + step), y1 = std::min(ptm.height, y0 + step);
-      const int n = (x1 - x0) * (y1 - y0);
-      for (int c = 0; c < channels; ++c) {
-        for (int k = 0; k < 6; ++k) {
-          int sum = 0;
-          for (int yy = y0; yy < y1; ++yy)
-            for (int xx = x0; xx < x1; ++xx) sum += ptm.byte(xx, yy, k, c);
-          coefficients[((static_cast<std::size_t>(c) * h + y) * w + x) * 6 + k] =
-              static_cast<char>((sum + n / 2) / n);
-        }
-      }
-      for (int c = 0; lrgb && c < 3; ++c) {
-        int sum = 0;
-        for (int yy = y0; yy < y1; ++yy)
-          for (int xx = x0; xx < x1; ++xx)
-            sum += ptm.rgb[(static_cast<std::size_t>(yy) * ptm.width + xx) * 3 + c];
-        rgb[(static_cast<std::size_t>(y) * w + x) * 3 + c] = static_cast<char>((sum + n / 2) / n);
-      }
-    }
-  }
+  if (lrgb) blockAverage(ptm.rgb.data(), ptm.width, ptm.height, 3, step, rgb.data());
   std::ostringstream j;
   j.precision(17);
   j << "{\"model\":\"ptm\",\"basis\":\"" << (lrgb ? "ptm-lrgb" : "ptm-rgb") << "\",\"format\":\""
@@ -198,30 +210,13 @@ std::string ptmRelightJson(const std::string& ptmBytes, int maxSide, const std::
   return withBase64(j.str(), {{"coefficients", &coefficients}, {"rgb", &rgb}});
 }
 
-std::string hshRelightJson(const std::string& rtiBytes, int maxSide, const std::string& name) {
-  const formats::HshFile hsh = formats::parseRti(
-      reinterpret_cast<const std::uint8_t*>(rtiBytes.data()), rtiBytes.size(), name);
+std::string relightJson(const formats::HshFile& hsh, int maxSide) {
   const int step = blockSide(hsh.width, hsh.height, maxSide);
   const int w = (hsh.width + step - 1) / step, h = (hsh.height + step - 1) / step;
   const int terms = hsh.terms;
-  // Block average of bytes, in the file's layout: ((y*w + x)*3 + c)*terms + k.
+  // Block averages, in the file's layout: ((y*w + x)*3 + c)*terms + k.
   std::string coefficients(static_cast<std::size_t>(w) * h * 3 * terms, '\0');
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) {
-      const int x0 = x * step, y0 = y * step;
-      const int x1 = std::min(hsh.width, x0 + step), y1 = std::min(hsh.height, y0 + step);
-      const int n = (x1 - x0) * (y1 - y0);
-      for (int c = 0; c < 3; ++c) {
-        for (int k = 0; k < terms; ++k) {
-          int sum = 0;
-          for (int yy = y0; yy < y1; ++yy)
-            for (int xx = x0; xx < x1; ++xx) sum += hsh.byte(xx, yy, c, k);
-          coefficients[((static_cast<std::size_t>(y) * w + x) * 3 + c) * terms + k] =
-              static_cast<char>((sum + n / 2) / n);
-        }
-      }
-    }
-  }
+  blockAverage(hsh.coefficients.data(), hsh.width, hsh.height, 3 * terms, step, coefficients.data());
   std::ostringstream j;
   j.precision(17);
   j << "{\"model\":\"hsh\",\"basis\":\"" << (terms == 4 ? "hsh2" : terms == 9 ? "hsh3" : "hsh4")
@@ -232,11 +227,10 @@ std::string hshRelightJson(const std::string& rtiBytes, int maxSide, const std::
   return withBase64(j.str(), {{"coefficients", &coefficients}});
 }
 
-}  // namespace
-
 std::string relightJson(const std::string& modelBytes, int maxSide, const std::string& name) {
-  if (modelBytes.compare(0, 4, "PTM_") == 0) return ptmRelightJson(modelBytes, maxSide, name);
-  return hshRelightJson(modelBytes, maxSide, name);
+  const auto* bytes = reinterpret_cast<const std::uint8_t*>(modelBytes.data());
+  if (modelBytes.compare(0, 4, "PTM_") == 0) return relightJson(formats::parsePtm(bytes, modelBytes.size(), name), maxSide);
+  return relightJson(formats::parseRti(bytes, modelBytes.size(), name), maxSide);
 }
 
 }  // namespace surrogate::report

@@ -6,6 +6,8 @@
 #include <string>
 
 #include "core/image.h"
+#include "formats/ptm.h"
+#include "formats/rti_hsh.h"
 
 namespace surrogate::report {
 
@@ -50,5 +52,17 @@ std::optional<EmbeddedPicture> embedPicture(const std::string& bytes, int maxSid
 // (exact in decoded units, since decoding is affine per coefficient).
 // Throws Error(Input) naming `name` for a malformed model.
 std::string relightJson(const std::string& modelBytes, int maxSide, const std::string& name);
+
+// The same of a model in memory: what relightJson gives for the file formats::writePtm or
+// formats::writeRti makes of it (their numbers read back exactly).
+std::string relightJson(const formats::PtmFile& ptm, int maxSide);
+std::string relightJson(const formats::HshFile& hsh, int maxSide);
+
+// A model's interactive copy made while it was in memory (surrogate run: as each fit writes
+// its model), for ReportOptions::relightCopies.
+struct RelightCopy {
+  std::string json;  // relightJson of the model
+  int maxSide = 0;   // what it was made for
+};
 
 }  // namespace surrogate::report

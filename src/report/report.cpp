@@ -400,8 +400,11 @@ std::vector<const carrier::FileRecord*> fittedModels(const carrier::Carrier& c) 
 struct RelightModel {
   const carrier::FileRecord* file = nullptr;
   bool found = false;      // the source holds the file
-  std::string json;        // empty when it cannot be shown
+  std::string made;        // its JSON, made here from the file
+  const std::string* copied = nullptr;  // or the copy ReportOptions::relightCopies holds
   std::string problem;     // why, when found but not shown
+  // Empty when it cannot be shown.
+  const std::string& json() const { return copied ? *copied : made; }
 };
 
 // Every fitted model the carrier lists, read and converted for the page, each on a thread of
@@ -417,11 +420,19 @@ std::vector<RelightModel> relightModels(const carrier::Carrier& c, const ReportS
     for (std::size_t k = begin; k < end; ++k) {
       RelightModel& m = out[k];
       m.file = files[k];
+      if (options.relightCopies) {
+        const auto copy = options.relightCopies->find(m.file->path);
+        if (copy != options.relightCopies->end() && copy->second.maxSide == options.relightMaxSide) {
+          m.found = true;
+          m.copied = &copy->second.json;
+          continue;
+        }
+      }
       const std::optional<std::string> bytes = source.read(m.file->path);
       m.found = bytes.has_value();
       if (!bytes) continue;
       try {
-        m.json = relightJson(*bytes, options.relightMaxSide, m.file->path);
+        m.made = relightJson(*bytes, options.relightMaxSide, m.file->path);
       } catch (const Error& e) {
         m.problem = e.what();
       }
@@ -436,7 +447,7 @@ std::string relightSection(const carrier::Carrier& c, const std::vector<RelightM
   std::ostringstream s, notes, buttons;
   std::string data;  // the models' JSON, tens of megabytes: appended, not streamed
   std::size_t dataSize = 0;
-  for (const RelightModel& model : models) dataSize += model.json.size() + 1;
+  for (const RelightModel& model : models) dataSize += model.json().size() + 1;
   reserveResident(data, dataSize);
   s << "<section id=\"relight\"><h2>Relight it yourself</h2>";
   int shown = 0;
@@ -445,12 +456,12 @@ std::string relightSection(const carrier::Carrier& c, const std::vector<RelightM
       notes << "<p class=\"note\">The model " << escapeHtml(model.file->path) << " is not in this package or capture.</p>";
       continue;
     }
-    if (model.json.empty()) {
+    if (model.json().empty()) {
       notes << "<p class=\"bad\">The model cannot be shown: " << escapeHtml(model.problem) << "</p>";
       continue;
     }
     if (shown) data += ',';
-    data += model.json;
+    data += model.json();
     const carrier::Step* fit = c.findStep(model.file->createdBy);
     buttons << "<button type=\"button\" data-model=\"" << shown << "\" title=\"" << escapeHtml(model.file->path)
             << "\">" << escapeHtml(fit ? modelTitle(fit->param("basis", "")) : model.file->path) << "</button>";

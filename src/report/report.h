@@ -85,6 +85,11 @@ struct ReportOptions {
   // maxImageSide is not used; the other pictures are read from the source and decoded. The
   // page is the same either way.
   std::shared_ptr<const std::map<std::string, DisplayPicture>> displayed;
+  // The same for the fitted models, by carrier path ("finished-files/hsh2.rti"): surrogate run
+  // passes the interactive copies of the models its fits have just written (relightJson of
+  // each model in memory), which spares reading and parsing the files again. One made for
+  // another relightMaxSide is not used. The page is the same either way.
+  std::shared_ptr<const std::map<std::string, RelightCopy>> relightCopies;
   // Called with (kProgressLabel, fraction done 0..1) as the page is built; may be empty.
   std::function<void(const std::string&, double)> progress;
 };

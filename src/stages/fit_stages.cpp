@@ -170,11 +170,13 @@ void RtiFitStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
   if (options.basis == fit::Basis::PtmLrgb || options.basis == fit::Basis::PtmRgb) {
     formats::PtmFile ptm = fit::fitPtm(*rgb, *lights, options, &stats);
     formats::writePtm(ctx.outputPath(output), ptm);
+    if (ctx.settings.ptmWritten) ctx.settings.ptmWritten(output, ptm);
     format = formats::formatName(ptm.format);
     model = fit::makeRelightable(std::move(ptm));
   } else {
     formats::HshFile hsh = fit::fitHsh(*rgb, *lights, options, &stats);
     formats::writeRti(ctx.outputPath(output), hsh);
+    if (ctx.settings.hshWritten) ctx.settings.hshWritten(output, hsh);
     format = "RTI_HSH";
     model = fit::makeRelightable(std::move(hsh));
   }

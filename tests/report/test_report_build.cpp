@@ -289,6 +289,62 @@ TEST_CASE("the page is byte-identical whether its pictures and models are made o
   CHECK(normals < albedo);
 }
 
+TEST_CASE("models given as interactive copies of the models in memory make the page their files make") {
+  // Scales with no short decimal form, as the fits choose them: the copies must carry the
+  // numbers the files read back, not others of their own.
+  formats::PtmFile ptm;
+  ptm.width = 2500;  // longer side above relightMaxSide: copies are block averages
+  ptm.height = 7;
+  for (int k = 0; k < 6; ++k) {
+    ptm.scale[k] = (k + 1) / 3.0 + 1e-9 * k;
+    ptm.bias[k] = 17 * k + 3;
+  }
+  ptm.coefficients.resize(ptm.texels() * 6);
+  ptm.rgb.resize(ptm.texels() * 3);
+  for (std::size_t i = 0; i < ptm.coefficients.size(); ++i) ptm.coefficients[i] = static_cast<std::uint8_t>(i * 31 % 251);
+  for (std::size_t i = 0; i < ptm.rgb.size(); ++i) ptm.rgb[i] = static_cast<std::uint8_t>(i * 13 % 256);
+  formats::HshFile hsh;
+  hsh.width = 9;
+  hsh.height = 5;
+  hsh.terms = 4;
+  hsh.scale = {0.1f, 1.0f / 3, 2.5e-7f, 7.0f};
+  hsh.bias = {-0.3f, 0.7f / 3, 0.0f, -1e-5f};
+  hsh.coefficients.resize(hsh.texels() * 3 * 4);
+  for (std::size_t i = 0; i < hsh.coefficients.size(); ++i) hsh.coefficients[i] = static_cast<std::uint8_t>(i * 7 % 256);
+
+  carrier::Carrier c = sampleCarrier();
+  carrier::Step& fit = c.addStep("RtiFit", "1");
+  fit.setParam("basis", "hsh2");
+  carrier::Result r;
+  r.step = fit.id;
+  r.add("output").set("file", c.putFile(output("finished-files/hsh2.rti", "result", "RTI_HSH"))).set("kind", "hsh2");
+  c.data.push_back(r);
+  ReportOptions options;
+  options.generatedAt = "2026-02-03T04:05:06Z";
+
+  MemorySource files(c);
+  files.files["finished-files/ptm-lrgb.ptm"] = formats::serializePtm(ptm);
+  files.files["finished-files/hsh2.rti"] = formats::serializeRti(hsh);
+  const Report fromFiles = buildReport(files.carrier(), files, options);
+  REQUIRE(fromFiles.relightable);
+  REQUIRE(count(fromFiles.html, "\"model\":\"") == 2);
+
+  // From the copies alone (the source has no model files): the same page.
+  MemorySource none(c);
+  auto copies = std::make_shared<std::map<std::string, RelightCopy>>();
+  (*copies)["finished-files/ptm-lrgb.ptm"] = {relightJson(ptm, options.relightMaxSide), options.relightMaxSide};
+  (*copies)["finished-files/hsh2.rti"] = {relightJson(hsh, options.relightMaxSide), options.relightMaxSide};
+  options.relightCopies = copies;
+  const Report fromCopies = buildReport(none.carrier(), none, options);
+  CHECK(fromCopies.html == fromFiles.html);
+
+  // Copies made for another size are not used: the models are then read, here missing.
+  options.relightMaxSide = 600;
+  const Report otherSize = buildReport(none.carrier(), none, options);
+  CHECK_FALSE(otherSize.relightable);
+  CHECK(count(otherSize.html, "is not in this package or capture") == 2);
+}
+
 TEST_CASE("every text from the carrier is escaped: hostile fields cannot inject markup") {
   MemorySource source(sampleCarrier());
   const Report r = buildReport(source.carrier(), source, ReportOptions());

@@ -181,6 +181,33 @@ TEST_CASE("the relighting copy of an HSH model keeps the .rti layout and average
   CHECK_THROWS_AS(relightJson("#HSH1.2\n3\n", 0, "broken.rti"), Error);
 }
 
+TEST_CASE("the relighting copy averages the partial blocks at the right and bottom edges over their own texels") {
+  // 7x4 texels, maxSide 3: blocks of 3x3 -> 3x2 blocks; the last column of blocks is 1 texel
+  // wide, the last row 1 texel high.
+  formats::HshFile hsh;
+  hsh.width = 7;
+  hsh.height = 4;
+  hsh.terms = 4;
+  hsh.scale = {1, 1, 1, 1};
+  hsh.bias = {0, 0, 0, 0};
+  hsh.coefficients.resize(hsh.texels() * 12);
+  for (std::size_t i = 0; i < hsh.coefficients.size(); ++i) hsh.coefficients[i] = static_cast<std::uint8_t>(i * 37 % 256);
+  const std::string json = relightJson(formats::serializeRti(hsh), 3, "t.rti");
+  CHECK_THAT(json, Catch::Contains("\"width\":3,\"height\":2"));
+  std::string expected;
+  for (int by = 0; by < 2; ++by)
+    for (int bx = 0; bx < 3; ++bx)
+      for (int j = 0; j < 12; ++j) {
+        int sum = 0, n = 0;
+        for (int y = by * 3; y < std::min(4, by * 3 + 3); ++y)
+          for (int x = bx * 3; x < std::min(7, bx * 3 + 3); ++x, ++n) sum += hsh.coefficients[(y * 7 + x) * 12 + j];
+        expected += static_cast<char>((sum + n / 2) / n);
+      }
+  CHECK_THAT(json, Catch::Contains("\"coefficients\":\"" + base64(expected) + "\""));
+  // The same model in memory gives the same copy.
+  CHECK(relightJson(hsh, 3) == json);
+}
+
 TEST_CASE("the hemisphere plot labels azimuths -180..180 as the light table does, and elevation rings apart") {
   LightPoint p;
   p.image = "IMG_0001.dng";
