@@ -21,49 +21,24 @@
 namespace surrogate::cli {
 
 namespace {
-// Display copies of the pictures the run's steps write, made as each is written, for the
-// report that follows: the report then does not decode the files again
-// (report::ReportOptions::displayed). Steps may write from several threads.
-class DisplayedPictures {
+// Copies of what the run's steps write, by carrier path, made as each file is written, for the
+// report that follows: display copies of the pictures (report::ReportOptions::displayed) and
+// interactive copies of the fitted models (relightCopies), so that the report does not decode
+// the pictures or read and parse the models again (at 36 x 3000x2000, 126 MB of models). Steps
+// may write from several threads.
+template <class Copy>
+class CopiesByPath {
  public:
-  explicit DisplayedPictures(int maxSide) : maxSide_(maxSide) {}
-
-  void add(const std::string& path, const Image& picture) {
-    report::DisplayPicture copy = report::displayPicture(picture, maxSide_);
+  void put(const std::string& path, Copy copy) {
     const std::lock_guard<std::mutex> lock(mutex_);
-    (*pictures_)[path] = std::move(copy);  // a file written again: its last pixels
+    (*copies_)[path] = std::move(copy);  // a file written again: its last content
   }
 
-  std::shared_ptr<const std::map<std::string, report::DisplayPicture>> pictures() const { return pictures_; }
+  std::shared_ptr<const std::map<std::string, Copy>> all() const { return copies_; }
 
  private:
-  int maxSide_;
   std::mutex mutex_;
-  std::shared_ptr<std::map<std::string, report::DisplayPicture>> pictures_ =
-      std::make_shared<std::map<std::string, report::DisplayPicture>>();
-};
-
-// The same for the fitted models: their interactive copies, made as each fit writes its model
-// (report::ReportOptions::relightCopies), so that the report does not read and parse the files
-// again (at 36 x 3000x2000, 126 MB).
-class RelightCopies {
- public:
-  explicit RelightCopies(int maxSide) : maxSide_(maxSide) {}
-
-  template <class Model>
-  void add(const std::string& path, const Model& model) {
-    report::RelightCopy copy{report::relightJson(model, maxSide_), maxSide_};
-    const std::lock_guard<std::mutex> lock(mutex_);
-    (*copies_)[path] = std::move(copy);  // a model written again: the last one
-  }
-
-  std::shared_ptr<const std::map<std::string, report::RelightCopy>> copies() const { return copies_; }
-
- private:
-  int maxSide_;
-  std::mutex mutex_;
-  std::shared_ptr<std::map<std::string, report::RelightCopy>> copies_ =
-      std::make_shared<std::map<std::string, report::RelightCopy>>();
+  std::shared_ptr<std::map<std::string, Copy>> copies_ = std::make_shared<std::map<std::string, Copy>>();
 };
 }  // namespace
 
@@ -88,17 +63,18 @@ int runCommandRun(int argc, char** argv) {
   ProgressBar bar(args.has("quiet") || args.has("json"));
   pipeline::RunSettings settings = settingsFrom(args, bar);
   report::ReportOptions reportOptions;
-  DisplayedPictures displayed(reportOptions.maxImageSide);
-  RelightCopies relightCopies(reportOptions.relightMaxSide);
+  CopiesByPath<report::DisplayPicture> displayed;
+  CopiesByPath<report::RelightCopy> relightCopies;
   if (!args.has("no-report")) {
-    settings.pictureWritten = [&displayed](const std::string& path, const Image& picture) {
-      displayed.add(path, picture);
+    const int pictureSide = reportOptions.maxImageSide, modelSide = reportOptions.relightMaxSide;
+    settings.pictureWritten = [&displayed, pictureSide](const std::string& path, const Image& picture) {
+      displayed.put(path, report::displayPicture(picture, pictureSide));
     };
-    settings.ptmWritten = [&relightCopies](const std::string& path, const formats::PtmFile& model) {
-      relightCopies.add(path, model);
+    settings.ptmWritten = [&relightCopies, modelSide](const std::string& path, const formats::PtmFile& model) {
+      relightCopies.put(path, {report::relightJson(model, modelSide), modelSide});
     };
-    settings.hshWritten = [&relightCopies](const std::string& path, const formats::HshFile& model) {
-      relightCopies.add(path, model);
+    settings.hshWritten = [&relightCopies, modelSide](const std::string& path, const formats::HshFile& model) {
+      relightCopies.put(path, {report::relightJson(model, modelSide), modelSide});
     };
   }
   // A folder that is not a capture is refused before anything is written in it, lock included.
@@ -113,8 +89,8 @@ int runCommandRun(int argc, char** argv) {
   if (!args.has("no-report")) {
     reportOptions.threads = settings.threads;
     reportOptions.progress = bar.callback();
-    reportOptions.displayed = displayed.pictures();
-    reportOptions.relightCopies = relightCopies.copies();
+    reportOptions.displayed = displayed.all();
+    reportOptions.relightCopies = relightCopies.all();
     rep = report::writeCaptureReport(capture, reportOptions);
     bar.finish();
   } else std::filesystem::remove(std::filesystem::path(capture) / capture::kReportPath);

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <regex>
+#include <vector>
 
 #include "core/base64.h"
 #include "core/error.h"
@@ -149,16 +150,26 @@ TEST_CASE("embedPicture rejects bytes that are not a picture, and PNG headers cl
   CHECK_FALSE(embedPicture(bomb, 100).has_value());
 }
 
-TEST_CASE("the relighting copy of an HSH model keeps the .rti layout and averages over blocks") {
+namespace {
+// An HSH model of order 2 (4 terms) whose byte i is byteAt(i).
+formats::HshFile orderTwoHsh(int width, int height, std::vector<float> scale, std::vector<float> bias,
+                             std::uint8_t (*byteAt)(std::size_t)) {
   formats::HshFile hsh;
-  hsh.width = 4;
-  hsh.height = 2;
+  hsh.width = width;
+  hsh.height = height;
   hsh.terms = 4;
-  hsh.scale = {1, 2, 3, 4};
-  hsh.bias = {-0.5f, 0, 0.25f, 0};
+  hsh.scale = std::move(scale);
+  hsh.bias = std::move(bias);
   hsh.coefficients.resize(hsh.texels() * 3 * 4);
+  for (std::size_t i = 0; i < hsh.coefficients.size(); ++i) hsh.coefficients[i] = byteAt(i);
+  return hsh;
+}
+}  // namespace
+
+TEST_CASE("the relighting copy of an HSH model keeps the .rti layout and averages over blocks") {
   // ((y*w + x)*3 + c)*terms + k = t*12 + c*4 + k
-  for (std::size_t i = 0; i < hsh.coefficients.size(); ++i) hsh.coefficients[i] = static_cast<std::uint8_t>(i % 200);
+  const formats::HshFile hsh = orderTwoHsh(4, 2, {1, 2, 3, 4}, {-0.5f, 0, 0.25f, 0},
+                                           [](std::size_t i) { return static_cast<std::uint8_t>(i % 200); });
   const std::string bytes = formats::serializeRti(hsh);
   const std::string full = relightJson(bytes, 0, "t.rti");
   CHECK_THAT(full, Catch::Contains("\"model\":\"hsh\",\"basis\":\"hsh2\",\"terms\":4,\"width\":4,\"height\":2"));
@@ -184,14 +195,8 @@ TEST_CASE("the relighting copy of an HSH model keeps the .rti layout and average
 TEST_CASE("the relighting copy averages the partial blocks at the right and bottom edges over their own texels") {
   // 7x4 texels, maxSide 3: blocks of 3x3 -> 3x2 blocks; the last column of blocks is 1 texel
   // wide, the last row 1 texel high.
-  formats::HshFile hsh;
-  hsh.width = 7;
-  hsh.height = 4;
-  hsh.terms = 4;
-  hsh.scale = {1, 1, 1, 1};
-  hsh.bias = {0, 0, 0, 0};
-  hsh.coefficients.resize(hsh.texels() * 12);
-  for (std::size_t i = 0; i < hsh.coefficients.size(); ++i) hsh.coefficients[i] = static_cast<std::uint8_t>(i * 37 % 256);
+  const formats::HshFile hsh = orderTwoHsh(7, 4, {1, 1, 1, 1}, {0, 0, 0, 0},
+                                           [](std::size_t i) { return static_cast<std::uint8_t>(i * 37 % 256); });
   const std::string json = relightJson(formats::serializeRti(hsh), 3, "t.rti");
   CHECK_THAT(json, Catch::Contains("\"width\":3,\"height\":2"));
   std::string expected;
