@@ -132,16 +132,6 @@ constexpr bool kAvx2Compiled = false;
 #endif
 
 // The plain copies of the compiler-vectorised bodies for AVX2.
-template <typename Sample>
-SURROGATE_AVX2_TARGET void lrgbAvx2(const double* cr, const double* cg, const double* cb, const double* decoded,
-                                    std::size_t stride, const double* basis, const Sample* s, std::size_t pixels,
-                                    double* d2) {
-  lrgbBody(cr, cg, cb, decoded, stride, basis, s, pixels, d2);
-}
-template <typename Sample>
-SURROGATE_AVX2_TARGET void rgbAvx2(const double* p, const Sample* s, std::size_t pixels, double* d2) {
-  rgbBody(p, s, pixels, d2);
-}
 SURROGATE_AVX2_TARGET void ptmAvx2(const double* a, std::size_t count, const PtmQuantisation& q, std::uint8_t* bytes,
                                    double* decoded) {
   quantiseBody(a, count, q, bytes, decoded);
@@ -180,41 +170,145 @@ SURROGATE_AVX2_TARGET inline __m128i pickBytes(__m128i a, __m128i ma, __m128i b,
   return _mm_or_si128(pickBytes(a, ma, b, mb), _mm_shuffle_epi8(c, mc));
 }
 
-// R + G + B of eight interleaved RGB pixels (their 16-bit values), as doubles, exact.
-SURROGATE_AVX2_TARGET inline void pixelSumsOfEight(const std::uint16_t* s, __m256d* low, __m256d* high) {
+// The R, G and B samples of eight interleaved RGB pixels, each channel in eight lanes (16-bit
+// samples in 16-bit lanes, bytes in the low eight bytes). Reads the 24 samples and no more.
+SURROGATE_AVX2_TARGET inline void channelsOfEight(const std::uint16_t* s, __m128i* r, __m128i* g, __m128i* b) {
   // Sample 3p + c of the 24 is lane (3p + c) % 8 of v[(3p + c) / 8].
   const __m128i v0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(s));
   const __m128i v1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(s + 8));
   const __m128i v2 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(s + 16));
-  const __m128i r = pickBytes(v0, _mm_setr_epi8(0, 1, 6, 7, 12, 13, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1),
-                              v1, _mm_setr_epi8(-1, -1, -1, -1, -1, -1, 2, 3, 8, 9, 14, 15, -1, -1, -1, -1),
-                              v2, _mm_setr_epi8(-1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, 4, 5, 10, 11));
-  const __m128i g = pickBytes(v0, _mm_setr_epi8(2, 3, 8, 9, 14, 15, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1),
-                              v1, _mm_setr_epi8(-1, -1, -1, -1, -1, -1, 4, 5, 10, 11, -1, -1, -1, -1, -1, -1),
-                              v2, _mm_setr_epi8(-1, -1, -1, -1, -1, -1, -1, -1, -1, -1, 0, 1, 6, 7, 12, 13));
-  const __m128i b = pickBytes(v0, _mm_setr_epi8(4, 5, 10, 11, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1),
-                              v1, _mm_setr_epi8(-1, -1, -1, -1, 0, 1, 6, 7, 12, 13, -1, -1, -1, -1, -1, -1),
-                              v2, _mm_setr_epi8(-1, -1, -1, -1, -1, -1, -1, -1, -1, -1, 2, 3, 8, 9, 14, 15));
-  const __m256i sum = _mm256_add_epi32(_mm256_add_epi32(_mm256_cvtepu16_epi32(r), _mm256_cvtepu16_epi32(g)),
-                                       _mm256_cvtepu16_epi32(b));
-  *low = _mm256_cvtepi32_pd(_mm256_castsi256_si128(sum));
-  *high = _mm256_cvtepi32_pd(_mm256_extracti128_si256(sum, 1));
+  *r = pickBytes(v0, _mm_setr_epi8(0, 1, 6, 7, 12, 13, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1),
+                 v1, _mm_setr_epi8(-1, -1, -1, -1, -1, -1, 2, 3, 8, 9, 14, 15, -1, -1, -1, -1),
+                 v2, _mm_setr_epi8(-1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, 4, 5, 10, 11));
+  *g = pickBytes(v0, _mm_setr_epi8(2, 3, 8, 9, 14, 15, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1),
+                 v1, _mm_setr_epi8(-1, -1, -1, -1, -1, -1, 4, 5, 10, 11, -1, -1, -1, -1, -1, -1),
+                 v2, _mm_setr_epi8(-1, -1, -1, -1, -1, -1, -1, -1, -1, -1, 0, 1, 6, 7, 12, 13));
+  *b = pickBytes(v0, _mm_setr_epi8(4, 5, 10, 11, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1),
+                 v1, _mm_setr_epi8(-1, -1, -1, -1, 0, 1, 6, 7, 12, 13, -1, -1, -1, -1, -1, -1),
+                 v2, _mm_setr_epi8(-1, -1, -1, -1, -1, -1, -1, -1, -1, -1, 2, 3, 8, 9, 14, 15));
 }
-SURROGATE_AVX2_TARGET inline void pixelSumsOfEight(const std::uint8_t* s, __m256d* low, __m256d* high) {
-  // Sample j of the 24 is byte j % 16 of v[j / 16]; 257 (r + g + b) = 257 r + 257 g + 257 b.
+SURROGATE_AVX2_TARGET inline void channelsOfEight(const std::uint8_t* s, __m128i* r, __m128i* g, __m128i* b) {
+  // Sample j of the 24 is byte j % 16 of v[j / 16].
   const __m128i v0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(s));
   const __m128i v1 = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(s + 16));
-  const __m128i r = pickBytes(v0, _mm_setr_epi8(0, 3, 6, 9, 12, 15, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1),
-                              v1, _mm_setr_epi8(-1, -1, -1, -1, -1, -1, 2, 5, -1, -1, -1, -1, -1, -1, -1, -1));
-  const __m128i g = pickBytes(v0, _mm_setr_epi8(1, 4, 7, 10, 13, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1),
-                              v1, _mm_setr_epi8(-1, -1, -1, -1, -1, 0, 3, 6, -1, -1, -1, -1, -1, -1, -1, -1));
-  const __m128i b = pickBytes(v0, _mm_setr_epi8(2, 5, 8, 11, 14, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1),
-                              v1, _mm_setr_epi8(-1, -1, -1, -1, -1, 1, 4, 7, -1, -1, -1, -1, -1, -1, -1, -1));
-  const __m256i sum = _mm256_mullo_epi32(
-      _mm256_add_epi32(_mm256_add_epi32(_mm256_cvtepu8_epi32(r), _mm256_cvtepu8_epi32(g)), _mm256_cvtepu8_epi32(b)),
-      _mm256_set1_epi32(257));
-  *low = _mm256_cvtepi32_pd(_mm256_castsi256_si128(sum));
-  *high = _mm256_cvtepi32_pd(_mm256_extracti128_si256(sum, 1));
+  *r = pickBytes(v0, _mm_setr_epi8(0, 3, 6, 9, 12, 15, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1),
+                 v1, _mm_setr_epi8(-1, -1, -1, -1, -1, -1, 2, 5, -1, -1, -1, -1, -1, -1, -1, -1));
+  *g = pickBytes(v0, _mm_setr_epi8(1, 4, 7, 10, 13, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1),
+                 v1, _mm_setr_epi8(-1, -1, -1, -1, -1, 0, 3, 6, -1, -1, -1, -1, -1, -1, -1, -1));
+  *b = pickBytes(v0, _mm_setr_epi8(2, 5, 8, 11, 14, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1),
+                 v1, _mm_setr_epi8(-1, -1, -1, -1, -1, 1, 4, 7, -1, -1, -1, -1, -1, -1, -1, -1));
+}
+
+// Eight lanes of one channel from channelsOfEight as 32-bit integers: the samples' values
+// (bytes b as 257 b).
+SURROGATE_AVX2_TARGET inline __m256i valuesOfEight(__m128i lanes, const std::uint16_t*) {
+  return _mm256_cvtepu16_epi32(lanes);
+}
+SURROGATE_AVX2_TARGET inline __m256i valuesOfEight(__m128i lanes, const std::uint8_t*) {
+  return _mm256_mullo_epi32(_mm256_cvtepu8_epi32(lanes), _mm256_set1_epi32(257));
+}
+
+// Eight 32-bit integers as two vectors of four doubles, exact.
+SURROGATE_AVX2_TARGET inline void asDoubles(__m256i v, __m256d* low, __m256d* high) {
+  *low = _mm256_cvtepi32_pd(_mm256_castsi256_si128(v));
+  *high = _mm256_cvtepi32_pd(_mm256_extracti128_si256(v, 1));
+}
+
+// R + G + B of eight interleaved RGB pixels (their 16-bit values), as doubles, exact (integer
+// sums: 257 r + 257 g + 257 b for bytes).
+template <typename Sample>
+SURROGATE_AVX2_TARGET inline void pixelSumsOfEight(const Sample* s, __m256d* low, __m256d* high) {
+  __m128i r, g, b;
+  channelsOfEight(s, &r, &g, &b);
+  asDoubles(_mm256_add_epi32(_mm256_add_epi32(valuesOfEight(r, s), valuesOfEight(g, s)), valuesOfEight(b, s)), low,
+            high);
+}
+
+// clamp255 on four values: compares and selects, which let NaN through as clamp255 does.
+SURROGATE_AVX2_TARGET inline __m256d clamp255(__m256d v) {
+  const __m256d zero = _mm256_setzero_pd(), top = _mm256_set1_pd(255.0);
+  const __m256d low = _mm256_blendv_pd(v, zero, _mm256_cmp_pd(v, zero, _CMP_LT_OQ));
+  return _mm256_blendv_pd(low, top, _mm256_cmp_pd(top, low, _CMP_LT_OQ));
+}
+
+// The captured luminance (kLumR R + kLumG G + kLumB B) / 257 of four pixels' channel values.
+SURROGATE_AVX2_TARGET inline __m256d capturedOfFour(__m256d r, __m256d g, __m256d b) {
+  const __m256d weighted = _mm256_add_pd(
+      _mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(kLumR), r), _mm256_mul_pd(_mm256_set1_pd(kLumG), g)),
+      _mm256_mul_pd(_mm256_set1_pd(kLumB), b));
+  return _mm256_div_pd(weighted, _mm256_set1_pd(257.0));
+}
+
+// The channel values of eight interleaved pixels as doubles: r[h], g[h], b[h] hold pixels 4h..4h+3.
+template <typename Sample>
+SURROGATE_AVX2_TARGET inline void channelValuesOfEight(const Sample* s, __m256d r[2], __m256d g[2], __m256d b[2]) {
+  __m128i sr, sg, sb;
+  channelsOfEight(s, &sr, &sg, &sb);
+  asDoubles(valuesOfEight(sr, s), &r[0], &r[1]);
+  asDoubles(valuesOfEight(sg, s), &g[0], &g[1]);
+  asDoubles(valuesOfEight(sb, s), &b[0], &b[1]);
+}
+
+// lrgbBody on eight pixels at a time, the samples parted as in rgbAvx2; the same operations on
+// each value in the same order (each sum from zero, as the body's). The rest through the body.
+template <typename Sample>
+SURROGATE_AVX2_TARGET void lrgbAvx2(const double* cr, const double* cg, const double* cb, const double* decoded,
+                                    std::size_t stride, const double* basis, const Sample* s, std::size_t pixels,
+                                    double* d2) {
+  __m256d bk[6];
+  for (int k = 0; k < 6; ++k) bk[k] = _mm256_set1_pd(basis[k]);
+  const __m256d kr = _mm256_set1_pd(kLumR), kg = _mm256_set1_pd(kLumG), kb = _mm256_set1_pd(kLumB);
+  const __m256d range = _mm256_set1_pd(255.0);
+  std::size_t x = 0;
+  for (; x + 8 <= pixels; x += 8) {
+    __m256d vr[2], vg[2], vb[2];
+    channelValuesOfEight(s + 3 * x, vr, vg, vb);
+    for (int h = 0; h < 2; ++h) {
+      const std::size_t at = x + 4 * h;
+      __m256d l = _mm256_setzero_pd();
+      for (int k = 0; k < 6; ++k) l = _mm256_add_pd(l, _mm256_mul_pd(bk[k], _mm256_loadu_pd(decoded + k * stride + at)));
+      const auto channel = [&](const double* c) SURROGATE_AVX2_TARGET {
+        return clamp255(_mm256_div_pd(_mm256_mul_pd(_mm256_loadu_pd(c + at), l), range));
+      };
+      __m256d model = _mm256_setzero_pd();
+      model = _mm256_add_pd(model, _mm256_mul_pd(kr, channel(cr)));
+      model = _mm256_add_pd(model, _mm256_mul_pd(kg, channel(cg)));
+      model = _mm256_add_pd(model, _mm256_mul_pd(kb, channel(cb)));
+      const __m256d d = _mm256_sub_pd(model, capturedOfFour(vr[h], vg[h], vb[h]));
+      _mm256_storeu_pd(d2 + at, _mm256_mul_pd(d, d));
+    }
+  }
+  lrgbBody(cr + x, cg + x, cb + x, decoded + x, stride, basis, s + 3 * x, pixels - x, d2 + x);
+}
+
+// rgbBody on eight pixels at a time: the samples parted into R, G and B by byte shuffles, the
+// model's 24 values by blends and permutes, then the same operations on each value in the same
+// order (no fused multiply-add). The pixels past the last whole eight go through the body. The compiled body
+// had gathered the interleaved values lane by lane.
+template <typename Sample>
+SURROGATE_AVX2_TARGET void rgbAvx2(const double* p, const Sample* s, std::size_t pixels, double* d2) {
+  const __m256d kr = _mm256_set1_pd(kLumR), kg = _mm256_set1_pd(kLumG), kb = _mm256_set1_pd(kLumB);
+  std::size_t x = 0;
+  for (; x + 8 <= pixels; x += 8) {
+    __m256d vr[2], vg[2], vb[2];
+    channelValuesOfEight(s + 3 * x, vr, vg, vb);
+    for (int h = 0; h < 2; ++h) {
+      // Pixels 4h..4h+3: a = r0 g0 b0 r1, b = g1 b1 r2 g2, c = b2 r3 g3 b3.
+      const double* q = p + 3 * (x + 4 * h);
+      const __m256d a = _mm256_loadu_pd(q), b = _mm256_loadu_pd(q + 4), c = _mm256_loadu_pd(q + 8);
+      const __m256d r = _mm256_permute4x64_pd(_mm256_blend_pd(_mm256_blend_pd(a, b, 0b0100), c, 0b0010),
+                                              _MM_SHUFFLE(1, 2, 3, 0));  // a0 c1 b2 a3 -> a0 a3 b2 c1
+      const __m256d g = _mm256_permute4x64_pd(_mm256_blend_pd(_mm256_blend_pd(a, b, 0b1001), c, 0b0100),
+                                              _MM_SHUFFLE(2, 3, 0, 1));  // b0 a1 c2 b3 -> a1 b0 b3 c2
+      const __m256d bl = _mm256_permute4x64_pd(_mm256_blend_pd(_mm256_blend_pd(a, b, 0b0010), c, 0b1001),
+                                               _MM_SHUFFLE(3, 0, 1, 2));  // c0 b1 a2 c3 -> a2 b1 c0 c3
+      const __m256d model = _mm256_add_pd(
+          _mm256_add_pd(_mm256_mul_pd(kr, clamp255(r)), _mm256_mul_pd(kg, clamp255(g))), _mm256_mul_pd(kb, clamp255(bl)));
+      const __m256d d = _mm256_sub_pd(model, capturedOfFour(vr[h], vg[h], vb[h]));
+      _mm256_storeu_pd(d2 + x + 4 * h, _mm256_mul_pd(d, d));
+    }
+  }
+  rgbBody(p + 3 * x, s + 3 * x, pixels - x, d2 + x);
 }
 
 // accumulateBody with the sums of eight pixels in twelve registers while every photograph is
@@ -301,6 +395,15 @@ SURROGATE_AVX2_TARGET void multiplyAvx2(const double* m, int rows, int cols, con
   }
 }
 #else
+template <typename Sample>
+void lrgbAvx2(const double* cr, const double* cg, const double* cb, const double* decoded, std::size_t stride,
+              const double* basis, const Sample* s, std::size_t pixels, double* d2) {
+  lrgbBody(cr, cg, cb, decoded, stride, basis, s, pixels, d2);
+}
+template <typename Sample>
+void rgbAvx2(const double* p, const Sample* s, std::size_t pixels, double* d2) {
+  rgbBody(p, s, pixels, d2);
+}
 template <typename Sample>
 void accumulateAvx2(const Sample* const* images, int n, std::size_t w, std::size_t x0, std::size_t x1,
                     const double* p, const double* weight, double* acc, double* mean, double* sum) {

@@ -75,6 +75,29 @@ TEST_CASE("the per-channel error kernel gives the squared luminance errors of th
   }
 }
 
+TEST_CASE("the per-channel error kernel reads 8-bit samples as their 16-bit values 257 b, in every variant") {
+  const std::size_t pixels = 1003;  // the vector loops' tails
+  const Row row(pixels, 5);
+  std::vector<std::uint8_t> bytes(3 * pixels);
+  std::vector<std::uint16_t> wide(3 * pixels);
+  for (std::size_t j = 0; j < bytes.size(); ++j) {
+    bytes[j] = static_cast<std::uint8_t>(j < 6 ? (j % 2 ? 255 : 0) : row.samples[j] >> 8);  // both ends of the range
+    wide[j] = static_cast<std::uint16_t>(257 * bytes[j]);
+  }
+  std::vector<double> expected(pixels);
+  for (std::size_t x = 0; x < pixels; ++x) {
+    const double r = std::clamp(row.model[3 * x], 0.0, 255.0), g = std::clamp(row.model[3 * x + 1], 0.0, 255.0),
+                 b = std::clamp(row.model[3 * x + 2], 0.0, 255.0);
+    expected[x] = squaredError(kR * r + kG * g + kB * b, &wide[3 * x]);
+  }
+  for (const KernelIsa isa : variants()) {
+    INFO("variant " << name(isa));
+    std::vector<double> d2(pixels, -1);
+    squaredErrorsRgb(row.model.data(), bytes.data(), pixels, d2.data(), isa);
+    CHECK(sameBits(d2, expected));
+  }
+}
+
 TEST_CASE("the LRGB error kernel gives the squared luminance errors of colour times luminance, in every variant") {
   const std::size_t pixels = 999;
   const Row row(pixels, 11);
@@ -85,7 +108,7 @@ TEST_CASE("the LRGB error kernel gives the squared luminance errors of colour ti
   std::uniform_real_distribution<double> coefficient(-9000.0, 40000.0);
   for (double& v : decoded) v = coefficient(random);
   const double basis[6] = {0.31, -0.27, 0.093, 0.5, -0.61, 1.0};
-  std::vector<double> cr(pixels), cg(pixels), cb(pixels), expected(pixels);
+  std::vector<double> cr(pixels), cg(pixels), cb(pixels), models(pixels);
   for (std::size_t x = 0; x < pixels; ++x) {  // colour bytes
     cr[x] = std::round(std::clamp(row.model[3 * x], 0.0, 255.0));
     cg[x] = std::round(std::clamp(row.model[3 * x + 1], 0.0, 255.0));
@@ -96,14 +119,29 @@ TEST_CASE("the LRGB error kernel gives the squared luminance errors of colour ti
     model += kR * std::clamp(cr[x] * l / 255.0, 0.0, 255.0);
     model += kG * std::clamp(cg[x] * l / 255.0, 0.0, 255.0);
     model += kB * std::clamp(cb[x] * l / 255.0, 0.0, 255.0);
-    expected[x] = squaredError(model, &row.samples[3 * x]);
+    models[x] = model;
+  }
+  // 16-bit samples, and 8-bit ones (taken as 257 b) with both ends of their range.
+  std::vector<std::uint8_t> bytes(3 * pixels);
+  std::vector<std::uint16_t> wide(3 * pixels);
+  for (std::size_t j = 0; j < bytes.size(); ++j) {
+    bytes[j] = static_cast<std::uint8_t>(j < 6 ? (j % 2 ? 255 : 0) : row.samples[j] >> 8);
+    wide[j] = static_cast<std::uint16_t>(257 * bytes[j]);
+  }
+  std::vector<double> expected16(pixels), expected8(pixels);
+  for (std::size_t x = 0; x < pixels; ++x) {
+    expected16[x] = squaredError(models[x], &row.samples[3 * x]);
+    expected8[x] = squaredError(models[x], &wide[3 * x]);
   }
   for (const KernelIsa isa : variants()) {
     INFO("variant " << name(isa));
     std::vector<double> d2(pixels, -1);
     squaredErrorsLrgb(cr.data(), cg.data(), cb.data(), decoded.data(), stride, basis, row.samples.data(), pixels,
                       d2.data(), isa);
-    CHECK(sameBits(d2, expected));
+    CHECK(sameBits(d2, expected16));
+    squaredErrorsLrgb(cr.data(), cg.data(), cb.data(), decoded.data(), stride, basis, bytes.data(), pixels,
+                      d2.data(), isa);
+    CHECK(sameBits(d2, expected8));
   }
 }
 
