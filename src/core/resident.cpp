@@ -1,6 +1,10 @@
 #include "core/resident.h"
 
 #include <cstdint>
+#include <new>
+#include <utility>
+
+#include <malloc.h>
 
 #include <sys/mman.h>
 #include <unistd.h>
@@ -21,6 +25,44 @@ void makeResident(void* data, std::size_t bytes) {
   if (end <= begin) return;
   // EINVAL (an older kernel), ENOMEM, EFAULT: the pages are backed as they are written instead.
   (void)::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_POPULATE_WRITE);
+}
+
+ReuseFreedMemory::ReuseFreedMemory() {
+  ::mallopt(M_MMAP_MAX, 0);
+  ::mallopt(M_TRIM_THRESHOLD, INT32_MAX);
+}
+
+ReuseFreedMemory::~ReuseFreedMemory() {
+  // Setting any of these ends glibc's own adaptation of them, so they are set to where it
+  // would have taken them at most (DEFAULT_MMAP_THRESHOLD_MAX on 64-bit systems).
+  constexpr int kMmapThreshold = 32 << 20;
+  ::mallopt(M_MMAP_THRESHOLD, kMmapThreshold);
+  ::mallopt(M_TRIM_THRESHOLD, 2 * kMmapThreshold);
+  ::mallopt(M_MMAP_MAX, 65536);  // glibc's default
+  ::malloc_trim(0);
+}
+
+MappedBlock::MappedBlock(std::size_t bytes) : bytes_(bytes) {
+  if (bytes == 0) return;
+  void* p = ::mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (p == MAP_FAILED) throw std::bad_alloc();
+  data_ = static_cast<std::uint8_t*>(p);
+}
+
+MappedBlock::~MappedBlock() {
+  if (data_) ::munmap(data_, bytes_);
+}
+
+MappedBlock::MappedBlock(MappedBlock&& other) noexcept
+    : data_(std::exchange(other.data_, nullptr)), bytes_(std::exchange(other.bytes_, 0)) {}
+
+MappedBlock& MappedBlock::operator=(MappedBlock&& other) noexcept {
+  if (this != &other) {
+    if (data_) ::munmap(data_, bytes_);
+    data_ = std::exchange(other.data_, nullptr);
+    bytes_ = std::exchange(other.bytes_, 0);
+  }
+  return *this;
 }
 
 }  // namespace surrogate

@@ -1,4 +1,5 @@
-// Fresh memory made resident before it is written.
+// Fresh memory: made resident before it is written, reused rather than mapped again, or a
+// mapping of its own.
 //
 // A large block from malloc is mapped but not backed: each 4 KiB page is backed when it is first
 // written, by a page fault. On the virtual machines this project runs on a fault is costly
@@ -8,6 +9,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 
 namespace surrogate {
 
@@ -35,5 +37,42 @@ void reserveResident(Container& c, std::size_t n) {
   c.reserve(n);
   makeResident(c.data() + c.size(), (c.capacity() - c.size()) * sizeof(*c.data()));
 }
+
+
+// While alive, malloc serves large blocks from memory the process has freed rather than from
+// fresh mappings, and keeps what is freed for the next request (glibc: M_MMAP_MAX 0, a trim
+// threshold no block reaches). For a phase that allocates and frees the same large blocks over
+// and over, as LibRaw does for every camera raw image (about 60 MB at 24 Mpx), where each would
+// otherwise be fresh memory backed page by page. On destruction it returns what stays free to
+// the system (malloc_trim) and leaves malloc with the thresholds its own adaptation reaches at
+// most (blocks of 32 MiB and more mapped, a trim threshold of twice that). One at a time, from
+// one thread; other threads' allocations meanwhile follow the same rule.
+class ReuseFreedMemory {
+ public:
+  ReuseFreedMemory();
+  ~ReuseFreedMemory();
+  ReuseFreedMemory(const ReuseFreedMemory&) = delete;
+  ReuseFreedMemory& operator=(const ReuseFreedMemory&) = delete;
+};
+
+// A block of fresh memory of its own mapping, whatever malloc's policy: for the decoded stack,
+// held for most of a run and given back to the system as soon as it is let go. Uninitialised
+// (zero until written). Throws std::bad_alloc when the system refuses it.
+class MappedBlock {
+ public:
+  MappedBlock() = default;
+  explicit MappedBlock(std::size_t bytes);
+  ~MappedBlock();
+  MappedBlock(MappedBlock&& other) noexcept;
+  MappedBlock& operator=(MappedBlock&& other) noexcept;
+  MappedBlock(const MappedBlock&) = delete;
+  MappedBlock& operator=(const MappedBlock&) = delete;
+  std::uint8_t* data() const { return data_; }
+  std::size_t size() const { return bytes_; }
+
+ private:
+  std::uint8_t* data_ = nullptr;
+  std::size_t bytes_ = 0;
+};
 
 }  // namespace surrogate

@@ -80,10 +80,11 @@ DecodedStack::DecodedStack(int count, Format format, Placement placement, const 
   if (placement == Placement::TemporaryFile) {
     fd_ = temporaryFile(spillDirectory(directory));
   } else {
-    // new[] of a scalar type leaves the bytes uninitialised: each slot's pages are backed by
-    // the thread that fills it, just before (core/resident.h), not zeroed here (new[] aligns
-    // for any scalar, so 16-bit samples are aligned too).
-    block_.reset(new std::uint8_t[static_cast<std::size_t>(bytesFor(count, format))]);
+    // A mapping of its own (page-aligned, so 16-bit samples are aligned too), whatever malloc's
+    // policy while images are decoded (stages::decodeImages), given back when the stack goes.
+    // Not zeroed here: each slot's pages are backed by the thread that fills it, just before
+    // (core/resident.h).
+    block_ = MappedBlock(static_cast<std::size_t>(bytesFor(count, format)));
   }
   stored_.assign(static_cast<std::size_t>(count), 0);
 }
@@ -105,7 +106,7 @@ void DecodedStack::checkIndex(int index) const {
 std::uint8_t* DecodedStack::slot(int index) {
   checkIndex(index);
   if (placement_ != Placement::Memory) return nullptr;
-  return block_.get() + imageBytes() * static_cast<std::uint64_t>(index);
+  return block_.data() + imageBytes() * static_cast<std::uint64_t>(index);
 }
 
 void DecodedStack::markStored(int index) {
@@ -143,7 +144,7 @@ void DecodedStack::checkRows(int index, int y0, int y1) const {
 }
 
 const std::uint8_t* DecodedStack::storedImage(int index) const {
-  return block_.get() + imageBytes() * static_cast<std::uint64_t>(index);
+  return block_.data() + imageBytes() * static_cast<std::uint64_t>(index);
 }
 
 void DecodedStack::readSamples(int index, int y0, int y1, void* out) const {

@@ -24,6 +24,7 @@
 #include <optional>
 #include <vector>
 
+#include "core/resident.h"
 #include "core/stack.h"
 
 namespace surrogate::pipeline {
@@ -97,7 +98,7 @@ class DecodedStack : public ImageStack {
   Placement placement_;
   // In memory: count_ images of imageBytes() each, left uninitialised until decoded into
   // (16-bit samples in the machine's byte order); stored_[i] says image i was stored.
-  std::unique_ptr<std::uint8_t[]> block_;
+  MappedBlock block_;
   std::vector<std::uint8_t> stored_;
   int fd_ = -1;  // the temporary file
 };

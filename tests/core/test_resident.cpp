@@ -8,6 +8,8 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -104,4 +106,49 @@ TEST_CASE("resizeResident and reserveResident are resize and reserve: content an
   s.append(4'999'996, 'x');
   CHECK(s.size() == 5'000'000);
   CHECK(s.compare(0, 5, "headx") == 0);
+}
+
+namespace {
+// The whole pages inside [p, p + bytes).
+std::pair<void*, std::size_t> wholePages(void* p, std::size_t bytes) {
+  const std::uintptr_t begin = (reinterpret_cast<std::uintptr_t>(p) + kPage - 1) / kPage * kPage;
+  const std::uintptr_t end = (reinterpret_cast<std::uintptr_t>(p) + bytes) / kPage * kPage;
+  return {reinterpret_cast<void*>(begin), end - begin};
+}
+}  // namespace
+
+TEST_CASE("ReuseFreedMemory serves a large block again from what was freed, and large blocks are fresh mappings after it") {
+  const std::size_t bytes = 48u << 20;  // LibRaw's image buffer at 6 Mpx
+  {
+    ReuseFreedMemory reuse;
+    void* a = std::malloc(bytes);
+    REQUIRE(a != nullptr);
+    // Written a byte a page through volatile, so that the writes are not dropped as dead
+    // before the free.
+    for (std::size_t i = 0; i < bytes; i += kPage) static_cast<volatile char*>(a)[i] = 1;
+    std::free(a);
+    void* b = std::malloc(bytes);
+    REQUIRE(b != nullptr);
+    const auto [p, n] = wholePages(b, bytes);
+    CHECK(residentPages(p, n) == n / kPage);  // the pages a was written in, still backed
+    std::free(b);
+  }
+  void* c = std::malloc(bytes);
+  REQUIRE(c != nullptr);
+  const auto [p, n] = wholePages(c, bytes);
+  CHECK(residentPages(p, n) < n / kPage / 2);  // a mapping of its own, hardly touched
+  std::free(c);
+}
+
+TEST_CASE("MappedBlock is a zeroed mapping of its own, given back when let go") {
+  MappedBlock block(5 * kPage + 3);
+  REQUIRE(block.data() != nullptr);
+  CHECK(block.size() == 5 * kPage + 3);
+  CHECK(reinterpret_cast<std::uintptr_t>(block.data()) % kPage == 0);
+  CHECK(residentPages(block.data(), 6 * kPage) == 0);
+  for (std::size_t i = 0; i < block.size(); ++i) REQUIRE(block.data()[i] == 0);
+  block.data()[kPage] = 7;
+  MappedBlock moved = std::move(block);
+  CHECK(block.data() == nullptr);
+  CHECK(moved.data()[kPage] == 7);
 }
