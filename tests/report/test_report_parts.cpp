@@ -116,15 +116,24 @@ TEST_CASE("the hemisphere plot escapes image names") {
   CHECK(svg.find("&lt;script&gt;") != std::string::npos);
 }
 
-TEST_CASE("the relighting copy of a PTM averages each coefficient over blocks") {
+namespace {
+// A PTM of 4x2 texels, scale 1 and bias 0, its bytes zero.
+formats::PtmFile smallPtm(formats::PtmFile::Format format) {
   formats::PtmFile ptm;
-  ptm.format = formats::PtmFile::Format::Lrgb;
+  ptm.format = format;
   ptm.width = 4;
   ptm.height = 2;
   ptm.scale = {1, 1, 1, 1, 1, 1};
   ptm.bias = {0, 0, 0, 0, 0, 0};
-  ptm.coefficients.resize(ptm.texels() * 6);
-  ptm.rgb.resize(ptm.texels() * 3);
+  const bool lrgb = format == formats::PtmFile::Format::Lrgb;
+  ptm.coefficients.resize(ptm.texels() * (lrgb ? 6 : 18));
+  ptm.rgb.resize(lrgb ? ptm.texels() * 3 : 0);
+  return ptm;
+}
+}  // namespace
+
+TEST_CASE("the relighting copy of a PTM averages each coefficient over blocks") {
+  formats::PtmFile ptm = smallPtm(formats::PtmFile::Format::Lrgb);
   for (std::size_t t = 0; t < ptm.texels(); ++t) {
     for (int k = 0; k < 6; ++k) ptm.coefficients[t * 6 + k] = static_cast<std::uint8_t>(t * 10 + k);
     for (int c = 0; c < 3; ++c) ptm.rgb[t * 3 + c] = static_cast<std::uint8_t>(100 + t);
@@ -140,6 +149,25 @@ TEST_CASE("the relighting copy of a PTM averages each coefficient over blocks") 
   for (int block = 0; block < 2; ++block)
     for (int k = 0; k < 6; ++k) expected += static_cast<char>(25 + block * 20 + k);
   CHECK_THAT(half, Catch::Contains("\"coefficients\":\"" + base64(expected) + "\""));
+}
+
+TEST_CASE("the relighting copy of an RGB PTM averages each channel's plane over blocks") {
+  formats::PtmFile ptm = smallPtm(formats::PtmFile::Format::Rgb);
+  // Plane c, texel t, coefficient k at (c * 8 + t) * 6 + k.
+  for (std::size_t i = 0; i < ptm.coefficients.size(); ++i) ptm.coefficients[i] = static_cast<std::uint8_t>(i * 5 % 256);
+  const std::string json = relightJson(formats::serializePtm(ptm), 2, "t.ptm");
+  CHECK_THAT(json, Catch::Contains("\"format\":\"rgb\",\"width\":2,\"height\":1"));
+  // Blocks of 2x2 texels: block b of a plane holds texels 2b, 2b + 1, 2b + 4, 2b + 5.
+  std::string expected;
+  for (int c = 0; c < 3; ++c)
+    for (int block = 0; block < 2; ++block)
+      for (int k = 0; k < 6; ++k) {
+        int sum = 0;
+        for (int t : {2 * block, 2 * block + 1, 2 * block + 4, 2 * block + 5}) sum += ptm.coefficients[(c * 8 + t) * 6 + k];
+        expected += static_cast<char>((sum + 2) / 4);
+      }
+  CHECK_THAT(json, Catch::Contains("\"coefficients\":\"" + base64(expected) + "\""));
+  CHECK(relightJson(ptm, 2) == json);
 }
 
 TEST_CASE("embedPicture rejects bytes that are not a picture, and PNG headers claiming huge images") {
