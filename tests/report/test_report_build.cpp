@@ -175,14 +175,17 @@ TEST_CASE("pictures given as display copies of their pixels make the page their 
       {"finished-files/albedo.png", heldPicture(300, 200, 1, false, 3)}};
   ReportOptions options;
   options.generatedAt = "2026-02-03T04:05:06Z";
-  MemorySource files(sampleCarrier());
+  // One carrier for both pages: each sampleCarrier() stamps its log with the time it is made,
+  // and two made a second apart gave two pages (this test failed about once in 60 runs).
+  const carrier::Carrier c = sampleCarrier();
+  MemorySource files(c);
   for (const auto& [path, picture] : held) files.files[path] = picture.png;
   files.files["finished-files/ptm-lrgb.ptm"] = smallPtm();
   const Report fromFiles = buildReport(files.carrier(), files, options);
   REQUIRE(fromFiles.picturesEmbedded == 3);
 
   // From the copies alone (the source has no picture files): the same page.
-  MemorySource modelOnly(sampleCarrier());
+  MemorySource modelOnly(c);
   modelOnly.files["finished-files/ptm-lrgb.ptm"] = smallPtm();
   auto copies = std::make_shared<std::map<std::string, DisplayPicture>>();
   for (const auto& [path, picture] : held) (*copies)[path] = displayPicture(picture.pixels, options.maxImageSide);
