@@ -283,8 +283,8 @@ SURROGATE_AVX2_TARGET void lrgbAvx2(const double* cr, const double* cg, const do
 
 // rgbBody on eight pixels at a time: the samples parted into R, G and B by byte shuffles, the
 // model's 24 values by blends and permutes, then the same operations on each value in the same
-// order (no fused multiply-add). The pixels past the last whole eight go through the body. The compiled body
-// had gathered the interleaved values lane by lane.
+// order (no fused multiply-add). The pixels past the last whole eight go through the body. The
+// compiled body had gathered the interleaved values lane by lane.
 template <typename Sample>
 SURROGATE_AVX2_TARGET void rgbAvx2(const double* p, const Sample* s, std::size_t pixels, double* d2) {
   const __m256d kr = _mm256_set1_pd(kLumR), kg = _mm256_set1_pd(kLumG), kb = _mm256_set1_pd(kLumB);

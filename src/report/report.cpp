@@ -567,8 +567,8 @@ Report buildReport(const carrier::Carrier& c, const ReportSource& source, const 
   // The sections with pictures and models are megabytes: appended once each to a page of
   // the right size, not streamed.
   const std::string first = head.str(), last = tail.str();
-  reserveResident(report.html, first.size() + relight.size() + lights.size() + detection.size() + results.size() +
-                      priorWork.size() + last.size() + 8);
+  reserveResident(report.html, first.size() + relight.size() + lights.size() + detection.size() +
+                                   results.size() + priorWork.size() + last.size() + 8);
   report.html.append(first).append(relight).append(lights).append("</div>").append(detection).append(results)
       .append(priorWork).append(last);
   progress(1);

@@ -9,8 +9,8 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <utility>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/resident.h"
@@ -28,6 +28,13 @@ std::size_t residentPages(void* p, std::size_t bytes) {
   std::size_t n = 0;
   for (unsigned char c : in) n += c & 1;
   return n;
+}
+
+// The whole pages inside [p, p + bytes).
+std::pair<void*, std::size_t> wholePages(void* p, std::size_t bytes) {
+  const std::uintptr_t begin = (reinterpret_cast<std::uintptr_t>(p) + kPage - 1) / kPage * kPage;
+  const std::uintptr_t end = (reinterpret_cast<std::uintptr_t>(p) + bytes) / kPage * kPage;
+  return {reinterpret_cast<void*>(begin), end - begin};
 }
 
 // MADV_POPULATE_WRITE came with Linux 5.14; before it makeResident does nothing.
@@ -107,15 +114,6 @@ TEST_CASE("resizeResident and reserveResident are resize and reserve: content an
   CHECK(s.size() == 5'000'000);
   CHECK(s.compare(0, 5, "headx") == 0);
 }
-
-namespace {
-// The whole pages inside [p, p + bytes).
-std::pair<void*, std::size_t> wholePages(void* p, std::size_t bytes) {
-  const std::uintptr_t begin = (reinterpret_cast<std::uintptr_t>(p) + kPage - 1) / kPage * kPage;
-  const std::uintptr_t end = (reinterpret_cast<std::uintptr_t>(p) + bytes) / kPage * kPage;
-  return {reinterpret_cast<void*>(begin), end - begin};
-}
-}  // namespace
 
 TEST_CASE("ReuseFreedMemory serves a large block again from what was freed, and large blocks are fresh mappings after it") {
   const std::size_t bytes = 48u << 20;  // LibRaw's image buffer at 6 Mpx

@@ -2,6 +2,7 @@
 // PTM copy for the relighting view.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <regex>
 #include <vector>
 
@@ -130,6 +131,22 @@ formats::PtmFile smallPtm(formats::PtmFile::Format format) {
   ptm.rgb.resize(lrgb ? ptm.texels() * 3 : 0);
   return ptm;
 }
+
+// The block averages of a plane of width x height texels, `values` bytes each (texel-
+// interleaved), written block by block: every value of a block of step x step texels (fewer at
+// the right and bottom edges) summed over its texels, rounded half up.
+std::string referenceBlockAverages(const std::uint8_t* plane, int width, int height, int values, int step) {
+  std::string out;
+  for (int by = 0; by * step < height; ++by)
+    for (int bx = 0; bx * step < width; ++bx)
+      for (int v = 0; v < values; ++v) {
+        int sum = 0, n = 0;
+        for (int y = by * step; y < std::min(height, (by + 1) * step); ++y)
+          for (int x = bx * step; x < std::min(width, (bx + 1) * step); ++x, ++n) sum += plane[(y * width + x) * values + v];
+        out += static_cast<char>((sum + n / 2) / n);
+      }
+  return out;
+}
 }  // namespace
 
 TEST_CASE("the relighting copy of a PTM averages each coefficient over blocks") {
@@ -157,15 +174,9 @@ TEST_CASE("the relighting copy of an RGB PTM averages each channel's plane over 
   for (std::size_t i = 0; i < ptm.coefficients.size(); ++i) ptm.coefficients[i] = static_cast<std::uint8_t>(i * 5 % 256);
   const std::string json = relightJson(formats::serializePtm(ptm), 2, "t.ptm");
   CHECK_THAT(json, Catch::Contains("\"format\":\"rgb\",\"width\":2,\"height\":1"));
-  // Blocks of 2x2 texels: block b of a plane holds texels 2b, 2b + 1, 2b + 4, 2b + 5.
+  // Blocks of 2x2 texels, plane after plane.
   std::string expected;
-  for (int c = 0; c < 3; ++c)
-    for (int block = 0; block < 2; ++block)
-      for (int k = 0; k < 6; ++k) {
-        int sum = 0;
-        for (int t : {2 * block, 2 * block + 1, 2 * block + 4, 2 * block + 5}) sum += ptm.coefficients[(c * 8 + t) * 6 + k];
-        expected += static_cast<char>((sum + 2) / 4);
-      }
+  for (int c = 0; c < 3; ++c) expected += referenceBlockAverages(&ptm.coefficients[c * 8 * 6], 4, 2, 6, 2);
   CHECK_THAT(json, Catch::Contains("\"coefficients\":\"" + base64(expected) + "\""));
   CHECK(relightJson(ptm, 2) == json);
 }
@@ -227,15 +238,7 @@ TEST_CASE("the relighting copy averages the partial blocks at the right and bott
                                            [](std::size_t i) { return static_cast<std::uint8_t>(i * 37 % 256); });
   const std::string json = relightJson(formats::serializeRti(hsh), 3, "t.rti");
   CHECK_THAT(json, Catch::Contains("\"width\":3,\"height\":2"));
-  std::string expected;
-  for (int by = 0; by < 2; ++by)
-    for (int bx = 0; bx < 3; ++bx)
-      for (int j = 0; j < 12; ++j) {
-        int sum = 0, n = 0;
-        for (int y = by * 3; y < std::min(4, by * 3 + 3); ++y)
-          for (int x = bx * 3; x < std::min(7, bx * 3 + 3); ++x, ++n) sum += hsh.coefficients[(y * 7 + x) * 12 + j];
-        expected += static_cast<char>((sum + n / 2) / n);
-      }
+  const std::string expected = referenceBlockAverages(hsh.coefficients.data(), 7, 4, 12, 3);
   CHECK_THAT(json, Catch::Contains("\"coefficients\":\"" + base64(expected) + "\""));
   // The same model in memory gives the same copy.
   CHECK(relightJson(hsh, 3) == json);
