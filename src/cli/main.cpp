@@ -13,6 +13,7 @@
 #include "cli/commands.h"
 #include "core/error.h"
 #include "core/json.h"
+#include "core/resident.h"
 #include "core/version.h"
 
 using namespace surrogate;
@@ -77,6 +78,7 @@ int helpFor(const std::string& name) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  reuseFreedMemory();  // before any thread starts: see core/resident.h
   if (argc >= 3 && std::string(argv[1]) == "help") return helpFor(argv[2]);
   if (argc < 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h" ||
       std::string(argv[1]) == "help") {

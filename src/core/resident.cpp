@@ -27,19 +27,9 @@ void makeResident(void* data, std::size_t bytes) {
   (void)::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_POPULATE_WRITE);
 }
 
-ReuseFreedMemory::ReuseFreedMemory() {
+void reuseFreedMemory() {
   ::mallopt(M_MMAP_MAX, 0);
   ::mallopt(M_TRIM_THRESHOLD, INT32_MAX);
-}
-
-ReuseFreedMemory::~ReuseFreedMemory() {
-  // Setting any of these ends glibc's own adaptation of them, so they are set to where it
-  // would have taken them at most (DEFAULT_MMAP_THRESHOLD_MAX on 64-bit systems).
-  constexpr int kMmapThreshold = 32 << 20;
-  ::mallopt(M_MMAP_THRESHOLD, kMmapThreshold);
-  ::mallopt(M_TRIM_THRESHOLD, 2 * kMmapThreshold);
-  ::mallopt(M_MMAP_MAX, 65536);  // glibc's default
-  ::malloc_trim(0);
 }
 
 MappedBlock::MappedBlock(std::size_t bytes) : bytes_(bytes) {

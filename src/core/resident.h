@@ -38,21 +38,17 @@ void reserveResident(Container& c, std::size_t n) {
   makeResident(c.data() + c.size(), (c.capacity() - c.size()) * sizeof(*c.data()));
 }
 
-// While alive, malloc serves large blocks from memory the process has freed rather than from
-// fresh mappings, and keeps what is freed for the next request (glibc: M_MMAP_MAX 0, a trim
-// threshold no block reaches). For a phase that allocates and frees the same large blocks over
-// and over, as LibRaw does for every camera raw image (about 10 bytes a pixel: 60 MB at
-// 6 Mpx), where each would otherwise be fresh memory backed page by page. On destruction it returns what stays free to
-// the system (malloc_trim) and leaves malloc with the thresholds its own adaptation reaches at
-// most (blocks of 32 MiB and more mapped, a trim threshold of twice that). One at a time, from
-// one thread; other threads' allocations meanwhile follow the same rule.
-class ReuseFreedMemory {
- public:
-  ReuseFreedMemory();
-  ~ReuseFreedMemory();
-  ReuseFreedMemory(const ReuseFreedMemory&) = delete;
-  ReuseFreedMemory& operator=(const ReuseFreedMemory&) = delete;
-};
+// From now on, for the rest of the process, malloc serves large blocks from memory the process
+// has freed rather than from fresh mappings, and keeps what is freed for the next request
+// (glibc: M_MMAP_MAX 0, a trim threshold no block reaches). The pipeline allocates and frees
+// the same large blocks over and over: LibRaw's buffers for every camera raw image (about 10
+// bytes a pixel: 60 MB at 6 Mpx), each fit's coefficient planes and model, each derived
+// picture and its PNG stream. By default glibc maps every block of 32 MiB or more afresh and
+// unmaps it when freed, so each is fresh memory backed page by page again. The cost: memory
+// freed stays with the process (its peak is unchanged, since a freed block is what the next
+// one reuses). For a program's main, before any thread starts; the CLI calls it for every
+// command.
+void reuseFreedMemory();
 
 // A block of fresh memory of its own mapping, whatever malloc's policy: for the decoded stack,
 // held for most of a run and given back to the system as soon as it is let go. Uninitialised

@@ -6,7 +6,6 @@
 #include <condition_variable>
 #include <cstdio>
 #include <mutex>
-#include <optional>
 
 #include "core/digest.h"
 #include "core/error.h"
@@ -224,10 +223,6 @@ DecodedStacks decodeImages(const std::vector<std::filesystem::path>& files,
   // less: a grey JPEG), for the number of images decoded at once.
   const std::uint64_t held = inMemory ? std::uint64_t(n) * declared * storedBytesPerPixel(first.kind) : 0;
   const int workers = concurrentDecodes(run.threads, run.memoryBudget - held, declared);
-  // LibRaw allocates and frees about 10 bytes a pixel for every image (60 MB at 6 Mpx); served
-  // from what the previous image freed, they are not fresh memory each time.
-  std::optional<ReuseFreedMemory> reuse;
-  if (first.kind == image::SourceKind::CameraRaw) reuse.emplace();
   parallelFor(static_cast<std::size_t>(n), 1, workers, [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) {
       if (i == 0) decodeFirst();
