@@ -48,7 +48,8 @@ struct RunSettings {
   // file is complete. surrogate run keeps display copies of them for its report.
   std::function<void(const std::string&, const Image&)> pictureWritten;
   // The same for each fitted model a step has written (.ptm or .rti): its path and the model
-  // the file holds. surrogate run makes the report's interactive copies of them.
+  // the file holds. surrogate run makes the report's interactive copies of them. Called on a
+  // thread of the step's own while the step writes the file, one call at a time.
   std::function<void(const std::string&, const formats::PtmFile&)> ptmWritten;
   std::function<void(const std::string&, const formats::HshFile&)> hshWritten;
 };

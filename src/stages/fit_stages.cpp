@@ -9,6 +9,7 @@
 #include <numeric>
 
 #include "capture/capture.h"
+#include "core/digest.h"
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/text.h"
@@ -109,6 +110,29 @@ class OverlappedPngWrites {
   int maxPending_;  // 0: write each file at once, on the caller's thread
   std::deque<Pending> pending_;
 };
+
+// write() (writing a model and taking its digests) and alongside() (the report's copy of the
+// model) at once, the copy on a thread of its own: once the fit is done each is one core's
+// work, and the file alone took 0.14 s of one core at 36 x 3000x2000 while the other waited.
+// With one thread, one after the other. Both have ended when this returns or throws.
+FileDigests writeAlongside(const std::function<FileDigests()>& write, const std::function<void()>& alongside,
+                           int threads) {
+  if (effectiveThreads(threads) < 2) {
+    FileDigests d = write();
+    alongside();
+    return d;
+  }
+  std::future<void> other = std::async(std::launch::async, alongside);
+  FileDigests d;
+  try {
+    d = write();
+  } catch (...) {
+    other.wait();
+    throw;
+  }
+  other.get();
+  return d;
+}
 }  // namespace
 
 pipeline::Parameters RtiFitOptions::toParameters() const {
@@ -167,20 +191,36 @@ void RtiFitStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
   fit::FitStatistics stats;
   std::shared_ptr<fit::Relightable> model;
   std::string format;
+  FileDigests digests;
+  const std::filesystem::path path = ctx.outputPath(output);
   if (options.basis == fit::Basis::PtmLrgb || options.basis == fit::Basis::PtmRgb) {
     formats::PtmFile ptm = fit::fitPtm(*rgb, *lights, options, &stats);
-    formats::writePtm(ctx.outputPath(output), ptm);
-    if (ctx.settings.ptmWritten) ctx.settings.ptmWritten(output, ptm);
+    digests = writeAlongside(
+        [&] {
+          formats::writePtm(path, ptm);
+          return digestFile(path);
+        },
+        [&] {
+          if (ctx.settings.ptmWritten) ctx.settings.ptmWritten(output, ptm);
+        },
+        ctx.settings.threads);
     format = formats::formatName(ptm.format);
     model = fit::makeRelightable(std::move(ptm));
   } else {
     formats::HshFile hsh = fit::fitHsh(*rgb, *lights, options, &stats);
-    formats::writeRti(ctx.outputPath(output), hsh);
-    if (ctx.settings.hshWritten) ctx.settings.hshWritten(output, hsh);
+    digests = writeAlongside(
+        [&] {
+          formats::writeRti(path, hsh);
+          return digestFile(path);
+        },
+        [&] {
+          if (ctx.settings.hshWritten) ctx.settings.hshWritten(output, hsh);
+        },
+        ctx.settings.threads);
     format = "RTI_HSH";
     model = fit::makeRelightable(std::move(hsh));
   }
-  recordOutput(ctx, step, result, output, "result", format, basis,
+  recordOutput(ctx, step, result, output, digests, "result", format, basis,
                output.size() > 4 && output.substr(output.size() - 4) == ".ptm" ? "application/x-ptm"
                                                                              : "application/x-rti");
 

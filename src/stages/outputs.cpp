@@ -10,6 +10,14 @@ std::string recordOutput(pipeline::Context& ctx, const carrier::Step& step,
                          carrier::Result& result, const std::string& relativePath,
                          const std::string& role, const std::string& format,
                          const std::string& kind, const std::string& mediaType) {
+  return recordOutput(ctx, step, result, relativePath, digestFile(ctx.outputPath(relativePath)), role, format,
+                      kind, mediaType);
+}
+
+std::string recordOutput(pipeline::Context& ctx, const carrier::Step& step,
+                         carrier::Result& result, const std::string& relativePath,
+                         const FileDigests& d, const std::string& role, const std::string& format,
+                         const std::string& kind, const std::string& mediaType) {
   // The plan refuses this before any step runs (prior_work.h); a record of prior work is
   // never replaced by one of Surrogate's results.
   if (const carrier::FileRecord* before = ctx.carrier.findFileByPath(relativePath); before && before->role == "prior")
@@ -17,7 +25,6 @@ std::string recordOutput(pipeline::Context& ctx, const carrier::Step& step,
                 "is prior work (a file Surrogate did not write): Surrogate never writes over it; move it "
                 "into a folder of its own, e.g. " + std::filesystem::path(relativePath).parent_path().generic_string() +
                     "/prior/, then run again");
-  const FileDigests d = digestFile(ctx.outputPath(relativePath));
   carrier::FileRecord f;
   f.path = relativePath;
   f.role = role;

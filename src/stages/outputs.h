@@ -6,6 +6,7 @@
 #include <string>
 
 #include "carrier/carrier.h"
+#include "core/digest.h"
 #include "core/image.h"
 #include "pipeline/context.h"
 
@@ -16,6 +17,12 @@ namespace surrogate::stages {
 std::string recordOutput(pipeline::Context& ctx, const carrier::Step& step,
                          carrier::Result& result, const std::string& relativePath,
                          const std::string& role, const std::string& format,
+                         const std::string& kind, const std::string& mediaType = "");
+
+// The same with the file's digests already taken (digestFile), e.g. on another thread.
+std::string recordOutput(pipeline::Context& ctx, const carrier::Step& step,
+                         carrier::Result& result, const std::string& relativePath,
+                         const FileDigests& digests, const std::string& role, const std::string& format,
                          const std::string& kind, const std::string& mediaType = "");
 
 // Writes `picture` as the PNG file `relativePath` (image::writePng, under the context's output
