@@ -15,14 +15,26 @@
 
 namespace surrogate {
 
+namespace {
+constexpr std::uintptr_t kHugePage = std::uintptr_t(2) << 20;  // x86-64's transparent huge page
+}
+
 void makeResident(void* data, std::size_t bytes) {
   // Below a megabyte the block most likely comes from memory the process already uses, and
   // the call would cost more than the faults it saves.
   if (bytes < (std::size_t(1) << 20)) return;
   static const std::uintptr_t page = static_cast<std::uintptr_t>(::sysconf(_SC_PAGESIZE));
-  const std::uintptr_t begin = (reinterpret_cast<std::uintptr_t>(data) + page - 1) / page * page;
-  const std::uintptr_t end = (reinterpret_cast<std::uintptr_t>(data) + bytes) / page * page;
+  const std::uintptr_t at = reinterpret_cast<std::uintptr_t>(data);
+  const std::uintptr_t begin = (at + page - 1) / page * page;
+  const std::uintptr_t end = (at + bytes) / page * page;
   if (end <= begin) return;
+  // The whole huge pages inside the block backed as such: populating them is a handful of
+  // faults, where 4 KiB pages each cost one when first written even after populating
+  // (docs/developer-guide.md, "Fresh memory"). Refused (a kernel without transparent huge
+  // pages, or with them set to "never"): 4 KiB pages, as before.
+  const std::uintptr_t hugeBegin = (at + kHugePage - 1) / kHugePage * kHugePage;
+  const std::uintptr_t hugeEnd = (at + bytes) / kHugePage * kHugePage;
+  if (hugeEnd > hugeBegin) (void)::madvise(reinterpret_cast<void*>(hugeBegin), hugeEnd - hugeBegin, MADV_HUGEPAGE);
   // EINVAL (an older kernel), ENOMEM, EFAULT: the pages are backed as they are written instead.
   (void)::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_POPULATE_WRITE);
 }
@@ -34,9 +46,18 @@ void reuseFreedMemory() {
 
 MappedBlock::MappedBlock(std::size_t bytes) : bytes_(bytes) {
   if (bytes == 0) return;
-  void* p = ::mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  // Mapped with a huge page's slack and cut to start on a huge page boundary, so that
+  // makeResident can back all of it with huge pages.
+  static const std::size_t page = static_cast<std::size_t>(::sysconf(_SC_PAGESIZE));
+  const std::size_t mapped = (bytes + page - 1) / page * page, slack = kHugePage;
+  void* p = ::mmap(nullptr, mapped + slack, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
   if (p == MAP_FAILED) throw std::bad_alloc();
-  data_ = static_cast<std::uint8_t*>(p);
+  const std::uintptr_t at = reinterpret_cast<std::uintptr_t>(p);
+  const std::uintptr_t aligned = (at + kHugePage - 1) / kHugePage * kHugePage;
+  if (aligned > at) ::munmap(p, aligned - at);
+  if (const std::size_t tail = at + mapped + slack - (aligned + mapped); tail > 0)
+    ::munmap(reinterpret_cast<void*>(aligned + mapped), tail);
+  data_ = reinterpret_cast<std::uint8_t*>(aligned);
 }
 
 MappedBlock::~MappedBlock() {

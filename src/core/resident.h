@@ -4,8 +4,9 @@
 // A large block from malloc is mapped but not backed: each 4 KiB page is backed when it is first
 // written, by a page fault. On the virtual machines this project runs on a fault is costly
 // (measured: writing one byte a page into 648 MB of fresh memory, 1.9-2.4 s on one thread),
-// and backing the same range in one madvise(MADV_POPULATE_WRITE) call took 0.9-1.1 s
-// (docs/developer-guide.md, "Fresh memory").
+// and backing the same range in one madvise(MADV_POPULATE_WRITE) call took 0.9-1.1 s, most of
+// it the first write to each page after it; backed in 2 MiB huge pages, 0.05-0.14 s
+// (docs/developer-guide.md, "Fresh memory", "Backed in huge pages").
 #pragma once
 
 #include <cstddef>
@@ -13,10 +14,12 @@
 
 namespace surrogate {
 
-// Backs the whole pages inside [data, data + bytes) now, as writing them would; the bytes are
-// unchanged (zero where never written). Best effort: on a kernel without MADV_POPULATE_WRITE
-// (Linux before 5.14) or when memory is short it does nothing, and the pages are backed as
-// they are written. Worth calling only for blocks of megabytes about to be written in full.
+// Backs the whole pages inside [data, data + bytes) now, as writing them would, in
+// transparent huge pages where whole ones fit; the bytes are unchanged (zero where never
+// written). Best effort: on a kernel without MADV_POPULATE_WRITE (Linux before 5.14) or when
+// memory is short it does nothing, and the pages are backed as they are written; without
+// transparent huge pages, in 4 KiB pages. Worth calling only for blocks of megabytes about to
+// be written in full.
 void makeResident(void* data, std::size_t bytes);
 
 // c.resize(n) (a std::vector or std::string of bytes or numbers) with the memory of the new
@@ -51,8 +54,9 @@ void reserveResident(Container& c, std::size_t n) {
 void reuseFreedMemory();
 
 // A block of fresh memory of its own mapping, whatever malloc's policy: for the decoded stack,
-// held for most of a run and given back to the system as soon as it is let go. Uninitialised
-// (zero until written). Throws std::bad_alloc when the system refuses it.
+// held for most of a run and given back to the system as soon as it is let go. Starts on a
+// 2 MiB boundary, so that makeResident can back all of it in huge pages. Uninitialised (zero
+// until written). Throws std::bad_alloc when the system refuses it.
 class MappedBlock {
  public:
   MappedBlock() = default;
