@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
+#include <condition_variable>
 #include <cmath>
 #include <deque>
 #include <functional>
 #include <future>
+#include <mutex>
 #include <numeric>
 
 #include "capture/capture.h"
@@ -56,11 +59,13 @@ std::string finished(const std::string& name) { return std::string(capture::kFin
 // PNG files written on threads of their own while the next picture is computed: computing a
 // map already uses every core, but libdeflate compresses one file on one core, and encoding is
 // most of the stage's time (the 16-bit normals of 3000x2000 take about 0.5 s). As many files are
-// encoded at once as there are threads, each on its own thread. Each file's bytes come from
-// its pixels alone, and the carrier records them on the caller's thread in the order given, so
-// the files and the carrier are the same at any thread count. Memory holds the pictures being
-// encoded plus the one being computed: three of the five with two threads. With one thread,
-// each is written before the next is computed.
+// encoded at once as there are threads, each on its own thread; the next picture is computed as
+// soon as any of them is done (waiting for the oldest, the normals, had left a core idle while
+// the smaller files behind it were long written). Each file's bytes come from its pixels alone,
+// and the carrier records them on the caller's thread in the order given, so the files and the
+// carrier are the same at any thread count. Memory holds the pictures being encoded plus the one
+// being computed: three of the five with two threads. With one thread, each is written before
+// the next is computed.
 class OverlappedPngWrites {
  public:
   explicit OverlappedPngWrites(const pipeline::Context& ctx)
@@ -80,12 +85,30 @@ class OverlappedPngWrites {
       record();
       return;
     }
-    while (static_cast<int>(pending_.size()) >= maxPending_) finishOldest();
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      ended_.wait(lock, [&] { return writing_ < maxPending_; });
+      ++writing_;
+    }
     pending_.push_back({std::async(std::launch::async,
                                    [this, image = std::move(image), path = std::move(relativePath)] {
+                                     // Counted out however the write ends, so that add() never
+                                     // waits for a write that has failed.
+                                     struct Ended {
+                                       OverlappedPngWrites& writes;
+                                       ~Ended() {
+                                         std::lock_guard<std::mutex> lock(writes.mutex_);
+                                         --writes.writing_;
+                                         writes.ended_.notify_all();
+                                       }
+                                     } ended{*this};
                                      writePicture(ctx_, image, path);
                                    }),
                         std::move(record)});
+    // Records what is written, in order, up to the first write still running.
+    while (!pending_.empty() &&
+           pending_.front().write.wait_for(std::chrono::seconds(0)) == std::future_status::ready)
+      finishOldest();
   }
 
   // Waits for every pending write (rethrowing the first error) and records them in order.
@@ -107,8 +130,11 @@ class OverlappedPngWrites {
   }
 
   const pipeline::Context& ctx_;
-  int maxPending_;  // 0: write each file at once, on the caller's thread
+  int maxPending_;  // files encoded at once; 0: write each file at once, on the caller's thread
   std::deque<Pending> pending_;
+  std::mutex mutex_;
+  std::condition_variable ended_;  // a write has ended
+  int writing_ = 0;                // writes running, under mutex_
 };
 
 // write() (writing a model and taking its digests) and alongside() (the report's copy of the
