@@ -168,20 +168,38 @@ void blockAverage(const std::uint8_t* in, int width, int height, int values, int
   }
 }
 
+// Bytes to embed: a model's own array, or a block-averaged copy of it.
+struct Bytes {
+  const void* data;
+  std::size_t size;
+};
+
 // The JSON object `head` (open: its fields so far) closed with the given fields as base64
 // strings, appended in place: the model's copy is tens of megabytes at 1200 pixels a side, and
 // a stream would grow and copy it several times.
-std::string withBase64(std::string head, std::initializer_list<std::pair<const char*, const std::string*>> fields) {
+std::string withBase64(std::string head, std::initializer_list<std::pair<const char*, Bytes>> fields) {
   std::size_t size = head.size() + 2;
-  for (const auto& [name, bytes] : fields) size += std::char_traits<char>::length(name) + 6 + 4 * ((bytes->size() + 2) / 3);
-  head.reserve(size);
+  for (const auto& [name, bytes] : fields) size += std::char_traits<char>::length(name) + 6 + 4 * ((bytes.size + 2) / 3);
+  reserveResident(head, size);
   for (const auto& [name, bytes] : fields) {
     head.append(",\"").append(name).append("\":\"");
-    appendBase64(head, bytes->data(), bytes->size());
+    appendBase64(head, bytes.data, bytes.size);
     head += '"';
   }
   head += '}';
   return head;
+}
+
+// `values` bytes a texel of a width x height array: the array itself when each block is one
+// texel (a model no larger than the copy's side, as at 1200x800: a copy would be the same bytes),
+// else its block averages (blockAverage) in `averaged`.
+Bytes blockAveraged(const std::uint8_t* in, int width, int height, int values, int step, std::string& averaged) {
+  const std::size_t count = static_cast<std::size_t>(width) * height * values;
+  if (step == 1) return {in, count};
+  const int w = (width + step - 1) / step, h = (height + step - 1) / step;
+  resizeResident(averaged, static_cast<std::size_t>(w) * h * values);
+  blockAverage(in, width, height, values, step, averaged.data());
+  return {averaged.data(), averaged.size()};
 }
 
 }  // namespace
@@ -190,16 +208,21 @@ std::string relightJson(const formats::PtmFile& ptm, int maxSide) {
   const int step = blockSide(ptm.width, ptm.height, maxSide);
   const int w = (ptm.width + step - 1) / step, h = (ptm.height + step - 1) / step;
   const bool lrgb = ptm.format == formats::PtmFile::Format::Lrgb;
-  const int channels = lrgb ? 1 : 3;
 
   // Block averages; rows top-first, texel-interleaved: ((c*h + y)*w + x)*6 + k, as the
-  // model's planes are (the 6 bytes of a texel together, one plane per channel).
-  std::string coefficients(static_cast<std::size_t>(channels) * w * h * 6, '\0');
-  const std::size_t plane = ptm.texels() * 6, copyPlane = static_cast<std::size_t>(w) * h * 6;
-  for (int c = 0; c < channels; ++c)
-    blockAverage(ptm.coefficients.data() + c * plane, ptm.width, ptm.height, 6, step, &coefficients[c * copyPlane]);
-  std::string rgb(lrgb ? static_cast<std::size_t>(w) * h * 3 : 0, '\0');
-  if (lrgb) blockAverage(ptm.rgb.data(), ptm.width, ptm.height, 3, step, rgb.data());
+  // model's planes are (the 6 bytes of a texel together, one plane per channel): the model's
+  // own array when each block is one texel.
+  std::string coefficients, rgb;
+  Bytes coefficientBytes{ptm.coefficients.data(), ptm.coefficients.size()};
+  if (step > 1) {
+    const int channels = lrgb ? 1 : 3;
+    const std::size_t plane = ptm.texels() * 6, copyPlane = static_cast<std::size_t>(w) * h * 6;
+    resizeResident(coefficients, channels * copyPlane);
+    for (int c = 0; c < channels; ++c)
+      blockAverage(ptm.coefficients.data() + c * plane, ptm.width, ptm.height, 6, step, &coefficients[c * copyPlane]);
+    coefficientBytes = {coefficients.data(), coefficients.size()};
+  }
+  const Bytes rgbBytes = lrgb ? blockAveraged(ptm.rgb.data(), ptm.width, ptm.height, 3, step, rgb) : Bytes{nullptr, 0};
   std::ostringstream j;
   j.precision(17);
   j << "{\"model\":\"ptm\",\"basis\":\"" << (lrgb ? "ptm-lrgb" : "ptm-rgb") << "\",\"format\":\""
@@ -207,7 +230,7 @@ std::string relightJson(const formats::PtmFile& ptm, int maxSide) {
     << ",\"originalWidth\":" << ptm.width << ",\"originalHeight\":" << ptm.height;
   writeNumbers(j, "scale", std::vector<double>(ptm.scale.begin(), ptm.scale.end()));
   writeNumbers(j, "bias", std::vector<double>(ptm.bias.begin(), ptm.bias.end()));
-  return withBase64(j.str(), {{"coefficients", &coefficients}, {"rgb", &rgb}});
+  return withBase64(j.str(), {{"coefficients", coefficientBytes}, {"rgb", rgbBytes}});
 }
 
 std::string relightJson(const formats::HshFile& hsh, int maxSide) {
@@ -215,8 +238,8 @@ std::string relightJson(const formats::HshFile& hsh, int maxSide) {
   const int w = (hsh.width + step - 1) / step, h = (hsh.height + step - 1) / step;
   const int terms = hsh.terms;
   // Block averages, in the file's layout: ((y*w + x)*3 + c)*terms + k.
-  std::string coefficients(static_cast<std::size_t>(w) * h * 3 * terms, '\0');
-  blockAverage(hsh.coefficients.data(), hsh.width, hsh.height, 3 * terms, step, coefficients.data());
+  std::string averaged;
+  const Bytes coefficients = blockAveraged(hsh.coefficients.data(), hsh.width, hsh.height, 3 * terms, step, averaged);
   std::ostringstream j;
   j.precision(17);
   j << "{\"model\":\"hsh\",\"basis\":\"" << (terms == 4 ? "hsh2" : terms == 9 ? "hsh3" : "hsh4")
@@ -224,7 +247,7 @@ std::string relightJson(const formats::HshFile& hsh, int maxSide) {
     << ",\"originalWidth\":" << hsh.width << ",\"originalHeight\":" << hsh.height;
   writeNumbers(j, "scale", std::vector<double>(hsh.scale.begin(), hsh.scale.end()));
   writeNumbers(j, "bias", std::vector<double>(hsh.bias.begin(), hsh.bias.end()));
-  return withBase64(j.str(), {{"coefficients", &coefficients}});
+  return withBase64(j.str(), {{"coefficients", coefficients}});
 }
 
 std::string relightJson(const std::string& modelBytes, int maxSide, const std::string& name) {

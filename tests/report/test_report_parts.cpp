@@ -158,6 +158,10 @@ TEST_CASE("the relighting copy of a PTM averages each coefficient over blocks") 
   const std::string full = relightJson(formats::serializePtm(ptm), 0, "t.ptm");
   CHECK_THAT(full, Catch::Contains("\"width\":4,\"height\":2"));
   CHECK_THAT(full, Catch::Contains("\"format\":\"lrgb\""));
+  // At full size the copy is the model's own bytes (rows top-first, as set above).
+  const std::string coefficients(ptm.coefficients.begin(), ptm.coefficients.end()), rgb(ptm.rgb.begin(), ptm.rgb.end());
+  CHECK_THAT(full, Catch::Contains("\"coefficients\":\"" + base64(coefficients) + "\",\"rgb\":\"" + base64(rgb) + "\"}"));
+  CHECK(relightJson(ptm, 0) == full);
 
   // maxSide 2: blocks of 2x2 texels -> 2x1. Block 0 holds texels 0,1,4,5: k=0 mean 25.
   const std::string half = relightJson(formats::serializePtm(ptm), 2, "t.ptm");
@@ -179,6 +183,12 @@ TEST_CASE("the relighting copy of an RGB PTM averages each channel's plane over 
   for (int c = 0; c < 3; ++c) expected += referenceBlockAverages(&ptm.coefficients[c * 8 * 6], 4, 2, 6, 2);
   CHECK_THAT(json, Catch::Contains("\"coefficients\":\"" + base64(expected) + "\""));
   CHECK(relightJson(ptm, 2) == json);
+  // At full size, the three planes as they are, and no colour field of LRGB's.
+  const std::string full = relightJson(ptm, 4);
+  const std::string planes(ptm.coefficients.begin(), ptm.coefficients.end());
+  CHECK_THAT(full, Catch::Contains("\"width\":4,\"height\":2"));
+  CHECK_THAT(full, Catch::Contains("\"coefficients\":\"" + base64(planes) + "\",\"rgb\":\"\"}"));
+  CHECK(relightJson(formats::serializePtm(ptm), 4, "t.ptm") == full);
 }
 
 TEST_CASE("embedPicture rejects bytes that are not a picture, and PNG headers claiming huge images") {
