@@ -443,14 +443,28 @@ std::vector<RelightModel> relightModels(const carrier::Carrier& c, const ReportS
 
 // The interactive view: every fitted model the source holds, as JSON for the page's script,
 // drawn at the model's resolution (or options.relightMaxSide); the first model is shown first.
-std::string relightSection(const carrier::Carrier& c, const std::vector<RelightModel>& models, Report& report) {
+// The models' JSON is tens of megabytes: the section keeps pointers to it, and the page copies
+// it once, where it belongs (appendTo).
+struct RelightSection {
+  std::string before;                       // the section up to the models' JSON array
+  std::vector<const std::string*> models;   // the array's elements
+  std::string after;                        // the rest of the section
+  std::size_t size() const {
+    std::size_t n = before.size() + after.size() + models.size();
+    for (const std::string* m : models) n += m->size();
+    return n;
+  }
+  void appendTo(std::string& page) const {
+    page.append(before);
+    for (std::size_t k = 0; k < models.size(); ++k) (k ? page.append(1, ',') : page).append(*models[k]);
+    page.append(after);
+  }
+};
+
+RelightSection relightSection(const carrier::Carrier& c, const std::vector<RelightModel>& models, Report& report) {
   std::ostringstream s, notes, buttons;
-  std::string data;  // the models' JSON, tens of megabytes: appended, not streamed
-  std::size_t dataSize = 0;
-  for (const RelightModel& model : models) dataSize += model.json().size() + 1;
-  reserveResident(data, dataSize);
+  RelightSection section;
   s << "<section id=\"relight\"><h2>Relight it yourself</h2>";
-  int shown = 0;
   for (const RelightModel& model : models) {
     if (!model.found) {
       notes << "<p class=\"note\">The model " << escapeHtml(model.file->path) << " is not in this package or capture.</p>";
@@ -460,19 +474,20 @@ std::string relightSection(const carrier::Carrier& c, const std::vector<RelightM
       notes << "<p class=\"bad\">The model cannot be shown: " << escapeHtml(model.problem) << "</p>";
       continue;
     }
-    if (shown) data += ',';
-    data += model.json();
+    section.models.push_back(&model.json());
     const carrier::Step* fit = c.findStep(model.file->createdBy);
-    buttons << "<button type=\"button\" data-model=\"" << shown << "\" title=\"" << escapeHtml(model.file->path)
-            << "\">" << escapeHtml(fit ? modelTitle(fit->param("basis", "")) : model.file->path) << "</button>";
-    ++shown;
+    buttons << "<button type=\"button\" data-model=\"" << section.models.size() - 1 << "\" title=\""
+            << escapeHtml(model.file->path) << "\">"
+            << escapeHtml(fit ? modelTitle(fit->param("basis", "")) : model.file->path) << "</button>";
   }
+  const std::size_t shown = section.models.size();
   if (shown == 0) {
     const std::string none = notes.str().empty()
                                  ? std::string("<p class=\"note\">No model was fitted, so there is no interactive view.</p>")
                                  : notes.str();
     s << none << "</section>";
-    return s.str();
+    section.before = s.str();
+    return section;
   }
   report.relightable = true;
   s << "<div class=\"relight\"><div class=\"relight-view\"><canvas id=\"relight-canvas\"></canvas>"
@@ -484,9 +499,9 @@ std::string relightSection(const carrier::Carrier& c, const std::vector<RelightM
        "axis, the rim grazing light, rings every 30\u00b0 of elevation; azimuth 0\u00b0 to the right, 90\u00b0 at "
        "the top, \u221290\u00b0 at the bottom.</p>"
     << notes.str() << "</div></div><script type=\"application/json\" id=\"relight-data\">[";
-  std::string section = s.str();
-  reserveResident(section, section.size() + data.size() + 16);
-  return section.append(data).append("]</script></section>");
+  section.before = s.str();
+  section.after = "]</script></section>";
+  return section;
 }
 
 // The files the detection and results sections show as pictures, in carrier order.
@@ -538,7 +553,7 @@ Report buildReport(const carrier::Carrier& c, const ReportSource& source, const 
   progress(0.05 + 0.9 * shareAfterPictures(shown));
   const std::string detection = detectionSection(c, pictures, report);
   const std::string results = resultsSection(c, pictures, report);
-  const std::string relight = relightSection(c, models, report);
+  const RelightSection relight = relightSection(c, models, report);
   const std::string priorWork = auditSection(c, [&](const carrier::FileRecord& f, const std::string& caption) {
     return figure(pictures, f, caption, &report.picturesEmbedded);
   });
@@ -569,8 +584,9 @@ Report buildReport(const carrier::Carrier& c, const ReportSource& source, const 
   const std::string first = head.str(), last = tail.str();
   reserveResident(report.html, first.size() + relight.size() + lights.size() + detection.size() +
                                    results.size() + priorWork.size() + last.size() + 8);
-  report.html.append(first).append(relight).append(lights).append("</div>").append(detection).append(results)
-      .append(priorWork).append(last);
+  report.html.append(first);
+  relight.appendTo(report.html);
+  report.html.append(lights).append("</div>").append(detection).append(results).append(priorWork).append(last);
   progress(1);
   return report;
 }
