@@ -64,7 +64,8 @@ std::string finished(const std::string& name) { return std::string(capture::kFin
 // the smaller files behind it were long written). Each file's bytes come from its pixels alone,
 // and the carrier records them on the caller's thread in the order given, so the files and the
 // carrier are the same at any thread count. Memory holds the pictures being encoded plus the one
-// being computed: three of the five with two threads. With one thread, each is written before
+// being computed: three of the five with two threads (a written picture is let go of at once,
+// though its record waits for the writes before it). With one thread, each is written before
 // the next is computed.
 class OverlappedPngWrites {
  public:
@@ -91,7 +92,7 @@ class OverlappedPngWrites {
       ++writing_;
     }
     pending_.push_back({std::async(std::launch::async,
-                                   [this, image = std::move(image), path = std::move(relativePath)] {
+                                   [this, image = std::move(image), path = std::move(relativePath)]() mutable {
                                      // Counted out however the write ends, so that add() never
                                      // waits for a write that has failed.
                                      struct Ended {
@@ -102,7 +103,11 @@ class OverlappedPngWrites {
                                          writes.ended_.notify_all();
                                        }
                                      } ended{*this};
-                                     writePicture(ctx_, image, path);
+                                     // The pixels let go of as soon as they are written: the task
+                                     // itself lives until its record is made, after the writes
+                                     // before it (at 60 x 24 Mpx, each picture is 144 MB).
+                                     const Image written = std::move(image);
+                                     writePicture(ctx_, written, path);
                                    }),
                         std::move(record)});
     // Records what is written, in order, up to the first write still running.
