@@ -2,8 +2,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <memory>
+#include <new>
 #include <string>
+#include <utility>
 
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#endif
+
+#include "core/cpu_features.h"
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/resident.h"
@@ -23,11 +32,72 @@ std::uint16_t lowerMedian(std::vector<std::uint16_t>& samples) {
   return *mid;
 }
 
+using CompareExchanges = std::vector<std::pair<int, int>>;
+
+// Batcher's merge-exchange sort (Knuth, The Art of Computer Programming, 5.2.2, Algorithm M) as
+// its list of compare-exchanges (i, j), i < j, each putting the smaller value at i: a fixed
+// sequence that sorts any n values, so that it can be applied to sixteen pixels at once.
+CompareExchanges mergeExchangeSort(int n) {
+  CompareExchanges pairs;
+  if (n < 2) return pairs;
+  int t = 0;
+  while ((1 << t) < n) ++t;
+  for (int p = 1 << (t - 1); p > 0; p >>= 1) {
+    int q = 1 << (t - 1), r = 0, d = p;
+    for (;;) {
+      for (int i = 0; i + d < n; ++i)
+        if ((i & p) == r) pairs.emplace_back(i, i + d);
+      if (q == p) break;
+      d = q - p;
+      q >>= 1;
+      r = p;
+    }
+  }
+  return pairs;
+}
+
+#if defined(__x86_64__) && defined(__GNUC__)
+// The lower medians of pixels [b, e) sixteen at a time (the 16-bit samples of one pixel in
+// one lane of n registers, sorted by `sort`); returns the first pixel left for the caller.
+// The median is exact, so this gives what nth_element gives: sorting 36 samples this way took
+// about a tenth of nth_element's time on them.
+__attribute__((target("avx2"))) std::size_t lowerMediansAvx2(const std::uint16_t* planes, int n, std::size_t plane,
+                                                             std::size_t b, std::size_t e,
+                                                             const CompareExchanges& sort, std::uint16_t* out) {
+  // The n registers' worth in memory of their alignment (a std::vector drops it).
+  const std::unique_ptr<void, void (*)(void*)> block(std::aligned_alloc(32, sizeof(__m256i) * n), std::free);
+  if (!block) throw std::bad_alloc();
+  __m256i* v = static_cast<__m256i*>(block.get());
+  std::size_t p = b;
+  for (; p + 16 <= e; p += 16) {
+    for (int i = 0; i < n; ++i)
+      v[i] = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(planes + i * plane + p));
+    for (const auto& [i, j] : sort) {
+      const __m256i low = _mm256_min_epu16(v[i], v[j]);
+      v[j] = _mm256_max_epu16(v[i], v[j]);
+      v[i] = low;
+    }
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + p), v[(n - 1) / 2]);
+  }
+  return p;
+}
+#endif
+
 // out[p] = the lower median of planes[i * plane + p] over the n planes, for every p < plane.
 void mediansOfPlanes(const std::uint16_t* planes, int n, std::size_t plane, int threads, std::uint16_t* out) {
+#if defined(__x86_64__) && defined(__GNUC__)
+  const bool avx2 = cpuHasAvx2() && n > 1;
+#else
+  const bool avx2 = false;
+#endif
+  const CompareExchanges sort = avx2 ? mergeExchangeSort(n) : CompareExchanges();
   parallelFor(plane, 4096, effectiveThreads(threads), [&](std::size_t b, std::size_t e) {
+    std::size_t p = b;
+#if defined(__x86_64__) && defined(__GNUC__)
+    if (avx2) p = lowerMediansAvx2(planes, n, plane, b, e, sort, out);
+#endif
     std::vector<std::uint16_t> samples(n);
-    for (std::size_t p = b; p < e; ++p) {
+    for (; p < e; ++p) {
       for (int i = 0; i < n; ++i) samples[i] = planes[i * plane + p];
       out[p] = lowerMedian(samples);
     }

@@ -70,7 +70,7 @@ Image crop(const Image& im, const hrti::Rect& r) {
 
 TEST_CASE("full-resolution windows of the median are each pixel's middle sample") {
   const int w = 150, h = 97;  // tiles cut by both edges
-  for (int n : {1, 2, 7, 12}) {
+  for (int n : {1, 2, 3, 7, 12, 36}) {  // 36: a sorting network of many stages (AVX2)
     const std::vector<Image> images = noise(n, w, h, 5 + n);
     const Image expected = plainMedian(images);
     const MemoryImageStack held(images);
@@ -88,7 +88,7 @@ TEST_CASE("full-resolution windows of the median are each pixel's middle sample"
 }
 
 TEST_CASE("the reduced median is the middle of each reduced pixel's samples") {
-  for (int n : {1, 2, 7, 12}) {
+  for (int n : {1, 2, 3, 7, 12, 36}) {  // 36: a sorting network of many stages (AVX2)
     for (int w : {150, 151}) {  // 151: the right blocks cut by the frame
       const int h = 97;         // the bottom blocks cut by the frame
       const std::vector<Image> images = noise(n, w, h, 11 + n);
