@@ -59,8 +59,8 @@ CompareExchanges mergeExchangeSort(int n) {
 #if defined(__x86_64__) && defined(__GNUC__)
 // The lower medians of pixels [b, e) sixteen at a time (the 16-bit samples of one pixel in
 // one lane of n registers, sorted by `sort`); returns the first pixel left for the caller.
-// The median is exact, so this gives what nth_element gives: sorting 36 samples this way took
-// about a tenth of nth_element's time on them.
+// The median is exact, so this gives what nth_element gives; in a `perf` profile of `surrogate
+// lights` on 36 x 3000x2000 the medians went from 4.3 to 0.5 % of the samples.
 __attribute__((target("avx2"))) std::size_t lowerMediansAvx2(const std::uint16_t* planes, int n, std::size_t plane,
                                                              std::size_t b, std::size_t e,
                                                              const CompareExchanges& sort, std::uint16_t* out) {
