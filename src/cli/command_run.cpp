@@ -70,12 +70,11 @@ int runCommandRun(int argc, char** argv) {
     settings.pictureWritten = [&displayed, pictureSide](const std::string& path, const Image& picture) {
       displayed.put(path, report::displayPicture(picture, pictureSide));
     };
-    settings.ptmWritten = [&relightCopies, modelSide](const std::string& path, const formats::PtmFile& model) {
+    const auto copyModel = [&relightCopies, modelSide](const std::string& path, const auto& model) {
       relightCopies.put(path, {report::relightJson(model, modelSide), modelSide});
     };
-    settings.hshWritten = [&relightCopies, modelSide](const std::string& path, const formats::HshFile& model) {
-      relightCopies.put(path, {report::relightJson(model, modelSide), modelSide});
-    };
+    settings.ptmWritten = copyModel;  // PTM and HSH alike
+    settings.hshWritten = copyModel;
   }
   // A folder that is not a capture is refused before anything is written in it, lock included.
   capture::requireCaptureFolder(capture);

@@ -142,12 +142,23 @@ class OverlappedPngWrites {
   int writing_ = 0;                // writes running, under mutex_
 };
 
-// write() (writing a model and taking its digests) and alongside() (the report's copy of the
-// model) at once, the copy on a thread of its own: once the fit is done each is one core's
-// work, and the file alone took 0.14 s of one core at 36 x 3000x2000 while the other waited.
+// Writes `model` to `path` (writeFile: formats::writePtm or writeRti) and takes the file's
+// digests, while `written` (RunSettings::ptmWritten or hshWritten, when set) gets the model on
+// a thread of its own: once the fit is done each is one core's work, and the file alone took
+// 0.14 s of one core at 36 x 3000x2000 while the other waited (the report's copy of the model).
 // With one thread, one after the other. Both have ended when this returns or throws.
-FileDigests writeAlongside(const std::function<FileDigests()>& write, const std::function<void()>& alongside,
-                           int threads) {
+template <class Model>
+FileDigests writeModel(const std::filesystem::path& path, const Model& model,
+                       void (*writeFile)(const std::filesystem::path&, const Model&),
+                       const std::function<void(const std::string&, const Model&)>& written,
+                       const std::string& output, int threads) {
+  const auto alongside = [&] {
+    if (written) written(output, model);
+  };
+  const auto write = [&] {
+    writeFile(path, model);
+    return digestFile(path);
+  };
   if (effectiveThreads(threads) < 2) {
     FileDigests d = write();
     alongside();
@@ -226,28 +237,12 @@ void RtiFitStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
   const std::filesystem::path path = ctx.outputPath(output);
   if (options.basis == fit::Basis::PtmLrgb || options.basis == fit::Basis::PtmRgb) {
     formats::PtmFile ptm = fit::fitPtm(*rgb, *lights, options, &stats);
-    digests = writeAlongside(
-        [&] {
-          formats::writePtm(path, ptm);
-          return digestFile(path);
-        },
-        [&] {
-          if (ctx.settings.ptmWritten) ctx.settings.ptmWritten(output, ptm);
-        },
-        ctx.settings.threads);
+    digests = writeModel(path, ptm, formats::writePtm, ctx.settings.ptmWritten, output, ctx.settings.threads);
     format = formats::formatName(ptm.format);
     model = fit::makeRelightable(std::move(ptm));
   } else {
     formats::HshFile hsh = fit::fitHsh(*rgb, *lights, options, &stats);
-    digests = writeAlongside(
-        [&] {
-          formats::writeRti(path, hsh);
-          return digestFile(path);
-        },
-        [&] {
-          if (ctx.settings.hshWritten) ctx.settings.hshWritten(output, hsh);
-        },
-        ctx.settings.threads);
+    digests = writeModel(path, hsh, formats::writeRti, ctx.settings.hshWritten, output, ctx.settings.threads);
     format = "RTI_HSH";
     model = fit::makeRelightable(std::move(hsh));
   }
