@@ -190,15 +190,19 @@ std::string withBase64(std::string head, std::initializer_list<std::pair<const c
   return head;
 }
 
-// `values` bytes a texel of a width x height array: the array itself when each block is one
-// texel (a model no larger than the copy's side, as at 1200x800: a copy would be the same bytes),
-// else its block averages (blockAverage) in `averaged`.
-Bytes blockAveraged(const std::uint8_t* in, int width, int height, int values, int step, std::string& averaged) {
-  const std::size_t count = static_cast<std::size_t>(width) * height * values;
-  if (step == 1) return {in, count};
+// `planes` arrays of width x height texels of `values` bytes, one after the other: themselves
+// when each block is one texel (a model no larger than the copy's side, as at 1200x800: a copy
+// would be the same bytes), else each plane's block averages (blockAverage), one after the
+// other in `averaged`.
+Bytes blockAveraged(const std::uint8_t* in, int width, int height, int values, int planes, int step,
+                    std::string& averaged) {
+  const std::size_t plane = static_cast<std::size_t>(width) * height * values;
+  if (step == 1) return {in, plane * planes};
   const int w = (width + step - 1) / step, h = (height + step - 1) / step;
-  resizeResident(averaged, static_cast<std::size_t>(w) * h * values);
-  blockAverage(in, width, height, values, step, averaged.data());
+  const std::size_t averagedPlane = static_cast<std::size_t>(w) * h * values;
+  resizeResident(averaged, averagedPlane * planes);
+  for (int c = 0; c < planes; ++c)
+    blockAverage(in + c * plane, width, height, values, step, &averaged[c * averagedPlane]);
   return {averaged.data(), averaged.size()};
 }
 
@@ -210,19 +214,11 @@ std::string relightJson(const formats::PtmFile& ptm, int maxSide) {
   const bool lrgb = ptm.format == formats::PtmFile::Format::Lrgb;
 
   // Block averages; rows top-first, texel-interleaved: ((c*h + y)*w + x)*6 + k, as the
-  // model's planes are (the 6 bytes of a texel together, one plane per channel): the model's
-  // own array when each block is one texel.
+  // model's planes are (the 6 bytes of a texel together, one plane per channel).
   std::string coefficients, rgb;
-  Bytes coefficientBytes{ptm.coefficients.data(), ptm.coefficients.size()};
-  if (step > 1) {
-    const int channels = lrgb ? 1 : 3;
-    const std::size_t plane = ptm.texels() * 6, copyPlane = static_cast<std::size_t>(w) * h * 6;
-    resizeResident(coefficients, channels * copyPlane);
-    for (int c = 0; c < channels; ++c)
-      blockAverage(ptm.coefficients.data() + c * plane, ptm.width, ptm.height, 6, step, &coefficients[c * copyPlane]);
-    coefficientBytes = {coefficients.data(), coefficients.size()};
-  }
-  const Bytes rgbBytes = lrgb ? blockAveraged(ptm.rgb.data(), ptm.width, ptm.height, 3, step, rgb) : Bytes{nullptr, 0};
+  const Bytes coefficientBytes =
+      blockAveraged(ptm.coefficients.data(), ptm.width, ptm.height, 6, lrgb ? 1 : 3, step, coefficients);
+  const Bytes rgbBytes = lrgb ? blockAveraged(ptm.rgb.data(), ptm.width, ptm.height, 3, 1, step, rgb) : Bytes{nullptr, 0};
   std::ostringstream j;
   j.precision(17);
   j << "{\"model\":\"ptm\",\"basis\":\"" << (lrgb ? "ptm-lrgb" : "ptm-rgb") << "\",\"format\":\""
@@ -239,7 +235,7 @@ std::string relightJson(const formats::HshFile& hsh, int maxSide) {
   const int terms = hsh.terms;
   // Block averages, in the file's layout: ((y*w + x)*3 + c)*terms + k.
   std::string averaged;
-  const Bytes coefficients = blockAveraged(hsh.coefficients.data(), hsh.width, hsh.height, 3 * terms, step, averaged);
+  const Bytes coefficients = blockAveraged(hsh.coefficients.data(), hsh.width, hsh.height, 3 * terms, 1, step, averaged);
   std::ostringstream j;
   j.precision(17);
   j << "{\"model\":\"hsh\",\"basis\":\"" << (terms == 4 ? "hsh2" : terms == 9 ? "hsh3" : "hsh4")
