@@ -81,7 +81,7 @@ DecodedStack::DecodedStack(int count, Format format, Placement placement, const 
     fd_ = temporaryFile(spillDirectory(directory));
   } else {
     // A mapping of its own (page-aligned, so 16-bit samples are aligned too), whatever malloc's
-    // policy while images are decoded (stages::decodeImages), given back when the stack goes.
+    // policy (core/resident.h: reuseFreedMemory), given back when the stack goes.
     // Not zeroed here: each slot's pages are backed by the thread that fills it, just before
     // (core/resident.h).
     block_ = MappedBlock(static_cast<std::size_t>(bytesFor(count, format)));
