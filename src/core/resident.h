@@ -54,9 +54,10 @@ void reserveResident(Container& c, std::size_t n) {
 void reuseFreedMemory();
 
 // A block of fresh memory of its own mapping, whatever malloc's policy: for the decoded stack,
-// held for most of a run and given back to the system as soon as it is let go. Starts on a
-// 2 MiB boundary, so that makeResident can back all of it in huge pages. Uninitialised (zero
-// until written). Throws std::bad_alloc when the system refuses it.
+// held for most of a run and given back to the system as soon as it is let go. Whole 2 MiB
+// huge pages from a 2 MiB boundary, advised as such at once, so that makeResident (or a write)
+// backs any part of it in huge pages. Uninitialised (zero until written). Throws
+// std::bad_alloc when the system refuses it.
 class MappedBlock {
  public:
   MappedBlock() = default;
@@ -72,6 +73,7 @@ class MappedBlock {
  private:
   std::uint8_t* data_ = nullptr;
   std::size_t bytes_ = 0;
+  std::size_t mapped_ = 0;  // bytes_ rounded up to whole huge pages
 };
 
 }  // namespace surrogate

@@ -6,6 +6,7 @@
 #include <sys/utsname.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -151,7 +152,19 @@ TEST_CASE("MappedBlock is a zeroed mapping of its own on a huge page boundary, g
   CHECK(residentPages(block.data(), 6 * kPage) == 0);
   for (std::size_t i = 0; i < block.size(); ++i) REQUIRE(block.data()[i] == 0);
   block.data()[kPage] = 7;
-  MappedBlock moved = std::move(block);
-  CHECK(block.data() == nullptr);
-  CHECK(moved.data()[kPage] == 7);
+  // Mapped in whole huge pages (the advice covers all of it): the rest of the 2 MiB is the
+  // block's own, and all of it goes when the block does.
+  const std::size_t huge = std::size_t(2) << 20;
+  std::vector<unsigned char> in(huge / kPage);
+  CHECK(::mincore(block.data(), huge, in.data()) == 0);
+  void* const at = block.data();
+  {
+    MappedBlock moved = std::move(block);
+    CHECK(block.data() == nullptr);
+    CHECK(moved.data() == at);
+    CHECK(moved.data()[kPage] == 7);
+  }
+  errno = 0;
+  CHECK(::mincore(at, huge, in.data()) == -1);
+  CHECK(errno == ENOMEM);  // no longer mapped
 }
