@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/text.h"
+#include "hrti/accumulator_peaks.h"
 #include "hrti/circle_fit.h"
 #include "hrti/stack_median.h"
 
@@ -131,13 +132,13 @@ std::vector<Candidate> hough(const Gradients& g, cv::Rect area, int r0, int r1, 
         }
       }
       cv::GaussianBlur(acc, acc, cv::Size(5, 5), 1.0);
+      AccumulatorPeaks peaks(acc);
       for (int m = 0; m < perRadius; ++m) {
-        double value = 0;
         cv::Point at;
-        cv::minMaxLoc(acc, nullptr, &value, nullptr, &at);
+        const double value = peaks.strongest(&at);
         if (value <= 0) break;
         perR[ri].push_back({double(at.x + area.x), double(at.y + area.y), double(r), value / perfectCircle(r)});
-        cv::circle(acc, at, std::max(2, r / 2), cv::Scalar(0), -1);
+        peaks.clearDisc(at, std::max(2, r / 2));
       }
     }
   });
