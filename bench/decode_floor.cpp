@@ -5,17 +5,30 @@
 // are decoded into one buffer per thread and dropped. Prints wall time, CPU time (user and
 // system) and peak resident memory, as text or (--json) as one JSON object.
 //
-//   decode_floor [--threads N] [--json] FILE.jpg ...
-//   decode_floor [--threads N] [--json] DIR       (every *.jpg / *.jpeg in DIR)
+// Two variants show what Surrogate's ImageDecode must do besides decoding, so that its time
+// can be read against both (neither is the floor of the issue):
+//   --hold    every image is kept, each in its own slot of one block of fresh memory, the way
+//             the decoded stack holds them (mapped, advised as transparent huge pages, each
+//             slot backed by madvise(MADV_POPULATE_WRITE) just before it is decoded into). On a
+//             virtual machine fresh memory can cost more than the decoding (see
+//             bench/fresh_memory_bench).
+//   --digest  the SHA-256 of each image's decoded pixels, which the carrier records for every
+//             image (OpenSSL, as Surrogate).
+//
+//   decode_floor [--threads N] [--json] [--hold] [--digest] FILE.jpg ...
+//   decode_floor [--threads N] [--json] [--hold] [--digest] DIR   (every *.jpg / *.jpeg in DIR)
+#include <sys/mman.h>
 #include <sys/resource.h>
 
 #include <cstdio>  // before jpeglib.h, which uses FILE
 #include <jpeglib.h>
+#include <openssl/evp.h>
 
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <csetjmp>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -43,9 +56,16 @@ std::vector<unsigned char> readBytes(const fs::path& path) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-// Decodes one JPEG to RGB into `pixels` (reused across files). Returns the pixel count, or 0
-// when libjpeg reports an error.
-std::size_t decodeRgb(const std::vector<unsigned char>& bytes, std::vector<unsigned char>& pixels) {
+// Where a decoded image goes: into `into` when given (a slot of the held block, large enough),
+// or else into `buffer` (reused across files).
+struct Destination {
+  std::vector<unsigned char>* buffer;
+  unsigned char* into;
+};
+
+// Decodes one JPEG to RGB into `to`; the SHA-256 of the pixels when `digest`. Returns the pixel
+// count, or 0 when libjpeg reports an error.
+std::size_t decodeRgb(const std::vector<unsigned char>& bytes, Destination to, bool digest) {
   jpeg_decompress_struct info{};
   ErrorManager errors{};
   info.err = jpeg_std_error(&errors.base);
@@ -60,16 +80,25 @@ std::size_t decodeRgb(const std::vector<unsigned char>& bytes, std::vector<unsig
   info.out_color_space = JCS_RGB;
   jpeg_start_decompress(&info);
   const std::size_t stride = std::size_t(info.output_width) * info.output_components;
-  pixels.resize(stride * info.output_height);
+  unsigned char* pixels = to.into;
+  if (!pixels) {
+    to.buffer->resize(stride * info.output_height);
+    pixels = to.buffer->data();
+  }
   while (info.output_scanline < info.output_height) {
     JSAMPROW rows[16];
     const unsigned n = std::min(16u, info.output_height - info.output_scanline);
-    for (unsigned r = 0; r < n; ++r) rows[r] = pixels.data() + (info.output_scanline + r) * stride;
+    for (unsigned r = 0; r < n; ++r) rows[r] = pixels + (info.output_scanline + r) * stride;
     jpeg_read_scanlines(&info, rows, n);
   }
   const std::size_t count = std::size_t(info.output_width) * info.output_height;
   jpeg_finish_decompress(&info);
   jpeg_destroy_decompress(&info);
+  if (digest) {
+    unsigned char sha[EVP_MAX_MD_SIZE];
+    unsigned length = 0;
+    EVP_Digest(pixels, stride * info.output_height, sha, &length, EVP_sha256(), nullptr);
+  }
   return count;
 }
 
@@ -102,26 +131,84 @@ const char* libjpegVersion() {
 
 double seconds(const timeval& t) { return t.tv_sec + t.tv_usec / 1e6; }
 
+constexpr std::size_t kHugePage = std::size_t(2) << 20;
+
+// One block of fresh memory for `bytes`, on a huge page boundary, advised as huge pages (the
+// stack's MappedBlock). Never unmapped: the program ends after the decode.
+unsigned char* freshBlock(std::size_t bytes) {
+  const std::size_t mapped = (bytes + kHugePage - 1) / kHugePage * kHugePage;
+  void* p = mmap(nullptr, mapped + kHugePage, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (p == MAP_FAILED) return nullptr;
+  auto* at = reinterpret_cast<unsigned char*>((reinterpret_cast<std::uintptr_t>(p) + kHugePage - 1) / kHugePage * kHugePage);
+  madvise(at, mapped, MADV_HUGEPAGE);
+  return at;
+}
+
+// Backs the pages of [p, p + bytes) before they are written, as makeResident does for a slot.
+void populate(unsigned char* p, std::size_t bytes) {
+  const std::uintptr_t page = 4096, at = reinterpret_cast<std::uintptr_t>(p);
+  const std::uintptr_t begin = at / page * page, end = (at + bytes + page - 1) / page * page;
+  madvise(reinterpret_cast<void*>(begin), end - begin, 23 /* MADV_POPULATE_WRITE, Linux 5.14 */);
+}
+
+// Width and height from the header: the size of a slot.
+bool readSize(const std::vector<unsigned char>& bytes, std::size_t* width, std::size_t* height) {
+  jpeg_decompress_struct info{};
+  ErrorManager errors{};
+  info.err = jpeg_std_error(&errors.base);
+  errors.base.error_exit = onJpegError;
+  if (setjmp(errors.jump)) {
+    jpeg_destroy_decompress(&info);
+    return false;
+  }
+  jpeg_create_decompress(&info);
+  jpeg_mem_src(&info, bytes.data(), static_cast<unsigned long>(bytes.size()));
+  jpeg_read_header(&info, TRUE);
+  *width = info.image_width;
+  *height = info.image_height;
+  jpeg_destroy_decompress(&info);
+  return true;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   unsigned threads = std::max(1u, std::thread::hardware_concurrency());
-  bool json = false;
+  bool json = false, hold = false, digest = false;
   std::vector<std::string> args;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--threads" && i + 1 < argc) threads = std::max(1, std::atoi(argv[++i]));
     else if (a == "--json") json = true;
+    else if (a == "--hold") hold = true;
+    else if (a == "--digest") digest = true;
     else args.push_back(a);
   }
   const std::vector<fs::path> files = listInputs(args);
   if (files.empty()) {
-    std::fprintf(stderr, "usage: decode_floor [--threads N] [--json] FILE.jpg ... | DIR\n");
+    std::fprintf(stderr, "usage: decode_floor [--threads N] [--json] [--hold] [--digest] FILE.jpg ... | DIR\n");
     return 2;
   }
   // Reading the files is not decoding: they are in memory before the clock starts.
   std::vector<std::vector<unsigned char>> data;
   for (const fs::path& f : files) data.push_back(readBytes(f));
+  // The held block is mapped (not backed) before the clock starts, as the stack is made once
+  // the first image's size is known; its slots are backed inside the clock.
+  std::size_t slot = 0;
+  unsigned char* block = nullptr;
+  if (hold) {
+    std::size_t width = 0, height = 0;
+    if (!readSize(data.front(), &width, &height)) {
+      std::fprintf(stderr, "decode_floor: %s is not a JPEG libjpeg can read\n", files.front().c_str());
+      return 1;
+    }
+    slot = width * height * 3;
+    block = freshBlock(slot * data.size());
+    if (!block) {
+      std::fprintf(stderr, "decode_floor: no memory for %zu images of %zux%zu\n", data.size(), width, height);
+      return 1;
+    }
+  }
 
   rusage before{};
   getrusage(RUSAGE_SELF, &before);
@@ -132,7 +219,15 @@ int main(int argc, char** argv) {
     pool.emplace_back([&] {
       std::vector<unsigned char> buffer;
       for (std::size_t i; (i = next++) < data.size();) {
-        const std::size_t n = decodeRgb(data[i], buffer);
+        unsigned char* into = nullptr;
+        if (block) {
+          into = block + i * slot;
+          populate(into, slot);
+        }
+        // A file larger than the first would overrun its slot: failed, as a damaged one.
+        std::size_t width = 0, height = 0;
+        const bool fits = !block || (readSize(data[i], &width, &height) && width * height * 3 <= slot);
+        const std::size_t n = fits ? decodeRgb(data[i], {&buffer, into}, digest) : 0;
         pixels += n;
         if (n == 0) ++failed;
       }
@@ -147,12 +242,14 @@ int main(int argc, char** argv) {
   const double peakMiB = after.ru_maxrss / 1024.0;
 
   if (json) {
-    std::printf("{\"files\":%zu,\"failed\":%zu,\"threads\":%u,\"megapixels\":%.3f,\"wall_s\":%.4f,"
-                "\"user_s\":%.4f,\"sys_s\":%.4f,\"peak_mib\":%.1f,\"libjpeg\":\"%s\"}\n",
-                files.size(), failed.load(), threads, pixels / 1e6, wall, user, sys, peakMiB, libjpegVersion());
+    std::printf("{\"files\":%zu,\"failed\":%zu,\"threads\":%u,\"hold\":%s,\"digest\":%s,\"megapixels\":%.3f,"
+                "\"wall_s\":%.4f,\"user_s\":%.4f,\"sys_s\":%.4f,\"peak_mib\":%.1f,\"libjpeg\":\"%s\"}\n",
+                files.size(), failed.load(), threads, hold ? "true" : "false", digest ? "true" : "false",
+                pixels / 1e6, wall, user, sys, peakMiB, libjpegVersion());
   } else {
-    std::printf("decoded %zu JPEG files (%.1f Mpx) to RGB on %u threads (libjpeg %s)\n", files.size(),
-                pixels / 1e6, threads, libjpegVersion());
+    std::printf("decoded %zu JPEG files (%.1f Mpx) to RGB on %u threads (libjpeg %s)%s%s\n", files.size(),
+                pixels / 1e6, threads, libjpegVersion(), hold ? ", each held in fresh memory" : "",
+                digest ? ", SHA-256 of each image's pixels" : "");
     std::printf("  wall %.3f s, CPU %.3f s (user %.3f, system %.3f), peak %.0f MiB\n", wall, user + sys, user,
                 sys, peakMiB);
     if (failed) std::printf("  %zu files failed to decode\n", failed.load());
