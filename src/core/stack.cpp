@@ -5,6 +5,17 @@
 
 namespace surrogate {
 
+void ImageStack::readWindow(int index, int x0, int y0, int x1, int y1, std::uint16_t* out) const {
+  if (x0 < 0 || x1 > width() || x0 > x1) throw std::out_of_range("readWindow: bad column range");
+  const std::size_t c = static_cast<std::size_t>(channels());
+  const std::size_t rowSamples = static_cast<std::size_t>(width()) * c, span = std::size_t(x1 - x0) * c;
+  std::vector<std::uint16_t> rows(static_cast<std::size_t>(std::max(0, y1 - y0)) * rowSamples);
+  readRows(index, y0, y1, rows.data());
+  for (int y = y0; y < y1; ++y)
+    std::copy_n(rows.data() + std::size_t(y - y0) * rowSamples + std::size_t(x0) * c, span,
+                out + std::size_t(y - y0) * span);
+}
+
 MemoryImageStack::MemoryImageStack(std::vector<Image> images) : images_(std::move(images)) {
   for (const Image& im : images_) {
     if (im.width != images_[0].width || im.height != images_[0].height ||

@@ -260,12 +260,16 @@ std::vector<std::vector<Highlight>> detectHighlights(const ImageStack& stack,
     for (std::size_t i = b; i < e; ++i) {
       for (std::size_t k = 0; k < spheres.size(); ++k) {
         const DetectedSphere& s = spheres[k];
+        // The sphere's square and two pixels around it: all detectHighlight reads (it clips
+        // its disc to the frame, as it would to whole rows).
         const int y0 = std::clamp(static_cast<int>(std::floor(s.cy - s.r)) - 2, 0, stack.height());
         const int y1 = std::clamp(static_cast<int>(std::ceil(s.cy + s.r)) + 3, 0, stack.height());
-        if (y1 <= y0) continue;
-        Image rows(stack.width(), y1 - y0, 1);
-        stack.readRows(static_cast<int>(i), y0, y1, rows.pixels.data());
-        out[i][k] = detectHighlight(rows, 0, y0, s, o);
+        const int x0 = std::clamp(static_cast<int>(std::floor(s.cx - s.r)) - 2, 0, stack.width());
+        const int x1 = std::clamp(static_cast<int>(std::ceil(s.cx + s.r)) + 3, 0, stack.width());
+        if (y1 <= y0 || x1 <= x0) continue;
+        Image window(x1 - x0, y1 - y0, 1);
+        stack.readWindow(static_cast<int>(i), x0, y0, x1, y1, window.pixels.data());
+        out[i][k] = detectHighlight(window, x0, y0, s, o);
       }
     }
   });

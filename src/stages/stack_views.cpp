@@ -76,6 +76,23 @@ void LuminanceStack::readRows(int index, int y0, int y1, std::uint16_t* out) con
   }
 }
 
+void LuminanceStack::readWindow(int index, int x0, int y0, int x1, int y1, std::uint16_t* out) const {
+  const std::uint8_t* held = decoded_->channels() == 3 && y1 > y0 ? decoded_->heldSamples(index, y0, y1) : nullptr;
+  if (!held || x0 < 0 || x1 > width() || x0 > x1) {
+    ImageStack::readWindow(index, x0, y0, x1, y1, out);  // grey, in a file, or refused there
+    return;
+  }
+  // Each row's window only: the luminance of a pixel is its own samples' (luminanceOfPixels).
+  const std::size_t bytes = static_cast<std::size_t>(decoded_->format().bytesPerSample);
+  const std::size_t rowBytes = static_cast<std::size_t>(width()) * 3 * bytes, span = std::size_t(x1 - x0);
+  for (int y = y0; y < y1; ++y) {
+    const std::uint8_t* from = held + std::size_t(y - y0) * rowBytes + std::size_t(x0) * 3 * bytes;
+    std::uint16_t* to = out + std::size_t(y - y0) * span;
+    if (bytes == 1) luminanceOfPixels(from, span, to);
+    else luminanceOfPixels(reinterpret_cast<const std::uint16_t*>(from), span, to);
+  }
+}
+
 // ---- GreyAsRgbStack -------------------------------------------------------------------------
 
 GreyAsRgbStack::GreyAsRgbStack(std::shared_ptr<const ImageStack> grey) : grey_(std::move(grey)) {

@@ -50,6 +50,7 @@ class LuminanceStack : public ImageStack {
   int channels() const override { return 1; }
   Transfer transfer() const override { return decoded_->transfer(); }
   void readRows(int index, int y0, int y1, std::uint16_t* out) const override;
+  void readWindow(int index, int x0, int y0, int x1, int y1, std::uint16_t* out) const override;
 
  private:
   std::shared_ptr<const pipeline::DecodedStack> decoded_;

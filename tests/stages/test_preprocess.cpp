@@ -256,6 +256,36 @@ TEST_CASE("the luminance view gives Rec. 709 luminance of 8- and 16-bit stacks, 
         CHECK(a[p] == reference(bytes[i][k] * 257u, bytes[i][k + 1] * 257u, bytes[i][k + 2] * 257u));
         CHECK(b[p] == reference(words[i][k], words[i][k + 1], words[i][k + 2]));
       }
+      // A window (the highlight search's read): the same luminance at each of its pixels, with
+      // windows at both edges, one column wide, and empty.
+      for (const auto& [x0, x1] : std::vector<std::pair<int, int>>{{0, 7}, {5, 22}, {20, kW}, {13, 14}, {9, 9}}) {
+        INFO("columns " << x0 << " to " << x1);
+        const std::size_t span = std::size_t(x1 - x0);
+        std::vector<std::uint16_t> wa(span * (y1 - y0) + 1, 7), wb(wa.size(), 7);
+        narrowLum.readWindow(i, x0, y0, x1, y1, wa.data());
+        wideLum.readWindow(i, x0, y0, x1, y1, wb.data());
+        for (int y = y0; y < y1; ++y)
+          for (int x = x0; x < x1; ++x) {
+            const std::size_t k = (std::size_t(y) * kW + x) * 3, at = std::size_t(y - y0) * span + (x - x0);
+            CHECK(wa[at] == reference(bytes[i][k] * 257u, bytes[i][k + 1] * 257u, bytes[i][k + 2] * 257u));
+            CHECK(wb[at] == reference(words[i][k], words[i][k + 1], words[i][k + 2]));
+          }
+        CHECK(wa.back() == 7);  // nothing written past the window
+        CHECK(wb.back() == 7);
+      }
     }
+    std::vector<std::uint16_t> out(64);
+    CHECK_THROWS(narrowLum.readWindow(0, 5, 0, kW + 1, 1, out.data()));
+    CHECK_THROWS(narrowLum.readWindow(0, -1, 0, 3, 1, out.data()));
   }
+}
+
+TEST_CASE("an image stack's default window is the columns of its rows") {
+  const auto stack = ramps(13, 6);
+  const Image all = readAll(*stack, 1);
+  std::vector<std::uint16_t> window(std::size_t(4) * 3 * 3);
+  stack->readWindow(1, 2, 1, 6, 4, window.data());
+  for (int y = 1; y < 4; ++y)
+    for (int x = 2; x < 6; ++x)
+      for (int c = 0; c < 3; ++c) CHECK(window[((std::size_t(y - 1) * 4) + (x - 2)) * 3 + c] == all.at(x, y, c));
 }
