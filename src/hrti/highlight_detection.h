@@ -122,8 +122,8 @@ void judgeHighlight(Highlight& h, bool secondCandidate);
 Highlight detectHighlight(const Image& crop, int cropX0, int cropY0, const DetectedSphere& sphere,
                           const HighlightOptions& options);
 
-// Every image's highlight on every sphere: [image][sphere]. Reads only the rows around the
-// spheres; parallel over images, identical at any thread count.
+// Every image's highlight on every sphere: [image][sphere]. Reads only the square around each
+// sphere (ImageStack::readWindow); parallel over images, identical at any thread count.
 std::vector<std::vector<Highlight>> detectHighlights(const ImageStack& luminance,
                                                      const std::vector<DetectedSphere>& spheres,
                                                      const HighlightOptions& options, int threads);
