@@ -22,7 +22,7 @@ void AccumulatorPeaks::measureRows(int first, int last) {
 
 double AccumulatorPeaks::strongest(cv::Point* at) const {
   if (rowMax_.empty() || acc_.cols == 0) {
-    *at = {-1, -1};  // as cv::minMaxLoc on an empty matrix
+    *at = {-1, -1};  // no cell (the sphere search never asks of an empty one)
     return 0;
   }
   // max_element returns the first of equal largest elements: the first row, then its first cell.
