@@ -9,6 +9,11 @@ void ImageStack::readWindow(int index, int x0, int y0, int x1, int y1, std::uint
   if (x0 < 0 || x1 > width() || x0 > x1) throw std::out_of_range("readWindow: bad column range");
   const std::size_t c = static_cast<std::size_t>(channels());
   const std::size_t rowSamples = static_cast<std::size_t>(width()) * c, span = std::size_t(x1 - x0) * c;
+  if (y1 > y0 && heldRow(index, y0)) {  // rows held in memory: the window straight from them
+    for (int y = y0; y < y1; ++y)
+      std::copy_n(heldRow(index, y) + std::size_t(x0) * c, span, out + std::size_t(y - y0) * span);
+    return;
+  }
   std::vector<std::uint16_t> rows(static_cast<std::size_t>(std::max(0, y1 - y0)) * rowSamples);
   readRows(index, y0, y1, rows.data());
   for (int y = y0; y < y1; ++y)

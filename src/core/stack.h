@@ -34,10 +34,10 @@ class ImageStack {
   // (y1 - y0) * width() * channels() samples.
   virtual void readRows(int index, int y0, int y1, std::uint16_t* out) const = 0;
   // Copies columns [x0, x1) of rows [y0, y1) of image `index` into `out`, as readRows gives
-  // them there: (y1 - y0) * (x1 - x0) * channels() samples, row after row. This default reads
-  // the whole rows and keeps the window; a stack that computes its samples as they are read
-  // computes only the window's (the highlight search reads a sphere's square, a seventh of the
-  // width at 3000x2000).
+  // them there: (y1 - y0) * (x1 - x0) * channels() samples, row after row. This default copies
+  // the window from heldRow where the stack holds its rows, else reads the whole rows and keeps
+  // the window; a stack that computes its samples as they are read computes only the window's
+  // (the highlight search reads a sphere's square, a seventh of the width at 3000x2000).
   virtual void readWindow(int index, int x0, int y0, int x1, int y1, std::uint16_t* out) const;
   // Row y of image `index` where the stack holds it in memory, for readers that need no copy:
   // width() * channels() samples as readRows gives them (heldRow), or as bytes b that stand for

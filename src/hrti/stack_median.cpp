@@ -196,26 +196,16 @@ void StackMedian::computeCoarse(std::size_t coarseBudget) {
   }
 }
 
-// Tiles firstTile..lastTile of one tile row: that row band of every image (whole rows are what
-// readRows gives; only the tiles' columns are kept), then each pixel's median.
+// Tiles firstTile..lastTile of one tile row: the tiles' window of every image (readWindow),
+// then each pixel's median.
 void StackMedian::computeTiles(int tileRow, int firstTile, int lastTile) const {
   const int n = stack_.size(), w = width();
   const int y0 = tileRow * kTile, y1 = std::min(height(), y0 + kTile), rows = y1 - y0;
   const int x0 = firstTile * kTile, x1 = std::min(w, (lastTile + 1) * kTile), span = x1 - x0;
   const std::size_t plane = std::size_t(rows) * span;
-  const auto* held = dynamic_cast<const MemoryImageStack*>(&stack_);
   std::vector<std::uint16_t> band(std::size_t(n) * plane);
   parallelFor(n, 1, effectiveThreads(threads_), [&](std::size_t b, std::size_t e) {
-    std::vector<std::uint16_t> read(held ? 0 : std::size_t(rows) * w);
-    for (std::size_t i = b; i < e; ++i) {
-      const std::uint16_t* from = read.data();
-      if (held)
-        from = held->image(static_cast<int>(i)).pixels.data() + std::size_t(y0) * w;
-      else
-        stack_.readRows(static_cast<int>(i), y0, y1, read.data());
-      for (int y = 0; y < rows; ++y)
-        std::copy_n(from + std::size_t(y) * w + x0, span, &band[i * plane + std::size_t(y) * span]);
-    }
+    for (std::size_t i = b; i < e; ++i) stack_.readWindow(static_cast<int>(i), x0, y0, x1, y1, &band[i * plane]);
   });
   std::vector<std::uint16_t> medians(plane);
   mediansOfPlanes(band.data(), n, plane, threads_, medians.data());
