@@ -1,6 +1,9 @@
 #include "cli/commands.h"
 
 #include <iostream>
+#include <set>
+
+#include "stages/light_stages.h"
 
 namespace surrogate::cli {
 
@@ -18,6 +21,30 @@ const std::vector<Command>& commands() {
       {"audit", "audit the prior work (RTIBuilder's .lp, .ptm or .rti) left in a capture", runCommandAudit},
   };
   return list;
+}
+
+void printLightWarnings(const carrier::Carrier& c, std::size_t most) {
+  std::set<std::string> lightSteps;
+  for (const carrier::Step& s : c.process)
+    if (s.component == stages::SphereDetectionStage::kComponent ||
+        s.component == stages::HighlightDetectionStage::kComponent ||
+        s.component == stages::LightDirectionsStage::kComponent)
+      lightSteps.insert(s.id);
+  std::size_t shown = 0, more = 0;
+  for (const carrier::LogEntry& e : c.log) {
+    if (e.level != "warning" || !lightSteps.count(e.step)) continue;
+    if (shown == most) {
+      ++more;
+      continue;
+    }
+    std::string text = e.text;
+    // Names from the card may hold control characters: never sent raw to the terminal.
+    for (char& ch : text)
+      if (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f) ch = '?';
+    std::cout << "  warning: " << text << "\n";
+    ++shown;
+  }
+  if (more) std::cout << "  and " << more << " more warning(s) on the lights in the carrier's log\n";
 }
 
 std::string usageHeader(const std::string& synopsis, const std::string& description) {

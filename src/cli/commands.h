@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "carrier/carrier.h"
 #include "cli/args.h"
 
 namespace surrogate::cli {
@@ -36,6 +37,12 @@ std::string usageHeader(const std::string& synopsis, const std::string& descript
 // true, so the command returns 0.
 bool helpShown(const Args& args, const std::vector<OptionSpec>& specs, const std::string& synopsis,
                const std::string& description);
+// Prints, one a line under "  warning: ", the warnings the light stages (spheres, highlights,
+// lights and their checks) logged in `c`: a highlight refused on one sphere of two, a doubtful
+// one, an accepted check. The user reads them here, not only in the carrier. At most `most`,
+// then how many more.
+void printLightWarnings(const carrier::Carrier& c, std::size_t most = 8);
+
 // The file a command writes: -o (also --o) or --output.
 std::optional<std::string> outputOption(const Args& args);
 

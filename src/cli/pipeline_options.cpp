@@ -1,5 +1,6 @@
 #include "cli/pipeline_options.h"
 
+#include <algorithm>
 #include <cctype>
 #include <optional>
 
@@ -7,6 +8,7 @@
 #include "carrier/carrier.h"
 #include "cli/option_checks.h"
 #include "core/error.h"
+#include "hrti/light_checks.h"
 #include "stages/light_stages.h"
 #include "stages/preprocess.h"
 #include "stages/preprocess_stages.h"
@@ -44,6 +46,8 @@ std::vector<OptionSpec> pipelineOptions(bool withFit) {
       {"accept-changed", true, true, "accept that a recorded original changed or was removed (needs --reason)", "PATH"},
       {"accept-damaged", true, true, "decode an image although its decoder reports damaged data (needs --reason)", "IMAGE"},
       {"forget-damaged", true, true, "withdraw an accepted damaged image (needs --reason)", "IMAGE"},
+      {"accept", true, true, "accept a failed check on the lights by name, e.g. lights-clustered (needs --reason)", "CHECK"},
+      {"forget-accept", true, true, "withdraw an accepted check (needs --reason)", "CHECK"},
   };
   if (withFit) {
     specs.push_back({"basis", true, true, "model to fit: ptm-lrgb, ptm-rgb, hsh2, hsh3 (default: ptm-lrgb and hsh2)", "BASIS"});
@@ -233,14 +237,30 @@ stages::RunRequest requestFrom(const Args& args) {
   bool lastIsExclusion = false;
   std::string* lastReason = nullptr;  // of a withdrawal, --reset or --accept-changed
   for (const auto& [name, value] : args.ordered()) {
+    if (name == "accept" || name == "forget-accept") {
+      const auto& known = hrti::lightCheckNames();
+      if (std::find(known.begin(), known.end(), value) == known.end()) {
+        std::string list;
+        for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
+        throw Error(ErrorKind::Usage, "--" + name + " " + value, "command line", "is not a check; the checks are " + list);
+      }
+    }
+    if (name == "accept") {
+      r.stageInterventions.push_back({stages::LightDirectionsStage::kComponent, {stages::kAcceptCheck, value, "", "", "", ""}});
+      last = &r.stageInterventions.back().intervention;
+      lastIsExclusion = false;
+      lastReason = nullptr;
+      continue;
+    }
     if (name == "forget-exclusion" || name == "forget-sphere" || name == "forget-highlight" ||
-        name == "forget-damaged") {
+        name == "forget-damaged" || name == "forget-accept") {
       std::string target = value;
       if (name == "forget-highlight" && target.find(':') == std::string::npos) target += ":0";
       if (name == "forget-sphere") parseNumberList(value, 1, "--forget-sphere");
       r.withdrawals.push_back({name == "forget-exclusion" ? "exclude-image"
                                : name == "forget-sphere"  ? "manual-sphere"
                                : name == "forget-damaged" ? "accept-decoder-warning"
+                               : name == "forget-accept"  ? stages::kAcceptCheck
                                                           : "manual-highlight",
                                target, ""});
       lastReason = &r.withdrawals.back().reason;
@@ -297,7 +317,7 @@ stages::RunRequest requestFrom(const Args& args) {
         last->reason = value;
       } else {
         throw Error(ErrorKind::Usage, "--reason", "command line",
-                    "must follow the --exclude, --sphere or --highlight it explains");
+                    "must follow the --exclude, --sphere, --highlight or --accept it explains");
       }
     }
   }
@@ -318,8 +338,14 @@ stages::RunRequest requestFrom(const Args& args) {
                   "reason is recorded as a human intervention");
   // A circle or highlight set by hand is an intervention too; when no reason is given, the
   // record says so plainly rather than inventing one.
-  for (auto& i : r.stageInterventions)
+  for (auto& i : r.stageInterventions) {
+    // Accepting a failed check overrides a safeguard: like an exclusion, it needs its reason.
+    if (i.intervention.kind == stages::kAcceptCheck && i.intervention.reason.empty())
+      throw Error(ErrorKind::Usage, "--accept " + i.intervention.target, "command line",
+                  "accepting a failed check needs a reason: add --reason \"why\" after it; it is recorded with "
+                  "who and when");
     if (i.intervention.reason.empty()) i.intervention.reason = "given on the command line (no reason stated)";
+  }
   return r;
 }
 

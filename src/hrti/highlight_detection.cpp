@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/text.h"
+#include "hrti/stack_median.h"
 
 namespace surrogate::hrti {
 
@@ -18,7 +19,9 @@ namespace {
 constexpr const char* kStep = "highlight detection";
 // Below this peak (of full scale) there is no highlight, only the sphere's dark body.
 constexpr double kMinimumPeak = 0.05;
-// The measures read the disc within this fraction of the radius (see detectHighlight).
+// The search and the measures read the discs within these fractions of the radius (see
+// highlight_detection.h).
+constexpr double kSearchedRadius = 0.9;
 constexpr double kMeasuredRadius = 0.85;
 }  // namespace
 
@@ -72,6 +75,7 @@ const char* flagName(HighlightFlag f) {
     case HighlightFlag::Saturated: return "saturated";
     case HighlightFlag::Large: return "large";
     case HighlightFlag::NotCompact: return "not-compact";
+    case HighlightFlag::Shaded: return "shaded";
   }
   return "none";
 }
@@ -85,16 +89,17 @@ void judgeHighlight(Highlight& h, bool secondCandidate) {
   const HighlightMeasures& m = h.measures;
   if (h.flag == HighlightFlag::None) {
     h.confidence = 0;
-    h.reason = "nothing stands out of the sphere's body (its brightest value is " + percent(h.peak) +
-               " of full scale): the light was behind the sphere or did not fire";
+    h.reason = "nothing on the sphere is brighter in this image than in the others (its strongest rise is " +
+               percent(h.peak) + " of full scale): the light was behind the sphere or did not fire";
     return;
   }
   const double contrast = score(m.contrast, L::kGoodContrast, L::kMinContrast);
   const double spread = score(m.spread, L::kGoodSpread, L::kMaxSpread);
-  const double shape = std::min({score(m.share, L::kGoodShare, L::kMinShare),
-                                 score(m.fill, L::kGoodFill, L::kMinFill),
-                                 score(m.elongation, L::kGoodElongation, L::kMinElongation)});
-  h.confidence = std::min({contrast, spread, shape, secondCandidate ? L::kMultipleCap : 1.0});
+  const double shape = std::min({score(m.compactness, L::kGoodCompactness, L::kMinCompactness),
+                                 score(m.elongation, L::kGoodElongation, L::kMinElongation),
+                                 score(m.fill, L::kGoodFill, L::kMinFill)});
+  const double mirror = score(m.bodyRise, L::kGoodBodyRise, L::kMaxBodyRise);
+  h.confidence = std::min({contrast, spread, shape, mirror, secondCandidate ? L::kMultipleCap : 1.0});
   h.reason.clear();
   if (h.peak >= L::kSaturatedLevel && m.saturated > L::kMaxSpread) {
     h.flag = HighlightFlag::Saturated;
@@ -107,21 +112,29 @@ void judgeHighlight(Highlight& h, bool secondCandidate) {
                percent(1 - L::kMinContrast) + "): the frame is flat or featureless there";
   } else if (m.spread > L::kMaxSpread) {
     h.flag = HighlightFlag::Large;
-    h.reason = percent(m.spread) + " of the sphere is at least halfway up to its brightest value "
-               "(a highlight covers under " + percent(L::kMaxSpread) + ")";
-  } else if (m.share < L::kMinShare) {
+    h.reason = percent(m.spread) + " of the sphere is brighter in this image than in the others by at least half "
+               "the peak (a highlight covers under " + percent(L::kMaxSpread) + ")";
+  } else if (m.bodyRise > L::kMaxBodyRise) {
+    h.flag = HighlightFlag::Shaded;
+    h.reason = "the sphere's body brightens with the light too (a quarter of it rises by " + percent(m.bodyRise) +
+               " of the peak or more; on a mirror sphere only the highlight does, under " + percent(L::kMaxBodyRise) +
+               "): a matte or painted round object, not a reflective sphere";
+  } else if (m.elongation < L::kMinElongation) {
     h.flag = HighlightFlag::NotCompact;
-    h.reason = "the brightest pixels are scattered over the sphere: the spot nearest the centre holds " +
-               percent(m.share) + " of them (a highlight holds at least " + percent(L::kMinShare) + ")";
-  } else if (m.fill < L::kMinFill || m.elongation < L::kMinElongation) {
+    h.reason = "the brightest spot is a streak, not a highlight (roundness " + twoDecimals(m.elongation) +
+               ", a highlight has at least " + twoDecimals(L::kMinElongation) + ")";
+  } else if (m.fill < L::kMinFill) {
     h.flag = HighlightFlag::NotCompact;
-    h.reason = "the brightest spot is not a compact peak but a ring or a streak (fill " + twoDecimals(m.fill) +
-               ", a highlight has at least " + twoDecimals(L::kMinFill) + "; roundness " +
-               twoDecimals(m.elongation) + ", at least " + twoDecimals(L::kMinElongation) + ")";
+    h.reason = "the brightest spot is a ring or a crescent, not a highlight (fill " + twoDecimals(m.fill) +
+               ", a highlight has at least " + twoDecimals(L::kMinFill) + ")";
+  } else if (m.compactness < L::kMinCompactness) {
+    h.flag = HighlightFlag::NotCompact;
+    h.reason = "the brightest spot is a single pixel or a speck, not a highlight (its blurred height is " +
+               percent(m.compactness) + " of its peak; a highlight keeps at least " + percent(L::kMinCompactness) + ")";
   } else {
     h.flag = secondCandidate ? HighlightFlag::Multiple : HighlightFlag::Ok;
     if (secondCandidate)
-      h.reason = "another spot on the sphere is nearly as bright; the one nearest the centre was used";
+      h.reason = "another spot on the sphere is nearly as bright; the brighter one was used";
     return;
   }
   h.confidence = 0;
@@ -129,80 +142,123 @@ void judgeHighlight(Highlight& h, bool secondCandidate) {
 
 Highlight detectHighlight(const Image& crop, int cropX0, int cropY0, const DetectedSphere& s,
                           const HighlightOptions& o) {
+  return detectHighlight(crop, nullptr, cropX0, cropY0, s, o);
+}
+
+Highlight detectHighlight(const Image& crop, const Image* median, int cropX0, int cropY0, const DetectedSphere& s,
+                          const HighlightOptions& o) {
+  if (median && (median->width != crop.width || median->height != crop.height))
+    throw Error(ErrorKind::Internal, "", kStep, "the median crop differs in size from the image crop");
   Highlight h;
   h.x = s.cx;
   h.y = s.cy;
-  const double inner = s.r - o.rimPixels;
-  // Where a highlight can be: a light in front of the object puts it within sin(45 deg) of the
-  // radius; the rim beyond reflects the surroundings (a bright backdrop at grazing angles).
+  const double inner = std::min(s.r - o.rimPixels, kSearchedRadius * s.r);
   const double measured = std::min(inner, kMeasuredRadius * s.r);
   const int x0 = std::max(0, static_cast<int>(std::floor(s.cx - inner)) - cropX0);
   const int y0 = std::max(0, static_cast<int>(std::floor(s.cy - inner)) - cropY0);
   const int x1 = std::min(crop.width - 1, static_cast<int>(std::ceil(s.cx + inner)) - cropX0);
   const int y1 = std::min(crop.height - 1, static_cast<int>(std::ceil(s.cy + inner)) - cropY0);
-  if (x1 <= x0 || y1 <= y0) {
+  if (x1 <= x0 || y1 <= y0 || inner <= 0) {
     judgeHighlight(h, false);
     return h;
   }
   const int w = x1 - x0 + 1, hh = y1 - y0 + 1;
-  cv::Mat values(hh, w, CV_32F, cv::Scalar(0));
-  cv::Mat inside(hh, w, CV_8U, cv::Scalar(0));  // 1 inside the disc, 2 inside the measured disc
-  std::vector<float> disc;                        // values of the measured disc
-  double peak = 0;
+  cv::Mat values(hh, w, CV_32F, cv::Scalar(0));  // the image, 0..1
+  cv::Mat excess(hh, w, CV_32F, cv::Scalar(0));  // D: the image above the median
+  cv::Mat inside(hh, w, CV_8U, cv::Scalar(0));   // 1 inside the searched disc, 2 inside the measured disc
+  std::vector<float> disc;                         // image values of the measured disc
+  float highestRise = 0;
+  const double inner2 = inner * inner, measured2 = measured * measured;
   for (int y = 0; y < hh; ++y) {
+    const double dy = y + y0 + cropY0 - s.cy;
     for (int x = 0; x < w; ++x) {
-      const double fx = x + x0 + cropX0, fy = y + y0 + cropY0;
-      const double d = std::hypot(fx - s.cx, fy - s.cy);
-      if (d > inner) continue;
+      const double dx = x + x0 + cropX0 - s.cx;
+      const double d2 = dx * dx + dy * dy;
+      if (d2 > inner2) continue;
       const float v = crop.at(x + x0, y + y0) / 65535.0f;
+      const float m = median ? median->at(x + x0, y + y0) / 65535.0f : 0.0f;
+      const float rise = std::max(0.0f, v - m);
       values.at<float>(y, x) = v;
-      inside.at<std::uint8_t>(y, x) = d <= measured ? 2 : 1;
-      if (d <= measured) disc.push_back(v);
-      peak = std::max(peak, double(v));
+      excess.at<float>(y, x) = rise;
+      highestRise = std::max(highestRise, rise);
+      inside.at<std::uint8_t>(y, x) = d2 <= measured2 ? 2 : 1;
+      if (d2 <= measured2) disc.push_back(v);
     }
   }
-  h.peak = peak;
-  if (peak < kMinimumPeak || disc.empty()) {
+  // The blur cannot raise the peak: with no rise of kMinimumPeak anywhere there is none to find
+  // (most of the frames a circle that is not a sphere shows, checked without blurring them).
+  if (disc.empty() || highestRise < kMinimumPeak) {
+    h.peak = highestRise;
     judgeHighlight(h, false);  // flag None
     return h;
   }
+  const double sigma = std::clamp(s.r / 150.0, 0.8, 4.0);
+  cv::Mat blurred;
+  cv::GaussianBlur(excess, blurred, cv::Size(0, 0), sigma, sigma, cv::BORDER_CONSTANT);
+  blurred.setTo(0, inside == 0);
+  double peak = 0;
+  cv::Point at;
+  cv::minMaxLoc(blurred, nullptr, &peak, nullptr, &at);  // the first maximum in row order
+  if (peak < kMinimumPeak) {
+    h.peak = highestRise;
+    judgeHighlight(h, false);  // flag None
+    return h;
+  }
+  // The image around the peak: its brightest value, and the highest rise above the median.
+  const int reach = static_cast<int>(std::ceil(2 * sigma));
+  const cv::Rect near = cv::Rect(at.x - reach, at.y - reach, 2 * reach + 1, 2 * reach + 1) & cv::Rect(0, 0, w, hh);
+  double rawPeak = 0, brightest = 0;
+  cv::minMaxLoc(excess(near), nullptr, &rawPeak);
+  cv::minMaxLoc(values(near), nullptr, &brightest);
+  h.measures.compactness = rawPeak > 0 ? std::min(1.0, peak / rawPeak) : 0;
+
   // The sphere's body: the median of the measured disc (the highlight is a small part of it).
   std::nth_element(disc.begin(), disc.begin() + disc.size() / 2, disc.end());
   const double body = disc[disc.size() / 2];
-  const float halfway = static_cast<float>((body + peak) / 2);
   int aboveHalfway = 0, saturated = 0;
   for (int y = 0; y < hh; ++y)
     for (int x = 0; x < w; ++x) {
       if (inside.at<std::uint8_t>(y, x) != 2) continue;
-      const float v = values.at<float>(y, x);
-      aboveHalfway += v >= halfway;
-      saturated += v >= static_cast<float>(HighlightLimits::kSaturatedLevel);
+      aboveHalfway += blurred.at<float>(y, x) >= static_cast<float>(peak / 2);
+      saturated += values.at<float>(y, x) >= static_cast<float>(HighlightLimits::kSaturatedLevel);
     }
-  h.measures.contrast = (peak - body) / peak;
+  // How much the rest of the sphere rises in this image: the upper quartile of D over the
+  // measured disc, against the peak. A mirror sphere's body does not follow the light (only
+  // its highlight does); a matte or painted round object's shading does.
+  std::vector<float> rises;
+  rises.reserve(disc.size());
+  for (int y = 0; y < hh; ++y)
+    for (int x = 0; x < w; ++x)
+      if (inside.at<std::uint8_t>(y, x) == 2) rises.push_back(excess.at<float>(y, x));
+  std::nth_element(rises.begin(), rises.begin() + rises.size() * 3 / 4, rises.end());
+  h.measures.bodyRise = std::min(1.0, rises[rises.size() * 3 / 4] / peak);
+  h.measures.contrast = brightest > 0 ? std::max(0.0, (brightest - body) / brightest) : 0;
   h.measures.spread = double(aboveHalfway) / disc.size();
   h.measures.saturated = double(saturated) / disc.size();
+  h.peak = std::max(peak, brightest);
 
-  cv::Mat mask = (values >= static_cast<float>(o.threshold * peak)) & (inside > 0);
+  // The core: the 8-connected pixels around the peak at `threshold` of it; others are candidates.
+  cv::Mat mask = blurred >= static_cast<float>(o.threshold * peak);
   cv::Mat labels;
   const int count = cv::connectedComponents(mask, labels, 8, CV_32S);
+  const int chosen = labels.at<int>(at.y, at.x);
   struct Component {
     double sum = 0, sx = 0, sy = 0, peak = 0;
     double px = 0, py = 0, pxx = 0, pyy = 0, pxy = 0;  // unweighted position moments
-    int area = 0, measuredArea = 0;
+    int area = 0;
   };
   std::vector<Component> comps(count);
   for (int y = 0; y < hh; ++y) {
     for (int x = 0; x < w; ++x) {
       const int l = labels.at<int>(y, x);
       if (l == 0) continue;
-      const double v = values.at<float>(y, x);
+      const double v = blurred.at<float>(y, x);
       Component& c = comps[l];
       c.sum += v;
       c.sx += v * (x + x0 + cropX0);
       c.sy += v * (y + y0 + cropY0);
       c.peak = std::max(c.peak, v);
       c.area++;
-      c.measuredArea += inside.at<std::uint8_t>(y, x) == 2;
       c.px += x;
       c.py += y;
       c.pxx += double(x) * x;
@@ -210,26 +266,13 @@ Highlight detectHighlight(const Image& crop, int cropX0, int cropY0, const Detec
       c.pxy += double(x) * y;
     }
   }
-  int chosen = -1;
-  double nearest = 1e300;
-  for (int l = 1; l < count; ++l) {
-    const double d = std::hypot(comps[l].sx / comps[l].sum - s.cx, comps[l].sy / comps[l].sum - s.cy);
-    if (d < nearest) {
-      nearest = d;
-      chosen = l;
-    }
-  }
-  if (chosen < 0) {
-    judgeHighlight(h, false);
-    return h;
-  }
   const Component& c = comps[chosen];
   h.components = count - 1;
   h.x = c.sx / c.sum;
   h.y = c.sy / c.sum;
   h.flag = HighlightFlag::Ok;
-  // The shape of the chosen component: covariance of its pixel positions, each pixel a unit
-  // square (variance 1/12 along each axis).
+  // The shape of the core: covariance of its pixel positions, each pixel a unit square
+  // (variance 1/12 along each axis).
   const double n = c.area;
   const double mx = c.px / n, my = c.py / n;
   const double vxx = c.pxx / n - mx * mx + 1.0 / 12, vyy = c.pyy / n - my * my + 1.0 / 12;
@@ -241,35 +284,44 @@ Highlight detectHighlight(const Image& crop, int cropX0, int cropY0, const Detec
   const double l1 = mean + diff + HighlightLimits::kBlurPx2;
   const double l2 = std::max(0.0, mean - diff) + HighlightLimits::kBlurPx2;
   h.measures.elongation = std::sqrt(l2 / l1);
-  int bright = 0;
-  for (int l = 1; l < count; ++l) bright += comps[l].measuredArea;
-  h.measures.share = bright > 0 ? std::min(1.0, double(c.measuredArea) / bright) : 1.0;
   bool second = false;
   for (int l = 1; l < count; ++l)
-    if (l != chosen && comps[l].area >= 3 && comps[l].peak >= 0.9 * c.peak) second = true;
+    if (l != chosen && comps[l].peak >= HighlightLimits::kSecondPeak * peak) second = true;
   judgeHighlight(h, second);
   return h;
 }
 
+Rect highlightWindow(const DetectedSphere& s, int width, int height) {
+  const int y0 = std::clamp(static_cast<int>(std::floor(s.cy - s.r)) - 2, 0, height);
+  const int y1 = std::clamp(static_cast<int>(std::ceil(s.cy + s.r)) + 3, 0, height);
+  const int x0 = std::clamp(static_cast<int>(std::floor(s.cx - s.r)) - 2, 0, width);
+  const int x1 = std::clamp(static_cast<int>(std::ceil(s.cx + s.r)) + 3, 0, width);
+  if (y1 <= y0 || x1 <= x0) return {0, 0, 0, 0};
+  return {x0, y0, x1 - x0, y1 - y0};
+}
+
 std::vector<std::vector<Highlight>> detectHighlights(const ImageStack& stack,
                                                      const std::vector<DetectedSphere>& spheres,
-                                                     const HighlightOptions& o, int threads) {
+                                                     const HighlightOptions& o, int threads,
+                                                     const StackMedian* median) {
   if (stack.channels() != 1) throw Error(ErrorKind::Internal, "", kStep, "needs a luminance stack");
+  // The median of fewer than three images is one of them: it would cancel the highlight.
+  const bool useMedian = median && stack.size() >= 3;
+  std::vector<Rect> windows;
+  std::vector<Image> medians;
+  for (const DetectedSphere& s : spheres) {
+    windows.push_back(highlightWindow(s, stack.width(), stack.height()));
+    medians.push_back(useMedian && windows.back().w > 0 ? median->window(windows.back()) : Image());
+  }
   std::vector<std::vector<Highlight>> out(stack.size(), std::vector<Highlight>(spheres.size()));
   parallelFor(stack.size(), 1, effectiveThreads(threads), [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) {
       for (std::size_t k = 0; k < spheres.size(); ++k) {
-        const DetectedSphere& s = spheres[k];
-        // The sphere's square and two pixels around it: all detectHighlight reads (it clips
-        // its disc to the frame, as it would to whole rows).
-        const int y0 = std::clamp(static_cast<int>(std::floor(s.cy - s.r)) - 2, 0, stack.height());
-        const int y1 = std::clamp(static_cast<int>(std::ceil(s.cy + s.r)) + 3, 0, stack.height());
-        const int x0 = std::clamp(static_cast<int>(std::floor(s.cx - s.r)) - 2, 0, stack.width());
-        const int x1 = std::clamp(static_cast<int>(std::ceil(s.cx + s.r)) + 3, 0, stack.width());
-        if (y1 <= y0 || x1 <= x0) continue;
-        Image window(x1 - x0, y1 - y0, 1);
-        stack.readWindow(static_cast<int>(i), x0, y0, x1, y1, window.pixels.data());
-        out[i][k] = detectHighlight(window, x0, y0, s, o);
+        const Rect& r = windows[k];
+        if (r.w <= 0) continue;
+        Image window(r.w, r.h, 1);
+        stack.readWindow(static_cast<int>(i), r.x, r.y, r.x + r.w, r.y + r.h, window.pixels.data());
+        out[i][k] = detectHighlight(window, useMedian ? &medians[k] : nullptr, r.x, r.y, spheres[k], o);
       }
     }
   });

@@ -1,50 +1,54 @@
 // The highlight on a sphere in one image (docs/hrti-math.md, "The highlight on a sphere"), and how
 // far it can be trusted.
 //
-// Inside the sphere's circle (less a rim of `rimPixels`, where the outline blurs into the
-// background): threshold at `threshold` times the brightest pixel, label
-// 8-connected components, take each component's centroid weighted by pixel value (sub-pixel),
-// and choose the component nearest the sphere's centre (inter-reflections lie farther out).
+// Real highlights are not tidy spots: a saturated core with a glare streak through it, dust
+// specks and the reflected scene around it, a window or a lamp reflected in every frame. What
+// tells the highlight apart is that it MOVES with the light. So the search reads the image's
+// excess over the stack's per-pixel median (hrti/stack_median.h), which removes everything
+// that is there in every frame (reflections, dust, the sphere's own body):
 //
-// A highlight on a glossy black sphere is a small, compact peak far above the sphere's dark
-// body. Five measures say whether the chosen one is. They read the disc M within 0.85 of the
-// radius (a light in front of the object puts its highlight within sin 45 deg = 0.71 of it;
-// the rim beyond reflects the surroundings). P is the brightest value of the sphere, B the
-// median of M (the sphere's body), K the chosen component:
+//   1. D = max(0, image - median) inside the disc within 0.9 of the radius (and `rimPixels`
+//      from the edge; a light in front of the object puts its highlight within sin 45 deg =
+//      0.71 of it, the rim beyond reflects the surroundings at grazing angles);
+//   2. B = D blurred by a Gaussian of sigma = r / 150 (0.8 to 4 px): a highlight's core is a
+//      blob several pixels wide and keeps its height, a hot pixel or a thin glare streak
+//      does not;
+//   3. the peak of B; the 8-connected pixels around it with B >= threshold * peak; the
+//      B-weighted centroid of that core (sub-pixel), not of the streak or halo around it.
+// Without a median (a stack of fewer than three images) D is the image itself.
 //
-//     contrast   C = (P - B) / P                 0 on a flat or fully saturated disc
-//     spread     S = |{v in M : v >= (B+P)/2}| / |M|
-//                                                share of the sphere at least halfway up to
-//                                                the peak: about 0.01 for a highlight
-//     share      H = |K in M| / |all components in M|
-//                                                1 for one spot; low when the brightest pixels
-//                                                are scattered over the sphere (texture, noise)
-//     fill       F = |K| / (4 pi sqrt(det Sigma)) Sigma the covariance of K's pixel positions
-//                                                (each pixel a unit square): 1 for a filled
-//                                                ellipse, low for a ring or a crescent
-//     elongation E = sqrt(l2 / l1)               l1 >= l2 the eigenvalues of Sigma plus 0.5 px^2
-//                                                of blur: 1 round, 0.7 a highlight seen at 45
-//                                                degrees, low for a streak
+// Seven measures say whether the peak is a highlight. M is the disc within 0.85 of the
+// radius, P the image's brightest value at the core, Bd the median of the image over M:
 //
-// Each measure gives a score that is 1 where highlights lie (on every generated capture of the
-// tests, benchmarks and demo: C >= 0.87, S <= 0.014, H = 1, F >= 0.92, E >= 0.77) and falls
-// linearly to 0 at a limit; the confidence is the lowest score, at most 0.5 with a second
-// candidate (flag Multiple). A measure past its limit refuses the highlight (confidence 0):
-// the light direction it would give is not to be trusted.
+//     contrast     C = (P - Bd) / P               0 on a flat or fully saturated disc
+//     spread       S = |{B >= peak/2} in M| / |M| share of the sphere at least halfway up
+//                                                 to the peak: about 0.01 for a highlight
+//     saturated      |{image >= 0.98} in M| / |M|
+//     compactness  K = peak of B / max of D within 2 sigma of it
+//                                                 ~1 for a blob several pixels wide, 1/(2 pi
+//                                                 sigma^2) for a single hot pixel
+//     elongation   E = sqrt(l2 / l1)              l1 >= l2 the eigenvalues of the core's
+//                                                 covariance plus 0.5 px^2: low for a streak
+//     fill         F = |core| / (4 pi sqrt(det Sigma))  Sigma that covariance: 1 for a filled
+//                                                 ellipse, low for a ring or a crescent
+//     body rise    R = upper quartile of D over M / peak of B: a mirror sphere's body does
+//                                                 not follow the light, a matte object's does
 //
 //              score 1 at    limit (refused)      flag
-//   contrast   C >= 0.50     C <  0.30            flat
+//   contrast   C >= 0.80     C <  0.55            flat
 //   spread     S <= 0.03     S >  0.10            large, or saturated when P >= 0.98 and more
 //                                                 than 0.10 of M is at 0.98 or above
-//   share      H >= 0.70     H <  0.40            not-compact
-//   fill       F >= 0.70     F <  0.45            not-compact
-//   elongation E >= 0.40     E <  0.20            not-compact
+//   compact    K >= 0.85     K <  0.60            not-compact (a speck, a hot pixel, a broad glow)
+//   elongation E >= 0.30     E <  0.15            not-compact (a streak)
+//   fill       F >= 0.70     F <  0.45            not-compact (a ring)
+//   body rise  R <= 0.15     R >  0.30            shaded (a matte round object)
 //
-// Flags: None when nothing stands out (peak below 5 % of full scale: the light was behind
-// the sphere or the flash failed); Multiple when another component is nearly as bright (>= 90 %
-// of the chosen peak, >= 3 pixels): the choice is then worth checking on the overview image.
+// The confidence is the lowest score, at most 0.5 with a second candidate (another core at
+// least 90 % of the peak; flag Multiple, the brighter one is used). None when the peak of B is
+// below 5 % of full scale: nothing in this image is brighter than in the others there (the
+// light was behind the sphere, or the flash did not fire).
 //
-//   const Highlight h = detectHighlight(rows, 0, y0, sphere, HighlightOptions());
+//   const Highlight h = detectHighlight(image, &medianCrop, x0, y0, sphere, HighlightOptions());
 //   if (!isUsable(h.flag)) refuse(image, h.reason);   // else h.x, h.y with h.confidence 0..1
 #pragma once
 
@@ -58,8 +62,10 @@
 
 namespace surrogate::hrti {
 
+class StackMedian;
+
 struct HighlightOptions {
-  double threshold = 0.8;  // fraction of the brightest pixel inside the sphere
+  double threshold = 0.8;  // fraction of the peak (of B, above) that bounds the highlight's core
   int rimPixels = 2;       // excluded at the sphere's edge
 
   std::vector<std::pair<std::string, std::string>> toParameters() const;
@@ -74,10 +80,11 @@ enum class HighlightFlag {
   Flat,        // refused: the sphere's disc has no peak (a flat or featureless frame)
   Saturated,   // refused: a large part of the disc is saturated (an overexposed frame)
   Large,       // refused: bright over a large part of the disc, not a highlight
-  NotCompact,  // refused: the peak is a streak, a ring or scattered pixels
+  NotCompact,  // refused: the peak is a single pixel, a speck or a streak
+  Shaded,      // refused: the whole disc follows the light (a matte object, not a mirror sphere)
 };
 
-// "ok", "multiple", "manual", "none", "flat", "saturated", "large", "not-compact": the carrier's
+// "ok", "multiple", "manual", "none", "flat", "saturated", "large", "not-compact", "shaded": the carrier's
 // highlight/@flag.
 const char* flagName(HighlightFlag flag);
 // Ok, Multiple and Manual give a light direction; the others do not.
@@ -85,20 +92,21 @@ bool isUsable(HighlightFlag flag);
 
 // The measures above, for the record and for choosing the limits (bench, tests).
 struct HighlightMeasures {
-  double contrast = 0, spread = 0, saturated = 0, fill = 0, elongation = 0;
-  double share = 0;  // of the pixels above the threshold, the part in the chosen component
-  int area = 0;      // pixels of the chosen component
+  double contrast = 0, spread = 0, saturated = 0, compactness = 0, elongation = 0, bodyRise = 0, fill = 0;
+  int area = 0;  // pixels of the core
 };
 
 // The limits of the table above.
 struct HighlightLimits {
-  static constexpr double kGoodContrast = 0.50, kMinContrast = 0.30;
+  static constexpr double kGoodContrast = 0.80, kMinContrast = 0.55;
   static constexpr double kGoodSpread = 0.03, kMaxSpread = 0.10;
-  static constexpr double kGoodShare = 0.70, kMinShare = 0.40;
   static constexpr double kSaturatedLevel = 0.98;
+  static constexpr double kGoodCompactness = 0.85, kMinCompactness = 0.60;
+  static constexpr double kGoodBodyRise = 0.15, kMaxBodyRise = 0.30;
   static constexpr double kGoodFill = 0.70, kMinFill = 0.45;
-  static constexpr double kGoodElongation = 0.40, kMinElongation = 0.20;
+  static constexpr double kGoodElongation = 0.30, kMinElongation = 0.15;
   static constexpr double kMultipleCap = 0.5;  // confidence with a second candidate
+  static constexpr double kSecondPeak = 0.9;   // a second core this high (of the peak) is a candidate
   static constexpr double kBlurPx2 = 0.5;      // added to Sigma's eigenvalues for elongation
 };
 
@@ -106,7 +114,7 @@ struct Highlight {
   double x = 0, y = 0;  // full-image pixels
   HighlightFlag flag = HighlightFlag::None;
   int components = 0;
-  double peak = 0;        // brightest value inside the sphere, 0..1
+  double peak = 0;        // the brightest value at the highlight, 0..1 (flag none: the highest rise over the median)
   double confidence = 0;  // 0..1: the lowest score (see above); 1 when given by hand
   HighlightMeasures measures;
   // Why a highlight is refused or doubtful, for people: "18 % of the sphere is at least
@@ -118,14 +126,24 @@ struct Highlight {
 // `measures`, `peak` and whether another candidate is nearly as bright.
 void judgeHighlight(Highlight& h, bool secondCandidate);
 
-// `crop` holds rows/columns of one luminance image starting at (cropX0, cropY0).
+// `crop` holds rows/columns of one luminance image starting at (cropX0, cropY0); `median`, when
+// given, the stack's median over the same rectangle (same size).
+Highlight detectHighlight(const Image& crop, const Image* median, int cropX0, int cropY0,
+                          const DetectedSphere& sphere, const HighlightOptions& options);
+// The same without a median: D is the image itself (drawn test images, one-image stacks).
 Highlight detectHighlight(const Image& crop, int cropX0, int cropY0, const DetectedSphere& sphere,
                           const HighlightOptions& options);
 
+// The rectangle detectHighlight reads around a sphere (its square and two pixels around it,
+// clipped to the frame): x0, y0, x1, y1 with x1, y1 exclusive; empty when off the frame.
+Rect highlightWindow(const DetectedSphere& sphere, int width, int height);
+
 // Every image's highlight on every sphere: [image][sphere]. Reads only the square around each
-// sphere (ImageStack::readWindow); parallel over images, identical at any thread count.
+// sphere (ImageStack::readWindow) and, with `median` and at least three images, the median
+// there; parallel over images, identical at any thread count.
 std::vector<std::vector<Highlight>> detectHighlights(const ImageStack& luminance,
                                                      const std::vector<DetectedSphere>& spheres,
-                                                     const HighlightOptions& options, int threads);
+                                                     const HighlightOptions& options, int threads,
+                                                     const StackMedian* median = nullptr);
 
 }  // namespace surrogate::hrti

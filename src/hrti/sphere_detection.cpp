@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <optional>
 #include <sstream>
 
 #include "core/error.h"
@@ -12,6 +14,7 @@
 #include "core/text.h"
 #include "hrti/accumulator_peaks.h"
 #include "hrti/circle_fit.h"
+#include "hrti/highlight_detection.h"
 #include "hrti/stack_median.h"
 
 namespace surrogate::hrti {
@@ -19,6 +22,17 @@ namespace surrogate::hrti {
 namespace {
 
 constexpr const char* kStep = "sphere detection";
+// A light in front of the object puts its highlight within sin 45 deg = 0.71 of the radius;
+// a little more allows for the highlight's own size and the rim's fit.
+constexpr double kFrontRadius = 0.75;
+// Highlights that all lie within this share of the radius of each other do not move.
+constexpr double kMinMotion = 0.05;
+// A sphere shows a usable highlight in front in at least this share of the images.
+constexpr double kMinEvidence = 0.5;
+// Circles larger than this (pixels) are checked for highlights on reduced images.
+constexpr double kEvidenceRadius = 100;
+// Distinct Hough candidates refined when searching the whole frame (plus four per octave).
+constexpr std::size_t kCandidates = 40;
 
 cv::Mat toFloat(const Image& im) {
   cv::Mat m(im.height, im.width, CV_32F);
@@ -57,6 +71,7 @@ cv::Mat blurredWindow(const StackMedian& median, int x0, int y0, int x1, int y1)
 
 struct Candidate {
   double x = 0, y = 0, r = 0, score = -1;
+  int level = 1;  // the reduction of the Hough level that found it (its uncertainty, in coarse pixels)
 };
 
 struct Gradients {
@@ -73,27 +88,46 @@ Gradients gradients(const cv::Mat& coarse8) {
   return g;
 }
 
-// The circle Hough transform over radii [r0, r1] (coarse pixels) inside `area`. Each radius
+// The circle Hough transform over `radiusList` (coarse pixels) inside `area`. Each radius
 // gets its own accumulator and yields its `perRadius` strongest local maxima (each found
 // maximum's neighbourhood of r/2 is cleared before the next). The candidates are returned
 // sorted by score (normalised by what a perfect circle of that radius reaches), ties in radius
 // order, so the result is
 // identical at any thread count.
-std::vector<Candidate> hough(const Gradients& g, cv::Rect area, int r0, int r1, int perRadius, int threads) {
-  double maxMag = 0;
-  cv::minMaxLoc(g.mag(area), nullptr, &maxMag);
+std::vector<Candidate> hough(const Gradients& g, cv::Rect area, const std::vector<int>& radiusList, int perRadius,
+                             int threads) {
   struct Edge {
     float x, y, cosg, sing, weight;
   };
+  // The edges that vote: those above the 80th percentile of the area's gradients or a tenth of
+  // the strongest, whichever is lower (and at least 2 % of the strongest), each vote growing
+  // with the gradient up to its 97th percentile: a circle's score is then how much of its
+  // outline is a clear edge. The few very strong edges of the scene reflected in a sphere (a
+  // lamp) can neither outvote its fainter rim nor, through a floor set by them, silence it
+  // (a light probe); dense strong texture cannot either (stripes, where the 80th percentile
+  // alone silenced half a sphere's rim).
+  std::vector<float> strengths;
+  for (int y = area.y; y < area.y + area.height; ++y)
+    for (int x = area.x; x < area.x + area.width; ++x) strengths.push_back(g.mag.at<float>(y, x));
+  if (strengths.empty()) return {};
+  auto percentile = [&](double p) {
+    const auto q = strengths.begin() + static_cast<std::ptrdiff_t>((strengths.size() - 1) * p);
+    std::nth_element(strengths.begin(), q, strengths.end());
+    return *q;
+  };
+  const float strongest = *std::max_element(strengths.begin(), strengths.end());
+  const float cap = percentile(0.97);
+  const float floor = std::max(std::min(percentile(0.80), 0.1f * strongest), 0.02f * strongest);
   std::vector<Edge> edges;
   for (int y = area.y; y < area.y + area.height; ++y) {
     for (int x = area.x; x < area.x + area.width; ++x) {
       const float m = g.mag.at<float>(y, x);
-      if (m < 0.1 * maxMag) continue;  // faint gradients cost time and add only noise
-      edges.push_back({float(x), float(y), g.gx.at<float>(y, x) / m, g.gy.at<float>(y, x) / m, m});
+      if (m < floor || !(m > 0)) continue;
+      edges.push_back({float(x), float(y), g.gx.at<float>(y, x) / m, g.gy.at<float>(y, x) / m,
+                       cap > 0 ? std::min(1.0f, m / cap) : 1.0f});
     }
   }
-  if (edges.empty() || r1 < r0) return {};
+  if (edges.empty() || radiusList.empty()) return {};
   static const double kArc[] = {-M_PI / 12, -M_PI / 24, 0, M_PI / 24, M_PI / 12};
   double cosArc[5], sinArc[5];
   for (int k = 0; k < 5; ++k) {
@@ -114,12 +148,12 @@ std::vector<Candidate> hough(const Gradients& g, cv::Rect area, int r0, int r1, 
     }
     return 2 * M_PI * r * sum;
   };
-  const int radii = r1 - r0 + 1;
+  const int radii = static_cast<int>(radiusList.size());
   std::vector<std::vector<Candidate>> perR(radii);
   parallelFor(radii, 1, effectiveThreads(threads), [&](std::size_t b, std::size_t e) {
     cv::Mat acc(area.height, area.width, CV_32F);
     for (std::size_t ri = b; ri < e; ++ri) {
-      const int r = r0 + static_cast<int>(ri);
+      const int r = radiusList[ri];
       acc.setTo(0);
       for (const Edge& ed : edges) {
         for (int k = 0; k < 5; ++k) {
@@ -151,7 +185,8 @@ std::vector<Candidate> hough(const Gradients& g, cv::Rect area, int r0, int r1, 
 // Sub-pixel edge points along rays from the centre, and the circle through them.
 DetectedSphere refine(const StackMedian& median, Candidate start, double margin) {
   DetectedSphere out{start.x, start.y, start.r, 0};
-  for (int pass = 0; pass < 2; ++pass) {
+  // Each pass searches the rim within `margin` of the last circle, the margin shrinking to 3 px.
+  for (int pass = 0; pass < 3; ++pass) {
     const int x0 = std::max(0, static_cast<int>(out.cx - out.r - margin - 3));
     const int y0 = std::max(0, static_cast<int>(out.cy - out.r - margin - 3));
     const int x1 = std::min(median.width(), static_cast<int>(out.cx + out.r + margin + 4));
@@ -213,13 +248,134 @@ DetectedSphere refine(const StackMedian& median, Candidate start, double margin)
     out.cy = fit.cy;
     out.r = fit.r;
     out.confidence = double(fit.inliers) / kRays;
-    margin = 3;
+    margin = std::max(3.0, margin / 3);
   }
   return out;
 }
 
+// The Hough transform at several scales: level l searches the radii of 24 to 48 of its own
+// pixels on the median reduced 2^l times (level 0 from r0), so that every radius is searched
+// on a few dozen accumulators of a size that suits it. Candidates in coarse pixels.
+std::vector<Candidate> houghPyramid(const cv::Mat& coarse8, cv::Rect area, int r0, int r1, int perRadius,
+                                    int threads) {
+  std::vector<Candidate> all;
+  cv::Mat level = coarse8;
+  for (int l = 0, scale = 1; r0 <= r1; ++l, scale *= 2) {
+    const int top = r1 / scale < 48 || level.cols < 96 || level.rows < 96 ? r1 / scale : 47;
+    const int lo = std::max(l == 0 ? r0 : 24, 6);
+    if (top >= lo) {
+      const cv::Rect a(area.x / scale, area.y / scale, std::max(1, area.width / scale), std::max(1, area.height / scale));
+      const cv::Rect inLevel = a & cv::Rect(0, 0, level.cols, level.rows);
+      if (inLevel.width >= 8 && inLevel.height >= 8) {
+        std::vector<int> radii;
+        for (int r = lo; r <= top; ++r) radii.push_back(r);
+        for (Candidate c : hough(gradients(level), inLevel, radii, perRadius, threads)) {
+          c.x = (c.x + 0.5) * scale - 0.5;
+          c.y = (c.y + 0.5) * scale - 0.5;
+          c.r *= scale;
+          c.level = scale;
+          all.push_back(c);
+        }
+      }
+    }
+    if (top >= r1 / scale) break;
+    r0 = 48 * scale;
+    cv::Mat smaller;
+    cv::resize(level, smaller, cv::Size((level.cols + 1) / 2, (level.rows + 1) / 2), 0, 0, cv::INTER_AREA);
+    level = smaller;
+  }
+  std::stable_sort(all.begin(), all.end(), [](const Candidate& a, const Candidate& b) { return a.score > b.score; });
+  return all;
+}
+
+// Two candidates describe the same circle when their centres are within a quarter of the
+// larger radius and their radii within a third of each other.
+bool sameCircle(const Candidate& a, const Candidate& b) {
+  const double r = std::max(a.r, b.r);
+  return std::hypot(a.x - b.x, a.y - b.y) < 0.25 * r && std::min(a.r, b.r) > 0.75 * r;
+}
+
+// The candidates worth refining: the strongest distinct circles overall, and the strongest four
+// of each octave of radius, so that a large sphere whose rim is partly faint (its stand, its own
+// shadow) is tried even when the texture reflected in it gives many small strong circles.
+std::vector<Candidate> distinctCandidates(const std::vector<Candidate>& sorted, std::size_t overall) {
+  std::vector<Candidate> out;
+  std::map<int, int> perOctave;
+  for (const Candidate& c : sorted) {
+    bool seen = false;
+    for (const Candidate& d : out) seen = seen || sameCircle(c, d);
+    if (seen) continue;
+    const int octave = static_cast<int>(std::floor(std::log2(std::max(1.0, c.r))));
+    if (out.size() < overall || perOctave[octave] < 4) {
+      out.push_back(c);
+      ++perOctave[octave];
+    }
+  }
+  return out;
+}
+
+// `window` reduced `factor` times by area averaging (the last block row and column partial).
+Image reduced(const Image& window, int factor) {
+  if (factor <= 1) return window;
+  cv::Mat from(window.height, window.width, CV_16U, const_cast<std::uint16_t*>(window.pixels.data()));
+  Image out((window.width + factor - 1) / factor, (window.height + factor - 1) / factor, 1);
+  cv::Mat to(out.height, out.width, CV_16U, out.pixels.data());
+  cv::resize(from, to, to.size(), 0, 0, cv::INTER_AREA);
+  return out;
+}
+
+// Whether the stack shows a sphere's highlights in a circle: in each image, the highlight
+// (detectHighlight against the median) must be confident and lie within 0.75 of the radius (a
+// light in front of the object); the positions must move from image to image (a spot that
+// stays put is a reflection or a speck, not the light). evidence = the share of images with
+// such a highlight; 0 when the positions all lie within 5 % of the radius of each other.
+// A circle larger than kEvidenceRadius is judged on its window reduced to about that radius:
+// the question is whether there is a highlight, not where to the pixel, and the images of a
+// circle the size of the frame would otherwise cost as much as the rest of the search. The
+// images are judged a few at a time, stopping once the answer cannot change.
+double highlightEvidence(const StackMedian& median, const DetectedSphere& s, int threads) {
+  const ImageStack& stack = median.stack();
+  const std::size_t n = stack.size();
+  if (n < 3) return 1;  // no median to compare with: the rim alone decides
+  const Rect r = highlightWindow(s, stack.width(), stack.height());
+  if (r.w <= 0) return 0;
+  const int factor = std::max(1, static_cast<int>(std::ceil(s.r / kEvidenceRadius)));
+  const Image around = reduced(median.window(r), factor);
+  const DetectedSphere inWindow{(s.cx - r.x + 0.5) / factor - 0.5, (s.cy - r.y + 0.5) / factor - 0.5, s.r / factor,
+                                s.confidence, 0};
+  const std::size_t needed = static_cast<std::size_t>(std::ceil(kMinEvidence * n));
+  const std::size_t chunk = std::max<std::size_t>(2, 2 * static_cast<std::size_t>(effectiveThreads(threads)));
+  std::vector<std::optional<Point2>> at(n);
+  std::size_t found = 0;
+  for (std::size_t first = 0; first < n; first += chunk) {
+    const std::size_t last = std::min(n, first + chunk);
+    parallelFor(last - first, 1, effectiveThreads(threads), [&](std::size_t b, std::size_t e) {
+      Image window(r.w, r.h, 1);
+      for (std::size_t i = first + b; i < first + e; ++i) {
+        stack.readWindow(static_cast<int>(i), r.x, r.y, r.x + r.w, r.y + r.h, window.pixels.data());
+        const Highlight h = detectHighlight(reduced(window, factor), &around, 0, 0, inWindow, HighlightOptions());
+        // Only a confident highlight counts (above the cap of a doubtful one, kMultipleCap).
+        if (isUsable(h.flag) && h.confidence > HighlightLimits::kMultipleCap &&
+            std::hypot(h.x - inWindow.cx, h.y - inWindow.cy) <= kFrontRadius * inWindow.r)
+          at[i] = Point2{h.x, h.y};
+      }
+    });
+    for (std::size_t i = first; i < last; ++i) found += at[i].has_value();
+    if (found + (n - last) < needed) return double(found) / n;  // it cannot reach the minimum
+  }
+  std::vector<Point2> positions;
+  for (const auto& p : at)
+    if (p) positions.push_back(*p);
+  double spread = 0;
+  for (std::size_t i = 0; i < positions.size(); ++i)
+    for (std::size_t j = i + 1; j < positions.size(); ++j)
+      spread = std::max(spread, std::hypot(positions[i].x - positions[j].x, positions[i].y - positions[j].y));
+  if (spread < kMinMotion * inWindow.r) return 0;
+  return double(found) / n;
+}
+
 // A glossy black sphere is much darker than its surroundings: the mean inside 0.8 r against the
-// mean of the ring between 1.15 r and 1.4 r. Round patches of texture fail this test.
+// mean of the ring between 1.15 r and 1.4 r.
 bool isDarkDisc(const StackMedian& median, const DetectedSphere& s) {
   double inside = 0, outside = 0;
   int nIn = 0, nOut = 0;
@@ -240,6 +396,10 @@ bool isDarkDisc(const StackMedian& median, const DetectedSphere& s) {
   }
   if (nIn == 0 || nOut == 0) return false;
   return inside / nIn < 0.6 * (outside / nOut);
+}
+
+std::string circleText(const DetectedSphere& s) {
+  return fixedDecimals(s.cx, 0) + "," + fixedDecimals(s.cy, 0) + "," + fixedDecimals(s.r, 0);
 }
 
 std::vector<std::string> split(const std::string& s, char sep) {
@@ -293,7 +453,8 @@ SphereDetectionOptions SphereDetectionOptions::fromParameters(
 std::vector<DetectedSphere> detectSpheres(const Image& median, const SphereDetectionOptions& o) {
   if (median.channels != 1 || median.empty())
     throw Error(ErrorKind::Internal, "", kStep, "needs a one-channel median image");
-  // The median of a one-image stack is that image.
+  // The median of a one-image stack is that image; with no other image to compare it with,
+  // the rim alone decides (highlightEvidence).
   return detectSpheres(StackMedian(MemoryImageStack({median}), o.coarseWidth, o.threads), o);
 }
 
@@ -306,41 +467,60 @@ std::vector<DetectedSphere> detectSpheres(const StackMedian& median, const Spher
   const double scale = median.factor();
   cv::Mat coarse8;
   coarse.convertTo(coarse8, CV_8U, maxValue > 0 ? 255.0 / maxValue : 1.0);
-  const Gradients g = gradients(coarse8);
-  const double maxRadius = o.maxRadius > 0 ? o.maxRadius : std::min(median.width(), median.height()) / 4.0;
+  // A sphere may fill nine tenths of the frame's height (and be cut by its edge).
+  const double maxRadius = o.maxRadius > 0 ? o.maxRadius : std::min(median.width(), median.height()) / 2.0;
   // Below 6 coarse pixels a circle is a handful of accumulator cells: noise, not a sphere.
   const int r0 = std::max(6, static_cast<int>(std::floor(o.minRadius / scale)));
   auto toFull = [&](Candidate c) {
-    return Candidate{(c.x + 0.5) * scale - 0.5, (c.y + 0.5) * scale - 0.5, c.r * scale, c.score};
+    return Candidate{(c.x + 0.5) * scale - 0.5, (c.y + 0.5) * scale - 0.5, c.r * scale, c.score, c.level};
   };
-  const double margin = 2 * scale + 4;
 
-  // Candidates in order of Hough score; each is refined and must pass the tests below. A
-  // candidate overlapping an accepted sphere is the same sphere at another radius.
-  auto accept = [&](const std::vector<Candidate>& candidates, std::size_t wanted,
-                    std::vector<DetectedSphere>& into) {
-    constexpr std::size_t kMaxTried = 40;
-    double firstScore = 0;
-    std::size_t tried = 0;
+  // Each distinct candidate is refined (its rim fitted at full resolution: confidence, the
+  // share of the rim that is a clean edge) and, when the rim holds, checked for highlights that
+  // move with the light (evidence). Those that pass are returned best first (confidence x
+  // evidence); `tried` collects, for the message, the first few that did not and why.
+  struct Checked {
+    DetectedSphere s;
+    double score = 0;
+  };
+  auto checkAll = [&](const std::vector<Candidate>& candidates, std::vector<std::string>& tried) {
+    std::vector<Checked> passed;
     for (const Candidate& c : candidates) {
-      if (into.size() >= wanted || tried >= kMaxTried) break;
-      if (firstScore > 0 && c.score < firstScore / 3) break;
       const Candidate f = toFull(c);
+      DetectedSphere s = refine(median, f, 3 * scale * c.level + 4);
+      if (!(s.r >= 3)) continue;
+      if (s.confidence < o.minConfidence) {
+        if (tried.size() < 3) tried.push_back(circleText(s) + " (rim " + fixedDecimals(s.confidence, 2) + ")");
+        continue;
+      }
+      s.evidence = highlightEvidence(median, s, o.threads);
+      // Without images to compare (a single image as the median), a black sphere is told from
+      // round texture by its darkness alone.
+      if (median.stack().size() < 3 && !isDarkDisc(median, s)) continue;
+      if (s.evidence < kMinEvidence) {
+        if (tried.size() < 3)
+          tried.push_back(circleText(s) + " (a moving highlight in " + std::to_string(std::lround(s.evidence * 100)) +
+                          " % of the images)");
+        continue;
+      }
+      passed.push_back({s, s.confidence * s.evidence});
+    }
+    std::stable_sort(passed.begin(), passed.end(), [](const Checked& a, const Checked& b) { return a.score > b.score; });
+    return passed;
+  };
+  // The best first, skipping any that overlaps one taken: a reflection in a sphere shows the
+  // moving highlight in few images, a circle around a sphere has a weaker rim than the sphere.
+  auto accept = [&](const std::vector<Checked>& kept, std::size_t wanted, std::vector<DetectedSphere>& into) {
+    for (const Checked& c : kept) {
+      if (into.size() >= wanted) break;
       bool overlaps = false;
-      for (const DetectedSphere& s : into) overlaps = overlaps || std::hypot(s.cx - f.x, s.cy - f.y) < s.r + f.r;
-      if (overlaps) continue;
-      ++tried;
-      const DetectedSphere s = refine(median, f, margin);
-      if (s.confidence < o.minConfidence || !isDarkDisc(median, s)) continue;
-      bool duplicate = false;
-      for (const DetectedSphere& q : into) duplicate = duplicate || std::hypot(s.cx - q.cx, s.cy - q.cy) < q.r;
-      if (duplicate) continue;
-      if (into.empty()) firstScore = c.score;
-      into.push_back(s);
+      for (const DetectedSphere& s : into) overlaps = overlaps || std::hypot(s.cx - c.s.cx, s.cy - c.s.cy) < s.r + c.s.r;
+      if (!overlaps) into.push_back(c.s);
     }
   };
 
   std::vector<DetectedSphere> found;
+  std::vector<std::string> tried;
   if (!o.regions.empty()) {
     for (const Rect& region : o.regions) {
       cv::Rect area(static_cast<int>(region.x / scale), static_cast<int>(region.y / scale),
@@ -348,23 +528,28 @@ std::vector<DetectedSphere> detectSpheres(const StackMedian& median, const Spher
       area &= cv::Rect(0, 0, coarse.cols, coarse.rows);
       if (area.width < 8 || area.height < 8)
         throw Error(ErrorKind::Usage, "--sphere-roi", kStep, "the region is outside the image or too small");
-      const int r1 = std::min(static_cast<int>(maxRadius / scale), std::max(area.width, area.height) / 2);
+      const int r1 = std::min(static_cast<int>(maxRadius / scale), std::max(area.width, area.height) / 2 + 2);
       std::vector<DetectedSphere> one;
-      accept(hough(g, area, r0, r1, 3, o.threads), 1, one);
+      accept(checkAll(distinctCandidates(houghPyramid(coarse8, area, r0, r1, 3, o.threads), 6), tried), 1, one);
       found.insert(found.end(), one.begin(), one.end());
     }
   } else {
     const int r1 = static_cast<int>(maxRadius / scale);
-    accept(hough(g, cv::Rect(0, 0, coarse.cols, coarse.rows), r0, r1, 4, o.threads),
+    accept(checkAll(distinctCandidates(houghPyramid(coarse8, cv::Rect(0, 0, coarse.cols, coarse.rows), r0, r1, 4,
+                                                    o.threads),
+                                       kCandidates),
+                    tried),
            static_cast<std::size_t>(o.maxSpheres), found);
   }
-  found.erase(std::remove_if(found.begin(), found.end(),
-                             [&](const DetectedSphere& s) { return s.confidence < o.minConfidence; }),
-              found.end());
   if (found.empty()) {
+    std::string seen;
+    for (const std::string& t : tried) seen += (seen.empty() ? "" : "; ") + t;
     throw Error(ErrorKind::Input, "", kStep,
-                "no sphere was found in the median image; give its region with --sphere-roi "
-                "x,y,w,h (repeat for each sphere) or its circle with --sphere cx,cy,r");
+                std::string("no sphere was found: no circle in the median image has both a clean rim and a "
+                            "highlight that moves from image to image") +
+                    (seen.empty() ? "" : " (the strongest circles, as CX,CY,R: " + seen + ")") +
+                    ". If the capture has a sphere, restrict the search to it with --sphere-roi X,Y,W,H (repeat for "
+                    "each sphere); if that fails, give its circle with --sphere CX,CY,R --reason \"...\"");
   }
   // Spheres from left to right, so their indices do not depend on detection order.
   std::sort(found.begin(), found.end(), [](const DetectedSphere& a, const DetectedSphere& b) {

@@ -14,15 +14,28 @@
 //      circle fit (algebraic, then geometric Gauss-Newton) with outlier rejection gives
 //      (cx, cy, r).
 // Steps 1-3 run on the median reduced by an integer factor to about `coarseWidth` pixels
-// (StackMedian::coarse(); the Hough transform is the expensive part), step 4 and the darkness
-// test below on the full-resolution median around each candidate (StackMedian::window()).
+// (StackMedian::coarse(); the Hough transform is the expensive part), step 4 and the
+// highlight check below at full resolution around each candidate (StackMedian::window()).
+// Radii run from minRadius to half the frame's smaller side (a sphere filling nine tenths of
+// the frame's height), every coarse pixel.
 //
-// Confidence (0..1): the fraction of 360 rays from the centre whose strongest outward edge is
-// strong (above a quarter of the median edge strength) and lies on the fitted circle (an
-// inlier of the fit): a whole, clean sphere scores near 1. A candidate is kept only if its
-// confidence reaches minConfidence, its inside is much darker than its surroundings (mean
-// inside 0.8 r below 0.6 times the mean of the ring 1.15 r to 1.4 r: the sphere is black),
-// and, after the first sphere, its Hough score is at least a third of the first one's.
+// A circle is not yet a sphere: the reflected scene, a round object, a dark patch of
+// background all give circles. What only a sphere gives is a highlight that moves with the
+// light. Each candidate (the 40 strongest distinct circles and the four strongest of each
+// octave of radius) is kept only if
+//   - confidence >= minConfidence: the fraction of 360 rays from the centre whose strongest
+//     outward edge is strong (above a quarter of the median edge strength) and lies on the
+//     fitted circle (an inlier of the fit): a whole, clean rim scores near 1;
+//   - evidence >= 0.5: the share of the images in which detectHighlight (against the stack's
+//     median, hrti/highlight_detection.h) finds a usable highlight within 0.75 of the radius,
+//     provided those highlights do not all sit within 5 % of the radius of each other (a
+//     spot that stays put is a reflection or a speck). With fewer than three images there is
+//     nothing to compare with: the circle must then be much darker inside (0.8 r) than
+//     around it (1.15 to 1.4 r), as a black sphere is.
+// Kept circles are taken by confidence x evidence, skipping any that overlaps one taken: a
+// reflection in a sphere shows the moving highlight in few images, a circle around a sphere
+// has a weaker rim than the sphere's.
+// Without a kept circle, Error(Input) names the strongest circles tried and why each failed.
 //
 //   SphereDetectionOptions o;                     // whole frame, up to 4 spheres
 //   o.regions.push_back({900, 0, 300, 250});      // or: one sphere in this region
@@ -46,7 +59,8 @@ class StackMedian;
 
 struct DetectedSphere {
   double cx = 0, cy = 0, r = 0;  // pixels; origin at the centre of the top-left pixel, y down
-  double confidence = 0;
+  double confidence = 0;  // share of the rim that is a clean edge on the fitted circle
+  double evidence = 0;    // share of the images with a moving highlight in front (1 by hand)
 };
 
 struct SphereDetectionOptions {

@@ -174,6 +174,7 @@ void StackMedian::computeCoarse(std::size_t coarseBudget) {
   const int rowsPerRead = static_cast<int>(std::max<std::size_t>(1, kReadBytes / (std::size_t(f) * w * 2)));
   std::vector<std::uint16_t> reduced;
   resizeResident(reduced, std::size_t(n) * bandRows * cw);
+  std::vector<std::uint64_t> sums(n, 0);  // integer sums: the same in any order
   for (int cy0 = 0; cy0 < ch; cy0 += bandRows) {
     const int count = std::min(bandRows, ch - cy0);
     const std::size_t plane = std::size_t(count) * cw;
@@ -190,10 +191,13 @@ void StackMedian::computeCoarse(std::size_t coarseBudget) {
             stack_.readRows(static_cast<int>(i), y0, y1, rows.data());
           reduceRows(from, y0, y1, w, f, out + std::size_t(cy - cy0) * cw);
         }
+        for (std::size_t p = 0; p < plane; ++p) sums[i] += out[p];
       }
     });
     mediansOfPlanes(reduced.data(), n, plane, threads_, &coarse_.pixels[std::size_t(cy0) * cw]);
   }
+  imageMeans_.resize(n);
+  for (int i = 0; i < n; ++i) imageMeans_[i] = double(sums[i]) / (double(cw) * ch) / 65535.0;
 }
 
 // Tiles firstTile..lastTile of one tile row: the tiles' window of every image (readWindow),

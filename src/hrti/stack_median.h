@@ -56,6 +56,9 @@ class StackMedian {
   int height() const { return stack_.height(); }
   Transfer transfer() const { return stack_.transfer(); }
   int factor() const { return factor_; }
+  const ImageStack& stack() const { return stack_; }
+  // Each image's mean value (0..1), from its reduced copy: what the exposure check compares.
+  const std::vector<double>& imageMeans() const { return imageMeans_; }
   const Image& coarse() const { return coarse_; }  // ceil(width / factor) x ceil(height / factor)
 
   // The full-resolution median over `rect`, which must lie inside the frame. Safe to call
@@ -74,6 +77,7 @@ class StackMedian {
   int threads_;
   int factor_;
   Image coarse_;
+  std::vector<double> imageMeans_;
   int tilesX_, tilesY_;
   mutable std::mutex mutex_;
   mutable std::vector<std::vector<std::uint16_t>> tiles_;  // row-major tiles; empty: not yet computed

@@ -282,7 +282,7 @@ std::string detectionSection(const carrier::Carrier& c, const Pictures& pictures
     s << "<p>No sphere was detected or recorded (the lights may come from an .lp file).</p>";
   } else {
     s << "<table><tr><th>sphere</th><th>centre x, y (px)</th><th>radius (px)</th>"
-         "<th>confidence</th><th>source</th></tr>";
+         "<th>rim</th><th>moving highlight</th><th>source</th></tr>";
     for (const carrier::DataItem* d : spheres) {
       auto n = [&](const char* name) {
         try {
@@ -293,11 +293,13 @@ std::string detectionSection(const carrier::Carrier& c, const Pictures& pictures
       };
       s << "<tr><td>" << escapeHtml(sphereNumber(d->get("index").value_or(""))) << "</td><td class=\"num\">"
         << n("cx") << ", " << n("cy") << "</td><td class=\"num\">" << n("r") << "</td><td class=\"num\">"
-        << n("confidence") << "</td><td>" << escapeHtml(d->get("source").value_or("")) << "</td></tr>";
+        << n("confidence") << "</td><td class=\"num\">" << n("evidence") << "</td><td>"
+        << escapeHtml(d->get("source").value_or("")) << "</td></tr>";
     }
     s << "</table><p class=\"note\">Spheres are numbered from 1 on this page; the command line's "
          "<code>--highlight IMAGE:SPHERE</code> and <code>--forget-sphere N</code> count them from 0.</p>";
   }
+  s << lightChecksTable(c);
   auto imagePath = [&](const carrier::DataItem& d) {
     const carrier::FileRecord* f = c.findFile(d.get("image").value_or(""));
     return f ? f->path : d.get("image").value_or("");
@@ -315,9 +317,9 @@ std::string detectionSection(const carrier::Carrier& c, const Pictures& pictures
   }
   if (!highlights.empty()) {
     s << "<details><summary>Every highlight</summary><p>Confidence, from 0 to 1: how clearly the "
-         "highlight is one small, compact peak far above the sphere's dark body (the lowest of five "
-         "scores: contrast, spread, share, fill and roundness; docs/carrier.md). 1 for a highlight "
-         "given by hand; 0 for one refused.</p><table><tr><th>image</th><th>sphere</th>"
+         "highlight is one small, compact peak rising above the same place in the other photographs "
+         "(the lowest of its scores; docs/carrier.md). 1 for a highlight given by hand; 0 for one "
+         "refused.</p><table><tr><th>image</th><th>sphere</th>"
          "<th>x, y (px)</th><th>flag</th><th>confidence</th><th>reason</th></tr>";
     for (const carrier::DataItem* d : highlights)
       s << "<tr><td><code>" << escapeHtml(imagePath(*d)) << "</code></td><td class=\"num\">"

@@ -206,4 +206,22 @@ std::string filesSection(const carrier::Carrier& c) {
   return s.str();
 }
 
+std::string lightChecksTable(const carrier::Carrier& c) {
+  std::ostringstream s;
+  bool any = false;
+  for (const carrier::Result& r : c.data)
+    for (const carrier::DataItem* d : r.itemsOf("check")) {
+      if (!any) s << "<h3>Checks on the lights</h3><table><tr><th>check</th><th>status</th><th>figures</th></tr>";
+      any = true;
+      const std::string status = d->get("status").value_or("");
+      s << "<tr" << (status == "passed" ? "" : " class=\"warning\"") << "><td><code>"
+        << escapeHtml(d->get("name").value_or("")) << "</code></td><td>" << escapeHtml(status) << "</td><td>"
+        << escapeHtml(d->get("detail").value_or("")) << "</td></tr>";
+    }
+  if (any)
+    s << "</table><p class=\"note\">A failed check stops the run; <em>accepted</em> means someone accepted it "
+         "on the record (<code>--accept NAME --reason</code>; who and why are in the provenance).</p>";
+  return s.str();
+}
+
 }  // namespace surrogate::report

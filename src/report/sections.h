@@ -34,6 +34,11 @@ std::string verificationSection(const std::optional<std::vector<VerificationChec
 // Every file with its role, size and SHA-256 (folded), for an auditor comparing copies.
 std::string filesSection(const carrier::Carrier& c);
 
+// The checks on the lights (the `check` items, hrti/light_checks.h): a table of each check's
+// status and figures; empty when the carrier records none (lights from an .lp file, or a
+// carrier older than LightDirections version 4).
+std::string lightChecksTable(const carrier::Carrier& c);
+
 // "Audit of prior work", when the carrier has an Audit result (audit/recorded.h): the verdicts,
 // the lights above the threshold, the PSNR table and the difference images (through `figure`,
 // which embeds a recorded picture with a caption); empty otherwise.

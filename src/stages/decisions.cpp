@@ -72,6 +72,7 @@ std::string describe(const carrier::Intervention& i) {
                      : i.kind == "manual-sphere"        ? "manual sphere " + i.target + " (" + i.value + ")"
                      : i.kind == "manual-highlight"     ? "manual highlight " + i.target + " (" + i.value + ")"
                      : i.kind == "accept-decoder-warning" ? "accepted damage in " + i.target
+                     : i.kind == kAcceptCheck           ? "accepted check " + i.target
                                                         : i.kind + " " + i.target;
   return what + ", recorded " + i.time + " by " + i.who + " (\"" + i.reason + "\")";
 }
@@ -234,6 +235,7 @@ RunRequest applyDecisions(const RunRequest& standing, const RunRequest& given,
       const std::string option = w.kind == "exclude-image"            ? "--forget-exclusion"
                                  : w.kind == "manual-sphere"          ? "--forget-sphere"
                                  : w.kind == "accept-decoder-warning" ? "--forget-damaged"
+                                 : w.kind == kAcceptCheck             ? "--forget-accept"
                                                                       : "--forget-highlight";
       throw Error(ErrorKind::Usage, option + " " + w.target, "command line",
                   "the capture's carrier holds no such decision (standing: " +

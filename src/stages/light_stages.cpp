@@ -13,6 +13,7 @@
 #include "core/text.h"
 #include "formats/lp.h"
 #include "hrti/highlight_detection.h"
+#include "hrti/light_checks.h"
 #include "hrti/light_direction.h"
 #include "hrti/light_position.h"
 #include "hrti/drawing.h"
@@ -65,6 +66,18 @@ std::vector<double> numbers(const std::string& text, std::size_t count, const st
   return out;
 }
 
+// The name of an .lp file at the top of the capture (a dome's light file), or "".
+std::string lightFileInCapture(const fs::path& capture) {
+  std::error_code ec;
+  std::vector<std::string> names;
+  for (fs::directory_iterator it(capture, ec), end; !ec && it != end; it.increment(ec)) {
+    const fs::path& p = it->path();
+    if (p.extension() == ".lp" && it->is_regular_file(ec)) names.push_back(p.filename().string());
+  }
+  std::sort(names.begin(), names.end());
+  return names.empty() ? "" : names.front();
+}
+
 // The median image made viewable: camera-raw luminance is linear and would look black.
 Image displayable(const Image& median, const ImageStack& lum) {
   return lum.transfer() == Transfer::Linear ? image::srgbEncode(median) : median;
@@ -82,8 +95,10 @@ pipeline::StageInfo SphereDetectionStage::info() {
   //    median, and PNG files are encoded with fixed Up filters and run-length deflate
   //    (src/image/png_encoder.h), so its bytes differ from version 2's
   // 4: PNG files compressed by libdeflate at level 1 (src/image/png_encoder.h)
+  // 5: radii up to half the frame, and a circle is a sphere only if the images show a
+  //    highlight moving in it (evidence, recorded); no darkness test (chrome spheres)
   pipeline::StageInfo info = pipeline::withOptions<hrti::SphereDetectionOptions>(
-      {kComponent, "4",
+      {kComponent, "5",
        "Find the reflective spheres: per-pixel median of the stack, circle Hough transform on "
        "the gradient, sub-pixel circle fit",
        pipeline::PlanSlot::LightsFromSpheres});
@@ -112,18 +127,27 @@ void SphereDetectionStage::run(const carrier::Step& step, pipeline::Context& ctx
       if (!why.empty())
         throw Error(ErrorKind::Input, "sphere " + i->target + " given by hand (" + i->value + ")",
                     "sphere detection", why + "; give the sphere's circle again with --sphere CX,CY,R");
-      spheres->push_back(hrti::DetectedSphere{v[0], v[1], v[2], 1.0});
+      spheres->push_back(hrti::DetectedSphere{v[0], v[1], v[2], 1.0, 1.0});
       ctx.carrier.addLog("intervention", step.id,
                          "sphere " + i->target + " set by hand to " + i->value + ": " + i->reason, i->who);
     }
   } else {
     ctx.progress("Sphere detection", 0.6);
-    *spheres = hrti::detectSpheres(*median, options);
+    try {
+      *spheres = hrti::detectSpheres(*median, options);
+    } catch (const Error& e) {
+      // Last in the list of what to do: a dome capture's own light file, when there is one.
+      const std::string lp = lightFileInCapture(ctx.capture);
+      if (lp.empty() || e.kind() != ErrorKind::Input) throw;
+      throw Error(ErrorKind::Input, e.file(), e.step(),
+                  e.message() + "; the capture has a light file, " + lp + ": if its lights are this capture's, "
+                  "use them instead of spheres with --lp " + lp);
+    }
   }
   for (std::size_t k = 0; k < spheres->size(); ++k) {
     const hrti::DetectedSphere& s = (*spheres)[k];
     result.add("sphere").set("index", static_cast<int>(k)).set("cx", s.cx).set("cy", s.cy)
-        .set("r", s.r).set("confidence", s.confidence)
+        .set("r", s.r).set("confidence", s.confidence).set("evidence", s.evidence)
         .set("source", manual.empty() ? "detected" : "manual");
   }
   result.add("value").set("name", "spheres").set("value", std::to_string(spheres->size()));
@@ -187,10 +211,12 @@ pipeline::StageInfo HighlightDetectionStage::info() {
   //    position among the processed images), larger and kept inside the picture
   // 4: PNG files encoded with fixed Up filters and run-length deflate (src/image/png_encoder.h)
   // 5: PNG files compressed by libdeflate at level 1 (src/image/png_encoder.h)
+  // 6: the highlight is the core of the image's rise above the stack's median (blurred), not
+  //    the spot nearest the centre; specks and streaks refused by compactness and roundness
   pipeline::StageInfo info = pipeline::withOptions<hrti::HighlightOptions>(
-      {kComponent, "5",
-       "Find the specular highlight on each sphere in each image: threshold, 8-connected "
-       "components, value-weighted centroid nearest the sphere centre",
+      {kComponent, "6",
+       "Find the specular highlight on each sphere in each image: the peak of the image's rise "
+       "above the stack's median, blurred; the weighted centroid of its core",
        pipeline::PlanSlot::LightsFromSpheres});
   info.outputs = [](const carrier::Step&) { return std::vector<std::string>{highlightOverview("*")}; };
   info.reads = pipeline::alwaysReads({kLuminanceStack, kInputImages, kSpheres, kStackMedian});
@@ -206,7 +232,7 @@ void HighlightDetectionStage::run(const carrier::Step& step, pipeline::Context& 
   const hrti::HighlightOptions options = hrti::HighlightOptions::fromParameters(parametersOf(step));
   ctx.progress("Highlight detection", 0);
   auto highlights = std::make_shared<Highlights>(
-      hrti::detectHighlights(*lum, *spheres, options, ctx.settings.threads));
+      hrti::detectHighlights(*lum, *spheres, options, ctx.settings.threads, median.get()));
 
   // Manual highlights: target "IMAGE:SPHERE" (sphere index from 0), value "x,y".
   for (const carrier::Intervention* i : step.interventionsOfKind("manual-highlight")) {
@@ -392,6 +418,51 @@ void addLightItem(carrier::Result& result, const std::string& fileId, const std:
       .set("elevationDeg", elevation).set("azimuthDeg", azimuth).set("source", source);
 }
 
+// Records every check (hrti/light_checks.h) as a `check` item: passed, failed or accepted (an
+// accept-check intervention names it). A failed check that is not accepted stops the run with
+// every such check listed and what to do about each.
+void applyLightChecks(const carrier::Step& step, pipeline::Context& ctx, carrier::Result& result,
+                      const hrti::LightCheckInput& input) {
+  std::vector<std::string> failures;
+  for (const hrti::LightCheck& c : hrti::checkLights(input)) {
+    const carrier::Intervention* accepted = nullptr;
+    for (const carrier::Intervention* i : step.interventionsOfKind(kAcceptCheck))
+      if (i->target == c.name) accepted = i;
+    const char* status = !c.failed ? "passed" : accepted ? "accepted" : "failed";
+    carrier::DataItem& item = result.add("check");
+    item.set("name", c.name).set("status", status).set("detail", c.detail);
+    if (!c.failed) continue;
+    if (accepted) {
+      ctx.carrier.addLog("intervention", step.id, "check " + c.name + " accepted: " + accepted->reason, accepted->who);
+      ctx.carrier.addLog("warning", step.id, "check " + c.name + " failed and was accepted: " + c.detail);
+      continue;
+    }
+    std::string what;
+    if (c.name == hrti::kCheckExposureOutlier) {
+      for (int i : c.images)
+        what += (what.empty() ? "" : "; ") + std::string("--exclude ") + input.names[static_cast<std::size_t>(i)] +
+                " --reason \"...\"";
+      what = "leave the image(s) out: " + what;
+    } else {
+      std::string circles;
+      for (std::size_t k = 0; k < input.spheres.size(); ++k)
+        circles += (k ? ", " : "") + std::to_string(k) + " at " + fixedDecimals(input.spheres[k].cx, 0) + "," +
+                   fixedDecimals(input.spheres[k].cy, 0) + " radius " + fixedDecimals(input.spheres[k].r, 0);
+      what = "the spheres used are " + circles + " (CX,CY in pixels of the full frame); if a circle is wrong, give "
+             "the sphere's circle with --sphere CX,CY,R --reason \"...\" or restrict the search to it with "
+             "--sphere-roi X,Y,W,H";
+    }
+    failures.push_back(c.name + ": " + c.detail + ". To fix: " + what + ". If the result is right, accept it with "
+                       "--accept " + c.name + " --reason \"...\"");
+  }
+  if (failures.empty()) return;
+  std::string text;
+  for (const std::string& f : failures) text += "\n  - " + f;
+  throw Error(ErrorKind::Input, "", "light checks",
+              std::string(failures.size() == 1 ? "a check" : std::to_string(failures.size()) + " checks") +
+                  " on the light directions failed, so they cannot be trusted:" + text);
+}
+
 }  // namespace
 
 pipeline::Parameters LightDirectionsOptions::toParameters() const {
@@ -439,11 +510,15 @@ pipeline::StageInfo LightDirectionsStage::info() {
   // 2: lights.lp names images relative to its own folder
   // 3: lights.lp holds each component as the shortest text that reads back exactly (it had six
   //    decimals), so the file's bytes differ from version 2's for the same lights
+  // 4: the lights are checked (hrti/light_checks.h) and a failed check stops the run unless
+  //    accepted (intervention accept-check); the checks are recorded
   pipeline::StageInfo info = pipeline::withOptions<LightDirectionsOptions>(
-      {kComponent, "3", "Light direction of each image from its highlights by the law of reflection",
+      {kComponent, "4",
+       "Light direction of each image from its highlights by the law of reflection, checked for "
+       "plausibility",
        pipeline::PlanSlot::LightsFromSpheres});
   info.outputs = lightsFileOutput;
-  info.reads = pipeline::alwaysReads({kLuminanceStack, kInputImages, kSpheres, kHighlights});
+  info.reads = pipeline::alwaysReads({kLuminanceStack, kInputImages, kSpheres, kHighlights, kStackMedian});
   return info;
 }
 
@@ -464,9 +539,11 @@ void LightDirectionsStage::run(const carrier::Step& step, pipeline::Context& ctx
   const double diameter = options.sphereDiameterMm;
 
   auto lights = std::make_shared<Lights>();
+  hrti::LightCheckInput checks;
   for (std::size_t n = 0; n < inputs->size(); ++n) {
     std::array<double, 3> sum{0, 0, 0};
     std::string from;
+    checks.perSphere.emplace_back(spheres->size());
     for (std::size_t k = 0; k < spheres->size(); ++k) {
       const hrti::Highlight& h = (*highlights)[n][k];
       if (!hrti::isUsable(h.flag)) continue;
@@ -488,6 +565,7 @@ void LightDirectionsStage::run(const carrier::Step& step, pipeline::Context& ctx
       sum[0] += l.x;
       sum[1] += l.y;
       sum[2] += l.z;
+      checks.perSphere.back()[k] = std::array<double, 3>{l.x, l.y, l.z};
       from += (from.empty() ? "sphere " : ",") + std::to_string(k);
     }
     const double norm = std::sqrt(sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]);
@@ -522,6 +600,17 @@ void LightDirectionsStage::run(const carrier::Step& step, pipeline::Context& ctx
       }
     }
   }
+  checks.lights = *lights;
+  checks.spheres = *spheres;
+  checks.imageMeans = ctx.get<hrti::StackMedian>(kStackMedian)->imageMeans();
+  for (const auto& row : *highlights) {
+    double peak = 0;
+    for (const hrti::Highlight& h : row)
+      if (hrti::isUsable(h.flag) && h.flag != hrti::HighlightFlag::Manual) peak = std::max(peak, h.peak);
+    checks.highlightPeaks.push_back(peak);
+  }
+  for (const InputImage& in : *inputs) checks.names.push_back(in.stem);
+  applyLightChecks(step, ctx, result, checks);
   writeLights(ctx, step, result, *inputs, *lights);
   ctx.put(kLights, lights);
 }

@@ -14,8 +14,10 @@
 //                       overview per sphere (assembly-files/highlights-sphereN.png).
 //   LightDirections     the reflection formula per sphere (orthographic, or perspective with
 //                       the camera's focal length and pixel pitch), averaged over spheres;
-//                       3D light positions when two spheres and their diameter are known.
-//                       Writes assembly-files/lights.lp.
+//                       3D light positions when two spheres and their diameter are known;
+//                       then the checks of hrti/light_checks.h, each recorded (item `check`):
+//                       a failed one stops the run unless accepted (intervention accept-check,
+//                       `--accept CHECK --reason`). Writes assembly-files/lights.lp.
 //   LightsFromFile      a dome capture's own .lp file instead of the three stages above.
 //
 // Each stage's info() (version, description, place in the plan, parameters) is defined next to
@@ -33,6 +35,8 @@ inline constexpr const char* kSpheres = "spheres";
 inline constexpr const char* kStackMedian = "stack-median";  // hrti::StackMedian
 inline constexpr const char* kHighlights = "highlights";
 inline constexpr const char* kLights = "lights";
+// The intervention that accepts a failed check on the lights by name (--accept CHECK).
+inline constexpr const char* kAcceptCheck = "accept-check";
 
 // The parameters of LightDirections. Their names and values are what carriers record: never
 // rename them. Lengths are millimetres; 0 means "not given".

@@ -1,0 +1,74 @@
+// Plausibility checks on a capture's light directions (docs/hrti-math.md, "Checks on the
+// lights"): what a real capture's lights cannot look like, so that a phantom sphere, a
+// misplaced circle or a misfired flash stops the run instead of becoming a result.
+//
+//   lights-below-horizon  a light more than 2 degrees behind the object's plane: its highlight
+//                         lies beyond 0.71 of the sphere's radius, where the light is behind
+//                         the object and could not have lit it
+//   spheres-overlap       two spheres whose circles overlap or nest: one is a reflection in the
+//                         other, or the same sphere twice
+//   spheres-disagree      with two or more spheres, the median angle between the directions
+//                         they give for the same image is above 15 degrees
+//   lights-clustered      the median angle between two lights is below 3 degrees: the light was
+//                         not moved, or the "highlights" are not of the light
+//   exposure-outlier      an image whose highlight peaks under half the median peak of the
+//                         images, or whose mean brightness is under 0.2 or over 5 times the
+//                         median of the three images lit from the nearest directions: a
+//                         misfired flash, a dark or overexposed frame
+//
+// Each check that fails names the images it concerns; the stage that runs them stops the run
+// unless the user accepts the check by name (a recorded decision).
+//
+//   LightCheckInput in{lights, spheres, perSphere, means, names};
+//   for (const LightCheck& c : checkLights(in)) if (c.failed) ...
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "hrti/sphere_detection.h"
+
+namespace surrogate::hrti {
+
+inline constexpr const char* kCheckBelowHorizon = "lights-below-horizon";
+inline constexpr const char* kCheckSpheresOverlap = "spheres-overlap";
+inline constexpr const char* kCheckSpheresDisagree = "spheres-disagree";
+inline constexpr const char* kCheckLightsClustered = "lights-clustered";
+inline constexpr const char* kCheckExposureOutlier = "exposure-outlier";
+// Every check's name, in the order they run.
+const std::vector<std::string>& lightCheckNames();
+
+struct LightCheckLimits {
+  static constexpr double kHorizonMarginDeg = 2;
+  static constexpr double kMaxDisagreementDeg = 15;
+  static constexpr double kMinSpreadDeg = 3;
+  static constexpr double kDarkRatio = 0.2, kBrightRatio = 5;
+  static constexpr double kPeakRatio = 0.5;
+  static constexpr int kNeighbours = 3;
+};
+
+struct LightCheckInput {
+  std::vector<std::array<double, 3>> lights;  // one unit direction per image
+  std::vector<DetectedSphere> spheres;
+  // [image][sphere]: the direction that sphere gives for that image, when its highlight is usable
+  std::vector<std::vector<std::optional<std::array<double, 3>>>> perSphere;
+  std::vector<double> imageMeans;  // per image, 0..1; empty: not compared
+  std::vector<double> highlightPeaks;  // per image, 0..1, the brightest usable highlight; 0 none
+  std::vector<std::string> names;  // per image, as the user names it (the shot)
+};
+
+struct LightCheck {
+  std::string name;
+  bool failed = false;
+  std::string detail;        // in plain words, with the figures
+  std::vector<int> images;   // the images it names (indices into the input)
+};
+
+std::vector<LightCheck> checkLights(const LightCheckInput& input);
+
+// The angle between two directions, in degrees.
+double angleDeg(const std::array<double, 3>& a, const std::array<double, 3>& b);
+
+}  // namespace surrogate::hrti

@@ -1,0 +1,182 @@
+// The light front end on real photographs (tests/data/real-rti/SOURCE.md), as a new user runs it:
+// `surrogate lights` with no hints. Each case states its tolerance against the dataset's own
+// reference light directions (angle between directions: median / max over the images).
+#include <catch2/catch.hpp>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "e2e_support.h"
+
+namespace fs = std::filesystem;
+using Direction = std::array<double, 3>;
+
+namespace {
+
+fs::path realData(const std::string& set) { return fs::path(SURROGATE_SOURCE_DIR) / "tests/data/real-rti" / set; }
+
+// A capture whose jpeg-exports/ holds the set's images (JPG or PNG).
+fs::path captureOf(const std::string& set, const std::string& name) {
+  const fs::path capture = e2e::freshDir(name) / "capture";
+  fs::create_directories(capture / "jpeg-exports");
+  for (const auto& entry : fs::directory_iterator(realData(set))) {
+    const std::string ext = entry.path().extension().string();
+    if (ext == ".JPG" || ext == ".png") fs::copy_file(entry.path(), capture / "jpeg-exports" / entry.path().filename());
+  }
+  return capture;
+}
+
+// PSBox's light_directions.txt: three rows (x, y, z), one column per image, y up.
+std::vector<Direction> psboxLights(const fs::path& file) {
+  std::ifstream in(file);
+  std::vector<std::vector<double>> rows;
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream s(line);
+    std::vector<double> row;
+    for (double v; s >> v;) row.push_back(v);
+    if (!row.empty()) rows.push_back(row);
+  }
+  REQUIRE(rows.size() == 3);
+  std::vector<Direction> out;
+  for (std::size_t i = 0; i < rows[0].size(); ++i) out.push_back({rows[0][i], rows[1][i], rows[2][i]});
+  return out;
+}
+
+// lights.txt of the CSE 576 sets: the count, then x y z per image, y up.
+std::vector<Direction> countedLights(const fs::path& file) {
+  std::ifstream in(file);
+  int n = 0;
+  in >> n;
+  std::vector<Direction> out(n);
+  for (Direction& d : out) in >> d[0] >> d[1] >> d[2];
+  return out;
+}
+
+std::vector<Direction> lpLights(const fs::path& lp) {
+  std::ifstream in(lp);
+  int n = 0;
+  in >> n;
+  std::vector<Direction> out(n);
+  std::string name;
+  for (Direction& d : out) in >> name >> d[0] >> d[1] >> d[2];
+  return out;
+}
+
+double angleDeg(const Direction& a, const Direction& b) {
+  const double na = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+  const double nb = std::sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
+  const double d = (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) / (na * nb);
+  return std::acos(std::clamp(d, -1.0, 1.0)) * 180 / M_PI;
+}
+
+struct Errors {
+  double median = 0, max = 0;
+};
+
+// The .lp names images in file-name order, as the references list them.
+Errors compare(const std::vector<Direction>& got, const std::vector<Direction>& reference) {
+  REQUIRE(got.size() == reference.size());
+  std::vector<double> e;
+  for (std::size_t i = 0; i < got.size(); ++i) e.push_back(angleDeg(got[i], reference[i]));
+  std::sort(e.begin(), e.end());
+  return {e[(e.size() - 1) / 2], e.back()};
+}
+
+}  // namespace
+
+TEST_CASE("a black sphere filling the frame, the scene reflected in it, is found without hints") {
+  const fs::path capture = captureOf("lightprobe-1", "probe");
+  const fs::path lp = capture.parent_path() / "lights.lp";
+  const auto r = e2e::surrogate("lights " + e2e::quote(capture) + " -o " + e2e::quote(lp) + " --quiet");
+  INFO(r.output);
+  REQUIRE(r.exitCode == 0);
+  const Errors e = compare(lpLights(lp), psboxLights(realData("lightprobe-1") / "light_directions.txt"));
+  INFO("median " << e.median << " max " << e.max);
+  // Measured 1.63 / 2.79 deg; the rim fit gives r 411 px where the dataset's hand-fitted circle
+  // says 421 (its bottom is hidden by the stand).
+  CHECK(e.median <= 2.0);
+  CHECK(e.max <= 3.5);
+}
+
+TEST_CASE("a chrome ball on black is found, or refused, never confidently wrong") {
+  const fs::path capture = captureOf("chrome", "chrome");
+  const fs::path lp = capture.parent_path() / "lights.lp";
+  const auto r = e2e::surrogate("lights " + e2e::quote(capture) + " -o " + e2e::quote(lp) + " --quiet");
+  INFO(r.output);
+  if (r.exitCode != 0) {
+    CHECK(r.exitCode == 1);
+    CHECK(r.output.find("--sphere-roi") != std::string::npos);
+    return;
+  }
+  const Errors e = compare(lpLights(lp), countedLights(realData("chrome") / "lights.txt"));
+  INFO("median " << e.median << " max " << e.max);
+  CHECK(e.median <= 3.0);  // measured 1.85 (max 8.3: the reference's own highlight positions differ)
+}
+
+TEST_CASE("photographs without a sphere are refused, saying what to do") {
+  const fs::path capture = captureOf("objects", "objects");
+  const auto r = e2e::surrogate("lights " + e2e::quote(capture) + " -o " +
+                                e2e::quote(capture.parent_path() / "lights.lp") + " --quiet");
+  INFO(r.output);
+  CHECK(r.exitCode == 1);
+  CHECK(r.output.find("no sphere was found") != std::string::npos);
+  CHECK(r.output.find("--sphere-roi X,Y,W,H") != std::string::npos);
+  CHECK(r.output.find("--sphere CX,CY,R") != std::string::npos);
+  CHECK_FALSE(fs::exists(capture.parent_path() / "lights.lp"));
+}
+
+TEST_CASE("a dark frame among good ones is named with the command that leaves it out") {
+  const fs::path capture = captureOf("lightprobe-1", "dark");
+  const fs::path shot = capture / "jpeg-exports/Image_05.JPG";
+  cv::Mat image = cv::imread(shot.string(), cv::IMREAD_COLOR);
+  REQUIRE(!image.empty());
+  image.convertTo(image, -1, 0.12, 0);  // 12 % exposure: the highlight is still there
+  REQUIRE(cv::imwrite(shot.string(), image));
+  const fs::path lp = capture.parent_path() / "lights.lp";
+  const auto r = e2e::surrogate("lights " + e2e::quote(capture) + " -o " + e2e::quote(lp) + " --quiet");
+  INFO(r.output);
+  CHECK(r.exitCode == 1);
+  CHECK(r.output.find("exposure-outlier") != std::string::npos);
+  CHECK(r.output.find("--exclude Image_05 --reason") != std::string::npos);
+  CHECK(r.output.find("Image_04") == std::string::npos);  // only the dark one is named
+  CHECK_FALSE(fs::exists(lp));
+
+  // Accepting needs a reason and a known check; leaving the frame out is the fix.
+  const auto noReason = e2e::surrogate("lights " + e2e::quote(capture) + " -o " + e2e::quote(lp) +
+                                       " --quiet --accept exposure-outlier");
+  CHECK(noReason.exitCode == 2);
+  const auto unknown = e2e::surrogate("lights " + e2e::quote(capture) + " -o " + e2e::quote(lp) +
+                                      " --quiet --accept everything --reason x");
+  CHECK(unknown.exitCode == 2);
+  CHECK(unknown.output.find("lights-below-horizon") != std::string::npos);
+  const auto excluded = e2e::surrogate("lights " + e2e::quote(capture) + " -o " + e2e::quote(lp) +
+                                       " --quiet --exclude Image_05 --reason \"flash at 12 %\"");
+  INFO(excluded.output);
+  CHECK(excluded.exitCode == 0);
+  CHECK(lpLights(lp).size() == 11);
+}
+
+TEST_CASE("an accepted check is recorded and lets the run go on") {
+  const fs::path capture = captureOf("lightprobe-1", "accepted");
+  const fs::path shot = capture / "jpeg-exports/Image_05.JPG";
+  cv::Mat image = cv::imread(shot.string(), cv::IMREAD_COLOR);
+  image.convertTo(image, -1, 0.12, 0);
+  REQUIRE(cv::imwrite(shot.string(), image));
+  const fs::path lp = capture.parent_path() / "lights.lp";
+  const auto r = e2e::surrogate("lights " + e2e::quote(capture) + " -o " + e2e::quote(lp) +
+                                " --quiet --accept exposure-outlier --reason \"a test of the record\"");
+  INFO(r.output);
+  REQUIRE(r.exitCode == 0);
+  const std::string carrier = e2e::bytesOf(capture / "assembly-files/carrier.xml");
+  CHECK(carrier.find("name=\"exposure-outlier\" status=\"accepted\"") != std::string::npos);
+  CHECK(carrier.find("a test of the record") != std::string::npos);
+}
