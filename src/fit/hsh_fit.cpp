@@ -2,6 +2,7 @@
 #include "core/error.h"
 #include "core/resident.h"
 #include "fit/channel_fit.h"
+#include "fit/conditioning.h"
 #include "fit/fit.h"
 #include "fit/pseudo_inverse.h"
 #include "fit/quantise.h"
@@ -52,7 +53,9 @@ formats::HshFile fitHsh(const ImageStack& stack, const std::vector<std::array<do
   const int n = static_cast<int>(l.size());
   std::vector<double> design(static_cast<std::size_t>(n) * terms);
   for (int i = 0; i < n; ++i) hshBasis(l[i][0], l[i][1], l[i][2], terms, &design[i * terms]);
-  const PseudoInverse pinv = pseudoInverse(design, n, terms);
+  // Plain least squares, or damped toward the lower order when the lights condition it poorly.
+  const Conditioning conditioning = conditionedInverse(design, n, options.basis);
+  const PseudoInverse& pinv = conditioning.inverse;
 
   formats::HshFile hsh;
   hsh.width = stack.width();
@@ -68,6 +71,7 @@ formats::HshFile fitHsh(const ImageStack& stack, const std::vector<std::array<do
   const std::vector<double> sqErr =
       streamFit(stack, fitter, options, hsh.coefficients.size(), &passes);
   finishStatistics(sqErr, hsh.texels(), pinv.rank, passes, stats);
+  recordConditioning(conditioning, l, stats);
   return hsh;
 }
 

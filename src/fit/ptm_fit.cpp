@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "core/resident.h"
 #include "fit/channel_fit.h"
+#include "fit/conditioning.h"
 #include "fit/fit.h"
 #include "fit/pseudo_inverse.h"
 #include "fit/quantise.h"
@@ -190,7 +191,9 @@ formats::PtmFile fitPtm(const ImageStack& stack, const std::vector<std::array<do
   const auto l = checkedLights(stack, lights, 6);
   const int n = static_cast<int>(l.size());
   const std::vector<double> design = ptmDesign(l);
-  const PseudoInverse pinv = pseudoInverse(design, n, 6);
+  // Plain least squares, or damped toward the lower order when the lights condition it poorly.
+  const Conditioning conditioning = conditionedInverse(design, n, options.basis);
+  const PseudoInverse& pinv = conditioning.inverse;
 
   formats::PtmFile ptm;
   ptm.width = stack.width();
@@ -212,6 +215,7 @@ formats::PtmFile fitPtm(const ImageStack& stack, const std::vector<std::array<do
     sqErr = streamFit(stack, fitter, options, ptm.coefficients.size(), &passes);
   }
   finishStatistics(sqErr, ptm.texels(), pinv.rank, passes, stats);
+  recordConditioning(conditioning, l, stats);
   return ptm;
 }
 

@@ -204,8 +204,12 @@ RtiFitOptions RtiFitOptions::forBasis(const std::string& basis) {
 pipeline::StageInfo RtiFitStage::info() {
   pipeline::StageInfo info = pipeline::withOptions<RtiFitOptions>(
       // Version 2: coefficients are quantised from their values rounded to float (src/fit/fit.h),
-      // which moves a few bytes by one level.
-      {kComponent, "2", "Least-squares fit of a per-pixel reflectance model over the light directions",
+      // which moves a few bytes by one level. Version 3: a fit is conditioned on its light set
+      // (src/fit/conditioning.h): where the lights leave terms too alike for 8-bit planes (a
+      // narrow cone around the view axis), HSH order 3's order-3 terms and PTM's quadratic
+      // terms are damped toward the lower order, so those models change; lights spread over the
+      // hemisphere give version 2's bytes.
+      {kComponent, "3", "Least-squares fit of a per-pixel reflectance model over the light directions",
        pipeline::PlanSlot::EachModel});
   info.forModel = [](const std::string& basis) { return RtiFitOptions::forBasis(basis).toParameters(); };
   info.outputs = [](const carrier::Step& step) {
