@@ -1,6 +1,7 @@
 // surrogate fit --lp FILE.lp -o OUT.ptm|OUT.rti [--basis B]: fit a model from a light file and
 // its images, outside any capture folder or carrier (a tool for people who already have an
 // .lp from elsewhere, e.g. a dome).
+#include <cmath>
 #include <iostream>
 
 #include "cli/args.h"
@@ -94,11 +95,19 @@ int runCommandFit(int argc, char** argv) {
     JsonWriter j;
     j.beginObject().key("output").value(*out).key("basis").value(fit::basisName(basis))
         .key("images").value(static_cast<int>(files.size())).key("rmse").value(stats.rmse)
-        .key("psnr").value(stats.psnr).endObject();
+        .key("psnr").value(stats.psnr).key("regularisation").value(stats.regularisation)
+        .key("dampedTerms").beginArray();
+    for (int k : stats.dampedTerms) j.value(k);
+    j.endArray();
+    if (std::isfinite(stats.conditionNumber)) j.key("conditionNumber").value(stats.conditionNumber);
+    j.endObject();
     std::cout << j.str() << "\n";
   } else {
     std::cout << "wrote " << *out << " (" << fit::basisName(basis) << ", " << files.size()
               << " images): RMSE " << stats.rmse << ", PSNR " << stats.psnr << " dB\n";
+    // The light set conditioned the fit (docs/hrti-math.md, "Conditioning on the light set").
+    const std::string warning = fit::conditioningWarning(basis, static_cast<int>(files.size()), stats);
+    if (!warning.empty()) std::cerr << "warning: " << warning << "\n";
   }
   return 0;
 }

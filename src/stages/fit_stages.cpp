@@ -275,6 +275,19 @@ void RtiFitStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
   }
   ctx.carrier.addLog("info", step.id, basis + " fit: RMSE " + fixedDecimals(stats.rmse, 3) + ", PSNR " +
                                           fixedDecimals(stats.psnr, 2) + " dB; worst images: " + worst);
+  // The conditioning, recorded only when it changed the fit: a package made before it existed
+  // (plain least squares, weight 0) re-executes to the same result items.
+  if (stats.regularisation > 0) {
+    std::string damped;
+    for (int k : stats.dampedTerms) damped += (damped.empty() ? "" : " ") + std::to_string(k);
+    result.add("value").set("name", "regularisation").set("value", formatNumber(stats.regularisation));
+    result.add("value").set("name", "dampedTerms").set("value", damped);
+    result.add("value").set("name", "lightMatrixCondition").set("value", formatNumber(stats.conditionNumber));
+    result.add("value").set("name", "quantisationNoiseGain").set("value", formatNumber(stats.noiseGain));
+    result.add("value").set("name", "plainQuantisationNoiseGain").set("value", formatNumber(stats.plainNoiseGain));
+    ctx.carrier.addLog("warning", step.id,
+                       fit::conditioningWarning(options.basis, static_cast<int>(lights->size()), stats));
+  }
   if (stats.rank < fit::basisTerms(options.basis))
     ctx.carrier.addLog("warning", step.id, "the light directions do not determine all " +
                                                std::to_string(fit::basisTerms(options.basis)) +
