@@ -117,8 +117,10 @@ pipeline::StageInfo AuditStage::info() {
   // Version 2: the difference pictures are PNG files encoded with fixed Up filters and
   // run-length deflate (src/image/png_encoder.h).
   // Version 3: those PNG files compressed by libdeflate at level 1 (src/image/png_encoder.h).
+  // Version 4: the refits are conditioned on their light set (src/fit/conditioning.h), so a
+  // refit at a narrow cone of lights, and the verdict on it, differ from version 3's.
   pipeline::StageInfo info = pipeline::withOptions<AuditStageOptions>(
-      {kComponent, "3",
+      {kComponent, "4",
        "Audit of prior work: its light file against Surrogate's lights, its model against the "
        "photographs beside Surrogate's refits, and a verdict",
        pipeline::PlanSlot::PriorWork});
