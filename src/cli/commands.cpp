@@ -3,6 +3,7 @@
 #include <iostream>
 #include <set>
 
+#include "stages/fit_stages.h"
 #include "stages/light_stages.h"
 
 namespace surrogate::cli {
@@ -28,7 +29,7 @@ void printLightWarnings(const carrier::Carrier& c, std::size_t most) {
   for (const carrier::Step& s : c.process)
     if (s.component == stages::SphereDetectionStage::kComponent ||
         s.component == stages::HighlightDetectionStage::kComponent ||
-        s.component == stages::LightDirectionsStage::kComponent)
+        s.component == stages::LightDirectionsStage::kComponent || s.component == stages::RtiFitStage::kComponent)
       lightSteps.insert(s.id);
   std::size_t shown = 0, more = 0;
   for (const carrier::LogEntry& e : c.log) {
@@ -44,7 +45,7 @@ void printLightWarnings(const carrier::Carrier& c, std::size_t most) {
     std::cout << "  warning: " << text << "\n";
     ++shown;
   }
-  if (more) std::cout << "  and " << more << " more warning(s) on the lights in the carrier's log\n";
+  if (more) std::cout << "  and " << more << " more warning(s) on the lights and fits in the carrier's log\n";
 }
 
 std::string usageHeader(const std::string& synopsis, const std::string& description) {

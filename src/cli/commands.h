@@ -38,9 +38,9 @@ std::string usageHeader(const std::string& synopsis, const std::string& descript
 bool helpShown(const Args& args, const std::vector<OptionSpec>& specs, const std::string& synopsis,
                const std::string& description);
 // Prints, one a line under "  warning: ", the warnings the light stages (spheres, highlights,
-// lights and their checks) logged in `c`: a highlight refused on one sphere of two, a doubtful
-// one, an accepted check. The user reads them here, not only in the carrier. At most `most`,
-// then how many more.
+// lights and their checks) and the fits logged in `c`: a highlight refused on one sphere of
+// two, a doubtful one, an accepted check, a fit damped for its narrow cone of lights. The user
+// reads them here, not only in the carrier. At most `most`, then how many more.
 void printLightWarnings(const carrier::Carrier& c, std::size_t most = 8);
 
 // The file a command writes: -o (also --o) or --output.

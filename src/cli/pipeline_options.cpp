@@ -9,6 +9,7 @@
 #include "cli/option_checks.h"
 #include "core/error.h"
 #include "hrti/light_checks.h"
+#include "stages/fit_stages.h"
 #include "stages/light_stages.h"
 #include "stages/preprocess.h"
 #include "stages/preprocess_stages.h"
@@ -246,7 +247,10 @@ stages::RunRequest requestFrom(const Args& args) {
       }
     }
     if (name == "accept") {
-      r.stageInterventions.push_back({stages::LightDirectionsStage::kComponent, {stages::kAcceptCheck, value, "", "", "", ""}});
+      // The residual check runs after each fit, the others with the lights.
+      const char* component = value == hrti::kCheckResidualOutlier ? stages::RtiFitStage::kComponent
+                                                                   : stages::LightDirectionsStage::kComponent;
+      r.stageInterventions.push_back({component, {stages::kAcceptCheck, value, "", "", "", ""}});
       last = &r.stageInterventions.back().intervention;
       lastIsExclusion = false;
       lastReason = nullptr;

@@ -151,8 +151,9 @@ LightCheck exposureOutlier(const LightCheckInput& in) {
 }  // namespace
 
 const std::vector<std::string>& lightCheckNames() {
-  static const std::vector<std::string> names = {kCheckBelowHorizon, kCheckSpheresOverlap, kCheckSpheresDisagree,
-                                                 kCheckLightsClustered, kCheckExposureOutlier};
+  static const std::vector<std::string> names = {kCheckBelowHorizon,     kCheckSpheresOverlap,
+                                                 kCheckSpheresDisagree,  kCheckLightsClustered,
+                                                 kCheckExposureOutlier, kCheckResidualOutlier};
   return names;
 }
 
@@ -162,6 +163,19 @@ double angleDeg(const std::array<double, 3>& a, const std::array<double, 3>& b) 
   if (!(na > 0) || !(nb > 0)) return 180;
   const double d = (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) / (na * nb);
   return std::acos(std::clamp(d, -1.0, 1.0)) * 180 / M_PI;
+}
+
+std::vector<int> residualOutliers(const std::vector<double>& rmse) {
+  std::vector<int> out;
+  if (rmse.size() < 5) return out;
+  const double m = median(rmse);
+  std::vector<double> deviations;
+  for (double v : rmse) deviations.push_back(std::abs(v - m));
+  const double sigma = 1.4826 * median(deviations);
+  for (std::size_t i = 0; i < rmse.size(); ++i)
+    if (rmse[i] > LightCheckLimits::kResidualRatio * m && rmse[i] > m + LightCheckLimits::kResidualDeviations * sigma)
+      out.push_back(static_cast<int>(i));
+  return out;
 }
 
 std::vector<LightCheck> checkLights(const LightCheckInput& in) {

@@ -37,7 +37,9 @@ inline constexpr const char* kCheckSpheresOverlap = "spheres-overlap";
 inline constexpr const char* kCheckSpheresDisagree = "spheres-disagree";
 inline constexpr const char* kCheckLightsClustered = "lights-clustered";
 inline constexpr const char* kCheckExposureOutlier = "exposure-outlier";
-// Every check's name, in the order they run.
+// Checked after each fit (RtiFit), not with the lights: see residualOutliers below.
+inline constexpr const char* kCheckResidualOutlier = "residual-outlier";
+// Every check's name: those of checkLights in the order they run, then residual-outlier.
 const std::vector<std::string>& lightCheckNames();
 
 struct LightCheckLimits {
@@ -47,6 +49,9 @@ struct LightCheckLimits {
   static constexpr double kDarkRatio = 0.2, kBrightRatio = 5;
   static constexpr double kPeakRatio = 0.5;
   static constexpr int kNeighbours = 3;
+  // residual-outlier: an image the fitted model misses by more than three times the median
+  // image's RMSE and by more than eight robust deviations (1.4826 MAD) above it.
+  static constexpr double kResidualRatio = 3, kResidualDeviations = 8;
 };
 
 struct LightCheckInput {
@@ -67,6 +72,11 @@ struct LightCheck {
 };
 
 std::vector<LightCheck> checkLights(const LightCheckInput& input);
+
+// residual-outlier: the images (indices) whose fit RMSE stands out of the others' (limits
+// above). A photograph the model cannot explain (a misfired flash, a moved object, a wrong light)
+// pulls every pixel's coefficients towards itself. Fewer than five images: none.
+std::vector<int> residualOutliers(const std::vector<double>& perImageRmse);
 
 // The angle between two directions, in degrees.
 double angleDeg(const std::array<double, 3>& a, const std::array<double, 3>& b);

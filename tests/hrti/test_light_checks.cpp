@@ -1,0 +1,96 @@
+// The checks on a capture's lights (hrti/light_checks.h), each on lights whose geometry gives
+// the answer in closed form: a light at elevation asin(z), the angle between two directions.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "hrti/light_checks.h"
+
+using namespace surrogate::hrti;
+
+namespace {
+
+// Twelve lights on a cone at 45 degrees of elevation, every 30 degrees of azimuth.
+LightCheckInput ring() {
+  LightCheckInput in;
+  for (int i = 0; i < 12; ++i) {
+    const double a = i * M_PI / 6, e = M_PI / 4;
+    in.lights.push_back({std::cos(e) * std::cos(a), std::cos(e) * std::sin(a), std::sin(e)});
+    in.names.push_back("IMG_" + std::to_string(i));
+    in.imageMeans.push_back(0.3);
+    in.highlightPeaks.push_back(1.0);
+  }
+  in.spheres = {DetectedSphere{100, 100, 40, 1, 1}};
+  in.perSphere.assign(12, {std::nullopt});
+  return in;
+}
+
+const LightCheck& named(const std::vector<LightCheck>& checks, const std::string& name) {
+  for (const LightCheck& c : checks)
+    if (c.name == name) return c;
+  FAIL("no check " << name);
+  return checks.front();
+}
+
+}  // namespace
+
+TEST_CASE("lights spread over a cone in front of the object pass every check") {
+  const auto checks = checkLights(ring());
+  REQUIRE(checks.size() == 5);
+  for (const LightCheck& c : checks) {
+    INFO(c.name << ": " << c.detail);
+    CHECK_FALSE(c.failed);
+  }
+}
+
+TEST_CASE("a light 5 degrees behind the object's plane fails, one 1 degree behind is within the margin") {
+  LightCheckInput in = ring();
+  in.lights[3] = {std::cos(-5 * M_PI / 180), 0, std::sin(-5 * M_PI / 180)};
+  in.lights[4] = {0, std::cos(-1 * M_PI / 180), std::sin(-1 * M_PI / 180)};
+  const auto checks = checkLights(in);
+  const LightCheck& c = named(checks, kCheckBelowHorizon);
+  CHECK(c.failed);
+  CHECK(c.images == std::vector<int>{3});
+  CHECK(c.detail.find("IMG_3 (-5 deg)") != std::string::npos);
+}
+
+TEST_CASE("lights all within a degree of each other are clustered") {
+  LightCheckInput in = ring();
+  for (int i = 0; i < 12; ++i) {
+    const double a = i * M_PI / 6, t = 0.5 * M_PI / 180;  // 0.5 deg from the axis: pairs at most 1 deg apart
+    in.lights[i] = {std::sin(t) * std::cos(a), std::sin(t) * std::sin(a), std::cos(t)};
+  }
+  const auto checks = checkLights(in);
+  CHECK(named(checks, kCheckLightsClustered).failed);
+}
+
+TEST_CASE("overlapping circles and spheres that disagree by 40 degrees fail") {
+  LightCheckInput in = ring();
+  in.spheres = {DetectedSphere{100, 100, 40, 1, 1}, DetectedSphere{150, 100, 40, 1, 1}};  // 50 px apart, r 40 + 40
+  const double t = 40 * M_PI / 180;
+  for (int i = 0; i < 12; ++i) in.perSphere[i] = {std::array<double, 3>{0, 0, 1}, std::array<double, 3>{std::sin(t), 0, std::cos(t)}};
+  const auto checks = checkLights(in);
+  CHECK(named(checks, kCheckSpheresOverlap).failed);
+  const LightCheck& d = named(checks, kCheckSpheresDisagree);
+  CHECK(d.failed);
+  CHECK(d.detail.find("40.0 deg") != std::string::npos);
+}
+
+TEST_CASE("a frame whose highlight peaks at a tenth of the others', or far darker than its neighbours, is named") {
+  LightCheckInput in = ring();
+  in.highlightPeaks[5] = 0.1;
+  in.imageMeans[8] = 0.3 * 0.15;  // its neighbours at 30 deg are at 0.3
+  in.imageMeans[2] = 0.3 * 0.3;   // 30 %: a raking light may do that, not named
+  const auto checks = checkLights(in);
+  const LightCheck& c = named(checks, kCheckExposureOutlier);
+  CHECK(c.failed);
+  CHECK(c.images == std::vector<int>{5, 8});
+}
+
+TEST_CASE("a residual far above the others' is an outlier, a spread of residuals is not") {
+  CHECK(residualOutliers({9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 97}) == std::vector<int>{11});
+  CHECK(residualOutliers({4.4, 3.5, 6.9, 8.3, 12.5, 9.7, 11.6, 9.0, 6.3, 13.2, 8.8, 9.1}).empty());  // a real probe
+  CHECK(residualOutliers({1, 1, 50}).empty());  // too few to tell
+}
