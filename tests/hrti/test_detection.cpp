@@ -86,6 +86,31 @@ TEST_CASE("a large frame: the sphere near its edge is found, not small circles o
   detectOneSphereAtTruth(s);
 }
 
+// The median keeps both the sphere and a relief lit from every side; the lights from the
+// highlights against the generator's own (the light angle's tolerance: worst image).
+void lightsWithin(const Shots& s, const std::vector<DetectedSphere>& spheres, double toleranceDeg) {
+  const StackMedian median(s.luminanceStack, SphereDetectionOptions().coarseWidth, 2);
+  const auto highlights = detectHighlights(s.luminanceStack, spheres, HighlightOptions(), 2, &median);
+  double worst = 0;
+  for (std::size_t i = 0; i < highlights.size(); ++i) {
+    REQUIRE(isUsable(highlights[i][0].flag));
+    worst = std::max(worst, angleDeg(s.truth.lights[i], lightFromHighlight(spheres[0], highlights[i][0].x,
+                                                                            highlights[i][0].y)));
+  }
+  INFO("worst light " << worst << " deg");
+  CHECK(worst < toleranceDeg);
+}
+
+TEST_CASE("a sphere filling 87 % of the frame's height is found, and gives its lights") {
+  const Shots s = render(1, false, 12, 1000, 800, 350, false);
+  lightsWithin(s, detectOneSphereAtTruth(s), 0.5);  // measured 0.26
+}
+
+TEST_CASE("a sphere 4 % of the frame's height (radius 16 px) is found, and gives its lights") {
+  const Shots s = render(1, false, 12, 1000, 800, 16, false);
+  lightsWithin(s, detectOneSphereAtTruth(s), 3.0);  // measured 2.3: 0.3 px of highlight error is 2 degrees at r 16
+}
+
 TEST_CASE("two spheres and strong background texture are both found") {
   const Shots s = render(2, true);
   const SphereDetectionOptions o;
