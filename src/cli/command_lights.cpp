@@ -71,7 +71,7 @@ int runCommandLights(int argc, char** argv) {
     std::cout << "wrote " << *out << " (" << lights << " lights";
     if (flagged) std::cout << ", " << flagged << " highlight(s) flagged: see the carrier's log";
     std::cout << ")\n  sphere overlay and highlight overviews: " << (capture / capture::kAssemblyDir).string() << "/\n";
-    printLightWarnings(c);
+    printStageWarnings(c);
   }
   return 0;
 }

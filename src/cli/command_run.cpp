@@ -148,7 +148,7 @@ int runCommandRun(int argc, char** argv) {
       std::cout << "  report (open in a browser): " << reportPath << "\n";
       for (const std::string& g : rep->coverageGaps) std::cout << "  coverage: " << g << "\n";
     }
-    printLightWarnings(c);
+    printStageWarnings(c);
     int warnings = 0;
     for (const carrier::LogEntry& e : c.log) warnings += e.level == "warning";
     if (warnings > 0)

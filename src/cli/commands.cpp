@@ -24,7 +24,7 @@ const std::vector<Command>& commands() {
   return list;
 }
 
-void printLightWarnings(const carrier::Carrier& c, std::size_t most) {
+void printStageWarnings(const carrier::Carrier& c, std::size_t most) {
   std::set<std::string> lightSteps;
   for (const carrier::Step& s : c.process)
     if (s.component == stages::SphereDetectionStage::kComponent ||

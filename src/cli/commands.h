@@ -41,7 +41,7 @@ bool helpShown(const Args& args, const std::vector<OptionSpec>& specs, const std
 // lights and their checks) and the fits logged in `c`: a highlight refused on one sphere of
 // two, a doubtful one, an accepted check, a fit damped for its narrow cone of lights. The user
 // reads them here, not only in the carrier. At most `most`, then how many more.
-void printLightWarnings(const carrier::Carrier& c, std::size_t most = 8);
+void printStageWarnings(const carrier::Carrier& c, std::size_t most = 8);
 
 // The file a command writes: -o (also --o) or --output.
 std::optional<std::string> outputOption(const Args& args);

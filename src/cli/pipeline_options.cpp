@@ -47,7 +47,7 @@ std::vector<OptionSpec> pipelineOptions(bool withFit) {
       {"accept-changed", true, true, "accept that a recorded original changed or was removed (needs --reason)", "PATH"},
       {"accept-damaged", true, true, "decode an image although its decoder reports damaged data (needs --reason)", "IMAGE"},
       {"forget-damaged", true, true, "withdraw an accepted damaged image (needs --reason)", "IMAGE"},
-      {"accept", true, true, "accept a failed check on the lights by name, e.g. lights-clustered (needs --reason)", "CHECK"},
+      {"accept", true, true, "accept a failed check by name, e.g. lights-clustered (needs --reason)", "CHECK"},
       {"forget-accept", true, true, "withdraw an accepted check (needs --reason)", "CHECK"},
   };
   if (withFit) {
