@@ -755,6 +755,7 @@ void extractFiles(const fs::path& package, const Inventory& inventory, const fs:
     if (full.compare(0, inventory.rootPrefix.size(), inventory.rootPrefix) != 0) continue;
     const std::string path = full.substr(inventory.rootPrefix.size());
     const auto known = inventory.files.find(path);
+    if (known == inventory.files.end() && inventory.setAside.count(path)) continue;
     if (known == inventory.files.end())
       damaged(package.string(), "\"" + path + "\" appeared between two reads of the package");
     const fs::path relative = targetOf(path);

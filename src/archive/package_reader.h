@@ -51,6 +51,9 @@ struct Inventory {
   std::map<std::string, InventoryFile> files;  // by path relative to the bag root
   std::set<std::string> directories;
   std::uint64_t totalBytes = 0;
+  // Files taken out of `files` on purpose (the verifier's unlisted operating-system files):
+  // a second read passes over them rather than calling the package changed.
+  std::set<std::string> setAside;
 };
 
 // Progress: (label, fraction 0..1).

@@ -128,6 +128,9 @@ int runCommandVerify(int argc, char** argv) {
       {"tolerance", true, false,
        "relative tolerance for recorded numbers when re-executing (default 0: exactly equal)", "REL"},
       {"threads", true, false, "threads for re-execution, 1 or more (default or 0: all cores)", "N"},
+      {"strict", false, false,
+       "count files the operating system leaves (.DS_Store, Thumbs.db, ._*) and no manifest lists as fixity "
+       "failures (default: warnings, with the command to remove them)"},
       {"json", false, false, "print the report as JSON"},
       {"quiet", false, false, "no progress bar"},
   };
@@ -148,7 +151,9 @@ int runCommandVerify(int argc, char** argv) {
                      "devices, duplicates, decompression bombs) refuse the package. A bag that "
                      "another tool made is verified as a bag (RFC 8493: md5 and sha1 manifests "
                      "accepted with a warning, tag files in the encoding bagit.txt names, "
-                     "fetch.txt) and its exit code is its BagIt verdict. The verdict has two "
+                     "fetch.txt) and its exit code is its BagIt verdict. Files an operating system "
+                     "leaves (.DS_Store, ._*, Thumbs.db) that no manifest lists are set aside with "
+                     "a warning and the command to remove them (--strict: fixity failures). The verdict has two "
                      "parts: \"BagIt: valid/invalid\" and \"Surrogate package: sound/not "
                      "sound/not a Surrogate package\".\n\n"
                      "exit codes: 0 sound (a bag that is not a Surrogate package: valid); 1 the package cannot be read (missing file); "
@@ -165,6 +170,7 @@ int runCommandVerify(int argc, char** argv) {
                 "give exactly one package: surrogate verify PACKAGE [--reexecute] (see --help)");
   verify::VerifyOptions options;
   options.reexecute = args.has("reexecute");
+  options.strict = args.has("strict");
   options.tolerance = args.doubleValue("tolerance", 0.0);
   if (!(options.tolerance >= 0 && options.tolerance < 1))
     throw Error(ErrorKind::Usage, "--tolerance", "command line",

@@ -1,5 +1,6 @@
 #include "verify/verify.h"
 
+#include "capture/capture.h"
 #include "core/error.h"
 #include "verify/checks.h"
 
@@ -53,6 +54,41 @@ Inventory readInventory(const std::filesystem::path& package, const VerifyOption
   return inventory;
 }
 
+// Unlisted operating-system files (VerifyOptions::strict): taken out of the inventory, one
+// warning each with the command that removes it. A file a manifest names stays, whatever its
+// name: it is payload.
+void setAsideSystemFiles(const std::filesystem::path& package, Inventory& inventory,
+                         std::vector<std::string>& warnings) {
+  std::string manifests;
+  for (const auto& [path, file] : inventory.files)
+    if (path.find('/') == std::string::npos && path.find("manifest-") != std::string::npos && file.content)
+      manifests += *file.content + "\n";
+  for (auto it = inventory.files.begin(); it != inventory.files.end();) {
+    const std::string& path = it->first;
+    const auto slash = path.rfind('/');
+    const std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
+    const bool listed = manifests.find(" " + path + "\n") != std::string::npos ||
+                        manifests.find(" " + path + "\r\n") != std::string::npos;
+    if (!capture::isSystemFile(name) || listed) {
+      ++it;
+      continue;
+    }
+    std::string printable = path;
+    for (char& ch : printable)
+      if (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f) ch = '?';
+    std::string quoted;  // for a POSIX shell, inside single quotes
+    for (char ch : (package / printable).string()) quoted += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
+    warnings.push_back(printable + ": a file the operating system left, in no manifest; set aside (--strict " +
+                       "counts it as a fixity failure)" +
+                       (inventory.kind == "directory"
+                            ? "; remove it with: rm '" + quoted + "'"
+                            : std::string("; the archive would have to be repacked without it")));
+    inventory.totalBytes -= it->second.size;
+    inventory.setAside.insert(path);
+    it = inventory.files.erase(it);
+  }
+}
+
 }  // namespace
 
 Report verifyPackage(const std::filesystem::path& package, const VerifyOptions& options) {
@@ -74,6 +110,7 @@ Report verifyPackage(const std::filesystem::path& package, const VerifyOptions& 
     return report;
   }
   report.kind = inventory.kind;
+  if (!options.strict) setAsideSystemFiles(package, inventory, report.warnings);
   report.checks.push_back(makeCheck(
       "package.read", Severity::Invalid,
       "read " + std::to_string(inventory.files.size()) + " files (" +

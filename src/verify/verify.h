@@ -106,6 +106,11 @@ struct VerifyOptions {
   // results are deterministic for the same software, at any thread count).
   double tolerance = 0;
   int threads = 0;  // for re-execution; 0 = all cores
+  // Files operating systems leave (capture::isSystemFile: .DS_Store, Thumbs.db, ._*) that no
+  // manifest lists are set aside with a warning and the command to remove them, as run and
+  // pack ignore them; with `strict` they are left in and fail the fixity checks like any other
+  // unlisted file.
+  bool strict = false;
   Limits limits;
   Progress progress;
 };

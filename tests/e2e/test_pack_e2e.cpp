@@ -115,3 +115,31 @@ TEST_CASE("surrogate pack explains a bad command line or an unwritable output", 
   CHECK(r.exitCode == 0);
   CHECK(r.output.find("BagIt") != std::string::npos);
 }
+
+TEST_CASE("verify sets aside the files an operating system leaves in a bag folder, with a warning", "[e2e][pack]") {
+  // A bag folder copied with a Mac or opened on Windows gains .DS_Store, ._* and Thumbs.db
+  // files. run and pack ignore them; verify names each with the command to remove it and
+  // counts them only with --strict. A real unlisted file still fails, and a listed file is
+  // payload whatever its name.
+  const fs::path dir = e2e::freshDir("pack-system-files");
+  const fs::path capture = e2e::smallCapture(dir);
+  const fs::path bag = dir / "bag";
+  REQUIRE(e2e::surrogate("pack " + e2e::quote(capture) + " -o " + e2e::quote(bag) + " --quiet").exitCode == 0);
+  for (const char* name : {".DS_Store", "data/.DS_Store", "data/finished-files/._ptm-lrgb.ptm", "metadata/Thumbs.db"})
+    std::ofstream(bag / name) << "left by a file manager";
+
+  const auto lenient = e2e::surrogate("verify " + e2e::quote(bag) + " --reexecute --quiet");
+  INFO(lenient.output);
+  CHECK(lenient.exitCode == 0);
+  CHECK_THAT(lenient.output, Catch::Contains("data/.DS_Store: a file the operating system left") &&
+                                 Catch::Contains("rm '" + (bag / "metadata/Thumbs.db").string() + "'") &&
+                                 Catch::Contains("including re-execution"));
+  const auto strict = e2e::surrogate("verify " + e2e::quote(bag) + " --strict --quiet");
+  CHECK(strict.exitCode == 3);
+  CHECK_THAT(strict.output, Catch::Contains("data/.DS_Store: in the payload but not listed"));
+
+  std::ofstream(bag / "data/notes.txt") << "added after packing";
+  const auto added = e2e::surrogate("verify " + e2e::quote(bag) + " --quiet");
+  CHECK(added.exitCode == 3);
+  CHECK_THAT(added.output, Catch::Contains("data/notes.txt: in the payload but not listed"));
+}
