@@ -115,6 +115,9 @@ std::size_t parseByteSize(const std::string& text, const std::string& option) {
   const double v = parseNumberList(number, 1, option)[0] * factor;
   if (!(v >= 64.0 * 1024 * 1024))
     usage(option, "is too small: give at least 64M so that a band of rows fits");
+  // Beyond 1 EiB no machine has the memory, and the number would not fit a size in bytes.
+  if (v > 1024.0 * 1024 * 1024 * 1024 * 1024 * 1024)
+    usage(option, "\"" + text + "\" is more memory than any machine has: give a size such as 2G or 512M");
   return static_cast<std::size_t>(v);
 }
 

@@ -66,6 +66,12 @@ TEST_CASE("the small capture has the 400x300 frame the frame checks below assume
 
 // ---- Checks that need no capture: they pass as soon as the command line is read ------------
 
+TEST_CASE("a memory budget beyond any machine is refused as such, not as too small") {
+  // 1e20 G once overflowed the size in bytes and was refused as "0.0K is too small".
+  const auto r = requireRefused("--memory 99999999999999999999G", {"--memory", "more memory than any machine has"});
+  CHECK_THAT(r.output, !Catch::Contains("too small"));
+}
+
 TEST_CASE("a circle given by hand with a radius of 0 or below is refused by its radius") {
   requireRefused("--sphere 339,57,-5", {"--sphere 339,57,-5", "radius"});
   // Not "no usable highlight": the radius is what is wrong.
