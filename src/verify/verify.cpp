@@ -1,5 +1,7 @@
 #include "verify/verify.h"
 
+#include <set>
+
 #include "capture/capture.h"
 #include "core/error.h"
 #include "verify/checks.h"
@@ -56,23 +58,29 @@ Inventory readInventory(const std::filesystem::path& package, const VerifyOption
 
 // Unlisted operating-system files (VerifyOptions::strict): taken out of the inventory, one
 // warning each with the command that removes it. A file a manifest names stays, whatever its
-// name: it is payload.
+// name: it is payload. The manifests are read as the checks read them (archive::parseManifest,
+// paths decoded); when one cannot be read cleanly nothing is set aside, and the checks judge
+// the bag as it is.
 void setAsideSystemFiles(const std::filesystem::path& package, Inventory& inventory,
                          std::vector<std::string>& warnings) {
-  std::string manifests;
-  for (const auto& [path, file] : inventory.files)
-    if (path.find('/') == std::string::npos && path.find("manifest-") != std::string::npos && file.content)
-      manifests += *file.content + "\n";
-  for (auto it = inventory.files.begin(); it != inventory.files.end();) {
-    const std::string& path = it->first;
+  std::vector<std::string> candidates;
+  for (const auto& [path, file] : inventory.files) {
     const auto slash = path.rfind('/');
-    const std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
-    const bool listed = manifests.find(" " + path + "\n") != std::string::npos ||
-                        manifests.find(" " + path + "\r\n") != std::string::npos;
-    if (!capture::isSystemFile(name) || listed) {
-      ++it;
-      continue;
-    }
+    if (capture::isSystemFile(slash == std::string::npos ? path : path.substr(slash + 1))) candidates.push_back(path);
+  }
+  if (candidates.empty()) return;
+  std::set<std::string> listed;
+  for (const auto& [path, file] : inventory.files) {
+    const auto name = manifestName(path);
+    if (!name) continue;
+    const std::size_t hexLength = digestHexLength(name->second);
+    if (!file.content || hexLength == 0) return;
+    const Manifest m = parseManifest(*file.content, name->second, hexLength);
+    if (!m.problems.empty()) return;
+    for (const ManifestEntry& e : m.entries) listed.insert(e.path);
+  }
+  for (const std::string& path : candidates) {
+    if (listed.count(path)) continue;
     std::string printable = path;
     for (char& ch : printable)
       if (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f) ch = '?';
@@ -83,9 +91,10 @@ void setAsideSystemFiles(const std::filesystem::path& package, Inventory& invent
                        (inventory.kind == "directory"
                             ? "; remove it with: rm '" + quoted + "'"
                             : std::string("; the archive would have to be repacked without it")));
+    const auto it = inventory.files.find(path);
     inventory.totalBytes -= it->second.size;
     inventory.setAside.insert(path);
-    it = inventory.files.erase(it);
+    inventory.files.erase(it);
   }
 }
 
