@@ -178,6 +178,21 @@ std::vector<int> residualOutliers(const std::vector<double>& rmse) {
   return out;
 }
 
+LightCheck residualCheck(const std::vector<double>& rmse, const std::vector<std::string>& names) {
+  LightCheck c{kCheckResidualOutlier, false, "", residualOutliers(rmse)};
+  const std::string typical = "median RMSE " + fixedDecimals(median(rmse), 1) + " levels";
+  std::vector<std::string> named;
+  for (int i : c.images)
+    named.push_back(names[static_cast<std::size_t>(i)] + " (RMSE " + fixedDecimals(rmse[static_cast<std::size_t>(i)], 1) +
+                    " levels)");
+  c.failed = !c.images.empty();
+  c.detail = c.failed ? "the model misses " + namedList(named) + " far more than the other images (" + typical +
+                            "): a misfired flash, a moved object or a wrong light direction, which pulls every "
+                            "pixel's fit toward it"
+                      : "no image stands out of the others' fit error (" + typical + ")";
+  return c;
+}
+
 std::vector<LightCheck> checkLights(const LightCheckInput& in) {
   return {belowHorizon(in), spheresOverlap(in), spheresDisagree(in), lightsClustered(in), exposureOutlier(in)};
 }

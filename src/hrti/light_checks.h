@@ -77,6 +77,8 @@ std::vector<LightCheck> checkLights(const LightCheckInput& input);
 // above). A photograph the model cannot explain (a misfired flash, a moved object, a wrong light)
 // pulls every pixel's coefficients towards itself. Fewer than five images: none.
 std::vector<int> residualOutliers(const std::vector<double>& perImageRmse);
+// The check residual-outlier on a fit's per-image RMSE, its images named by `names`.
+LightCheck residualCheck(const std::vector<double>& perImageRmse, const std::vector<std::string>& names);
 
 // The angle between two directions, in degrees.
 double angleDeg(const std::array<double, 3>& a, const std::array<double, 3>& b);

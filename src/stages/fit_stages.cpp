@@ -24,6 +24,7 @@
 #include "stages/inputs.h"
 #include "stages/light_stages.h"
 #include "stages/outputs.h"
+#include "stages/recorded_checks.h"
 
 namespace surrogate::stages {
 
@@ -202,52 +203,6 @@ RtiFitOptions RtiFitOptions::forBasis(const std::string& basis) {
   return o;
 }
 
-namespace {
-
-// The check residual-outlier (hrti/light_checks.h) on this fit: recorded as a `check` item;
-// an image the model misses far more than the others stops the run, naming it with the
-// --exclude to type, unless the check is accepted (accept-check on RtiFit, --accept).
-void checkResiduals(const carrier::Step& step, pipeline::Context& ctx, carrier::Result& result,
-                    const InputImages& inputs, const std::vector<double>& rmse) {
-  const std::vector<int> outliers = hrti::residualOutliers(rmse);
-  std::vector<double> sorted = rmse;
-  std::sort(sorted.begin(), sorted.end());
-  const double median = sorted.empty() ? 0 : sorted[(sorted.size() - 1) / 2];
-  std::string named, excludes;
-  for (int i : outliers) {
-    const InputImage& in = inputs[static_cast<std::size_t>(i)];
-    named += (named.empty() ? "" : ", ") + in.stem + " (RMSE " + fixedDecimals(rmse[static_cast<std::size_t>(i)], 1) +
-             " levels)";
-    excludes += (excludes.empty() ? "" : "; ") + std::string("--exclude ") + in.stem + " --reason \"...\"";
-  }
-  const carrier::Intervention* accepted = nullptr;
-  for (const carrier::Intervention* i : step.interventionsOfKind(kAcceptCheck))
-    if (i->target == hrti::kCheckResidualOutlier) accepted = i;
-  const std::string detail =
-      outliers.empty() ? "no image stands out of the others' fit error (median RMSE " + fixedDecimals(median, 1) +
-                             " levels)"
-                       : "the model misses " + named + " far more than the other images (median RMSE " +
-                             fixedDecimals(median, 1) + " levels): a misfired flash, a moved object or a wrong "
-                             "light direction, which pulls every pixel's fit toward it";
-  result.add("check").set("name", hrti::kCheckResidualOutlier)
-      .set("status", outliers.empty() ? "passed" : accepted ? "accepted" : "failed").set("detail", detail);
-  if (outliers.empty()) return;
-  if (accepted) {
-    ctx.carrier.addLog("intervention", step.id, std::string("check ") + hrti::kCheckResidualOutlier + " accepted: " +
-                       accepted->reason, accepted->who);
-    ctx.carrier.addLog("warning", step.id, std::string("check ") + hrti::kCheckResidualOutlier +
-                       " failed and was accepted: " + detail);
-    return;
-  }
-  throw Error(ErrorKind::Input, "", "fit checks",
-              std::string("a check on the fit failed, so its result cannot be trusted:\n  - ") +
-                  hrti::kCheckResidualOutlier + ": " + detail + ". To fix: leave the image(s) out: " + excludes +
-                  ". If the result is right, accept it with --accept " + hrti::kCheckResidualOutlier +
-                  " --reason \"...\"");
-}
-
-}  // namespace
-
 pipeline::StageInfo RtiFitStage::info() {
   pipeline::StageInfo info = pipeline::withOptions<RtiFitOptions>(
       // Version 2: coefficients are quantised from their values rounded to float (src/fit/fit.h),
@@ -324,9 +279,14 @@ void RtiFitStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
   }
   ctx.carrier.addLog("info", step.id, basis + " fit: RMSE " + fixedDecimals(stats.rmse, 3) + ", PSNR " +
                                           fixedDecimals(stats.psnr, 2) + " dB; worst images: " + worst);
-  checkResiduals(step, ctx, result, *inputs, stats.perImageRmse);
-  // The conditioning, recorded only when it changed the fit: a package made before it existed
-  // (plain least squares, weight 0) re-executes to the same result items.
+  // An image the model misses far more than the others (hrti/light_checks.h, residual-outlier).
+  std::vector<std::string> names;
+  for (const InputImage& in : *inputs) names.push_back(in.stem);
+  recordChecks(step, ctx, result, {hrti::residualCheck(stats.perImageRmse, names)},
+               {"fit checks", "the fit", "its result cannot be trusted"},
+               [&](const hrti::LightCheck& c) { return excludeImagesFix(c, names); });
+  // The conditioning, recorded only when it changed the fit: a plain least-squares fit (weight
+  // 0) keeps the values RtiFit version 2 recorded.
   if (stats.regularisation > 0) {
     std::string damped;
     for (int k : stats.dampedTerms) damped += (damped.empty() ? "" : " ") + std::to_string(k);

@@ -23,6 +23,7 @@
 #include "pipeline/context.h"
 #include "stages/inputs.h"
 #include "stages/outputs.h"
+#include "stages/recorded_checks.h"
 #include "stages/request_checks.h"
 
 namespace surrogate::stages {
@@ -418,49 +419,17 @@ void addLightItem(carrier::Result& result, const std::string& fileId, const std:
       .set("elevationDeg", elevation).set("azimuthDeg", azimuth).set("source", source);
 }
 
-// Records every check (hrti/light_checks.h) as a `check` item: passed, failed or accepted (an
-// accept-check intervention names it). A failed check that is not accepted stops the run with
-// every such check listed and what to do about each.
-void applyLightChecks(const carrier::Step& step, pipeline::Context& ctx, carrier::Result& result,
-                      const hrti::LightCheckInput& input) {
-  std::vector<std::string> failures;
-  for (const hrti::LightCheck& c : hrti::checkLights(input)) {
-    const carrier::Intervention* accepted = nullptr;
-    for (const carrier::Intervention* i : step.interventionsOfKind(kAcceptCheck))
-      if (i->target == c.name) accepted = i;
-    const char* status = !c.failed ? "passed" : accepted ? "accepted" : "failed";
-    carrier::DataItem& item = result.add("check");
-    item.set("name", c.name).set("status", status).set("detail", c.detail);
-    if (!c.failed) continue;
-    if (accepted) {
-      ctx.carrier.addLog("intervention", step.id, "check " + c.name + " accepted: " + accepted->reason, accepted->who);
-      ctx.carrier.addLog("warning", step.id, "check " + c.name + " failed and was accepted: " + c.detail);
-      continue;
-    }
-    std::string what;
-    if (c.name == hrti::kCheckExposureOutlier) {
-      for (int i : c.images)
-        what += (what.empty() ? "" : "; ") + std::string("--exclude ") + input.names[static_cast<std::size_t>(i)] +
-                " --reason \"...\"";
-      what = "leave the image(s) out: " + what;
-    } else {
-      std::string circles;
-      for (std::size_t k = 0; k < input.spheres.size(); ++k)
-        circles += (k ? ", " : "") + std::to_string(k) + " at " + fixedDecimals(input.spheres[k].cx, 0) + "," +
-                   fixedDecimals(input.spheres[k].cy, 0) + " radius " + fixedDecimals(input.spheres[k].r, 0);
-      what = "the spheres used are " + circles + " (CX,CY in pixels of the full frame); if a circle is wrong, give "
-             "the sphere's circle with --sphere CX,CY,R --reason \"...\" or restrict the search to it with "
-             "--sphere-roi X,Y,W,H";
-    }
-    failures.push_back(c.name + ": " + c.detail + ". To fix: " + what + ". If the result is right, accept it with "
-                       "--accept " + c.name + " --reason \"...\"");
-  }
-  if (failures.empty()) return;
-  std::string text;
-  for (const std::string& f : failures) text += "\n  - " + f;
-  throw Error(ErrorKind::Input, "", "light checks",
-              std::string(failures.size() == 1 ? "a check" : std::to_string(failures.size()) + " checks") +
-                  " on the light directions failed, so they cannot be trusted:" + text);
+// What to do about a failed check on the lights: leave out the images it names, or correct
+// the circles used (which it gives).
+std::string lightCheckFix(const hrti::LightCheck& c, const hrti::LightCheckInput& input) {
+  if (!c.images.empty() && c.name == hrti::kCheckExposureOutlier) return excludeImagesFix(c, input.names);
+  std::string circles;
+  for (std::size_t k = 0; k < input.spheres.size(); ++k)
+    circles += (k ? ", " : "") + std::to_string(k) + " at " + fixedDecimals(input.spheres[k].cx, 0) + "," +
+               fixedDecimals(input.spheres[k].cy, 0) + " radius " + fixedDecimals(input.spheres[k].r, 0);
+  return "the spheres used are " + circles + " (CX,CY in pixels of the full frame); if a circle is wrong, give "
+         "the sphere's circle with --sphere CX,CY,R --reason \"...\" or restrict the search to it with "
+         "--sphere-roi X,Y,W,H";
 }
 
 }  // namespace
@@ -610,7 +579,9 @@ void LightDirectionsStage::run(const carrier::Step& step, pipeline::Context& ctx
     checks.highlightPeaks.push_back(peak);
   }
   for (const InputImage& in : *inputs) checks.names.push_back(in.stem);
-  applyLightChecks(step, ctx, result, checks);
+  recordChecks(step, ctx, result, hrti::checkLights(checks),
+               {"light checks", "the light directions", "they cannot be trusted"},
+               [&](const hrti::LightCheck& c) { return lightCheckFix(c, checks); });
   writeLights(ctx, step, result, *inputs, *lights);
   ctx.put(kLights, lights);
 }
