@@ -44,6 +44,17 @@ Image goodFrame(double hx = 70, double hy = 50) {
 
 Highlight detect(const Image& frame) { return detectHighlight(frame, 0, 0, kSphere, HighlightOptions()); }
 
+// A highlight judged from its measures alone (judgeHighlight): a found peak at full scale.
+// Measures: contrast, spread, saturated, compactness, elongation, body rise, fill, area.
+Highlight judged(const HighlightMeasures& measures, bool secondCandidate = false) {
+  Highlight h;
+  h.flag = HighlightFlag::Ok;
+  h.peak = 1;
+  h.measures = measures;
+  judgeHighlight(h, secondCandidate);
+  return h;
+}
+
 // sRGB-encoded and quantised to 8 bits, as a JPEG export holds the shot.
 Image srgb8(Image im) {
   for (auto& v : im.pixels) {
@@ -117,11 +128,7 @@ TEST_CASE("a bright patch over a large part of the sphere is refused as large") 
 
 TEST_CASE("a ring, a streak, a speck or a hot pixel is refused as not compact") {
   // A ring or crescent as the core: judged by its fill (a filled ellipse has 1).
-  Highlight ring;
-  ring.flag = HighlightFlag::Ok;
-  ring.peak = 1;
-  ring.measures = {0.9, 0.01, 0, 1, 1, 0, 0.3, 40};
-  judgeHighlight(ring, false);
+  const Highlight ring = judged({0.9, 0.01, 0, 1, 1, 0, 0.3, 40});
   CHECK(ring.flag == HighlightFlag::NotCompact);
   CHECK_THAT(ring.reason, Catch::Contains("ring"));
 
@@ -193,11 +200,7 @@ TEST_CASE("a matte round object, whose whole disc follows the light, is refused 
   CHECK_FALSE(isUsable(h.flag));  // its bright half is also large: refused as large first
   CHECK(h.measures.bodyRise > HighlightLimits::kMaxBodyRise);
   // A body rising under a compact peak (a glossy matte object): refused as shaded.
-  Highlight glossy;
-  glossy.flag = HighlightFlag::Ok;
-  glossy.peak = 1;
-  glossy.measures = {0.9, 0.05, 0, 1, 1, 0.4, 1, 40};
-  judgeHighlight(glossy, false);
+  const Highlight glossy = judged({0.9, 0.05, 0, 1, 1, 0.4, 1, 40});
   CHECK(glossy.flag == HighlightFlag::Shaded);
   CHECK(std::string(flagName(glossy.flag)) == "shaded");
   CHECK_THAT(glossy.reason, Catch::Contains("matte"));
