@@ -713,8 +713,14 @@ std::vector<std::string> removeStaleParts(const fs::path& out) {
   return removed;
 }
 
-void checkOutput(const fs::path& out) {
+void checkOutput(const fs::path& out, bool replace) {
   const BagFormat format = bagFormatFor(out);
+  std::error_code ec;
+  if (!replace && format != BagFormat::Directory && fs::exists(fs::symlink_status(out, ec))) {
+    throw Error(ErrorKind::Input, out.string(), "packing",
+                "already exists; pack never replaces a package silently: give --force to replace "
+                "it, or choose another name");
+  }
   if (format == BagFormat::Directory && fs::exists(out) &&
       !(fs::is_directory(out) && fs::is_empty(out))) {
     throw Error(ErrorKind::Usage, out.string(), "packing",
@@ -744,7 +750,7 @@ BagResult writeBag(const BagInput& input, const fs::path& out) {
 
   // The output, under a temporary name until complete; first the partial outputs of packs to
   // the same name that were killed.
-  checkOutput(out);
+  checkOutput(out, input.replace);
   std::vector<std::string> removedLeftovers = removeStaleParts(out);
   AtomicFile target(out);
   std::optional<UtcZone> zone;
@@ -805,7 +811,10 @@ BagResult writeBag(const BagInput& input, const fs::path& out) {
   result.tagFiles.push_back("tagmanifest-sha512.txt");
   sink->close();
   sink.reset();
-  target.commit();
+  if (input.replace)
+    target.commit();
+  else
+    target.commitWithoutReplacing();
   result.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return result;

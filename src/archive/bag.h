@@ -85,6 +85,10 @@ struct BagInput {
   std::function<std::vector<TagFile>(const std::vector<PayloadDigest>&)> tagFiles;
   // Progress: payload bytes done, payload bytes in all.
   std::function<void(std::uint64_t, std::uint64_t)> progress;
+  // Whether an existing .tar or .zip of the same name may be replaced (pack --force). Without
+  // it the finished package is renamed into place only if the name is still free, so that two
+  // packs to one name give one package and one refusal.
+  bool replace = false;
 };
 
 struct BagResult {
@@ -138,8 +142,9 @@ std::string bagInfoLabelProblem(const std::string& label);
 std::vector<std::string> removeStaleParts(const std::filesystem::path& out);
 
 // Checks, before any work, that `out` can be the bag's name: its folder exists, and it is not
-// an existing non-empty folder (directory bags) or a folder (archives). Throws Error(Usage).
-void checkOutput(const std::filesystem::path& out);
+// an existing non-empty folder (directory bags), a folder (archives) or, unless `replace`
+// (pack --force), an existing file. Throws Error(Usage).
+void checkOutput(const std::filesystem::path& out, bool replace = false);
 
 // Writes the bag. Throws Error(Input) naming an unreadable or changing source file,
 // Error(Internal) naming the output when it cannot be written (disk full, no permission),

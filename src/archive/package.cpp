@@ -222,7 +222,7 @@ PackResult packCapture(const fs::path& capture, const fs::path& out, const PackO
   // temporary files beside the output (AtomicFile's names, never committed: removed when
   // packing ends, and by removeStaleParts after a pack that was killed), from which writeBag
   // copies them; their bytes are deriveCrm's / deriveMets's (the fallback below).
-  checkOutput(out);
+  checkOutput(out, options.replace);
   const AtomicFile crmFile(out), metsFile(out);
   if (!deriveInto(crmFile.tempPath(), [&](const mapping::TextSink& sink) {
         return mapping::deriveCrmTo(carrierXml, sink, carrierFile.string());
@@ -246,6 +246,7 @@ PackResult packCapture(const fs::path& capture, const fs::path& out, const PackO
   in.info = std::move(info.user);
   in.ownInfo = std::move(info.own);
   in.progress = options.progress;
+  in.replace = options.replace;
   in.tagFiles = [&](const std::vector<PayloadDigest>& payload) {
     mapping::PackageFacts facts;
     facts.packageId = result.packageId;

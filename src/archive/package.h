@@ -81,6 +81,7 @@ std::vector<std::string> packageMetadataFiles();
 
 struct PackOptions {
   std::function<void(std::uint64_t, std::uint64_t)> progress;  // payload bytes done, in all
+  bool replace = false;  // an existing package of that name may be replaced (pack --force)
 };
 
 struct PackResult {

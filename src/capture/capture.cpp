@@ -262,29 +262,6 @@ bool isInterruptedWrite(const std::string& name) {
   return !name.empty() && name[0] == '.' && name.find(".part-") != std::string::npos;
 }
 
-void refuseOutputInside(const fs::path& capture, const fs::path& output, const std::string& option,
-                        bool anywhere) {
-  std::error_code ec;
-  const fs::path root = fs::weakly_canonical(fs::absolute(capture), ec);
-  const fs::path out = fs::weakly_canonical(fs::absolute(output), ec);
-  const fs::path rel = out.lexically_relative(root);
-  if (rel.empty() || *rel.begin() == "..") return;  // outside the capture
-  const std::string first = rel.begin()->string();
-  const bool inputs = first == "original-captures" || first == "raw-images" || first == kExportsDir;
-  const bool ours = first == kAssemblyDir || first == kFinishedDir || first == kWorkDir ||
-                    first == kSupersededDir || rel == ".";
-  if (inputs)
-    throw Error(ErrorKind::Usage, option + " " + output.string(), "command line",
-                "is inside the capture's " + first + "/ folder, which holds the untouched "
-                "originals: Surrogate never writes there; choose a place outside the capture");
-  if (ours || anywhere)
-    throw Error(ErrorKind::Usage, option + " " + output.string(), "command line",
-                std::string("is inside the capture ") +
-                    (ours ? "folder that Surrogate manages (" + first + "/)" : "itself") +
-                    ", where it would become part of the capture's record; choose a place "
-                    "outside the capture");
-}
-
 std::pair<int, int> CaptureLayout::frameSize() const {
   for (const Shot& s : shots)
     if (hasOriginals() && s.original) return {s.original->width, s.original->height};

@@ -48,13 +48,6 @@ bool isSystemFile(const std::string& fileName);
 // photographer brought, and is recorded like any other.)
 bool isInterruptedWrite(const std::string& fileName);
 
-// Refuses (Error(Usage), naming `option`) an output path inside the capture's folders of
-// originals and exports, or inside what Surrogate writes there (assembly-files/,
-// finished-files/, .surrogate/, superseded-files/); with `anywhere`, inside the capture at all
-// (a package inside the capture it packs would be part of the next one).
-void refuseOutputInside(const std::filesystem::path& capture, const std::filesystem::path& output,
-                        const std::string& option, bool anywhere = false);
-
 struct ImageFile {
   std::string relativePath;  // to the capture root, '/' separated
   std::string format;        // "camera raw", "DNG", "JPEG", "TIFF", "PNG" (see image/)

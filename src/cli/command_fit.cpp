@@ -55,9 +55,9 @@ int runCommandFit(int argc, char** argv) {
   if (!lp || !out)
     throw Error(ErrorKind::Usage, "", "command line", "give the light file and the output: --lp FILE.lp -o OUT.ptm");
   const std::string ext = lowerCase(fs::path(*out).extension().string());
+  checkOutputFile("-o", *out, ext == ".ptm" ? "model.ptm" : "model.rti");
   if (ext != ".ptm" && ext != ".rti")
     throw Error(ErrorKind::Usage, "-o " + *out, "command line", "the output must end in .ptm or .rti");
-  checkOutputFile("-o", *out, ext == ".ptm" ? "model.ptm" : "model.rti");
   const int threads = threadsOption(args);
   const fit::Basis basis = fit::parseBasis(args.value("basis", ext == ".ptm" ? "ptm-lrgb" : "hsh2"));
   const bool ptm = basis == fit::Basis::PtmLrgb || basis == fit::Basis::PtmRgb;

@@ -8,6 +8,7 @@
 #include "archive/package.h"
 #include "capture/capture.h"
 #include "capture/lock.h"
+#include "capture/output_rule.h"
 #include "carrier/carrier.h"
 #include "pipeline/stage.h"
 #include "stages/run_commit.h"
@@ -73,6 +74,7 @@ std::vector<OptionSpec> packOptions() {
   for (const OptionSpec& o : runtimeOptions()) specs.push_back(o);
   specs.push_back({"o", true, false, "the package to write: a folder, NAME.tar or NAME.zip", "OUT"});
   specs.push_back({"output", true, false, "same as -o", "OUT"});
+  specs.push_back({"force", false, false, "replace an existing .tar or .zip of the same name"});
   specs.push_back({"no-report", false, false,
                    "when the pipeline runs, do not write finished-files/report.html"});
   return specs;
@@ -90,8 +92,10 @@ std::pair<std::string, std::string> captureAndOutput(const Args& args) {
     throw Error(ErrorKind::Usage, capture, "command line",
                 ec ? "cannot be read as a folder (" + ec.message() + "); give the capture folder"
                    : "is not a capture folder");
-  archive::checkOutput(*out);
-  capture::refuseOutputInside(capture, *out, "-o", /*anywhere=*/true);
+  capture::checkOutputTarget(*out, "-o",
+                             args.has("force") ? capture::ExistingOutput::Replace : capture::ExistingOutput::Refuse,
+                             capture::OutputPlace::OutsideCaptures, "give --force to replace it, or choose another name");
+  archive::checkOutput(*out, args.has("force"));
   return {capture, *out};
 }
 
@@ -132,6 +136,7 @@ Processing processIfNeeded(const std::string& capture, const Args& args, Progres
 archive::PackResult packOnce(const std::string& capture, const std::string& out, const Args& args,
                              ProgressBar& bar, Processing& processing) {
   archive::PackOptions options;
+  options.replace = args.has("force");
   options.progress = [&bar](std::uint64_t done, std::uint64_t total) {
     bar.update("packing", total ? static_cast<double>(done) / static_cast<double>(total) : 1.0);
   };

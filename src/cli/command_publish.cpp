@@ -3,6 +3,7 @@
 #include <cctype>
 #include <iostream>
 
+#include "capture/output_rule.h"
 #include "cli/args.h"
 #include "cli/commands.h"
 #include "core/error.h"
@@ -53,6 +54,8 @@ int runCommandPublish(int argc, char** argv) {
   if (args.positional().size() != 1 || !out)
     throw Error(ErrorKind::Usage, "", "command line",
                 "give the model or capture and the folder to write: surrogate publish FILE.ptm -o DIR");
+  // A new folder (publish refuses one that is not empty), never in a capture's own folders.
+  capture::checkOutputTarget(*out, "-o", capture::ExistingOutput::Replace);
   publish::PublishOptions options;
   if (const auto q = args.value("quality")) {
     options.quality = args.intValue("quality", 95);

@@ -49,14 +49,14 @@ int runCommandRender(int argc, char** argv) {
   if (args.positional().size() != 1 || !out || !args.has("light"))
     throw Error(ErrorKind::Usage, "", "command line",
                 "give the model, the light and the output: surrogate render FILE --light x,y,z -o OUT.png");
-  // The output first: a name whose format is unknown, a folder or a missing folder is refused
-  // before the model is read.
+  // The output first: a name whose format is unknown, a folder, a missing folder or a path the
+  // output rule forbids is refused before the model is read.
+  checkOutputFile("-o", *out, "relit.png");
   const auto format = image::pictureFormatFor(*out);
   if (!format)
     throw Error(ErrorKind::Usage, "-o " + *out, "command line",
                 "the picture's format comes from its name: end it in .png (PNG), .jpg or .jpeg "
                 "(JPEG) or .tif or .tiff (TIFF)");
-  checkOutputFile("-o", *out, "relit.png");
   int quality = 95;
   if (const auto q = args.value("quality")) {
     if (*format != image::PictureFormat::Jpeg)

@@ -7,6 +7,7 @@
 #include <system_error>
 
 #include "archive/bag.h"
+#include "capture/output_rule.h"
 #include "core/error.h"
 #include "core/text.h"
 #include "stages/request_checks.h"
@@ -165,6 +166,7 @@ void checkOutputFile(const std::string& option, const std::filesystem::path& out
                      parent.string() + ") or write elsewhere");
   if (!fs::is_directory(st))
     usage(named, "is in " + parent.string() + ", which is not a folder; write elsewhere");
+  capture::checkOutputTarget(output, option, capture::ExistingOutput::Replace);
 }
 
 }  // namespace surrogate::cli

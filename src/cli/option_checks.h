@@ -22,8 +22,9 @@ inline constexpr int kMaxThreads = 1024;
 int threadsOption(const Args& args);
 
 // An output file the user names (`-o OUT`), checked before any work: not an existing folder,
-// in a folder that exists. Error(Usage) naming `option` and the path, saying what to do;
-// `example` is a file name the message suggests ("relit.png").
+// in a folder that exists (Error(Usage) naming `option` and the path, saying what to do;
+// `example` is a file name the message suggests, "relit.png"), and allowed by the output rule
+// of capture/output_rule.h (an earlier output at the same path may be replaced).
 void checkOutputFile(const std::string& option, const std::filesystem::path& output,
                      const std::string& example);
 

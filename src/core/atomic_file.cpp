@@ -1,6 +1,7 @@
 #include "core/atomic_file.h"
 
 #include <fcntl.h>
+#include <stdio.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -49,22 +50,84 @@ void AtomicFile::commit() {
   if (fs::is_regular_file(temp_)) syncFile(temp_);
   std::error_code ec;
   fs::rename(temp_, final_, ec);
-  if (ec) {
-    throw Error(ErrorKind::Internal, final_.string(), "write",
-                "could not move the finished file into place: " + ec.message());
-  }
+  if (ec) throw writeError(final_, "write", ec.value());
   committed_ = true;
 }
 
+void AtomicFile::commitWithoutReplacing() {
+  std::error_code ec;
+  const bool folder = fs::is_directory(temp_, ec);
+  if (!folder) syncFile(temp_);
+  auto taken = [&] {
+    return Error(ErrorKind::Input, final_.string(), "write",
+                 "appeared while this was being written (another Surrogate writing to the same "
+                 "name?); it was not replaced and what this command wrote was discarded: choose "
+                 "another name, or remove the other and run again");
+  };
+  // An empty folder at the final name is replaced, as a plain rename does (and refuses, with
+  // ENOTEMPTY or EEXIST, once something filled it).
+  if (folder && fs::is_directory(final_, ec) && fs::is_empty(final_, ec)) {
+    if (::rename(temp_.c_str(), final_.c_str()) != 0) {
+      if (errno == ENOTEMPTY || errno == EEXIST) throw taken();
+      throw writeError(final_, "write", errno);
+    }
+    committed_ = true;
+    return;
+  }
+  if (::renameat2(AT_FDCWD, temp_.c_str(), AT_FDCWD, final_.c_str(), RENAME_NOREPLACE) == 0) {
+    committed_ = true;
+    return;
+  }
+  if (errno == EEXIST) throw taken();
+  if (errno != EINVAL && errno != ENOSYS) throw writeError(final_, "write", errno);
+  // A file system without RENAME_NOREPLACE: link(2) never replaces either.
+  if (!folder) {
+    if (::link(temp_.c_str(), final_.c_str()) != 0) {
+      if (errno == EEXIST) throw taken();
+      throw writeError(final_, "write", errno);
+    }
+    ::unlink(temp_.c_str());
+    committed_ = true;
+    return;
+  }
+  if (fs::exists(fs::symlink_status(final_, ec))) throw taken();
+  if (::rename(temp_.c_str(), final_.c_str()) != 0) throw writeError(final_, "write", errno);
+  committed_ = true;
+}
+
+Error writeError(const fs::path& path, const std::string& step, int error) {
+  std::string what;
+  switch (error) {
+    case ENOSPC:
+    case EDQUOT:
+      what = "the disk is full (" + std::string(std::strerror(error)) +
+             "); free some space, or write somewhere else, and run again";
+      break;
+    case EFBIG:
+      what = "the file is larger than this system allows (" + std::string(std::strerror(error)) +
+             "; see `ulimit -f`); raise the limit or write somewhere that allows it";
+      break;
+    case EACCES:
+    case EPERM:
+      what = "permission denied: this user may not write there; choose a folder you can write to";
+      break;
+    case EROFS:
+      what = "the file system is read-only; write somewhere else";
+      break;
+    default:
+      what = std::string("it could not be written: ") + std::strerror(error);
+  }
+  return Error(ErrorKind::Input, path.string(), step, what + ". Nothing was left half-written under this name.");
+}
+
 void writeTemporary(const AtomicFile& file, const std::string& content) {
+  errno = 0;
   std::ofstream f(file.tempPath(), std::ios::binary);
   f.write(content.data(), static_cast<std::streamsize>(content.size()));
   f.flush();
-  if (!f) {
-    throw Error(ErrorKind::Internal, file.finalPath().string(), "write",
-                std::string("could not write the file (") + std::strerror(errno) +
-                    "); check free disk space and permissions");
-  }
+  if (!f) throw writeError(file.finalPath(), "write", errno ? errno : EIO);
+  f.close();
+  if (!f) throw writeError(file.finalPath(), "write", errno ? errno : EIO);
 }
 
 void writeFileAtomically(const fs::path& path, const std::string& content, const fs::path& tempFolder) {

@@ -10,6 +10,8 @@
 #include <filesystem>
 #include <string>
 
+#include "core/error.h"
+
 namespace surrogate {
 
 class AtomicFile {
@@ -27,12 +29,24 @@ class AtomicFile {
   const std::filesystem::path& finalPath() const { return final_; }
   // Flushes the temporary file to disk and renames it to the final name.
   void commit();
+  // The same, but never over something that is at the final name by then (another process
+  // wrote it meanwhile; for a folder, anything but an empty folder): renameat2 with
+  // RENAME_NOREPLACE, or where the file system has no such rename, a hard link for a file and a
+  // check then rename for a folder. Throws Error(Input) naming the final path when it is taken;
+  // the temporary is then removed by the destructor.
+  void commitWithoutReplacing();
 
  private:
   std::filesystem::path final_;
   std::filesystem::path temp_;
   bool committed_ = false;
 };
+
+// Error(Input) for a write that the environment refused, in a user's words and with what to
+// do: no space left (ENOSPC, EDQUOT), a file-size limit (EFBIG), no permission (EACCES, EPERM),
+// a read-only file system (EROFS); other errors as the system words them. `path` is what was
+// being written, `step` the step writing it.
+Error writeError(const std::filesystem::path& path, const std::string& step, int error);
 
 // Writes `content` to `file`'s temporary file (not yet in place: commit() does that). Throws
 // Error naming the final path when the bytes cannot be written.

@@ -1,0 +1,115 @@
+#include "capture/output_rule.h"
+
+#include <sys/stat.h>
+
+#include <array>
+
+#include "capture/capture.h"
+#include "carrier/carrier.h"
+#include "core/error.h"
+
+namespace surrogate::capture {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr std::array<const char*, 3> kOriginalFolders = {"original-captures", "raw-images", kExportsDir};
+constexpr std::array<const char*, 4> kManagedFolders = {kAssemblyDir, kFinishedDir, kWorkDir, kSupersededDir};
+
+template <std::size_t N>
+bool isOneOf(const std::string& name, const std::array<const char*, N>& names) {
+  for (const char* n : names)
+    if (name == n) return true;
+  return false;
+}
+
+// Output-rule refusals are exit 1, like any input that cannot be processed: the path names
+// something the command must not touch (docs/user-guide.md, "Where commands write").
+[[noreturn]] void refuse(const std::string& option, const fs::path& output, const std::string& why) {
+  throw Error(ErrorKind::Input, option + " " + output.string(), "command line", why);
+}
+
+// What a non-regular file is, in a user's words; "" for a regular file or nothing at all.
+std::string specialKind(const fs::path& path) {
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) != 0) return "";
+  if (S_ISLNK(st.st_mode)) return "a symbolic link";
+  if (S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode)) return "a device";
+  if (S_ISFIFO(st.st_mode)) return "a FIFO (named pipe)";
+  if (S_ISSOCK(st.st_mode)) return "a socket";
+  if (S_ISDIR(st.st_mode)) return "a folder";
+  return "";
+}
+
+bool isCaptureFolder(const fs::path& dir) {
+  std::error_code ec;
+  if (fs::is_regular_file(dir / kCarrierPath, ec)) return true;
+  for (const char* f : kOriginalFolders)
+    if (fs::is_directory(dir / f, ec)) return true;
+  return false;
+}
+
+// The rule inside one capture `root`; `out` is canonical and lies in it.
+void checkInsideCapture(const fs::path& root, const fs::path& out, const fs::path& given,
+                        const std::string& option, OutputPlace place) {
+  const fs::path rel = out.lexically_relative(root);
+  const std::string first = rel.empty() ? "." : rel.begin()->string();
+  if (first == ".")
+    refuse(option, given, "is the capture folder " + root.string() + " itself; name a file outside it");
+  if (isOneOf(first, kManagedFolders))
+    refuse(option, given,
+           "is inside the capture's " + first + "/ folder (capture " + root.string() +
+               "), which only Surrogate's runs write and record; a file put there would make the "
+               "capture's record incomplete: choose a place outside the capture");
+  if (place == OutputPlace::OutsideCaptures)
+    refuse(option, given,
+           "is inside the capture " + root.string() +
+               ", where it would become part of the capture's record; choose a place outside it");
+  std::error_code ec;
+  if (!fs::is_regular_file(root / kCarrierPath, ec)) return;
+  carrier::Carrier c;
+  try {
+    c = carrier::loadCarrier(root / kCarrierPath);
+  } catch (const Error&) {
+    return;  // a damaged carrier is `run`'s and `pack`'s to report; the folders above still hold
+  }
+  const bool exists = fs::exists(out, ec);
+  for (const carrier::FileRecord& f : c.files) {
+    const fs::path recorded = (root / f.path).lexically_normal();
+    if (recorded == out || (exists && fs::equivalent(recorded, out, ec)))
+      refuse(option, given,
+             "is " + f.path + ", a file the carrier of capture " + root.string() + " records (" + f.role +
+                 "): Surrogate never writes over a recorded file; choose another name");
+  }
+}
+
+}  // namespace
+
+void checkOutputTarget(const fs::path& output, const std::string& option, ExistingOutput existing,
+                       OutputPlace place, const std::string& refuseHint) {
+  const std::string special = specialKind(output);
+  if (!special.empty() && special != "a folder")
+    refuse(option, output,
+           "is " + special + ", not a regular file; Surrogate writes only regular files and never "
+           "replaces or writes through anything else: choose a file name");
+  std::error_code ec;
+  if (special.empty() && existing == ExistingOutput::Refuse && fs::exists(output, ec))
+    refuse(option, output,
+           "already exists; Surrogate does not replace it" + (refuseHint.empty() ? "" : ": " + refuseHint));
+  // The folders above, as they are on disk (a link to a capture's folder is that folder).
+  fs::path out = fs::weakly_canonical(fs::absolute(output, ec), ec);
+  if (ec) out = fs::absolute(output, ec).lexically_normal();  // e.g. a file named as a folder
+  for (fs::path dir = out.parent_path();; dir = dir.parent_path()) {
+    const std::string name = dir.filename().string();
+    if (isOneOf(name, kOriginalFolders))
+      refuse(option, output,
+             "is inside a capture's " + name + "/ folder (" + dir.string() +
+                 "), which holds the untouched originals: Surrogate never writes there; choose a "
+                 "place outside the capture");
+    if (isCaptureFolder(dir)) checkInsideCapture(dir, out, output, option, place);
+    if (dir == dir.root_path() || dir.empty()) break;
+  }
+}
+
+}  // namespace surrogate::capture

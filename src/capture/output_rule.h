@@ -1,0 +1,47 @@
+// The one rule for every path a command writes (`run`'s captures aside, every `-o`): a
+// command never writes over a capture's evidence or its record, never into a device, and never
+// replaces a file it was not told it may replace.
+//
+//   capture::checkOutputTarget(*out, "-o", capture::ExistingOutput::Replace);
+//
+// Refused, each with Error(Usage) naming the option, the path and what to do:
+//   - a path inside a folder named original-captures/, raw-images/ or jpeg-exports/ (the
+//     untouched originals of a capture, whichever capture it is);
+//   - a path inside the folders Surrogate manages in a capture (assembly-files/,
+//     finished-files/, .surrogate/, superseded-files/), where an unrecorded file would make the
+//     capture's record incomplete; with OutputPlace::OutsideCaptures, anywhere in a capture;
+//   - a file that a capture's carrier records (an original, export, sidecar, prior work, the
+//     carrier itself), by path or as the same file under another name (a hard link);
+//   - anything at the path that is not a regular file: a symbolic link, a device such as
+//     /dev/full, a FIFO, a socket (replacing it would destroy it, or write through it);
+//   - with ExistingOutput::Refuse, an existing file at all (`pack` without --force).
+// The checks follow symbolic links in the folders above the path, so that a link to a
+// capture's folder is the folder. A capture is a folder holding assembly-files/carrier.xml or
+// one of the originals' folders.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+namespace surrogate::capture {
+
+// What may happen to a regular file already at the output path.
+enum class ExistingOutput {
+  Replace,  // documented: a render, report, fit or .lp written again over the last one
+  Refuse,   // `pack` without --force: a package is never replaced silently
+};
+
+// Where the output may lie with respect to captures.
+enum class OutputPlace {
+  OutsideManagedFolders,  // anywhere but the originals' and Surrogate's folders of a capture
+  OutsideCaptures,        // not inside any capture at all (a package would be bagged next time)
+};
+
+// Throws Error(Usage) when the rule above forbids writing `output`; `option` names the
+// command-line option in the message ("-o"); `refuseHint` is what to do about an existing
+// file under ExistingOutput::Refuse ("give --force to replace it").
+void checkOutputTarget(const std::filesystem::path& output, const std::string& option,
+                       ExistingOutput existing, OutputPlace place = OutputPlace::OutsideManagedFolders,
+                       const std::string& refuseHint = "");
+
+}  // namespace surrogate::capture
