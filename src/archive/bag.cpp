@@ -160,10 +160,14 @@ class Sink {
   virtual void close() = 0;
 };
 
-[[noreturn]] void throwWriteError(const fs::path& out, const std::string& why) {
-  throw Error(ErrorKind::Internal, out.string(), "packing",
-              "could not write the package (" + why +
-                  "); check free disk space and write permission, or choose another location");
+// A write the system refused (`error`, an errno) is the environment's: exit 1 with what to do
+// (core/atomic_file.h, writeError). Without an errno, the library failed on its own: a bug.
+[[noreturn]] void throwWriteError(const fs::path& out, int error, const std::string& why = "") {
+  if (error != 0) throw writeError(out, "packing", error);
+  throw Error(ErrorKind::Internal, out.string(), "packing", "could not write the package (" + why + ")");
+}
+[[noreturn]] void throwWriteError(const fs::path& out, const std::error_code& ec) {
+  throwWriteError(out, ec.value(), ec.message());
 }
 
 class DirectorySink : public Sink {
@@ -172,7 +176,7 @@ class DirectorySink : public Sink {
       : root_(std::move(root)), shown_(std::move(shownAs)), epoch_(epoch) {
     std::error_code ec;
     fs::create_directories(root_, ec);
-    if (ec) throwWriteError(shown_, ec.message());
+    if (ec) throwWriteError(shown_, ec);
   }
   ~DirectorySink() override {
     if (fd_ >= 0) ::close(fd_);
@@ -181,9 +185,9 @@ class DirectorySink : public Sink {
     current_ = root_ / fs::u8path(bagPath);
     std::error_code ec;
     fs::create_directories(current_.parent_path(), ec);
-    if (ec) throwWriteError(shown_, ec.message());
+    if (ec) throwWriteError(shown_, ec);
     fd_ = ::open(current_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
-    if (fd_ < 0) throwWriteError(shown_, std::strerror(errno));
+    if (fd_ < 0) throwWriteError(shown_, errno);
     ::fchmod(fd_, 0644);  // not subject to the umask
   }
   void write(const void* data, std::size_t size) override {
@@ -192,7 +196,7 @@ class DirectorySink : public Sink {
       const ssize_t n = ::write(fd_, p, size);
       if (n < 0) {
         if (errno == EINTR) continue;
-        throwWriteError(shown_, std::strerror(errno));
+        throwWriteError(shown_, errno);
       }
       p += n;
       size -= static_cast<std::size_t>(n);
@@ -203,7 +207,7 @@ class DirectorySink : public Sink {
     ::futimens(fd_, times);
     const int rc = ::close(fd_);  // flushed once for all files in close()
     fd_ = -1;
-    if (rc != 0) throwWriteError(shown_, std::strerror(errno));
+    if (rc != 0) throwWriteError(shown_, errno);
   }
   void close() override {
     // Folders: fixed permissions and time too (deepest first, so setting a time sticks).
@@ -222,11 +226,11 @@ class DirectorySink : public Sink {
     // Everything on disk before the folder gets its final name (one syncfs rather than an
     // fsync per file: same guarantee, far fewer flushes).
     const int fd = ::open(root_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (fd < 0) throwWriteError(shown_, std::strerror(errno));
+    if (fd < 0) throwWriteError(shown_, errno);
     const int rc = ::syncfs(fd);
     const int err = errno;
     ::close(fd);
-    if (rc != 0) throwWriteError(shown_, std::strerror(err));
+    if (rc != 0) throwWriteError(shown_, err);
   }
 
  private:
@@ -241,7 +245,7 @@ class ArchiveSink : public Sink {
               std::string topFolder, std::int64_t epoch)
       : shown_(shownAs), top_(std::move(topFolder)), epoch_(epoch) {
     a_ = archive_write_new();
-    if (!a_) throwWriteError(shown_, "libarchive could not start");
+    if (!a_) throwWriteError(shown_, 0, "libarchive could not start");
     int rc;
     if (format == BagFormat::Zip) {
       rc = archive_write_set_format_zip(a_);
@@ -298,7 +302,7 @@ class ArchiveSink : public Sink {
   [[noreturn]] void fail() {
     const char* why = a_ ? archive_error_string(a_) : nullptr;
     const int err = a_ ? archive_errno(a_) : 0;
-    throwWriteError(shown_, why ? why : (err ? std::strerror(err) : "libarchive error"));
+    throwWriteError(shown_, err, why ? why : "libarchive error");
   }
   ::archive* a_ = nullptr;
   ::archive_entry* entry_ = nullptr;

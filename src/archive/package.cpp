@@ -189,12 +189,11 @@ namespace {
 
 // Writes what `derive` hands its sink into `file` (created or truncated) as it comes: the METS
 // of 100 000 files is about 450 MB, whose result tree would take about 2 GB (mapping.h).
-// Returns what `derive` returns (false: the bytes are not the derivation; see deriveMetsTo).
-bool deriveInto(const fs::path& file, const std::function<bool(const mapping::TextSink&)>& derive) {
-  auto cannot = [&] {
-    throw Error(ErrorKind::Internal, file.string(), "packing",
-                std::string("cannot be written (") + std::strerror(errno) + ")");
-  };
+// Returns what `derive` returns (false: the bytes are not the derivation; see deriveMetsTo). A
+// failed write is reported as one of `package`, the name the user gave.
+bool deriveInto(const fs::path& file, const fs::path& package,
+                const std::function<bool(const mapping::TextSink&)>& derive) {
+  auto cannot = [&] { throw writeError(package, "packing", errno ? errno : EIO); };
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(file.c_str(), "wb"), &std::fclose);
   if (!f) cannot();
   const bool streamed = derive([&](const char* data, std::size_t n) {
@@ -224,12 +223,12 @@ PackResult packCapture(const fs::path& capture, const fs::path& out, const PackO
   // copies them; their bytes are deriveCrm's / deriveMets's (the fallback below).
   checkOutput(out, options.replace);
   const AtomicFile crmFile(out), metsFile(out);
-  if (!deriveInto(crmFile.tempPath(), [&](const mapping::TextSink& sink) {
+  if (!deriveInto(crmFile.tempPath(), out, [&](const mapping::TextSink& sink) {
         return mapping::deriveCrmTo(carrierXml, sink, carrierFile.string());
       })) {
     const std::string crm = mapping::deriveCrm(carrierXml, carrierFile.string());
     mapping::checkRdfWellFormed(crm, "metadata/crm.rdf");
-    (void)deriveInto(crmFile.tempPath(), [&](const mapping::TextSink& sink) {
+    (void)deriveInto(crmFile.tempPath(), out, [&](const mapping::TextSink& sink) {
       sink(crm.data(), crm.size());
       return true;
     });
@@ -256,7 +255,7 @@ PackResult packCapture(const fs::path& capture, const fs::path& out, const PackO
     for (const PayloadDigest& d : payload)
       facts.payload.push_back({d.bagPath, d.size, d.sha256, d.sha512});
     std::unique_ptr<mapping::MetsValidator> validator;
-    const bool streamed = deriveInto(metsFile.tempPath(), [&](const mapping::TextSink& sink) {
+    const bool streamed = deriveInto(metsFile.tempPath(), out, [&](const mapping::TextSink& sink) {
       validator = std::make_unique<mapping::MetsValidator>("metadata/mets.xml");
       // The file and the schema validator take the text on the other core while the
       // stylesheet makes it.
@@ -272,7 +271,7 @@ PackResult packCapture(const fs::path& capture, const fs::path& out, const PackO
     });
     if (!streamed) {
       const std::string mets = mapping::deriveMets(carrierXml, facts, carrierFile.string());
-      (void)deriveInto(metsFile.tempPath(), [&](const mapping::TextSink& sink) {
+      (void)deriveInto(metsFile.tempPath(), out, [&](const mapping::TextSink& sink) {
         validator = std::make_unique<mapping::MetsValidator>("metadata/mets.xml");
         sink(mets.data(), mets.size());
         validator->feed(mets.data(), mets.size());

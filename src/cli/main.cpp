@@ -6,6 +6,7 @@
 //   3 fixity failure (verify)
 //   4 not reproduced (verify --reexecute)
 //   5 internal error (a bug, or the environment: disk full, missing data files)
+#include <csignal>
 #include <exception>
 #include <iostream>
 #include <string>
@@ -79,6 +80,9 @@ int helpFor(const std::string& name) {
 
 int main(int argc, char** argv) {
   reuseFreedMemory();  // before any thread starts: see core/resident.h
+  // A file-size limit (ulimit -f) then fails the write with EFBIG, which the writer reports
+  // and cleans up after, instead of killing the process with no word (core/atomic_file.h).
+  std::signal(SIGXFSZ, SIG_IGN);
   if (argc >= 3 && std::string(argv[1]) == "help") return helpFor(argv[2]);
   if (argc < 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h" ||
       std::string(argv[1]) == "help") {

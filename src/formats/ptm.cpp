@@ -1,5 +1,6 @@
 #include "formats/ptm.h"
 
+#include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -242,13 +243,12 @@ void writePtm(const std::filesystem::path& path, const PtmFile& ptm) {
   validatePtm(ptm, path.string());
   AtomicFile file(path);
   {
+    errno = 0;  // what the failing write sets, if one fails
     std::ofstream out(file.tempPath(), std::ios::binary);
     writePtm(out, ptm, path.string());
     out.flush();
-    if (!out) {
-      throw Error(ErrorKind::Internal, path.string(), kWriteStep,
-                  "could not write the file; check free disk space and permissions");
-    }
+    if (out) out.close();
+    if (!out) throw writeError(path, kWriteStep, errno ? errno : EIO);
   }
   file.commit();
 }

@@ -1,5 +1,6 @@
 #include "formats/rti_hsh.h"
 
+#include <cerrno>
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -205,13 +206,12 @@ void writeRti(const std::filesystem::path& path, const HshFile& hsh) {
   validateHsh(hsh, path.string());
   AtomicFile file(path);
   {
+    errno = 0;  // what the failing write sets, if one fails
     std::ofstream out(file.tempPath(), std::ios::binary);
     writeRti(out, hsh, path.string());
     out.flush();
-    if (!out) {
-      throw Error(ErrorKind::Internal, path.string(), kWriteStep,
-                  "could not write the file; check free disk space and permissions");
-    }
+    if (out) out.close();
+    if (!out) throw writeError(path, kWriteStep, errno ? errno : EIO);
   }
   file.commit();
 }

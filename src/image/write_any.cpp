@@ -1,5 +1,6 @@
 #include "image/write_any.h"
 
+#include <cerrno>
 #include <tiffio.h>
 
 #include <algorithm>
@@ -79,9 +80,12 @@ void writeTiff(const Image& image, const fs::path& path) {
     throw Error(ErrorKind::Input, path.string(), kStep,
                 "cannot create the file (" + (libtiffError.empty() ? std::string("libtiff cannot open it") : libtiffError) +
                     "); check that its folder exists and can be written");
+  errno = 0;  // what a failing write(2) inside libtiff sets
   const bool rowsWritten = writeTiffRows(tif, image, image.bitsPerSample <= 8);
   const bool flushed = rowsWritten && TIFFFlush(tif) == 1;
+  const int writeErrno = errno;
   TIFFClose(tif);
+  if (!flushed && writeErrno != 0) throw writeError(path, kStep, writeErrno);
   if (!flushed)
     throw Error(ErrorKind::Input, path.string(), kStep,
                 "libtiff could not write the TIFF (" + (libtiffError.empty() ? std::string("no reason given") : libtiffError) +

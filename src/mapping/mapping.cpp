@@ -434,13 +434,14 @@ bool transformTo(const std::filesystem::path& stylesheet, const std::string& car
     std::exception_ptr failure;
   } target{&sink, nullptr};
   auto write = [](void* context, const char* data, int length) -> int {
+    // After a failure the rest is dropped rather than refused: libxml2 would print its own
+    // "I/O error" before the caller's message, which says what failed and what to do.
     auto* to = static_cast<Target*>(context);
-    if (to->failure) return -1;
+    if (to->failure) return length;
     try {
       (*to->sink)(data, static_cast<std::size_t>(length));
     } catch (...) {
       to->failure = std::current_exception();  // never across libxml2
-      return -1;
     }
     return length;
   };

@@ -431,7 +431,14 @@ std::vector<PublishedModel> publish(const fs::path& source, const fs::path& out,
   StagingFolder staging(out);
   std::vector<PublishedModel> published;
   for (const WebLayoutFiles& layout : layouts) {
-    writeLayout(layout, staging.path() / layout.model.folder);
+    try {
+      writeLayout(layout, staging.path() / layout.model.folder);
+    } catch (const Error& e) {
+      // Named as the user will look for it: OUT/..., not the hidden folder removed on the way out.
+      const fs::path inside = fs::path(e.file()).lexically_relative(staging.path());
+      if (e.file().empty() || inside.empty() || *inside.begin() == "..") throw;
+      throw Error(e.kind(), (out / inside).string(), e.step(), e.message());
+    }
     published.push_back(layout.model);
   }
   // Fault injection for the test of the cleanup (tests/publish/test_render_web_e2e.cpp): with

@@ -347,6 +347,11 @@ carrier::Carrier runCapture(const fs::path& captureArg, const RunRequest& reques
       carrier::saveCarrier(c, stagedCarrier);
       commitRun(capture, previous ? &*previous : nullptr, c);
     }
+    // A write that failed names the file the user knows (the capture's finished-files/...),
+    // not its staged copy in .surrogate/.
+    const fs::path failed = fs::path(e.file()).lexically_relative(staging);
+    if (!e.file().empty() && !failed.empty() && *failed.begin() != "..")
+      throw Error(e.kind(), (capture / failed).string(), e.step(), e.message());
     throw;
   }
   record.ended = carrier::timestampNow();
