@@ -43,7 +43,27 @@ struct GeneratorOptions {
   bool shadows = true;           // cast shadows of the relief and the spheres
   OutputFormats formats = OutputFormats::Both;
   int threads = 0;               // 0 = all cores; output is identical at any count
+
+  // Hard cases (docs/hrti-math.md, "Generated hard cases"). Each is off by default, and a
+  // capture made without them has the bytes it had before they existed.
+  bool reflections = false;      // a bright window and a dim room mirrored in every sphere, the
+                                 // same in every shot (a studio's window or softbox)
+  int dustSpecks = 0;            // bright specks of dust fixed on each sphere (0-100); lit by the
+                                 // flash, they brighten and darken with the light
+  double glare = 0;              // a lens glare streak through each highlight: its brightness next
+                                 // to the core, as a fraction of full scale (0 = none, up to 2)
+  int darkFrame = -1;            // this shot (0-based) exposed at kDarkExposure: a weak flash
+  int noFlashFrame = -1;         // this shot (0-based) lit by the room's ambient light alone
+  double lightConeDeg = 0;       // > 0: every light within this angle of one direction (a narrow
+                                 // cone of lights), instead of spread over the hemisphere
+  double lightConeElevationDeg = 90;  // that direction's elevation (90: the view axis); the cone
+                                      // must stay kMinConeElevationDeg above the horizon
 };
+
+// The dark frame's exposure, a fraction of the others' (GeneratorOptions::darkFrame).
+inline constexpr double kDarkExposure = 0.05;
+// The lowest elevation a narrow cone of lights may reach (GeneratorOptions::lightConeDeg).
+inline constexpr double kMinConeElevationDeg = 5;
 
 struct SphereTruth {
   double cx, cy, r;  // pixels, origin at the centre of the top-left pixel

@@ -28,6 +28,13 @@ std::string describe(const GeneratorOptions& o) {
     << o.spheres << "\nsphere-radius " << o.sphereRadius << "\nnoise " << o.noise
     << "\njpeg-quality " << o.jpegQuality << "\nseed " << o.seed << "\ntexture "
     << (o.strongTexture ? "strong" : "normal") << "\nshadows " << (o.shadows ? "yes" : "no") << "\n";
+  // The hard cases only when used: the file of a capture without them keeps its bytes.
+  if (o.reflections) s << "reflections yes\n";
+  if (o.dustSpecks > 0) s << "dust " << o.dustSpecks << "\n";
+  if (o.glare > 0) s << "glare " << o.glare << "\n";
+  if (o.darkFrame >= 0) s << "dark-frame " << o.darkFrame + 1 << "\n";
+  if (o.noFlashFrame >= 0) s << "no-flash-frame " << o.noFlashFrame + 1 << "\n";
+  if (o.lightConeDeg > 0) s << "light-cone " << o.lightConeDeg << "\nlight-cone-elevation " << o.lightConeElevationDeg << "\n";
   return s.str();
 }
 

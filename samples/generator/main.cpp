@@ -25,7 +25,19 @@ const char* kHelp =
     "  --texture normal|strong\n"
     "  --no-shadows         no cast shadows\n"
     "  --formats both|dng|jpeg\n"
-    "  --threads T          (default: all cores; output identical at any count)\n";
+    "  --threads T          (default: all cores; output identical at any count)\n\n"
+    "hard cases (each off by default; docs/hrti-math.md, \"Generated hard cases\"):\n"
+    "  --reflections        a bright window and a dim room mirrored in the sphere(s), the\n"
+    "                       same in every shot\n"
+    "  --dust N             N bright specks of dust fixed on each sphere (0-100), lit by the flash\n"
+    "  --glare G            a lens glare streak through each highlight, G of full scale next\n"
+    "                       to the core (0-2; 0.5 is a strong streak)\n"
+    "  --dark-frame N       shot N (IMG_000N, from 1) exposed at 5 % (a weak flash)\n"
+    "  --no-flash-frame N   shot N (from 1) lit by the room's ambient light alone\n"
+    "  --light-cone DEG     every light within DEG degrees of one direction (a narrow cone)\n"
+    "  --light-cone-elevation E\n"
+    "                       that direction's elevation in degrees (default 90, the view\n"
+    "                       axis); the cone must stay 5 degrees above the horizon\n";
 
 double number(const std::string& option, const char* text) {
   char* end = nullptr;
@@ -49,6 +61,10 @@ int main(int argc, char** argv) {
         o.shadows = false;
         continue;
       }
+      if (a == "--reflections") {
+        o.reflections = true;
+        continue;
+      }
       if (i + 1 >= argc) throw Error(ErrorKind::Usage, a, "command line", "needs a value (see --help)");
       const char* v = argv[++i];
       if (a == "--out") out = v;
@@ -61,6 +77,12 @@ int main(int argc, char** argv) {
       else if (a == "--jpeg-quality") o.jpegQuality = static_cast<int>(number(a, v));
       else if (a == "--seed") o.seed = static_cast<std::uint64_t>(number(a, v));
       else if (a == "--threads") o.threads = static_cast<int>(number(a, v));
+      else if (a == "--dust") o.dustSpecks = static_cast<int>(number(a, v));
+      else if (a == "--glare") o.glare = number(a, v);
+      else if (a == "--dark-frame") o.darkFrame = static_cast<int>(number(a, v)) - 1;  // IMG_000N is index N-1
+      else if (a == "--no-flash-frame") o.noFlashFrame = static_cast<int>(number(a, v)) - 1;
+      else if (a == "--light-cone") o.lightConeDeg = number(a, v);
+      else if (a == "--light-cone-elevation") o.lightConeElevationDeg = number(a, v);
       else if (a == "--texture") {
         if (std::string(v) != "normal" && std::string(v) != "strong")
           throw Error(ErrorKind::Usage, a, "command line", "is normal or strong");

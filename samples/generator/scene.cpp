@@ -21,6 +21,22 @@ double valueNoise(std::uint64_t seed, double x, double y, double cell) {
   return (a * (1 - sx) + b * sx) * (1 - sy) + (c * (1 - sx) + d * sx) * sy;
 }
 
+// The hard cases' scene (GeneratorOptions, docs/hrti-math.md "Generated hard cases").
+// The window: a bright rectangle with a cross of glazing bars, 30 degrees above the horizon on
+// the upper left, 36 x 24 degrees; mirrored where a light from there would put its highlight
+// (half-way to the view axis: 60 degrees of the sphere's elevation), so the highlights of the
+// lights from that side cross it.
+constexpr double kWindowElevationDeg = 30, kWindowAzimuthDeg = 120;
+constexpr double kWindowHalfWidth = 0.325, kWindowHalfHeight = 0.213;  // tan 18, tan 12 degrees
+constexpr double kWindowBarHalfWidth = 0.02;
+constexpr double kWindowRadiance = 0.9;  // 72 % of full scale after the exposure: bright, unclipped
+constexpr double kRoomRadiance = 0.03;   // the walls and floor, brighter towards the ceiling
+// Dust: specks of 0.5-1.5 px radius within 0.8 of the radius, lit mostly by the flash.
+constexpr double kDustAmbient = 0.1, kDustLit = 0.6;
+// Glare: a streak from the highlight, 0.6 r long (e-folding) on one side and 0.2 r on the other,
+// its width r / 60 (at least 0.8 px): the asymmetric smear of a real lens.
+constexpr double kGlareLong = 0.6, kGlareShort = 0.2, kGlareWidth = 1.0 / 60;
+
 double segmentDistance(double px, double py, double ax, double ay, double bx, double by) {
   const double vx = bx - ax, vy = by - ay;
   const double t = std::clamp(((px - ax) * vx + (py - ay) * vy) / (vx * vx + vy * vy), 0.0, 1.0);
@@ -83,6 +99,51 @@ Scene::Scene(const GeneratorOptions& o, const CaptureTruth& t) : o_(o), t_(t), w
       normal_[std::size_t(y) * w_ + x] = {static_cast<float>(nx / len), static_cast<float>(ny / len), static_cast<float>(nz / len)};
     }
   }
+  for (std::size_t k = 0; k < t.spheres.size(); ++k)
+    for (int d = 0; d < o.dustSpecks; ++d) {
+      const std::uint64_t hsh = hash3(o.seed, 303 + k, d);
+      const double along = 0.8 * t.spheres[k].r * std::sqrt(uniform(mix64(hsh))), angle = 2 * M_PI * uniform(mix64(hsh + 1));
+      specks_.push_back({t.spheres[k].cx + along * std::cos(angle), t.spheres[k].cy + along * std::sin(angle),
+                         0.5 + uniform(mix64(hsh + 2)), 0.5 + 0.5 * uniform(mix64(hsh + 3))});
+    }
+  const double we = kWindowElevationDeg * M_PI / 180, wa = kWindowAzimuthDeg * M_PI / 180;
+  window_ = {std::cos(we) * std::cos(wa), std::cos(we) * std::sin(wa), std::sin(we)};
+  windowU_ = {-std::sin(wa), std::cos(wa), 0};  // horizontal across the window
+  windowV_ = {-std::sin(we) * std::cos(wa), -std::sin(we) * std::sin(wa), std::cos(we)};  // up it
+  const double glareAngle = M_PI * uniform(hash3(o.seed, 404, 0));
+  glareCos_ = std::cos(glareAngle);
+  glareSin_ = std::sin(glareAngle);
+}
+
+double Scene::environment(double rx, double ry, double rz) const {
+  double v = kRoomRadiance * (1 + std::max(-1.0, std::min(1.0, ry))) / 2;
+  const double depth = rx * window_[0] + ry * window_[1] + rz * window_[2];
+  if (depth > 0) {
+    const double a = (rx * windowU_[0] + ry * windowU_[1] + rz * windowU_[2]) / depth;
+    const double b = (rx * windowV_[0] + ry * windowV_[1] + rz * windowV_[2]) / depth;
+    if (std::abs(a) < kWindowHalfWidth && std::abs(b) < kWindowHalfHeight && std::abs(a) > kWindowBarHalfWidth &&
+        std::abs(b) > kWindowBarHalfWidth)
+      v = kWindowRadiance;
+  }
+  return v;
+}
+
+double Scene::glare(int x, int y, const std::array<double, 3>& l) const {
+  double v = 0;
+  double hx = l[0], hy = l[1], hz = l[2] + 1;
+  const double hl = std::sqrt(hx * hx + hy * hy + hz * hz);
+  for (const SphereTruth& s : t_.spheres) {
+    const double px = s.cx + s.r * hx / hl, py = s.cy - s.r * hy / hl;  // the highlight (mirror point)
+    const double along = (x - px) * glareCos_ + (y - py) * glareSin_;
+    const double across = -(x - px) * glareSin_ + (y - py) * glareCos_;
+    const double width = std::max(0.8, kGlareWidth * s.r);
+    const double length = (along >= 0 ? kGlareLong : kGlareShort) * s.r;
+    if (std::abs(across) > 5 * width || std::abs(along) > 8 * length) continue;
+    // o_.glare is the streak's height at the highlight as a fraction of full scale, which is
+    // what the exposure makes of radiance o_.glare / kExposure.
+    v += o_.glare / kExposure * std::exp(-across * across / (2 * width * width)) * std::exp(-std::abs(along) / length);
+  }
+  return v;
 }
 
 bool Scene::shadowedByRelief(int x, int y, const std::array<double, 3>& l) const {
@@ -111,13 +172,24 @@ bool Scene::shadowedBySphere(double x, double y, double z, const std::array<doub
   return false;
 }
 
-bool Scene::sphereRadiance(double sx, double sy, const std::array<double, 3>& l, double* out) const {
+bool Scene::sphereRadiance(double sx, double sy, const std::array<double, 3>& l, bool flash, double* out) const {
   for (const SphereTruth& s : t_.spheres) {
     const double nx = (sx - s.cx) / s.r, ny = -(sy - s.cy) / s.r;
     const double d2 = nx * nx + ny * ny;
     if (d2 >= 1) continue;
     const double nz = std::sqrt(1 - d2);
     const double ndotl = nx * l[0] + ny * l[1] + nz * l[2];
+    for (const Speck& d : specks_)
+      if (std::hypot(sx - d.x, sy - d.y) < d.radius) {
+        *out = d.brightness * (kDustAmbient + (flash ? kDustLit * std::max(0.0, ndotl) : 0.0));
+        return true;
+      }
+    // The room mirrored (reflections): the direction the camera sees reflected, 2 (N.V) N - V.
+    const double room = o_.reflections ? environment(2 * nz * nx, 2 * nz * ny, 2 * nz * nz - 1) : 0.0;
+    if (!flash) {
+      *out = 0.004 + room;
+      return true;
+    }
     // Blinn-Phong around the half vector H = normalize(L + V): peak exactly at the mirror point.
     double hx = l[0], hy = l[1], hz = l[2] + 1;
     const double hl = std::sqrt(hx * hx + hy * hy + hz * hz);
@@ -125,12 +197,13 @@ bool Scene::sphereRadiance(double sx, double sy, const std::array<double, 3>& l,
     const double ndoth = std::max(0.0, nx * hx + ny * hy + nz * hz);
     const double spec = ndotl > 0 ? 6.0 * std::pow(ndoth, 600.0) : 0.0;
     *out = 0.02 * std::max(0.0, ndotl) + 0.004 + spec;
+    if (o_.reflections) *out += room;
     return true;
   }
   return false;
 }
 
-std::array<double, 3> Scene::radiance(int x, int y, const std::array<double, 3>& l) const {
+std::array<double, 3> Scene::radiance(int x, int y, const std::array<double, 3>& l, bool flash) const {
   // Pixels near a sphere's outline are supersampled (4x4) so the edge and the highlight are
   // anti-aliased: detection must then find centres to sub-pixel accuracy.
   bool nearSphere = false;
@@ -140,19 +213,25 @@ std::array<double, 3> Scene::radiance(int x, int y, const std::array<double, 3>&
   const auto& n = normal_[i];
   const auto& a = albedo_[i];
   auto surface = [&]() {
-    double lambert = std::max(0.0, n[0] * l[0] + n[1] * l[1] + n[2] * l[2]);
+    double lambert = flash ? std::max(0.0, n[0] * l[0] + n[1] * l[1] + n[2] * l[2]) : 0.0;
     if (o_.shadows && lambert > 0 && (shadowedByRelief(x, y, l) || shadowedBySphere(x, y, height(x, y), l)))
       lambert = 0;
     const double e = 0.85 * lambert + 0.03;
     return std::array<double, 3>{a[0] * e, a[1] * e, a[2] * e};
   };
-  if (!nearSphere) return surface();
+  const double streak = flash && o_.glare > 0 ? glare(x, y, l) : 0.0;
+  if (!nearSphere) {
+    std::array<double, 3> v = surface();
+    if (streak > 0)
+      for (double& c : v) c += streak;
+    return v;
+  }
   const std::array<double, 3> ground = surface();
   std::array<double, 3> sum{0, 0, 0};
   for (int sy = 0; sy < 4; ++sy) {
     for (int sx = 0; sx < 4; ++sx) {
       double v;
-      if (sphereRadiance(x + (sx + 0.5) / 4 - 0.5, y + (sy + 0.5) / 4 - 0.5, l, &v)) {
+      if (sphereRadiance(x + (sx + 0.5) / 4 - 0.5, y + (sy + 0.5) / 4 - 0.5, l, flash, &v)) {
         for (double& c : sum) c += v;
       } else {
         for (int c = 0; c < 3; ++c) sum[c] += ground[c];
@@ -160,6 +239,8 @@ std::array<double, 3> Scene::radiance(int x, int y, const std::array<double, 3>&
     }
   }
   for (double& c : sum) c /= 16;
+  if (streak > 0)
+    for (double& c : sum) c += streak;
   return sum;
 }
 

@@ -8,18 +8,31 @@
 
 namespace surrogate::generator {
 
+// The exposure of a shot: a white surface facing the light at 80 % of full scale.
+inline constexpr double kExposure = 0.8;
+
 class Scene {
  public:
   Scene(const GeneratorOptions& options, const CaptureTruth& truth);
-  // Linear radiance (0..~1, highlights above 1) of pixel (x, y) under light L.
-  std::array<double, 3> radiance(int x, int y, const std::array<double, 3>& light) const;
+  // Linear radiance (0..~1, highlights above 1) of pixel (x, y) under light L; without the
+  // flash (`flash` false), under the room's ambient light alone.
+  std::array<double, 3> radiance(int x, int y, const std::array<double, 3>& light, bool flash = true) const;
 
  private:
   double height(int x, int y) const { return height_[std::size_t(y) * w_ + x]; }
   bool shadowedByRelief(int x, int y, const std::array<double, 3>& l) const;
   bool shadowedBySphere(double x, double y, double z, const std::array<double, 3>& l) const;
   // Sphere contribution at sub-pixel (sx, sy); false if the point is not on a sphere.
-  bool sphereRadiance(double sx, double sy, const std::array<double, 3>& l, double* out) const;
+  bool sphereRadiance(double sx, double sy, const std::array<double, 3>& l, bool flash, double* out) const;
+  // The room (a bright window, dim walls) seen in direction r, mirrored by a sphere.
+  double environment(double rx, double ry, double rz) const;
+  // The lens glare streaks of the highlights at pixel (x, y).
+  double glare(int x, int y, const std::array<double, 3>& l) const;
+
+  struct Speck { double x, y, radius, brightness; };  // pixels; brightness before the light
+  std::vector<Speck> specks_;
+  std::array<double, 3> window_{}, windowU_{}, windowV_{};  // the window's direction and its axes
+  double glareCos_ = 1, glareSin_ = 0;                      // the streaks' direction in the image
 
   const GeneratorOptions& o_;
   const CaptureTruth& t_;

@@ -119,3 +119,44 @@ TEST_CASE("the highlight in a rendered shot is at the mirror point the truth giv
     CHECK(std::hypot(sx / sw - ex, sy / sw - ey) < 0.5);
   }
 }
+
+TEST_CASE("the generator's hard cases are deterministic at any thread count, and change the shots they name") {
+  generator::GeneratorOptions a = small(), b = small();
+  for (generator::GeneratorOptions* o : {&a, &b}) {
+    o->reflections = true;
+    o->dustSpecks = 5;
+    o->glare = 0.5;
+    o->darkFrame = 1;
+    o->noFlashFrame = 2;
+    o->lightConeDeg = 20;
+    o->lightConeElevationDeg = 60;
+  }
+  a.threads = 1;
+  b.threads = 2;
+  const fs::path da = freshDir("hard-a"), db = freshDir("hard-b");
+  generator::writeCapture(a, da);
+  generator::writeCapture(b, db);
+  CHECK(hashes(da) == hashes(db));
+  fs::remove_all(da);
+  fs::remove_all(db);
+  // Every light within the cone of 20 degrees around elevation 60: elevations from 40 to 80.
+  const generator::CaptureTruth t = generator::planCapture(a);
+  for (const auto& l : t.lights) {
+    const double elevation = std::asin(l[2]) * 180 / M_PI;
+    CHECK(elevation >= 40 - 1e-9);
+    CHECK(elevation <= 80 + 1e-9);
+  }
+  // The dark frame at 5 % of the plain shot's signal; the shot without flash far darker still.
+  const generator::GeneratorOptions plain = [&] { auto o = a; o.darkFrame = o.noFlashFrame = -1; return o; }();
+  double dark = 0, lit = 0, unlit = 0, lit2 = 0;
+  const Image d = generator::renderShot(a, t, 1), p = generator::renderShot(plain, t, 1);
+  const Image n = generator::renderShot(a, t, 2), p2 = generator::renderShot(plain, t, 2);
+  for (std::size_t i = 0; i < d.pixels.size(); ++i) {
+    dark += d.pixels[i];
+    lit += p.pixels[i];
+    unlit += n.pixels[i];
+    lit2 += p2.pixels[i];
+  }
+  CHECK(dark / lit == Approx(generator::kDarkExposure).margin(0.01));
+  CHECK(unlit / lit2 < 0.1);
+}

@@ -1,0 +1,144 @@
+// The light front end and the fit on the generator's hard captures (samples/generator:
+// --dark-frame, --no-flash-frame, --light-cone), run as a user runs them. The lights are
+// compared with the generator's truth (angle between directions, median / max over the
+// images); docs/hrti-math.md, "Generated hard cases", has the table.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "e2e_support.h"
+
+namespace fs = std::filesystem;
+using Direction = std::array<double, 3>;
+
+namespace {
+
+// The scene of tests/hrti/test_detection.cpp (480x360, a sphere of radius 60, 12 shots, seed
+// 5) as JPEG exports, with `hard` options; the truth is moved beside the capture.
+fs::path generated(const std::string& name, const std::string& hard) {
+  const fs::path capture = e2e::freshDir(name) / "capture";
+  const auto r = e2e::runShell(std::string(GENERATOR_EXE) + " --out " + e2e::quote(capture) +
+                               " --images 12 --width 480 --height 360 --sphere-radius 60 --seed 5 --formats jpeg " +
+                               hard);
+  INFO(r.output);
+  REQUIRE(r.exitCode == 0);
+  fs::rename(capture / "truth", capture.parent_path() / "truth");
+  return capture;
+}
+
+std::vector<Direction> lpLights(const fs::path& lp) {
+  std::ifstream in(lp);
+  int n = 0;
+  in >> n;
+  std::vector<Direction> out(n);
+  std::string name;
+  for (Direction& d : out) in >> name >> d[0] >> d[1] >> d[2];
+  return out;
+}
+
+struct Errors {
+  double median = 0, max = 0;
+};
+
+// The lights against the truth's, the truth's shot `skipped` (0-based) left out.
+Errors compare(const std::vector<Direction>& got, std::vector<Direction> truth, int skipped = -1) {
+  if (skipped >= 0) truth.erase(truth.begin() + skipped);
+  REQUIRE(got.size() == truth.size());
+  std::vector<double> e;
+  for (std::size_t i = 0; i < got.size(); ++i) {
+    const Direction &a = got[i], &b = truth[i];
+    e.push_back(std::acos(std::clamp(a[0] * b[0] + a[1] * b[1] + a[2] * b[2], -1.0, 1.0)) * 180 / M_PI);
+  }
+  std::sort(e.begin(), e.end());
+  return {e[(e.size() - 1) / 2], e.back()};
+}
+
+std::size_t count(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("a frame without flash has no highlight: the lights stop, naming the --exclude command") {
+  const fs::path capture = generated("no-flash", "--no-flash-frame 7");
+  const fs::path lp = capture.parent_path() / "lights.lp";
+  const auto r = e2e::surrogate("lights " + e2e::quote(capture) + " -o " + e2e::quote(lp) + " --quiet");
+  INFO(r.output);
+  CHECK(r.exitCode == 1);
+  CHECK(r.output.find("IMG_0007.jpg (none:") != std::string::npos);
+  CHECK(r.output.find("--exclude IMG_0007 --reason") != std::string::npos);
+  CHECK(count(r.output, "IMG_00") == count(r.output, "IMG_0007"));  // only that frame is named
+  CHECK_FALSE(fs::exists(lp));
+
+  const auto excluded = e2e::surrogate("lights " + e2e::quote(capture) + " -o " + e2e::quote(lp) +
+                                       " --quiet --exclude IMG_0007 --reason \"the flash did not fire\"");
+  INFO(excluded.output);
+  REQUIRE(excluded.exitCode == 0);
+  const Errors e = compare(lpLights(lp), lpLights(capture.parent_path() / "truth/lights.lp"), 6);
+  INFO("median " << e.median << " max " << e.max);
+  CHECK(e.median <= 0.4);  // measured 0.22 / 0.30 deg (the plain capture's exports: 0.18 / 0.29)
+  CHECK(e.max <= 0.8);
+}
+
+// The check should name a frame at 5 % exposure; it does not (tagged to fail until it does).
+// The check compares encoded values: the frame's highlight peaks at 52 % of the others'
+// (the limit is 50 %) and its mean at about 0.3 of its neighbours' (the limit 0.2), so a frame
+// 4.3 stops under the others passes, and no fit check names it either (docs/hrti-math.md,
+// "Generated hard cases").
+TEST_CASE("a dark frame (5 % exposure) is named by exposure-outlier before the lights are used", "[!shouldfail]") {
+  const fs::path capture = generated("dark", "--dark-frame 5");
+  const fs::path lp = capture.parent_path() / "lights.lp";
+  const auto r = e2e::surrogate("lights " + e2e::quote(capture) + " -o " + e2e::quote(lp) + " --quiet");
+  INFO(r.output);
+  CHECK(r.exitCode == 1);
+  CHECK(r.output.find("exposure-outlier") != std::string::npos);
+  CHECK(r.output.find("--exclude IMG_0005 --reason") != std::string::npos);
+}
+
+TEST_CASE("a dark frame (5 % exposure) left out with --exclude: the other lights within 0.4 / 0.8 deg") {
+  const fs::path capture = generated("dark-excluded", "--dark-frame 5");
+  const fs::path lp = capture.parent_path() / "lights.lp";
+  const auto r = e2e::surrogate("lights " + e2e::quote(capture) + " -o " + e2e::quote(lp) +
+                                " --quiet --exclude IMG_0005 --reason \"the flash was weak\"");
+  INFO(r.output);
+  REQUIRE(r.exitCode == 0);
+  const Errors e = compare(lpLights(lp), lpLights(capture.parent_path() / "truth/lights.lp"), 4);
+  INFO("median " << e.median << " max " << e.max);
+  CHECK(e.median <= 0.4);  // measured 0.20 / 0.28 deg
+  CHECK(e.max <= 0.8);
+}
+
+TEST_CASE("lights within 25 degrees of the view axis: hsh3 damped on the record, ptm-lrgb not") {
+  const fs::path capture = generated("cone", "--light-cone 25");
+  const auto r = e2e::surrogate("run " + e2e::quote(capture) + " --basis ptm-lrgb --basis hsh3 --no-report --quiet");
+  INFO(r.output);
+  REQUIRE(r.exitCode == 0);
+  // The circle comes out 0.9 px off and 0.8 px too large (the same on the linear shots, on
+  // which the spread lights give 0.02 px): every light is off by about as much, 1.76 / 2.14 deg
+  // measured (docs/hrti-math.md, "Generated hard cases").
+  const Errors e = compare(lpLights(capture / "assembly-files/lights.lp"),
+                           lpLights(capture.parent_path() / "truth/lights.lp"));
+  INFO("median " << e.median << " max " << e.max);
+  CHECK(e.median <= 2.5);
+  CHECK(e.max <= 3.0);
+
+  const std::string carrier = e2e::bytesOf(capture / "assembly-files/carrier.xml");
+  // The lights are 23 degrees apart (median), far from clustered (under 3).
+  CHECK(carrier.find("name=\"lights-clustered\" status=\"passed\"") != std::string::npos);
+  // HSH order 3 cannot keep its five order-3 terms at these lights (noise gain about 840, limit
+  // 16): they are damped toward order 2, recorded once, for hsh3 only; the PTM (gain 4-18 for
+  // such cones, docs/hrti-math.md) stays plain least squares and records nothing.
+  CHECK(count(carrier, "name=\"dampedTerms\" value=\"4 5 6 7 8\"") == 1);
+  CHECK(count(carrier, "name=\"regularisation\"") == 1);
+  CHECK(count(carrier, "too narrow a cone for all the terms of hsh3") == 1);
+  CHECK(count(carrier, "too narrow a cone for all the terms of ptm-lrgb") == 0);
+  CHECK(r.output.find("too narrow a cone for all the terms of hsh3") != std::string::npos);
+}
