@@ -46,7 +46,10 @@ struct LightCheckLimits {
   static constexpr double kHorizonMarginDeg = 2;
   static constexpr double kMaxDisagreementDeg = 15;
   static constexpr double kMinSpreadDeg = 3;
-  static constexpr double kDarkRatio = 0.2, kBrightRatio = 5;
+  // exposure-outlier, in linear light (LightCheckInput): a frame's mean against its three
+  // nearest-lit neighbours' (the real light probes' frames range from 0.25 to 2.5 of theirs,
+  // raking lights darkening a frame legitimately), its highlight's peak against the median peak.
+  static constexpr double kDarkRatio = 0.1, kBrightRatio = 10;
   static constexpr double kPeakRatio = 0.5;
   static constexpr int kNeighbours = 3;
   // residual-outlier: an image the fitted model misses by more than three times the median
@@ -59,6 +62,7 @@ struct LightCheckInput {
   std::vector<DetectedSphere> spheres;
   // [image][sphere]: the direction that sphere gives for that image, when its highlight is usable
   std::vector<std::vector<std::optional<std::array<double, 3>>>> perSphere;
+  // Exposures, in linear light (an sRGB value decoded): what exposure-outlier compares.
   std::vector<double> imageMeans;  // per image, 0..1; empty: not compared
   std::vector<double> highlightPeaks;  // per image, 0..1, the brightest usable highlight; 0 none
   std::vector<std::string> names;  // per image, as the user names it (the shot)

@@ -182,6 +182,10 @@ std::vector<Candidate> hough(const Gradients& g, cv::Rect area, const std::vecto
   return all;
 }
 
+// How far (pixels, or a share of the radius when more) an edge point may lie from the fitted
+// circle and count as the rim.
+constexpr double kRimTolerance = 1.0, kRimToleranceShare = 0.01;
+
 // Sub-pixel edge points along rays from the centre, and the circle through them.
 DetectedSphere refine(const StackMedian& median, Candidate start, double margin) {
   DetectedSphere out{start.x, start.y, start.r, 0};
@@ -247,7 +251,13 @@ DetectedSphere refine(const StackMedian& median, Candidate start, double margin)
     out.cx = fit.cx;
     out.cy = fit.cy;
     out.r = fit.r;
-    out.confidence = double(fit.inliers) / kRays;
+    // The share of all rays whose edge lies on the circle, within a pixel (more for a large
+    // circle, whose rim is blurred over more pixels): the fit's own inliers are judged against
+    // the spread of the points, which on texture grows until every ray is an inlier.
+    const double onRim = std::max(kRimTolerance, kRimToleranceShare * fit.r);
+    int onCircle = 0;
+    for (const Point2& q : strong) onCircle += std::abs(std::hypot(q.x - fit.cx, q.y - fit.cy) - fit.r) <= onRim;
+    out.confidence = double(onCircle) / kRays;
     margin = std::max(3.0, margin / 3);
   }
   return out;
@@ -459,9 +469,16 @@ std::vector<DetectedSphere> detectSpheres(const Image& median, const SphereDetec
 }
 
 std::vector<DetectedSphere> detectSpheres(const StackMedian& median, const SphereDetectionOptions& o) {
+  return detectSpheres(median, median, o);
+}
+
+std::vector<DetectedSphere> detectSpheres(const StackMedian& median, const StackMedian& rim,
+                                          const SphereDetectionOptions& o) {
+  if (rim.factor() != median.factor() || rim.width() != median.width() || rim.height() != median.height())
+    throw Error(ErrorKind::Internal, "", kStep, "the rim's stack quantile and the median differ in size");
   if (median.factor() != StackMedian::factorFor(median.width(), o.coarseWidth))
     throw Error(ErrorKind::Internal, "", kStep, "the median was reduced for another coarse width");
-  const cv::Mat coarse = toFloat(median.coarse());
+  const cv::Mat coarse = toFloat(rim.coarse());
   double maxValue = 0;
   cv::minMaxLoc(coarse, nullptr, &maxValue);
   const double scale = median.factor();
@@ -487,7 +504,7 @@ std::vector<DetectedSphere> detectSpheres(const StackMedian& median, const Spher
     std::vector<Checked> passed;
     for (const Candidate& c : candidates) {
       const Candidate f = toFull(c);
-      DetectedSphere s = refine(median, f, 3 * scale * c.level + 4);
+      DetectedSphere s = refine(rim, f, 3 * scale * c.level + 4);
       if (!(s.r >= 3)) continue;
       if (s.confidence < o.minConfidence) {
         if (tried.size() < 3) tried.push_back(circleText(s) + " (rim " + fixedDecimals(s.confidence, 2) + ")");
@@ -545,7 +562,7 @@ std::vector<DetectedSphere> detectSpheres(const StackMedian& median, const Spher
     std::string seen;
     for (const std::string& t : tried) seen += (seen.empty() ? "" : "; ") + t;
     throw Error(ErrorKind::Input, "", kStep,
-                std::string("no sphere was found: no circle in the median image has both a clean rim and a "
+                std::string("no sphere was found: no circle in the photographs has both a clean rim and a "
                             "highlight that moves from image to image") +
                     (seen.empty() ? "" : " (the strongest circles, as CX,CY,R: " + seen + ")") +
                     ". If the capture has a sphere, restrict the search to it with --sphere-roi X,Y,W,H (repeat for "

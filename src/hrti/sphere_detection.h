@@ -25,7 +25,8 @@
 // octave of radius) is kept only if
 //   - confidence >= minConfidence: the fraction of 360 rays from the centre whose strongest
 //     outward edge is strong (above a quarter of the median edge strength) and lies on the
-//     fitted circle (an inlier of the fit): a whole, clean rim scores near 1;
+//     fitted circle (within a pixel, or 1 % of the radius when more): a whole, clean rim scores
+//     near 1, texture around a circle does not;
 //   - evidence >= 0.5: the share of the images in which detectHighlight (against the stack's
 //     median, hrti/highlight_detection.h) finds a usable highlight within 0.75 of the radius,
 //     provided those highlights do not all sit within 5 % of the radius of each other (a
@@ -79,6 +80,15 @@ struct SphereDetectionOptions {
 // Throws Error(Input) when no sphere is found, suggesting --sphere-roi or --sphere. The median
 // must have been reduced for options.coarseWidth.
 std::vector<DetectedSphere> detectSpheres(const StackMedian& median, const SphereDetectionOptions& options);
+// The same, the circles searched and their rims fitted in `rim`, an upper quantile of the same
+// stack (kRimQuantile): the backdrop as lit in most photographs and the cast shadows, which move,
+// left out. In the lower median a backdrop lit in half the photographs can come out dark
+// around a black sphere (one darkened frame of LightProbe-1 hid its rim from every circle), and
+// a sphere's own shadows can outline a larger circle (a generated capture's sphere of radius 45
+// was taken as one of 59). The highlights are still judged against the median.
+inline constexpr double kRimQuantile = 0.75;
+std::vector<DetectedSphere> detectSpheres(const StackMedian& median, const StackMedian& rim,
+                                          const SphereDetectionOptions& options);
 // The same on one image taken as the median (tests on drawn images).
 std::vector<DetectedSphere> detectSpheres(const Image& median, const SphereDetectionOptions& options);
 

@@ -25,11 +25,11 @@ constexpr const char* kStep = "median";
 // Full-resolution rows one thread reads at once when reducing an image that is not in memory.
 constexpr std::size_t kReadBytes = std::size_t(1) << 20;
 
-// The lower middle of the samples (the middle one for an odd count); reorders them.
-std::uint16_t lowerMedian(std::vector<std::uint16_t>& samples) {
-  const auto mid = samples.begin() + (samples.size() - 1) / 2;
-  std::nth_element(samples.begin(), mid, samples.end());
-  return *mid;
+// The sample of rank `rank` (0: the smallest); reorders them.
+std::uint16_t ranked(std::vector<std::uint16_t>& samples, int rank) {
+  const auto at = samples.begin() + rank;
+  std::nth_element(samples.begin(), at, samples.end());
+  return *at;
 }
 
 using CompareExchanges = std::vector<std::pair<int, int>>;
@@ -57,13 +57,13 @@ CompareExchanges mergeExchangeSort(int n) {
 }
 
 #if defined(__x86_64__) && defined(__GNUC__)
-// The lower medians of pixels [b, e) sixteen at a time (the 16-bit samples of one pixel in
-// one lane of n registers, sorted by `sort`); returns the first pixel left for the caller.
-// The median is exact, so this gives what nth_element gives; in a `perf` profile of `surrogate
+// The samples of rank `rank` of pixels [b, e) sixteen at a time (the 16-bit samples of one
+// pixel in one lane of n registers, sorted by `sort`); returns the first pixel left for the
+// caller. The sort is exact, so this gives what nth_element gives; in a `perf` profile of `surrogate
 // lights` on 36 x 3000x2000 the medians went from 4.3 to 0.5 % of the samples.
-__attribute__((target("avx2"))) std::size_t lowerMediansAvx2(const std::uint16_t* planes, int n, std::size_t plane,
-                                                             std::size_t b, std::size_t e,
-                                                             const CompareExchanges& sort, std::uint16_t* out) {
+__attribute__((target("avx2"))) std::size_t rankedAvx2(const std::uint16_t* planes, int n, int rank, std::size_t plane,
+                                                       std::size_t b, std::size_t e, const CompareExchanges& sort,
+                                                       std::uint16_t* out) {
   // The n registers' worth in memory of their alignment (a std::vector drops it).
   const std::unique_ptr<void, void (*)(void*)> block(std::aligned_alloc(32, sizeof(__m256i) * n), std::free);
   if (!block) throw std::bad_alloc();
@@ -77,14 +77,15 @@ __attribute__((target("avx2"))) std::size_t lowerMediansAvx2(const std::uint16_t
       v[j] = _mm256_max_epu16(v[i], v[j]);
       v[i] = low;
     }
-    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + p), v[(n - 1) / 2]);
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + p), v[rank]);
   }
   return p;
 }
 #endif
 
-// out[p] = the lower median of planes[i * plane + p] over the n planes, for every p < plane.
-void mediansOfPlanes(const std::uint16_t* planes, int n, std::size_t plane, int threads, std::uint16_t* out) {
+// out[p] = the sample of rank `rank` of planes[i * plane + p] over the n planes, for every
+// p < plane.
+void rankedOfPlanes(const std::uint16_t* planes, int n, int rank, std::size_t plane, int threads, std::uint16_t* out) {
 #if defined(__x86_64__) && defined(__GNUC__)
   const bool avx2 = cpuHasAvx2() && n > 1;
 #else
@@ -94,12 +95,12 @@ void mediansOfPlanes(const std::uint16_t* planes, int n, std::size_t plane, int 
   parallelFor(plane, 4096, effectiveThreads(threads), [&](std::size_t b, std::size_t e) {
     std::size_t p = b;
 #if defined(__x86_64__) && defined(__GNUC__)
-    if (avx2) p = lowerMediansAvx2(planes, n, plane, b, e, sort, out);
+    if (avx2) p = rankedAvx2(planes, n, rank, plane, b, e, sort, out);
 #endif
     std::vector<std::uint16_t> samples(n);
     for (; p < e; ++p) {
       for (int i = 0; i < n; ++i) samples[i] = planes[i * plane + p];
-      out[p] = lowerMedian(samples);
+      out[p] = ranked(samples, rank);
     }
   });
 }
@@ -142,17 +143,25 @@ int StackMedian::factorFor(int width, int coarseWidth) {
 }
 
 StackMedian::StackMedian(std::shared_ptr<const ImageStack> luminance, int coarseWidth, int threads,
-                         std::size_t coarseBudget)
-    : StackMedian(luminance, luminance.get(), coarseWidth, threads, coarseBudget) {}
+                         std::size_t coarseBudget, double quantile)
+    : StackMedian(luminance, luminance.get(), coarseWidth, threads, coarseBudget, quantile) {}
 
-StackMedian::StackMedian(const ImageStack& luminance, int coarseWidth, int threads, std::size_t coarseBudget)
-    : StackMedian(nullptr, &luminance, coarseWidth, threads, coarseBudget) {}
+StackMedian::StackMedian(const ImageStack& luminance, int coarseWidth, int threads, std::size_t coarseBudget,
+                         double quantile)
+    : StackMedian(nullptr, &luminance, coarseWidth, threads, coarseBudget, quantile) {}
+
+int StackMedian::rankFor(int n, double quantile) {
+  if (!(quantile >= 0 && quantile <= 1))
+    throw Error(ErrorKind::Internal, "", kStep, "a quantile of a stack must lie between 0 and 1");
+  return std::clamp(static_cast<int>(std::floor(quantile * (n - 1))), 0, std::max(0, n - 1));
+}
 
 StackMedian::StackMedian(std::shared_ptr<const ImageStack> owner, const ImageStack* luminance, int coarseWidth,
-                         int threads, std::size_t coarseBudget)
+                         int threads, std::size_t coarseBudget, double quantile)
     : owner_(std::move(owner)),
       stack_(checked(luminance)),
       threads_(threads),
+      rank_(rankFor(stack_.size(), quantile)),
       factor_(factorFor(stack_.width(), coarseWidth)),
       tilesX_((stack_.width() + kTile - 1) / kTile),
       tilesY_((stack_.height() + kTile - 1) / kTile),
@@ -194,7 +203,7 @@ void StackMedian::computeCoarse(std::size_t coarseBudget) {
         for (std::size_t p = 0; p < plane; ++p) sums[i] += out[p];
       }
     });
-    mediansOfPlanes(reduced.data(), n, plane, threads_, &coarse_.pixels[std::size_t(cy0) * cw]);
+    rankedOfPlanes(reduced.data(), n, rank_, plane, threads_, &coarse_.pixels[std::size_t(cy0) * cw]);
   }
   imageMeans_.resize(n);
   for (int i = 0; i < n; ++i) imageMeans_[i] = double(sums[i]) / (double(cw) * ch) / 65535.0;
@@ -212,7 +221,7 @@ void StackMedian::computeTiles(int tileRow, int firstTile, int lastTile) const {
     for (std::size_t i = b; i < e; ++i) stack_.readWindow(static_cast<int>(i), x0, y0, x1, y1, &band[i * plane]);
   });
   std::vector<std::uint16_t> medians(plane);
-  mediansOfPlanes(band.data(), n, plane, threads_, medians.data());
+  rankedOfPlanes(band.data(), n, rank_, plane, threads_, medians.data());
   for (int tx = firstTile; tx <= lastTile; ++tx) {
     std::vector<std::uint16_t>& tile = tiles_[std::size_t(tileRow) * tilesX_ + tx];
     if (!tile.empty()) continue;

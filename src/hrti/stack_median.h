@@ -1,4 +1,4 @@
-// Per-pixel median of an image stack (docs/hrti-math.md, "Spheres in the median image"), at the
+// Per-pixel median of an image stack (docs/hrti-math.md, "Spheres in the stack's median and upper quartile"), at the
 // two resolutions sphere detection needs and no more.
 //
 // Shadows and highlights move from image to image; the spheres do not. The median over the
@@ -18,7 +18,9 @@
 //
 // For an even count the median is the lower of the two middle values (no averaging: a window's
 // value is one of the measured values, exactly reproducible). Results are identical at any
-// thread count.
+// thread count. Given a quantile q, the same is made of the sample of rank floor(q (n - 1))
+// instead (0.5: the lower median); sphere detection's rim uses an upper quantile
+// (hrti/sphere_detection.h).
 //
 //   StackMedian m(luminance, 800, threads);     // coarse() about 800 pixels wide
 //   Image around = m.window({x, y, 300, 300});  // full-resolution median there
@@ -48,9 +50,12 @@ class StackMedian {
 
   // A one-channel, non-empty stack; kept (shared) for the full-resolution windows.
   StackMedian(std::shared_ptr<const ImageStack> luminance, int coarseWidth, int threads,
-              std::size_t coarseBudget = kCoarseBudget);
+              std::size_t coarseBudget = kCoarseBudget, double quantile = 0.5);
   // The same over a stack the caller keeps alive as long as this median.
-  StackMedian(const ImageStack& luminance, int coarseWidth, int threads, std::size_t coarseBudget = kCoarseBudget);
+  StackMedian(const ImageStack& luminance, int coarseWidth, int threads, std::size_t coarseBudget = kCoarseBudget,
+              double quantile = 0.5);
+  // The rank (0: the smallest) of quantile q among n samples: floor(q (n - 1)).
+  static int rankFor(int n, double quantile);
 
   int width() const { return stack_.width(); }  // full resolution
   int height() const { return stack_.height(); }
@@ -68,13 +73,14 @@ class StackMedian {
  private:
   // `owner` keeps `luminance` alive, or is empty when the caller does.
   StackMedian(std::shared_ptr<const ImageStack> owner, const ImageStack* luminance, int coarseWidth, int threads,
-              std::size_t coarseBudget);
+              std::size_t coarseBudget, double quantile);
   void computeCoarse(std::size_t coarseBudget);
   void computeTiles(int tileRow, int firstTile, int lastTile) const;
 
   std::shared_ptr<const ImageStack> owner_;  // empty when the caller keeps the stack
   const ImageStack& stack_;
   int threads_;
+  int rank_;
   int factor_;
   Image coarse_;
   std::vector<double> imageMeans_;

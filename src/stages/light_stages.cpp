@@ -25,6 +25,7 @@
 #include "stages/outputs.h"
 #include "stages/recorded_checks.h"
 #include "stages/request_checks.h"
+#include "stages/stack_views.h"
 
 namespace surrogate::stages {
 
@@ -98,10 +99,12 @@ pipeline::StageInfo SphereDetectionStage::info() {
   // 4: PNG files compressed by libdeflate at level 1 (src/image/png_encoder.h)
   // 5: radii up to half the frame, and a circle is a sphere only if the images show a
   //    highlight moving in it (evidence, recorded); no darkness test (chrome spheres)
+  // 6: circles searched and fitted in the stack's upper quartile (from four images), and the
+  //    rim's confidence counts the edges within a pixel (1 % of the radius) of the circle
   pipeline::StageInfo info = pipeline::withOptions<hrti::SphereDetectionOptions>(
-      {kComponent, "5",
-       "Find the reflective spheres: per-pixel median of the stack, circle Hough transform on "
-       "the gradient, sub-pixel circle fit",
+      {kComponent, "6",
+       "Find the reflective spheres: circle Hough transform on the gradient of the stack's upper "
+       "quartile, sub-pixel circle fit, highlights that move against the per-pixel median",
        pipeline::PlanSlot::LightsFromSpheres});
   info.outputs = [](const carrier::Step&) { return std::vector<std::string>{kSphereOverlay}; };
   info.reads = pipeline::alwaysReads({kLuminanceStack});
@@ -135,7 +138,15 @@ void SphereDetectionStage::run(const carrier::Step& step, pipeline::Context& ctx
   } else {
     ctx.progress("Sphere detection", 0.6);
     try {
-      *spheres = hrti::detectSpheres(*median, options);
+      // The rim in an upper quantile of the stack (hrti/sphere_detection.h); with fewer than four
+      // images that is nearly the brightest, which keeps the highlights: the median then.
+      if (lum->size() >= 4) {
+        const hrti::StackMedian rim(lum, options.coarseWidth, ctx.settings.threads, hrti::StackMedian::kCoarseBudget,
+                                    hrti::kRimQuantile);
+        *spheres = hrti::detectSpheres(*median, rim, options);
+      } else {
+        *spheres = hrti::detectSpheres(*median, options);
+      }
     } catch (const Error& e) {
       // Last in the list of what to do: a dome capture's own light file, when there is one.
       const std::string lp = lightFileInCapture(ctx.capture);
@@ -481,8 +492,10 @@ pipeline::StageInfo LightDirectionsStage::info() {
   //    decimals), so the file's bytes differ from version 2's for the same lights
   // 4: the lights are checked (hrti/light_checks.h) and a failed check stops the run unless
   //    accepted (intervention accept-check); the checks are recorded
+  // 5: exposure-outlier compares exposures in linear light (it compared sRGB values, and let a
+  //    frame at 5 % exposure through)
   pipeline::StageInfo info = pipeline::withOptions<LightDirectionsOptions>(
-      {kComponent, "4",
+      {kComponent, "5",
        "Light direction of each image from its highlights by the law of reflection, checked for "
        "plausibility",
        pipeline::PlanSlot::LightsFromSpheres});
@@ -571,12 +584,18 @@ void LightDirectionsStage::run(const carrier::Step& step, pipeline::Context& ctx
   }
   checks.lights = *lights;
   checks.spheres = *spheres;
-  checks.imageMeans = ctx.get<hrti::StackMedian>(kStackMedian)->imageMeans();
+  // exposure-outlier compares exposures, so values in linear light: a frame at 5 % of the
+  // others' exposure has 29 % of their mean and a highlight at 52 % of their peak in sRGB.
+  const hrti::StackMedian& median = *ctx.get<hrti::StackMedian>(kStackMedian);
+  auto linear = [&median](double v) {
+    return toLinear(static_cast<std::uint16_t>(std::lround(std::clamp(v, 0.0, 1.0) * 65535)), median.transfer());
+  };
+  for (double m : median.imageMeans()) checks.imageMeans.push_back(linear(m));
   for (const auto& row : *highlights) {
     double peak = 0;
     for (const hrti::Highlight& h : row)
       if (hrti::isUsable(h.flag) && h.flag != hrti::HighlightFlag::Manual) peak = std::max(peak, h.peak);
-    checks.highlightPeaks.push_back(peak);
+    checks.highlightPeaks.push_back(peak > 0 ? linear(peak) : 0);
   }
   for (const InputImage& in : *inputs) checks.names.push_back(in.stem);
   recordChecks(step, ctx, result, hrti::checkLights(checks),

@@ -81,8 +81,9 @@ TEST_CASE("overlapping circles and spheres that disagree by 40 degrees fail") {
 TEST_CASE("a frame whose highlight peaks at a tenth of the others', or far darker than its neighbours, is named") {
   LightCheckInput in = ring();
   in.highlightPeaks[5] = 0.1;
-  in.imageMeans[8] = 0.3 * 0.15;  // its neighbours at 30 deg are at 0.3
-  in.imageMeans[2] = 0.3 * 0.3;   // 30 %: a raking light may do that, not named
+  // Linear light: the real light probes' frames range from 0.25 to 2.5 of their neighbours'.
+  in.imageMeans[8] = 0.3 * 0.07;  // its neighbours at 30 deg are at 0.3
+  in.imageMeans[2] = 0.3 * 0.2;   // 20 %: a raking light may do that, not named
   const auto checks = checkLights(in);
   const LightCheck& c = named(checks, kCheckExposureOutlier);
   CHECK(c.failed);

@@ -41,6 +41,18 @@ Image plainMedian(const std::vector<Image>& images) {
   return out;
 }
 
+// Each pixel's samples sorted, the one at `rank` (0: the smallest).
+Image plainRanked(const std::vector<Image>& images, std::size_t rank) {
+  Image out(images[0].width, images[0].height, 1);
+  for (std::size_t p = 0; p < out.pixels.size(); ++p) {
+    std::vector<std::uint16_t> v;
+    for (const Image& im : images) v.push_back(im.pixels[p]);
+    std::sort(v.begin(), v.end());
+    out.pixels[p] = v[rank];
+  }
+  return out;
+}
+
 // Each f x f block's mean (the blocks at the right and bottom edges cut by the frame),
 // rounded to the nearest integer, halves up.
 Image plainReduced(const Image& im, int f) {
@@ -125,4 +137,26 @@ TEST_CASE("a window outside the frame is an Error, not a read past the images") 
   CHECK_THROWS_AS(median.window({30, 0, 20, 10}), Error);
   CHECK_THROWS_AS(median.window({-1, 0, 5, 5}), Error);
   CHECK_THROWS_AS(median.window({0, 0, 0, 5}), Error);
+}
+
+TEST_CASE("a quantile's windows and reduced image are each pixel's sample of rank floor(q (n - 1))") {
+  const int w = 70, h = 45;
+  for (int n : {4, 12, 36}) {
+    const std::vector<Image> images = noise(n, w, h, 11 + n);
+    for (double q : {0.0, 0.75, 1.0}) {
+      const std::size_t rank = static_cast<std::size_t>(std::floor(q * (n - 1)));
+      CHECK(StackMedian::rankFor(n, q) == static_cast<int>(rank));
+      const MemoryImageStack held(images);
+      for (int threads : {1, 2}) {
+        INFO(n << " images, quantile " << q << ", " << threads << " threads");
+        const StackMedian upper(held, 35, threads, StackMedian::kCoarseBudget, q);
+        CHECK(upper.window({0, 0, w, h}).pixels == plainRanked(images, rank).pixels);
+        std::vector<Image> reduced;
+        for (const Image& im : images) reduced.push_back(plainReduced(im, upper.factor()));
+        CHECK(upper.coarse().pixels == plainRanked(reduced, rank).pixels);
+      }
+    }
+  }
+  CHECK(StackMedian::rankFor(12, 0.5) == 5);  // the lower median, as StackMedian's default
+  CHECK_THROWS_AS(StackMedian::rankFor(12, 1.5), Error);
 }

@@ -96,8 +96,8 @@ TEST_CASE("built-in stages keep their recorded names, versions and default param
   const auto& r = pipeline::StageRegistry::instance();
   // What existing carriers record: changing any of these makes old packages fail verification.
   const std::vector<std::pair<std::string, std::string>> versions = {
-      {"CaptureIngest", "2"}, {"ImageDecode", "3"}, {"SphereDetection", "5"}, {"HighlightDetection", "6"},
-      {"LightDirections", "4"}, {"LightsFromFile", "3"}, {"WhiteBalance", "1"}, {"Crop", "1"},
+      {"CaptureIngest", "2"}, {"ImageDecode", "3"}, {"SphereDetection", "6"}, {"HighlightDetection", "6"},
+      {"LightDirections", "5"}, {"LightsFromFile", "3"}, {"WhiteBalance", "1"}, {"Crop", "1"},
       {"Resize", "1"}, {"RtiFit", "3"}, {"DerivedMaps", "3"}, {"WebCopy", "2"}, {"Audit", "4"}};
   for (const auto& [component, version] : versions) {
     INFO(component);
