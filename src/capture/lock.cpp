@@ -77,9 +77,30 @@ CaptureLock::CaptureLock(const fs::path& capture, const std::string& command) {
   }
 }
 
+CaptureLock::CaptureLock(const fs::path& capture, const std::string& command, Shared) : shared_(true) {
+  (void)command;  // readers leave no holder text: several may hold the lock at once
+  std::error_code ec;
+  const fs::path dir = capture / kWorkDir;
+  fs::create_directories(dir, ec);
+  const fs::path file = dir / "lock";
+  fd_ = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
+  if (fd_ < 0) fd_ = ::open(file.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
+  if (fd_ < 0) return;  // a read-only capture: nothing can write in it either
+  if (::flock(fd_, LOCK_SH | LOCK_NB) != 0) {
+    const std::string holder = readHolder(fd_);
+    ::close(fd_);
+    fd_ = -1;
+    throw Error(ErrorKind::Input, capture.string(), "lock",
+                "another Surrogate command is working on this capture (" + holder +
+                    "); wait for it to finish, then run this command again");
+  }
+}
+
 CaptureLock::~CaptureLock() {
   if (fd_ >= 0) {
-    [[maybe_unused]] const int r = ::ftruncate(fd_, 0);
+    if (!shared_) {
+      [[maybe_unused]] const int r = ::ftruncate(fd_, 0);
+    }
     ::close(fd_);  // releases the lock
   }
 }

@@ -20,12 +20,18 @@ class CaptureLock {
   // holder when another process has it, and for a folder that is not a capture (no folder of
   // originals or exports), so that nothing is written into such a folder.
   CaptureLock(const std::filesystem::path& capture, const std::string& command);
+  // A reader's lock (`report` of a capture): shared with other readers, refused while a
+  // command that writes holds the capture (and keeps such a command out meanwhile). A capture
+  // in which no lock file can be made (read-only) is read without one: nothing writes there.
+  struct Shared {};
+  CaptureLock(const std::filesystem::path& capture, const std::string& command, Shared);
   ~CaptureLock();
   CaptureLock(const CaptureLock&) = delete;
   CaptureLock& operator=(const CaptureLock&) = delete;
 
  private:
   int fd_ = -1;
+  bool shared_ = false;
 };
 
 }  // namespace surrogate::capture

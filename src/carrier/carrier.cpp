@@ -80,7 +80,8 @@ std::vector<const Intervention*> Step::interventionsOfKind(const std::string& ki
   return out;
 }
 
-DataItem& DataItem::set(const std::string& name, const std::string& value) {
+DataItem& DataItem::set(const std::string& name, const std::string& rawValue) {
+  const std::string value = escapedText(rawValue);  // text from files is data (core/text.h)
   for (auto& a : attributes)
     if (a.first == name) {
       a.second = value;
@@ -142,6 +143,11 @@ const FileRecord* Carrier::findFileByPath(const std::string& path) const {
 }
 
 std::string Carrier::putFile(FileRecord record) {
+  // What a file says of itself reaches the record as text the XML can hold (core/text.h); the
+  // camera's fields are escaped where they are read, with their raw bytes (meta/metadata.h).
+  for (std::string* text : {&record.format, &record.mediaType, &record.madeBy, &record.priorKind})
+    *text = escapedText(*text);
+  for (auto& [name, value] : record.camera) value = escapedText(value);
   for (FileRecord& f : files) {
     if (f.path == record.path) {
       record.id = f.id;
@@ -195,7 +201,7 @@ void Carrier::clearResult(const std::string& stepId) {
 
 void Carrier::addLog(const std::string& level, const std::string& step, const std::string& text,
                      const std::string& who) {
-  log.push_back(LogEntry{timestampNow(), level, step, who, text});
+  log.push_back(LogEntry{timestampNow(), level, step, who, escapedText(text, true)});
 }
 
 Carrier newCarrier(const std::string& title, const std::vector<Creator>& creators) {

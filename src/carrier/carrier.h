@@ -92,7 +92,11 @@ struct FileRecord {
   bool unrecordedProcessing = false;
   std::optional<std::pair<int, int>> imageSize;  // width, height
   Attributes camera;      // attributes of <camera>, empty when none
+  // Camera text fields whose bytes were not clean text, escaped in `camera` (core/text.h,
+  // escapedText): field name and the raw bytes as hex, so the record loses nothing.
+  std::vector<std::pair<std::string, std::string>> cameraRaw;
   std::string xmp;        // the XMP packet, verbatim; empty when none
+  bool xmpEscaped = false;  // `xmp` is escapedText of a packet that was not clean text
   // Prior work (role "prior": a file in assembly-files/ or finished-files/ that Surrogate did
   // not write, e.g. RTIBuilder's): what it is, "lp", "rti" (a .ptm or .rti result), "log" or
   // "other"; and what the file itself says of the tool or format that made it (a PTM's version

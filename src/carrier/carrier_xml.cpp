@@ -101,11 +101,19 @@ void writeFiles(xmlNodePtr root, const std::vector<FileRecord>& files) {
       attr(im, "width", std::to_string(f.imageSize->first));
       attr(im, "height", std::to_string(f.imageSize->second));
     }
-    if (!f.camera.empty()) {
+    if (!f.camera.empty() || !f.cameraRaw.empty()) {
       xmlNodePtr cam = child(n, "camera");
       for (const auto& [k, v] : f.camera) attr(cam, k.c_str(), v);
+      for (const auto& [field, hex] : f.cameraRaw) {
+        xmlNodePtr raw = child(cam, "raw");
+        attr(raw, "field", field);
+        attr(raw, "hex", hex);
+      }
     }
-    if (!f.xmp.empty()) textChild(n, "xmp", f.xmp);
+    if (!f.xmp.empty()) {
+      xmlNodePtr xmp = textChild(n, "xmp", f.xmp);
+      if (f.xmpEscaped) attr(xmp, "escaped", "true");
+    }
   }
 }
 
@@ -249,8 +257,15 @@ FileRecord readFileRecord(xmlNodePtr n) {
   f.madeBy = prop(n, "madeBy");
   forChildren(n, [&](xmlNodePtr c) {
     if (is(c, "image")) f.imageSize = {std::stoi(prop(c, "width")), std::stoi(prop(c, "height"))};
-    else if (is(c, "camera")) f.camera = allProps(c);
-    else if (is(c, "xmp")) f.xmp = text(c);
+    else if (is(c, "camera")) {
+      f.camera = allProps(c);
+      forChildren(c, [&](xmlNodePtr raw) {
+        if (is(raw, "raw")) f.cameraRaw.emplace_back(prop(raw, "field"), prop(raw, "hex"));
+      });
+    } else if (is(c, "xmp")) {
+      f.xmp = text(c);
+      f.xmpEscaped = prop(c, "escaped") == "true";
+    }
   });
   return f;
 }

@@ -1,6 +1,9 @@
 // surrogate report PACKAGE|CAPTURE -o report.html: the self-contained HTML report.
 #include <iostream>
+#include <optional>
 
+#include "capture/capture.h"
+#include "capture/lock.h"
 #include "cli/args.h"
 #include "cli/commands.h"
 #include "cli/option_checks.h"
@@ -47,6 +50,13 @@ int runCommandReport(int argc, char** argv) {
     throw Error(ErrorKind::Usage, "--max-image-side/--relight-side", "command line", "needs at least 16 pixels");
 
   ProgressBar bar(args.has("quiet") || args.has("json"));
+  // A capture is read under a reader's lock: a run committing meanwhile would show half of
+  // one record and half of the next.
+  std::optional<capture::CaptureLock> lock;
+  const std::filesystem::path input = args.positional()[0];
+  std::error_code ec;
+  if (std::filesystem::is_directory(input / capture::kAssemblyDir, ec))
+    lock.emplace(input, "report", capture::CaptureLock::Shared{});
   const auto source = report::openReportSource(args.positional()[0], bar.callback());
   if (args.has("reexecute") && !args.has("verify"))
     throw Error(ErrorKind::Usage, "--reexecute", "command line", "goes with --verify");

@@ -6,6 +6,7 @@
 #include "cli/progress.h"
 #include "core/error.h"
 #include "core/json.h"
+#include "core/text.h"
 #include "verify/verify.h"
 
 namespace surrogate::cli {
@@ -79,8 +80,9 @@ void printText(const verify::Report& report) {
   for (const verify::Check& c : report.checks) {
     std::string name = c.name;
     name.resize(width, ' ');
-    std::cout << (c.passed ? "  ok    " : "  FAIL  ") << name << "  " << c.what << "\n";
-    for (const std::string& w : c.where) std::cout << "          " << w << "\n";
+    // Paths from a manifest are the package's text, whatever it holds: escaped (core/text.h).
+    std::cout << (c.passed ? "  ok    " : "  FAIL  ") << name << "  " << escapedText(c.what, true) << "\n";
+    for (const std::string& w : c.where) std::cout << "          " << escapedText(w, true) << "\n";
   }
   if (!report.softwareDifferences.empty()) {
     std::cout << "Software versions differ from the carrier's:\n";
@@ -88,7 +90,7 @@ void printText(const verify::Report& report) {
   }
   if (!report.warnings.empty()) {
     std::cout << "Warnings:\n";
-    for (const std::string& w : report.warnings) std::cout << "  " << w << "\n";
+    for (const std::string& w : report.warnings) std::cout << "  " << escapedText(w, true) << "\n";
   }
   // The two-part verdict: the bag, then what a Surrogate package adds.
   std::size_t bagitChecks = 0, ownChecks = 0;

@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "core/json.h"
 #include "core/resident.h"
+#include "core/text.h"
 #include "core/version.h"
 
 using namespace surrogate;
@@ -39,7 +40,8 @@ void printUsage() {
 // gets JSON: {"error":{"exitCode":1,"file":"...","step":"...","message":"..."}}.
 int fail(bool json, const std::string& command, int exitCode, const std::string& file,
          const std::string& step, const std::string& message, const std::string& text) {
-  std::cerr << "surrogate " << command << ": " << text << "\n";
+  // Names and values from files reach the message: never raw control bytes to the terminal.
+  std::cerr << "surrogate " << command << ": " << escapedText(text, true) << "\n";
   if (json) {
     JsonWriter j;
     j.beginObject().key("error").beginObject().key("exitCode").value(exitCode).key("file").value(file)

@@ -94,7 +94,10 @@ JsonWriter& JsonWriter::null() {
   return *this;
 }
 
-std::string JsonWriter::quote(const std::string& text) {
+std::string JsonWriter::quote(const std::string& raw) {
+  // JSON is UTF-8: bytes that are not (a name or an EXIF value from a file) as \xHH, as the
+  // terminal and the carrier show them (core/text.h).
+  const std::string text = isValidUtf8(raw) ? raw : escapedText(raw, true);
   std::string out = "\"";
   for (unsigned char c : text) {
     switch (c) {

@@ -1,5 +1,6 @@
 #include "core/text.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cctype>
 #include <cmath>
@@ -37,29 +38,87 @@ std::string fixedDecimals(double v, int digits) {
   return buffer;
 }
 
-bool isValidUtf8(const std::string& s) {
-  std::size_t i = 0;
-  while (i < s.size()) {
-    const unsigned char c = static_cast<unsigned char>(s[i]);
-    int extra = 0;
-    unsigned int code = 0;
-    if (c < 0x80) { ++i; continue; }
-    if ((c & 0xE0) == 0xC0) { extra = 1; code = c & 0x1F; }
-    else if ((c & 0xF0) == 0xE0) { extra = 2; code = c & 0x0F; }
-    else if ((c & 0xF8) == 0xF0) { extra = 3; code = c & 0x07; }
-    else return false;
-    if (i + extra >= s.size()) return false;
-    for (int k = 1; k <= extra; ++k) {
-      const unsigned char d = static_cast<unsigned char>(s[i + k]);
-      if ((d & 0xC0) != 0x80) return false;
-      code = (code << 6) | (d & 0x3F);
-    }
-    if ((extra == 1 && code < 0x80) || (extra == 2 && code < 0x800) ||
-        (extra == 3 && (code < 0x10000 || code > 0x10FFFF)) || (code >= 0xD800 && code <= 0xDFFF))
-      return false;
-    i += extra + 1;
+namespace {
+
+// The length of the well-formed UTF-8 sequence at s[i] (its code point in *code), or 0.
+std::size_t utf8SequenceAt(const std::string& s, std::size_t i, unsigned* code) {
+  const unsigned char c = static_cast<unsigned char>(s[i]);
+  int extra = 0;
+  unsigned int value = 0;
+  if (c < 0x80) {
+    *code = c;
+    return 1;
   }
+  if ((c & 0xE0) == 0xC0) { extra = 1; value = c & 0x1F; }
+  else if ((c & 0xF0) == 0xE0) { extra = 2; value = c & 0x0F; }
+  else if ((c & 0xF8) == 0xF0) { extra = 3; value = c & 0x07; }
+  else return 0;
+  if (i + extra >= s.size()) return 0;
+  for (int k = 1; k <= extra; ++k) {
+    const unsigned char d = static_cast<unsigned char>(s[i + k]);
+    if ((d & 0xC0) != 0x80) return 0;
+    value = (value << 6) | (d & 0x3F);
+  }
+  if ((extra == 1 && value < 0x80) || (extra == 2 && value < 0x800) ||
+      (extra == 3 && (value < 0x10000 || value > 0x10FFFF)) || (value >= 0xD800 && value <= 0xDFFF))
+    return 0;
+  *code = value;
+  return static_cast<std::size_t>(extra) + 1;
+}
+
+bool isControl(unsigned code, bool keepLineBreaks) {
+  if (keepLineBreaks && (code == '\t' || code == '\n' || code == '\r')) return false;
+  return code < 0x20 || (code >= 0x7F && code <= 0x9F) || code == 0xFFFE || code == 0xFFFF;
+}
+
+}  // namespace
+
+bool isValidUtf8(const std::string& s) {
+  unsigned code = 0;
+  for (std::size_t i = 0, n = 0; i < s.size(); i += n)
+    if ((n = utf8SequenceAt(s, i, &code)) == 0) return false;
   return true;
+}
+
+bool needsEscaping(const std::string& bytes, bool keepLineBreaks) {
+  unsigned code = 0;
+  for (std::size_t i = 0, n = 0; i < bytes.size(); i += n)
+    if ((n = utf8SequenceAt(bytes, i, &code)) == 0 || isControl(code, keepLineBreaks)) return true;
+  return false;
+}
+
+std::string escapedText(const std::string& bytes, bool keepLineBreaks) {
+  if (!needsEscaping(bytes, keepLineBreaks)) return bytes;
+  static const char* kDigits = "0123456789ABCDEF";
+  std::string out;
+  unsigned code = 0;
+  for (std::size_t i = 0; i < bytes.size();) {
+    std::size_t n = utf8SequenceAt(bytes, i, &code);
+    if (n > 0 && !isControl(code, keepLineBreaks)) {
+      out.append(bytes, i, n);
+    } else {
+      for (std::size_t k = 0; k < std::max<std::size_t>(n, 1); ++k) {
+        const unsigned char b = static_cast<unsigned char>(bytes[i + k]);
+        out += "\\x";
+        out += kDigits[b >> 4];
+        out += kDigits[b & 15];
+      }
+      n = std::max<std::size_t>(n, 1);
+    }
+    i += n;
+  }
+  return out;
+}
+
+std::string hexBytes(const std::string& bytes) {
+  static const char* kDigits = "0123456789abcdef";
+  std::string out;
+  out.reserve(bytes.size() * 2);
+  for (unsigned char b : bytes) {
+    out += kDigits[b >> 4];
+    out += kDigits[b & 15];
+  }
+  return out;
 }
 
 }  // namespace surrogate

@@ -26,4 +26,16 @@ std::string fixedDecimals(double v, int digits);
 // surrogates (U+D800..U+DFFF), nothing above U+10FFFF.
 bool isValidUtf8(const std::string& s);
 
+// Text that came from a file (an EXIF make, an XMP packet, a line of an .lp, a name) as a record
+// and a terminal can hold it: valid UTF-8 with no control character. Each byte outside valid
+// UTF-8, and each byte of a control character (C0, DEL, C1) or of a code point XML cannot hold
+// (U+FFFE, U+FFFF), becomes the four characters \xHH; everything else is kept. With
+// `keepLineBreaks`, tab, line feed and carriage return are kept (a packet's lines). Text that
+// is already clean comes back unchanged; the raw bytes are for hexBytes to keep.
+std::string escapedText(const std::string& bytes, bool keepLineBreaks = false);
+// Whether escapedText would change `bytes`.
+bool needsEscaping(const std::string& bytes, bool keepLineBreaks = false);
+// The bytes as lowercase hexadecimal, two digits each ("43616e" for "Can").
+std::string hexBytes(const std::string& bytes);
+
 }  // namespace surrogate

@@ -8,6 +8,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/text.h"
 #include "meta/exiv2_setup.h"
 #include "meta/xmp_packet_scan.h"
 
@@ -178,6 +179,25 @@ void readExif(const Exiv2::ExifData& exif, const Exiv2::XmpData& xmp, CameraMeta
   m.focalPlaneResolutionUnit = exifInteger(exif, {"Exif.Photo.FocalPlaneResolutionUnit"});
 }
 
+// Text is data: values that are not valid UTF-8 or hold control characters (a camera's
+// Latin-1 make, a stray byte) are kept escaped, with their raw bytes, so that every record and
+// terminal can hold them (CameraMetadata::rawText).
+void escapeText(CameraMetadata& m) {
+  const std::pair<const char*, std::optional<std::string>*> fields[] = {
+      {"make", &m.make}, {"model", &m.model}, {"serial", &m.bodySerial}, {"lens", &m.lens},
+      {"exposureTime", &m.exposureTime}, {"dateTimeOriginal", &m.dateTimeOriginal},
+      {"offsetTimeOriginal", &m.offsetTimeOriginal}};
+  for (const auto& [name, value] : fields) {
+    if (!*value || !needsEscaping(**value)) continue;
+    m.rawText.emplace_back(name, hexBytes(**value));
+    **value = escapedText(**value);
+  }
+  if (needsEscaping(m.xmpPacket, true)) {
+    m.xmpPacket = escapedText(m.xmpPacket, true);
+    m.xmpEscaped = true;
+  }
+}
+
 // The stored bytes of the packet Exiv2 parsed but did not keep (BMFF): the scanned packet
 // that parses to as many properties.
 std::string storedPacket(const std::filesystem::path& path, long properties) {
@@ -211,6 +231,7 @@ CameraMetadata readMetadata(const std::filesystem::path& path) {
     m.xmpPacket = image->xmpPacket();
     if (m.xmpPacket.empty() && image->xmpData().count() > 0)
       m.xmpPacket = storedPacket(path, image->xmpData().count());
+    escapeText(m);
   } catch (const Exiv2::AnyError& e) {
     throwInputError(path.string(), kStep, std::string("Exiv2 cannot read its metadata: ") + e.what());
   } catch (const std::bad_alloc&) {

@@ -46,15 +46,22 @@ struct CameraMetadata {
   std::optional<double> focalPlaneXResolution, focalPlaneYResolution;  // sensor pixels per unit
   std::optional<long> focalPlaneResolutionUnit;  // EXIF: 2 inch, 3 cm, 4 mm
   std::string xmpPacket;                         // verbatim as stored; empty when none
+  // Text is data (core/text.h, escapedText): a text field above whose bytes were not valid
+  // UTF-8 or held a control character holds them escaped, and its name and raw bytes (hex) are
+  // here; a packet not clean likewise holds escapedText (line breaks kept) and xmpEscaped.
+  std::vector<std::pair<std::string, std::string>> rawText;  // field ("make"), hexBytes
+  bool xmpEscaped = false;
 };
 
 // Reads EXIF and XMP with Exiv2. Throws Error(Input) naming the file when it is missing or
 // Exiv2 cannot read it (unknown format, damaged metadata).
 CameraMetadata readMetadata(const std::filesystem::path& path);
 
-// The XMP packet of an .xmp sidecar file, verbatim. Throws Error(Input) naming the file when it
+// The XMP packet of an .xmp sidecar file, verbatim (escaped as core/text.h's escapedText, line
+// breaks kept, when it is not valid UTF-8 or holds control characters). Throws Error(Input) naming the file when it
 // cannot be read or is not a well-formed XMP packet.
-std::string readXmpSidecar(const std::filesystem::path& path);
+// *escaped (when given) says whether it was.
+std::string readXmpSidecar(const std::filesystem::path& path, bool* escaped = nullptr);
 
 // What an .xmp sidecar records about its image: the software that wrote it, the rating, the
 // develop settings (Camera Raw / Lightroom, crs:) and the editing history (xmpMM:History).

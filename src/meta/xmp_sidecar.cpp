@@ -7,6 +7,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/text.h"
 #include "meta/exiv2_setup.h"
 #include "meta/metadata.h"
 
@@ -56,13 +57,16 @@ void addHistoryField(const std::string& key, const std::string& value,
 
 }  // namespace
 
-std::string readXmpSidecar(const std::filesystem::path& path) {
+std::string readXmpSidecar(const std::filesystem::path& path, bool* escaped) {
   ensureExiv2Ready();
   std::string packet = readFile(path, "metadata");
   Exiv2::XmpData parsed;
   const std::lock_guard<std::mutex> lock(exiv2Mutex());
   parseSidecar(path, packet, parsed);
-  return packet;
+  // Text is data: a packet in another encoding, or with control characters, escaped.
+  const bool clean = !needsEscaping(packet, true);
+  if (escaped) *escaped = !clean;
+  return clean ? packet : escapedText(packet, true);
 }
 
 XmpSidecarSummary summarizeXmpSidecar(const std::filesystem::path& path) {
@@ -76,7 +80,7 @@ XmpSidecarSummary summarizeXmpSidecar(const std::filesystem::path& path) {
   std::map<long, XmpHistoryEvent> events;
   for (const Exiv2::Xmpdatum& d : parsed) {
     const std::string key = d.key();
-    const std::string value = plainText(d);
+    const std::string value = escapedText(plainText(d));
     if (key == "Xmp.xmp.CreatorTool") s.creatorTool = value;
     else if (key == "Xmp.xmp.Rating") s.rating = value;
     else if (key == "Xmp.xmp.MetadataDate" || (key == "Xmp.xmp.ModifyDate" && !s.modified)) s.modified = value;

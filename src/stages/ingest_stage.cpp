@@ -239,12 +239,14 @@ ReadFile readFile(const PendingFile& p, const fs::path& capture) {
       f.imageSize = std::make_pair(p.width, p.height);
       const meta::CameraMetadata m = meta::readMetadata(abs);
       f.camera = cameraAttributes(m);
+      f.cameraRaw = m.rawText;
       f.xmp = m.xmpPacket;
+      f.xmpEscaped = m.xmpEscaped;
       if (p.role == "original" && isExportFormat(p.format) && editedOutside(f.xmp))
         f.unrecordedProcessing = true;
     } else if (p.role == "sidecar") {
       // A damaged sidecar is still an original to keep and hash; only its reading fails.
-      f.xmp = meta::readXmpSidecar(abs);
+      f.xmp = meta::readXmpSidecar(abs, &f.xmpEscaped);
     }
   } catch (const Error& e) {
     out.metadataWarning = e.what();

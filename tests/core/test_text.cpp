@@ -79,3 +79,23 @@ TEST_CASE("formatNumber refuses NaN and infinities", "[core][text]") {
     }
   }
 }
+
+TEST_CASE("escapedText keeps clean text and writes bad bytes and control characters as hex escapes") {
+  CHECK(escapedText("Canon EOS 5D Mark IV") == "Canon EOS 5D Mark IV");
+  CHECK(escapedText("Ca\xC3\xB1on \xE2\x80\x94 \xF0\x9F\x93\xB7") == "Ca\xC3\xB1on \xE2\x80\x94 \xF0\x9F\x93\xB7");
+  CHECK(escapedText("Can\xE9n") == "Can\\xE9n");              // Latin-1, not UTF-8
+  CHECK(escapedText("EOS\x01" "5D") == "EOS\\x015D");         // C0 control
+  CHECK(escapedText(std::string("a\0b", 3)) == "a\\x00b");    // NUL
+  CHECK(escapedText("a\x7F" "b") == "a\\x7Fb");               // DEL
+  CHECK(escapedText("a\xC2\x9B" "b") == "a\\xC2\\x9Bb");      // C1 CSI, which terminals obey
+  CHECK(escapedText("a\xEF\xBF\xBE") == "a\\xEF\\xBF\\xBE");  // U+FFFE, not an XML character
+  CHECK(escapedText("\xC0\xAF") == "\\xC0\\xAF");             // overlong
+  CHECK(escapedText("\xE2\x82") == "\\xE2\\x82");             // cut short
+  CHECK(escapedText("one\ttwo\r\n") == "one\\x09two\\x0D\\x0A");
+  CHECK(escapedText("one\ttwo\r\n", true) == "one\ttwo\r\n");
+  CHECK_FALSE(needsEscaping("Nikon D850"));
+  CHECK(needsEscaping("Nikon\nD850"));
+  CHECK_FALSE(needsEscaping("Nikon\nD850", true));
+  CHECK(hexBytes("Can\xE9n") == "43616ee96e");
+  CHECK(hexBytes("") == "");
+}

@@ -141,3 +141,25 @@ TEST_CASE("pack replaces a package only with --force, and two packs to one name 
       CHECK(e.path().filename().string().find(".part-") == std::string::npos);  // no leftovers
   }
 }
+
+TEST_CASE("report reads a capture under a reader's lock: refused while a command writes it") {
+  const fs::path dir = e2e::freshDir("hostile-outputs-report-lock");
+  const fs::path cap = processedCapture(dir);
+  // util-linux flock(1) holds the capture's lock as a run would (exclusively) for a while.
+  const fs::path lock = cap / ".surrogate/lock";
+  fs::create_directories(lock.parent_path());
+  const e2e::CommandResult held = e2e::runShell(
+      "flock -x " + e2e::quote(lock) + " sleep 3 & sleep 0.5; " + std::string(SURROGATE_EXE) + " report " +
+      e2e::quote(cap) + " -o " + e2e::quote(dir / "r.html") + " --quiet 2>&1; echo \"exit $?\"; wait");
+  INFO(held.output);
+  CHECK(held.output.find("another Surrogate command is working on this capture") != std::string::npos);
+  CHECK(held.output.find("exit 1") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "r.html"));
+  // Two readers at once are fine.
+  const e2e::CommandResult two = e2e::runShell(
+      "flock -s " + e2e::quote(lock) + " sleep 2 & sleep 0.5; " + std::string(SURROGATE_EXE) + " report " +
+      e2e::quote(cap) + " -o " + e2e::quote(dir / "r.html") + " --quiet 2>&1; echo \"exit $?\"; wait");
+  INFO(two.output);
+  CHECK(two.output.find("exit 0") != std::string::npos);
+  CHECK(fs::exists(dir / "r.html"));
+}
