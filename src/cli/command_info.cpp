@@ -389,7 +389,7 @@ PackageSummary summarizePackage(const fs::path& path) {
         s.recorded = carrier::parseCarrier(*carrierFile->second.content, "data/assembly-files/carrier.xml");
         for (const carrier::FileRecord& f : s.recorded->files) carrierRoles[f.path] = f.role;
       } catch (const Error& e) {
-        s.carrierProblem = e.what();
+        s.carrierProblem = e.text();
       }
     }
   }

@@ -104,7 +104,7 @@ int main(int argc, char** argv) {
     try {
       return c.run(argc - 1, argv + 1);
     } catch (const Error& e) {
-      return fail(json, name, e.exitCode(), e.file(), e.step(), e.message(), e.what());
+      return fail(json, name, e.exitCode(), e.file(), e.step(), e.message(), e.text());
     } catch (const std::bad_alloc&) {
       const std::string m = "out of memory; lower --memory or --threads";
       return fail(json, name, internal, "", "", m, m);

@@ -15,6 +15,8 @@ Error::Error(ErrorKind kind, std::string file, std::string step, std::string mes
       step_(std::move(step)),
       message_(std::move(message)) {}
 
+std::string Error::text() const { return compose(file_, message_); }
+
 void throwInputError(const std::string& file, const std::string& step,
                      const std::string& message) {
   throw Error(ErrorKind::Input, file, step, message);

@@ -33,6 +33,9 @@ class Error : public std::runtime_error {
   const std::string& file() const { return file_; }
   const std::string& step() const { return step_; }
   const std::string& message() const { return message_; }
+  // "<file>: <message>", as what() but whole: a message quoting a file's bytes may hold a NUL,
+  // where what()'s C string would end.
+  std::string text() const;
 
  private:
   ErrorKind kind_;

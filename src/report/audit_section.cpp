@@ -92,7 +92,7 @@ std::string auditSection(const carrier::Carrier& c,
   try {
     report = audit::recordedAudit(c, *r);
   } catch (const Error& e) {
-    s << "<p class=\"bad\">The recorded audit cannot be read: " << escapeHtml(e.what()) << "</p></section>";
+    s << "<p class=\"bad\">The recorded audit cannot be read: " << escapeHtml(e.text()) << "</p></section>";
     return s.str();
   }
   s << "<p>Step " << escapeHtml(r->step) << " compared the prior work another tool left in the capture "

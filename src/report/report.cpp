@@ -436,7 +436,7 @@ std::vector<RelightModel> relightModels(const carrier::Carrier& c, const ReportS
       try {
         m.made = relightJson(*bytes, options.relightMaxSide, m.file->path);
       } catch (const Error& e) {
-        m.problem = e.what();
+        m.problem = e.text();
       }
     }
   });

@@ -249,7 +249,7 @@ ReadFile readFile(const PendingFile& p, const fs::path& capture) {
       f.xmp = meta::readXmpSidecar(abs, &f.xmpEscaped);
     }
   } catch (const Error& e) {
-    out.metadataWarning = e.what();
+    out.metadataWarning = e.text();
   }
   return out;
 }

@@ -331,7 +331,7 @@ carrier::Carrier runCapture(const fs::path& captureArg, const RunRequest& reques
   } catch (const Error& e) {
     record.ended = carrier::timestampNow();
     record.outcome = "failed";
-    record.notes.push_back("failed: " + std::string(e.what()));
+    record.notes.push_back("failed: " + e.text());
     if (previous) {
       // The last state stays whole (complete or not: a failure must never re-record what the
       // previous carrier holds, such as an original's hash): its carrier only learns that this

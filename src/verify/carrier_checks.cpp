@@ -47,7 +47,7 @@ std::optional<carrier::Carrier> checkCarrier(const Inventory& inv, std::vector<C
     try {
       parsed = carrier::parseCarrier(*text, kCarrierPath);
     } catch (const Error& e) {
-      problems.push_back(e.what());
+      problems.push_back(e.text());
     }
   }
   checks.push_back(makeCheck("carrier.schema", Severity::Invalid,
@@ -121,7 +121,7 @@ void checkMetadata(const fs::path& package, Inventory& inv, const std::string* c
       // A missing schema (internal) or a package changing under us (fixity) is not a finding
       // about these files.
       if (e.kind() == ErrorKind::Internal || e.kind() == ErrorKind::Fixity) throw;
-      return {e.what()};
+      return {e.text()};
     }
     return {};
   };
@@ -264,7 +264,7 @@ void checkMetadata(const fs::path& package, Inventory& inv, const std::string* c
       }
     } catch (const Error& e) {
       if (e.kind() == ErrorKind::Internal || e.kind() == ErrorKind::Fixity) throw;
-      problems.push_back(e.what());
+      problems.push_back(e.text());
     }
   }
   // Without a carrier to derive from, or when the bag's text differs: the bag's own files.

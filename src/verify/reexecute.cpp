@@ -150,7 +150,7 @@ void compareOutputFile(const carrier::DataItem& x, const carrier::DataItem& y,
     else if (ext == ".png" || ext == ".jpg" || ext == ".tif" || ext == ".tiff")
       how += "; " + compareImages(recordedRoot / fa->path, freshRoot / fb->path);
   } catch (const Error& e) {
-    how += "; cannot compare them (" + std::string(e.what()) + ")";
+    how += "; cannot compare them (" + e.text() + ")";
   }
   out.differences.push_back("output file " + fa->path + " " + how);
 }
@@ -303,7 +303,7 @@ carrier::Carrier replay(const fs::path& replayRoot, const carrier::Carrier& reco
   try {
     fresh = stages::replayCarrier(replayRoot, recorded, settings, freshCarrierPath);
   } catch (const Error& e) {
-    problems.push_back(e.what());
+    problems.push_back(e.text());
     std::error_code ec;
     if (fs::exists(freshCarrierPath, ec)) {
       try {

@@ -76,7 +76,7 @@ std::vector<std::string> parameterProblems(const carrier::Step& step,
     try {
       parser(params);
     } catch (const Error& e) {
-      out.push_back(std::string(e.what()) + " (recorded: " + listed(params) + ")");
+      out.push_back(e.text() + " (recorded: " + listed(params) + ")");
     } catch (const std::exception& e) {
       out.push_back(std::string("the parameters cannot be read: ") + e.what() + " (recorded: " +
                     listed(params) + ")");
@@ -130,7 +130,7 @@ std::vector<std::string> parameterProblems(const carrier::Step& step,
     try {
       fit::FitOptions::fromParameters(fitParams);
     } catch (const Error& e) {
-      out.push_back(std::string(e.what()) + " (recorded: " + listed(params) + ")");
+      out.push_back(e.text() + " (recorded: " + listed(params) + ")");
     }
     if (step.hasParam("output")) {
       try {

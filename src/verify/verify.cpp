@@ -114,7 +114,7 @@ Report verifyPackage(const std::filesystem::path& package, const VerifyOptions& 
     c.severity = e.kind() == ErrorKind::Fixity ? Severity::Fixity : Severity::Invalid;
     c.what = e.kind() == ErrorKind::Fixity ? "the package cannot be read to its end"
                                            : "the package was refused";
-    c.where.push_back(e.what());
+    c.where.push_back(e.text());
     report.checks.push_back(c);
     return report;
   }
@@ -155,7 +155,7 @@ Report verifyPackage(const std::filesystem::path& package, const VerifyOptions& 
     if (e.kind() != ErrorKind::Fixity) throw;
     report.checks.push_back(makeCheck("package.reread", Severity::Fixity, "",
                                                 "the package changed while it was being verified",
-                                                {e.what()}));
+                                                {e.text()}));
   }
 
   if (options.reexecute) {
@@ -185,7 +185,7 @@ Report verifyPackage(const std::filesystem::path& package, const VerifyOptions& 
         c.passed = false;
         c.severity = e.kind() == ErrorKind::Fixity ? Severity::Fixity : Severity::Invalid;
         c.what = "the package could not be extracted for re-execution";
-        c.where.push_back(e.what());
+        c.where.push_back(e.text());
         report.checks.push_back(c);
       }
     }

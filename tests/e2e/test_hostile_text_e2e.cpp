@@ -131,3 +131,16 @@ TEST_CASE("a manifest path with an escape sequence reaches the terminal escaped"
   CHECK_FALSE(hasRawControl(verify.output));
   CHECK(verify.output.find("\\x1B") != std::string::npos);
 }
+
+TEST_CASE("a NUL in an .lp is shown escaped in the whole message, not where it cut it") {
+  const fs::path dir = e2e::freshDir("hostile-text-nul");
+  std::ofstream(dir / "nul.lp", std::ios::binary) << "2\nIMG_0001.jpg 0.1 0.2 0.97\nIMG_0002.jpg 0.2\0x 0.1 0.97\n"s;
+  for (const std::string command : {"info " + e2e::quote(dir / "nul.lp"),
+                                    "fit --lp " + e2e::quote(dir / "nul.lp") + " -o " + e2e::quote(dir / "m.ptm")}) {
+    const e2e::CommandResult r = e2e::surrogate(command);
+    INFO(r.output);
+    CHECK(r.exitCode == 1);
+    CHECK(r.output.find("\"0.2\\x00x\" is not a number") != std::string::npos);
+    CHECK(r.output.find('\0') == std::string::npos);
+  }
+}
