@@ -311,9 +311,11 @@ bool startsWith(const std::string& s, const std::string& prefix) { return s.comp
 WebLayoutFiles webLayoutOfFile(const fs::path& file, const PublishOptions& options) {
   const std::string bytes = readFile(file, kStep);
   const auto* data = reinterpret_cast<const std::uint8_t*>(bytes.data());
-  if (startsWith(bytes, "PTM_")) return webLayoutOf(formats::parsePtm(data, bytes.size(), file.string()), options);
+  const formats::ModelBudget budget{options.memoryBudget, kPublishBytesPerTexel, 1};
+  if (startsWith(bytes, "PTM_"))
+    return webLayoutOf(formats::parsePtm(data, bytes.size(), file.string(), nullptr, budget), options);
   if (!bytes.empty() && bytes[0] == '#')
-    return webLayoutOf(formats::parseRti(data, bytes.size(), file.string()), options);
+    return webLayoutOf(formats::parseRti(data, bytes.size(), file.string(), nullptr, budget), options);
   throw Error(ErrorKind::Input, file.string(), kStep,
               "is neither a PTM (.ptm) nor an HSH RTI (.rti) file, nor a capture folder; give one of these");
 }
