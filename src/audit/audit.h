@@ -52,7 +52,8 @@ struct AuditOptions {
   // Against SurrogateFit only: render both models at this light instead of a photograph's.
   std::optional<Light> differenceLight;
   int threads = 0;  // 0 = all cores; the figures are identical at any count
-  std::size_t memoryBudgetBytes = 2ull << 30;  // for Surrogate's fits (fit::FitOptions)
+  std::size_t memoryBudgetBytes = 2ull << 30;  // for Surrogate's fits (fit::FitOptions) and the prior model
+  std::size_t memoryOption = 0;  // the --memory memoryBudgetBytes is a part of (in a run), for messages
 };
 
 // The photographs as Surrogate decodes and fits them (stages::decodeImages' rgb stack, or any

@@ -160,15 +160,22 @@ struct PriorModel {
   std::unique_ptr<fit::Relightable> relightable;
 };
 
-PriorModel readPriorModel(const std::filesystem::path& path) {
+// What the audit holds beside the prior model as read: the copy of it that is relit, and per
+// texel the renderings and the difference picture (16-bit RGB).
+constexpr std::uint64_t kAuditBytesPerTexel = 3 * 6;
+
+// Refused from its header when reading and auditing it would not fit `memory` (--memory; in a
+// run, the part a fit may use): a JPEG-compressed PTM of megabytes can declare gigabytes.
+PriorModel readPriorModel(const std::filesystem::path& path, std::uint64_t memory, std::uint64_t memoryOption) {
   const std::string bytes = readFile(path, kStep);
   const auto* data = reinterpret_cast<const std::uint8_t*>(bytes.data());
+  const formats::ModelBudget budget{memory, kAuditBytesPerTexel, 1, memoryOption};
   PriorModel m;
   if (bytes.compare(0, 4, "PTM_") == 0) {
-    m.ptm = formats::parsePtm(data, bytes.size(), path.string());
+    m.ptm = formats::parsePtm(data, bytes.size(), path.string(), nullptr, budget);
     m.relightable = fit::makeRelightable(*m.ptm);
   } else if (!bytes.empty() && bytes[0] == '#') {
-    m.hsh = formats::parseRti(data, bytes.size(), path.string());
+    m.hsh = formats::parseRti(data, bytes.size(), path.string(), nullptr, budget);
     m.relightable = fit::makeRelightable(*m.hsh);
   } else {
     throwInputError(path.string(), kStep, "is neither a PTM (.ptm) nor an HSH RTI (.rti) file; it cannot be audited");
@@ -326,7 +333,7 @@ ModelCheck checkModel(const std::filesystem::path& model, const Photographs& pho
   ModelCheck check;
   check.file = model;
   check.lightFile = priorLights.file;
-  PriorModel prior = readPriorModel(model);
+  PriorModel prior = readPriorModel(model, options.memoryBudgetBytes, options.memoryOption);
   check.basis = basisOf(prior);
   const ImageStack& stack = *photographs.stack;
   check.values = stack.transfer() == Transfer::Linear ? "linear" : "sRGB-encoded";

@@ -41,6 +41,7 @@ int runCommandPublish(int argc, char** argv) {
        "auto (default: Deep Zoom tiles when a side exceeds 4096 texels), none (whole plane images) or "
        "deepzoom (always tiles)", "LAYOUT"},
       {"tile-size", true, false, "side of a Deep Zoom tile in texels, 16..4096 (default 256)", "N"},
+      {"memory", true, false, "memory budget (default 2G): a larger model is refused from its header", "SIZE"},
       {"json", false, false, "print what was written as JSON"},
   };
   Args args(argc, argv, 1, specs);
@@ -64,6 +65,7 @@ int runCommandPublish(int argc, char** argv) {
   }
   if (const auto t = args.value("tiles")) options.tiles = publish::parseTileLayout(*t);
   if (args.value("tile-size")) options.tileSize = args.intValue("tile-size", 256);
+  if (const auto m = args.value("memory")) options.memoryBudget = parseByteSize(*m, "--memory");
   std::vector<std::string> removed;
   const auto models = publish::publish(args.positional()[0], *out, options, &removed);
   if (args.has("json")) {

@@ -9,6 +9,7 @@
 #include "cli/option_checks.h"
 #include "core/error.h"
 #include "core/json.h"
+#include "core/memory_budget.h"
 #include "fit/render.h"
 #include "image/write_any.h"
 #include "publish/web_reader.h"
@@ -18,9 +19,10 @@ namespace surrogate::cli {
 namespace {
 // The model to relight: a .ptm or .rti, or a web layout's folder or info.json. `from` says
 // which web layout was read, for the output line ("" for a file).
-std::unique_ptr<fit::Relightable> openModel(const std::string& path, std::string* from) {
-  if (!publish::isWebLayoutPath(path)) return fit::openRelightable(path);
-  publish::WebLayoutModel web = publish::readWebLayout(path);
+std::unique_ptr<fit::Relightable> openModel(const std::string& path, std::uint64_t memory, std::string* from) {
+  const formats::ModelBudget budget{memory, fit::kRenderBytesPerTexel};
+  if (!publish::isWebLayoutPath(path)) return fit::openRelightable(path, budget);
+  publish::WebLayoutModel web = publish::readWebLayout(path, budget);
   *from = "from the web layout " + web.infoJson.string();
   if (web.requantised) *from += ", its coefficients re-quantised to 8 bits per term";
   return web.isPtm ? fit::makeRelightable(std::move(web.ptm)) : fit::makeRelightable(std::move(web.hsh));
@@ -37,6 +39,7 @@ int runCommandRender(int argc, char** argv) {
       {"gain", true, false, "diffuse gain g (PTM; 1 = none; > 1 shows relief more strongly)", "G"},
       {"specular", false, false, "add specular enhancement from the recovered normals"},
       {"threads", true, false, "worker threads (default: all cores)", "N"},
+      {"memory", true, false, "memory budget (default 2G): a larger model is refused from its header", "SIZE"},
       {"json", false, false, "print what was written as JSON"},
   };
   Args args(argc, argv, 1, specs);
@@ -74,8 +77,10 @@ int runCommandRender(int argc, char** argv) {
     throw Error(ErrorKind::Usage, "--gain", "command line", "needs a number above 0");
   options.specular = args.has("specular");
   options.threads = threadsOption(args);
+  std::uint64_t memory = kDefaultMemoryBudget;
+  if (const auto m = args.value("memory")) memory = parseByteSize(*m, "--memory");
   std::string from;
-  const auto model = openModel(args.positional()[0], &from);
+  const auto model = openModel(args.positional()[0], memory, &from);
   image::writePicture(model->render({l[0], l[1], l[2]}, options), *out, quality);
   if (args.has("json")) {
     JsonWriter j;

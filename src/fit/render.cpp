@@ -176,13 +176,13 @@ std::unique_ptr<Relightable> makeRelightable(formats::HshFile hsh) {
   return std::make_unique<HshModel>(std::move(hsh));
 }
 
-std::unique_ptr<Relightable> openRelightable(const std::filesystem::path& path) {
+std::unique_ptr<Relightable> openRelightable(const std::filesystem::path& path, const formats::ModelBudget& budget) {
   const std::string bytes = readFile(path, kStep);
   const auto* data = reinterpret_cast<const std::uint8_t*>(bytes.data());
   if (bytes.compare(0, 4, "PTM_") == 0)
-    return makeRelightable(formats::parsePtm(data, bytes.size(), path.string()));
+    return makeRelightable(formats::parsePtm(data, bytes.size(), path.string(), nullptr, budget));
   if (!bytes.empty() && bytes[0] == '#')
-    return makeRelightable(formats::parseRti(data, bytes.size(), path.string()));
+    return makeRelightable(formats::parseRti(data, bytes.size(), path.string(), nullptr, budget));
   throwInputError(path.string(), kStep,
                   "is neither a PTM (.ptm) nor an HSH RTI (.rti) file; nothing to relight");
 }

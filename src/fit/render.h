@@ -19,6 +19,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -63,9 +64,17 @@ class Relightable {
   virtual Image albedoMap(int threads = 0) const = 0;
 };
 
+// What `surrogate render` holds per texel beside the model: the rendered picture (16-bit RGB),
+// the 8-bit rows and the stream of the file written (9 bytes a texel measured with
+// /usr/bin/time on a 12000x12000 PTM, with or without --specular, which frees its normals
+// before the file is written).
+inline constexpr std::uint64_t kRenderBytesPerTexel = 12;
+
 std::unique_ptr<Relightable> makeRelightable(formats::PtmFile ptm);
 std::unique_ptr<Relightable> makeRelightable(formats::HshFile hsh);
-// Reads a .ptm or .rti, chosen by the file's first bytes ("PTM_" or '#'); Error(Input) else.
-std::unique_ptr<Relightable> openRelightable(const std::filesystem::path& path);
+// Reads a .ptm or .rti, chosen by the file's first bytes ("PTM_" or '#'); Error(Input) else,
+// and when reading it would not fit `budget` (formats/model_budget.h).
+std::unique_ptr<Relightable> openRelightable(const std::filesystem::path& path,
+                                             const formats::ModelBudget& budget = {});
 
 }  // namespace surrogate::fit

@@ -8,6 +8,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/memory_budget.h"
 #include "core/resident.h"
 #include "formats/ptm_jpeg.h"
 #include "formats/text_parse.h"
@@ -127,8 +128,16 @@ PtmHeader parsePtmHeader(const std::uint8_t* data, std::size_t size, const std::
   return h;
 }
 
+std::uint64_t ptmReadBytes(const PtmHeader& h) {
+  const std::uint64_t texels = static_cast<std::uint64_t>(h.width) * static_cast<std::uint64_t>(h.height);
+  const std::uint64_t model = texels * bytesPerTexel(h.format);
+  // A JPEG plane is decoded into a buffer of its own, and libjpeg holds a progressive plane's
+  // DCT coefficients (two bytes a texel) until its last scan.
+  return h.jpegPlanes.empty() ? model : model + 3 * texels;
+}
+
 PtmFile parsePtm(const std::uint8_t* data, std::size_t size, const std::string& name,
-                 PtmReadReport* report) {
+                 PtmReadReport* report, const ModelBudget& budget) {
   const PtmHeader h = parsePtmHeader(data, size, name);
   const std::size_t available = size - h.payloadOffset;
   if (available < h.payloadBytes) {
@@ -137,6 +146,12 @@ PtmFile parsePtm(const std::uint8_t* data, std::size_t size, const std::string& 
                     std::to_string(h.height) + " texels (" + std::to_string(h.payloadBytes) +
                     " bytes of data) but only " + std::to_string(available) + " bytes follow");
   }
+  const std::uint64_t declaredTexels = static_cast<std::uint64_t>(h.width) * static_cast<std::uint64_t>(h.height);
+  const std::string declared =
+      std::to_string(h.width) + "x" + std::to_string(h.height) + " texels (" + h.report.formatLine +
+      (h.jpegPlanes.empty() ? "" : ", " + std::to_string(h.jpegPlanes.size()) + " JPEG planes") + ")";
+  requireWithinMemory(name, kReadStep, declared, size + ptmReadBytes(h) + declaredTexels * (budget.besidePerTexel + budget.modelCopies * bytesPerTexel(h.format)),
+                      budget.bytes, budget.memoryOption);
   if (report) {
     *report = h.report;
     report->trailingBytes = available - h.payloadBytes;
@@ -182,10 +197,10 @@ PtmFile parsePtm(const std::uint8_t* data, std::size_t size, const std::string& 
   return ptm;
 }
 
-PtmFile readPtm(const std::filesystem::path& path, PtmReadReport* report) {
+PtmFile readPtm(const std::filesystem::path& path, PtmReadReport* report, const ModelBudget& budget) {
   const std::string bytes = readFile(path, kReadStep);
   return parsePtm(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size(),
-                  path.string(), report);
+                  path.string(), report, budget);
 }
 
 void validatePtm(const PtmFile& ptm, const std::string& name) {

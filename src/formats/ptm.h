@@ -42,6 +42,8 @@
 #include <string>
 #include <vector>
 
+#include "formats/model_budget.h"
+
 namespace surrogate::formats {
 
 struct PtmFile {
@@ -114,13 +116,21 @@ constexpr std::uint64_t kMaxTexels = 1ull << 31;
 // than the plane it predicts, a side-information size not a multiple of 5, ...).
 PtmHeader parsePtmHeader(const std::uint8_t* data, std::size_t size, const std::string& name);
 
+// What reading the model `h` declares takes at its peak besides the `fileBytes` held: the
+// model (9 or 18 bytes a texel), and for the JPEG variants one decoded plane and the
+// coefficients libjpeg keeps for a progressive plane (3 bytes a texel).
+std::uint64_t ptmReadBytes(const PtmHeader& h);
+
 // Parses a whole file held in memory; also throws when the payload is shorter than the header
 // says, and, for the JPEG variants, when a plane's JPEG stream is damaged, is not a greyscale
 // image of the PTM's size, or a side-information entry points outside the image. Never reads
-// outside [data, data + size).
+// outside [data, data + size). Before anything is allocated, throws Error(Input) naming `name`
+// when `size` + ptmReadBytes + budget.besidePerTexel a texel exceeds budget.bytes
+// (core/memory_budget.h): a JPEG-compressed PTM of a few megabytes can declare gigabytes.
 PtmFile parsePtm(const std::uint8_t* data, std::size_t size, const std::string& name,
-                 PtmReadReport* report = nullptr);
-PtmFile readPtm(const std::filesystem::path& path, PtmReadReport* report = nullptr);
+                 PtmReadReport* report = nullptr, const ModelBudget& budget = {});
+PtmFile readPtm(const std::filesystem::path& path, PtmReadReport* report = nullptr,
+                const ModelBudget& budget = {});
 
 // Throws Error(Input) naming `name` when the object cannot be written as a valid file:
 // dimensions out of range, wrong vector sizes, biases outside 0..255, non-finite scales or

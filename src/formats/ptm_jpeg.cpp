@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/resident.h"
 #include "image/decode.h"
 
 namespace surrogate::formats {
@@ -121,7 +122,27 @@ PtmFile decodeJpegPtm(const PtmHeader& h, const std::uint8_t* payload, std::size
     sequence[static_cast<std::size_t>(h.jpegPlanes[p].order)] = p;
   }
 
-  std::vector<std::vector<std::uint8_t>> planes(n);
+  PtmFile ptm;
+  ptm.format = n == 9 ? PtmFile::Format::Lrgb : PtmFile::Format::Rgb;
+  ptm.width = h.width;
+  ptm.height = h.height;
+  ptm.scale = h.scale;
+  ptm.bias = h.bias;
+  resizeResident(ptm.coefficients, texels * (n == 9 ? 6 : 18));
+  if (n == 9) resizeResident(ptm.rgb, texels * 3);
+  // Each plane goes into the model as soon as it is final, and a plane predicted from another
+  // reads that one back from the model: one decoded plane is held at a time, not all nine or
+  // eighteen (ptmReadBytes counts on it). Plane p of texel t (rows top first) is
+  // base[t * stride].
+  struct Slot {
+    std::uint8_t* base;
+    std::size_t stride;
+  };
+  auto slotOf = [&](std::size_t p) -> Slot {
+    if (n == 9) return p < 6 ? Slot{ptm.coefficients.data() + p, 6} : Slot{ptm.rgb.data() + (p - 6), 3};
+    return Slot{ptm.coefficients.data() + (p / 6) * texels * 6 + p % 6, 6};
+  };
+
   for (const std::size_t p : sequence) {
     const PtmJpegPlane& d = h.jpegPlanes[p];
     auto fail = [&](const std::string& message) {
@@ -138,12 +159,17 @@ PtmFile decodeJpegPtm(const PtmHeader& h, const std::uint8_t* payload, std::size
     }
     if (j.components != 1) fail("its JPEG stream is in colour; each plane is a greyscale JPEG");
     std::vector<std::uint8_t> v = std::move(j.samples);
+    // Plane rows run bottom-up; the model's rows top-down.
     if (d.reference >= 0) {
-      const std::vector<std::uint8_t>& r = planes[static_cast<std::size_t>(d.reference)];
+      const Slot r = slotOf(static_cast<std::size_t>(d.reference));
       const bool invert = (d.transform & 1) != 0;
-      for (std::size_t i = 0; i < texels; ++i) {
-        const int prediction = invert ? 255 - r[i] : r[i];
-        v[i] = static_cast<std::uint8_t>((v[i] + prediction - 128) & 0xFF);
+      for (std::size_t row = 0; row < rows; ++row) {
+        const std::uint8_t* ref = r.base + (rows - 1 - row) * w * r.stride;
+        std::uint8_t* out = v.data() + row * w;
+        for (std::size_t x = 0; x < w; ++x) {
+          const int prediction = invert ? 255 - ref[x * r.stride] : ref[x * r.stride];
+          out[x] = static_cast<std::uint8_t>((out[x] + prediction - 128) & 0xFF);
+        }
       }
     }
     const std::uint8_t* side = payload + start[p] + d.jpegBytes;
@@ -156,30 +182,11 @@ PtmFile decodeJpegPtm(const PtmHeader& h, const std::uint8_t* payload, std::size
       }
       v[index] = side[e + 4];
     }
-    planes[p] = std::move(v);
-  }
-
-  // Plane rows run bottom-up; PtmFile rows top-down.
-  PtmFile ptm;
-  ptm.format = n == 9 ? PtmFile::Format::Lrgb : PtmFile::Format::Rgb;
-  ptm.width = h.width;
-  ptm.height = h.height;
-  ptm.scale = h.scale;
-  ptm.bias = h.bias;
-  ptm.coefficients.resize(texels * (n == 9 ? 6 : 18));
-  if (n == 9) ptm.rgb.resize(texels * 3);
-  for (std::size_t y = 0; y < rows; ++y) {
-    const std::size_t src = (rows - 1 - y) * w;
-    for (std::size_t x = 0; x < w; ++x) {
-      const std::size_t t = y * w + x;
-      if (n == 9) {
-        for (std::size_t k = 0; k < 6; ++k) ptm.coefficients[t * 6 + k] = planes[k][src + x];
-        for (std::size_t c = 0; c < 3; ++c) ptm.rgb[t * 3 + c] = planes[6 + c][src + x];
-      } else {
-        for (std::size_t c = 0; c < 3; ++c)
-          for (std::size_t k = 0; k < 6; ++k)
-            ptm.coefficients[(c * texels + t) * 6 + k] = planes[c * 6 + k][src + x];
-      }
+    const Slot s = slotOf(p);
+    for (std::size_t row = 0; row < rows; ++row) {
+      std::uint8_t* out = s.base + (rows - 1 - row) * w * s.stride;
+      const std::uint8_t* in = v.data() + row * w;
+      for (std::size_t x = 0; x < w; ++x) out[x * s.stride] = in[x];
     }
   }
   return ptm;

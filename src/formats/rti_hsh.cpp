@@ -128,7 +128,7 @@ RtiHeader parseRtiHeader(const std::uint8_t* data, std::size_t size, const std::
 }
 
 HshFile parseRti(const std::uint8_t* data, std::size_t size, const std::string& name,
-                 RtiReadReport* report) {
+                 RtiReadReport* report, const ModelBudget& budget) {
   const RtiHeader h = parseRtiHeader(data, size, name);
   const std::size_t available = size - h.tablesOffset;
   if (available < h.payloadBytes) {
@@ -138,6 +138,14 @@ HshFile parseRti(const std::uint8_t* data, std::size_t size, const std::string& 
                     " terms (" + std::to_string(h.payloadBytes) + " bytes of data) but only " +
                     std::to_string(available) + " bytes follow");
   }
+  // The payload is in the file, so the model is no larger than the file: the budget is about
+  // what the caller holds beside it, and files larger than the computer can hold twice.
+  const std::uint64_t texels = static_cast<std::uint64_t>(h.width) * static_cast<std::uint64_t>(h.height);
+  requireWithinMemory(name, kReadStep,
+                      std::to_string(h.width) + "x" + std::to_string(h.height) + " texels of " +
+                          std::to_string(h.terms) + " HSH terms",
+                      size + (1 + budget.modelCopies) * h.payloadBytes + texels * budget.besidePerTexel, budget.bytes,
+                      budget.memoryOption);
   HshFile hsh;
   hsh.width = h.width;
   hsh.height = h.height;
@@ -162,10 +170,10 @@ HshFile parseRti(const std::uint8_t* data, std::size_t size, const std::string& 
   return hsh;
 }
 
-HshFile readRti(const std::filesystem::path& path, RtiReadReport* report) {
+HshFile readRti(const std::filesystem::path& path, RtiReadReport* report, const ModelBudget& budget) {
   const std::string bytes = readFile(path, kReadStep);
   return parseRti(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size(),
-                  path.string(), report);
+                  path.string(), report, budget);
 }
 
 void validateHsh(const HshFile& hsh, const std::string& name) {

@@ -29,6 +29,8 @@
 #include <string>
 #include <vector>
 
+#include "formats/model_budget.h"
+
 namespace surrogate::formats {
 
 struct HshFile {
@@ -71,10 +73,13 @@ struct RtiHeader {
 RtiHeader parseRtiHeader(const std::uint8_t* data, std::size_t size, const std::string& name);
 
 // Parses a whole file in memory (never reads outside the buffer); also throws for a truncated
-// payload and for non-finite scale or bias values.
+// payload and for non-finite scale or bias values, and, before allocating the model, when
+// `size` + the model + budget.besidePerTexel a texel exceeds budget.bytes
+// (core/memory_budget.h).
 HshFile parseRti(const std::uint8_t* data, std::size_t size, const std::string& name,
-                 RtiReadReport* report = nullptr);
-HshFile readRti(const std::filesystem::path& path, RtiReadReport* report = nullptr);
+                 RtiReadReport* report = nullptr, const ModelBudget& budget = {});
+HshFile readRti(const std::filesystem::path& path, RtiReadReport* report = nullptr,
+                const ModelBudget& budget = {});
 
 // Throws Error(Input) when the object cannot be written as a valid file.
 void validateHsh(const HshFile& hsh, const std::string& name);

@@ -48,6 +48,17 @@ namespace surrogate::image {
 // declares more is damaged or crafted, and is refused as bad input.
 inline constexpr std::uint64_t kMaxImagePixels = 500'000'000;
 
+// The fewest bytes a Huffman-coded JPEG of width x height pixels can hold. Each 8x8 block of a
+// component costs at least one bit (its DC difference, in a sequential scan and in a
+// progressive DC scan alike), and the component sampled most finely spans the whole width and at
+// least a quarter of the height, or the reverse (sampling factors are 1 to 4): at least
+// width x height / 256 blocks. A stream with fewer bytes than this that declares such a size is
+// damaged or made to exhaust memory, and is refused before it is decoded. Arithmetic coding has
+// no such floor (nor do the viewers decode it); it is left to the memory budget.
+inline constexpr std::uint64_t minimumHuffmanJpegBytes(std::uint64_t width, std::uint64_t height) {
+  return width * height / 2048;
+}
+
 struct ImageProbe {
   int width = 0;   // as decodeImage returns it with default settings
   int height = 0;
@@ -149,8 +160,9 @@ Image decodeImage(const std::filesystem::path& path, const RawDecodeSettings& se
 // A JPEG stream held in memory (one plane of a JPEG-compressed PTM, for instance), decoded by
 // libjpeg strictly: a fatal error or any warning about damaged data (a truncated stream, a bad
 // Huffman code) leaves `samples` empty and says why in `problem`, in libjpeg's words, for the
-// caller to word its own error. A header declaring more than maxPixels (or kMaxImagePixels)
-// is refused before any sample buffer is allocated. Grey stays one channel; other streams
+// caller to word its own error. A header declaring more than maxPixels (or kMaxImagePixels),
+// or more pixels than `size` bytes of Huffman-coded data can hold (minimumHuffmanJpegBytes), is
+// refused before any sample buffer is allocated. Grey stays one channel; other streams
 // come out as RGB; CMYK is refused.
 //
 //   JpegSamples plane = decodeJpegSamples(bytes, size, expectedWidth * expectedHeight);

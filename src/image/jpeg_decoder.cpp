@@ -195,6 +195,13 @@ JpegSamples decodeJpegSamples(const std::uint8_t* data, std::size_t size, std::u
                   " pixels, more than expected";
     return out;
   }
+  if (!c.arith_code && size < minimumHuffmanJpegBytes(c.image_width, c.image_height)) {
+    out.problem = "it declares " + std::to_string(c.image_width) + " x " + std::to_string(c.image_height) +
+                  " pixels in " + std::to_string(size) + " bytes, fewer than the " +
+                  std::to_string(minimumHuffmanJpegBytes(c.image_width, c.image_height)) +
+                  " any JPEG of that size needs";
+    return out;
+  }
   if (c.num_components != 1 && c.num_components != 3) {
     out.problem = "it has " + std::to_string(c.num_components) + " colour components (1 or 3 expected)";
     return out;

@@ -9,6 +9,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "publish/layout_files.h"
 #include "publish/plane_decode.h"
 
 namespace surrogate::publish {
@@ -71,9 +72,7 @@ std::optional<Descriptor> descriptorOf(const xmlNode* image) {
 }
 
 Descriptor readDescriptor(const fs::path& dzi, int width, int height) {
-  std::error_code ec;
-  if (fs::file_size(dzi, ec) > kMaxDziBytes) notDeepZoom(dzi, "it is larger than any .dzi (64 KB)");
-  const std::string xml = readFile(dzi, kStep);
+  const std::string xml = readLayoutFile(dzi, kMaxDziBytes, kStep);
   xmlDocPtr doc = xmlReadMemory(xml.data(), static_cast<int>(xml.size()), dzi.c_str(), nullptr,
                                 XML_PARSE_NONET | XML_PARSE_NOERROR | XML_PARSE_NOWARNING);
   if (!doc) notDeepZoom(dzi, "it is not well-formed XML");
@@ -107,15 +106,14 @@ void placeTile(const fs::path& file, const Descriptor& d, int col, int row, std:
   const int left = col > 0 ? d.overlap : 0, top = row > 0 ? d.overlap : 0;
   const int tileWidth = std::min(d.width, x1 + d.overlap) - (x0 - left);
   const int tileHeight = std::min(d.height, y1 + d.overlap) - (y0 - top);
-  std::error_code ec;
-  if (!fs::is_regular_file(file, ec))
+  if (!somethingAt(file))
     throw Error(ErrorKind::Input, file.string(), kStep,
                 "is missing: a tile of the plane's full-size level; publish the model again");
+  // Never through a link; far larger than a JPEG tile of its size, refused before it is read.
   const std::uintmax_t texels = static_cast<std::uintmax_t>(tileWidth) * static_cast<std::uintmax_t>(tileHeight);
-  if (fs::file_size(file, ec) > texels * kMaxJpegBytesPerTexel + kJpegHeaderBytes)
-    throw Error(ErrorKind::Input, file.string(), kStep,
-                "is far larger than a JPEG tile of its size: it is not a tile of this layout");
-  const std::vector<std::uint8_t> tile = decodePlaneJpeg(readFile(file, kStep), tileWidth, tileHeight, file.string());
+  const std::vector<std::uint8_t> tile = decodePlaneJpeg(
+      readLayoutFile(file, texels * kMaxJpegBytesPerTexel + kJpegHeaderBytes, kStep), tileWidth, tileHeight,
+      file.string());
   const auto rowBytes = static_cast<std::size_t>(x1 - x0) * 3;
   for (int y = y0; y < y1; ++y) {
     const std::size_t from = (static_cast<std::size_t>(y - y0 + top) * tileWidth + left) * 3;
@@ -128,7 +126,9 @@ void placeTile(const fs::path& file, const Descriptor& d, int col, int row, std:
 std::vector<std::uint8_t> readDeepZoomPlane(const fs::path& dzi, int width, int height) {
   const Descriptor d = readDescriptor(dzi, width, height);
   const fs::path tiles = dzi.parent_path() / (dzi.stem().string() + "_files");
+  refuseLinkedFolder(tiles, kStep);
   const fs::path level = tiles / std::to_string(fullLevel(tiles, d));
+  refuseLinkedFolder(level, kStep);
   std::vector<std::uint8_t> plane(static_cast<std::size_t>(width) * height * 3);
   for (int row = 0; row * d.tileSize < height; ++row)
     for (int col = 0; col * d.tileSize < width; ++col)

@@ -6,6 +6,7 @@
 #include <climits>
 #include <cmath>
 #include <cstdlib>
+#include <optional>
 #include <set>
 
 #include "core/error.h"
@@ -128,6 +129,125 @@ std::size_t checkBeforeFileStorage(const std::string& s, const std::string& file
   return object;
 }
 
+int hexValue(char c) {
+  if (c >= '0' && c <= '9') return c - '0';
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+  return -1;
+}
+
+void appendUtf8(std::string& out, unsigned cp) {
+  if (cp < 0x80) {
+    out += static_cast<char>(cp);
+  } else if (cp < 0x800) {
+    out += static_cast<char>(0xC0 | (cp >> 6));
+    out += static_cast<char>(0x80 | (cp & 0x3F));
+  } else if (cp < 0x10000) {
+    out += static_cast<char>(0xE0 | (cp >> 12));
+    out += static_cast<char>(0x80 | ((cp >> 6) & 0x3F));
+    out += static_cast<char>(0x80 | (cp & 0x3F));
+  } else {
+    out += static_cast<char>(0xF0 | (cp >> 18));
+    out += static_cast<char>(0x80 | ((cp >> 12) & 0x3F));
+    out += static_cast<char>(0x80 | ((cp >> 6) & 0x3F));
+    out += static_cast<char>(0x80 | (cp & 0x3F));
+  }
+}
+
+// The code point of the escape "\uXXXX" at s[i] (a surrogate pair read as one character, six
+// more bytes consumed, in *length); a malformed escape or an unpaired surrogate is refused.
+unsigned unicodeEscape(const std::string& s, std::size_t i, std::size_t* length, const std::string& file) {
+  auto four = [&](std::size_t at) -> long {
+    if (at + 6 > s.size() || s[at] != '\\' || s[at + 1] != 'u') return -1;
+    long v = 0;
+    for (std::size_t k = at + 2; k < at + 6; ++k) {
+      const int h = hexValue(s[k]);
+      if (h < 0) return -1;
+      v = v * 16 + h;
+    }
+    return v;
+  };
+  const long first = four(i);
+  if (first < 0) notJson(file, atByte(i), "a \\u escape is not followed by four hexadecimal digits");
+  *length = 6;
+  if (first >= 0xDC00 && first <= 0xDFFF)
+    notJson(file, atByte(i), "the escape " + s.substr(i, 6) + " is the second half of a UTF-16 surrogate pair without its first");
+  if (first < 0xD800 || first > 0xDBFF) return static_cast<unsigned>(first);
+  const long second = four(i + 6);
+  if (second < 0xDC00 || second > 0xDFFF)
+    notJson(file, atByte(i), "the escape " + s.substr(i, 6) + " is the first half of a UTF-16 surrogate pair without its second");
+  *length = 12;
+  return 0x10000 + ((static_cast<unsigned>(first) - 0xD800) << 10) + (static_cast<unsigned>(second) - 0xDC00);
+}
+
+// JSON's escapes as FileStorage reads them. FileStorage (OpenCV 4.6) takes \" \\ \b \f \n \r \t
+// in a value and refuses \/ and \uXXXX ("currently not supported"), which JSON allows and other
+// tools write; it reads a key's bytes as they are, escapes included. So, inside strings, \/
+// becomes '/' and \uXXXX (a surrogate pair as one character) its UTF-8 bytes, or in a value
+// the short escape FileStorage reads for '"', '\\' and the five control characters that have
+// one; in a key every escape becomes its character. Refused, naming the byte: an escape JSON
+// does not have, a malformed or unpaired \u, \u0000 (FileStorage's strings end at a NUL), and a
+// key holding a quotation mark or a control character (FileStorage ends a key at the first
+// '"'). `s` has passed checkBeforeFileStorage: every string is closed.
+// Returns the text from `from` on, or nullopt when it holds no escape (nothing to change).
+std::optional<std::string> withEscapesFileStorageReads(const std::string& s, std::size_t from, const std::string& file) {
+  if (s.find('\\', from) == std::string::npos) return std::nullopt;
+  std::string out;
+  out.reserve(s.size() - from);
+  std::size_t i = from;
+  while (i < s.size()) {
+    if (s[i] != '"') {
+      out += s[i++];
+      continue;
+    }
+    std::size_t end = i + 1;
+    while (s[end] != '"') end += s[end] == '\\' ? 2 : 1;
+    std::size_t after = end + 1;
+    while (after < s.size() && isSpace(s[after])) ++after;
+    const bool key = after < s.size() && s[after] == ':';
+    out += '"';
+    for (std::size_t k = i + 1; k < end;) {
+      if (s[k] != '\\') {
+        out += s[k++];
+        continue;
+      }
+      const char e = s[k + 1];
+      unsigned cp = 0;
+      std::size_t length = 2;
+      switch (e) {
+        case '"': cp = '"'; break;
+        case '\\': cp = '\\'; break;
+        case '/': cp = '/'; break;
+        case 'b': cp = '\b'; break;
+        case 'f': cp = '\f'; break;
+        case 'n': cp = '\n'; break;
+        case 'r': cp = '\r'; break;
+        case 't': cp = '\t'; break;
+        case 'u': cp = unicodeEscape(s, k, &length, file); break;
+        default:
+          notJson(file, atByte(k), std::string("a string holds the escape \\") + e + ", which JSON does not have");
+      }
+      if (cp == 0) notJson(file, atByte(k), "a string holds \\u0000, a NUL character, which this reader cannot hold");
+      if (key && (cp == '"' || cp < 0x20))
+        notJson(file, atByte(k), "a key holds an escaped quotation mark or control character, which this reader "
+                                 "cannot hold in a key");
+      if (key || cp == '/' || (cp >= 0x20 && cp != '"' && cp != '\\')) {
+        appendUtf8(out, cp);
+      } else {
+        static const char kShort[] = {'"', '"', '\\', '\\', '\b', 'b', '\f', 'f', '\n', 'n', '\r', 'r', '\t', 't'};
+        std::size_t m = 0;
+        while (m < sizeof kShort && kShort[m] != static_cast<char>(cp)) m += 2;
+        if (m < sizeof kShort) out += '\\', out += kShort[m + 1];
+        else out += static_cast<char>(cp);  // another control character: FileStorage takes it as it is
+      }
+      k += length;
+    }
+    out += '"';
+    i = end + 1;
+  }
+  return out;
+}
+
 // A parse error's cv::Exception::func reads "(<line>): <what>", after the whole text when
 // that is one line (FileStorage then names its source by its contents); other errors say
 // what in cv::Exception::err. `skippedLines`: those before the text FileStorage was given.
@@ -218,8 +338,10 @@ std::optional<JsonValue> JsonValue::find(const std::string& key) const {
 
 JsonValue readJsonObject(const std::string& text, const std::string& file) {
   const std::size_t start = checkBeforeFileStorage(text, file);
-  const std::string object = start == 0 ? std::string() : text.substr(start);
-  const std::string& given = start == 0 ? text : object;
+  // Only the object is given to FileStorage, its escapes as FileStorage reads them.
+  const std::optional<std::string> rewritten = withEscapesFileStorageReads(text, start, file);
+  const std::string object = rewritten || start == 0 ? std::string() : text.substr(start);
+  const std::string& given = rewritten ? *rewritten : start == 0 ? text : object;
   try {
     auto storage = std::make_shared<cv::FileStorage>(
         given, cv::FileStorage::READ | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_JSON);

@@ -46,9 +46,11 @@ constexpr int kMaxJsonDepth = 64;
 // naming `file` and saying what is not JSON (with the byte or line where it is): text that is
 // not an object, not UTF-8, unclosed or too deeply nested, a NUL byte, text after the object, a number
 // outside JSON's syntax or a whole number beyond +-2147483647 (FileStorage would misread
-// them), a key given twice, a number too large for a double, and whatever FileStorage refuses
-// (null, \u and \/ escapes, strings of 4096 bytes or more, 1E5 with a capital E). Never lets a
-// cv::Exception out.
+// them), a key given twice, a number too large for a double, an escape JSON does not have, a
+// malformed or unpaired \u escape, \u0000, a key holding an escaped quotation mark or control
+// character, and whatever FileStorage refuses (null, strings of 4096 bytes or more, 1E5 with a
+// capital E). JSON's \/ and \uXXXX escapes (surrogate pairs too), which FileStorage refuses,
+// are read as the characters they stand for. Never lets a cv::Exception out.
 JsonValue readJsonObject(const std::string& text, const std::string& file);
 
 }  // namespace surrogate::publish

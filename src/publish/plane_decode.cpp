@@ -6,6 +6,7 @@
 #include <jpeglib.h>
 
 #include "core/error.h"
+#include "image/decode.h"
 
 namespace surrogate::publish {
 
@@ -35,7 +36,7 @@ void onMessage(j_common_ptr info, int level) {
   e->failed = true;
 }
 
-enum class Outcome { Decoded, Failed, WrongSize };
+enum class Outcome { Decoded, Failed, WrongSize, TooFewBytes };
 
 // Plain C between setjmp and longjmp: no destructor is skipped.
 Outcome decompress(jpeg_decompress_struct* d, const std::string& bytes, int width, int height,
@@ -49,6 +50,8 @@ Outcome decompress(jpeg_decompress_struct* d, const std::string& bytes, int widt
   *seenHeight = static_cast<int>(d->image_height);
   if (d->image_width != static_cast<JDIMENSION>(width) || d->image_height != static_cast<JDIMENSION>(height))
     return Outcome::WrongSize;
+  if (!d->arith_code && bytes.size() < image::minimumHuffmanJpegBytes(d->image_width, d->image_height))
+    return Outcome::TooFewBytes;
   d->out_color_space = JCS_RGB;
   d->dct_method = JDCT_ISLOW;  // libjpeg's default and most accurate inverse DCT, fixed so results never vary
   jpeg_start_decompress(d);
@@ -78,6 +81,13 @@ std::vector<std::uint8_t> decodePlaneJpeg(const std::string& bytes, int width, i
                 "is " + std::to_string(seenWidth) + "x" + std::to_string(seenHeight) + " pixels, but info.json gives " +
                     std::to_string(width) + "x" + std::to_string(height) +
                     ": the plane does not belong to this layout; publish the model again");
+  if (outcome == Outcome::TooFewBytes)
+    throw Error(ErrorKind::Input, file, kStep,
+                "declares " + std::to_string(width) + "x" + std::to_string(height) + " pixels in " +
+                    std::to_string(bytes.size()) + " bytes, fewer than the " +
+                    std::to_string(image::minimumHuffmanJpegBytes(static_cast<std::uint64_t>(width),
+                                                                  static_cast<std::uint64_t>(height))) +
+                    " any JPEG of that size needs: it is damaged or made to exhaust memory; publish the model again");
   if (outcome == Outcome::Failed)
     throw Error(ErrorKind::Input, file, kStep,
                 std::string("is not a JPEG plane that decodes cleanly (libjpeg: ") + errors.message +

@@ -311,9 +311,11 @@ bool startsWith(const std::string& s, const std::string& prefix) { return s.comp
 WebLayoutFiles webLayoutOfFile(const fs::path& file, const PublishOptions& options) {
   const std::string bytes = readFile(file, kStep);
   const auto* data = reinterpret_cast<const std::uint8_t*>(bytes.data());
-  if (startsWith(bytes, "PTM_")) return webLayoutOf(formats::parsePtm(data, bytes.size(), file.string()), options);
+  const formats::ModelBudget budget{options.memoryBudget, kPublishBytesPerTexel, 1};
+  if (startsWith(bytes, "PTM_"))
+    return webLayoutOf(formats::parsePtm(data, bytes.size(), file.string(), nullptr, budget), options);
   if (!bytes.empty() && bytes[0] == '#')
-    return webLayoutOf(formats::parseRti(data, bytes.size(), file.string()), options);
+    return webLayoutOf(formats::parseRti(data, bytes.size(), file.string(), nullptr, budget), options);
   throw Error(ErrorKind::Input, file.string(), kStep,
               "is neither a PTM (.ptm) nor an HSH RTI (.rti) file, nor a capture folder; give one of these");
 }
@@ -330,6 +332,36 @@ bool isModelResult(const carrier::FileRecord& f) {
   return f.role == "result" && startsWith(f.path, "finished-files/") && (ext == ".ptm" || ext == ".rti");
 }
 
+// A path a carrier gives is read only inside the capture: relative, with no "." or ".." part
+// and no empty one, and no symbolic link on the way (a link's target can lie anywhere, and a
+// carrier edited by hand could name any file whose digest it copied). Error(Input) naming the
+// carrier and the path.
+void checkRecordedPath(const fs::path& capture, const std::string& path) {
+  const fs::path carrierFile = capture / "assembly-files" / "carrier.xml";
+  auto refuse = [&](const std::string& why) {
+    throw Error(ErrorKind::Input, carrierFile.string(), kStep,
+                "records the result \"" + path + "\", " + why +
+                    "; publish reads only files inside the capture: run `surrogate run` on the capture "
+                    "again, or give the .ptm or .rti file itself");
+  };
+  if (path.empty() || path.front() == '/' || path.back() == '/' || path.find('\\') != std::string::npos ||
+      path.find('\0') != std::string::npos)
+    refuse("which is not a relative path with '/' between its parts");
+  fs::path at = capture;
+  for (std::size_t start = 0; start <= path.size();) {
+    const std::size_t slash = std::min(path.find('/', start), path.size());
+    const std::string part = path.substr(start, slash - start);
+    if (part.empty() || part == "." || part == "..") refuse("which has an empty, \".\" or \"..\" part");
+    at /= fs::u8path(part);
+    std::error_code ec;
+    const fs::file_status st = fs::symlink_status(at, ec);
+    if (fs::is_symlink(st)) refuse("and " + at.lexically_relative(capture).generic_string() + " is a symbolic link");
+    // A missing file is left to the digest, which names it.
+    if (slash == path.size() && fs::exists(st) && !fs::is_regular_file(st)) refuse("which is not a regular file");
+    start = slash + 1;
+  }
+}
+
 // The capture's recorded results, each checked against its recorded digest (what is published
 // is what the carrier describes), with a subfolder named after the file's stem, or after the
 // whole name when two results share a stem.
@@ -344,6 +376,7 @@ std::vector<CaptureModel> recordedModels(const fs::path& capture) {
   std::map<std::string, int> stems;
   for (const carrier::FileRecord& f : c.files) {
     if (!isModelResult(f)) continue;
+    checkRecordedPath(capture, f.path);
     if (digestFile(capture / f.path).sha256 != f.sha256)
       throw Error(ErrorKind::Fixity, (capture / f.path).string(), kStep,
                   "is not the file the carrier records (its SHA-256 differs); run the capture again "

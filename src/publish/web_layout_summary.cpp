@@ -5,6 +5,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "publish/info_json.h"
+#include "publish/layout_files.h"
 #include "publish/web_layout.h"
 
 namespace surrogate::publish {
@@ -12,8 +13,6 @@ namespace surrogate::publish {
 namespace fs = std::filesystem;
 
 namespace {
-// An info.json is a few kilobytes; relight's PCA bases make it a few megabytes at most.
-constexpr std::uintmax_t kMaxInfoJsonBytes = 64u << 20;
 
 [[noreturn]] void missing(const std::string& file, const std::string& what) {
   throw Error(ErrorKind::Input, file, "info",
@@ -78,10 +77,11 @@ bool tiledPlane(const fs::path& folder, int j, std::string* tiles) {
 
 WebLayoutSummary describeWebLayout(const fs::path& infoJson) {
   const std::string file = infoJson.string();
-  std::error_code ec;
-  const std::uintmax_t size = fs::file_size(infoJson, ec);
-  if (!ec && size > kMaxInfoJsonBytes) missing(file, "it is larger than any info.json (64 MB)");
-  const JsonValue info = readJsonObject(readFile(infoJson, "info"), file);
+  // Never through a link, and no larger than any info.json (publish/layout_files.h).
+  std::string text = readLayoutFile(infoJson, kMaxInfoJsonBytes, "info");
+  const JsonValue info = readJsonObject(text, file);
+  const std::uintmax_t size = text.size();
+  std::string().swap(text);
   WebLayoutSummary s;
   s.type = member(info, "type", JsonValue::Kind::String, file).text();
   s.colorspace = member(info, "colorspace", JsonValue::Kind::String, file).text();
@@ -92,7 +92,7 @@ WebLayoutSummary describeWebLayout(const fs::path& infoJson) {
   s.format = info.find("format") ? member(info, "format", JsonValue::Kind::String, file).text() : "jpg";
   checkMaterial(info, s.nplanes, file);
   s.basis = basisName(s);
-  s.bytes = ec ? 0 : size;
+  s.bytes = size;
   for (int j = 0; j * 3 < s.nplanes; ++j) {
     const std::string name = "plane_" + std::to_string(j) + "." + s.format;
     s.planes.push_back(name);

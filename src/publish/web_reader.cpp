@@ -6,9 +6,11 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/memory_budget.h"
 #include "image/decode.h"
 #include "publish/deep_zoom_reader.h"
 #include "publish/info_json.h"
+#include "publish/layout_files.h"
 #include "publish/plane_decode.h"
 #include "publish/web_layout.h"
 #include "publish/web_terms.h"
@@ -33,7 +35,7 @@ constexpr double kWholeBiasTolerance = 1e-6;
 fs::path infoJsonOf(const fs::path& path) {
   std::error_code ec;
   if (!fs::is_directory(path, ec)) return path;
-  if (!fs::is_regular_file(path / "info.json", ec))
+  if (!somethingAt(path / "info.json"))
     refuse(path, "is a folder without an info.json: give the folder `surrogate publish` wrote, or a .ptm or .rti file");
   return path / "info.json";
 }
@@ -64,7 +66,7 @@ struct Material {
 
 // describeWebLayout has checked that materials[0] holds nplanes numbers in each.
 Material materialOf(const fs::path& info, int nplanes) {
-  const JsonValue root = readJsonObject(readFile(info, kStep), info.string());
+  const JsonValue root = readJsonObject(readLayoutFile(info, kMaxInfoJsonBytes, kStep), info.string());
   const JsonValue first = root.find("materials")->item(0);
   Material m;
   const JsonValue scale = *first.find("scale"), bias = *first.find("bias");
@@ -75,12 +77,15 @@ Material materialOf(const fs::path& info, int nplanes) {
   return m;
 }
 
+// The largest file a plane of `texels` can be: at quality 100 pure noise takes under 1.5 bytes
+// a value (plane_decode.h).
+std::uintmax_t maxPlaneBytes(std::uintmax_t texels) { return texels * kMaxJpegBytesPerTexel + kJpegHeaderBytes; }
+
 std::vector<std::uint8_t> readPlane(const fs::path& folder, const WebLayoutSummary& s, int j) {
   const fs::path file = folder / s.planes[static_cast<std::size_t>(j)];
-  std::error_code ec;
-  if (!fs::is_regular_file(file, ec)) {
+  if (!somethingAt(file)) {
     const fs::path dzi = folder / ("plane_" + std::to_string(j) + ".dzi");
-    if (fs::is_regular_file(dzi, ec)) return readDeepZoomPlane(dzi, s.width, s.height);
+    if (somethingAt(dzi)) return readDeepZoomPlane(dzi, s.width, s.height);
     if (!s.tiles.empty())
       refuse(file, "is missing, and the plane is tiled only as " + s.tiles + ", which render does not read (it reads "
                    "whole planes, plane_N.jpg, and Deep Zoom tiles, plane_N.dzi)");
@@ -88,10 +93,29 @@ std::vector<std::uint8_t> readPlane(const fs::path& folder, const WebLayoutSumma
                      " planes; publish the model again");
   }
   const std::uintmax_t texels = static_cast<std::uintmax_t>(s.width) * static_cast<std::uintmax_t>(s.height);
-  if (fs::file_size(file, ec) > texels * kMaxJpegBytesPerTexel + kJpegHeaderBytes)
-    refuse(file, "is far larger than a JPEG plane of " + std::to_string(s.width) + "x" + std::to_string(s.height) +
-                     " texels: it is not a plane of this layout");
-  return decodePlaneJpeg(readFile(file, kStep), s.width, s.height, file.string());
+  // Never through a link; too large, or too small to hold the plane's texels, refused before
+  // anything is decoded (plane_decode.h).
+  return decodePlaneJpeg(readLayoutFile(file, maxPlaneBytes(texels), kStep), s.width, s.height, file.string());
+}
+
+// What reading the layout takes at its peak (core/memory_budget.h), from what info.json
+// declares: the decoded planes (three bytes a texel each) and the model made of them (as many
+// bytes a texel as planes), libjpeg's coefficients of a progressive plane (six bytes a texel),
+// the largest plane file read, and, when the terms are re-quantised, one term's values as
+// doubles for every colour.
+std::uint64_t layoutReadBytes(const WebLayoutSummary& s, const fs::path& folder, bool requantised,
+                              const formats::ModelBudget& budget) {
+  const std::uint64_t texels = static_cast<std::uint64_t>(s.width) * static_cast<std::uint64_t>(s.height);
+  const auto nplanes = static_cast<std::uint64_t>(s.nplanes);
+  std::uint64_t largestFile = 0;
+  for (const std::string& name : s.planes) {
+    std::error_code ec;
+    const fs::file_status st = fs::symlink_status(folder / name, ec);
+    if (fs::is_regular_file(st))
+      largestFile = std::max<std::uint64_t>(largestFile, std::min<std::uint64_t>(fs::file_size(folder / name, ec),
+                                                                                 maxPlaneBytes(texels)));
+  }
+  return s.bytes + largestFile + texels * (2 * nplanes + 6 + (requantised ? 3 * 9 : 0) + budget.besidePerTexel);
 }
 
 // The decoded planes: plane p of texel t is images[p / 3][t * 3 + p % 3].
@@ -283,13 +307,19 @@ bool isWebLayoutPath(const fs::path& path) {
   return fs::is_directory(path, ec) || path.extension() == ".json";
 }
 
-WebLayoutModel readWebLayout(const fs::path& path) {
+WebLayoutModel readWebLayout(const fs::path& path, const formats::ModelBudget& budget) {
   WebLayoutModel out;
   out.infoJson = infoJsonOf(path);
   const WebLayoutSummary s = describeWebLayout(out.infoJson);
   checkBasis(s, out.infoJson);
   checkSize(s, out.infoJson);
   const Material material = materialOf(out.infoJson, s.nplanes);
+  const bool requantised = s.type == "ptm" ? !ptmBytesCarryOver(material, s.colorspace == "lrgb")
+                                           : !hshBytesCarryOver(material, s.nplanes / 3);
+  requireWithinMemory(out.infoJson.string(), kStep,
+                      std::to_string(s.width) + "x" + std::to_string(s.height) + " texels in " +
+                          std::to_string(s.nplanes) + " planes",
+                      layoutReadBytes(s, out.infoJson.parent_path(), requantised, budget), budget.bytes);
   Planes planes;
   planes.texels = static_cast<std::size_t>(s.width) * static_cast<std::size_t>(s.height);
   for (int j = 0; j * 3 < s.nplanes; ++j) planes.images.push_back(readPlane(out.infoJson.parent_path(), s, j));

@@ -9,8 +9,8 @@
 // ("lights", "pixelSizeInMM", ...) are ignored. Refused, with Error(Input) naming the file:
 // other bases and colour spaces (rbf, bilinear, the PCA colour spaces), planes in another
 // format or tiled only in another form (.tzi), a missing plane or tile, one that is not a JPEG
-// or not of the size info.json gives, and sizes beyond the readers' limits (checked before any
-// plane is decoded).
+// or not of the size info.json gives, a file that is a symbolic link, and sizes beyond the
+// readers' limits or the memory budget (checked before any plane is decoded).
 //
 // The planes' bytes go into the model unchanged when info.json's scales and biases are ones a
 // .ptm or .rti can hold (the same for red, green and blue; a .ptm's bias a whole number of
@@ -43,7 +43,11 @@ struct WebLayoutModel {
 // ends in ".json".
 bool isWebLayoutPath(const std::filesystem::path& path);
 
-// `path`: a web layout's folder (holding info.json) or its info.json.
-WebLayoutModel readWebLayout(const std::filesystem::path& path);
+// `path`: a web layout's folder (holding info.json) or its info.json. The layout's files are
+// read as they are, never through a symbolic link (publish/layout_files.h). What reading it
+// takes, from the size and planes info.json declares, with budget.besidePerTexel for what the
+// caller holds beside the model, is checked against budget.bytes (--memory) before any plane
+// is read: Error(Input) naming the info.json when it does not fit.
+WebLayoutModel readWebLayout(const std::filesystem::path& path, const formats::ModelBudget& budget = {});
 
 }  // namespace surrogate::publish

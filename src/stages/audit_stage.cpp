@@ -172,6 +172,7 @@ void AuditStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier:
   options.reproducedDb = recorded.reproducedMarginDb;
   options.threads = ctx.settings.threads;
   options.memoryBudgetBytes = ctx.settings.fitBudget();
+  options.memoryOption = ctx.settings.memoryBudget;
   options.differenceFolder = ctx.outputPath(kDifferenceFolder);
   fs::create_directories(options.differenceFolder);
   audit::AuditReport report = auditReadable(in, options, step, ctx);

@@ -129,6 +129,7 @@ void WebCopyStage::run(const carrier::Step& step, pipeline::Context& ctx, carrie
   options.tiles = publish::parseTileLayout(o.tiles);
   options.tileSize = o.tileSize;
   options.threads = ctx.settings.threads;
+  options.memoryBudget = ctx.settings.memoryBudget;
   const publish::WebLayoutFiles layout = publish::webLayoutOfFile(ctx.outputPath(model), options);
   ctx.progress(label, 0.5);
 

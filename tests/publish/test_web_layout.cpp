@@ -328,7 +328,6 @@ TEST_CASE("describeWebLayout says what is wrong with malformed or hostile JSON, 
   says(refusal(R"({"width":4,)" "\n" R"("height":})"), "at line 2");  // FileStorage's own refusal
   says(refusal("{\"type\":\"pt\x1Bm\"}"), "a string holds a control character");
   says(refusal(R"({"type":null})"), "OpenCV's FileStorage");
-  says(refusal(R"({"type":"\u0070tm"})"), "OpenCV's FileStorage");
   // Nesting: FileStorage recurses once per level and overflows the stack at some 50 000.
   const int deep = 200000;
   says(refusal("{\"a\":" + std::string(deep, '[') + std::string(deep, ']') + "}"), "nested too deeply");
@@ -355,6 +354,51 @@ TEST_CASE("describeWebLayout says what is wrong with malformed or hostile JSON, 
   says(refusal(R"({"type":"pt)" "\xED\xA0\x80" R"("})"), "not UTF-8");  // a UTF-16 surrogate
   says(refusal(R"({"type":"pt)" "\xC0\xAF" R"("})"), "not UTF-8");      // an overlong '/'
   says(refusal(std::string("\xFF\xFE{\0\"\0", 6)), "NUL byte");  // UTF-16
+  fs::remove_all(dir);
+}
+
+// JSON's escapes, which FileStorage refuses (\u, \/) or reads only in values, are read as the
+// characters they stand for (src/publish/info_json.cpp); a malformed one is refused by name.
+TEST_CASE("describeWebLayout reads JSON escapes, surrogate pairs included, and refuses malformed ones") {
+  const fs::path dir = freshDir("describe-escapes");
+  const fs::path file = dir / "info.json";
+  const std::string rest = R"("colorspace":"rgb","nplanes":3,"materials":[{"scale":[1,1,1],"bias":[0,0,0]}]})";
+  const auto read = [&](const std::string& type, const std::string& key = "type") {
+    { std::ofstream(file, std::ios::binary) << "{\"width\":4,\"height\":3,\"" + key + "\":\"" + type + "\"," + rest; }
+    return publish::describeWebLayout(file);
+  };
+  const auto refusal = [&](const std::string& type) -> std::string {
+    try {
+      read(type);
+    } catch (const Error& e) {
+      CHECK(e.kind() == ErrorKind::Input);
+      CHECK(e.file() == file.string());
+      return e.message();
+    }
+    return "";
+  };
+  CHECK(read(R"(\u0070tm)").type == "ptm");
+  CHECK(read(R"(\u0050\u0074M)").type == "PtM");
+  CHECK(read(R"(a\/b)").type == "a/b");
+  CHECK(read(R"(\u00e9\u00E9)").type == "\xC3\xA9\xC3\xA9");            // é, either case of hex
+  CHECK(read(R"(\u20AC)").type == "\xE2\x82\xAC");                   // three bytes of UTF-8
+  CHECK(read(R"(\uD83D\uDE00)").type == "\xF0\x9F\x98\x80");            // a surrogate pair: U+1F600
+  CHECK(read(R"(q\u0022\u005c\"\\)").type == "q\"\\\"\\");           // quotation marks, backslashes
+  CHECK(read(R"(\u000a\n\u0009\u0001)").type == "\n\n\t\x01");           // control characters
+  CHECK(read("ptm", R"(t\u0079pe)").type == "ptm");                   // an escaped key
+  const auto says = [](const std::string& message, const std::string& what) {
+    INFO(message);
+    CHECK(message.find(what) != std::string::npos);
+  };
+  says(refusal(R"(\u00)"), "four hexadecimal digits");
+  says(refusal(R"(\u00G0)"), "four hexadecimal digits");
+  says(refusal(R"(\uD83D)"), "without its second");
+  says(refusal(R"(\uD83Dx)"), "without its second");
+  says(refusal(R"(\uD83D\u0041)"), "without its second");
+  says(refusal(R"(\uDE00)"), "without its first");
+  says(refusal(R"(\u0000)"), "NUL");
+  says(refusal(R"(\x41)"), "the escape \\x");
+  says(refusal(R"(\')"), "the escape \\'");
   fs::remove_all(dir);
 }
 
