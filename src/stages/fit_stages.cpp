@@ -212,8 +212,9 @@ pipeline::StageInfo RtiFitStage::info() {
       // terms are damped toward the lower order, so those models change; lights spread over the
       // hemisphere give version 2's bytes. Each fit also records the check residual-outlier
       // (hrti/light_checks.h), and an image the model misses far more than the others stops
-      // the run unless the check is accepted.
-      {kComponent, "3", "Least-squares fit of a per-pixel reflectance model over the light directions",
+      // the run unless the check is accepted. Version 4: every fit records the light matrix's
+      // condition and the quantisation noise gain (how well the lights support the basis).
+      {kComponent, "4", "Least-squares fit of a per-pixel reflectance model over the light directions",
        pipeline::PlanSlot::EachModel});
   info.forModel = [](const std::string& basis) { return RtiFitOptions::forBasis(basis).toParameters(); };
   info.outputs = [](const carrier::Step& step) {
@@ -285,15 +286,15 @@ void RtiFitStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
   recordChecks(step, ctx, result, {hrti::residualCheck(stats.perImageRmse, names)},
                {"fit checks", "the fit", "its result cannot be trusted"},
                [&](const hrti::LightCheck& c) { return excludeImagesFix(c, names); });
-  // The conditioning, recorded only when it changed the fit: a plain least-squares fit (weight
-  // 0) keeps the values RtiFit version 2 recorded.
+  // How well the lights support this basis, whatever was done about it (docs/hrti-math.md,
+  // "The default bases and the light coverage"); the damping, only when it changed the fit.
+  result.add("value").set("name", "lightMatrixCondition").set("value", formatNumber(stats.conditionNumber));
+  result.add("value").set("name", "quantisationNoiseGain").set("value", formatNumber(stats.noiseGain));
   if (stats.regularisation > 0) {
     std::string damped;
     for (int k : stats.dampedTerms) damped += (damped.empty() ? "" : " ") + std::to_string(k);
     result.add("value").set("name", "regularisation").set("value", formatNumber(stats.regularisation));
     result.add("value").set("name", "dampedTerms").set("value", damped);
-    result.add("value").set("name", "lightMatrixCondition").set("value", formatNumber(stats.conditionNumber));
-    result.add("value").set("name", "quantisationNoiseGain").set("value", formatNumber(stats.noiseGain));
     result.add("value").set("name", "plainQuantisationNoiseGain").set("value", formatNumber(stats.plainNoiseGain));
     ctx.carrier.addLog("warning", step.id,
                        fit::conditioningWarning(options.basis, static_cast<int>(lights->size()), stats));
