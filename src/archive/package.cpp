@@ -68,19 +68,9 @@ std::vector<std::string> captureFiles(const fs::path& capture) {
 }
 
 
-// The carrier's files by path (Carrier::findFileByPath searches the whole list, which made
-// every per-file lookup over a capture of many files quadratic). The first record of a path
-// wins, as with findFileByPath.
-std::unordered_map<std::string, const carrier::FileRecord*> filesByPath(const carrier::Carrier& c) {
-  std::unordered_map<std::string, const carrier::FileRecord*> out;
-  out.reserve(c.files.size());
-  for (const carrier::FileRecord& f : c.files) out.emplace(f.path, &f);
-  return out;
-}
-
 // capturePayload with the carrier already read.
 std::vector<PayloadSource> payloadOf(const fs::path& capture, const carrier::Carrier& c) {
-  const auto byPath = filesByPath(c);
+  const auto byPath = c.filesByPath();
   std::vector<std::string> unrecorded;
   std::vector<PayloadSource> out;
   std::unordered_set<std::string> bagged;
@@ -123,7 +113,7 @@ CarrierState checkCarrier(const fs::path& capture) {
   } catch (const Error& e) {
     return {false, "the carrier cannot be read (" + e.message() + ")", "", "", {}};
   }
-  const auto byPath = filesByPath(c);
+  const auto byPath = c.filesByPath();
   const std::vector<std::string> files = captureFiles(capture);
   CarrierState state;
   for (const std::string& rel : files)
