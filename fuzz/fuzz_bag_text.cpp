@@ -4,6 +4,7 @@
 #include <string>
 
 #include "archive/bag_text.h"
+#include "core/file_names.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace surrogate::archive;
@@ -29,6 +30,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (const auto decoded = decodeTagText(text, encoding, &why)) parseManifest(*decoded, "md5", 32);
   }
   safeBagPath(percentDecode(text), &why);
-  caseFoldKey(text);
+  surrogate::caseFoldKey(text);
+  surrogate::findNameProblems({text, "data/" + text}, 5);
   return 0;
 }

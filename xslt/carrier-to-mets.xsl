@@ -490,8 +490,57 @@
       <xsl:if test="$rec/@createdBy">
         <xsl:attribute name="CREATED"><xsl:value-of select="$carrier/c:data/c:result[@step = $rec/@createdBy]/@ended"/></xsl:attribute>
       </xsl:if>
-      <mets:FLocat LOCTYPE="OTHER" OTHERLOCTYPE="BagIt payload path" xlink:href="{$path}"/>
+      <mets:FLocat LOCTYPE="OTHER" OTHERLOCTYPE="BagIt payload path">
+        <xsl:attribute name="xlink:href">
+          <xsl:call-template name="href-of-path">
+            <xsl:with-param name="path" select="$path"/>
+          </xsl:call-template>
+        </xsl:attribute>
+      </mets:FLocat>
     </mets:file>
+  </xsl:template>
+
+  <!-- A payload path as a URI reference (xs:anyURI): '%', '#' and '?' written %25, %23 and %3F,
+       which would otherwise start an escape, a fragment or a query ("100% of.txt" is no valid
+       URI at all); XLink escapes the rest (spaces, letters beyond ASCII) itself. -->
+  <xsl:template name="href-of-path">
+    <xsl:param name="path"/>
+    <xsl:variable name="percent">
+      <xsl:call-template name="replace-all">
+        <xsl:with-param name="text" select="$path"/>
+        <xsl:with-param name="from" select="'%'"/>
+        <xsl:with-param name="to" select="'%25'"/>
+      </xsl:call-template>
+    </xsl:variable>
+    <xsl:variable name="hash">
+      <xsl:call-template name="replace-all">
+        <xsl:with-param name="text" select="$percent"/>
+        <xsl:with-param name="from" select="'#'"/>
+        <xsl:with-param name="to" select="'%23'"/>
+      </xsl:call-template>
+    </xsl:variable>
+    <xsl:call-template name="replace-all">
+      <xsl:with-param name="text" select="$hash"/>
+      <xsl:with-param name="from" select="'?'"/>
+      <xsl:with-param name="to" select="'%3F'"/>
+    </xsl:call-template>
+  </xsl:template>
+
+  <xsl:template name="replace-all">
+    <xsl:param name="text"/>
+    <xsl:param name="from"/>
+    <xsl:param name="to"/>
+    <xsl:choose>
+      <xsl:when test="contains($text, $from)">
+        <xsl:value-of select="concat(substring-before($text, $from), $to)"/>
+        <xsl:call-template name="replace-all">
+          <xsl:with-param name="text" select="substring-after($text, $from)"/>
+          <xsl:with-param name="from" select="$from"/>
+          <xsl:with-param name="to" select="$to"/>
+        </xsl:call-template>
+      </xsl:when>
+      <xsl:otherwise><xsl:value-of select="$text"/></xsl:otherwise>
+    </xsl:choose>
   </xsl:template>
 
   <xsl:template name="struct-div">

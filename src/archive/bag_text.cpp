@@ -7,10 +7,7 @@
 #include <cerrno>
 #include <set>
 
-#include <unicode/ucasemap.h>
-#include <unicode/unorm2.h>
-#include <unicode/ustring.h>
-
+#include "core/file_names.h"
 #include "core/text.h"
 
 namespace surrogate::archive {
@@ -35,12 +32,8 @@ std::optional<std::string> safeBagPath(const std::string& raw, std::string* why,
   if (raw.empty()) return fail("the path is empty");
   if (raw.size() > maxLength)
     return fail("the path is longer than " + std::to_string(maxLength) + " bytes");
-  for (char c : raw) {
-    const unsigned char u = static_cast<unsigned char>(c);
-    if (u < 0x20 || u == 0x7F) return fail("the path contains a control character");
-    if (c == '\\') return fail("the path contains a backslash (a Windows path)");
-  }
-  if (!isValidUtf8(raw)) return fail("the path is not valid UTF-8");
+  // The characters no package can hold: the rule the capture scan and pack apply too.
+  if (const std::string what = unholdableCharacters(raw); !what.empty()) return fail("the path " + what);
   if (raw[0] == '/') return fail("the path is absolute");
   if (raw[0] == '~') return fail("the path starts with '~' (a home directory)");
   if (raw.size() >= 2 && std::isalpha(static_cast<unsigned char>(raw[0])) && raw[1] == ':')
@@ -74,40 +67,6 @@ std::string percentDecode(const std::string& text) {
     }
     out += text[i];
   }
-  return out;
-}
-
-std::string caseFoldKey(const std::string& path) {
-  // NFC then Unicode case folding (ICU): "Ä.DNG" (precomposed), "A\u0308.dng" (decomposed,
-  // as macOS writes it) and "ä.dng" share one key. Text that is not UTF-8 folds ASCII only.
-  UErrorCode status = U_ZERO_ERROR;
-  const UNormalizer2* nfc = unorm2_getNFCInstance(&status);
-  if (U_FAILURE(status) || path.size() > (1u << 20)) return lowerCase(path);
-  int32_t length = 0;
-  u_strFromUTF8(nullptr, 0, &length, path.data(), static_cast<int32_t>(path.size()), &status);
-  if (status != U_BUFFER_OVERFLOW_ERROR && U_FAILURE(status)) return lowerCase(path);
-  status = U_ZERO_ERROR;
-  std::u16string utf16(static_cast<std::size_t>(length), u'\0');
-  u_strFromUTF8(reinterpret_cast<UChar*>(utf16.data()), length, nullptr, path.data(),
-                static_cast<int32_t>(path.size()), &status);
-  if (U_FAILURE(status)) return lowerCase(path);
-  std::u16string normal(utf16.size() * 4 + 16, u'\0');
-  const int32_t n = unorm2_normalize(nfc, reinterpret_cast<const UChar*>(utf16.data()), length,
-                                     reinterpret_cast<UChar*>(normal.data()),
-                                     static_cast<int32_t>(normal.size()), &status);
-  if (U_FAILURE(status)) return lowerCase(path);
-  std::u16string folded(static_cast<std::size_t>(n) * 3 + 16, u'\0');
-  const int32_t f = u_strFoldCase(reinterpret_cast<UChar*>(folded.data()),
-                                  static_cast<int32_t>(folded.size()),
-                                  reinterpret_cast<const UChar*>(normal.data()), n,
-                                  U_FOLD_CASE_DEFAULT, &status);
-  if (U_FAILURE(status)) return lowerCase(path);
-  std::string out(static_cast<std::size_t>(f) * 3 + 16, '\0');
-  int32_t written = 0;
-  u_strToUTF8(out.data(), static_cast<int32_t>(out.size()), &written,
-              reinterpret_cast<const UChar*>(folded.data()), f, &status);
-  if (U_FAILURE(status)) return lowerCase(path);
-  out.resize(static_cast<std::size_t>(written));
   return out;
 }
 

@@ -19,7 +19,8 @@ namespace surrogate::archive {
 
 // A path inside a bag or archive, checked: relative, '/' separated, no "..", no "." or empty
 // segments (a leading "./" is tolerated and removed), no backslash, drive letter, "~", control
-// characters, or invalid UTF-8, at most `maxLength` bytes. Returns the normalised path, or
+// characters, or invalid UTF-8 (core/file_names.h: unholdableCharacters), at most `maxLength`
+// bytes. Returns the normalised path, or
 // nullopt with the reason in `why`.
 std::optional<std::string> safeBagPath(const std::string& raw, std::string* why,
                                        std::size_t maxLength = 1024);
@@ -29,8 +30,7 @@ std::optional<std::string> safeBagPath(const std::string& raw, std::string* why,
 std::string percentDecode(const std::string& text);
 
 // The key two names share when they would collide on a case-insensitive or normalising file
-// system (Windows, macOS): Unicode NFC, then case folding.
-std::string caseFoldKey(const std::string& path);
+// system (Windows, macOS) is core/file_names.h's caseFoldKey, shared with the capture scan.
 
 // Splits text into lines at LF, CRLF or CR.
 std::vector<std::string> splitLines(const std::string& text);

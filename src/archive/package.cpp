@@ -16,6 +16,7 @@
 #include "core/background_sink.h"
 #include "core/digest.h"
 #include "core/error.h"
+#include "core/file_names.h"
 #include "core/resources.h"
 #include "core/version.h"
 #include "mapping/mapping.h"
@@ -67,19 +68,9 @@ std::vector<std::string> captureFiles(const fs::path& capture) {
 }
 
 
-// The carrier's files by path (Carrier::findFileByPath searches the whole list, which made
-// every per-file lookup over a capture of many files quadratic). The first record of a path
-// wins, as with findFileByPath.
-std::unordered_map<std::string, const carrier::FileRecord*> filesByPath(const carrier::Carrier& c) {
-  std::unordered_map<std::string, const carrier::FileRecord*> out;
-  out.reserve(c.files.size());
-  for (const carrier::FileRecord& f : c.files) out.emplace(f.path, &f);
-  return out;
-}
-
 // capturePayload with the carrier already read.
 std::vector<PayloadSource> payloadOf(const fs::path& capture, const carrier::Carrier& c) {
-  const auto byPath = filesByPath(c);
+  const auto byPath = c.filesByPath();
   std::vector<std::string> unrecorded;
   std::vector<PayloadSource> out;
   std::unordered_set<std::string> bagged;
@@ -122,7 +113,7 @@ CarrierState checkCarrier(const fs::path& capture) {
   } catch (const Error& e) {
     return {false, "the carrier cannot be read (" + e.message() + ")", "", "", {}};
   }
-  const auto byPath = filesByPath(c);
+  const auto byPath = c.filesByPath();
   const std::vector<std::string> files = captureFiles(capture);
   CarrierState state;
   for (const std::string& rel : files)
@@ -216,6 +207,23 @@ PackResult packCapture(const fs::path& capture, const fs::path& out, const PackO
   result.packagingTime = utcDateTime(packedAt);
   const std::string agent = std::string("Surrogate ") + surrogateVersion();
 
+  // What the package will hold, judged before anything is written: a name it cannot hold
+  // (core/file_names.h, the rule the capture scan applies and verify applies to the package)
+  // is refused here, never found by verify. The carrier may be older than the rule.
+  std::vector<PayloadSource> payload = payloadOf(capture, c);
+  {
+    std::vector<std::string> names;
+    names.reserve(payload.size());
+    for (const PayloadSource& p : payload) names.push_back(p.bagPath.substr(5));  // less "data/"
+    // A .tar or .zip holds the bag in a folder named after it (bag.cpp): "STEM/data/...".
+    const std::string prefix = bagFormatFor(out) == BagFormat::Directory
+                                   ? std::string("data/") : out.stem().string() + "/data/";
+    const NameProblems problems = findNameProblems(names, prefix.size());
+    if (!problems.empty())
+      throw Error(ErrorKind::Input, shownName(capture.string()), "packing",
+                  problems.describe("that the carrier records",
+                                    "run `surrogate run` to record the capture again, then pack again"));
+  }
   // Metadata that needs only the carrier, derived before any payload byte is written, so a
   // mapping problem never leaves half a package behind. The derived documents go into
   // temporary files beside the output (AtomicFile's names, never committed: removed when
@@ -238,7 +246,7 @@ PackResult packCapture(const fs::path& capture, const fs::path& out, const PackO
     resources.push_back({"metadata/" + rel, readFile(resourcePath(rel), "packing"), {}});
 
   BagInput in;
-  in.payload = payloadOf(capture, c);
+  in.payload = std::move(payload);
   in.softwareAgent = agent;
   in.baggingDate = utcDate(packedAt);
   PackageInfo info = packageInfo(c, result.packageId, result.packagingTime);

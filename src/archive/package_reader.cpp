@@ -3,6 +3,7 @@
 #include <archive.h>
 #include <archive_entry.h>
 #include <fcntl.h>
+#include <locale.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -16,6 +17,7 @@
 #include "archive/bag_text.h"
 #include "core/digest.h"
 #include "core/error.h"
+#include "core/file_names.h"
 
 namespace fs = std::filesystem;
 
@@ -390,12 +392,34 @@ class DirectorySource : public Source {
   std::uint64_t total_ = 0, done_ = 0;
 };
 
+// While alive, this thread reads and converts text as UTF-8 (LC_CTYPE C.UTF-8, the rest of the
+// locale as it was). libarchive converts each entry's name to the locale's character set: in
+// the "C" locale the program runs in, a zip entry's UTF-8 name ("naïve.txt") had no form, and
+// every package holding a name beyond ASCII was refused as "not valid text". Thread-local
+// (uselocale), so nothing else in the process sees it.
+class Utf8Names {
+ public:
+  Utf8Names() {
+    static const locale_t utf8 = newlocale(LC_CTYPE_MASK, "C.UTF-8", static_cast<locale_t>(nullptr));
+    if (utf8) saved_ = uselocale(utf8);
+  }
+  ~Utf8Names() {
+    if (saved_) uselocale(saved_);
+  }
+  Utf8Names(const Utf8Names&) = delete;
+  Utf8Names& operator=(const Utf8Names&) = delete;
+
+ private:
+  locale_t saved_ = static_cast<locale_t>(nullptr);
+};
+
 // A .tar (optionally compressed) or .zip, streamed through libarchive. The bytes of the file
 // pass through TarLayout on their way in (read callback), so that a tar cut at an entry
 // boundary, or followed by other data, is found in the same single read.
 class ArchiveSource : public Source {
  public:
   explicit ArchiveSource(const fs::path& file) : file_(file) {
+    const Utf8Names utf8;
     std::error_code ec;
     fileSize_ = fs::file_size(file, ec);
     fd_.fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
@@ -417,6 +441,7 @@ class ArchiveSource : public Source {
   }
 
   bool next(RawEntry& entry) override {
+    const Utf8Names utf8;
     archive_entry* e = nullptr;
     const int r = archive_read_next_header(a_.get(), &e);
     if (r == ARCHIVE_EOF) {
@@ -463,6 +488,7 @@ class ArchiveSource : public Source {
   }
 
   std::size_t read(char* buffer, std::size_t size) override {
+    const Utf8Names utf8;
     const la_ssize_t n = archive_read_data(a_.get(), buffer, size);
     if (n < 0) {
       const std::string why = archive_error_string(a_.get()) ? archive_error_string(a_.get()) : "unreadable";

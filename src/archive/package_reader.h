@@ -23,6 +23,8 @@
 #include <set>
 #include <string>
 
+#include "core/file_names.h"
+
 namespace surrogate::archive {
 
 // Limits on what a package may hold; exceeding one refuses the package.
@@ -32,7 +34,7 @@ struct Limits {
   std::uint64_t maxEntryBytes = 1ull << 39;    // 512 GiB in one file
   double maxRatio = 100;                       // uncompressed / compressed bytes of an archive
   std::uint64_t ratioFloorBytes = 16ull << 20; // the ratio is checked past this many bytes
-  std::size_t maxPathLength = 1024;            // bytes in an entry's name
+  std::size_t maxPathLength = kMaxPackagePathBytes;  // bytes in an entry's name (core/file_names.h)
   std::uint64_t maxTagFileBytes = 64ull << 20; // tag files and the carrier are held in memory
 };
 

@@ -7,6 +7,7 @@
 #include <system_error>
 
 #include "core/error.h"
+#include "core/file_names.h"
 #include "core/parallel.h"
 #include "core/text.h"
 #include "formats/lp.h"
@@ -32,47 +33,15 @@ std::string relativeTo(const fs::path& p, const fs::path& root) {
   return p.lexically_relative(root).generic_string();
 }
 
-// A name as a message can show it: bytes that are not UTF-8 text, and control characters, as
-// \xNN.
-std::string escapedName(const std::string& name) {
-  std::string out;
-  std::size_t i = 0;
-  while (i < name.size()) {
-    const unsigned char c = static_cast<unsigned char>(name[i]);
-    // The length of a well-formed UTF-8 sequence starting here, or 0.
-    std::size_t n = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xE ? 3 : (c >> 3) == 0x1E ? 4 : 0;
-    if (n > 1 && (i + n > name.size() || !isValidUtf8(name.substr(i, n)))) n = 0;
-    if (n == 0 || (n == 1 && (c < 0x20 || c == 0x7F))) {
-      char hex[8];
-      std::snprintf(hex, sizeof hex, "\\x%02X", c);
-      out += hex;
-      ++i;
-    } else {
-      out += name.substr(i, n);
-      i += n;
-    }
-  }
-  return out;
-}
+// A name as a message can show it (core/file_names.h).
+std::string escapedName(const std::string& name) { return shownName(name); }
 
-// Names go into the carrier (XML, UTF-8), the bag's manifests and METS: a name that is not
-// UTF-8 text, or holds a control character, cannot be recorded as it is.
-void refuseUnrecordableName(const fs::path& p, const fs::path& root) {
-  const std::string name = p.filename().string();
-  const bool utf8 = isValidUtf8(name);
-  const bool control = std::any_of(name.begin(), name.end(), [](char ch) {
-    const unsigned char c = static_cast<unsigned char>(ch);
-    return c < 0x20 || c == 0x7F;
-  });
-  if (utf8 && !control) return;
-  throwInputError(escapedName(relativeTo(p, root)), kStep,
-                  std::string("the name ") +
-                      (utf8 ? "contains a control character (shown as \\xNN)"
-                            : "is not UTF-8 text (the bytes that are not are shown as \\xNN; it was "
-                              "probably written in another encoding, such as Latin-1)") +
-                      ": the carrier and the package record every name as UTF-8 text, so this one "
-                      "cannot be recorded as it is; rename it (letters, digits, '-' and '_' are safe "
-                      "everywhere), then run again");
+// The names a package cannot hold (core/file_names.h: the rule pack and verify apply too),
+// every one of them in one refusal, before any file is read.
+void refuseUnholdableNames(const fs::path& root, std::vector<std::string> paths) {
+  const NameProblems problems = findNameProblems(paths, std::string("data/").size());
+  if (!problems.empty())
+    throwInputError(escapedName(root.string()), kStep, problems.describe("of the capture", "then run (or pack) again"));
 }
 
 // The entries of a folder, sorted: the carrier lists files in a fixed order.
@@ -107,7 +76,6 @@ void collectOthers(const fs::path& dir, CaptureLayout& layout);
 // handled here; regular files are left to the caller.
 bool handleNonRegular(const fs::path& p, CaptureLayout& layout) {
   const std::string rel = relativeTo(p, layout.root);
-  refuseUnrecordableName(p, layout.root);
   refuseSymlink(p, layout.root);
   if (isSystemFile(p.filename().string())) {
     layout.systemFiles.push_back(rel);
@@ -137,7 +105,6 @@ void collectOthers(const fs::path& dir, CaptureLayout& layout) {
 void collectOutputFolder(const fs::path& dir, CaptureLayout& layout) {
   for (const fs::path& p : sortedEntries(dir, layout.root)) {
     const std::string rel = relativeTo(p, layout.root);
-    refuseUnrecordableName(p, layout.root);
     refuseSymlink(p, layout.root);
     if (isSystemFile(p.filename().string())) {
       layout.systemFiles.push_back(rel);
@@ -155,6 +122,15 @@ void collectOutputFolder(const fs::path& dir, CaptureLayout& layout) {
     if (rel == kCarrierPath || isInterruptedWrite(p.filename().string())) continue;
     layout.outputFolderFiles.push_back(rel);
   }
+}
+
+// The outputFolderFiles of the capture at `root` (absolute), names not yet judged.
+std::vector<std::string> outputFolderFilesOf(const fs::path& root) {
+  CaptureLayout layout;
+  layout.root = root;
+  for (const char* dir : {kAssemblyDir, kFinishedDir})
+    if (isCaptureFolder(layout.root / dir, layout.root)) collectOutputFolder(layout.root / dir, layout);
+  return layout.outputFolderFiles;
 }
 
 bool looksLikeImage(const fs::path& p) {
@@ -351,20 +327,50 @@ CaptureLayout scanCapture(const fs::path& root, int threads, const std::string& 
                     "the camera files in original-captures/");
   }
 
-  std::vector<ImageFile> originals, exports;
+  // Names first, every file and folder of the capture listed; images are read only once every
+  // name is one the package can hold.
+  FolderScan originalsScan, exportsScan;
   if (!layout.originalsDir.empty()) {
-    const FolderScan scan = scanFolder(layout.root / layout.originalsDir, layout);
-    if (scan.images.empty())
+    originalsScan = scanFolder(layout.root / layout.originalsDir, layout);
+    if (originalsScan.images.empty())
       throwInputError((layout.root / layout.originalsDir).string(), kStep,
                       "contains no images; copy the camera files of the capture into it");
-    originals = probeAll(scan.images, layout.root, threads);
+  }
+  if (exportsDir) {
+    exportsScan = scanFolder(layout.root / kExportsDir, layout);
+    if (exportsScan.images.empty() && layout.originalsDir.empty())
+      throwInputError((layout.root / kExportsDir).string(), kStep, "contains no images");
+  }
+  // Everything else at the top of the capture: files (and folders) that are not Surrogate's
+  // output folders or its working area are recorded as "other" files.
+  for (const fs::path& p : sortedEntries(layout.root, layout.root)) {
+    const std::string name = p.filename().string();
+    if (name == layout.originalsDir || name == kExportsDir || name == kAssemblyDir ||
+        name == kFinishedDir || name == kWorkDir || name == kSupersededDir)
+      continue;
+    if (!handleNonRegular(p, layout)) layout.others.push_back(name);
+  }
+  layout.outputFolderFiles = outputFolderFilesOf(layout.root);
+
+  {
+    std::vector<std::string> names = layout.others;
+    for (const auto* scan : {&originalsScan, &exportsScan})
+      for (const fs::path& p : scan->images) names.push_back(relativeTo(p, layout.root));
+    names.insert(names.end(), layout.sidecars.begin(), layout.sidecars.end());
+    names.insert(names.end(), layout.outputFolderFiles.begin(), layout.outputFolderFiles.end());
+    // What Surrogate writes besides: an "Assembly-Files/" of the user's is one with its own.
+    names.push_back(kCarrierPath);
+    names.push_back(kReportPath);
+    refuseUnholdableNames(layout.root, std::move(names));
+  }
+
+  std::vector<ImageFile> originals, exports;
+  if (!layout.originalsDir.empty()) {
+    originals = probeAll(originalsScan.images, layout.root, threads);
     requireSameSize(originals, layout.originalsDir);
   }
   if (exportsDir) {
-    const FolderScan scan = scanFolder(layout.root / kExportsDir, layout);
-    if (scan.images.empty() && layout.originalsDir.empty())
-      throwInputError((layout.root / kExportsDir).string(), kStep, "contains no images");
-    exports = probeAll(scan.images, layout.root, threads);
+    exports = probeAll(exportsScan.images, layout.root, threads);
     if (!exports.empty()) requireSameSize(exports, kExportsDir);
   }
 
@@ -380,17 +386,6 @@ CaptureLayout scanCapture(const fs::path& root, int threads, const std::string& 
     shots[stem].exported = std::move(f);
   }
   for (auto& [stem, shot] : shots) layout.shots.push_back(std::move(shot));
-
-  // Everything else at the top of the capture: files (and folders) that are not Surrogate's
-  // output folders or its working area are recorded as "other" files.
-  for (const fs::path& p : sortedEntries(layout.root, layout.root)) {
-    const std::string name = p.filename().string();
-    if (name == layout.originalsDir || name == kExportsDir || name == kAssemblyDir ||
-        name == kFinishedDir || name == kWorkDir || name == kSupersededDir)
-      continue;
-    if (!handleNonRegular(p, layout)) layout.others.push_back(name);
-  }
-  layout.outputFolderFiles = listOutputFolderFiles(layout.root);
 
   if (!domeLp.empty()) {
     const auto it = std::find(layout.others.begin(), layout.others.end(), domeLp);
@@ -419,11 +414,10 @@ CaptureLayout scanCapture(const fs::path& root, int threads, const std::string& 
 }
 
 std::vector<std::string> listOutputFolderFiles(const fs::path& root) {
-  CaptureLayout layout;
-  layout.root = fs::absolute(root).lexically_normal();
-  for (const char* dir : {kAssemblyDir, kFinishedDir})
-    if (isCaptureFolder(layout.root / dir, layout.root)) collectOutputFolder(layout.root / dir, layout);
-  return layout.outputFolderFiles;
+  const fs::path absolute = fs::absolute(root).lexically_normal();
+  std::vector<std::string> files = outputFolderFilesOf(absolute);
+  refuseUnholdableNames(absolute, files);
+  return files;
 }
 
 Source parseSource(const std::string& text) {

@@ -89,9 +89,11 @@ struct CaptureLayout {
 // not empty, is the capture-relative path of the .lp file that gives the lights (dome capture,
 // `--lp`): it must be a regular file inside the capture and name only its images. Symbolic
 // links anywhere in the capture's input folders are refused (loops too): the record holds a
-// file's bytes, and a link's target can change or lie outside the capture. A file or folder
-// name that is not UTF-8 text, or holds a control character, is refused, shown with its odd
-// bytes as \xNN: the carrier and the package record names as UTF-8 text.
+// file's bytes, and a link's target can change or lie outside the capture. Before any image is
+// read, every name is judged by the rule pack and verify apply (core/file_names.h): names that
+// differ only in letter case or Unicode normalisation, names holding a backslash or a control
+// character, names that are not UTF-8 text and paths too long for a package are refused
+// together, in one Error(Input) listing every one of them (escaped, \xNN) and what to do.
 CaptureLayout scanCapture(const std::filesystem::path& root, int threads,
                           const std::string& domeLp = "");
 

@@ -3,6 +3,7 @@
 #include <sys/utsname.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -163,6 +164,35 @@ std::string Carrier::putFile(FileRecord record) {
   record.id = "f" + std::to_string(next);
   files.push_back(std::move(record));
   return files.back().id;
+}
+
+void Carrier::putFiles(std::vector<FileRecord> records) {
+  std::unordered_map<std::string, std::size_t> byPath;
+  byPath.reserve(files.size() + records.size());
+  int next = 1;
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    byPath.emplace(files[i].path, i);
+    const FileRecord& f = files[i];
+    if (f.id.size() > 1 && f.id[0] == 'f') next = std::max(next, std::atoi(f.id.c_str() + 1) + 1);
+  }
+  files.reserve(files.size() + records.size());
+  for (FileRecord& record : records) {
+    if (const auto it = byPath.find(record.path); it != byPath.end()) {
+      record.id = files[it->second].id;
+      files[it->second] = std::move(record);
+      continue;
+    }
+    record.id = "f" + std::to_string(next++);
+    byPath.emplace(record.path, files.size());
+    files.push_back(std::move(record));
+  }
+}
+
+std::unordered_map<std::string, const FileRecord*> Carrier::filesByPath() const {
+  std::unordered_map<std::string, const FileRecord*> out;
+  out.reserve(files.size());
+  for (const FileRecord& f : files) out.emplace(f.path, &f);
+  return out;
 }
 
 Step& Carrier::addStep(const std::string& component, const std::string& version) {

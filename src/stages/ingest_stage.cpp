@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <set>
+#include <unordered_map>
 
 #include "capture/capture.h"
 #include "core/digest.h"
@@ -147,9 +148,11 @@ std::string whyEvidence(const std::string& role) {
 // now.
 void checkAgainstPrevious(const carrier::Step& step, pipeline::Context& ctx) {
   if (!ctx.previous) return;
+  const auto recorded = ctx.carrier.filesByPath();  // one look-up per file, not one search
   for (const carrier::FileRecord& before : ctx.previous->files) {
     if (!carrier::isEvidenceRole(before.role)) continue;
-    const carrier::FileRecord* now = ctx.carrier.findFileByPath(before.path);
+    const auto found = recorded.find(before.path);
+    const carrier::FileRecord* now = found == recorded.end() ? nullptr : found->second;
     if (now && now->sha256 == before.sha256 && now->size == before.size) continue;
     const std::string state = now ? "sha256:" + now->sha256 : "removed";
     const carrier::Intervention* accepted = nullptr;
@@ -270,18 +273,22 @@ std::vector<ReadFile> readFiles(const std::vector<PendingFile>& pending, pipelin
 // Puts the records in the carrier, with their warnings, and pairs originals with exports.
 void recordFiles(pipeline::Context& ctx, const carrier::Step& step, const std::vector<PendingFile>& pending,
                  const std::vector<ReadFile>& read) {
+  std::vector<carrier::FileRecord> records;
+  records.reserve(read.size());
+  for (const ReadFile& r : read) records.push_back(r.record);
+  ctx.carrier.putFiles(std::move(records));  // one pass: putFile per file was quadratic
   for (const ReadFile& r : read) {
-    ctx.carrier.putFile(r.record);
     if (!r.formatWarning.empty()) ctx.carrier.addLog("warning", step.id, r.formatWarning);
     if (!r.metadataWarning.empty())
       ctx.carrier.addLog("warning", step.id,
                          (r.record.role == "sidecar" ? "unreadable XMP sidecar: " : "no camera metadata: ") +
                              r.metadataWarning);
   }
+  std::unordered_map<std::string, carrier::FileRecord*> byPath;
+  for (carrier::FileRecord& f : ctx.carrier.files) byPath.emplace(f.path, &f);
   for (const PendingFile& p : pending) {
     if (p.pairedPath.empty()) continue;
-    for (carrier::FileRecord& f : ctx.carrier.files)
-      if (f.path == p.path) f.pairedWith = ctx.carrier.findFileByPath(p.pairedPath)->id;
+    byPath.at(p.path)->pairedWith = byPath.at(p.pairedPath)->id;
   }
 }
 
@@ -356,10 +363,11 @@ std::shared_ptr<InputImages> chooseInputs(pipeline::Context& ctx, carrier::Resul
                                           const capture::CaptureLayout& layout, capture::Source source,
                                           const std::set<std::string>& excluded) {
   const std::vector<capture::ImageFile> chosen = capture::selectImages(layout, source);
+  const auto recorded = ctx.carrier.filesByPath();
   auto inputs = std::make_shared<InputImages>();
   for (const capture::ImageFile& image : chosen) {
     const std::string stem = fs::path(image.relativePath).stem().string();
-    const std::string id = ctx.carrier.findFileByPath(image.relativePath)->id;
+    const std::string id = recorded.at(image.relativePath)->id;
     if (excluded.count(stem)) {
       result.add("imageValue").set("image", id).set("name", "excluded").set("value", "true");
       continue;

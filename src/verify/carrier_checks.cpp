@@ -12,6 +12,7 @@
 #include "core/background_sink.h"
 #include "core/digest.h"
 #include "core/error.h"
+#include "core/file_names.h"
 #include "verify/checks.h"
 #include "mapping/mapping.h"
 
@@ -62,13 +63,15 @@ std::optional<carrier::Carrier> checkCarrier(const Inventory& inv, std::vector<C
   recordedPaths.reserve(parsed->files.size());
   for (const carrier::FileRecord& f : parsed->files) {
     recordedPaths.insert(f.path);
+    // Judged as the path lies in the bag: a capture's "~notes.txt" is data/~notes.txt, which
+    // no shell or unpacker takes for a home folder (the capture scan accepts it).
     std::string why;
-    const auto safe = safeBagPath(f.path, &why);
+    const auto safe = safeBagPath("data/" + f.path, &why);
     if (!safe) {
-      pathProblems.push_back("file " + f.id + " \"" + f.path.substr(0, 200) + "\": " + why);
+      pathProblems.push_back("file " + f.id + " \"" + shownName(f.path.substr(0, 200)) + "\": " + why);
       continue;
     }
-    const std::string inBag = "data/" + *safe;
+    const std::string& inBag = *safe;
     const auto it = inv.files.find(inBag);
     if (it == inv.files.end()) {
       fixity.push_back(inBag + ": listed in the carrier (" + f.id + ", " + f.role +

@@ -94,7 +94,7 @@ std::vector<std::string> parameterProblems(const carrier::Step& step,
     if (step.hasParam("source")) parse([&](const Parameters&) { capture::parseSource(step.param("source")); });
     if (step.hasParam("lp") && !step.param("lp").empty()) {
       std::string why;
-      if (!safeBagPath(step.param("lp"), &why))
+      if (!safeBagPath("data/" + step.param("lp"), &why))  // as it lies in the bag
         out.push_back("parameter lp=" + step.param("lp").substr(0, 200) + ": " + why);
     }
   } else if (c == "ImageDecode") {

@@ -188,3 +188,43 @@ TEST_CASE("a missing or resized original is an input problem, a missing result i
   state = checkCarrier(capture);
   CHECK(state.inputProblem.find("original-captures/IMG_0002.dng") != std::string::npos);
 }
+
+TEST_CASE("pack refuses names the package cannot hold before writing anything", "[archive][package]") {
+  // A carrier may record such names (written before the capture scan refused them, or edited):
+  // pack judges the payload by the rule of the scan and of verify (core/file_names.h).
+  const fs::path dir = freshDir("unholdable");
+  const fs::path capture = samplecapture::make(dir);
+  carrier::Carrier c = carrier::loadCarrier(capture / "assembly-files/carrier.xml");
+  fs::create_directories(capture / "notes");
+  // (A control character the carrier cannot hold as it is: the scan refuses it, test_file_names.)
+  for (const std::string name : {"notes/Readme.txt", "notes/README.txt", "notes/a\\b.txt", "notes/cafe\xCC\x81.txt"}) {
+    std::ofstream(capture / name) << name;
+    carrier::FileRecord f;
+    f.path = name;
+    f.role = "other";
+    f.size = name.size();
+    f.sha256 = bagcheck::sha256(name);
+    f.format = "TXT";
+    c.putFile(f);
+  }
+  carrier::saveCarrier(c, capture / "assembly-files/carrier.xml");
+  for (const char* out : {"pkg.zip", "pkg.tar", "pkg"}) {
+    INFO(out);
+    try {
+      packCapture(capture, dir / out);
+      FAIL("no error");
+    } catch (const surrogate::Error& e) {
+      CHECK(e.kind() == ErrorKind::Input);
+      const std::string m = e.message();
+      CHECK(m.find("notes/README.txt  and  notes/Readme.txt") != std::string::npos);
+      CHECK(m.find("notes/a\\b.txt") != std::string::npos);
+      CHECK(m.find("notes/cafe\xCC\x81.txt") != std::string::npos);
+      CHECK(m.find("NFD") != std::string::npos);
+      CHECK(m.find("rename") != std::string::npos);
+    }
+    CHECK_FALSE(fs::exists(dir / out));
+  }
+  std::vector<std::string> left;
+  for (const auto& e : fs::directory_iterator(dir)) left.push_back(e.path().filename().string());
+  CHECK(left == std::vector<std::string>{"capture"});  // no temporary file either
+}

@@ -111,6 +111,39 @@ TEST_CASE("putFile gives new ids and replaces a record with the same path") {
   CHECK(c.findFileByPath("a.jpg")->size == 9);
 }
 
+TEST_CASE("putFiles records as putFile does for each, ids and replacements alike") {
+  // Against putFile one by one: the same list, the same ids, in the same order.
+  auto record = [](const std::string& path, std::uint64_t size) {
+    FileRecord f;
+    f.path = path;
+    f.size = size;
+    return f;
+  };
+  Carrier one, batch;
+  for (Carrier* c : {&one, &batch}) {
+    c->putFile(record("a.jpg", 1));
+    FileRecord odd = record("odd.jpg", 2);
+    odd.id = "f7";  // a carrier whose ids have gaps (a file removed): ids are never reused
+    c->files.push_back(odd);
+  }
+  const std::vector<FileRecord> more = {record("b.jpg", 3), record("a.jpg", 4), record("c.jpg", 5),
+                                        record("b.jpg", 6)};
+  for (const FileRecord& f : more) one.putFile(f);
+  batch.putFiles(more);
+  REQUIRE(batch.files.size() == one.files.size());
+  for (std::size_t i = 0; i < one.files.size(); ++i) {
+    CHECK(batch.files[i].id == one.files[i].id);
+    CHECK(batch.files[i].path == one.files[i].path);
+    CHECK(batch.files[i].size == one.files[i].size);
+  }
+  CHECK(batch.findFileByPath("b.jpg")->id == "f8");
+  CHECK(batch.findFileByPath("b.jpg")->size == 6);
+  CHECK(batch.findFileByPath("c.jpg")->id == "f9");
+  const auto byPath = batch.filesByPath();
+  CHECK(byPath.size() == 4);
+  CHECK(byPath.at("a.jpg") == batch.findFileByPath("a.jpg"));
+}
+
 TEST_CASE("rights and licence in the header round-trip, and a carrier without them (older versions) still validates") {
   Carrier c = sampleCarrier();
   const std::string without = toXml(c);
