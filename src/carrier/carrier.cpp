@@ -143,12 +143,18 @@ const FileRecord* Carrier::findFileByPath(const std::string& path) const {
   return nullptr;
 }
 
-std::string Carrier::putFile(FileRecord record) {
-  // What a file says of itself reaches the record as text the XML can hold (core/text.h); the
-  // camera's fields are escaped where they are read, with their raw bytes (meta/metadata.h).
+namespace {
+// What a file says of itself reaches the record as text the XML can hold (core/text.h); the
+// camera's fields are escaped where they are read, with their raw bytes (meta/metadata.h).
+void escapeFileText(FileRecord& record) {
   for (std::string* text : {&record.format, &record.mediaType, &record.madeBy, &record.priorKind})
     *text = escapedText(*text);
   for (auto& [name, value] : record.camera) value = escapedText(value);
+}
+}  // namespace
+
+std::string Carrier::putFile(FileRecord record) {
+  escapeFileText(record);
   for (FileRecord& f : files) {
     if (f.path == record.path) {
       record.id = f.id;
@@ -177,6 +183,7 @@ void Carrier::putFiles(std::vector<FileRecord> records) {
   }
   files.reserve(files.size() + records.size());
   for (FileRecord& record : records) {
+    escapeFileText(record);
     if (const auto it = byPath.find(record.path); it != byPath.end()) {
       record.id = files[it->second].id;
       files[it->second] = std::move(record);
