@@ -63,14 +63,7 @@ CaptureLock::CaptureLock(const fs::path& capture, const std::string& command) {
     throw Error(ErrorKind::Input, file.string(), "lock",
                 std::string("cannot create the capture's lock file (") + std::strerror(errno) +
                     "); Surrogate needs to write in the capture folder");
-  if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
-    const std::string holder = readHolder(fd_);
-    ::close(fd_);
-    fd_ = -1;
-    throw Error(ErrorKind::Input, capture.string(), "lock",
-                "another Surrogate command is working on this capture (" + holder +
-                    "); wait for it to finish, then run this command again");
-  }
+  if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) refuseHeld(capture);
   const std::string me = holderText(command);
   if (::ftruncate(fd_, 0) == 0) {
     [[maybe_unused]] const ssize_t n = ::pwrite(fd_, me.data(), me.size(), 0);
@@ -86,14 +79,16 @@ CaptureLock::CaptureLock(const fs::path& capture, const std::string& command, Sh
   fd_ = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
   if (fd_ < 0) fd_ = ::open(file.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
   if (fd_ < 0) return;  // a read-only capture: nothing can write in it either
-  if (::flock(fd_, LOCK_SH | LOCK_NB) != 0) {
-    const std::string holder = readHolder(fd_);
-    ::close(fd_);
-    fd_ = -1;
-    throw Error(ErrorKind::Input, capture.string(), "lock",
-                "another Surrogate command is working on this capture (" + holder +
-                    "); wait for it to finish, then run this command again");
-  }
+  if (::flock(fd_, LOCK_SH | LOCK_NB) != 0) refuseHeld(capture);
+}
+
+void CaptureLock::refuseHeld(const fs::path& capture) {
+  const std::string holder = readHolder(fd_);
+  ::close(fd_);
+  fd_ = -1;
+  throw Error(ErrorKind::Input, capture.string(), "lock",
+              "another Surrogate command is working on this capture (" + holder +
+                  "); wait for it to finish, then run this command again");
 }
 
 CaptureLock::~CaptureLock() {

@@ -30,6 +30,9 @@ class CaptureLock {
   CaptureLock& operator=(const CaptureLock&) = delete;
 
  private:
+  // Closes the lock file and throws Error(Input) naming who holds the capture.
+  [[noreturn]] void refuseHeld(const std::filesystem::path& capture);
+
   int fd_ = -1;
   bool shared_ = false;
 };

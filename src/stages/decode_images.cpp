@@ -9,6 +9,7 @@
 
 #include "core/digest.h"
 #include "core/error.h"
+#include "core/memory_budget.h"
 #include "core/parallel.h"
 #include "core/resident.h"
 #include "fit/basis.h"
@@ -60,20 +61,6 @@ int concurrentDecodes(int threads, std::uint64_t budget, std::uint64_t pixels) {
   return static_cast<int>(std::min<std::uint64_t>(effectiveThreads(threads), byMemory));
 }
 
-// Sizes as --memory writes them (binary units): "21.6G", "512M".
-std::string size(std::uint64_t bytes) {
-  const char* units[] = {"K", "M", "G", "T"};
-  double v = static_cast<double>(bytes) / 1024;
-  int u = 0;
-  while (v >= 1024 && u < 3) {
-    v /= 1024;
-    ++u;
-  }
-  char text[32];
-  std::snprintf(text, sizeof text, v < 10 ? "%.1f%s" : "%.0f%s", v, units[u]);
-  return text;
-}
-
 // Before any pixel is decoded: what one image needs in memory against --memory, and, when they
 // are to be spilled, the two stacks against the free space of the folder they spill to.
 void checkResources(const std::vector<std::filesystem::path>& files, const image::ImageProbe& first,
@@ -84,14 +71,14 @@ void checkResources(const std::vector<std::filesystem::path>& files, const image
   const std::uint64_t stackBytes = std::uint64_t(files.size()) * pixels * storedBytesPerPixel(first.kind);
   if (resident > run.memoryBudget) {
     const std::uint64_t gib = (resident + (1ull << 30) - 1) >> 30;
-    throw Error(ErrorKind::Usage, "--memory " + size(run.memoryBudget), kStep,
+    throw Error(ErrorKind::Usage, "--memory " + memorySize(run.memoryBudget), kStep,
                 "is too small for these images: " + files.front().filename().string() + " declares " +
                     declared + " pixels, and decoding one such image" +
                     (laterBytesPerPixel ? std::string(" and keeping the fitted models") : std::string()) +
-                    " needs about " + size(resident) + " in memory at once (the decoded stack of " +
+                    " needs about " + memorySize(resident) + " in memory at once (the decoded stack of " +
                     std::to_string(files.size()) +
-                    " images, " + size(stackBytes) + ", would go to a temporary file, not memory); the "
-                    "budget (--memory) is " + size(run.memoryBudget) + ". Give --memory " +
+                    " images, " + memorySize(stackBytes) + ", would go to a temporary file, not memory); the "
+                    "budget (--memory) is " + memorySize(run.memoryBudget) + ". Give --memory " +
                     std::to_string(gib) + "G or more if the computer has it; if the images are not "
                     "that large, their headers are damaged");
   }
@@ -100,7 +87,7 @@ void checkResources(const std::vector<std::filesystem::path>& files, const image
   if (const auto free = pipeline::spillSpaceAvailable(dir); free && *free < stackBytes) {
     throw Error(ErrorKind::Usage, dir.string(), kStep,
                 "the decoded images (" + std::to_string(files.size()) + " x " + declared + " pixels) need " +
-                    size(stackBytes) + " of temporary space in this folder, which has " + size(*free) +
+                    memorySize(stackBytes) + " of temporary space in this folder, which has " + memorySize(*free) +
                     " free; free some space there, or set TMPDIR to a folder on a disk with more "
                     "(e.g. TMPDIR=/scratch surrogate run ...)");
   }
