@@ -65,6 +65,17 @@ fs::path smallCapture(const fs::path& dir, int images) {
   return target;
 }
 
+fs::path processedCapture(const fs::path& dir) {
+  static const fs::path made = [] {
+    const fs::path capture = smallCapture(freshDir("processed-source"), 8);
+    const CommandResult r = surrogate("run " + quote(capture) + " --quiet --no-report");
+    if (r.exitCode != 0) throw std::runtime_error("the run of the sample capture failed: " + r.output);
+    return capture;
+  }();
+  fs::copy(made, dir / "cap", fs::copy_options::recursive);
+  return dir / "cap";
+}
+
 std::map<std::string, std::string> snapshot(const fs::path& root) {
   std::map<std::string, std::string> out;
   for (const auto& entry : fs::recursive_directory_iterator(root)) {

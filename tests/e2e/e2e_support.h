@@ -26,6 +26,10 @@ std::filesystem::path freshDir(const std::string& name);
 // copied to `dir` for each test that wants to change it.
 std::filesystem::path smallCapture(const std::filesystem::path& dir, int images = 8);
 
+// smallCapture after `surrogate run --no-report` (a carrier, .lp, .ptm and .rti), made once per
+// test process and copied to `dir`/cap for each test.
+std::filesystem::path processedCapture(const std::filesystem::path& dir);
+
 // SHA-256 of every regular file under `root`, by relative path.
 std::map<std::string, std::string> snapshot(const std::filesystem::path& root);
 

@@ -13,9 +13,11 @@
 #include <vector>
 
 #include "e2e_support.h"
+#include "light_errors.h"
 
 namespace fs = std::filesystem;
-using Direction = std::array<double, 3>;
+using e2e::Direction;
+using e2e::lpLights;
 
 namespace {
 
@@ -32,31 +34,10 @@ fs::path generated(const std::string& name, const std::string& hard) {
   return capture;
 }
 
-std::vector<Direction> lpLights(const fs::path& lp) {
-  std::ifstream in(lp);
-  int n = 0;
-  in >> n;
-  std::vector<Direction> out(n);
-  std::string name;
-  for (Direction& d : out) in >> name >> d[0] >> d[1] >> d[2];
-  return out;
-}
-
-struct Errors {
-  double median = 0, max = 0;
-};
-
 // The lights against the truth's, the truth's shot `skipped` (0-based) left out.
-Errors compare(const std::vector<Direction>& got, std::vector<Direction> truth, int skipped = -1) {
+e2e::LightErrors compare(const std::vector<Direction>& got, std::vector<Direction> truth, int skipped = -1) {
   if (skipped >= 0) truth.erase(truth.begin() + skipped);
-  REQUIRE(got.size() == truth.size());
-  std::vector<double> e;
-  for (std::size_t i = 0; i < got.size(); ++i) {
-    const Direction &a = got[i], &b = truth[i];
-    e.push_back(std::acos(std::clamp(a[0] * b[0] + a[1] * b[1] + a[2] * b[2], -1.0, 1.0)) * 180 / M_PI);
-  }
-  std::sort(e.begin(), e.end());
-  return {e[(e.size() - 1) / 2], e.back()};
+  return e2e::lightErrors(got, truth);
 }
 
 std::size_t count(const std::string& text, const std::string& what) {
@@ -82,7 +63,7 @@ TEST_CASE("a frame without flash has no highlight: the lights stop, naming the -
                                        " --quiet --exclude IMG_0007 --reason \"the flash did not fire\"");
   INFO(excluded.output);
   REQUIRE(excluded.exitCode == 0);
-  const Errors e = compare(lpLights(lp), lpLights(capture.parent_path() / "truth/lights.lp"), 6);
+  const e2e::LightErrors e = compare(lpLights(lp), lpLights(capture.parent_path() / "truth/lights.lp"), 6);
   INFO("median " << e.median << " max " << e.max);
   CHECK(e.median <= 0.4);  // measured 0.22 / 0.30 deg (the plain capture's exports: 0.18 / 0.29)
   CHECK(e.max <= 0.8);
@@ -108,7 +89,7 @@ TEST_CASE("a dark frame (5 % exposure) left out with --exclude: the other lights
                                 " --quiet --exclude IMG_0005 --reason \"the flash was weak\"");
   INFO(r.output);
   REQUIRE(r.exitCode == 0);
-  const Errors e = compare(lpLights(lp), lpLights(capture.parent_path() / "truth/lights.lp"), 4);
+  const e2e::LightErrors e = compare(lpLights(lp), lpLights(capture.parent_path() / "truth/lights.lp"), 4);
   INFO("median " << e.median << " max " << e.max);
   CHECK(e.median <= 0.4);  // measured 0.20 / 0.28 deg
   CHECK(e.max <= 0.8);
@@ -122,7 +103,7 @@ TEST_CASE("lights within 25 degrees of the view axis: hsh3 damped on the record,
   // Measured 0.17 / 0.42 deg. (With the rim in the median, where the sphere's shadows, cast
   // to the same side in every photograph, stayed: the circle 0.9 px off and 0.8 px too large,
   // 1.76 / 2.14 deg.)
-  const Errors e = compare(lpLights(capture / "assembly-files/lights.lp"),
+  const e2e::LightErrors e = compare(lpLights(capture / "assembly-files/lights.lp"),
                            lpLights(capture.parent_path() / "truth/lights.lp"));
   INFO("median " << e.median << " max " << e.max);
   CHECK(e.median <= 0.4);
@@ -150,7 +131,7 @@ TEST_CASE("lights within 25 degrees of an elevation of 60: the sphere, not the s
   const auto r = e2e::surrogate("lights " + e2e::quote(capture) + " -o " + e2e::quote(lp) + " --quiet");
   INFO(r.output);
   REQUIRE(r.exitCode == 0);
-  const Errors e = compare(lpLights(lp), lpLights(capture.parent_path() / "truth/lights.lp"));
+  const e2e::LightErrors e = compare(lpLights(lp), lpLights(capture.parent_path() / "truth/lights.lp"));
   INFO("median " << e.median << " max " << e.max);
   CHECK(e.median <= 0.4);
   CHECK(e.max <= 0.8);
@@ -171,7 +152,7 @@ TEST_CASE("a sphere near the frame's edge with its shadows beside it is the sphe
   const auto r = e2e::surrogate("lights " + e2e::quote(capture) + " -o " + e2e::quote(lp) + " --quiet");
   INFO(r.output);
   REQUIRE(r.exitCode == 0);
-  const Errors e = compare(lpLights(lp), lpLights(capture.parent_path() / "truth/lights.lp"));
+  const e2e::LightErrors e = compare(lpLights(lp), lpLights(capture.parent_path() / "truth/lights.lp"));
   INFO("median " << e.median << " max " << e.max);
   CHECK(e.median <= 0.6);
   CHECK(e.max <= 1.0);

@@ -16,18 +16,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path processedCapture(const fs::path& dir) {
-  static const fs::path made = [] {
-    const fs::path where = e2e::freshDir("hostile-env-source");
-    const fs::path capture = e2e::smallCapture(where, 8);
-    const e2e::CommandResult r = e2e::surrogate("run " + e2e::quote(capture) + " --quiet --no-report");
-    if (r.exitCode != 0) throw std::runtime_error("the run of the sample capture failed: " + r.output);
-    return capture;
-  }();
-  fs::copy(made, dir / "cap", fs::copy_options::recursive);
-  return dir / "cap";
-}
-
 // Every writing command, writing into `out` (a folder).
 std::vector<std::string> writers(const fs::path& cap, const fs::path& out) {
   const std::string rti = e2e::quote(cap / "finished-files/hsh2.rti");
@@ -57,7 +45,7 @@ void checkNoLeftovers(const fs::path& out) {
 
 TEST_CASE("a file-size limit stops every writing command with exit 1 and what to do") {
   const fs::path dir = e2e::freshDir("hostile-env-ulimit");
-  const fs::path cap = processedCapture(dir);
+  const fs::path cap = e2e::processedCapture(dir);
   const fs::path out = dir / "out";
   fs::create_directories(out);
   const auto before = e2e::snapshot(cap);
@@ -90,7 +78,7 @@ TEST_CASE("a file-size limit stops every writing command with exit 1 and what to
 
 TEST_CASE("a full disk stops every writing command with exit 1 and what to do") {
   const fs::path dir = e2e::freshDir("hostile-env-full");
-  const fs::path cap = processedCapture(dir);
+  const fs::path cap = e2e::processedCapture(dir);
   const fs::path out = dir / "small-disk";
   fs::create_directories(out);
   if (::geteuid() != 0 || ::mount("tmpfs", out.c_str(), "tmpfs", 0, "size=64k") != 0) {

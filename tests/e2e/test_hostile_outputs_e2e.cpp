@@ -19,20 +19,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A generated capture that has run (a carrier, .lp, .ptm and .rti), made once per process and
-// copied for each test.
-fs::path processedCapture(const fs::path& dir) {
-  static const fs::path made = [] {
-    const fs::path where = e2e::freshDir("hostile-outputs-source");
-    const fs::path capture = e2e::smallCapture(where, 8);
-    const e2e::CommandResult r = e2e::surrogate("run " + e2e::quote(capture) + " --quiet --no-report");
-    if (r.exitCode != 0) throw std::runtime_error("the run of the sample capture failed: " + r.output);
-    return capture;
-  }();
-  fs::copy(made, dir / "cap", fs::copy_options::recursive);
-  return dir / "cap";
-}
-
 std::string firstExport(const fs::path& capture) {
   std::vector<std::string> names;
   for (const auto& e : fs::directory_iterator(capture / "jpeg-exports")) names.push_back(e.path().filename().string());
@@ -44,7 +30,7 @@ std::string firstExport(const fs::path& capture) {
 
 TEST_CASE("no command writes over a capture's originals, exports, carrier or results") {
   const fs::path dir = e2e::freshDir("hostile-outputs");
-  const fs::path cap = processedCapture(dir);
+  const fs::path cap = e2e::processedCapture(dir);
   const std::string q = e2e::quote(cap);
   const std::string rti = e2e::quote(cap / "finished-files/hsh2.rti");
   const std::string lp = e2e::quote(cap / "assembly-files/lights.lp");
@@ -86,7 +72,7 @@ TEST_CASE("no command writes over a capture's originals, exports, carrier or res
 
 TEST_CASE("devices, FIFOs and symbolic links are never replaced by an output") {
   const fs::path dir = e2e::freshDir("hostile-outputs-special");
-  const fs::path cap = processedCapture(dir);
+  const fs::path cap = e2e::processedCapture(dir);
   const std::string rti = e2e::quote(cap / "finished-files/hsh2.rti");
   REQUIRE(::mkfifo((dir / "pipe.png").c_str(), 0600) == 0);
   fs::create_symlink(cap / "finished-files/hsh2.rti", dir / "link.png");
@@ -111,7 +97,7 @@ TEST_CASE("devices, FIFOs and symbolic links are never replaced by an output") {
 
 TEST_CASE("pack replaces a package only with --force, and two packs to one name give one package") {
   const fs::path dir = e2e::freshDir("hostile-outputs-pack");
-  const fs::path cap = processedCapture(dir);
+  const fs::path cap = e2e::processedCapture(dir);
   fs::copy(cap, dir / "cap2", fs::copy_options::recursive);
   const fs::path pkg = dir / "pkg.zip";
   std::ofstream(pkg) << "an earlier package";
@@ -144,7 +130,7 @@ TEST_CASE("pack replaces a package only with --force, and two packs to one name 
 
 TEST_CASE("report reads a capture under a reader's lock: refused while a command writes it") {
   const fs::path dir = e2e::freshDir("hostile-outputs-report-lock");
-  const fs::path cap = processedCapture(dir);
+  const fs::path cap = e2e::processedCapture(dir);
   // util-linux flock(1) holds the capture's lock as a run would (exclusively) for a while.
   const fs::path lock = cap / ".surrogate/lock";
   fs::create_directories(lock.parent_path());

@@ -16,9 +16,11 @@
 #include <vector>
 
 #include "e2e_support.h"
+#include "light_errors.h"
 
 namespace fs = std::filesystem;
-using Direction = std::array<double, 3>;
+using e2e::Direction;
+using e2e::lpLights;
 
 namespace {
 
@@ -61,36 +63,6 @@ std::vector<Direction> countedLights(const fs::path& file) {
   return out;
 }
 
-std::vector<Direction> lpLights(const fs::path& lp) {
-  std::ifstream in(lp);
-  int n = 0;
-  in >> n;
-  std::vector<Direction> out(n);
-  std::string name;
-  for (Direction& d : out) in >> name >> d[0] >> d[1] >> d[2];
-  return out;
-}
-
-double angleDeg(const Direction& a, const Direction& b) {
-  const double na = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-  const double nb = std::sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
-  const double d = (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) / (na * nb);
-  return std::acos(std::clamp(d, -1.0, 1.0)) * 180 / M_PI;
-}
-
-struct Errors {
-  double median = 0, max = 0;
-};
-
-// The .lp names images in file-name order, as the references list them.
-Errors compare(const std::vector<Direction>& got, const std::vector<Direction>& reference) {
-  REQUIRE(got.size() == reference.size());
-  std::vector<double> e;
-  for (std::size_t i = 0; i < got.size(); ++i) e.push_back(angleDeg(got[i], reference[i]));
-  std::sort(e.begin(), e.end());
-  return {e[(e.size() - 1) / 2], e.back()};
-}
-
 }  // namespace
 
 TEST_CASE("a black sphere filling the frame, the scene reflected in it, is found without hints") {
@@ -99,7 +71,7 @@ TEST_CASE("a black sphere filling the frame, the scene reflected in it, is found
   const auto r = e2e::surrogate("lights " + e2e::quote(capture) + " -o " + e2e::quote(lp) + " --quiet");
   INFO(r.output);
   REQUIRE(r.exitCode == 0);
-  const Errors e = compare(lpLights(lp), psboxLights(realData("lightprobe-1") / "light_directions.txt"));
+  const e2e::LightErrors e = e2e::lightErrors(lpLights(lp), psboxLights(realData("lightprobe-1") / "light_directions.txt"));
   INFO("median " << e.median << " max " << e.max);
   // Measured 1.63 / 2.79 deg; the rim fit gives r 411 px where the dataset's hand-fitted circle
   // says 421 (its bottom is hidden by the stand).
@@ -117,7 +89,7 @@ TEST_CASE("a chrome ball on black is found, or refused, never confidently wrong"
     CHECK(r.output.find("--sphere-roi") != std::string::npos);
     return;
   }
-  const Errors e = compare(lpLights(lp), countedLights(realData("chrome") / "lights.txt"));
+  const e2e::LightErrors e = e2e::lightErrors(lpLights(lp), countedLights(realData("chrome") / "lights.txt"));
   INFO("median " << e.median << " max " << e.max);
   CHECK(e.median <= 3.0);  // measured 1.85 (max 8.3: the reference's own highlight positions differ)
 }
