@@ -217,6 +217,7 @@ struct AuditInputs {
 
 struct AuditReport {
   double thresholdDegrees = 0;
+  double reproducedDb = 1.0;  // AuditOptions::reproducedDb the verdicts were made with
   // Prior files left out because they cannot be read as what their name says (filled by the
   // caller that leaves them out: stages::AuditStage), with the reader's words.
   struct NotAudited {
@@ -233,6 +234,38 @@ struct AuditReport {
 // naming most photographs; a model without any is reported as not compared. Error(Input) when a
 // prior file cannot be read.
 AuditReport runAudit(const AuditInputs& inputs, const AuditOptions& options);
+
+// ---- 5. The verdict in parts ----------------------------------------------------------------
+
+// What an auditor asks of a prior RTI, one question at a time: are its lights Surrogate's, does
+// its model fit the photographs as well as a refit does, were the photographs processed alike,
+// is the file sound. Each part says reproduced, differs or cannot tell, with its figure and,
+// when it differs, the likely cause, one line each. A part says "differs" only for what denies
+// the reproduction (the Verdict's blocking findings); what does not (a resized model, images
+// one side lacks) is said in its figure.
+struct VerdictPart {
+  enum class State { Reproduced, Differs, CannotTell };
+  std::string name;  // "lights", "model", "tone", "integrity"
+  State state = State::CannotTell;
+  std::string figure;
+  std::string cause;  // when it differs
+};
+const char* stateName(VerdictPart::State state);  // "reproduced", "differs", "cannot tell"
+
+struct VerdictSummary {
+  std::string subject;  // "finished-files/stela.ptm with the lights of assembly-files/stela.lp"
+  bool reproduced = false;
+  std::vector<VerdictPart> parts;  // lights, model, tone, integrity
+};
+// One summary per verdict of `report`, in its order.
+std::vector<VerdictSummary> summarise(const AuditReport& report);
+// Whether every verdict says reproduced and every prior file was audited.
+bool auditReproduced(const AuditReport& report);
+
+// The summaries for the terminal: per verdict, a line with its subject and REPRODUCED or NOT
+// REPRODUCED, then one line per part.
+std::vector<std::string> summaryLines(const std::vector<VerdictSummary>& summaries);
+void writeSummaryJson(JsonWriter& json, const std::vector<VerdictSummary>& summaries);
 
 // Numbers rounded for display: angles to 0.1 degree, dB to 0.01, RMSE to 0.01.
 void writeAuditJson(JsonWriter& json, const AuditReport& report);

@@ -326,6 +326,9 @@ AuditReport recordedAudit(const carrier::Carrier& carrier, const carrier::Result
   AuditReport out;
   for (const carrier::DataItem* d : result.itemsOf("value"))
     if (d->get("name") == "thresholdDegrees") out.thresholdDegrees = numberIn(d->get("value").value_or(""), "thresholdDegrees");
+  // The margin is a parameter of the step (its default when the step does not say).
+  if (const carrier::Step* step = carrier.findStep(result.step); step && step->hasParam("reproducedMarginDb"))
+    out.reproducedDb = numberIn(step->param("reproducedMarginDb"), "reproducedMarginDb");
   // Sections point into out.lights / out.models: reserve so that no pointer moves.
   std::size_t inputs = 0;
   for (const carrier::DataItem& d : result.items) inputs += d.element == "input";

@@ -29,6 +29,7 @@ int lightFileOf(const std::filesystem::path& model, const std::vector<PriorLight
 AuditReport runAudit(const AuditInputs& inputs, const AuditOptions& options) {
   AuditReport report;
   report.thresholdDegrees = options.angleThresholdDegrees;
+  report.reproducedDb = options.reproducedDb;
   const Photographs& photos = inputs.photographs;
   if (!photos.stack || photos.stack->size() != static_cast<int>(photos.files.size()) ||
       (!inputs.surrogateLights.empty() && inputs.surrogateLights.size() != photos.files.size()))

@@ -66,6 +66,26 @@ struct RunRecord {
   std::vector<std::string> notes;      // what changed; for a failed run, the cause
 };
 
+// The evidence an audit examined (`surrogate audit PRIOR`): another tool's work, copied byte for
+// byte from PRIOR into the audit's own work folder, which is this capture. Each copy's file record
+// carries its hash as usual; this says where it came from, so that the package of the audit
+// names the prior files it examined as they were read.
+struct AuditedSource {
+  std::string source;  // PRIOR as given, made absolute (escaped text, core/text.h escapedText)
+  std::string kind;    // "folder" or "package"
+  std::string copied;  // xs:dateTime of the copy
+  // A package file (.zip, .tar): its size and SHA-256 as read; 0 and empty for a folder.
+  std::uint64_t packageSize = 0;
+  std::string packageSha256;
+  struct Item {
+    std::string path;  // in this capture
+    std::string from;  // in PRIOR ('/' separated; a bag's payload path for a package)
+    std::uint64_t size = 0;
+    std::string sha256;
+  };
+  std::vector<Item> files;  // sorted by path
+};
+
 struct Header {
   std::string title;
   std::vector<Creator> creators;
@@ -74,6 +94,7 @@ struct Header {
   // Rights statement in the depositor's words (--rights) and the licence's URI (--license);
   // empty when not given (carriers before these existed have neither).
   std::string rights, license;
+  std::optional<AuditedSource> audited;  // only in an audit's work folder
   Machine machine;
   std::vector<Software> software;
   std::vector<RunRecord> runs;  // oldest first

@@ -41,6 +41,24 @@ void optionalAttr(xmlNodePtr node, const char* name, const std::string& value) {
   if (!value.empty()) attr(node, name, value);
 }
 
+void writeAudited(xmlNodePtr header, const AuditedSource& a) {
+  xmlNodePtr n = child(header, "audited");
+  attr(n, "source", a.source);
+  attr(n, "kind", a.kind);
+  attr(n, "copied", a.copied);
+  if (!a.packageSha256.empty()) {
+    attr(n, "packageSize", std::to_string(a.packageSize));
+    attr(n, "packageSha256", a.packageSha256);
+  }
+  for (const AuditedSource::Item& f : a.files) {
+    xmlNodePtr e = child(n, "evidence");
+    attr(e, "path", f.path);
+    attr(e, "from", f.from);
+    attr(e, "size", std::to_string(f.size));
+    attr(e, "sha256", f.sha256);
+  }
+}
+
 void writeHeader(xmlNodePtr root, const Header& h) {
   xmlNodePtr header = child(root, "header");
   textChild(header, "title", h.title);
@@ -53,6 +71,7 @@ void writeHeader(xmlNodePtr root, const Header& h) {
   for (const auto& [key, value] : h.meta) attr(textChild(header, "meta", value), "key", key);
   if (!h.rights.empty()) textChild(header, "rights", h.rights);
   if (!h.license.empty()) textChild(header, "license", h.license);
+  if (h.audited) writeAudited(header, *h.audited);
   xmlNodePtr m = child(header, "machine");
   attr(m, "hostname", h.machine.hostname);
   attr(m, "os", h.machine.os);
@@ -206,6 +225,20 @@ Attributes allProps(xmlNodePtr n) {
   return out;
 }
 
+AuditedSource readAudited(xmlNodePtr node) {
+  AuditedSource a;
+  a.source = prop(node, "source");
+  a.kind = prop(node, "kind");
+  a.copied = prop(node, "copied");
+  a.packageSha256 = prop(node, "packageSha256");
+  if (!a.packageSha256.empty()) a.packageSize = std::stoull(prop(node, "packageSize"));
+  forChildren(node, [&](xmlNodePtr e) {
+    if (is(e, "evidence"))
+      a.files.push_back({prop(e, "path"), prop(e, "from"), std::stoull(prop(e, "size")), prop(e, "sha256")});
+  });
+  return a;
+}
+
 Header readHeader(xmlNodePtr node) {
   Header h;
   forChildren(node, [&](xmlNodePtr c) {
@@ -216,6 +249,7 @@ Header readHeader(xmlNodePtr node) {
     else if (is(c, "meta")) h.meta.emplace_back(prop(c, "key"), text(c));
     else if (is(c, "rights")) h.rights = text(c);
     else if (is(c, "license")) h.license = text(c);
+    else if (is(c, "audited")) h.audited = readAudited(c);
     else if (is(c, "machine")) {
       h.machine.hostname = prop(c, "hostname");
       h.machine.os = prop(c, "os");

@@ -1,8 +1,8 @@
-// surrogate audit CAPTURE [--json] [--threshold DEG]: the audit of the prior work another tool
-// left in the capture, as the carrier records it (stages/audit_stage.h). When the carrier has no
-// Audit result yet, or one made with another threshold, the capture is run again with it
-// (recorded in the carrier like a run, under the capture's lock).
-#include <cmath>
+// surrogate audit PRIOR [-o WORK] [--json] [--threshold DEG] [run options]: audits the prior
+// work another tool left in PRIOR (a capture folder as RTIBuilder leaves it, or a package) in
+// a work folder of its own (evidence/evidence.h), never writing into PRIOR; prints the verdict
+// first, and exits 0 when the prior work is reproduced, 4 when it is not, 1 when it cannot be
+// read.
 #include <filesystem>
 #include <iostream>
 
@@ -16,9 +16,10 @@
 #include "core/error.h"
 #include "core/json.h"
 #include "core/text.h"
+#include "evidence/evidence.h"
+#include "report/report.h"
 #include "stages/audit_stage.h"
 #include "stages/plan.h"
-#include "stages/prior_work.h"
 
 namespace surrogate::cli {
 
@@ -26,9 +27,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
-using capture::kCarrierPath;
+constexpr int kReproduced = 0;
+constexpr int kNotReproduced = static_cast<int>(ErrorKind::NotReproduced);
+constexpr int kUnreadable = static_cast<int>(ErrorKind::Input);
 
-// The recorded Audit result and whether it was made with `threshold` (unset: any).
+// The recorded Audit result, when it was made with `threshold` (unset: any).
 const carrier::Result* usableResult(const carrier::Carrier& c, const std::optional<double>& threshold) {
   const carrier::Result* r = audit::auditResult(c);
   if (!r || !threshold) return r;
@@ -49,84 +52,155 @@ std::optional<double> thresholdOption(const Args& args) {
   return v;
 }
 
-void printNoPriorWork(const fs::path& capture, bool json) {
-  if (json) {
-    JsonWriter j;
-    j.beginObject().key("capture").value(capture.string()).key("priorWork").value(false).endObject();
-    std::cout << j.str() << "\n";
-  } else {
-    std::cout << capture.string() << ": no prior work to audit (no .lp, .ptm or .rti that Surrogate "
-                                     "did not write in assembly-files/ or finished-files/)\n";
-  }
+// Whether the command line asks for a decision about the processing (--sphere, --exclude, ...),
+// which only a run can apply.
+bool decisionsGiven(const Args& args) {
+  for (const OptionSpec& o : pipelineOptions(true))
+    if (args.has(o.name)) return true;
+  return false;
 }
 
-void printAudit(const fs::path& capture, const carrier::Carrier& c, const carrier::Result& r, bool ran, bool json) {
-  const audit::AuditReport report = audit::recordedAudit(c, r);
-  if (json) {
-    JsonWriter j;
-    j.beginObject().key("capture").value(capture.string()).key("priorWork").value(true)
-        .key("step").value(r.step).key("ran").value(ran).key("audit");
-    audit::writeAuditJson(j, report);
-    j.endObject();
-    std::cout << j.str() << "\n";
-    return;
-  }
-  std::cout << "audit of the prior work in " << capture.string() << " (step " << r.step
-            << (ran ? ", just run" : ", as recorded") << "; threshold "
-            << fixedDecimals(report.thresholdDegrees, 1) << " degrees)\n";
+int exitCodeOf(const audit::AuditReport& report) {
+  for (const audit::Verdict& v : report.verdicts)
+    if (!v.reproduced) return kNotReproduced;
+  return audit::auditReproduced(report) ? kReproduced : kUnreadable;
+}
+
+struct Outcome {
+  fs::path prior, work;
+  const evidence::WorkFolder* folder = nullptr;
+  bool ran = false;
+  std::string step;
+  std::optional<fs::path> report;
+};
+
+void printJson(const Outcome& o, const audit::AuditReport& report, int exitCode) {
+  JsonWriter j;
+  j.beginObject().key("reproduced").value(exitCode == kReproduced).key("exitCode").value(exitCode);
+  j.key("verdict");
+  audit::writeSummaryJson(j, audit::summarise(report));
+  j.key("prior").value(escapedText(o.prior.string())).key("work").value(escapedText(o.work.string()));
+  j.key("copiedFiles");
+  if (o.folder->copied) j.value(static_cast<int>(o.folder->copied->files.size()));
+  else j.null();
+  j.key("step").value(o.step).key("ran").value(o.ran).key("report");
+  if (o.report) j.value(escapedText(o.report->string()));
+  else j.null();
+  j.key("audit");
+  audit::writeAuditJson(j, report);
+  j.endObject();
+  std::cout << j.str() << "\n";
+}
+
+void printText(const Outcome& o, const audit::AuditReport& report, int exitCode) {
+  for (const std::string& line : audit::summaryLines(audit::summarise(report))) std::cout << line << "\n";
+  for (const auto& n : report.notAudited)
+    std::cout << "CANNOT TELL     " << n.file.generic_string() << ": cannot be read (" << n.reason << ")\n";
+  std::cout << "\naudit of " << escapedText(o.prior.string()) << " in the work folder " << escapedText(o.work.string());
+  if (o.folder->copied)
+    std::cout << " (" << o.folder->copied->files.size() << " files copied; nothing written into "
+              << escapedText(o.prior.string()) << ")";
+  else if (o.folder->reused)
+    std::cout << " (" << (o.work == o.prior ? "audited again in place" : "made by an earlier audit; the files audited are unchanged") << ")";
+  std::cout << "\n  exit " << exitCode
+            << (exitCode == kReproduced ? ": reproduced" : exitCode == kNotReproduced ? ": not reproduced" : ": cannot tell")
+            << "; step " << o.step << (o.ran ? ", just run" : ", as recorded") << "; threshold "
+            << fixedDecimals(report.thresholdDegrees, 1) << " degrees\n";
+  if (o.report) std::cout << "  report: " << escapedText(o.report->string()) << "\n";
+  std::cout << "  pack it with its evidence: surrogate pack " << escapedText(o.work.string()) << " -o "
+            << escapedText(o.work.string()) << ".zip\n\n";
   for (const std::string& line : audit::auditLines(report)) std::cout << line << "\n";
+}
+
+// Runs the work folder with the request; a failure says where the audit works and how to go on.
+carrier::Carrier runWorkFolder(const Outcome& o, const stages::RunRequest& request, const pipeline::RunSettings& settings) {
+  try {
+    return stages::runCapture(o.work, request, settings);
+  } catch (const Error& e) {
+    if (e.kind() == ErrorKind::Internal) throw;
+    throw Error(e.kind(), e.file(), e.step(),
+                e.message() + " (the audit works in " + escapedText(o.work.string()) +
+                    "; give the correction, e.g. --sphere X,Y,R or --exclude NAME --reason \"...\", to `surrogate audit " +
+                    escapedText(o.prior.string()) + "` again)");
+  }
 }
 
 }  // namespace
 
 int runCommandAudit(int argc, char** argv) {
   std::vector<OptionSpec> specs = {
+      {"o", true, false, "the work folder (default: beside PRIOR, named PRIOR-audit)", "WORK"},
+      {"output", true, false, "same as -o", "WORK"},
       {"threshold", true, false, "name the images whose prior light differs by more than this (default 2)", "DEG"}};
+  for (const OptionSpec& o : pipelineOptions(true)) specs.push_back(o);
   for (const OptionSpec& o : runtimeOptions()) specs.push_back(o);
   Args args(argc, argv, 1, specs);
-  if (helpShown(args, specs, "surrogate audit CAPTURE [--json] [--threshold DEG] [options]",
-                "Audit the prior work another tool (RTIBuilder, relight, a dome's software) left in "
-                "CAPTURE's assembly-files/ and finished-files/: each prior .lp against Surrogate's "
-                "lights, each prior .ptm or .rti against the photographs beside Surrogate's own fit, "
-                "and a verdict. Prints the audit the carrier records; runs the capture again (recorded "
-                "like a run) when there is none yet or it was made with another threshold. Run "
-                "`surrogate run CAPTURE` first."))
+  if (helpShown(args, specs, "surrogate audit PRIOR [-o WORK] [--json] [--threshold DEG] [options]",
+                "Audit the work another tool (RTIBuilder, relight, a dome's software) left in PRIOR, a "
+                "capture folder with its .lp and .ptm/.rti in assembly-files/ and finished-files/, or a "
+                "package of one: each prior .lp against Surrogate's lights, each prior .ptm or .rti "
+                "against the photographs beside Surrogate's refits, and a verdict in four parts (lights, "
+                "model, tone, integrity). Nothing is written into PRIOR, which may be read-only: its files "
+                "are copied into the work folder WORK, a capture of its own whose carrier records where "
+                "each came from, run there, and reported in WORK/finished-files/report.html; "
+                "`surrogate pack WORK` bags the audit with the evidence it examined. Run again, it reuses "
+                "WORK while PRIOR is unchanged. The run options (--sphere, --exclude, ...) correct the "
+                "audit's own processing. Exit codes: 0 reproduced, 4 not reproduced, 1 the prior work "
+                "cannot be read (or there is none), 2 bad usage, 3 a package whose files differ from its "
+                "record."))
     return 0;
   if (args.positional().size() != 1)
-    throw Error(ErrorKind::Usage, "", "command line", "give the capture folder: surrogate audit CAPTURE");
-  const fs::path capture = args.positional()[0];
+    throw Error(ErrorKind::Usage, "", "command line", "give the folder or package to audit: surrogate audit PRIOR");
   const std::optional<double> threshold = thresholdOption(args);
   const bool json = args.has("json");
-  capture::requireCaptureFolder(capture);
-  if (!fs::exists(capture / kCarrierPath))
-    throw Error(ErrorKind::Usage, capture.string(), "audit",
-                "has not been processed yet: run `surrogate run " + capture.string() +
-                    "` first; the audit compares the prior work with Surrogate's lights and fit of it");
-  carrier::Carrier c = carrier::loadCarrier(capture / kCarrierPath);
-  if (!audit::auditResult(c) &&
-      stages::priorWorkToAudit(capture, &c, stages::plannedOutputs(c)).empty()) {
-    printNoPriorWork(capture, json);
-    return 0;
-  }
-  if (const carrier::Result* r = usableResult(c, threshold)) {
-    printAudit(capture, c, *r, false, json);
-    return 0;
-  }
-  stages::RunRequest request;
-  request.command = "audit";
-  for (int i = 1; i < argc; ++i) request.arguments.push_back(argv[i]);
-  if (threshold)
-    request.stageParams.push_back({stages::AuditStage::kComponent, "angleThresholdDegrees", formatNumber(*threshold)});
+  const std::optional<std::string> out = outputOption(args);
+
+  Outcome o;
+  o.prior = fs::absolute(args.positional()[0]).lexically_normal();
   ProgressBar bar(args.has("quiet") || json);
-  c = stages::runCapture(capture, request, settingsFrom(args, bar));
+  const evidence::WorkFolder folder =
+      evidence::prepareWorkFolder(o.prior, out ? std::optional<fs::path>(*out) : std::nullopt, bar.callback());
   bar.finish();
-  const carrier::Result* r = audit::auditResult(c);
-  if (!r) {
-    printNoPriorWork(capture, json);
-    return 0;
+  o.folder = &folder;
+  o.work = folder.folder;
+
+  std::optional<carrier::Carrier> c;
+  const fs::path carrierPath = o.work / capture::kCarrierPath;
+  if (folder.reused && !decisionsGiven(args) && fs::exists(carrierPath)) {
+    c = carrier::loadCarrier(carrierPath);
+    if (!usableResult(*c, threshold)) c.reset();
   }
-  printAudit(capture, c, *r, true, json);
-  return 0;
+  if (!c) {
+    stages::RunRequest request = requestFrom(args);
+    request.command = "audit";
+    request.arguments.clear();
+    for (int i = 1; i < argc; ++i) request.arguments.push_back(argv[i]);
+    if (threshold)
+      request.stageParams.push_back({stages::AuditStage::kComponent, "angleThresholdDegrees", formatNumber(*threshold)});
+    if (folder.copied) request.audited = folder.copied;
+    pipeline::RunSettings settings = settingsFrom(args, bar);
+    c = runWorkFolder(o, request, settings);
+    bar.finish();
+    o.ran = true;
+    report::ReportOptions reportOptions;
+    reportOptions.threads = settings.threads;
+    reportOptions.progress = bar.callback();
+    report::writeCaptureReport(o.work, reportOptions);
+    bar.finish();
+  }
+  if (fs::exists(o.work / capture::kReportPath)) o.report = o.work / capture::kReportPath;
+
+  const carrier::Result* r = audit::auditResult(*c);
+  if (!r)
+    throwInputError(o.prior.string(), "audit",
+                    "holds no prior work Surrogate could audit: its run planned no Audit step (see " +
+                        carrierPath.string() + ")");
+  o.step = r->step;
+  const audit::AuditReport report = audit::recordedAudit(*c, *r);
+  const int exitCode = exitCodeOf(report);
+  if (json) printJson(o, report, exitCode);
+  else printText(o, report, exitCode);
+  return exitCode;
 }
 
 }  // namespace surrogate::cli

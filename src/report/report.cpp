@@ -572,7 +572,7 @@ Report buildReport(const carrier::Carrier& c, const ReportSource& source, const 
        << "</style></head>\n<body data-lights-expected=\"" << report.lightsPlotted << "\">\n<header><h1>"
        << escapeHtml(c.header.title) << "</h1><p class=\"note\">From the " << escapeHtml(source.describe())
        << "; report made " << escapeHtml(generated) << " by Surrogate " << escapeHtml(surrogateVersion())
-       << ".</p></header>\n<main>"
+       << ".</p></header>\n<main>" << auditSummarySection(c)
        << summarySection(c, lightPoints, coverage, options.verification)
        // Side by side when the window has room for both (a small model and its light plot).
        << "<div class=\"first-row\">";

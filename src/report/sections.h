@@ -42,6 +42,8 @@ std::string lightChecksTable(const carrier::Carrier& c);
 // "Audit of prior work", when the carrier has an Audit result (audit/recorded.h): the verdicts,
 // the lights above the threshold, the PSNR table and the difference images (through `figure`,
 // which embeds a recorded picture with a caption); empty otherwise.
+// The audit's verdict in parts, first of the report (empty without an Audit result).
+std::string auditSummarySection(const carrier::Carrier& c);
 std::string auditSection(const carrier::Carrier& c,
                          const std::function<std::string(const carrier::FileRecord&, const std::string&)>& figure);
 // The prior lights the Audit result records, for the hemisphere plot; empty without one.

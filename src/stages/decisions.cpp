@@ -123,6 +123,7 @@ RunRequest standingDecisions(const carrier::Carrier& recorded) {
   r.meta = recorded.header.meta;
   r.rights = recorded.header.rights;
   r.license = recorded.header.license;
+  r.audited = recorded.header.audited;
   registerBuiltinStages();
   std::vector<std::string> bases;
   for (const carrier::Step& s : recorded.process) {
@@ -263,6 +264,11 @@ RunRequest applyDecisions(const RunRequest& standing, const RunRequest& given,
     changes.push_back(r.rights.empty() ? "rights \"" + given.rights + "\""
                                        : "rights \"" + r.rights + "\" -> \"" + given.rights + "\"");
     r.rights = given.rights;
+  }
+  if (given.audited) {
+    if (!r.audited) changes.push_back("the audit's evidence: " + std::to_string(given.audited->files.size()) +
+                                      " files copied from " + given.audited->source);
+    r.audited = given.audited;
   }
   if (!given.license.empty() && given.license != r.license) {
     changes.push_back(r.license.empty() ? "license " + given.license : "license " + r.license + " -> " + given.license);

@@ -109,6 +109,7 @@ carrier::Carrier planRun(const fs::path& capture, const RunRequest& request) {
   c.header.meta = request.meta;
   c.header.rights = request.rights;
   c.header.license = request.license;
+  c.header.audited = request.audited;
   for (const carrier::Software& s : softwareVersions()) c.header.software.push_back(s);
   auto stamped = [&](carrier::Intervention in) {
     if (in.who.empty()) in.who = who;

@@ -67,6 +67,9 @@ struct RunRequest {
   std::string rights;   // rights statement (--rights); empty: keep
   std::string license;  // licence URI (--license); empty: keep
   std::string who;  // the person running Surrogate (interventions); default: $USER
+  // In an audit's work folder: the prior files copied into it (set by `surrogate audit` when it
+  // makes the folder; unset: keep).
+  std::optional<carrier::AuditedSource> audited;
 
   // CaptureIngest.
   std::string source;  // auto, original, export; empty: keep (first run: auto)

@@ -35,6 +35,27 @@ std::string firstDifference(const std::string& expected, const std::string& foun
   return "the texts differ in line endings";
 }
 
+// carrier.evidence, for an audit's package: every file the audit copied from the work it
+// audited is recorded, as an input (never a result), with the size and SHA-256 read from the
+// source. A copy that differs from what was read, or evidence bagged as a result, is refused.
+Check evidenceCheck(const carrier::Carrier& c) {
+  std::vector<std::string> problems;
+  for (const carrier::AuditedSource::Item& e : c.header.audited->files) {
+    const carrier::FileRecord* f = c.findFileByPath(e.path);
+    if (!f) problems.push_back(e.path + ": copied from the work audited, but the carrier records no such file");
+    else if (f->role == "assembly" || f->role == "result")
+      problems.push_back(e.path + ": copied from the work audited, but recorded as Surrogate's " + f->role);
+    else if (f->size != e.size || f->sha256 != e.sha256)
+      problems.push_back(e.path + ": read from " + e.from + " as " + std::to_string(e.size) + " bytes, SHA-256 " +
+                         e.sha256.substr(0, 16) + "...; the carrier records " + std::to_string(f->size) + " bytes, " +
+                         f->sha256.substr(0, 16) + "...");
+  }
+  return makeCheck("carrier.evidence", Severity::Fixity,
+                   std::to_string(c.header.audited->files.size()) +
+                       " files copied from the work audited are recorded with the bytes read from it",
+                   "the audit's copies differ from what it read", problems);
+}
+
 }  // namespace
 
 std::optional<carrier::Carrier> checkCarrier(const Inventory& inv, std::vector<Check>& checks) {
@@ -106,6 +127,7 @@ std::optional<carrier::Carrier> checkCarrier(const Inventory& inv, std::vector<C
                              std::to_string(parsed->files.size()) +
                                  " files listed in the carrier are in the bag, same size and SHA-256; nothing else in the payload but the report",
                              "files differ from what the carrier records", fixity));
+  if (parsed->header.audited) checks.push_back(evidenceCheck(*parsed));
   if (!pathProblems.empty()) parsed.reset();  // never re-execute a carrier with unsafe paths
   return parsed;
 }

@@ -1,10 +1,11 @@
-// Issue 17 (the audit): a generated capture laid out as RTIBuilder leaves it, with prior work
-// written here without Surrogate's code: an .lp (Windows paths, CRLF, a blank line) of the
+// Issues 17 and 40 (the audit): a generated capture laid out as RTIBuilder leaves it, with prior
+// work written here without Surrogate's code: an .lp (Windows paths, CRLF, a blank line) of the
 // generator's true lights with three of them tilted by exactly 6 degrees, a PTM fitted with
-// those lights by the independent writer of tests/audit/prior_rti.h with a clamped bias, and a
-// log XML. `run` plans an Audit step; `audit --json` names exactly the tilted images, gives both
-// PSNRs, flags the bias and states the verdict; `pack` then `verify --reexecute` is SOUND, and
-// a changed audit figure in the packed carrier is not.
+// those lights by the independent writer of tests/audit/prior_rti.h (with a clamped bias, or
+// without), and a log XML. `audit PRIOR` on the folder made read-only copies it into a work
+// folder, leaves it untouched to the timestamp, names exactly the tilted images, gives the
+// verdict in parts with exit 4; the work folder packs and re-executes SOUND, and a changed
+// audit figure in a packed carrier does not.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -16,6 +17,7 @@
 #include <regex>
 #include <set>
 #include <sstream>
+#include <sys/stat.h>
 
 #include "../audit/prior_rti.h"
 #include "bag_check.h"
@@ -98,8 +100,9 @@ std::string clampedBiasPtm(const test::PriorPtm& p) {
   return out + payload;
 }
 
-// The capture with RTIBuilder's prior work: stela.lp, stela.ptm, stela_log.xml.
-fs::path rtibuilderCapture(const std::string& name) {
+// The capture with RTIBuilder's prior work: stela.lp, stela.ptm, stela_log.xml. The PTM's
+// constant term is clamped (clampedBiasPtm) unless `clampBias` is false.
+fs::path rtibuilderCapture(const std::string& name, bool clampBias = true) {
   const fs::path capture = e2e::freshDir(name) / "capture";
   const e2e::CommandResult g = e2e::runShell(std::string(GENERATOR_EXE) + " --out " + e2e::quote(capture) +
                                              " --images " + std::to_string(kImages) +
@@ -124,7 +127,8 @@ fs::path rtibuilderCapture(const std::string& name) {
                   "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\r\n<RTIBuilderLog version=\"2.0.2\">\r\n"
                   "  <step name=\"PTMFitter\" basis=\"LRGB\"/>\r\n</RTIBuilderLog>\r\n");
   const test::PriorPtm ptm = test::fitPrior(photographs(capture, truth), prior);
-  test::writeText((capture / "finished-files" / "stela.ptm").string(), clampedBiasPtm(ptm));
+  test::writeText((capture / "finished-files" / "stela.ptm").string(),
+                  clampBias ? clampedBiasPtm(ptm) : test::ptmText(ptm, test::BiasRule::WithZero));
   return capture;
 }
 
@@ -169,19 +173,56 @@ void rewriteInBag(const fs::path& bag, const std::string& path, const std::strin
       replace("tagmanifest-" + algorithm + ".txt", digest(algorithm, old), digest(algorithm, e2e::bytesOf(bag / manifest)));
 }
 
+// Every entry under `root` with what an audit must leave as it was: type and mode, size,
+// modification and status-change times to the nanosecond, a file's access time (folders are
+// listed by the audit, which may update theirs) and SHA-256. Files are hashed before they are
+// stat'ed, so that this reading does not show in the times it records.
+std::map<std::string, std::string> untouchedState(const fs::path& root) {
+  std::map<std::string, std::string> out;
+  const std::map<std::string, std::string> hashes = e2e::snapshot(root);
+  const auto stamp = [](const timespec& t) { return std::to_string(t.tv_sec) + "." + std::to_string(t.tv_nsec); };
+  for (auto it = fs::recursive_directory_iterator(root); it != fs::recursive_directory_iterator(); ++it) {
+    struct stat st {};
+    REQUIRE(::lstat(it->path().c_str(), &st) == 0);
+    const std::string rel = fs::relative(it->path(), root).generic_string();
+    const bool file = S_ISREG(st.st_mode);
+    out[rel] = std::to_string(st.st_mode) + " " + std::to_string(st.st_size) + " m" + stamp(st.st_mtim) + " c" +
+               stamp(st.st_ctim) + (file ? " a" + stamp(st.st_atim) + " " + hashes.at(rel) : std::string());
+  }
+  return out;
+}
+
+std::string partOf(const std::string& json, const std::string& part) {
+  const std::string key = "{\"part\":\"" + part + "\",\"state\":\"";
+  const auto at = json.find(key);
+  REQUIRE(at != std::string::npos);
+  return json.substr(at + key.size(), json.find('"', at + key.size()) - at - key.size());
+}
+
 }  // namespace
 
-TEST_CASE("audit names the tilted prior lights and the clamped bias of an RTIBuilder layout", "[e2e][audit]") {
+TEST_CASE("audit of a read-only RTIBuilder folder names the tilted lights, exits 4 and leaves it as it was",
+          "[e2e][audit]") {
   const fs::path capture = rtibuilderCapture("audit");
-  const e2e::CommandResult run = e2e::surrogate("run " + e2e::quote(capture) + " --quiet");
-  REQUIRE(run.exitCode == 0);
-  CHECK(run.output.find("assembly-files/audit/stela-difference.png") != std::string::npos);
+  const fs::path work = capture.parent_path() / "capture-audit";
+  REQUIRE(e2e::runShell("chmod -R a-w " + e2e::quote(capture)).exitCode == 0);
+  const std::map<std::string, std::string> before = untouchedState(capture);
 
   const e2e::CommandResult r = e2e::surrogate("audit " + e2e::quote(capture) + " --json");
   INFO(r.output);
-  REQUIRE(r.exitCode == 0);
+  CHECK(r.exitCode == 4);
+  CHECK(untouchedState(capture) == before);
+  REQUIRE(fs::exists(work / "assembly-files" / "carrier.xml"));
   const std::string& json = r.output;
-  CHECK(json.find("\"ran\":false") != std::string::npos);  // printed from the recorded step
+  // The verdict first, in parts: the lights differ, and so does the model's integrity.
+  CHECK(json.rfind("{\"reproduced\":false,\"exitCode\":4,\"verdict\":[{\"subject\":\"finished-files/stela.ptm with "
+                   "the lights of assembly-files/stela.lp\"", 0) == 0);
+  CHECK(partOf(json, "lights") == "differs");
+  CHECK(partOf(json, "integrity") == "differs");
+  CHECK(partOf(json, "model") == "differs");  // the clamped bias costs the prior more than a dB
+  CHECK(json.find("\"ran\":true") != std::string::npos);
+  // Every file: 12 photographs, the .lp, .ptm and log, and the generator's truth/ folder.
+  CHECK(json.find("\"copiedFiles\":" + std::to_string(e2e::snapshot(capture).size()) + ",") != std::string::npos);
   CHECK(json.find("\"file\":\"assembly-files/stela.lp\"") != std::string::npos);
 
   // Exactly the tilted images, each about 6 degrees off.
@@ -202,21 +243,37 @@ TEST_CASE("audit names the tilted prior lights and the clamped bias of an RTIBui
   const double refit = jsonNumber(models.substr(models.find("\"refitPriorLights\":")), "psnr");
   const double own = jsonNumber(models.substr(models.find("\"refitSurrogateLights\":")), "psnr");
   CHECK(prior > 10);
-  CHECK(refit - prior > 1.0);  // the clamped bias costs the prior more than a dB
+  CHECK(refit - prior > 1.0);
   CHECK(own > 20);
   CHECK(models.find("\"quantisation\":{\"clamped\":true") != std::string::npos);
   const std::string verdicts = json.substr(json.find("\"verdicts\":"));
-  CHECK(verdicts.find("\"reproduced\":false") != std::string::npos);
   CHECK(verdicts.find("\"cause\":\"broken-bias\"") != std::string::npos);
   CHECK(verdicts.find("\"cause\":\"different-lights\"") != std::string::npos);
-  CHECK(verdicts.find("IMG_0006.jpg") != std::string::npos);
 
-  // The text form says the same, and the report has the section and the prior lights.
+  // The work folder's carrier records where each copy came from, with the bytes read.
+  const std::string carrier = e2e::bytesOf(work / "assembly-files" / "carrier.xml");
+  CHECK(carrier.find("<audited source=\"" + fs::absolute(capture).lexically_normal().string() + "\" kind=\"folder\"") !=
+        std::string::npos);
+  CHECK(carrier.find("<evidence path=\"finished-files/stela.ptm\" from=\"finished-files/stela.ptm\" size=\"" +
+                     std::to_string(fs::file_size(capture / "finished-files" / "stela.ptm")) + "\" sha256=\"" +
+                     bagcheck::sha256(e2e::bytesOf(capture / "finished-files" / "stela.ptm")) + "\"/>") !=
+        std::string::npos);
+  CHECK(carrier.find("priorKind=\"rti\"") != std::string::npos);
+
+  // The text form: the verdict on top, printed from the record when nothing changed.
   const e2e::CommandResult text = e2e::surrogate("audit " + e2e::quote(capture));
-  CHECK(text.exitCode == 0);
+  INFO(text.output);
+  CHECK(text.exitCode == 4);
+  CHECK(text.output.rfind("NOT REPRODUCED  finished-files/stela.ptm with the lights of assembly-files/stela.lp\n"
+                          "  lights     differs     3 of 12 images differ by more than 2.0 degrees: ", 0) == 0);
+  CHECK(text.output.find("as recorded") != std::string::npos);
   CHECK(text.output.find("3 above 2.0: IMG_0003.jpg") != std::string::npos);
-  CHECK(text.output.find("verdict (stela.ptm): not reproduced") != std::string::npos);
-  const std::string report = e2e::bytesOf(capture / "finished-files" / "report.html");
+  CHECK(untouchedState(capture) == before);
+
+  // The report opens on the audit's card, and plots the prior lights.
+  const std::string report = e2e::bytesOf(work / "finished-files" / "report.html");
+  CHECK(report.find("<main><section id=\"audit-summary\"><h2>Audit: <span class=\"bad\">not reproduced</span>") !=
+        std::string::npos);
   CHECK(report.find("<section id=\"audit\"><h2>Audit of prior work</h2>") != std::string::npos);
   std::size_t off = 0, crosses = 0;
   for (std::size_t at = report.find("class=\"prior-light"); at != std::string::npos;
@@ -226,6 +283,50 @@ TEST_CASE("audit names the tilted prior lights and the clamped bias of an RTIBui
   }
   CHECK(crosses == kImages);
   CHECK(off == kTilted.size());
+
+  // The work folder packs with the evidence it examined, and re-executes SOUND.
+  const fs::path bag = capture.parent_path() / "audit-bag";
+  REQUIRE(e2e::surrogate("pack " + e2e::quote(work) + " -o " + e2e::quote(bag) + " --quiet").exitCode == 0);
+  CHECK(bagcheck::sha256(e2e::bytesOf(bag / "data" / "finished-files" / "stela.ptm")) ==
+        bagcheck::sha256(e2e::bytesOf(capture / "finished-files" / "stela.ptm")));
+  const e2e::CommandResult sound = e2e::surrogate("verify " + e2e::quote(bag) + " --reexecute --threads 1");
+  INFO(sound.output);
+  CHECK(sound.exitCode == 0);
+  CHECK(std::regex_search(sound.output, std::regex("ok +carrier\\.evidence")));
+  CHECK(std::regex_search(sound.output, std::regex("ok +reexecute\\.s[0-9]+\\.Audit +reproduced exactly")));
+  CHECK(untouchedState(capture) == before);
+  e2e::runShell("chmod -R u+w " + e2e::quote(capture));
+}
+
+// The issue's case: the prior model is as good as Surrogate's refit at the prior's own lights,
+// but three of those lights are wrong. The parts say so apart.
+TEST_CASE("audit separates lights that differ from a model that is reproduced", "[e2e][audit]") {
+  const fs::path capture = rtibuilderCapture("audit-lights", /*clampBias=*/false);
+  const e2e::CommandResult r = e2e::surrogate("audit " + e2e::quote(capture) + " --json -o " +
+                                              e2e::quote(capture.parent_path() / "work"));
+  INFO(r.output);
+  CHECK(r.exitCode == 4);
+  CHECK(partOf(r.output, "lights") == "differs");
+  CHECK(partOf(r.output, "model") == "reproduced");
+  CHECK(partOf(r.output, "integrity") == "reproduced");
+  CHECK(fs::exists(capture.parent_path() / "work" / "assembly-files" / "carrier.xml"));
+  CHECK(!fs::exists(capture.parent_path() / "capture-audit"));
+  // At a threshold above the tilt, the lights are reproduced too: exit 0, the step run again.
+  const e2e::CommandResult wide = e2e::surrogate("audit " + e2e::quote(capture) + " --json --threshold 10 -o " +
+                                                 e2e::quote(capture.parent_path() / "work"));
+  INFO(wide.output);
+  CHECK(wide.exitCode == 0);
+  CHECK(wide.output.rfind("{\"reproduced\":true,\"exitCode\":0,", 0) == 0);
+  CHECK(wide.output.find("\"ran\":true") != std::string::npos);
+  CHECK(jsonArray(wide.output, "aboveThreshold").empty());
+  const std::string carrier = e2e::bytesOf(capture.parent_path() / "work" / "assembly-files" / "carrier.xml");
+  CHECK(carrier.find("<param name=\"angleThresholdDegrees\" value=\"10\"/>") != std::string::npos);
+  CHECK(carrier.find("command=\"audit\"") != std::string::npos);
+  // The threshold stands: asked again without it, the recorded audit is printed.
+  const e2e::CommandResult again = e2e::surrogate("audit " + e2e::quote(capture) + " --json -o " +
+                                                  e2e::quote(capture.parent_path() / "work"));
+  CHECK(again.exitCode == 0);
+  CHECK(again.output.find("\"ran\":false") != std::string::npos);
 }
 
 // A dome capture: its lights are the dome's .lp, so there is no independent estimate to compare
@@ -244,9 +345,8 @@ TEST_CASE("audit of a dome capture compares the prior fit at the dome lights", "
   fs::create_directories(capture / "finished-files");
   test::writeText((capture / "finished-files" / "dome-fit.ptm").string(),
                   test::ptmText(test::fitPrior(photographs(capture, truth), lights), test::BiasRule::WithZero));
-  REQUIRE(e2e::surrogate("run " + e2e::quote(capture) + " --lp dome.lp --quiet").exitCode == 0);
 
-  const e2e::CommandResult r = e2e::surrogate("audit " + e2e::quote(capture) + " --json");
+  const e2e::CommandResult r = e2e::surrogate("audit " + e2e::quote(capture) + " --lp dome.lp --json");
   INFO(r.output);
   REQUIRE(r.exitCode == 0);
   const std::string models = r.output.substr(r.output.find("\"models\":"));
@@ -257,34 +357,43 @@ TEST_CASE("audit of a dome capture compares the prior fit at the dome lights", "
   CHECK(std::abs(refit - prior) < 1.0);  // the same lights, the same basis: the same fit
   CHECK(r.output.find("\"reproduced\":true") != std::string::npos);
   CHECK(r.output.find("\"lightFiles\":[]") != std::string::npos);  // no estimate to compare it with
+  CHECK(partOf(r.output, "lights") == "cannot tell");
 }
 
-TEST_CASE("audit with another threshold runs the Audit step again and records it", "[e2e][audit]") {
-  const fs::path capture = rtibuilderCapture("audit-threshold");
-  REQUIRE(e2e::surrogate("run " + e2e::quote(capture) + " --quiet").exitCode == 0);
-  const e2e::CommandResult r = e2e::surrogate("audit " + e2e::quote(capture) + " --json --threshold 10");
-  INFO(r.output);
-  REQUIRE(r.exitCode == 0);
-  CHECK(r.output.find("\"ran\":true") != std::string::npos);
-  CHECK(jsonArray(r.output, "aboveThreshold").empty());
-  const std::string carrier = e2e::bytesOf(capture / "assembly-files" / "carrier.xml");
-  CHECK(carrier.find("<param name=\"angleThresholdDegrees\" value=\"10\"/>") != std::string::npos);
-  CHECK(carrier.find("command=\"audit\"") != std::string::npos);
-  // The threshold stands: asked again without it, the recorded audit is printed.
-  const e2e::CommandResult again = e2e::surrogate("audit " + e2e::quote(capture) + " --json");
-  CHECK(again.output.find("\"ran\":false") != std::string::npos);
-}
-
-TEST_CASE("audit on a capture never run or without prior work says so", "[e2e][audit]") {
-  const fs::path capture = e2e::smallCapture(e2e::freshDir("audit-none"), 8);
-  const e2e::CommandResult never = e2e::surrogate("audit " + e2e::quote(capture));
-  CHECK(never.exitCode == 2);
-  CHECK(never.output.find("surrogate run") != std::string::npos);
-  REQUIRE(e2e::surrogate("run " + e2e::quote(capture) + " --quiet").exitCode == 0);
-  CHECK(e2e::bytesOf(capture / "assembly-files" / "carrier.xml").find("component=\"Audit\"") == std::string::npos);
+TEST_CASE("audit refuses what it cannot audit and never writes into it", "[e2e][audit]") {
+  const fs::path root = e2e::freshDir("audit-none");
+  const fs::path capture = e2e::smallCapture(root, 8);
+  const std::map<std::string, std::string> before = e2e::snapshot(capture);
   const e2e::CommandResult none = e2e::surrogate("audit " + e2e::quote(capture));
-  CHECK(none.exitCode == 0);
-  CHECK(none.output.find("no prior work to audit") != std::string::npos);
+  CHECK(none.exitCode == 1);
+  CHECK(none.output.find("holds no prior work to audit") != std::string::npos);
+  CHECK(!fs::exists(capture.parent_path() / (capture.filename().string() + "-audit")));
+  CHECK(e2e::snapshot(capture) == before);
+  CHECK(!fs::exists(capture / ".surrogate"));
+
+  const e2e::CommandResult notCapture = e2e::surrogate("audit " + e2e::quote(root / "nowhere"));
+  CHECK(notCapture.exitCode == 1);
+  CHECK(notCapture.output.find("does not exist") != std::string::npos);
+
+  // A work folder inside the folder audited, or a folder that is some other thing.
+  const fs::path prior = rtibuilderCapture("audit-refusals");
+  const e2e::CommandResult inside = e2e::surrogate("audit " + e2e::quote(prior) + " -o " + e2e::quote(prior / "work"));
+  CHECK(inside.exitCode == 2);
+  CHECK(inside.output.find("never writes into what it audits") != std::string::npos);
+  CHECK(!fs::exists(prior / "work"));
+  const e2e::CommandResult other = e2e::surrogate("audit " + e2e::quote(prior) + " -o " + e2e::quote(capture));
+  CHECK(other.exitCode == 2);
+  CHECK(other.output.find("is not the work folder of an audit of") != std::string::npos);
+
+  // A prior file changed after its audit: the work folder keeps the audit of the files as read.
+  const fs::path work = prior.parent_path() / "work";
+  REQUIRE(e2e::surrogate("audit " + e2e::quote(prior) + " --quiet -o " + e2e::quote(work)).exitCode == 4);
+  std::string lp = e2e::bytesOf(prior / "assembly-files" / "stela.lp");
+  test::writeText((prior / "assembly-files" / "stela.lp").string(), lp + "\r\n");
+  const e2e::CommandResult changed = e2e::surrogate("audit " + e2e::quote(prior) + " -o " + e2e::quote(work));
+  CHECK(changed.exitCode == 1);
+  CHECK(changed.output.find("has changed since the audit in") != std::string::npos);
+  CHECK(changed.output.find("assembly-files/stela.lp changed") != std::string::npos);
 }
 
 TEST_CASE("a packed audit re-executes SOUND and a changed audit figure does not", "[e2e][audit]") {
@@ -297,6 +406,16 @@ TEST_CASE("a packed audit re-executes SOUND and a changed audit figure does not"
   CHECK(sound.output.find("SOUND") != std::string::npos);
   std::smatch step;
   REQUIRE(std::regex_search(sound.output, step, std::regex("ok +reexecute\\.(s[0-9]+)\\.Audit +reproduced exactly")));
+
+  // The package audited as a folder is: its payload is the evidence, Surrogate's results left.
+  const e2e::CommandResult packaged = e2e::surrogate("audit " + e2e::quote(bag) + " --json");
+  INFO(packaged.output);
+  CHECK(packaged.exitCode == 4);
+  CHECK(partOf(packaged.output, "lights") == "differs");
+  const std::string workCarrier = e2e::bytesOf(capture.parent_path() / "bag-audit" / "assembly-files" / "carrier.xml");
+  CHECK(workCarrier.find("kind=\"package\"") != std::string::npos);
+  CHECK(workCarrier.find("from=\"data/finished-files/stela.ptm\"") != std::string::npos);
+  CHECK(workCarrier.find("from=\"data/assembly-files/lights.lp\"") == std::string::npos);  // Surrogate's own
 
   // The recorded median angle of the prior light file, changed in the bag's carrier.
   const std::string carrierPath = "data/assembly-files/carrier.xml";
@@ -314,17 +433,14 @@ TEST_CASE("a packed audit re-executes SOUND and a changed audit figure does not"
   CHECK(tampered.output.find("medianDegrees") != std::string::npos);
 }
 
-TEST_CASE("a prior file that cannot be read is left out of the audit and the run goes on", "[e2e][audit]") {
+TEST_CASE("a prior file that cannot be read is left out of the audit, which exits 1", "[e2e][audit]") {
   const fs::path capture = e2e::smallCapture(e2e::freshDir("audit-broken"), 8);
   fs::create_directories(capture / "finished-files");
   // A PTM_1.2 header cut off after the width (docs/formats.md, "Header": six lines).
   test::writeText((capture / "finished-files" / "old.ptm").string(), "PTM_1.2\nPTM_FORMAT_LRGB\n400\n");
-  const e2e::CommandResult run = e2e::surrogate("run " + e2e::quote(capture) + " --quiet");
-  INFO(run.output);
-  REQUIRE(run.exitCode == 0);
   const e2e::CommandResult r = e2e::surrogate("audit " + e2e::quote(capture) + " --json");
   INFO(r.output);
-  CHECK(r.exitCode == 0);
+  CHECK(r.exitCode == 1);
   CHECK(r.output.find("\"notAudited\":[{\"file\":\"finished-files/old.ptm\",\"reason\":\"") != std::string::npos);
   CHECK(r.output.find("\"models\":[]") != std::string::npos);
   CHECK(e2e::bytesOf(capture / "finished-files" / "old.ptm") == "PTM_1.2\nPTM_FORMAT_LRGB\n400\n");

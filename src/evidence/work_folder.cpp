@@ -1,0 +1,332 @@
+// The audit's work folder: made, found again, or refused (evidence.h).
+#include <algorithm>
+#include <cstdio>
+#include <map>
+#include <set>
+#include <cerrno>
+#include <csignal>
+#include <cstdlib>
+#include <unistd.h>
+
+#include "archive/package_reader.h"
+#include "capture/capture.h"
+#include "capture/output_rule.h"
+#include "core/atomic_file.h"
+#include "core/digest.h"
+#include "core/error.h"
+#include "core/file_names.h"
+#include "core/text.h"
+#include "evidence/evidence.h"
+#include "evidence/prior_files.h"
+
+namespace surrogate::evidence {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kStep = "audit";
+constexpr const char* kBagCarrier = "data/assembly-files/carrier.xml";
+// Written into a work folder before its evidence is in place, so that a folder this audit began
+// and never ran (stopped before its carrier existed) is known as its own.
+constexpr const char* kMarker = ".surrogate/audit-of";
+
+fs::path absoluteNormal(const fs::path& p) { return fs::absolute(p).lexically_normal(); }
+
+bool isInside(const fs::path& inner, const fs::path& outer) {
+  const fs::path rel = inner.lexically_relative(outer);
+  return !rel.empty() && *rel.begin() != "..";
+}
+
+std::string sourceText(const fs::path& prior) { return escapedText(absoluteNormal(prior).string()); }
+
+// Surrogate's own files in a capture processed by Surrogate: never evidence of another tool.
+std::set<std::string> surrogateFiles(const carrier::Carrier& c) {
+  std::set<std::string> out = {capture::kCarrierPath, capture::kReportPath};
+  for (const carrier::FileRecord& f : c.files)
+    if (f.role == "assembly" || f.role == "result") out.insert(f.path);
+  return out;
+}
+
+bool inOutputFolder(const std::string& path) {
+  return path.rfind(std::string(capture::kAssemblyDir) + "/", 0) == 0 ||
+         path.rfind(std::string(capture::kFinishedDir) + "/", 0) == 0;
+}
+
+// A light file or model another tool left: what an audit is for.
+bool isPriorWorkToAudit(const std::string& path) {
+  if (!inOutputFolder(path)) return false;
+  const std::string ext = lowerCase(fs::path(path).extension().string());
+  return ext == ".lp" || ext == ".ptm" || ext == ".rti";
+}
+
+void requireSomethingToAudit(const std::vector<std::string>& relative, const std::string& prior) {
+  if (std::any_of(relative.begin(), relative.end(), isPriorWorkToAudit)) return;
+  throwInputError(prior, kStep,
+                  "holds no prior work to audit: no .lp, .ptm or .rti in assembly-files/ or finished-files/ "
+                  "that Surrogate did not write. An audit compares another tool's light file and model (such "
+                  "as RTIBuilder's) with the photographs; to process the photographs themselves, use "
+                  "`surrogate run`");
+}
+
+void requireHoldableNames(const std::vector<std::string>& relative, const std::string& prior) {
+  const NameProblems problems = findNameProblems(relative, std::string("data/").size());
+  if (!problems.empty())
+    throwInputError(prior, kStep,
+                    problems.describe("of the folder audited", "then audit a copy with the names changed"));
+}
+
+// ---- a folder -------------------------------------------------------------------------------
+
+std::vector<std::string> folderEvidence(const fs::path& prior) {
+  std::vector<std::string> files = listFiles(prior);
+  const auto carrierAt = std::find(files.begin(), files.end(), std::string(capture::kCarrierPath));
+  if (carrierAt != files.end()) {
+    const carrier::Carrier c =
+        carrier::parseCarrier(readSmallFile(prior / capture::kCarrierPath), (prior / capture::kCarrierPath).string());
+    const std::set<std::string> own = surrogateFiles(c);
+    files.erase(std::remove_if(files.begin(), files.end(), [&](const std::string& f) { return own.count(f) > 0; }),
+                files.end());
+  }
+  return files;
+}
+
+carrier::AuditedSource hashFolder(const fs::path& prior, const Progress& progress) {
+  carrier::AuditedSource a;
+  const std::vector<std::string> files = folderEvidence(prior);
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    if (progress) progress("Reading the folder audited", static_cast<double>(i) / files.size());
+    a.files.push_back(hashFile(prior, files[i]));
+  }
+  return a;
+}
+
+carrier::AuditedSource copyFolder(const fs::path& prior, const fs::path& staging, const Progress& progress) {
+  const std::vector<std::string> files = folderEvidence(prior);
+  requireSomethingToAudit(files, escapedText(prior.string()));
+  requireHoldableNames(files, escapedText(prior.string()));
+  carrier::AuditedSource a;
+  a.kind = "folder";
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    if (progress) progress("Copying the folder audited", static_cast<double>(i) / files.size());
+    a.files.push_back(copyFile(prior, files[i], staging));
+  }
+  return a;
+}
+
+// ---- a package ------------------------------------------------------------------------------
+
+struct PackageEvidence {
+  archive::Inventory inventory;
+  std::map<std::string, std::string> bagPathOf;  // capture path -> bag path
+  carrier::AuditedSource record;
+};
+
+PackageEvidence packageEvidence(const fs::path& package, const Progress& progress) {
+  PackageEvidence out;
+  out.inventory = archive::readPackage(package, archive::Limits{}, progress);
+  std::set<std::string> own;
+  std::optional<carrier::Carrier> packed;
+  const auto carrierFile = out.inventory.files.find(kBagCarrier);
+  if (carrierFile != out.inventory.files.end() && carrierFile->second.content) {
+    packed = carrier::parseCarrier(*carrierFile->second.content, package.string() + ": " + kBagCarrier);
+    own = surrogateFiles(*packed);
+  }
+  for (const auto& [bagPath, file] : out.inventory.files) {
+    if (bagPath.rfind("data/", 0) != 0) continue;
+    const std::string relative = bagPath.substr(5);
+    const std::string name = fs::path(relative).filename().string();
+    if (own.count(relative) || capture::isSystemFile(name) || relative.rfind(".surrogate/", 0) == 0 ||
+        relative.rfind(std::string(capture::kSupersededDir) + "/", 0) == 0)
+      continue;
+    if (packed)
+      if (const carrier::FileRecord* r = packed->findFileByPath(relative); r && r->sha256 != file.sha256)
+        throw Error(ErrorKind::Fixity, package.string(), kStep,
+                    bagPath + " is not the file the package's carrier records (its SHA-256 differs): the package "
+                              "is damaged or was changed. Run `surrogate verify " + package.string() + "` to see what");
+    out.bagPathOf[relative] = bagPath;
+    out.record.files.push_back({relative, bagPath, file.size, file.sha256});
+  }
+  if (out.record.files.empty())
+    throw Error(ErrorKind::Input, package.string(), kStep,
+                "has no files in its payload (data/) to audit: give a package made by `surrogate pack`, or a bag "
+                "whose data/ folder is a capture with another tool's work in it");
+  out.record.kind = "package";
+  if (fs::is_regular_file(package)) {
+    const FileDigests d = digestFile(package);
+    out.record.packageSize = d.size;
+    out.record.packageSha256 = d.sha256;
+  }
+  return out;
+}
+
+carrier::AuditedSource copyPackage(const fs::path& package, const fs::path& staging, const Progress& progress) {
+  PackageEvidence e = packageEvidence(package, progress);
+  std::vector<std::string> relative;
+  for (const auto& item : e.record.files) relative.push_back(item.path);
+  requireSomethingToAudit(relative, package.string());
+  archive::extractFiles(
+      package, e.inventory, staging,
+      [&](const std::string& bagPath) -> fs::path {
+        if (bagPath.rfind("data/", 0) != 0 || !e.bagPathOf.count(bagPath.substr(5))) return {};
+        return fs::u8path(bagPath.substr(5));
+      },
+      archive::Limits{}, progress);
+  return e.record;
+}
+
+// ---- the work folder ------------------------------------------------------------------------
+
+carrier::AuditedSource evidenceNow(const fs::path& prior, SourceKind kind, const Progress& progress) {
+  return kind == SourceKind::Package ? packageEvidence(prior, progress).record : hashFolder(prior, progress);
+}
+
+std::string markerOf(const fs::path& folder);
+
+// Folders an earlier audit of the same PRIOR was filling when it was killed (".WORK.part-PID-N"
+// beside `work`, AtomicFile's temporary names, whose process is gone): removed, since nothing
+// in them is anything but copies.
+void removeAbandonedCopies(const fs::path& prior, const fs::path& work) {
+  const std::string prefix = "." + work.filename().string() + ".part-";
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(work.parent_path(), ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind(prefix, 0) != 0 || !entry.is_directory(ec)) continue;
+    const long pid = std::strtol(name.c_str() + prefix.size(), nullptr, 10);
+    if (pid <= 0 || (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH)) continue;
+    if (markerOf(entry.path()) == sourceText(prior)) fs::remove_all(entry.path(), ec);
+  }
+}
+
+// Copies into a folder under a temporary name beside `work`, renamed to `work` once complete.
+carrier::AuditedSource makeWorkFolder(const fs::path& prior, SourceKind kind, const fs::path& work,
+                                      const Progress& progress) {
+  removeAbandonedCopies(prior, work);
+  AtomicFile folder(work);
+  std::error_code ec;
+  fs::create_directories(folder.tempPath() / capture::kWorkDir, ec);
+  if (ec) throw writeError(folder.tempPath(), kStep, ec.value());
+  writeFileAtomically(folder.tempPath() / kMarker, sourceText(prior) + "\n");
+  carrier::AuditedSource a = kind == SourceKind::Package ? copyPackage(prior, folder.tempPath(), progress)
+                                                         : copyFolder(prior, folder.tempPath(), progress);
+  a.source = sourceText(prior);
+  a.copied = carrier::timestampNow();
+  std::sort(a.files.begin(), a.files.end(),
+            [](const auto& x, const auto& y) { return x.path < y.path; });
+  folder.commitWithoutReplacing();
+  return a;
+}
+
+std::optional<carrier::Carrier> workCarrier(const fs::path& folder) {
+  std::error_code ec;
+  if (!fs::is_regular_file(folder / capture::kCarrierPath, ec)) return std::nullopt;
+  return carrier::loadCarrier(folder / capture::kCarrierPath);
+}
+
+std::string markerOf(const fs::path& folder) {
+  std::error_code ec;
+  if (!fs::is_regular_file(folder / kMarker, ec)) return "";
+  std::string text = readFile(folder / kMarker, kStep);
+  while (!text.empty() && text.back() == '\n') text.pop_back();
+  return text;
+}
+
+}  // namespace
+
+SourceKind sourceKind(const fs::path& prior) {
+  std::error_code ec;
+  const fs::file_status st = fs::symlink_status(prior, ec);
+  if (ec || !fs::exists(st))
+    throwInputError(prior.string(), kStep, "does not exist: give the folder (or package) of the work to audit");
+  if (fs::is_regular_file(st)) return SourceKind::Package;
+  if (!fs::is_directory(st))
+    throwInputError(prior.string(), kStep, "is neither a folder nor a package file (.zip, .tar)");
+  if (fs::is_regular_file(prior / capture::kCarrierPath, ec)) {
+    const carrier::Carrier c =
+        carrier::parseCarrier(readSmallFile(prior / capture::kCarrierPath), (prior / capture::kCarrierPath).string());
+    if (c.header.audited) return SourceKind::WorkFolder;
+  }
+  if (fs::is_regular_file(prior / "bagit.txt", ec)) return SourceKind::Package;
+  capture::requireCaptureFolder(prior);
+  return SourceKind::Folder;
+}
+
+fs::path defaultWorkFolder(const fs::path& prior) {
+  const fs::path p = absoluteNormal(prior);
+  const fs::path name = p.filename().empty() ? p.parent_path().filename() : p.filename();
+  const fs::path parent = p.filename().empty() ? p.parent_path().parent_path() : p.parent_path();
+  std::string stem = name.string();
+  if (fs::is_regular_file(p)) {
+    stem = name.stem().string();
+    if (fs::path(stem).extension() == ".tar") stem = fs::path(stem).stem().string();  // x.tar.gz
+  }
+  return parent / (stem + "-audit");
+}
+
+std::string evidenceDifference(const carrier::AuditedSource& recorded, const carrier::AuditedSource& now) {
+  std::map<std::string, const carrier::AuditedSource::Item*> before, after;
+  for (const auto& f : recorded.files) before[f.path] = &f;
+  for (const auto& f : now.files) after[f.path] = &f;
+  std::vector<std::string> differences;
+  for (const auto& [path, f] : before) {
+    const auto it = after.find(path);
+    if (it == after.end()) differences.push_back(shownName(f->from) + " is gone");
+    else if (it->second->sha256 != f->sha256 || it->second->size != f->size)
+      differences.push_back(shownName(f->from) + " changed (SHA-256 " + f->sha256.substr(0, 12) + "... then, " +
+                            it->second->sha256.substr(0, 12) + "... now)");
+  }
+  for (const auto& [path, f] : after)
+    if (!before.count(path)) differences.push_back(shownName(f->from) + " is new");
+  if (differences.empty()) return "";
+  return differences.front() +
+         (differences.size() > 1 ? " (and " + std::to_string(differences.size() - 1) + " more differences)" : "");
+}
+
+WorkFolder prepareWorkFolder(const fs::path& priorArg, const std::optional<fs::path>& workArg, const Progress& progress) {
+  const fs::path prior = absoluteNormal(priorArg);
+  const SourceKind kind = sourceKind(prior);
+  WorkFolder out;
+  if (kind == SourceKind::WorkFolder) {
+    if (workArg && absoluteNormal(*workArg) != prior)
+      throw Error(ErrorKind::Usage, priorArg.string(), kStep,
+                  "is the work folder of an earlier audit, audited again in place; give no -o, or audit its "
+                  "source (named in its carrier) into another folder");
+    out.folder = prior;
+    out.reused = true;
+    return out;
+  }
+  out.folder = workArg ? absoluteNormal(*workArg) : defaultWorkFolder(prior);
+  if (out.folder == prior || isInside(out.folder, prior) || (kind == SourceKind::Folder && isInside(prior, out.folder)))
+    throw Error(ErrorKind::Usage, "-o " + out.folder.string(), kStep,
+                "lies inside the folder audited (or holds it); an audit never writes into what it audits: give "
+                "a work folder outside it, e.g. -o " + defaultWorkFolder(prior).string());
+  std::error_code ec;
+  if (!fs::exists(fs::symlink_status(out.folder, ec))) {
+    capture::checkOutputTarget(out.folder, "-o", capture::ExistingOutput::Refuse, capture::OutputPlace::OutsideCaptures);
+    out.copied = makeWorkFolder(prior, kind, out.folder, progress);
+    return out;
+  }
+  const std::optional<carrier::Carrier> c = fs::is_directory(out.folder, ec) ? workCarrier(out.folder) : std::nullopt;
+  if (c && c->header.audited && c->header.audited->source == sourceText(prior)) {
+    const std::string changed = evidenceDifference(*c->header.audited, evidenceNow(prior, kind, progress));
+    if (!changed.empty())
+      throwInputError(prior.string(), kStep,
+                      "has changed since the audit in " + out.folder.string() + " copied it: " + changed +
+                          ". That folder keeps the audit of the files as they were; to audit them as they are now, "
+                          "give another work folder with -o");
+    out.reused = true;
+    return out;
+  }
+  if (!c && fs::is_directory(out.folder, ec) && markerOf(out.folder) == sourceText(prior)) {
+    // Begun by an audit of the same PRIOR and stopped before its first run made a carrier:
+    // nothing in it but copies, made again.
+    fs::remove_all(out.folder);
+    out.copied = makeWorkFolder(prior, kind, out.folder, progress);
+    return out;
+  }
+  throw Error(ErrorKind::Usage, "-o " + out.folder.string(), kStep,
+              std::string("exists and is not the work folder of an audit of ") + priorArg.string() +
+                  ": give another work folder with -o (the audit makes it)");
+}
+
+}  // namespace surrogate::evidence
