@@ -147,6 +147,58 @@ RootElement readRootElement(const std::string& text, const std::string& source) 
   return out;
 }
 
+namespace {
+
+std::string utf8Text(const xmlChar* s) { return s ? reinterpret_cast<const char*>(s) : ""; }
+
+void copyElement(const xmlDoc* doc, const xmlNode* node, Element& out, std::size_t& elements,
+                 std::size_t maxElements, const std::string& source) {
+  if (++elements > maxElements)
+    throwInputError(source, "xml", "has more than " + std::to_string(maxElements) + " elements, more than Surrogate reads in such a file");
+  out.name = utf8Text(node->name);
+  if (node->ns) out.namespaceUri = utf8Text(node->ns->href);
+  for (const xmlAttr* a = node->properties; a; a = a->next) {
+    xmlChar* value = xmlNodeListGetString(const_cast<xmlDoc*>(doc), a->children, 1);
+    const std::string name = a->ns && a->ns->prefix ? utf8Text(a->ns->prefix) + ":" + utf8Text(a->name) : utf8Text(a->name);
+    out.attributes.emplace_back(name, utf8Text(value));
+    xmlFree(value);
+  }
+  for (const xmlNode* c = node->children; c; c = c->next) {
+    if (c->type == XML_ELEMENT_NODE) {
+      out.children.emplace_back();
+      copyElement(doc, c, out.children.back(), elements, maxElements, source);
+    } else if (c->type == XML_TEXT_NODE || c->type == XML_CDATA_SECTION_NODE) {
+      out.text += utf8Text(c->content);
+    }
+  }
+  // Indentation around child elements is not text of the element.
+  if (!out.children.empty() && out.text.find_first_not_of(" \t\r\n") == std::string::npos) out.text.clear();
+}
+
+}  // namespace
+
+const Element* Element::child(const std::string& childName) const {
+  for (const Element& c : children)
+    if (c.name == childName) return &c;
+  return nullptr;
+}
+
+std::string Element::attribute(const std::string& attributeName) const {
+  for (const auto& [n, v] : attributes)
+    if (n == attributeName) return v;
+  return "";
+}
+
+Element readElementTree(const std::string& text, const std::string& source, std::size_t maxElements) {
+  DocPtr doc = parseSafely(text, source);
+  const xmlNode* root = xmlDocGetRootElement(doc.get());
+  Element out;
+  if (!root) return out;
+  std::size_t elements = 0;
+  copyElement(doc.get(), root, out, elements, maxElements, source);
+  return out;
+}
+
 std::string libxml2Version() { return LIBXML_DOTTED_VERSION; }
 
 }  // namespace surrogate::xml

@@ -7,6 +7,7 @@
 // in one Error naming the document.
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -32,6 +33,26 @@ struct RootElement {
 // Parses `text` as safely as above and returns its root element; throws Error(Input) naming
 // `source` when it is not well-formed XML or holds a DOCTYPE.
 RootElement readRootElement(const std::string& text, const std::string& source);
+
+// An element of a document read whole as data (another tool's XML, such as RTIBuilder's log):
+// its local name, its namespace URI, its attributes in document order (a prefixed attribute
+// keeps its prefix, "xlink:href"), the text directly inside it (white space between child
+// elements left out) and its child elements.
+struct Element {
+  std::string name;
+  std::string namespaceUri;
+  std::vector<std::pair<std::string, std::string>> attributes;
+  std::string text;
+  std::vector<Element> children;
+  // The first child named `name` (any namespace), or null.
+  const Element* child(const std::string& name) const;
+  // The value of the attribute `name`, or "" when it has none.
+  std::string attribute(const std::string& name) const;
+};
+// Parses `text` as safely as above and returns its root element with everything under it.
+// Throws Error(Input) naming `source` when it is not well-formed XML, holds a DOCTYPE, or has
+// more than `maxElements` elements (libxml2 limits the depth to 256).
+Element readElementTree(const std::string& text, const std::string& source, std::size_t maxElements);
 
 // libxml2's version, e.g. "2.9.14".
 std::string libxml2Version();

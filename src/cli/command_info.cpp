@@ -1,4 +1,5 @@
-// surrogate info FILE: what a package, carrier, capture folder, image, .ptm, .rti or .lp holds.
+// surrogate info FILE: what a package, carrier, capture folder, image, .ptm, .rti, .lp or
+// RTIBuilder log holds.
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -12,6 +13,7 @@
 #include "archive/bag.h"
 #include "archive/bag_text.h"
 #include "archive/package_reader.h"
+#include "audit/rtibuilder_log.h"
 #include "capture/capture.h"
 #include "carrier/carrier.h"
 #include "cli/args.h"
@@ -805,7 +807,8 @@ int runCommandInfo(int argc, char** argv) {
                              "command to verify it), a carrier (carrier.xml: creators, metadata, "
                              "steps, decisions with who, when and why, runs), a capture folder, "
                              "an image (camera, lens, exposure, date; also one Surrogate cannot "
-                             "decode), an .xmp sidecar, a .ptm, .rti or .lp file, or a web layout "
+                             "decode), an .xmp sidecar, a .ptm, .rti or .lp file, RTIBuilder's log "
+                             "XML (what its processing used and found), or a web layout "
                              "(the folder surrogate publish writes, or its info.json).")
               << Args::describe(specs);
     return 0;
@@ -834,6 +837,9 @@ int runCommandInfo(int argc, char** argv) {
     }
   } else if (path.filename() == "info.json") {
     printWebLayout(path, json);
+  } else if (ext == ".xml" && audit::looksLikeRtiBuilderLog(path)) {
+    const audit::RtiBuilderLog log = audit::readRtiBuilderLog(path);
+    std::cout << (json ? log.toJson() : log.toText()) << "\n";
   } else if (ext == ".xml") {
     printCarrier(path, json);
   } else if (ext == ".xmp") {

@@ -26,7 +26,8 @@ namespace surrogate::stages {
 // .log; anything else "other"); `madeBy`, `format` and `mediaType` from its content where it
 // can be read: a PTM's version and format lines ("PTM_1.2 PTM_FORMAT_LRGB"), an .rti's first
 // comment line ("HSH1.2"), a log XML's root element with its attributes
-// ("RTIBuilderLog version=\"2.0.2\""); an .lp says nothing of the tool that made it. A file
+// (RTIBuilder's: "XMLCarrier schemaLocation=\"http://alba.di.uminho.pt/XMLCarrier
+// lptracker.xsd\""; audit/rtibuilder_log.h reads the whole log); an .lp says nothing of the tool that made it. A file
 // that cannot be read as what its name says is still prior work: `warning` says why nothing
 // more is known.
 struct PriorFile {

@@ -40,3 +40,22 @@ TEST_CASE("the root element of a document is read with its attributes in order")
   CHECK_THROWS_AS(xml::readRootElement("<a><b></a>", "broken.xml"), Error);
   CHECK_THROWS_AS(xml::readRootElement("<!DOCTYPE a [<!ENTITY e \"x\">]><a>&e;</a>", "dtd.xml"), Error);
 }
+
+TEST_CASE("a document read whole keeps names, namespaces, prefixed attributes, text and children, and refuses too many elements") {
+  const xml::Element root = xml::readElementTree(
+      "<?xml version=\"1.0\"?>\n<r xmlns=\"urn:r\" xmlns:xl=\"urn:xl\">\n  <f xl:href=\"a\\b.jpg\" ID=\"1\"/>\n"
+      "  <t>one &amp; two</t>\n  <t><![CDATA[<raw>]]></t>\n</r>",
+      "tree.xml", 10);
+  CHECK(root.name == "r");
+  CHECK(root.namespaceUri == "urn:r");
+  CHECK(root.text.empty());  // indentation between children is not text
+  REQUIRE(root.children.size() == 3);
+  CHECK(root.children[0].attribute("xl:href") == "a\\b.jpg");
+  CHECK(root.children[0].attribute("ID") == "1");
+  CHECK(root.children[0].attribute("missing").empty());
+  CHECK(root.child("t")->text == "one & two");
+  CHECK(root.children[2].text == "<raw>");
+  CHECK(root.child("none") == nullptr);
+  CHECK_THROWS_AS(xml::readElementTree("<r><a/><a/><a/></r>", "many.xml", 3), Error);
+  CHECK_THROWS_AS(xml::readElementTree("<!DOCTYPE a [<!ENTITY e \"x\">]><a>&e;</a>", "dtd.xml", 10), Error);
+}

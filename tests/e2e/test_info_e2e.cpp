@@ -207,6 +207,52 @@ TEST_CASE("info on an .lp shows elevations to 0.1 degree") {
   CHECK_THAT(r.output, Contains("elevation: 30.0 to 64.2 degrees\n"));
 }
 
+TEST_CASE("info on RTIBuilder's real log says what its processing used and found, in text and JSON") {
+  // tests/data/rtibuilder/Fisch.xml: RTIBuilder 2.0.2's log of CHI's fish fossil sample (source
+  // in that folder's README.md); the values below were read from the file.
+  const e2e::CommandResult r = info(fixture("rtibuilder/Fisch.xml"));
+  INFO(r.output);
+  REQUIRE(r.exitCode == 0);
+  CHECK_THAT(r.output, Contains("Fisch.xml: RTIBuilder log (RTIBuilder 2.0.2)\n"));
+  CHECK_THAT(r.output, Contains("  project:     Fisch, by kacebe on c-gv-bruhn (Windows 10 x86)\n"));
+  CHECK_THAT(r.output, Contains("  created:     2017/4/5 9:49:21\n"));
+  CHECK_THAT(r.output, Contains("  images:      36 listed, 36 used, 0 excluded, 2000x1334\n"));
+  CHECK_THAT(r.output, Contains("  sphere 2:    centre 168, 208, radius 85; found on 10 images"));
+  CHECK_THAT(r.output, Contains("              36 highlights (search area x:83.0 y:123.0 to x:253.0 y:293.0, threshold 250), "
+                                "36 light directions\n"));
+  CHECK_THAT(r.output, Contains("  fitter:      hshfitter, HSH order 2 (hsh2), 4 threads\n"));
+  CHECK_THAT(r.output, Contains("  model:       C:\\tmp\\rti\\fish_fossil-data-set_2000\\finished-files\\Fisch_2000.rti\n"));
+  CHECK_THAT(r.output, Contains("  fit:         Fitter return ok!HSH was generated successfully\n"));
+  CHECK_THAT(r.output, Contains("  messages:    13 (3 info, 1 information, 9 warning)\n"));
+  CHECK_THAT(r.output, !Contains("carrier.xsd"));
+
+  const e2e::CommandResult j = info(fixture("rtibuilder/Fisch.xml"), " --json");
+  INFO(j.output);
+  REQUIRE(j.exitCode == 0);
+  CHECK_THAT(j.output, Contains("\"kind\":\"rtibuilder-log\""));
+  CHECK_THAT(j.output, Contains("\"version\":\"2.0.2\""));
+  CHECK_THAT(j.output, Contains("\"imageWidth\":2000,\"imageHeight\":1334"));
+  CHECK_THAT(j.output, Contains("\"excludedImages\":[]"));
+  CHECK_THAT(j.output, Contains("\"order\":2,\"threads\":4"));
+  CHECK_THAT(j.output, Contains("{\"image\":\"fish_fossil_01.jpg\",\"x\":-0.8247194,\"y\":0.47309062,\"z\":0.30987605}"));
+  CHECK_THAT(j.output, Contains("\"succeeded\":true"));
+}
+
+TEST_CASE("info on other XML still reads it as a carrier, and on a log in another namespace says what a log is") {
+  const fs::path dir = e2e::freshDir("info-xml");
+  std::ofstream(dir / "notes.xml") << "<?xml version=\"1.0\"?>\n<notes/>\n";
+  const e2e::CommandResult notes = info(dir / "notes.xml");
+  INFO(notes.output);
+  CHECK(notes.exitCode == 1);
+  CHECK_THAT(notes.output, Contains("does not conform to carrier.xsd"));
+  std::ofstream(dir / "other.xml") << "<XMLCarrier xmlns=\"urn:example\"/>\n";
+  const e2e::CommandResult other = info(dir / "other.xml");
+  INFO(other.output);
+  CHECK(other.exitCode == 1);
+  CHECK_THAT(other.output, Contains("other.xml: is not an RTIBuilder log"));
+  CHECK_THAT(other.output, Contains("its root element is <XMLCarrier> in urn:example"));
+}
+
 TEST_CASE("help COMMAND and COMMAND --help print the help of that command for every command") {
   for (const char* command :
        {"run", "pack", "lights", "fit", "render", "publish", "info", "report", "verify", "audit"}) {
