@@ -228,6 +228,16 @@ struct AuditReport {
   std::vector<LightComparison> lights;
   std::vector<ModelCheck> models;
   std::vector<Verdict> verdicts;  // one per model, then one per light file no model used
+  // The prior tool's processing logs (audit/rtibuilder_log.h): what each records of the
+  // processing, one line a fact, and where it disagrees with the capture audited. Filled by the
+  // caller (stages::AuditStage), which knows the capture; they inform, they do not decide the
+  // verdicts.
+  struct PriorLog {
+    std::filesystem::path file;
+    std::vector<std::string> records;
+    std::vector<std::string> discrepancies;
+  };
+  std::vector<PriorLog> logs;
 };
 
 // Each model is rendered at the lights of the light file with the same stem, else of the one
@@ -266,6 +276,8 @@ bool auditReproduced(const AuditReport& report);
 // REPRODUCED, then one line per part.
 std::vector<std::string> summaryLines(const std::vector<VerdictSummary>& summaries);
 void writeSummaryJson(JsonWriter& json, const std::vector<VerdictSummary>& summaries);
+// One line per prior processing log: what made it, and whether it agrees with the capture.
+std::vector<std::string> logSummaryLines(const AuditReport& report);
 
 // Numbers rounded for display: angles to 0.1 degree, dB to 0.01, RMSE to 0.01.
 void writeAuditJson(JsonWriter& json, const AuditReport& report);

@@ -151,6 +151,14 @@ void writeAuditJson(JsonWriter& j, const AuditReport& report) {
   j.endArray().key("notAudited").beginArray();
   for (const auto& n : report.notAudited)
     j.beginObject().key("file").value(n.file.generic_string()).key("reason").value(n.reason).endObject();
+  j.endArray().key("priorLogs").beginArray();
+  for (const auto& l : report.logs) {
+    j.beginObject().key("file").value(l.file.generic_string()).key("records");
+    nameList(j, l.records);
+    j.key("discrepancies");
+    nameList(j, l.discrepancies);
+    j.endObject();
+  }
   j.endArray().endObject();
 }
 
@@ -168,6 +176,12 @@ std::vector<std::string> auditLines(const AuditReport& report) {
     out.push_back("verdict (" + (v.model.empty() ? v.lightFile : v.model).filename().string() + "): " + v.sentence);
   for (const auto& n : report.notAudited)
     out.push_back("not audited: " + n.file.generic_string() + " (" + n.reason + ")");
+  for (const auto& l : report.logs) {
+    out.push_back("prior log " + l.file.generic_string() + ": what it records of the processing");
+    for (const std::string& r : l.records) out.push_back("  " + r);
+    if (l.discrepancies.empty()) out.push_back("  agrees with the photographs audited");
+    for (const std::string& d : l.discrepancies) out.push_back("  differs: " + d);
+  }
   return out;
 }
 

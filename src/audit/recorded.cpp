@@ -11,6 +11,7 @@ namespace {
 
 constexpr const char* kLpInput = "prior-lp";
 constexpr const char* kModelInput = "prior-model";
+constexpr const char* kLogInput = "prior-log";
 constexpr const char* kPhotographInput = "image";
 const char* const kErrorSets[] = {"prior", "refitPriorLights", "refitSurrogateLights"};
 
@@ -124,6 +125,13 @@ void writeModel(Writer& w, const ModelCheck& m, const RecordedIds& ids) {
   }
 }
 
+void writeLog(Writer& w, const AuditReport::PriorLog& l, const RecordedIds& ids) {
+  const std::string id = idOf(ids.priorFiles, l.file.generic_string());
+  w.input(id, kLogInput);
+  for (const std::string& r : l.records) w.text(id, "logRecord", r);
+  for (const std::string& d : l.discrepancies) w.text(id, "logDiscrepancy", d);
+}
+
 void writeVerdict(Writer& w, const Verdict& v, const RecordedIds& ids) {
   const std::string id = idOf(ids.priorFiles, (v.model.empty() ? v.lightFile : v.model).generic_string());
   if (!v.model.empty() && !v.lightFile.empty()) w.text(id, "verdict lightFile", v.lightFile.generic_string());
@@ -177,7 +185,12 @@ class Reader {
     const std::string path = pathOf(d.get("file").value_or(""));
     lights_ = nullptr;
     model_ = nullptr;
-    if (kind == kLpInput) {
+    log_ = nullptr;
+    if (kind == kLogInput) {
+      out_.logs.emplace_back();
+      log_ = &out_.logs.back();
+      log_->file = path;
+    } else if (kind == kLpInput) {
       out_.lights.emplace_back();
       lights_ = &out_.lights.back();
       lights_->file = path;
@@ -197,6 +210,11 @@ class Reader {
     if (name == "notAudited") return out_.notAudited.push_back({pathOf(id), v});
     if (name.rfind("verdict", 0) == 0 || name.rfind("finding ", 0) == 0) return verdict(name, v, pathOf(id));
     if (photograph) return perPhotograph(fileName(*f), name, v);
+    if (log_) {
+      if (name == "logRecord") log_->records.push_back(v);
+      else if (name == "logDiscrepancy") log_->discrepancies.push_back(v);
+      return;
+    }
     if (lights_) return lightFigure(name, v);
     if (model_) return modelFigure(name, v);
   }
@@ -307,6 +325,7 @@ class Reader {
   AuditReport& out_;
   LightComparison* lights_ = nullptr;
   ModelCheck* model_ = nullptr;
+  AuditReport::PriorLog* log_ = nullptr;
   Verdict pending_;
 };
 
@@ -319,6 +338,7 @@ void recordAudit(const AuditReport& report, const RecordedIds& ids, carrier::Res
   for (const LightComparison& l : report.lights) writeLights(w, l, ids);
   for (const ModelCheck& m : report.models) writeModel(w, m, ids);
   for (const Verdict& v : report.verdicts) writeVerdict(w, v, ids);
+  for (const AuditReport::PriorLog& l : report.logs) writeLog(w, l, ids);
   for (const auto& n : report.notAudited) w.text(idOf(ids.priorFiles, n.file.generic_string()), "notAudited", n.reason);
 }
 
@@ -334,6 +354,7 @@ AuditReport recordedAudit(const carrier::Carrier& carrier, const carrier::Result
   for (const carrier::DataItem& d : result.items) inputs += d.element == "input";
   out.lights.reserve(inputs);
   out.models.reserve(inputs);
+  out.logs.reserve(inputs);
   Reader reader(carrier, out);
   for (const carrier::DataItem& d : result.items) {
     if (d.element == "input" && d.get("kind") != std::string(kPhotographInput)) reader.input(d);

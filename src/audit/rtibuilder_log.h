@@ -20,6 +20,8 @@
 // so the struct holds only text a terminal, a JSON string or the carrier can carry.
 #pragma once
 
+#include "audit/audit.h"
+
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -122,7 +124,7 @@ struct CaptureFacts {
   std::size_t photographCount = 0;       // the capture's photographs (shots)
   int width = 0, height = 0;             // the photographs' size in pixels
   int spheres = 0;                       // spheres Surrogate found
-  std::string basis;                     // a basis Surrogate fitted ("hsh2")
+  std::string basis;                     // the basis of the prior model audited ("hsh2")
 };
 
 // Where the log and the capture disagree, one plain sentence each, in a fixed order: images
@@ -131,5 +133,10 @@ struct CaptureFacts {
 // matched by file name without extension, ignoring case (RTIBuilder reads the JPEG exports of
 // raw originals, on Windows). Empty when nothing differs. Pure: reads no file.
 std::vector<std::string> logDiscrepancies(const RtiBuilderLog& log, const CaptureFacts& capture);
+
+// The log as the audit records it: what it says of the processing (toText's lines, one fact
+// each) and logDiscrepancies with `capture`. `relativePath` names the file in the record.
+AuditReport::PriorLog auditedLog(const RtiBuilderLog& log, const std::string& relativePath,
+                                 const CaptureFacts& capture);
 
 }  // namespace surrogate::audit

@@ -210,9 +210,36 @@ std::vector<std::string> logDiscrepancies(const RtiBuilderLog& log, const Captur
                     std::to_string(log.usedImages.size()) + " images on sphere " + std::to_string(i + 1));
   }
   if (log.fitter && !capture.basis.empty() && !log.fitter->basis.empty() && log.fitter->basis != capture.basis)
-    out.push_back("the log's fit is " + log.fitter->basis + "; Surrogate fitted " + escapedText(capture.basis));
+    out.push_back("the log's fit is " + log.fitter->basis + "; the prior model audited is " + escapedText(capture.basis));
   if (log.fitter && !log.fitter->succeeded)
     out.push_back("the log does not say that its fit (" + log.fitter->name + ") succeeded");
+  return out;
+}
+
+AuditReport::PriorLog auditedLog(const RtiBuilderLog& log, const std::string& relativePath,
+                                 const CaptureFacts& capture) {
+  AuditReport::PriorLog out;
+  out.file = std::filesystem::u8path(relativePath);
+  std::istringstream lines(log.toText());
+  std::string line;
+  std::getline(lines, line);  // "<path>: RTIBuilder log (...)": the file is named apart
+  out.records.push_back(log.software + (log.version.empty() ? "" : " " + log.version));
+  while (std::getline(lines, line)) {
+    const auto first = line.find_first_not_of(' ');
+    if (first == std::string::npos) continue;
+    std::string fact = line.substr(first);
+    // "images:      36 listed" -> "images: 36 listed"
+    const auto colon = fact.find(':');
+    if (colon != std::string::npos) {
+      const auto value = fact.find_first_not_of(' ', colon + 1);
+      if (value != std::string::npos) fact = fact.substr(0, colon + 1) + " " + fact.substr(value);
+    } else if (!out.records.empty() && out.records.size() > 1) {
+      out.records.back() += "; " + fact;  // a continuation line
+      continue;
+    }
+    out.records.push_back(fact);
+  }
+  out.discrepancies = logDiscrepancies(log, capture);
   return out;
 }
 

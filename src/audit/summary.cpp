@@ -209,6 +209,17 @@ std::vector<std::string> summaryLines(const std::vector<VerdictSummary>& summari
   return out;
 }
 
+std::vector<std::string> logSummaryLines(const AuditReport& report) {
+  std::vector<std::string> out;
+  for (const AuditReport::PriorLog& l : report.logs) {
+    const std::string head = "  log        " + l.file.generic_string() + " (" +
+                             (l.records.empty() ? std::string("a processing log") : l.records.front()) + "): ";
+    if (l.discrepancies.empty()) out.push_back(head + "agrees with the photographs audited");
+    else out.push_back(head + std::to_string(l.discrepancies.size()) + " difference(s), first: " + l.discrepancies.front());
+  }
+  return out;
+}
+
 void writeSummaryJson(JsonWriter& j, const std::vector<VerdictSummary>& summaries) {
   j.beginArray();
   for (const VerdictSummary& s : summaries) {

@@ -94,6 +94,7 @@ void printJson(const Outcome& o, const audit::AuditReport& report, int exitCode)
 
 void printText(const Outcome& o, const audit::AuditReport& report, int exitCode) {
   for (const std::string& line : audit::summaryLines(audit::summarise(report))) std::cout << line << "\n";
+  for (const std::string& line : audit::logSummaryLines(report)) std::cout << line << "\n";
   for (const auto& n : report.notAudited)
     std::cout << "CANNOT TELL     " << n.file.generic_string() << ": cannot be read (" << n.reason << ")\n";
   std::cout << "\naudit of " << escapedText(o.prior.string()) << " in the work folder " << escapedText(o.work.string());

@@ -57,6 +57,19 @@ std::string auditSummarySection(const carrier::Carrier& c) {
         << "</td></tr>";
     s << "</table></div>";
   }
+  for (const audit::AuditReport::PriorLog& l : report.logs) {
+    s << "<div class=\"fact\"><h3>Prior log <code>" << escapeHtml(l.file.generic_string()) << "</code>"
+      << (l.records.empty() ? "" : " (" + escapeHtml(l.records.front()) + ")") << "</h3>";
+    if (l.discrepancies.empty()) s << "<p class=\"ok\">It agrees with the photographs audited.</p>";
+    else {
+      s << "<p class=\"warning\">Where it differs from the capture audited:</p><ul>";
+      for (const std::string& d : l.discrepancies) s << "<li>" << escapeHtml(d) << "</li>";
+      s << "</ul>";
+    }
+    s << "<details><summary>What it records of the processing</summary><ul>";
+    for (std::size_t i = 1; i < l.records.size(); ++i) s << "<li>" << escapeHtml(l.records[i]) << "</li>";
+    s << "</ul></details></div>";
+  }
   for (const auto& n : report.notAudited)
     s << "<p class=\"warning\"><code>" << escapeHtml(n.file.generic_string()) << "</code> cannot be read: "
       << escapeHtml(n.reason) << ".</p>";

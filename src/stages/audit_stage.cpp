@@ -1,9 +1,11 @@
 #include "stages/audit_stage.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
 #include "audit/audit.h"
+#include "audit/rtibuilder_log.h"
 #include "capture/capture.h"
 #include "core/error.h"
 #include "core/text.h"
@@ -84,6 +86,32 @@ audit::AuditReport auditReadable(audit::AuditInputs& in, const audit::AuditOptio
   }
 }
 
+// The prior tool's processing logs that are RTIBuilder's, read and compared with the capture;
+// one that cannot be read is named as not audited.
+void auditLogs(audit::AuditReport& report, audit::RecordedIds& ids, const ImageStack& rgb, const InputImages& inputs,
+               const carrier::Step& step, pipeline::Context& ctx) {
+  audit::CaptureFacts facts;
+  for (const InputImage& image : inputs) facts.photographs.push_back(image.relativePath);
+  facts.photographCount = inputs.size();
+  facts.width = rgb.width();
+  facts.height = rgb.height();
+  for (const carrier::Result& r : ctx.carrier.data)
+    facts.spheres = std::max(facts.spheres, static_cast<int>(r.itemsOf("sphere").size()));
+  if (!report.models.empty()) facts.basis = report.models.front().basis;
+  for (const carrier::FileRecord& f : ctx.carrier.files) {
+    if (f.role != "prior" || f.priorKind != "log") continue;
+    const fs::path file = ctx.capture / fs::u8path(f.path);
+    if (!audit::looksLikeRtiBuilderLog(file)) continue;
+    ids.priorFiles[f.path] = f.id;
+    try {
+      report.logs.push_back(audit::auditedLog(audit::readRtiBuilderLog(file), f.path, facts));
+    } catch (const Error& e) {
+      report.notAudited.push_back({f.path, e.message()});
+      ctx.carrier.addLog("warning", step.id, f.path + " is not audited: " + e.message());
+    }
+  }
+}
+
 // Lights from a dome's .lp are not an independent estimate: the audit compares the fit only.
 bool lightsFromSpheres(const carrier::Carrier& c) {
   for (const carrier::Step& s : c.process)
@@ -119,8 +147,10 @@ pipeline::StageInfo AuditStage::info() {
   // Version 3: those PNG files compressed by libdeflate at level 1 (src/image/png_encoder.h).
   // Version 4: the refits are conditioned on their light set (src/fit/conditioning.h), so a
   // refit at a narrow cone of lights, and the verdict on it, differ from version 3's.
+  // Version 5: RTIBuilder's processing logs among the prior work are read, listed and compared
+  // with the capture (audit/rtibuilder_log.h); the result has a section per log.
   pipeline::StageInfo info = pipeline::withOptions<AuditStageOptions>(
-      {kComponent, "4",
+      {kComponent, "5",
        "Audit of prior work: its light file against Surrogate's lights, its model against the "
        "photographs beside Surrogate's refits, and a verdict",
        pipeline::PlanSlot::PriorWork});
@@ -184,6 +214,7 @@ void AuditStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier:
     m.differenceImage = relative;
   }
   relativise(report, ctx.capture);
+  auditLogs(report, ids, *rgb, *inputs, step, ctx);
   audit::recordAudit(report, ids, result);
   for (const audit::Verdict& v : report.verdicts)
     ctx.carrier.addLog("info", step.id, "audit of " + (v.model.empty() ? v.lightFile : v.model).generic_string() +

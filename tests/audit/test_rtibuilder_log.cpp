@@ -213,7 +213,7 @@ TEST_CASE("a log matching the capture has no discrepancy; differences are each n
   CHECK(d[2] == "the log used 36 images; the capture has 37 photographs");
   CHECK(d[3] == "the log's images are 2000x1334; the photographs are 4000x2668");
   CHECK(d[4] == "the log found 2 sphere(s); Surrogate found 1");
-  CHECK(d[5] == "the log's fit is hsh2; Surrogate fitted ptm-lrgb");
+  CHECK(d[5] == "the log's fit is hsh2; the prior model audited is ptm-lrgb");
 }
 
 TEST_CASE("a log whose images were left out lists them as excluded") {

@@ -302,6 +302,10 @@ TEST_CASE("audit of a read-only RTIBuilder folder names the tilted lights, exits
 // but three of those lights are wrong. The parts say so apart.
 TEST_CASE("audit separates lights that differ from a model that is reproduced", "[e2e][audit]") {
   const fs::path capture = rtibuilderCapture("audit-lights", /*clampBias=*/false);
+  // A real RTIBuilder 2.0.2 log (tests/data/rtibuilder/README.md: another capture's, the fish
+  // fossil's), in place of the invented one: read, listed, and compared with this capture.
+  fs::copy_file(fs::path(SURROGATE_SOURCE_DIR) / "tests/data/rtibuilder/Fisch.xml",
+                capture / "assembly-files" / "stela_log.xml", fs::copy_options::overwrite_existing);
   const e2e::CommandResult r = e2e::surrogate("audit " + e2e::quote(capture) + " --json -o " +
                                               e2e::quote(capture.parent_path() / "work"));
   INFO(r.output);
@@ -311,6 +315,11 @@ TEST_CASE("audit separates lights that differ from a model that is reproduced", 
   CHECK(partOf(r.output, "integrity") == "reproduced");
   CHECK(fs::exists(capture.parent_path() / "work" / "assembly-files" / "carrier.xml"));
   CHECK(!fs::exists(capture.parent_path() / "capture-audit"));
+  const std::string logs = r.output.substr(r.output.find("\"priorLogs\":[{\"file\":\"assembly-files/stela_log.xml\""));
+  CHECK(logs.find("\"records\":[\"RTIBuilder 2.0.2\"") != std::string::npos);
+  CHECK(logs.find("fitter: hshfitter, HSH order 2 (hsh2), 4 threads") != std::string::npos);
+  CHECK(logs.find("the log used 36 images; the capture has 12 photographs") != std::string::npos);
+  CHECK(logs.find("the log's fit is hsh2; the prior model audited is ptm-lrgb") != std::string::npos);
   // At a threshold above the tilt, the lights are reproduced too: exit 0, the step run again.
   const e2e::CommandResult wide = e2e::surrogate("audit " + e2e::quote(capture) + " --json --threshold 10 -o " +
                                                  e2e::quote(capture.parent_path() / "work"));

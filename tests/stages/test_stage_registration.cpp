@@ -98,7 +98,7 @@ TEST_CASE("built-in stages keep their recorded names, versions and default param
   const std::vector<std::pair<std::string, std::string>> versions = {
       {"CaptureIngest", "2"}, {"ImageDecode", "3"}, {"SphereDetection", "6"}, {"HighlightDetection", "6"},
       {"LightDirections", "5"}, {"LightsFromFile", "3"}, {"WhiteBalance", "1"}, {"Crop", "1"},
-      {"Resize", "1"}, {"RtiFit", "4"}, {"DerivedMaps", "3"}, {"WebCopy", "2"}, {"Audit", "4"}};
+      {"Resize", "1"}, {"RtiFit", "4"}, {"DerivedMaps", "3"}, {"WebCopy", "2"}, {"Audit", "5"}};
   for (const auto& [component, version] : versions) {
     INFO(component);
     REQUIRE(r.info(component));
