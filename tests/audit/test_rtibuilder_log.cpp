@@ -192,7 +192,7 @@ TEST_CASE("the log's text and JSON for surrogate info") {
   CHECK_THAT(json, Contains("\"reportedImagesUsed\":72"));
 }
 
-TEST_CASE("a log matching the capture has no discrepancy; differences are each named") {
+TEST_CASE("a log matching the capture has no discrepancy and each difference is named") {
   const audit::RtiBuilderLog log = audit::readRtiBuilderLog(fisch());
   CHECK(audit::logDiscrepancies(log, fishCapture()).empty());
   // Originals (raw) of the same shots match by name without extension, ignoring case.
