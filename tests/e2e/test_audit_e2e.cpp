@@ -211,6 +211,21 @@ TEST_CASE("audit names the tilted prior lights and the clamped bias of an RTIBui
   CHECK(verdicts.find("\"cause\":\"different-lights\"") != std::string::npos);
   CHECK(verdicts.find("IMG_0006.jpg") != std::string::npos);
 
+  // The difference image is made at the worst image (the lowest PSNR of the prior), as luminance
+  // in false colour with its legend below, at a full scale of at least 4 levels.
+  const std::string worst = models.substr(models.find("\"prior\":"));
+  std::smatch worstImage;
+  REQUIRE(std::regex_search(worst, worstImage, std::regex("\"worstImage\":\"([^\"]+)\"")));
+  const std::string differences = models.substr(models.find("\"differences\":["));
+  CHECK(differences.find("{\"file\":\"assembly-files/audit/stela-difference.png\",\"image\":\"" +
+                         worstImage[1].str() + "\",\"worst\":true") == 15);
+  const double fullScale = jsonNumber(differences, "fullScale");
+  CHECK(fullScale >= 4);
+  WARN("difference image at " << worstImage[1].str() << ", full scale " << fullScale << " levels");
+  const cv::Mat difference = cv::imread((capture / "assembly-files" / "audit" / "stela-difference.png").string());
+  CHECK(difference.cols == 560);   // the map of 400 pixels, widened for the legend
+  CHECK(difference.rows > 300);    // the legend below the map
+
   // The text form says the same, and the report has the section and the prior lights.
   const e2e::CommandResult text = e2e::surrogate("audit " + e2e::quote(capture));
   CHECK(text.exitCode == 0);
@@ -226,6 +241,53 @@ TEST_CASE("audit names the tilted prior lights and the clamped bias of an RTIBui
   }
   CHECK(crosses == kImages);
   CHECK(off == kTilted.size());
+  // The prior's error per photograph on the hemisphere, and the difference image shown large.
+  std::size_t errorPoints = 0;
+  for (std::size_t at = report.find("<circle class=\"error-light\""); at != std::string::npos;
+       at = report.find("<circle class=\"error-light\"", at + 1))
+    ++errorPoints;
+  CHECK(errorPoints == kImages);
+  CHECK(report.find("<figure class=\"difference\"><img src=\"data:image/jpeg;base64,") != std::string::npos);
+  CHECK(report.find("assembly-files/audit/stela-difference.png") != std::string::npos);
+}
+
+// The photographs named for difference images (the Audit parameter differenceImages, which
+// `audit --at NAME` sets) stand like any recorded parameter: set in the carrier here, a run
+// makes their pictures; a name that is none of the photographs stops the run with exit 2 and
+// leaves the previous results whole.
+TEST_CASE("audit makes difference images at the named photographs and refuses an unknown name", "[e2e][audit]") {
+  const fs::path capture = rtibuilderCapture("audit-named");
+  REQUIRE(e2e::surrogate("run " + e2e::quote(capture) + " --quiet").exitCode == 0);
+  const fs::path carrierPath = capture / "assembly-files" / "carrier.xml";
+  const std::string recorded = e2e::bytesOf(carrierPath);
+  const std::string unset = "<param name=\"differenceImages\" value=\"\"/>";
+  const auto at = recorded.find(unset);
+  REQUIRE(at != std::string::npos);
+  const auto named = [&](const std::string& names) {
+    std::string c = recorded;
+    test::writeText(carrierPath.string(),
+                    c.replace(at, unset.size(), "<param name=\"differenceImages\" value=\"" + names + "\"/>"));
+  };
+
+  named("IMG_0002.jpg,IMG_0007");  // a file name and a shot name
+  const e2e::CommandResult run = e2e::surrogate("run " + e2e::quote(capture) + " --quiet");
+  INFO(run.output);
+  REQUIRE(run.exitCode == 0);
+  for (const char* file : {"stela-difference.png", "stela-difference-IMG_0002.png", "stela-difference-IMG_0007.png"})
+    CHECK(fs::exists(capture / "assembly-files" / "audit" / file));
+  const e2e::CommandResult r = e2e::surrogate("audit " + e2e::quote(capture) + " --json");
+  CHECK(r.output.find("\"file\":\"assembly-files/audit/stela-difference-IMG_0007.png\",\"image\":\"IMG_0007.jpg\","
+                      "\"worst\":false") != std::string::npos);
+  const std::string carrier = e2e::bytesOf(carrierPath);
+  CHECK(carrier.find("<param name=\"differenceImages\" value=\"IMG_0002.jpg,IMG_0007\"/>") != std::string::npos);
+  CHECK(carrier.find("name=\"differenceOf\" value=\"IMG_0002.jpg\"") != std::string::npos);
+
+  named("NOPE.jpg");
+  const e2e::CommandResult unknown = e2e::surrogate("run " + e2e::quote(capture) + " --quiet");
+  INFO(unknown.output);
+  CHECK(unknown.exitCode == 2);
+  CHECK(unknown.output.find("NOPE.jpg") != std::string::npos);
+  CHECK(unknown.output.find("IMG_0001.jpg, IMG_0002.jpg") != std::string::npos);
 }
 
 // A dome capture: its lights are the dome's .lp, so there is no independent estimate to compare
