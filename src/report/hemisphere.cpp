@@ -257,8 +257,8 @@ std::string errorHemisphereSvg(const std::vector<ErrorPoint>& points, const std:
   s << "<rect x=\"400\" y=\"60\" width=\"16\" height=\"200\" fill=\"url(#" << escapeHtml(gradient) << ")\"/>"
     << "<text class=\"axis\" x=\"420\" y=\"66\">" << displayNumber(lo, 1) << "</text>"
     << "<text class=\"axis\" x=\"420\" y=\"262\">" << displayNumber(hi, 1) << "</text>"
-    << "<text class=\"axis\" x=\"380\" y=\"38\">prior PSNR (dB)</text>"
-    << "<text class=\"axis\" x=\"380\" y=\"52\">low = large error</text>"
+    << "<text class=\"axis\" x=\"392\" y=\"36\">prior</text>"
+    << "<text class=\"axis\" x=\"392\" y=\"50\">PSNR (dB)</text>"
     << "<circle cx=\"392\" cy=\"296\" r=\"10\" fill=\"none\" stroke=\"#222\" stroke-width=\"2\"/>"
     << "<text class=\"axis\" x=\"406\" y=\"300\">difference</text>"
     << "<text class=\"axis\" x=\"406\" y=\"314\">image</text>\n";
