@@ -161,8 +161,9 @@ struct PriorModel {
 };
 
 // What the audit holds beside the prior model as read: the copy of it that is relit, and per
-// texel the renderings and the difference picture (16-bit RGB).
-constexpr std::uint64_t kAuditBytesPerTexel = 3 * 6;
+// texel the two renderings and the difference picture (16-bit RGB, 6 bytes each), while the
+// picture is made its two luminances (2 each), signed differences (4) and 8-bit canvas (3).
+constexpr std::uint64_t kAuditBytesPerTexel = 3 * 6 + 2 * 2 + 4 + 3;
 
 // Refused from its header when reading and auditing it would not fit `memory` (--memory; in a
 // run, the part a fit may use): a JPEG-compressed PTM of megabytes can declare gigabytes.

@@ -1,5 +1,6 @@
 #include "stages/audit_stage.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -241,7 +242,7 @@ std::vector<int> photographsNamed(const std::vector<std::string>& names, const s
         if ((pass == 0 ? p.filename() : p.stem()).u8string() == name) found = static_cast<int>(i);
       }
     if (found >= 0) {
-      out.push_back(found);
+      if (std::find(out.begin(), out.end(), found) == out.end()) out.push_back(found);  // one picture each
       continue;
     }
     std::string some;

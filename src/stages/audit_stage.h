@@ -38,7 +38,8 @@ struct AuditStageOptions {
 
 // The stack indices of `names` (AuditStageOptions::differenceImages) among `photographs` (the
 // photographs' capture-relative paths, in stack order), each matched by file name, else by shot
-// name; Error(Usage) naming the first that is none of them, with a few that are.
+// name, each photograph once; Error(Usage) naming the first that is none of them, with a few
+// that are.
 std::vector<int> photographsNamed(const std::vector<std::string>& names, const std::vector<std::string>& photographs);
 
 class AuditStage : public pipeline::DescribedStage<AuditStage> {

@@ -130,6 +130,7 @@ TEST_CASE("the audit's differenceImages parameter names photographs by file or s
                                            "jpeg-exports/IMG_0003.jpg", "jpeg-exports/IMG_0004.jpg",
                                            "jpeg-exports/IMG_0005.jpg"};
   CHECK(stages::photographsNamed({"IMG_0003.jpg", "IMG_0001"}, photos) == std::vector<int>{2, 0});
+  CHECK(stages::photographsNamed({"IMG_0003.jpg", "IMG_0003"}, photos) == std::vector<int>{2});  // once each
   const auto options = stages::AuditStageOptions::fromParameters({{"differenceImages", "IMG_0002.jpg, IMG_0005"}});
   CHECK(options.differenceImages == std::vector<std::string>{"IMG_0002.jpg", "IMG_0005"});
   CHECK(options.toParameters().back() == std::pair<std::string, std::string>{"differenceImages", "IMG_0002.jpg,IMG_0005"});

@@ -98,7 +98,7 @@ TEST_CASE("built-in stages keep their recorded names, versions and default param
   const std::vector<std::pair<std::string, std::string>> versions = {
       {"CaptureIngest", "2"}, {"ImageDecode", "3"}, {"SphereDetection", "6"}, {"HighlightDetection", "6"},
       {"LightDirections", "5"}, {"LightsFromFile", "3"}, {"WhiteBalance", "1"}, {"Crop", "1"},
-      {"Resize", "1"}, {"RtiFit", "4"}, {"DerivedMaps", "3"}, {"WebCopy", "2"}, {"Audit", "4"}};
+      {"Resize", "1"}, {"RtiFit", "4"}, {"DerivedMaps", "3"}, {"WebCopy", "2"}, {"Audit", "5"}};
   for (const auto& [component, version] : versions) {
     INFO(component);
     REQUIRE(r.info(component));
@@ -110,6 +110,9 @@ TEST_CASE("built-in stages keep their recorded names, versions and default param
                              {"sphereDiameterMm", "0"}});
   CHECK(r.info("DerivedMaps")->defaults == pipeline::Parameters{{"model", "ptm-lrgb"}});
   CHECK(r.info("RtiFit")->defaults == pipeline::Parameters{{"basis", "ptm-lrgb"}});
+  CHECK(r.info("Audit")->defaults == pipeline::Parameters{{"angleThresholdDegrees", "2"},
+                                                         {"reproducedMarginDb", "1"},
+                                                         {"differenceImages", ""}});
   CHECK(r.info("Crop")->defaults.empty());
   CHECK(r.info("Resize")->defaults.empty());
   CHECK(r.info("LightsFromFile")->defaults.empty());
