@@ -17,6 +17,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -42,13 +43,19 @@ struct AuditOptions {
   // the same basis with the prior's own lights: quantisation and fitting details differ by
   // tenths of a dB between tools, a wrong light or a clipped coefficient costs several dB.
   double reproducedDb = 1.0;
-  // The difference image of each model, written when not empty: "<folder>/<model stem>-difference.png".
+  // The difference images of each model, written when not empty: "<folder>/<model stem>-difference.png"
+  // at the worst image (differencePicture, docs/hrti-math.md "Difference image").
   std::filesystem::path differenceFolder;
   enum class DifferenceAgainst { Photograph, SurrogateFit };
   DifferenceAgainst differenceAgainst = DifferenceAgainst::Photograph;
-  // The photograph (stack index) whose prior light the difference is rendered at; -1 = the one
-  // whose prior light is nearest the viewing axis.
+  // The photograph (stack index) whose prior light the first difference is rendered at; -1 =
+  // the worst image, where the prior's PSNR against its photograph is lowest (the first in
+  // stack order among equals).
   int differenceImage = -1;
+  // Photographs (stack indices) at which a difference image is made besides the first, each
+  // "<folder>/<model stem>-difference-<photograph stem>.png"; Error(Usage) for one without a
+  // prior light.
+  std::vector<int> differenceAt;
   // Against SurrogateFit only: render both models at this light instead of a photograph's.
   std::optional<Light> differenceLight;
   int threads = 0;  // 0 = all cores; the figures are identical at any count
@@ -119,6 +126,7 @@ struct ImageError {
   std::string image;
   double rmse = 0;  // 0..255 units of Rec. 709 luminance
   double psnr = 0;  // 20 log10(255 / rmse), capped at 100 dB
+  std::optional<Light> light;  // the light it was rendered at (recorded for the prior's errors)
 };
 
 // A model's error against the photographs, each rendered at its own light.
@@ -157,6 +165,18 @@ struct QuantisationCheck {
 QuantisationCheck checkQuantisation(const formats::PtmFile& prior, const formats::PtmFile* refit);
 QuantisationCheck checkQuantisation(const formats::HshFile& prior, const formats::HshFile* refit);
 
+// One difference image of a model (differencePicture): where it is, at which photograph and
+// light, and the full scale of its colours.
+struct DifferenceImage {
+  std::filesystem::path file;
+  std::string image;      // the photograph's file name; empty at a light chosen without one
+  std::optional<Light> light;  // the light both sides are at (absent in results before Audit 5)
+  double fullScale = 0;   // luminance levels at the ends of the colour scale (0: before Audit 5,
+                          // a mid-grey picture of 128 + difference)
+  bool worst = false;     // made at the worst image (the first of ModelCheck::differences)
+  std::string description;  // "prior model minus the photograph IMG_3.jpg at its prior light ..."
+};
+
 struct ModelCheck {
   std::filesystem::path file;
   std::filesystem::path lightFile;   // whose lights the prior was rendered at
@@ -168,8 +188,7 @@ struct ModelCheck {
   ModelErrors refitSurrogateLights;  // Surrogate's fit of the same basis, Surrogate's lights
   ColourRelation colour;
   QuantisationCheck quantisation;
-  std::filesystem::path differenceImage;  // when written
-  std::string differenceDescription;      // "prior minus photograph IMG_3.jpg at (x, y, z)"
+  std::vector<DifferenceImage> differences;  // when written: the worst image's, then the named ones
 };
 
 // `priorLights` and `surrogateLights` (empty when Surrogate has none) are per photograph.
@@ -179,9 +198,34 @@ ModelCheck checkModel(const std::filesystem::path& model, const Photographs& pho
                       const PriorLights& priorLights, const std::vector<Light>& surrogateLights,
                       const AuditOptions& options);
 
-// Signed difference a - b of two 8-bit RGB renders of the same size, per channel, as an 8-bit
-// image: 128 + (a - b), clamped to 0..255 (mid-grey = no difference).
-Image differenceImage(const Image& a, const Image& b);
+// ---- The difference picture (docs/hrti-math.md, "Difference image") ----------------------
+
+// The smallest full scale (8-bit levels of luminance) a difference picture is drawn at: below
+// it, 8-bit rounding of the render and the photograph's own noise would fill the scale.
+inline constexpr double kMinDifferenceScale = 4;
+
+// The colour of a luminance difference of `levels` (prior minus photograph) on a diverging scale
+// whose ends are -fullScale and +fullScale: ColorBrewer's RdBu (11 classes, which stays legible
+// to red-green colour-blind viewers), blue where the prior is darker, near-white (247, 247, 247)
+// at 0, red where it is brighter; linear between the 11 stops, clamped beyond the ends. RGB.
+std::array<std::uint8_t, 3> differenceColour(double levels, double fullScale);
+
+// The full scale for these differences (16-bit units: levels * 257): the 99th percentile of
+// their magnitudes (nearest rank), in levels, rounded up to the next of 4, 5, 6, 8, 10, 12, 16,
+// 20, 25, 32, 40, 50, 64, 80, 100, 128, 160, 200, 255.
+double differenceScale(const std::vector<std::int32_t>& differences);
+
+struct DifferencePicture {
+  Image picture;          // 8-bit RGB: the map at the top left, the legend band below
+  double fullScale = 0;   // the scale's ends in levels (differenceScale)
+};
+// The signed difference of the Rec. 709 luminance of `prior` minus that of `photograph` (RGB or
+// grey, 16-bit units; the same size), per pixel, in false colour (differenceColour at
+// differenceScale), with the legend drawn below it: the colour ramp, its ends and middle in
+// 8-bit levels, and `caption` (one line: what is shown). The picture is at least 560 pixels wide
+// so that the legend fits; right of a narrower map is mid-grey. The same bytes at any thread
+// count. Error(Internal) for images of different sizes.
+DifferencePicture differencePicture(const Image& prior, const Image& photograph, const std::string& caption);
 
 // ---- 3. Verdict -----------------------------------------------------------------------------
 

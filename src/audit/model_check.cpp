@@ -104,7 +104,7 @@ ModelErrors errorsOf(const fit::Relightable& model, const ImageStack& photos,
     totalSquares += squares;
     totalCount += photo.pixels.size();
     const double rmse = std::sqrt(squares / static_cast<double>(photo.pixels.size()));
-    out.images.push_back({names[i], rmse, psnrOf(rmse)});
+    out.images.push_back({names[i], rmse, psnrOf(rmse), lights[i]});
     psnrs.push_back(out.images.back().psnr);
   }
   if (out.images.empty()) {
@@ -161,8 +161,9 @@ struct PriorModel {
 };
 
 // What the audit holds beside the prior model as read: the copy of it that is relit, and per
-// texel the renderings and the difference picture (16-bit RGB).
-constexpr std::uint64_t kAuditBytesPerTexel = 3 * 6;
+// texel the two renderings and the difference picture (16-bit RGB, 6 bytes each), while the
+// picture is made its two luminances (2 each), signed differences (4) and 8-bit canvas (3).
+constexpr std::uint64_t kAuditBytesPerTexel = 3 * 6 + 2 * 2 + 4 + 3;
 
 // Refused from its header when reading and auditing it would not fit `memory` (--memory; in a
 // run, the part a fit may use): a JPEG-compressed PTM of megabytes can declare gigabytes.
@@ -260,68 +261,76 @@ std::string lightText(const Light& l) {
   return "(" + fixedDecimals(l[0], 3) + ", " + fixedDecimals(l[1], 3) + ", " + fixedDecimals(l[2], 3) + ")";
 }
 
-// The photograph the difference image is made at: the caller's choice, else the one whose
-// prior light is nearest the viewing axis (the least shadowed view).
-int differenceIndex(const std::vector<std::optional<Light>>& lights, int requested) {
+// The photograph the first difference image is made at: the caller's choice, else the worst
+// image (ModelErrors::worstImage: the lowest PSNR, the first in stack order among equals).
+int differenceIndex(const std::vector<std::optional<Light>>& lights, const std::vector<std::string>& names,
+                    const ModelErrors& errors, int requested) {
   if (requested >= 0) {
     if (requested < static_cast<int>(lights.size()) && lights[requested]) return requested;
     throw Error(ErrorKind::Usage, "--difference-image", kStep,
                 "photograph " + std::to_string(requested) + " has no prior light; choose another");
   }
-  int best = -1;
-  for (int i = 0; i < static_cast<int>(lights.size()); ++i)
-    if (lights[i] && (best < 0 || (*lights[i])[2] > (*lights[best])[2])) best = i;
-  return best;
+  for (int i = 0; i < static_cast<int>(names.size()); ++i)
+    if (lights[i] && names[i] == errors.worstImage) return i;
+  return -1;
 }
 
-Image eightBit(Image im) {
-  if (im.channels == 1) {
-    Image rgb(im.width, im.height, 3);
-    for (std::size_t p = 0; p < im.pixels.size(); ++p)
-      for (int c = 0; c < 3; ++c) rgb.pixels[p * 3 + c] = im.pixels[p];
-    im = std::move(rgb);
-  }
-  for (auto& v : im.pixels) v = static_cast<std::uint16_t>((v + 128) / 257 * 257);
-  im.bitsPerSample = 8;
-  return im;
-}
-
+// One difference picture of `prior` at photograph `d` (-1: at options.differenceLight), written
+// as `file` and added to check.differences.
 void writeDifference(ModelCheck& check, const fit::Relightable& prior, const fit::Relightable* refitted,
                      const ImageStack& photos, const std::vector<std::string>& names,
-                     const std::vector<std::optional<Light>>& lights, const AuditOptions& options) {
+                     const std::vector<std::optional<Light>>& lights, const AuditOptions& options, int d,
+                     const std::filesystem::path& file, bool worst) {
   const bool againstFit = options.differenceAgainst == AuditOptions::DifferenceAgainst::SurrogateFit;
-  if (againstFit && !refitted) return;
-  const bool atChosenLight = againstFit && options.differenceLight;
-  const int d = atChosenLight ? -1 : differenceIndex(lights, options.differenceImage);
-  if (!atChosenLight && d < 0) return;
-  const Light light = atChosenLight ? *options.differenceLight : *lights[d];
+  const Light light = d < 0 ? *options.differenceLight : *lights[d];
   fit::RenderOptions render;
   render.threads = options.threads;
   const Image a = prior.render(light, render);
-  const Image b = againstFit ? refitted->render(light, render) : eightBit(readImage(photos, d));
-  const std::filesystem::path path =
-      options.differenceFolder / (check.file.stem().string() + "-difference.png");
-  image::writePng(differenceImage(a, b), path);
-  check.differenceImage = path;
-  check.differenceDescription = std::string("prior model minus ") +
-                                (againstFit ? "Surrogate's fit (prior lights)" : "the photograph") +
-                                (atChosenLight ? " at the light " : " " + names[d] + " at its prior light ") +
-                                lightText(light) + ", 128 = no difference";
+  const Image b = againstFit ? refitted->render(light, render) : readImage(photos, d);
+  const std::string against = againstFit ? "Surrogate's fit (prior lights)" : "photograph " + names[d];
+  const std::string where = d >= 0 && againstFit ? names[d] + "'s prior light " : "light ";
+  const DifferencePicture picture = differencePicture(a, b, "prior minus " + against + ", " + where + lightText(light));
+  image::writePng(picture.picture, file);
+  DifferenceImage out;
+  out.file = file;
+  out.image = d < 0 ? std::string() : names[d];
+  out.light = light;
+  out.fullScale = picture.fullScale;
+  out.worst = worst;
+  out.description = std::string("prior model minus ") +
+                    (againstFit ? "Surrogate's fit (prior lights)" : "the photograph") +
+                    (d < 0 ? " at the light " : " " + names[d] + " at its prior light ") + lightText(light) +
+                    ", on luminance; blue: prior darker, red: prior brighter, full scale " +
+                    formatNumber(picture.fullScale) + " levels";
+  check.differences.push_back(std::move(out));
+}
+
+// The difference picture at the worst image (or the caller's choice), then one at each image
+// options.differenceAt names.
+void writeDifferences(ModelCheck& check, const fit::Relightable& prior, const fit::Relightable* refitted,
+                      const ImageStack& photos, const std::vector<std::string>& names,
+                      const std::vector<std::optional<Light>>& lights, const AuditOptions& options) {
+  const bool againstFit = options.differenceAgainst == AuditOptions::DifferenceAgainst::SurrogateFit;
+  if (againstFit && !refitted) return;
+  const std::string stem = check.file.stem().string();
+  const bool atChosenLight = againstFit && options.differenceLight;
+  const int d = atChosenLight ? -1 : differenceIndex(lights, names, check.prior, options.differenceImage);
+  if (atChosenLight || d >= 0)
+    writeDifference(check, prior, refitted, photos, names, lights, options, d,
+                    options.differenceFolder / (stem + "-difference.png"), !atChosenLight && options.differenceImage < 0);
+  for (int named : options.differenceAt) {
+    if (check.lightFile.empty()) break;  // no prior lights: the prior is rendered nowhere
+    if (named < 0 || named >= static_cast<int>(lights.size()) || !lights[named])
+      throw Error(ErrorKind::Usage, named >= 0 && named < static_cast<int>(names.size()) ? names[named] : "", kStep,
+                  "has no light in " + check.lightFile.filename().string() +
+                      ", so the prior cannot be rendered at it; name a photograph the light file names");
+    const std::string imageStem = std::filesystem::path(names[named]).stem().string();
+    writeDifference(check, prior, refitted, photos, names, lights, options, named,
+                    options.differenceFolder / (stem + "-difference-" + imageStem + ".png"), false);
+  }
 }
 
 }  // namespace
-
-Image differenceImage(const Image& a, const Image& b) {
-  if (a.width != b.width || a.height != b.height || a.channels != 3 || b.channels != 3)
-    throw Error(ErrorKind::Internal, "", kStep, "difference of two images of different sizes");
-  Image out(a.width, a.height, 3);
-  out.bitsPerSample = 8;
-  for (std::size_t p = 0; p < a.pixels.size(); ++p) {
-    const int diff = static_cast<int>((a.pixels[p] + 128) / 257) - static_cast<int>((b.pixels[p] + 128) / 257);
-    out.pixels[p] = static_cast<std::uint16_t>(std::clamp(128 + diff, 0, 255) * 257);
-  }
-  return out;
-}
 
 ModelCheck checkModel(const std::filesystem::path& model, const Photographs& photographs,
                       const PriorLights& priorLights, const std::vector<Light>& surrogateLights,
@@ -364,7 +373,7 @@ ModelCheck checkModel(const std::filesystem::path& model, const Photographs& pho
   check.colour = fitTone(tone);
   check.quantisation = quantisationOf(prior, &withPrior);
   if (!options.differenceFolder.empty())
-    writeDifference(check, *prior.relightable, withPrior.relightable.get(), photos, names, priorOfImage, options);
+    writeDifferences(check, *prior.relightable, withPrior.relightable.get(), photos, names, priorOfImage, options);
   return check;
 }
 

@@ -82,8 +82,19 @@ void modelJson(JsonWriter& j, const ModelCheck& m) {
     j.beginObject().key("plane").value(p.plane).key("atZero").value(share(p.atZero)).key("atFull").value(share(p.atFull))
         .key("outsideRange").value(share(p.outsideRange)).key("clamped").value(p.clamped).endObject();
   j.endArray().endObject();
-  if (!m.differenceImage.empty())
-    j.key("differenceImage").value(m.differenceImage.string()).key("difference").value(m.differenceDescription);
+  if (!m.differences.empty()) {
+    // The first picture (the worst image's) as before Audit version 5, then every picture.
+    j.key("differenceImage").value(m.differences[0].file.string()).key("difference").value(m.differences[0].description);
+    j.key("differences").beginArray();
+    for (const DifferenceImage& d : m.differences) {
+      j.beginObject().key("file").value(d.file.string()).key("image").value(d.image).key("worst").value(d.worst);
+      j.key("light");
+      if (d.light) j.beginArray().value((*d.light)[0]).value((*d.light)[1]).value((*d.light)[2]).endArray();
+      else j.null();
+      j.key("fullScale").value(d.fullScale).key("description").value(d.description).endObject();
+    }
+    j.endArray();
+  }
   j.endObject();
 }
 
@@ -135,8 +146,9 @@ void modelLines(std::vector<std::string>& out, const ModelCheck& m) {
   for (const PlaneCheck& p : m.quantisation.planes)
     if (p.clamped) clipped += (clipped.empty() ? "" : ", ") + p.plane;
   out.push_back("  quantisation: " + (clipped.empty() ? std::string("no clipped plane") : "clipped planes " + clipped));
-  if (!m.differenceImage.empty())
-    out.push_back("  difference image: " + m.differenceImage.string() + " (" + m.differenceDescription + ")");
+  for (const DifferenceImage& d : m.differences)
+    out.push_back(std::string(d.worst ? "  difference image (worst image): " : "  difference image: ") +
+                  d.file.string() + " (" + d.description + ")");
 }
 
 }  // namespace

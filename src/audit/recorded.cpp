@@ -92,6 +92,9 @@ void writeErrors(Writer& w, const std::string& model, const std::string& set, co
     const std::string photo = idOf(ids.photographs, i.image);
     w.number(photo, set + " psnr", i.psnr, "dB");
     w.number(photo, set + " rmse", i.rmse, "8-bit levels");
+    // The light each photograph was rendered at, for the report's plot of the prior's errors
+    // (the prior's lights only: the refits are rendered at the same or at Surrogate's).
+    if (set == kErrorSets[0] && i.light) w.text(photo, set + " light", triple(*i.light));
   }
 }
 
@@ -119,9 +122,13 @@ void writeModel(Writer& w, const ModelCheck& m, const RecordedIds& ids) {
   for (const PlaneCheck& p : m.quantisation.planes)
     w.text(id, "plane " + p.plane, formatNumber(p.atZero) + " " + formatNumber(p.atFull) + " " +
                                        formatNumber(p.outsideRange) + (p.clamped ? " clamped" : " fine"));
-  if (!m.differenceImage.empty()) {
-    w.text(id, "differenceImage", m.differenceImage.generic_string());
-    w.text(id, "difference", m.differenceDescription);
+  for (const DifferenceImage& d : m.differences) {
+    w.text(id, "differenceImage", d.file.generic_string());  // opens the picture's figures
+    if (!d.image.empty()) w.text(id, "differenceOf", d.image);
+    if (d.light) w.text(id, "differenceLight", triple(*d.light));
+    w.number(id, "differenceFullScale", d.fullScale, "8-bit levels");
+    w.flag(id, "differenceWorst", d.worst);
+    w.text(id, "difference", d.description);
   }
 }
 
@@ -259,8 +266,24 @@ class Reader {
     else if (name == "toneRmseAfter") m.colour.rmseAfter = numberIn(v, name);
     else if (name == "toneDiffers") m.colour.differs = v == "true";
     else if (name == "clamped") m.quantisation.clamped = v == "true";
-    else if (name == "differenceImage") m.differenceImage = v;
-    else if (name == "difference") m.differenceDescription = v;
+    else if (name == "differenceImage") m.differences.push_back({v, "", std::nullopt, 0, false, ""});
+    else if (name.rfind("difference", 0) == 0 && !m.differences.empty()) difference(m.differences.back(), name, v);
+  }
+
+  // The figures of the difference picture last opened by differenceImage (results before Audit
+  // version 5 have its `difference` only).
+  static void difference(DifferenceImage& d, const std::string& name, const std::string& v) {
+    if (name == "differenceOf") d.image = v;
+    else if (name == "differenceLight") d.light = lightIn(v, name);
+    else if (name == "differenceFullScale") d.fullScale = numberIn(v, name);
+    else if (name == "differenceWorst") d.worst = v == "true";
+    else if (name == "difference") d.description = v;
+  }
+
+  static Light lightIn(const std::string& v, const std::string& name) {
+    const auto w = words(v);
+    if (w.size() != 3) numberIn(v, name);
+    return {numberIn(w[0], name), numberIn(w[1], name), numberIn(w[2], name)};
   }
 
   void errorFigure(ModelErrors& e, const std::string& name, const std::string& v) {
@@ -300,9 +323,11 @@ class Reader {
     ModelErrors* e = space == std::string::npos ? nullptr : errorSet(*model_, name.substr(0, space));
     if (!e) return;
     const std::string figure = name.substr(space + 1);
-    if (figure == "psnr") e->images.push_back({image, 0, numberIn(v, name)});
+    if (figure == "psnr") e->images.push_back({image, 0, numberIn(v, name), std::nullopt});
     else if (figure == "rmse" && !e->images.empty() && e->images.back().image == image)
       e->images.back().rmse = numberIn(v, name);
+    else if (figure == "light" && !e->images.empty() && e->images.back().image == image)
+      e->images.back().light = lightIn(v, name);
   }
 
   void verdict(const std::string& name, const std::string& v, const std::string& path) {

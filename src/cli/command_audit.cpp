@@ -31,16 +31,31 @@ constexpr int kReproduced = 0;
 constexpr int kNotReproduced = static_cast<int>(ErrorKind::NotReproduced);
 constexpr int kUnreadable = static_cast<int>(ErrorKind::Input);
 
-// The recorded Audit result, when it was made with `threshold` (unset: any).
-const carrier::Result* usableResult(const carrier::Carrier& c, const std::optional<double>& threshold) {
+// The recorded Audit result, when it was made with `threshold` and the difference images of
+// `at` (unset: any).
+const carrier::Result* usableResult(const carrier::Carrier& c, const std::optional<double>& threshold,
+                                    const std::optional<std::string>& at) {
   const carrier::Result* r = audit::auditResult(c);
-  if (!r || !threshold) return r;
+  if (!r || (!threshold && !at)) return r;
   const carrier::Step* step = c.findStep(r->step);
-  pipeline::Parameters params;
-  if (step)
-    for (const carrier::Param& p : step->params) params.emplace_back(p.name, p.value);
-  const stages::AuditStageOptions recorded = stages::AuditStageOptions::fromParameters(params);
-  return recorded.angleThresholdDegrees == *threshold ? r : nullptr;
+  if (!step) return nullptr;
+  if (threshold && step->param("angleThresholdDegrees") != formatNumber(*threshold)) return nullptr;
+  if (at && step->param("differenceImages") != *at) return nullptr;
+  return r;
+}
+
+// --at NAME, repeatable: the photographs to make difference images at, as the Audit step's
+// differenceImages parameter (comma-separated).
+std::optional<std::string> atOption(const Args& args) {
+  if (!args.has("at")) return std::nullopt;
+  std::string joined;
+  for (const std::string& name : args.values("at")) {
+    if (name.empty() || name.find(',') != std::string::npos)
+      throw Error(ErrorKind::Usage, "--at " + name, "command line",
+                  "give one photograph's file or shot name per --at (e.g. --at IMG_0003.jpg --at IMG_0007)");
+    joined += (joined.empty() ? "" : ",") + name;
+  }
+  return joined;
 }
 
 std::optional<double> thresholdOption(const Args& args) {
@@ -118,7 +133,7 @@ carrier::Carrier runWorkFolder(const Outcome& o, const stages::RunRequest& reque
   try {
     return stages::runCapture(o.work, request, settings);
   } catch (const Error& e) {
-    if (e.kind() == ErrorKind::Internal) throw;
+    if (e.kind() != ErrorKind::Input) throw;
     throw Error(e.kind(), e.file(), e.step(),
                 e.message() + " (the audit works in " + escapedText(o.work.string()) +
                     "; give the correction, e.g. --sphere X,Y,R or --exclude NAME --reason \"...\", to `surrogate audit " +
@@ -132,7 +147,8 @@ int runCommandAudit(int argc, char** argv) {
   std::vector<OptionSpec> specs = {
       {"o", true, false, "the work folder (default: beside PRIOR, named PRIOR-audit)", "WORK"},
       {"output", true, false, "same as -o", "WORK"},
-      {"threshold", true, false, "name the images whose prior light differs by more than this (default 2)", "DEG"}};
+      {"threshold", true, false, "name the images whose prior light differs by more than this (default 2)", "DEG"},
+      {"at", true, true, "also make a difference image at this photograph (file or shot name; repeatable)", "PHOTO"}};
   for (const OptionSpec& o : pipelineOptions(true)) specs.push_back(o);
   for (const OptionSpec& o : runtimeOptions()) specs.push_back(o);
   Args args(argc, argv, 1, specs);
@@ -153,6 +169,7 @@ int runCommandAudit(int argc, char** argv) {
   if (args.positional().size() != 1)
     throw Error(ErrorKind::Usage, "", "command line", "give the folder or package to audit: surrogate audit PRIOR");
   const std::optional<double> threshold = thresholdOption(args);
+  const std::optional<std::string> at = atOption(args);
   const bool json = args.has("json");
   const std::optional<std::string> out = outputOption(args);
 
@@ -169,7 +186,7 @@ int runCommandAudit(int argc, char** argv) {
   const fs::path carrierPath = o.work / capture::kCarrierPath;
   if (folder.reused && !decisionsGiven(args) && fs::exists(carrierPath)) {
     c = carrier::loadCarrier(carrierPath);
-    if (!usableResult(*c, threshold)) c.reset();
+    if (!usableResult(*c, threshold, at)) c.reset();
   }
   if (!c) {
     stages::RunRequest request = requestFrom(args);
@@ -178,6 +195,7 @@ int runCommandAudit(int argc, char** argv) {
     for (int i = 1; i < argc; ++i) request.arguments.push_back(argv[i]);
     if (threshold)
       request.stageParams.push_back({stages::AuditStage::kComponent, "angleThresholdDegrees", formatNumber(*threshold)});
+    if (at) request.stageParams.push_back({stages::AuditStage::kComponent, "differenceImages", *at});
     if (folder.copied) request.audited = folder.copied;
     pipeline::RunSettings settings = settingsFrom(args, bar);
     c = runWorkFolder(o, request, settings);

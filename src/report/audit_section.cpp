@@ -7,6 +7,7 @@
 
 #include "audit/recorded.h"
 #include "core/error.h"
+#include "report/embed.h"
 #include "report/html.h"
 #include "report/sections.h"
 
@@ -15,6 +16,72 @@ namespace surrogate::report {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+// The difference pictures are embedded at their own size up to this side (a click shows them
+// at it, the page at the content column's width): their legend's text needs the pixels.
+constexpr int kDifferenceMaxSide = 4000;
+
+double elevationOf(const audit::Light& l) { return std::asin(std::clamp(l[2], -1.0, 1.0)) * 180 / kPi; }
+double azimuthOf(const audit::Light& l) { return std::atan2(l[1], l[0]) * 180 / kPi; }
+
+// The prior's error at each photograph where it was rendered, on the hemisphere: the lights its
+// errors were recorded with (Audit 5), else those of the light comparison.
+std::string errorPlot(const audit::AuditReport& report, const audit::ModelCheck& m, std::size_t index) {
+  std::map<std::string, audit::Light> comparison;
+  for (const audit::LightComparison& l : report.lights)
+    if (l.file == m.lightFile)
+      for (const audit::ImageAngle& a : l.angles) comparison.emplace(a.image, a.prior);
+  std::vector<ErrorPoint> points;
+  for (const audit::ImageError& e : m.prior.images) {
+    const auto found = comparison.find(e.image);
+    if (!e.light && found == comparison.end()) continue;
+    const audit::Light l = e.light ? *e.light : found->second;
+    ErrorPoint p;
+    p.image = e.image;
+    p.elevationDeg = elevationOf(l);
+    p.azimuthDeg = azimuthOf(l);
+    p.psnr = e.psnr;
+    p.rmse = e.rmse;
+    for (const audit::DifferenceImage& d : m.differences) p.pictured = p.pictured || d.image == e.image;
+    points.push_back(p);
+  }
+  if (points.empty()) return "";
+  std::ostringstream s;
+  s << "<div class=\"plot\">" << errorHemisphereSvg(points, "prior-errors-" + std::to_string(index + 1))
+    << "<div><p>The prior model's error at each photograph, drawn at the prior light it was rendered at "
+       "(the projection of the light plot above): colour is the PSNR of the prior's rendering against the "
+       "photograph, yellow for the lowest (the largest error, here "
+    << displayNumber(m.prior.worstPsnr, 2) << " dB at <code>" << escapeHtml(m.prior.worstImage)
+    << "</code>), dark for the highest. Where the yellow points gather, the prior fails: a region of wrong "
+       "lights, or lights its basis cannot follow. Ringed: the photographs of the difference images below."
+       "</p></div></div>";
+  return s.str();
+}
+
+// A difference picture, as large as the content column; a click shows it at its own size.
+std::string differenceFigure(const carrier::Carrier& c, const ReportSource& source, const audit::DifferenceImage& d,
+                             int* embedded) {
+  std::ostringstream s;
+  const std::string path = d.file.generic_string();
+  const carrier::FileRecord* f = c.findFileByPath(path);
+  const std::optional<std::string> bytes = f ? source.read(f->path) : std::nullopt;
+  const std::optional<EmbeddedPicture> p = bytes ? embedPicture(*bytes, kDifferenceMaxSide) : std::nullopt;
+  if (!p) {
+    s << "<p class=\"bad\">" << escapeHtml(path) << ": "
+      << (bytes ? "not a readable picture" : "not found in this package or capture") << "</p>";
+    return s.str();
+  }
+  ++*embedded;
+  const std::string what = d.fullScale > 0
+      ? std::string(d.worst ? "At the worst image: " : "At a photograph asked for: ") + d.description
+      : "Difference: " + d.description;  // Audit before version 5: 128 + difference, mid-grey
+  s << "<figure class=\"difference\"><img src=\"" << p->dataUri << "\" width=\"" << p->width << "\" height=\""
+    << p->height << "\" alt=\"" << escapeHtml(what) << "\" title=\"Click to see it at full size\"><figcaption>"
+    << escapeHtml(what) << ". \u2014 <code>" << escapeHtml(path) << "</code> (" << p->originalWidth << "\u00d7"
+    << p->originalHeight << (p->width != p->originalWidth ? ", shown at " + std::to_string(p->width) + "\u00d7" +
+                                                                std::to_string(p->height) : std::string())
+    << "; click the picture to see it at full size)</figcaption></figure>";
+  return s.str();
+}
 
 std::string errorsRow(const std::string& label, const audit::ModelErrors& e) {
   std::ostringstream s;
@@ -52,8 +119,9 @@ std::string lightsPart(const audit::LightComparison& l) {
   return s.str();
 }
 
-std::string modelPart(const carrier::Carrier& c, const audit::ModelCheck& m,
-                      const std::function<std::string(const carrier::FileRecord&, const std::string&)>& figure) {
+std::string modelPart(const carrier::Carrier& c, const ReportSource& source, const audit::AuditReport& report,
+                      std::size_t index, int* embedded) {
+  const audit::ModelCheck& m = report.models[index];
   std::ostringstream s;
   s << "<h3>Prior model <code>" << escapeHtml(m.file.generic_string()) << "</code></h3><p>"
     << escapeHtml(m.basis) << ", rendered at the lights of <code>"
@@ -73,17 +141,18 @@ std::string modelPart(const carrier::Carrier& c, const audit::ModelCheck& m,
   if (m.colour.measured)
     s << "<p>Tone of the prior against the photographs: gain " << displayNumber(m.colour.gain, 3) << ", gamma "
       << displayNumber(m.colour.gamma, 3) << (m.colour.differs ? " (differs)" : "") << ".</p>";
-  if (!m.differenceImage.empty()) {
-    if (const carrier::FileRecord* f = c.findFileByPath(m.differenceImage.generic_string()))
-      s << "<div class=\"gallery\">" << figure(*f, "Difference: " + m.differenceDescription) << "</div>";
+  s << errorPlot(report, m, index);
+  if (!m.differences.empty()) {
+    s << "<div class=\"difference-images\">";
+    for (const audit::DifferenceImage& d : m.differences) s << differenceFigure(c, source, d, embedded);
+    s << "</div>";
   }
   return s.str();
 }
 
 }  // namespace
 
-std::string auditSection(const carrier::Carrier& c,
-                         const std::function<std::string(const carrier::FileRecord&, const std::string&)>& figure) {
+std::string auditSection(const carrier::Carrier& c, const ReportSource& source, int* picturesEmbedded) {
   const carrier::Result* r = audit::auditResult(c);
   if (!r) return "";
   std::ostringstream s;
@@ -103,7 +172,7 @@ std::string auditSection(const carrier::Carrier& c,
       << escapeHtml((v.model.empty() ? v.lightFile : v.model).generic_string()) << "</code></b>: "
       << escapeHtml(v.sentence) << "</p>";
   for (const audit::LightComparison& l : report.lights) s << lightsPart(l);
-  for (const audit::ModelCheck& m : report.models) s << modelPart(c, m, figure);
+  for (std::size_t i = 0; i < report.models.size(); ++i) s << modelPart(c, source, report, i, picturesEmbedded);
   for (const auto& n : report.notAudited)
     s << "<p class=\"warning\">Not audited: <code>" << escapeHtml(n.file.generic_string()) << "</code> ("
       << escapeHtml(n.reason) << ").</p>";
@@ -131,8 +200,8 @@ std::vector<PriorLightPoint> priorLightPoints(const carrier::Carrier& c) {
       const auto it = pathOfName.find(a.image);
       p.image = it == pathOfName.end() ? a.image : it->second;
       p.file = l.file.generic_string();
-      p.elevationDeg = std::asin(std::clamp(a.prior[2], -1.0, 1.0)) * 180 / kPi;
-      p.azimuthDeg = std::atan2(a.prior[1], a.prior[0]) * 180 / kPi;
+      p.elevationDeg = elevationOf(a.prior);
+      p.azimuthDeg = azimuthOf(a.prior);
       p.angleDeg = a.degrees;
       p.aboveThreshold = a.degrees > l.thresholdDegrees;
       out.push_back(p);

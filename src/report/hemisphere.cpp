@@ -46,6 +46,37 @@ std::string sectorPath(double e0, double e1, double a0, double a1) {
   return p.str();
 }
 
+// Elevation rings and azimuth spokes, with their labels.
+void drawGrid(std::ostringstream& s) {
+  for (double e : {0.0, 30.0, 60.0}) {
+    double x, y;
+    project(e, 112.5, x, y);  // labels between the 90 and 135 degree spokes
+    s << "<circle class=\"grid\" cx=\"" << kCentre << "\" cy=\"" << kCentre << "\" r=\""
+      << num(kRadius * (90 - e) / 90) << "\"/>";
+    s << "<text class=\"axis elevation\" text-anchor=\"middle\" x=\"" << num(x) << "\" y=\"" << num(y + 12)
+      << "\">el " << e << "\u00b0</text>\n";
+  }
+  s << "<circle class=\"grid raking\" cx=\"" << kCentre << "\" cy=\"" << kCentre << "\" r=\""
+    << num(kRadius * (90 - kRakingElevationDeg) / 90) << "\"/>\n";
+  // Azimuth labels in the lights' own range, -180..180 (the table and the tooltips use it too).
+  for (int a = -135; a <= 180; a += 45) {
+    double x, y, tx, ty;
+    project(0, a, x, y);
+    project(-9, a, tx, ty);
+    s << "<line class=\"grid\" x1=\"" << kCentre << "\" y1=\"" << kCentre << "\" x2=\"" << num(x)
+      << "\" y2=\"" << num(y) << "\"/><text class=\"axis\" text-anchor=\"middle\" x=\"" << num(tx)
+      << "\" y=\"" << num(ty + 4) << "\">" << (a < 0 ? "\u2212" : "") << std::abs(a) << "\u00b0</text>\n";
+  }
+}
+
+// The vertical colour bar of the legend, `gradient` from t = 0 at the bottom to 1 at the top.
+void drawScale(std::ostringstream& s, const std::string& gradient) {
+  s << "<defs><linearGradient id=\"" << gradient << "\" x1=\"0\" y1=\"1\" x2=\"0\" y2=\"0\">";
+  for (int i = 0; i <= 4; ++i)
+    s << "<stop offset=\"" << i * 25 << "%\" stop-color=\"" << residualColour(i / 4.0) << "\"/>";
+  s << "</linearGradient></defs>\n";
+}
+
 }  // namespace
 
 double AzimuthGap::widthDeg() const { return wrap360(toDeg - fromDeg); }
@@ -154,26 +185,7 @@ std::string hemisphereSvg(const std::vector<LightPoint>& lights, const Coverage&
     const double width = g.widthDeg() == 0 ? 360 : g.widthDeg();
     s << "<path class=\"gap\" d=\"" << sectorPath(0, 90, g.fromDeg, g.fromDeg + width) << "\"/>\n";
   }
-  // Elevation rings and azimuth spokes.
-  for (double e : {0.0, 30.0, 60.0}) {
-    double x, y;
-    project(e, 112.5, x, y);  // labels between the 90 and 135 degree spokes
-    s << "<circle class=\"grid\" cx=\"" << kCentre << "\" cy=\"" << kCentre << "\" r=\""
-      << num(kRadius * (90 - e) / 90) << "\"/>";
-    s << "<text class=\"axis elevation\" text-anchor=\"middle\" x=\"" << num(x) << "\" y=\"" << num(y + 12)
-      << "\">el " << e << "\u00b0</text>\n";
-  }
-  s << "<circle class=\"grid raking\" cx=\"" << kCentre << "\" cy=\"" << kCentre << "\" r=\""
-    << num(kRadius * (90 - kRakingElevationDeg) / 90) << "\"/>\n";
-  // Azimuth labels in the lights' own range, -180..180 (the table and the tooltips use it too).
-  for (int a = -135; a <= 180; a += 45) {
-    double x, y, tx, ty;
-    project(0, a, x, y);
-    project(-9, a, tx, ty);
-    s << "<line class=\"grid\" x1=\"" << kCentre << "\" y1=\"" << kCentre << "\" x2=\"" << num(x)
-      << "\" y2=\"" << num(y) << "\"/><text class=\"axis\" text-anchor=\"middle\" x=\"" << num(tx)
-      << "\" y=\"" << num(ty + 4) << "\">" << (a < 0 ? "\u2212" : "") << std::abs(a) << "\u00b0</text>\n";
-  }
+  drawGrid(s);
   // The lights.
   for (const LightPoint& l : lights) {
     double x, y;
@@ -194,10 +206,7 @@ std::string hemisphereSvg(const std::vector<LightPoint>& lights, const Coverage&
   }
   drawPriorLights(s, lights, priorLights);
   // Legend: the residual scale.
-  s << "<defs><linearGradient id=\"residual-scale\" x1=\"0\" y1=\"1\" x2=\"0\" y2=\"0\">";
-  for (int i = 0; i <= 4; ++i)
-    s << "<stop offset=\"" << i * 25 << "%\" stop-color=\"" << residualColour(i / 4.0) << "\"/>";
-  s << "</linearGradient></defs>\n";
+  drawScale(s, "residual-scale");
   if (any) {
     s << "<rect x=\"400\" y=\"60\" width=\"16\" height=\"200\" fill=\"url(#residual-scale)\"/>"
       << "<text class=\"axis\" x=\"420\" y=\"66\">" << displayNumber(hi, 1) << "</text>"
@@ -207,6 +216,52 @@ std::string hemisphereSvg(const std::vector<LightPoint>& lights, const Coverage&
   } else {
     s << "<text class=\"axis\" x=\"380\" y=\"60\">no fit: grey</text>\n";
   }
+  s << "</svg>";
+  return s.str();
+}
+
+}  // namespace surrogate::report
+
+namespace surrogate::report {
+
+std::string errorHemisphereSvg(const std::vector<ErrorPoint>& points, const std::string& id) {
+  if (points.empty()) return "";
+  double lo = points.front().psnr, hi = lo;
+  for (const ErrorPoint& p : points) lo = std::min(lo, p.psnr), hi = std::max(hi, p.psnr);
+  std::ostringstream s;
+  s << "<svg class=\"error-plot\" id=\"" << escapeHtml(id) << "\" xmlns=\"http://www.w3.org/2000/svg\" "
+       "viewBox=\"0 0 460 360\" width=\"460\" height=\"360\" role=\"img\" aria-label=\"The prior model's "
+       "error at each photograph's light\">\n";
+  drawGrid(s);
+  // The worst last, so that it is drawn over its neighbours.
+  std::vector<const ErrorPoint*> order;
+  for (const ErrorPoint& p : points) order.push_back(&p);
+  std::stable_sort(order.begin(), order.end(), [](const ErrorPoint* a, const ErrorPoint* b) { return a->psnr > b->psnr; });
+  for (const ErrorPoint* p : order) {
+    double x, y;
+    project(p->elevationDeg, p->azimuthDeg, x, y);
+    // Yellow at the lowest PSNR: the colours of the light plot, where yellow is the largest residual.
+    const std::string colour = residualColour(hi > lo ? (hi - p->psnr) / (hi - lo) : 0.5);
+    if (p->pictured)
+      s << "<circle class=\"pictured\" cx=\"" << num(x) << "\" cy=\"" << num(y)
+        << "\" r=\"10\" fill=\"none\" stroke=\"#222\" stroke-width=\"2\"/>";
+    s << "<circle class=\"error-light\" cx=\"" << num(x) << "\" cy=\"" << num(y) << "\" r=\"6\" fill=\"" << colour
+      << "\" data-image=\"" << escapeHtml(p->image) << "\" data-psnr=\"" << displayNumber(p->psnr, 2) << "\"><title>"
+      << escapeHtml(p->image) << ": elevation " << displayNumber(p->elevationDeg, 1) << "\u00b0, azimuth "
+      << displayNumber(p->azimuthDeg, 1) << "\u00b0; prior PSNR " << displayNumber(p->psnr, 2) << " dB, RMSE "
+      << displayNumber(p->rmse, 2) << " levels" << (p->pictured ? "; difference image below" : "")
+      << "</title></circle>\n";
+  }
+  const std::string gradient = id + "-scale";
+  drawScale(s, gradient);
+  s << "<rect x=\"400\" y=\"60\" width=\"16\" height=\"200\" fill=\"url(#" << escapeHtml(gradient) << ")\"/>"
+    << "<text class=\"axis\" x=\"420\" y=\"66\">" << displayNumber(lo, 1) << "</text>"
+    << "<text class=\"axis\" x=\"420\" y=\"262\">" << displayNumber(hi, 1) << "</text>"
+    << "<text class=\"axis\" x=\"392\" y=\"36\">prior</text>"
+    << "<text class=\"axis\" x=\"392\" y=\"50\">PSNR (dB)</text>"
+    << "<circle cx=\"392\" cy=\"296\" r=\"10\" fill=\"none\" stroke=\"#222\" stroke-width=\"2\"/>"
+    << "<text class=\"axis\" x=\"406\" y=\"300\">difference</text>"
+    << "<text class=\"axis\" x=\"406\" y=\"314\">image</text>\n";
   s << "</svg>";
   return s.str();
 }

@@ -74,6 +74,21 @@ struct PriorLightPoint {
 std::string hemisphereSvg(const std::vector<LightPoint>& lights, const Coverage& coverage,
                           const std::vector<PriorLightPoint>& priorLights);
 
+// A photograph's light on the plot of a prior model's error (the Audit result, audit/recorded.h):
+// the prior light it was rendered at, and the prior's error against it there.
+struct ErrorPoint {
+  std::string image;  // the photograph's file name
+  double elevationDeg = 0, azimuthDeg = 0;
+  double psnr = 0, rmse = 0;  // dB; 8-bit levels of luminance
+  bool pictured = false;      // a difference image was made at it
+};
+
+// The prior's error per photograph on the hemisphere (the projection above): an inline
+// <svg class="error-plot" id=`id`> with one <circle class="error-light"> per photograph,
+// coloured by PSNR on the viridis-like scale, yellow at the lowest PSNR (the largest error) and
+// dark at the highest, those with a difference image ringed, and a legend. Empty without points.
+std::string errorHemisphereSvg(const std::vector<ErrorPoint>& points, const std::string& id);
+
 // "#rrggbb" for t in 0..1 on a viridis-like scale.
 std::string residualColour(double t);
 

@@ -39,13 +39,17 @@ code, .mono { font-family:ui-monospace,Menlo,Consolas,monospace; font-size:12px;
 .warning { color:var(--warn); }
 .plot { display:flex; flex-wrap:wrap; gap:24px; align-items:flex-start; }
 .plot > div { flex:1; min-width:260px; }
-#hemisphere { background:var(--card); border:1px solid var(--line); border-radius:6px; max-width:100%; height:auto; }
-#hemisphere .grid { fill:none; stroke:#c9c9d0; stroke-width:1; }
-#hemisphere .raking { stroke:#b3261e; stroke-dasharray:4 3; }
+#hemisphere, .error-plot { background:var(--card); border:1px solid var(--line); border-radius:6px; max-width:100%; height:auto; }
+#hemisphere .grid, .error-plot .grid { fill:none; stroke:#c9c9d0; stroke-width:1; }
+#hemisphere .raking, .error-plot .raking { stroke:#b3261e; stroke-dasharray:4 3; }
 #hemisphere .gap { fill:#b3261e; fill-opacity:.10; stroke:none; }
-#hemisphere .axis { font-size:11px; fill:var(--muted); }
-#hemisphere .axis.elevation { fill:var(--accent); font-style:italic; }
-#hemisphere .light { stroke:#222; stroke-width:1; }
+#hemisphere .axis, .error-plot .axis { font-size:11px; fill:var(--muted); }
+#hemisphere .axis.elevation, .error-plot .axis.elevation { fill:var(--accent); font-style:italic; }
+#hemisphere .light, .error-plot .error-light { stroke:#222; stroke-width:1; }
+.difference-images { display:grid; grid-template-columns:minmax(0, 1fr); gap:16px; margin-top:10px; }
+figure.difference img { width:100%; cursor:zoom-in; }
+figure.difference.full-size { overflow-x:auto; }
+figure.difference.full-size img { width:auto; max-width:none; cursor:zoom-out; }
 ol.timeline { list-style:none; padding:0; margin:0; border-left:3px solid var(--line); }
 ol.timeline > li { position:relative; margin:0 0 18px 0; padding-left:18px; }
 ol.timeline > li::before { content:""; position:absolute; left:-9px; top:6px; width:15px; height:15px; border-radius:50%; background:var(--card); border:3px solid #5b6bd6; }
@@ -323,6 +327,11 @@ const char* const kReportJs = R"JS(
   } catch (e) {
     record("relighting: " + e.message);
   }
+  // The audit's difference pictures: a click shows one at its own size (scrolled within its
+  // frame), another click at the column's width again.
+  Array.prototype.forEach.call(document.querySelectorAll("figure.difference img"), function (img) {
+    img.addEventListener("click", function () { img.parentNode.classList.toggle("full-size"); });
+  });
   var plotted = document.querySelectorAll("#hemisphere circle.light").length;
   body.setAttribute("data-lights-plotted", String(plotted));
   recordLayout();

@@ -556,9 +556,7 @@ Report buildReport(const carrier::Carrier& c, const ReportSource& source, const 
   const std::string detection = detectionSection(c, pictures, report);
   const std::string results = resultsSection(c, pictures, report);
   const RelightSection relight = relightSection(c, models, report);
-  const std::string priorWork = auditSection(c, [&](const carrier::FileRecord& f, const std::string& caption) {
-    return figure(pictures, f, caption, &report.picturesEmbedded);
-  });
+  const std::string priorWork = auditSection(c, source, &report.picturesEmbedded);
   progress(0.95);
   const std::string generated = options.generatedAt.empty() ? carrier::timestampNow() : options.generatedAt;
 

@@ -40,12 +40,12 @@ std::string filesSection(const carrier::Carrier& c);
 std::string lightChecksTable(const carrier::Carrier& c);
 
 // "Audit of prior work", when the carrier has an Audit result (audit/recorded.h): the verdicts,
-// the lights above the threshold, the PSNR table and the difference images (through `figure`,
-// which embeds a recorded picture with a caption); empty otherwise.
+// the lights above the threshold, the PSNR table, each prior model's error per photograph on
+// the hemisphere (errorHemisphereSvg) and its difference images (read from `source`, embedded
+// at their own size up to 4000 pixels, each counted in `picturesEmbedded`); empty otherwise.
+std::string auditSection(const carrier::Carrier& c, const ReportSource& source, int* picturesEmbedded);
 // The audit's verdict in parts, first of the report (empty without an Audit result).
 std::string auditSummarySection(const carrier::Carrier& c);
-std::string auditSection(const carrier::Carrier& c,
-                         const std::function<std::string(const carrier::FileRecord&, const std::string&)>& figure);
 // The prior lights the Audit result records, for the hemisphere plot; empty without one.
 std::vector<PriorLightPoint> priorLightPoints(const carrier::Carrier& c);
 

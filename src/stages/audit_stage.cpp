@@ -22,8 +22,35 @@ namespace fs = std::filesystem;
 namespace {
 constexpr const char* kThresholdParameter = "angleThresholdDegrees";
 constexpr const char* kMarginParameter = "reproducedMarginDb";
-// The difference images: one per prior model, named after it (audit::AuditOptions).
+constexpr const char* kDifferenceImagesParameter = "differenceImages";
+// How many photographs' names an unknown name's error lists.
+constexpr std::size_t kNamesListed = 4;
+// The difference images: named after the prior model (audit::AuditOptions).
 constexpr const char* kDifferenceFolder = "assembly-files/audit";
+
+std::vector<std::string> splitNames(const std::string& value) {
+  std::vector<std::string> out;
+  if (value.empty()) return out;
+  std::size_t from = 0;
+  for (;;) {
+    const std::size_t comma = value.find(',', from);
+    std::string name = value.substr(from, comma == std::string::npos ? std::string::npos : comma - from);
+    const auto first = name.find_first_not_of(" \t"), last = name.find_last_not_of(" \t");
+    name = first == std::string::npos ? std::string() : name.substr(first, last - first + 1);
+    if (name.empty())
+      throw Error(ErrorKind::Input, std::string(kDifferenceImagesParameter) + "=" + value, "audit",
+                  "holds an empty name; give photographs' file names separated by commas");
+    out.push_back(name);
+    if (comma == std::string::npos) return out;
+    from = comma + 1;
+  }
+}
+
+std::string joinNames(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& n : names) out += (out.empty() ? "" : ",") + n;
+  return out;
+}
 
 double parameterNumber(const std::string& name, const std::string& value, double low, double high) {
   try {
@@ -122,7 +149,8 @@ bool lightsFromSpheres(const carrier::Carrier& c) {
 
 pipeline::Parameters AuditStageOptions::toParameters() const {
   return {{kThresholdParameter, formatNumber(angleThresholdDegrees)},
-          {kMarginParameter, formatNumber(reproducedMarginDb)}};
+          {kMarginParameter, formatNumber(reproducedMarginDb)},
+          {kDifferenceImagesParameter, joinNames(differenceImages)}};
 }
 
 AuditStageOptions AuditStageOptions::fromParameters(const pipeline::Parameters& parameters) {
@@ -130,9 +158,11 @@ AuditStageOptions AuditStageOptions::fromParameters(const pipeline::Parameters& 
   for (const auto& [name, value] : parameters) {
     if (name == kThresholdParameter) o.angleThresholdDegrees = parameterNumber(name, value, 0, 180);
     else if (name == kMarginParameter) o.reproducedMarginDb = parameterNumber(name, value, 0, 100);
+    else if (name == kDifferenceImagesParameter) o.differenceImages = splitNames(value);
     else
       throw Error(ErrorKind::Input, name + "=" + value, "audit",
-                  std::string("is not a parameter of Audit (") + kThresholdParameter + ", " + kMarginParameter + ")");
+                  std::string("is not a parameter of Audit (") + kThresholdParameter + ", " + kMarginParameter +
+                      ", " + kDifferenceImagesParameter + ")");
   }
   if (!(o.angleThresholdDegrees > 0))
     throw Error(ErrorKind::Input, std::string(kThresholdParameter) + "=0", "audit", "must be more than 0 degrees");
@@ -147,15 +177,22 @@ pipeline::StageInfo AuditStage::info() {
   // Version 3: those PNG files compressed by libdeflate at level 1 (src/image/png_encoder.h).
   // Version 4: the refits are conditioned on their light set (src/fit/conditioning.h), so a
   // refit at a narrow cone of lights, and the verdict on it, differ from version 3's.
-  // Version 5: RTIBuilder's processing logs among the prior work are read, listed and compared
-  // with the capture (audit/rtibuilder_log.h); the result has a section per log.
+  // Version 5: the difference image is made at the worst image (lowest PSNR) instead of the
+  // light nearest the axis, as luminance in false colour at a full scale chosen from the data,
+  // with its legend; more at the photographs `differenceImages` names; each recorded with its
+  // photograph, light and scale, and every photograph's prior light with its errors.
+  // Also in version 5: RTIBuilder's processing logs among the prior work are read, listed and
+  // compared with the capture (audit/rtibuilder_log.h); the result has a section per log.
   pipeline::StageInfo info = pipeline::withOptions<AuditStageOptions>(
       {kComponent, "5",
        "Audit of prior work: its light file against Surrogate's lights, its model against the "
        "photographs beside Surrogate's refits, and a verdict",
        pipeline::PlanSlot::PriorWork});
-  info.outputs = [](const carrier::Step&) {
-    return std::vector<std::string>{std::string(kDifferenceFolder) + "/*-difference.png"};
+  info.outputs = [](const carrier::Step& step) {
+    std::vector<std::string> out{std::string(kDifferenceFolder) + "/*-difference.png"};
+    for (const std::string& name : AuditStageOptions::fromParameters(parametersOf(step)).differenceImages)
+      out.push_back(std::string(kDifferenceFolder) + "/*-difference-" + fs::u8path(name).stem().u8string() + ".png");
+    return out;
   };
   info.reads = pipeline::alwaysReads({kDecodedRgbStack, kRgbStack, kLights, kInputImages});
   return info;
@@ -203,16 +240,19 @@ void AuditStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier:
   options.threads = ctx.settings.threads;
   options.memoryBudgetBytes = ctx.settings.fitBudget();
   options.memoryOption = ctx.settings.memoryBudget;
+  std::vector<std::string> photographs;
+  for (const InputImage& image : *inputs) photographs.push_back(image.relativePath);
+  options.differenceAt = photographsNamed(recorded.differenceImages, photographs);
   options.differenceFolder = ctx.outputPath(kDifferenceFolder);
   fs::create_directories(options.differenceFolder);
   audit::AuditReport report = auditReadable(in, options, step, ctx);
 
-  for (audit::ModelCheck& m : report.models) {
-    if (m.differenceImage.empty()) continue;
-    const std::string relative = std::string(kDifferenceFolder) + "/" + m.differenceImage.filename().u8string();
-    recordOutput(ctx, step, result, checkedOutputPath(relative), "assembly", "PNG", "difference", "image/png");
-    m.differenceImage = relative;
-  }
+  for (audit::ModelCheck& m : report.models)
+    for (audit::DifferenceImage& d : m.differences) {
+      const std::string relative = std::string(kDifferenceFolder) + "/" + d.file.filename().u8string();
+      recordOutput(ctx, step, result, checkedOutputPath(relative), "assembly", "PNG", "difference", "image/png");
+      d.file = relative;
+    }
   relativise(report, ctx.capture);
   auditLogs(report, ids, *rgb, *inputs, step, ctx);
   audit::recordAudit(report, ids, result);
@@ -220,6 +260,30 @@ void AuditStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier:
     ctx.carrier.addLog("info", step.id, "audit of " + (v.model.empty() ? v.lightFile : v.model).generic_string() +
                                             ": " + v.sentence);
   ctx.progress("Auditing prior work", 1);
+}
+
+std::vector<int> photographsNamed(const std::vector<std::string>& names, const std::vector<std::string>& photographs) {
+  std::vector<int> out;
+  for (const std::string& name : names) {
+    int found = -1;
+    for (int pass = 0; pass < 2 && found < 0; ++pass)
+      for (std::size_t i = 0; i < photographs.size() && found < 0; ++i) {
+        const fs::path p = fs::u8path(photographs[i]);
+        if ((pass == 0 ? p.filename() : p.stem()).u8string() == name) found = static_cast<int>(i);
+      }
+    if (found >= 0) {
+      if (std::find(out.begin(), out.end(), found) == out.end()) out.push_back(found);  // one picture each
+      continue;
+    }
+    std::string some;
+    for (std::size_t i = 0; i < photographs.size() && i < kNamesListed; ++i)
+      some += (i ? ", " : "") + fs::u8path(photographs[i]).filename().u8string();
+    if (photographs.size() > kNamesListed) some += ", ... (" + std::to_string(photographs.size()) + " in all)";
+    throw Error(ErrorKind::Usage, name, "audit",
+                "is not one of the photographs of this capture (" + some +
+                    "); name a photograph by its file name to make a difference image at it");
+  }
+  return out;
 }
 
 std::vector<std::string> priorWorkToAudit(const fs::path& capture, const carrier::Carrier* previous,

@@ -2,8 +2,9 @@
 // .rti; recorded by the ingest with role "prior", stages/prior_work.h) against Surrogate's
 // lights and the photographs (src/audit, docs/hrti-math.md "Auditing a prior RTI"). Planned by
 // `surrogate run` after the fits, only when the capture holds a prior light file or result.
-// Its figures are the step's result (audit/recorded.h); it writes one difference image per
-// prior model to assembly-files/audit/.
+// Its figures are the step's result (audit/recorded.h); it writes a difference image of each
+// prior model at its worst image to assembly-files/audit/<model stem>-difference.png, and one at
+// each photograph named by `differenceImages` (<model stem>-difference-<photograph stem>.png).
 #pragma once
 
 #include <filesystem>
@@ -24,12 +25,22 @@ struct AuditStageOptions {
   // The prior counts as reproduced when its PSNR is at most this far below Surrogate's fit of
   // the same basis with the prior's lights (dB).
   double reproducedMarginDb = 1.0;
+  // Photographs (file names, or shot names: the file name without its extension) at which a
+  // difference image of each prior model is made besides the one at its worst image; recorded
+  // comma-separated. Each costs one rendering and one PNG file.
+  std::vector<std::string> differenceImages;
 
   pipeline::Parameters toParameters() const;
   // Error(Input) naming the parameter for an unknown name, a value that is not a number, a
-  // threshold outside (0, 180) or a negative margin.
+  // threshold outside (0, 180), a negative margin, or an empty name in differenceImages.
   static AuditStageOptions fromParameters(const pipeline::Parameters& parameters);
 };
+
+// The stack indices of `names` (AuditStageOptions::differenceImages) among `photographs` (the
+// photographs' capture-relative paths, in stack order), each matched by file name, else by shot
+// name, each photograph once; Error(Usage) naming the first that is none of them, with a few
+// that are.
+std::vector<int> photographsNamed(const std::vector<std::string>& names, const std::vector<std::string>& photographs);
 
 class AuditStage : public pipeline::DescribedStage<AuditStage> {
  public:

@@ -45,14 +45,20 @@ audit::AuditReport sampleReport() {
   m.basis = "ptm-lrgb";
   m.values = "sRGB-encoded";
   m.size = {audit::SizeRelation::Kind::UniformScale, 200, 150, 400, 300, 2};
-  m.prior = {true, "", {{"IMG_0001.jpg", 10.5, 27.7}, {"IMG_0002.jpg", 12.25, 26.37}}, 11.4, 27.01, 27.03, 26.37, "IMG_0002.jpg"};
-  m.refitPriorLights = {true, "", {{"IMG_0001.jpg", 9, 29.04}, {"IMG_0002.jpg", 9.5, 28.58}}, 9.25, 28.8, 28.81, 28.58, "IMG_0002.jpg"};
+  m.prior = {true, "", {{"IMG_0001.jpg", 10.5, 27.7, audit::Light{0.1, 0.2, 0.9746794344808963}},
+                        {"IMG_0002.jpg", 12.25, 26.37, audit::Light{-0.5, 0.25, 0.82915619758885}}},
+             11.4, 27.01, 27.03, 26.37, "IMG_0002.jpg"};
+  m.refitPriorLights = {true, "", {{"IMG_0001.jpg", 9, 29.04, std::nullopt}, {"IMG_0002.jpg", 9.5, 28.58, std::nullopt}}, 9.25, 28.8, 28.81, 28.58, "IMG_0002.jpg"};
   m.refitSurrogateLights.note = "Surrogate has no lights of its own (a dome capture)";
   m.colour = {true, 1.058, 0.979, 12.5, 11.25, false};
   m.quantisation.clamped = true;
   m.quantisation.planes = {{"a0", 0, 0, 0, false}, {"a5", 0.001, 0.934, 0.925, true}};
-  m.differenceImage = "assembly-files/audit/stela-difference.png";
-  m.differenceDescription = "prior model minus the photograph IMG_0001.jpg at its prior light (0.100, 0.200, 0.975)";
+  m.differences = {{"assembly-files/audit/stela-difference.png", "IMG_0002.jpg",
+                    audit::Light{-0.5, 0.25, 0.82915619758885}, 25, true,
+                    "prior model minus the photograph IMG_0002.jpg at its prior light (-0.500, 0.250, 0.829)"},
+                   {"assembly-files/audit/stela-difference-IMG_0001.png", "IMG_0001.jpg",
+                    audit::Light{0.1, 0.2, 0.9746794344808963}, 4, false,
+                    "prior model minus the photograph IMG_0001.jpg at its prior light (0.100, 0.200, 0.975)"}};
   r.models.push_back(m);
 
   audit::Verdict v;
@@ -99,6 +105,42 @@ TEST_CASE("an audit recorded in a carrier result reads back with every figure th
   CHECK(back.models.at(0).prior.images.at(1).rmse == 12.25);
   CHECK(back.models.at(0).colour.rmseAfter == 11.25);
   CHECK(back.models.at(0).size.kind == audit::SizeRelation::Kind::UniformScale);
+  // Each photograph's prior light, and each difference picture's photograph, light and scale.
+  CHECK(back.models.at(0).prior.images.at(1).light == audit::Light{-0.5, 0.25, 0.82915619758885});
+  CHECK_FALSE(back.models.at(0).refitPriorLights.images.at(0).light.has_value());
+  REQUIRE(back.models.at(0).differences.size() == 2);
+  const audit::DifferenceImage& named = back.models.at(0).differences.at(1);
+  CHECK(named.file == "assembly-files/audit/stela-difference-IMG_0001.png");
+  CHECK(named.image == "IMG_0001.jpg");
+  CHECK(named.light == audit::Light{0.1, 0.2, 0.9746794344808963});
+  CHECK(named.fullScale == 4);
+  CHECK_FALSE(named.worst);
+  CHECK(back.models.at(0).differences.at(0).worst);
+}
+
+TEST_CASE("an audit recorded before Audit version 5 reads back with its one difference image") {
+  carrier::Carrier c;
+  c.files = {file("f1", "jpeg-exports/IMG_0001.jpg", "original"), file("f6", "finished-files/stela.ptm", "prior")};
+  carrier::Result result;
+  result.add("input").set("file", "f1").set("kind", "image");
+  result.add("input").set("file", "f6").set("kind", "prior-model");
+  result.add("imageValue").set("image", "f6").set("name", "prior psnr").set("value", "30.5");
+  result.add("imageValue").set("image", "f1").set("name", "prior psnr").set("value", "30.5");
+  result.add("imageValue").set("image", "f1").set("name", "prior rmse").set("value", "7.6");
+  result.add("imageValue").set("image", "f6").set("name", "differenceImage").set("value", "assembly-files/audit/stela-difference.png");
+  result.add("imageValue").set("image", "f6").set("name", "difference").set("value", "prior model minus the photograph, 128 = no difference");
+  const audit::AuditReport back = audit::recordedAudit(c, result);
+  REQUIRE(back.models.size() == 1);
+  const audit::ModelCheck& m = back.models[0];
+  REQUIRE(m.differences.size() == 1);
+  CHECK(m.differences[0].file == "assembly-files/audit/stela-difference.png");
+  CHECK(m.differences[0].description == "prior model minus the photograph, 128 = no difference");
+  CHECK(m.differences[0].fullScale == 0);
+  CHECK_FALSE(m.differences[0].light.has_value());
+  REQUIRE(m.prior.images.size() == 1);
+  CHECK_FALSE(m.prior.images[0].light.has_value());
+  CHECK(audit::auditJson(back).find("\"differenceImage\":\"assembly-files/audit/stela-difference.png\"") !=
+        std::string::npos);
 }
 
 TEST_CASE("a recorded audit figure that is not a number is an input error naming it") {

@@ -260,6 +260,21 @@ TEST_CASE("audit of a read-only RTIBuilder folder names the tilted lights, exits
         std::string::npos);
   CHECK(carrier.find("priorKind=\"rti\"") != std::string::npos);
 
+  // The difference image is made at the worst image (the lowest PSNR of the prior), as luminance
+  // in false colour with its legend below, at a full scale of at least 4 levels.
+  const std::string worst = models.substr(models.find("\"prior\":"));
+  std::smatch worstImage;
+  REQUIRE(std::regex_search(worst, worstImage, std::regex("\"worstImage\":\"([^\"]+)\"")));
+  const std::string differences = models.substr(models.find("\"differences\":["));
+  CHECK(differences.find("{\"file\":\"assembly-files/audit/stela-difference.png\",\"image\":\"" +
+                         worstImage[1].str() + "\",\"worst\":true") == 15);
+  const double fullScale = jsonNumber(differences, "fullScale");
+  CHECK(fullScale >= 4);
+  WARN("difference image at " << worstImage[1].str() << ", full scale " << fullScale << " levels");
+  const cv::Mat difference = cv::imread((work / "assembly-files" / "audit" / "stela-difference.png").string());
+  CHECK(difference.cols == 560);   // the map of 400 pixels, widened for the legend
+  CHECK(difference.rows > 300);    // the legend below the map
+
   // The text form: the verdict on top, printed from the record when nothing changed.
   const e2e::CommandResult text = e2e::surrogate("audit " + e2e::quote(capture));
   INFO(text.output);
@@ -283,6 +298,14 @@ TEST_CASE("audit of a read-only RTIBuilder folder names the tilted lights, exits
   }
   CHECK(crosses == kImages);
   CHECK(off == kTilted.size());
+  // The prior's error per photograph on the hemisphere, and the difference image shown large.
+  std::size_t errorPoints = 0;
+  for (std::size_t at = report.find("<circle class=\"error-light\""); at != std::string::npos;
+       at = report.find("<circle class=\"error-light\"", at + 1))
+    ++errorPoints;
+  CHECK(errorPoints == kImages);
+  CHECK(report.find("<figure class=\"difference\"><img src=\"data:image/jpeg;base64,") != std::string::npos);
+  CHECK(report.find("assembly-files/audit/stela-difference.png") != std::string::npos);
 
   // The work folder packs with the evidence it examined, and re-executes SOUND.
   const fs::path bag = capture.parent_path() / "audit-bag";
@@ -336,6 +359,39 @@ TEST_CASE("audit separates lights that differ from a model that is reproduced", 
                                                   e2e::quote(capture.parent_path() / "work"));
   CHECK(again.exitCode == 0);
   CHECK(again.output.find("\"ran\":false") != std::string::npos);
+}
+
+// The photographs named with --at get difference images of their own beside the worst one's;
+// the names stand like any recorded parameter. A name that is none of the photographs stops
+// the run with exit 2, naming some that are, and leaves the previous results whole.
+TEST_CASE("audit makes difference images at the photographs --at names and refuses an unknown name", "[e2e][audit]") {
+  const fs::path capture = rtibuilderCapture("audit-named");
+  const fs::path work = capture.parent_path() / "capture-audit";
+  const e2e::CommandResult r =
+      e2e::surrogate("audit " + e2e::quote(capture) + " --json --at IMG_0002.jpg --at IMG_0007");  // file, shot
+  INFO(r.output);
+  REQUIRE(r.exitCode == 4);
+  CHECK(r.output.find("\"ran\":true") != std::string::npos);
+  for (const char* file : {"stela-difference.png", "stela-difference-IMG_0002.png", "stela-difference-IMG_0007.png"})
+    CHECK(fs::exists(work / "assembly-files" / "audit" / file));
+  CHECK(r.output.find("\"file\":\"assembly-files/audit/stela-difference-IMG_0007.png\",\"image\":\"IMG_0007.jpg\","
+                      "\"worst\":false") != std::string::npos);
+  const fs::path carrierPath = work / "assembly-files" / "carrier.xml";
+  const std::string carrier = e2e::bytesOf(carrierPath);
+  CHECK(carrier.find("<param name=\"differenceImages\" value=\"IMG_0002.jpg,IMG_0007\"/>") != std::string::npos);
+  CHECK(carrier.find("name=\"differenceOf\" value=\"IMG_0002.jpg\"") != std::string::npos);
+  // Asked again with the same names, the record is printed; the names stand without --at.
+  CHECK(e2e::surrogate("audit " + e2e::quote(capture) + " --json --at IMG_0002.jpg --at IMG_0007").output.find(
+            "\"ran\":false") != std::string::npos);
+  CHECK(e2e::surrogate("audit " + e2e::quote(capture) + " --json").output.find("\"ran\":false") != std::string::npos);
+
+  const e2e::CommandResult unknown = e2e::surrogate("audit " + e2e::quote(capture) + " --at NOPE.jpg");
+  INFO(unknown.output);
+  CHECK(unknown.exitCode == 2);
+  CHECK(unknown.output.find("NOPE.jpg") != std::string::npos);
+  CHECK(unknown.output.find("IMG_0001.jpg, IMG_0002.jpg") != std::string::npos);
+  CHECK(e2e::bytesOf(carrierPath).find("<param name=\"differenceImages\" value=\"IMG_0002.jpg,IMG_0007\"/>") !=
+        std::string::npos);
 }
 
 // A dome capture: its lights are the dome's .lp, so there is no independent estimate to compare

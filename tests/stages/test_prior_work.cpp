@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "core/error.h"
+#include "stages/audit_stage.h"
 #include "stages/plan.h"
 #include "stages/prior_work.h"
 
@@ -122,4 +123,26 @@ TEST_CASE("a prior file says what made it only where its bytes say so", "[stages
   CHECK_FALSE(entity.warning.empty());
 
   CHECK(stages::describePriorFile(written(dir, "notes.TXT", "hello"), "finished-files/notes.TXT").kind == "other");
+}
+
+TEST_CASE("the audit's differenceImages parameter names photographs by file or shot name", "[stages][prior]") {
+  const std::vector<std::string> photos = {"jpeg-exports/IMG_0001.jpg", "jpeg-exports/IMG_0002.jpg",
+                                           "jpeg-exports/IMG_0003.jpg", "jpeg-exports/IMG_0004.jpg",
+                                           "jpeg-exports/IMG_0005.jpg"};
+  CHECK(stages::photographsNamed({"IMG_0003.jpg", "IMG_0001"}, photos) == std::vector<int>{2, 0});
+  CHECK(stages::photographsNamed({"IMG_0003.jpg", "IMG_0003"}, photos) == std::vector<int>{2});  // once each
+  const auto options = stages::AuditStageOptions::fromParameters({{"differenceImages", "IMG_0002.jpg, IMG_0005"}});
+  CHECK(options.differenceImages == std::vector<std::string>{"IMG_0002.jpg", "IMG_0005"});
+  CHECK(options.toParameters().back() == std::pair<std::string, std::string>{"differenceImages", "IMG_0002.jpg,IMG_0005"});
+  CHECK(stages::AuditStageOptions::fromParameters({{"differenceImages", ""}}).differenceImages.empty());
+  CHECK_THROWS_AS(stages::AuditStageOptions::fromParameters({{"differenceImages", "IMG_0002.jpg,,IMG_0003.jpg"}}), Error);
+  try {
+    stages::photographsNamed({"IMG_0002.jpg", "NOPE.jpg"}, photos);
+    FAIL("no error");
+  } catch (const Error& e) {
+    CHECK(e.kind() == ErrorKind::Usage);
+    CHECK(e.exitCode() == 2);
+    CHECK(e.file() == "NOPE.jpg");
+    CHECK(e.message().find("(IMG_0001.jpg, IMG_0002.jpg, IMG_0003.jpg, IMG_0004.jpg, ... (5 in all))") != std::string::npos);
+  }
 }

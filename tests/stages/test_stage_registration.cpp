@@ -110,6 +110,9 @@ TEST_CASE("built-in stages keep their recorded names, versions and default param
                              {"sphereDiameterMm", "0"}});
   CHECK(r.info("DerivedMaps")->defaults == pipeline::Parameters{{"model", "ptm-lrgb"}});
   CHECK(r.info("RtiFit")->defaults == pipeline::Parameters{{"basis", "ptm-lrgb"}});
+  CHECK(r.info("Audit")->defaults == pipeline::Parameters{{"angleThresholdDegrees", "2"},
+                                                         {"reproducedMarginDb", "1"},
+                                                         {"differenceImages", ""}});
   CHECK(r.info("Crop")->defaults.empty());
   CHECK(r.info("Resize")->defaults.empty());
   CHECK(r.info("LightsFromFile")->defaults.empty());
