@@ -175,6 +175,7 @@ int runCommandAudit(int argc, char** argv) {
 
   Outcome o;
   o.prior = fs::absolute(args.positional()[0]).lexically_normal();
+  if (o.prior.filename().empty() && o.prior != o.prior.root_path()) o.prior = o.prior.parent_path();  // "stela12/"
   ProgressBar bar(args.has("quiet") || json);
   const evidence::WorkFolder folder =
       evidence::prepareWorkFolder(o.prior, out ? std::optional<fs::path>(*out) : std::nullopt, bar.callback());

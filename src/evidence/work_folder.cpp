@@ -31,7 +31,12 @@ constexpr const char* kBagCarrier = "data/assembly-files/carrier.xml";
 // and never ran (stopped before its carrier existed) is known as its own.
 constexpr const char* kMarker = ".surrogate/audit-of";
 
-fs::path absoluteNormal(const fs::path& p) { return fs::absolute(p).lexically_normal(); }
+// Absolute, normal, and without a trailing separator: "stela12/" and "./stela12" are one PRIOR.
+fs::path absoluteNormal(const fs::path& p) {
+  fs::path out = fs::absolute(p).lexically_normal();
+  if (out.filename().empty() && out.has_parent_path() && out != out.root_path()) out = out.parent_path();
+  return out;
+}
 
 bool isInside(const fs::path& inner, const fs::path& outer) {
   const fs::path rel = inner.lexically_relative(outer);
