@@ -65,8 +65,8 @@ VerdictPart lightsPart(const LightComparison* l, const Verdict& v) {
     named += (i ? ", " : "") + worst[i].image + " " + fixedDecimals(worst[i].degrees, 1);
   if (worst.size() > kNamesListed) named += " and " + std::to_string(worst.size() - kNamesListed) + " more";
   p.figure = std::to_string(l->aboveThreshold.size()) + " of " + n + " images differ by more than " +
-             deg(l->thresholdDegrees) + ": " + named + " (the others: median " + fixedDecimals(l->medianDegrees, 1) +
-             " degrees)" + missingText(*l);
+             deg(l->thresholdDegrees) + ": " + named + " (median of all " + n + ": " +
+             fixedDecimals(l->medianDegrees, 1) + " degrees)" + missingText(*l);
   p.cause = 2 * l->aboveThreshold.size() > l->angles.size()
                 ? "most lights differ: another axis convention, another sphere, or a sphere found at another place or size"
                 : "these images' highlights were taken elsewhere (a reflection, a mis-click) or their lines were swapped";

@@ -19,6 +19,7 @@ h3 { font-size:16px; margin:14px 0 6px; }
 .facts { columns:4 250px; column-gap:10px; }
 .fact { background:var(--card); border:1px solid var(--line); border-radius:6px; padding:4px 12px 6px; margin:0 0 10px; break-inside:avoid; font-size:14px; line-height:1.35; }
 .fact h3 { margin:2px 0 4px; font-size:13px; text-transform:uppercase; letter-spacing:.04em; color:var(--muted); }
+.fact h3 code { text-transform:none; letter-spacing:0; }
 .fact dl { display:grid; grid-template-columns:max-content 1fr; gap:2px 12px; margin:0; }
 .fact dt { color:var(--muted); }
 .fact dd { margin:0; overflow-wrap:anywhere; }
