@@ -215,7 +215,7 @@ PackResult packCapture(const fs::path& capture, const fs::path& out, const PackO
     std::vector<std::string> names;
     names.reserve(payload.size());
     for (const PayloadSource& p : payload) names.push_back(p.bagPath.substr(5));  // less "data/"
-    // A .tar or .zip holds the bag in a folder named after it (bag.cpp): "STEM/data/...".
+    // A .tar or .zip holds the bag in a folder named after it (bag_output.cpp): "STEM/data/...".
     const std::string prefix = bagFormatFor(out) == BagFormat::Directory
                                    ? std::string("data/") : out.stem().string() + "/data/";
     const NameProblems problems = findNameProblems(names, prefix.size());

@@ -16,7 +16,7 @@ namespace surrogate {
 namespace {
 
 // The reason findNameProblems gives a name in NFD. libarchive, which reads a .tar or .zip for
-// `verify` (archive/package_reader.cpp), gives every UTF-8 name back composed (NFC): a
+// `verify` (archive/archive_source.cpp), gives every UTF-8 name back composed (NFC): a
 // decomposed name would no longer be the name the manifests and the carrier record.
 constexpr const char* kDecomposed = "has its accents decomposed (Unicode NFD)";
 

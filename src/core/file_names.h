@@ -1,12 +1,12 @@
 // The names a capture's package can hold: the one rule that `run` and `pack` apply before
 // anything is processed or written, and that `verify` applies to every path of a package
-// (archive/bag_text.h, archive/package_reader.cpp), so that what pack writes verify accepts.
+// (archive/bag_text.h, archive/entry_checks.cpp), so that what pack writes verify accepts.
 //
 // A package is opened on Windows and macOS as well as Linux. There, two names that differ only
 // in letter case ("IMG_0001.DNG", "img_0001.dng") or only in how an accent is encoded (Unicode
 // NFC "é", as Linux and Windows write it, and NFD "e" + U+0301, as macOS writes it) are one
 // name: unpacked, one file overwrites the other. A name in NFD alone does not come back from a
-// .tar or .zip as it went in (libarchive composes it, archive/package_reader.cpp). A backslash is a folder separator on Windows;
+// .tar or .zip as it went in (libarchive composes it, archive/archive_source.cpp). A backslash is a folder separator on Windows;
 // a control character (a line feed, U+0001) breaks the manifests' one path per line and every
 // listing; bytes that are not UTF-8 cannot be recorded as text.
 //
