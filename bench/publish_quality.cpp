@@ -29,7 +29,7 @@
 #include "generator/capture_generator.h"
 #include "publish/web_layout.h"
 #include "publish/web_reader.h"
-#include "stages/plan.h"
+#include "run/plan.h"
 
 namespace fs = std::filesystem;
 using namespace surrogate;
@@ -73,12 +73,12 @@ fs::path fittedCapture(const fs::path& dir, const generator::GeneratorOptions& o
   std::printf("  generated in %.1f s; running the pipeline with the four bases ...\n", secondsSince(t0));
   std::fflush(stdout);
   t0 = std::chrono::steady_clock::now();
-  stages::RunRequest request;
+  run::RunRequest request;
   request.source = "export";
   request.bases = std::vector<std::string>{"ptm-lrgb", "ptm-rgb", "hsh2", "hsh3"};
   pipeline::RunSettings settings;
   settings.threads = threads;
-  stages::runCapture(capture, request, settings);
+  run::runCapture(capture, request, settings);
   std::printf("  run in %.1f s\n", secondsSince(t0));
   FILE* f = std::fopen(stamp.c_str(), "w");
   std::fputs(want.c_str(), f);

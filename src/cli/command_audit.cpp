@@ -19,7 +19,7 @@
 #include "evidence/evidence.h"
 #include "report/report.h"
 #include "stages/audit_stage.h"
-#include "stages/plan.h"
+#include "run/plan.h"
 
 namespace surrogate::cli {
 
@@ -129,9 +129,9 @@ void printText(const Outcome& o, const audit::AuditReport& report, int exitCode)
 }
 
 // Runs the work folder with the request; a failure says where the audit works and how to go on.
-carrier::Carrier runWorkFolder(const Outcome& o, const stages::RunRequest& request, const pipeline::RunSettings& settings) {
+carrier::Carrier runWorkFolder(const Outcome& o, const run::RunRequest& request, const pipeline::RunSettings& settings) {
   try {
-    return stages::runCapture(o.work, request, settings);
+    return run::runCapture(o.work, request, settings);
   } catch (const Error& e) {
     if (e.kind() != ErrorKind::Input) throw;
     throw Error(e.kind(), e.file(), e.step(),
@@ -190,7 +190,7 @@ int runCommandAudit(int argc, char** argv) {
     if (!usableResult(*c, threshold, at)) c.reset();
   }
   if (!c) {
-    stages::RunRequest request = requestFrom(args);
+    run::RunRequest request = requestFrom(args);
     request.command = "audit";
     request.arguments.clear();
     for (int i = 1; i < argc; ++i) request.arguments.push_back(argv[i]);

@@ -27,7 +27,7 @@
 #include "meta/metadata.h"
 #include "formats/summary.h"
 #include "publish/web_layout.h"
-#include "stages/plan.h"
+#include "run/plan.h"
 #include "stages/web_copy_stage.h"
 
 namespace surrogate::cli {
@@ -70,16 +70,16 @@ std::string interventionWhat(const carrier::Intervention& i) {
 }
 
 // The processing choices a carrier records besides the human interventions: what a run without
-// options repeats (stages::standingDecisions), and the web copy with its recorded options.
+// options repeats (run::standingDecisions), and the web copy with its recorded options.
 struct Choices {
-  stages::RunRequest standing;
+  run::RunRequest standing;
   const carrier::Step* webCopy = nullptr;  // the first WebCopy step: every model's has the same options
   std::vector<std::string> webModels;
 };
 
 Choices choicesOf(const carrier::Carrier& c) {
   Choices out;
-  out.standing = stages::standingDecisions(c);
+  out.standing = run::standingDecisions(c);
   // The decoding step records every LibRaw setting; the choices are those that differ from
   // the defaults.
   const auto defaults = image::RawDecodeSettings{}.toParameters();
@@ -130,21 +130,21 @@ void choicesJson(JsonWriter& j, const carrier::Carrier& c) {
     return;
   }
   const Choices& ch = *readable;
-  const stages::RunRequest& r = ch.standing;
+  const run::RunRequest& r = ch.standing;
   j.key("choices").beginObject().key("source").value(r.source.empty() ? "auto" : r.source).key("bases").beginArray();
   for (const std::string& b : r.bases.value_or(std::vector<std::string>{})) j.value(b);
   j.endArray().key("decode").beginArray();
   for (const auto& [name, value] : r.decodeSettings)
     j.beginObject().key("name").value(name).key("value").value(value).endObject();
   j.endArray().key("preprocessing").beginArray();
-  for (const stages::PlannedStage& p : r.preprocessing) {
+  for (const run::PlannedStage& p : r.preprocessing) {
     j.beginObject().key("component").value(p.component).key("parameters").beginArray();
     for (const auto& [name, value] : p.params)
       j.beginObject().key("name").value(name).key("value").value(value).endObject();
     j.endArray().endObject();
   }
   j.endArray().key("options").beginArray();
-  for (const stages::RunRequest::StageParam& p : r.stageParams)
+  for (const run::RunRequest::StageParam& p : r.stageParams)
     j.beginObject().key("component").value(p.component).key("name").value(p.name).key("value").value(p.value).endObject();
   j.endArray().key("webCopy");
   if (!ch.webCopy) {
@@ -218,14 +218,14 @@ void printChoices(const carrier::Carrier& c) {
     return;
   }
   const Choices& ch = *readable;
-  const stages::RunRequest& r = ch.standing;
+  const run::RunRequest& r = ch.standing;
   std::cout << "  processing choices (a run without options repeats them):\n"
             << "    image source: " << (r.source.empty() ? "auto" : r.source) << "\n";
   if (r.bases) std::cout << "    models: " << joined(*r.bases) << "\n";
   for (const auto& [name, value] : r.decodeSettings) std::cout << "    LibRaw " << name << " = " << value << "\n";
-  for (const stages::PlannedStage& p : r.preprocessing)
+  for (const run::PlannedStage& p : r.preprocessing)
     std::cout << "    pre-processing " << p.component << ": " << paramsText(p.params) << "\n";
-  for (const stages::RunRequest::StageParam& p : r.stageParams)
+  for (const run::RunRequest::StageParam& p : r.stageParams)
     std::cout << "    " << p.component << " " << p.name << " = " << shownValue(p.value) << "\n";
   if (!ch.webCopy) {
     std::cout << "    web copy: none (run --publish makes one of each model)\n";

@@ -35,7 +35,7 @@ int runCommandLights(int argc, char** argv) {
     throw Error(ErrorKind::Usage, "", "command line", "give the capture and the output: surrogate lights CAPTURE -o FILE.lp");
   const fs::path capture = args.positional()[0];
   checkOutputFile("-o", *out, "lights.lp");  // before the run, not after it
-  stages::RunRequest request = requestFrom(args);
+  run::RunRequest request = requestFrom(args);
   request.lightsOnly = true;
   request.command = "lights";
   ProgressBar bar(args.has("quiet") || args.has("json"));
@@ -43,7 +43,7 @@ int runCommandLights(int argc, char** argv) {
   capture::requireCaptureFolder(capture);  // before anything is written in it
   // Held until the capture's lights.lp is copied: a run meanwhile would replace it.
   capture::CaptureLock lock(capture, "lights");
-  const carrier::Carrier c = stages::runCapture(capture, request, settings, /*takeLock=*/false);
+  const carrier::Carrier c = run::runCapture(capture, request, settings, /*takeLock=*/false);
   bar.finish();
 
   // The capture's lights.lp names the images relative to assembly-files/; FILE.lp names them

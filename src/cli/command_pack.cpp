@@ -11,7 +11,9 @@
 #include "capture/output_rule.h"
 #include "carrier/carrier.h"
 #include "pipeline/stage.h"
-#include "stages/run_commit.h"
+#include "run/plan.h"
+#include "run/run_commit.h"
+#include "stages/registry.h"
 #include "cli/args.h"
 #include "cli/commands.h"
 #include "cli/pipeline_options.h"
@@ -19,7 +21,6 @@
 #include "core/error.h"
 #include "core/json.h"
 #include "report/report.h"
-#include "stages/plan.h"
 
 namespace surrogate::cli {
 
@@ -28,10 +29,10 @@ namespace {
 // Runs the pipeline as `surrogate run` does, starting from the decisions the carrier records
 // (the options of this command, if any, add to them), under the lock `pack` holds.
 void runPipeline(const std::string& capture, const Args& args, ProgressBar& bar) {
-  stages::RunRequest request = requestFrom(args);
+  run::RunRequest request = requestFrom(args);
   request.command = "pack";
   const pipeline::RunSettings settings = settingsFrom(args, bar);
-  stages::runCapture(capture, request, settings, /*takeLock=*/false);
+  run::runCapture(capture, request, settings, /*takeLock=*/false);
   if (!args.has("no-report")) {
     report::ReportOptions options;
     options.progress = bar.callback();
@@ -223,7 +224,7 @@ int runCommandPack(int argc, char** argv) {
   // One process at a time on the capture, for the whole pack: a run meanwhile would change
   // what is being bagged.
   capture::CaptureLock lock(capture, "pack");
-  stages::recoverRun(capture);
+  run::recoverRun(capture);
   ProgressBar bar(args.has("quiet") || args.has("json"));
   Processing processing = processIfNeeded(capture, args, bar);
   const archive::PackResult r = packOnce(capture, out, args, bar, processing);

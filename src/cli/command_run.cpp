@@ -16,7 +16,7 @@
 #include "core/json.h"
 #include "report/report.h"
 #include "stages/ingest_stage.h"
-#include "stages/plan.h"
+#include "run/plan.h"
 
 namespace surrogate::cli {
 
@@ -58,7 +58,7 @@ int runCommandRun(int argc, char** argv) {
     throw Error(ErrorKind::Usage, "", "command line",
                 "give exactly one capture folder: surrogate run CAPTURE (see --help)");
   const std::string capture = args.positional()[0];
-  const stages::RunRequest request = requestFrom(args);
+  const run::RunRequest request = requestFrom(args);
 
   ProgressBar bar(args.has("quiet") || args.has("json"));
   pipeline::RunSettings settings = settingsFrom(args, bar);
@@ -80,7 +80,7 @@ int runCommandRun(int argc, char** argv) {
   capture::requireCaptureFolder(capture);
   // The lock covers the report too: it is written from the carrier this run committed.
   capture::CaptureLock lock(capture, "run");
-  const carrier::Carrier c = stages::runCapture(capture, request, settings, /*takeLock=*/false);
+  const carrier::Carrier c = run::runCapture(capture, request, settings, /*takeLock=*/false);
   bar.finish();
   // The report is a derived view of the carrier, not a recorded step (it holds the time it was
   // made): written after the run, never listed in the carrier.

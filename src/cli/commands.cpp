@@ -3,8 +3,10 @@
 #include <iostream>
 #include <set>
 
-#include "stages/fit_stages.h"
-#include "stages/light_stages.h"
+#include "stages/rti_fit_stage.h"
+#include "stages/highlight_detection_stage.h"
+#include "stages/light_directions_stage.h"
+#include "stages/sphere_detection_stage.h"
 
 namespace surrogate::cli {
 

@@ -10,7 +10,7 @@
 #include "capture/output_rule.h"
 #include "core/error.h"
 #include "core/text.h"
-#include "stages/request_checks.h"
+#include "stages/frame_checks.h"
 
 namespace surrogate::cli {
 

@@ -9,10 +9,15 @@
 #include "cli/option_checks.h"
 #include "core/error.h"
 #include "hrti/light_checks.h"
-#include "stages/fit_stages.h"
-#include "stages/light_stages.h"
+#include "stages/rti_fit_stage.h"
+#include "stages/highlight_detection_stage.h"
+#include "stages/light_directions_stage.h"
+#include "stages/recorded_checks.h"
+#include "stages/sphere_detection_stage.h"
 #include "stages/preprocess.h"
-#include "stages/preprocess_stages.h"
+#include "stages/crop_stage.h"
+#include "stages/resize_stage.h"
+#include "stages/white_balance_stage.h"
 #include "stages/web_copy_stage.h"
 #include "core/text.h"
 
@@ -88,13 +93,13 @@ std::pair<std::string, std::string> splitKeyValue(const std::string& text, const
   return {text.substr(0, eq), text.substr(eq + 1)};
 }
 
-void param(stages::RunRequest& r, const char* component, const std::pair<std::string, std::string>& p) {
+void param(run::RunRequest& r, const char* component, const std::pair<std::string, std::string>& p) {
   r.stageParams.push_back({component, p.first, p.second});
 }
 
 // --light-model, --focal-length, --pixel-pitch, --sphere-diameter: the LightDirections
 // parameters given, each recorded on its own (a standing decision for the others stays).
-void lightDirections(stages::RunRequest& r, const Args& args) {
+void lightDirections(run::RunRequest& r, const Args& args) {
   using stages::LightDirectionsOptions;
   const char* component = stages::LightDirectionsStage::kComponent;
   LightDirectionsOptions given;
@@ -117,7 +122,7 @@ void lightDirections(stages::RunRequest& r, const Args& args) {
 
 // --wb, --wb-region, --output-space, --crop, --crop-margin, --resize: the pre-processing steps,
 // each with its full parameters, in the order WhiteBalance, Crop, Resize.
-void preprocessing(stages::RunRequest& r, const Args& args) {
+void preprocessing(run::RunRequest& r, const Args& args) {
   if (args.has("wb") && args.has("wb-region"))
     throw Error(ErrorKind::Usage, "--wb-region", "command line",
                 "give either --wb or --wb-region, not both (--wb-region X,Y,W,H is --wb region:X,Y,W,H)");
@@ -154,7 +159,7 @@ void preprocessing(stages::RunRequest& r, const Args& args) {
 }
 
 // --publish, --no-publish and the web copy's options, checked as WebCopy reads them.
-void webCopy(stages::RunRequest& r, const Args& args) {
+void webCopy(run::RunRequest& r, const Args& args) {
   if (args.has("publish") && args.has("no-publish"))
     throw Error(ErrorKind::Usage, "--no-publish", "command line", "contradicts --publish: give one of them");
   if (args.has("publish")) r.publish = true;
@@ -176,9 +181,9 @@ void webCopy(stages::RunRequest& r, const Args& args) {
 
 }  // namespace
 
-stages::RunRequest requestFrom(const Args& args) {
+run::RunRequest requestFrom(const Args& args) {
   checkPipelineOptionValues(args);  // every value that needs no capture, before any work
-  stages::RunRequest r;
+  run::RunRequest r;
   r.title = args.value("title", "");
   for (const std::string& c : args.values("creator")) {
     const auto colon = c.rfind(':');
@@ -331,11 +336,11 @@ stages::RunRequest requestFrom(const Args& args) {
                   "withdrawing a recorded decision, or accepting a changed original or a damaged "
                   "image, needs a reason: add --reason \"why\" after it; it is recorded with who and when");
   };
-  for (const stages::Withdrawal& w : r.withdrawals) needReason("--forget " + w.target, w.reason);
+  for (const run::Withdrawal& w : r.withdrawals) needReason("--forget " + w.target, w.reason);
   if (r.resetReason) needReason("--reset", *r.resetReason);
-  for (const stages::AcceptedChange& a : r.acceptedChanges) needReason("--accept-changed " + a.path, a.reason);
-  for (const stages::AcceptedDamage& a : r.acceptedDamage) needReason("--accept-damaged " + a.image, a.reason);
-  for (const stages::Exclusion& e : r.exclusions)
+  for (const run::AcceptedChange& a : r.acceptedChanges) needReason("--accept-changed " + a.path, a.reason);
+  for (const run::AcceptedDamage& a : r.acceptedDamage) needReason("--accept-damaged " + a.image, a.reason);
+  for (const run::Exclusion& e : r.exclusions)
     if (e.reason.empty())
       throw Error(ErrorKind::Usage, "--exclude " + e.image, "command line",
                   "every excluded image needs a reason: add --reason \"why\" after it; the "

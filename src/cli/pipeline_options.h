@@ -7,7 +7,7 @@
 #include "cli/args.h"
 #include "cli/progress.h"
 #include "pipeline/context.h"
-#include "stages/plan.h"
+#include "run/plan.h"
 
 namespace surrogate::cli {
 
@@ -16,7 +16,7 @@ std::vector<OptionSpec> pipelineOptions(bool withFit);
 // Options that shape how it runs (not recorded): --threads, --memory, --quiet, --json.
 std::vector<OptionSpec> runtimeOptions();
 
-stages::RunRequest requestFrom(const Args& args);
+run::RunRequest requestFrom(const Args& args);
 pipeline::RunSettings settingsFrom(const Args& args);
 // The same, reporting progress on `bar`.
 pipeline::RunSettings settingsFrom(const Args& args, ProgressBar& bar);

@@ -42,7 +42,7 @@ Image toImage(const cv::Mat& bgr) {
 }
 
 // The drawings need a circle with a finite centre and a radius above 0 that overlaps the image;
-// the stages refuse any other circle first (stages/request_checks.h), this keeps a bad one from
+// the stages refuse any other circle first (stages/frame_checks.h), this keeps a bad one from
 // ever reaching an OpenCV assertion.
 void checkDrawable(const DetectedSphere& s, int width, int height) {
   const bool finite = std::isfinite(s.cx) && std::isfinite(s.cy) && std::isfinite(s.r);

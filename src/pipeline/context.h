@@ -63,7 +63,7 @@ class Context {
   std::filesystem::path capture;     // absolute capture folder: where the inputs are read
   // Where the steps write their outputs (assembly-files/, finished-files/ beneath it): the
   // capture itself, or a staging folder that becomes the capture's state only when the whole
-  // run succeeded (stages/run_commit.h), so a failed run never replaces good results.
+  // run succeeded (run/run_commit.h), so a failed run never replaces good results.
   std::filesystem::path outputRoot;
   carrier::Carrier& carrier;
   RunSettings settings;

@@ -36,7 +36,7 @@ class Context;
 // A step's parameters as name/value pairs, in the carrier's order.
 using Parameters = std::vector<std::pair<std::string, std::string>>;
 
-// Where `surrogate run` puts a stage in the process list it plans (stages/plan.h). Within a
+// Where `surrogate run` puts a stage in the process list it plans (run/plan.h). Within a
 // slot, stages come in registration order.
 enum class PlanSlot {
   Ingest,             // first: reads the capture folder
@@ -47,7 +47,7 @@ enum class PlanSlot {
   EachModel,          // once per model fitted (`forModel` gives the parameters)
   AfterModels,        // once after the fits, for the first model (`forModel`, if set)
   Publish,            // once per model fitted (`forModel`), only when the request asks for the
-                      // web copy (stages/plan.h: RunRequest::publish)
+                      // web copy (run/plan.h: RunRequest::publish)
   PriorWork,          // last, only when the capture holds prior work to audit (stages/audit_stage.h)
   NotPlanned,         // never planned by `surrogate run` (a carrier may still name it)
 };

@@ -597,7 +597,7 @@ Report writeCaptureReport(const std::filesystem::path& capture, const ReportOpti
   std::filesystem::create_directories(capture / capture::kFinishedDir);
   // The half-written page waits in the capture's work folder, not in finished-files/: a command
   // killed while it writes leaves nothing there that the carrier does not describe (the next
-  // command removes the leftover, stages/run_commit.h).
+  // command removes the leftover, run/run_commit.h).
   std::filesystem::create_directories(capture / capture::kWorkDir);
   AtomicFile page(capture / capture::kReportPath, capture / capture::kWorkDir);
   writeTemporary(page, r.html);

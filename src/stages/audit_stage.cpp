@@ -11,7 +11,7 @@
 #include "core/text.h"
 #include "pipeline/context.h"
 #include "stages/inputs.h"
-#include "stages/light_stages.h"
+#include "stages/lights_from_file_stage.h"
 #include "stages/outputs.h"
 #include "stages/prior_work.h"
 

@@ -5,7 +5,7 @@
 #include "pipeline/context.h"
 #include "image/raw_settings.h"
 #include "stages/decode_images.h"
-#include "stages/fit_stages.h"
+#include "stages/rti_fit_stage.h"
 #include "stages/inputs.h"
 #include "stages/outputs.h"
 #include "core/text.h"

@@ -390,7 +390,7 @@ std::shared_ptr<InputImages> chooseInputs(pipeline::Context& ctx, carrier::Resul
 pipeline::StageInfo IngestStage::info() {
   // 2: other files of the capture recorded (role "other"), system files left out, links
   // refused, the dome .lp chosen by the "lp" parameter, recorded originals compared.
-  // Its parameters (source, lp) come from the request, not from defaults (stages/plan.cpp).
+  // Its parameters (source, lp) come from the request, not from defaults (run/plan.cpp).
   pipeline::StageInfo info{kComponent, "2", "Read the capture folder, hash every file, read EXIF/XMP",
                            pipeline::PlanSlot::Ingest};
   info.reads = pipeline::alwaysReads({});

@@ -1,4 +1,5 @@
-// What the ingest stage hands to the stages after it, through the pipeline context.
+// What the stages hand to the stages after them, through the pipeline context: the
+// blackboard keys (ctx.put, ctx.get) and what the ingest stage puts.
 #pragma once
 
 #include <memory>
@@ -16,6 +17,11 @@ inline constexpr const char* kRgbStack = "rgb-stack";
 // it (the Audit compares another tool's result with the whole frames).
 inline constexpr const char* kDecodedRgbStack = "decoded-rgb-stack";
 inline constexpr const char* kLuminanceStack = "luminance-stack";
+// The light estimation's (SphereDetection, HighlightDetection, LightDirections, LightsFromFile).
+inline constexpr const char* kSpheres = "spheres";
+inline constexpr const char* kStackMedian = "stack-median";  // hrti::StackMedian
+inline constexpr const char* kHighlights = "highlights";
+inline constexpr const char* kLights = "lights";
 
 // One photograph the pipeline uses (after exclusions), in capture order.
 struct InputImage {

@@ -1,7 +1,6 @@
 #include "stages/recorded_checks.h"
 
 #include "core/error.h"
-#include "stages/light_stages.h"
 
 namespace surrogate::stages {
 

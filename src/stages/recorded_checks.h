@@ -21,6 +21,9 @@
 
 namespace surrogate::stages {
 
+// The intervention that accepts a failed check by name (--accept CHECK).
+inline constexpr const char* kAcceptCheck = "accept-check";
+
 // How a stop is worded: "a check on SUBJECT failed, so CONSEQUENCE:", the error's step.
 struct CheckWording {
   std::string step, subject, consequence;

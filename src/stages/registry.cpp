@@ -4,13 +4,19 @@
 
 #include "pipeline/stage.h"
 #include "stages/audit_stage.h"
+#include "stages/crop_stage.h"
 #include "stages/decode_stage.h"
-#include "stages/fit_stages.h"
+#include "stages/derived_maps_stage.h"
+#include "stages/highlight_detection_stage.h"
 #include "stages/ingest_stage.h"
-#include "stages/light_stages.h"
-#include "stages/plan.h"
-#include "stages/preprocess_stages.h"
+#include "stages/light_directions_stage.h"
+#include "stages/lights_from_file_stage.h"
+#include "stages/registry.h"
+#include "stages/resize_stage.h"
+#include "stages/rti_fit_stage.h"
+#include "stages/sphere_detection_stage.h"
 #include "stages/web_copy_stage.h"
+#include "stages/white_balance_stage.h"
 
 namespace surrogate::stages {
 

@@ -9,7 +9,7 @@
 #include "fit/basis.h"
 #include "pipeline/context.h"
 #include "publish/web_layout.h"
-#include "stages/fit_stages.h"
+#include "stages/rti_fit_stage.h"
 #include "stages/outputs.h"
 
 namespace surrogate::stages {

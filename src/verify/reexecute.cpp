@@ -14,7 +14,7 @@
 #include "core/error.h"
 #include "core/temp_dir.h"
 #include "pipeline/stage.h"
-#include "stages/plan.h"
+#include "run/plan.h"
 #include "verify/checks.h"
 #include "verify/model_difference.h"
 
@@ -301,7 +301,7 @@ carrier::Carrier replay(const fs::path& replayRoot, const carrier::Carrier& reco
     };
   carrier::Carrier fresh;
   try {
-    fresh = stages::replayCarrier(replayRoot, recorded, settings, freshCarrierPath);
+    fresh = run::replayCarrier(replayRoot, recorded, settings, freshCarrierPath);
   } catch (const Error& e) {
     problems.push_back(e.text());
     std::error_code ec;
@@ -311,12 +311,12 @@ carrier::Carrier replay(const fs::path& replayRoot, const carrier::Carrier& reco
       } catch (const Error&) {
       }
     }
-    if (fresh.header.software.empty()) fresh.header.software = stages::softwareVersions();
+    if (fresh.header.software.empty()) fresh.header.software = run::softwareVersions();
   } catch (const std::exception& e) {
     // A library failing on a bagged file (a decoder exception) is a failure to reproduce,
     // not a crash of the verifier.
     problems.push_back(std::string("a step failed: ") + e.what());
-    fresh.header.software = stages::softwareVersions();
+    fresh.header.software = run::softwareVersions();
   }
   return fresh;
 }

@@ -18,9 +18,9 @@
 #include "image/raw_settings.h"
 #include "pipeline/stage.h"
 #include "stages/outputs.h"
-#include "stages/plan.h"
+#include "stages/registry.h"
+#include "stages/frame_checks.h"
 #include "stages/preprocess.h"
-#include "stages/request_checks.h"
 #include "verify/checks.h"
 
 namespace surrogate::verify {

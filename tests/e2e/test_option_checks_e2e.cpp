@@ -4,7 +4,7 @@
 //
 // Two kinds of checks: those that need no capture (cli/option_checks.h: numbers, UTF-8 text,
 // --meta keys), made while the command line is read; and those against the frame
-// (stages/request_checks.h: a circle, region or point outside the 400x300 frame of
+// (run/request_checks.h: a circle, region or point outside the 400x300 frame of
 // e2e::smallCapture), made once the capture's images are known, before any step runs.
 #include <catch2/catch.hpp>
 
@@ -18,7 +18,7 @@
 #include "core/error.h"
 #include "e2e_support.h"
 #include "pipeline/context.h"
-#include "stages/plan.h"
+#include "run/plan.h"
 
 namespace fs = std::filesystem;
 using namespace surrogate;
@@ -139,7 +139,7 @@ TEST_CASE("text options with control characters or invalid UTF-8 are refused nam
 }
 
 // ---- Checks against the frame: made once the capture's images are known -------------------
-// (stages::checkRequestAgainstFrame, called by runCapture after the capture scan.)
+// (run::checkRequestAgainstFrame, called by runCapture after the capture scan.)
 
 TEST_CASE("a circle given by hand with its centre outside the frame is refused") {
   requireRefused("--sphere 900,57,45 --reason typo", {"--sphere 900,57,45", "400x300"});
@@ -190,7 +190,7 @@ Error replayedError(const std::function<void(carrier::Carrier&)>& change) {
   for (const char* dir : {"original-captures", "jpeg-exports"})
     fs::copy(capture / dir, again / dir, fs::copy_options::recursive);
   try {
-    stages::replayCarrier(again, c, pipeline::RunSettings{});
+    run::replayCarrier(again, c, pipeline::RunSettings{});
   } catch (const Error& e) {
     return e;
   }

@@ -15,7 +15,7 @@
 #include "formats/rti_hsh.h"
 #include "image/decode.h"
 #include "pipeline/context.h"
-#include "stages/plan.h"
+#include "run/plan.h"
 
 namespace fs = std::filesystem;
 using namespace surrogate;
@@ -150,7 +150,7 @@ TEST_CASE("crop, resize and grey-region white balance: the fit covers only that 
   settings.threads = 1;
   settings.memoryBudget = std::size_t(8) << 20;  // forces several bands
   const carrier::Carrier replayed =
-      stages::replayCarrier(again, c, settings, again / "assembly-files/carrier.xml");
+      run::replayCarrier(again, c, settings, again / "assembly-files/carrier.xml");
   CHECK(preprocessingResults(replayed) == preprocessingResults(c));
   for (const char* f : {"finished-files/ptm-lrgb.ptm", "finished-files/hsh2.rti", "finished-files/normals.png"}) {
     INFO(f);
@@ -318,7 +318,7 @@ TEST_CASE("re-execution follows the carrier's order of pre-processing steps, not
   const fs::path again = e2e::freshDir("preprocess-order-replay") / "capture";
   fs::create_directories(again);
   for (const char* dir : {"original-captures", "jpeg-exports"}) fs::copy(capture / dir, again / dir, fs::copy_options::recursive);
-  const carrier::Carrier replayed = stages::replayCarrier(again, c, pipeline::RunSettings{});
+  const carrier::Carrier replayed = run::replayCarrier(again, c, pipeline::RunSettings{});
   CHECK(valueOf(replayed, "Resize", "inputSize") == "400x300");
   CHECK(valueOf(replayed, "Crop", "inputSize") == "200x150");
   const formats::PtmFile ptm = formats::readPtm(again / "finished-files/ptm-lrgb.ptm");

@@ -13,8 +13,7 @@
 #include "pipeline/runner.h"
 #include "pipeline/stage.h"
 #include "stages/inputs.h"
-#include "stages/light_stages.h"
-#include "stages/plan.h"
+#include "stages/registry.h"
 #include "../light_spiral.h"
 
 using namespace surrogate;

@@ -8,7 +8,7 @@
 
 #include "core/error.h"
 #include "stages/audit_stage.h"
-#include "stages/plan.h"
+#include "run/plan.h"
 #include "stages/prior_work.h"
 
 namespace fs = std::filesystem;
@@ -57,9 +57,9 @@ TEST_CASE("which files of the output folders are prior work follows the carrier"
 }
 
 TEST_CASE("the planned outputs name every file a default run writes", "[stages][prior]") {
-  stages::RunRequest request;
+  run::RunRequest request;
   const fs::path dir = freshDir("prior-plan");
-  const std::vector<std::string> planned = stages::plannedOutputs(stages::planRun(dir, request));
+  const std::vector<std::string> planned = stages::plannedOutputs(run::planRun(dir, request));
   // What a default run writes (docs/user-guide.md, "The capture folder").
   for (const char* path : {"assembly-files/carrier.xml", "assembly-files/lights.lp", "assembly-files/spheres.png",
                            "assembly-files/highlights-sphere1.png", "finished-files/ptm-lrgb.ptm",

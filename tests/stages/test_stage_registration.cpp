@@ -10,7 +10,8 @@
 #include "pipeline/context.h"
 #include "pipeline/runner.h"
 #include "pipeline/stage.h"
-#include "stages/plan.h"
+#include "run/plan.h"
+#include "stages/registry.h"
 
 using namespace surrogate;
 namespace fs = std::filesystem;
@@ -66,9 +67,9 @@ carrier::Carrier runOneStep(const std::string& component, const pipeline::Parame
 
 TEST_CASE("a stage registered by one line is planned in its slot with its description and defaults", "[stages][registry]") {
   registerNoOp();
-  stages::RunRequest request;
+  run::RunRequest request;
   request.stageParams.push_back({"TestNoOp", "note", "given"});
-  const carrier::Carrier c = stages::planRun(SURROGATE_SOURCE_DIR, request);
+  const carrier::Carrier c = run::planRun(SURROGATE_SOURCE_DIR, request);
   REQUIRE(c.process.size() >= 2);
   const carrier::Step& last = c.process.back();  // AfterModels: after DerivedMaps
   CHECK(last.component == "TestNoOp");
@@ -77,7 +78,7 @@ TEST_CASE("a stage registered by one line is planned in its slot with its descri
   CHECK(last.description == "Does nothing: a test of stage registration");
   CHECK(last.param("note") == "given");
   // A parameter equal to its default is no decision; another one stands for the next run.
-  const stages::RunRequest standing = stages::standingDecisions(c);
+  const run::RunRequest standing = run::standingDecisions(c);
   bool stands = false;
   for (const auto& p : standing.stageParams) stands = stands || (p.component == "TestNoOp" && p.value == "given");
   CHECK(stands);

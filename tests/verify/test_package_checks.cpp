@@ -14,7 +14,7 @@
 #include "core/temp_dir.h"
 #include "mapping/mapping.h"
 #include "pipeline/stage.h"
-#include "stages/plan.h"
+#include "stages/registry.h"
 #include "report_helpers.h"
 #include "verify/verify.h"
 

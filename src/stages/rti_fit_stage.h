@@ -1,11 +1,7 @@
-// The fitting stages:
-//
-//   RtiFit       fits one model (PTM LRGB, PTM RGB, HSH order 2 or 3) to the decoded images
-//                and the light directions, streaming over row bands; writes it to
-//                finished-files/ (.ptm or .rti) and records the fit quality: RMSE and PSNR of
-//                the stored model re-rendered at every captured light, per image and overall.
-//   DerivedMaps  from a fitted model: surface normals (16-bit PNG), albedo, and relit
-//                previews at a few fixed lights.
+// RtiFit: fits one model (PTM LRGB, PTM RGB, HSH order 2 or 3) to the decoded images and the
+// light directions, streaming over row bands; writes it to finished-files/ (.ptm or .rti) and
+// records the fit quality: RMSE and PSNR of the stored model re-rendered at every captured
+// light, per image and overall. Puts the model under modelKey(basis) for DerivedMaps and WebCopy.
 #pragma once
 
 #include <string>
@@ -32,26 +28,9 @@ struct RtiFitOptions {
   static RtiFitOptions forBasis(const std::string& basis);  // with its default output
 };
 
-// The parameters of DerivedMaps: which fitted model the maps come from.
-struct DerivedMapsOptions {
-  std::string model = "ptm-lrgb";  // a basis name fitted by an earlier RtiFit step
-
-  pipeline::Parameters toParameters() const;
-  // Error(Input) for an unknown basis or name.
-  static DerivedMapsOptions fromParameters(const pipeline::Parameters& parameters);
-};
-
-// Each stage's info() (version, description, place in the plan) is in fit_stages.cpp.
 class RtiFitStage : public pipeline::DescribedStage<RtiFitStage> {
  public:
   static constexpr const char* kComponent = "RtiFit";
-  static pipeline::StageInfo info();
-  void run(const carrier::Step&, pipeline::Context&, carrier::Result&) override;
-};
-
-class DerivedMapsStage : public pipeline::DescribedStage<DerivedMapsStage> {
- public:
-  static constexpr const char* kComponent = "DerivedMaps";
   static pipeline::StageInfo info();
   void run(const carrier::Step&, pipeline::Context&, carrier::Result&) override;
 };

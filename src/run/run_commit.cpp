@@ -1,4 +1,4 @@
-#include "stages/run_commit.h"
+#include "run/run_commit.h"
 
 #include <cstdlib>
 #include <set>
@@ -8,7 +8,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 
-namespace surrogate::stages {
+namespace surrogate::run {
 
 namespace fs = std::filesystem;
 
@@ -137,4 +137,4 @@ std::optional<std::string> recoverRun(const fs::path& capture) {
   return std::nullopt;
 }
 
-}  // namespace surrogate::stages
+}  // namespace surrogate::run

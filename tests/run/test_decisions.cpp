@@ -1,13 +1,13 @@
 // The capture's memory as data: a carrier's standing decisions, and a new command applied to
-// them (stages/plan.h). Built from carriers written here, not from a run.
+// them (run/plan.h). Built from carriers written here, not from a run.
 #include <catch2/catch.hpp>
 
 #include "carrier/carrier.h"
 #include "core/error.h"
-#include "stages/plan.h"
+#include "run/plan.h"
 
 using namespace surrogate;
-using stages::RunRequest;
+using run::RunRequest;
 
 namespace {
 
@@ -33,7 +33,7 @@ carrier::Carrier recorded() {
 }  // namespace
 
 TEST_CASE("a carrier's standing decisions are read back with their who, when and why", "[stages][decisions]") {
-  const RunRequest r = stages::standingDecisions(recorded());
+  const RunRequest r = run::standingDecisions(recorded());
   CHECK(r.title == "Stela 12");
   REQUIRE(r.creators.size() == 1);
   CHECK(r.creators[0].role == "photographer");
@@ -67,7 +67,7 @@ TEST_CASE("a new command adds to and overrides the standing decisions, and says 
   given.meta = {{"site", "store 4"}, {"project", "stelae"}};
   given.creators = {{"Bo Chen", "conservator"}};
   std::vector<std::string> changes;
-  const RunRequest r = stages::applyDecisions(stages::standingDecisions(recorded()), given, changes);
+  const RunRequest r = run::applyDecisions(run::standingDecisions(recorded()), given, changes);
   CHECK(r.title == "Stela 12");  // kept
   CHECK(r.creators.size() == 2);
   REQUIRE(r.meta.size() == 2);
@@ -89,7 +89,7 @@ TEST_CASE("withdrawing a decision is explicit, and one that does not stand is re
   given.withdrawals.push_back({"exclude-image", "IMG_0003.dng", "the flash fired after all"});
   given.withdrawals.push_back({"manual-sphere", "0", "detection is right"});
   std::vector<std::string> changes;
-  const RunRequest r = stages::applyDecisions(stages::standingDecisions(recorded()), given, changes);
+  const RunRequest r = run::applyDecisions(run::standingDecisions(recorded()), given, changes);
   CHECK(r.exclusions.empty());
   CHECK(r.stageInterventions.empty());
   REQUIRE(changes.size() == 2);
@@ -98,7 +98,7 @@ TEST_CASE("withdrawing a decision is explicit, and one that does not stand is re
 
   RunRequest wrong;
   wrong.withdrawals.push_back({"manual-highlight", "IMG_0004:0", "x"});
-  CHECK_THROWS_AS(stages::applyDecisions(stages::standingDecisions(recorded()), wrong, changes), Error);
+  CHECK_THROWS_AS(run::applyDecisions(run::standingDecisions(recorded()), wrong, changes), Error);
 }
 
 TEST_CASE("a reset withdraws every processing decision but keeps the header and accepted changes", "[stages][decisions]") {
@@ -108,7 +108,7 @@ TEST_CASE("a reset withdraws every processing decision but keeps the header and 
   RunRequest given;
   given.resetReason = "start again";
   std::vector<std::string> changes;
-  const RunRequest r = stages::applyDecisions(stages::standingDecisions(c), given, changes);
+  const RunRequest r = run::applyDecisions(run::standingDecisions(c), given, changes);
   CHECK(r.title == "Stela 12");
   CHECK(r.meta.size() == 1);
   CHECK(r.exclusions.empty());
@@ -127,7 +127,7 @@ TEST_CASE("a dome .lp with sphere decisions standing is refused, naming the conf
   given.lp = "dome.lp";
   std::vector<std::string> changes;
   try {
-    stages::applyDecisions(stages::standingDecisions(recorded()), given, changes);
+    run::applyDecisions(run::standingDecisions(recorded()), given, changes);
     FAIL("no error");
   } catch (const Error& e) {
     CHECK(e.kind() == ErrorKind::Usage);
@@ -141,7 +141,7 @@ TEST_CASE("an accepted damaged image stands across runs until withdrawn, with it
     if (s.component == "ImageDecode")
       s.interventions.push_back({"accept-decoder-warning", "jpeg-exports/IMG_0004.jpg", "sha256:ab12", "Ana Silva",
                                  "2026-11-03T10:00:00Z", "the only frame of this light"});
-  const RunRequest standing = stages::standingDecisions(c);
+  const RunRequest standing = run::standingDecisions(c);
   bool found = false;
   for (const auto& i : standing.stageInterventions)
     if (i.component == "ImageDecode" && i.intervention.kind == "accept-decoder-warning") {
@@ -153,8 +153,8 @@ TEST_CASE("an accepted damaged image stands across runs until withdrawn, with it
   CHECK(found);
   // A run with other options keeps it; planRun puts it on the ImageDecode step.
   std::vector<std::string> changes;
-  RunRequest next = stages::applyDecisions(standing, RunRequest{}, changes);
-  const carrier::Carrier planned = stages::planRun(SURROGATE_SOURCE_DIR, next);
+  RunRequest next = run::applyDecisions(standing, RunRequest{}, changes);
+  const carrier::Carrier planned = run::planRun(SURROGATE_SOURCE_DIR, next);
   bool onDecode = false;
   for (const carrier::Step& s : planned.process)
     for (const carrier::Intervention& i : s.interventions)
@@ -165,7 +165,7 @@ TEST_CASE("an accepted damaged image stands across runs until withdrawn, with it
   RunRequest withdraw;
   withdraw.withdrawals.push_back({"accept-decoder-warning", "IMG_0004", "re-shot"});
   changes.clear();
-  const RunRequest after = stages::applyDecisions(standing, withdraw, changes);
+  const RunRequest after = run::applyDecisions(standing, withdraw, changes);
   for (const auto& i : after.stageInterventions) CHECK(i.intervention.kind != "accept-decoder-warning");
   REQUIRE_FALSE(changes.empty());
   CHECK_THAT(changes.back(), Catch::Contains("accepted damage in jpeg-exports/IMG_0004.jpg") && Catch::Contains("re-shot"));
@@ -173,7 +173,7 @@ TEST_CASE("an accepted damaged image stands across runs until withdrawn, with it
   RunRequest none;
   none.withdrawals.push_back({"accept-decoder-warning", "IMG_0009", "typo"});
   try {
-    stages::applyDecisions(standing, none, changes);
+    run::applyDecisions(standing, none, changes);
     FAIL("no error");
   } catch (const Error& e) {
     CHECK(e.kind() == ErrorKind::Usage);
@@ -193,7 +193,7 @@ TEST_CASE("numbers from an older carrier's 17 digits are read as the same values
   spheres.setParam("minConfidence", "0.94999999999999996");
   spheres.setParam("regions", "0,0,200,100");
   c.addStep("Crop", "1").setParam("margin", "0.29999999999999999");
-  const RunRequest r = stages::standingDecisions(c);
+  const RunRequest r = run::standingDecisions(c);
   bool threshold = false, confidence = false;
   for (const auto& p : r.stageParams) {
     threshold = threshold || p.name == "threshold";
@@ -207,7 +207,7 @@ TEST_CASE("numbers from an older carrier's 17 digits are read as the same values
   RunRequest given;
   given.stageParams.push_back({"SphereDetection", "minConfidence", "0.95"});
   std::vector<std::string> changes;
-  stages::applyDecisions(r, given, changes);
+  run::applyDecisions(r, given, changes);
   CHECK(changes.empty());
 }
 
@@ -220,7 +220,7 @@ TEST_CASE("a recorded web copy stands with its options and is withdrawn with the
     s.setParam("tiles", "auto");  // the default: not a decision
     s.setParam("tileSize", "256");
   }
-  const RunRequest standing = stages::standingDecisions(c);
+  const RunRequest standing = run::standingDecisions(c);
   REQUIRE(standing.publish);
   CHECK(*standing.publish);
   std::vector<std::string> web;
@@ -230,9 +230,9 @@ TEST_CASE("a recorded web copy stands with its options and is withdrawn with the
 
   // Nothing said about it: it stays, and the plan has one step per basis with its quality.
   std::vector<std::string> changes;
-  RunRequest kept = stages::applyDecisions(standing, RunRequest{}, changes);
+  RunRequest kept = run::applyDecisions(standing, RunRequest{}, changes);
   CHECK(kept.publish.value_or(false));
-  const auto planned = stages::analysisStages(false, kept);
+  const auto planned = run::analysisStages(false, kept);
   int steps = 0;
   for (const auto& p : planned)
     if (p.component == "WebCopy") {
@@ -245,11 +245,11 @@ TEST_CASE("a recorded web copy stands with its options and is withdrawn with the
   RunRequest off;
   off.publish = false;
   changes.clear();
-  const RunRequest withdrawn = stages::applyDecisions(standing, off, changes);
+  const RunRequest withdrawn = run::applyDecisions(standing, off, changes);
   CHECK_FALSE(withdrawn.publish.value_or(false));
   for (const auto& p : withdrawn.stageParams) CHECK(p.component != "WebCopy");
   CHECK(changes == std::vector<std::string>{"no web copy any more"});
   RunRequest quality;
   quality.stageParams.push_back({"WebCopy", "quality", "50"});
-  CHECK_THROWS_AS(stages::applyDecisions(withdrawn, quality, changes), Error);
+  CHECK_THROWS_AS(run::applyDecisions(withdrawn, quality, changes), Error);
 }

@@ -1,4 +1,4 @@
-#include "stages/plan.h"
+#include "run/plan.h"
 
 #include <algorithm>
 #include <cstdlib>
@@ -15,7 +15,6 @@
 #include "core/text.h"
 #include "core/version.h"
 #include "fit/basis.h"
-#include "stages/fit_stages.h"
 #include "image/decode.h"
 #include "image/write.h"
 #include "meta/metadata.h"
@@ -24,11 +23,12 @@
 #include "stages/audit_stage.h"
 #include "stages/decode_stage.h"
 #include "stages/ingest_stage.h"
+#include "stages/registry.h"
 #include "stages/prior_work.h"
-#include "stages/request_checks.h"
-#include "stages/run_commit.h"
+#include "run/request_checks.h"
+#include "run/run_commit.h"
 
-namespace surrogate::stages {
+namespace surrogate::run {
 
 namespace fs = std::filesystem;
 
@@ -97,7 +97,7 @@ std::vector<PlannedStage> analysisStages(bool captureHasLp, const RunRequest& re
 }
 
 carrier::Carrier planRun(const fs::path& capture, const RunRequest& request) {
-  registerBuiltinStages();
+  stages::registerBuiltinStages();
   if (!fs::is_directory(capture))
     throwInputError(capture.string(), "plan", fs::exists(capture) ? "is not a folder; give the capture folder"
                                                                    : "the capture folder does not exist");
@@ -120,7 +120,7 @@ carrier::Carrier planRun(const fs::path& capture, const RunRequest& request) {
   // Ingest and decode take their parameters from the request's own fields (source, dome .lp,
   // exclusions, LibRaw settings); every later stage from its defaults and the request's
   // stage parameters, in the slot its info() names.
-  carrier::Step& ingest = addPlannedStep(c, IngestStage::info());
+  carrier::Step& ingest = addPlannedStep(c, stages::IngestStage::info());
   ingest.setParam("source", capture::sourceName(capture::parseSource(request.source.empty() ? "auto" : request.source)));
   const bool dome = request.lp && !request.lp->empty();
   if (dome) ingest.setParam("lp", *request.lp);
@@ -133,7 +133,7 @@ carrier::Carrier planRun(const fs::path& capture, const RunRequest& request) {
   for (const RunRequest::StageIntervention& i : request.stageInterventions)
     if (i.component == ingest.component) ingest.interventions.push_back(stamped(i.intervention));
 
-  carrier::Step& decode = addPlannedStep(c, DecodeStage::info());
+  carrier::Step& decode = addPlannedStep(c, stages::DecodeStage::info());
   image::RawDecodeSettings settings = image::RawDecodeSettings::fromParameters(request.decodeSettings);
   for (const auto& [name, value] : settings.toParameters()) decode.setParam(name, value);
   for (const RunRequest::StageIntervention& i : request.stageInterventions)
@@ -190,7 +190,7 @@ void addAcceptedChanges(const fs::path& capture, const RunRequest& request, cons
     const fs::path file = capture / fs::u8path(a.path);
     const std::string now = fs::is_regular_file(file) ? "sha256:" + digestFile(file).sha256 : "removed";
     merged.stageInterventions.push_back(
-        {IngestStage::kComponent, {"accept-changed-original", a.path, now, "", "", a.reason}});
+        {stages::IngestStage::kComponent, {"accept-changed-original", a.path, now, "", "", a.reason}});
     changes.push_back("accepted the change of " + a.path + " (now " + now + "): " + a.reason);
   }
 }
@@ -221,11 +221,11 @@ void addAcceptedDamage(const fs::path& capture, const capture::CaptureLayout& la
     auto& list = merged.stageInterventions;
     list.erase(std::remove_if(list.begin(), list.end(),
                               [&](const RunRequest::StageIntervention& i) {
-                                return i.component == DecodeStage::kComponent && i.intervention.kind == kAcceptDecoderWarning &&
+                                return i.component == stages::DecodeStage::kComponent && i.intervention.kind == stages::kAcceptDecoderWarning &&
                                        i.intervention.target == *path;
                               }),
                list.end());
-    list.push_back({DecodeStage::kComponent, {kAcceptDecoderWarning, *path, bytes, "", "", a.reason}});
+    list.push_back({stages::DecodeStage::kComponent, {stages::kAcceptDecoderWarning, *path, bytes, "", "", a.reason}});
     changes.push_back("accepted the damage its decoder reports in " + *path + " (" + bytes + "): " + a.reason);
   }
 }
@@ -255,11 +255,11 @@ void checkEnoughPhotographs(const capture::CaptureLayout& layout, const RunReque
 carrier::Carrier planRunWithAudit(const fs::path& capture, const carrier::Carrier* previous, RunRequest& merged) {
   merged.auditPriorWork = true;
   const carrier::Carrier withAudit = planRun(capture, merged);
-  if (!priorWorkToAudit(capture, previous, plannedOutputs(withAudit)).empty()) return withAudit;
+  if (!stages::priorWorkToAudit(capture, previous, stages::plannedOutputs(withAudit)).empty()) return withAudit;
   merged.auditPriorWork = false;
   auto& params = merged.stageParams;
   params.erase(std::remove_if(params.begin(), params.end(),
-                              [](const RunRequest::StageParam& p) { return p.component == AuditStage::kComponent; }),
+                              [](const RunRequest::StageParam& p) { return p.component == stages::AuditStage::kComponent; }),
                params.end());
   return planRun(capture, merged);
 }
@@ -268,7 +268,7 @@ carrier::Carrier planRunWithAudit(const fs::path& capture, const carrier::Carrie
 
 carrier::Carrier runCapture(const fs::path& captureArg, const RunRequest& request,
                             const pipeline::RunSettings& settings, bool takeLock) {
-  registerBuiltinStages();
+  stages::registerBuiltinStages();
   if (!fs::is_directory(captureArg))
     throwInputError(captureArg.string(), "plan", fs::exists(captureArg) ? "is not a folder; give the capture folder"
                                                                         : "the capture folder does not exist");
@@ -303,8 +303,8 @@ carrier::Carrier runCapture(const fs::path& captureArg, const RunRequest& reques
   carrier::Carrier c = planRunWithAudit(capture, previous ? &*previous : nullptr, merged);
   // Before anything runs: never a plan that writes over a file another tool made. The files
   // are listed again: recoverRun may have just finished an interrupted commit.
-  refuseOutputsOverPriorWork(capture::listOutputFolderFiles(capture), previous ? &*previous : nullptr,
-                             plannedOutputs(c));
+  stages::refuseOutputsOverPriorWork(capture::listOutputFolderFiles(capture), previous ? &*previous : nullptr,
+                             stages::plannedOutputs(c));
   pipeline::RunSettings s = settings;
   if (s.who.empty()) s.who = request.who.empty() ? defaultWho() : request.who;
   carrier::RunRecord record{"r" + std::to_string((previous ? previous->header.runs.size() : 0) + 1),
@@ -373,7 +373,7 @@ carrier::Carrier runCapture(const fs::path& captureArg, const RunRequest& reques
 
 carrier::Carrier replayCarrier(const fs::path& captureRoot, const carrier::Carrier& recorded,
                                const pipeline::RunSettings& settings, const fs::path& carrierPath) {
-  registerBuiltinStages();
+  stages::registerBuiltinStages();
   carrier::Carrier c;
   c.header = recorded.header;
   c.header.machine = carrier::currentMachine();
@@ -395,4 +395,4 @@ carrier::Carrier replayCarrier(const fs::path& captureRoot, const carrier::Carri
   return c;
 }
 
-}  // namespace surrogate::stages
+}  // namespace surrogate::run

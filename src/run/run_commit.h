@@ -17,7 +17,7 @@
 
 #include "carrier/carrier.h"
 
-namespace surrogate::stages {
+namespace surrogate::run {
 
 // CAPTURE/.surrogate/staging: where a run in progress writes.
 std::filesystem::path stagingRoot(const std::filesystem::path& capture);
@@ -45,4 +45,4 @@ void commitRun(const std::filesystem::path& capture, const carrier::Carrier* pre
 // Returns a sentence for the run history when it found an interrupted run, else nothing.
 std::optional<std::string> recoverRun(const std::filesystem::path& capture);
 
-}  // namespace surrogate::stages
+}  // namespace surrogate::run

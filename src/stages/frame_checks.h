@@ -1,18 +1,16 @@
-// The values of a run checked against the frame they apply to, before any processing: a circle
-// given by hand (--sphere), a sphere search region (--sphere-roi), a highlight given by hand
-// (--highlight), a crop rectangle or grey region (--crop, --wb-region). The command line checks
-// what needs no frame (cli/option_checks.h) with the same rules; the stages check again
-// (defence in depth: a recorded carrier replayed by the verifier never went through the
-// command line), so that a bad value is an error naming it, never an OpenCV assertion.
+// Whether a value given by hand fits the frame it applies to: a circle given by hand
+// (--sphere), a highlight given by hand (--highlight), a region (--sphere-roi, --crop,
+// --wb-region). One rule for every place that checks: the command line checks what needs no
+// frame (cli/option_checks.h), the run checks the request against the capture's frame
+// (run/request_checks.h), and the stages check again (defence in depth: a recorded carrier
+// replayed by the verifier never went through the command line), so that a bad value is an
+// error naming it, never an OpenCV assertion.
 //
-//   stages::checkRequestAgainstFrame(request, 400, 300);  // Error(Usage) naming the option
 //   if (const std::string why = stages::sphereCircleProblem(cx, cy, r, w, h); !why.empty()) ...
 #pragma once
 
 #include <optional>
 #include <string>
-
-#include "stages/plan.h"
 
 namespace surrogate::stages {
 
@@ -46,14 +44,5 @@ std::string highlightPointProblem(double x, double y, int width = 0, int height 
 // Why the rectangle x, y, w, h cannot be a region of a width x height frame, or "" when it
 // can: whole numbers, x and y >= 0, w and h > 0; with a frame, wholly inside it.
 std::string frameRegionProblem(double x, double y, double w, double h, int width = 0, int height = 0);
-
-// Checks the request's values against a width x height frame (the capture's images), before
-// any processing: the circles and highlights given by hand, the sphere search regions, a
-// user crop rectangle, a white-balance grey region and the size a resize gives (at least
-// kMinResizeSide pixels per side, stages/preprocess.h). A highlight given for a sphere whose
-// circle is given by hand must lie on that circle, and name one of those spheres. Throws
-// Error(Usage) naming the option and its value ("--sphere 900,57,45"), saying what is wrong
-// and what the frame allows.
-void checkRequestAgainstFrame(const RunRequest& request, int width, int height);
 
 }  // namespace surrogate::stages

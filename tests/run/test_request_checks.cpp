@@ -1,17 +1,19 @@
-// A run's values against the frame they apply to (stages/request_checks.h): circles and
-// highlights given by hand, sphere search regions, crop and grey-region rectangles. Every bad
-// value is Error(Usage) naming the option and the value.
+// A run's values against the frame they apply to (run/request_checks.h, with the rules of
+// stages/frame_checks.h): circles and highlights given by hand, sphere search regions, crop and
+// grey-region rectangles. Every bad value is Error(Usage) naming the option and the value.
 #include <catch2/catch.hpp>
 
 #include <functional>
 #include <string>
 
 #include "core/error.h"
-#include "stages/plan.h"
+#include "run/plan.h"
+#include "run/request_checks.h"
+#include "stages/frame_checks.h"
 #include "stages/preprocess.h"
-#include "stages/request_checks.h"
 
 using namespace surrogate;
+using namespace surrogate::run;
 using namespace surrogate::stages;
 
 namespace {

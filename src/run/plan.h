@@ -19,7 +19,7 @@
 #include "carrier/carrier.h"
 #include "pipeline/context.h"
 
-namespace surrogate::stages {
+namespace surrogate::run {
 
 struct Exclusion {
   std::string image;   // shot name, file name or path
@@ -134,10 +134,6 @@ RunRequest standingDecisions(const carrier::Carrier& recorded);
 RunRequest applyDecisions(const RunRequest& standing, const RunRequest& given,
                           std::vector<std::string>& changes);
 
-// Registers every stage this build of Surrogate has with the pipeline's registry (once):
-// src/stages/registry.cpp, one line a stage.
-void registerBuiltinStages();
-
 // The stages after ImageDecode for a capture (with or without a dome .lp) and a request whose
 // decisions are complete (applyDecisions): every registered stage in the slot its info() names
 // (pipeline::PlanSlot), slot by slot, in registration order within a slot.
@@ -150,7 +146,7 @@ carrier::Carrier planRun(const std::filesystem::path& capture, const RunRequest&
 // finishes a commit an earlier process was killed in, starts from the decisions the carrier
 // records and applies `request` to them, checks every value against the frame, plans, runs
 // into a staging folder, and only when every step succeeded makes the staged results and
-// carrier the capture's state (stages/run_commit.h); results no longer produced are moved to
+// carrier the capture's state (run/run_commit.h); results no longer produced are moved to
 // superseded-files/. A failed run leaves the previous state whole and adds itself,
 // with its cause, to that carrier's run history. Returns the new carrier. `takeLock` false: the
 // caller holds the capture's lock already (pack, which holds it while it packs).
@@ -170,4 +166,4 @@ carrier::Carrier replayCarrier(const std::filesystem::path& captureRoot,
 // The name, version and role of every library whose behaviour can change results.
 std::vector<carrier::Software> softwareVersions();
 
-}  // namespace surrogate::stages
+}  // namespace surrogate::run

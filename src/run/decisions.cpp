@@ -1,5 +1,5 @@
 // The capture's memory: the decisions a carrier records, and a new command's decisions applied
-// to them (stages/plan.h: standingDecisions, applyDecisions).
+// to them (run/plan.h: standingDecisions, applyDecisions).
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -9,14 +9,15 @@
 #include "core/error.h"
 #include "core/text.h"
 #include "stages/outputs.h"
-#include "stages/plan.h"
+#include "run/plan.h"
 #include "pipeline/stage.h"
 #include "stages/decode_stage.h"
-#include "stages/fit_stages.h"
+#include "stages/rti_fit_stage.h"
 #include "stages/ingest_stage.h"
-#include "stages/light_stages.h"
+#include "stages/registry.h"
+#include "stages/recorded_checks.h"
 
-namespace surrogate::stages {
+namespace surrogate::run {
 
 namespace fs = std::filesystem;
 
@@ -72,7 +73,7 @@ std::string describe(const carrier::Intervention& i) {
                      : i.kind == "manual-sphere"        ? "manual sphere " + i.target + " (" + i.value + ")"
                      : i.kind == "manual-highlight"     ? "manual highlight " + i.target + " (" + i.value + ")"
                      : i.kind == "accept-decoder-warning" ? "accepted damage in " + i.target
-                     : i.kind == kAcceptCheck           ? "accepted check " + i.target
+                     : i.kind == stages::kAcceptCheck   ? "accepted check " + i.target
                                                         : i.kind + " " + i.target;
   return what + ", recorded " + i.time + " by " + i.who + " (\"" + i.reason + "\")";
 }
@@ -124,19 +125,19 @@ RunRequest standingDecisions(const carrier::Carrier& recorded) {
   r.rights = recorded.header.rights;
   r.license = recorded.header.license;
   r.audited = recorded.header.audited;
-  registerBuiltinStages();
+  stages::registerBuiltinStages();
   std::vector<std::string> bases;
   for (const carrier::Step& s : recorded.process) {
     const pipeline::StageInfo* info = pipeline::StageRegistry::instance().info(s.component);
     const pipeline::PlanSlot slot = info ? info->slot : pipeline::PlanSlot::NotPlanned;
-    if (s.component == IngestStage::kComponent) {
+    if (s.component == stages::IngestStage::kComponent) {
       r.source = s.param("source", "auto");
       if (s.hasParam("lp")) r.lp = s.param("lp");
       for (const carrier::Intervention& i : s.interventions) {
         if (i.kind == "exclude-image") r.exclusions.push_back({i.target, i.reason, i.who, i.time});
         else r.stageInterventions.push_back({s.component, i});
       }
-    } else if (s.component == DecodeStage::kComponent) {
+    } else if (s.component == stages::DecodeStage::kComponent) {
       for (const carrier::Param& p : s.params) r.decodeSettings.emplace_back(p.name, recordedValue(p.value));
       for (const carrier::Intervention& i : s.interventions) r.stageInterventions.push_back({s.component, i});
     } else if (slot == pipeline::PlanSlot::Preprocessing) {
@@ -147,8 +148,8 @@ RunRequest standingDecisions(const carrier::Carrier& recorded) {
       // One step per model, with the same options: those of the first, without its model.
       if (!r.publish) addPublishOptions(s, info->defaults, r);
       r.publish = true;
-    } else if (s.component == RtiFitStage::kComponent) {
-      bases.push_back(fit::basisName(RtiFitOptions::fromParameters(parametersOf(s)).fit.basis));
+    } else if (s.component == stages::RtiFitStage::kComponent) {
+      bases.push_back(fit::basisName(stages::RtiFitOptions::fromParameters(stages::parametersOf(s)).fit.basis));
     } else if (!info || !info->forModel) {  // the plan derives a forModel stage's parameters
       const pipeline::Parameters defaults = info ? info->defaults : pipeline::Parameters{};
       for (const carrier::Param& p : s.params) {
@@ -236,7 +237,7 @@ RunRequest applyDecisions(const RunRequest& standing, const RunRequest& given,
       const std::string option = w.kind == "exclude-image"            ? "--forget-exclusion"
                                  : w.kind == "manual-sphere"          ? "--forget-sphere"
                                  : w.kind == "accept-decoder-warning" ? "--forget-damaged"
-                                 : w.kind == kAcceptCheck             ? "--forget-accept"
+                                 : w.kind == stages::kAcceptCheck     ? "--forget-accept"
                                                                       : "--forget-highlight";
       throw Error(ErrorKind::Usage, option + " " + w.target, "command line",
                   "the capture's carrier holds no such decision (standing: " +
@@ -351,4 +352,4 @@ RunRequest applyDecisions(const RunRequest& standing, const RunRequest& given,
   return r;
 }
 
-}  // namespace surrogate::stages
+}  // namespace surrogate::run

@@ -1,0 +1,205 @@
+#include "stages/highlight_detection_stage.h"
+
+#include <algorithm>
+#include <cstdlib>
+
+#include "capture/capture.h"
+#include "carrier/carrier.h"
+#include "core/error.h"
+#include "core/text.h"
+#include "hrti/drawing.h"
+#include "hrti/highlight_detection.h"
+#include "hrti/stack_median.h"
+#include "pipeline/context.h"
+#include "stages/frame_checks.h"
+#include "stages/inputs.h"
+#include "stages/light_estimation.h"
+#include "stages/outputs.h"
+#include "stages/sphere_detection_stage.h"
+#include "stages/stack_views.h"
+
+namespace surrogate::stages {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The overview this stage writes for each sphere: named once, for the stage and for its
+// info() (with "*" for the sphere).
+std::string highlightOverview(const std::string& sphere) {
+  return std::string(capture::kAssemblyDir) + "/highlights-sphere" + sphere + ".png";
+}
+
+std::string confidenceText(double c) { return fixedDecimals(c, 2); }
+
+// Up to `most` items joined by "; ", then "and N more".
+std::string listed(const std::vector<std::string>& items, std::size_t most = 6) {
+  std::string out;
+  for (std::size_t i = 0; i < items.size() && i < most; ++i) out += (i ? "; " : "") + items[i];
+  if (items.size() > most) out += "; and " + std::to_string(items.size() - most) + " more";
+  return out;
+}
+
+// A sphere on which most images (more than half, and at least kSphereRefusals) show no
+// trustworthy highlight is not a sphere: a circle given by hand in the wrong place, or a
+// detection that found something else.
+constexpr std::size_t kSphereRefusals = 3;
+void refuseSphereWithoutHighlights(const carrier::Step& sphereStep, const hrti::DetectedSphere& s, std::size_t k,
+                                   const std::vector<std::string>& refused, std::size_t images) {
+  const std::string counted = "shows no trustworthy highlight in " + std::to_string(refused.size()) + " of " +
+                              std::to_string(images) + " images (" + listed(refused, 3) + ")";
+  const std::string circle = fixedDecimals(s.cx, 1) + "," + fixedDecimals(s.cy, 1) + "," + fixedDecimals(s.r, 1);
+  for (const carrier::Intervention* i : sphereStep.interventionsOfKind("manual-sphere")) {
+    if (i->target != std::to_string(k)) continue;
+    throw Error(ErrorKind::Input, "--sphere " + i->value, "highlight detection",
+                "the circle given by hand for sphere " + std::to_string(k) + " " + counted +
+                    ": it is probably not where the sphere is in the images. Give the sphere's circle "
+                    "again, as it appears in the images, with --sphere CX,CY,R --reason \"...\", or "
+                    "withdraw it with --forget-sphere " + std::to_string(k) +
+                    " --reason \"...\" to let Surrogate find the sphere. (If the circle is right, these "
+                    "images show no highlight: leave them out with --exclude or give their highlights by "
+                    "hand with --highlight.)");
+  }
+  throw Error(ErrorKind::Input, "sphere " + std::to_string(k) + " at " + circle, "highlight detection",
+              "the circle found for sphere " + std::to_string(k) + " " + counted +
+                  ": it is probably not a sphere. Give the sphere's circle by hand with --sphere CX,CY,R "
+                  "--reason \"...\", or restrict the search to the sphere with --sphere-roi X,Y,W,H. (If "
+                  "the circle is right, these images show no highlight: leave them out with --exclude or "
+                  "give their highlights by hand with --highlight.)");
+}
+
+}  // namespace
+
+pipeline::StageInfo HighlightDetectionStage::info() {
+  // 2: every highlight judged (confidence, reason, refused flags), refusals stop the run
+  // 3: the overview labels each highlight with its image's file name (it numbered them by
+  //    position among the processed images), larger and kept inside the picture
+  // 4: PNG files encoded with fixed Up filters and run-length deflate (src/image/png_encoder.h)
+  // 5: PNG files compressed by libdeflate at level 1 (src/image/png_encoder.h)
+  // 6: the highlight is the core of the image's rise above the stack's median (blurred), not
+  //    the spot nearest the centre; specks and streaks refused by compactness and roundness
+  pipeline::StageInfo info = pipeline::withOptions<hrti::HighlightOptions>(
+      {kComponent, "6",
+       "Find the specular highlight on each sphere in each image: the peak of the image's rise "
+       "above the stack's median, blurred; the weighted centroid of its core",
+       pipeline::PlanSlot::LightsFromSpheres});
+  info.outputs = [](const carrier::Step&) { return std::vector<std::string>{highlightOverview("*")}; };
+  info.reads = pipeline::alwaysReads({kLuminanceStack, kInputImages, kSpheres, kStackMedian});
+  return info;
+}
+
+void HighlightDetectionStage::run(const carrier::Step& step, pipeline::Context& ctx,
+                                  carrier::Result& result) {
+  const auto lum = ctx.get<ImageStack>(kLuminanceStack);
+  const auto inputs = ctx.get<InputImages>(kInputImages);
+  const auto spheres = ctx.get<Spheres>(kSpheres);
+  const auto median = ctx.get<hrti::StackMedian>(kStackMedian);
+  const hrti::HighlightOptions options = hrti::HighlightOptions::fromParameters(parametersOf(step));
+  ctx.progress("Highlight detection", 0);
+  auto highlights = std::make_shared<Highlights>(
+      hrti::detectHighlights(*lum, *spheres, options, ctx.settings.threads, median.get()));
+
+  // Manual highlights: target "IMAGE:SPHERE" (sphere index from 0), value "x,y".
+  for (const carrier::Intervention* i : step.interventionsOfKind("manual-highlight")) {
+    const auto colon = i->target.rfind(':');
+    const std::string name = colon == std::string::npos ? i->target : i->target.substr(0, colon);
+    const int sphere = colon == std::string::npos ? 0 : std::atoi(i->target.c_str() + colon + 1);
+    const std::string stem = fs::path(name).stem().string();
+    auto it = std::find_if(inputs->begin(), inputs->end(),
+                           [&](const InputImage& in) { return in.stem == stem || in.stem == name; });
+    if (it == inputs->end() || sphere < 0 || sphere >= static_cast<int>(spheres->size()))
+      throw Error(ErrorKind::Usage, i->target, "highlight detection",
+                  "a manual highlight names an image or sphere that is not processed");
+    const std::vector<double> v = recordedNumbers(i->value, 2, "manual highlight");
+    const hrti::DetectedSphere& on = (*spheres)[sphere];
+    const std::string why =
+        highlightPointProblem(v[0], v[1], lum->width(), lum->height(), SphereCircle{on.cx, on.cy, on.r});
+    if (!why.empty())
+      throw Error(ErrorKind::Input, "highlight of " + i->target + " given by hand (" + i->value + ")",
+                  "highlight detection", why + "; give it again with --highlight " + i->target + "=X,Y");
+    hrti::Highlight& h = (*highlights)[it - inputs->begin()][sphere];
+    h.x = v[0];
+    h.y = v[1];
+    h.flag = hrti::HighlightFlag::Manual;
+    h.confidence = 1;
+    h.reason = "given by hand: " + i->reason;
+    ctx.carrier.addLog("intervention", step.id,
+                       "highlight of " + i->target + " set by hand to " + i->value + ": " + i->reason, i->who);
+  }
+
+  // The record: every highlight with its flag, confidence and, when refused or doubtful, why.
+  std::vector<std::string> unusable;  // images without any usable highlight, with why
+  std::vector<const InputImage*> unusableImages;
+  std::vector<std::vector<std::string>> refusedOn(spheres->size());  // per sphere
+  for (std::size_t n = 0; n < inputs->size(); ++n) {
+    const InputImage& in = (*inputs)[n];
+    bool usable = false;
+    std::vector<std::string> why;
+    for (std::size_t k = 0; k < spheres->size(); ++k) {
+      const hrti::Highlight& h = (*highlights)[n][k];
+      carrier::DataItem& item = result.add("highlight");
+      item.set("image", in.fileId).set("sphere", static_cast<int>(k)).set("x", h.x).set("y", h.y)
+          .set("flag", hrti::flagName(h.flag)).set("peak", h.peak).set("components", h.components)
+          .set("confidence", h.confidence);
+      if (!h.reason.empty()) item.set("reason", h.reason);
+      const std::string on = spheres->size() > 1 ? " on sphere " + std::to_string(k) : "";
+      if (hrti::isUsable(h.flag)) {
+        usable = true;
+        if (h.flag == hrti::HighlightFlag::Multiple)
+          ctx.carrier.addLog("warning", step.id, in.relativePath + ": several strong highlights" + on +
+                             "; the one nearest the centre was used (confidence " + confidenceText(h.confidence) +
+                             "), check the highlight overview");
+        else if (h.flag == hrti::HighlightFlag::Ok && h.confidence < 0.5)
+          ctx.carrier.addLog("warning", step.id, in.relativePath + ": the highlight" + on + " has confidence " +
+                             confidenceText(h.confidence) + " only; check it on the highlight overview");
+      } else {
+        refusedOn[k].push_back(in.stem);
+        why.push_back(std::string(hrti::flagName(h.flag)) + on + ": " + h.reason);
+      }
+    }
+    if (!usable) {
+      unusable.push_back(in.relativePath + " (" + listed(why, 2) + ")");
+      unusableImages.push_back(&in);
+    } else if (!why.empty()) {
+      ctx.carrier.addLog("warning", step.id, in.relativePath + ": no trustworthy highlight " + listed(why, 2) +
+                         "; its light comes from the other sphere(s)");
+    }
+  }
+  // Highlights labelled by the image's file name, as every table of the report names them.
+  std::vector<std::string> imageLabels;
+  for (const InputImage& in : *inputs) imageLabels.push_back(in.stem);
+  // Only the sphere's surroundings of the median are read, at full resolution.
+  const hrti::MedianCrop crop = [&](const hrti::Rect& r) { return displayable(median->window(r), *lum); };
+  for (std::size_t k = 0; k < spheres->size(); ++k) {
+    std::vector<hrti::Highlight> perImage;
+    for (const auto& row : *highlights) perImage.push_back(row[k]);
+    const std::string overview = highlightOverview(std::to_string(k + 1));
+    writePicture(ctx,
+                 hrti::drawHighlightOverview(median->width(), median->height(), crop, (*spheres)[k], perImage,
+                                             imageLabels),
+                 overview);
+    recordOutput(ctx, step, result, overview, "assembly", "PNG", "highlight-overview", "image/png");
+  }
+
+  // Refused by default: never a confident light direction from a highlight that is not one.
+  const carrier::Step* sphereStep = nullptr;
+  for (const carrier::Step& s : ctx.carrier.process)
+    if (s.component == SphereDetectionStage::kComponent) sphereStep = &s;
+  for (std::size_t k = 0; k < spheres->size(); ++k)
+    if (2 * refusedOn[k].size() > inputs->size() && refusedOn[k].size() >= kSphereRefusals && sphereStep)
+      refuseSphereWithoutHighlights(*sphereStep, (*spheres)[k], k, refusedOn[k], inputs->size());
+  if (!unusable.empty()) {
+    const bool one = unusable.size() == 1;
+    const std::string& stem = unusableImages.front()->stem;
+    throw Error(ErrorKind::Input, one ? unusableImages.front()->relativePath : "", "highlight detection",
+                (one ? std::string("this image has") : std::to_string(unusable.size()) + " images have") +
+                    " no trustworthy highlight on any sphere, so " + (one ? "its" : "their") +
+                    " light direction cannot be measured: " + listed(unusable, 8) + ". Leave each out with "
+                    "--exclude " + stem + " --reason \"...\", or give its highlight by hand with --highlight " +
+                    stem + ":0=X,Y --reason \"...\" (X,Y in pixels of the full frame)");
+  }
+  ctx.put(kHighlights, highlights);
+  ctx.progress("Highlight detection", 1);
+}
+
+}  // namespace surrogate::stages

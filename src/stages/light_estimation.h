@@ -1,0 +1,46 @@
+// Private to src/stages: what the light-estimation stages (SphereDetection,
+// HighlightDetection, LightDirections, LightsFromFile) share: their pixel and light types,
+// reading numbers recorded in the carrier, the median made viewable, and lights.lp.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "carrier/carrier.h"
+#include "core/image.h"
+#include "core/stack.h"
+#include "hrti/highlight_detection.h"
+#include "hrti/sphere_detection.h"
+#include "pipeline/context.h"
+#include "stages/inputs.h"
+
+namespace surrogate::stages {
+
+using Spheres = std::vector<hrti::DetectedSphere>;
+using Highlights = std::vector<std::vector<hrti::Highlight>>;  // [image][sphere]
+using Lights = std::vector<std::array<double, 3>>;
+
+// `count` comma-separated numbers recorded in the carrier ("cx,cy,r"); Error(Input) naming
+// `what` otherwise.
+std::vector<double> recordedNumbers(const std::string& text, std::size_t count,
+                                    const std::string& what);
+
+// The median image made viewable: camera-raw luminance is linear and would look black.
+Image displayable(const Image& median, const ImageStack& lum);
+
+// The light file LightDirections and LightsFromFile write (their info().outputs).
+std::vector<std::string> lightsFileOutput(const carrier::Step&);
+
+// Writes assembly-files/lights.lp. Like every .lp, it names the images relative to its own
+// folder ("../original-captures/IMG_0001.dng"), as RTIBuilder and relight expect; the names
+// are made from the capture-relative paths alone, lexically, so the file's bytes do not
+// depend on where the capture is (the verifier re-executes elsewhere and compares hashes).
+void writeLights(pipeline::Context& ctx, const carrier::Step& step, carrier::Result& result,
+                 const InputImages& inputs, const Lights& lights);
+
+// One <light> item of a step's result: the direction, its elevation and azimuth in degrees.
+void addLightItem(carrier::Result& result, const std::string& fileId, const std::array<double, 3>& l,
+                  const std::string& source);
+
+}  // namespace surrogate::stages

@@ -1,0 +1,202 @@
+#include "stages/rti_fit_stage.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <functional>
+#include <future>
+#include <numeric>
+
+#include "capture/capture.h"
+#include "core/digest.h"
+#include "core/error.h"
+#include "core/parallel.h"
+#include "core/text.h"
+#include "fit/fit.h"
+#include "fit/render.h"
+#include "hrti/light_checks.h"
+#include "image/decode.h"
+#include "pipeline/context.h"
+#include "stages/inputs.h"
+#include "stages/outputs.h"
+#include "stages/recorded_checks.h"
+
+namespace surrogate::stages {
+
+using Lights = std::vector<std::array<double, 3>>;
+
+std::string modelKey(const std::string& basis) { return "model:" + basis; }
+
+std::string defaultFitOutput(const std::string& basisText) {
+  const fit::Basis basis = fit::parseBasis(basisText);
+  const bool ptm = basis == fit::Basis::PtmLrgb || basis == fit::Basis::PtmRgb;
+  return std::string(capture::kFinishedDir) + "/" + fit::basisName(basis) + (ptm ? ".ptm" : ".rti");
+}
+
+namespace {
+constexpr const char* kOutputParameter = "output";
+
+// Writes `model` to `path` (writeFile: formats::writePtm or writeRti) and takes the file's
+// digests, while `written` (RunSettings::ptmWritten or hshWritten, when set) gets the model on
+// a thread of its own: once the fit is done each is one core's work, and the file alone took
+// 0.14 s of one core at 36 x 3000x2000 while the other waited (the report's copy of the model).
+// With one thread, one after the other. Both have ended when this returns or throws.
+template <class Model>
+FileDigests writeModel(const std::filesystem::path& path, const Model& model,
+                       void (*writeFile)(const std::filesystem::path&, const Model&),
+                       const std::function<void(const std::string&, const Model&)>& written,
+                       const std::string& output, int threads) {
+  const auto alongside = [&] {
+    if (written) written(output, model);
+  };
+  const auto write = [&] {
+    writeFile(path, model);
+    return digestFile(path);
+  };
+  if (effectiveThreads(threads) < 2) {
+    FileDigests d = write();
+    alongside();
+    return d;
+  }
+  std::future<void> other = std::async(std::launch::async, alongside);
+  FileDigests d;
+  try {
+    d = write();
+  } catch (...) {
+    other.wait();
+    throw;
+  }
+  other.get();
+  return d;
+}
+}  // namespace
+
+pipeline::Parameters RtiFitOptions::toParameters() const {
+  pipeline::Parameters p = fit.toParameters();
+  if (!output.empty()) p.emplace_back(kOutputParameter, output);
+  return p;
+}
+
+RtiFitOptions RtiFitOptions::fromParameters(const pipeline::Parameters& parameters) {
+  RtiFitOptions o;
+  pipeline::Parameters fitParameters;
+  for (const auto& [name, value] : parameters) {
+    if (name == kOutputParameter) o.output = checkedOutputPath(value);
+    else fitParameters.emplace_back(name, value);
+  }
+  o.fit = fit::FitOptions::fromParameters(fitParameters);
+  return o;
+}
+
+RtiFitOptions RtiFitOptions::forBasis(const std::string& basis) {
+  RtiFitOptions o;
+  o.fit.basis = fit::parseBasis(basis);
+  o.output = defaultFitOutput(basis);
+  return o;
+}
+
+pipeline::StageInfo RtiFitStage::info() {
+  pipeline::StageInfo info = pipeline::withOptions<RtiFitOptions>(
+      // Version 2: coefficients are quantised from their values rounded to float (src/fit/fit.h),
+      // which moves a few bytes by one level. Version 3: a fit is conditioned on its light set
+      // (src/fit/conditioning.h): where the lights leave terms too alike for 8-bit planes (a
+      // narrow cone around the view axis), HSH order 3's order-3 terms and PTM's quadratic
+      // terms are damped toward the lower order, so those models change; lights spread over the
+      // hemisphere give version 2's bytes. Each fit also records the check residual-outlier
+      // (hrti/light_checks.h), and an image the model misses far more than the others stops
+      // the run unless the check is accepted. Version 4: every fit records the light matrix's
+      // condition and the quantisation noise gain (how well the lights support the basis).
+      {kComponent, "4", "Least-squares fit of a per-pixel reflectance model over the light directions",
+       pipeline::PlanSlot::EachModel});
+  info.forModel = [](const std::string& basis) { return RtiFitOptions::forBasis(basis).toParameters(); };
+  info.outputs = [](const carrier::Step& step) {
+    const RtiFitOptions o = RtiFitOptions::fromParameters(parametersOf(step));
+    return std::vector<std::string>{o.output.empty() ? defaultFitOutput(fit::basisName(o.fit.basis)) : o.output};
+  };
+  info.reads = pipeline::alwaysReads({kRgbStack, kLights, kInputImages});
+  return info;
+}
+
+void RtiFitStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier::Result& result) {
+  const auto rgb = ctx.get<ImageStack>(kRgbStack);
+  const auto lights = ctx.get<Lights>(kLights);
+  const auto inputs = ctx.get<InputImages>(kInputImages);
+  const RtiFitOptions recorded = RtiFitOptions::fromParameters(parametersOf(step));
+  fit::FitOptions options = recorded.fit;
+  options.threads = ctx.settings.threads;
+  options.memoryBudgetBytes = ctx.settings.fitBudget();
+  const std::string basis = fit::basisName(options.basis);
+  const std::string label = "Fitting " + basis;
+  options.progress = [&](double f) { ctx.progress(label, f); };
+  ctx.progress(label, 0);  // the fit reports once per band of rows: show the bar from the start
+  const std::string output = recorded.output.empty() ? defaultFitOutput(basis) : recorded.output;
+
+  fit::FitStatistics stats;
+  std::shared_ptr<fit::Relightable> model;
+  std::string format;
+  FileDigests digests;
+  const std::filesystem::path path = ctx.outputPath(output);
+  if (options.basis == fit::Basis::PtmLrgb || options.basis == fit::Basis::PtmRgb) {
+    formats::PtmFile ptm = fit::fitPtm(*rgb, *lights, options, &stats);
+    digests = writeModel(path, ptm, formats::writePtm, ctx.settings.ptmWritten, output, ctx.settings.threads);
+    format = formats::formatName(ptm.format);
+    model = fit::makeRelightable(std::move(ptm));
+  } else {
+    formats::HshFile hsh = fit::fitHsh(*rgb, *lights, options, &stats);
+    digests = writeModel(path, hsh, formats::writeRti, ctx.settings.hshWritten, output, ctx.settings.threads);
+    format = "RTI_HSH";
+    model = fit::makeRelightable(std::move(hsh));
+  }
+  recordOutput(ctx, step, result, output, digests, "result", format, basis,
+               output.size() > 4 && output.substr(output.size() - 4) == ".ptm" ? "application/x-ptm"
+                                                                             : "application/x-rti");
+
+  result.add("value").set("name", "rmse").set("value", formatNumber(stats.rmse)).set("unit", "8-bit levels");
+  result.add("value").set("name", "psnr").set("value", formatNumber(stats.psnr)).set("unit", "dB");
+  result.add("value").set("name", "lightMatrixRank").set("value", std::to_string(stats.rank));
+  for (std::size_t n = 0; n < inputs->size() && n < stats.perImageRmse.size(); ++n) {
+    result.add("imageValue").set("image", (*inputs)[n].fileId).set("name", "rmse")
+        .set("value", formatNumber(stats.perImageRmse[n])).set("unit", "8-bit levels");
+  }
+  // The images the model fits worst: where a moved object, a missed flash or a wrong light
+  // direction shows first.
+  std::vector<std::size_t> order(stats.perImageRmse.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return stats.perImageRmse[a] > stats.perImageRmse[b];
+  });
+  std::string worst;
+  for (std::size_t k = 0; k < std::min<std::size_t>(3, order.size()); ++k) {
+    worst += (worst.empty() ? "" : ", ") + (*inputs)[order[k]].stem + " (" +
+             fixedDecimals(stats.perImageRmse[order[k]], 2) + ")";
+  }
+  ctx.carrier.addLog("info", step.id, basis + " fit: RMSE " + fixedDecimals(stats.rmse, 3) + ", PSNR " +
+                                          fixedDecimals(stats.psnr, 2) + " dB; worst images: " + worst);
+  // An image the model misses far more than the others (hrti/light_checks.h, residual-outlier).
+  std::vector<std::string> names;
+  for (const InputImage& in : *inputs) names.push_back(in.stem);
+  recordChecks(step, ctx, result, {hrti::residualCheck(stats.perImageRmse, names)},
+               {"fit checks", "the fit", "its result cannot be trusted"},
+               [&](const hrti::LightCheck& c) { return excludeImagesFix(c, names); });
+  // How well the lights support this basis, whatever was done about it (docs/hrti-math.md,
+  // "The default bases and the light coverage"); the damping, only when it changed the fit.
+  result.add("value").set("name", "lightMatrixCondition").set("value", formatNumber(stats.conditionNumber));
+  result.add("value").set("name", "quantisationNoiseGain").set("value", formatNumber(stats.noiseGain));
+  if (stats.regularisation > 0) {
+    std::string damped;
+    for (int k : stats.dampedTerms) damped += (damped.empty() ? "" : " ") + std::to_string(k);
+    result.add("value").set("name", "regularisation").set("value", formatNumber(stats.regularisation));
+    result.add("value").set("name", "dampedTerms").set("value", damped);
+    result.add("value").set("name", "plainQuantisationNoiseGain").set("value", formatNumber(stats.plainNoiseGain));
+    ctx.carrier.addLog("warning", step.id,
+                       fit::conditioningWarning(options.basis, static_cast<int>(lights->size()), stats));
+  }
+  if (stats.rank < fit::basisTerms(options.basis))
+    ctx.carrier.addLog("warning", step.id, "the light directions do not determine all " +
+                                               std::to_string(fit::basisTerms(options.basis)) +
+                                               " terms of " + basis + " (rank " + std::to_string(stats.rank) +
+                                               "): add lights at other elevations and azimuths");
+  ctx.put(modelKey(basis), model);
+}
+
+}  // namespace surrogate::stages

@@ -1,0 +1,128 @@
+#include "stages/sphere_detection_stage.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "capture/capture.h"
+#include "carrier/carrier.h"
+#include "core/error.h"
+#include "core/text.h"
+#include "hrti/drawing.h"
+#include "hrti/sphere_detection.h"
+#include "hrti/stack_median.h"
+#include "pipeline/context.h"
+#include "stages/frame_checks.h"
+#include "stages/inputs.h"
+#include "stages/light_estimation.h"
+#include "stages/outputs.h"
+#include "stages/stack_views.h"
+
+namespace surrogate::stages {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The file this stage writes: named once, for the stage and for its info() (what the plan
+// will write, checked against prior work before a run).
+const std::string kSphereOverlay = std::string(capture::kAssemblyDir) + "/spheres.png";
+
+// The name of an .lp file at the top of the capture (a dome's light file), or "".
+std::string lightFileInCapture(const fs::path& capture) {
+  std::error_code ec;
+  std::vector<std::string> names;
+  for (fs::directory_iterator it(capture, ec), end; !ec && it != end; it.increment(ec)) {
+    const fs::path& p = it->path();
+    if (p.extension() == ".lp" && it->is_regular_file(ec)) names.push_back(p.filename().string());
+  }
+  std::sort(names.begin(), names.end());
+  return names.empty() ? "" : names.front();
+}
+
+}  // namespace
+
+pipeline::StageInfo SphereDetectionStage::info() {
+  // 2: the overlay numbers spheres from 1 and keeps its label inside the picture, so its bytes
+  //    differ from version 1's for the same images
+  // 3: the median is taken of the reduced images for the circle search and at full resolution
+  //    only around the spheres (hrti/stack_median.h); the overlay is drawn on the reduced
+  //    median, and PNG files are encoded with fixed Up filters and run-length deflate
+  //    (src/image/png_encoder.h), so its bytes differ from version 2's
+  // 4: PNG files compressed by libdeflate at level 1 (src/image/png_encoder.h)
+  // 5: radii up to half the frame, and a circle is a sphere only if the images show a
+  //    highlight moving in it (evidence, recorded); no darkness test (chrome spheres)
+  // 6: circles searched and fitted in the stack's upper quartile (from four images), and the
+  //    rim's confidence counts the edges within a pixel (1 % of the radius) of the circle
+  pipeline::StageInfo info = pipeline::withOptions<hrti::SphereDetectionOptions>(
+      {kComponent, "6",
+       "Find the reflective spheres: circle Hough transform on the gradient of the stack's upper "
+       "quartile, sub-pixel circle fit, highlights that move against the per-pixel median",
+       pipeline::PlanSlot::LightsFromSpheres});
+  info.outputs = [](const carrier::Step&) { return std::vector<std::string>{kSphereOverlay}; };
+  info.reads = pipeline::alwaysReads({kLuminanceStack});
+  return info;
+}
+
+void SphereDetectionStage::run(const carrier::Step& step, pipeline::Context& ctx,
+                               carrier::Result& result) {
+  const auto lum = ctx.get<ImageStack>(kLuminanceStack);
+  hrti::SphereDetectionOptions options = hrti::SphereDetectionOptions::fromParameters(parametersOf(step));
+  options.threads = ctx.settings.threads;
+  // The reduced median of the stack is most of the work; the circle search follows it.
+  ctx.progress("Sphere detection", 0);
+  auto median = std::make_shared<hrti::StackMedian>(lum, options.coarseWidth, ctx.settings.threads);
+
+  auto spheres = std::make_shared<Spheres>();
+  const auto manual = step.interventionsOfKind("manual-sphere");
+  if (!manual.empty()) {
+    for (const carrier::Intervention* i : manual) {
+      const std::vector<double> v = recordedNumbers(i->value, 3, "manual sphere");
+      // Checked here too, not only on the command line: a recorded carrier (re-execution) or
+      // a standing decision meets images of another size than it was given for.
+      const std::string why = sphereCircleProblem(v[0], v[1], v[2], median->width(), median->height());
+      if (!why.empty())
+        throw Error(ErrorKind::Input, "sphere " + i->target + " given by hand (" + i->value + ")",
+                    "sphere detection", why + "; give the sphere's circle again with --sphere CX,CY,R");
+      spheres->push_back(hrti::DetectedSphere{v[0], v[1], v[2], 1.0, 1.0});
+      ctx.carrier.addLog("intervention", step.id,
+                         "sphere " + i->target + " set by hand to " + i->value + ": " + i->reason, i->who);
+    }
+  } else {
+    ctx.progress("Sphere detection", 0.6);
+    try {
+      // The rim in an upper quantile of the stack (hrti/sphere_detection.h); with fewer than four
+      // images that is nearly the brightest, which keeps the highlights: the median then.
+      if (lum->size() >= 4) {
+        const hrti::StackMedian rim(lum, options.coarseWidth, ctx.settings.threads, hrti::StackMedian::kCoarseBudget,
+                                    hrti::kRimQuantile);
+        *spheres = hrti::detectSpheres(*median, rim, options);
+      } else {
+        *spheres = hrti::detectSpheres(*median, options);
+      }
+    } catch (const Error& e) {
+      // Last in the list of what to do: a dome capture's own light file, when there is one.
+      const std::string lp = lightFileInCapture(ctx.capture);
+      if (lp.empty() || e.kind() != ErrorKind::Input) throw;
+      throw Error(ErrorKind::Input, e.file(), e.step(),
+                  e.message() + "; the capture has a light file, " + lp + ": if its lights are this capture's, "
+                  "use them instead of spheres with --lp " + lp);
+    }
+  }
+  for (std::size_t k = 0; k < spheres->size(); ++k) {
+    const hrti::DetectedSphere& s = (*spheres)[k];
+    result.add("sphere").set("index", static_cast<int>(k)).set("cx", s.cx).set("cy", s.cy)
+        .set("r", s.r).set("confidence", s.confidence).set("evidence", s.evidence)
+        .set("source", manual.empty() ? "detected" : "manual");
+  }
+  result.add("value").set("name", "spheres").set("value", std::to_string(spheres->size()));
+
+  const std::string& overlay = kSphereOverlay;
+  writePicture(ctx, hrti::drawSphereOverlay(displayable(median->coarse(), *lum), *spheres, median->factor()),
+               overlay);
+  recordOutput(ctx, step, result, overlay, "assembly", "PNG", "sphere-overlay", "image/png");
+  ctx.put(kSpheres, spheres);
+  ctx.put(kStackMedian, median);
+  ctx.progress("Sphere detection", 1);
+}
+
+}  // namespace surrogate::stages
