@@ -66,6 +66,19 @@ std::string exposureText(double seconds) {
 
 std::string focalLengthText(double mm) { return oneDecimal(mm) + " mm"; }
 
+std::string exposureSettingsText(const CameraMetadata& m) {
+  std::string line;
+  auto add = [&](const std::string& part) {
+    if (!part.empty()) line += (line.empty() ? "" : ", ") + part;
+  };
+  if (m.focalLengthMm) add(focalLengthText(*m.focalLengthMm));
+  if (m.fNumber) add(apertureText(*m.fNumber));
+  if (m.exposureSeconds) add(exposureText(*m.exposureSeconds));
+  else if (m.exposureTime) add(*m.exposureTime);
+  if (m.iso) add("ISO " + std::to_string(*m.iso));
+  return line;
+}
+
 std::string focalRangeText(double minMm, double maxMm) {
   return oneDecimal(minMm) == oneDecimal(maxMm) ? focalLengthText(minMm)
                                                  : oneDecimal(minMm) + "-" + oneDecimal(maxMm) + " mm";

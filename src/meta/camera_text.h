@@ -19,6 +19,9 @@ namespace surrogate::meta {
 std::string apertureText(double fNumber);
 std::string exposureText(double seconds);
 std::string focalLengthText(double mm);
+// "31 mm, f/5.6, 1/125 s, ISO 100": the exposure as a photographer notes it, the known parts
+// only (the exposure time as the file writes it when it gives no number); empty when none is.
+std::string exposureSettingsText(const CameraMetadata& m);
 // "16-35 mm", or "50 mm" when both ends are equal.
 std::string focalRangeText(double minMm, double maxMm);
 // The model alone when it already names the maker ("Canon EOS D30", "NIKON D70" for make

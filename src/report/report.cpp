@@ -1,7 +1,6 @@
 #include "report/report.h"
 
 #include <algorithm>
-#include <cmath>
 #include <cstdlib>
 #include <future>
 #include <map>
@@ -16,19 +15,15 @@
 #include "report/embed.h"
 #include "report/hemisphere.h"
 #include "report/html.h"
+#include "report/lights_section.h"
+#include "report/outputs.h"
 #include "report/page_assets.h"
+#include "report/relight_section.h"
 #include "report/sections.h"
 
 namespace surrogate::report {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-
-// Highlights that give a light direction (hrti::isUsable; the report does not link hrti).
-bool isUsedHighlight(const std::string& flag) {
-  return flag == "ok" || flag == "multiple" || flag == "manual";
-}
 
 std::string numberOr(const carrier::DataItem& d, const char* name, int digits, const std::string& absent = "-") {
   try {
@@ -36,77 +31,6 @@ std::string numberOr(const carrier::DataItem& d, const char* name, int digits, c
   } catch (const Error&) {
     return absent;
   }
-}
-
-// The lights of the last step that recorded any, with the residual of the first fit that
-// recorded per-image residuals.
-std::vector<LightPoint> collectLights(const carrier::Carrier& c, std::string* fitLabel) {
-  const carrier::Result* lightResult = nullptr;
-  const carrier::Result* fitResult = nullptr;
-  for (const carrier::Result& r : c.data) {
-    if (!r.itemsOf("light").empty()) lightResult = &r;
-    if (!fitResult) {
-      for (const carrier::DataItem* v : r.itemsOf("imageValue"))
-        if (v->get("name") == "rmse") {
-          fitResult = &r;
-          break;
-        }
-    }
-  }
-  std::map<std::string, double> rmse;
-  if (fitResult) {
-    for (const carrier::DataItem* v : fitResult->itemsOf("imageValue")) {
-      if (v->get("name") != "rmse") continue;
-      try {
-        rmse[v->get("image").value_or("")] = v->number("value");
-      } catch (const Error&) {
-        // An unreadable residual is shown as "no residual" rather than failing the page.
-      }
-    }
-    const carrier::Step* step = c.findStep(fitResult->step);
-    *fitLabel = step ? stepTitle(*step) : fitResult->step;
-  }
-  // The lowest confidence of the usable highlights of each image (those its light came from).
-  std::map<std::string, double> confidence;
-  for (const carrier::Result& r : c.data)
-    for (const carrier::DataItem* h : r.itemsOf("highlight")) {
-      const std::string flag = h->get("flag").value_or("");
-      if (!isUsedHighlight(flag) || !h->get("confidence")) continue;
-      try {
-        const double v = h->number("confidence");
-        const std::string id = h->get("image").value_or("");
-        const auto it = confidence.find(id);
-        confidence[id] = it == confidence.end() ? v : std::min(it->second, v);
-      } catch (const Error&) {
-        // not a number: shown as unknown
-      }
-    }
-  std::vector<LightPoint> out;
-  if (!lightResult) return out;
-  for (const carrier::DataItem* l : lightResult->itemsOf("light")) {
-    LightPoint p;
-    const std::string id = l->get("image").value_or("");
-    const carrier::FileRecord* f = c.findFile(id);
-    p.image = f ? f->path : id;
-    try {
-      if (l->get("elevationDeg") && l->get("azimuthDeg")) {
-        p.elevationDeg = l->number("elevationDeg");
-        p.azimuthDeg = l->number("azimuthDeg");
-      } else {  // angles from the direction
-        const double x = l->number("x"), y = l->number("y"), z = l->number("z");
-        const double n = std::sqrt(x * x + y * y + z * z);
-        if (!(n > 0)) continue;
-        p.elevationDeg = std::asin(std::clamp(z / n, -1.0, 1.0)) * 180 / kPi;
-        p.azimuthDeg = std::atan2(y, x) * 180 / kPi;
-      }
-    } catch (const Error&) {
-      continue;  // a light that is not numbers cannot be plotted
-    }
-    if (const auto it = rmse.find(id); it != rmse.end()) p.rmse = it->second;
-    if (const auto it = confidence.find(id); it != confidence.end()) p.highlightConfidence = it->second;
-    out.push_back(p);
-  }
-  return out;
 }
 
 // The carrier counts spheres from 0 (sphere/@index, highlight/@sphere); people and the file
@@ -119,16 +43,6 @@ std::string sphereNumber(const std::string& index) {
   } catch (const std::exception&) {
   }
   return index;
-}
-
-// Output files of every result, by kind, in carrier order.
-std::vector<std::pair<std::string, const carrier::FileRecord*>> outputsByKind(const carrier::Carrier& c) {
-  std::vector<std::pair<std::string, const carrier::FileRecord*>> out;
-  for (const carrier::Result& r : c.data)
-    for (const carrier::DataItem* o : r.itemsOf("output"))
-      if (const carrier::FileRecord* f = c.findFile(o->get("file").value_or("")))
-        out.emplace_back(o->get("kind").value_or(""), f);
-  return out;
 }
 
 // The pictures the page shows (overlays, overviews, normals, albedo, previews), each read,
@@ -211,54 +125,6 @@ std::string previewCaption(const std::string& path) {
   if (path.find("top") != std::string::npos) return "Relit: light from above";
   if (path.find("specular") != std::string::npos) return "Relit: specular enhancement";
   return "Relit preview";
-}
-
-std::string lightsSection(const carrier::Carrier& c, const std::vector<LightPoint>& lights,
-                          const Coverage& coverage, const std::string& fitLabel) {
-  std::ostringstream s;
-  s << "<section id=\"lights\"><h2>Light directions</h2>";
-  if (lights.empty()) {
-    s << "<p>This carrier records no light directions (the light estimation did not run or "
-         "failed; see the provenance below).</p></section>";
-    return s.str();
-  }
-  s << "<div class=\"plot\">" << hemisphereSvg(lights, coverage, priorLightPoints(c)) << "<div><p>" << lights.size()
-    << " light" << (lights.size() == 1 ? "" : "s") << " seen from the camera: the centre is a light "
-       "on the camera's axis, the rim is grazing light; azimuth runs from \u2212180\u00b0 to "
-       "180\u00b0: 0\u00b0 to the right of the image, 90\u00b0 at the top, \u221290\u00b0 at the bottom; the "
-       "blue rings are elevations. Elevation from "
-    << displayNumber(coverage.lowestElevationDeg, 1) << "\u00b0 to "
-    << displayNumber(coverage.highestElevationDeg, 1) << "\u00b0. The dashed ring is "
-    << displayNumber(kRakingElevationDeg, 0) << "\u00b0 elevation.</p>";
-  s << "<p>" << (fitLabel.empty() ? std::string("No fit recorded residuals: points are grey.")
-                                   : "Colour: the residual (RMSE) of " + escapeHtml(fitLabel) +
-                                         " on each image, dark = small, yellow = large.")
-    << "</p>";
-  if (coverage.sentences().empty()) {
-    s << "<p class=\"ok\">No gap in coverage: lights below " << displayNumber(kRakingElevationDeg, 0)
-      << "\u00b0 and above " << displayNumber(kHighElevationDeg, 0)
-      << "\u00b0, and no azimuth sector wider than " << displayNumber(kMaxAzimuthGapDeg, 0)
-      << "\u00b0 without light.</p>";
-  } else {
-    s << "<h3>Gaps in coverage</h3><ul class=\"gaps\">";
-    for (const std::string& g : coverage.sentences()) s << "<li>" << escapeHtml(g) << "</li>";
-    s << "</ul>";
-  }
-  const bool anyDoubtful = std::any_of(lights.begin(), lights.end(), [](const LightPoint& l) {
-    return l.highlightConfidence && *l.highlightConfidence < kDoubtfulConfidence;
-  });
-  if (anyDoubtful)
-    s << "<p class=\"warning\">A red ring marks a light measured from a highlight of confidence below "
-      << displayNumber(kDoubtfulConfidence, 1) << ": check it on the highlight overview.</p>";
-  s << "</div></div><details><summary>Every light</summary><table><tr><th>image</th>"
-       "<th>elevation \u00b0</th><th>azimuth \u00b0</th><th>residual</th><th>highlight confidence</th></tr>";
-  for (const LightPoint& l : lights)
-    s << "<tr><td><code>" << escapeHtml(l.image) << "</code></td><td class=\"num\">"
-      << displayNumber(l.elevationDeg, 1) << "</td><td class=\"num\">" << displayNumber(l.azimuthDeg, 1)
-      << "</td><td class=\"num\">" << (l.rmse ? displayNumber(*l.rmse, 2) : "-") << "</td><td class=\"num\">"
-      << (l.highlightConfidence ? displayNumber(*l.highlightConfidence, 2) : "-") << "</td></tr>";
-  s << "</table></details></section>";
-  return s.str();
 }
 
 std::string detectionSection(const carrier::Carrier& c, const Pictures& pictures,
@@ -388,124 +254,6 @@ std::string resultsSection(const carrier::Carrier& c, const Pictures& pictures,
   return s.str();
 }
 
-// The fitted models (.ptm and .rti HSH) the carrier lists as outputs, in carrier order.
-std::vector<const carrier::FileRecord*> fittedModels(const carrier::Carrier& c) {
-  std::vector<const carrier::FileRecord*> out;
-  for (const auto& [kind, file] : outputsByKind(c))
-    if (file->format.rfind("PTM_FORMAT", 0) == 0 || file->format == "RTI_HSH")
-      if (std::find(out.begin(), out.end(), file) == out.end()) out.push_back(file);
-  return out;
-}
-
-// A fitted model as the interactive view shows it: its JSON (relightJson), or why it cannot
-// be shown.
-struct RelightModel {
-  const carrier::FileRecord* file = nullptr;
-  bool found = false;      // the source holds the file
-  std::string made;        // its JSON, made here from the file
-  const std::string* copied = nullptr;  // or the copy ReportOptions::relightCopies holds
-  std::string problem;     // why, when found but not shown
-  // Empty when it cannot be shown.
-  const std::string& json() const { return copied ? *copied : made; }
-};
-
-// Every fitted model the carrier lists, read and converted for the page, each on a thread of
-// its own. Reading a model and reducing it to the page's size is most of a report's time (the
-// models of 36 x 3000x2000 are 54 and 72 MB: 0.13 s each), so buildReport does it while the
-// pictures are made. Each model's JSON depends on its file alone: the page is the same at any
-// thread count.
-std::vector<RelightModel> relightModels(const carrier::Carrier& c, const ReportSource& source,
-                                        const ReportOptions& options) {
-  const std::vector<const carrier::FileRecord*> files = fittedModels(c);
-  std::vector<RelightModel> out(files.size());
-  parallelFor(files.size(), 1, effectiveThreads(options.threads), [&](std::size_t begin, std::size_t end) {
-    for (std::size_t k = begin; k < end; ++k) {
-      RelightModel& m = out[k];
-      m.file = files[k];
-      if (options.relightCopies) {
-        const auto copy = options.relightCopies->find(m.file->path);
-        if (copy != options.relightCopies->end() && copy->second.maxSide == options.relightMaxSide) {
-          m.found = true;
-          m.copied = &copy->second.json;
-          continue;
-        }
-      }
-      const std::optional<std::string> bytes = source.read(m.file->path);
-      m.found = bytes.has_value();
-      if (!bytes) continue;
-      try {
-        m.made = relightJson(*bytes, options.relightMaxSide, m.file->path);
-      } catch (const Error& e) {
-        m.problem = e.text();
-      }
-    }
-  });
-  return out;
-}
-
-// The interactive view: every fitted model the source holds, as JSON for the page's script,
-// drawn at the model's resolution (or options.relightMaxSide); the first model is shown first.
-// The models' JSON is tens of megabytes: the section keeps pointers to it, and the page copies
-// it once, where it belongs (appendTo).
-struct RelightSection {
-  std::string before;                       // the section up to the models' JSON array
-  std::vector<const std::string*> models;   // the array's elements
-  std::string after;                        // the rest of the section
-  std::size_t size() const {
-    std::size_t n = before.size() + after.size() + models.size();
-    for (const std::string* m : models) n += m->size();
-    return n;
-  }
-  void appendTo(std::string& page) const {
-    page.append(before);
-    for (std::size_t k = 0; k < models.size(); ++k) (k ? page.append(1, ',') : page).append(*models[k]);
-    page.append(after);
-  }
-};
-
-RelightSection relightSection(const carrier::Carrier& c, const std::vector<RelightModel>& models, Report& report) {
-  std::ostringstream s, notes, buttons;
-  RelightSection section;
-  s << "<section id=\"relight\"><h2>Relight it yourself</h2>";
-  for (const RelightModel& model : models) {
-    if (!model.found) {
-      notes << "<p class=\"note\">The model " << escapeHtml(model.file->path) << " is not in this package or capture.</p>";
-      continue;
-    }
-    if (model.json().empty()) {
-      notes << "<p class=\"bad\">The model cannot be shown: " << escapeHtml(model.problem) << "</p>";
-      continue;
-    }
-    section.models.push_back(&model.json());
-    const carrier::Step* fit = c.findStep(model.file->createdBy);
-    buttons << "<button type=\"button\" data-model=\"" << section.models.size() - 1 << "\" title=\""
-            << escapeHtml(model.file->path) << "\">"
-            << escapeHtml(fit ? modelTitle(fit->param("basis", "")) : model.file->path) << "</button>";
-  }
-  const std::size_t shown = section.models.size();
-  if (shown == 0) {
-    const std::string none = notes.str().empty()
-                                 ? std::string("<p class=\"note\">No model was fitted, so there is no interactive view.</p>")
-                                 : notes.str();
-    s << none << "</section>";
-    section.before = s.str();
-    return section;
-  }
-  report.relightable = true;
-  s << "<div class=\"relight\"><div class=\"relight-view\"><canvas id=\"relight-canvas\"></canvas>"
-       "<p id=\"relight-caption\" class=\"note\"></p></div><div class=\"relight-controls\">"
-    << (shown > 1 ? "<div id=\"model-choice\" role=\"group\" aria-label=\"model\">" + buttons.str() + "</div>" : "")
-    << "<canvas id=\"light-pad\" width=\"260\" height=\"260\" aria-label=\"light direction\"></canvas>"
-       "<p id=\"light-readout\"></p><p class=\"note\">Drag on the disc or on the picture to move the "
-       "light. The disc is drawn as the light directions' plot: the centre is a light on the camera's "
-       "axis, the rim grazing light, rings every 30\u00b0 of elevation; azimuth 0\u00b0 to the right, 90\u00b0 at "
-       "the top, \u221290\u00b0 at the bottom.</p>"
-    << notes.str() << "</div></div><script type=\"application/json\" id=\"relight-data\">[";
-  section.before = s.str();
-  section.after = "]</script></section>";
-  return section;
-}
-
 // The files the detection and results sections show as pictures, in carrier order.
 std::vector<std::string> shownPictures(const carrier::Carrier& c) {
   std::vector<std::string> out;
@@ -524,6 +272,15 @@ double shareAfterPictures(const std::vector<std::string>& pictures) {
 }
 
 }  // namespace
+
+std::vector<std::pair<std::string, const carrier::FileRecord*>> outputsByKind(const carrier::Carrier& c) {
+  std::vector<std::pair<std::string, const carrier::FileRecord*>> out;
+  for (const carrier::Result& r : c.data)
+    for (const carrier::DataItem* o : r.itemsOf("output"))
+      if (const carrier::FileRecord* f = c.findFile(o->get("file").value_or("")))
+        out.emplace_back(o->get("kind").value_or(""), f);
+  return out;
+}
 
 Report buildReport(const carrier::Carrier& c, const ReportSource& source, const ReportOptions& options) {
   const auto progress = [&options](double f) {

@@ -1,0 +1,250 @@
+// surrogate info on a carrier: carrier::describeCarrier's summary, and the processing choices
+// a run without options repeats (run::standingDecisions), as text or JSON.
+#include <algorithm>
+#include <iostream>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "carrier/summary.h"
+#include "cli/info_print.h"
+#include "core/error.h"
+#include "core/text.h"
+#include "image/raw_settings.h"
+#include "run/plan.h"
+#include "stages/web_copy_stage.h"
+
+namespace surrogate::cli {
+
+namespace {
+
+using carrier::shownValue;
+
+// The processing choices a carrier records besides the human interventions: what a run without
+// options repeats (run::standingDecisions), and the web copy with its recorded options.
+struct Choices {
+  run::RunRequest standing;
+  const carrier::Step* webCopy = nullptr;  // the first WebCopy step: every model's has the same options
+  std::vector<std::string> webModels;
+};
+
+Choices choicesOf(const carrier::Carrier& c) {
+  Choices out;
+  out.standing = run::standingDecisions(c);
+  // The decoding step records every LibRaw setting; the choices are those that differ from
+  // the defaults.
+  const auto defaults = image::RawDecodeSettings{}.toParameters();
+  auto& decode = out.standing.decodeSettings;
+  decode.erase(std::remove_if(decode.begin(), decode.end(),
+                              [&](const auto& kv) { return std::find(defaults.begin(), defaults.end(), kv) != defaults.end(); }),
+               decode.end());
+  // The web copy's options are shown with it.
+  auto& params = out.standing.stageParams;
+  params.erase(std::remove_if(params.begin(), params.end(),
+                              [](const auto& p) { return p.component == stages::WebCopyStage::kComponent; }),
+               params.end());
+  for (const carrier::Step& s : c.process) {
+    if (s.component != stages::WebCopyStage::kComponent) continue;
+    if (!out.webCopy) out.webCopy = &s;
+    out.webModels.push_back(s.param("model"));
+  }
+  return out;
+}
+
+std::string joined(const std::vector<std::string>& items) {
+  std::string out;
+  for (const std::string& i : items) out += (out.empty() ? "" : ", ") + i;
+  return out;
+}
+
+std::string paramsText(const std::vector<std::pair<std::string, std::string>>& params) {
+  std::string out;
+  for (const auto& [name, value] : params) out += (out.empty() ? "" : ", ") + name + " " + shownValue(value);
+  return out;
+}
+
+// A carrier whose steps this version cannot read (another version's, or a forged one) still
+// gets described: its choices are then left out, saying why, and `verify` judges it.
+std::optional<Choices> readableChoices(const carrier::Carrier& c, std::string* why) {
+  try {
+    return choicesOf(c);
+  } catch (const Error& e) {
+    if (why) *why = e.message();
+    return std::nullopt;
+  }
+}
+
+void choicesJson(JsonWriter& j, const carrier::Carrier& c) {
+  const std::optional<Choices> readable = readableChoices(c, nullptr);
+  if (!readable) {
+    j.key("choices").null();
+    return;
+  }
+  const Choices& ch = *readable;
+  const run::RunRequest& r = ch.standing;
+  j.key("choices").beginObject().key("source").value(r.source.empty() ? "auto" : r.source).key("bases").beginArray();
+  for (const std::string& b : r.bases.value_or(std::vector<std::string>{})) j.value(b);
+  j.endArray().key("decode").beginArray();
+  for (const auto& [name, value] : r.decodeSettings)
+    j.beginObject().key("name").value(name).key("value").value(value).endObject();
+  j.endArray().key("preprocessing").beginArray();
+  for (const run::PlannedStage& p : r.preprocessing) {
+    j.beginObject().key("component").value(p.component).key("parameters").beginArray();
+    for (const auto& [name, value] : p.params)
+      j.beginObject().key("name").value(name).key("value").value(value).endObject();
+    j.endArray().endObject();
+  }
+  j.endArray().key("options").beginArray();
+  for (const run::RunRequest::StageParam& p : r.stageParams)
+    j.beginObject().key("component").value(p.component).key("name").value(p.name).key("value").value(p.value).endObject();
+  j.endArray().key("webCopy");
+  if (!ch.webCopy) {
+    j.null();
+  } else {
+    j.beginObject().key("models").beginArray();
+    for (const std::string& m : ch.webModels) j.value(m);
+    j.endArray().key("parameters").beginArray();
+    for (const carrier::Param& p : ch.webCopy->params)
+      if (p.name != "model") j.beginObject().key("name").value(p.name).key("value").value(p.value).endObject();
+    j.endArray().endObject();
+  }
+  j.endObject();
+}
+
+// The processing choices, as text: what a run without options repeats.
+void printChoices(const carrier::Carrier& c) {
+  std::string why;
+  const std::optional<Choices> readable = readableChoices(c, &why);
+  if (!readable) {
+    std::cout << "  processing choices: not readable by this version of Surrogate (" << why << ")\n";
+    return;
+  }
+  const Choices& ch = *readable;
+  const run::RunRequest& r = ch.standing;
+  std::cout << "  processing choices (a run without options repeats them):\n"
+            << "    image source: " << (r.source.empty() ? "auto" : r.source) << "\n";
+  if (r.bases) std::cout << "    models: " << joined(*r.bases) << "\n";
+  for (const auto& [name, value] : r.decodeSettings) std::cout << "    LibRaw " << name << " = " << value << "\n";
+  for (const run::PlannedStage& p : r.preprocessing)
+    std::cout << "    pre-processing " << p.component << ": " << paramsText(p.params) << "\n";
+  for (const run::RunRequest::StageParam& p : r.stageParams)
+    std::cout << "    " << p.component << " " << p.name << " = " << shownValue(p.value) << "\n";
+  if (!ch.webCopy) {
+    std::cout << "    web copy: none (run --publish makes one of each model)\n";
+    return;
+  }
+  std::vector<std::pair<std::string, std::string>> options;
+  for (const carrier::Param& p : ch.webCopy->params)
+    if (p.name != "model") options.emplace_back(p.name, p.value);
+  std::cout << "    web copy of " << joined(ch.webModels) << " in finished-files/web/ (" << paramsText(options)
+            << "); run --no-publish withdraws it\n";
+}
+
+// The standing decisions (human interventions: what, in which step, who, when and why), the
+// excluded images and the run history, as text.
+void printDecisionsAndRuns(const carrier::Carrier& c, const carrier::CarrierSummary& s) {
+  std::cout << "  standing decisions:";
+  for (const carrier::DecisionSummary& d : s.decisions) {
+    const carrier::Intervention& i = d.intervention;
+    std::cout << "\n    " << i.kind << " " << i.target << " (" << d.step << " " << d.component << "): " << d.what
+              << "\n      by " << i.who << ", " << i.time << ": " << i.reason;
+  }
+  for (const std::string& lp : s.domeLights) std::cout << "\n    lights from " << lp << " (dome capture)";
+  std::cout << (s.decisions.empty() && s.domeLights.empty() ? " none\n" : "\n");
+  std::string excluded;
+  for (const carrier::DecisionSummary& d : s.exclusions) excluded += (excluded.empty() ? "" : ", ") + d.intervention.target;
+  std::cout << "  excluded images: " << (excluded.empty() ? "none" : excluded) << "\n";
+  printChoices(c);
+  if (s.runs.empty()) return;
+  std::cout << "  runs:\n";
+  for (const carrier::RunRecord& r : s.runs) {
+    std::string args;
+    for (const std::string& a : r.arguments) args += " " + (a.find(' ') != std::string::npos || a.empty() ? "\"" + a + "\"" : a);
+    std::cout << "    " << r.id << " " << r.started << " " << r.who << ": surrogate " << r.command
+              << args << " -> " << r.outcome << "\n";
+    for (const std::string& note : r.notes) std::cout << "      " << note << "\n";
+  }
+}
+
+}  // namespace
+
+void carrierJson(JsonWriter& j, const carrier::Carrier& c) {
+  const carrier::CarrierSummary s = carrier::describeCarrier(c);
+  j.beginObject().key("kind").value("carrier").key("title").value(s.title)
+      .key("created").value(s.created).key("modified").value(s.modified)
+      .key("rights").value(s.rights).key("license").value(s.license)
+      .key("metadata").beginArray();
+  for (const auto& [name, value] : s.metadata)
+    j.beginObject().key("name").value(name).key("value").value(value).endObject();
+  j.endArray().key("files").value(static_cast<int>(s.files))
+      .key("images").value(static_cast<int>(s.images)).key("steps").beginArray();
+  for (const carrier::StepSummary& step : s.steps)
+    j.beginObject().key("id").value(step.id).key("component").value(step.component)
+        .key("version").value(step.version).key("status").value(step.status)
+        .key("seconds").value(step.seconds)
+        .key("interventions").value(static_cast<int>(step.interventions)).endObject();
+  j.endArray();
+  choicesJson(j, c);
+  j.key("creators").beginArray();
+  for (const carrier::Creator& cr : s.creators)
+    j.beginObject().key("name").value(cr.name).key("role").value(cr.role).endObject();
+  j.endArray().key("decisions").beginArray();
+  for (const carrier::DecisionSummary& d : s.decisions) {
+    const carrier::Intervention& i = d.intervention;
+    j.beginObject().key("step").value(d.step).key("component").value(d.component)
+        .key("kind").value(i.kind).key("target").value(i.target).key("value").value(i.value)
+        .key("what").value(d.what)
+        .key("who").value(i.who).key("time").value(i.time).key("reason").value(i.reason).endObject();
+  }
+  j.endArray().key("exclusions").beginArray();
+  for (const carrier::DecisionSummary& d : s.exclusions) {
+    const carrier::Intervention& i = d.intervention;
+    j.beginObject().key("image").value(i.target).key("who").value(i.who).key("time").value(i.time)
+        .key("reason").value(i.reason).endObject();
+  }
+  j.endArray().key("runs").beginArray();
+  for (const carrier::RunRecord& r : s.runs) {
+    j.beginObject().key("id").value(r.id).key("command").value(r.command).key("who").value(r.who)
+        .key("started").value(r.started).key("ended").value(r.ended).key("outcome").value(r.outcome)
+        .key("arguments").beginArray();
+    for (const std::string& a : r.arguments) j.value(a);
+    j.endArray().key("notes").beginArray();
+    for (const std::string& n : r.notes) j.value(n);
+    j.endArray().endObject();
+  }
+  j.endArray().endObject();
+}
+
+void printCarrierText(const carrier::Carrier& c) {
+  const carrier::CarrierSummary s = carrier::describeCarrier(c);
+  std::cout << "  title:   " << s.title << "\n"
+            << "  created: " << s.created << " on " << s.hostname << "\n";
+  for (const carrier::Creator& cr : s.creators) std::cout << "  " << cr.role << ": " << cr.name << "\n";
+  if (!s.rights.empty()) std::cout << "  rights:  " << s.rights << "\n";
+  if (!s.license.empty()) std::cout << "  licence: " << s.license << "\n";
+  for (const auto& [name, value] : s.metadata) std::cout << "  metadata: " << name << " = " << value << "\n";
+  std::cout << "  files:   " << s.files << " (" << s.images << " images)\n  steps:\n";
+  for (const carrier::StepSummary& step : s.steps) {
+    std::cout << "    " << step.id << " " << step.component << " v" << step.version << ": " << step.status;
+    if (step.status == "completed") std::cout << " in " << fixedDecimals(step.seconds, 1) << " s";
+    if (step.interventions)
+      std::cout << ", " << step.interventions << (step.interventions == 1 ? " decision" : " decisions") << " (below)";
+    std::cout << "\n";
+  }
+  printDecisionsAndRuns(c, s);
+}
+
+void printCarrier(const std::filesystem::path& path, bool json) {
+  const carrier::Carrier c = carrier::loadCarrier(path);
+  if (json) {
+    JsonWriter j;
+    carrierJson(j, c);
+    std::cout << j.str() << "\n";
+    return;
+  }
+  std::cout << path.string() << ": Surrogate carrier\n";
+  printCarrierText(c);
+}
+
+}  // namespace surrogate::cli

@@ -1,0 +1,149 @@
+// surrogate info on a package (archive::describePackage) or a capture folder
+// (capture::describeCapture), as text or JSON.
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "archive/bag.h"
+#include "archive/package_summary.h"
+#include "capture/capture.h"
+#include "capture/capture_summary.h"
+#include "cli/info_print.h"
+
+namespace surrogate::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// A path as one shell word: as it is when it needs no quoting, else in single quotes; never
+// starting with '-', which would read as an option.
+std::string shellWord(const std::string& path) {
+  const std::string s = !path.empty() && path[0] == '-' ? "./" + path : path;
+  const bool plain = !s.empty() && s.find_first_not_of(
+      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789._/+-:,@%=") == std::string::npos;
+  if (plain) return s;
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+// The commands that verify the package: fixity and records, and for a Surrogate package the
+// re-execution of its recorded steps.
+std::vector<std::string> verifyCommands(const fs::path& path, bool surrogate) {
+  const std::string word = shellWord(path.string());
+  std::vector<std::string> out = {"surrogate verify " + word};
+  if (surrogate) out.push_back("surrogate verify " + word + " --reexecute");
+  return out;
+}
+
+void printPackageJson(const fs::path& path, const archive::PackageSummary& s) {
+  JsonWriter j;
+  j.beginObject().key("kind").value("package").key("format").value(s.format)
+      .key("surrogatePackage").value(s.surrogate)
+      .key("files").value(static_cast<unsigned long long>(s.files))
+      .key("bytes").value(static_cast<unsigned long long>(s.bytes));
+  j.key("bagInfo").beginArray();
+  for (const auto& [label, value] : s.bagInfo)
+    j.beginObject().key("label").value(label).key("value").value(value).endObject();
+  j.endArray().key("manifests").beginArray();
+  for (const std::string& m : s.manifests) j.value(m);
+  j.endArray().key("roles").beginArray();
+  for (const archive::RoleTotal& t : s.roles)
+    j.beginObject().key("role").value(t.role).key("files").value(static_cast<unsigned long long>(t.files))
+        .key("bytes").value(static_cast<unsigned long long>(t.bytes)).endObject();
+  j.endArray().key("results").beginArray();
+  for (const auto& [file, bytes] : s.results)
+    j.beginObject().key("path").value(file).key("bytes").value(static_cast<unsigned long long>(bytes)).endObject();
+  j.endArray();
+  if (s.carrier) {
+    j.key("carrier");
+    carrierJson(j, *s.carrier);
+  } else if (!s.carrierProblem.empty()) {
+    j.key("carrierProblem").value(s.carrierProblem);
+  }
+  j.key("verify").beginArray();
+  for (const std::string& c : verifyCommands(path, s.surrogate)) j.value(c);
+  j.endArray().endObject();
+  std::cout << j.str() << "\n";
+}
+
+void printPackageText(const fs::path& path, const archive::PackageSummary& s) {
+  std::cout << path.string() << ": " << (s.surrogate ? "Surrogate package" : "BagIt bag, not a Surrogate package")
+            << " (" << s.format << ")\n";
+  if (s.surrogate) {
+    std::cout << "  identifier: " << s.bagInfoValue("Surrogate-Package-Identifier") << "\n"
+              << "  packed:     " << s.bagInfoValue("Surrogate-Packaging-Time") << " by "
+              << s.bagInfoValue("Bag-Software-Agent") << "\n";
+  } else {
+    for (const auto& [label, value] : s.bagInfo) std::cout << "  " << label << ": " << value << "\n";
+  }
+  std::cout << "  holds:      " << s.files << " files, " << archive::humanSize(s.bytes) << " (manifests:";
+  for (const std::string& m : s.manifests) std::cout << " " << m;
+  std::cout << ")\n";
+  for (const archive::RoleTotal& t : s.roles) {
+    std::string name = t.role;
+    name.resize(14, ' ');
+    std::cout << "    " << name << t.files << (t.files == 1 ? " file,  " : " files, ") << archive::humanSize(t.bytes)
+              << "\n";
+  }
+  if (!s.results.empty()) {
+    std::cout << "  results:\n";
+    for (const auto& [file, bytes] : s.results) std::cout << "    " << file << "  " << archive::humanSize(bytes) << "\n";
+  }
+  if (s.carrier) {
+    std::cout << "  carrier (data/assembly-files/carrier.xml):\n";
+    printCarrierText(*s.carrier);
+  } else if (!s.carrierProblem.empty()) {
+    std::cout << "  carrier:    cannot be read: " << s.carrierProblem << "\n";
+  }
+  std::cout << "  to verify it:\n";
+  for (const std::string& c : verifyCommands(path, s.surrogate)) std::cout << "    " << c << "\n";
+}
+
+// How the shots are held: "8 originals in original-captures/, 8 JPEG exports"; for a capture
+// of JPEG exports alone, the exports are the originals the pipeline reads (docs/user-guide.md).
+std::string shotsText(const capture::CaptureSummary& s) {
+  if (!s.hasOriginals())
+    return "exports in " + std::string(capture::kExportsDir) + "/, no raw originals: the exports "
+           "are the originals the pipeline reads";
+  return std::to_string(s.originals) + " originals in " + s.originalsDir + "/" +
+         (s.exports ? ", " + std::to_string(s.exports) + " exports in " + capture::kExportsDir + "/" : "");
+}
+
+}  // namespace
+
+void printPackage(const fs::path& path, bool json) {
+  const archive::PackageSummary s = archive::describePackage(path);
+  if (json) printPackageJson(path, s);
+  else printPackageText(path, s);
+}
+
+void printCapture(const fs::path& path, bool json) {
+  const capture::CaptureSummary s = capture::describeCapture(path);
+  if (json) {
+    JsonWriter j;
+    j.beginObject().key("kind").value("capture").key("shots").value(static_cast<int>(s.shots))
+        .key("originals").value(s.originals).key("exports").value(s.exports)
+        .key("originalsFolder").value(s.originalsFolder)
+        .key("width").value(s.width).key("height").value(s.height)
+        .key("lp").value(s.lp.value_or(""));
+    if (s.processed) {
+      j.key("carrier");
+      carrierJson(j, carrier::loadCarrier(path / capture::kCarrierPath));
+    }
+    j.endObject();
+    std::cout << j.str() << "\n";
+    return;
+  }
+  std::cout << path.string() << ": capture folder\n"
+            << "  shots:     " << s.shots << " (" << shotsText(s) << ")\n"
+            << "  image:     " << s.width << "x" << s.height << " " << s.format << "\n"
+            << "  lights:    " << (s.lp ? "given by " + *s.lp + " (dome capture)" : "to be detected from the spheres")
+            << "\n";
+  for (const std::string& lp : s.unusedLp)
+    std::cout << "  note:      " << lp << " is kept as a file of the capture but not used; for "
+              << "a dome capture whose lights it gives, run with --lp " << lp << "\n";
+}
+
+}  // namespace surrogate::cli
