@@ -21,7 +21,7 @@ const std::vector<Command>& commands() {
       {"info", "describe a package, carrier, capture, image, .xmp sidecar, .ptm, .rti or .lp file", runCommandInfo},
       {"report", "write the HTML report of a capture or package", runCommandReport},
       {"verify", "check a package: fixity, schemas, metadata; --reexecute re-runs its steps", runCommandVerify},
-      {"audit", "audit the prior work (RTIBuilder's .lp, .ptm or .rti) left in a capture", runCommandAudit},
+      {"audit", "audit another tool's RTI (RTIBuilder's .lp, .ptm, .rti, log) read-only, in a work folder", runCommandAudit},
   };
   return list;
 }
