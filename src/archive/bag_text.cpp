@@ -5,8 +5,9 @@
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
-#include <set>
+#include <map>
 
+#include "core/digest.h"
 #include "core/file_names.h"
 #include "core/text.h"
 
@@ -106,8 +107,13 @@ Declaration parseDeclaration(const std::string& text) {
       d.problems.push_back("line 1 must be \"BagIt-Version: 1.0\"");
     else
       d.version = lines[0].substr(prefix.size());
-    if (!d.version.empty() && d.version != "1.0" && d.version != "0.97")
-      d.problems.push_back("BagIt-Version " + d.version + " is not 1.0 (or 0.97)");
+    // 1.0 is RFC 8493; 0.93 to 0.97 are the drafts before it, which bags made years ago
+    // declare (their older bag-info.txt is package-info.txt, a tag file like any other here).
+    const bool known = d.version == "1.0" || d.version == "0.97" || d.version == "0.96" ||
+                       d.version == "0.95" || d.version == "0.94" || d.version == "0.93";
+    if (!d.version.empty() && !known)
+      d.problems.push_back("BagIt-Version " + d.version.substr(0, 40) +
+                           " is not 1.0 (or one of the drafts 0.93 to 0.97)");
   }
   if (lines.size() >= 2) {
     const std::string prefix = "Tag-File-Character-Encoding: ";
@@ -230,14 +236,19 @@ BagInfo parseBagInfo(const std::string& text) {
     }
     const std::string label = line.substr(0, colon);
     if (trim(label) != label) {
-      info.problems.push_back("line " + std::to_string(number) + ": whitespace around the "
-                              "label \"" + trim(label) + "\"");
+      info.departures.push_back("line " + std::to_string(number) + ": whitespace around the "
+                                "label \"" + trim(label) + "\" (RFC 8493 writes \"Label: value\"; "
+                                "read as \"" + trim(label) + "\")");
     }
     info.fields.emplace_back(trim(label), trim(line.substr(colon + 1)));
   }
-  for (const char* once : {"Payload-Oxum", "Bagging-Date", "Bag-Size", "Bag-Count"}) {
+  // RFC 8493 section 2.2.2: each of these SHOULD NOT be repeated.
+  for (const char* once :
+       {"Payload-Oxum", "Bagging-Date", "Bag-Size", "Bag-Count", "Bag-Group-Identifier"}) {
     if (info.values(once).size() > 1)
-      info.problems.push_back(std::string(once) + " is repeated; RFC 8493 allows it once");
+      info.departures.push_back(std::string(once) + " is repeated (" +
+                                std::to_string(info.values(once).size()) +
+                                " times); RFC 8493 says it should be given once");
   }
   return info;
 }
@@ -265,7 +276,7 @@ Manifest parseManifest(const std::string& text, const std::string& algorithm,
   Manifest m;
   m.algorithm = algorithm;
   if (!isValidUtf8(text)) m.problems.push_back("is not valid UTF-8");
-  std::set<std::string> seen;
+  std::map<std::string, std::pair<std::string, int>> seen;  // path -> checksum, line
   int number = 0;
   for (const std::string& line : splitLines(text)) {
     ++number;
@@ -289,6 +300,13 @@ Manifest parseManifest(const std::string& text, const std::string& algorithm,
                            algorithm + " checksum");
       continue;
     }
+    // md5sum's binary-mode marker: exactly one space, then '*' before the path.
+    if (pathStart == gap + 1 && line[gap] == ' ' && line[pathStart] == '*' &&
+        pathStart + 1 < line.size()) {
+      ++pathStart;
+      m.departures.push_back(where + "\"*" + line.substr(pathStart, 200) + "\": the '*' is md5sum's "
+                             "binary-mode marker, read as " + line.substr(pathStart, 200));
+    }
     std::string why;
     const std::string decoded = percentDecode(line.substr(pathStart));
     const auto path = safeBagPath(decoded, &why);
@@ -296,8 +314,14 @@ Manifest parseManifest(const std::string& text, const std::string& algorithm,
       m.problems.push_back(where + "\"" + decoded.substr(0, 200) + "\": " + why);
       continue;
     }
-    if (!seen.insert(*path).second) {
-      m.problems.push_back(where + *path + " is listed twice (invalid in BagIt 1.0)");
+    const auto [earlier, first] = seen.emplace(*path, std::make_pair(checksum, number));
+    if (!first) {
+      const std::string before = "line " + std::to_string(earlier->second.second);
+      if (earlier->second.first == checksum)
+        m.repeats.push_back(where + *path + " is listed again with the same checksum (" + before + ")");
+      else
+        m.problems.push_back(where + *path + " is listed twice with different checksums (" +
+                             before + ")");
       continue;
     }
     m.entries.push_back({checksum, *path, number});
@@ -319,13 +343,13 @@ std::optional<std::pair<std::string, std::string>> manifestName(const std::strin
 std::size_t digestHexLength(const std::string& algorithm) {
   if (algorithm == "sha256") return 64;
   if (algorithm == "sha512") return 128;
-  if (algorithm == "md5") return 32;
-  if (algorithm == "sha1") return 40;
-  return 0;
+  return 2 * namedDigestSize(algorithm);
 }
 
 bool isLegacyAlgorithm(const std::string& algorithm) {
-  return algorithm == "md5" || algorithm == "sha1";
+  for (const char* weak : {"md5", "sha1", "md4", "md5-sha1", "md5_sha1", "ripemd160", "rmd160", "mdc2"})
+    if (algorithm == weak) return true;
+  return false;
 }
 
 Fetch parseFetch(const std::string& text) {

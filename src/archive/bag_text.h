@@ -35,7 +35,7 @@ std::string percentDecode(const std::string& text);
 // Splits text into lines at LF, CRLF or CR.
 std::vector<std::string> splitLines(const std::string& text);
 
-// bagit.txt: exactly two lines, "BagIt-Version: 1.0" (or 0.97) and
+// bagit.txt: exactly two lines, "BagIt-Version: 1.0" (or a draft, 0.93 to 0.97) and
 // "Tag-File-Character-Encoding: ENCODING", in UTF-8 without a byte-order mark. ENCODING is
 // UTF-8 for every bag Surrogate writes; older bags name UTF-16, ISO-8859-1 and others, which
 // are accepted when decodeTagText can read them (iconv knows the name).
@@ -60,6 +60,11 @@ bool tagEncodingSupported(const std::string& encoding);
 struct BagInfo {
   std::vector<std::pair<std::string, std::string>> fields;  // in order, labels as written
   std::vector<std::string> problems;
+  // What RFC 8493 allows or advises against without forbidding, and bagit-python accepts:
+  // whitespace before the colon ("Label : value"), a reserved label that SHOULD NOT be
+  // repeated (Bagging-Date, Payload-Oxum, ...) given twice. A warning in a bag another tool
+  // made; a Surrogate package is held to what `pack` writes, where each is a problem.
+  std::vector<std::string> departures;
   // Values of a label (case-insensitive).
   std::vector<std::string> values(const std::string& label) const;
 };
@@ -77,7 +82,15 @@ struct ManifestEntry {
 struct Manifest {
   std::string algorithm;  // "sha256", from the file name
   std::vector<ManifestEntry> entries;
-  std::vector<std::string> problems;  // "line 3: ..." for malformed lines, duplicates, bad paths
+  // "line 3: ..." for malformed lines, a path listed twice with different checksums, bad paths
+  std::vector<std::string> problems;
+  // A path listed again with the same checksum (kept once in `entries`): BagIt 0.97 tools
+  // wrote such manifests and bagit-python accepts them; RFC 8493 (1.0) does not.
+  std::vector<std::string> repeats;
+  // md5sum's binary-mode marker, "<checksum> *<path>", read as the path without the '*': a
+  // manifest written by md5sum or sha256sum -b. Accepted with a warning in a bag another tool
+  // made, a problem in a Surrogate package.
+  std::vector<std::string> departures;
 };
 // `hexLength` is the expected digest length in hex characters (64 for sha256).
 Manifest parseManifest(const std::string& text, const std::string& algorithm,
@@ -87,12 +100,13 @@ Manifest parseManifest(const std::string& text, const std::string& algorithm,
 // "sha512"}; nullopt for other names.
 std::optional<std::pair<std::string, std::string>> manifestName(const std::string& path);
 
-// Hex digest length of an algorithm this verifier computes (sha256: 64, sha512: 128, md5: 32,
-// sha1: 40), 0 if it does not compute it.
+// Hex digest length of a manifest's algorithm, by its BagIt name (sha256: 64, sha512: 128,
+// sha224: 56, md5: 32, ...): any digest OpenSSL offers (core/digest.h, namedDigestSize); 0 if
+// it offers none of that name.
 std::size_t digestHexLength(const std::string& algorithm);
 
-// md5 and sha1: accepted in bags made by other tools (RFC 8493 section 2.4 keeps them for
-// existing bags), with a warning, since they no longer resist a deliberate change.
+// md5, sha1 and the like: accepted in bags made by other tools (RFC 8493 section 2.4 keeps
+// them for existing bags), with a warning, since they no longer resist a deliberate change.
 bool isLegacyAlgorithm(const std::string& algorithm);
 
 // fetch.txt (RFC 8493 section 2.2.3): "<url> <length or -> <path>" per line, separated by

@@ -61,12 +61,10 @@ bool keepContent(const std::string& path) {
 }  // namespace
 
 Inventory readPackage(const fs::path& package, const Limits& limits, const Progress& progress,
-                      bool legacyDigests) {
-  std::vector<DigestAlgorithm> algorithms = {DigestAlgorithm::Sha256, DigestAlgorithm::Sha512};
-  if (legacyDigests) {
-    algorithms.push_back(DigestAlgorithm::Md5);
-    algorithms.push_back(DigestAlgorithm::Sha1);
-  }
+                      const std::vector<std::string>& otherDigests) {
+  std::vector<std::string> algorithms = {"sha256", "sha512"};
+  for (const std::string& name : otherDigests)
+    if (name != "sha256" && name != "sha512") algorithms.push_back(name);
   std::unique_ptr<PackageSource> source = openSource(package);
   const std::string name = package.string();
   Inventory raw;
@@ -96,10 +94,8 @@ Inventory readPackage(const fs::path& package, const Limits& limits, const Progr
     });
     file.sha256 = digest.hex(DigestAlgorithm::Sha256);
     file.sha512 = digest.hex(DigestAlgorithm::Sha512);
-    if (legacyDigests) {
-      file.md5 = digest.hex(DigestAlgorithm::Md5);
-      file.sha1 = digest.hex(DigestAlgorithm::Sha1);
-    }
+    for (std::size_t i = 2; i < algorithms.size(); ++i)
+      file.otherDigests[algorithms[i]] = digest.hex(algorithms[i]);
     if (keep && content.size() <= limits.maxTagFileBytes) {
       kept += content.size();
       if (kept > kMaxKeptBytes)

@@ -22,6 +22,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "core/file_names.h"
 
@@ -41,7 +42,8 @@ struct Limits {
 struct InventoryFile {
   std::uint64_t size = 0;
   std::string sha256, sha512;          // lower-case hex
-  std::string md5, sha1;               // only when readPackage is asked for them
+  // Other digests by BagIt name ("md5", "sha224", ...), only those readPackage is asked for.
+  std::map<std::string, std::string> otherDigests;
   // Tag files (outside data/) but the two large derived ones (metadata/mets.xml and crm.rdf,
   // compared by their digests, see readBagFile), and the carrier.
   std::optional<std::string> content;
@@ -61,10 +63,13 @@ struct Inventory {
 // Progress: (label, fraction 0..1).
 using Progress = std::function<void(const std::string&, double)>;
 
-// With `legacyDigests`, every file's MD5 and SHA-1 are computed too, for bags made by other
-// tools whose manifests use them (the verifier asks only when such a manifest is there).
+// Every file's SHA-256 and SHA-512 are computed, and with `otherDigests` (BagIt names, each
+// one OpenSSL offers: core/digest.h, namedDigestSize) those too, from the same read, for bags
+// made by other tools whose manifests use them (the verifier asks only when such a manifest is
+// there).
 Inventory readPackage(const std::filesystem::path& package, const Limits& limits,
-                      const Progress& progress = {}, bool legacyDigests = false);
+                      const Progress& progress = {},
+                      const std::vector<std::string>& otherDigests = {});
 
 // The content of one file of the bag, read again from the package: the inventory does not hold
 // the large tag files (metadata/mets.xml, metadata/crm.rdf), which a check reads only when it

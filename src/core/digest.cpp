@@ -24,32 +24,75 @@ const char* bagitName(DigestAlgorithm algorithm) {
 
 namespace {
 
-const EVP_MD* evpOf(DigestAlgorithm algorithm) {
-  switch (algorithm) {
-    case DigestAlgorithm::Sha256: return EVP_sha256();
-    case DigestAlgorithm::Sha512: return EVP_sha512();
-    case DigestAlgorithm::Md5: return EVP_md5();
-    case DigestAlgorithm::Sha1: return EVP_sha1();
+// An OpenSSL digest fetched by name, freed on scope exit.
+struct FetchedDigest {
+  EVP_MD* md = nullptr;
+  explicit FetchedDigest(const std::string& bagitName);
+  ~FetchedDigest() { EVP_MD_free(md); }
+  FetchedDigest(const FetchedDigest&) = delete;
+  FetchedDigest& operator=(const FetchedDigest&) = delete;
+};
+
+// BagIt names are lower-case words; OpenSSL's names differ in a few spellings: bagit-python
+// writes Python's hashlib names (sha3_256, blake2b), OpenSSL sha3-256, BLAKE2B-512.
+std::string opensslName(const std::string& bagitName) {
+  if (bagitName == "blake2b") return "BLAKE2B-512";
+  if (bagitName == "blake2s") return "BLAKE2S-256";
+  std::string name = bagitName;
+  for (char& c : name)
+    if (c == '_') c = '-';
+  return name;
+}
+
+bool plausibleDigestName(const std::string& name) {
+  if (name.empty() || name.size() > 32) return false;
+  for (char c : name)
+    if (!((c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '-' || c == '_')) return false;
+  return true;
+}
+
+FetchedDigest::FetchedDigest(const std::string& bagitName) {
+  if (!plausibleDigestName(bagitName)) return;
+  md = EVP_MD_fetch(nullptr, opensslName(bagitName).c_str(), nullptr);
+  // No fixed length (an extendable-output function), or none at all (OpenSSL's "null"): no
+  // manifest could hold it.
+  if (md && ((EVP_MD_get_flags(md) & EVP_MD_FLAG_XOF) != 0 || EVP_MD_get_size(md) <= 0)) {
+    EVP_MD_free(md);
+    md = nullptr;
   }
-  return nullptr;
 }
 
 }  // namespace
 
+std::size_t namedDigestSize(const std::string& bagitName) {
+  const FetchedDigest digest(bagitName);
+  return digest.md ? static_cast<std::size_t>(EVP_MD_get_size(digest.md)) : 0;
+}
+
 struct MultiDigest::State {
-  DigestAlgorithm algorithm;
+  std::string name;  // the BagIt name
   EVP_MD_CTX* ctx = nullptr;
   std::string hex;  // set when finished
   ~State() { EVP_MD_CTX_free(ctx); }
 };
 
-MultiDigest::MultiDigest(std::vector<DigestAlgorithm> algorithms) {
-  for (DigestAlgorithm a : algorithms) {
+MultiDigest::MultiDigest(std::vector<DigestAlgorithm> algorithms)
+    : MultiDigest([&] {
+        std::vector<std::string> names;
+        for (DigestAlgorithm a : algorithms) names.emplace_back(bagitName(a));
+        return names;
+      }()) {}
+
+MultiDigest::MultiDigest(const std::vector<std::string>& bagitNames) {
+  for (const std::string& name : bagitNames) {
     auto s = std::make_unique<State>();
-    s->algorithm = a;
+    s->name = name;
     s->ctx = EVP_MD_CTX_new();
-    const EVP_MD* md = evpOf(a);
-    if (!s->ctx || !md || EVP_DigestInit_ex(s->ctx, md, nullptr) != 1)
+    const FetchedDigest digest(name);
+    if (!digest.md)
+      throw Error(ErrorKind::Internal, name, "hashing", "OpenSSL offers no digest of that name");
+    // The context keeps its own reference to the digest.
+    if (!s->ctx || EVP_DigestInit_ex(s->ctx, digest.md, nullptr) != 1)
       throw std::runtime_error("OpenSSL could not initialise a digest");
     states_.push_back(std::move(s));
   }
@@ -67,9 +110,11 @@ void MultiDigest::update(const void* data, std::size_t size) {
   bytes_ += size;
 }
 
-std::string MultiDigest::hex(DigestAlgorithm algorithm) {
+std::string MultiDigest::hex(DigestAlgorithm algorithm) { return hex(std::string(bagitName(algorithm))); }
+
+std::string MultiDigest::hex(const std::string& bagitName) {
   for (auto& s : states_) {
-    if (s->algorithm != algorithm) continue;
+    if (s->name != bagitName) continue;
     if (s->hex.empty()) {
       unsigned char out[EVP_MAX_MD_SIZE];
       unsigned int len = 0;

@@ -25,9 +25,18 @@ enum class DigestAlgorithm { Sha256, Sha512, Md5, Sha1 };
 // The BagIt name of an algorithm: "sha256", "sha512", "md5", "sha1".
 const char* bagitName(DigestAlgorithm algorithm);
 
+// Digests named as a BagIt manifest names them (manifest-NAME.txt), for bags made by other
+// tools: whatever OpenSSL offers under that name ("sha224", "sha384", "sha3-256" or
+// bagit-python's "sha3_256", "blake2b", ...). The size of its digest in bytes, or 0 when
+// OpenSSL offers no such digest, or only one of no fixed length (shake128, shake256). The name
+// is untrusted: anything but a short lower-case word of letters, digits, '-' and '_' is 0.
+std::size_t namedDigestSize(const std::string& bagitName);
+
 class MultiDigest {
  public:
   explicit MultiDigest(std::vector<DigestAlgorithm> algorithms);
+  // By BagIt name (namedDigestSize must be non-zero for each); throws Error(Internal) otherwise.
+  explicit MultiDigest(const std::vector<std::string>& bagitNames);
   ~MultiDigest();
   MultiDigest(MultiDigest&&) noexcept;
   MultiDigest& operator=(MultiDigest&&) noexcept;
@@ -38,6 +47,7 @@ class MultiDigest {
   // Finishes (once) and returns the lower-case hex digest of `algorithm`, which must be one
   // of those given to the constructor.
   std::string hex(DigestAlgorithm algorithm);
+  std::string hex(const std::string& bagitName);
   std::uint64_t bytes() const { return bytes_; }
 
  private:

@@ -31,10 +31,26 @@ namespace {
 bool isPayload(const std::string& path) { return path.compare(0, 5, "data/") == 0; }
 
 const std::string& digestOf(const InventoryFile& f, const std::string& algorithm) {
+  static const std::string none;
+  if (algorithm == "sha256") return f.sha256;
   if (algorithm == "sha512") return f.sha512;
-  if (algorithm == "md5") return f.md5;
-  if (algorithm == "sha1") return f.sha1;
-  return f.sha256;
+  const auto it = f.otherDigests.find(algorithm);
+  return it == f.otherDigests.end() ? none : it->second;
+}
+
+// What RFC 8493 allows or advises against and bagit-python accepts (whitespace before a
+// bag-info colon, a reserved label repeated, md5sum's '*' marker, a 0.97 manifest listing a
+// file twice with the same checksum): a warning in a bag another tool made, a problem in a
+// Surrogate package, which is held to what `surrogate pack` writes.
+void latitude(const std::string& file, const std::vector<std::string>& departures,
+              bool surrogatePackage, std::vector<std::string>& problems,
+              std::vector<std::string>& warnings) {
+  for (const std::string& d : departures) {
+    if (surrogatePackage)
+      problems.push_back(file + ": " + d + "; `surrogate pack` never writes this");
+    else
+      warnings.push_back(file + ": " + d + "; accepted in a bag another tool made");
+  }
 }
 
 // The parsed manifests and tag manifests of a bag.
@@ -42,8 +58,14 @@ struct Manifests {
   std::vector<Manifest> payload, tags;
 };
 
-// bagit.declaration; returns the tag files' encoding (UTF-8 when bagit.txt names none).
-std::string checkDeclaration(const Inventory& inv, std::vector<Check>& checks) {
+// What bagit.txt declares: the version (1.0 when it names none) and the tag files' encoding
+// (UTF-8 when it names none).
+struct Declared {
+  std::string version, encoding;
+};
+
+// bagit.declaration.
+Declared checkDeclaration(const Inventory& inv, std::vector<Check>& checks) {
   std::vector<std::string> problems;
   std::string version = "1.0", encoding = "UTF-8";
   const std::string* text = contentOf(inv, "bagit.txt");
@@ -59,7 +81,7 @@ std::string checkDeclaration(const Inventory& inv, std::vector<Check>& checks) {
                              "bagit.txt declares BagIt " + version + " with " + encoding +
                                  " tag files",
                              "bagit.txt is missing or malformed", problems));
-  return encoding;
+  return {version, encoding};
 }
 
 // A tag file's text in UTF-8 (RFC 8493: tag files are in the encoding bagit.txt names), or
@@ -88,9 +110,12 @@ void checkEntryKinds(const std::string& path, const std::string& kind, const Man
 }
 
 // Parses every manifest and tag manifest; what is malformed goes to `structure`, md5 and sha1
-// manifests to `warnings`.
-Manifests parseManifests(const Inventory& inv, const std::string& encoding,
+// manifests to `warnings`, and what RFC 8493 leaves latitude for to either (`latitude`). A path
+// listed twice with the same checksum is a problem in BagIt 1.0 (RFC 8493) and latitude in
+// 0.97, whose tools wrote such manifests.
+Manifests parseManifests(const Inventory& inv, const Declared& declared, bool surrogatePackage,
                          std::vector<std::string>& structure, std::vector<std::string>& warnings) {
+  const std::string& encoding = declared.encoding;
   Manifests out;
   for (const auto& [path, file] : inv.files) {
     const auto name = manifestName(path);
@@ -98,8 +123,17 @@ Manifests parseManifests(const Inventory& inv, const std::string& encoding,
     const std::size_t hex = digestHexLength(name->second);
     if (hex == 0) {
       structure.push_back(path + ": algorithm \"" + name->second.substr(0, 40) +
-                          "\" is not one this verifier accepts (sha256, sha512; md5 and sha1 "
-                          "in bags made by other tools)");
+                          "\" is not one this verifier accepts (sha256, sha512, and in bags "
+                          "made by other tools any other digest OpenSSL offers: sha224, sha384, "
+                          "md5, sha1, ...)");
+      continue;
+    }
+    // A Surrogate package is held to what `pack` writes: the other digests OpenSSL offers are
+    // for bags other tools made (md5 and sha1 were accepted in any bag before, and still are).
+    if (surrogatePackage && name->second != "sha256" && name->second != "sha512" &&
+        name->second != "md5" && name->second != "sha1") {
+      structure.push_back(path + ": algorithm \"" + name->second + "\" in a Surrogate package, "
+                          "whose manifests `surrogate pack` writes in sha256 and sha512");
       continue;
     }
     if (!file.content) {
@@ -114,6 +148,13 @@ Manifests parseManifests(const Inventory& inv, const std::string& encoding,
     if (!text) continue;
     Manifest m = parseManifest(*text, name->second, hex);
     for (const std::string& p : m.problems) structure.push_back(path + ": " + p);
+    latitude(path, m.departures, surrogatePackage, structure, warnings);
+    if (declared.version == "1.0") {
+      for (const std::string& r : m.repeats)
+        structure.push_back(path + ": " + r + " (invalid in BagIt 1.0, RFC 8493)");
+    } else {
+      latitude(path, m.repeats, surrogatePackage, structure, warnings);
+    }
     checkEntryKinds(path, name->first, m, structure);
     (name->first == "manifest" ? out.payload : out.tags).push_back(std::move(m));
   }
@@ -236,14 +277,17 @@ void checkFixity(const Inventory& inv, const Manifests& manifests, std::vector<C
 }
 
 // bagit.info (bag-info.txt well-formed) and bagit.payload-oxum.
-void checkBagInfo(const Inventory& inv, const std::string& encoding, std::vector<Check>& checks) {
+void checkBagInfo(const Inventory& inv, const std::string& encoding, bool surrogatePackage,
+                  std::vector<Check>& checks, std::vector<std::string>& warnings) {
   const std::string* bytes = contentOf(inv, "bag-info.txt");
   if (!bytes) return;
   std::vector<std::string> problems;
   const std::optional<std::string> text = tagText("bag-info.txt", *bytes, encoding, problems);
   const BagInfo info = parseBagInfo(text.value_or(""));
-  if (text)
+  if (text) {
     for (const std::string& p : info.problems) problems.push_back("bag-info.txt: " + p);
+    latitude("bag-info.txt", info.departures, surrogatePackage, problems, warnings);
+  }
   checks.push_back(makeCheck("bagit.info", Severity::Invalid, "bag-info.txt is well-formed",
                              "bag-info.txt is malformed", problems));
   const auto oxum = info.values("Payload-Oxum");
@@ -253,15 +297,16 @@ void checkBagInfo(const Inventory& inv, const std::string& encoding, std::vector
   std::uint64_t octets = 0, streams = 0;
   for (const auto& [path, f] : inv.files)
     if (isPayload(path)) { octets += f.size; ++streams; }
-  const auto parsed = parseOxum(oxum.front());
+  // Given more than once (a warning above, or a problem in a Surrogate package), the first
+  // is the one checked.
+  const std::string& value = oxum.front();
+  const auto parsed = parseOxum(value);
   if (!parsed) {
     severity = Severity::Invalid;
-    oxumProblems.push_back("bag-info.txt: Payload-Oxum \"" + oxum.front() +
-                           "\" is not <bytes>.<files>");
+    oxumProblems.push_back("bag-info.txt: Payload-Oxum \"" + value + "\" is not <bytes>.<files>");
   } else if (parsed->first != octets || parsed->second != streams) {
-    oxumProblems.push_back("bag-info.txt: Payload-Oxum says " + oxum.front() +
-                           ", the payload holds " + std::to_string(octets) + "." +
-                           std::to_string(streams));
+    oxumProblems.push_back("bag-info.txt: Payload-Oxum says " + value + ", the payload holds " +
+                           std::to_string(octets) + "." + std::to_string(streams));
   }
   checks.push_back(makeCheck("bagit.payload-oxum", severity,
                              "the payload's size and file count match Payload-Oxum " + oxum.front(),
@@ -271,19 +316,23 @@ void checkBagInfo(const Inventory& inv, const std::string& encoding, std::vector
 
 }  // namespace
 
-bool needsLegacyDigests(const Inventory& inv) {
+std::vector<std::string> otherDigestsNeeded(const Inventory& inv) {
+  std::set<std::string> names;
   for (const auto& [path, file] : inv.files) {
     const auto name = manifestName(path);
-    if (name && isLegacyAlgorithm(name->second)) return true;
+    if (name && name->second != "sha256" && name->second != "sha512" &&
+        digestHexLength(name->second) != 0)
+      names.insert(name->second);
   }
-  return false;
+  return {names.begin(), names.end()};
 }
 
 void checkBag(const Inventory& inv, bool surrogatePackage, std::vector<Check>& checks,
               std::vector<std::string>& warnings) {
-  const std::string encoding = checkDeclaration(inv, checks);
+  const Declared declared = checkDeclaration(inv, checks);
+  const std::string& encoding = declared.encoding;
   std::vector<std::string> structure;
-  const Manifests manifests = parseManifests(inv, encoding, structure, warnings);
+  const Manifests manifests = parseManifests(inv, declared, surrogatePackage, structure, warnings);
   // bagit.fetch follows bagit.manifests, which holds the malformed lines of fetch.txt.
   std::vector<Check> fetchCheck;
   const std::set<std::string> toFetch = checkFetch(inv, encoding, manifests, structure, fetchCheck);
@@ -293,7 +342,7 @@ void checkBag(const Inventory& inv, bool surrogatePackage, std::vector<Check>& c
   for (Check& c : fetchCheck) checks.push_back(std::move(c));
   checkListed(inv, manifests, toFetch, surrogatePackage, checks);
   checkFixity(inv, manifests, checks);
-  checkBagInfo(inv, encoding, checks);
+  checkBagInfo(inv, encoding, surrogatePackage, checks, warnings);
 }
 
 }  // namespace surrogate::verify

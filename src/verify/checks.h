@@ -45,14 +45,16 @@ Check makeCheck(const std::string& name, Severity severity, const std::string& p
 const std::string* contentOf(const Inventory& inventory, const std::string& path);
 
 // bagit.*: RFC 8493 structure, manifests, tagmanifests, fetch.txt, Payload-Oxum,
-// completeness, fixity, for any bag (tag files in the encoding bagit.txt names, md5 and sha1
-// manifests with a warning). A Surrogate package is held to more: package.tags-listed.
+// completeness, fixity, for any bag (tag files in the encoding bagit.txt names, manifests in
+// any digest OpenSSL offers, md5 and sha1 with a warning, and what RFC 8493 tolerates with a
+// warning: bag_checks.cpp, `latitude`). A Surrogate package is held to more: none of that
+// latitude, and package.tags-listed.
 void checkBag(const Inventory& inventory, bool surrogatePackage, std::vector<Check>& checks,
               std::vector<std::string>& warnings);
 
-// Whether the bag has md5 or sha1 manifests, whose digests readPackage computes only when
-// asked.
-bool needsLegacyDigests(const Inventory& inventory);
+// The algorithms of the bag's manifests other than sha256 and sha512 that OpenSSL offers
+// (md5, sha1, sha224, ...), whose digests readPackage computes only when asked.
+std::vector<std::string> otherDigestsNeeded(const Inventory& inventory);
 
 // carrier.*: schema and files; returns the parsed carrier when it is valid.
 std::optional<carrier::Carrier> checkCarrier(const Inventory& inventory, std::vector<Check>& checks);

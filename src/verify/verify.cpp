@@ -47,12 +47,13 @@ bool Report::packageSound() const {
 
 namespace {
 
-// The inventory, read a second time with MD5 and SHA-1 when the bag has manifests in them:
-// a bag made by another tool pays for its old algorithms, a Surrogate package never does.
+// The inventory, read a second time when the bag has manifests in algorithms other than
+// SHA-256 and SHA-512 (md5, sha1, sha224, ...), all of them computed in that one second read:
+// a bag made by another tool pays for its other algorithms, a Surrogate package never does.
 Inventory readInventory(const std::filesystem::path& package, const VerifyOptions& options) {
   Inventory inventory = readPackage(package, options.limits, options.progress);
-  if (needsLegacyDigests(inventory))
-    inventory = readPackage(package, options.limits, options.progress, true);
+  if (const std::vector<std::string> other = otherDigestsNeeded(inventory); !other.empty())
+    inventory = readPackage(package, options.limits, options.progress, other);
   return inventory;
 }
 

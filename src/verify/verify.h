@@ -2,9 +2,10 @@
 //
 // Its verdict has two parts: "BagIt: valid/invalid" for any bag (package.read and bagit.*
 // checks), and for a Surrogate package "Surrogate package: sound/not sound" (every other
-// check). A bag another tool made is checked as a bag only: md5 and sha1 manifests are
-// accepted with a warning, tag files are read in the encoding bagit.txt names, and its exit
-// code is its BagIt verdict (0 valid).
+// check). A bag another tool made is checked as a bag only: manifests in any digest OpenSSL
+// offers (md5 and sha1 with a warning), what RFC 8493 tolerates with a warning (md5sum's '*'
+// marker, a 0.97 path listed twice with the same checksum, a repeated Bagging-Date), tag files
+// read in the encoding bagit.txt names, and its exit code is its BagIt verdict (0 valid).
 //
 // It answers with a list of checks, each passed or failed with what was found and where:
 //   package.read the package read to its end, safely: no hostile entry, a .tar that ends with
