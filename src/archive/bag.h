@@ -75,6 +75,10 @@ struct BagInput {
   // The packer's own labels (Surrogate-Package-Identifier, Surrogate-Packaging-Time), written
   // after `info`; only their form is checked.
   std::vector<std::pair<std::string, std::string>> ownInfo;
+  // The holder's labels (pack --bag-info: External-Identifier, Contact-Name, ...), written
+  // last, in the given order; a label may repeat. Checked as `info` is (bagInfoLabelProblem),
+  // and a value may not hold a line break.
+  std::vector<std::pair<std::string, std::string>> holderInfo;
   std::string softwareAgent = "Surrogate";
   // Seconds since 1970 for every entry's time and for Bagging-Date. Default: SOURCE_DATE_EPOCH
   // when set, else kDefaultEpoch (see sourceDateEpoch()).

@@ -122,7 +122,8 @@ std::string infoLine(const std::string& label, const std::string& value) {
 
 }  // namespace
 
-// bag-info.txt: the computed labels, then the caller's, then the caller's own (checked).
+// bag-info.txt: the computed labels, then the caller's, then the caller's own, then the
+// holder's (checked).
 std::string bagInfoText(const BagInput& input, std::uint64_t total, std::size_t files) {
   const std::string baggingDate =
       input.baggingDate.empty() ? utcDate(packagingEpoch()) : input.baggingDate;
@@ -138,6 +139,13 @@ std::string bagInfoText(const BagInput& input, std::uint64_t total, std::size_t 
   for (const auto& [label, value] : input.ownInfo) {
     if (const std::string problem = labelFormProblem(label); !problem.empty())
       throw Error(ErrorKind::Internal, label, "packing", problem);
+    info += infoLine(label, value);
+  }
+  for (const auto& [label, value] : input.holderInfo) {
+    checkLabel(label);
+    if (value.find_first_of("\r\n") != std::string::npos)
+      throw Error(ErrorKind::Usage, label, "packing",
+                  "the value holds a line break; a holder's bag-info.txt value is one line");
     info += infoLine(label, value);
   }
   return info;

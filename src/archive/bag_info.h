@@ -12,7 +12,9 @@ namespace surrogate::archive {
 // bag-info.txt of a payload of `total` bytes in `files` files: the computed labels
 // (Bag-Software-Agent, Bagging-Date, Bag-Size, Payload-Oxum), then the caller's (BagInput::info,
 // refused with Error(Usage) when bagInfoLabelProblem says so), then the packer's own
-// (BagInput::ownInfo, only their form checked). A value's line breaks become continuation lines.
+// (BagInput::ownInfo, only their form checked), then the holder's (BagInput::holderInfo,
+// checked as the caller's, a value with a line break refused). A value's line breaks become
+// continuation lines.
 std::string bagInfoText(const BagInput& input, std::uint64_t total, std::size_t files);
 
 }  // namespace surrogate::archive

@@ -18,6 +18,7 @@
 #include "core/error.h"
 #include "core/file_names.h"
 #include "core/resources.h"
+#include "core/text.h"
 #include "core/version.h"
 #include "mapping/mapping.h"
 
@@ -167,6 +168,44 @@ PackageInfo packageInfo(const carrier::Carrier& c, const std::string& packageId,
   return info;
 }
 
+bool isSurrogateLabel(const std::string& label, const PackageInfo& info) {
+  static const std::set<std::string> computed = {"bag-software-agent", "bagging-date", "bag-size",
+                                                  "payload-oxum"};
+  const std::string lower = lowerCase(label);
+  if (computed.count(lower) || lower.rfind("surrogate-", 0) == 0) return true;
+  for (const auto* labels : {&info.user, &info.own})
+    for (const auto& [l, v] : *labels)
+      if (lowerCase(l) == lower) return true;
+  return false;
+}
+
+// The holder's fields are not recorded in the carrier: the carrier is the capture's
+// provenance, and the package identifier is its SHA-256, so a field that names this one
+// deposit (a repository's identifier, whom to contact) would change the capture's record and
+// its identity, and would make pack process the capture again. Metadata that belongs to the
+// capture itself goes into the carrier with --meta, where verify re-derives it; these fields
+// are what RFC 8493 lets a bag's holder add, and verify lists them as such.
+std::string holderFieldProblem(const std::string& label, const std::string& value,
+                               const carrier::Carrier* c) {
+  if (isSurrogateLabel(label, PackageInfo{}))
+    return "is written by Surrogate itself (Payload-Oxum, Bagging-Date, Bag-Size, "
+           "Bag-Software-Agent and every Surrogate-* label), which verify checks; choose "
+           "another label";
+  if (const std::string why = bagInfoLabelProblem(label); !why.empty()) return why;
+  if (c && isSurrogateLabel(label, packageInfo(*c, "", "")))
+    return "is already written by Surrogate from the carrier (its metadata, given with --meta, "
+           "or External-Description), which verify checks against the carrier; change it with "
+           "`surrogate run CAPTURE --meta " + label + "=VALUE`, or choose another label";
+  if (value.find_first_of("\r\n") != std::string::npos)
+    return "has a value with a line break; a holder's bag-info.txt value is one line (write "
+           "it on one line)";
+  if (std::any_of(value.begin(), value.end(),
+                  [](unsigned char ch) { return (ch < ' ' && ch != '\t') || ch == 0x7f; }))
+    return "has a value with a control character; give plain text";
+  if (!isValidUtf8(value)) return "has a value that is not UTF-8 text";
+  return "";
+}
+
 std::string packageIdentifier(const std::string& carrierSha256) { return "urn:sha256:" + carrierSha256; }
 
 std::vector<std::string> packageMetadataFiles() {
@@ -206,6 +245,9 @@ PackResult packCapture(const fs::path& capture, const fs::path& out, const PackO
   const std::int64_t packedAt = packagingEpoch();
   result.packagingTime = utcDateTime(packedAt);
   const std::string agent = std::string("Surrogate ") + surrogateVersion();
+  for (const auto& [label, value] : options.bagInfo)  // before anything is written
+    if (const std::string why = holderFieldProblem(label, value, &c); !why.empty())
+      throw Error(ErrorKind::Usage, "--bag-info " + label, "packing", "\"" + label + "\" " + why);
 
   // What the package will hold, judged before anything is written: a name it cannot hold
   // (core/file_names.h, the rule the capture scan applies and verify applies to the package)
@@ -252,6 +294,7 @@ PackResult packCapture(const fs::path& capture, const fs::path& out, const PackO
   PackageInfo info = packageInfo(c, result.packageId, result.packagingTime);
   in.info = std::move(info.user);
   in.ownInfo = std::move(info.own);
+  in.holderInfo = options.bagInfo;
   in.progress = options.progress;
   in.replace = options.replace;
   in.tagFiles = [&](const std::vector<PayloadDigest>& payload) {

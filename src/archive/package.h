@@ -19,6 +19,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "archive/bag.h"
@@ -64,7 +65,8 @@ std::vector<PayloadSource> capturePayload(const std::filesystem::path& capture);
 // metadata in its order, then External-Description (the carrier's, else "Highlight-RTI
 // capture: <title>"); `own`, Surrogate-Package-Identifier (packageId) and
 // Surrogate-Packaging-Time. packCapture writes them; the verifier compares a bag's bag-info.txt
-// with them, so that a label edited or added after packing is found.
+// with them, so that one of them edited, removed or repeated after packing is found (any other
+// label is the holder's: isSurrogateLabel, holderFieldProblem).
 struct PackageInfo {
   std::vector<std::pair<std::string, std::string>> user, own;
 };
@@ -79,8 +81,26 @@ std::string packageIdentifier(const std::string& carrierSha256);
 // mapping::packagedResources() (stylesheets, schemas, mapping tables), sorted.
 std::vector<std::string> packageMetadataFiles();
 
+// Why `label: value` cannot be a holder's field of a package of carrier `c` (pack
+// --bag-info), or "" when it can: the label follows bagInfoLabelProblem, does not start with
+// "Surrogate-" (Surrogate's own labels), and is none of the labels packageInfo gives for `c`
+// (its header metadata, External-Description: those are Surrogate's, re-derived by verify);
+// the value holds no line break or other control character. Without a carrier (`c` null)
+// only the label's form and the value are judged.
+std::string holderFieldProblem(const std::string& label, const std::string& value,
+                               const carrier::Carrier* c = nullptr);
+
+// Whether a bag-info label is one of Surrogate's (written by packing, any case): the computed
+// ones, Surrogate-*, and those of packageInfo for `c`.
+bool isSurrogateLabel(const std::string& label, const PackageInfo& info);
+
 struct PackOptions {
   std::function<void(std::uint64_t, std::uint64_t)> progress;  // payload bytes done, in all
+  // Holder's fields (pack --bag-info LABEL=VALUE), written after Surrogate's in the given
+  // order. They are not recorded in the carrier (which stays the capture's provenance and
+  // keeps the package identifier): verify lists them as added by the holder, with any field a
+  // holder adds later. Each is checked with holderFieldProblem (Error(Usage)).
+  std::vector<std::pair<std::string, std::string>> bagInfo;
   bool replace = false;  // an existing package of that name may be replaced (pack --force)
 };
 

@@ -3,7 +3,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <string>
 #include <utility>
+#include <vector>
 
 #include "archive/package.h"
 #include "capture/capture.h"
@@ -76,6 +78,11 @@ std::vector<OptionSpec> packOptions() {
   specs.push_back({"o", true, false, "the package to write: a folder, NAME.tar or NAME.zip", "OUT"});
   specs.push_back({"output", true, false, "same as -o", "OUT"});
   specs.push_back({"force", false, false, "replace an existing .tar or .zip of the same name"});
+  specs.push_back({"bag-info", true, true,
+                   "a holder's field for bag-info.txt only, e.g. External-Identifier=INV-7 or "
+                   "Contact-Email=archive@museum.org (not recorded in the carrier: "
+                   "verify lists it as added by the holder)",
+                   "LABEL=VALUE"});
   specs.push_back({"no-report", false, false,
                    "when the pipeline runs, do not write finished-files/report.html"});
   return specs;
@@ -98,6 +105,25 @@ std::pair<std::string, std::string> captureAndOutput(const Args& args) {
                              capture::OutputPlace::OutsideCaptures, "give --force to replace it, or choose another name");
   archive::checkOutput(*out, args.has("force"));
   return {capture, *out};
+}
+
+// The holder's fields (--bag-info LABEL=VALUE), their form checked before any long work
+// (packCapture checks them against the carrier's own labels too). They go into bag-info.txt
+// only, not into the carrier (archive::holderFieldProblem says why).
+std::vector<std::pair<std::string, std::string>> holderFields(const Args& args) {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const std::string& given : args.values("bag-info")) {
+    const auto eq = given.find('=');
+    if (eq == std::string::npos || eq == 0)
+      throw Error(ErrorKind::Usage, "--bag-info " + given, "command line",
+                  "needs the form LABEL=VALUE, e.g. --bag-info External-Identifier=INV-7");
+    const std::string label = given.substr(0, eq), value = given.substr(eq + 1);
+    if (const std::string why = archive::holderFieldProblem(label, value); !why.empty())
+      throw Error(ErrorKind::Usage, "--bag-info " + label, "command line",
+                  "\"" + label + "\" " + why);
+    out.emplace_back(label, value);
+  }
+  return out;
 }
 
 // Whether the pipeline ran first, and why.
@@ -138,6 +164,7 @@ archive::PackResult packOnce(const std::string& capture, const std::string& out,
                              ProgressBar& bar, Processing& processing) {
   archive::PackOptions options;
   options.replace = args.has("force");
+  options.bagInfo = holderFields(args);
   options.progress = [&bar](std::uint64_t done, std::uint64_t total) {
     bar.update("packing", total ? static_cast<double>(done) / static_cast<double>(total) : 1.0);
   };
@@ -162,7 +189,8 @@ archive::PackResult packOnce(const std::string& capture, const std::string& out,
 }
 
 void printJson(const std::string& capture, const std::string& out, const Processing& processing,
-               const archive::PackResult& r) {
+               const archive::PackResult& r,
+               const std::vector<std::pair<std::string, std::string>>& holder) {
   const double mb = static_cast<double>(r.bag.payloadBytes) / 1e6;
   JsonWriter j;
   j.beginObject().key("capture").value(capture).key("package").value(out)
@@ -180,6 +208,9 @@ void printJson(const std::string& capture, const std::string& out, const Process
       .key("megabytesPerSecond").value(r.bag.seconds > 0 ? mb / r.bag.seconds : 0.0);
   j.key("tagFiles").beginArray();
   for (const std::string& t : r.bag.tagFiles) j.value(t);
+  j.endArray().key("holderFields").beginArray();
+  for (const auto& [label, value] : holder)
+    j.beginObject().key("label").value(label).key("value").value(value).endObject();
   j.endArray().key("removedLeftovers").beginArray();
   for (const std::string& t : r.bag.removedLeftovers) j.value(t);
   j.endArray().endObject();
@@ -187,7 +218,8 @@ void printJson(const std::string& capture, const std::string& out, const Process
 }
 
 void printSummary(const std::string& capture, const std::string& out, const Processing& processing,
-                  const archive::PackResult& r) {
+                  const archive::PackResult& r,
+                  const std::vector<std::pair<std::string, std::string>>& holder) {
   if (processing.ran)
     std::cout << "Processed " << capture << " first (" << processing.why << "), with the decisions its "
               << "carrier records (see `surrogate info " << capture << "`).\n";
@@ -201,6 +233,11 @@ void printSummary(const std::string& capture, const std::string& out, const Proc
             << "  payload: " << r.bag.payloadFiles << " files, " << rate << "\n"
             << "  package id: " << r.packageId << "\n"
             << "  metadata: metadata/crm.rdf (CIDOC-CRM), metadata/mets.xml (METS+PREMIS)\n";
+  if (!holder.empty()) {
+    std::cout << "  holder's fields in bag-info.txt (not in the carrier):";
+    for (std::size_t i = 0; i < holder.size(); ++i) std::cout << (i ? ", " : " ") << holder[i].first;
+    std::cout << "\n";
+  }
 }
 
 }  // namespace
@@ -216,11 +253,14 @@ int runCommandPack(int argc, char** argv) {
                  "derive them. Runs the pipeline first (with the options below, as `surrogate "
                  "run`) when the capture has no complete carrier or its files changed. "
                  "SOURCE_DATE_EPOCH, when set, fixes every time in the package, so that two "
-                 "packs of the same capture are byte-identical.\n\nexit codes: 0 packed, 1 bad "
+                 "packs of the same capture are byte-identical. --meta records metadata in the "
+                 "carrier (the capture's record, checked by verify); --bag-info writes a "
+                 "holder's field into bag-info.txt only.\n\nexit codes: 0 packed, 1 bad "
                  "input (unreadable or changing file), 2 usage, 5 could not write (disk full, "
                  "permissions)"))
     return 0;
   const auto [capture, out] = captureAndOutput(args);
+  (void)holderFields(args);  // a malformed --bag-info is refused before any work
   // One process at a time on the capture, for the whole pack: a run meanwhile would change
   // what is being bagged.
   capture::CaptureLock lock(capture, "pack");
@@ -229,8 +269,8 @@ int runCommandPack(int argc, char** argv) {
   Processing processing = processIfNeeded(capture, args, bar);
   const archive::PackResult r = packOnce(capture, out, args, bar, processing);
   bar.finish();
-  if (args.has("json")) printJson(capture, out, processing, r);
-  else printSummary(capture, out, processing, r);
+  if (args.has("json")) printJson(capture, out, processing, r, holderFields(args));
+  else printSummary(capture, out, processing, r, holderFields(args));
   return 0;
 }
 

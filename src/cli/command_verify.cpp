@@ -60,6 +60,10 @@ void printJson(const verify::Report& report) {
   j.endArray();
   j.key("softwareDifferences").beginArray();
   for (const std::string& s : report.softwareDifferences) j.value(s);
+  j.endArray().key("holderFields").beginArray();
+  for (const auto& [label, value] : report.holderFields)
+    j.beginObject().key("label").value(label).key("value").value(value)
+        .key("addedBy").value("holder").endObject();
   j.endArray().key("checks").beginArray();
   for (const verify::Check& c : report.checks) {
     j.beginObject().key("name").value(c.name).key("passed").value(c.passed)
@@ -83,6 +87,12 @@ void printText(const verify::Report& report) {
     // Paths from a manifest are the package's text, whatever it holds: escaped (core/text.h).
     std::cout << (c.passed ? "  ok    " : "  FAIL  ") << name << "  " << escapedText(c.what, true) << "\n";
     for (const std::string& w : c.where) std::cout << "          " << escapedText(w, true) << "\n";
+  }
+  if (!report.holderFields.empty()) {
+    std::cout << "bag-info.txt fields added by the holder (not written by Surrogate, not checked "
+                 "against the carrier; the tag manifests cover them):\n";
+    for (const auto& [label, value] : report.holderFields)
+      std::cout << "  " << escapedText(label + ": " + value, true) << "  (added by the holder)\n";
   }
   if (!report.softwareDifferences.empty()) {
     std::cout << "Software versions differ from the carrier's:\n";
@@ -144,7 +154,8 @@ int runCommandVerify(int argc, char** argv) {
                      "BagIt fixity and completeness, every file `surrogate pack` writes present "
                      "(a package cut short is never sound), the bundled stylesheets, schemas "
                      "and tables identical to this Surrogate's, bag-info.txt against the "
-                     "carrier, the carrier against its schema, the files it lists and the steps "
+                     "carrier (fields Surrogate did not write are listed as added by the holder), "
+                     "the carrier against its schema, the files it lists and the steps "
                      "this build can run, METS/PREMIS and CIDOC-CRM metadata against what the "
                      "bundled stylesheets derive from the carrier; with --reexecute, the "
                      "recorded steps are run again on the bagged originals in a temporary "

@@ -5,10 +5,12 @@
 #include <vector>
 
 #include "archive/bag.h"
+#include "archive/package.h"
 #include "archive/package_summary.h"
 #include "capture/capture.h"
 #include "capture/capture_summary.h"
 #include "cli/info_print.h"
+#include "core/text.h"
 
 namespace surrogate::cli {
 
@@ -75,6 +77,14 @@ void printPackageText(const fs::path& path, const archive::PackageSummary& s) {
     std::cout << "  identifier: " << s.bagInfoValue("Surrogate-Package-Identifier") << "\n"
               << "  packed:     " << s.bagInfoValue("Surrogate-Packaging-Time") << " by "
               << s.bagInfoValue("Bag-Software-Agent") << "\n";
+    // Fields Surrogate does not write from the carrier: the holder's (pack --bag-info, or added
+    // later), as verify lists them.
+    if (s.carrier) {
+      const archive::PackageInfo own = archive::packageInfo(*s.carrier, "", "");
+      for (const auto& [label, value] : s.bagInfo)
+        if (!archive::isSurrogateLabel(label, own))
+          std::cout << "  holder's:   " << escapedText(label + ": " + value, true) << " (added by the holder)\n";
+    }
   } else {
     for (const auto& [label, value] : s.bagInfo) std::cout << "  " << label << ": " << value << "\n";
   }

@@ -68,10 +68,12 @@ bool isSurrogatePackage(const Inventory& inventory);
 // (metadata/ resources byte-identical to this verifier's, no other tag file: invalid).
 void checkCompleteness(const Inventory& inventory, std::vector<Check>& checks);
 
-// package.info: bag-info.txt is what packing the carrier gives (identifier = urn:sha256 of
-// the carrier, its header metadata, dates, Bag-Size).
+// package.info: the fields of bag-info.txt that Surrogate writes are what packing the carrier
+// gives (identifier = urn:sha256 of the carrier, its header metadata, dates, Bag-Size); any
+// other field is the holder's, appended to `holderFields` (Report::holderFields).
 void checkPackageInfo(const Inventory& inventory, const std::optional<carrier::Carrier>& recorded,
-                      std::vector<Check>& checks);
+                      std::vector<Check>& checks,
+                      std::vector<std::pair<std::string, std::string>>& holderFields);
 
 // carrier.steps: every recorded step can run in this build as recorded (known component and
 // version, parameters its parser accepts, outputs inside assembly-files/ or finished-files/).

@@ -1,6 +1,7 @@
 // package.*: a Surrogate package is complete (every file `surrogate pack` writes is there), its
-// bundled stylesheets, schemas and mapping tables are the ones this verifier bundles, and its
-// bag-info.txt is what packing the carrier gives.
+// bundled stylesheets, schemas and mapping tables are the ones this verifier bundles, and the
+// fields of its bag-info.txt that Surrogate writes are what packing the carrier gives (any
+// other field is the holder's, listed).
 #include <mutex>
 #include <regex>
 #include <set>
@@ -68,6 +69,14 @@ std::string asReadBack(const std::string& value) {
     first = false;
   }
   return out;
+}
+
+// RFC 8493 2.2.2: Bag-Count is "N of T", T the total or "?" when it is not known, N <= T.
+bool wellFormedBagCount(const std::string& value) {
+  static const std::regex form(R"(([0-9]{1,18}) of ([0-9]{1,18}|\?))");
+  std::smatch m;
+  if (!std::regex_match(value, m, form)) return false;
+  return m[2] == "?" || std::stoull(m[1].str()) <= std::stoull(m[2].str());
 }
 
 std::string quoted(const std::string& s) { return "\"" + s.substr(0, 200) + (s.size() > 200 ? "..." : "") + "\""; }
@@ -145,7 +154,8 @@ void checkCompleteness(const Inventory& inv, std::vector<Check>& checks) {
 }
 
 void checkPackageInfo(const Inventory& inv, const std::optional<carrier::Carrier>& recorded,
-                      std::vector<Check>& checks) {
+                      std::vector<Check>& checks,
+                      std::vector<std::pair<std::string, std::string>>& holderFields) {
   const std::string* text = contentOf(inv, "bag-info.txt");
   const auto carrierFile = inv.files.find(kCarrierPath);
   if (!isSurrogatePackage(inv) || !text || !recorded || carrierFile == inv.files.end()) return;
@@ -194,26 +204,40 @@ void checkPackageInfo(const Inventory& inv, const std::optional<carrier::Carrier
     problems.push_back("bag-info.txt: Surrogate-Package-Identifier is " + quoted(*given) +
                        "; the carrier in the package gives " + id);
 
-  // The user's labels: the carrier's header metadata, and nothing else.
+  // The user's labels: the carrier's header metadata, each as packing writes it.
   const archive::PackageInfo expected = archive::packageInfo(*recorded, id, time.value_or(""));
-  std::set<std::string> labels = {"bag-software-agent", "bagging-date", "bag-size", "payload-oxum"};
-  for (const auto& [label, value] : expected.own) labels.insert(lowerCase(label));
   for (const auto& [label, value] : expected.user) {
-    labels.insert(lowerCase(label));
     const auto given = one(label);
     if (given && *given != asReadBack(value))
       problems.push_back("bag-info.txt: " + label + " is " + quoted(*given) +
                          "; the carrier's header gives " + quoted(asReadBack(value)));
   }
+  // Every other field is the holder's (RFC 8493 lets a bag's holder add fields; pack
+  // --bag-info writes such fields too): listed, never taken for Surrogate's. A label in
+  // Surrogate's namespace that packing does not give is no holder's field but a forgery.
   std::set<std::string> reported;
-  for (const auto& [label, value] : info.fields)
-    if (!labels.count(lowerCase(label)) && reported.insert(lowerCase(label)).second)
-      problems.push_back("bag-info.txt: " + label + " is not in the carrier's header (added "
-                         "after packing?)");
+  for (const auto& [label, value] : info.fields) {
+    if (!archive::isSurrogateLabel(label, expected)) {
+      holderFields.emplace_back(label, value);
+      if (lowerCase(label) == "bag-count" && !wellFormedBagCount(value))
+        problems.push_back("bag-info.txt: Bag-Count " + quoted(value) + " is not \"N of T\" "
+                           "(or \"N of ?\") as RFC 8493 defines it");
+    } else if (lowerCase(label).rfind("surrogate-", 0) == 0) {
+      bool given = false;
+      for (const auto* labels : {&expected.user, &expected.own})
+        for (const auto& [l, v] : *labels) given |= lowerCase(l) == lowerCase(label);
+      if (!given && reported.insert(lowerCase(label)).second)
+        problems.push_back("bag-info.txt: " + label + " is a Surrogate-* label that packing the "
+                           "carrier does not give (added after packing?)");
+    }
+  }
   checks.push_back(makeCheck(
       "package.info", Severity::Invalid,
-      "bag-info.txt is what packing the carrier gives: its identifier (" + id.substr(0, 27) +
-          "...), metadata, dates and sizes",
+      "the fields of bag-info.txt that Surrogate writes are what packing the carrier gives: its "
+      "identifier (" + id.substr(0, 27) + "...), metadata, dates and sizes" +
+          (holderFields.empty() ? std::string()
+                                : "; " + std::to_string(holderFields.size()) +
+                                      " more added by the holder (listed below)"),
       "bag-info.txt disagrees with the carrier", problems));
 }
 

@@ -140,7 +140,7 @@ Report verifyPackage(const std::filesystem::path& package, const VerifyOptions& 
   checkCompleteness(inventory, report.checks);
   std::optional<carrier::Carrier> recorded = checkCarrier(inventory, report.checks);
   const bool runnable = recorded && checkSteps(*recorded, report.checks);
-  checkPackageInfo(inventory, recorded, report.checks);
+  checkPackageInfo(inventory, recorded, report.checks, report.holderFields);
   const auto carrierFile = inventory.files.find(kCarrierPath);
   const std::string* carrierXml =
       recorded && carrierFile != inventory.files.end() && carrierFile->second.content

@@ -18,8 +18,9 @@
 //                has data/assembly-files/carrier.xml): every file `surrogate pack` writes is
 //                present (complete), every tag file is in every tagmanifest (tags-listed),
 //                metadata/'s stylesheets, schemas and tables are byte-identical to this
-//                verifier's and nothing else is there (bundled), and bag-info.txt is what
-//                packing the carrier gives (info)
+//                verifier's and nothing else is there (bundled), and the fields of
+//                bag-info.txt that Surrogate writes are what packing the carrier gives (info;
+//                any other field is listed as the holder's, Report::holderFields)
 //   carrier.*    data/assembly-files/carrier.xml validates against xsd/carrier.xsd, every
 //                file it lists is in the bag with the same size and SHA-256, and every step
 //                it records can run in this build as recorded (steps)
@@ -49,6 +50,7 @@
 
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "archive/package_reader.h"
@@ -87,6 +89,11 @@ struct Report {
   // What does not fail the bag but a preservation officer should know (md5 or sha1 manifests,
   // --reexecute on a bag that is not a Surrogate package).
   std::vector<std::string> warnings;
+  // bag-info.txt fields of a Surrogate package that packing the carrier does not give (label,
+  // value; in the file's order): added by the holder (RFC 8493 lets a bag's holder add
+  // fields; pack --bag-info writes such fields too). Listed, never checked against the
+  // carrier; bag-info.txt's digest in the tag manifests still covers them.
+  std::vector<std::pair<std::string, std::string>> holderFields;
   bool reexecuted = false;
   // Software that differs between the carrier's header and this build ("LibRaw 0.20.2 ->
   // 0.21.1"), filled by re-execution.

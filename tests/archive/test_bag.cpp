@@ -358,6 +358,25 @@ TEST_CASE("computed bag-info labels cannot be given as user metadata", "[archive
   CHECK(info.find("External-Description") < info.find("Surrogate-Package-Identifier"));
 }
 
+TEST_CASE("a holder's bag-info labels come last, checked, a value on one line", "[archive][bag]") {
+  const fs::path dir = freshDir("holder-labels");
+  BagInput in = sampleInput(dir / "src");
+  in.ownInfo = {{"Surrogate-Package-Identifier", "urn:sha256:00"}};
+  in.holderInfo = {{"Contact-Name", "A. Archivist"}, {"External-Identifier", "INV-7"}, {"Contact-Name", "B. Archivist"}};
+  writeBag(in, dir / "bag");
+  const std::string info = slurp(dir / "bag/bag-info.txt");
+  CHECK_THAT(info, Catch::Matchers::EndsWith("Surrogate-Package-Identifier: urn:sha256:00\nContact-Name: A. Archivist\n"
+                                             "External-Identifier: INV-7\nContact-Name: B. Archivist\n"));
+  for (const std::pair<std::string, std::string>& bad :
+       std::vector<std::pair<std::string, std::string>>{{"Bag-Size", "1 KB"}, {"Contact Name", "x"},
+                                                        {"Contact-Name", "one\ntwo"}, {"Contact-Name", "one\rtwo"}}) {
+    in.holderInfo = {bad};
+    INFO(bad.first << "=" << bad.second);
+    CHECK_THROWS_AS(writeBag(in, dir / "refused"), Error);
+    CHECK_FALSE(fs::exists(dir / "refused"));
+  }
+}
+
 TEST_CASE("the partial output of a killed pack is removed by the next pack to the same name",
           "[archive][bag]") {
   const fs::path dir = freshDir("stale");

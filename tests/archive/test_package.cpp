@@ -64,6 +64,20 @@ TEST_CASE("a packed capture has the docs/package.md layout and is a valid bag", 
       INFO(label);
       CHECK(info.count(label) == 1);
     }
+  // A holder's field (pack --bag-info) may be any other label: not one of these, nor a
+  // computed or Surrogate-* one.
+  const carrier::Carrier recorded = carrier::loadCarrier(capture / "assembly-files/carrier.xml");
+  CHECK_THAT(holderFieldProblem("source-organization", "Elsewhere", &recorded),
+             Catch::Matchers::Contains("already written by Surrogate from the carrier"));
+  CHECK_THAT(holderFieldProblem("External-Description", "x", &recorded),
+             Catch::Matchers::Contains("already written by Surrogate from the carrier"));
+  CHECK_THAT(holderFieldProblem("Surrogate-Anything", "x", &recorded), Catch::Matchers::Contains("written by Surrogate itself"));
+  CHECK_THAT(holderFieldProblem("Internal-Sender-Identifier", "a\nb", &recorded), Catch::Matchers::Contains("line break"));
+  CHECK(holderFieldProblem("Internal-Sender-Identifier", "accession 17", &recorded).empty());
+  CHECK(holderFieldProblem("Source-Organization", "Elsewhere").empty());  // no carrier: the form only
+  CHECK(isSurrogateLabel("payload-oxum", expected));
+  CHECK(isSurrogateLabel("Contact-Name", expected));
+  CHECK_FALSE(isSurrogateLabel("Contact-Email", expected));
 
   // The metadata is what the stylesheets give, and METS is valid.
   const std::string carrierXml = bag.files.at("data/assembly-files/carrier.xml");

@@ -1,10 +1,12 @@
 // `surrogate pack` on a generated capture, as a user runs it: the pipeline runs when needed,
 // the bag checks out (RFC 8493 validation with recomputed digests), the originals are
-// byte-identical inside it, the metadata is valid, and two packs are byte-identical.
+// byte-identical inside it, the metadata is valid, and two packs are byte-identical; a
+// holder's bag-info fields (pack --bag-info, or added afterwards) keep it sound.
 #include <catch2/catch.hpp>
 
 #include <cstdlib>
 #include <fstream>
+#include <sstream>
 
 #include "bag_check.h"
 #include "e2e_support.h"
@@ -142,4 +144,129 @@ TEST_CASE("verify sets aside the files an operating system leaves in a bag folde
   const auto added = e2e::surrogate("verify " + e2e::quote(bag) + " --quiet");
   CHECK(added.exitCode == 3);
   CHECK_THAT(added.output, Catch::Contains("data/notes.txt: in the payload but not listed"));
+}
+
+namespace {
+
+// What a holder who edits a tag file does, as RFC 8493 asks: every tag manifest's lines redone
+// for the files as they are now.
+void redoTagManifests(const fs::path& bag) {
+  for (const char* algorithm : {"sha256", "sha512"}) {
+    const fs::path manifest = bag / (std::string("tagmanifest-") + algorithm + ".txt");
+    std::istringstream in(slurp(manifest));
+    std::string line, out;
+    while (std::getline(in, line)) {
+      const std::string path = line.substr(line.find("  ") + 2);
+      const std::string bytes = slurp(bag / path);
+      out += (algorithm == std::string("sha256") ? bagcheck::sha256(bytes) : bagcheck::sha512(bytes)) + "  " +
+             path + "\n";
+    }
+    std::ofstream(manifest, std::ios::binary | std::ios::trunc) << out;
+  }
+}
+
+void replaceIn(const fs::path& file, const std::string& from, const std::string& to) {
+  std::string text = slurp(file);
+  const auto at = text.find(from);
+  REQUIRE(at != std::string::npos);
+  text.replace(at, from.size(), to);
+  std::ofstream(file, std::ios::binary | std::ios::trunc) << text;
+}
+
+}  // namespace
+
+TEST_CASE("bag-info fields a holder adds afterwards keep the package sound, listed as the holder's",
+          "[e2e][pack]") {
+  const fs::path dir = e2e::freshDir("pack-holder");
+  const fs::path capture = e2e::processedCapture(dir);
+  const fs::path bag = dir / "bag";
+  REQUIRE(e2e::surrogate("pack " + e2e::quote(capture) + " -o " + e2e::quote(bag) + " --quiet").exitCode == 0);
+  std::ofstream(bag / "bag-info.txt", std::ios::binary | std::ios::app)
+      << "Internal-Sender-Identifier: accession 2026/17\nExternal-Identifier: ark:/12345/stela12\n";
+
+  // bag-info.txt changed and the tag manifests not redone: a fixity failure.
+  auto r = e2e::surrogate("verify " + e2e::quote(bag) + " --quiet");
+  INFO(r.output);
+  CHECK(r.exitCode == 3);
+  CHECK_THAT(r.output, Catch::Contains("bag-info.txt: sha256"));
+
+  redoTagManifests(bag);
+  r = e2e::surrogate("verify " + e2e::quote(bag) + " --quiet");
+  INFO(r.output);
+  CHECK(r.exitCode == 0);
+  CHECK_THAT(r.output, Catch::Contains("Internal-Sender-Identifier: accession 2026/17  (added by the holder)") &&
+                           Catch::Contains("External-Identifier: ark:/12345/stela12  (added by the holder)") &&
+                           Catch::Contains("SOUND"));
+  r = e2e::surrogate("verify " + e2e::quote(bag) + " --json");
+  CHECK(r.exitCode == 0);
+  CHECK_THAT(r.output, Catch::Contains("\"holderFields\":[{\"label\":\"Internal-Sender-Identifier\","
+                                       "\"value\":\"accession 2026/17\",\"addedBy\":\"holder\"},"
+                                       "{\"label\":\"External-Identifier\",\"value\":\"ark:/12345/stela12\","
+                                       "\"addedBy\":\"holder\"}]"));
+
+  // A field Surrogate wrote, changed with the tag manifests redone: still invalid.
+  replaceIn(bag / "bag-info.txt", "External-Description: ", "External-Description: Stela 9, ");
+  redoTagManifests(bag);
+  r = e2e::surrogate("verify " + e2e::quote(bag) + " --quiet");
+  INFO(r.output);
+  CHECK(r.exitCode == 2);
+  CHECK_THAT(r.output, Catch::Contains("FAIL  package.info") && Catch::Contains("the carrier's header gives"));
+}
+
+TEST_CASE("pack --bag-info writes a holder's fields into bag-info.txt, and refuses malformed ones",
+          "[e2e][pack]") {
+  const fs::path dir = e2e::freshDir("pack-bag-info");
+  const fs::path capture = e2e::processedCapture(dir);
+  const std::string carrierBefore = slurp(capture / "assembly-files/carrier.xml");
+  const fs::path bag = dir / "pkg.zip";
+  auto r = e2e::surrogate("pack " + e2e::quote(capture) + " -o " + e2e::quote(bag) +
+                          " --bag-info External-Identifier=INV-7 --bag-info 'Contact-Name=Ana Silva'"
+                          " --bag-info Contact-Email=archive@museum.example --bag-info 'Contact-Name=Rui Costa'"
+                          " --bag-info Source-Organization=Museum --json");
+  INFO(r.output);
+  REQUIRE(r.exitCode == 0);
+  CHECK(r.output.find("\"pipelineRan\":false") != std::string::npos);
+  CHECK(r.output.find("{\"label\":\"External-Identifier\",\"value\":\"INV-7\"}") != std::string::npos);
+  // Not in the carrier: the capture's record and the package identifier are the same.
+  CHECK(slurp(capture / "assembly-files/carrier.xml") == carrierBefore);
+  const bagcheck::BagFiles files = bagcheck::readBag(bag);
+  CHECK(bagcheck::validate(files).empty());
+  const std::string info = files.files.at("bag-info.txt");
+  CHECK_THAT(info, Catch::EndsWith("External-Identifier: INV-7\nContact-Name: Ana Silva\n"
+                                   "Contact-Email: archive@museum.example\nContact-Name: Rui Costa\n"
+                                   "Source-Organization: Museum\n"));
+  r = e2e::surrogate("verify " + e2e::quote(bag) + " --quiet");
+  INFO(r.output);
+  CHECK(r.exitCode == 0);
+  CHECK_THAT(r.output, Catch::Contains("Contact-Email: archive@museum.example  (added by the holder)") &&
+                           Catch::Contains("Contact-Name: Rui Costa  (added by the holder)") &&
+                           Catch::Contains("SOUND"));
+  r = e2e::surrogate("info " + e2e::quote(bag));
+  INFO(r.output);
+  CHECK(r.exitCode == 0);
+  CHECK_THAT(r.output, Catch::Contains("holder's:   External-Identifier: INV-7 (added by the holder)"));
+  CHECK(r.output.find("holder's:   External-Description") == std::string::npos);
+
+  // Refused before anything is written, exit 2, saying why.
+  struct Refusal {
+    std::string option, text;
+  };
+  const std::vector<Refusal> refusals = {
+      {"--bag-info 'Contact Name=Ana'", "is not a usable bag-info.txt label"},
+      {"--bag-info 'Contact:Name=Ana'", "is not a usable bag-info.txt label"},
+      {"--bag-info ' Contact-Name=Ana'", "is not a usable bag-info.txt label"},
+      {"--bag-info \"Contact-Name=Ana$(printf '\\nX')\"", "has a value with a line break"},
+      {"--bag-info Payload-Oxum=1.1", "is written by Surrogate itself"},
+      {"--bag-info Surrogate-Note=x", "is written by Surrogate itself"},
+      {"--bag-info External-Description=x", "is already written by Surrogate from the carrier"},
+      {"--bag-info Contact-Name", "needs the form LABEL=VALUE"},
+  };
+  for (const Refusal& f : refusals) {
+    const fs::path out = dir / "refused.zip";
+    r = e2e::surrogate("pack " + e2e::quote(capture) + " -o " + e2e::quote(out) + " --quiet " + f.option);
+    INFO(f.option << "\n" << r.output);
+    CHECK(r.exitCode == 2);
+    CHECK_THAT(r.output, Catch::Contains(f.text));
+    CHECK_FALSE(fs::exists(out));
+  }
 }

@@ -172,8 +172,15 @@ TEST_CASE("bag-info.txt that disagrees with the carrier is invalid, a wrong Payl
   const std::vector<Forgery> forgeries = {
       {"External-Description edited", "Highlight-RTI capture: Tiny", "Highlight-RTI capture: Stela 9", 2,
        "package.info", "External-Description is \"Highlight-RTI capture: Stela 9\""},
-      {"a label added", "Bagging-Date", "Source-Organization: Forged Museum\nBagging-Date", 2,
-       "package.info", "Source-Organization is not in the carrier's header"},
+      {"a Surrogate-* label added", "Bagging-Date", "Surrogate-Verified: yes\nBagging-Date", 2,
+       "package.info", "Surrogate-Verified is a Surrogate-* label that packing the carrier does not give"},
+      {"External-Description removed", "line:External-Description", "", 2, "package.info",
+       "External-Description is missing"},
+      {"External-Description given again by a holder", "line:External-Description",
+       "External-Description: Highlight-RTI capture: Tiny\nExternal-Description: a holder's", 2,
+       "package.info", "External-Description is given 2 times"},
+      {"a malformed Bag-Count added", "Bagging-Date", "Bag-Count: 3 of 2\nBagging-Date", 2, "package.info",
+       "Bag-Count \"3 of 2\" is not \"N of T\""},
       {"the identifier forged", id, "Surrogate-Package-Identifier: urn:sha256:" + std::string(64, '0'), 2,
        "package.info", "the carrier in the package gives urn:sha256:"},
       {"the identifier given twice", id, "", 2, "package.info", "given 2 times"},
@@ -189,7 +196,8 @@ TEST_CASE("bag-info.txt that disagrees with the carrier is invalid, a wrong Payl
     std::string from = f.from, to = f.to;
     if (from.compare(0, 5, "line:") == 0) {
       from = line(readText(bag / "bag-info.txt"), from.substr(5));
-      if (to.empty()) to = from + "\n" + from;
+      if (to.empty()) to = std::string(f.what).find("removed") != std::string::npos ? "" : from + "\n" + from;
+      if (to.empty()) from += "\n";
     }
     replaceInFile(bag / "bag-info.txt", from, to);
     rehashTagManifests(bag);  // the forger redid the tag manifests
@@ -199,6 +207,40 @@ TEST_CASE("bag-info.txt that disagrees with the carrier is invalid, a wrong Payl
     CHECK(failed(r, f.check));
     CHECK_THAT(allText(r), Contains(f.text));
   }
+}
+
+TEST_CASE("bag-info fields a holder adds are listed as the holder's, the tag manifests still the "
+          "authority", "[verify][package]") {
+  // RFC 8493 lets the holder of a bag add fields; the fields Surrogate wrote stay as they were.
+  const fs::path bag = cleanBag("holder");
+  writeText(bag / "bag-info.txt", readText(bag / "bag-info.txt") +
+                                      "Internal-Sender-Identifier: accession 2026/17\n"
+                                      "External-Identifier: ark:/12345/x9\n"
+                                      "Contact-Name: A. Archivist\n"
+                                      "Contact-Name: B. Archivist\n"
+                                      "Bag-Count: 1 of ?\n");
+  {
+    // Without the tag manifests redone, the edit is a fixity failure, whatever it added.
+    const verify::Report r = run(bag);
+    INFO(allText(r));
+    CHECK(r.exitCode() == 3);
+    CHECK(failed(r, "bagit.tagfixity-sha256"));
+  }
+  rehashTagManifests(bag);
+  const verify::Report r = run(bag);
+  INFO(allText(r));
+  CHECK(r.exitCode() == 0);
+  CHECK_FALSE(failed(r, "package.info"));
+  using Field = std::pair<std::string, std::string>;
+  CHECK(r.holderFields == std::vector<Field>{{"Internal-Sender-Identifier", "accession 2026/17"},
+                                             {"External-Identifier", "ark:/12345/x9"},
+                                             {"Contact-Name", "A. Archivist"},
+                                             {"Contact-Name", "B. Archivist"},
+                                             {"Bag-Count", "1 of ?"}});
+  CHECK_THAT(allText(r), Contains("5 more added by the holder"));
+
+  // A bag as packed has none.
+  CHECK(run(cleanBag("holder-none")).holderFields.empty());
 }
 
 TEST_CASE("carriers whose steps cannot run are invalid (exit 2), and never re-executed",
