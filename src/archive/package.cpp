@@ -86,9 +86,7 @@ std::vector<PayloadSource> payloadOf(const fs::path& capture, const carrier::Car
     bagged.insert(rel);
   }
   if (!unrecorded.empty()) {
-    std::string list;
-    for (std::size_t i = 0; i < unrecorded.size() && i < 10; ++i) list += (i ? ", " : "") + unrecorded[i];
-    if (unrecorded.size() > 10) list += " and " + std::to_string(unrecorded.size() - 10) + " more";
+    const std::string list = listedWithMore(unrecorded, 10);
     throw Error(ErrorKind::Input, capture.string(), "packing",
                 std::to_string(unrecorded.size()) + " file(s) of the capture are not described by its "
                 "carrier, and a package holds only what the carrier describes: " + list +

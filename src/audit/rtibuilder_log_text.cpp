@@ -16,12 +16,7 @@ namespace {
 // How many file names a text line lists before "and N more".
 constexpr std::size_t kNamesShown = 8;
 
-std::string listed(const std::vector<std::string>& names) {
-  std::string out;
-  for (std::size_t i = 0; i < names.size() && i < kNamesShown; ++i) out += (i ? ", " : "") + names[i];
-  if (names.size() > kNamesShown) out += " and " + std::to_string(names.size() - kNamesShown) + " more";
-  return out;
-}
+std::string listed(const std::vector<std::string>& names) { return listedWithMore(names, kNamesShown); }
 
 std::string items(const std::vector<LogItem>& list) {
   std::string out;

@@ -58,12 +58,11 @@ VerdictPart lightsPart(const LightComparison* l, const Verdict& v) {
     return p;
   }
   p.state = State::Differs;
-  std::string named;
   std::vector<ImageAngle> worst = l->aboveThreshold;
   std::stable_sort(worst.begin(), worst.end(), [](const ImageAngle& a, const ImageAngle& b) { return a.degrees > b.degrees; });
-  for (std::size_t i = 0; i < worst.size() && i < kNamesListed; ++i)
-    named += (i ? ", " : "") + worst[i].image + " " + fixedDecimals(worst[i].degrees, 1);
-  if (worst.size() > kNamesListed) named += " and " + std::to_string(worst.size() - kNamesListed) + " more";
+  std::vector<std::string> worstNames;
+  for (const ImageAngle& a : worst) worstNames.push_back(a.image + " " + fixedDecimals(a.degrees, 1));
+  const std::string named = listedWithMore(worstNames, kNamesListed);
   p.figure = std::to_string(l->aboveThreshold.size()) + " of " + n + " images differ by more than " +
              deg(l->thresholdDegrees) + ": " + named + " (median of all " + n + ": " +
              fixedDecimals(l->medianDegrees, 1) + " degrees)" + missingText(*l);
@@ -147,10 +146,8 @@ VerdictPart integrityPart(const ModelCheck* m) {
   }
   if (!clipped.empty()) {
     p.state = State::Differs;
-    std::string list;
-    for (std::size_t i = 0; i < clipped.size() && i < kNamesListed; ++i) list += (i ? ", " : "") + clipped[i];
-    if (clipped.size() > kNamesListed) list += " and " + std::to_string(clipped.size() - kNamesListed) + " more";
-    p.figure = std::to_string(clipped.size()) + " plane(s) clipped by the file's scale and bias: " + list;
+    p.figure = std::to_string(clipped.size()) + " plane(s) clipped by the file's scale and bias: " +
+               listedWithMore(clipped, kNamesListed);
     p.cause = "the writer chose a scale or bias that cannot hold the fitted coefficients (a writer's fault, not the photographs')";
     return p;
   }

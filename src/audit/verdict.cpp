@@ -14,12 +14,7 @@ constexpr std::size_t kNamesListed = 5;
 std::string degreesText(double d) { return fixedDecimals(d, 1) + " degrees"; }
 std::string dbText(double d) { return fixedDecimals(d, 2) + " dB"; }
 
-std::string listNames(const std::vector<std::string>& names) {
-  std::string out;
-  for (std::size_t i = 0; i < names.size() && i < kNamesListed; ++i) out += (i ? ", " : "") + names[i];
-  if (names.size() > kNamesListed) out += " and " + std::to_string(names.size() - kNamesListed) + " more";
-  return out;
-}
+std::string listNames(const std::vector<std::string>& names) { return listedWithMore(names, kNamesListed); }
 
 void lightFindings(Verdict& v, const LightComparison& lights, const ModelCheck* model) {
   if (!lights.aboveThreshold.empty()) {

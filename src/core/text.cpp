@@ -121,4 +121,11 @@ std::string hexBytes(const std::string& bytes) {
   return out;
 }
 
+std::string listedWithMore(const std::vector<std::string>& items, std::size_t most) {
+  std::string out;
+  for (std::size_t i = 0; i < items.size() && i < most; ++i) out += (i ? ", " : "") + items[i];
+  if (items.size() > most) out += " and " + std::to_string(items.size() - most) + " more";
+  return out;
+}
+
 }  // namespace surrogate

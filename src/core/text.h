@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace surrogate {
 
@@ -37,5 +38,9 @@ std::string escapedText(const std::string& bytes, bool keepLineBreaks = false);
 bool needsEscaping(const std::string& bytes, bool keepLineBreaks = false);
 // The bytes as lowercase hexadecimal, two digits each ("43616e" for "Can").
 std::string hexBytes(const std::string& bytes);
+
+// The first `most` items joined by ", ", then " and N more" for the rest: "IMG_0003, IMG_0007
+// and 2 more". The one way messages list names.
+std::string listedWithMore(const std::vector<std::string>& items, std::size_t most);
 
 }  // namespace surrogate
