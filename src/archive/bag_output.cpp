@@ -255,37 +255,23 @@ std::unique_ptr<Sink> openSink(BagFormat format, const fs::path& staging, const 
 }
 
 std::vector<std::string> removeStaleParts(const fs::path& out) {
-  // AtomicFile's temporary name: ".NAME.part-PID-N" in the same folder.
-  const std::string prefix = "." + out.filename().string() + ".part-";
-  const fs::path folder = out.parent_path().empty() ? fs::path(".") : out.parent_path();
   std::vector<std::string> removed;
-  std::error_code ec;
-  for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
-    const std::string name = it->path().filename().string();
-    if (name.compare(0, prefix.size(), prefix) != 0) continue;
-    const std::string rest = name.substr(prefix.size());  // "PID-N"
-    const std::size_t dash = rest.find('-');
-    if (dash == 0 || dash == std::string::npos || dash > 9 || dash + 1 == rest.size() ||
-        !std::all_of(rest.begin(), rest.end(), [](char c) { return (c >= '0' && c <= '9') || c == '-'; }) ||
-        rest.find('-', dash + 1) != std::string::npos)
-      continue;
-    const pid_t pid = static_cast<pid_t>(std::stol(rest.substr(0, dash)));
-    // Alive (or not ours to signal): keep it. Only "no such process" means it is gone.
-    if (pid <= 0 || pid == ::getpid() || ::kill(pid, 0) == 0 || errno != ESRCH) continue;
+  for (const AbandonedTemporary& part : abandonedTemporaries(out)) {
     std::error_code rec;
+    const fs::file_status status = fs::symlink_status(part.path, rec);
     // A partial folder bag may hold read-only folders (copied permissions, an interrupted
     // chmod): make them writable for their owner first, so that everything can go.
-    if (it->is_directory(rec) && !it->is_symlink(rec)) {
-      for (fs::recursive_directory_iterator d(it->path(), rec), dend; !rec && d != dend; d.increment(rec))
+    if (fs::is_directory(status)) {
+      for (fs::recursive_directory_iterator d(part.path, rec), dend; !rec && d != dend; d.increment(rec))
         if (d->is_directory(rec) && !d->is_symlink(rec))
           fs::permissions(d->path(), fs::perms::owner_all, fs::perm_options::add, rec);
-      fs::permissions(it->path(), fs::perms::owner_all, fs::perm_options::add, rec);
+      fs::permissions(part.path, fs::perms::owner_all, fs::perm_options::add, rec);
       rec.clear();
     }
-    fs::remove_all(it->path(), rec);
+    fs::remove_all(part.path, rec);
     if (rec) continue;
-    removed.push_back("removed " + it->path().string() + ", the partial output of a pack that "
-                      "did not finish (process " + std::to_string(pid) + " no longer runs)");
+    removed.push_back("removed " + part.path.string() + ", the partial output of a pack that "
+                      "did not finish (process " + std::to_string(part.pid) + " no longer runs)");
   }
   return removed;
 }

@@ -1,9 +1,11 @@
 #include "core/atomic_file.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <stdio.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <cstring>
@@ -93,6 +95,29 @@ void AtomicFile::commitWithoutReplacing() {
   if (fs::exists(fs::symlink_status(final_, ec))) throw taken();
   if (::rename(temp_.c_str(), final_.c_str()) != 0) throw writeError(final_, "write", errno);
   committed_ = true;
+}
+
+std::vector<AbandonedTemporary> abandonedTemporaries(const fs::path& finalPath) {
+  // temporaryNameFor's name: ".NAME.part-PID-N" in the same folder.
+  const std::string prefix = "." + finalPath.filename().string() + ".part-";
+  const fs::path folder = finalPath.parent_path().empty() ? fs::path(".") : finalPath.parent_path();
+  std::vector<AbandonedTemporary> out;
+  std::error_code ec;
+  for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.compare(0, prefix.size(), prefix) != 0) continue;
+    const std::string rest = name.substr(prefix.size());  // "PID-N"
+    const std::size_t dash = rest.find('-');
+    if (dash == 0 || dash == std::string::npos || dash > 9 || dash + 1 == rest.size() ||
+        !std::all_of(rest.begin(), rest.end(), [](char c) { return (c >= '0' && c <= '9') || c == '-'; }) ||
+        rest.find('-', dash + 1) != std::string::npos)
+      continue;
+    const pid_t pid = static_cast<pid_t>(std::stol(rest.substr(0, dash)));
+    // Alive (or not ours to signal): kept. Only "no such process" means it is gone.
+    if (pid <= 0 || pid == ::getpid() || ::kill(pid, 0) == 0 || errno != ESRCH) continue;
+    out.push_back({it->path(), static_cast<long>(pid)});
+  }
+  return out;
 }
 
 Error writeError(const fs::path& path, const std::string& step, int error) {

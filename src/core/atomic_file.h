@@ -9,6 +9,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "core/error.h"
 
@@ -41,6 +42,17 @@ class AtomicFile {
   std::filesystem::path temp_;
   bool committed_ = false;
 };
+
+// A temporary of `finalPath` that its writer left when it was killed: AtomicFile's name
+// ".NAME.part-PID-N" beside `finalPath`, whose process PID no longer runs on this machine.
+struct AbandonedTemporary {
+  std::filesystem::path path;
+  long pid = 0;
+};
+// Those temporaries, listed (nothing removed: what is the caller's to remove, it judges). Only
+// "no such process" means a writer is gone: a running one, even another user's, or this
+// process keeps its temporaries.
+std::vector<AbandonedTemporary> abandonedTemporaries(const std::filesystem::path& finalPath);
 
 // Error(Input) for a write that the environment refused, in a user's words and with what to
 // do: no space left (ENOSPC, EDQUOT), a file-size limit (EFBIG), no permission (EACCES, EPERM),

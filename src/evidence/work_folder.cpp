@@ -3,10 +3,6 @@
 #include <cstdio>
 #include <map>
 #include <set>
-#include <cerrno>
-#include <csignal>
-#include <cstdlib>
-#include <unistd.h>
 
 #include "archive/package_reader.h"
 #include "capture/capture.h"
@@ -186,21 +182,22 @@ carrier::AuditedSource evidenceNow(const fs::path& prior, SourceKind kind, const
   return kind == SourceKind::Package ? packageEvidence(prior, progress).record : hashFolder(prior, progress);
 }
 
-std::string markerOf(const fs::path& folder);
-
-// Folders an earlier audit of the same PRIOR was filling when it was killed (".WORK.part-PID-N"
-// beside `work`, AtomicFile's temporary names, whose process is gone): removed, since nothing
-// in them is anything but copies.
-void removeAbandonedCopies(const fs::path& prior, const fs::path& work) {
-  const std::string prefix = "." + work.filename().string() + ".part-";
+std::string markerOf(const fs::path& folder) {
   std::error_code ec;
-  for (const auto& entry : fs::directory_iterator(work.parent_path(), ec)) {
-    const std::string name = entry.path().filename().string();
-    if (name.rfind(prefix, 0) != 0 || !entry.is_directory(ec)) continue;
-    const long pid = std::strtol(name.c_str() + prefix.size(), nullptr, 10);
-    if (pid <= 0 || (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH)) continue;
-    if (markerOf(entry.path()) == sourceText(prior)) fs::remove_all(entry.path(), ec);
-  }
+  if (!fs::is_regular_file(folder / kMarker, ec)) return "";
+  std::string text = readFile(folder / kMarker, kStep);
+  while (!text.empty() && text.back() == '\n') text.pop_back();
+  return text;
+}
+
+// Folders an earlier audit of the same PRIOR was filling when it was killed (AtomicFile's
+// temporaries of `work` whose process is gone, core/atomic_file.h): removed, since nothing in
+// them is anything but copies.
+void removeAbandonedCopies(const fs::path& prior, const fs::path& work) {
+  std::error_code ec;
+  for (const AbandonedTemporary& part : abandonedTemporaries(work))
+    if (fs::is_directory(fs::symlink_status(part.path, ec)) && markerOf(part.path) == sourceText(prior))
+      fs::remove_all(part.path, ec);
 }
 
 // Copies into a folder under a temporary name beside `work`, renamed to `work` once complete.
@@ -226,14 +223,6 @@ std::optional<carrier::Carrier> workCarrier(const fs::path& folder) {
   std::error_code ec;
   if (!fs::is_regular_file(folder / capture::kCarrierPath, ec)) return std::nullopt;
   return carrier::loadCarrier(folder / capture::kCarrierPath);
-}
-
-std::string markerOf(const fs::path& folder) {
-  std::error_code ec;
-  if (!fs::is_regular_file(folder / kMarker, ec)) return "";
-  std::string text = readFile(folder / kMarker, kStep);
-  while (!text.empty() && text.back() == '\n') text.pop_back();
-  return text;
 }
 
 }  // namespace
