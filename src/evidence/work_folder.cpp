@@ -153,11 +153,6 @@ PackageEvidence packageEvidence(const fs::path& package, const Progress& progres
                 "has no files in its payload (data/) to audit: give a package made by `surrogate pack`, or a bag "
                 "whose data/ folder is a capture with another tool's work in it");
   out.record.kind = "package";
-  if (fs::is_regular_file(package)) {
-    const FileDigests d = digestFile(package);
-    out.record.packageSize = d.size;
-    out.record.packageSha256 = d.sha256;
-  }
   return out;
 }
 
@@ -173,6 +168,13 @@ carrier::AuditedSource copyPackage(const fs::path& package, const fs::path& stag
         return fs::u8path(bagPath.substr(5));
       },
       archive::Limits{}, progress);
+  // The package file itself as read, for the record (a bag folder has no one digest). Only
+  // when copying: finding an earlier work folder again compares the payload's files alone.
+  if (fs::is_regular_file(package)) {
+    const FileDigests d = digestFile(package);
+    e.record.packageSize = d.size;
+    e.record.packageSha256 = d.sha256;
+  }
   return e.record;
 }
 
