@@ -21,6 +21,7 @@
 #include "core/text.h"
 #include "core/version.h"
 #include "mapping/mapping.h"
+#include "archive/package_readme.h"
 
 namespace surrogate::archive {
 
@@ -209,6 +210,7 @@ std::string packageIdentifier(const std::string& carrierSha256) { return "urn:sh
 std::vector<std::string> packageMetadataFiles() {
   std::vector<std::string> out = {"metadata/crm.rdf", "metadata/mets.xml"};
   for (const std::string& rel : mapping::packagedResources()) out.push_back("metadata/" + rel);
+  for (const std::string& rel : bundledDocuments()) out.push_back("metadata/" + rel);
   std::sort(out.begin(), out.end());
   return out;
 }
@@ -284,6 +286,16 @@ PackResult packCapture(const fs::path& capture, const fs::path& out, const PackO
   std::vector<TagFile> resources;
   for (const std::string& rel : mapping::packagedResources())
     resources.push_back({"metadata/" + rel, readFile(resourcePath(rel), "packing"), {}});
+  for (const std::string& rel : bundledDocuments())
+    resources.push_back({"metadata/" + rel, readFile(resourcePath(rel), "packing"), {}});
+  {
+    ReadmeFacts readme;
+    readme.packageId = result.packageId;
+    readme.packagingTime = result.packagingTime;
+    readme.softwareAgent = agent;
+    for (const PayloadSource& p : payload) readme.hasReport |= p.bagPath == std::string("data/") + kReportPath;
+    resources.push_back({kReadmePath, packageReadme(c, readme), {}});
+  }
 
   BagInput in;
   in.payload = std::move(payload);

@@ -76,9 +76,10 @@ PackageInfo packageInfo(const carrier::Carrier& c, const std::string& packageId,
 // "urn:sha256:<SHA-256 of the carrier's bytes, lower-case hex>": the package identifier.
 std::string packageIdentifier(const std::string& carrierSha256);
 
-// The tag files packCapture writes besides bagit.txt, bag-info.txt, the manifests and the tag
-// manifests: metadata/crm.rdf, metadata/mets.xml and metadata/<resource> for each of
-// mapping::packagedResources() (stylesheets, schemas, mapping tables), sorted.
+// The tag files packCapture writes in metadata/: crm.rdf, mets.xml, metadata/<resource> for
+// each of mapping::packagedResources() (stylesheets, schemas, mapping tables) and of
+// bundledDocuments() (package_readme.h), sorted. Besides them it writes bagit.txt,
+// bag-info.txt, the manifests, the tag manifests and README.txt (kReadmePath).
 std::vector<std::string> packageMetadataFiles();
 
 // Why `label: value` cannot be a holder's field of a package of carrier `c` (pack

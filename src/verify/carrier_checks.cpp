@@ -20,9 +20,7 @@ namespace fs = std::filesystem;
 
 namespace surrogate::verify {
 
-namespace {
-
-// The first difference between two texts, as "line N: expected ... found ...".
+// checks.h
 std::string firstDifference(const std::string& expected, const std::string& found) {
   const std::vector<std::string> a = splitLines(expected), b = splitLines(found);
   for (std::size_t i = 0; i < std::max(a.size(), b.size()); ++i) {
@@ -34,6 +32,9 @@ std::string firstDifference(const std::string& expected, const std::string& foun
   }
   return "the texts differ in line endings";
 }
+
+
+namespace {
 
 // carrier.evidence, for an audit's package: every file the audit copied from the work it
 // audited is recorded, as an input (never a result), with the size and SHA-256 read from the

@@ -60,12 +60,24 @@ std::vector<std::string> otherDigestsNeeded(const Inventory& inventory);
 std::optional<carrier::Carrier> checkCarrier(const Inventory& inventory, std::vector<Check>& checks);
 
 // Whether the bag is a Surrogate package: bag-info.txt has Surrogate-Package-Identifier, or
-// the bag has data/assembly-files/carrier.xml. Such a package is held to what `surrogate pack`
+// the bag has data/assembly-files/carrier.xml, a file of metadata/ that packing writes, or a
+// README.txt that says it was packed by Surrogate. Such a package is held to what `surrogate pack`
 // writes (package.*).
 bool isSurrogatePackage(const Inventory& inventory);
 
+// The first difference between two texts, as "line N: derived \"...\", the bag has \"...\"".
+std::string firstDifference(const std::string& expected, const std::string& found);
+
+// package.readme: README.txt is the text packing writes from the carrier (archive
+// package_readme.h), with the packing facts of bag-info.txt.
+void checkReadme(const Inventory& inventory, const carrier::Carrier& recorded, std::vector<Check>& checks);
+
+// One warning for each document of metadata/docs/ that differs from this verifier's copy.
+std::vector<std::string> documentWarnings(const Inventory& inventory);
+
 // package.complete (every file of a Surrogate package present: fixity) and package.bundled
-// (metadata/ resources byte-identical to this verifier's, no other tag file: invalid).
+// (metadata/ stylesheets, schemas and tables byte-identical to this verifier's, no other tag
+// file: invalid; the documents in metadata/docs/ only present, see package_checks.cpp).
 void checkCompleteness(const Inventory& inventory, std::vector<Check>& checks);
 
 // package.info: the fields of bag-info.txt that Surrogate writes are what packing the carrier

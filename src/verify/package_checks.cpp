@@ -9,6 +9,8 @@
 #include "archive/bag.h"
 #include "archive/bag_text.h"
 #include "archive/package.h"
+#include "archive/package_readme.h"
+#include "capture/capture.h"
 #include "carrier/carrier.h"
 #include "core/atomic_file.h"
 #include "core/digest.h"
@@ -30,6 +32,10 @@ const std::map<std::string, std::string>& bundledDigests() {
   std::call_once(once, [] {
     for (const std::string& path : archive::packageMetadataFiles()) {
       if (path == "metadata/crm.rdf" || path == "metadata/mets.xml") continue;  // derived
+      // The documents explain the package to a reader; nothing is checked or derived with
+      // them, so a package keeps verifying when a later build words them differently (the
+      // tag manifests hold them fixed like every tag file): documentWarnings.
+      if (path.rfind("metadata/docs/", 0) == 0) continue;
       const std::string rel = path.substr(std::string("metadata/").size());
       digests[path] = sha256Hex(readFile(resourcePath(rel), "verify"));
     }
@@ -42,7 +48,8 @@ const std::map<std::string, std::string>& bundledDigests() {
 std::vector<std::string> requiredTagFiles() {
   std::vector<std::string> out = {"bag-info.txt",          "bagit.txt",
                                   "manifest-sha256.txt",   "manifest-sha512.txt",
-                                  "tagmanifest-sha256.txt", "tagmanifest-sha512.txt"};
+                                  "tagmanifest-sha256.txt", "tagmanifest-sha512.txt",
+                                  archive::kReadmePath};
   for (const std::string& p : archive::packageMetadataFiles()) out.push_back(p);
   std::sort(out.begin(), out.end());
   return out;
@@ -90,6 +97,17 @@ bool isSurrogatePackage(const Inventory& inv) {
   if (inv.files.count(kCarrierPath)) return true;
   for (const std::string& path : archive::packageMetadataFiles())
     if (inv.files.count(path)) return true;
+  // README.txt comes first in a package's byte order: a package cut after it has only it. It
+  // is Surrogate's when it says it was packed by Surrogate, whatever the wrapping of its lines.
+  if (const std::string* readme = contentOf(inv, archive::kReadmePath)) {
+    std::string words;
+    for (char ch : readme->substr(0, 4096)) {
+      const bool space = ch == ' ' || ch == '\n' || ch == '\r' || ch == '\t';
+      if (!space) words += ch;
+      else if (!words.empty() && words.back() != ' ') words += ' ';
+    }
+    if (words.find("(RFC 8493) by Surrogate ") != std::string::npos) return true;
+  }
   if (const std::string* text = contentOf(inv, "bag-info.txt")) {
     const BagInfo info = parseBagInfo(*text);
     if (!info.values("Surrogate-Package-Identifier").empty() ||
@@ -113,8 +131,8 @@ void checkCompleteness(const Inventory& inv, std::vector<Check>& checks) {
       missing.push_back(path + ": missing; every Surrogate package has it");
   checks.push_back(makeCheck(
       "package.complete", Severity::Fixity,
-      "every file of a Surrogate package is present (bagit.txt, bag-info.txt, both manifests "
-      "and tag manifests, the carrier, metadata/)",
+      "every file of a Surrogate package is present (bagit.txt, bag-info.txt, README.txt, both "
+      "manifests and tag manifests, the carrier, metadata/)",
       "the package is incomplete: it was cut short (a truncated archive or copy) or files were "
       "removed",
       missing));
@@ -147,7 +165,8 @@ void checkCompleteness(const Inventory& inv, std::vector<Check>& checks) {
   checks.push_back(makeCheck(
       "package.bundled", Severity::Invalid,
       "the stylesheets, schemas and mapping tables in metadata/ are byte-identical to the ones "
-      "this verifier bundles, and there is no other tag file",
+      "this verifier bundles, and there is no other tag file (metadata/docs/ is documentation, "
+      "held by the tag manifests)",
       "metadata/ holds stylesheets, schemas or tables other than this verifier's, or other "
       "files",
       problems));
@@ -239,6 +258,47 @@ void checkPackageInfo(const Inventory& inv, const std::optional<carrier::Carrier
                                 : "; " + std::to_string(holderFields.size()) +
                                       " more added by the holder (listed below)"),
       "bag-info.txt disagrees with the carrier", problems));
+}
+
+void checkReadme(const Inventory& inv, const carrier::Carrier& recorded, std::vector<Check>& checks) {
+  const auto readme = inv.files.find(archive::kReadmePath);
+  const std::string* info = contentOf(inv, "bag-info.txt");
+  if (readme == inv.files.end() || !info) return;  // package.complete
+  const BagInfo bagInfo = parseBagInfo(*info);
+  auto one = [&](const char* label) {
+    const auto v = bagInfo.values(label);
+    return v.empty() ? std::string() : v.front();
+  };
+  archive::ReadmeFacts facts;
+  facts.packageId = one("Surrogate-Package-Identifier");
+  facts.packagingTime = one("Surrogate-Packaging-Time");
+  facts.softwareAgent = one("Bag-Software-Agent");
+  facts.hasReport = inv.files.count(std::string("data/") + capture::kReportPath) > 0;
+  const std::string expected = archive::packageReadme(recorded, facts);
+  std::vector<std::string> problems;
+  if (readme->second.sha256 != sha256Hex(expected)) {
+    const std::string* found = contentOf(inv, archive::kReadmePath);
+    problems.push_back(std::string(archive::kReadmePath) + ": " +
+                       (found ? firstDifference(expected, *found) : std::string("differs")) +
+                       "; it was changed after packing (the tag manifests must have been redone)");
+  }
+  checks.push_back(makeCheck("package.readme", Severity::Invalid,
+                             "README.txt says what packing the carrier writes",
+                             "README.txt says what the carrier does not", problems));
+}
+
+std::vector<std::string> documentWarnings(const Inventory& inv) {
+  std::vector<std::string> out;
+  if (!isSurrogatePackage(inv)) return out;
+  for (const std::string& rel : archive::bundledDocuments()) {
+    const auto it = inv.files.find("metadata/" + rel);
+    if (it == inv.files.end()) continue;  // package.complete
+    if (it->second.sha256 == sha256Hex(readFile(resourcePath(rel), "verify"))) continue;
+    out.push_back(it->first + ": not the wording this verifier bundles (written by another "
+                  "build of Surrogate, or changed after packing); it is documentation only, "
+                  "held by the tag manifests, and no check relies on it");
+  }
+  return out;
 }
 
 }  // namespace surrogate::verify

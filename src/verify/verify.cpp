@@ -138,9 +138,11 @@ Report verifyPackage(const std::filesystem::path& package, const VerifyOptions& 
     return report;
   }
   checkCompleteness(inventory, report.checks);
+  for (std::string& w : documentWarnings(inventory)) report.warnings.push_back(std::move(w));
   std::optional<carrier::Carrier> recorded = checkCarrier(inventory, report.checks);
   const bool runnable = recorded && checkSteps(*recorded, report.checks);
   checkPackageInfo(inventory, recorded, report.checks, report.holderFields);
+  if (recorded) checkReadme(inventory, *recorded, report.checks);
   const auto carrierFile = inventory.files.find(kCarrierPath);
   const std::string* carrierXml =
       recorded && carrierFile != inventory.files.end() && carrierFile->second.content

@@ -14,6 +14,7 @@
 
 #include "archive/bag.h"
 #include "archive/package.h"
+#include "archive/package_readme.h"
 #include "carrier/carrier.h"
 #include "core/digest.h"
 #include "core/resources.h"
@@ -106,6 +107,21 @@ void writeMetadata(const fs::path& bag, const std::string& agent, const std::str
   }
   writeText(bag / "metadata/crm.rdf", surrogate::mapping::deriveCrm(carrierXml));
   writeText(bag / "metadata/mets.xml", surrogate::mapping::deriveMets(carrierXml, facts));
+  for (const std::string& rel : surrogate::archive::bundledDocuments())
+    writeText(bag / "metadata" / rel, readText(surrogate::resourcePath(rel)));
+  // README.txt as packing writes it (a carrier that does not parse gets none: the tests that
+  // break the carrier look at other checks).
+  try {
+    const auto c = surrogate::carrier::parseCarrier(carrierXml, "carrier.xml");
+    surrogate::archive::ReadmeFacts readme;
+    readme.packageId = facts.packageId;
+    readme.packagingTime = time;
+    readme.softwareAgent = agent;
+    std::error_code ec;
+    readme.hasReport = fs::exists(bag / "data/finished-files/report.html", ec);
+    writeText(bag / surrogate::archive::kReadmePath, surrogate::archive::packageReadme(c, readme));
+  } catch (const std::exception&) {
+  }
 }
 
 }  // namespace

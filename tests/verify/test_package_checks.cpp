@@ -5,6 +5,8 @@
 // of a real run are in test_fault_injection.cpp.
 #include <sys/stat.h>
 
+#include <fstream>
+
 #include <catch2/catch.hpp>
 
 #include "bag_fixture.h"
@@ -456,4 +458,57 @@ TEST_CASE("a tar with pax extended headers (long names) is read whole, and cut, 
     INFO("cut at " << at << "\n" << allText(r));
     CHECK(failed(r, "package.read"));
   }
+}
+
+TEST_CASE("a README.txt that says what the carrier does not fails, tag manifests redone or not",
+          "[verify][package][readme]") {
+  const fs::path bag = cleanBag("readme-forged");
+  // Who made it, rewritten, and the tag manifests redone to match.
+  replaceInFile(bag / "README.txt", "A. Tester (creator)", "B. Forger (creator)");
+  rehashTagManifests(bag);
+  const verify::Report r = run(bag);
+  INFO(allText(r));
+  CHECK(failed(r, "package.readme"));
+  CHECK_THAT(allText(r), Contains("derived \"  Made by:") && Contains("B. Forger"));
+  CHECK(r.exitCode() == 2);
+
+  // Removed, the manifests redone: the package is incomplete.
+  fs::remove(bag / "README.txt");
+  rehashTagManifests(bag);
+  const verify::Report gone = run(bag);
+  INFO(allText(gone));
+  CHECK(failed(gone, "package.complete"));
+  CHECK_THAT(allText(gone), Contains("README.txt: missing"));
+  CHECK(gone.exitCode() == 3);
+}
+
+TEST_CASE("the documents in metadata/docs/ must be there and another wording is only a warning",
+          "[verify][package][readme]") {
+  const fs::path bag = cleanBag("docs-wording");
+  // Reworded (by another build, or by a holder who redid the tag manifests): no check relies on
+  // the documents, so the verdict stands, and the warning names the file.
+  {
+    std::ofstream(bag / "metadata/docs/formats.md", std::ios::app) << "\nA later paragraph.\n";
+  }
+  rehashTagManifests(bag);
+  const verify::Report reworded = run(bag);
+  INFO(allText(reworded));
+  CHECK(reworded.exitCode() == 0);
+  REQUIRE(reworded.warnings.size() == 1);
+  CHECK_THAT(reworded.warnings.front(), Contains("metadata/docs/formats.md: not the wording this verifier bundles"));
+
+  // Changed without the tag manifests redone: a fixity failure like any tag file.
+  {
+    std::ofstream(bag / "metadata/docs/carrier.md", std::ios::app) << "\nchanged\n";
+  }
+  const verify::Report changed = run(bag);
+  INFO(allText(changed));
+  CHECK(changed.exitCode() == 3);
+
+  fs::remove(bag / "metadata/docs/carrier.md");
+  rehashTagManifests(bag);
+  const verify::Report gone = run(bag);
+  INFO(allText(gone));
+  CHECK(failed(gone, "package.complete"));
+  CHECK_THAT(allText(gone), Contains("metadata/docs/carrier.md: missing"));
 }
