@@ -253,6 +253,12 @@ PackResult packCapture(const fs::path& capture, const fs::path& out, const PackO
   // (core/file_names.h, the rule the capture scan applies and verify applies to the package)
   // is refused here, never found by verify. The carrier may be older than the rule.
   std::vector<PayloadSource> payload = payloadOf(capture, c);
+  for (const PayloadSource& p : payload)
+    if (p.bagPath == mapping::kRoCratePath)
+      throw Error(ErrorKind::Input, shownName((capture / "ro-crate-metadata.json").string()), "packing",
+                  "the capture has a file of this name at its top, where a package holds the "
+                  "RO-Crate metadata Surrogate writes; move it into a folder of the capture, "
+                  "run `surrogate run` to record the move, then pack again");
   {
     std::vector<std::string> names;
     names.reserve(payload.size());
@@ -282,6 +288,23 @@ PackResult packCapture(const fs::path& capture, const fs::path& out, const PackO
       sink(crm.data(), crm.size());
       return true;
     });
+  }
+  // The RO-Crate's metadata, in the payload (the payload folder is the crate), from the carrier
+  // like crm.rdf: written before any payload byte, copied by writeBag like a capture file.
+  const AtomicFile crateFile(out);
+  {
+    mapping::CrateFacts facts;
+    facts.packageId = result.packageId;
+    facts.packagingTime = result.packagingTime;
+    for (const PayloadSource& p : payload) facts.hasReport |= p.bagPath == std::string("data/") + kReportPath;
+    const std::string crate = mapping::deriveRoCrate(carrierXml, facts, carrierFile.string());
+    (void)deriveInto(crateFile.tempPath(), out, [&](const mapping::TextSink& sink) {
+      sink(crate.data(), crate.size());
+      return true;
+    });
+    payload.push_back(PayloadSource{mapping::kRoCratePath, crateFile.tempPath(), ""});
+    std::sort(payload.begin(), payload.end(),
+              [](const PayloadSource& x, const PayloadSource& y) { return x.bagPath < y.bagPath; });
   }
   std::vector<TagFile> resources;
   for (const std::string& rel : mapping::packagedResources())

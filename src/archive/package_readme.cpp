@@ -194,6 +194,9 @@ std::string packageReadme(const carrier::Carrier& c, const ReadmeFacts& facts) {
                              (folder.empty() ? std::string("files of the capture beside its folders")
                                              : folderPurpose(folder)));
   }
+  item(out, "data/ro-crate-metadata.json", 24,
+       "the same record as RO-Crate 1.1 metadata (JSON-LD), so that data/ is a crate research "
+       "repositories and RO-Crate tools open: every file, every processing step as an action");
   item(out, "metadata/", 24,
        "the same record for repositories: mets.xml (METS and PREMIS: every file with its "
        "fixity and format, every step as an event), crm.rdf (CIDOC-CRM and CRMdig), the "

@@ -5,6 +5,7 @@
 #include <libxml/parser.h>
 #include <libxml/tree.h>
 #include <libxml/xpath.h>
+#include <libexslt/exslt.h>
 #include <libxslt/documents.h>
 #include <libxslt/security.h>
 #include <libxslt/transform.h>
@@ -249,6 +250,9 @@ void initialiseXslt() {
   std::call_once(once, [] {
     initialiseXml();
     xsltInit();
+    // EXSLT's string functions only (str:encode-uri for the RO-Crate's identifiers): not the
+    // other modules, whose exsl:document would write files.
+    exsltStrRegister();
     xsltSetLoaderFunc(payloadOnlyLoader);
   });
 }
@@ -489,6 +493,15 @@ std::vector<std::pair<std::string, std::string>> metsParams(const PackageFacts& 
 
 std::string deriveCrm(const std::string& carrierXml, const std::string& source) {
   return transform(crmStylesheetPath(), carrierXml, source, {}, nullptr);
+}
+
+std::string deriveRoCrate(const std::string& carrierXml, const CrateFacts& facts,
+                          const std::string& source) {
+  return transform(roCrateStylesheetPath(), carrierXml, source,
+                   {{"package-id", facts.packageId},
+                    {"packaging-time", facts.packagingTime},
+                    {"has-report", facts.hasReport ? "true" : ""}},
+                   nullptr);
 }
 
 std::string deriveMets(const std::string& carrierXml, const PackageFacts& facts,

@@ -1,5 +1,5 @@
 // Standard metadata derived from the carrier by stylesheets (libxslt): CIDOC-CRM + CRMdig as
-// RDF/XML, and METS 1.12.1 with PREMIS 3 in its administrative sections.
+// RDF/XML, METS 1.12.1 with PREMIS 3 in its administrative sections, and RO-Crate 1.1 JSON-LD.
 //
 // Every piece of package metadata is a function of the carrier (data/assembly-files/carrier.xml)
 // and of a few package-level facts the carrier cannot hold (its own digest, the packaging
@@ -58,6 +58,19 @@ struct PackageFacts {
 // not well-formed, Error(Internal) if the stylesheet fails.
 std::string deriveCrm(const std::string& carrierXml,
                       const std::string& source = "assembly-files/carrier.xml");
+
+// What the RO-Crate says besides the carrier: PackageFacts' identifier and time, and whether the payload holds the report (the one payload file the carrier does not list,
+// besides the crate's own metadata file).
+struct CrateFacts {
+  std::string packageId, packagingTime;
+  bool hasReport = false;
+};
+
+// Carrier XML + facts -> RO-Crate 1.1 metadata, JSON-LD (xslt/carrier-to-ro-crate.xsl: the
+// payload folder as the crate; Process, Workflow and Provenance Run Crate 0.5). Deterministic.
+// The packer writes it as data/ro-crate-metadata.json; the verifier derives it again.
+std::string deriveRoCrate(const std::string& carrierXml, const CrateFacts& facts,
+                          const std::string& source = "assembly-files/carrier.xml");
 
 // Carrier XML + package facts -> METS 1.12.1 with PREMIS 3 (xslt/carrier-to-mets.xsl).
 // Deterministic for the same inputs.
@@ -125,6 +138,10 @@ void checkRdfWellFormed(const std::string& rdfXml, const std::string& source);
 // Where the stylesheets and schemas are (via core resourcePath; Error(Internal) if missing).
 std::filesystem::path crmStylesheetPath();   // xslt/carrier-to-crm.xsl
 std::filesystem::path metsStylesheetPath();  // xslt/carrier-to-mets.xsl
+std::filesystem::path roCrateStylesheetPath();  // xslt/carrier-to-ro-crate.xsl
+
+// Where the RO-Crate's metadata file is in a package's payload.
+inline constexpr const char* kRoCratePath = "data/ro-crate-metadata.json";
 
 // The resources (relative to the resource root, e.g. "xslt/carrier-to-crm.xsl",
 // "xsd/mets-1.12.1.xsd") that explain a package; the packer copies each to

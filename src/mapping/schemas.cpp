@@ -224,11 +224,13 @@ void checkRdfWellFormed(const std::string& rdfXml, const std::string& source) {
 
 std::filesystem::path crmStylesheetPath() { return resourcePath("xslt/carrier-to-crm.xsl"); }
 std::filesystem::path metsStylesheetPath() { return resourcePath("xslt/carrier-to-mets.xsl"); }
+std::filesystem::path roCrateStylesheetPath() { return resourcePath("xslt/carrier-to-ro-crate.xsl"); }
 
 std::vector<std::string> packagedResources() {
   return {
       "mappings/carrier-to-crm.md",
       "mappings/carrier-to-mets.md",
+      "mappings/carrier-to-ro-crate.md",
       "xsd/SOURCE.md",
       "xsd/carrier.xsd",
       "xsd/catalog.xml",
@@ -238,6 +240,7 @@ std::vector<std::string> packagedResources() {
       "xsd/xlink.xsd",
       "xslt/carrier-to-crm.xsl",
       "xslt/carrier-to-mets.xsl",
+      "xslt/carrier-to-ro-crate.xsl",
   };
 }
 

@@ -107,13 +107,14 @@ std::optional<carrier::Carrier> checkCarrier(const Inventory& inv, std::vector<C
   }
   // Every file in the payload is one the carrier records: an image added with the manifests
   // redone is found, and so is a result left by a run the carrier does not describe (a stale
-  // .rti bagged beside the fresh ones). The one exception is the HTML report, a view of the
-  // carrier that holds the time it was made (docs/carrier.md), besides the carrier itself.
+  // .rti bagged beside the fresh ones). The exceptions are the HTML report, a view of the
+  // carrier that holds the time it was made (docs/carrier.md), the carrier itself, and the
+  // RO-Crate's metadata, derived from the carrier and checked by metadata.ro-crate.
   for (const auto& [path, file] : inv.files) {
     if (!pathProblems.empty()) break;  // one cause, one failure: the unsafe path
     if (path.compare(0, 5, "data/") != 0) continue;
     const std::string relative = path.substr(5);
-    if (relative == capture::kReportPath || path == kCarrierPath) continue;
+    if (relative == capture::kReportPath || path == kCarrierPath || path == mapping::kRoCratePath) continue;
     if (!recordedPaths.count(relative))
       fixity.push_back(path + ": in the payload but not recorded in the carrier" +
                        (relative.compare(0, 15, "assembly-files/") == 0 ||

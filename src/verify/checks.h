@@ -72,6 +72,11 @@ std::string firstDifference(const std::string& expected, const std::string& foun
 // package_readme.h), with the packing facts of bag-info.txt.
 void checkReadme(const Inventory& inventory, const carrier::Carrier& recorded, std::vector<Check>& checks);
 
+// metadata.ro-crate: data/ro-crate-metadata.json is what the bundled stylesheet derives from
+// the carrier with the packing facts of bag-info.txt (mapping::deriveRoCrate).
+void checkRoCrate(const std::filesystem::path& package, const Inventory& inventory,
+                  const std::string& carrierXml, const Limits& limits, std::vector<Check>& checks);
+
 // One warning for each document of metadata/docs/ that differs from this verifier's copy.
 std::vector<std::string> documentWarnings(const Inventory& inventory);
 

@@ -18,6 +18,7 @@
 #include "core/resources.h"
 #include "core/text.h"
 #include "core/version.h"
+#include "mapping/mapping.h"
 #include "verify/checks.h"
 
 namespace surrogate::verify {
@@ -126,6 +127,7 @@ void checkCompleteness(const Inventory& inv, std::vector<Check>& checks) {
   std::vector<std::string> missing;
   std::vector<std::string> required = requiredTagFiles();
   required.push_back(kCarrierPath);
+  required.push_back(mapping::kRoCratePath);
   for (const std::string& path : required)
     if (!inv.files.count(path))
       missing.push_back(path + ": missing; every Surrogate package has it");
@@ -299,6 +301,36 @@ std::vector<std::string> documentWarnings(const Inventory& inv) {
                   "held by the tag manifests, and no check relies on it");
   }
   return out;
+}
+
+void checkRoCrate(const std::filesystem::path& package, const Inventory& inv, const std::string& carrierXml,
+                  const Limits& limits, std::vector<Check>& checks) {
+  const auto crate = inv.files.find(mapping::kRoCratePath);
+  const std::string* info = contentOf(inv, "bag-info.txt");
+  if (crate == inv.files.end() || !info) return;  // package.complete
+  const BagInfo bagInfo = parseBagInfo(*info);
+  auto one = [&](const char* label) {
+    const auto v = bagInfo.values(label);
+    return v.empty() ? std::string() : v.front();
+  };
+  mapping::CrateFacts facts;
+  facts.packageId = one("Surrogate-Package-Identifier");
+  facts.packagingTime = one("Surrogate-Packaging-Time");
+  facts.hasReport = inv.files.count(std::string("data/") + capture::kReportPath) > 0;
+  std::vector<std::string> problems;
+  try {
+    const std::string derived = mapping::deriveRoCrate(carrierXml, facts, kCarrierPath);
+    if (crate->second.size != derived.size() || crate->second.sha256 != sha256Hex(derived))
+      problems.push_back(std::string(mapping::kRoCratePath) + ": " +
+                         firstDifference(derived, readBagFile(package, inv, mapping::kRoCratePath, limits)));
+  } catch (const Error& e) {
+    if (e.kind() == ErrorKind::Internal || e.kind() == ErrorKind::Fixity) throw;
+    problems.push_back(e.text());
+  }
+  checks.push_back(makeCheck("metadata.ro-crate", Severity::Invalid,
+                             "data/ro-crate-metadata.json equals what the bundled stylesheet "
+                             "derives from the carrier",
+                             "the RO-Crate metadata differ from what the carrier gives", problems));
 }
 
 }  // namespace surrogate::verify

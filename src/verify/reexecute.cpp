@@ -13,6 +13,7 @@
 
 #include "core/error.h"
 #include "core/temp_dir.h"
+#include "mapping/mapping.h"
 #include "pipeline/stage.h"
 #include "run/plan.h"
 #include "verify/checks.h"
@@ -273,7 +274,9 @@ void extractForReplay(const fs::path& package, const Inventory& inventory,
   extractFiles(
       package, inventory, root,
       [&](const std::string& path) -> fs::path {
-        if (path.compare(0, 5, "data/") != 0) return {};
+        // The RO-Crate's metadata is the package's, derived from the carrier (metadata.ro-crate),
+        // not a file of the capture: the run would record it as a new input.
+        if (path.compare(0, 5, "data/") != 0 || path == mapping::kRoCratePath) return {};
         const std::string relative = path.substr(5);
         const bool output = !prior.count(relative) && isOutputPath(relative, outputs);
         return fs::path(output ? "recorded" : "replay") / relative;

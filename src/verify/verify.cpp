@@ -152,6 +152,8 @@ Report verifyPackage(const std::filesystem::path& package, const VerifyOptions& 
   // (for a package of 100 000 files it is about 200 MB, beside the stylesheets' trees).
   if (!options.reexecute) recorded.reset();
   try {
+    // Before checkMetadata, which may let the payload's entries go.
+    if (carrierXml) checkRoCrate(package, inventory, *carrierXml, options.limits, report.checks);
     checkMetadata(package, inventory, carrierXml, options.limits, report.checks, !options.reexecute);
   } catch (const Error& e) {
     // The package changed or vanished while it was being verified.

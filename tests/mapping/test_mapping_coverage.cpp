@@ -116,7 +116,7 @@ TEST_CASE("the carrier schema is read: paths of data-carrying elements and attri
 
 TEST_CASE("every carrier element that carries information has a row in each mapping table", "[mapping][coverage]") {
   const std::set<std::string> paths = carrierPaths();
-  for (const char* table : {"carrier-to-crm.md", "carrier-to-mets.md"}) {
+  for (const char* table : {"carrier-to-crm.md", "carrier-to-mets.md", "carrier-to-ro-crate.md"}) {
     const auto rows = tableRows(slurp(std::string(SURROGATE_SOURCE_DIR) + "/mappings/" + table));
     for (const std::string& p : paths) {
       // Attributes of measurement results (sphere, highlight, ...) are covered by their
@@ -137,7 +137,8 @@ TEST_CASE("every carrier element that carries information has a row in each mapp
 
 TEST_CASE("every row that says it is mapped names something its stylesheet reads", "[mapping][coverage]") {
   const std::map<std::string, std::string> pairs = {{"carrier-to-crm.md", "carrier-to-crm.xsl"},
-                                                    {"carrier-to-mets.md", "carrier-to-mets.xsl"}};
+                                                    {"carrier-to-mets.md", "carrier-to-mets.xsl"},
+                                                    {"carrier-to-ro-crate.md", "carrier-to-ro-crate.xsl"}};
   for (const auto& [table, stylesheet] : pairs) {
     const auto rows = tableRows(slurp(std::string(SURROGATE_SOURCE_DIR) + "/mappings/" + table));
     const std::string xsl = slurp(std::string(SURROGATE_SOURCE_DIR) + "/xslt/" + stylesheet);

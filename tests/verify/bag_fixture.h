@@ -30,8 +30,9 @@ void makeBag(const std::filesystem::path& capture, const std::filesystem::path& 
 
 // Rewrites the bag's manifests, bag-info.txt, metadata and tagmanifests for its current
 // content (after a test changed files "consistently"): what a forger who redoes every
-// derivable file would do. The bag's Bag-Software-Agent and packaging time are kept.
-void rehashBag(const std::filesystem::path& bag);
+// derivable file would do. The bag's Bag-Software-Agent and packaging time are kept. With
+// `keepRoCrate`, data/ro-crate-metadata.json is left as it is (a forger who changed it).
+void rehashBag(const std::filesystem::path& bag, bool keepRoCrate = false);
 
 // A manifest path as RFC 8493 writes it: CR, LF and % percent-encoded.
 std::string escapedPath(const std::string& path);

@@ -512,3 +512,30 @@ TEST_CASE("the documents in metadata/docs/ must be there and another wording is 
   CHECK(failed(gone, "package.complete"));
   CHECK_THAT(allText(gone), Contains("metadata/docs/carrier.md: missing"));
 }
+
+TEST_CASE("an RO-Crate that says what the carrier does not fails with every manifest redone",
+          "[verify][package][ro-crate]") {
+  const fs::path bag = cleanBag("ro-crate-forged");
+  REQUIRE(fs::exists(bag / "data/ro-crate-metadata.json"));
+  {
+    const verify::Report clean = run(bag);
+    INFO(allText(clean));
+    CHECK(clean.exitCode() == 0);
+    CHECK(has(clean, "metadata.ro-crate"));
+  }
+  replaceInFile(bag / "data/ro-crate-metadata.json", "\"name\": \"A. Tester\"", "\"name\": \"B. Forger\"");
+  rehashBag(bag, true);
+  const verify::Report r = run(bag);
+  INFO(allText(r));
+  CHECK(failed(r, "metadata.ro-crate"));
+  CHECK_THAT(allText(r), Contains("B. Forger"));
+  CHECK(r.exitCode() == 2);
+
+  // Removed, with the manifests redone: incomplete.
+  fs::remove(bag / "data/ro-crate-metadata.json");
+  rehashBag(bag, true);
+  const verify::Report gone = run(bag);
+  INFO(allText(gone));
+  CHECK(failed(gone, "package.complete"));
+  CHECK_THAT(allText(gone), Contains("data/ro-crate-metadata.json: missing"));
+}
