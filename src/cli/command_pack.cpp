@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "archive/eark_layout.h"
 #include "archive/ocfl_layout.h"
 #include "archive/package.h"
 #include "capture/capture.h"
@@ -85,21 +86,23 @@ std::vector<OptionSpec> packOptions() {
                    "verify lists it as added by the holder)",
                    "LABEL=VALUE"});
   specs.push_back({"layout", true, false,
-                   "bag (the default: a BagIt bag, folder, .tar or .zip), or ocfl: OUT is an OCFL "
+                   "bag (the default: a BagIt bag, folder, .tar or .zip); ocfl: OUT is an OCFL "
                    "1.1 object holding the bag, made or given a new version (v2, v3, ...) by "
-                   "each pack of the same capture",
-                   "bag|ocfl"});
+                   "each pack of the same capture; eark: OUT is a new folder holding an E-ARK "
+                   "SIP 2.2 (METS.xml, representations/rep1/, metadata/, schemas/, documentation/)",
+                   "bag|ocfl|eark"});
   specs.push_back({"no-report", false, false,
                    "when the pipeline runs, do not write finished-files/report.html"});
   return specs;
 }
 
-// The layout of the package (--layout): "bag" or "ocfl".
+// The layout of the package (--layout): "bag", "ocfl" or "eark".
 std::string layoutOf(const Args& args) {
   const std::string layout = args.value("layout", "bag");
-  if (layout != "bag" && layout != "ocfl")
+  if (layout != "bag" && layout != "ocfl" && layout != "eark")
     throw Error(ErrorKind::Usage, "--layout " + layout, "command line",
-                "is not a layout pack writes: give bag (a BagIt bag, the default) or ocfl (an OCFL object)");
+                "is not a layout pack writes: give bag (a BagIt bag, the default), ocfl (an OCFL "
+                "object) or eark (an E-ARK SIP)");
   return layout;
 }
 
@@ -121,6 +124,14 @@ std::pair<std::string, std::string> captureAndOutput(const Args& args) {
       throw Error(ErrorKind::Usage, "--force", "command line",
                   "does not go with --layout ocfl: an OCFL object is never replaced, each pack adds a version");
     capture::checkOutputTarget(*out, "-o", capture::ExistingOutput::Replace, capture::OutputPlace::OutsideCaptures);
+    return {capture, *out};
+  }
+  if (layoutOf(args) == "eark") {
+    if (args.has("force") || archive::bagFormatFor(*out) != archive::BagFormat::Directory)
+      throw Error(ErrorKind::Usage, args.has("force") ? "--force" : *out, "command line",
+                  "--layout eark writes a SIP into a new or empty folder: give a folder name, without --force");
+    capture::checkOutputTarget(*out, "-o", capture::ExistingOutput::Replace, capture::OutputPlace::OutsideCaptures);
+    archive::checkOutput(*out);
     return {capture, *out};
   }
   capture::checkOutputTarget(*out, "-o",
@@ -313,6 +324,42 @@ void printOcflSummary(const std::string& capture, const std::string& out, const 
             << "\n  package id: " << r.pack.packageId << "\n";
 }
 
+// --layout eark: the SIP written and the bag it holds.
+void printEarkJson(const std::string& capture, const std::string& out, const Processing& processing,
+                   const archive::EarkResult& r,
+                   const std::vector<std::pair<std::string, std::string>>& holder) {
+  JsonWriter j;
+  j.beginObject().key("capture").value(capture).key("package").value(out)
+      .key("format").value("eark").key("pipelineRan").value(processing.ran);
+  j.key("pipelineReason");
+  if (processing.ran) j.value(processing.why);
+  else j.null();
+  j.key("objectId").value(r.objectId).key("files").value(static_cast<unsigned long long>(r.files))
+      .key("packageId").value(r.pack.packageId).key("packagingTime").value(r.pack.packagingTime)
+      .key("payloadFiles").value(static_cast<unsigned long long>(r.pack.bag.payloadFiles))
+      .key("payloadBytes").value(static_cast<unsigned long long>(r.pack.bag.payloadBytes));
+  j.key("holderFields").beginArray();
+  for (const auto& [label, value] : holder)
+    j.beginObject().key("label").value(label).key("value").value(value).endObject();
+  j.endArray().key("removedLeftovers").beginArray();
+  for (const std::string& t : r.pack.bag.removedLeftovers) j.value(t);
+  j.endArray().endObject();
+  std::cout << j.str() << "\n";
+}
+
+void printEarkSummary(const std::string& capture, const std::string& out, const Processing& processing,
+                      const archive::EarkResult& r) {
+  if (processing.ran)
+    std::cout << "Processed " << capture << " first (" << processing.why << "), with the decisions its "
+              << "carrier records (see `surrogate info " << capture << "`).\n";
+  for (const std::string& removed : r.pack.bag.removedLeftovers)
+    std::cout << char(std::toupper(static_cast<unsigned char>(removed[0]))) << removed.substr(1) << ".\n";
+  std::cout << "Packed " << capture << " into " << out << " (E-ARK SIP 2.2, " << r.files << " files).\n"
+            << "  METS: " << out << "/METS.xml, representation " << out << "/representations/rep1/METS.xml\n"
+            << "  payload: " << r.pack.bag.payloadFiles << " files in representations/rep1/data/\n"
+            << "  package id: " << r.pack.packageId << "\n";
+}
+
 }  // namespace
 
 int runCommandPack(int argc, char** argv) {
@@ -321,7 +368,7 @@ int runCommandPack(int argc, char** argv) {
   if (helpShown(args, specs, "surrogate pack CAPTURE -o OUT [options]",
                  "Write the archival package of a capture: a BagIt 1.0 bag (a folder, or a "
                  ".tar or .zip by OUT's name; with --layout ocfl, a new version of the OCFL "
-                 "object in folder OUT) holding the untouched originals, the carrier, "
+                 "object in folder OUT; with --layout eark, an E-ARK SIP in folder OUT) holding the untouched originals, the carrier, "
                  "the results, SHA-256 and SHA-512 manifests, and metadata/ with CIDOC-CRM "
                  "(crm.rdf), METS+PREMIS (mets.xml) and the stylesheets and schemas that "
                  "derive them. Runs the pipeline first (with the options below, as `surrogate "
@@ -346,6 +393,13 @@ int runCommandPack(int argc, char** argv) {
     bar.finish();
     if (args.has("json")) printOcflJson(capture, out, processing, r, holderFields(args));
     else printOcflSummary(capture, out, processing, r);
+    return 0;
+  }
+  if (layoutOf(args) == "eark") {
+    const archive::EarkResult r = packOnce(capture, out, args, bar, processing, archive::packEark);
+    bar.finish();
+    if (args.has("json")) printEarkJson(capture, out, processing, r, holderFields(args));
+    else printEarkSummary(capture, out, processing, r);
     return 0;
   }
   const archive::PackResult r = packOnce(capture, out, args, bar, processing, archive::packCapture);

@@ -151,7 +151,7 @@ int runCommandVerify(int argc, char** argv) {
     std::cout << usageHeader(
                      "surrogate verify PACKAGE [--reexecute] [options]",
                      "Check that an archival package (a bag directory, .tar or .zip, or an OCFL "
-                     "object holding a bag: pack --layout ocfl) is sound: "
+                     "object or E-ARK SIP holding a bag: pack --layout ocfl or eark) is sound: "
                      "BagIt fixity and completeness, every file `surrogate pack` writes present "
                      "(a package cut short is never sound), the bundled stylesheets, schemas "
                      "and tables identical to this Surrogate's, bag-info.txt against the "

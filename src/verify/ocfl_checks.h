@@ -9,7 +9,7 @@
 namespace surrogate::verify {
 
 // What verifyPackage does for a bag (a folder, .tar or .zip), without looking for an OCFL
-// object: the head version's bag is verified with it, whatever files its root holds.
+// object or E-ARK SIP: the bag held in one is verified with it, whatever files its root holds.
 Report verifyBag(const std::filesystem::path& package, const VerifyOptions& options);
 
 // Whether `package` is a folder holding an OCFL object's declaration ("0=ocfl_object_1.x").

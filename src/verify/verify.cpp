@@ -5,6 +5,7 @@
 #include "capture/capture.h"
 #include "core/error.h"
 #include "verify/checks.h"
+#include "verify/eark_checks.h"
 #include "verify/ocfl_checks.h"
 
 namespace surrogate::verify {
@@ -104,6 +105,7 @@ void setAsideSystemFiles(const std::filesystem::path& package, Inventory& invent
 
 Report verifyPackage(const std::filesystem::path& package, const VerifyOptions& options) {
   if (isOcflObject(package)) return verifyOcflObject(package, options);
+  if (isEarkSip(package)) return verifyEarkSip(package, options);
   return verifyBag(package, options);
 }
 
