@@ -287,7 +287,7 @@ bool isOcflObject(const fs::path& package) {
 Report verifyOcflObject(const fs::path& object, const VerifyOptions& options) {
   Report report;
   report.package = object.string();
-  report.kind = "OCFL object";
+  report.kind = "OCFL 1.1 object";
   const Walk walk = walkObject(object);
   add(report, "ocfl.read", Severity::Invalid, "the object holds files and folders only",
       "the object holds what an OCFL object may not", walk.problems);
@@ -307,6 +307,7 @@ Report verifyOcflObject(const fs::path& object, const VerifyOptions& options) {
   add(report, "ocfl.declaration", Severity::Invalid, "OCFL " + declared + " object", "not a declared OCFL object",
       declaration);
   if (declared.empty()) return report;
+  report.kind = "OCFL " + declared + " object";
 
   std::vector<std::string> problems;
   std::optional<OcflInventory> inv;
