@@ -215,6 +215,10 @@ OcflResult packOcfl(const fs::path& capture, const fs::path& given, const PackOp
   const carrier::Carrier recorded = carrier::loadCarrier(capture / capture::kCarrierPath);
   result.objectId = captureObjectId(recorded);
   result.notes = removeStaleParts(dir);
+  // A pack killed while replacing the root inventory or its sidecar leaves its temporary at
+  // the object's root (".inventory.json.part-PID-N"), which OCFL does not allow there.
+  for (const char* file : {"inventory.json", "inventory.json.sha512"})
+    for (std::string& note : removeStaleParts(dir / file)) result.notes.push_back(std::move(note));
 
   std::error_code ec;
   const bool exists = fs::exists(fs::symlink_status(dir, ec));

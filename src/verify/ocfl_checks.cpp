@@ -374,7 +374,10 @@ Report verifyOcflObject(const fs::path& object, const VerifyOptions& options) {
   static const std::set<std::string> rootFiles = {"inventory.json", "0=ocfl_object_" + declared};
   for (const std::string& f : walk.files)
     if (f.find('/') == std::string::npos && !rootFiles.count(f) && f != sidecarName)
-      problems.push_back(f + ": a file at the object's root that OCFL does not place there");
+      problems.push_back(f + ": a file at the object's root that OCFL does not place there" +
+                         (f.rfind(".inventory.json", 0) == 0 && f.find(".part-") != std::string::npos
+                              ? std::string(" (left by a pack that did not finish: the next pack into the object removes it)")
+                              : std::string()));
   for (const std::string& d : walk.folders)
     if (d.find('/') == std::string::npos && !versionSet.count(d) && d != "extensions")
       problems.push_back(d + "/: a folder at the object's root that is no version of its inventory");

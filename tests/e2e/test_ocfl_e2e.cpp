@@ -224,12 +224,18 @@ TEST_CASE("pack --layout ocfl completes a version a killed pack put in place, an
   CHECK(!ocflValid(killed));
   const fs::path leftover = killed.parent_path() / ".object.part-999999-0";
   fs::create_directories(leftover / "content");
+  const fs::path rootLeftover = killed / ".inventory.json.part-999999-3";
+  write(rootLeftover, "{");
+  std::string report;
+  CHECK(verifyExit(killed, &report) == 3);
+  CHECK_THAT(report, Contains(".inventory.json.part-999999-3: a file at the object's root"));
   const e2e::CommandResult r = e2e::runShell("SOURCE_DATE_EPOCH=1700400000 " + std::string(SURROGATE_EXE) + " pack " +
                                              quote(o.capture) + " -o " + quote(killed) + " --layout ocfl");
   REQUIRE(r.exitCode == 0);
   CHECK_THAT(r.output, Contains("inventory.json.sha512"));
   CHECK_THAT(r.output, Contains(".object.part-999999-0"));
   CHECK(!fs::exists(leftover));
+  CHECK(!fs::exists(rootLeftover));
   CHECK(inventoryOf(killed)["head"] == "v4");
   CHECK(ocflValid(killed));
   CHECK(verifyExit(killed) == 0);
