@@ -7,6 +7,8 @@
 #include <utility>
 #include <vector>
 
+#include "archive/eark_layout.h"
+#include "archive/ocfl_layout.h"
 #include "archive/package.h"
 #include "capture/capture.h"
 #include "capture/lock.h"
@@ -83,9 +85,25 @@ std::vector<OptionSpec> packOptions() {
                    "Contact-Email=archive@museum.org (not recorded in the carrier: "
                    "verify lists it as added by the holder)",
                    "LABEL=VALUE"});
+  specs.push_back({"layout", true, false,
+                   "bag (the default: a BagIt bag, folder, .tar or .zip); ocfl: OUT is an OCFL "
+                   "1.1 object holding the bag, made or given a new version (v2, v3, ...) by "
+                   "each pack of the same capture; eark: OUT is a new folder holding an E-ARK "
+                   "SIP 2.2 (METS.xml, representations/rep1/, metadata/, schemas/, documentation/)",
+                   "bag|ocfl|eark"});
   specs.push_back({"no-report", false, false,
                    "when the pipeline runs, do not write finished-files/report.html"});
   return specs;
+}
+
+// The layout of the package (--layout): "bag", "ocfl" or "eark".
+std::string layoutOf(const Args& args) {
+  const std::string layout = args.value("layout", "bag");
+  if (layout != "bag" && layout != "ocfl" && layout != "eark")
+    throw Error(ErrorKind::Usage, "--layout " + layout, "command line",
+                "is not a layout pack writes: give bag (a BagIt bag, the default), ocfl (an OCFL "
+                "object) or eark (an E-ARK SIP)");
+  return layout;
 }
 
 // The capture folder and the package to write, checked before any long work.
@@ -100,6 +118,22 @@ std::pair<std::string, std::string> captureAndOutput(const Args& args) {
     throw Error(ErrorKind::Usage, capture, "command line",
                 ec ? "cannot be read as a folder (" + ec.message() + "); give the capture folder"
                    : "is not a capture folder");
+  if (layoutOf(args) == "ocfl") {
+    // An existing object is added to, never replaced (archive::packOcfl checks what it is).
+    if (args.has("force"))
+      throw Error(ErrorKind::Usage, "--force", "command line",
+                  "does not go with --layout ocfl: an OCFL object is never replaced, each pack adds a version");
+    capture::checkOutputTarget(*out, "-o", capture::ExistingOutput::Replace, capture::OutputPlace::OutsideCaptures);
+    return {capture, *out};
+  }
+  if (layoutOf(args) == "eark") {
+    if (args.has("force") || archive::bagFormatFor(*out) != archive::BagFormat::Directory)
+      throw Error(ErrorKind::Usage, args.has("force") ? "--force" : *out, "command line",
+                  "--layout eark writes a SIP into a new or empty folder: give a folder name, without --force");
+    capture::checkOutputTarget(*out, "-o", capture::ExistingOutput::Replace, capture::OutputPlace::OutsideCaptures);
+    archive::checkOutput(*out);
+    return {capture, *out};
+  }
   capture::checkOutputTarget(*out, "-o",
                              args.has("force") ? capture::ExistingOutput::Replace : capture::ExistingOutput::Refuse,
                              capture::OutputPlace::OutsideCaptures, "give --force to replace it, or choose another name");
@@ -160,8 +194,10 @@ Processing processIfNeeded(const std::string& capture, const Args& args, Progres
 
 // Packs; when a result no longer matches its carrier, processes the capture again once and
 // packs again (an original that changed is refused: it is evidence).
-archive::PackResult packOnce(const std::string& capture, const std::string& out, const Args& args,
-                             ProgressBar& bar, Processing& processing) {
+// `pack` is archive::packCapture or archive::packOcfl, given the capture, the output and the options.
+template <class Pack>
+auto packOnce(const std::string& capture, const std::string& out, const Args& args, ProgressBar& bar,
+              Processing& processing, Pack pack) {
   archive::PackOptions options;
   options.replace = args.has("force");
   options.bagInfo = holderFields(args);
@@ -169,7 +205,7 @@ archive::PackResult packOnce(const std::string& capture, const std::string& out,
     bar.update("packing", total ? static_cast<double>(done) / static_cast<double>(total) : 1.0);
   };
   try {
-    return archive::packCapture(capture, out, options);
+    return pack(capture, out, options);
   } catch (const archive::PayloadChanged& e) {
     const std::string path = e.bagPath().substr(5);  // without "data/"
     const carrier::Carrier recorded = carrier::loadCarrier(std::filesystem::path(capture) / capture::kCarrierPath);
@@ -184,7 +220,7 @@ archive::PackResult packOnce(const std::string& capture, const std::string& out,
     processing.why = path + " no longer matches the carrier";
     runPipeline(capture, args, bar);
     processing.ran = true;
-    return archive::packCapture(capture, out, options);
+    return pack(capture, out, options);
   }
 }
 
@@ -240,6 +276,90 @@ void printSummary(const std::string& capture, const std::string& out, const Proc
   }
 }
 
+// --layout ocfl: the object, the version written (or none: the head holds this bag already),
+// what it holds anew and what it takes from earlier versions.
+void printOcflJson(const std::string& capture, const std::string& out, const Processing& processing,
+                   const archive::OcflResult& r,
+                   const std::vector<std::pair<std::string, std::string>>& holder) {
+  JsonWriter j;
+  j.beginObject().key("capture").value(capture).key("package").value(out)
+      .key("format").value("ocfl").key("pipelineRan").value(processing.ran);
+  j.key("pipelineReason");
+  if (processing.ran) j.value(processing.why);
+  else j.null();
+  j.key("objectId").value(r.objectId).key("version").value(r.version)
+      .key("created").value(r.created).key("unchanged").value(r.unchanged)
+      .key("newFiles").value(static_cast<unsigned long long>(r.newFiles))
+      .key("newBytes").value(static_cast<unsigned long long>(r.newBytes))
+      .key("reusedFiles").value(static_cast<unsigned long long>(r.reusedFiles))
+      .key("packageId").value(r.pack.packageId).key("packagingTime").value(r.pack.packagingTime)
+      .key("payloadFiles").value(static_cast<unsigned long long>(r.pack.bag.payloadFiles))
+      .key("payloadBytes").value(static_cast<unsigned long long>(r.pack.bag.payloadBytes));
+  j.key("holderFields").beginArray();
+  for (const auto& [label, value] : holder)
+    j.beginObject().key("label").value(label).key("value").value(value).endObject();
+  j.endArray().key("notes").beginArray();
+  for (const std::string& n : r.notes) j.value(n);
+  j.endArray().endObject();
+  std::cout << j.str() << "\n";
+}
+
+void printOcflSummary(const std::string& capture, const std::string& out, const Processing& processing,
+                      const archive::OcflResult& r) {
+  if (processing.ran)
+    std::cout << "Processed " << capture << " first (" << processing.why << "), with the decisions its "
+              << "carrier records (see `surrogate info " << capture << "`).\n";
+  for (const std::string& n : r.notes)
+    std::cout << char(std::toupper(static_cast<unsigned char>(n[0]))) << n.substr(1) << ".\n";
+  if (r.unchanged) {
+    std::cout << out << " already holds this package as its head version " << r.version
+              << " (the same bytes): no version added.\n";
+    return;
+  }
+  std::cout << (r.created ? "Made the OCFL 1.1 object " : "Added a version to the OCFL object ") << out
+            << ": " << r.version << ", the BagIt package of " << capture << ".\n"
+            << "  object id: " << r.objectId << " (the capture's)\n"
+            << "  new content: " << r.newFiles << " files, " << r.newBytes << " bytes"
+            << (r.reusedFiles ? ", " + std::to_string(r.reusedFiles) + " unchanged files kept from earlier versions" : "")
+            << "\n  package id: " << r.pack.packageId << "\n";
+}
+
+// --layout eark: the SIP written and the bag it holds.
+void printEarkJson(const std::string& capture, const std::string& out, const Processing& processing,
+                   const archive::EarkResult& r,
+                   const std::vector<std::pair<std::string, std::string>>& holder) {
+  JsonWriter j;
+  j.beginObject().key("capture").value(capture).key("package").value(out)
+      .key("format").value("eark").key("pipelineRan").value(processing.ran);
+  j.key("pipelineReason");
+  if (processing.ran) j.value(processing.why);
+  else j.null();
+  j.key("objectId").value(r.objectId).key("files").value(static_cast<unsigned long long>(r.files))
+      .key("packageId").value(r.pack.packageId).key("packagingTime").value(r.pack.packagingTime)
+      .key("payloadFiles").value(static_cast<unsigned long long>(r.pack.bag.payloadFiles))
+      .key("payloadBytes").value(static_cast<unsigned long long>(r.pack.bag.payloadBytes));
+  j.key("holderFields").beginArray();
+  for (const auto& [label, value] : holder)
+    j.beginObject().key("label").value(label).key("value").value(value).endObject();
+  j.endArray().key("removedLeftovers").beginArray();
+  for (const std::string& t : r.pack.bag.removedLeftovers) j.value(t);
+  j.endArray().endObject();
+  std::cout << j.str() << "\n";
+}
+
+void printEarkSummary(const std::string& capture, const std::string& out, const Processing& processing,
+                      const archive::EarkResult& r) {
+  if (processing.ran)
+    std::cout << "Processed " << capture << " first (" << processing.why << "), with the decisions its "
+              << "carrier records (see `surrogate info " << capture << "`).\n";
+  for (const std::string& removed : r.pack.bag.removedLeftovers)
+    std::cout << char(std::toupper(static_cast<unsigned char>(removed[0]))) << removed.substr(1) << ".\n";
+  std::cout << "Packed " << capture << " into " << out << " (E-ARK SIP 2.2, " << r.files << " files).\n"
+            << "  METS: " << out << "/METS.xml, representation " << out << "/representations/rep1/METS.xml\n"
+            << "  payload: " << r.pack.bag.payloadFiles << " files in representations/rep1/data/\n"
+            << "  package id: " << r.pack.packageId << "\n";
+}
+
 }  // namespace
 
 int runCommandPack(int argc, char** argv) {
@@ -247,7 +367,8 @@ int runCommandPack(int argc, char** argv) {
   Args args(argc, argv, 1, specs);  // Args takes -o as well as --o
   if (helpShown(args, specs, "surrogate pack CAPTURE -o OUT [options]",
                  "Write the archival package of a capture: a BagIt 1.0 bag (a folder, or a "
-                 ".tar or .zip by OUT's name) holding the untouched originals, the carrier, "
+                 ".tar or .zip by OUT's name; with --layout ocfl, a new version of the OCFL "
+                 "object in folder OUT; with --layout eark, an E-ARK SIP in folder OUT) holding the untouched originals, the carrier, "
                  "the results, SHA-256 and SHA-512 manifests, and metadata/ with CIDOC-CRM "
                  "(crm.rdf), METS+PREMIS (mets.xml) and the stylesheets and schemas that "
                  "derive them. Runs the pipeline first (with the options below, as `surrogate "
@@ -267,7 +388,21 @@ int runCommandPack(int argc, char** argv) {
   run::recoverRun(capture);
   ProgressBar bar(args.has("quiet") || args.has("json"));
   Processing processing = processIfNeeded(capture, args, bar);
-  const archive::PackResult r = packOnce(capture, out, args, bar, processing);
+  if (layoutOf(args) == "ocfl") {
+    const archive::OcflResult r = packOnce(capture, out, args, bar, processing, archive::packOcfl);
+    bar.finish();
+    if (args.has("json")) printOcflJson(capture, out, processing, r, holderFields(args));
+    else printOcflSummary(capture, out, processing, r);
+    return 0;
+  }
+  if (layoutOf(args) == "eark") {
+    const archive::EarkResult r = packOnce(capture, out, args, bar, processing, archive::packEark);
+    bar.finish();
+    if (args.has("json")) printEarkJson(capture, out, processing, r, holderFields(args));
+    else printEarkSummary(capture, out, processing, r);
+    return 0;
+  }
+  const archive::PackResult r = packOnce(capture, out, args, bar, processing, archive::packCapture);
   bar.finish();
   if (args.has("json")) printJson(capture, out, processing, r, holderFields(args));
   else printSummary(capture, out, processing, r, holderFields(args));

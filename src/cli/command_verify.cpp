@@ -150,7 +150,8 @@ int runCommandVerify(int argc, char** argv) {
   if (args.helpRequested()) {
     std::cout << usageHeader(
                      "surrogate verify PACKAGE [--reexecute] [options]",
-                     "Check that an archival package (a bag directory, .tar or .zip) is sound: "
+                     "Check that an archival package (a bag directory, .tar or .zip, or an OCFL "
+                     "object or E-ARK SIP holding a bag: pack --layout ocfl or eark) is sound: "
                      "BagIt fixity and completeness, every file `surrogate pack` writes present "
                      "(a package cut short is never sound), the bundled stylesheets, schemas "
                      "and tables identical to this Surrogate's, bag-info.txt against the "

@@ -5,6 +5,8 @@
 #include "capture/capture.h"
 #include "core/error.h"
 #include "verify/checks.h"
+#include "verify/eark_checks.h"
+#include "verify/ocfl_checks.h"
 
 namespace surrogate::verify {
 
@@ -102,6 +104,12 @@ void setAsideSystemFiles(const std::filesystem::path& package, Inventory& invent
 }  // namespace
 
 Report verifyPackage(const std::filesystem::path& package, const VerifyOptions& options) {
+  if (isOcflObject(package)) return verifyOcflObject(package, options);
+  if (isEarkSip(package)) return verifyEarkSip(package, options);
+  return verifyBag(package, options);
+}
+
+Report verifyBag(const std::filesystem::path& package, const VerifyOptions& options) {
   Report report;
   report.package = package.string();
   Inventory inventory;
