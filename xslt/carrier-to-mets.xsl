@@ -7,6 +7,8 @@
     package-id      the package identifier (bag-info Surrogate-Package-Identifier)
     packaging-time  xs:dateTime of packaging (bag-info Surrogate-Packaging-Time)
     software-agent  the packing software, e.g. "Surrogate 0.1.0" (bag-info Bag-Software-Agent)
+    previous-package-id  the package an earlier pack of this capture made, before its record
+                    last changed (bag-info Surrogate-Previous-Package-Identifier); empty: none
     payload-uri     URI of a payload list, one element per payload file of the bag:
                       <payload><file path="data/..." size="N" sha256="hex" sha512="hex"/></payload>
                     (Surrogate builds it from manifest-sha256.txt and manifest-sha512.txt;
@@ -52,6 +54,7 @@
   <xsl:param name="package-id" select="''"/>
   <xsl:param name="packaging-time" select="''"/>
   <xsl:param name="software-agent" select="'Surrogate'"/>
+  <xsl:param name="previous-package-id" select="''"/>
   <xsl:param name="payload-uri" select="''"/>
 
   <xsl:variable name="carrier" select="/c:carrier"/>
@@ -60,6 +63,15 @@
     <xsl:choose>
       <xsl:when test="$package-id != ''"><xsl:value-of select="$package-id"/></xsl:when>
       <xsl:otherwise><xsl:value-of select="concat('urn:sha256:', $carrier/c:files/c:file[1]/@sha256)"/></xsl:otherwise>
+    </xsl:choose>
+  </xsl:variable>
+  <!-- The capture identifier: the same string in crm.rdf (carrier-to-crm.xsl) and bag-info.txt
+       (Surrogate-Capture-Identifier); the first file is the first photograph, which no run
+       changes, so every package of the capture has it. -->
+  <xsl:variable name="capture-id">
+    <xsl:choose>
+      <xsl:when test="$carrier/c:files/c:file"><xsl:value-of select="concat('urn:surrogate:capture:', $carrier/c:files/c:file[1]/@sha256)"/></xsl:when>
+      <xsl:otherwise>urn:surrogate:capture:unidentified</xsl:otherwise>
     </xsl:choose>
   </xsl:variable>
   <xsl:variable name="pack-time">
@@ -178,6 +190,7 @@
         <xsl:for-each select="c:header/c:meta[@key = 'External-Identifier']">
           <mets:altRecordID TYPE="External-Identifier"><xsl:value-of select="."/></mets:altRecordID>
         </xsl:for-each>
+        <mets:altRecordID TYPE="Surrogate capture identifier"><xsl:value-of select="$capture-id"/></mets:altRecordID>
       </mets:metsHdr>
 
       <xsl:call-template name="dublin-core"/>
@@ -295,6 +308,7 @@
           <dc:type>Image</dc:type>
           <xsl:call-template name="dc-formats"/>
           <dc:identifier><xsl:value-of select="$objid"/></dc:identifier>
+          <dc:identifier><xsl:value-of select="$capture-id"/></dc:identifier>
           <xsl:for-each select="$h/c:meta[@key = 'External-Identifier' or @key = 'Object-Identifier']">
             <dc:identifier><xsl:value-of select="."/></dc:identifier>
           </xsl:for-each>
@@ -331,6 +345,10 @@
               <premis:objectIdentifierType>Surrogate package identifier</premis:objectIdentifierType>
               <premis:objectIdentifierValue><xsl:value-of select="$objid"/></premis:objectIdentifierValue>
             </premis:objectIdentifier>
+            <premis:objectIdentifier>
+              <premis:objectIdentifierType>Surrogate capture identifier</premis:objectIdentifierType>
+              <premis:objectIdentifierValue><xsl:value-of select="$capture-id"/></premis:objectIdentifierValue>
+            </premis:objectIdentifier>
             <xsl:for-each select="c:header/c:meta[@key = 'External-Identifier' or @key = 'Object-Identifier']">
               <premis:objectIdentifier>
                 <premis:objectIdentifierType><xsl:value-of select="@key"/></premis:objectIdentifierType>
@@ -342,6 +360,22 @@
               <premis:significantPropertiesValue><xsl:value-of select="concat('Highlight-RTI capture of ', c:header/c:title, ': ', count(c:files/c:file[@role = 'original']), ' photographs and the files derived from them')"/></premis:significantPropertiesValue>
             </premis:significantProperties>
             <premis:originalName><xsl:value-of select="c:header/c:title"/></premis:originalName>
+            <!-- a revision: the package an earlier pack of this capture made, before its record
+                 last changed; this one was made from the capture's newer state by packaging -->
+            <xsl:if test="$previous-package-id != ''">
+              <premis:relationship>
+                <premis:relationshipType>derivation</premis:relationshipType>
+                <premis:relationshipSubType>has source</premis:relationshipSubType>
+                <premis:relatedObjectIdentifier>
+                  <premis:relatedObjectIdentifierType>Surrogate package identifier</premis:relatedObjectIdentifierType>
+                  <premis:relatedObjectIdentifierValue><xsl:value-of select="$previous-package-id"/></premis:relatedObjectIdentifierValue>
+                </premis:relatedObjectIdentifier>
+                <premis:relatedEventIdentifier>
+                  <premis:relatedEventIdentifierType>Surrogate event</premis:relatedEventIdentifierType>
+                  <premis:relatedEventIdentifierValue>event-packaging</premis:relatedEventIdentifierValue>
+                </premis:relatedEventIdentifier>
+              </premis:relationship>
+            </xsl:if>
             <premis:linkingEventIdentifier>
               <premis:linkingEventIdentifierType>Surrogate event</premis:linkingEventIdentifierType>
               <premis:linkingEventIdentifierValue>event-capture</premis:linkingEventIdentifierValue>
