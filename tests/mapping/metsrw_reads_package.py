@@ -9,8 +9,9 @@ the bag's manifests:
     labels spell its path, and nothing else is;
   - each has its own amdSec (the file's ADMID) with one PREMIS file object whose path
     identifier, SHA-256, SHA-512 and size are the file's, with a format name;
-  - the top Directory (data/) carries the package's amdSec: the intellectual entity, the
-    rights statements, every event and every agent; each event an object links to is there,
+  - the top Directory (data/) carries the package's amdSec: the intellectual entity (with
+    the package and capture identifiers of bag-info.txt, the package's also the METS OBJID),
+    the rights statements, every event and every agent; each event an object links to is there,
     and each agent an event links to;
   - GROUPID ties a derivative to the file it was made from (metsrw's derived_from): each
     JPEG export to its original, each web copy file to its model.
@@ -120,6 +121,23 @@ def main():
           f"the package's events are not all on the data/ Directory: {sorted(events)}")
     check(len(entity) == 1 and entity[0].attributes.get("xsi:type") == "premis:intellectualEntity",
           "the data/ Directory has no intellectual entity")
+    # The identifiers of bag-info.txt are the METS document's and the entity's.
+    info = {}
+    with open(os.path.join(bag, "bag-info.txt"), encoding="utf-8") as f:
+        for line in f:
+            label, _, value = line.rstrip("\n").partition(": ")
+            info.setdefault(label, value)
+    check(info.get("Surrogate-Package-Identifier", "").startswith("urn:sha256:") and
+          info.get("Surrogate-Capture-Identifier", "").startswith("urn:surrogate:capture:"),
+          "bag-info.txt does not name the package and the capture")
+    check(mets.objid == info.get("Surrogate-Package-Identifier"), f"OBJID {mets.objid} is not the package identifier")
+    entity_ids = {(text(i, "object_identifier_type"), text(i, "object_identifier_value"))
+                  for e in entity for i in every(e, "object_identifier")}
+    for kind, label in (("package", "Surrogate-Package-Identifier"), ("capture", "Surrogate-Capture-Identifier")):
+        check((f"Surrogate {kind} identifier", info.get(label)) in entity_ids,
+              f"the intellectual entity has no {kind} identifier {info.get(label)}: {sorted(entity_ids)}")
+    check(any(a.text == info.get("Surrogate-Capture-Identifier") for a in mets.alternate_ids),
+          "no altRecordID holds the capture identifier")
     check(statements == {"rights-license", "rights-statement"}, f"rights statements: {sorted(statements)}")
     check(sorted(d.contents.mdtype for d in root.dmdsecs) == ["DC", "OTHER"],
           "the data/ Directory does not point at the Dublin Core and the CRM description")
