@@ -28,8 +28,14 @@
   Parameters:
     crmdig-ns  the CRMdig namespace (default the current one, of versions 4 and 5; older data
                uses http://www.ics.forth.gr/isl/CRMdig/)
-    base-uri   prefix of the URIs minted for this capture (default urn:surrogate:capture:
-               followed by the SHA-256 of the carrier's first file, and "/")
+    base-uri   prefix of the URIs minted for this capture (default the capture identifier,
+               urn:surrogate:capture: followed by the SHA-256 of the carrier's first file, and
+               "/"; pack -\-base-uri, recorded in bag-info Surrogate-Base-URI)
+    package-id the package identifier (bag-info Surrogate-Package-Identifier); when given, the
+               package is a digital object named by it, identified by it, made of the files
+               and about the digitization
+    previous-package-id  the package an earlier pack of this capture made (bag-info
+               Surrogate-Previous-Package-Identifier): this package shows features of it (P130)
   The mapping is explained, element by element, in mappings/carrier-to-crm.md.
   Re-derive by hand: xsltproc carrier-to-crm.xsl data/assembly-files/carrier.xml
   Output is deterministic: the same carrier gives the same bytes.
@@ -51,15 +57,25 @@
 
   <xsl:param name="crmdig-ns" select="'http://www.cidoc-crm.org/extensions/crmdig/'"/>
   <xsl:param name="base-uri" select="''"/>
+  <xsl:param name="package-id" select="''"/>
+  <xsl:param name="previous-package-id" select="''"/>
 
   <xsl:variable name="crm-ns" select="'http://www.cidoc-crm.org/cidoc-crm/'"/>
   <xsl:variable name="xsd" select="'http://www.w3.org/2001/XMLSchema#'"/>
   <xsl:variable name="carrier" select="/c:carrier"/>
+  <!-- The capture identifier: the same in every version of the capture's record and in every
+       package made of it (the first file is the first photograph, which no run changes);
+       mets.xml and bag-info.txt (Surrogate-Capture-Identifier) give the same string. -->
+  <xsl:variable name="capture-id">
+    <xsl:choose>
+      <xsl:when test="$carrier/c:files/c:file"><xsl:value-of select="concat('urn:surrogate:capture:', $carrier/c:files/c:file[1]/@sha256)"/></xsl:when>
+      <xsl:otherwise>urn:surrogate:capture:unidentified</xsl:otherwise>
+    </xsl:choose>
+  </xsl:variable>
   <xsl:variable name="base">
     <xsl:choose>
       <xsl:when test="$base-uri != ''"><xsl:value-of select="$base-uri"/></xsl:when>
-      <xsl:when test="$carrier/c:files/c:file"><xsl:value-of select="concat('urn:surrogate:capture:', $carrier/c:files/c:file[1]/@sha256, '/')"/></xsl:when>
-      <xsl:otherwise>urn:surrogate:capture:unidentified/</xsl:otherwise>
+      <xsl:otherwise><xsl:value-of select="concat($capture-id, '/')"/></xsl:otherwise>
     </xsl:choose>
   </xsl:variable>
   <!-- Characters not allowed in IRIs, replaced by '_' when a name becomes part of a URI. -->
@@ -228,6 +244,41 @@
       </xsl:call-template>
     </crm:E7_Activity>
 
+    <!-- the package: a digital object named by its identifier (so the graphs of two packages of
+         the capture meet on it), made of the capture's files, about the digitization; a later
+         package of the capture shows features of (P130) the one before it -->
+    <xsl:if test="$package-id != ''">
+      <rdf:Description rdf:about="{$package-id}">
+        <xsl:call-template name="dig-type"><xsl:with-param name="class" select="'D1_Digital_Object'"/></xsl:call-template>
+        <rdfs:label><xsl:value-of select="concat('BagIt package ', $package-id, ' of the capture ', c:header/c:title)"/></rdfs:label>
+        <crm:P1_is_identified_by>
+          <crm:E42_Identifier rdf:about="{$base}package/identifier">
+            <crm:P190_has_symbolic_content><xsl:value-of select="$package-id"/></crm:P190_has_symbolic_content>
+            <crm:P2_has_type><crm:E55_Type rdf:about="{$base}type/package-identifier"><rdfs:label>Surrogate package identifier</rdfs:label></crm:E55_Type></crm:P2_has_type>
+          </crm:E42_Identifier>
+        </crm:P1_is_identified_by>
+        <crm:P129_is_about rdf:resource="{$base}capture"/>
+        <xsl:for-each select="c:files/c:file">
+          <crm:P106_is_composed_of rdf:resource="{$base}file/{@id}"/>
+        </xsl:for-each>
+        <xsl:if test="$previous-package-id != ''">
+          <crm:P130_shows_features_of rdf:resource="{$previous-package-id}"/>
+        </xsl:if>
+      </rdf:Description>
+      <xsl:if test="$previous-package-id != ''">
+        <rdf:Description rdf:about="{$previous-package-id}">
+          <xsl:call-template name="dig-type"><xsl:with-param name="class" select="'D1_Digital_Object'"/></xsl:call-template>
+          <rdfs:label><xsl:value-of select="concat('BagIt package ', $previous-package-id, ', made of the capture ', c:header/c:title, ' before its record last changed')"/></rdfs:label>
+          <crm:P1_is_identified_by>
+            <crm:E42_Identifier rdf:about="{$base}package/previous/identifier">
+              <crm:P190_has_symbolic_content><xsl:value-of select="$previous-package-id"/></crm:P190_has_symbolic_content>
+              <crm:P2_has_type rdf:resource="{$base}type/package-identifier"/>
+            </crm:E42_Identifier>
+          </crm:P1_is_identified_by>
+        </rdf:Description>
+      </xsl:if>
+    </xsl:if>
+
     <!-- the digitization -->
     <rdf:Description rdf:about="{$base}capture">
       <xsl:call-template name="dig-type"><xsl:with-param name="class" select="'D2_Digitization_Process'"/></xsl:call-template>
@@ -237,6 +288,12 @@
           <rdfs:label>Highlight Reflectance Transformation Imaging (H-RTI)</rdfs:label>
         </crm:E55_Type>
       </crm:P32_used_general_technique>
+      <crm:P1_is_identified_by>
+        <crm:E42_Identifier rdf:about="{$base}capture/identifier">
+          <crm:P190_has_symbolic_content><xsl:value-of select="$capture-id"/></crm:P190_has_symbolic_content>
+          <crm:P2_has_type><crm:E55_Type rdf:about="{$base}type/capture-identifier"><rdfs:label>Surrogate capture identifier</rdfs:label></crm:E55_Type></crm:P2_has_type>
+        </crm:E42_Identifier>
+      </crm:P1_is_identified_by>
       <xsl:call-template name="dig"><xsl:with-param name="p" select="'L1_digitized'"/><xsl:with-param name="to" select="concat($base, 'object')"/></xsl:call-template>
       <xsl:for-each select="$cameras">
         <xsl:call-template name="dig">

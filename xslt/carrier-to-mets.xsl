@@ -7,6 +7,8 @@
     package-id      the package identifier (bag-info Surrogate-Package-Identifier)
     packaging-time  xs:dateTime of packaging (bag-info Surrogate-Packaging-Time)
     software-agent  the packing software, e.g. "Surrogate 0.1.0" (bag-info Bag-Software-Agent)
+    previous-package-id  the package an earlier pack of this capture made, before its record
+                    last changed (bag-info Surrogate-Previous-Package-Identifier); empty: none
     payload-uri     URI of a payload list, one element per payload file of the bag:
                       <payload><file path="data/..." size="N" sha256="hex" sha512="hex"/></payload>
                     (Surrogate builds it from manifest-sha256.txt and manifest-sha512.txt;
@@ -19,12 +21,14 @@
                     the list has no file, the carrier's own file list is used instead (without
                     SHA-512). Give an absolute path or URI: a relative one is resolved against
                     this stylesheet's location.
-  What it holds: Dublin Core (dmdSec dmd-dc) beside a pointer to crm.rdf; in the amdSec the
-  capture as a PREMIS intellectual entity, one PREMIS file object per payload file (fixity,
-  size, format with PRONOM identifier where certain, derivation relationships to what the step
-  that made it used), the rights statements (rightsMD), one event per capture, command run,
-  pipeline step and packaging act (eventType from the Library of Congress vocabulary
-  id.loc.gov/vocabulary/preservation/eventType), and each agent once.
+  What it holds: Dublin Core (dmdSec dmd-dc) beside a pointer to crm.rdf; in the package's
+  amdSec (amd) the capture as a PREMIS intellectual entity, the rights statements (rightsMD),
+  one event per capture, command run, pipeline step and packaging act (eventType from the
+  Library of Congress vocabulary id.loc.gov/vocabulary/preservation/eventType), and each agent
+  once; in an amdSec per payload file its PREMIS file object (fixity, size, format with PRONOM
+  identifier where certain, derivation relationships to what the step that made it used); the
+  fileSec by role; a physical structMap of Directory and Item divs, the layout Archivematica's
+  METS reader (metsrw) walks.
   The mapping is explained, element by element, in mappings/carrier-to-mets.md.
   Re-derive by hand:
     xsltproc -\-stringparam package-id ID -\-stringparam packaging-time T \
@@ -50,6 +54,7 @@
   <xsl:param name="package-id" select="''"/>
   <xsl:param name="packaging-time" select="''"/>
   <xsl:param name="software-agent" select="'Surrogate'"/>
+  <xsl:param name="previous-package-id" select="''"/>
   <xsl:param name="payload-uri" select="''"/>
 
   <xsl:variable name="carrier" select="/c:carrier"/>
@@ -58,6 +63,15 @@
     <xsl:choose>
       <xsl:when test="$package-id != ''"><xsl:value-of select="$package-id"/></xsl:when>
       <xsl:otherwise><xsl:value-of select="concat('urn:sha256:', $carrier/c:files/c:file[1]/@sha256)"/></xsl:otherwise>
+    </xsl:choose>
+  </xsl:variable>
+  <!-- The capture identifier: the same string in crm.rdf (carrier-to-crm.xsl) and bag-info.txt
+       (Surrogate-Capture-Identifier); the first file is the first photograph, which no run
+       changes, so every package of the capture has it. -->
+  <xsl:variable name="capture-id">
+    <xsl:choose>
+      <xsl:when test="$carrier/c:files/c:file"><xsl:value-of select="concat('urn:surrogate:capture:', $carrier/c:files/c:file[1]/@sha256)"/></xsl:when>
+      <xsl:otherwise>urn:surrogate:capture:unidentified</xsl:otherwise>
     </xsl:choose>
   </xsl:variable>
   <xsl:variable name="pack-time">
@@ -101,7 +115,49 @@
   <xsl:key name="decoded-image" match="c:data/c:result/c:decoded/@image" use="."/>
   <!-- Pipeline stages by component and version: one PREMIS agent each. -->
   <xsl:key name="stage" match="c:process/c:step" use="concat(@component, ' ', @version)"/>
+  <!-- The folders each payload file is in, as paths relative to data/ ending in "/" (a file
+       data/finished-files/web/hsh2/info.json is in "finished-files/", "finished-files/web/" and
+       "finished-files/web/hsh2/"): the structMap's Directory divs. One declaration per depth,
+       down to $folder-depth folders below data/ (Surrogate writes five at most:
+       finished-files/web/MODEL/plane_N_files/LEVEL/), for the payload list and for the
+       carrier's files (used without one). XPath 1.0 cannot find the last "/" of a path, so
+       each depth cuts its own number of leading segments. -->
+  <xsl:key name="in-folder" match="payload/*[contains(substring-after(@path, '/'), '/')]"
+           use="substring(@path, 6, string-length(@path) - 5 - string-length(substring-after(substring-after(@path, '/'), '/')))"/>
+  <xsl:key name="in-folder" match="payload/*[contains(substring-after(substring-after(@path, '/'), '/'), '/')]"
+           use="substring(@path, 6, string-length(@path) - 5 - string-length(substring-after(substring-after(substring-after(@path, '/'), '/'), '/')))"/>
+  <xsl:key name="in-folder" match="payload/*[contains(substring-after(substring-after(substring-after(@path, '/'), '/'), '/'), '/')]"
+           use="substring(@path, 6, string-length(@path) - 5 - string-length(substring-after(substring-after(substring-after(substring-after(@path, '/'), '/'), '/'), '/')))"/>
+  <xsl:key name="in-folder" match="payload/*[contains(substring-after(substring-after(substring-after(substring-after(@path, '/'), '/'), '/'), '/'), '/')]"
+           use="substring(@path, 6, string-length(@path) - 5 - string-length(substring-after(substring-after(substring-after(substring-after(substring-after(@path, '/'), '/'), '/'), '/'), '/')))"/>
+  <xsl:key name="in-folder" match="payload/*[contains(substring-after(substring-after(substring-after(substring-after(substring-after(@path, '/'), '/'), '/'), '/'), '/'), '/')]"
+           use="substring(@path, 6, string-length(@path) - 5 - string-length(substring-after(substring-after(substring-after(substring-after(substring-after(substring-after(@path, '/'), '/'), '/'), '/'), '/'), '/')))"/>
+  <xsl:key name="in-folder" match="payload/*[contains(substring-after(substring-after(substring-after(substring-after(substring-after(substring-after(@path, '/'), '/'), '/'), '/'), '/'), '/'), '/')]"
+           use="substring(@path, 6, string-length(@path) - 5 - string-length(substring-after(substring-after(substring-after(substring-after(substring-after(substring-after(substring-after(@path, '/'), '/'), '/'), '/'), '/'), '/'), '/')))"/>
+  <xsl:key name="in-folder" match="payload/*[contains(substring-after(substring-after(substring-after(substring-after(substring-after(substring-after(substring-after(@path, '/'), '/'), '/'), '/'), '/'), '/'), '/'), '/')]"
+           use="substring(@path, 6, string-length(@path) - 5 - string-length(substring-after(substring-after(substring-after(substring-after(substring-after(substring-after(substring-after(substring-after(@path, '/'), '/'), '/'), '/'), '/'), '/'), '/'), '/')))"/>
+  <xsl:key name="in-folder" match="payload/*[contains(substring-after(substring-after(substring-after(substring-after(substring-after(substring-after(substring-after(substring-after(@path, '/'), '/'), '/'), '/'), '/'), '/'), '/'), '/'), '/')]"
+           use="substring(@path, 6, string-length(@path) - 5 - string-length(substring-after(substring-after(substring-after(substring-after(substring-after(substring-after(substring-after(substring-after(substring-after(@path, '/'), '/'), '/'), '/'), '/'), '/'), '/'), '/'), '/')))"/>
+  <xsl:key name="in-folder" match="c:files/c:file[contains(@path, '/')]"
+           use="substring(@path, 1, string-length(@path) - string-length(substring-after(@path, '/')))"/>
+  <xsl:key name="in-folder" match="c:files/c:file[contains(substring-after(@path, '/'), '/')]"
+           use="substring(@path, 1, string-length(@path) - string-length(substring-after(substring-after(@path, '/'), '/')))"/>
+  <xsl:key name="in-folder" match="c:files/c:file[contains(substring-after(substring-after(@path, '/'), '/'), '/')]"
+           use="substring(@path, 1, string-length(@path) - string-length(substring-after(substring-after(substring-after(@path, '/'), '/'), '/')))"/>
+  <xsl:key name="in-folder" match="c:files/c:file[contains(substring-after(substring-after(substring-after(@path, '/'), '/'), '/'), '/')]"
+           use="substring(@path, 1, string-length(@path) - string-length(substring-after(substring-after(substring-after(substring-after(@path, '/'), '/'), '/'), '/')))"/>
+  <xsl:key name="in-folder" match="c:files/c:file[contains(substring-after(substring-after(substring-after(substring-after(@path, '/'), '/'), '/'), '/'), '/')]"
+           use="substring(@path, 1, string-length(@path) - string-length(substring-after(substring-after(substring-after(substring-after(substring-after(@path, '/'), '/'), '/'), '/'), '/')))"/>
+  <xsl:key name="in-folder" match="c:files/c:file[contains(substring-after(substring-after(substring-after(substring-after(substring-after(@path, '/'), '/'), '/'), '/'), '/'), '/')]"
+           use="substring(@path, 1, string-length(@path) - string-length(substring-after(substring-after(substring-after(substring-after(substring-after(substring-after(@path, '/'), '/'), '/'), '/'), '/'), '/')))"/>
+  <xsl:key name="in-folder" match="c:files/c:file[contains(substring-after(substring-after(substring-after(substring-after(substring-after(substring-after(@path, '/'), '/'), '/'), '/'), '/'), '/'), '/')]"
+           use="substring(@path, 1, string-length(@path) - string-length(substring-after(substring-after(substring-after(substring-after(substring-after(substring-after(substring-after(@path, '/'), '/'), '/'), '/'), '/'), '/'), '/')))"/>
+  <xsl:key name="in-folder" match="c:files/c:file[contains(substring-after(substring-after(substring-after(substring-after(substring-after(substring-after(substring-after(@path, '/'), '/'), '/'), '/'), '/'), '/'), '/'), '/')]"
+           use="substring(@path, 1, string-length(@path) - string-length(substring-after(substring-after(substring-after(substring-after(substring-after(substring-after(substring-after(substring-after(@path, '/'), '/'), '/'), '/'), '/'), '/'), '/'), '/')))"/>
   <xsl:variable name="event-types" select="'http://id.loc.gov/vocabulary/preservation/eventType'"/>
+  <!-- How deep the structMap nests folders below data/ (the in-folder keys above): a file in a
+       deeper folder is an Item of the deepest one, labelled with the rest of its path. -->
+  <xsl:variable name="folder-depth" select="8"/>
   <!-- The person who ran the command that made the record's current state: the operator of
        its steps (none in carriers written before runs were recorded). -->
   <xsl:variable name="operator" select="normalize-space($carrier/c:header/c:run[@id = $state-run]/@who)"/>
@@ -134,6 +190,7 @@
         <xsl:for-each select="c:header/c:meta[@key = 'External-Identifier']">
           <mets:altRecordID TYPE="External-Identifier"><xsl:value-of select="."/></mets:altRecordID>
         </xsl:for-each>
+        <mets:altRecordID TYPE="Surrogate capture identifier"><xsl:value-of select="$capture-id"/></mets:altRecordID>
       </mets:metsHdr>
 
       <xsl:call-template name="dublin-core"/>
@@ -143,15 +200,22 @@
                     LABEL="CIDOC-CRM description of the object, the capture and its processing"/>
       </mets:dmdSec>
 
+      <!-- What is about the whole package (the capture as an intellectual entity, its rights,
+           every event and agent), in one amdSec that the structMap's top div, the data/
+           folder, points at; then one amdSec per payload file, which its METS file points at
+           (ADMID), holding its PREMIS object: the layout Archivematica's METS reader (metsrw)
+           walks. Events and agents are not repeated in each file's amdSec: the capture event
+           alone names every photograph, and a copy of it for each would grow with the square
+           of their number. -->
       <mets:amdSec ID="amd">
         <xsl:call-template name="intellectual-entity"/>
-        <xsl:call-template name="objects"/>
         <xsl:call-template name="rights"/>
         <xsl:call-template name="events"/>
         <xsl:call-template name="agents"/>
       </mets:amdSec>
+      <xsl:call-template name="objects"/>
 
-      <mets:fileSec>
+      <mets:fileSec ID="fileSec">
         <xsl:call-template name="file-group"><xsl:with-param name="use" select="'original'"/></xsl:call-template>
         <xsl:call-template name="file-group"><xsl:with-param name="use" select="'export'"/></xsl:call-template>
         <xsl:call-template name="file-group"><xsl:with-param name="use" select="'lp'"/></xsl:call-template>
@@ -165,17 +229,24 @@
         <xsl:call-template name="file-group"><xsl:with-param name="use" select="'other'"/></xsl:call-template>
       </mets:fileSec>
 
-      <mets:structMap TYPE="physical" LABEL="Package layout">
-        <mets:div TYPE="RTI capture" LABEL="{c:header/c:title}" DMDID="dmd-dc dmd-crm" ADMID="object-ie rights">
-          <xsl:call-template name="struct-div"><xsl:with-param name="use" select="'original'"/></xsl:call-template>
-          <xsl:call-template name="struct-div"><xsl:with-param name="use" select="'export'"/></xsl:call-template>
-          <xsl:call-template name="struct-div"><xsl:with-param name="use" select="'lp'"/></xsl:call-template>
-          <xsl:call-template name="struct-div"><xsl:with-param name="use" select="'sidecar'"/></xsl:call-template>
-          <xsl:call-template name="struct-div"><xsl:with-param name="use" select="'assembly'"/></xsl:call-template>
-          <xsl:call-template name="struct-div"><xsl:with-param name="use" select="'result'"/></xsl:call-template>
-          <xsl:call-template name="struct-div"><xsl:with-param name="use" select="'access'"/></xsl:call-template>
-          <xsl:call-template name="struct-div"><xsl:with-param name="use" select="'prior'"/><xsl:with-param name="label" select="'prior-work'"/></xsl:call-template>
-          <xsl:call-template name="struct-div"><xsl:with-param name="use" select="'other'"/></xsl:call-template>
+      <!-- The bag's payload as folders and files (Archivematica's convention: TYPE "Directory"
+           and "Item", LABEL the name), in path order; the file groups say what each file is. -->
+      <mets:structMap ID="structMap-physical" TYPE="physical" LABEL="Package layout">
+        <mets:div TYPE="Directory" LABEL="data" DMDID="dmd-dc dmd-crm" ADMID="amd">
+          <xsl:choose>
+            <xsl:when test="$use-payload">
+              <xsl:call-template name="folder">
+                <xsl:with-param name="members" select="$payload"/>
+                <xsl:with-param name="skip" select="5"/>
+              </xsl:call-template>
+            </xsl:when>
+            <xsl:otherwise>
+              <xsl:call-template name="folder">
+                <xsl:with-param name="members" select="c:files/c:file"/>
+                <xsl:with-param name="skip" select="0"/>
+              </xsl:call-template>
+            </xsl:otherwise>
+          </xsl:choose>
         </mets:div>
       </mets:structMap>
     </mets:mets>
@@ -237,6 +308,7 @@
           <dc:type>Image</dc:type>
           <xsl:call-template name="dc-formats"/>
           <dc:identifier><xsl:value-of select="$objid"/></dc:identifier>
+          <dc:identifier><xsl:value-of select="$capture-id"/></dc:identifier>
           <xsl:for-each select="$h/c:meta[@key = 'External-Identifier' or @key = 'Object-Identifier']">
             <dc:identifier><xsl:value-of select="."/></dc:identifier>
           </xsl:for-each>
@@ -273,6 +345,10 @@
               <premis:objectIdentifierType>Surrogate package identifier</premis:objectIdentifierType>
               <premis:objectIdentifierValue><xsl:value-of select="$objid"/></premis:objectIdentifierValue>
             </premis:objectIdentifier>
+            <premis:objectIdentifier>
+              <premis:objectIdentifierType>Surrogate capture identifier</premis:objectIdentifierType>
+              <premis:objectIdentifierValue><xsl:value-of select="$capture-id"/></premis:objectIdentifierValue>
+            </premis:objectIdentifier>
             <xsl:for-each select="c:header/c:meta[@key = 'External-Identifier' or @key = 'Object-Identifier']">
               <premis:objectIdentifier>
                 <premis:objectIdentifierType><xsl:value-of select="@key"/></premis:objectIdentifierType>
@@ -284,6 +360,22 @@
               <premis:significantPropertiesValue><xsl:value-of select="concat('Highlight-RTI capture of ', c:header/c:title, ': ', count(c:files/c:file[@role = 'original']), ' photographs and the files derived from them')"/></premis:significantPropertiesValue>
             </premis:significantProperties>
             <premis:originalName><xsl:value-of select="c:header/c:title"/></premis:originalName>
+            <!-- a revision: the package an earlier pack of this capture made, before its record
+                 last changed; this one was made from the capture's newer state by packaging -->
+            <xsl:if test="$previous-package-id != ''">
+              <premis:relationship>
+                <premis:relationshipType>derivation</premis:relationshipType>
+                <premis:relationshipSubType>has source</premis:relationshipSubType>
+                <premis:relatedObjectIdentifier>
+                  <premis:relatedObjectIdentifierType>Surrogate package identifier</premis:relatedObjectIdentifierType>
+                  <premis:relatedObjectIdentifierValue><xsl:value-of select="$previous-package-id"/></premis:relatedObjectIdentifierValue>
+                </premis:relatedObjectIdentifier>
+                <premis:relatedEventIdentifier>
+                  <premis:relatedEventIdentifierType>Surrogate event</premis:relatedEventIdentifierType>
+                  <premis:relatedEventIdentifierValue>event-packaging</premis:relatedEventIdentifierValue>
+                </premis:relatedEventIdentifier>
+              </premis:relationship>
+            </xsl:if>
             <premis:linkingEventIdentifier>
               <premis:linkingEventIdentifierType>Surrogate event</premis:linkingEventIdentifierType>
               <premis:linkingEventIdentifierValue>event-capture</premis:linkingEventIdentifierValue>
@@ -411,7 +503,7 @@
       </xsl:choose>
     </xsl:variable>
     <xsl:if test="string($members) != ''">
-      <mets:fileGrp USE="{$label}">
+      <mets:fileGrp ID="fileGrp-{$label}" USE="{$label}">
         <xsl:choose>
           <xsl:when test="$use-payload">
             <xsl:for-each select="$payload">
@@ -452,15 +544,47 @@
     </xsl:if>
   </xsl:template>
 
+  <!-- What names a payload file's METS file (file-T), amdSec (amd-T) and PREMIS object
+       (object-T), T its token: its carrier file id (an NCName, never all digits), or, for a
+       payload file the carrier does not list (the carrier itself, the report), its number n
+       in the payload list. As one expression, computed for every file twice ($n is cut to
+       nothing, from position 1 div 0, when there is a record):
+         concat($rec[1]/@id, substring($n, 1 div not($rec))) -->
+
+  <!-- GROUPID: "Group-" and the token of the file it is a version of (METS: a master and the
+       derivatives made from it, in other file groups; Archivematica's readers take a file
+       whose group is another file's as derived from that file). An export other software made
+       from an original: the original's. A file a step made from exactly one file (the web copy
+       of a model, the maps and previews DerivedMaps computes from one): that file's. Any other
+       file is a group of its own. Call with the carrier as the context (keys). -->
+  <xsl:template name="group-id">
+    <xsl:param name="token"/>
+    <xsl:param name="rec"/>
+    <xsl:variable name="paired" select="key('file-by-id', $rec/@pairedWith)[@role = 'original'][$rec/@unrecordedProcessing = 'true' or $rec/@unrecordedProcessing = '1']"/>
+    <xsl:variable name="step" select="key('step-by-id', $rec/@createdBy)"/>
+    <xsl:variable name="inputs" select="key('result-by-step', $rec/@createdBy)/c:input/@file"/>
+    <xsl:variable name="model" select="key('result-by-step', $step/preceding-sibling::c:step[@component = 'RtiFit'][c:param[@name = 'basis']/@value = $step/c:param[@name = 'model']/@value]/@id)/c:output/@file[$step/@component = 'DerivedMaps']"/>
+    <xsl:choose>
+      <xsl:when test="count($paired) = 1"><xsl:value-of select="concat('Group-', $paired/@id)"/></xsl:when>
+      <xsl:when test="$step and count($inputs) = 1"><xsl:value-of select="concat('Group-', $inputs)"/></xsl:when>
+      <xsl:when test="$step and not($inputs) and count($model) = 1"><xsl:value-of select="concat('Group-', $model)"/></xsl:when>
+      <xsl:otherwise><xsl:value-of select="concat('Group-', $token)"/></xsl:otherwise>
+    </xsl:choose>
+  </xsl:template>
+
   <xsl:template name="mets-file">
     <xsl:param name="n"/>
     <xsl:param name="path"/>
     <xsl:param name="size"/>
     <xsl:param name="sha256"/>
     <xsl:param name="rec"/>
-    <mets:file ID="file-{$n}" SIZE="{$size | $rec[1]/@size[not($size)]}"
+    <xsl:variable name="token" select="concat($rec[1]/@id, substring($n, 1 div not($rec)))"/>
+    <mets:file ID="file-{$token}" SIZE="{$size | $rec[1]/@size[not($size)]}"
                CHECKSUM="{$sha256 | $rec[1]/@sha256[not($sha256)]}" CHECKSUMTYPE="SHA-256"
-               ADMID="object-{$n}">
+               ADMID="amd-{$token}">
+      <xsl:attribute name="GROUPID">
+        <xsl:call-template name="group-id"><xsl:with-param name="token" select="$token"/><xsl:with-param name="rec" select="$rec[1]"/></xsl:call-template>
+      </xsl:attribute>
       <xsl:attribute name="MIMETYPE">
         <xsl:choose>
           <xsl:when test="$rec/@mediaType != ''"><xsl:value-of select="$rec/@mediaType"/></xsl:when>
@@ -543,37 +667,56 @@
     </xsl:choose>
   </xsl:template>
 
-  <xsl:template name="struct-div">
-    <xsl:param name="use"/>
-    <xsl:param name="label" select="$use"/>
-    <xsl:choose>
-      <xsl:when test="$use-payload">
-        <xsl:for-each select="$payload">
-          <xsl:choose>
-            <xsl:when test="local-name() = $use">
-              <mets:div TYPE="{$label}" LABEL="{@path}"><mets:fptr FILEID="file-{position()}"/></mets:div>
-            </xsl:when>
-            <xsl:when test="self::file">
-              <xsl:variable name="n" select="position()"/>
-              <xsl:variable name="path" select="@path"/>
-              <xsl:for-each select="$carrier">
-                <xsl:variable name="rec" select="key('file-by-bag-path', $path)"/>
-                <xsl:if test="($rec and $rec[1][((@role = $use and not(@role = 'result' and starts-with(@path, 'finished-files/web/'))) or ($use = 'access' and @role = 'result' and starts-with(@path, 'finished-files/web/')))]) or (not($rec) and $use = 'other')">
-                  <mets:div TYPE="{$label}" LABEL="{$path}"><mets:fptr FILEID="file-{$n}"/></mets:div>
-                </xsl:if>
-              </xsl:for-each>
-            </xsl:when>
-          </xsl:choose>
-        </xsl:for-each>
-      </xsl:when>
-      <xsl:otherwise>
-        <xsl:for-each select="$carrier/c:files/c:file">
-          <xsl:if test="((@role = $use and not(@role = 'result' and starts-with(@path, 'finished-files/web/'))) or ($use = 'access' and @role = 'result' and starts-with(@path, 'finished-files/web/')))">
-            <mets:div TYPE="{$label}" LABEL="data/{@path}"><mets:fptr FILEID="file-{position()}"/></mets:div>
+  <!-- The contents of one folder of the payload: `members` are the files under it at any depth
+       (the in-folder key of `folder`; all files for data/ itself), in path order, each path
+       with `skip` leading characters before the part relative to data/ ("data/" in the payload
+       list, none in the carrier). A file directly in the folder is an Item; the first file of
+       each sub-folder opens that folder's Directory div, which holds the rest of it. Each file
+       is looked at once per folder above it. The payload list comes sorted by path, so each
+       folder's files are together; should they not be, the sub-folder is still opened once
+       (at the first of its files in document order) and holds all of them. -->
+  <xsl:template name="folder">
+    <xsl:param name="members"/>
+    <xsl:param name="skip"/>
+    <xsl:param name="folder" select="''"/>
+    <xsl:param name="depth" select="0"/>
+    <xsl:for-each select="$members">
+      <xsl:variable name="rest" select="substring(@path, $skip + string-length($folder) + 1)"/>
+      <xsl:choose>
+        <xsl:when test="not(contains($rest, '/')) or $depth &gt;= $folder-depth">
+          <mets:div TYPE="Item" LABEL="{$rest}">
+            <xsl:variable name="here" select="."/>
+            <xsl:variable name="path" select="concat(substring('data/', 1, 5 - $skip), @path)"/>
+            <xsl:for-each select="$carrier">
+              <xsl:variable name="rec" select="key('file-by-bag-path', $path)"/>
+              <mets:fptr>
+                <xsl:attribute name="FILEID">
+                  <xsl:choose>
+                    <!-- a payload file the carrier does not list: its number in the list -->
+                    <xsl:when test="$rec"><xsl:value-of select="concat('file-', $rec[1]/@id)"/></xsl:when>
+                    <xsl:otherwise><xsl:value-of select="concat('file-', count($here/preceding-sibling::*) + 1)"/></xsl:otherwise>
+                  </xsl:choose>
+                </xsl:attribute>
+              </mets:fptr>
+            </xsl:for-each>
+          </mets:div>
+        </xsl:when>
+        <xsl:otherwise>
+          <xsl:variable name="sub" select="concat($folder, substring-before($rest, '/'), '/')"/>
+          <xsl:variable name="previous" select="preceding-sibling::*[1]/@path"/>
+          <xsl:if test="not($previous and starts-with(substring($previous, $skip + 1), $sub)) and generate-id() = generate-id(key('in-folder', $sub)[1])">
+            <mets:div TYPE="Directory" LABEL="{substring-before($rest, '/')}">
+              <xsl:call-template name="folder">
+                <xsl:with-param name="members" select="key('in-folder', $sub)"/>
+                <xsl:with-param name="skip" select="$skip"/>
+                <xsl:with-param name="folder" select="$sub"/>
+                <xsl:with-param name="depth" select="$depth + 1"/>
+              </xsl:call-template>
+            </mets:div>
           </xsl:if>
-        </xsl:for-each>
-      </xsl:otherwise>
-    </xsl:choose>
+        </xsl:otherwise>
+      </xsl:choose>
+    </xsl:for-each>
   </xsl:template>
 
   <!-- PREMIS objects ==================================================================== -->
@@ -612,7 +755,9 @@
     <xsl:param name="sha512"/>
     <xsl:for-each select="$carrier">
       <xsl:variable name="rec" select="key('file-by-bag-path', $path)"/>
-      <mets:techMD ID="object-{$n}">
+      <xsl:variable name="token" select="concat($rec[1]/@id, substring($n, 1 div not($rec)))"/>
+      <mets:amdSec ID="amd-{$token}">
+      <mets:techMD ID="object-{$token}">
         <mets:mdWrap MDTYPE="PREMIS:OBJECT">
           <mets:xmlData>
             <premis:object xsi:type="premis:file" version="3.0">
@@ -768,6 +913,7 @@
           </mets:xmlData>
         </mets:mdWrap>
       </mets:techMD>
+      </mets:amdSec>
     </xsl:for-each>
   </xsl:template>
 

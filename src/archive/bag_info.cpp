@@ -89,15 +89,16 @@ std::string labelFormProblem(const std::string& label) {
 std::string bagInfoLabelProblem(const std::string& label) {
   static const std::set<std::string> computed = {"payload-oxum", "bagging-date", "bag-size",
                                                   "bag-software-agent"};
-  static const std::set<std::string> own = {"surrogate-package-identifier",
+  static const std::set<std::string> own = {"surrogate-package-identifier", "surrogate-capture-identifier",
+                                             "surrogate-previous-package-identifier", "surrogate-base-uri",
                                              "surrogate-packaging-time"};
   if (computed.count(lowerCase(label)))
     return "is computed by Surrogate for bag-info.txt and cannot be given as metadata; "
            "remove it from the capture's metadata (--meta)";
   if (own.count(lowerCase(label)))
-    return "is written by `surrogate pack` itself (the package's identifier, the SHA-256 of its "
-           "carrier, and the packaging time) and cannot be given as metadata; remove it from the "
-           "capture's metadata (--meta)";
+    return "is written by `surrogate pack` itself (the package's and the capture's identifiers, "
+           "the package it revises, the base of crm.rdf's URIs and the packaging time) and cannot "
+           "be given as metadata; remove it from the capture's metadata (--meta)";
   return labelFormProblem(label);
 }
 

@@ -4,9 +4,12 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
 #include <memory>
 #include <map>
+#include <regex>
 #include <set>
+#include <sstream>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -153,7 +156,8 @@ std::vector<PayloadSource> capturePayload(const fs::path& capture) {
 }
 
 PackageInfo packageInfo(const carrier::Carrier& c, const std::string& packageId,
-                        const std::string& packagingTime) {
+                        const std::string& packagingTime, const std::string& previousPackageId,
+                        const std::string& baseUri) {
   PackageInfo info;
   bool hasDescription = false;
   for (const auto& [key, value] : c.header.meta) {
@@ -163,6 +167,9 @@ PackageInfo packageInfo(const carrier::Carrier& c, const std::string& packageId,
   if (!hasDescription)
     info.user.emplace_back("External-Description", "Highlight-RTI capture: " + c.header.title);
   info.own.emplace_back("Surrogate-Package-Identifier", packageId);
+  info.own.emplace_back("Surrogate-Capture-Identifier", captureIdentifier(c));
+  if (!previousPackageId.empty()) info.own.emplace_back("Surrogate-Previous-Package-Identifier", previousPackageId);
+  if (!baseUri.empty()) info.own.emplace_back("Surrogate-Base-URI", baseUri);
   info.own.emplace_back("Surrogate-Packaging-Time", packagingTime);
   return info;
 }
@@ -207,6 +214,77 @@ std::string holderFieldProblem(const std::string& label, const std::string& valu
 
 std::string packageIdentifier(const std::string& carrierSha256) { return "urn:sha256:" + carrierSha256; }
 
+std::string captureIdentifier(const carrier::Carrier& c) {
+  return c.files.empty() ? "urn:surrogate:capture:unidentified" : "urn:surrogate:capture:" + c.files.front().sha256;
+}
+
+bool isPackageIdentifier(const std::string& id) {
+  static const std::regex form("urn:sha256:[0-9a-f]{64}");
+  return std::regex_match(id, form);
+}
+
+std::string baseUriProblem(const std::string& uri) {
+  static const std::regex scheme("[A-Za-z][A-Za-z0-9+.-]*:.+");
+  if (!std::regex_match(uri, scheme))
+    return "is not an absolute URI (a scheme such as https: first); give e.g. "
+           "https://repository.example/capture/stela12/";
+  if (std::any_of(uri.begin(), uri.end(), [](unsigned char ch) {
+        return ch <= ' ' || ch == 0x7f || std::strchr("<>\"{}|\\^`", ch) != nullptr;
+      }))
+    return "holds white space or a character URIs do not allow (< > \" { } | \\ ^ `); "
+           "percent-encode it";
+  if (uri.back() != '/' && uri.back() != '#')
+    return "must end in \"/\" or \"#\", so that the names crm.rdf adds to it (object, capture, "
+           "file/f1, ...) stay apart; give " + uri + "/";
+  return "";
+}
+
+namespace {
+fs::path packagesRecord(const fs::path& capture) { return capture / capture::kWorkDir / "packages"; }
+}  // namespace
+
+std::vector<std::string> packagesMade(const fs::path& capture) {
+  std::vector<std::string> out;
+  std::ifstream in(packagesRecord(capture), std::ios::binary);
+  std::string line;
+  while (std::getline(in, line)) {
+    const std::string id = line.substr(0, line.find(' '));
+    if (isPackageIdentifier(id)) out.push_back(id);  // anything else is not a record of ours
+  }
+  return out;
+}
+
+std::string previousPackage(const fs::path& capture, const std::string& packageId) {
+  const std::vector<std::string> made = packagesMade(capture);
+  for (auto it = made.rbegin(); it != made.rend(); ++it)
+    if (*it != packageId) return *it;
+  return "";
+}
+
+namespace {
+// Adds the package to the capture's record of packages (written whole under a temporary name,
+// then renamed: a pack killed meanwhile leaves the record as it was).
+void recordPackage(const fs::path& capture, const PackResult& r) {
+  std::string text;
+  {
+    std::ifstream in(packagesRecord(capture), std::ios::binary);
+    std::ostringstream all;
+    all << in.rdbuf();
+    text = all.str();
+  }
+  if (!text.empty() && text.back() != '\n') text += '\n';
+  text += r.packageId + " " + r.packagingTime + "\n";
+  fs::create_directories(packagesRecord(capture).parent_path());
+  AtomicFile out(packagesRecord(capture));
+  {
+    std::ofstream f(out.tempPath(), std::ios::binary);
+    f << text;
+    if (!f.flush()) throw writeError(packagesRecord(capture), "packing", errno ? errno : EIO);
+  }
+  out.commit();
+}
+}  // namespace
+
 std::vector<std::string> packageMetadataFiles() {
   std::vector<std::string> out = {"metadata/crm.rdf", "metadata/mets.xml"};
   for (const std::string& rel : mapping::packagedResources()) out.push_back("metadata/" + rel);
@@ -242,6 +320,11 @@ PackResult packCapture(const fs::path& capture, const fs::path& out, const PackO
 
   PackResult result;
   result.packageId = packageIdentifier(sha256Hex(carrierXml));
+  result.captureId = captureIdentifier(c);
+  result.previousPackageId = previousPackage(capture, result.packageId);
+  if (!options.baseUri.empty())
+    if (const std::string why = baseUriProblem(options.baseUri); !why.empty())
+      throw Error(ErrorKind::Usage, "--base-uri " + options.baseUri, "packing", why);
   const std::int64_t packedAt = packagingEpoch();
   result.packagingTime = utcDateTime(packedAt);
   const std::string agent = std::string("Surrogate ") + surrogateVersion();
@@ -279,10 +362,11 @@ PackResult packCapture(const fs::path& capture, const fs::path& out, const PackO
   // copies them; their bytes are deriveCrm's / deriveMets's (the fallback below).
   checkOutput(out, options.replace);
   const AtomicFile crmFile(out), metsFile(out);
+  const mapping::CrmFacts crmFacts{result.packageId, result.previousPackageId, options.baseUri};
   if (!deriveInto(crmFile.tempPath(), out, [&](const mapping::TextSink& sink) {
-        return mapping::deriveCrmTo(carrierXml, sink, carrierFile.string());
+        return mapping::deriveCrmTo(carrierXml, crmFacts, sink, carrierFile.string());
       })) {
-    const std::string crm = mapping::deriveCrm(carrierXml, carrierFile.string());
+    const std::string crm = mapping::deriveCrm(carrierXml, crmFacts, carrierFile.string());
     mapping::checkRdfWellFormed(crm, "metadata/crm.rdf");
     (void)deriveInto(crmFile.tempPath(), out, [&](const mapping::TextSink& sink) {
       sink(crm.data(), crm.size());
@@ -324,7 +408,7 @@ PackResult packCapture(const fs::path& capture, const fs::path& out, const PackO
   in.payload = std::move(payload);
   in.softwareAgent = agent;
   in.baggingDate = utcDate(packedAt);
-  PackageInfo info = packageInfo(c, result.packageId, result.packagingTime);
+  PackageInfo info = packageInfo(c, result.packageId, result.packagingTime, result.previousPackageId, options.baseUri);
   in.info = std::move(info.user);
   in.ownInfo = std::move(info.own);
   in.holderInfo = options.bagInfo;
@@ -335,6 +419,8 @@ PackResult packCapture(const fs::path& capture, const fs::path& out, const PackO
     facts.packageId = result.packageId;
     facts.packagingTime = result.packagingTime;
     facts.softwareAgent = agent;
+    facts.previousPackageId = result.previousPackageId;
+    facts.baseUri = options.baseUri;
     facts.payload.reserve(payload.size());
     for (const PayloadDigest& d : payload)
       facts.payload.push_back({d.bagPath, d.size, d.sha256, d.sha512});
@@ -375,6 +461,7 @@ PackResult packCapture(const fs::path& capture, const fs::path& out, const PackO
     return tags;
   };
   result.bag = writeBag(in, out);
+  recordPackage(capture, result);
   return result;
 }
 

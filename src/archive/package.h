@@ -67,14 +67,39 @@ std::vector<PayloadSource> capturePayload(const std::filesystem::path& capture);
 // Surrogate-Packaging-Time. packCapture writes them; the verifier compares a bag's bag-info.txt
 // with them, so that one of them edited, removed or repeated after packing is found (any other
 // label is the holder's: isSurrogateLabel, holderFieldProblem).
+// `own` also holds Surrogate-Capture-Identifier (captureIdentifier(c)), and when given,
+// Surrogate-Previous-Package-Identifier and Surrogate-Base-URI (pack --base-uri).
 struct PackageInfo {
   std::vector<std::pair<std::string, std::string>> user, own;
 };
 PackageInfo packageInfo(const carrier::Carrier& c, const std::string& packageId,
-                        const std::string& packagingTime);
+                        const std::string& packagingTime, const std::string& previousPackageId = "",
+                        const std::string& baseUri = "");
 
-// "urn:sha256:<SHA-256 of the carrier's bytes, lower-case hex>": the package identifier.
+// The identifiers (docs/package.md, "Identifiers"):
+// "urn:sha256:<SHA-256 of the carrier's bytes, lower-case hex>": the package identifier, one
+// per state of the capture's record.
 std::string packageIdentifier(const std::string& carrierSha256);
+// "urn:surrogate:capture:<SHA-256 of the carrier's first file>" (the first photograph, which
+// no run changes): the capture identifier, the same for every state and package of the
+// capture; "urn:surrogate:capture:unidentified" for a carrier without files. The stylesheets
+// compute the same string.
+std::string captureIdentifier(const carrier::Carrier& c);
+// Whether `id` has the form of a package identifier.
+bool isPackageIdentifier(const std::string& id);
+// Why `uri` cannot be a base for crm.rdf's node URIs (pack --base-uri), or "" when it can: an
+// absolute URI (a scheme, ':', no white space or characters IRIs exclude) ending in "/" or "#",
+// so that the names added to it stay apart.
+std::string baseUriProblem(const std::string& uri);
+
+// The packages made of a capture, as `pack` records them in the capture's working area
+// (.surrogate/packages: one "<package id> <packaging time>" line per pack, oldest first). The
+// record stays with the capture folder, not with its carrier: a package is made of the
+// carrier, and writing into it would change the identifier of the very package it names.
+std::vector<std::string> packagesMade(const std::filesystem::path& capture);
+// The package this one revises: the last package made of the capture whose identifier is not
+// `packageId` (an earlier state of its record), or "" when there is none.
+std::string previousPackage(const std::filesystem::path& capture, const std::string& packageId);
 
 // The tag files packCapture writes in metadata/: crm.rdf, mets.xml, metadata/<resource> for
 // each of mapping::packagedResources() (stylesheets, schemas, mapping tables) and of
@@ -103,11 +128,16 @@ struct PackOptions {
   // holder adds later. Each is checked with holderFieldProblem (Error(Usage)).
   std::vector<std::pair<std::string, std::string>> bagInfo;
   bool replace = false;  // an existing package of that name may be replaced (pack --force)
+  // Where crm.rdf mints its node URIs (pack --base-uri; baseUriProblem), recorded in bag-info
+  // as Surrogate-Base-URI so that verify derives the same crm.rdf. Empty: the capture identifier.
+  std::string baseUri;
 };
 
 struct PackResult {
   BagResult bag;
   std::string packageId;      // "urn:sha256:<SHA-256 of the carrier>"
+  std::string captureId;      // "urn:surrogate:capture:<SHA-256 of the first file>"
+  std::string previousPackageId;  // the package this one revises (previousPackage), or ""
   std::string packagingTime;  // xs:dateTime
 };
 

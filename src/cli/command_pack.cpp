@@ -91,6 +91,11 @@ std::vector<OptionSpec> packOptions() {
                    "each pack of the same capture; eark: OUT is a new folder holding an E-ARK "
                    "SIP 2.2 (METS.xml, representations/rep1/, metadata/, schemas/, documentation/)",
                    "bag|ocfl|eark"});
+  specs.push_back({"base-uri", true, false,
+                   "mint crm.rdf's node URIs under this base, e.g. "
+                   "https://repository.example/capture/stela12/ (ends in / or #; recorded in "
+                   "bag-info.txt as Surrogate-Base-URI; default: under the capture identifier)",
+                   "URI"});
   specs.push_back({"no-report", false, false,
                    "when the pipeline runs, do not write finished-files/report.html"});
   return specs;
@@ -201,6 +206,7 @@ auto packOnce(const std::string& capture, const std::string& out, const Args& ar
   archive::PackOptions options;
   options.replace = args.has("force");
   options.bagInfo = holderFields(args);
+  if (const auto base = args.value("base-uri")) options.baseUri = *base;
   options.progress = [&bar](std::uint64_t done, std::uint64_t total) {
     bar.update("packing", total ? static_cast<double>(done) / static_cast<double>(total) : 1.0);
   };
@@ -235,7 +241,11 @@ void printJson(const std::string& capture, const std::string& out, const Process
   j.key("pipelineReason");
   if (processing.ran) j.value(processing.why);
   else j.null();
-  j.key("packageId").value(r.packageId).key("packagingTime").value(r.packagingTime)
+  j.key("packageId").value(r.packageId).key("captureId").value(r.captureId);
+  j.key("previousPackageId");
+  if (r.previousPackageId.empty()) j.null();
+  else j.value(r.previousPackageId);
+  j.key("packagingTime").value(r.packagingTime)
       .key("payloadFiles").value(static_cast<unsigned long long>(r.bag.payloadFiles))
       .key("payloadBytes").value(static_cast<unsigned long long>(r.bag.payloadBytes))
       .key("payloadOxum").value(std::to_string(r.bag.payloadBytes) + "." +
@@ -268,6 +278,10 @@ void printSummary(const std::string& capture, const std::string& out, const Proc
             << archive::bagFormatName(r.bag.format) << ").\n"
             << "  payload: " << r.bag.payloadFiles << " files, " << rate << "\n"
             << "  package id: " << r.packageId << "\n"
+            << "  capture id: " << r.captureId << "\n"
+            << (r.previousPackageId.empty() ? std::string()
+                                            : "  revises the package " + r.previousPackageId +
+                                                  " (made of this capture before its record changed)\n")
             << "  metadata: metadata/crm.rdf (CIDOC-CRM), metadata/mets.xml (METS+PREMIS)\n";
   if (!holder.empty()) {
     std::cout << "  holder's fields in bag-info.txt (not in the carrier):";
@@ -382,6 +396,9 @@ int runCommandPack(int argc, char** argv) {
     return 0;
   const auto [capture, out] = captureAndOutput(args);
   (void)holderFields(args);  // a malformed --bag-info is refused before any work
+  if (const auto base = args.value("base-uri"))  // and a base URI crm.rdf cannot use
+    if (const std::string why = archive::baseUriProblem(*base); !why.empty())
+      throw Error(ErrorKind::Usage, "--base-uri " + *base, "command line", why);
   // One process at a time on the capture, for the whole pack: a run meanwhile would change
   // what is being bagged.
   capture::CaptureLock lock(capture, "pack");

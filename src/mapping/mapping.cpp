@@ -485,14 +485,29 @@ std::vector<std::pair<std::string, std::string>> metsParams(const PackageFacts& 
       {"package-id", facts.packageId},
       {"packaging-time", facts.packagingTime},
       {"software-agent", facts.softwareAgent.empty() ? "Surrogate" : facts.softwareAgent},
+      {"previous-package-id", facts.previousPackageId},
       {"payload-uri", kPayloadUri},  // always: document('') would read the stylesheet
   };
 }
 
+std::vector<std::pair<std::string, std::string>> crmParams(const CrmFacts& facts) {
+  return {{"package-id", facts.packageId},
+          {"previous-package-id", facts.previousPackageId},
+          {"base-uri", facts.baseUri}};
+}
+
 }  // namespace
 
+CrmFacts crmFactsOf(const PackageFacts& facts) {
+  return {facts.packageId, facts.previousPackageId, facts.baseUri};
+}
+
 std::string deriveCrm(const std::string& carrierXml, const std::string& source) {
-  return transform(crmStylesheetPath(), carrierXml, source, {}, nullptr);
+  return deriveCrm(carrierXml, CrmFacts{}, source);
+}
+
+std::string deriveCrm(const std::string& carrierXml, const CrmFacts& facts, const std::string& source) {
+  return transform(crmStylesheetPath(), carrierXml, source, crmParams(facts), nullptr);
 }
 
 std::string deriveRoCrate(const std::string& carrierXml, const CrateFacts& facts,
@@ -510,8 +525,13 @@ std::string deriveMets(const std::string& carrierXml, const PackageFacts& facts,
 }
 
 bool deriveCrmTo(const std::string& carrierXml, const TextSink& sink, const std::string& source) {
+  return deriveCrmTo(carrierXml, CrmFacts{}, sink, source);
+}
+
+bool deriveCrmTo(const std::string& carrierXml, const CrmFacts& facts, const TextSink& sink,
+                 const std::string& source) {
   const std::filesystem::path stylesheet = crmStylesheetPath();
-  return transformTo(stylesheet, carrierXml, source, {}, nullptr, sink,
+  return transformTo(stylesheet, carrierXml, source, crmParams(facts), nullptr, sink,
                      [&](xmlDoc* result) { requireRdf(result, stylesheet); });
 }
 

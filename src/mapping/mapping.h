@@ -46,17 +46,34 @@ struct PayloadFile {
 //   softwareAgent  <- bag-info "Bag-Software-Agent"
 //   payload        <- manifest-sha256.txt + manifest-sha512.txt (+ sizes of the files),
 //                     sorted by path (byte order)
+//   previousPackageId <- bag-info "Surrogate-Previous-Package-Identifier" (absent: none)
+//   baseUri        <- bag-info "Surrogate-Base-URI" (absent: the default, urn: identifiers)
 struct PackageFacts {
-  std::string packageId;      // e.g. External-Identifier, else "urn:sha256:<carrier sha256>"
+  std::string packageId;      // "urn:sha256:<carrier sha256>"
   std::string packagingTime;  // xs:dateTime (UTC, "...Z") of the packaging event
   std::string softwareAgent;  // "Surrogate <version>"
+  // The package an earlier pack made of this capture, before its record last changed
+  // (archive/package.h, previousPackage): this package is a revision of it. Empty: none known.
+  std::string previousPackageId;
+  // Where crm.rdf mints its node URIs (pack --base-uri); empty: under the capture identifier.
+  std::string baseUri;
   std::vector<PayloadFile> payload;
 };
+
+// The package facts crm.rdf depends on (PackageFacts less the payload, time and agent).
+struct CrmFacts {
+  std::string packageId, previousPackageId, baseUri;
+};
+CrmFacts crmFactsOf(const PackageFacts& facts);
 
 // Carrier XML -> CIDOC-CRM + CRMdig RDF/XML (xslt/carrier-to-crm.xsl). Deterministic: the
 // same carrier gives the same bytes. Throws Error(Input) naming `source` if the carrier is
 // not well-formed, Error(Internal) if the stylesheet fails.
 std::string deriveCrm(const std::string& carrierXml,
+                      const std::string& source = "assembly-files/carrier.xml");
+// The same for a package: the package (its identifier, the one it revises) is described too,
+// and node URIs are minted under facts.baseUri when given.
+std::string deriveCrm(const std::string& carrierXml, const CrmFacts& facts,
                       const std::string& source = "assembly-files/carrier.xml");
 
 // What the RO-Crate says besides the carrier: PackageFacts' identifier and time, and whether the payload holds the report (the one payload file the carrier does not list,
@@ -90,6 +107,8 @@ std::string deriveMets(const std::string& carrierXml, const PackageFacts& facts,
 // derivation; derive again with deriveCrm / deriveMets.
 using TextSink = std::function<void(const char* data, std::size_t size)>;
 [[nodiscard]] bool deriveCrmTo(const std::string& carrierXml, const TextSink& sink,
+                               const std::string& source = "assembly-files/carrier.xml");
+[[nodiscard]] bool deriveCrmTo(const std::string& carrierXml, const CrmFacts& facts, const TextSink& sink,
                                const std::string& source = "assembly-files/carrier.xml");
 [[nodiscard]] bool deriveMetsTo(const std::string& carrierXml, const PackageFacts& facts,
                                 const TextSink& sink,

@@ -178,6 +178,8 @@ void checkMetadata(const fs::path& package, Inventory& inv, const std::string* c
         facts.packageId = one("Surrogate-Package-Identifier");
         facts.packagingTime = one("Surrogate-Packaging-Time");
         facts.softwareAgent = one("Bag-Software-Agent");
+        facts.previousPackageId = one("Surrogate-Previous-Package-Identifier");
+        facts.baseUri = one("Surrogate-Base-URI");
       }
       std::map<std::string, mapping::PayloadFile> payload;
       for (const char* algorithm : {"sha256", "sha512"}) {
@@ -203,6 +205,8 @@ void checkMetadata(const fs::path& package, Inventory& inv, const std::string* c
       return facts;
     };
     mapping::PackageFacts facts = makeFacts();
+    // What crm.rdf depends on, kept apart: facts may be handed to the METS stylesheet first.
+    const mapping::CrmFacts crmFacts = mapping::crmFactsOf(facts);
     // The carrier's text, given to the METS stylesheet with the facts in the same case (its
     // tree is what the stylesheet reads), and read again from the package if needed after.
     std::string* ownCarrier = nullptr;
@@ -254,7 +258,7 @@ void checkMetadata(const fs::path& package, Inventory& inv, const std::string* c
         // stylesheet makes it (100 000 files: the validator alone was 3 to 6 s of 28).
         BackgroundSink reader(sink);
         const mapping::TextSink handOver = [&](const char* data, std::size_t n) { reader.write(data, n); };
-        if (!isMets) streamed = mapping::deriveCrmTo(carrier(), handOver, kCarrierPath);
+        if (!isMets) streamed = mapping::deriveCrmTo(carrier(), crmFacts, handOver, kCarrierPath);
         else if (ownCarrier) streamed = mapping::deriveMetsTo(std::move(*ownCarrier), std::move(facts), handOver, kCarrierPath);
         else if (dropPayloadEntries) streamed = mapping::deriveMetsTo(carrier(), std::move(facts), handOver, kCarrierPath);
         else streamed = mapping::deriveMetsTo(carrier(), facts, handOver, kCarrierPath);
@@ -264,7 +268,7 @@ void checkMetadata(const fs::path& package, Inventory& inv, const std::string* c
         // A result that could not be written while it was built (mapping.h): derived whole.
         restart();
         const std::string whole = isMets ? mapping::deriveMets(carrier(), makeFacts(), kCarrierPath)
-                                         : mapping::deriveCrm(carrier(), kCarrierPath);
+                                         : mapping::deriveCrm(carrier(), crmFacts, kCarrierPath);
         if (!isMets) mapping::checkRdfWellFormed(whole, crmPath);
         sink(whole.data(), whole.size());
       }
@@ -276,7 +280,7 @@ void checkMetadata(const fs::path& package, Inventory& inv, const std::string* c
       if (derive(false, nullptr)) {
         crmChecked = true;  // the bag's crm.rdf is the derived one: RDF/XML (deriveCrmTo checks)
       } else {
-        const std::string derived = mapping::deriveCrm(carrier(), kCarrierPath);
+        const std::string derived = mapping::deriveCrm(carrier(), crmFacts, kCarrierPath);
         const std::string bag = text(crmPath);
         problems.push_back(crmPath + ": " + firstDifference(derived, bag));
       }

@@ -225,8 +225,33 @@ void checkPackageInfo(const Inventory& inv, const std::optional<carrier::Carrier
     problems.push_back("bag-info.txt: Surrogate-Package-Identifier is " + quoted(*given) +
                        "; the carrier in the package gives " + id);
 
+  // The capture identifier: the carrier's first file's (archive::captureIdentifier).
+  const std::string captureId = archive::captureIdentifier(*recorded);
+  if (const auto given = one("Surrogate-Capture-Identifier"); given && *given != captureId)
+    problems.push_back("bag-info.txt: Surrogate-Capture-Identifier is " + quoted(*given) +
+                       "; the carrier in the package gives " + captureId);
+  // The package this one revises and the base of crm.rdf's URIs: facts of the packing, not of
+  // the carrier (docs/package.md, "Identifiers"); their form is checked here, and crm.rdf and
+  // mets.xml must be what they give (metadata.derived).
+  auto optional = [&](const char* label) -> std::string {
+    const auto v = info.values(label);
+    if (v.size() > 1)
+      problems.push_back(std::string("bag-info.txt: ") + label + " is given " + std::to_string(v.size()) +
+                         " times; a package has it once at most");
+    return v.empty() ? std::string() : v.front();
+  };
+  const std::string previous = optional("Surrogate-Previous-Package-Identifier");
+  if (!previous.empty() && (!archive::isPackageIdentifier(previous) || previous == id))
+    problems.push_back("bag-info.txt: Surrogate-Previous-Package-Identifier " + quoted(previous) +
+                       (previous == id ? " is this package's own identifier"
+                                       : " is not a package identifier (urn:sha256: and 64 hexadecimal digits)"));
+  const std::string baseUri = optional("Surrogate-Base-URI");
+  if (!baseUri.empty())
+    if (const std::string why = archive::baseUriProblem(baseUri); !why.empty())
+      problems.push_back("bag-info.txt: Surrogate-Base-URI " + quoted(baseUri) + " " + why);
+
   // The user's labels: the carrier's header metadata, each as packing writes it.
-  const archive::PackageInfo expected = archive::packageInfo(*recorded, id, time.value_or(""));
+  const archive::PackageInfo expected = archive::packageInfo(*recorded, id, time.value_or(""), previous, baseUri);
   for (const auto& [label, value] : expected.user) {
     const auto given = one(label);
     if (given && *given != asReadBack(value))

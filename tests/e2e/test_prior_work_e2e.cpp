@@ -95,7 +95,7 @@ std::vector<PriorRecord> priorRecords(const carrier::Carrier& c) {
 
 // The text of METS's fileGrp USE="prior-work" (empty when there is none).
 std::string priorGroup(const std::string& mets) {
-  const auto start = mets.find("<mets:fileGrp USE=\"prior-work\">");
+  const auto start = mets.find("<mets:fileGrp ID=\"fileGrp-prior-work\" USE=\"prior-work\">");
   if (start == std::string::npos) return "";
   return mets.substr(start, mets.find("</mets:fileGrp>", start) - start);
 }

@@ -75,13 +75,13 @@ TEST_CASE("the packed web copy is the access copy and re-executes byte for byte"
   REQUIRE(e2e::surrogate("pack " + e2e::quote(capture) + " -o " + e2e::quote(bag) + " --quiet").exitCode == 0);
 
   const std::string mets = e2e::bytesOf(bag / "metadata" / "mets.xml");
-  const auto access = mets.find("<mets:fileGrp USE=\"access\">");
+  const auto access = mets.find("<mets:fileGrp ID=\"fileGrp-access\" USE=\"access\">");
   REQUIRE(access != std::string::npos);
   const std::string group = mets.substr(access, mets.find("</mets:fileGrp>", access) - access);
   CHECK(group.find("data/finished-files/web/ptm-lrgb/plane_0.jpg") != std::string::npos);
   CHECK(group.find("data/finished-files/web/ptm-lrgb/info.json") != std::string::npos);
   CHECK(group.find("data/finished-files/ptm-lrgb.ptm") == std::string::npos);
-  const auto result = mets.find("<mets:fileGrp USE=\"result\">");
+  const auto result = mets.find("<mets:fileGrp ID=\"fileGrp-result\" USE=\"result\">");
   REQUIRE(result != std::string::npos);
   CHECK(mets.substr(result, mets.find("</mets:fileGrp>", result) - result).find("finished-files/web/") == std::string::npos);
   CHECK(e2e::bytesOf(bag / "metadata" / "crm.rdf").find("web access copy") != std::string::npos);

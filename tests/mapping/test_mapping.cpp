@@ -162,7 +162,9 @@ TEST_CASE("invalid PREMIS inside METS is caught by validation", "[mapping][mets]
     CHECK(e.message().find("bogus") != std::string::npos);
   }
   std::string noFileSecId = mapping::deriveMets(s.carrierXml, s.facts);
-  noFileSecId.replace(noFileSecId.find("ID=\"file-1\""), 11, "ID=\"1-bad\"");
+  // A METS file ID that is not an xs:ID (it begins with a digit).
+  const auto id = noFileSecId.find("<mets:file ID=\"") + 15;
+  noFileSecId.replace(id, noFileSecId.find('"', id) - id, "1-bad");
   CHECK_THROWS_AS(mapping::validateMets(noFileSecId, "mets.xml"), Error);
 }
 
@@ -338,13 +340,15 @@ TEST_CASE("command runs become PREMIS events with their command line, outcome, n
   CHECK(mets.find("intervention accept-changed-original on original-captures/IMG_0002.dng = " + std::string(kAcceptedHash) +
                   " by Dee Ortiz at 2026-01-02T10:00:00Z: re-exported by the museum") != std::string::npos);
   // A file the capture brings but the pipeline does not use: fileGrp "other", with its carrier id.
-  const auto other = mets.find("<mets:fileGrp USE=\"other\">");
+  const auto other = mets.find("<mets:fileGrp ID=\"fileGrp-other\" USE=\"other\">");
   REQUIRE(other != std::string::npos);
   const auto notes = mets.find("xlink:href=\"data/notes/session notes.txt\"");
   REQUIRE(notes != std::string::npos);
   CHECK(other < notes);
   CHECK(mets.find("<premis:objectIdentifierValue>f11</premis:objectIdentifierValue>") != std::string::npos);
-  CHECK(mets.find("<mets:div TYPE=\"other\" LABEL=\"data/notes/session notes.txt\">") != std::string::npos);
+  // In the structMap, as the folder and the file it is.
+  CHECK(mets.find("<mets:div TYPE=\"Directory\" LABEL=\"notes\">\n        <mets:div TYPE=\"Item\" LABEL=\"session notes.txt\">\n"
+                  "          <mets:fptr FILEID=\"file-f11\"/>") != std::string::npos);
 }
 
 TEST_CASE("a carrier without runs has no run events", "[mapping][mets][runs]") {
@@ -552,7 +556,7 @@ TEST_CASE("prior work maps to its own METS group and to objects no Surrogate eve
   CHECK_NOTHROW(mapping::validateMets(mets, "mets.xml"));
   const archival::Premis p = archival::readPremis(mets);
   for (const std::string& problem : archival::linkProblems(p)) FAIL_CHECK(problem);
-  const auto group = mets.find("<mets:fileGrp USE=\"prior-work\">");
+  const auto group = mets.find("<mets:fileGrp ID=\"fileGrp-prior-work\" USE=\"prior-work\">");
   REQUIRE(group != std::string::npos);
   const std::string members = mets.substr(group, mets.find("</mets:fileGrp>", group) - group);
   CHECK(count(members, "<mets:file ") == 2);

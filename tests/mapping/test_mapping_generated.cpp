@@ -4,9 +4,11 @@
 
 #include <fstream>
 #include <set>
+#include <sstream>
 
 #include "archival_checks.h"
 #include "carrier/carrier.h"
+#include "core/digest.h"
 #include "e2e_support.h"
 #include "mapping/mapping.h"
 
@@ -243,4 +245,179 @@ TEST_CASE("generated capture: the package with the new metadata verifies", "[map
   const auto verify = e2e::surrogate("verify " + e2e::quote(p.package) + " --quiet");
   INFO(verify.output);
   CHECK(verify.exitCode == 0);
+}
+
+namespace {
+
+// A bag-info.txt field of a package (its first value), or "".
+std::string bagInfo(const fs::path& package, const std::string& label) {
+  std::istringstream in(e2e::bytesOf(package / "bag-info.txt"));
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind(label + ": ", 0) == 0) return line.substr(label.size() + 2);
+  return "";
+}
+
+// The tag manifests redone for the tag files as they now are, as RFC 8493 asks of whoever edits
+// a tag file (docs/package.md, "Fields a holder adds").
+void redoTagManifests(const fs::path& package) {
+  for (const std::string algorithm : {"sha256", "sha512"}) {
+    const fs::path manifest = package / ("tagmanifest-" + algorithm + ".txt");
+    std::istringstream in(e2e::bytesOf(manifest));
+    std::string out;
+    for (std::string line; std::getline(in, line);) {
+      const std::string path = line.substr(line.find("  ") + 2);
+      const auto d = digestFile(package / path, true);
+      out += (algorithm == "sha256" ? d.sha256 : d.sha512) + "  " + path + "\n";
+    }
+    std::ofstream(manifest, std::ios::binary) << out;
+  }
+}
+
+// The objects of the triples with subject `s` and predicate `p`.
+std::set<std::string> objectsOf(const std::vector<archival::Triple>& triples, const std::string& s, const std::string& p) {
+  std::set<std::string> out;
+  for (const auto& t : triples)
+    if (t.s == s && t.p == p) out.insert(t.o);
+  return out;
+}
+
+const std::string kCrm = "http://www.cidoc-crm.org/cidoc-crm/";
+
+// The symbolic content of every identifier (P1 -> E42 -> P190) of node `s`.
+std::set<std::string> identifiersOf(const std::vector<archival::Triple>& triples, const std::string& s) {
+  std::set<std::string> out;
+  for (const std::string& id : objectsOf(triples, s, kCrm + "P1_is_identified_by"))
+    for (const std::string& value : objectsOf(triples, id, kCrm + "P190_has_symbolic_content"))
+      out.insert(value.substr(1, value.rfind('"') - 1));
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("generated capture: the package and capture identifiers are the same strings in bag-info, METS and CRM", "[mapping][generated][identifiers]") {
+  const Packed& p = packed();
+  const std::string packageId = bagInfo(p.package, "Surrogate-Package-Identifier");
+  const std::string captureId = bagInfo(p.package, "Surrogate-Capture-Identifier");
+  // Both from their published definitions: the SHA-256 of the carrier's bytes, and of the first
+  // photograph's (the carrier's first file), computed here.
+  CHECK(packageId == "urn:sha256:" + digestFile(p.capture / "assembly-files/carrier.xml").sha256);
+  REQUIRE(p.carrier.files.front().role == "original");
+  CHECK(captureId == "urn:surrogate:capture:" + digestFile(p.capture / p.carrier.files.front().path).sha256);
+  CHECK(bagInfo(p.package, "Surrogate-Previous-Package-Identifier").empty());  // its first package
+
+  CHECK(p.mets.find("OBJID=\"" + packageId + "\"") != std::string::npos);
+  CHECK(p.mets.find("<mets:altRecordID TYPE=\"Surrogate capture identifier\">" + captureId + "</mets:altRecordID>") != std::string::npos);
+  const archival::Premis premis = archival::readPremis(p.mets);
+  std::set<std::pair<std::string, std::string>> entity;
+  for (const auto& o : premis.objects)
+    if (o.kind == "premis:intellectualEntity") entity.insert(o.ids.begin(), o.ids.end());
+  CHECK(entity.count({"Surrogate package identifier", packageId}) == 1);
+  CHECK(entity.count({"Surrogate capture identifier", captureId}) == 1);
+
+  const std::vector<archival::Triple> triples = archival::rdfTriples(p.crm, p.package.parent_path().string());
+  // The package is the node named by its identifier, a CRMdig digital object identified by it,
+  // about the digitization, which the capture identifier identifies.
+  CHECK(objectsOf(triples, packageId, "http://www.w3.org/1999/02/22-rdf-syntax-ns#type").count(
+            "http://www.cidoc-crm.org/extensions/crmdig/D1_Digital_Object") == 1);
+  CHECK(identifiersOf(triples, packageId) == std::set<std::string>{packageId});
+  const std::set<std::string> about = objectsOf(triples, packageId, kCrm + "P129_is_about");
+  REQUIRE(about.size() == 1);
+  CHECK(*about.begin() == captureId + "/capture");
+  CHECK(identifiersOf(triples, *about.begin()) == std::set<std::string>{captureId});
+  CHECK(objectsOf(triples, packageId, kCrm + "P106_is_composed_of").size() == p.carrier.files.size());
+  CHECK(objectsOf(triples, packageId, kCrm + "P130_shows_features_of").empty());
+}
+
+TEST_CASE("generated capture: a re-pack after the record changed revises the previous package, under a repository's base URI, and verifies", "[mapping][generated][identifiers]") {
+  const Packed& p = packed();
+  const fs::path dir = e2e::freshDir("repack");
+  const fs::path capture = dir / "capture";
+  fs::copy(p.capture, capture, fs::copy_options::recursive);  // with its record of packages
+  const std::string first = bagInfo(p.package, "Surrogate-Package-Identifier");
+
+  // The same record packed again: the same identifier, still no previous package.
+  const fs::path again = dir / "again";
+  REQUIRE(e2e::surrogate("pack " + e2e::quote(capture) + " -o " + e2e::quote(again) + " --quiet").exitCode == 0);
+  CHECK(bagInfo(again, "Surrogate-Package-Identifier") == first);
+  CHECK(bagInfo(again, "Surrogate-Previous-Package-Identifier").empty());
+
+  // A new decision changes the record: the next package revises the first.
+  REQUIRE(e2e::surrogate("run " + e2e::quote(capture) + " --meta Coverage=Thebes --quiet").exitCode == 0);
+  const fs::path second = dir / "second";
+  const std::string base = "https://repository.example/capture/stela12/";
+  const auto pack = e2e::surrogate("pack " + e2e::quote(capture) + " -o " + e2e::quote(second) + " --base-uri " + base);
+  REQUIRE(pack.exitCode == 0);
+  const std::string secondId = bagInfo(second, "Surrogate-Package-Identifier");
+  CHECK(secondId != first);
+  CHECK(pack.output.find("revises the package " + first) != std::string::npos);
+  CHECK(bagInfo(second, "Surrogate-Previous-Package-Identifier") == first);
+  CHECK(bagInfo(second, "Surrogate-Base-URI") == base);
+  CHECK(bagInfo(second, "Surrogate-Capture-Identifier") == bagInfo(p.package, "Surrogate-Capture-Identifier"));
+
+  // METS: the intellectual entity is derived from ("has source") the previous package.
+  const std::string mets = e2e::bytesOf(second / "metadata/mets.xml");
+  CHECK_NOTHROW(mapping::validateMets(mets, "metadata/mets.xml"));
+  bool revises = false;
+  for (const auto& o : archival::readPremis(mets).objects)
+    if (o.kind == "premis:intellectualEntity")
+      for (const auto& l : o.derivedFrom) revises = revises || (l.type == "Surrogate package identifier" && l.value == first);
+  CHECK(revises);
+
+  // CRM: the package shows features of the previous one; every minted node is under the base.
+  const std::string crm = e2e::bytesOf(second / "metadata/crm.rdf");
+  const std::vector<archival::Triple> triples = archival::rdfTriples(crm, dir.string());
+  CHECK(objectsOf(triples, secondId, kCrm + "P130_shows_features_of") == std::set<std::string>{first});
+  int minted = 0;
+  for (const auto& t : triples) {
+    // the packages, named by their identifiers; the licence, by its own URI
+    if (t.s == secondId || t.s == first || t.s == p.carrier.header.license) continue;
+    INFO(t.s);
+    CHECK(t.s.rfind(base, 0) == 0);
+    ++minted;
+  }
+  CHECK(minted > 300);
+  CHECK(crm.find("urn:surrogate:capture:") != std::string::npos);  // the capture identifier, as its E42's value
+  for (const std::string& problem :
+       archival::crmTermProblems(triples, std::string(SURROGATE_SOURCE_DIR) + "/tests/mapping/data/crm-terms.tsv"))
+    FAIL_CHECK(problem);
+
+  const auto verify = e2e::surrogate("verify " + e2e::quote(second) + " --quiet");
+  INFO(verify.output);
+  CHECK(verify.exitCode == 0);
+}
+
+TEST_CASE("generated capture: an identifier forged in bag-info is found by verify, the tag manifests redone", "[mapping][generated][identifiers]") {
+  const Packed& p = packed();
+  const fs::path dir = e2e::freshDir("forged-ids");
+  const std::string captureId = bagInfo(p.package, "Surrogate-Capture-Identifier");
+  const std::string packageId = bagInfo(p.package, "Surrogate-Package-Identifier");
+  const std::string other = "urn:sha256:" + std::string(64, 'a');
+  struct Forgery {
+    std::string name, from, to, finding;
+  };
+  for (const Forgery& f : std::vector<Forgery>{
+           {"capture", "Surrogate-Capture-Identifier: " + captureId, "Surrogate-Capture-Identifier: urn:surrogate:capture:" + std::string(64, 'b'),
+            "Surrogate-Capture-Identifier is"},
+           // a previous package the packer did not name: crm.rdf and mets.xml do not say it
+           {"previous", "Surrogate-Package-Identifier: " + packageId,
+            "Surrogate-Package-Identifier: " + packageId + "\nSurrogate-Previous-Package-Identifier: " + other, "metadata.derived"},
+           {"previous-self", "Surrogate-Package-Identifier: " + packageId,
+            "Surrogate-Package-Identifier: " + packageId + "\nSurrogate-Previous-Package-Identifier: " + packageId,
+            "is this package's own identifier"},
+           {"base", "Surrogate-Package-Identifier: " + packageId,
+            "Surrogate-Package-Identifier: " + packageId + "\nSurrogate-Base-URI: https://elsewhere.example/", "metadata.derived"}}) {
+    INFO(f.name);
+    const fs::path bag = dir / f.name;
+    fs::copy(p.package, bag, fs::copy_options::recursive);
+    std::string info = e2e::bytesOf(bag / "bag-info.txt");
+    const auto at = info.find(f.from);
+    REQUIRE(at != std::string::npos);
+    info.replace(at, f.from.size(), f.to);
+    std::ofstream(bag / "bag-info.txt", std::ios::binary) << info;
+    redoTagManifests(bag);
+    const auto verify = e2e::surrogate("verify " + e2e::quote(bag));
+    INFO(verify.output);
+    CHECK(verify.exitCode == 2);
+    CHECK(verify.output.find(f.finding) != std::string::npos);
+  }
 }

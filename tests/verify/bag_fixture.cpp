@@ -105,7 +105,9 @@ void writeMetadata(const fs::path& bag, const std::string& agent, const std::str
     const auto d = surrogate::digestFile(bag / p, true);
     facts.payload.push_back({p, d.size, d.sha256, d.sha512});
   }
-  writeText(bag / "metadata/crm.rdf", surrogate::mapping::deriveCrm(carrierXml));
+  facts.previousPackageId = bagInfoValue(bag, "Surrogate-Previous-Package-Identifier");
+  facts.baseUri = bagInfoValue(bag, "Surrogate-Base-URI");
+  writeText(bag / "metadata/crm.rdf", surrogate::mapping::deriveCrm(carrierXml, surrogate::mapping::crmFactsOf(facts)));
   writeText(bag / "metadata/mets.xml", surrogate::mapping::deriveMets(carrierXml, facts));
   for (const std::string& rel : surrogate::archive::bundledDocuments())
     writeText(bag / "metadata" / rel, readText(surrogate::resourcePath(rel)));
@@ -185,7 +187,8 @@ void rehashBag(const fs::path& bag, bool keepRoCrate) {
   surrogate::archive::PackageInfo labels;
   try {
     labels = surrogate::archive::packageInfo(
-        surrogate::carrier::parseCarrier(carrierXml, "carrier.xml"), id, time);
+        surrogate::carrier::parseCarrier(carrierXml, "carrier.xml"), id, time,
+        bagInfoValue(bag, "Surrogate-Previous-Package-Identifier"), bagInfoValue(bag, "Surrogate-Base-URI"));
   } catch (const std::exception&) {
     labels.own = {{"Surrogate-Package-Identifier", id}, {"Surrogate-Packaging-Time", time}};
   }

@@ -434,9 +434,9 @@ TEST_CASE("the streaming METS validator agrees with the document validator, and 
     CHECK_THAT(streamed(bad), Contains("does not conform to mets-premis.xsd (line "));
   }
   // xs:ID and xs:IDREF, which libxml2 checks on a document tree only.
-  CHECK_THAT(streamed(edited("ID=\"file-2\"", "ID=\"file-1\"")), Contains("'file-1' is not unique"));
-  CHECK_THAT(streamed(edited("ADMID=\"object-2\"", "ADMID=\"object-2 object-0\"")),
-             Contains("'object-0' refers to no ID"));
+  CHECK_THAT(streamed(edited("ID=\"file-f2\"", "ID=\"file-f1\"")), Contains("'file-f1' is not unique"));
+  CHECK_THAT(streamed(edited("ADMID=\"amd-f2\"", "ADMID=\"amd-f2 amd-0\"")),
+             Contains("'amd-0' refers to no ID"));
 }
 
 TEST_CASE("a tar with pax extended headers (long names) is read whole, and cut, is not",
