@@ -200,6 +200,12 @@
     </xsl:choose>
   </xsl:variable>
   <xsl:variable name="surrogate" select="$carrier/c:header/c:software[@name = 'Surrogate'][1]"/>
+  <xsl:variable name="capture-id">
+    <xsl:choose>
+      <xsl:when test="$carrier/c:files/c:file"><xsl:value-of select="concat('urn:surrogate:capture:', $carrier/c:files/c:file[1]/@sha256)"/></xsl:when>
+      <xsl:otherwise>urn:surrogate:capture:unidentified</xsl:otherwise>
+    </xsl:choose>
+  </xsl:variable>
 
   <xsl:template match="/">
     <xsl:apply-templates select="c:carrier"/>
@@ -258,7 +264,16 @@
         </xsl:choose>
       </xsl:with-param>
     </xsl:call-template>
-    <xsl:call-template name="prop"><xsl:with-param name="name" select="'identifier'"/><xsl:with-param name="value" select="$package-id"/></xsl:call-template>
+    <!-- The package's identifier, then the capture's (the same for every package of it:
+         urn:surrogate:capture: and the SHA-256 of the carrier's first file, as in
+         carrier-to-crm.xsl and bag-info.txt's Surrogate-Capture-Identifier). -->
+    <xsl:value-of select="concat(',', $nl, '      &quot;identifier&quot;: [')"/>
+    <xsl:if test="$package-id != ''">
+      <xsl:call-template name="json"><xsl:with-param name="s" select="$package-id"/></xsl:call-template>
+      <xsl:text>, </xsl:text>
+    </xsl:if>
+    <xsl:call-template name="json"><xsl:with-param name="s" select="$capture-id"/></xsl:call-template>
+    <xsl:text>]</xsl:text>
     <xsl:call-template name="prop"><xsl:with-param name="name" select="'datePublished'"/><xsl:with-param name="value" select="$packaging-time"/></xsl:call-template>
     <xsl:call-template name="prop"><xsl:with-param name="name" select="'dateCreated'"/><xsl:with-param name="value" select="$h/c:created"/></xsl:call-template>
     <xsl:call-template name="prop"><xsl:with-param name="name" select="'dateModified'"/><xsl:with-param name="value" select="$h/c:modified"/></xsl:call-template>

@@ -400,6 +400,8 @@ PackResult packCapture(const fs::path& capture, const fs::path& out, const PackO
     readme.packageId = result.packageId;
     readme.packagingTime = result.packagingTime;
     readme.softwareAgent = agent;
+    readme.previousPackageId = result.previousPackageId;
+    readme.baseUri = options.baseUri;
     for (const PayloadSource& p : payload) readme.hasReport |= p.bagPath == std::string("data/") + kReportPath;
     resources.push_back({kReadmePath, packageReadme(c, readme), {}});
   }

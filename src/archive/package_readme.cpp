@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "archive/package.h"
 #include "capture/capture.h"
 
 namespace surrogate::archive {
@@ -152,7 +153,8 @@ std::string packageReadme(const carrier::Carrier& c, const ReadmeFacts& facts) {
 
   heading(out, "What it is");
   std::vector<std::pair<std::string, std::string>> facts2;
-  facts2.emplace_back("Identifier", facts.packageId + " (the SHA-256 of the carrier)");
+  facts2.emplace_back("Identifier", facts.packageId + " (this package: the SHA-256 of the carrier)");
+  facts2.emplace_back("Capture", captureIdentifier(c) + " (the capture, the same in every package of it)");
   for (const carrier::Creator& cr : c.header.creators)
     facts2.emplace_back("Made by", oneLine(cr.name) + " (" + oneLine(cr.role) + ")");
   if (!c.header.rights.empty()) facts2.emplace_back("Rights", c.header.rights);
@@ -248,11 +250,21 @@ std::string packageReadme(const carrier::Carrier& c, const ReadmeFacts& facts) {
                  "manifests, as RFC 8493 asks; sha256sum then reports it missing, a BagIt "
                  "validator does not.");
   paragraph(out, "The metadata can be derived again from the carrier with any XSLT 1.0 "
-                 "processor, for example: xsltproc metadata/xslt/carrier-to-crm.xsl "
-                 "data/" + std::string(capture::kCarrierPath) + " (mets.xml needs the "
-                 "manifests too; metadata/mappings/carrier-to-mets.md says how). With Surrogate, "
-                 "`surrogate verify PACKAGE --reexecute` checks all of this and runs every "
-                 "recorded step again on the originals, comparing the results.");
+                 "processor; crm.rdf, for example, with xsltproc (the parameters are the ones "
+                 "bag-info.txt records), and cmp says nothing when the two are the same:");
+  // One argument a line, each but the last ended by a backslash, so the shell reads one command.
+  const std::string more = " \\\n      ";
+  std::string command = "    xsltproc --stringparam package-id " + facts.packageId;
+  if (!facts.previousPackageId.empty())
+    command += more + "--stringparam previous-package-id " + facts.previousPackageId;
+  if (!facts.baseUri.empty()) command += more + "--stringparam base-uri '" + oneLine(facts.baseUri) + "'";
+  command += more + "metadata/xslt/carrier-to-crm.xsl data/" + std::string(capture::kCarrierPath) +
+             more + "| cmp - metadata/crm.rdf\n\n";
+  out += command;
+  paragraph(out, "mets.xml needs the manifests too, and ro-crate-metadata.json the packaging "
+                 "time (metadata/mappings/ says how). With Surrogate, `surrogate verify "
+                 "PACKAGE --reexecute` checks all of this and runs every recorded step again on "
+                 "the originals, comparing the results.");
   return out;
 }
 

@@ -20,6 +20,8 @@ struct ReadmeFacts {
   std::string packageId;      // Surrogate-Package-Identifier
   std::string packagingTime;  // Surrogate-Packaging-Time
   std::string softwareAgent;  // Bag-Software-Agent
+  std::string previousPackageId;  // Surrogate-Previous-Package-Identifier, or ""
+  std::string baseUri;            // Surrogate-Base-URI, or ""
   bool hasReport = false;
 };
 

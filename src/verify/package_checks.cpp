@@ -300,6 +300,8 @@ void checkReadme(const Inventory& inv, const carrier::Carrier& recorded, std::ve
   facts.packageId = one("Surrogate-Package-Identifier");
   facts.packagingTime = one("Surrogate-Packaging-Time");
   facts.softwareAgent = one("Bag-Software-Agent");
+  facts.previousPackageId = one("Surrogate-Previous-Package-Identifier");
+  facts.baseUri = one("Surrogate-Base-URI");
   facts.hasReport = inv.files.count(std::string("data/") + capture::kReportPath) > 0;
   const std::string expected = archive::packageReadme(recorded, facts);
   std::vector<std::string> problems;

@@ -103,6 +103,7 @@ TEST_CASE("the package's README says what the bag holds and how to check it with
   SECTION("what it says of the object is the carrier's") {
     CHECK(readme.rfind(c.header.title + "\n" + std::string(c.header.title.size(), '=') + "\n", 0) == 0);
     CHECK(readme.find(packed.packageId) != std::string::npos);
+    CHECK(readme.find(packed.captureId) != std::string::npos);
     CHECK(readme.find(packed.packagingTime) != std::string::npos);
     for (const carrier::Creator& cr : c.header.creators)
       CHECK(readme.find(cr.name + " (" + cr.role + ")") != std::string::npos);
@@ -158,12 +159,27 @@ TEST_CASE("the package's README says what the bag holds and how to check it with
   }
 
   SECTION("the derivation it gives reproduces crm.rdf with xsltproc") {
-    const std::regex command(R"(xsltproc (metadata/xslt/carrier-to-crm\.xsl)\s+(data/[a-z/-]+carrier\.xml))");
-    std::smatch m;
-    REQUIRE(std::regex_search(readme, m, command));
-    const Ran r = runIn(bag, "xsltproc " + m[1].str() + " " + m[2].str() + " | cmp - metadata/crm.rdf");
-    INFO(r.output);
+    // The indented command from "    xsltproc" to its last continued line, run as written.
+    std::string command;
+    bool in = false;
+    for (const std::string& line : linesOf(readme)) {
+      if (line.rfind("    xsltproc ", 0) == 0) in = true;
+      if (!in) continue;
+      command += line + "\n";
+      if (line.empty() || line.back() != '\\') break;
+    }
+    command.pop_back();  // the last line's end: runIn appends to the command
+    REQUIRE(command.find("metadata/xslt/carrier-to-crm.xsl") != std::string::npos);
+    REQUIRE(command.find("| cmp - metadata/crm.rdf") != std::string::npos);
+    const Ran r = runIn(bag, command);
+    INFO(command << r.output);
     CHECK(r.status == 0);
+    CHECK(r.output.empty());
+    // And it would say so were crm.rdf changed.
+    {
+      std::ofstream(bag / "metadata/crm.rdf", std::ios::app) << "\n";
+    }
+    CHECK(runIn(bag, command).status != 0);
   }
 
   SECTION("the documents it points to travel in metadata/docs/, as written") {
@@ -182,7 +198,11 @@ TEST_CASE("the README is the same bytes for the same carrier and facts, and foll
   const fs::path dir = freshDir("readme-facts");
   const fs::path capture = samplecapture::make(dir);
   carrier::Carrier c = carrier::loadCarrier(capture / "assembly-files/carrier.xml");
-  ReadmeFacts facts{"urn:sha256:00", "2026-12-05T00:00:00Z", "Surrogate 9", true};
+  ReadmeFacts facts;
+  facts.packageId = "urn:sha256:00";
+  facts.packagingTime = "2026-12-05T00:00:00Z";
+  facts.softwareAgent = "Surrogate 9";
+  facts.hasReport = true;
   const std::string first = packageReadme(c, facts);
   CHECK(packageReadme(c, facts) == first);
   facts.hasReport = false;

@@ -62,7 +62,7 @@ TEST_CASE("the package's RO-Crate expands as JSON-LD with every file and every s
   CHECK(output.rfind("ok: ", 0) == 0);
 
   const std::string crate = slurp(bag / mapping::kRoCratePath);
-  CHECK(crate.find("\"identifier\": \"" + packed.packageId + "\"") != std::string::npos);
+  CHECK(crate.find("\"identifier\": [\"" + packed.packageId + "\", \"" + packed.captureId + "\"]") != std::string::npos);
   CHECK(crate.find("\"datePublished\": \"" + packed.packagingTime + "\"") != std::string::npos);
 
   SECTION("the checker finds a crate that lost a file or a step") {

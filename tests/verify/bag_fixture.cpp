@@ -119,6 +119,8 @@ void writeMetadata(const fs::path& bag, const std::string& agent, const std::str
     readme.packageId = facts.packageId;
     readme.packagingTime = time;
     readme.softwareAgent = agent;
+    readme.previousPackageId = facts.previousPackageId;
+    readme.baseUri = facts.baseUri;
     std::error_code ec;
     readme.hasReport = fs::exists(bag / "data/finished-files/report.html", ec);
     writeText(bag / surrogate::archive::kReadmePath, surrogate::archive::packageReadme(c, readme));
