@@ -229,6 +229,7 @@ std::vector<std::string> packagedResources() {
   return {
       "mappings/carrier-to-crm.md",
       "mappings/carrier-to-mets.md",
+      "mappings/pronom.md",  // the PRONOM identifiers carrier-to-mets.md refers to
       "xsd/SOURCE.md",
       "xsd/carrier.xsd",
       "xsd/catalog.xml",
