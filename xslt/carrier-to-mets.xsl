@@ -905,6 +905,8 @@
             <xsl:when test="$key = 'RTI'">PRONOM has no entry for the .rti format of Cultural Heritage Imaging's RTIBuilder and RTIViewer</xsl:when>
             <xsl:when test="$key = 'LP'">PRONOM has no entry for .lp light-position files (plain text: a count, then one line per image with its light direction)</xsl:when>
             <xsl:when test="$key = 'TXT'">PRONOM gives plain text (x-fmt/111) no signature: DROID and Siegfried name it from the file's extension only</xsl:when>
+            <xsl:when test="$key = 'JSON'">PRONOM gives JSON (fmt/817) no signature: DROID and Siegfried name it from the file's extension only</xsl:when>
+            <xsl:when test="$key = 'JavaScript'">PRONOM gives JavaScript (x-fmt/423) no signature: DROID and Siegfried name it from the file's extension only</xsl:when>
             <xsl:when test="$rec">no PRONOM identifier: no signature of the formats Surrogate identifies matches this file's bytes alone, or those of several formats do (mappings/pronom.md)</xsl:when>
             <xsl:otherwise>no PRONOM identifier known for this format</xsl:otherwise>
           </xsl:choose>
