@@ -27,6 +27,7 @@
 #include "carrier/carrier.h"
 #include "core/digest.h"
 #include "core/error.h"
+#include "stages/ingest_stage.h"
 #include "verify/verify.h"
 
 namespace fs = std::filesystem;
@@ -44,7 +45,8 @@ void makeCapture(const fs::path& capture, int files, int bytes) {
   carrier::Carrier c = carrier::newCarrier("Verification benchmark", {{"A. Tester", "creator"}});
   c.header.meta.push_back({"Source-Organization", "Benchmark Museum"});
   c.header.software.push_back({"LibRaw", "0.21.1", "camera raw decoding"});
-  carrier::Step& ingest = c.addStep("CaptureIngest", "2");
+  // The version this build runs: verify refuses a step recorded at another.
+  carrier::Step& ingest = c.addStep(stages::IngestStage::kComponent, stages::IngestStage::info().version);
   ingest.description = "Inventory of the capture";
   ingest.setParam("source", "auto");
   carrier::Result result;

@@ -1,12 +1,14 @@
-// libFuzzer target: the .ptm (raw and JPEG-compressed), .rti (HSH) and .lp readers on
-// arbitrary bytes held in memory.
+// libFuzzer target: the .ptm (raw and JPEG-compressed), .rti (HSH) and .lp readers, and the
+// PRONOM identification, on arbitrary bytes held in memory.
 #include <cstdint>
 
 #include "core/error.h"
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "formats/lp.h"
+#include "formats/pronom.h"
 #include "formats/ptm.h"
 #include "formats/rti_hsh.h"
 
@@ -31,5 +33,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     (void)formats::matchLpLines("fuzz.lp", lines, {"IMG_0001.JPG", "img_0002.jpg", "IMG_0002.CR2"});
   } catch (const Error&) {
   }
+  (void)formats::identifyPronom(std::string_view(reinterpret_cast<const char*>(data), size));
   return 0;
 }

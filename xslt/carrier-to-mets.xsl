@@ -25,8 +25,8 @@
   amdSec (amd) the capture as a PREMIS intellectual entity, the rights statements (rightsMD),
   one event per capture, command run, pipeline step and packaging act (eventType from the
   Library of Congress vocabulary id.loc.gov/vocabulary/preservation/eventType), and each agent
-  once; in an amdSec per payload file its PREMIS file object (fixity, size, format with PRONOM
-  identifier where certain, derivation relationships to what the step that made it used); the
+  once; in an amdSec per payload file its PREMIS file object (fixity, size, format with the PRONOM
+  identifier the carrier records, derivation relationships to what the step that made it used); the
   fileSec by role; a physical structMap of Directory and Item divs, the layout Archivematica's
   METS reader (metsrw) walks.
   The mapping is explained, element by element, in mappings/carrier-to-mets.md.
@@ -962,8 +962,7 @@
   </xsl:template>
 
   <!-- The format table (mappings/carrier-to-mets.md, "Formats"): the carrier's format name
-       becomes the registry's name and version; the PRONOM identifier is the carrier's when it
-       records one, else the one this table gives where the version is certain. -->
+       becomes the registry's name and version; the PRONOM identifier is the carrier's. -->
   <xsl:template name="format-key">
     <xsl:param name="rec"/>
     <xsl:param name="path"/>
@@ -1018,14 +1017,14 @@
         <xsl:when test="$key = 'HTML'">5</xsl:when>
       </xsl:choose>
     </xsl:variable>
+    <!-- The carrier's identifier, found from the file's bytes as DROID and Siegfried find it
+         (src/formats/pronom.h, mappings/pronom.md); only the two files the carrier cannot
+         record, itself and the report, take theirs from this table (tests/formats check them). -->
     <xsl:variable name="puid">
       <xsl:choose>
-        <xsl:when test="$rec/@puid != ''"><xsl:value-of select="$rec/@puid"/></xsl:when>
-        <xsl:when test="$key = 'PNG-written'">fmt/13</xsl:when>
-        <xsl:when test="$key = 'XML'">fmt/101</xsl:when>
+        <xsl:when test="$rec"><xsl:value-of select="$rec/@puid"/></xsl:when>
+        <xsl:when test="$key = 'XML' and $path = $carrier-path">fmt/101</xsl:when>
         <xsl:when test="$key = 'HTML'">fmt/471</xsl:when>
-        <xsl:when test="$key = 'TIFF'">fmt/353</xsl:when>
-        <xsl:when test="$key = 'TXT'">x-fmt/111</xsl:when>
       </xsl:choose>
     </xsl:variable>
     <premis:format>
@@ -1049,12 +1048,12 @@
       <xsl:if test="$puid = ''">
         <premis:formatNote>
           <xsl:choose>
-            <xsl:when test="$key = 'DNG'">no PRONOM identifier given: PRONOM identifies DNG by version (fmt/436 1.0, fmt/152 1.1, fmt/437 1.2, fmt/438 1.3, fmt/730 1.4, fmt/1841 1.5, fmt/1842 1.6) and the carrier does not record the DNGVersion of the file; identify it with DROID or Siegfried</xsl:when>
-            <xsl:when test="$key = 'JPEG'">no PRONOM identifier given: PRONOM identifies JPEG by variant and version (JFIF 1.00 fmt/42, 1.01 fmt/43, 1.02 fmt/44; Exif JPEGs have their own entries) and the carrier does not record which; identify it with DROID or Siegfried</xsl:when>
-            <xsl:when test="$key = 'PNG'">no PRONOM identifier given: PRONOM identifies PNG by version (1.0 fmt/11, 1.1 fmt/12, 1.2 fmt/13) and this file was not written by Surrogate</xsl:when>
-            <xsl:when test="$key = 'PTM'">PRONOM has no entry for PTM; specification: Malzbender, Gelb, Wolters, Polynomial Texture Map (.ptm) File Format, HP Labs, 2001</xsl:when>
             <xsl:when test="$key = 'RTI'">PRONOM has no entry for the .rti format of Cultural Heritage Imaging's RTIBuilder and RTIViewer</xsl:when>
             <xsl:when test="$key = 'LP'">PRONOM has no entry for .lp light-position files (plain text: a count, then one line per image with its light direction)</xsl:when>
+            <xsl:when test="$key = 'TXT'">PRONOM gives plain text (x-fmt/111) no signature: DROID and Siegfried name it from the file's extension only</xsl:when>
+            <xsl:when test="$key = 'JSON'">PRONOM gives JSON (fmt/817) no signature: DROID and Siegfried name it from the file's extension only</xsl:when>
+            <xsl:when test="$key = 'JavaScript'">PRONOM gives JavaScript (x-fmt/423) no signature: DROID and Siegfried name it from the file's extension only</xsl:when>
+            <xsl:when test="$rec">no PRONOM identifier: no signature of the formats Surrogate identifies matches this file's bytes alone, or those of several formats do (mappings/pronom.md)</xsl:when>
             <xsl:otherwise>no PRONOM identifier known for this format</xsl:otherwise>
           </xsl:choose>
         </premis:formatNote>

@@ -6,6 +6,7 @@
 
 #include "cli/info_print.h"
 #include "core/text.h"
+#include "formats/pronom.h"
 #include "meta/camera_text.h"
 #include "meta/image_summary.h"
 #include "meta/metadata.h"
@@ -60,9 +61,10 @@ void cameraJson(JsonWriter& j, const meta::CameraMetadata& m) {
   j.endObject();
 }
 
-void printImageJson(const meta::ImageSummary& s) {
+void printImageJson(const meta::ImageSummary& s, const formats::PronomIdentity& id) {
   JsonWriter j;
-  j.beginObject().key("kind").value("image").key("decodable").value(s.decodable);
+  j.beginObject().key("kind").value("image").key("puid").value(id.puid).key("pronom").value(id.describe());
+  j.key("decodable").value(s.decodable);
   if (s.decodable) j.key("width").value(s.width).key("height").value(s.height).key("format").value(s.format);
   else j.key("decodeProblem").value(s.decodeProblem);
   if (s.camera) cameraJson(j, *s.camera);
@@ -97,10 +99,12 @@ void printCameraText(const meta::CameraMetadata& m) {
 
 void printImage(const fs::path& path, bool json) {
   const meta::ImageSummary s = meta::describeImage(path);
-  if (json) return printImageJson(s);
+  const formats::PronomIdentity id = formats::identifyPronomFile(path);
+  if (json) return printImageJson(s, id);
   std::cout << path.string() << ": ";
   if (s.decodable) std::cout << "image " << s.width << "x" << s.height << ", " << s.format << "\n";
   else std::cout << "image whose metadata Surrogate reads but whose pixels it cannot decode\n";
+  std::cout << "  PRONOM:      " << id.describe() << "\n";
   if (s.camera) printCameraText(*s.camera);
   else std::cout << "  metadata:    cannot be read: " << s.metadataProblem << "\n";
   if (!s.decodable) std::cout << "  decoding:    refused: " << s.decodeProblem << "\n";
@@ -109,6 +113,7 @@ void printImage(const fs::path& path, bool json) {
 // An .xmp sidecar: what it records about its image, not the image itself.
 void printXmpSidecar(const fs::path& path, bool json) {
   const meta::XmpSidecarSummary s = meta::summarizeXmpSidecar(path);
+  const formats::PronomIdentity id = formats::identifyPronomFile(path);
   if (json) {
     JsonWriter j;
     j.beginObject().key("kind").value("xmp-sidecar").key("bytes").value(static_cast<unsigned long long>(s.bytes));
@@ -126,7 +131,7 @@ void printXmpSidecar(const fs::path& path, bool json) {
     for (const meta::XmpHistoryEvent& e : s.history)
       j.beginObject().key("action").value(e.action).key("when").value(e.when)
           .key("software").value(e.software).key("changed").value(e.changed).endObject();
-    j.endArray().endObject();
+    j.endArray().key("puid").value(id.puid).key("pronom").value(id.describe()).endObject();
     std::cout << j.str() << "\n";
     return;
   }
@@ -135,6 +140,7 @@ void printXmpSidecar(const fs::path& path, bool json) {
   };
   std::cout << path.string() << ": XMP sidecar (metadata kept next to an image, " << s.bytes
             << " bytes; Surrogate records it verbatim with its original)\n";
+  std::cout << "  PRONOM:      " << id.describe() << "\n";
   line("written by:  ", s.creatorTool);
   line("modified:    ", s.modified);
   line("rating:      ", s.rating ? std::optional<std::string>(*s.rating == "-1" ? "rejected" : *s.rating + " of 5") : std::nullopt);

@@ -11,6 +11,7 @@
 #include "core/json.h"
 #include "core/text.h"
 #include "formats/lp.h"
+#include "formats/pronom.h"
 #include "formats/ptm.h"
 #include "formats/rti_hsh.h"
 
@@ -51,7 +52,9 @@ std::string formatNumber(double v) {
 }
 }  // namespace
 
-FileSummary summarize(const fs::path& path) {
+namespace {
+
+FileSummary summarizeContent(const fs::path& path) {
   FileSummary s;
   s.path = path.string();
   std::error_code ec;
@@ -121,6 +124,16 @@ FileSummary summarize(const fs::path& path) {
   throwInputError(s.path, kStep, "is not a .ptm, .rti or .lp file (unrecognised content)");
 }
 
+}  // namespace
+
+FileSummary summarize(const fs::path& path) {
+  FileSummary s = summarizeContent(path);
+  const PronomIdentity id = identifyPronomFile(path);
+  s.puid = id.puid;
+  s.pronom = id.describe();
+  return s;
+}
+
 std::string FileSummary::toText() const {
   std::ostringstream o;
   o << "file: " << path << "\n" << "kind: " << kind << "\n" << "format: " << format << "\n";
@@ -143,6 +156,7 @@ std::string FileSummary::toText() const {
     list("scale", scale);
     list("bias", bias);
   }
+  o << "PRONOM: " << pronom << "\n";
   o << "bytes: " << fileBytes;
   for (const std::string& n : notes) o << "\nnote: " << n;
   return o.str();
@@ -165,6 +179,7 @@ std::string FileSummary::toJson() const {
     j.endArray();
     j.key("trailingBytes").value(static_cast<unsigned long long>(trailingBytes));
   }
+  j.key("puid").value(puid).key("pronom").value(pronom);
   j.key("bytes").value(static_cast<unsigned long long>(fileBytes));
   j.key("notes").beginArray();
   for (const std::string& n : notes) j.value(n);

@@ -28,6 +28,8 @@ struct FileSummary {
   std::vector<double> bias;    // per term, as stored
   int lightCount = 0;          // .lp only
   double minElevationDegrees = 0, maxElevationDegrees = 0;  // .lp only: asin(lz)
+  std::string puid;             // PRONOM identifier from the bytes (formats/pronom.h), "" if none
+  std::string pronom;           // PronomIdentity::describe(): the format's name and PUID, or why none
   std::uint64_t fileBytes = 0;
   std::uint64_t trailingBytes = 0;  // bytes after the payload (ignored by readers)
   std::vector<std::string> notes;   // compatibility remarks, one sentence each

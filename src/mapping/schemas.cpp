@@ -231,6 +231,7 @@ std::vector<std::string> packagedResources() {
       "mappings/carrier-to-crm.md",
       "mappings/carrier-to-mets.md",
       "mappings/carrier-to-ro-crate.md",
+      "mappings/pronom.md",  // the PRONOM identifiers carrier-to-mets.md refers to
       "xsd/SOURCE.md",
       "xsd/carrier.xsd",
       "xsd/catalog.xml",

@@ -183,8 +183,10 @@ pipeline::StageInfo AuditStage::info() {
   // photograph, light and scale, and every photograph's prior light with its errors.
   // Also in version 5: RTIBuilder's processing logs among the prior work are read, listed and
   // compared with the capture (audit/rtibuilder_log.h); the result has a section per log.
+  // Version 6: the difference PNGs carry an iTXt chunk (PNG 1.2, fmt/13) and their PRONOM
+  // identifier is recorded (formats/pronom.h); the pixels are the same.
   pipeline::StageInfo info = pipeline::withOptions<AuditStageOptions>(
-      {kComponent, "5",
+      {kComponent, "6",
        "Audit of prior work: its light file against Surrogate's lights, its model against the "
        "photographs beside Surrogate's refits, and a verdict",
        pipeline::PlanSlot::PriorWork});

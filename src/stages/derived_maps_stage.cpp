@@ -157,8 +157,10 @@ pipeline::StageInfo DerivedMapsStage::info() {
       // fit matrix composed with the basis (src/fit/lambert.h), a different rounding that can
       // move a sample by one level; its PNG files are encoded with fixed Up filters and
       // run-length deflate (src/image/png_encoder.h). Version 3: those PNG files compressed by
-      // libdeflate at level 1 (src/image/png_encoder.h).
-      {kComponent, "3", "Surface normals, albedo and relit previews from a model",
+      // libdeflate at level 1 (src/image/png_encoder.h). Version 4: the PNG files carry an iTXt
+      // chunk (PNG 1.2, fmt/13) and their PRONOM identifier is recorded (formats/pronom.h); the
+      // pixels are the same.
+      {kComponent, "4", "Surface normals, albedo and relit previews from a model",
        pipeline::PlanSlot::AfterModels});
   info.forModel = [](const std::string& basis) {
     DerivedMapsOptions o;

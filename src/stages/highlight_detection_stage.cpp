@@ -78,8 +78,10 @@ pipeline::StageInfo HighlightDetectionStage::info() {
   // 5: PNG files compressed by libdeflate at level 1 (src/image/png_encoder.h)
   // 6: the highlight is the core of the image's rise above the stack's median (blurred), not
   //    the spot nearest the centre; specks and streaks refused by compactness and roundness
+  // 7: the overview PNG carries an iTXt chunk (PNG 1.2, fmt/13) and its PRONOM identifier is
+  //    recorded (formats/pronom.h); the pixels are the same
   pipeline::StageInfo info = pipeline::withOptions<hrti::HighlightOptions>(
-      {kComponent, "6",
+      {kComponent, "7",
        "Find the specular highlight on each sphere in each image: the peak of the image's rise "
        "above the stack's median, blurred; the weighted centroid of its core",
        pipeline::PlanSlot::LightsFromSpheres});

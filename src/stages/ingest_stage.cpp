@@ -9,6 +9,7 @@
 #include "core/digest.h"
 #include "core/parallel.h"
 #include "core/text.h"
+#include "formats/pronom.h"
 #include "image/decode.h"
 #include "meta/metadata.h"
 #include "pipeline/context.h"
@@ -28,37 +29,33 @@ using capture::kReportPath;
 struct KnownFormat {
   const char* ext;
   const char* mediaType;
-  const char* puid;
 };
 
-// Media type and PRONOM identifier by extension, only where the identifier is certain for every
-// file of that kind (DNG and JPEG identifiers depend on the version inside the file: left out).
+// Media type by extension. The PRONOM identifier is not among them: it comes from the bytes
+// (formats/pronom.h), as DROID and Siegfried find it.
 const KnownFormat* byExtension(const std::string& ext) {
   static const KnownFormat kKnown[] = {
-      {".cr2", "image/x-canon-cr2", "fmt/592"}, {".crw", "image/x-canon-crw", "fmt/593"},
-      {".cr3", "image/x-canon-cr3", "fmt/1595"}, {".nef", "image/x-nikon-nef", "fmt/202"},
-      {".dng", "image/x-adobe-dng", ""},          {".jpg", "image/jpeg", ""},
-      {".jpeg", "image/jpeg", ""},                {".tif", "image/tiff", "fmt/353"},
-      {".tiff", "image/tiff", "fmt/353"},         {".png", "image/png", ""},
-      {".lp", "text/plain", ""},                  {".xmp", "application/rdf+xml", ""},
+      {".cr2", "image/x-canon-cr2"}, {".crw", "image/x-canon-crw"}, {".cr3", "image/x-canon-cr3"},
+      {".nef", "image/x-nikon-nef"}, {".dng", "image/x-adobe-dng"}, {".jpg", "image/jpeg"},
+      {".jpeg", "image/jpeg"},       {".tif", "image/tiff"},        {".tiff", "image/tiff"},
+      {".png", "image/png"},         {".lp", "text/plain"},         {".xmp", "application/rdf+xml"},
   };
   for (const KnownFormat& k : kKnown)
     if (ext == k.ext) return &k;
   return nullptr;
 }
 
-// Media type and PRONOM identifier. An image's come from its content (the format the probe
-// found: JPEG, PNG, TIFF, DNG), not its name: a PNG named .jpg is image/png. Camera raws other
-// than DNG share the TIFF container, so their extension names the camera format. Returns a
-// warning when the name says another format than the content.
+// Media type and PRONOM identifier. The identifier comes from the file's bytes; an image's
+// media type from its content (the format the probe found: JPEG, PNG, TIFF, DNG), not its name:
+// a PNG named .jpg is image/png. Camera raws other than DNG share the TIFF container, so their
+// extension names the camera format. Returns a warning when the name says another format than
+// the content.
 std::string setFormatIdentifiers(carrier::FileRecord& f, const fs::path& abs, bool isImage) {
+  f.puid = formats::identifyPronomFile(abs).puid;
   const std::string ext = lowerCase(fs::path(f.path).extension().string());
   const KnownFormat* named = byExtension(ext);
   if (!isImage) {
-    if (named) {
-      f.mediaType = named->mediaType;
-      f.puid = named->puid;
-    }
+    if (named) f.mediaType = named->mediaType;
     return {};
   }
   const char* contentExt = f.format == "JPEG" ? ".jpg" : f.format == "PNG" ? ".png" : f.format == "TIFF" ? ".tif" : "";
@@ -67,10 +64,7 @@ std::string setFormatIdentifiers(carrier::FileRecord& f, const fs::path& abs, bo
     contentExt = ".dng";
   }
   const KnownFormat* content = *contentExt ? byExtension(contentExt) : named;
-  if (content) {
-    f.mediaType = content->mediaType;
-    f.puid = content->puid;
-  }
+  if (content) f.mediaType = content->mediaType;
   if (named && content && std::string(named->mediaType) != content->mediaType)
     return f.path + " is a " + f.format + " file named " + ext + ": recorded as " + content->mediaType +
            " (from its content, not its name); rename it to " + contentExt + " so that other software "
@@ -233,6 +227,7 @@ ReadFile readFile(const PendingFile& p, const fs::path& capture) {
     f.madeBy = prior.madeBy;
     f.format = prior.format;
     f.mediaType = prior.mediaType;
+    f.puid = formats::identifyPronomFile(abs).puid;
     out.formatWarning = prior.warning;
     return out;
   }
@@ -390,8 +385,10 @@ std::shared_ptr<InputImages> chooseInputs(pipeline::Context& ctx, carrier::Resul
 pipeline::StageInfo IngestStage::info() {
   // 2: other files of the capture recorded (role "other"), system files left out, links
   // refused, the dome .lp chosen by the "lp" parameter, recorded originals compared.
+  // 3: every file's PRONOM identifier from its bytes (formats/pronom.h): JPEG, DNG, PNG and
+  //    XMP ones too, which had none; camera raws are no longer identified by extension.
   // Its parameters (source, lp) come from the request, not from defaults (run/plan.cpp).
-  pipeline::StageInfo info{kComponent, "2", "Read the capture folder, hash every file, read EXIF/XMP",
+  pipeline::StageInfo info{kComponent, "3", "Read the capture folder, hash every file, read EXIF/XMP",
                            pipeline::PlanSlot::Ingest};
   info.reads = pipeline::alwaysReads({});
   return info;

@@ -2,6 +2,7 @@
 
 #include "core/digest.h"
 #include "core/error.h"
+#include "formats/pronom.h"
 #include "image/write.h"
 
 namespace surrogate::stages {
@@ -32,6 +33,7 @@ std::string recordOutput(pipeline::Context& ctx, const carrier::Step& step,
   f.sha256 = d.sha256;
   f.format = format;
   f.mediaType = mediaType;
+  f.puid = formats::identifyPronomFile(ctx.outputPath(relativePath)).puid;  // from the bytes, as DROID
   f.createdBy = step.id;
   const std::string id = ctx.carrier.putFile(std::move(f));
   result.add("output").set("file", id).set("kind", kind);

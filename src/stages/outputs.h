@@ -13,7 +13,8 @@
 namespace surrogate::stages {
 
 // Records the already written file `relativePath` (relative to the capture) as an output of
-// `step`: hashes it, adds or replaces its <file> record, and adds <output kind=...>.
+// `step`: hashes it, identifies its PRONOM format from its bytes (formats/pronom.h), adds or
+// replaces its <file> record, and adds <output kind=...>.
 std::string recordOutput(pipeline::Context& ctx, const carrier::Step& step,
                          carrier::Result& result, const std::string& relativePath,
                          const std::string& role, const std::string& format,

@@ -106,7 +106,9 @@ pipeline::StageInfo RtiFitStage::info() {
       // (hrti/light_checks.h), and an image the model misses far more than the others stops
       // the run unless the check is accepted. Version 4: every fit records the light matrix's
       // condition and the quantisation noise gain (how well the lights support the basis).
-      {kComponent, "4", "Least-squares fit of a per-pixel reflectance model over the light directions",
+      // Version 5: a .ptm's PRONOM identifier (fmt/519) is recorded (formats/pronom.h); the
+      // files are the same.
+      {kComponent, "5", "Least-squares fit of a per-pixel reflectance model over the light directions",
        pipeline::PlanSlot::EachModel});
   info.forModel = [](const std::string& basis) { return RtiFitOptions::forBasis(basis).toParameters(); };
   info.outputs = [](const carrier::Step& step) {

@@ -53,8 +53,10 @@ pipeline::StageInfo SphereDetectionStage::info() {
   //    highlight moving in it (evidence, recorded); no darkness test (chrome spheres)
   // 6: circles searched and fitted in the stack's upper quartile (from four images), and the
   //    rim's confidence counts the edges within a pixel (1 % of the radius) of the circle
+  // 7: the overlay PNG carries an iTXt chunk (PNG 1.2, fmt/13) and its PRONOM identifier is
+  //    recorded (formats/pronom.h); the pixels are the same
   pipeline::StageInfo info = pipeline::withOptions<hrti::SphereDetectionOptions>(
-      {kComponent, "6",
+      {kComponent, "7",
        "Find the reflective spheres: circle Hough transform on the gradient of the stack's upper "
        "quartile, sub-pixel circle fit, highlights that move against the per-pixel median",
        pipeline::PlanSlot::LightsFromSpheres});

@@ -101,8 +101,11 @@ pipeline::StageInfo WebCopyStage::info() {
   // Version 1: the layout of publish/web_layout.h (docs/formats.md, "The web layout").
   // Version 2: the normals and albedo in viewer-data.js come from the Lambertian fit composed
   //            with the basis (src/fit/lambert.h), a different rounding that can move a sample.
+  // Version 3: each file's PRONOM identifier is recorded (formats/pronom.h: the planes, with
+  //            libjpeg's Adobe marker and no JFIF one, are a raw JPEG stream, fmt/41; the viewer
+  //            HTML 5, fmt/471); the files are the same.
   pipeline::StageInfo info = pipeline::withOptions<WebCopyOptions>(
-      {kComponent, "2", "Web copy of a model: info.json, JPEG coefficient planes and a viewer",
+      {kComponent, "3", "Web copy of a model: info.json, JPEG coefficient planes and a viewer",
        pipeline::PlanSlot::Publish});
   info.forModel = [](const std::string& basis) {
     return pipeline::Parameters{{"model", fit::basisName(fit::parseBasis(basis))}};

@@ -113,6 +113,25 @@ TEST_CASE("info describes an XMP sidecar as a sidecar") {
   CHECK_THAT(r.output, !Contains("unsupported") && !Contains("not an image"));
   const e2e::CommandResult j = info(fixture("raw-metadata/StaffPhotographer-Example.xmp"), " --json");
   CHECK_THAT(j.output, Contains("{\"kind\":\"xmp-sidecar\",\"bytes\":10715,\"software\":\"Adobe Photoshop CS Windows\""));
+  // Its PRONOM format, from its bytes (mappings/pronom.md).
+  CHECK_THAT(r.output, Contains("  PRONOM:      Extensible Metadata Platform Packet (fmt/570)\n"));
+  CHECK_THAT(j.output, Contains("\"puid\":\"fmt/570\",\"pronom\":\"Extensible Metadata Platform Packet (fmt/570)\"}"));
+}
+
+TEST_CASE("info names an image's and a model's PRONOM format from their bytes") {
+  const e2e::CommandResult dng = info(fixture("raw-metadata/IMG_1361.dng"));
+  INFO(dng.output);
+  CHECK_THAT(dng.output, Contains("\n  PRONOM:      Digital Negative Format (DNG) 1.4 (fmt/730)\n"));
+  const e2e::CommandResult jpeg = info(fixture("raw-metadata/DSC_3079.jpg"), " --json");
+  INFO(jpeg.output);
+  CHECK_THAT(jpeg.output, Contains("{\"kind\":\"image\",\"puid\":\"fmt/43\",\"pronom\":\"JPEG File Interchange Format 1.01 (fmt/43)\","));
+  const fs::path capture = e2e::processedCapture(e2e::freshDir("info-pronom"));
+  const e2e::CommandResult ptm = info(capture / "finished-files/ptm-lrgb.ptm");
+  INFO(ptm.output);
+  CHECK_THAT(ptm.output, Contains("\nPRONOM: Polynomial Texture Map (fmt/519)\n"));
+  const e2e::CommandResult rti = info(capture / "finished-files/hsh2.rti", " --json");
+  INFO(rti.output);
+  CHECK_THAT(rti.output, Contains("\"puid\":\"\",\"pronom\":\"no PRONOM signature matches\""));
 }
 
 TEST_CASE("info on a carrier lists decisions with what and who and when and why and the exclusions and creators and metadata") {

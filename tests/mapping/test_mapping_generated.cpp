@@ -2,6 +2,7 @@
 // metadata/mets.xml and metadata/crm.rdf read as a repository's ingest would read them.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -10,7 +11,9 @@
 #include "carrier/carrier.h"
 #include "core/digest.h"
 #include "e2e_support.h"
+#include "formats/pronom.h"
 #include "mapping/mapping.h"
+#include "pronom_reference.h"
 
 namespace fs = std::filesystem;
 using namespace surrogate;
@@ -162,16 +165,46 @@ TEST_CASE("generated capture: formats with version and PRONOM identifier where c
   CHECK(objectText(p.mets, "data/finished-files/report.html").find("<premis:formatRegistryKey>fmt/471</premis:formatRegistryKey>") != std::string::npos);
   const std::string ptm = objectText(p.mets, "data/finished-files/ptm-lrgb.ptm");
   CHECK(ptm.find("<premis:formatVersion>1.2</premis:formatVersion>") != std::string::npos);
-  CHECK(ptm.find("PRONOM has no entry for PTM") != std::string::npos);
-  CHECK(ptm.find("<premis:formatRegistryKey>") == std::string::npos);
+  CHECK(ptm.find("<premis:formatRegistryKey>fmt/519</premis:formatRegistryKey>") != std::string::npos);
   CHECK(objectText(p.mets, "data/finished-files/hsh2.rti").find("PRONOM has no entry") != std::string::npos);
   CHECK(objectText(p.mets, "data/assembly-files/lights.lp").find("PRONOM has no entry") != std::string::npos);
   const std::string dng = objectText(p.mets, "data/original-captures/IMG_0001.dng");
   CHECK(dng.find("<premis:formatName>Digital Negative Format (DNG)</premis:formatName>") != std::string::npos);
-  CHECK(dng.find("does not record the DNGVersion") != std::string::npos);
+  CHECK(dng.find("<premis:formatRegistryKey>fmt/730</premis:formatRegistryKey>") != std::string::npos);
+  CHECK(objectText(p.mets, "data/jpeg-exports/IMG_0001.jpg").find("<premis:formatRegistryKey>fmt/43</premis:formatRegistryKey>") != std::string::npos);
   // Both fixities and the size on every file object.
   CHECK(count(p.mets, "<premis:messageDigestAlgorithm>SHA-512</premis:messageDigestAlgorithm>") ==
         count(p.mets, "<premis:messageDigestAlgorithm>SHA-256</premis:messageDigestAlgorithm>"));
+}
+
+// Issue 42: every payload file's PRONOM identifier in mets.xml is the one PRONOM's published
+// signatures give its bytes (tests/formats/pronom_reference.h, release 118), and is absent where
+// they give none.
+TEST_CASE("generated capture: every PRONOM identifier in mets.xml is the one PRONOM's signatures give the file", "[mapping][generated][premis][formats][pronom]") {
+  const Packed& p = packed();
+  std::vector<std::string> paths = {"assembly-files/carrier.xml", "finished-files/report.html"};
+  for (const carrier::FileRecord& f : p.carrier.files) paths.push_back(f.path);
+  std::set<std::string> seen;
+  for (const std::string& path : paths) {
+    INFO(path);
+    const std::string object = objectText(p.mets, "data/" + path);
+    REQUIRE_FALSE(object.empty());
+    const std::string bytes = e2e::bytesOf(p.package / "data" / path);
+    const formats::PronomIdentity id = formats::identifyPronom(bytes);
+    if (!id.identified()) {
+      CHECK(object.find("<premis:formatRegistryKey>") == std::string::npos);
+      continue;
+    }
+    CHECK(object.find("<premis:formatRegistryKey>" + id.puid + "</premis:formatRegistryKey>") != std::string::npos);
+    seen.insert(id.puid);
+    const auto kept = pronom_reference::puids();
+    if (std::find(kept.begin(), kept.end(), id.puid) == kept.end()) continue;
+    CHECK(pronom_reference::matches(id.puid, bytes));
+    for (const std::string& preferred : pronom_reference::preferredTo(id.puid)) CHECK_FALSE(pronom_reference::matches(preferred, bytes));
+  }
+  // DNG 1.4 originals, JFIF 1.01 exports, PNG 1.2 pictures, a PTM, the HTML 5 report, the
+  // carrier (XML 1.0).
+  CHECK(seen == std::set<std::string>{"fmt/730", "fmt/43", "fmt/13", "fmt/519", "fmt/471", "fmt/101"});
 }
 
 TEST_CASE("generated capture: JPEG exports are flagged as processed outside Surrogate, the capture date says it has no zone", "[mapping][generated][premis]") {
