@@ -25,6 +25,7 @@
 #include "stages/ingest_stage.h"
 #include "stages/registry.h"
 #include "stages/prior_work.h"
+#include "run/descriptive_run.h"
 #include "run/request_checks.h"
 #include "run/run_commit.h"
 
@@ -303,13 +304,18 @@ carrier::Carrier runCapture(const fs::path& captureArg, const RunRequest& reques
   carrier::Carrier c = planRunWithAudit(capture, previous ? &*previous : nullptr, merged);
   // Before anything runs: never a plan that writes over a file another tool made. The files
   // are listed again: recoverRun may have just finished an interrupted commit.
-  stages::refuseOutputsOverPriorWork(capture::listOutputFolderFiles(capture), previous ? &*previous : nullptr,
-                             stages::plannedOutputs(c));
+  const std::vector<std::string> outputFolderFiles = capture::listOutputFolderFiles(capture);
+  stages::refuseOutputsOverPriorWork(outputFolderFiles, previous ? &*previous : nullptr, stages::plannedOutputs(c));
   pipeline::RunSettings s = settings;
   if (s.who.empty()) s.who = request.who.empty() ? defaultWho() : request.who;
   carrier::RunRecord record{"r" + std::to_string((previous ? previous->header.runs.size() : 0) + 1),
                             request.command, s.who, carrier::timestampNow(), "", "",
                             request.arguments, changes};
+  // A title, creator, rights, licence or --meta change alone, on a complete record whose files
+  // are as recorded: no step runs again (run/descriptive_run.h).
+  if (previous && !request.lightsOnly && !request.audited &&
+      onlyDescriptiveChange(capture, layout, outputFolderFiles, *previous, c, s.threads))
+    return commitDescriptiveRun(capture, *previous, c, record);
   if (previous) {
     c.header.created = previous->header.created;
     c.header.runs = previous->header.runs;
