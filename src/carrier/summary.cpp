@@ -62,6 +62,11 @@ CarrierSummary describeCarrier(const Carrier& c) {
     if (step.component == "CaptureIngest" && step.hasParam("lp")) s.domeLights.push_back(step.param("lp"));
   }
   s.runs = c.header.runs;
+  for (const LogEntry& e : c.log) {
+    if (e.level != "warning") continue;
+    const Step* step = c.findStep(e.step);
+    s.warnings.push_back({e.step, step ? step->component : "", e.time, e.text});
+  }
   return s;
 }
 

@@ -33,6 +33,12 @@ struct DecisionSummary {
   std::string what;
 };
 
+// One warning of the carrier's log (a log entry of level "warning"), with the step that logged
+// it and that step's component ("" when the log names no step of the process list).
+struct WarningSummary {
+  std::string step, component, time, text;
+};
+
 struct CarrierSummary {
   std::string title, created, modified, hostname, rights, license;
   std::vector<Creator> creators;
@@ -44,6 +50,7 @@ struct CarrierSummary {
   std::vector<DecisionSummary> exclusions;     // those of kind exclude-image, in step order
   std::vector<std::string> domeLights;         // the .lp of each CaptureIngest step that names one
   std::vector<RunRecord> runs;                 // oldest first
+  std::vector<WarningSummary> warnings;        // in the log's order
 };
 
 CarrierSummary describeCarrier(const Carrier& c);

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/text.h"
 
 namespace surrogate::cli {
 
@@ -40,7 +41,13 @@ Args::Args(int argc, char** argv, int first, std::vector<OptionSpec> specs) {
     const OptionSpec* spec = nullptr;
     for (const OptionSpec& s : specs)
       if (s.name == name) spec = &s;
-    if (!spec) usage("--" + name, "is not an option of this command (see --help)");
+    if (!spec) {
+      std::vector<std::string> names;
+      for (const OptionSpec& s : specs) names.push_back(s.name);
+      const auto near = nearestName(name, names);
+      usage("--" + name, "is not an option of this command" +
+                             (near ? "; did you mean --" + *near + "?" : std::string(" (see --help)")));
+    }
     if (spec->takesValue && !inlineValue) {
       if (i + 1 >= argc) usage("--" + name, "needs a value: --" + name + " " + spec->valueName);
       value = argv[++i];

@@ -34,6 +34,7 @@ int runCommandLights(int argc, char** argv) {
   if (args.positional().size() != 1 || !out)
     throw Error(ErrorKind::Usage, "", "command line", "give the capture and the output: surrogate lights CAPTURE -o FILE.lp");
   const fs::path capture = args.positional()[0];
+  refuseCaptureSubfolder(capture, "lights");
   checkOutputFile("-o", *out, "lights.lp");  // before the run, not after it
   run::RunRequest request = requestFrom(args);
   request.lightsOnly = true;

@@ -20,6 +20,7 @@
 #include "stages/registry.h"
 #include "cli/args.h"
 #include "cli/commands.h"
+#include "cli/option_checks.h"
 #include "cli/pipeline_options.h"
 #include "cli/progress.h"
 #include "core/error.h"
@@ -118,6 +119,7 @@ std::pair<std::string, std::string> captureAndOutput(const Args& args) {
     throw Error(ErrorKind::Usage, "", "command line",
                 "give the capture and the output: surrogate pack CAPTURE -o OUT (see --help)");
   const std::string capture = args.positional()[0];
+  refuseCaptureSubfolder(capture, "pack");
   std::error_code ec;  // a symbolic-link loop is no folder either, not an internal error
   if (!std::filesystem::is_directory(capture, ec))
     throw Error(ErrorKind::Usage, capture, "command line",

@@ -11,9 +11,11 @@
 #include "cli/args.h"
 #include "cli/pipeline_options.h"
 #include "cli/commands.h"
+#include "cli/option_checks.h"
 #include "cli/progress.h"
 #include "core/error.h"
 #include "core/json.h"
+#include "core/text.h"
 #include "report/report.h"
 #include "stages/ingest_stage.h"
 #include "run/plan.h"
@@ -42,6 +44,9 @@ class CopiesByPath {
 };
 }  // namespace
 
+// The most lines of warnings `run` prints: a screenful with the lines above them.
+constexpr std::size_t kWarningLines = 15;
+
 int runCommandRun(int argc, char** argv) {
   std::vector<OptionSpec> specs = pipelineOptions(true);
   for (const OptionSpec& o : runtimeOptions()) specs.push_back(o);
@@ -58,6 +63,7 @@ int runCommandRun(int argc, char** argv) {
     throw Error(ErrorKind::Usage, "", "command line",
                 "give exactly one capture folder: surrogate run CAPTURE (see --help)");
   const std::string capture = args.positional()[0];
+  refuseCaptureSubfolder(capture, "run");
   const run::RunRequest request = requestFrom(args);
 
   ProgressBar bar(args.has("quiet") || args.has("json"));
@@ -118,6 +124,12 @@ int runCommandRun(int argc, char** argv) {
       for (const std::string& n : c.header.runs.back().notes) j.value(n);
       j.endArray();
     }
+    // Every warning, as `info --json` lists them (carrier::describeCarrier).
+    j.key("warnings").beginArray();
+    for (const carrier::WarningSummary& w : carrier::describeCarrier(c).warnings)
+      j.beginObject().key("step").value(w.step).key("component").value(w.component).key("time").value(w.time)
+          .key("text").value(w.text).endObject();
+    j.endArray();
     j.endObject();
     std::cout << j.str() << "\n";
   } else {
@@ -148,11 +160,9 @@ int runCommandRun(int argc, char** argv) {
       std::cout << "  report (open in a browser): " << reportPath << "\n";
       for (const std::string& g : rep->coverageGaps) std::cout << "  coverage: " << g << "\n";
     }
-    printStageWarnings(c);
-    int warnings = 0;
-    for (const carrier::LogEntry& e : c.log) warnings += e.level == "warning";
-    if (warnings > 0)
-      std::cout << "  " << warnings << " warning(s) in the carrier's log\n";
+    // Each warning's text where the user looks, at most a screenful (issue 43); info lists all.
+    printWarnings(carrier::describeCarrier(c), kWarningLines,
+                  "surrogate info " + escapedText(capture) + " lists them all");
   }
   return 0;
 }

@@ -3,6 +3,7 @@
 
 #include "cli/args.h"
 #include "cli/commands.h"
+#include "cli/option_checks.h"
 #include "cli/progress.h"
 #include "core/error.h"
 #include "core/json.h"
@@ -183,6 +184,7 @@ int runCommandVerify(int argc, char** argv) {
   if (args.positional().size() != 1)
     throw Error(ErrorKind::Usage, "", "command line",
                 "give exactly one package: surrogate verify PACKAGE [--reexecute] (see --help)");
+  refuseCaptureForPackage(args.positional()[0], "verify");
   verify::VerifyOptions options;
   options.reexecute = args.has("reexecute");
   options.strict = args.has("strict");

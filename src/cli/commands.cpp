@@ -1,8 +1,10 @@
 #include "cli/commands.h"
 
+#include <algorithm>
 #include <iostream>
 #include <set>
 
+#include "core/text.h"
 #include "stages/rti_fit_stage.h"
 #include "stages/highlight_detection_stage.h"
 #include "stages/light_directions_stage.h"
@@ -48,6 +50,38 @@ void printStageWarnings(const carrier::Carrier& c, std::size_t most) {
     ++shown;
   }
   if (more) std::cout << "  and " << more << " more warning(s) on the lights and fits in the carrier's log\n";
+}
+
+void printWarnings(const carrier::CarrierSummary& s, std::size_t mostLines, const std::string& more) {
+  if (s.warnings.empty()) return;
+  // The steps in the order their first warning comes, each with its warnings in log order.
+  std::vector<std::pair<std::string, std::vector<const carrier::WarningSummary*>>> groups;
+  for (const carrier::WarningSummary& w : s.warnings) {
+    const std::string heading = w.step.empty() ? "(no step)" : w.step + (w.component.empty() ? "" : " " + w.component);
+    auto it = std::find_if(groups.begin(), groups.end(), [&](const auto& g) { return g.first == heading; });
+    if (it == groups.end()) it = groups.insert(groups.end(), {heading, {}});
+    it->second.push_back(&w);
+  }
+  // The lines in full: a heading, then its warnings (nullptr marks a heading).
+  std::vector<std::pair<std::string, const carrier::WarningSummary*>> lines;
+  for (const auto& [heading, warnings] : groups) {
+    lines.emplace_back(heading, nullptr);
+    for (const carrier::WarningSummary* w : warnings) lines.emplace_back(w->text, w);
+  }
+  std::size_t keep = lines.size();
+  if (mostLines != 0 && lines.size() > mostLines) {
+    keep = mostLines - 1;  // the last line counts the rest
+    while (keep > 0 && !lines[keep - 1].second) --keep;  // never a heading over nothing
+  }
+  std::size_t shown = 0;
+  std::cout << "  " << s.warnings.size() << (s.warnings.size() == 1 ? " warning" : " warnings")
+            << " in the carrier's log:\n";
+  for (std::size_t i = 0; i < keep; ++i) {
+    // Names from the card may hold control characters: never sent raw to the terminal.
+    std::cout << (lines[i].second ? "      " : "    ") << escapedText(lines[i].first) << (lines[i].second ? "\n" : ":\n");
+    shown += lines[i].second != nullptr;
+  }
+  if (shown < s.warnings.size()) std::cout << "    and " << (s.warnings.size() - shown) << " more: " << more << "\n";
 }
 
 std::string usageHeader(const std::string& synopsis, const std::string& description) {

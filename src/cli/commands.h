@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "carrier/carrier.h"
+#include "carrier/summary.h"
 #include "cli/args.h"
 
 namespace surrogate::cli {
@@ -42,6 +43,12 @@ bool helpShown(const Args& args, const std::vector<OptionSpec>& specs, const std
 // two, a doubtful one, an accepted check, a fit damped for its narrow cone of lights. The user
 // reads them here, not only in the carrier. At most `most`, then how many more.
 void printStageWarnings(const carrier::Carrier& c, std::size_t most = 8);
+
+// Prints the carrier's warnings (carrier::CarrierSummary::warnings) grouped by the step that
+// logged them, a heading line per step ("    s3 SphereDetection:") over its warnings' one-line
+// texts, in at most `mostLines` lines in all (0: no limit); the warnings left out are counted
+// in one more line, "and N more: " + `more`. Prints nothing when there are none.
+void printWarnings(const carrier::CarrierSummary& s, std::size_t mostLines, const std::string& more);
 
 // The file a command writes: -o (also --o) or --output.
 std::optional<std::string> outputOption(const Args& args);

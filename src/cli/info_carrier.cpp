@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "carrier/summary.h"
+#include "cli/commands.h"
 #include "cli/info_print.h"
 #include "core/error.h"
 #include "core/text.h"
@@ -213,6 +214,10 @@ void carrierJson(JsonWriter& j, const carrier::Carrier& c) {
     for (const std::string& n : r.notes) j.value(n);
     j.endArray().endObject();
   }
+  j.endArray().key("warnings").beginArray();
+  for (const carrier::WarningSummary& w : s.warnings)
+    j.beginObject().key("step").value(w.step).key("component").value(w.component).key("time").value(w.time)
+        .key("text").value(w.text).endObject();
   j.endArray().endObject();
 }
 
@@ -233,6 +238,8 @@ void printCarrierText(const carrier::Carrier& c) {
     std::cout << "\n";
   }
   printDecisionsAndRuns(c, s);
+  if (s.warnings.empty()) std::cout << "  warnings: none\n";
+  else printWarnings(s, 0, "");
 }
 
 void printCarrier(const std::filesystem::path& path, bool json) {

@@ -10,6 +10,7 @@
 #include <exception>
 #include <iostream>
 #include <string>
+#include <vector>
 
 #include "cli/commands.h"
 #include "core/error.h"
@@ -59,8 +60,11 @@ std::string commandNames() {
 }
 
 int unknownCommand(const std::string& how, const std::string& name) {
-  std::cerr << "surrogate" << how << ": unknown command \"" << name << "\"; the commands are "
-            << commandNames() << " (surrogate --help describes them)\n";
+  std::vector<std::string> names;
+  for (const cli::Command& c : cli::commands()) names.push_back(c.name);
+  std::cerr << "surrogate" << how << ": unknown command \"" << escapedText(name) << "\"; ";
+  if (const auto near = nearestName(name, names)) std::cerr << "did you mean " << *near << "? ";
+  std::cerr << "the commands are " << commandNames() << " (surrogate --help describes them)\n";
   return static_cast<int>(ErrorKind::Usage);
 }
 

@@ -7,6 +7,7 @@
 #include <system_error>
 
 #include "archive/bag.h"
+#include "capture/capture.h"
 #include "capture/output_rule.h"
 #include "core/error.h"
 #include "core/text.h"
@@ -167,6 +168,54 @@ void checkOutputFile(const std::string& option, const std::filesystem::path& out
   if (!fs::is_directory(st))
     usage(named, "is in " + parent.string() + ", which is not a folder; write elsewhere");
   capture::checkOutputTarget(output, option, capture::ExistingOutput::Replace);
+}
+
+namespace {
+// The folders a capture holds, by the names capture/capture.h gives them.
+const char* const kCaptureFolders[] = {"original-captures", "raw-images", capture::kExportsDir, capture::kAssemblyDir,
+                                       capture::kFinishedDir};
+
+// `path` as the user typed it, without trailing separators ("CAPTURE/original-captures/").
+std::filesystem::path withoutTrailingSlash(const std::filesystem::path& path) {
+  std::string text = path.string();
+  while (text.size() > 1 && text.back() == '/') text.pop_back();
+  return text;
+}
+
+bool hasCaptureFolder(const std::filesystem::path& folder) {
+  std::error_code ec;
+  for (const char* dir : kCaptureFolders)
+    if (std::filesystem::is_directory(folder / dir, ec)) return true;
+  return false;
+}
+}  // namespace
+
+void refuseCaptureSubfolder(const std::filesystem::path& folder, const std::string& command) {
+  std::error_code ec;
+  if (!std::filesystem::is_directory(folder, ec) || hasCaptureFolder(folder)) return;
+  const std::filesystem::path given = withoutTrailingSlash(folder);
+  const std::string name = given.filename().string();
+  if (std::none_of(std::begin(kCaptureFolders), std::end(kCaptureFolders), [&](const char* d) { return name == d; }))
+    return;
+  // The parent as the user can type it: "." when the folder was given by its name alone.
+  std::filesystem::path parent = given.parent_path();
+  if (parent.empty()) parent = ".";
+  throw Error(ErrorKind::Usage, escapedText(given.string()), "command line",
+              "is the " + name + " folder of a capture; " + command + " works on the capture folder, its parent: "
+              "surrogate " + command + " " + escapedText(parent.string()));
+}
+
+void refuseCaptureForPackage(const std::filesystem::path& path, const std::string& command) {
+  std::error_code ec;
+  if (!std::filesystem::is_directory(path, ec) || std::filesystem::exists(path / "bagit.txt", ec)) return;
+  bool capture = std::filesystem::is_regular_file(path / capture::kCarrierPath, ec);
+  for (const char* dir : {"original-captures", "raw-images", capture::kExportsDir})
+    capture = capture || std::filesystem::is_directory(path / dir, ec);
+  if (!capture) return;
+  const std::string name = escapedText(withoutTrailingSlash(path).string());
+  throw Error(ErrorKind::Usage, name, "command line",
+              "is a capture, not a package: pack it first with surrogate pack " + name + " -o OUT, then " +
+                  command + " OUT");
 }
 
 }  // namespace surrogate::cli

@@ -28,6 +28,17 @@ int threadsOption(const Args& args);
 void checkOutputFile(const std::string& option, const std::filesystem::path& output,
                      const std::string& example);
 
+// A folder inside a capture given where the capture is meant (`run CAPTURE/original-captures`):
+// Error(Usage) naming the folder and saying to give its parent ("surrogate `command` PARENT").
+// The folders recognised are original-captures/, raw-images/, jpeg-exports/, assembly-files/
+// and finished-files/, when the folder given is not itself a capture (has none of them).
+void refuseCaptureSubfolder(const std::filesystem::path& folder, const std::string& command);
+
+// A capture folder given to a command that wants a package (`verify CAPTURE`): Error(Usage)
+// saying to pack it first. A folder is a capture when it has no bagit.txt and has
+// original-captures/, raw-images/, jpeg-exports/ or assembly-files/carrier.xml.
+void refuseCaptureForPackage(const std::filesystem::path& path, const std::string& command);
+
 // Lens and sphere measures in millimetres that any real capture falls within.
 inline constexpr double kMinFocalLengthMm = 0.5, kMaxFocalLengthMm = 10000;
 inline constexpr double kMinPixelPitchMm = 0.0001, kMaxPixelPitchMm = 1;

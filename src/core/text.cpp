@@ -128,4 +128,47 @@ std::string listedWithMore(const std::vector<std::string>& items, std::size_t mo
   return out;
 }
 
+std::size_t editDistance(const std::string& a, const std::string& b) {
+  // Three rows of the dynamic-programming table: the swap looks two rows back.
+  std::vector<std::size_t> before(b.size() + 1), previous(b.size() + 1), row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) previous[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t cost = a[i - 1] == b[j - 1] ? 0 : 1;
+      row[j] = std::min({previous[j] + 1, row[j - 1] + 1, previous[j - 1] + cost});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) row[j] = std::min(row[j], before[j - 2] + 1);
+    }
+    before.swap(previous);
+    previous.swap(row);
+  }
+  return previous[b.size()];
+}
+
+std::optional<std::string> nearestName(const std::string& name, const std::vector<std::string>& candidates) {
+  if (name.empty()) return std::nullopt;
+  std::optional<std::string> best;
+  std::size_t bestDistance = 3;
+  bool tie = false;
+  for (const std::string& c : candidates) {
+    const std::size_t d = editDistance(name, c);
+    if (d == 0 || 2 * d >= name.size()) continue;
+    if (d < bestDistance) {
+      best = c;
+      bestDistance = d;
+      tie = false;
+    } else if (d == bestDistance && c != *best) {
+      tie = true;
+    }
+  }
+  if (best && !tie) return best;
+  std::optional<std::string> prefixed;
+  for (const std::string& c : candidates) {
+    if (c.size() <= name.size() || c.compare(0, name.size(), name) != 0) continue;
+    if (prefixed && *prefixed != c) return std::nullopt;
+    prefixed = c;
+  }
+  return prefixed;
+}
+
 }  // namespace surrogate

@@ -1,6 +1,7 @@
 // Small text helpers every library needs; one copy of each.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -42,5 +43,16 @@ std::string hexBytes(const std::string& bytes);
 // The first `most` items joined by ", ", then " and N more" for the rest: "IMG_0003, IMG_0007
 // and 2 more". The one way messages list names.
 std::string listedWithMore(const std::vector<std::string>& items, std::size_t most);
+
+// The number of single-byte insertions, deletions, substitutions and swaps of two neighbours
+// that turn `a` into `b` (the optimal string alignment distance, a restricted
+// Damerau-Levenshtein): "verfy" to "verify" is 1, "titel" to "title" is 1 (a swap).
+std::size_t editDistance(const std::string& a, const std::string& b);
+
+// The candidate a mistyped `name` most likely meant, for "did you mean ...?": the nearest by
+// editDistance when it is at most 2 and less than half of `name`'s length (so that "x" does not
+// suggest "o"), else one `name` is a prefix of (when only one is); none when nothing is close
+// or two are equally near. Candidates are compared as given (case matters).
+std::optional<std::string> nearestName(const std::string& name, const std::vector<std::string>& candidates);
 
 }  // namespace surrogate

@@ -299,6 +299,7 @@ carrier::Carrier runCapture(const fs::path& captureArg, const RunRequest& reques
   addAcceptedDamage(capture, layout, request, merged, changes);
   const auto [width, height] = layout.frameSize();
   checkRequestAgainstFrame(merged, width, height);
+  checkRequestNames(request, layout);
   checkEnoughPhotographs(layout, merged);
 
   carrier::Carrier c = planRunWithAudit(capture, previous ? &*previous : nullptr, merged);

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/text.h"
 #include "stages/frame_checks.h"
 #include "stages/highlight_detection_stage.h"
 #include "stages/preprocess.h"
@@ -148,6 +149,50 @@ void checkRequestAgainstFrame(const RunRequest& request, int width, int height) 
       fullFrame = false;
       w = h = 0;
     }
+  }
+}
+
+namespace {
+// The name the user most likely meant for an image name that names no shot: the shot's file
+// whose name differs from `given` only in case (with its extension when `given` has one, as
+// the user typed it), else the nearest shot name.
+std::optional<std::string> nearestImageName(const std::string& given, const capture::CaptureLayout& layout) {
+  const std::string base = given.substr(given.find_last_of('/') == std::string::npos ? 0 : given.find_last_of('/') + 1);
+  const bool withExtension = base.find('.') != std::string::npos;
+  for (const capture::Shot& shot : layout.shots)
+    for (const std::optional<capture::ImageFile>& f : {shot.original, shot.exported}) {
+      if (!f) continue;
+      const std::string file = f->relativePath.substr(f->relativePath.find_last_of('/') + 1);
+      if (lowerCase(file) == lowerCase(base)) return file;
+      if (!withExtension && lowerCase(shot.stem) == lowerCase(base)) return shot.stem;
+    }
+  std::vector<std::string> stems;
+  for (const capture::Shot& shot : layout.shots) stems.push_back(shot.stem);
+  const std::string stem = withExtension ? base.substr(0, base.rfind('.')) : base;
+  return nearestName(stem, stems);
+}
+}  // namespace
+
+void checkRequestNames(const RunRequest& request, const capture::CaptureLayout& layout) {
+  for (const Exclusion& e : request.exclusions) {
+    if (capture::findShotStem(layout, e.image)) continue;
+    const std::optional<std::string> near = nearestImageName(e.image, layout);
+    usage("--exclude " + escapedText(e.image),
+          "names no image of the capture" + (near ? "; did you mean " + *near + "?" : std::string(".")) +
+              " Give the file name as it is in original-captures/ or jpeg-exports/ (case matters), "
+              "or the shot's name without its extension");
+  }
+  // Highlights given by hand: target "IMAGE:SPHERE"; the highlight detection finds the image
+  // by the same rule, but only once the run is under way.
+  for (const RunRequest::StageIntervention& s : request.stageInterventions) {
+    if (s.component != HighlightDetectionStage::kComponent || s.intervention.kind != "manual-highlight") continue;
+    const std::string& target = s.intervention.target;
+    const std::string image = target.substr(0, target.rfind(':'));
+    if (capture::findShotStem(layout, image)) continue;
+    const std::optional<std::string> near = nearestImageName(image, layout);
+    usage("--highlight " + escapedText(target) + "=" + escapedText(s.intervention.value),
+          "names no image of the capture" + (near ? "; did you mean " + *near + "?" : std::string(".")) +
+              " Give the image as its file or shot name (case matters), e.g. IMG_0004:0=326,70");
   }
 }
 

@@ -7,6 +7,7 @@
 //   run::checkRequestAgainstFrame(request, 400, 300);  // Error(Usage) naming the option
 #pragma once
 
+#include "capture/capture.h"
 #include "run/plan.h"
 
 namespace surrogate::run {
@@ -19,5 +20,15 @@ namespace surrogate::run {
 // Error(Usage) naming the option and its value ("--sphere 900,57,45"), saying what is wrong
 // and what the frame allows.
 void checkRequestAgainstFrame(const RunRequest& request, int width, int height);
+
+// Checks the names the request gives for the capture's images, before any processing and
+// before the run is recorded: each image `--exclude` or `--highlight IMAGE:SPHERE=X,Y` names
+// must be a shot of `layout` (by the rule of capture::findShotStem: a shot's name, a file name
+// or a path). Throws Error(Usage)
+// naming the option and the value, with the nearest name when one is close: the file whose
+// name differs only in case ("IMG_0003.jpg" for img_0003), else a shot within a small edit
+// distance. Decisions standing from earlier runs are not checked again here (the ingest and
+// highlight steps do).
+void checkRequestNames(const RunRequest& request, const capture::CaptureLayout& layout);
 
 }  // namespace surrogate::run

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <cctype>
+#include <regex>
 #include <sstream>
 
 #include "e2e_support.h"
@@ -155,7 +156,8 @@ TEST_CASE("progress stays quiet with --quiet, with --json, and when stderr is no
     INFO(options << "\n" << r.output);
     REQUIRE(r.exitCode == 0);
     CHECK(r.output.find("Decoding images") == std::string::npos);
-    CHECK(r.output.find('%') == std::string::npos);
+    // The bar ends "NN%" (cli/progress.cpp); a warning's text may hold a percentage, "(6.05 %)".
+    CHECK_FALSE(std::regex_search(r.output, std::regex("[0-9]%")));
   }
   const e2e::CommandResult piped = e2e::surrogate("run " + e2e::quote(capture));  // stderr is a pipe
   INFO(piped.output);

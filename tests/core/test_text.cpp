@@ -2,7 +2,9 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "core/error.h"
 #include "core/text.h"
@@ -98,4 +100,42 @@ TEST_CASE("escapedText keeps clean text and writes bad bytes and control charact
   CHECK_FALSE(needsEscaping("Nikon\nD850", true));
   CHECK(hexBytes("Can\xE9n") == "43616ee96e");
   CHECK(hexBytes("") == "");
+}
+
+// The optimal string alignment distance, against the textbook values: kitten/sitting 3 (the
+// classic Levenshtein example), and ca/abc 3, the example that tells this distance from the
+// unrestricted Damerau-Levenshtein one (2): a swapped pair is not edited again.
+TEST_CASE("editDistance counts insertions, deletions, substitutions and swaps of neighbours", "[core][text]") {
+  CHECK(editDistance("kitten", "sitting") == 3);
+  CHECK(editDistance("ca", "abc") == 3);
+  CHECK(editDistance("", "abc") == 3);
+  CHECK(editDistance("abc", "") == 3);
+  CHECK(editDistance("title", "title") == 0);
+  CHECK(editDistance("titel", "title") == 1);   // one swap
+  CHECK(editDistance("verfy", "verify") == 1);  // one insertion
+  CHECK(editDistance("verify", "verfy") == 1);  // symmetric
+  CHECK(editDistance("pakc", "pack") == 1);
+  CHECK(editDistance("IMG_003", "IMG_0003") == 1);
+}
+
+TEST_CASE("nearestName suggests only a close name or the one name a prefix begins", "[core][text]") {
+  const std::vector<std::string> commands = {"run", "pack", "lights", "fit", "render", "publish",
+                                             "info", "report", "verify", "audit"};
+  CHECK(nearestName("verfy", commands) == std::optional<std::string>("verify"));
+  CHECK(nearestName("pakc", commands) == std::optional<std::string>("pack"));
+  CHECK(nearestName("reprot", commands) == std::optional<std::string>("report"));
+  // Too far, or too short for a distance to mean anything.
+  CHECK_FALSE(nearestName("frobnicate", commands));
+  CHECK_FALSE(nearestName("x", commands));
+  CHECK_FALSE(nearestName("rn", commands));  // 1 edit from "run", but half of two letters
+  CHECK_FALSE(nearestName("", commands));
+  CHECK_FALSE(nearestName("run", commands));  // the name itself is no suggestion
+  // Equally near to two: no guess.
+  CHECK_FALSE(nearestName("cat", {"bat", "hat"}));
+  // A prefix of exactly one name, however short; of two, none.
+  CHECK(nearestName("reexec", {"reexecute", "threads"}) == std::optional<std::string>("reexecute"));
+  CHECK(nearestName("pu", {"publish", "pack"}) == std::optional<std::string>("publish"));
+  CHECK_FALSE(nearestName("p", {"publish", "pack"}));
+  // Case matters: the caller compares file names without regard to case itself.
+  CHECK_FALSE(nearestName("TITLE", {"title"}));
 }
