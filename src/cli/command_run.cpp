@@ -18,6 +18,7 @@
 #include "core/text.h"
 #include "report/report.h"
 #include "stages/ingest_stage.h"
+#include "run/descriptive_run.h"
 #include "run/plan.h"
 
 namespace surrogate::cli {
@@ -133,7 +134,10 @@ int runCommandRun(int argc, char** argv) {
     j.endObject();
     std::cout << j.str() << "\n";
   } else {
-    std::cout << "Processed " << capture << " (" << c.process.size() << " steps).\n";
+    if (!c.header.runs.empty() && run::isDescriptiveRun(c.header.runs.back()))
+      std::cout << "Recorded the new description of " << capture << " (no processing step ran again).\n";
+    else
+      std::cout << "Processed " << capture << " (" << c.process.size() << " steps).\n";
     for (const carrier::Step& s : c.process)
       if (s.component == stages::IngestStage::kComponent && s.hasParam("lp"))
         std::cout << "  lights: from " << s.param("lp") << " (dome capture: no sphere or highlight detection)\n";

@@ -119,7 +119,8 @@ carrier::Carrier commitDescriptiveRun(const fs::path& capture, const carrier::Ca
   next.header.meta = planned.header.meta;
   next.header.rights = planned.header.rights;
   next.header.license = planned.header.license;
-  record.notes.push_back("descriptive metadata only: no processing step ran again; the results and "
+  record.notes.push_back(std::string(kDescriptiveRunNote) +
+                         ": no processing step ran again; the results and "
                          "their records stand as the previous run left them (every recorded file "
                          "checked against its SHA-256)");
   record.ended = carrier::timestampNow();
@@ -132,6 +133,12 @@ carrier::Carrier commitDescriptiveRun(const fs::path& capture, const carrier::Ca
   carrier::saveCarrier(next, staging / capture::kCarrierPath);
   commitRun(capture, &previous, next);
   return next;
+}
+
+bool isDescriptiveRun(const carrier::RunRecord& record) {
+  for (const std::string& note : record.notes)
+    if (note.rfind(kDescriptiveRunNote, 0) == 0) return true;
+  return false;
 }
 
 }  // namespace surrogate::run

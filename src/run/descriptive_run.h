@@ -30,6 +30,11 @@ bool onlyDescriptiveChange(const std::filesystem::path& capture, const capture::
                            const std::vector<std::string>& outputFolderFiles, const carrier::Carrier& previous,
                            const carrier::Carrier& planned, int threads);
 
+// How the note of a descriptive-only run begins, and whether `record` is one: the CLI says so
+// rather than "Processed".
+inline constexpr const char* kDescriptiveRunNote = "descriptive metadata only";
+bool isDescriptiveRun(const carrier::RunRecord& record);
+
 // Commits the descriptive-only run: `previous` with `planned`'s title, creators, metadata,
 // rights and licence, a new modified time and `record` (completed, with a note saying that no
 // step ran) appended to its history; files, process, data and log as they were. Written to the
