@@ -524,28 +524,32 @@ h1 { font-size:1.35em; margin:0 0 4px; }
       b.addEventListener("click", function () { choose(b.getAttribute("data-view")); });
     });
 
-    // Test mode: gestures=wheel,X,Y,DY;drag,X0,Y0,X1,Y1;pinch,X,Y,D,S;reset (canvas pixels) are
-    // played on the picture as the browser's own events would come, in order, and the view after
-    // each is recorded as data-pixels-gesture-N with data-camera-gesture-N ("zoom x y").
+    // Test mode: gestures=wheel,X,Y,DY;drag,X0,Y0,X1,Y1;shiftdrag,...;pinch,X,Y,D,S;mode,light;
+    // mode,pan;reset (canvas pixels) are played on the picture as the browser's own events would
+    // come, in order, and the view after each is recorded as data-pixels-gesture-N with
+    // data-camera-gesture-N ("zoom x y") and data-light-gesture-N ("x y z").
     function at(p) {
       var f = frame();
       return { clientX: f.left + p[0] * f.scale, clientY: f.top + p[1] * f.scale };
     }
-    function pointer(type, id, p, touch) {
+    function pointer(type, id, p, touch, shift) {
       var c = at(p);
       canvas.dispatchEvent(new PointerEvent(type, { pointerId: id, pointerType: touch ? "touch" : "mouse", isPrimary: id === 1 || id === 11,
-        clientX: c.clientX, clientY: c.clientY, buttons: type === "pointerup" ? 0 : 1, bubbles: true, cancelable: true }));
+        clientX: c.clientX, clientY: c.clientY, buttons: type === "pointerup" ? 0 : 1, shiftKey: !!shift, bubbles: true, cancelable: true }));
     }
     function play(step) {
       var a = step.split(","), v = a.slice(1).map(Number);
       if (a[0] === "wheel") {
         var c = at([v[0], v[1]]);
         canvas.dispatchEvent(new WheelEvent("wheel", { clientX: c.clientX, clientY: c.clientY, deltaY: v[2], deltaMode: 0, bubbles: true, cancelable: true }));
-      } else if (a[0] === "drag") {
-        pointer("pointerdown", 1, [v[0], v[1]]);
-        pointer("pointermove", 1, [(v[0] + v[2]) / 2, (v[1] + v[3]) / 2]);
-        pointer("pointermove", 1, [v[2], v[3]]);
-        pointer("pointerup", 1, [v[2], v[3]]);
+      } else if (a[0] === "drag" || a[0] === "shiftdrag") {
+        var shift = a[0] === "shiftdrag";
+        pointer("pointerdown", 1, [v[0], v[1]], false, shift);
+        pointer("pointermove", 1, [(v[0] + v[2]) / 2, (v[1] + v[3]) / 2], false, shift);
+        pointer("pointermove", 1, [v[2], v[3]], false, shift);
+        pointer("pointerup", 1, [v[2], v[3]], false, shift);
+      } else if (a[0] === "mode") {
+        document.querySelector("#tools button[data-drag=" + (a[1] === "light" ? "light" : "pan") + "]").click();
       } else if (a[0] === "pinch") {
         var d = v[2], s = v[3];
         pointer("pointerdown", 11, [v[0] - d, v[1]], true);
@@ -575,6 +579,7 @@ h1 { font-size:1.35em; margin:0 0 4px; }
           var shot = snapshot(draw("relight", light, camera), data.width, data.height);
           body.setAttribute("data-pixels-gesture-" + i, shot.png);
           body.setAttribute("data-camera-gesture-" + i, camera.zoom + " " + camera.x + " " + camera.y);
+          body.setAttribute("data-light-gesture-" + i, light.join(" "));
         });
       }
       draw(view, light, camera);

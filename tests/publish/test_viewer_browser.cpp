@@ -355,7 +355,10 @@ TEST_CASE("the viewer zooms about the cursor pans pinches and resets and relight
   // pinch spreading two fingers 40 pixels either side of (200.5, 150.5) to twice as far; the
   // wheel far in and far out (the limits); the reset button.
   const std::string gestures = "wheel,120.5,90.5,-500;drag,200.5,150.5,230.5,170.5;pinch,200.5,150.5,40,2;"
-                               "wheel,200.5,150.5,-100000;wheel,200.5,150.5,100000;wheel,60.5,60.5,-300;reset";
+                               "wheel,200.5,150.5,-100000;wheel,200.5,150.5,100000;wheel,60.5,60.5,-300;reset;"
+                               // The light on the picture: Shift+drag, then the button and a plain drag.
+                               "wheel,200.5,150.5,-400;shiftdrag,200.5,150.5,350.5,60.5;mode,light;drag,200.5,150.5,60.5,250.5;"
+                               "mode,pan;drag,200.5,150.5,150.5,150.5";
   const BrowserRun b = open(work / "web" / "index.html", "?light=-0.8,-0.2,0.3&test&gestures=" + gestures, work);
   INFO(b.log);
   REQUIRE(b.exitCode == 0);
@@ -367,12 +370,13 @@ TEST_CASE("the viewer zooms about the cursor pans pinches and resets and relight
   CHECK(webtest::psnr(whole, renderedBySurrogate(modelFile(capture, "ptm-rgb"), {-0.8, -0.2, 0.3}, work / "r.png")) >= 38);
   std::vector<std::vector<int>> shown;
   std::vector<Camera> camera;
-  for (int g = 0; g < 7; ++g) {
+  for (int g = 0; g < 13; ++g) {
     shown.push_back(recordedView(b, "gesture-" + std::to_string(g), w, h));
     camera.push_back(recordedCamera(b, g));
     INFO("gesture " << g << ": zoom " << camera[g].zoom << " origin " << camera[g].x << "," << camera[g].y);
-    // Every view is the relit model magnified: the shader relights the texels in view.
-    CHECK(mismatchWithMagnified(shown[g], whole, camera[g], w, h) < 0.01);
+    // Every view is the relit model magnified: the shader relights the texels in view (until
+    // gesture 8 moves the light).
+    if (g <= 7) CHECK(mismatchWithMagnified(shown[g], whole, camera[g], w, h) < 0.01);
   }
   // The wheel zooms in about the cursor: the texel under it stays under it, and so does its
   // relit colour; the picture is larger (it differs from the unzoomed one).
@@ -399,5 +403,21 @@ TEST_CASE("the viewer zooms about the cursor pans pinches and resets and relight
   CHECK(camera[5].zoom > 1.2);
   CHECK(camera[6].zoom == 1);
   CHECK(shown[6] == whole);
+  // Shift+drag and a drag in the light mode move the light and leave the view where it is; the
+  // pictures then differ (another light); back in the pan mode a drag pans and keeps the light.
+  const auto lightOf = [&](int g) { return bodyAttribute(b.dom, "data-light-gesture-" + std::to_string(g)); };
+  CHECK(lightOf(6) == lightOf(7));
+  for (const auto& [g, before] : {std::pair<int, int>{8, 7}, {10, 8}}) {
+    INFO("gesture " << g);
+    CHECK(camera[g].zoom == camera[7].zoom);
+    CHECK(camera[g].x == camera[7].x);
+    CHECK(camera[g].y == camera[7].y);
+    CHECK(lightOf(g) != lightOf(before));
+    CHECK(meanAbsDifference(shown[g], shown[before]) > 5);
+  }
+  CHECK(lightOf(11) == lightOf(10));
+  CHECK(lightOf(12) == lightOf(10));
+  CHECK(camera[12].zoom == camera[7].zoom);
+  CHECK(std::abs(camera[12].x - (camera[7].x + 50 / camera[7].zoom)) < 1 / camera[7].zoom);
   fs::remove_all(work);
 }
