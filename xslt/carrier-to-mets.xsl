@@ -555,8 +555,10 @@
        derivatives made from it, in other file groups; Archivematica's readers take a file
        whose group is another file's as derived from that file). An export other software made
        from an original: the original's. A file a step made from exactly one file (the web copy
-       of a model, the maps and previews DerivedMaps computes from one): that file's. Any other
-       file is a group of its own. Call with the carrier as the context (keys). -->
+       of a model, the maps and previews DerivedMaps computes from one): that file's, except the
+       web copy's index of every model (output kind web-index, written by the last WebCopy
+       step), which is a version of none of them. Any other file is a group of its own. Call
+       with the carrier as the context (keys). -->
   <xsl:template name="group-id">
     <xsl:param name="token"/>
     <xsl:param name="rec"/>
@@ -566,7 +568,7 @@
     <xsl:variable name="model" select="key('result-by-step', $step/preceding-sibling::c:step[@component = 'RtiFit'][c:param[@name = 'basis']/@value = $step/c:param[@name = 'model']/@value]/@id)/c:output/@file[$step/@component = 'DerivedMaps']"/>
     <xsl:choose>
       <xsl:when test="count($paired) = 1"><xsl:value-of select="concat('Group-', $paired/@id)"/></xsl:when>
-      <xsl:when test="$step and count($inputs) = 1"><xsl:value-of select="concat('Group-', $inputs)"/></xsl:when>
+      <xsl:when test="$step and count($inputs) = 1 and not(key('result-by-step', $rec/@createdBy)/c:output[@file = $rec/@id][@kind = 'web-index'])"><xsl:value-of select="concat('Group-', $inputs)"/></xsl:when>
       <xsl:when test="$step and not($inputs) and count($model) = 1"><xsl:value-of select="concat('Group-', $model)"/></xsl:when>
       <xsl:otherwise><xsl:value-of select="concat('Group-', $token)"/></xsl:otherwise>
     </xsl:choose>

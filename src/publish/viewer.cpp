@@ -6,7 +6,110 @@ namespace surrogate::publish {
 
 namespace {
 std::string jpegUri(const std::string& bytes) { return "\"data:image/jpeg;base64," + base64(bytes) + "\""; }
+
+// Text from the carrier as element content or a quoted attribute: & < > " ' as references,
+// so that no title can open a tag or end an attribute.
+std::string escaped(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&#39;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+// A folder name as a relative URL's path segment: every byte but the unreserved ones of RFC
+// 3986 percent-encoded (a folder named after a file may hold spaces, '#', '?' or '%').
+std::string segment(const std::string& name) {
+  static const char* const hex = "0123456789ABCDEF";
+  std::string out;
+  for (unsigned char c : name) {
+    if ((c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '-' || c == '.' ||
+        c == '_' || c == '~') {
+      out += static_cast<char>(c);
+    } else {
+      out += '%';
+      out += hex[c >> 4];
+      out += hex[c & 15];
+    }
+  }
+  return out;
+}
+
+// Only a web address becomes a link: any other scheme (javascript:, data:, file:) stays text.
+bool isWebAddress(const std::string& text) {
+  auto startsWith = [&](const char* p) { return text.compare(0, std::char_traits<char>::length(p), p) == 0; };
+  return (startsWith("https://") || startsWith("http://")) && text.find_first_of(" \t\r\n\"<>") == std::string::npos;
+}
+
+std::string shownTitle(const WebDescription& d) { return d.title.empty() ? "Relightable model" : d.title; }
+
+// The page's head of description: title, creators with roles, rights, licence and, when
+// given, the model's basis. Elements without text are left out.
+std::string aboutHtml(const WebDescription& d, const std::string& basis) {
+  std::string out = "<h1 id=\"title\">" + escaped(shownTitle(d)) + "</h1>\n";
+  if (!d.creators.empty()) {
+    out += "<p id=\"creators\">By ";
+    for (std::size_t i = 0; i < d.creators.size(); ++i) {
+      if (i) out += "; ";
+      out += "<span class=\"creator\">" + escaped(d.creators[i].first);
+      if (!d.creators[i].second.empty()) out += " (" + escaped(d.creators[i].second) + ")";
+      out += "</span>";
+    }
+    out += "</p>\n";
+  }
+  if (!d.rights.empty()) out += "<p id=\"rights\">Rights: " + escaped(d.rights) + "</p>\n";
+  if (!d.license.empty()) {
+    out += "<p id=\"license\">Licence: ";
+    out += isWebAddress(d.license) ? "<a href=\"" + escaped(d.license) + "\" rel=\"license\">" + escaped(d.license) + "</a>"
+                                   : escaped(d.license);
+    out += "</p>\n";
+  }
+  if (!basis.empty())
+    out += "<p id=\"basis\">Model: " + escaped(basisLabel(basis)) + " (" + escaped(basis) + ")</p>\n";
+  return out;
+}
+
+void replaceOnce(std::string& text, const std::string& marker, const std::string& by) {
+  text.replace(text.find(marker), marker.size(), by);
+}
+
+extern const char* const kViewerTemplate;
+extern const char* const kIndexTemplate;
 }  // namespace
+
+std::string basisLabel(const std::string& basis) {
+  if (basis == "ptm-lrgb") return "PTM LRGB";
+  if (basis == "ptm-rgb") return "PTM RGB";
+  if (basis.size() == 4 && basis.compare(0, 3, "hsh") == 0 && basis[3] >= '1' && basis[3] <= '3')
+    return std::string("HSH order ") + basis[3];
+  return basis;
+}
+
+std::string viewerHtml(const WebDescription& description, const std::string& basis) {
+  std::string page = kViewerTemplate;
+  replaceOnce(page, "@TITLE@", escaped(shownTitle(description) + " (" + basisLabel(basis) + ")"));
+  replaceOnce(page, "@ABOUT@", aboutHtml(description, basis));
+  return page;
+}
+
+std::string webIndexHtml(const WebDescription& description, const std::vector<IndexedModel>& models) {
+  std::string list;
+  for (const IndexedModel& m : models)
+    list += "<li><a href=\"" + segment(m.folder) + "/index.html\">" + escaped(basisLabel(m.basis)) + "</a> (" +
+            escaped(m.basis) + "), in " + escaped(m.folder) + "/</li>\n";
+  std::string page = kIndexTemplate;
+  replaceOnce(page, "@TITLE@", escaped(shownTitle(description)));
+  replaceOnce(page, "@ABOUT@", aboutHtml(description, ""));
+  replaceOnce(page, "@MODELS@", list);
+  return page;
+}
 
 std::string viewerDataJs(const ViewerData& d) {
   std::string js =
@@ -21,20 +124,22 @@ std::string viewerDataJs(const ViewerData& d) {
   return js;
 }
 
-const char* const kViewerHtml = R"HTML(<!DOCTYPE html>
+namespace {
+const char* const kViewerTemplate = R"HTML(<!DOCTYPE html>
 <html lang="en">
 <head>
 <meta charset="utf-8">
 <meta name="viewport" content="width=device-width, initial-scale=1">
 <meta http-equiv="Content-Security-Policy" content="default-src 'none'; script-src 'self' 'unsafe-inline'; img-src data:; style-src 'unsafe-inline'">
-<title>Relightable model</title>
+<title>@TITLE@</title>
 <style>
 :root { --ink:#1d1d22; --muted:#62636a; --line:#d6d6dc; --accent:#3446b8; --card:#fafafb; }
 body { margin:0; font:15px/1.45 system-ui, sans-serif; color:var(--ink); background:#fff; }
 main { display:flex; flex-wrap:wrap; gap:16px; padding:12px 16px; align-items:flex-start; }
 #stage { flex:1 1 480px; min-width:0; }
 #view { display:block; width:100%; height:auto; max-height:calc(100vh - 90px); object-fit:contain; background:#000;
-        border:1px solid var(--line); cursor:crosshair; touch-action:none; }
+        border:1px solid var(--line); cursor:grab; touch-action:none; }
+#view.light { cursor:crosshair; }
 #side { flex:0 0 260px; }
 #pad { display:block; border:1px solid var(--line); border-radius:50%; background:var(--card); cursor:crosshair; touch-action:none; }
 #views { display:flex; gap:6px; margin:0 0 10px; }
@@ -42,11 +147,28 @@ main { display:flex; flex-wrap:wrap; gap:16px; padding:12px 16px; align-items:fl
 #views button[aria-pressed="true"] { background:var(--accent); color:#fff; border-color:var(--accent); }
 #caption, #readout, #legend { color:var(--muted); margin:6px 0; font-variant-numeric:tabular-nums; }
 #message { color:#a01010; }
+header { padding:12px 16px 0; }
+h1 { font-size:1.35em; margin:0 0 4px; }
+#about p { margin:2px 0; color:var(--muted); }
+#about a { color:var(--accent); }
+#tools { display:flex; flex-wrap:wrap; gap:6px; margin:6px 0 0; align-items:center; }
+#tools button { font:inherit; padding:3px 9px; border:1px solid var(--line); border-radius:4px; background:var(--card); cursor:pointer; }
+#tools button[aria-pressed="true"] { background:var(--accent); color:#fff; border-color:var(--accent); }
 </style>
 </head>
 <body>
+<header id="about">
+@ABOUT@
+</header>
 <main>
   <div id="stage"><canvas id="view" width="1" height="1" aria-label="the relit model"></canvas>
+    <div id="tools" role="group" aria-label="picture">
+      <span>Drag on the picture moves</span>
+      <button type="button" data-drag="pan" aria-pressed="true">the picture</button>
+      <button type="button" data-drag="light" aria-pressed="false">the light</button>
+      <button type="button" id="reset">Reset zoom</button>
+      <span id="zoom"></span>
+    </div>
     <p id="caption"></p><p id="message"></p></div>
   <div id="side">
     <div id="views" role="group" aria-label="view">
@@ -56,8 +178,9 @@ main { display:flex; flex-wrap:wrap; gap:16px; padding:12px 16px; align-items:fl
     </div>
     <canvas id="pad" width="240" height="240" aria-label="light direction: drag the light"></canvas>
     <p id="readout"></p>
-    <p id="legend">Drag over the picture or the disc to move the light: the centre is the camera's axis,
-      the rim the horizon. Normals: red = x (right), green = y (up), blue = z (towards you).</p>
+    <p id="legend">Drag the disc to move the light: the centre is the camera's axis, the rim the horizon.
+      On the picture: the wheel or a pinch zooms about the pointer, a drag pans (or moves the light, as
+      chosen above; Shift+drag does the other). Normals: red = x (right), green = y (up), blue = z (towards you).</p>
   </div>
 </main>
 <script src="viewer-data.js"></script>
@@ -112,20 +235,26 @@ main { display:flex; flex-wrap:wrap; gap:16px; padding:12px 16px; align-items:fl
   }
 
   var vertexSource = "#version 300 es\nin vec2 corner;\nvoid main() { gl_Position = vec4(corner, 0.0, 1.0); }\n";
-  // One fragment per texel, read with texelFetch (no filtering); rows top-first in the layers,
-  // so row = height - 1 - the framebuffer's y. coefficient = (byte/255 - bias) * scale.
+  // The canvas has the level's size; a canvas pixel shows the texel origin + p / zoom (p the
+  // pixel's centre from the top left, rows top-first as in the layers), read with texelFetch
+  // (no filtering): zoomed, each texel is relit as it is unzoomed, only larger. At zoom 1 and
+  // origin 0 one pixel is one texel. coefficient = (byte/255 - bias) * scale.
   var fragmentSource = [
     "#version 300 es",
     "precision highp float; precision highp int; precision highp sampler2DArray;",
     "uniform sampler2DArray layers;",
     "uniform int mode;    // 0 relight, 1 show layer `shown` as a picture",
-    "uniform int shown, images, lrgb, height;",
+    "uniform int shown, images, lrgb, width, height;",
+    "uniform vec2 origin;",
+    "uniform float zoom;",
     "uniform float w[9];",
     "uniform vec3 scale[9], bias[9];",
     "out vec4 color;",
     "vec3 coefficient(ivec2 t, int j) { return (texelFetch(layers, ivec3(t, j), 0).rgb - bias[j]) * scale[j]; }",
     "void main() {",
-    "  ivec2 t = ivec2(int(gl_FragCoord.x), height - 1 - int(gl_FragCoord.y));",
+    "  vec2 p = vec2(gl_FragCoord.x, float(height) - gl_FragCoord.y);",
+    "  ivec2 t = ivec2(floor(origin + p / zoom));",
+    "  if (t.x < 0 || t.y < 0 || t.x >= width || t.y >= height) { color = vec4(0.0, 0.0, 0.0, 1.0); return; }",
     "  if (mode == 1) { color = vec4(texelFetch(layers, ivec3(t, shown), 0).rgb, 1.0); return; }",
     "  vec3 v = vec3(0.0);",
     "  if (lrgb == 1) {",
@@ -183,10 +312,13 @@ main { display:flex; flex-wrap:wrap; gap:16px; padding:12px 16px; align-items:fl
     gl.uniform3fv(u("bias"), bias);
     gl.uniform1i(u("images"), images);
     gl.uniform1i(u("lrgb"), info.colorspace === "lrgb" ? 1 : 0);
+    gl.uniform1i(u("width"), data.width);
     gl.uniform1i(u("height"), data.height);
     gl.uniform1i(u("layers"), 0);
     gl.viewport(0, 0, data.width, data.height);
-    return function draw(view, light) {
+    return function draw(view, light, camera) {
+      gl.uniform2f(u("origin"), camera.x, camera.y);
+      gl.uniform1f(u("zoom"), camera.zoom);
       var w = weights(info, light);
       while (w.length < 9) w.push(0);
       gl.uniform1fv(u("w"), w);
@@ -224,9 +356,14 @@ main { display:flex; flex-wrap:wrap; gap:16px; padding:12px 16px; align-items:fl
     });
   }
 
+  // Zoom is canvas pixels per texel: 1 shows the whole level, kMaxZoom a texel as a block of
+  // 32 x 32 canvas pixels, which is as far as there is anything more to see.
+  var kMaxZoom = 32;
+
   function setUp(data) {
     var canvas = document.getElementById("view"), pad = document.getElementById("pad");
     var info = data.info, options = settings(), view = "relight", light = fromAngles(45, 45), draw = null;
+    var camera = { zoom: 1, x: 0, y: 0 }, dragMoves = "pan";
     if (options.light) {
       var l = options.light.split(",").map(Number), n = Math.hypot(l[0], l[1], l[2]);
       if (n > 0) light = [l[0] / n, l[1] / n, l[2] / n];
@@ -251,13 +388,52 @@ main { display:flex; flex-wrap:wrap; gap:16px; padding:12px 16px; align-items:fl
       g.fill(); g.stroke();
       document.getElementById("readout").textContent = "Light: azimuth " + a.azimuth.toFixed(1) + "\u00b0, elevation " +
           a.elevation.toFixed(1) + "\u00b0 (x " + light[0].toFixed(3) + ", y " + light[1].toFixed(3) + ", z " + light[2].toFixed(3) + ")";
+      document.getElementById("zoom").textContent = "zoom \u00d7" + camera.zoom.toFixed(2);
     }
     var pending = false;
     function redraw() {
-      if (pending) return;
+      if (pending || !draw) return;
       pending = true;
-      requestAnimationFrame(function () { pending = false; draw(view, light); drawPad(); });
+      requestAnimationFrame(function () { pending = false; draw(view, light, camera); drawPad(); });
     }
+
+    // Where the canvas's pixels are on the screen: the element's box, the picture centred in it
+    // at one scale (object-fit: contain).
+    function frame() {
+      var box = canvas.getBoundingClientRect();
+      var s = Math.min(box.width / canvas.width, box.height / canvas.height);
+      return { left: box.left + (box.width - canvas.width * s) / 2, top: box.top + (box.height - canvas.height * s) / 2, scale: s };
+    }
+    function toCanvas(clientX, clientY) {
+      var f = frame();
+      return [(clientX - f.left) / f.scale, (clientY - f.top) / f.scale];
+    }
+    // The view stays on the model: its top-left texel from 0 to the size less what is shown.
+    function keepInside() {
+      camera.x = Math.max(0, Math.min(data.width - data.width / camera.zoom, camera.x));
+      camera.y = Math.max(0, Math.min(data.height - data.height / camera.zoom, camera.y));
+    }
+    // Zooms by `factor` keeping the texel under canvas point p where it is.
+    function zoomAbout(p, factor) {
+      var tx = camera.x + p[0] / camera.zoom, ty = camera.y + p[1] / camera.zoom;
+      camera.zoom = Math.max(1, Math.min(kMaxZoom, camera.zoom * factor));
+      camera.x = tx - p[0] / camera.zoom;
+      camera.y = ty - p[1] / camera.zoom;
+      keepInside();
+      redraw();
+    }
+    // Moves the picture with the pointer by (dx, dy) canvas pixels.
+    function panBy(dx, dy) {
+      camera.x -= dx / camera.zoom;
+      camera.y -= dy / camera.zoom;
+      keepInside();
+      redraw();
+    }
+    function resetView() {
+      camera.zoom = 1; camera.x = 0; camera.y = 0;
+      redraw();
+    }
+
     // A pointer on the disc, or on the picture taken as the same disc round its centre.
     function setFrom(element, event) {
       var box = element.getBoundingClientRect();
@@ -268,12 +444,75 @@ main { display:flex; flex-wrap:wrap; gap:16px; padding:12px 16px; align-items:fl
       if (view !== "relight") choose("relight");
       redraw();
     }
-    [canvas, pad].forEach(function (element) {
-      var dragging = false;
-      element.addEventListener("pointerdown", function (e) { dragging = true; element.setPointerCapture(e.pointerId); setFrom(element, e); });
-      element.addEventListener("pointermove", function (e) { if (dragging) setFrom(element, e); });
-      element.addEventListener("pointerup", function () { dragging = false; });
+    function capture(element, e) {
+      try { element.setPointerCapture(e.pointerId); } catch (ignored) { /* a pointer already gone */ }
+    }
+
+    var padDragging = false;
+    pad.addEventListener("pointerdown", function (e) { padDragging = true; capture(pad, e); setFrom(pad, e); });
+    pad.addEventListener("pointermove", function (e) { if (padDragging) setFrom(pad, e); });
+    pad.addEventListener("pointerup", function () { padDragging = false; });
+    pad.addEventListener("pointercancel", function () { padDragging = false; });
+
+    // On the picture: one pointer pans (or moves the light: the chosen mode, Shift the other),
+    // two pointers pinch, zooming about and moving with their midpoint.
+    var pointers = {}, gesture = null;
+    function down() { return Object.keys(pointers); }
+    canvas.addEventListener("pointerdown", function (e) {
+      pointers[e.pointerId] = [e.clientX, e.clientY];
+      capture(canvas, e);
+      var ids = down();
+      if (ids.length === 1) {
+        gesture = (dragMoves === "light") !== e.shiftKey ? "light" : "pan";
+        if (gesture === "light") setFrom(canvas, e);
+      } else if (ids.length === 2) {
+        gesture = "pinch";
+      } else {
+        gesture = null;
+      }
+      e.preventDefault();
     });
+    canvas.addEventListener("pointermove", function (e) {
+      var before = pointers[e.pointerId];
+      if (!before) return;
+      var now = [e.clientX, e.clientY];
+      pointers[e.pointerId] = now;
+      if (gesture === "light") {
+        setFrom(canvas, e);
+      } else if (gesture === "pan") {
+        var s = frame().scale;
+        panBy((now[0] - before[0]) / s, (now[1] - before[1]) / s);
+      } else if (gesture === "pinch") {
+        var ids = down(), other = pointers[ids[0] === String(e.pointerId) ? ids[1] : ids[0]];
+        var was = Math.hypot(before[0] - other[0], before[1] - other[1]), is = Math.hypot(now[0] - other[0], now[1] - other[1]);
+        var from = toCanvas((before[0] + other[0]) / 2, (before[1] + other[1]) / 2);
+        var to = toCanvas((now[0] + other[0]) / 2, (now[1] + other[1]) / 2);
+        if (was > 0 && is > 0) zoomAbout(from, is / was);
+        panBy(to[0] - from[0], to[1] - from[1]);
+      }
+    });
+    function lift(e) {
+      delete pointers[e.pointerId];
+      gesture = null;  // the pointer left down starts nothing until it is lifted and put down again
+    }
+    canvas.addEventListener("pointerup", lift);
+    canvas.addEventListener("pointercancel", lift);
+    canvas.addEventListener("wheel", function (e) {
+      e.preventDefault();
+      var perLine = e.deltaMode === 1 ? 40 : e.deltaMode === 2 ? 800 : 1;
+      zoomAbout(toCanvas(e.clientX, e.clientY), Math.exp(-e.deltaY * perLine * 0.0015));
+    }, { passive: false });
+    document.getElementById("reset").addEventListener("click", resetView);
+    Array.prototype.forEach.call(document.querySelectorAll("#tools button[data-drag]"), function (b) {
+      b.addEventListener("click", function () {
+        dragMoves = b.getAttribute("data-drag");
+        canvas.classList.toggle("light", dragMoves === "light");
+        Array.prototype.forEach.call(document.querySelectorAll("#tools button[data-drag]"), function (c) {
+          c.setAttribute("aria-pressed", String(c === b));
+        });
+      });
+    });
+
     function choose(name) {
       view = name;
       Array.prototype.forEach.call(document.querySelectorAll("#views button"), function (b) {
@@ -285,17 +524,65 @@ main { display:flex; flex-wrap:wrap; gap:16px; padding:12px 16px; align-items:fl
       b.addEventListener("click", function () { choose(b.getAttribute("data-view")); });
     });
 
+    // Test mode: gestures=wheel,X,Y,DY;drag,X0,Y0,X1,Y1;shiftdrag,...;pinch,X,Y,D,S;mode,light;
+    // mode,pan;reset (canvas pixels) are played on the picture as the browser's own events would
+    // come, in order, and the view after each is recorded as data-pixels-gesture-N with
+    // data-camera-gesture-N ("zoom x y") and data-light-gesture-N ("x y z").
+    function at(p) {
+      var f = frame();
+      return { clientX: f.left + p[0] * f.scale, clientY: f.top + p[1] * f.scale };
+    }
+    function pointer(type, id, p, touch, shift) {
+      var c = at(p);
+      canvas.dispatchEvent(new PointerEvent(type, { pointerId: id, pointerType: touch ? "touch" : "mouse", isPrimary: id === 1 || id === 11,
+        clientX: c.clientX, clientY: c.clientY, buttons: type === "pointerup" ? 0 : 1, shiftKey: !!shift, bubbles: true, cancelable: true }));
+    }
+    function play(step) {
+      var a = step.split(","), v = a.slice(1).map(Number);
+      if (a[0] === "wheel") {
+        var c = at([v[0], v[1]]);
+        canvas.dispatchEvent(new WheelEvent("wheel", { clientX: c.clientX, clientY: c.clientY, deltaY: v[2], deltaMode: 0, bubbles: true, cancelable: true }));
+      } else if (a[0] === "drag" || a[0] === "shiftdrag") {
+        var shift = a[0] === "shiftdrag";
+        pointer("pointerdown", 1, [v[0], v[1]], false, shift);
+        pointer("pointermove", 1, [(v[0] + v[2]) / 2, (v[1] + v[3]) / 2], false, shift);
+        pointer("pointermove", 1, [v[2], v[3]], false, shift);
+        pointer("pointerup", 1, [v[2], v[3]], false, shift);
+      } else if (a[0] === "mode") {
+        document.querySelector("#tools button[data-drag=" + (a[1] === "light" ? "light" : "pan") + "]").click();
+      } else if (a[0] === "pinch") {
+        var d = v[2], s = v[3];
+        pointer("pointerdown", 11, [v[0] - d, v[1]], true);
+        pointer("pointerdown", 12, [v[0] + d, v[1]], true);
+        pointer("pointermove", 11, [v[0] - d * s, v[1]], true);
+        pointer("pointermove", 12, [v[0] + d * s, v[1]], true);
+        pointer("pointerup", 11, [v[0] - d * s, v[1]], true);
+        pointer("pointerup", 12, [v[0] + d * s, v[1]], true);
+      } else if (a[0] === "reset") {
+        document.getElementById("reset").click();
+      } else {
+        throw new Error("unknown test gesture " + a[0]);
+      }
+    }
+
     var uris = data.planes.concat([data.normals, data.albedo]);
     return Promise.all(uris.map(loadPicture)).then(function (pictures) {
       draw = makeRenderer(canvas, data, pictures);
       if ("test" in options) {
         ["relight", "normals", "albedo"].forEach(function (name) {
-          var shot = snapshot(draw(name, light), data.width, data.height);
+          var shot = snapshot(draw(name, light, camera), data.width, data.height);
           body.setAttribute("data-pixels-" + name, shot.png);
           body.setAttribute("data-mean-" + name, shot.mean);
         });
+        (options.gestures ? options.gestures.split(";") : []).forEach(function (step, i) {
+          play(step);
+          var shot = snapshot(draw("relight", light, camera), data.width, data.height);
+          body.setAttribute("data-pixels-gesture-" + i, shot.png);
+          body.setAttribute("data-camera-gesture-" + i, camera.zoom + " " + camera.x + " " + camera.y);
+          body.setAttribute("data-light-gesture-" + i, light.join(" "));
+        });
       }
-      draw(view, light);
+      draw(view, light, camera);
       choose(view);
       drawPad();
       body.setAttribute("data-size", data.width + "x" + data.height);
@@ -311,5 +598,35 @@ main { display:flex; flex-wrap:wrap; gap:16px; padding:12px 16px; align-items:fl
 </body>
 </html>
 )HTML";
+
+// The index of a web copy's models: no script at all.
+const char* const kIndexTemplate = R"HTML(<!DOCTYPE html>
+<html lang="en">
+<head>
+<meta charset="utf-8">
+<meta name="viewport" content="width=device-width, initial-scale=1">
+<meta http-equiv="Content-Security-Policy" content="default-src 'none'; style-src 'unsafe-inline'">
+<title>@TITLE@</title>
+<style>
+body { margin:0; padding:12px 16px; font:15px/1.45 system-ui, sans-serif; color:#1d1d22; background:#fff; }
+h1 { font-size:1.35em; margin:0 0 4px; }
+#about p { margin:2px 0; color:#62636a; }
+a { color:#3446b8; }
+</style>
+</head>
+<body>
+<header id="about">
+@ABOUT@
+</header>
+<main>
+<h2>Relightable models</h2>
+<p>Each opens in a viewer of its own, from disk or from a web server: move the light, zoom and pan.</p>
+<ul id="models">
+@MODELS@</ul>
+</main>
+</body>
+</html>
+)HTML";
+}  // namespace
 
 }  // namespace surrogate::publish

@@ -9,12 +9,18 @@
 // reduced level of a larger one.
 //
 //   ViewerData data{infoJsonText, width, height, halvings, level, planeJpegs, normalsJpeg, albedoJpeg};
-//   files.emplace_back("index.html", kViewerHtml);
+//   files.emplace_back("index.html", viewerHtml(description, "ptm-lrgb"));
 //   files.emplace_back("viewer-data.js", viewerDataJs(data));
+//
+// The page names what it shows (the capture's title, creators, rights and licence, and the
+// basis), escaped for HTML; it zooms and pans the picture (wheel, drag, pinch) and relights
+// the texels on screen, texel by texel, at any zoom.
 #pragma once
 
 #include <string>
 #include <vector>
+
+#include "publish/web_layout.h"
 
 namespace surrogate::publish {
 
@@ -22,7 +28,12 @@ namespace surrogate::publish {
 // quarter of the planes' size or less for any model larger than that.
 constexpr int kViewerMaxSide = 2048;
 
-extern const char* const kViewerHtml;
+// The viewer page of a model of `basis` (ptm-lrgb, ptm-rgb, hsh1, hsh2, hsh3): the same bytes
+// for the same description and basis.
+std::string viewerHtml(const WebDescription& description, const std::string& basis);
+
+// "PTM LRGB", "PTM RGB", "HSH order 2"...; the basis itself for any other text.
+std::string basisLabel(const std::string& basis);
 
 struct ViewerData {
   std::string infoJson;           // the folder's info.json, as written

@@ -175,7 +175,7 @@ WebLayoutFiles assemble(PublishedModel model, Layout layout, const DerivedPictur
       out.files.emplace_back(planeName(p) + ".jpg", wholeJpegs.back());
     }
   }
-  out.files.emplace_back("index.html", kViewerHtml);
+  out.files.emplace_back("index.html", viewerHtml(options.description, basisOf(model)));
   out.files.emplace_back("viewer-data.js",
                          viewerData(info, planes, wholeJpegs, maps, model.levels, options.quality));
   for (const auto& f : out.files) model.files.push_back(f.first);
@@ -397,6 +397,22 @@ std::vector<CaptureModel> recordedModels(const fs::path& capture) {
 }
 }  // namespace
 
+std::string basisOf(const PublishedModel& model) {
+  if (model.type == "ptm") return "ptm-" + model.colorspace;
+  int order = 1;
+  while (3 * (order + 1) * (order + 1) <= model.nplanes) ++order;
+  return "hsh" + std::to_string(order);
+}
+
+WebDescription webDescriptionOf(const carrier::Header& header) {
+  WebDescription d;
+  d.title = header.title;
+  for (const carrier::Creator& c : header.creators) d.creators.emplace_back(c.name, c.role);
+  d.rights = header.rights;
+  d.license = header.license;
+  return d;
+}
+
 const char* tileLayoutName(TileLayout tiles) {
   switch (tiles) {
     case TileLayout::Auto: return "auto";
@@ -450,9 +466,14 @@ std::vector<PublishedModel> publish(const fs::path& source, const fs::path& out,
   if (!fs::exists(source, ec))
     throw Error(ErrorKind::Input, source.string(), kStep, "does not exist; give a .ptm, an .rti or a capture folder");
   std::vector<WebLayoutFiles> layouts;
-  if (fs::is_directory(source, ec)) {
-    for (const CaptureModel& m : recordedModels(source)) {
-      WebLayoutFiles layout = webLayoutOfFile(source / m.path, options);
+  const bool capture = fs::is_directory(source, ec);
+  PublishOptions described = options;
+  if (capture) {
+    const std::vector<CaptureModel> models = recordedModels(source);  // checks the carrier is there
+    described.description =
+        webDescriptionOf(carrier::loadCarrier(source / "assembly-files" / "carrier.xml").header);
+    for (const CaptureModel& m : models) {
+      WebLayoutFiles layout = webLayoutOfFile(source / m.path, described);
       layout.model.source = m.path;
       layout.model.folder = m.folder;
       layouts.push_back(std::move(layout));
@@ -473,6 +494,11 @@ std::vector<PublishedModel> publish(const fs::path& source, const fs::path& out,
       throw Error(e.kind(), (out / inside).string(), e.step(), e.message());
     }
     published.push_back(layout.model);
+  }
+  if (capture) {
+    std::vector<IndexedModel> index;
+    for (const PublishedModel& m : published) index.push_back({m.folder, basisOf(m)});
+    writeFileAtomically(staging.path() / "index.html", webIndexHtml(described.description, index));
   }
   // Fault injection for the test of the cleanup (tests/publish/test_render_web_e2e.cpp): with
   // SURROGATE_FAULT_INJECTION=publish the process dies here, its folder written but not yet

@@ -30,6 +30,10 @@
 #include "formats/ptm.h"
 #include "formats/rti_hsh.h"
 
+namespace surrogate::carrier {
+struct Header;
+}
+
 namespace surrogate::publish {
 
 // How the planes are stored: whole images (plane_N.jpg), Deep Zoom tiles (plane_N.dzi and
@@ -39,6 +43,18 @@ enum class TileLayout { Auto, None, DeepZoom };
 // A side beyond which `auto` tiles: about twice a large screen's width; below it a viewer
 // loads the whole plane at once without trouble.
 constexpr int kAutoTileSide = 4096;
+
+// What the pages of a web copy say about the capture (carrier::Header's title, creators,
+// rights and licence); all empty for a lone model file. Any text: the pages escape it.
+struct WebDescription {
+  std::string title;
+  std::vector<std::pair<std::string, std::string>> creators;  // name, role
+  std::string rights;
+  std::string license;  // a URI is shown as a link when it is http:// or https://
+};
+
+// The description of a capture from its carrier's header.
+WebDescription webDescriptionOf(const carrier::Header& header);
 
 struct PublishOptions {
   // JPEG quality 1..100 of the planes: lower gives smaller files and a larger error in the
@@ -57,6 +73,8 @@ struct PublishOptions {
   // kPublishBytesPerTexel a texel beside it) is refused from its header, before it is decoded
   // (core/memory_budget.h). Not a setting of the result either.
   std::uint64_t memoryBudget = kDefaultMemoryBudget;
+  // Shown by index.html (viewer.h); publish() of a capture fills it from the carrier.
+  WebDescription description;
 };
 
 // What publishing holds beside the model: its planes as images (a copy of the model's size)
@@ -66,6 +84,19 @@ struct PublishOptions {
 // with random bytes: 94 bytes a texel beside the model): the check is about headers that
 // declare what their file cannot hold, not an exact account.
 inline constexpr std::uint64_t kPublishBytesPerTexel = 12;
+
+// Surrogate's name of a published model's basis: "ptm-lrgb", "ptm-rgb", "hsh1", "hsh2", "hsh3".
+struct PublishedModel;
+std::string basisOf(const PublishedModel& model);
+
+// The page of a folder of published models (index.html beside their folders): the description,
+// each model's basis and a link to FOLDER/index.html, in the order given; same bytes for the
+// same arguments. `basis` as basisOf gives it.
+struct IndexedModel {
+  std::string folder;  // the model folder's name
+  std::string basis;
+};
+std::string webIndexHtml(const WebDescription& description, const std::vector<IndexedModel>& models);
 
 // "auto", "none", "deepzoom" (the command line's and the carrier's spelling).
 const char* tileLayoutName(TileLayout tiles);
@@ -106,7 +137,9 @@ WebLayoutFiles webLayoutOfFile(const std::filesystem::path& file, const PublishO
 // Publishes `source` into the folder `out`, which must not exist or be empty:
 //   a .ptm (raw or JPEG-compressed) or an HSH .rti: `out` holds its layout;
 //   a capture folder: each PTM or HSH result its carrier records in finished-files/, in a
-//   subfolder of `out` named after the file (finished-files/stela-hsh.rti -> out/stela-hsh/).
+//   subfolder of `out` named after the file (finished-files/stela-hsh.rti -> out/stela-hsh/),
+//   and out/index.html linking them; the pages show the carrier's title, creators, rights
+//   and licence (options.description is replaced by them).
 // Throws Error(Input) for a source that is neither, or a capture with no such result, and
 // Error(Usage) naming `out` when it is a file or a folder that is not empty.
 // First removes the hidden partial folders that killed publishes left beside `out` (those whose

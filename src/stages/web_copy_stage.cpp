@@ -65,6 +65,8 @@ std::string webCopyFolder(const std::string& basis) {
   return std::string(capture::kFinishedDir) + "/web/" + basis;
 }
 
+std::string webIndexPath() { return std::string(capture::kFinishedDir) + "/web/index.html"; }
+
 pipeline::Parameters WebCopyOptions::toParameters() const {
   return {{"model", model},
           {"quality", std::to_string(quality)},
@@ -104,14 +106,19 @@ pipeline::StageInfo WebCopyStage::info() {
   // Version 3: each file's PRONOM identifier is recorded (formats/pronom.h: the planes, with
   //            libjpeg's Adobe marker and no JFIF one, are a raw JPEG stream, fmt/41; the viewer
   //            HTML 5, fmt/471); the files are the same.
+  // Version 4: index.html shows the carrier's title, creators, rights and licence and the
+  //            basis, and zooms and pans; the last WebCopy step of the process list also writes
+  //            finished-files/web/index.html, linking every model's folder.
   pipeline::StageInfo info = pipeline::withOptions<WebCopyOptions>(
-      {kComponent, "3", "Web copy of a model: info.json, JPEG coefficient planes and a viewer",
+      {kComponent, "4", "Web copy of a model: info.json, JPEG coefficient planes and a viewer",
        pipeline::PlanSlot::Publish});
   info.forModel = [](const std::string& basis) {
     return pipeline::Parameters{{"model", fit::basisName(fit::parseBasis(basis))}};
   };
+  // Any WebCopy step may be the last of its process list, which writes the index.
   info.outputs = [](const carrier::Step& step) {
-    return std::vector<std::string>{webCopyFolder(WebCopyOptions::fromParameters(parametersOf(step)).model) + "/*"};
+    return std::vector<std::string>{webCopyFolder(WebCopyOptions::fromParameters(parametersOf(step)).model) + "/*",
+                                    webIndexPath()};
   };
   info.reads = pipeline::alwaysReads({});  // the model's file, not the fit's object
   return info;
@@ -128,6 +135,7 @@ void WebCopyStage::run(const carrier::Step& step, pipeline::Context& ctx, carrie
   result.add("input").set("file", input->id).set("kind", o.model);
 
   publish::PublishOptions options;
+  options.description = publish::webDescriptionOf(ctx.carrier.header);
   options.quality = o.quality;
   options.tiles = publish::parseTileLayout(o.tiles);
   options.tileSize = o.tileSize;
@@ -144,6 +152,21 @@ void WebCopyStage::run(const carrier::Step& step, pipeline::Context& ctx, carrie
     writeFileAtomically(file, bytes);
     const FileKind k = kindOf(name);
     recordOutput(ctx, step, result, relative, "result", k.format, k.kind, k.mediaType);
+  }
+  // The index of every model the process list publishes, written once, by the last WebCopy step
+  // (the models' folders are the steps' own, so the index is known before they are written).
+  std::vector<publish::IndexedModel> models;
+  const carrier::Step* last = nullptr;
+  for (const carrier::Step& s : ctx.carrier.process) {
+    if (s.component != kComponent) continue;
+    const std::string basis = WebCopyOptions::fromParameters(parametersOf(s)).model;
+    models.push_back({basis, basis});
+    last = &s;
+  }
+  if (last && last->id == step.id) {
+    const std::string relative = checkedOutputPath(webIndexPath());
+    writeFileAtomically(ctx.outputPath(relative), publish::webIndexHtml(options.description, models));
+    recordOutput(ctx, step, result, relative, "result", "HTML", "web-index", "text/html");
   }
   ctx.carrier.addLog("info", step.id,
                      "web copy of " + model + " in " + folder + "/: " + std::to_string(layout.files.size()) +

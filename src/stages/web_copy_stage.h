@@ -1,6 +1,6 @@
 // The WebCopy stage: the web layout of a fitted model (publish/web_layout.h: info.json, the
 // JPEG coefficient planes whole or as Deep Zoom tiles, index.html and viewer-data.js) written
-// into finished-files/web/<model>/ and recorded as results of the step, so that the package
+// into finished-files/web/<model>/ (and finished-files/web/index.html linking the models) and recorded as results of the step, so that the package
 // holds it as its access copy (docs/package.md) and `verify --reexecute` makes it again.
 // Planned by `surrogate run --publish`, once per model fitted (pipeline::PlanSlot::Publish).
 #pragma once
@@ -30,6 +30,9 @@ struct WebCopyOptions {
 
 // Where WebCopy writes the layout of `basis`: finished-files/web/<basis>.
 std::string webCopyFolder(const std::string& basis);
+// The page linking every model's folder: finished-files/web/index.html, written by the last
+// WebCopy step of the process list.
+std::string webIndexPath();
 
 class WebCopyStage : public pipeline::DescribedStage<WebCopyStage> {
  public:

@@ -184,6 +184,9 @@ def main():
             stem = os.path.splitext(os.path.basename(path))[0]
             check(source is not None and source.startswith("data/original-captures/" + stem + "."),
                   f"{path}: derived from {source}, not its original")
+        elif path == "data/finished-files/web/index.html":
+            # The index of every model is a version of none of them.
+            check(item.derived_from is None, f"{path}: the index of the models, read as derived from {item.derived_from}")
         elif path.startswith("data/finished-files/web/"):
             model = path.split("/")[3]
             source = item.derived_from.path if item.derived_from else None

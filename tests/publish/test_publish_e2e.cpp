@@ -67,7 +67,9 @@ TEST_CASE("surrogate publish of a capture is deterministic and leaves the captur
   REQUIRE(e2e::surrogate("publish " + e2e::quote(capture) + " -o " + e2e::quote(work / "a")).exitCode == 0);
   REQUIRE(e2e::surrogate("publish " + e2e::quote(capture) + " -o " + e2e::quote(work / "b") + " --json").exitCode == 0);
   const auto a = e2e::snapshot(work / "a"), b = e2e::snapshot(work / "b");
-  CHECK(a.size() == 4 + 3 + 6 + 4 + 9 + 4 * 2);  // four info.json, their planes and their viewers
+  // four info.json, their planes and their viewers, and the index of the four
+  CHECK(a.size() == 4 + 3 + 6 + 4 + 9 + 4 * 2 + 1);
+  CHECK(a.count("index.html") == 1);
   CHECK(a == b);
   CHECK(e2e::snapshot(capture) == before);
   const auto info = e2e::surrogate("info " + e2e::quote(work / "a" / "ptm-rgb" / "info.json") + " --json");

@@ -562,3 +562,30 @@ TEST_CASE("publish refuses a tile size outside 16 to 4096 and an unknown tile la
   CHECK(publish::parseTileLayout("deepzoom") == publish::TileLayout::DeepZoom);
   fs::remove_all(dir);
 }
+
+TEST_CASE("the web copy's pages escape the description link only web addresses and percent-encode folder names") {
+  publish::WebDescription d;
+  d.title = "<b>Stela</b> & 'twelve' \"x\"";
+  d.creators = {{"Ana <i>Silva</i>", "photographer"}};
+  d.rights = "</p><script>alert(1)</script>";
+  d.license = "javascript:alert(1)";
+  // A folder named after a file may hold any byte; RFC 3986 leaves only A-Z a-z 0-9 - . _ ~ unencoded.
+  const std::vector<publish::IndexedModel> models = {{"stela 12#b%", "hsh2"}, {"ptm-lrgb", "ptm-lrgb"}};
+  const std::string index = publish::webIndexHtml(d, models);
+  CHECK(index.find("<b>") == std::string::npos);
+  CHECK(index.find("<i>") == std::string::npos);
+  CHECK(index.find("<script") == std::string::npos);
+  CHECK(index.find("<title>&lt;b&gt;Stela&lt;/b&gt; &amp; &#39;twelve&#39; &quot;x&quot;</title>") != std::string::npos);
+  CHECK(index.find("Rights: &lt;/p&gt;&lt;script&gt;alert(1)&lt;/script&gt;</p>") != std::string::npos);
+  CHECK(index.find("href=\"javascript") == std::string::npos);
+  CHECK(index.find("Licence: javascript:alert(1)</p>") != std::string::npos);
+  CHECK(index.find("<a href=\"stela%2012%23b%25/index.html\">HSH order 2</a>") != std::string::npos);
+  CHECK(index.find("<a href=\"ptm-lrgb/index.html\">PTM LRGB</a>") != std::string::npos);
+  CHECK(index == publish::webIndexHtml(d, models));  // no date, no path: the same bytes
+
+  // A web address is a link; an empty description gives the plain title.
+  d.license = "https://creativecommons.org/licenses/by/4.0/";
+  CHECK(publish::webIndexHtml(d, models).find("<a href=\"https://creativecommons.org/licenses/by/4.0/\" rel=\"license\">") !=
+        std::string::npos);
+  CHECK(publish::webIndexHtml({}, models).find("<title>Relightable model</title>") != std::string::npos);
+}

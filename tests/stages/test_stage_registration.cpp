@@ -99,7 +99,7 @@ TEST_CASE("built-in stages keep their recorded names, versions and default param
   const std::vector<std::pair<std::string, std::string>> versions = {
       {"CaptureIngest", "3"}, {"ImageDecode", "3"}, {"SphereDetection", "7"}, {"HighlightDetection", "7"},
       {"LightDirections", "5"}, {"LightsFromFile", "3"}, {"WhiteBalance", "1"}, {"Crop", "1"},
-      {"Resize", "1"}, {"RtiFit", "5"}, {"DerivedMaps", "4"}, {"WebCopy", "3"}, {"Audit", "6"}};
+      {"Resize", "1"}, {"RtiFit", "5"}, {"DerivedMaps", "4"}, {"WebCopy", "4"}, {"Audit", "6"}};
   for (const auto& [component, version] : versions) {
     INFO(component);
     REQUIRE(r.info(component));
