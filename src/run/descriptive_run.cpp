@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "run/run_commit.h"
+#include "stages/web_copy_stage.h"
 
 namespace surrogate::run {
 
@@ -77,6 +78,11 @@ bool onlyDescriptiveChange(const fs::path& capture, const capture::CaptureLayout
   if (previous.header.audited.has_value() != planned.header.audited.has_value()) return false;
   if (!sameSoftware(previous.header.software, planned.header.software)) return false;
   if (previous.process.empty() || previous.process.size() != planned.process.size()) return false;
+  // The web copy's pages show the title, creators, rights and licence (WebCopy 4): its step
+  // must run again for them to say the new description, and verify re-executes it from the
+  // header. Such a capture processes as usual.
+  for (const carrier::Step& s : previous.process)
+    if (s.component == stages::WebCopyStage::kComponent) return false;
   for (std::size_t n = 0; n < previous.process.size(); ++n)
     if (!sameStep(previous.process[n], planned.process[n])) return false;
   // The record is complete: every step ran and succeeded (not a lights-only record, not one

@@ -1,8 +1,9 @@
 // A run that changes only the capture's descriptive metadata (title, creators, rights, licence,
 // --meta): recorded as a run in the history without running any step again.
 //
-// Every step of a plan reads only the capture's files and its own parameters and interventions,
-// never the header (src/stages): a title changes no result. When the new plan's process list is
+// Every step of a plan but WebCopy reads only the capture's files and its own parameters and
+// interventions, never the header (src/stages): a title changes no result. WebCopy's pages show
+// the description, so a capture with a web copy processes as usual. When the new plan's process list is
 // the recorded one, the build is the one that made the results (software list), the record is
 // complete and every file it records is on disk with the recorded bytes, and no file of the
 // capture is new, the results stand as they are: runCapture (run/plan.h) then commits a carrier

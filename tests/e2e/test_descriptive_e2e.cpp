@@ -194,6 +194,26 @@ TEST_CASE("a processing option, a changed original or a changed result still pro
     CHECK(c.data.front().started > old.data.back().ended);
     CHECK(c.findFileByPath("finished-files/normals.png")->size == old.findFileByPath("finished-files/normals.png")->size);
   }
+  SECTION("a capture with a web copy: its pages show the title, so the run processes again") {
+    runIn(capture, "--publish");
+    std::this_thread::sleep_for(std::chrono::milliseconds(1100));
+    const carrier::Carrier old = carrierOf(capture);
+    const std::string said = runIn(capture, "--title \"Stela 12, north face\"");
+    CHECK_THAT(said, Catch::Contains("Processed"));
+    const carrier::Carrier c = carrierOf(capture);
+    CHECK(c.header.title == "Stela 12, north face");
+    CHECK(c.data.back().started > old.data.back().ended);
+    for (const std::string& n : c.header.runs.back().notes) CHECK(n.find(kNoStepRan) == std::string::npos);
+    CHECK_THAT(e2e::bytesOf(capture / "finished-files/web/index.html"), Catch::Contains("Stela 12, north face"));
+    // The package re-executes: the pages verify remakes from the header are the recorded ones.
+    const fs::path package = capture.parent_path() / "web.zip";
+    const e2e::CommandResult pack = e2e::surrogate("pack " + e2e::quote(capture) + " -o " + e2e::quote(package) + " --quiet");
+    INFO(pack.output);
+    REQUIRE(pack.exitCode == 0);
+    const e2e::CommandResult verify = e2e::surrogate("verify " + e2e::quote(package) + " --reexecute --threads 2");
+    INFO(verify.output);
+    CHECK(verify.exitCode == 0);
+  }
   SECTION("a photograph added: the run takes it in") {
     fs::copy_file(capture / "original-captures/IMG_0003.dng", capture / "original-captures/IMG_0009.dng");
     fs::copy_file(capture / "jpeg-exports/IMG_0003.jpg", capture / "jpeg-exports/IMG_0009.jpg");
