@@ -56,12 +56,15 @@ std::vector<std::string> requiredTagFiles() {
   return out;
 }
 
+// The first value of a bag-info.txt label, or "" (package.info judges repeated or missing ones).
+std::string firstValue(const BagInfo& info, const char* label) {
+  const auto v = info.values(label);
+  return v.empty() ? std::string() : v.front();
+}
+
 std::string softwareAgentOf(const Inventory& inv) {
-  if (const std::string* text = contentOf(inv, "bag-info.txt")) {
-    const auto v = parseBagInfo(*text).values("Bag-Software-Agent");
-    if (!v.empty()) return v.front();
-  }
-  return "";
+  const std::string* text = contentOf(inv, "bag-info.txt");
+  return text ? firstValue(parseBagInfo(*text), "Bag-Software-Agent") : "";
 }
 
 // A bag-info value as it reads back: line breaks folded into continuation lines, each line
@@ -292,10 +295,7 @@ void checkReadme(const Inventory& inv, const carrier::Carrier& recorded, std::ve
   const std::string* info = contentOf(inv, "bag-info.txt");
   if (readme == inv.files.end() || !info) return;  // package.complete
   const BagInfo bagInfo = parseBagInfo(*info);
-  auto one = [&](const char* label) {
-    const auto v = bagInfo.values(label);
-    return v.empty() ? std::string() : v.front();
-  };
+  auto one = [&](const char* label) { return firstValue(bagInfo, label); };
   archive::ReadmeFacts facts;
   facts.packageId = one("Surrogate-Package-Identifier");
   facts.packagingTime = one("Surrogate-Packaging-Time");
@@ -336,10 +336,7 @@ void checkRoCrate(const std::filesystem::path& package, const Inventory& inv, co
   const std::string* info = contentOf(inv, "bag-info.txt");
   if (crate == inv.files.end() || !info) return;  // package.complete
   const BagInfo bagInfo = parseBagInfo(*info);
-  auto one = [&](const char* label) {
-    const auto v = bagInfo.values(label);
-    return v.empty() ? std::string() : v.front();
-  };
+  auto one = [&](const char* label) { return firstValue(bagInfo, label); };
   mapping::CrateFacts facts;
   facts.packageId = one("Surrogate-Package-Identifier");
   facts.packagingTime = one("Surrogate-Packaging-Time");
