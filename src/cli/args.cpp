@@ -1,5 +1,6 @@
 #include "cli/args.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <sstream>
@@ -96,17 +97,94 @@ double Args::doubleValue(const std::string& name, double fallback) const {
   return parseNumberList(*v, 1, "--" + name)[0];
 }
 
-std::string Args::describe(const std::vector<OptionSpec>& specs) {
-  std::ostringstream out;
-  for (const OptionSpec& s : specs) {
-    // One-letter options are written the way people type them: -o (--o is accepted too).
-    std::string left = (s.name.size() == 1 ? "  -" : "  --") + s.name + (s.takesValue ? " " + s.valueName : "");
-    if (left.size() < 30) left.resize(30, ' ');
-    else left += "\n" + std::string(30, ' ');
-    out << left << s.help << (s.repeatable ? " (repeatable)" : "") << "\n";
+namespace {
+
+// Breaks `text` into lines of at most `width` columns (a longer word stands alone), each after
+// the first starting with `indent` spaces.
+std::string wrapped(const std::string& text, std::size_t width, std::size_t indent, std::size_t firstColumn = 0) {
+  std::string out, word;
+  std::size_t column = firstColumn;
+  std::istringstream words(text);
+  bool first = true;
+  while (words >> word) {
+    if (!first && column + 1 + word.size() > width) {
+      out += "\n" + std::string(indent, ' ');
+      column = indent;
+    } else if (!first) {
+      out += ' ';
+      ++column;
+    }
+    out += word;
+    column += word.size();
+    first = false;
   }
+  return out;
+}
+
+std::string groupHeading(OptionGroup g) {
+  switch (g) {
+    case OptionGroup::Input: return "input";
+    case OptionGroup::Description:
+      return "description (recorded in the carrier's header; changing only these runs no step again)";
+    case OptionGroup::Decisions:
+      return "decisions (recorded with who, when and why; they stand for later runs until withdrawn)";
+    case OptionGroup::Processing: return "processing";
+    case OptionGroup::Output: return "output";
+  }
+  return "options";
+}
+
+constexpr std::size_t kHelpWidth = 100;  // columns: the help of an option is wrapped to fit
+constexpr std::size_t kHelpColumn = 30;  // where an option's help starts
+
+// The options of `specs` from `surrogate run` (fromRun) or not, under their group headings.
+void describeGroups(std::ostringstream& out, const std::vector<OptionSpec>& specs, bool fromRun) {
+  for (const OptionGroup g : {OptionGroup::Input, OptionGroup::Description, OptionGroup::Decisions,
+                              OptionGroup::Processing, OptionGroup::Output}) {
+    bool heading = false;
+    for (const OptionSpec& s : specs) {
+      if (s.group != g || s.fromRun != fromRun) continue;
+      if (!heading) out << "\n" << groupHeading(g) << ":\n";
+      heading = true;
+      // One-letter options are written the way people type them: -o (--o is accepted too).
+      std::string left = (s.name.size() == 1 ? "  -" : "  --") + s.name + (s.takesValue ? " " + s.valueName : "");
+      if (left.size() < kHelpColumn) left.resize(kHelpColumn, ' ');
+      else left += "\n" + std::string(kHelpColumn, ' ');
+      out << left << wrapped(s.help + (s.repeatable ? " (repeatable)" : ""), kHelpWidth, kHelpColumn, kHelpColumn)
+          << "\n";
+    }
+  }
+}
+
+}  // namespace
+
+std::string Args::describe(const CommandHelp& help, const std::vector<OptionSpec>& specs) {
+  std::ostringstream out;
+  out << "usage: " << help.synopsis << "\n\n" << wrapped(help.description, kHelpWidth, 0) << "\n";
+  describeGroups(out, specs, false);
   out << "  --help                      show this help\n";
+  if (!help.examples.empty()) {
+    out << "\nexamples:\n";
+    for (const auto& [command, what] : help.examples)
+      out << "  " << command << "\n      " << wrapped(what, kHelpWidth, 6, 6) << "\n";
+  }
+  if (!help.exitCodes.empty()) {
+    out << "\nexit codes:\n";
+    for (const auto& [code, meaning] : help.exitCodes)
+      out << "  " << code << "  " << wrapped(meaning, kHelpWidth, 5, 5) << "\n";
+  }
+  // Last, after what the command is about: the long list it shares with `surrogate run`.
+  if (std::any_of(specs.begin(), specs.end(), [](const OptionSpec& s) { return s.fromRun; })) {
+    out << "\nthe options of `surrogate run`, for when the capture is processed first:\n";
+    describeGroups(out, specs, true);
+  }
   return out.str();
+}
+
+Verbosity verbosityOf(const Args& args) {
+  if (args.has("quiet") && args.has("verbose"))
+    usage("--verbose", "does not go with --quiet: give one of them");
+  return args.has("quiet") ? Verbosity::Quiet : args.has("verbose") ? Verbosity::Verbose : Verbosity::Normal;
 }
 
 std::size_t parseByteSize(const std::string& text, const std::string& option) {

@@ -10,12 +10,34 @@
 
 namespace surrogate::cli {
 
+// The headings a command's --help groups its options under, in this order.
+enum class OptionGroup {
+  Input,        // what is read, and how
+  Description,  // the capture's descriptive metadata (title, creators, rights): no step reruns
+  Decisions,    // standing decisions recorded with who, when and why
+  Processing,   // parameters of the processing, and how it runs (threads, memory)
+  Output,       // what is written or printed
+};
+
 struct OptionSpec {
   std::string name;  // without the leading "--"
   bool takesValue = true;
   bool repeatable = false;
   std::string help;  // one line, for --help
   std::string valueName = "VALUE";
+  OptionGroup group = OptionGroup::Processing;
+  // An option of `surrogate run` that another command (pack, lights, audit) also takes: its
+  // --help lists it after the command's own options.
+  bool fromRun = false;
+};
+
+// What a command's --help says: its synopsis, a paragraph, its options (grouped, its own
+// first), two examples and its exit codes.
+struct CommandHelp {
+  std::string synopsis;     // "surrogate pack CAPTURE -o OUT [options]"
+  std::string description;  // one paragraph, wrapped when printed
+  std::vector<std::pair<std::string, std::string>> examples;  // command line, what it does
+  std::vector<std::pair<int, std::string>> exitCodes;        // code, meaning
 };
 
 class Args {
@@ -36,8 +58,9 @@ class Args {
   int intValue(const std::string& name, int fallback) const;
   double doubleValue(const std::string& name, double fallback) const;
 
-  // The options block of a command's --help.
-  static std::string describe(const std::vector<OptionSpec>& specs);
+  // A command's whole --help: usage, description, its own options grouped under headings,
+  // examples, exit codes, and last the options it shares with `surrogate run`, grouped too.
+  static std::string describe(const CommandHelp& help, const std::vector<OptionSpec>& specs);
 
  private:
   bool help_ = false;
@@ -45,6 +68,11 @@ class Args {
   std::vector<std::pair<std::string, std::string>> ordered_;
   std::map<std::string, std::vector<std::string>> values_;
 };
+
+// How much a command prints: --quiet (at most a summary line), --verbose (every file and
+// warning), or neither. Both together are a usage error.
+enum class Verbosity { Quiet, Normal, Verbose };
+Verbosity verbosityOf(const Args& args);
 
 // Parses "1.5G", "512M", "2048" (bytes) for --memory.
 std::size_t parseByteSize(const std::string& text, const std::string& option);

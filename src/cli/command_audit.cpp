@@ -107,7 +107,18 @@ void printJson(const Outcome& o, const audit::AuditReport& report, int exitCode)
   std::cout << j.str() << "\n";
 }
 
-void printText(const Outcome& o, const audit::AuditReport& report, int exitCode) {
+// The most lines of the per-image listing printed without --verbose.
+constexpr std::size_t kAuditLines = 20;
+
+void printText(const Outcome& o, const audit::AuditReport& report, int exitCode, Verbosity verbosity) {
+  const char* verdict =
+      exitCode == kReproduced ? "reproduced" : exitCode == kNotReproduced ? "not reproduced" : "cannot tell";
+  if (verbosity == Verbosity::Quiet) {
+    std::cout << "audit of " << escapedText(o.prior.string()) << ": " << verdict << " (exit " << exitCode << ")";
+    if (o.report) std::cout << "; report: " << escapedText(o.report->string());
+    std::cout << "\n";
+    return;
+  }
   for (const std::string& line : audit::summaryLines(audit::summarise(report))) std::cout << line << "\n";
   for (const std::string& line : audit::logSummaryLines(report)) std::cout << line << "\n";
   for (const auto& n : report.notAudited)
@@ -118,14 +129,16 @@ void printText(const Outcome& o, const audit::AuditReport& report, int exitCode)
               << escapedText(o.prior.string()) << ")";
   else if (o.folder->reused)
     std::cout << " (" << (o.work == o.prior ? "audited again in place" : "made by an earlier audit; the files audited are unchanged") << ")";
-  std::cout << "\n  exit " << exitCode
-            << (exitCode == kReproduced ? ": reproduced" : exitCode == kNotReproduced ? ": not reproduced" : ": cannot tell")
-            << "; step " << o.step << (o.ran ? ", just run" : ", as recorded") << "; threshold "
+  std::cout << "\n  exit " << exitCode << ": " << verdict << "; step " << o.step << (o.ran ? ", just run" : ", as recorded") << "; threshold "
             << fixedDecimals(report.thresholdDegrees, 1) << " degrees\n";
   if (o.report) std::cout << "  report: " << escapedText(o.report->string()) << "\n";
   std::cout << "  pack it with its evidence: surrogate pack " << escapedText(o.work.string()) << " -o "
             << escapedText(o.work.string()) << ".zip\n\n";
-  for (const std::string& line : audit::auditLines(report)) std::cout << line << "\n";
+  const std::vector<std::string> lines = audit::auditLines(report);
+  const std::size_t shown = verbosity == Verbosity::Verbose ? lines.size() : std::min(lines.size(), kAuditLines);
+  for (std::size_t i = 0; i < shown; ++i) std::cout << lines[i] << "\n";
+  if (shown < lines.size())
+    std::cout << "and " << (lines.size() - shown) << " more lines (--verbose prints them; the report shows all)\n";
 }
 
 // Runs the work folder with the request; a failure says where the audit works and how to go on.
@@ -144,33 +157,44 @@ carrier::Carrier runWorkFolder(const Outcome& o, const run::RunRequest& request,
 }  // namespace
 
 int runCommandAudit(int argc, char** argv) {
+  constexpr OptionGroup kOutput = OptionGroup::Output;
   std::vector<OptionSpec> specs = {
-      {"o", true, false, "the work folder (default: beside PRIOR, named PRIOR-audit)", "WORK"},
-      {"output", true, false, "same as -o", "WORK"},
+      {"o", true, false, "the work folder (default: beside PRIOR, named PRIOR-audit)", "WORK", kOutput},
+      {"output", true, false, "same as -o", "WORK", kOutput},
       {"threshold", true, false, "name the images whose prior light differs by more than this (default 2)", "DEG"},
-      {"at", true, true, "also make a difference image at this photograph (file or shot name; repeatable)", "PHOTO"}};
-  for (const OptionSpec& o : pipelineOptions(true)) specs.push_back(o);
+      {"at", true, true, "also make a difference image at this photograph (file or shot name)", "PHOTO", kOutput}};
   for (const OptionSpec& o : runtimeOptions()) specs.push_back(o);
+  for (const OptionSpec& o : runOptionsForAnotherCommand()) specs.push_back(o);
   Args args(argc, argv, 1, specs);
-  if (helpShown(args, specs, "surrogate audit PRIOR [-o WORK] [--json] [--threshold DEG] [options]",
-                "Audit the work another tool (RTIBuilder, relight, a dome's software) left in PRIOR, a "
-                "capture folder with its .lp and .ptm/.rti in assembly-files/ and finished-files/, or a "
-                "package of one: each prior .lp against Surrogate's lights, each prior .ptm or .rti "
-                "against the photographs beside Surrogate's refits, and a verdict in four parts (lights, "
-                "model, tone, integrity). Nothing is written into PRIOR, which may be read-only: its files "
-                "are copied into the work folder WORK, a capture of its own whose carrier records where "
-                "each came from, run there, and reported in WORK/finished-files/report.html; "
-                "`surrogate pack WORK` bags the audit with the evidence it examined. Run again, it reuses "
-                "WORK while PRIOR is unchanged. The run options (--sphere, --exclude, ...) correct the "
-                "audit's own processing. Exit codes: 0 reproduced, 4 not reproduced, 1 the prior work "
-                "cannot be read (or there is none), 2 bad usage, 3 a package whose files differ from its "
-                "record."))
+  if (helpShown(args, specs,
+                {"surrogate audit PRIOR [-o WORK] [--json] [--threshold DEG] [options]",
+                 "Audit the work another tool (RTIBuilder, relight, a dome's software) left in PRIOR, a "
+                 "capture folder with its .lp and .ptm/.rti in assembly-files/ and finished-files/, or a "
+                 "package of one: each prior .lp against Surrogate's lights, each prior .ptm or .rti "
+                 "against the photographs beside Surrogate's refits, and a verdict in four parts (lights, "
+                 "model, tone, integrity). Nothing is written into PRIOR, which may be read-only: its files "
+                 "are copied into the work folder WORK, a capture of its own whose carrier records where "
+                 "each came from, run there, and reported in WORK/finished-files/report.html; "
+                 "`surrogate pack WORK` bags the audit with the evidence it examined. Run again, it reuses "
+                 "WORK while PRIOR is unchanged. The options of `surrogate run` (--sphere, --exclude, ...) "
+                 "correct the audit's own processing.",
+                 {{"surrogate audit coin-rtibuilder",
+                   "audit the RTIBuilder project folder coin-rtibuilder; the work goes to coin-rtibuilder-audit"},
+                  {"surrogate audit coin.zip -o coin-audit --threshold 5",
+                   "audit a package, naming only the lights that differ by more than 5 degrees"}},
+                 {{0, "the prior work is reproduced"},
+                  {1, "the prior work cannot be read, or there is none"},
+                  {2, "bad usage: an unknown option, a missing or malformed value"},
+                  {3, "a package whose files differ from its record"},
+                  {4, "not reproduced: the verdict says which part and why"},
+                  {5, "internal error: a bug, or the environment (disk full, permissions)"}}}))
     return 0;
   if (args.positional().size() != 1)
     throw Error(ErrorKind::Usage, "", "command line", "give the folder or package to audit: surrogate audit PRIOR");
   const std::optional<double> threshold = thresholdOption(args);
   const std::optional<std::string> at = atOption(args);
   const bool json = args.has("json");
+  (void)verbosityOf(args);  // --quiet with --verbose is refused before any work
   const std::optional<std::string> out = outputOption(args);
 
   Outcome o;
@@ -219,7 +243,7 @@ int runCommandAudit(int argc, char** argv) {
   const audit::AuditReport report = audit::recordedAudit(*c, *r);
   const int exitCode = exitCodeOf(report);
   if (json) printJson(o, report, exitCode);
-  else printText(o, report, exitCode);
+  else printText(o, report, exitCode, verbosityOf(args));
   return exitCode;
 }
 

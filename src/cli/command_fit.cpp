@@ -36,19 +36,26 @@ fs::path resolveImage(const fs::path& lpFile, const std::string& name) {
 
 int runCommandFit(int argc, char** argv) {
   const std::vector<OptionSpec> specs = {
-      {"lp", true, false, "the light file naming the images and their light directions", "FILE.lp"},
-      {"o", true, false, "output: .ptm (PTM) or .rti (HSH)", "OUT"},
-      {"output", true, false, "same as -o", "OUT"},
+      {"lp", true, false, "the light file naming the images and their light directions", "FILE.lp", OptionGroup::Input},
       {"basis", true, false, "ptm-lrgb, ptm-rgb (for .ptm), hsh2, hsh3 (for .rti)", "BASIS"},
       {"threads", true, false, "worker threads (default: all cores)", "N"},
       {"memory", true, false, "memory budget (default 2G)", "SIZE"},
-      {"quiet", false, false, "no progress bar"},
-      {"json", false, false, "print the fit quality as JSON"},
+      {"o", true, false, "output: .ptm (PTM) or .rti (HSH)", "OUT", OptionGroup::Output},
+      {"output", true, false, "same as -o", "OUT", OptionGroup::Output},
+      {"quiet", false, false, "no progress bar, and at most one summary line", "", OptionGroup::Output},
+      {"json", false, false, "print the fit quality as JSON", "", OptionGroup::Output},
   };
   Args args(argc, argv, 1, specs);
-  if (helpShown(args, specs, "surrogate fit --lp FILE.lp -o OUT.ptm|OUT.rti [--basis BASIS]",
-                "Fit a PTM or HSH model to the images an .lp file names, with its light "
-                "directions. (surrogate run does this for a capture, with provenance.)"))
+  if (helpShown(args, specs,
+                {"surrogate fit --lp FILE.lp -o OUT.ptm|OUT.rti [--basis BASIS]",
+                 "Fit a PTM or HSH model to the images an .lp file names, with its light directions, "
+                 "outside any capture and with no record. (surrogate run does this for a capture, with "
+                 "provenance.)",
+                 {{"surrogate fit --lp coin/lights.lp -o coin.ptm",
+                   "fit a PTM (luminance and colour, as RTIViewer opens it) to the photographs lights.lp names"},
+                  {"surrogate fit --lp coin/lights.lp -o coin.rti --basis hsh3",
+                   "fit third-order hemispherical harmonics"}},
+                 commonExitCodes("the model is written")}))
     return 0;
   const auto lp = args.value("lp");
   const auto out = outputOption(args);

@@ -39,21 +39,20 @@ bool isWebLayoutFolder(const fs::path& path) {
 }  // namespace
 
 int runCommandInfo(int argc, char** argv) {
-  const std::vector<OptionSpec> specs = {{"json", false, false, "print as JSON"}};
+  const std::vector<OptionSpec> specs = {{"json", false, false, "print as JSON", "", OptionGroup::Output}};
   Args args(argc, argv, 1, specs);
-  if (args.helpRequested()) {
-    std::cout << usageHeader("surrogate info FILE",
-                             "Describe a package (a bag folder, .tar or .zip: what it holds by "
-                             "role, who made it when, the steps, decisions and results, and the "
-                             "command to verify it), a carrier (carrier.xml: creators, metadata, "
-                             "steps, decisions with who, when and why, runs), a capture folder, "
-                             "an image (camera, lens, exposure, date; also one Surrogate cannot "
-                             "decode), an .xmp sidecar, a .ptm, .rti or .lp file, RTIBuilder's log "
-                             "XML (what its processing used and found), or a web layout "
-                             "(the folder surrogate publish writes, or its info.json).")
-              << Args::describe(specs);
+  if (helpShown(args, specs,
+                {"surrogate info FILE",
+                 "Describe a package (a bag folder, .tar or .zip: what it holds by role, who made it when, the "
+                 "steps, decisions and results, and the command to verify it), a carrier (carrier.xml: "
+                 "creators, metadata, steps, decisions with who, when and why, runs, warnings), a capture "
+                 "folder, an image (camera, lens, exposure, date; also one Surrogate cannot decode), an .xmp "
+                 "sidecar, a .ptm, .rti or .lp file, RTIBuilder's log XML (what its processing used and "
+                 "found), or a web layout (the folder surrogate publish writes, or its info.json). Reads only.",
+                 {{"surrogate info stela12", "the capture's record: decisions, runs and every warning"},
+                  {"surrogate info stela12.zip --json", "what a package holds, as JSON for a script"}},
+                 commonExitCodes("described")}))
     return 0;
-  }
   if (args.positional().size() != 1)
     throw Error(ErrorKind::Usage, "", "command line", "give one file or folder: surrogate info FILE");
   const fs::path path = args.positional()[0];

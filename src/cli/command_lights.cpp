@@ -12,6 +12,7 @@
 #include "cli/progress.h"
 #include "core/error.h"
 #include "core/json.h"
+#include "core/text.h"
 #include "formats/lp.h"
 
 namespace surrogate::cli {
@@ -20,15 +21,20 @@ namespace fs = std::filesystem;
 
 int runCommandLights(int argc, char** argv) {
   std::vector<OptionSpec> specs = pipelineOptions(false);
-  specs.push_back({"o", true, false, "the .lp file to write", "FILE.lp"});
-  specs.push_back({"output", true, false, "same as -o", "FILE.lp"});
+  specs.push_back({"o", true, false, "the .lp file to write", "FILE.lp", OptionGroup::Output});
+  specs.push_back({"output", true, false, "same as -o", "FILE.lp", OptionGroup::Output});
   for (const OptionSpec& o : runtimeOptions()) specs.push_back(o);
   Args args(argc, argv, 1, specs);
-  if (helpShown(args, specs, "surrogate lights CAPTURE -o FILE.lp [options]",
-                "Estimate the light direction of every image from the highlights on "
-                "the spheres and write them as an .lp file, which names the images "
-                "relative to its own folder. Also writes the sphere overlay, the "
-                "highlight overviews and the carrier in CAPTURE/assembly-files/."))
+  if (helpShown(args, specs,
+                {"surrogate lights CAPTURE -o FILE.lp [options]",
+                 "Estimate the light direction of every image from the highlights on the spheres and write "
+                 "them as an .lp file, which names the images relative to its own folder. Also writes the "
+                 "sphere overlay, the highlight overviews and the carrier in CAPTURE/assembly-files/ (a run "
+                 "that stops after the lights: it is recorded like any other).",
+                 {{"surrogate lights stela12 -o stela12.lp", "the light directions of the capture stela12"},
+                  {"surrogate lights stela12 --sphere 412,300,88 --reason \"detection missed the sphere\" -o stela12.lp",
+                   "the same with the sphere's circle given by hand"}},
+                 commonExitCodes("the .lp file is written")}))
     return 0;
   const auto out = outputOption(args);
   if (args.positional().size() != 1 || !out)
@@ -68,10 +74,18 @@ int runCommandLights(int argc, char** argv) {
         .key("carrier").value((capture / capture::kAssemblyDir / "carrier.xml").string()).endObject();
     std::cout << j.str() << "\n";
   } else {
+    const Verbosity verbosity = verbosityOf(args);
+    const carrier::CarrierSummary summary = carrier::describeCarrier(c);
     std::cout << "wrote " << *out << " (" << lights << " lights";
-    if (flagged) std::cout << ", " << flagged << " highlight(s) flagged: see the carrier's log";
-    std::cout << ")\n  sphere overlay and highlight overviews: " << (capture / capture::kAssemblyDir).string() << "/\n";
-    printStageWarnings(c);
+    if (flagged) std::cout << ", " << flagged << " highlight(s) flagged";
+    if (!summary.warnings.empty())
+      std::cout << ", " << summary.warnings.size() << (summary.warnings.size() == 1 ? " warning" : " warnings");
+    std::cout << ")\n";
+    if (verbosity == Verbosity::Quiet) return 0;
+    std::cout << "  sphere overlay and highlight overviews: " << (capture / capture::kAssemblyDir).string() << "/\n";
+    // As `run` prints them: grouped by step, a screenful unless --verbose.
+    printWarnings(summary, verbosity == Verbosity::Verbose ? 0 : kWarningLines,
+                  "surrogate info " + escapedText(capture.string()) + " lists them all");
   }
   return 0;
 }

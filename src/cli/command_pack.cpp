@@ -76,29 +76,28 @@ bool givesDecisions(const Args& args) {
 }
 
 std::vector<OptionSpec> packOptions() {
-  std::vector<OptionSpec> specs = pipelineOptions(true);
+  constexpr OptionGroup kOutput = OptionGroup::Output;
+  std::vector<OptionSpec> specs = {
+      {"o", true, false, "the package to write: a folder, NAME.tar or NAME.zip", "OUT", kOutput},
+      {"output", true, false, "same as -o", "OUT", kOutput},
+      {"layout", true, false,
+       "bag (the default: a BagIt bag, folder, .tar or .zip); ocfl: OUT is an OCFL 1.1 object holding the "
+       "bag, made or given a new version (v2, v3, ...) by each pack of the same capture; eark: OUT is a new "
+       "folder holding an E-ARK SIP 2.2 (METS.xml, representations/rep1/, metadata/, schemas/, documentation/)",
+       "bag|ocfl|eark", kOutput},
+      {"force", false, false, "replace an existing .tar or .zip of the same name", "", kOutput},
+      {"bag-info", true, true,
+       "a holder's field for bag-info.txt only, e.g. External-Identifier=INV-7 or "
+       "Contact-Email=archive@museum.org (not recorded in the carrier: verify lists it as added by the holder)",
+       "LABEL=VALUE", kOutput},
+      {"base-uri", true, false,
+       "mint crm.rdf's node URIs under this base, e.g. https://repository.example/capture/stela12/ (ends in / "
+       "or #; recorded in bag-info.txt as Surrogate-Base-URI; default: under the capture identifier)",
+       "URI", kOutput},
+      {"no-report", false, false, "when the pipeline runs, do not write finished-files/report.html", "", kOutput},
+  };
   for (const OptionSpec& o : runtimeOptions()) specs.push_back(o);
-  specs.push_back({"o", true, false, "the package to write: a folder, NAME.tar or NAME.zip", "OUT"});
-  specs.push_back({"output", true, false, "same as -o", "OUT"});
-  specs.push_back({"force", false, false, "replace an existing .tar or .zip of the same name"});
-  specs.push_back({"bag-info", true, true,
-                   "a holder's field for bag-info.txt only, e.g. External-Identifier=INV-7 or "
-                   "Contact-Email=archive@museum.org (not recorded in the carrier: "
-                   "verify lists it as added by the holder)",
-                   "LABEL=VALUE"});
-  specs.push_back({"layout", true, false,
-                   "bag (the default: a BagIt bag, folder, .tar or .zip); ocfl: OUT is an OCFL "
-                   "1.1 object holding the bag, made or given a new version (v2, v3, ...) by "
-                   "each pack of the same capture; eark: OUT is a new folder holding an E-ARK "
-                   "SIP 2.2 (METS.xml, representations/rep1/, metadata/, schemas/, documentation/)",
-                   "bag|ocfl|eark"});
-  specs.push_back({"base-uri", true, false,
-                   "mint crm.rdf's node URIs under this base, e.g. "
-                   "https://repository.example/capture/stela12/ (ends in / or #; recorded in "
-                   "bag-info.txt as Surrogate-Base-URI; default: under the capture identifier)",
-                   "URI"});
-  specs.push_back({"no-report", false, false,
-                   "when the pipeline runs, do not write finished-files/report.html"});
+  for (const OptionSpec& o : runOptionsForAnotherCommand()) specs.push_back(o);
   return specs;
 }
 
@@ -232,17 +231,56 @@ auto packOnce(const std::string& capture, const std::string& out, const Args& ar
   }
 }
 
-void printJson(const std::string& capture, const std::string& out, const Processing& processing,
-               const archive::PackResult& r,
-               const std::vector<std::pair<std::string, std::string>>& holder) {
+// What every layout's output says: the capture, the package, whether the pipeline ran first
+// and why, the holder's fields and the leftovers of killed packs removed first.
+struct PackReport {
+  const std::string& capture;
+  const std::string& out;
+  const Processing& processing;
+  const std::vector<std::pair<std::string, std::string>>& holder;
+  const std::vector<std::string>& removedLeftovers;
+};
+
+// The members every layout's JSON begins with; the caller adds its own and ends with
+// endPackJson.
+void beginPackJson(JsonWriter& j, const PackReport& p, const std::string& format) {
+  j.beginObject().key("capture").value(p.capture).key("package").value(p.out).key("format").value(format)
+      .key("pipelineRan").value(p.processing.ran);
+  j.key("pipelineReason");
+  if (p.processing.ran) j.value(p.processing.why);
+  else j.null();
+}
+
+void endPackJson(JsonWriter& j, const PackReport& p) {
+  j.key("holderFields").beginArray();
+  for (const auto& [label, value] : p.holder)
+    j.beginObject().key("label").value(label).key("value").value(value).endObject();
+  j.endArray().key("removedLeftovers").beginArray();
+  for (const std::string& t : p.removedLeftovers) j.value(t);
+  j.endArray().endObject();
+  std::cout << j.str() << "\n";
+}
+
+// The sentences before every layout's summary: why the pipeline ran, what leftovers went.
+void printPackPreamble(const PackReport& p) {
+  if (p.processing.ran)
+    std::cout << "Processed " << p.capture << " first (" << p.processing.why << "), with the decisions its "
+              << "carrier records (see `surrogate info " << p.capture << "`).\n";
+  for (const std::string& removed : p.removedLeftovers)
+    std::cout << char(std::toupper(static_cast<unsigned char>(removed[0]))) << removed.substr(1) << ".\n";
+}
+
+void printHolderFields(const PackReport& p) {
+  if (p.holder.empty()) return;
+  std::cout << "  holder's fields in bag-info.txt (not in the carrier):";
+  for (std::size_t i = 0; i < p.holder.size(); ++i) std::cout << (i ? ", " : " ") << p.holder[i].first;
+  std::cout << "\n";
+}
+
+void printJson(const PackReport& p, const archive::PackResult& r) {
   const double mb = static_cast<double>(r.bag.payloadBytes) / 1e6;
   JsonWriter j;
-  j.beginObject().key("capture").value(capture).key("package").value(out)
-      .key("format").value(archive::bagFormatName(r.bag.format))
-      .key("pipelineRan").value(processing.ran);
-  j.key("pipelineReason");
-  if (processing.ran) j.value(processing.why);
-  else j.null();
+  beginPackJson(j, p, archive::bagFormatName(r.bag.format));
   j.key("packageId").value(r.packageId).key("captureId").value(r.captureId);
   j.key("previousPackageId");
   if (r.previousPackageId.empty()) j.null();
@@ -256,27 +294,20 @@ void printJson(const std::string& capture, const std::string& out, const Process
       .key("megabytesPerSecond").value(r.bag.seconds > 0 ? mb / r.bag.seconds : 0.0);
   j.key("tagFiles").beginArray();
   for (const std::string& t : r.bag.tagFiles) j.value(t);
-  j.endArray().key("holderFields").beginArray();
-  for (const auto& [label, value] : holder)
-    j.beginObject().key("label").value(label).key("value").value(value).endObject();
-  j.endArray().key("removedLeftovers").beginArray();
-  for (const std::string& t : r.bag.removedLeftovers) j.value(t);
-  j.endArray().endObject();
-  std::cout << j.str() << "\n";
+  j.endArray();
+  endPackJson(j, p);
 }
 
-void printSummary(const std::string& capture, const std::string& out, const Processing& processing,
-                  const archive::PackResult& r,
-                  const std::vector<std::pair<std::string, std::string>>& holder) {
-  if (processing.ran)
-    std::cout << "Processed " << capture << " first (" << processing.why << "), with the decisions its "
-              << "carrier records (see `surrogate info " << capture << "`).\n";
-  for (const std::string& removed : r.bag.removedLeftovers)
-    std::cout << char(std::toupper(static_cast<unsigned char>(removed[0]))) << removed.substr(1) << ".\n";
+void printSummary(const PackReport& p, const archive::PackResult& r, Verbosity verbosity) {
+  if (verbosity == Verbosity::Quiet) {
+    std::cout << "Packed " << p.capture << " into " << p.out << " (package id " << r.packageId << ").\n";
+    return;
+  }
+  printPackPreamble(p);
   char rate[64];
   std::snprintf(rate, sizeof rate, "%.1f MB in %.2f s", static_cast<double>(r.bag.payloadBytes) / 1e6,
                 r.bag.seconds);
-  std::cout << "Packed " << capture << " into " << out << " (BagIt 1.0, "
+  std::cout << "Packed " << p.capture << " into " << p.out << " (BagIt 1.0, "
             << archive::bagFormatName(r.bag.format) << ").\n"
             << "  payload: " << r.bag.payloadFiles << " files, " << rate << "\n"
             << "  package id: " << r.packageId << "\n"
@@ -285,24 +316,16 @@ void printSummary(const std::string& capture, const std::string& out, const Proc
                                             : "  revises the package " + r.previousPackageId +
                                                   " (made of this capture before its record changed)\n")
             << "  metadata: metadata/crm.rdf (CIDOC-CRM), metadata/mets.xml (METS+PREMIS)\n";
-  if (!holder.empty()) {
-    std::cout << "  holder's fields in bag-info.txt (not in the carrier):";
-    for (std::size_t i = 0; i < holder.size(); ++i) std::cout << (i ? ", " : " ") << holder[i].first;
-    std::cout << "\n";
-  }
+  printHolderFields(p);
+  if (verbosity == Verbosity::Verbose)
+    for (const std::string& t : r.bag.tagFiles) std::cout << "  tag file: " << t << "\n";
 }
 
 // --layout ocfl: the object, the version written (or none: the head holds this bag already),
 // what it holds anew and what it takes from earlier versions.
-void printOcflJson(const std::string& capture, const std::string& out, const Processing& processing,
-                   const archive::OcflResult& r,
-                   const std::vector<std::pair<std::string, std::string>>& holder) {
+void printOcflJson(const PackReport& p, const archive::OcflResult& r) {
   JsonWriter j;
-  j.beginObject().key("capture").value(capture).key("package").value(out)
-      .key("format").value("ocfl").key("pipelineRan").value(processing.ran);
-  j.key("pipelineReason");
-  if (processing.ran) j.value(processing.why);
-  else j.null();
+  beginPackJson(j, p, "ocfl");
   j.key("objectId").value(r.objectId).key("version").value(r.version)
       .key("created").value(r.created).key("unchanged").value(r.unchanged)
       .key("newFiles").value(static_cast<unsigned long long>(r.newFiles))
@@ -311,69 +334,57 @@ void printOcflJson(const std::string& capture, const std::string& out, const Pro
       .key("packageId").value(r.pack.packageId).key("packagingTime").value(r.pack.packagingTime)
       .key("payloadFiles").value(static_cast<unsigned long long>(r.pack.bag.payloadFiles))
       .key("payloadBytes").value(static_cast<unsigned long long>(r.pack.bag.payloadBytes));
-  j.key("holderFields").beginArray();
-  for (const auto& [label, value] : holder)
-    j.beginObject().key("label").value(label).key("value").value(value).endObject();
-  j.endArray().key("notes").beginArray();
+  j.key("notes").beginArray();
   for (const std::string& n : r.notes) j.value(n);
-  j.endArray().endObject();
-  std::cout << j.str() << "\n";
+  j.endArray();
+  endPackJson(j, p);
 }
 
-void printOcflSummary(const std::string& capture, const std::string& out, const Processing& processing,
-                      const archive::OcflResult& r) {
-  if (processing.ran)
-    std::cout << "Processed " << capture << " first (" << processing.why << "), with the decisions its "
-              << "carrier records (see `surrogate info " << capture << "`).\n";
+void printOcflSummary(const PackReport& p, const archive::OcflResult& r, Verbosity verbosity) {
+  if (verbosity == Verbosity::Quiet) {
+    std::cout << (r.unchanged ? "Unchanged: " : "Packed " + p.capture + " into ") << p.out << " version "
+              << r.version << " (package id " << r.pack.packageId << ").\n";
+    return;
+  }
+  printPackPreamble(p);
   for (const std::string& n : r.notes)
     std::cout << char(std::toupper(static_cast<unsigned char>(n[0]))) << n.substr(1) << ".\n";
   if (r.unchanged) {
-    std::cout << out << " already holds this package as its head version " << r.version
+    std::cout << p.out << " already holds this package as its head version " << r.version
               << " (the same bytes): no version added.\n";
     return;
   }
-  std::cout << (r.created ? "Made the OCFL 1.1 object " : "Added a version to the OCFL object ") << out
-            << ": " << r.version << ", the BagIt package of " << capture << ".\n"
+  std::cout << (r.created ? "Made the OCFL 1.1 object " : "Added a version to the OCFL object ") << p.out
+            << ": " << r.version << ", the BagIt package of " << p.capture << ".\n"
             << "  object id: " << r.objectId << " (the capture's)\n"
             << "  new content: " << r.newFiles << " files, " << r.newBytes << " bytes"
             << (r.reusedFiles ? ", " + std::to_string(r.reusedFiles) + " unchanged files kept from earlier versions" : "")
             << "\n  package id: " << r.pack.packageId << "\n";
+  printHolderFields(p);
 }
 
 // --layout eark: the SIP written and the bag it holds.
-void printEarkJson(const std::string& capture, const std::string& out, const Processing& processing,
-                   const archive::EarkResult& r,
-                   const std::vector<std::pair<std::string, std::string>>& holder) {
+void printEarkJson(const PackReport& p, const archive::EarkResult& r) {
   JsonWriter j;
-  j.beginObject().key("capture").value(capture).key("package").value(out)
-      .key("format").value("eark").key("pipelineRan").value(processing.ran);
-  j.key("pipelineReason");
-  if (processing.ran) j.value(processing.why);
-  else j.null();
+  beginPackJson(j, p, "eark");
   j.key("objectId").value(r.objectId).key("files").value(static_cast<unsigned long long>(r.files))
       .key("packageId").value(r.pack.packageId).key("packagingTime").value(r.pack.packagingTime)
       .key("payloadFiles").value(static_cast<unsigned long long>(r.pack.bag.payloadFiles))
       .key("payloadBytes").value(static_cast<unsigned long long>(r.pack.bag.payloadBytes));
-  j.key("holderFields").beginArray();
-  for (const auto& [label, value] : holder)
-    j.beginObject().key("label").value(label).key("value").value(value).endObject();
-  j.endArray().key("removedLeftovers").beginArray();
-  for (const std::string& t : r.pack.bag.removedLeftovers) j.value(t);
-  j.endArray().endObject();
-  std::cout << j.str() << "\n";
+  endPackJson(j, p);
 }
 
-void printEarkSummary(const std::string& capture, const std::string& out, const Processing& processing,
-                      const archive::EarkResult& r) {
-  if (processing.ran)
-    std::cout << "Processed " << capture << " first (" << processing.why << "), with the decisions its "
-              << "carrier records (see `surrogate info " << capture << "`).\n";
-  for (const std::string& removed : r.pack.bag.removedLeftovers)
-    std::cout << char(std::toupper(static_cast<unsigned char>(removed[0]))) << removed.substr(1) << ".\n";
-  std::cout << "Packed " << capture << " into " << out << " (E-ARK SIP 2.2, " << r.files << " files).\n"
-            << "  METS: " << out << "/METS.xml, representation " << out << "/representations/rep1/METS.xml\n"
+void printEarkSummary(const PackReport& p, const archive::EarkResult& r, Verbosity verbosity) {
+  if (verbosity == Verbosity::Quiet) {
+    std::cout << "Packed " << p.capture << " into " << p.out << " (E-ARK SIP; package id " << r.pack.packageId << ").\n";
+    return;
+  }
+  printPackPreamble(p);
+  std::cout << "Packed " << p.capture << " into " << p.out << " (E-ARK SIP 2.2, " << r.files << " files).\n"
+            << "  METS: " << p.out << "/METS.xml, representation " << p.out << "/representations/rep1/METS.xml\n"
             << "  payload: " << r.pack.bag.payloadFiles << " files in representations/rep1/data/\n"
             << "  package id: " << r.pack.packageId << "\n";
+  printHolderFields(p);
 }
 
 }  // namespace
@@ -381,20 +392,28 @@ void printEarkSummary(const std::string& capture, const std::string& out, const 
 int runCommandPack(int argc, char** argv) {
   const std::vector<OptionSpec> specs = packOptions();
   Args args(argc, argv, 1, specs);  // Args takes -o as well as --o
-  if (helpShown(args, specs, "surrogate pack CAPTURE -o OUT [options]",
-                 "Write the archival package of a capture: a BagIt 1.0 bag (a folder, or a "
-                 ".tar or .zip by OUT's name; with --layout ocfl, a new version of the OCFL "
-                 "object in folder OUT; with --layout eark, an E-ARK SIP in folder OUT) holding the untouched originals, the carrier, "
-                 "the results, SHA-256 and SHA-512 manifests, and metadata/ with CIDOC-CRM "
-                 "(crm.rdf), METS+PREMIS (mets.xml) and the stylesheets and schemas that "
-                 "derive them. Runs the pipeline first (with the options below, as `surrogate "
-                 "run`) when the capture has no complete carrier or its files changed. "
-                 "SOURCE_DATE_EPOCH, when set, fixes every time in the package, so that two "
-                 "packs of the same capture are byte-identical. --meta records metadata in the "
-                 "carrier (the capture's record, checked by verify); --bag-info writes a "
-                 "holder's field into bag-info.txt only.\n\nexit codes: 0 packed, 1 bad "
-                 "input (unreadable or changing file), 2 usage, 5 could not write (disk full, "
-                 "permissions)"))
+  if (helpShown(args, specs,
+                {"surrogate pack CAPTURE -o OUT [options]",
+                 "Write the archival package of a capture: a BagIt 1.0 bag (a folder, or a .tar or .zip by "
+                 "OUT's name; with --layout ocfl, a new version of the OCFL object in folder OUT; with --layout "
+                 "eark, an E-ARK SIP in folder OUT) holding the untouched originals, the carrier, the results, "
+                 "SHA-256 and SHA-512 manifests, README.txt, and metadata/ with CIDOC-CRM (crm.rdf), "
+                 "METS+PREMIS (mets.xml) and the stylesheets and schemas that derive them. Runs the pipeline "
+                 "first (with the options of `surrogate run`, listed last) when the capture has no complete "
+                 "carrier or its files changed. SOURCE_DATE_EPOCH, when set, fixes every time in the package, "
+                 "so that two packs of the same capture are byte-identical. --meta records metadata in the "
+                 "carrier (the capture's record, checked by verify); --bag-info writes a holder's field into "
+                 "bag-info.txt only.",
+                 {{"surrogate pack stela12 -o stela12.zip",
+                   "bag the capture stela12 into one zip file (processing it first if its record is not complete)"},
+                  {"surrogate pack stela12 --layout ocfl -o repository/stela12",
+                   "add the package as a new version of an OCFL object (made on the first pack)"}},
+                 {{0, "packed"},
+                  {1, "bad input: an unreadable file, or one that changed while it was packed"},
+                  {2, "bad usage: an unknown option, a missing or malformed value"},
+                  {3, "an original no longer matches the SHA-256 the carrier records (it is evidence: "
+                      "restore it, or accept the change with run --accept-changed)"},
+                  {5, "could not write (disk full, permissions), or an internal error"}}}))
     return 0;
   const auto [capture, out] = captureAndOutput(args);
   (void)holderFields(args);  // a malformed --bag-info is refused before any work
@@ -405,26 +424,32 @@ int runCommandPack(int argc, char** argv) {
   // what is being bagged.
   capture::CaptureLock lock(capture, "pack");
   run::recoverRun(capture);
+  const Verbosity verbosity = verbosityOf(args);
   ProgressBar bar(args.has("quiet") || args.has("json"));
   Processing processing = processIfNeeded(capture, args, bar);
+  const auto holder = holderFields(args);
+  const bool json = args.has("json");
   if (layoutOf(args) == "ocfl") {
     const archive::OcflResult r = packOnce(capture, out, args, bar, processing, archive::packOcfl);
     bar.finish();
-    if (args.has("json")) printOcflJson(capture, out, processing, r, holderFields(args));
-    else printOcflSummary(capture, out, processing, r);
+    const PackReport p{capture, out, processing, holder, r.pack.bag.removedLeftovers};
+    if (json) printOcflJson(p, r);
+    else printOcflSummary(p, r, verbosity);
     return 0;
   }
   if (layoutOf(args) == "eark") {
     const archive::EarkResult r = packOnce(capture, out, args, bar, processing, archive::packEark);
     bar.finish();
-    if (args.has("json")) printEarkJson(capture, out, processing, r, holderFields(args));
-    else printEarkSummary(capture, out, processing, r);
+    const PackReport p{capture, out, processing, holder, r.pack.bag.removedLeftovers};
+    if (json) printEarkJson(p, r);
+    else printEarkSummary(p, r, verbosity);
     return 0;
   }
   const archive::PackResult r = packOnce(capture, out, args, bar, processing, archive::packCapture);
   bar.finish();
-  if (args.has("json")) printJson(capture, out, processing, r, holderFields(args));
-  else printSummary(capture, out, processing, r, holderFields(args));
+  const PackReport p{capture, out, processing, holder, r.bag.removedLeftovers};
+  if (json) printJson(p, r);
+  else printSummary(p, r, verbosity);
   return 0;
 }
 

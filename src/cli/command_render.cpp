@@ -33,20 +33,25 @@ int runCommandRender(int argc, char** argv) {
   const std::vector<OptionSpec> specs = {
       {"light", true, false, "light direction x,y,z (x right, y up, z to the camera); |x,y| > 1 "
                              "extrapolates beyond grazing (PTM)", "X,Y,Z"},
-      {"o", true, false, "the picture to write: .png, .jpg/.jpeg (JPEG) or .tif/.tiff (TIFF)", "OUT"},
-      {"output", true, false, "same as -o", "OUT"},
-      {"quality", true, false, "JPEG quality 1..100 (default 95; JPEG output only)", "Q"},
       {"gain", true, false, "diffuse gain g (PTM; 1 = none; > 1 shows relief more strongly)", "G"},
       {"specular", false, false, "add specular enhancement from the recovered normals"},
       {"threads", true, false, "worker threads (default: all cores)", "N"},
       {"memory", true, false, "memory budget (default 2G): a larger model is refused from its header", "SIZE"},
-      {"json", false, false, "print what was written as JSON"},
+      {"o", true, false, "the picture to write: .png, .jpg/.jpeg (JPEG) or .tif/.tiff (TIFF)", "OUT", OptionGroup::Output},
+      {"output", true, false, "same as -o", "OUT", OptionGroup::Output},
+      {"quality", true, false, "JPEG quality 1..100 (default 95; JPEG output only)", "Q", OptionGroup::Output},
+      {"json", false, false, "print what was written as JSON", "", OptionGroup::Output},
   };
   Args args(argc, argv, 1, specs);
-  if (helpShown(args, specs, "surrogate render FILE.ptm|FILE.rti|DIR --light x,y,z -o OUT.png|OUT.jpg|OUT.tif "
-                "[--gain g] [--specular]",
-                "Relight a PTM or HSH file, or a web layout (a folder `surrogate publish` wrote, or its "
-                "info.json), under any light and save the picture, in the format its name ends in."))
+  if (helpShown(args, specs,
+                {"surrogate render FILE.ptm|FILE.rti|DIR --light x,y,z -o OUT.png|OUT.jpg|OUT.tif [--gain g] [--specular]",
+                 "Relight a PTM or HSH file, or a web layout (a folder `surrogate publish` wrote, or its "
+                 "info.json), under any light and save the picture, in the format its name ends in.",
+                 {{"surrogate render stela12/finished-files/stela12-ptm.ptm --light -0.5,0.3,0.81 -o raking.png",
+                   "the model lit from the upper left at about 54 degrees elevation"},
+                  {"surrogate render coin.ptm --light 0,0,1 --gain 3 -o relief.jpg",
+                   "lit from the camera, with the relief shown more strongly, as a JPEG"}},
+                 commonExitCodes("the picture is written")}))
     return 0;
   const auto out = outputOption(args);
   if (args.positional().size() != 1 || !out || !args.has("light"))

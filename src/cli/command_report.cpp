@@ -18,25 +18,28 @@ namespace surrogate::cli {
 
 int runCommandReport(int argc, char** argv) {
   const std::vector<OptionSpec> specs = {
-      {"o", true, false, "the HTML file to write", "FILE.html"},
-      {"output", true, false, "same as -o", "FILE.html"},
-      {"max-image-side", true, false, "longest side of the embedded pictures in pixels (default 720)", "N"},
-      {"relight-side", true, false, "longest side of each model's interactive copy in pixels (default 1200)", "N"},
       {"verify", false, false, "verify the package first and show the result of every check"},
       {"reexecute", false, false, "with --verify: also re-execute the recorded steps (slow)"},
-      {"quiet", false, false, "no progress bar"},
-      {"json", false, false, "print what the report shows as JSON"},
+      {"o", true, false, "the HTML file to write", "FILE.html", OptionGroup::Output},
+      {"output", true, false, "same as -o", "FILE.html", OptionGroup::Output},
+      {"max-image-side", true, false, "longest side of the embedded pictures in pixels (default 720)", "N", OptionGroup::Output},
+      {"relight-side", true, false, "longest side of each model's interactive copy in pixels (default 1200)", "N", OptionGroup::Output},
+      {"quiet", false, false, "no progress bar, and at most one summary line", "", OptionGroup::Output},
+      {"json", false, false, "print what the report shows as JSON", "", OptionGroup::Output},
   };
   Args args(argc, argv, 1, specs);
-  if (helpShown(args, specs, "surrogate report PACKAGE|CAPTURE -o FILE.html [options]",
-                "Write a self-contained HTML report (one file, no network access) of a "
-                "processed capture folder or a package (bag directory, .tar or .zip): "
-                "light directions and coverage gaps, sphere detection, normals, albedo, "
-                "previews, an interactive relighting view, the provenance timeline and "
-                "the camera; with --verify, the verifier's result per check. surrogate run "
-                "writes one to CAPTURE/finished-files/report.html. Exit code 0 when the "
-                "report is written, whatever the checks found (surrogate verify gives the "
-                "verdict)."))
+  if (helpShown(args, specs,
+                {"surrogate report PACKAGE|CAPTURE -o FILE.html [options]",
+                 "Write a self-contained HTML report (one file, no network access) of a processed capture "
+                 "folder or a package (bag directory, .tar or .zip): light directions and coverage gaps, "
+                 "sphere detection, normals, albedo, previews, an interactive relighting view, the provenance "
+                 "timeline and the camera; with --verify, the verifier's result per check. surrogate run "
+                 "writes one to CAPTURE/finished-files/report.html.",
+                 {{"surrogate report stela12.zip -o stela12-report.html",
+                   "the report of a package, read without extracting it"},
+                  {"surrogate report stela12.zip --verify -o checked.html",
+                   "the same, with the verifier's result for every check"}},
+                 commonExitCodes("the report is written, whatever the checks found (surrogate verify gives the verdict)")}))
     return 0;
   const auto out = outputOption(args);
   if (args.positional().size() != 1 || !out)
@@ -102,6 +105,7 @@ int runCommandReport(int argc, char** argv) {
     std::cout << "wrote " << *out << " (" << r.lightsPlotted << " lights, " << r.picturesEmbedded
               << " pictures" << (r.relightable ? ", interactive relighting" : "") << ", "
               << r.html.size() / 1024 << " KiB)\n";
+    if (args.has("quiet")) return 0;
     for (const std::string& g : r.coverageGaps) std::cout << "  coverage: " << g << "\n";
     if (options.verification) {
       int failed = 0;

@@ -45,20 +45,24 @@ class CopiesByPath {
 };
 }  // namespace
 
-// The most lines of warnings `run` prints: a screenful with the lines above them.
-constexpr std::size_t kWarningLines = 15;
-
 int runCommandRun(int argc, char** argv) {
   std::vector<OptionSpec> specs = pipelineOptions(true);
   for (const OptionSpec& o : runtimeOptions()) specs.push_back(o);
   specs.push_back({"no-report", false, false,
                    "do not write finished-files/report.html (the HTML report, a view of the carrier); "
-                   "a previous one is removed, since it no longer matches the carrier"});
+                   "a previous one is removed, since it no longer matches the carrier", "", OptionGroup::Output});
   Args args(argc, argv, 1, specs);
-  if (helpShown(args, specs, "surrogate run CAPTURE [options]",
-                "Run the HRTI pipeline on a capture folder: ingest (hash, EXIF/XMP), "
-                "decode, and every processing stage, recording all of it in "
-                "CAPTURE/assembly-files/carrier.xml."))
+  if (helpShown(args, specs,
+                {"surrogate run CAPTURE [options]",
+                 "Run the HRTI pipeline on a capture folder: ingest (hash, EXIF/XMP), decode, and every "
+                 "processing stage, recording all of it in CAPTURE/assembly-files/carrier.xml; results go to "
+                 "CAPTURE/finished-files/, with report.html. The originals are never changed. Each run starts "
+                 "from the decisions recorded before; a run that changes only the description runs no step.",
+                 {{"surrogate run stela12 --title \"Stela 12\" --creator \"Ana Silva:photographer\"",
+                   "process the capture folder stela12, naming it and its photographer"},
+                  {"surrogate run stela12 --exclude IMG_0007.CR2 --reason \"flash misfired\"",
+                   "leave one photograph out from now on, saying why (recorded, with who and when)"}},
+                 commonExitCodes("processed (warnings, if any, are printed and kept in the carrier)")}))
     return 0;
   if (args.positional().size() != 1)
     throw Error(ErrorKind::Usage, "", "command line",
@@ -134,7 +138,21 @@ int runCommandRun(int argc, char** argv) {
     j.endObject();
     std::cout << j.str() << "\n";
   } else {
-    if (!c.header.runs.empty() && run::isDescriptiveRun(c.header.runs.back()))
+    const Verbosity verbosity = verbosityOf(args);
+    const carrier::CarrierSummary summary = carrier::describeCarrier(c);
+    const bool descriptive = !c.header.runs.empty() && run::isDescriptiveRun(c.header.runs.back());
+    if (verbosity == Verbosity::Quiet) {
+      // One line: what happened, how many warnings, where the report is.
+      std::cout << (descriptive ? "Recorded the new description of " + capture + " (no processing step ran again)"
+                                : "Processed " + capture + " (" + std::to_string(c.process.size()) + " steps)");
+      if (!summary.warnings.empty())
+        std::cout << ", " << summary.warnings.size() << (summary.warnings.size() == 1 ? " warning" : " warnings")
+                  << " (surrogate info " << escapedText(capture) << " lists them)";
+      if (rep) std::cout << "; report: " << reportPath;
+      std::cout << "\n";
+      return 0;
+    }
+    if (descriptive)
       std::cout << "Recorded the new description of " << capture << " (no processing step ran again).\n";
     else
       std::cout << "Processed " << capture << " (" << c.process.size() << " steps).\n";
@@ -152,9 +170,10 @@ int runCommandRun(int argc, char** argv) {
       if (f.role == "other" && f.path.find('/') == std::string::npos && f.format == "LP")
         std::cout << "  note: " << f.path << " is not used for the lights; for a dome capture, run with --lp " << f.path << "\n";
     std::cout << "  carrier (provenance): " << carrierPath << "\n";
+    std::vector<ListedFile> written;
     for (const carrier::FileRecord& f : c.files)
-      if (f.role == "assembly" || f.role == "result")
-        std::cout << "  " << f.role << ": " << capture << "/" << f.path << "\n";
+      if (f.role == "assembly" || f.role == "result") written.push_back({f.role, capture, f.path});
+    printFileList(written, verbosity);
     // Files another tool left in the output folders: recorded, never touched.
     for (const carrier::FileRecord& f : c.files)
       if (f.role == "prior")
@@ -164,8 +183,9 @@ int runCommandRun(int argc, char** argv) {
       std::cout << "  report (open in a browser): " << reportPath << "\n";
       for (const std::string& g : rep->coverageGaps) std::cout << "  coverage: " << g << "\n";
     }
-    // Each warning's text where the user looks, at most a screenful (issue 43); info lists all.
-    printWarnings(carrier::describeCarrier(c), kWarningLines,
+    // Each warning's text where the user looks, at most a screenful (issue 43); info lists all,
+    // and so does --verbose.
+    printWarnings(summary, verbosity == Verbosity::Verbose ? 0 : kWarningLines,
                   "surrogate info " + escapedText(capture) + " lists them all");
   }
   return 0;

@@ -77,33 +77,43 @@ void printJson(const verify::Report& report) {
   std::cout << j.str() << "\n";
 }
 
-void printText(const verify::Report& report) {
-  std::cout << "Verifying " << report.package
-            << (report.kind.empty() ? "" : " (" + report.kind + ")") << "\n";
+// --quiet: the failed checks and the verdict line only.
+void printText(const verify::Report& report, bool quiet) {
+  if (!quiet)
+    std::cout << "Verifying " << report.package << (report.kind.empty() ? "" : " (" + report.kind + ")") << "\n";
   std::size_t width = 0;
   for (const verify::Check& c : report.checks) width = std::max(width, c.name.size());
   for (const verify::Check& c : report.checks) {
+    if (quiet && c.passed) continue;
     std::string name = c.name;
     name.resize(width, ' ');
     // Paths from a manifest are the package's text, whatever it holds: escaped (core/text.h).
     std::cout << (c.passed ? "  ok    " : "  FAIL  ") << name << "  " << escapedText(c.what, true) << "\n";
     for (const std::string& w : c.where) std::cout << "          " << escapedText(w, true) << "\n";
   }
-  if (!report.holderFields.empty()) {
+  if (!quiet && !report.holderFields.empty()) {
     std::cout << "bag-info.txt fields added by the holder (not written by Surrogate, not checked "
                  "against the carrier; the tag manifests cover them):\n";
     for (const auto& [label, value] : report.holderFields)
       std::cout << "  " << escapedText(label + ": " + value, true) << "  (added by the holder)\n";
   }
-  if (!report.softwareDifferences.empty()) {
+  if (!quiet && !report.softwareDifferences.empty()) {
     std::cout << "Software versions differ from the carrier's:\n";
     for (const std::string& s : report.softwareDifferences) std::cout << "  " << s << "\n";
   }
-  if (!report.warnings.empty()) {
+  if (!quiet && !report.warnings.empty()) {
     std::cout << "Warnings:\n";
     for (const std::string& w : report.warnings) std::cout << "  " << escapedText(w, true) << "\n";
   }
   // The two-part verdict: the bag, then what a Surrogate package adds.
+  if (quiet) {
+    const int code = report.exitCode();
+    std::cout << (code == 0 ? (report.surrogatePackage ? "SOUND" : "VALID BAG") : report.surrogatePackage ? "NOT SOUND" : "NOT VALID")
+              << ": " << report.package << " (" << report.checks.size() - report.failures() << " of "
+              << report.checks.size() << " checks passed" << (report.reexecuted ? ", re-executed" : "")
+              << (report.warnings.empty() ? "" : "; " + std::to_string(report.warnings.size()) + " warnings") << ")\n";
+    return;
+  }
   std::size_t bagitChecks = 0, ownChecks = 0;
   for (const verify::Check& c : report.checks) (c.aboutBagIt() ? bagitChecks : ownChecks) += 1;
   const std::size_t bagitFailed = failedChecks(report, true).size();
@@ -144,43 +154,42 @@ int runCommandVerify(int argc, char** argv) {
       {"strict", false, false,
        "count files the operating system leaves (.DS_Store, Thumbs.db, ._*) and no manifest lists as fixity "
        "failures (default: warnings, with the command to remove them)"},
-      {"json", false, false, "print the report as JSON"},
-      {"quiet", false, false, "no progress bar"},
+      {"quiet", false, false, "no progress bar; print only the failed checks and the verdict line", "",
+       OptionGroup::Output},
+      {"json", false, false, "print the report as JSON", "", OptionGroup::Output},
   };
   Args args(argc, argv, 1, specs);
-  if (args.helpRequested()) {
-    std::cout << usageHeader(
-                     "surrogate verify PACKAGE [--reexecute] [options]",
-                     "Check that an archival package (a bag directory, .tar or .zip, or an OCFL "
-                     "object or E-ARK SIP holding a bag: pack --layout ocfl or eark) is sound: "
-                     "BagIt fixity and completeness, every file `surrogate pack` writes present "
-                     "(a package cut short is never sound), the bundled stylesheets, schemas "
-                     "and tables identical to this Surrogate's, bag-info.txt against the "
-                     "carrier (fields Surrogate did not write are listed as added by the holder), "
-                     "the carrier against its schema, the files it lists and the steps "
-                     "this build can run, METS/PREMIS and CIDOC-CRM metadata against what the "
-                     "bundled stylesheets derive from the carrier; with --reexecute, the "
-                     "recorded steps are run again on the bagged originals in a temporary "
-                     "folder ($TMPDIR) and every recorded result is compared. Archives are "
-                     "read without extracting; unsafe entries (.., absolute paths, links, "
-                     "devices, duplicates, decompression bombs) refuse the package. A bag that "
-                     "another tool made is verified as a bag (RFC 8493 and its drafts 0.93-0.97: "
-                     "manifests in any digest OpenSSL offers, md5 and sha1 with a warning, md5sum's "
-                     "'*' marker, 0.97 repeats and repeated Bagging-Date with a warning, tag files "
-                     "in the encoding bagit.txt names, fetch.txt) and its exit code is its BagIt verdict. Files an operating system "
-                     "leaves (.DS_Store, ._*, Thumbs.db) that no manifest lists are set aside with "
-                     "a warning and the command to remove them (--strict: fixity failures). The verdict has two "
-                     "parts: \"BagIt: valid/invalid\" and \"Surrogate package: sound/not "
-                     "sound/not a Surrogate package\".\n\n"
-                     "exit codes: 0 sound (a bag that is not a Surrogate package: valid); 1 the package cannot be read (missing file); "
-                     "2 invalid or refused package (including steps that cannot run, resources "
-                     "of another version, bag-info.txt that disagrees with the carrier), or bad "
-                     "usage; 3 fixity failure (a file changed, is missing or unlisted, the "
-                     "package is incomplete, or the archive is truncated or has data after its "
-                     "end); 4 re-execution did not reproduce the recorded results; 5 internal error")
-              << Args::describe(specs);
+  if (helpShown(args, specs,
+                {"surrogate verify PACKAGE [--reexecute] [options]",
+                 "Check that an archival package (a bag directory, .tar or .zip, or an OCFL object or E-ARK "
+                 "SIP holding a bag: pack --layout ocfl or eark) is sound: BagIt fixity and completeness, every "
+                 "file `surrogate pack` writes present (a package cut short is never sound), the bundled "
+                 "stylesheets, schemas and tables identical to this Surrogate's, bag-info.txt against the "
+                 "carrier (fields Surrogate did not write are listed as added by the holder), the carrier "
+                 "against its schema, the files it lists and the steps this build can run, METS/PREMIS and "
+                 "CIDOC-CRM metadata against what the bundled stylesheets derive from the carrier; with "
+                 "--reexecute, the recorded steps are run again on the bagged originals in a temporary folder "
+                 "($TMPDIR) and every recorded result is compared. Archives are read without extracting; unsafe "
+                 "entries (.., absolute paths, links, devices, duplicates, decompression bombs) refuse the "
+                 "package. A bag that another tool made is verified as a bag (RFC 8493 and its drafts "
+                 "0.93-0.97: manifests in any digest OpenSSL offers, md5 and sha1 with a warning, md5sum's '*' "
+                 "marker, 0.97 repeats and repeated Bagging-Date with a warning, tag files in the encoding "
+                 "bagit.txt names, fetch.txt) and its exit code is its BagIt verdict. Files an operating system "
+                 "leaves (.DS_Store, ._*, Thumbs.db) that no manifest lists are set aside with a warning and the "
+                 "command to remove them (--strict: fixity failures). The verdict has two parts: \"BagIt: "
+                 "valid/invalid\" and \"Surrogate package: sound/not sound/not a Surrogate package\".",
+                 {{"surrogate verify stela12.zip", "fixity, completeness, schemas and metadata of a package"},
+                  {"surrogate verify stela12.zip --reexecute",
+                   "the same, and every recorded step run again on the bagged originals and compared"}},
+                 {{0, "sound (a bag that is not a Surrogate package: valid)"},
+                  {1, "the package cannot be read (missing file)"},
+                  {2, "invalid or refused package (including steps that cannot run, resources of another version, "
+                      "bag-info.txt that disagrees with the carrier), or bad usage"},
+                  {3, "fixity failure: a file changed, is missing or unlisted, the package is incomplete, or the "
+                      "archive is truncated or has data after its end"},
+                  {4, "re-execution did not reproduce the recorded results"},
+                  {5, "internal error"}}}))
     return 0;
-  }
   if (args.positional().size() != 1)
     throw Error(ErrorKind::Usage, "", "command line",
                 "give exactly one package: surrogate verify PACKAGE [--reexecute] (see --help)");
@@ -202,7 +211,7 @@ int runCommandVerify(int argc, char** argv) {
   const verify::Report report = verify::verifyPackage(args.positional()[0], options);
   bar.finish();
   if (args.has("json")) printJson(report);
-  else printText(report);
+  else printText(report, args.has("quiet"));
   return report.exitCode();
 }
 

@@ -2,13 +2,11 @@
 
 #include <algorithm>
 #include <iostream>
+#include <map>
+#include <optional>
 #include <set>
 
 #include "core/text.h"
-#include "stages/rti_fit_stage.h"
-#include "stages/highlight_detection_stage.h"
-#include "stages/light_directions_stage.h"
-#include "stages/sphere_detection_stage.h"
 
 namespace surrogate::cli {
 
@@ -26,30 +24,6 @@ const std::vector<Command>& commands() {
       {"audit", "audit another tool's RTI (RTIBuilder's .lp, .ptm, .rti, log) read-only, in a work folder", runCommandAudit},
   };
   return list;
-}
-
-void printStageWarnings(const carrier::Carrier& c, std::size_t most) {
-  std::set<std::string> lightSteps;
-  for (const carrier::Step& s : c.process)
-    if (s.component == stages::SphereDetectionStage::kComponent ||
-        s.component == stages::HighlightDetectionStage::kComponent ||
-        s.component == stages::LightDirectionsStage::kComponent || s.component == stages::RtiFitStage::kComponent)
-      lightSteps.insert(s.id);
-  std::size_t shown = 0, more = 0;
-  for (const carrier::LogEntry& e : c.log) {
-    if (e.level != "warning" || !lightSteps.count(e.step)) continue;
-    if (shown == most) {
-      ++more;
-      continue;
-    }
-    std::string text = e.text;
-    // Names from the card may hold control characters: never sent raw to the terminal.
-    for (char& ch : text)
-      if (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f) ch = '?';
-    std::cout << "  warning: " << text << "\n";
-    ++shown;
-  }
-  if (more) std::cout << "  and " << more << " more warning(s) on the lights and fits in the carrier's log\n";
 }
 
 void printWarnings(const carrier::CarrierSummary& s, std::size_t mostLines, const std::string& more) {
@@ -84,15 +58,47 @@ void printWarnings(const carrier::CarrierSummary& s, std::size_t mostLines, cons
   if (shown < s.warnings.size()) std::cout << "    and " << (s.warnings.size() - shown) << " more: " << more << "\n";
 }
 
-std::string usageHeader(const std::string& synopsis, const std::string& description) {
-  return "usage: " + synopsis + "\n\n" + description + "\n\noptions:\n";
+void printFileList(const std::vector<ListedFile>& files, Verbosity verbosity) {
+  // The folders of `path` two or more levels deep, shallowest first: "a/b/c/f" -> "a/b/", "a/b/c/".
+  const auto foldable = [](const std::string& path) {
+    std::vector<std::string> folders;
+    for (std::size_t slash = path.find('/'); slash != std::string::npos; slash = path.find('/', slash + 1))
+      if (slash != path.find('/')) folders.push_back(path.substr(0, slash + 1));
+    return folders;
+  };
+  using Key = std::pair<std::string, std::string>;  // (label, root + folder)
+  std::map<Key, std::size_t> count;
+  for (const ListedFile& f : files)
+    for (const std::string& folder : foldable(f.path)) ++count[{f.label, f.root + "/" + folder}];
+  std::set<Key> shown;
+  for (const ListedFile& f : files) {
+    std::optional<Key> fold;
+    if (verbosity != Verbosity::Verbose)
+      for (const std::string& folder : foldable(f.path))
+        if (const Key key{f.label, f.root + "/" + folder}; count[key] > kFilesListedPerFolder) {
+          fold = key;
+          break;
+        }
+    // Names from the card may hold control characters: never sent raw to the terminal.
+    if (!fold)
+      std::cout << "  " << f.label << ": " << escapedText(f.root + "/" + f.path) << "\n";
+    else if (shown.insert(*fold).second)
+      std::cout << "  " << f.label << ": " << escapedText(fold->second) << " (" << count[*fold]
+                << " files; --verbose lists them)\n";
+  }
 }
 
-bool helpShown(const Args& args, const std::vector<OptionSpec>& specs, const std::string& synopsis,
-               const std::string& description) {
+bool helpShown(const Args& args, const std::vector<OptionSpec>& specs, const CommandHelp& help) {
   if (!args.helpRequested()) return false;
-  std::cout << usageHeader(synopsis, description) << Args::describe(specs);
+  std::cout << Args::describe(help, specs);
   return true;
+}
+
+std::vector<std::pair<int, std::string>> commonExitCodes(const std::string& success) {
+  return {{0, success},
+          {1, "bad input: a file that cannot be read or processed (the message names it)"},
+          {2, "bad usage: an unknown option, a missing or malformed value"},
+          {5, "internal error: a bug, or the environment (disk full, permissions, missing data files)"}};
 }
 
 std::optional<std::string> outputOption(const Args& args) {

@@ -32,23 +32,32 @@ int runCommandReport(int argc, char** argv);
 int runCommandVerify(int argc, char** argv);
 int runCommandAudit(int argc, char** argv);
 
-// Shared by commands: the head of a command's --help.
-std::string usageHeader(const std::string& synopsis, const std::string& description);
-// When --help was given: prints the command's help (usageHeader and its options) and returns
-// true, so the command returns 0.
-bool helpShown(const Args& args, const std::vector<OptionSpec>& specs, const std::string& synopsis,
-               const std::string& description);
-// Prints, one a line under "  warning: ", the warnings the light stages (spheres, highlights,
-// lights and their checks) and the fits logged in `c`: a highlight refused on one sphere of
-// two, a doubtful one, an accepted check, a fit damped for its narrow cone of lights. The user
-// reads them here, not only in the carrier. At most `most`, then how many more.
-void printStageWarnings(const carrier::Carrier& c, std::size_t most = 8);
-
+// When --help was given: prints the command's help (Args::describe) and returns true, so the
+// command returns 0.
+bool helpShown(const Args& args, const std::vector<OptionSpec>& specs, const CommandHelp& help);
+// The exit codes most commands share: 0 `success`, 1 bad input, 2 bad usage, 5 internal error.
+std::vector<std::pair<int, std::string>> commonExitCodes(const std::string& success);
 // Prints the carrier's warnings (carrier::CarrierSummary::warnings) grouped by the step that
 // logged them, a heading line per step ("    s3 SphereDetection:") over its warnings' one-line
 // texts, in at most `mostLines` lines in all (0: no limit); the warnings left out are counted
 // in one more line, "and N more: " + `more`. Prints nothing when there are none.
 void printWarnings(const carrier::CarrierSummary& s, std::size_t mostLines, const std::string& more);
+// The most lines of warnings `run` and `lights` print: a screenful with the lines above them.
+inline constexpr std::size_t kWarningLines = 15;
+
+// A file a command wrote, for printFileList: its label ("result", "assembly"), the folder it is
+// in (the capture) and its path there.
+struct ListedFile {
+  std::string label;
+  std::string root;
+  std::string path;  // relative to root, with '/'
+};
+// Prints "  LABEL: ROOT/PATH" a line. Unless `verbosity` is Verbose, a folder two or more levels
+// below the root (finished-files/web/, not finished-files/ itself) holding more than
+// kFilesListedPerFolder files of one label, in it or below, is one line with their count: a
+// tiled web copy writes hundreds of files.
+inline constexpr std::size_t kFilesListedPerFolder = 8;
+void printFileList(const std::vector<ListedFile>& files, Verbosity verbosity);
 
 // The file a command writes: -o (also --o) or --output.
 std::optional<std::string> outputOption(const Args& args);

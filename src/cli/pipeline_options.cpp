@@ -72,6 +72,25 @@ std::vector<OptionSpec> pipelineOptions(bool withFit) {
     specs.push_back({"publish-tiles", true, false, "web copy tiles: auto (default), none or deepzoom", "LAYOUT"});
     specs.push_back({"publish-tile-size", true, false, "side of the web copy's Deep Zoom tiles, 16..4096 (default 256)", "N"});
   }
+  // The heading each option is listed under in --help (processing unless named here).
+  const std::pair<OptionGroup, std::vector<std::string>> groups[] = {
+      {OptionGroup::Input, {"source", "raw", "lp"}},
+      {OptionGroup::Description, {"title", "creator", "meta", "rights", "license"}},
+      {OptionGroup::Decisions,
+       {"operator", "exclude", "reason", "sphere", "highlight", "forget-exclusion", "forget-sphere",
+        "forget-highlight", "reset", "accept-changed", "accept-damaged", "forget-damaged", "accept",
+        "forget-accept"}},
+      {OptionGroup::Output, {"publish", "no-publish", "publish-quality", "publish-tiles", "publish-tile-size"}},
+  };
+  for (OptionSpec& spec : specs)
+    for (const auto& [group, names] : groups)
+      if (std::find(names.begin(), names.end(), spec.name) != names.end()) spec.group = group;
+  return specs;
+}
+
+std::vector<OptionSpec> runOptionsForAnotherCommand() {
+  std::vector<OptionSpec> specs = pipelineOptions(true);
+  for (OptionSpec& spec : specs) spec.fromRun = true;
   return specs;
 }
 
@@ -79,8 +98,9 @@ std::vector<OptionSpec> runtimeOptions() {
   return {
       {"threads", true, false, "worker threads (default: all cores); results do not depend on it", "N"},
       {"memory", true, false, "memory budget for streaming work (default 2G)", "SIZE"},
-      {"quiet", false, false, "no progress bar"},
-      {"json", false, false, "print the summary as JSON"},
+      {"quiet", false, false, "no progress bar, and at most one summary line", "", OptionGroup::Output},
+      {"verbose", false, false, "list every file written and every warning", "", OptionGroup::Output},
+      {"json", false, false, "print the summary as JSON", "", OptionGroup::Output},
   };
 }
 

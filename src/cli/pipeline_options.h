@@ -13,7 +13,10 @@ namespace surrogate::cli {
 
 // Options that shape what the pipeline does (recorded in the carrier). `withFit` adds --basis.
 std::vector<OptionSpec> pipelineOptions(bool withFit);
-// Options that shape how it runs (not recorded): --threads, --memory, --quiet, --json.
+// The same with the fit's options, for a command that runs the pipeline when needed (pack,
+// audit): its --help lists them after its own.
+std::vector<OptionSpec> runOptionsForAnotherCommand();
+// Options that shape how it runs (not recorded): --threads, --memory, --quiet, --verbose, --json.
 std::vector<OptionSpec> runtimeOptions();
 
 run::RunRequest requestFrom(const Args& args);
