@@ -75,7 +75,10 @@ void printPackageText(const fs::path& path, const archive::PackageSummary& s) {
             << " (" << s.format << ")\n";
   if (s.surrogate) {
     std::cout << "  identifier: " << s.bagInfoValue("Surrogate-Package-Identifier") << "\n"
-              << "  packed:     " << s.bagInfoValue("Surrogate-Packaging-Time") << " by "
+              << "  capture:    " << s.bagInfoValue("Surrogate-Capture-Identifier") << "\n";
+    if (const std::string previous = s.bagInfoValue("Surrogate-Previous-Package-Identifier"); !previous.empty())
+      std::cout << "  revises:    " << previous << "\n";
+    std::cout << "  packed:     " << s.bagInfoValue("Surrogate-Packaging-Time") << " by "
               << s.bagInfoValue("Bag-Software-Agent") << "\n";
     // Fields Surrogate does not write from the carrier: the holder's (pack --bag-info, or added
     // later), as verify lists them.

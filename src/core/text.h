@@ -35,6 +35,10 @@ bool isValidUtf8(const std::string& s);
 // `keepLineBreaks`, tab, line feed and carriage return are kept (a packet's lines). Text that
 // is already clean comes back unchanged; the raw bytes are for hexBytes to keep.
 std::string escapedText(const std::string& bytes, bool keepLineBreaks = false);
+// Text as HTML element content or a quoted attribute value: & < > " ' as character
+// references, so that no title or file name can open a tag or end an attribute. Other bytes
+// (UTF-8 included) pass through. Used by every page Surrogate writes (report, web copy).
+std::string escapeHtml(const std::string& text);
 // Whether escapedText would change `bytes`.
 bool needsEscaping(const std::string& bytes, bool keepLineBreaks = false);
 // The bytes as lowercase hexadecimal, two digits each ("43616e" for "Can").

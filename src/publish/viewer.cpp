@@ -1,28 +1,12 @@
 #include "publish/viewer.h"
 
 #include "core/base64.h"
+#include "core/text.h"
 
 namespace surrogate::publish {
 
 namespace {
 std::string jpegUri(const std::string& bytes) { return "\"data:image/jpeg;base64," + base64(bytes) + "\""; }
-
-// Text from the carrier as element content or a quoted attribute: & < > " ' as references,
-// so that no title can open a tag or end an attribute.
-std::string escaped(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&#39;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
 
 // A folder name as a relative URL's path segment: every byte but the unreserved ones of RFC
 // 3986 percent-encoded (a folder named after a file may hold spaces, '#', '?' or '%').
@@ -53,26 +37,26 @@ std::string shownTitle(const WebDescription& d) { return d.title.empty() ? "Reli
 // The page's head of description: title, creators with roles, rights, licence and, when
 // given, the model's basis. Elements without text are left out.
 std::string aboutHtml(const WebDescription& d, const std::string& basis) {
-  std::string out = "<h1 id=\"title\">" + escaped(shownTitle(d)) + "</h1>\n";
+  std::string out = "<h1 id=\"title\">" + escapeHtml(shownTitle(d)) + "</h1>\n";
   if (!d.creators.empty()) {
     out += "<p id=\"creators\">By ";
     for (std::size_t i = 0; i < d.creators.size(); ++i) {
       if (i) out += "; ";
-      out += "<span class=\"creator\">" + escaped(d.creators[i].first);
-      if (!d.creators[i].second.empty()) out += " (" + escaped(d.creators[i].second) + ")";
+      out += "<span class=\"creator\">" + escapeHtml(d.creators[i].first);
+      if (!d.creators[i].second.empty()) out += " (" + escapeHtml(d.creators[i].second) + ")";
       out += "</span>";
     }
     out += "</p>\n";
   }
-  if (!d.rights.empty()) out += "<p id=\"rights\">Rights: " + escaped(d.rights) + "</p>\n";
+  if (!d.rights.empty()) out += "<p id=\"rights\">Rights: " + escapeHtml(d.rights) + "</p>\n";
   if (!d.license.empty()) {
     out += "<p id=\"license\">Licence: ";
-    out += isWebAddress(d.license) ? "<a href=\"" + escaped(d.license) + "\" rel=\"license\">" + escaped(d.license) + "</a>"
-                                   : escaped(d.license);
+    out += isWebAddress(d.license) ? "<a href=\"" + escapeHtml(d.license) + "\" rel=\"license\">" + escapeHtml(d.license) + "</a>"
+                                   : escapeHtml(d.license);
     out += "</p>\n";
   }
   if (!basis.empty())
-    out += "<p id=\"basis\">Model: " + escaped(basisLabel(basis)) + " (" + escaped(basis) + ")</p>\n";
+    out += "<p id=\"basis\">Model: " + escapeHtml(basisLabel(basis)) + " (" + escapeHtml(basis) + ")</p>\n";
   return out;
 }
 
@@ -94,7 +78,7 @@ std::string basisLabel(const std::string& basis) {
 
 std::string viewerHtml(const WebDescription& description, const std::string& basis) {
   std::string page = kViewerTemplate;
-  replaceOnce(page, "@TITLE@", escaped(shownTitle(description) + " (" + basisLabel(basis) + ")"));
+  replaceOnce(page, "@TITLE@", escapeHtml(shownTitle(description) + " (" + basisLabel(basis) + ")"));
   replaceOnce(page, "@ABOUT@", aboutHtml(description, basis));
   return page;
 }
@@ -102,10 +86,10 @@ std::string viewerHtml(const WebDescription& description, const std::string& bas
 std::string webIndexHtml(const WebDescription& description, const std::vector<IndexedModel>& models) {
   std::string list;
   for (const IndexedModel& m : models)
-    list += "<li><a href=\"" + segment(m.folder) + "/index.html\">" + escaped(basisLabel(m.basis)) + "</a> (" +
-            escaped(m.basis) + "), in " + escaped(m.folder) + "/</li>\n";
+    list += "<li><a href=\"" + segment(m.folder) + "/index.html\">" + escapeHtml(basisLabel(m.basis)) + "</a> (" +
+            escapeHtml(m.basis) + "), in " + escapeHtml(m.folder) + "/</li>\n";
   std::string page = kIndexTemplate;
-  replaceOnce(page, "@TITLE@", escaped(shownTitle(description)));
+  replaceOnce(page, "@TITLE@", escapeHtml(shownTitle(description)));
   replaceOnce(page, "@ABOUT@", aboutHtml(description, ""));
   replaceOnce(page, "@MODELS@", list);
   return page;

@@ -3,10 +3,9 @@
 
 #include <string>
 
-namespace surrogate::report {
+#include "core/text.h"  // escapeHtml, for text in element content and quoted attributes
 
-// Escapes & < > " ' so the text is safe in element content and in quoted attributes.
-std::string escapeHtml(const std::string& text);
+namespace surrogate::report {
 
 // A JSON string literal safe to embed inside <script>: also escapes '<', '>' and '&', and
 // U+2028/U+2029, so no carrier text can close the script element.

@@ -1,7 +1,9 @@
 // Private to src/verify: the verifier's groups of checks, each appending to a report.
 #pragma once
 
+#include <filesystem>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -11,6 +13,16 @@
 #include "verify/verify.h"
 
 namespace surrogate::verify {
+
+// What a folder package (an OCFL object, an E-ARK SIP) holds, walked without following links:
+// its files and folders relative to it, '/' separated, and one sentence for each entry that is
+// neither (a link, a device) or a listing that failed. `holder` names the package in those
+// sentences: "an OCFL object".
+struct FolderWalk {
+  std::set<std::string> files, folders;
+  std::vector<std::string> problems;
+};
+FolderWalk walkFolder(const std::filesystem::path& root, const std::string& holder);
 
 // The package reader and the BagIt text formats live in src/archive; the checks use them.
 using archive::extractFiles;

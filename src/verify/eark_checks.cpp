@@ -46,26 +46,6 @@ namespace {
 
 constexpr const char* kProfilePrefix = "https://earksip.dilcis.eu/profile/";
 
-struct Walk {
-  std::set<std::string> files;
-  std::vector<std::string> problems;
-};
-
-Walk walkSip(const fs::path& sip) {
-  Walk w;
-  std::error_code ec;
-  for (fs::recursive_directory_iterator it(sip, fs::directory_options::none, ec), end; !ec && it != end;
-       it.increment(ec)) {
-    const std::string rel = it->path().lexically_relative(sip).generic_string();
-    const fs::file_status st = it->symlink_status(ec);
-    if (fs::is_regular_file(st)) w.files.insert(rel);
-    else if (!fs::is_directory(st))
-      w.problems.push_back(rel + ": " + (fs::is_symlink(st) ? "a symbolic link" : "not a regular file or folder"));
-  }
-  if (ec) w.problems.push_back(sip.string() + ": cannot be listed (" + ec.message() + ")");
-  return w;
-}
-
 struct Doc {
   std::unique_ptr<xmlDoc, decltype(&xmlFreeDoc)> doc{nullptr, xmlFreeDoc};
   std::unique_ptr<xmlXPathContext, decltype(&xmlXPathFreeContext)> xpath{nullptr, xmlXPathFreeContext};
@@ -214,7 +194,7 @@ Report verifyEarkSip(const fs::path& sip, const VerifyOptions& options) {
   Report report;
   report.package = sip.string();
   report.kind = "E-ARK SIP";
-  const Walk walk = walkSip(sip);
+  const FolderWalk walk = walkFolder(sip, "an E-ARK SIP");
   add(report, "eark.read", Severity::Invalid, "the SIP holds files and folders only",
       "the SIP holds what a package may not", walk.problems);
 

@@ -44,27 +44,6 @@ namespace surrogate::verify {
 
 namespace {
 
-struct Walk {
-  std::set<std::string> files, folders;  // relative to the object, '/' separated
-  std::vector<std::string> problems;
-};
-
-Walk walkObject(const fs::path& object) {
-  Walk w;
-  std::error_code ec;
-  for (fs::recursive_directory_iterator it(object, fs::directory_options::none, ec), end; !ec && it != end;
-       it.increment(ec)) {
-    const std::string rel = it->path().lexically_relative(object).generic_string();
-    const fs::file_status st = it->symlink_status(ec);
-    if (fs::is_directory(st)) w.folders.insert(rel);
-    else if (fs::is_regular_file(st)) w.files.insert(rel);
-    else w.problems.push_back(rel + ": " + (fs::is_symlink(st) ? "a symbolic link" : "not a regular file or folder") +
-                              " (an OCFL object holds files and folders only)");
-  }
-  if (ec) w.problems.push_back(object.string() + ": cannot be listed (" + ec.message() + ")");
-  return w;
-}
-
 std::string readText(const fs::path& path) {
   try {
     return readFile(path, "verifying");
@@ -253,7 +232,7 @@ void add(Report& report, const std::string& name, Severity severity, const std::
 
 // The head state as a bag folder in `into`: hard links to the object's content files, or
 // copies where the file systems differ. Logical paths were checked safe (parseRoot).
-void assembleHead(const fs::path& object, const OcflInventory& inv, const Walk& walk, const fs::path& into) {
+void assembleHead(const fs::path& object, const OcflInventory& inv, const FolderWalk& walk, const fs::path& into) {
   for (const auto& [logical, digest] : inv.states.at(inv.head)) {
     const std::vector<std::string>& sources = inv.manifest.at(digest);
     const auto present = std::find_if(sources.begin(), sources.end(),
@@ -288,7 +267,7 @@ Report verifyOcflObject(const fs::path& object, const VerifyOptions& options) {
   Report report;
   report.package = object.string();
   report.kind = "OCFL 1.1 object";
-  const Walk walk = walkObject(object);
+  const FolderWalk walk = walkFolder(object, "an OCFL object");
   add(report, "ocfl.read", Severity::Invalid, "the object holds files and folders only",
       "the object holds what an OCFL object may not", walk.problems);
 

@@ -107,7 +107,7 @@ TEST_CASE("pack --help shows its own options on the first screen, run's options 
   CHECK(exclude < lines.size());
 }
 
-TEST_CASE("--quiet prints one summary line, the ordinary output folds long folders, --verbose lists them") {
+TEST_CASE("quiet prints one summary line, the ordinary output folds long folders, verbose lists them") {
   const fs::path work = e2e::freshDir("cli-verbosity");
   const fs::path capture = e2e::smallCapture(work);
   // A tiled web copy: hundreds of tiles in a few folders.

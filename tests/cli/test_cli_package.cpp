@@ -49,6 +49,8 @@ TEST_CASE("info describes a package as a folder, .tar and .zip: roles, who and w
     REQUIRE(r.exitCode == 0);
     CHECK_THAT(r.output, Contains(": Surrogate package ("));
     CHECK_THAT(r.output, Contains("identifier: urn:sha256:"));
+    // The capture's identifier, from the SHA-256 of its first photograph (bag-info.txt).
+    CHECK(std::regex_search(r.output, std::regex("\n  capture: +urn:surrogate:capture:[0-9a-f]{64}\n")));
     CHECK_THAT(r.output, Contains("by Surrogate "));
     for (const char* role : {"originals", "results", "assembly", "metadata", "bag files"})
       CHECK_THAT(r.output, Contains(std::string("    ") + role));
@@ -63,7 +65,7 @@ TEST_CASE("info describes a package as a folder, .tar and .zip: roles, who and w
     REQUIRE(std::regex_search(r.output, m, std::regex("\n    (surrogate verify [^\n]*)\n")));
     const std::string bin = fs::path(SURROGATE_EXE).parent_path().string();
     const e2e::CommandResult verify =
-        e2e::runShell("PATH=" + e2e::quote(bin) + ":\"$PATH\" " + m[1].str() + " --quiet");
+        e2e::runShell("PATH=" + e2e::quote(bin) + ":\"$PATH\" " + m[1].str());
     INFO(m[1].str() << "\n" << verify.output);
     CHECK(verify.exitCode == 0);
     CHECK_THAT(verify.output, Contains("BagIt: valid\nSurrogate package: sound\n"));

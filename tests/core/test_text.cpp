@@ -139,3 +139,8 @@ TEST_CASE("nearestName suggests only a close name or the one name a prefix begin
   // Case matters: the caller compares file names without regard to case itself.
   CHECK_FALSE(nearestName("TITLE", {"title"}));
 }
+
+TEST_CASE("escapeHtml neutralises markup in element content and quoted attributes") {
+  CHECK(escapeHtml("<b a=\"x\" b='y'>&</b>") == "&lt;b a=&quot;x&quot; b=&#39;y&#39;&gt;&amp;&lt;/b&gt;");
+  CHECK(escapeHtml("Stela 12 \xc3\xa9") == "Stela 12 \xc3\xa9");  // UTF-8 passes through
+}

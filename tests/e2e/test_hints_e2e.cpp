@@ -57,7 +57,7 @@ std::string from(const std::string& text, const std::string& first) {
 
 TEST_CASE("run prints each warning's text under its step and info lists them as text and JSON", "[e2e][hints]") {
   const fs::path capture = captureWithDamagedSidecars("warnings-few", 8, 3);
-  const e2e::CommandResult r = e2e::surrogate("run " + e2e::quote(capture) + " --quiet --no-report");
+  const e2e::CommandResult r = e2e::surrogate("run " + e2e::quote(capture) + " --no-report");
   INFO(r.output);
   REQUIRE(r.exitCode == 0);
   // A heading for the ingest step, then one line per damaged sidecar, naming it. (The fit of
@@ -109,7 +109,7 @@ TEST_CASE("a carrier without warnings says so in info", "[e2e][hints]") {
 
 TEST_CASE("run prints at most 15 lines of warnings and counts the rest, which info lists", "[e2e][hints]") {
   const fs::path capture = captureWithDamagedSidecars("warnings-many", 20, 20);
-  const e2e::CommandResult r = e2e::surrogate("run " + e2e::quote(capture) + " --quiet --no-report");
+  const e2e::CommandResult r = e2e::surrogate("run " + e2e::quote(capture) + " --no-report");
   INFO(r.output);
   REQUIRE(r.exitCode == 0);
   // 20 warnings of the ingest step first: its heading, 13 of them and the line counting the

@@ -130,7 +130,7 @@ TEST_CASE("verify sets aside the files an operating system leaves in a bag folde
   for (const char* name : {".DS_Store", "data/.DS_Store", "data/finished-files/._ptm-lrgb.ptm", "metadata/Thumbs.db"})
     std::ofstream(bag / name) << "left by a file manager";
 
-  const auto lenient = e2e::surrogate("verify " + e2e::quote(bag) + " --reexecute --quiet");
+  const auto lenient = e2e::surrogate("verify " + e2e::quote(bag) + " --reexecute");
   INFO(lenient.output);
   CHECK(lenient.exitCode == 0);
   CHECK_THAT(lenient.output, Catch::Contains("data/.DS_Store: a file the operating system left") &&
@@ -191,7 +191,7 @@ TEST_CASE("bag-info fields a holder adds afterwards keep the package sound, list
   CHECK_THAT(r.output, Catch::Contains("bag-info.txt: sha256"));
 
   redoTagManifests(bag);
-  r = e2e::surrogate("verify " + e2e::quote(bag) + " --quiet");
+  r = e2e::surrogate("verify " + e2e::quote(bag));
   INFO(r.output);
   CHECK(r.exitCode == 0);
   CHECK_THAT(r.output, Catch::Contains("Internal-Sender-Identifier: accession 2026/17  (added by the holder)") &&
@@ -235,7 +235,7 @@ TEST_CASE("pack --bag-info writes a holder's fields into bag-info.txt, and refus
   CHECK_THAT(info, Catch::EndsWith("External-Identifier: INV-7\nContact-Name: Ana Silva\n"
                                    "Contact-Email: archive@museum.example\nContact-Name: Rui Costa\n"
                                    "Source-Organization: Museum\n"));
-  r = e2e::surrogate("verify " + e2e::quote(bag) + " --quiet");
+  r = e2e::surrogate("verify " + e2e::quote(bag));
   INFO(r.output);
   CHECK(r.exitCode == 0);
   CHECK_THAT(r.output, Catch::Contains("Contact-Email: archive@museum.example  (added by the holder)") &&

@@ -138,7 +138,7 @@ TEST_CASE("the guide's iterative walk-through ends with every decision recorded"
   // pack after a changed result re-runs with the recorded decisions, and says so.
   std::ofstream(capture / "finished-files/normals.png", std::ios::app) << "x";
   const fs::path bag = capture.parent_path() / "bag";
-  const e2e::CommandResult pack = e2e::surrogate("pack " + e2e::quote(capture) + " -o " + e2e::quote(bag) + " --quiet");
+  const e2e::CommandResult pack = e2e::surrogate("pack " + e2e::quote(capture) + " -o " + e2e::quote(bag));
   INFO(pack.output);
   REQUIRE(pack.exitCode == 0);
   CHECK_THAT(pack.output, Catch::Contains("with the decisions its carrier records"));
@@ -451,7 +451,7 @@ TEST_CASE("pack processes again, with the recorded decisions, a capture recorded
   c.process.front().version = "0";  // as an older Surrogate would have recorded it
   carrier::saveCarrier(c, capture / "assembly-files/carrier.xml");
   const fs::path bag = capture.parent_path() / "bag";
-  const e2e::CommandResult pack = e2e::surrogate("pack " + e2e::quote(capture) + " -o " + e2e::quote(bag) + " --quiet");
+  const e2e::CommandResult pack = e2e::surrogate("pack " + e2e::quote(capture) + " -o " + e2e::quote(bag));
   INFO(pack.output);
   REQUIRE(pack.exitCode == 0);
   CHECK_THAT(pack.output, Catch::Contains("recorded by version 0"));
