@@ -36,7 +36,8 @@ std::vector<RelightModel> relightModels(const carrier::Carrier& c, const ReportS
       m.file = files[k];
       if (options.relightCopies) {
         const auto copy = options.relightCopies->find(m.file->path);
-        if (copy != options.relightCopies->end() && copy->second.maxSide == options.relightMaxSide) {
+        if (copy != options.relightCopies->end() && copy->second.maxSide == options.relightMaxSide &&
+            copy->second.maxBytes == options.relightMaxBytes) {
           m.found = true;
           m.copied = &copy->second.json;
           continue;
@@ -46,7 +47,7 @@ std::vector<RelightModel> relightModels(const carrier::Carrier& c, const ReportS
       m.found = bytes.has_value();
       if (!bytes) continue;
       try {
-        m.made = relightJson(*bytes, options.relightMaxSide, m.file->path);
+        m.made = relightJson(*bytes, options.relightMaxSide, m.file->path, options.relightMaxBytes);
       } catch (const Error& e) {
         m.problem = e.text();
       }

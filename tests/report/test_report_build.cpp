@@ -348,6 +348,61 @@ TEST_CASE("models given as interactive copies of the models in memory make the p
   CHECK(count(otherSize.html, "is not in this package or capture") == 2);
 }
 
+// The data: URIs of a page's pictures, in bytes.
+std::size_t pictureBytes(const std::string& html) {
+  std::size_t n = 0;
+  const std::string start = "src=\"data:image/";
+  for (std::size_t at = html.find(start); at != std::string::npos; at = html.find(start, at + 1))
+    n += html.find('"', at + 5) - (at + 5);
+  return n;
+}
+
+TEST_CASE("the page of a 3000x2000 capture keeps within the size budget with its models averaged down") {
+  // The default two models at 3000x2000, their bytes varying from texel to texel (no two blocks
+  // alike), and full-size pictures.
+  formats::PtmFile ptm;
+  ptm.width = 3000;
+  ptm.height = 2000;
+  ptm.scale = {0.5, 0.5, 0.5, 1, 1, 1};
+  ptm.bias = {128, 128, 128, 128, 128, 0};
+  ptm.coefficients.resize(ptm.texels() * 6);
+  ptm.rgb.resize(ptm.texels() * 3);
+  for (std::size_t i = 0; i < ptm.coefficients.size(); ++i) ptm.coefficients[i] = static_cast<std::uint8_t>(i * 31 % 251);
+  for (std::size_t i = 0; i < ptm.rgb.size(); ++i) ptm.rgb[i] = static_cast<std::uint8_t>(i * 13 % 256);
+  carrier::Carrier c = sampleCarrier();
+  carrier::Step& fit = c.addStep("RtiFit", "1");
+  fit.setParam("basis", "hsh2");
+  carrier::Result r;
+  r.step = fit.id;
+  r.add("output").set("file", c.putFile(output("finished-files/hsh2.rti", "result", "RTI_HSH"))).set("kind", "hsh2");
+  c.data.push_back(r);
+  MemorySource source(c);
+  source.files["finished-files/ptm-lrgb.ptm"] = formats::serializePtm(ptm);
+  source.files["finished-files/hsh2.rti"] = smallHsh(3000, 2000);
+  source.files["assembly-files/spheres.png"] = png(3000, 2000);
+  source.files["finished-files/normals.png"] = png(3000, 2000);
+  source.files["finished-files/albedo.png"] = png(3000, 2000);
+  ReportOptions options;
+  options.generatedAt = "2026-02-03T04:05:06Z";
+  const Report page = buildReport(source.carrier(), source, options);
+  REQUIRE(page.relightable);
+  REQUIRE(page.picturesEmbedded == 3);
+  INFO("page " << page.html.size() << " bytes, pictures " << pictureBytes(page.html));
+  CHECK(page.html.size() - pictureBytes(page.html) <= kReportBudgetBytes);
+  CHECK(page.html.size() <= kReportBudgetBytes);
+  // Each model averaged by the smallest whole factor within kRelightModelBytes, 7 for both:
+  // the PTM's 9 bytes a texel at 429x286 take 1.10 MB (at 6, 500x334 would take 1.503 MB),
+  // the HSH's 12 bytes 1.47 MB.
+  CHECK_THAT(page.html, Catch::Contains("\"basis\":\"ptm-lrgb\",\"format\":\"lrgb\",\"width\":429,\"height\":286"));
+  CHECK_THAT(page.html, Catch::Contains("\"basis\":\"hsh2\",\"terms\":4,\"width\":429,\"height\":286"));
+
+  // Without the limit on bytes (relightMaxSide alone, as before the budget: 1000x667), the
+  // models alone would be over the budget: the test means it.
+  options.relightMaxBytes = 0;
+  const Report whole = buildReport(source.carrier(), source, options);
+  CHECK(whole.html.size() > 3 * kReportBudgetBytes);
+}
+
 TEST_CASE("every text from the carrier is escaped: hostile fields cannot inject markup") {
   MemorySource source(sampleCarrier());
   const Report r = buildReport(source.carrier(), source, ReportOptions());

@@ -269,3 +269,28 @@ TEST_CASE("the hemisphere plot labels azimuths -180..180 as the light table does
   CHECK_THAT(svg, Catch::Contains(">el 30\u00b0<"));
   CHECK_THAT(svg, Catch::Contains("azimuth -52\u00b0"));
 }
+
+TEST_CASE("the relighting copy's block side is the smallest whole factor within the side and the bytes") {
+  // 1200x800 PTM (LRGB), 9 bytes a texel: 2 gives 600x400 = 2.16 MB, 3 gives 400x267 = 0.96 MB.
+  CHECK(relightBlockSide(1200, 800, 9, 1200, 1'500'000) == 3);
+  CHECK(relightBlockSide(1200, 800, 9, 1200, 2'160'000) == 2);
+  CHECK(relightBlockSide(1200, 800, 9, 1200, 2'159'999) == 3);
+  // No limit on bytes: the side alone, as --relight-side.
+  CHECK(relightBlockSide(1200, 800, 9, 1200, 0) == 1);
+  CHECK(relightBlockSide(2500, 7, 9, 1200, 0) == 3);
+  // The side's factor when it is the larger one.
+  CHECK(relightBlockSide(2500, 7, 9, 1200, 1'500'000) == 3);
+  // A small model stays whole (the test captures' 400x300 HSH of order 2: 1.44 MB).
+  CHECK(relightBlockSide(400, 300, 12, 1200, kRelightModelBytes) == 1);
+  // A budget below one texel: one block for the whole model, never more.
+  CHECK(relightBlockSide(30, 20, 27, 0, 1) == 30);
+
+  // The copy made holds what the factor says: 1200x800 averaged by 3.
+  formats::PtmFile ptm;
+  ptm.width = 1200;
+  ptm.height = 800;
+  ptm.coefficients.assign(ptm.texels() * 6, 100);
+  ptm.rgb.assign(ptm.texels() * 3, 50);
+  const std::string json = relightJson(ptm, 1200, 1'500'000);
+  CHECK_THAT(json, Catch::Contains("\"width\":400,\"height\":267,\"originalWidth\":1200,\"originalHeight\":800"));
+}
