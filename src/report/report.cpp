@@ -312,7 +312,7 @@ Report buildReport(const carrier::Carrier& c, const ReportSource& source, const 
   progress(0.05 + 0.9 * shareAfterPictures(shown));
   const std::string detection = detectionSection(c, pictures, report);
   const std::string results = resultsSection(c, pictures, report);
-  const RelightSection relight = relightSection(c, models, report);
+  const RelightSection relight = relightSection(c, models, lightPoints, report);
   const std::string priorWork = auditSection(c, source, &report.picturesEmbedded);
   progress(0.95);
   const std::string generated = options.generatedAt.empty() ? carrier::timestampNow() : options.generatedAt;

@@ -233,6 +233,22 @@ TEST_CASE("the report of a run opens in headless chromium without errors, one po
   INFO("mean brightness of the relit view: " << mean);
   CHECK(mean > 30);
   CHECK(mean < 230);
+  // It opens at the normalised mean of the carrier's light directions (x right, y up, z to the
+  // camera), not at a fixed light that may lie outside the captured range.
+  const carrier::Carrier recorded = carrier::loadCarrier(capture / "assembly-files/carrier.xml");
+  double x = 0, y = 0, z = 0;
+  for (const carrier::Result& r : recorded.data)
+    for (const carrier::DataItem* l : r.itemsOf("light")) {
+      const double norm = std::hypot(l->number("x"), l->number("y"), l->number("z"));
+      x += l->number("x") / norm;
+      y += l->number("y") / norm;
+      z += l->number("z") / norm;
+    }
+  const double pi = 3.14159265358979323846, n = std::hypot(x, y, z);
+  const std::string opened = bodyAttribute(b.dom, "data-relight-light");
+  INFO("opened at " << opened << "; mean direction " << x / n << "," << y / n << "," << z / n);
+  CHECK(std::atof(opened.c_str()) == Approx(std::atan2(y, x) * 180 / pi).margin(0.051));
+  CHECK(std::atof(opened.substr(opened.find(',') + 1).c_str()) == Approx(std::asin(z / n) * 180 / pi).margin(0.051));
 
   fs::create_directories(REPORT_ARTEFACT_DIR);  // run alone (ctest), no other test made it
   fs::copy_file(page, fs::path(REPORT_ARTEFACT_DIR) / "report.html", fs::copy_options::overwrite_existing);

@@ -220,6 +220,10 @@ TEST_CASE("the report shows lights, pictures, relighting, provenance and camera 
   CHECK_THAT(r.html, Catch::Contains("(1600\u00d71200, shown at 720\u00d7540)"));
   CHECK(r.relightable);
   CHECK_THAT(r.html, Catch::Contains("id=\"relight-data\""));
+  // The view opens at the lights' mean direction: elevations 30..70, azimuths -150..130 in
+  // steps of 70 (sampleCarrier). Summed (cos e cos a, cos e sin a, sin e) = (0.046198,
+  // -0.604023, 3.714550), normalised (0.0122749, -0.16049, 0.986961) (computed with Python).
+  CHECK_THAT(r.html, Catch::Contains("data-start-light=\"0.0122749,-0.16049,0.986961\""));
   // Coverage: lights from 30 to 70 degrees elevation: raking light missing, said on the page.
   REQUIRE_FALSE(r.coverageGaps.empty());
   CHECK_THAT(r.html, Catch::Contains("No light below 20"));

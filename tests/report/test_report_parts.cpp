@@ -13,6 +13,7 @@
 #include "report/embed.h"
 #include "report/hemisphere.h"
 #include "report/html.h"
+#include "report/relight_section.h"
 
 using namespace surrogate;
 using namespace surrogate::report;
@@ -293,4 +294,25 @@ TEST_CASE("the relighting copy's block side is the smallest whole factor within 
   ptm.rgb.assign(ptm.texels() * 3, 50);
   const std::string json = relightJson(ptm, 1200, 1'500'000);
   CHECK_THAT(json, Catch::Contains("\"width\":400,\"height\":267,\"originalWidth\":1200,\"originalHeight\":800"));
+}
+
+TEST_CASE("the relighting view starts at the normalised mean of the captured lights' directions") {
+  // Four lights at 30 degrees elevation around the circle: the mean points at the camera.
+  auto start = meanLightDirection({light(30, 0), light(30, 90), light(30, 180), light(30, -90)});
+  REQUIRE(start);
+  CHECK((*start)[0] == Approx(0).margin(1e-12));
+  CHECK((*start)[1] == Approx(0).margin(1e-12));
+  CHECK((*start)[2] == Approx(1));
+  // Two lights at 20 degrees, azimuth 0 and 90: (cos20, cos20, 2 sin20) normalised, by hand:
+  // cos20 = 0.9396926, sin20 = 0.3420201, length sqrt(2 * 0.8830222 + 4 * 0.1169778) = 1.494641;
+  // the start is at azimuth 45 and elevation asin(0.6840403 / 1.494641) = 27.236 degrees, inside
+  // the captured lights' range, not at 45 degrees above them.
+  start = meanLightDirection({light(20, 0), light(20, 90)});
+  REQUIRE(start);
+  CHECK((*start)[0] == Approx(0.9396926 / 1.494641).epsilon(1e-6));
+  CHECK((*start)[1] == Approx((*start)[0]));
+  CHECK(std::asin((*start)[2]) * 180 / 3.14159265358979 == Approx(27.236).epsilon(1e-4));
+  // No light, or lights that cancel out (grazing from opposite sides): no start.
+  CHECK_FALSE(meanLightDirection({}));
+  CHECK_FALSE(meanLightDirection({light(0, 0), light(0, 180)}));
 }
