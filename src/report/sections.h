@@ -21,6 +21,10 @@ std::string summarySection(const carrier::Carrier& c, const std::vector<LightPoi
                            const std::optional<std::vector<VerificationCheck>>& checks);
 // A step as people name it: "Fit: PTM (LRGB)", "Sphere detection"; its component otherwise.
 std::string stepTitle(const carrier::Step& step);
+// EXIF's date and time a photograph was taken ("2026:01:01 12:00:00") as ISO 8601
+// ("2026-01-01T12:00:00", meta::dateTimeText: the form of the page's other times, without a
+// zone since the carrier records none); other text as it is.
+std::string takenText(const std::string& exifDateTime);
 // A fitted model as people name it: "ptm-lrgb" -> "PTM (LRGB)", "hsh2" -> "HSH order 2".
 std::string modelTitle(const std::string& basis);
 

@@ -50,12 +50,6 @@ std::string cameraName(const carrier::FileRecord& f) {
   return make + " " + model;
 }
 
-// EXIF "2026:01:01 12:00:00" as "2026-01-01 12:00:00"; other text unchanged.
-std::string isoDate(std::string exif) {
-  if (exif.size() >= 10 && exif[4] == ':' && exif[7] == ':') exif[4] = exif[7] = '-';
-  return exif;
-}
-
 std::string dateRange(const std::vector<const carrier::FileRecord*>& files) {
   std::string first, last;
   for (const carrier::FileRecord* f : files) {
@@ -65,7 +59,7 @@ std::string dateRange(const std::vector<const carrier::FileRecord*>& files) {
     if (last.empty() || d > last) last = d;
   }
   if (first.empty()) return "";
-  return isoDate(first) + (last != first ? " to " + isoDate(last) : "");
+  return takenText(first) + (last != first ? " to " + takenText(last) : "");
 }
 
 int processedImages(const carrier::Carrier& c) {

@@ -569,3 +569,18 @@ TEST_CASE("an HSH-only carrier is relightable in the page") {
   CHECK_THAT(r.html, Catch::Contains("\"model\":\"hsh\",\"basis\":\"hsh2\""));
   CHECK(r.html.find("No model was fitted") == std::string::npos);
 }
+
+TEST_CASE("EXIF dates are shown in ISO 8601 as the page's other times") {
+  carrier::Carrier c = sampleCarrier();
+  int k = 0;
+  for (carrier::FileRecord& f : c.files)
+    if (f.role == "original") f.camera.push_back({"dateTimeOriginal", k++ == 0 ? "2026:01:02 08:30:00" : "2026:01:01 12:00:00"});
+  MemorySource source(c);
+  ReportOptions options;
+  options.generatedAt = "2026-02-03T04:05:06Z";
+  const Report r = buildReport(source.carrier(), source, options);
+  // The summary's "taken" and the camera section's: earliest to latest, as ISO 8601 local
+  // times (EXIF records no zone here); nowhere EXIF's colons in the date.
+  CHECK(count(r.html, "2026-01-01T12:00:00 to 2026-01-02T08:30:00") == 2);
+  CHECK(r.html.find("2026:01:0") == std::string::npos);
+}
