@@ -206,6 +206,10 @@ std::string stepTitle(const carrier::Step& step) {
       {"Audit", "Audit of prior work"},
   };
   if (step.component == "RtiFit") return "Fit: " + modelTitle(step.param("basis", "?"));
+  // One step per model: the model tells two apart.
+  if (step.component == "WebCopy") return "Web copy of " + modelTitle(step.param("model", "?"));
+  if (step.component == "DerivedMaps" && step.hasParam("model"))
+    return "Normals, albedo and previews from " + modelTitle(step.param("model", "?"));
   const auto it = titles.find(step.component);
   return it == titles.end() ? step.component : it->second;
 }

@@ -2,6 +2,7 @@
 // copes with missing files.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <map>
 #include <memory>
 #include <tuple>
@@ -583,4 +584,21 @@ TEST_CASE("EXIF dates are shown in ISO 8601 as the page's other times") {
   // times (EXIF records no zone here); nowhere EXIF's colons in the date.
   CHECK(count(r.html, "2026-01-01T12:00:00 to 2026-01-02T08:30:00") == 2);
   CHECK(r.html.find("2026:01:0") == std::string::npos);
+}
+
+TEST_CASE("steps made per model have headings of their own: the two web copies say which model") {
+  carrier::Carrier c = sampleCarrier();
+  for (const char* model : {"ptm-lrgb", "hsh2"}) c.addStep("WebCopy", "4").setParam("model", model);
+  MemorySource source(c);
+  const Report r = buildReport(source.carrier(), source, ReportOptions());
+  CHECK_THAT(r.html, Catch::Contains("Web copy of PTM (LRGB) <span class=\"note\">(step s5, WebCopy v4)</span>"));
+  CHECK_THAT(r.html, Catch::Contains("Web copy of HSH order 2 <span class=\"note\">(step s6, WebCopy v4)</span>"));
+  // Every step's heading is its own.
+  std::vector<std::string> heads;
+  const std::string open = "<div class=\"step-head\">";
+  for (std::size_t at = r.html.find(open); at != std::string::npos; at = r.html.find(open, at + 1))
+    heads.push_back(r.html.substr(at + open.size(), r.html.find(" <span", at) - at - open.size()));
+  REQUIRE(heads.size() == c.process.size());
+  std::sort(heads.begin(), heads.end());
+  CHECK(std::adjacent_find(heads.begin(), heads.end()) == heads.end());
 }
