@@ -82,7 +82,7 @@ Image drawSphereOverlay(const Image& median, const std::vector<DetectedSphere>& 
     const DetectedSphere& full = spheres[k];
     // A reduced pixel is the mean of factor x factor pixels: its centre is their centre.
     const DetectedSphere s{(full.cx + 0.5) / factor - 0.5, (full.cy + 0.5) / factor - 0.5, full.r / factor,
-                           full.confidence};
+                           full.confidence, full.evidence, full.byHand};
     checkDrawable(s, median.width, median.height);
     cv::circle(bgr, sub(s.cx, s.cy), static_cast<int>(std::lround(s.r * kUnit)), cv::Scalar(0, 220, 0), thickness, cv::LINE_AA, kShift);
     const double arm = std::max(4.0, s.r / 8);
@@ -90,7 +90,9 @@ Image drawSphereOverlay(const Image& median, const std::vector<DetectedSphere>& 
     cv::line(bgr, sub(s.cx, s.cy - arm), sub(s.cx, s.cy + arm), cv::Scalar(0, 220, 0), thickness, cv::LINE_AA, kShift);
     char label[64];
     // Spheres are numbered from 1, as in the file names (highlights-sphere1.png) and the report.
-    std::snprintf(label, sizeof label, "sphere %zu  r=%.1f  conf %.2f", k + 1, full.r, s.confidence);
+    // One given by hand has no confidence of its own: it says so.
+    if (full.byHand) std::snprintf(label, sizeof label, "sphere %zu  r=%.1f  by hand", k + 1, full.r);
+    else std::snprintf(label, sizeof label, "sphere %zu  r=%.1f  conf %.2f", k + 1, full.r, s.confidence);
     const double scale = std::max(0.4, median.width / 2000.0);
     const int ty = static_cast<int>(s.cy + s.r + 20 * scale) < median.height ? static_cast<int>(s.cy + s.r + 20 * scale)
                                                                              : static_cast<int>(s.cy - s.r - 6);

@@ -12,7 +12,8 @@
 
 namespace surrogate::hrti {
 
-// Spheres numbered from 1 ("sphere 1  r=45.3  conf 0.96"), every label inside the picture.
+// Spheres numbered from 1 ("sphere 1  r=45.3  conf 0.96"; "sphere 2  r=40.0  by hand" for one
+// given by hand), every label inside the picture.
 // `medianLuminance` may be the frame reduced `factor` times (StackMedian::coarse()): the
 // spheres, in full-resolution pixels, are drawn reduced with it; their labels give the
 // full-resolution radius.

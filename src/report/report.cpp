@@ -33,6 +33,12 @@ std::string numberOr(const carrier::DataItem& d, const char* name, int digits, c
   }
 }
 
+// A highlight's confidence as the page shows it: "by hand" for one given by hand (the carrier
+// records 1, which it did not earn), else the number.
+std::string confidenceText(const carrier::DataItem& highlight) {
+  return highlight.get("flag").value_or("") == "manual" ? std::string("by hand") : numberOr(highlight, "confidence", 2);
+}
+
 // The carrier counts spheres from 0 (sphere/@index, highlight/@sphere); people and the file
 // names count from 1, and so does the page. Text that is not a number is shown as it is.
 std::string sphereNumber(const std::string& index) {
@@ -157,10 +163,13 @@ std::string detectionSection(const carrier::Carrier& c, const Pictures& pictures
           return std::string("-");
         }
       };
+      // A sphere given by hand was not detected: its rim and highlight scores (recorded as 1)
+      // measure nothing.
+      const bool byHand = d->get("source").value_or("") == "manual";
       s << "<tr><td>" << escapeHtml(sphereNumber(d->get("index").value_or(""))) << "</td><td class=\"num\">"
         << n("cx") << ", " << n("cy") << "</td><td class=\"num\">" << n("r") << "</td><td class=\"num\">"
-        << n("confidence") << "</td><td class=\"num\">" << n("evidence") << "</td><td>"
-        << escapeHtml(d->get("source").value_or("")) << "</td></tr>";
+        << (byHand ? "by hand" : n("confidence")) << "</td><td class=\"num\">" << (byHand ? "by hand" : n("evidence"))
+        << "</td><td>" << escapeHtml(byHand ? std::string("given by hand") : d->get("source").value_or("")) << "</td></tr>";
     }
     s << "</table><p class=\"note\">Spheres are numbered from 1 on this page; the command line's "
          "<code>--highlight IMAGE:SPHERE</code> and <code>--forget-sphere N</code> count them from 0.</p>";
@@ -176,7 +185,7 @@ std::string detectionSection(const carrier::Carrier& c, const Pictures& pictures
       const std::string reason = d->get("reason").value_or("");
       s << "<li class=\"warning\"><code>" << escapeHtml(imagePath(*d)) << "</code>, sphere "
         << escapeHtml(sphereNumber(d->get("sphere").value_or(""))) << ": " << escapeHtml(d->get("flag").value_or(""))
-        << ", confidence " << numberOr(*d, "confidence", 2) << (reason.empty() ? "" : " \u2014 ")
+        << ", confidence " << confidenceText(*d) << (reason.empty() ? "" : " \u2014 ")
         << escapeHtml(reason) << "</li>";
     }
     s << "</ul>";
@@ -184,14 +193,14 @@ std::string detectionSection(const carrier::Carrier& c, const Pictures& pictures
   if (!highlights.empty()) {
     s << "<details><summary>Every highlight</summary><p>Confidence, from 0 to 1: how clearly the "
          "highlight is one small, compact peak rising above the same place in the other photographs "
-         "(the lowest of its scores; docs/carrier.md). 1 for a highlight given by hand; 0 for one "
-         "refused.</p><table><tr><th>image</th><th>sphere</th>"
+         "(the lowest of its scores; docs/carrier.md); 0 for one refused. A highlight given by hand "
+         "has none: it says <em>by hand</em>.</p><table><tr><th>image</th><th>sphere</th>"
          "<th>x, y (px)</th><th>flag</th><th>confidence</th><th>reason</th></tr>";
     for (const carrier::DataItem* d : highlights)
       s << "<tr><td><code>" << escapeHtml(imagePath(*d)) << "</code></td><td class=\"num\">"
         << escapeHtml(sphereNumber(d->get("sphere").value_or(""))) << "</td><td class=\"num\">" << numberOr(*d, "x", 2)
         << ", " << numberOr(*d, "y", 2) << "</td><td>" << escapeHtml(d->get("flag").value_or(""))
-        << "</td><td class=\"num\">" << numberOr(*d, "confidence", 2) << "</td><td>"
+        << "</td><td class=\"num\">" << confidenceText(*d) << "</td><td>"
         << escapeHtml(d->get("reason").value_or("")) << "</td></tr>";
     s << "</table></details>";
   }

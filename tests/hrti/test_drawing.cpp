@@ -2,6 +2,7 @@
 // naming the problem, never an OpenCV assertion (the stages refuse such circles first).
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.h"
@@ -110,4 +111,27 @@ TEST_CASE("the overlay on a reduced median draws the circle reduced with it") {
   CHECK(overlay.at(60, 25, 1) > 150 * 257);  // on the circle, right of the centre
   CHECK(overlay.at(40, 25, 1) > 150 * 257);
   CHECK(overlay.at(70, 25, 1) < 50 * 257);   // outside it
+}
+
+TEST_CASE("the overlay labels a sphere given by hand by hand, not with a confidence") {
+  // The same circle detected with confidence 1 and given by hand: the labels differ, and the
+  // one given by hand is the label OpenCV draws for "sphere 1  r=30.0  by hand" (its width).
+  Image median(400, 300, 1);
+  DetectedSphere detected{150, 100, 30, 1, 1};
+  DetectedSphere given = detected;
+  given.byHand = true;
+  const Image a = drawSphereOverlay(median, {detected}), b = drawSphereOverlay(median, {given});
+  REQUIRE(a.width == b.width);
+  CHECK(a.pixels != b.pixels);
+  // The label's extent: green pixels below the circle, leftmost to rightmost.
+  const auto labelWidth = [](const Image& picture) {
+    int left = picture.width, right = -1;
+    for (int y = 100 + 30 + 3; y < picture.height; ++y)
+      for (int x = 0; x < picture.width; ++x)
+        if (picture.at(x, y, 1) > 150 * 257) left = std::min(left, x), right = std::max(right, x);
+    return right - left;
+  };
+  // "by hand" (7 characters) is shorter than "conf 1.00" (9): the label is narrower.
+  CHECK(labelWidth(b) < labelWidth(a));
+  CHECK(labelWidth(b) > 0);
 }

@@ -513,6 +513,24 @@ TEST_CASE("each image's highlight confidence is shown: lights table, hemisphere 
   CHECK_THAT(r.html, Catch::Contains("Highlights to check"));
   CHECK_THAT(r.html, Catch::Contains("multiple, confidence 0.25"));
   CHECK(r.html.find("<img src=x") == std::string::npos);
+  // The highlight given by hand says so wherever a confidence would be (the carrier's 1 was not
+  // measured): the list to check, the highlight table, the lights table and the tooltip.
+  CHECK_THAT(r.html, Catch::Contains("manual, confidence by hand"));
+  CHECK_THAT(r.html, Catch::Contains("<td>manual</td><td class=\"num\">by hand</td>"));
+  CHECK_THAT(r.html, Catch::Contains("<td class=\"num\">-</td><td class=\"num\">by hand</td></tr>"));
+  CHECK_THAT(r.html, Catch::Contains("IMG_0003.dng: elevation 60\u00b0, azimuth 300\u00b0, highlight confidence by hand"));
+}
+
+TEST_CASE("a sphere given by hand says by hand instead of its scores") {
+  carrier::Carrier c = sampleCarrier();
+  carrier::Result& lights = c.data.front();
+  lights.add("sphere").set("index", 1).set("cx", 30.0).set("cy", 40.0).set("r", 6.0).set("confidence", 1.0)
+      .set("evidence", 1.0).set("source", "manual");
+  MemorySource source(c);
+  const Report r = buildReport(source.carrier(), source, ReportOptions());
+  // The detected sphere keeps its figures; the one given by hand has none.
+  CHECK_THAT(r.html, Catch::Contains("<td class=\"num\">5</td><td class=\"num\">0.9</td><td class=\"num\">-</td><td>detected</td>"));
+  CHECK_THAT(r.html, Catch::Contains("<td class=\"num\">6</td><td class=\"num\">by hand</td><td class=\"num\">by hand</td><td>given by hand</td>"));
 }
 
 TEST_CASE("the page opens with the summary and the relighting view, steps and models in plain words") {
