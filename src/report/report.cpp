@@ -1,6 +1,7 @@
 #include "report/report.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <future>
 #include <map>
@@ -14,6 +15,7 @@
 #include "core/version.h"
 #include "report/embed.h"
 #include "report/hemisphere.h"
+#include "report/explain.h"
 #include "report/html.h"
 #include "report/lights_section.h"
 #include "report/outputs.h"
@@ -171,7 +173,26 @@ std::string detectionSection(const carrier::Carrier& c, const Pictures& pictures
         << (byHand ? "by hand" : n("confidence")) << "</td><td class=\"num\">" << (byHand ? "by hand" : n("evidence"))
         << "</td><td>" << escapeHtml(byHand ? std::string("given by hand") : d->get("source").value_or("")) << "</td></tr>";
     }
-    s << "</table><p class=\"note\">Spheres are numbered from 1 on this page; the command line's "
+    s << "</table><ul>";
+    for (const carrier::DataItem* d : spheres) {
+      s << "<li>Sphere " << escapeHtml(sphereNumber(d->get("index").value_or(""))) << ": ";
+      if (d->get("source").value_or("") == "manual") {
+        s << "given by hand; its circle is the one given, nothing was measured.</li>";
+        continue;
+      }
+      // Each figure the carrier records (a carrier before SphereDetection version 5 has no evidence).
+      std::string said;
+      try {
+        said = explainRimConfidence(d->number("confidence"));
+      } catch (const Error&) {
+      }
+      try {
+        said += (said.empty() ? "" : " ") + explainEvidence(d->number("evidence"));
+      } catch (const Error&) {
+      }
+      s << (said.empty() ? std::string("its figures are not recorded.") : said) << "</li>";
+    }
+    s << "</ul><p class=\"note\">Spheres are numbered from 1 on this page; the command line's "
          "<code>--highlight IMAGE:SPHERE</code> and <code>--forget-sphere N</code> count them from 0.</p>";
   }
   s << lightChecksTable(c);
@@ -221,6 +242,25 @@ std::string detectionSection(const carrier::Carrier& c, const Pictures& pictures
   return s.str();
 }
 
+// Beside the normal map: how many of its pixels took the Lambertian normal (DerivedMaps'
+// normalFallbackPixels), out of the map's pixels; empty when either is unknown.
+std::string normalFallbackNote(const carrier::Carrier& c, const Pictures& pictures, const carrier::FileRecord& normals) {
+  const carrier::Result* r = c.findResult(normals.createdBy);
+  const Pictures::Picture picture = pictures.get(normals.path);
+  if (!r || !picture.embedded) return "";
+  for (const carrier::DataItem* v : r->itemsOf("value")) {
+    if (v->get("name") != "normalFallbackPixels") continue;
+    try {
+      return "<p>" + explainNormalFallback(std::llround(v->number("value")),
+                                           static_cast<long long>(picture.embedded->originalWidth) *
+                                               picture.embedded->originalHeight) + "</p>";
+    } catch (const Error&) {
+      return "";
+    }
+  }
+  return "";
+}
+
 std::string resultsSection(const carrier::Carrier& c, const Pictures& pictures,
                            Report& report) {
   std::ostringstream s;
@@ -245,16 +285,25 @@ std::string resultsSection(const carrier::Carrier& c, const Pictures& pictures,
         return std::string("-");
       }
     };
+    std::string meaning;
+    try {
+      meaning = explainRmse(std::stod(rmse)) + " " + explainPsnr(std::stod(psnr));
+    } catch (const std::exception&) {
+      // a figure that is not a number is shown as "-", with nothing to explain
+    }
     fits << "<tr><td>" << escapeHtml(stepTitle(step)) << "</td><td><code>" << escapeHtml(output) << "</code></td><td class=\"num\">" << shown(rmse)
-         << "</td><td class=\"num\">" << shown(psnr) << "</td></tr>";
+         << "</td><td class=\"num\">" << shown(psnr) << "</td><td>" << meaning << "</td></tr>";
   }
   if (!fits.str().empty())
     s << "<table><tr><th>fit</th><th>file</th><th>RMSE (8-bit levels)</th>"
-         "<th>PSNR (dB)</th></tr>" << fits.str() << "</table>";
+         "<th>PSNR (dB)</th><th>what it means</th></tr>" << fits.str() << "</table>";
 
   s << "<div class=\"gallery\">";
   for (const auto& [kind, file] : outputsByKind(c)) {
-    if (kind == "normals") s << figure(pictures, *file, "Normal map", &report.picturesEmbedded);
+    if (kind == "normals") {
+      s << figure(pictures, *file, "Normal map", &report.picturesEmbedded);
+      s << normalFallbackNote(c, pictures, *file);
+    }
     else if (kind == "albedo") s << figure(pictures, *file, "Albedo", &report.picturesEmbedded);
     else if (kind == "preview")
       s << figure(pictures, *file, previewCaption(file->path), &report.picturesEmbedded);

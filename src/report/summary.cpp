@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "report/explain.h"
 #include "report/html.h"
 #include "report/sections.h"
 
@@ -140,7 +141,7 @@ std::string fitFigures(const carrier::Carrier& c) {
       if (v->get("name") != "psnr") continue;
       try {
         s << (s.str().empty() ? "" : "<br>") << escapeHtml(stepTitle(step)) << ": "
-          << displayNumber(v->number("value"), 1) << " dB";
+          << displayNumber(v->number("value"), 1) << " dB<br>" << explainPsnr(v->number("value"));
       } catch (const Error&) {
         // an unreadable PSNR is left out of the summary; the results table shows "-"
       }

@@ -134,7 +134,10 @@ carrier::Carrier sampleCarrier() {
   mr.step = maps.id;
   mr.add("output").set("file", normals).set("kind", "normals");
   mr.add("output").set("file", albedo).set("kind", "albedo");
+  mr.add("value").set("name", "normalFallbackPixels").set("value", 600);
   c.data.push_back(mr);
+  for (carrier::FileRecord& f : c.files)
+    if (f.id == normals) f.createdBy = maps.id;
   c.addLog("warning", fit.id, std::string("something odd ") + kHostile);
   return c;
 }
@@ -217,6 +220,9 @@ TEST_CASE("the report shows lights, pictures, relighting, provenance and camera 
   CHECK_THAT(r.html, Catch::Contains("data-lights-expected=\"5\""));
   CHECK(r.picturesEmbedded == 3);
   CHECK(count(r.html, "src=\"data:image/jpeg;base64,") == 3);
+  // Beside the normal map (300x200): 600 pixels took the Lambertian normal, 1 %, said plainly.
+  CHECK_THAT(r.html, Catch::Contains("<p><span class=\"ok explain\">600 pixels (1 %) of the normal map have an "
+                                     "estimated normal"));
   // The 1600x1200 overlay is embedded at 720x540.
   CHECK_THAT(r.html, Catch::Contains("(1600\u00d71200, shown at 720\u00d7540)"));
   CHECK(r.relightable);
@@ -558,6 +564,13 @@ TEST_CASE("the page opens with the summary and the relighting view, steps and mo
   CHECK_THAT(head, Catch::Contains("Canon EOS 5D"));
   CHECK_THAT(head, Catch::Contains("PASSED"));
   CHECK_THAT(head, Catch::Contains("Fit: PTM (LRGB): 30 dB"));
+  // Each figure with its sentence: the PSNR in the summary, RMSE and PSNR in the fit table,
+  // the sphere's rim (0.9; its moving highlight is not recorded here).
+  CHECK_THAT(head, Catch::Contains("30 dB<br><span class=\"ok explain\">Good: the model reproduces"));
+  CHECK_THAT(r.html, Catch::Contains("<th>what it means</th>"));
+  CHECK_THAT(r.html, Catch::Contains("differs from the photograph by 4.5 of 255 levels (1.8 %)"));
+  CHECK_THAT(r.html, Catch::Contains("<li>Sphere 1: <span class=\"ok explain\">Rim 0.9: the share of the circle's "
+                                     "rim that is a clean edge. Good"));
   CHECK_THAT(head, Catch::Contains("<dt>spheres</dt><dd>1</dd>"));
   // Step names as people say them, the component kept in the timeline for the record.
   CHECK(r.html.find("s3 RtiFit (ptm-lrgb)") == std::string::npos);

@@ -11,6 +11,7 @@
 #include "formats/ptm.h"
 #include "formats/rti_hsh.h"
 #include "report/embed.h"
+#include "report/explain.h"
 #include "report/hemisphere.h"
 #include "report/html.h"
 #include "report/relight_section.h"
@@ -315,4 +316,30 @@ TEST_CASE("the relighting view starts at the normalised mean of the captured lig
   // No light, or lights that cancel out (grazing from opposite sides): no start.
   CHECK_FALSE(meanLightDirection({}));
   CHECK_FALSE(meanLightDirection({light(0, 0), light(0, 180)}));
+}
+
+TEST_CASE("each figure's sentence judges it by the named thresholds") {
+  // PSNR: 30 dB and above good, 25 to 30 fair, below 25 worrying; the sentence names the scale.
+  CHECK_THAT(explainPsnr(kGoodPsnrDb), Catch::StartsWith("<span class=\"ok explain\">Good"));
+  CHECK_THAT(explainPsnr(29.99), Catch::StartsWith("<span class=\"warning explain\">Fair"));
+  CHECK_THAT(explainPsnr(kPoorPsnrDb), Catch::StartsWith("<span class=\"warning explain\">"));
+  CHECK_THAT(explainPsnr(24.9), Catch::StartsWith("<span class=\"bad explain\">Worrying"));
+  CHECK_THAT(explainPsnr(26), Catch::Contains("30 dB and above is good, below 25 dB worrying"));
+  // RMSE in levels of 255, judged as the PSNR it gives: 20 log10(255 / 8) = 30.07 dB (good),
+  // 20 log10(255 / 12.71) = 26.05 dB (fair), 20 log10(255 / 15) = 24.6 dB (worrying).
+  CHECK_THAT(explainRmse(8), Catch::StartsWith("<span class=\"ok explain\">"));
+  CHECK_THAT(explainRmse(12.71), Catch::Contains("warning explain\">On average a pixel of the model differs from the "
+                                                 "photograph by 12.7 of 255 levels (5 %)"));
+  CHECK_THAT(explainRmse(15), Catch::StartsWith("<span class=\"bad explain\">"));
+  // Rim and moving highlight: 0.8 good, 0.5 the detection's own minimum.
+  CHECK_THAT(explainRimConfidence(0.93), Catch::Contains("ok explain"));
+  CHECK_THAT(explainRimConfidence(0.6), Catch::Contains("warning explain"));
+  CHECK_THAT(explainRimConfidence(0.4), Catch::Contains("bad explain"));
+  CHECK_THAT(explainEvidence(0.8), Catch::Contains("ok explain"));
+  CHECK_THAT(explainEvidence(0.79), Catch::Contains("warning explain"));
+  CHECK_THAT(explainEvidence(0.49), Catch::Contains("bad explain"));
+  // Normals: 12704 of 960000 pixels (1.32 %) is usual; above 5 % it is a warning.
+  CHECK_THAT(explainNormalFallback(12704, 960000), Catch::Contains("ok explain\">12704 pixels (1.32 %)"));
+  CHECK_THAT(explainNormalFallback(12704, 960000), Catch::Contains("Up to 5 % is usual"));
+  CHECK_THAT(explainNormalFallback(60000, 960000), Catch::Contains("warning explain\">60000 pixels (6.25 %)"));
 }
