@@ -30,6 +30,16 @@ std::string explainPsnr(double db) {
                            scale);
 }
 
+std::string judgePsnr(double db) {
+  const char* cls = db >= kGoodPsnrDb ? "ok" : db >= kPoorPsnrDb ? "warning" : "bad";
+  const char* word = db >= kGoodPsnrDb ? "good" : db >= kPoorPsnrDb ? "fair" : "worrying";
+  // The sentence without its markup, as the tooltip.
+  std::string sentence = explainPsnr(db);
+  sentence = sentence.substr(sentence.find('>') + 1);
+  sentence.resize(sentence.size() - std::string("</span>").size());
+  return std::string("<span class=\"") + cls + " explain\" title=\"" + escapeHtml(sentence) + "\">" + word + "</span>";
+}
+
 std::string explainRmse(double levels) {
   return judged(levels <= rmseAt(kGoodPsnrDb) ? "ok" : levels <= rmseAt(kPoorPsnrDb) ? "warning" : "bad",
                 "On average a pixel of the model differs from the photograph by " + displayNumber(levels, 1) +

@@ -33,6 +33,10 @@ inline constexpr double kNormalFallbackWarning = 0.05;
 
 // "<span class=...>sentence</span>": what the figure says, judged by the thresholds above.
 std::string explainPsnr(double psnrDb);
+// The same judgement in a word for the summary, where a sentence would push the relighting
+// view off the first screen: "<span class=... title="the sentence">good</span>" (fair,
+// worrying); the results' fit table gives the sentence.
+std::string judgePsnr(double psnrDb);
 std::string explainRmse(double rmseLevels);
 std::string explainRimConfidence(double confidence);
 std::string explainEvidence(double evidence);

@@ -141,7 +141,7 @@ std::string fitFigures(const carrier::Carrier& c) {
       if (v->get("name") != "psnr") continue;
       try {
         s << (s.str().empty() ? "" : "<br>") << escapeHtml(stepTitle(step)) << ": "
-          << displayNumber(v->number("value"), 1) << " dB<br>" << explainPsnr(v->number("value"));
+          << displayNumber(v->number("value"), 1) << " dB, " << judgePsnr(v->number("value"));
       } catch (const Error&) {
         // an unreadable PSNR is left out of the summary; the results table shows "-"
       }

@@ -566,7 +566,8 @@ TEST_CASE("the page opens with the summary and the relighting view, steps and mo
   CHECK_THAT(head, Catch::Contains("Fit: PTM (LRGB): 30 dB"));
   // Each figure with its sentence: the PSNR in the summary, RMSE and PSNR in the fit table,
   // the sphere's rim (0.9; its moving highlight is not recorded here).
-  CHECK_THAT(head, Catch::Contains("30 dB<br><span class=\"ok explain\">Good: the model reproduces"));
+  CHECK_THAT(head, Catch::Contains("30 dB, <span class=\"ok explain\" title=\"Good: the model reproduces"));
+  CHECK_THAT(head, Catch::Contains("below 25 dB worrying).\">good</span>"));
   CHECK_THAT(r.html, Catch::Contains("<th>what it means</th>"));
   CHECK_THAT(r.html, Catch::Contains("differs from the photograph by 4.5 of 255 levels (1.8 %)"));
   CHECK_THAT(r.html, Catch::Contains("<li>Sphere 1: <span class=\"ok explain\">Rim 0.9: the share of the circle's "

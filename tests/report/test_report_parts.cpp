@@ -325,6 +325,11 @@ TEST_CASE("each figure's sentence judges it by the named thresholds") {
   CHECK_THAT(explainPsnr(kPoorPsnrDb), Catch::StartsWith("<span class=\"warning explain\">"));
   CHECK_THAT(explainPsnr(24.9), Catch::StartsWith("<span class=\"bad explain\">Worrying"));
   CHECK_THAT(explainPsnr(26), Catch::Contains("30 dB and above is good, below 25 dB worrying"));
+  // In a word for the summary, the sentence as its tooltip.
+  CHECK(judgePsnr(31) == "<span class=\"ok explain\" title=\"Good: the model reproduces the photographs closely; "
+                         "higher is closer (30 dB and above is good, below 25 dB worrying).\">good</span>");
+  CHECK_THAT(judgePsnr(26), Catch::EndsWith("\">fair</span>"));
+  CHECK_THAT(judgePsnr(20), Catch::EndsWith("\">worrying</span>"));
   // RMSE in levels of 255, judged as the PSNR it gives: 20 log10(255 / 8) = 30.07 dB (good),
   // 20 log10(255 / 12.71) = 26.05 dB (fair), 20 log10(255 / 15) = 24.6 dB (worrying).
   CHECK_THAT(explainRmse(8), Catch::StartsWith("<span class=\"ok explain\">"));
