@@ -78,11 +78,12 @@ int runCommandRun(int argc, char** argv) {
   CopiesByPath<report::RelightCopy> relightCopies;
   if (!args.has("no-report")) {
     const int pictureSide = reportOptions.maxImageSide, modelSide = reportOptions.relightMaxSide;
+    const std::size_t modelBytes = reportOptions.relightMaxBytes;
     settings.pictureWritten = [&displayed, pictureSide](const std::string& path, const Image& picture) {
       displayed.put(path, report::displayPicture(picture, pictureSide));
     };
-    const auto copyModel = [&relightCopies, modelSide](const std::string& path, const auto& model) {
-      relightCopies.put(path, {report::relightJson(model, modelSide), modelSide});
+    const auto copyModel = [&relightCopies, modelSide, modelBytes](const std::string& path, const auto& model) {
+      relightCopies.put(path, {report::relightJson(model, modelSide, modelBytes), modelSide, modelBytes});
     };
     settings.ptmWritten = copyModel;  // PTM and HSH alike
     settings.hshWritten = copyModel;

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <string>
 
 #include "core/error.h"
@@ -19,6 +20,8 @@ constexpr double kUnit = 1 << kShift;
 // The highlight labels' font scale on the 600 px overview: about 13 px high, readable when the
 // report shows the picture at half size.
 constexpr double kLabelScale = 0.55;
+// The highlight marks' radius on the overview, in pixels.
+constexpr int kMarkRadius = 4;
 
 cv::Mat greyToBgr8(const Image& grey) {
   cv::Mat m(grey.height, grey.width, CV_8U);
@@ -71,6 +74,15 @@ void outlinedText(cv::Mat& picture, const std::string& text, cv::Point at, doubl
   cv::putText(picture, text, at, cv::FONT_HERSHEY_SIMPLEX, scale, colour, thickness, cv::LINE_AA);
 }
 
+// The box a label drawn at `origin` (its baseline's left end) covers, its outline included.
+Rect textBox(cv::Point origin, cv::Size text, int baseline) {
+  return {origin.x - 1, origin.y - text.height - 2, text.width + 2, text.height + baseline + 3};
+}
+
+bool overlaps(const Rect& a, const Rect& b) {
+  return a.x < b.x + b.w && b.x < a.x + a.w && a.y < b.y + b.h && b.y < a.y + a.h;
+}
+
 cv::Point sub(double x, double y) { return {static_cast<int>(std::lround(x * kUnit)), static_cast<int>(std::lround(y * kUnit))}; }
 
 }  // namespace
@@ -82,7 +94,7 @@ Image drawSphereOverlay(const Image& median, const std::vector<DetectedSphere>& 
     const DetectedSphere& full = spheres[k];
     // A reduced pixel is the mean of factor x factor pixels: its centre is their centre.
     const DetectedSphere s{(full.cx + 0.5) / factor - 0.5, (full.cy + 0.5) / factor - 0.5, full.r / factor,
-                           full.confidence};
+                           full.confidence, full.evidence, full.byHand};
     checkDrawable(s, median.width, median.height);
     cv::circle(bgr, sub(s.cx, s.cy), static_cast<int>(std::lround(s.r * kUnit)), cv::Scalar(0, 220, 0), thickness, cv::LINE_AA, kShift);
     const double arm = std::max(4.0, s.r / 8);
@@ -90,7 +102,9 @@ Image drawSphereOverlay(const Image& median, const std::vector<DetectedSphere>& 
     cv::line(bgr, sub(s.cx, s.cy - arm), sub(s.cx, s.cy + arm), cv::Scalar(0, 220, 0), thickness, cv::LINE_AA, kShift);
     char label[64];
     // Spheres are numbered from 1, as in the file names (highlights-sphere1.png) and the report.
-    std::snprintf(label, sizeof label, "sphere %zu  r=%.1f  conf %.2f", k + 1, full.r, s.confidence);
+    // One given by hand has no confidence of its own: it says so.
+    if (full.byHand) std::snprintf(label, sizeof label, "sphere %zu  r=%.1f  by hand", k + 1, full.r);
+    else std::snprintf(label, sizeof label, "sphere %zu  r=%.1f  conf %.2f", k + 1, full.r, s.confidence);
     const double scale = std::max(0.4, median.width / 2000.0);
     const int ty = static_cast<int>(s.cy + s.r + 20 * scale) < median.height ? static_cast<int>(s.cy + s.r + 20 * scale)
                                                                              : static_cast<int>(s.cy - s.r - 6);
@@ -98,6 +112,43 @@ Image drawSphereOverlay(const Image& median, const std::vector<DetectedSphere>& 
     outlinedText(bgr, label, at, scale, thickness, cv::Scalar(0, 220, 0));
   }
   return toImage(bgr);
+}
+
+std::vector<std::optional<Rect>> placeLabels(const std::vector<std::pair<int, int>>& marks,
+                                             const std::vector<std::pair<int, int>>& sizes, int width, int height,
+                                             int markRadius) {
+  std::vector<Rect> taken;  // every mark, then each label placed
+  for (const auto& [mx, my] : marks) taken.push_back({mx - markRadius, my - markRadius, 2 * markRadius + 1, 2 * markRadius + 1});
+  std::vector<std::optional<Rect>> out;
+  for (std::size_t i = 0; i < marks.size(); ++i) {
+    const auto [mx, my] = marks[i];
+    const auto [w, h] = sizes[i];
+    // The first place: right of the mark and above it, as the labels were always drawn.
+    const int x0 = mx + markRadius + 3, y0 = my - h + 1;
+    const int stepX = 8, stepY = h + 1;
+    const int rings = std::max(width / stepX, height / stepY) + 1;
+    const auto fits = [&](const Rect& r) {
+      if (r.x < 0 || r.y < 0 || r.x + r.w > width || r.y + r.h > height) return false;
+      for (const Rect& t : taken)
+        if (overlaps(r, t)) return false;
+      return true;
+    };
+    std::optional<Rect> placed;
+    // The first ring: the four places beside the mark (right or left, above or below).
+    for (const Rect& r : {Rect{x0, y0, w, h}, Rect{x0, my, w, h}, Rect{mx - markRadius - 3 - w, y0, w, h},
+                          Rect{mx - markRadius - 3 - w, my, w, h}})
+      if (!placed && fits(r)) placed = r;
+    // Then rings around the first place, nearest first, top to bottom and left to right.
+    for (int k = 1; !placed && k <= rings; ++k)
+      for (int j = -k; j <= k && !placed; ++j)
+        for (int i = -k; i <= k && !placed; i += (j == -k || j == k) ? 1 : 2 * k) {
+          const Rect r{x0 + i * stepX, y0 + j * stepY, w, h};
+          if (fits(r)) placed = r;
+        }
+    if (placed) taken.push_back(*placed);
+    out.push_back(placed);
+  }
+  return out;
 }
 
 Image drawHighlightOverview(const Image& median, const DetectedSphere& s, const std::vector<Highlight>& perImage,
@@ -128,16 +179,39 @@ Image drawHighlightOverview(int width, int height, const MedianCrop& medianCrop,
   cv::resize(crop, big, cv::Size(), zoom, zoom, cv::INTER_LINEAR);
   auto map = [&](double x, double y) { return sub((x - x0 + 0.5) * zoom - 0.5, (y - y0 + 0.5) * zoom - 0.5); };
   cv::circle(big, map(s.cx, s.cy), static_cast<int>(std::lround(s.r * zoom * kUnit)), cv::Scalar(0, 200, 0), 2, cv::LINE_AA, kShift);
+  // The marks first, then their labels where placeLabels puts them: clustered highlights
+  // (nearby lights) would otherwise write their labels over each other.
+  std::vector<std::size_t> shown;
+  std::vector<std::pair<int, int>> marks, sizes;
+  std::vector<int> baselines;
   for (std::size_t i = 0; i < perImage.size(); ++i) {
     const Highlight& h = perImage[i];
     if (!isUsable(h.flag)) continue;  // refused: its position means nothing
     const cv::Scalar colour = h.flag == HighlightFlag::Ok ? cv::Scalar(40, 40, 255) : cv::Scalar(0, 230, 255);
     cv::circle(big, map(h.x, h.y), static_cast<int>(4 * kUnit), colour, -1, cv::LINE_AA, kShift);
     const std::string label = i < labels.size() ? labels[i] : std::to_string(i + 1);
+    int baseline = 0;
+    const cv::Size text = cv::getTextSize(label, cv::FONT_HERSHEY_SIMPLEX, kLabelScale, 1, &baseline);
+    const Rect box = textBox({0, 0}, text, baseline);
     const cv::Point mark = map(h.x, h.y);
-    const cv::Point at = labelOrigin(big, label, kLabelScale, 1,
-                                     cv::Point(mark.x / static_cast<int>(kUnit) + 7, mark.y / static_cast<int>(kUnit) - 5));
-    outlinedText(big, label, at, kLabelScale, 1, colour);
+    shown.push_back(i);
+    marks.emplace_back(mark.x / static_cast<int>(kUnit), mark.y / static_cast<int>(kUnit));
+    sizes.emplace_back(box.w, box.h);
+    baselines.push_back(-box.y);  // from the box's top to the baseline
+  }
+  const std::vector<std::optional<Rect>> places = placeLabels(marks, sizes, big.cols, big.rows, kMarkRadius);
+  for (std::size_t n = 0; n < shown.size(); ++n) {
+    if (!places[n]) continue;  // no free place left in the picture: the mark stays unlabelled
+    const Highlight& h = perImage[shown[n]];
+    const cv::Scalar colour = h.flag == HighlightFlag::Ok ? cv::Scalar(40, 40, 255) : cv::Scalar(0, 230, 255);
+    const Rect& r = *places[n];
+    const auto [mx, my] = marks[n];
+    // A label away from its mark is joined to it: a line from the mark to the box's nearest point.
+    const int nx = std::clamp(mx, r.x, r.x + r.w - 1), ny = std::clamp(my, r.y, r.y + r.h - 1);
+    if (std::hypot(nx - mx, ny - my) > kMarkRadius + 4)
+      cv::line(big, {mx, my}, {nx, ny}, colour, 1, cv::LINE_AA);
+    const std::string label = shown[n] < labels.size() ? labels[shown[n]] : std::to_string(shown[n] + 1);
+    outlinedText(big, label, cv::Point(r.x + 1, r.y + baselines[n]), kLabelScale, 1, colour);
   }
   return toImage(big);
 }

@@ -62,6 +62,7 @@ struct DetectedSphere {
   double cx = 0, cy = 0, r = 0;  // pixels; origin at the centre of the top-left pixel, y down
   double confidence = 0;  // share of the rim that is a clean edge on the fitted circle
   double evidence = 0;    // share of the images with a moving highlight in front (1 by hand)
+  bool byHand = false;    // given by hand (--sphere): confidence and evidence measure nothing
 };
 
 struct SphereDetectionOptions {

@@ -126,12 +126,6 @@ std::optional<EmbeddedPicture> embedPicture(const std::string& bytes, int maxSid
 
 namespace {
 
-// Texels per block side so that the longer side is at most maxSide (1 = native resolution).
-int blockSide(int width, int height, int maxSide) {
-  const int side = std::max(width, height);
-  return maxSide > 0 && side > maxSide ? (side + maxSide - 1) / maxSide : 1;
-}
-
 void writeNumbers(std::ostringstream& j, const char* name, const std::vector<double>& v) {
   j << ",\"" << name << "\":[";
   for (std::size_t k = 0; k < v.size(); ++k) j << (k ? "," : "") << v[k];
@@ -208,10 +202,23 @@ Bytes blockAveraged(const std::uint8_t* in, int width, int height, int values, i
 
 }  // namespace
 
-std::string relightJson(const formats::PtmFile& ptm, int maxSide) {
-  const int step = blockSide(ptm.width, ptm.height, maxSide);
-  const int w = (ptm.width + step - 1) / step, h = (ptm.height + step - 1) / step;
+int relightBlockSide(int width, int height, std::size_t bytesPerTexel, int maxSide, std::size_t maxBytes) {
+  const int side = std::max(width, height);
+  int step = maxSide > 0 && side > maxSide ? (side + maxSide - 1) / maxSide : 1;
+  const auto bytesAt = [&](int s) {
+    return static_cast<std::uint64_t>((width + s - 1) / s) * static_cast<std::uint64_t>((height + s - 1) / s) * bytesPerTexel;
+  };
+  // At most sqrt(width * height * bytesPerTexel / maxBytes) + 1 steps: a few hundred for the
+  // largest model a budget admits.
+  if (maxBytes > 0)
+    while (step < side && bytesAt(step) > maxBytes) ++step;
+  return step;
+}
+
+std::string relightJson(const formats::PtmFile& ptm, int maxSide, std::size_t maxBytes) {
   const bool lrgb = ptm.format == formats::PtmFile::Format::Lrgb;
+  const int step = relightBlockSide(ptm.width, ptm.height, lrgb ? 9 : 18, maxSide, maxBytes);
+  const int w = (ptm.width + step - 1) / step, h = (ptm.height + step - 1) / step;
 
   // Block averages; rows top-first, texel-interleaved: ((c*h + y)*w + x)*6 + k, as the
   // model's planes are (the 6 bytes of a texel together, one plane per channel).
@@ -229,8 +236,8 @@ std::string relightJson(const formats::PtmFile& ptm, int maxSide) {
   return withBase64(j.str(), {{"coefficients", coefficientBytes}, {"rgb", rgbBytes}});
 }
 
-std::string relightJson(const formats::HshFile& hsh, int maxSide) {
-  const int step = blockSide(hsh.width, hsh.height, maxSide);
+std::string relightJson(const formats::HshFile& hsh, int maxSide, std::size_t maxBytes) {
+  const int step = relightBlockSide(hsh.width, hsh.height, 3 * static_cast<std::size_t>(hsh.terms), maxSide, maxBytes);
   const int w = (hsh.width + step - 1) / step, h = (hsh.height + step - 1) / step;
   const int terms = hsh.terms;
   // Block averages, in the file's layout: ((y*w + x)*3 + c)*terms + k.
@@ -246,10 +253,11 @@ std::string relightJson(const formats::HshFile& hsh, int maxSide) {
   return withBase64(j.str(), {{"coefficients", coefficients}});
 }
 
-std::string relightJson(const std::string& modelBytes, int maxSide, const std::string& name) {
+std::string relightJson(const std::string& modelBytes, int maxSide, const std::string& name, std::size_t maxBytes) {
   const auto* bytes = reinterpret_cast<const std::uint8_t*>(modelBytes.data());
-  if (modelBytes.compare(0, 4, "PTM_") == 0) return relightJson(formats::parsePtm(bytes, modelBytes.size(), name), maxSide);
-  return relightJson(formats::parseRti(bytes, modelBytes.size(), name), maxSide);
+  if (modelBytes.compare(0, 4, "PTM_") == 0)
+    return relightJson(formats::parsePtm(bytes, modelBytes.size(), name), maxSide, maxBytes);
+  return relightJson(formats::parseRti(bytes, modelBytes.size(), name), maxSide, maxBytes);
 }
 
 }  // namespace surrogate::report

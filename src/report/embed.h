@@ -2,6 +2,7 @@
 // model (PTM or HSH) for the interactive relighting view.
 #pragma once
 
+#include <cstddef>
 #include <optional>
 #include <string>
 
@@ -10,6 +11,15 @@
 #include "formats/rti_hsh.h"
 
 namespace surrogate::report {
+
+// The bytes of coefficients (before base64, which adds a third) each model in the relighting
+// view may take. The page's size must not grow with the capture's (docs/user-guide.md, "The
+// HTML report"): at 24 x 1200x800 the two default models kept whole took 27 MB of a 28 MB page,
+// and at 2000x1500 they were averaged to 1000x750 and still took 22 MB. 1.5 MB keeps each model
+// of 400x300 (the test captures) whole, gives a PTM (LRGB) of 1200x800 at 400x267 and an HSH of
+// order 2 at 400x267 (block side 3), and keeps the page of the default two models, with its
+// pictures (kReportBudgetBytes, report.h), under 5 MB at any capture size.
+inline constexpr std::size_t kRelightModelBytes = 1'500'000;
 
 struct EmbeddedPicture {
   std::string dataUri;  // "data:image/jpeg;base64,..."
@@ -48,21 +58,30 @@ std::optional<EmbeddedPicture> embedPicture(const std::string& bytes, int maxSid
 //         "originalWidth":W,"originalHeight":H,"scale":[n],"bias":[n],"coefficients":base64}
 //                                   the .rti layout: ((y*w + x)*3 + c)*n + k
 // Rows top-first. The copy keeps the model's resolution when its longer side is at most
-// `maxSide`, else it is downscaled by averaging each coefficient byte over the texels of a block
-// (exact in decoded units, since decoding is affine per coefficient).
+// `maxSide` and its coefficients take at most `maxBytes` (0: no limit), else it is downscaled
+// by the smallest whole factor that meets both (relightBlockSide), averaging each coefficient
+// byte over the texels of a block (exact in decoded units, since decoding is affine per
+// coefficient).
 // Throws Error(Input) naming `name` for a malformed model.
-std::string relightJson(const std::string& modelBytes, int maxSide, const std::string& name);
+std::string relightJson(const std::string& modelBytes, int maxSide, const std::string& name,
+                        std::size_t maxBytes = kRelightModelBytes);
 
 // The same of a model in memory: what relightJson gives for the file formats::writePtm or
 // formats::writeRti makes of it (their numbers read back exactly).
-std::string relightJson(const formats::PtmFile& ptm, int maxSide);
-std::string relightJson(const formats::HshFile& hsh, int maxSide);
+std::string relightJson(const formats::PtmFile& ptm, int maxSide, std::size_t maxBytes = kRelightModelBytes);
+std::string relightJson(const formats::HshFile& hsh, int maxSide, std::size_t maxBytes = kRelightModelBytes);
+
+// Texels per block side of the copy of a width x height model of `bytesPerTexel` bytes (PTM
+// LRGB 9, PTM RGB 18, HSH 3 x terms): the smallest whole factor that brings its longer side to
+// at most maxSide (0: any) and its texels' bytes to at most maxBytes (0: any); 1 keeps it whole.
+int relightBlockSide(int width, int height, std::size_t bytesPerTexel, int maxSide, std::size_t maxBytes);
 
 // A model's interactive copy made while it was in memory (surrogate run: as each fit writes
 // its model), for ReportOptions::relightCopies.
 struct RelightCopy {
   std::string json;  // relightJson of the model
   int maxSide = 0;   // what it was made for
+  std::size_t maxBytes = kRelightModelBytes;
 };
 
 }  // namespace surrogate::report

@@ -200,8 +200,8 @@ std::string hemisphereSvg(const std::vector<LightPoint>& lights, const Coverage&
       << ": elevation " << displayNumber(l.elevationDeg, 1) << "\u00b0, azimuth "
       << displayNumber(l.azimuthDeg, 1) << "\u00b0"
       << (l.rmse ? ", residual " + displayNumber(*l.rmse, 2) + " levels" : std::string())
-      << (l.highlightConfidence ? ", highlight confidence " + displayNumber(*l.highlightConfidence, 2)
-                                : std::string())
+      << (l.highlightConfidence || l.highlightByHand ? ", highlight confidence " + highlightConfidenceText(l)
+                                                     : std::string())
       << "</title></circle>\n";
   }
   drawPriorLights(s, lights, priorLights);
@@ -264,6 +264,11 @@ std::string errorHemisphereSvg(const std::vector<ErrorPoint>& points, const std:
     << "<text class=\"axis\" x=\"406\" y=\"314\">image</text>\n";
   s << "</svg>";
   return s.str();
+}
+
+std::string highlightConfidenceText(const LightPoint& light) {
+  if (!light.highlightConfidence) return light.highlightByHand ? "by hand" : "-";
+  return displayNumber(*light.highlightConfidence, 2) + (light.highlightByHand ? ", and one by hand" : "");
 }
 
 }  // namespace surrogate::report

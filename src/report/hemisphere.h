@@ -32,7 +32,14 @@ struct LightPoint {
   // confidence of the highlights used (carrier highlight/@confidence); absent for lights from
   // an .lp file or carriers that do not record it.
   std::optional<double> highlightConfidence;
+  // A highlight the light was measured from was given by hand (flag "manual"): it has no
+  // confidence of its own (the carrier records 1), so it does not count in highlightConfidence.
+  bool highlightByHand = false;
 };
+
+// The highlight confidence as the page shows it: "0.93", "by hand", "0.93, and one by hand",
+// or "-" when neither is known.
+std::string highlightConfidenceText(const LightPoint& light);
 
 // Below this highlight confidence a light is marked as doubtful on the plot (a red ring).
 inline constexpr double kDoubtfulConfidence = 0.5;

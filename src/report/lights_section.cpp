@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "core/error.h"
@@ -48,12 +49,15 @@ std::vector<LightPoint> collectLights(const carrier::Carrier& c, std::string* fi
     const carrier::Step* step = c.findStep(fitResult->step);
     *fitLabel = step ? stepTitle(*step) : fitResult->step;
   }
-  // The lowest confidence of the usable highlights of each image (those its light came from).
+  // The lowest confidence of the usable highlights of each image (those its light came from);
+  // those given by hand have none of their own.
   std::map<std::string, double> confidence;
+  std::set<std::string> byHand;
   for (const carrier::Result& r : c.data)
     for (const carrier::DataItem* h : r.itemsOf("highlight")) {
       const std::string flag = h->get("flag").value_or("");
-      if (!isUsedHighlight(flag) || !h->get("confidence")) continue;
+      if (flag == "manual") byHand.insert(h->get("image").value_or(""));
+      if (flag == "manual" || !isUsedHighlight(flag) || !h->get("confidence")) continue;
       try {
         const double v = h->number("confidence");
         const std::string id = h->get("image").value_or("");
@@ -86,6 +90,7 @@ std::vector<LightPoint> collectLights(const carrier::Carrier& c, std::string* fi
     }
     if (const auto it = rmse.find(id); it != rmse.end()) p.rmse = it->second;
     if (const auto it = confidence.find(id); it != confidence.end()) p.highlightConfidence = it->second;
+    p.highlightByHand = byHand.count(id) > 0;
     out.push_back(p);
   }
   return out;
@@ -134,7 +139,7 @@ std::string lightsSection(const carrier::Carrier& c, const std::vector<LightPoin
     s << "<tr><td><code>" << escapeHtml(l.image) << "</code></td><td class=\"num\">"
       << displayNumber(l.elevationDeg, 1) << "</td><td class=\"num\">" << displayNumber(l.azimuthDeg, 1)
       << "</td><td class=\"num\">" << (l.rmse ? displayNumber(*l.rmse, 2) : "-") << "</td><td class=\"num\">"
-      << (l.highlightConfidence ? displayNumber(*l.highlightConfidence, 2) : "-") << "</td></tr>";
+      << highlightConfidenceText(l) << "</td></tr>";
   s << "</table></details></section>";
   return s.str();
 }

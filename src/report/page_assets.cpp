@@ -196,11 +196,16 @@ const char* const kReportJs = R"JS(
     var caption = document.getElementById("relight-caption");
     var context = canvas.getContext("2d");
     var light = { azimuth: 45, elevation: 45 }, current = null, picture = null, pending = false;
-    var settings = hashSettings();
-    if (settings.light) {
-      var l = settings.light.split(",").map(Number), norm = Math.hypot(l[0], l[1], l[2]);
+    // A direction "x,y,z" as the view's angles (unchanged when it has no length).
+    function fromDirection(text) {
+      var l = text.split(",").map(Number), norm = Math.hypot(l[0], l[1], l[2]);
       if (norm > 0) light = { azimuth: Math.atan2(l[1], l[0]) / degree, elevation: Math.asin(l[2] / norm) / degree };
     }
+    // First the captured lights' mean direction (report/relight_section.h), inside the range
+    // the model was fitted on; the page's address may name another.
+    if (canvas.getAttribute("data-start-light")) fromDirection(canvas.getAttribute("data-start-light"));
+    var settings = hashSettings();
+    if (settings.light) fromDirection(settings.light);
     if (settings.azimuth) light.azimuth = Number(settings.azimuth);
     if (settings.elevation) light.elevation = Number(settings.elevation);
 
@@ -278,17 +283,19 @@ const char* const kReportJs = R"JS(
     });
     var first = Math.min(models.length - 1, Math.max(0, Number(settings.model || 0)));
     choose(first);
-    recordRendering(picture, current.m);
+    recordRendering(picture, current.m, light);
     body.setAttribute("data-relight-models", models.map(function (m) { return m.m.basis; }).join(" "));
     body.setAttribute("data-relight", "rendered");
   }
 
-  // For tests and for people checking the page: the mean (0..255) of the first rendering, and
-  // its pixels at the centres of a 3x3 grid ("x,y:r,g,b;...").
-  function recordRendering(picture, m) {
+  // For tests and for people checking the page: the mean (0..255) of the first rendering, its
+  // light ("azimuth,elevation" in degrees) and its pixels at the centres of a 3x3 grid
+  // ("x,y:r,g,b;...").
+  function recordRendering(picture, m, light) {
     var d = picture.data, sum = 0;
     for (var i = 0; i < d.length; i += 4) sum += d[i] + d[i + 1] + d[i + 2];
     body.setAttribute("data-relight-mean", (sum / (3 * m.width * m.height)).toFixed(3));
+    body.setAttribute("data-relight-light", light.azimuth.toFixed(1) + "," + light.elevation.toFixed(1));
     var probes = [];
     for (var j = 0; j < 3; ++j) {
       for (var k = 0; k < 3; ++k) {

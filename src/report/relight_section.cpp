@@ -1,6 +1,7 @@
 #include "report/relight_section.h"
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
 #include <sstream>
 
@@ -36,7 +37,8 @@ std::vector<RelightModel> relightModels(const carrier::Carrier& c, const ReportS
       m.file = files[k];
       if (options.relightCopies) {
         const auto copy = options.relightCopies->find(m.file->path);
-        if (copy != options.relightCopies->end() && copy->second.maxSide == options.relightMaxSide) {
+        if (copy != options.relightCopies->end() && copy->second.maxSide == options.relightMaxSide &&
+            copy->second.maxBytes == options.relightMaxBytes) {
           m.found = true;
           m.copied = &copy->second.json;
           continue;
@@ -46,7 +48,7 @@ std::vector<RelightModel> relightModels(const carrier::Carrier& c, const ReportS
       m.found = bytes.has_value();
       if (!bytes) continue;
       try {
-        m.made = relightJson(*bytes, options.relightMaxSide, m.file->path);
+        m.made = relightJson(*bytes, options.relightMaxSide, m.file->path, options.relightMaxBytes);
       } catch (const Error& e) {
         m.problem = e.text();
       }
@@ -56,7 +58,24 @@ std::vector<RelightModel> relightModels(const carrier::Carrier& c, const ReportS
 }
 
 
-RelightSection relightSection(const carrier::Carrier& c, const std::vector<RelightModel>& models, Report& report) {
+std::optional<std::array<double, 3>> meanLightDirection(const std::vector<LightPoint>& lights) {
+  constexpr double kDegree = 3.14159265358979323846 / 180;
+  double x = 0, y = 0, z = 0;
+  for (const LightPoint& l : lights) {
+    const double e = l.elevationDeg * kDegree, a = l.azimuthDeg * kDegree;
+    x += std::cos(e) * std::cos(a);
+    y += std::cos(e) * std::sin(a);
+    z += std::sin(e);
+  }
+  const double n = std::sqrt(x * x + y * y + z * z);
+  // Below this length the directions cancel out (opposite lights): no direction to start at.
+  constexpr double kCancelled = 1e-9;
+  if (lights.empty() || !(n > kCancelled * static_cast<double>(lights.size()))) return std::nullopt;
+  return std::array<double, 3>{x / n, y / n, z / n};
+}
+
+RelightSection relightSection(const carrier::Carrier& c, const std::vector<RelightModel>& models,
+                              const std::vector<LightPoint>& lights, Report& report) {
   std::ostringstream s, notes, buttons;
   RelightSection section;
   s << "<section id=\"relight\"><h2>Relight it yourself</h2>";
@@ -85,7 +104,14 @@ RelightSection relightSection(const carrier::Carrier& c, const std::vector<Relig
     return section;
   }
   report.relightable = true;
-  s << "<div class=\"relight\"><div class=\"relight-view\"><canvas id=\"relight-canvas\"></canvas>"
+  std::string start;
+  if (const auto mean = meanLightDirection(lights)) {
+    std::ostringstream v;
+    v.precision(6);
+    v << " data-start-light=\"" << (*mean)[0] << "," << (*mean)[1] << "," << (*mean)[2] << "\"";
+    start = v.str();
+  }
+  s << "<div class=\"relight\"><div class=\"relight-view\"><canvas id=\"relight-canvas\"" << start << "></canvas>"
        "<p id=\"relight-caption\" class=\"note\"></p></div><div class=\"relight-controls\">"
     << (shown > 1 ? "<div id=\"model-choice\" role=\"group\" aria-label=\"model\">" + buttons.str() + "</div>" : "")
     << "<canvas id=\"light-pad\" width=\"260\" height=\"260\" aria-label=\"light direction\"></canvas>"

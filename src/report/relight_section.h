@@ -3,11 +3,14 @@
 // relightJson), and the section that holds them.
 #pragma once
 
+#include <array>
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "carrier/carrier.h"
+#include "report/hemisphere.h"
 #include "report/report.h"
 
 namespace surrogate::report {
@@ -52,8 +55,17 @@ struct RelightSection {
   }
 };
 
+// The light the view opens with: the normalised mean of the captured lights' directions (x
+// right, y up, z to the camera, from each light's azimuth and elevation), the middle of the
+// range the model was fitted on. A fixed light (it was 45 degrees azimuth and elevation) could
+// lie outside that range, where a model extrapolates and the picture starts dark. nullopt when
+// there is no light or the directions cancel out.
+std::optional<std::array<double, 3>> meanLightDirection(const std::vector<LightPoint>& lights);
+
 // The section of `models` (those found and readable get a button each; the others a note), and
-// report.relightable when any can be shown.
-RelightSection relightSection(const carrier::Carrier& c, const std::vector<RelightModel>& models, Report& report);
+// report.relightable when any can be shown; the view opens at meanLightDirection(lights)
+// (data-start-light="x,y,z" on the canvas) unless the page's address names a light.
+RelightSection relightSection(const carrier::Carrier& c, const std::vector<RelightModel>& models,
+                              const std::vector<LightPoint>& lights, Report& report);
 
 }  // namespace surrogate::report

@@ -1,6 +1,7 @@
 #include "report/report.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <future>
 #include <map>
@@ -14,6 +15,7 @@
 #include "core/version.h"
 #include "report/embed.h"
 #include "report/hemisphere.h"
+#include "report/explain.h"
 #include "report/html.h"
 #include "report/lights_section.h"
 #include "report/outputs.h"
@@ -31,6 +33,12 @@ std::string numberOr(const carrier::DataItem& d, const char* name, int digits, c
   } catch (const Error&) {
     return absent;
   }
+}
+
+// A highlight's confidence as the page shows it: "by hand" for one given by hand (the carrier
+// records 1, which it did not earn), else the number.
+std::string confidenceText(const carrier::DataItem& highlight) {
+  return highlight.get("flag").value_or("") == "manual" ? std::string("by hand") : numberOr(highlight, "confidence", 2);
 }
 
 // The carrier counts spheres from 0 (sphere/@index, highlight/@sphere); people and the file
@@ -157,12 +165,34 @@ std::string detectionSection(const carrier::Carrier& c, const Pictures& pictures
           return std::string("-");
         }
       };
+      // A sphere given by hand was not detected: its rim and highlight scores (recorded as 1)
+      // measure nothing.
+      const bool byHand = d->get("source").value_or("") == "manual";
       s << "<tr><td>" << escapeHtml(sphereNumber(d->get("index").value_or(""))) << "</td><td class=\"num\">"
         << n("cx") << ", " << n("cy") << "</td><td class=\"num\">" << n("r") << "</td><td class=\"num\">"
-        << n("confidence") << "</td><td class=\"num\">" << n("evidence") << "</td><td>"
-        << escapeHtml(d->get("source").value_or("")) << "</td></tr>";
+        << (byHand ? "by hand" : n("confidence")) << "</td><td class=\"num\">" << (byHand ? "by hand" : n("evidence"))
+        << "</td><td>" << escapeHtml(byHand ? std::string("given by hand") : d->get("source").value_or("")) << "</td></tr>";
     }
-    s << "</table><p class=\"note\">Spheres are numbered from 1 on this page; the command line's "
+    s << "</table><ul>";
+    for (const carrier::DataItem* d : spheres) {
+      s << "<li>Sphere " << escapeHtml(sphereNumber(d->get("index").value_or(""))) << ": ";
+      if (d->get("source").value_or("") == "manual") {
+        s << "given by hand; its circle is the one given, nothing was measured.</li>";
+        continue;
+      }
+      // Each figure the carrier records (a carrier before SphereDetection version 5 has no evidence).
+      std::string said;
+      try {
+        said = explainRimConfidence(d->number("confidence"));
+      } catch (const Error&) {
+      }
+      try {
+        said += (said.empty() ? "" : " ") + explainEvidence(d->number("evidence"));
+      } catch (const Error&) {
+      }
+      s << (said.empty() ? std::string("its figures are not recorded.") : said) << "</li>";
+    }
+    s << "</ul><p class=\"note\">Spheres are numbered from 1 on this page; the command line's "
          "<code>--highlight IMAGE:SPHERE</code> and <code>--forget-sphere N</code> count them from 0.</p>";
   }
   s << lightChecksTable(c);
@@ -176,7 +206,7 @@ std::string detectionSection(const carrier::Carrier& c, const Pictures& pictures
       const std::string reason = d->get("reason").value_or("");
       s << "<li class=\"warning\"><code>" << escapeHtml(imagePath(*d)) << "</code>, sphere "
         << escapeHtml(sphereNumber(d->get("sphere").value_or(""))) << ": " << escapeHtml(d->get("flag").value_or(""))
-        << ", confidence " << numberOr(*d, "confidence", 2) << (reason.empty() ? "" : " \u2014 ")
+        << ", confidence " << confidenceText(*d) << (reason.empty() ? "" : " \u2014 ")
         << escapeHtml(reason) << "</li>";
     }
     s << "</ul>";
@@ -184,14 +214,14 @@ std::string detectionSection(const carrier::Carrier& c, const Pictures& pictures
   if (!highlights.empty()) {
     s << "<details><summary>Every highlight</summary><p>Confidence, from 0 to 1: how clearly the "
          "highlight is one small, compact peak rising above the same place in the other photographs "
-         "(the lowest of its scores; docs/carrier.md). 1 for a highlight given by hand; 0 for one "
-         "refused.</p><table><tr><th>image</th><th>sphere</th>"
+         "(the lowest of its scores; docs/carrier.md); 0 for one refused. A highlight given by hand "
+         "has none: it says <em>by hand</em>.</p><table><tr><th>image</th><th>sphere</th>"
          "<th>x, y (px)</th><th>flag</th><th>confidence</th><th>reason</th></tr>";
     for (const carrier::DataItem* d : highlights)
       s << "<tr><td><code>" << escapeHtml(imagePath(*d)) << "</code></td><td class=\"num\">"
         << escapeHtml(sphereNumber(d->get("sphere").value_or(""))) << "</td><td class=\"num\">" << numberOr(*d, "x", 2)
         << ", " << numberOr(*d, "y", 2) << "</td><td>" << escapeHtml(d->get("flag").value_or(""))
-        << "</td><td class=\"num\">" << numberOr(*d, "confidence", 2) << "</td><td>"
+        << "</td><td class=\"num\">" << confidenceText(*d) << "</td><td>"
         << escapeHtml(d->get("reason").value_or("")) << "</td></tr>";
     s << "</table></details>";
   }
@@ -210,6 +240,25 @@ std::string detectionSection(const carrier::Carrier& c, const Pictures& pictures
   if (!any) s << "<p class=\"note\">No overlay or highlight overview was written.</p>";
   s << "</section>";
   return s.str();
+}
+
+// Beside the normal map: how many of its pixels took the Lambertian normal (DerivedMaps'
+// normalFallbackPixels), out of the map's pixels; empty when either is unknown.
+std::string normalFallbackNote(const carrier::Carrier& c, const Pictures& pictures, const carrier::FileRecord& normals) {
+  const carrier::Result* r = c.findResult(normals.createdBy);
+  const Pictures::Picture picture = pictures.get(normals.path);
+  if (!r || !picture.embedded) return "";
+  for (const carrier::DataItem* v : r->itemsOf("value")) {
+    if (v->get("name") != "normalFallbackPixels") continue;
+    try {
+      return "<p>" + explainNormalFallback(std::llround(v->number("value")),
+                                           static_cast<long long>(picture.embedded->originalWidth) *
+                                               picture.embedded->originalHeight) + "</p>";
+    } catch (const Error&) {
+      return "";
+    }
+  }
+  return "";
 }
 
 std::string resultsSection(const carrier::Carrier& c, const Pictures& pictures,
@@ -236,16 +285,25 @@ std::string resultsSection(const carrier::Carrier& c, const Pictures& pictures,
         return std::string("-");
       }
     };
+    std::string meaning;
+    try {
+      meaning = explainRmse(std::stod(rmse)) + " " + explainPsnr(std::stod(psnr));
+    } catch (const std::exception&) {
+      // a figure that is not a number is shown as "-", with nothing to explain
+    }
     fits << "<tr><td>" << escapeHtml(stepTitle(step)) << "</td><td><code>" << escapeHtml(output) << "</code></td><td class=\"num\">" << shown(rmse)
-         << "</td><td class=\"num\">" << shown(psnr) << "</td></tr>";
+         << "</td><td class=\"num\">" << shown(psnr) << "</td><td>" << meaning << "</td></tr>";
   }
   if (!fits.str().empty())
     s << "<table><tr><th>fit</th><th>file</th><th>RMSE (8-bit levels)</th>"
-         "<th>PSNR (dB)</th></tr>" << fits.str() << "</table>";
+         "<th>PSNR (dB)</th><th>what it means</th></tr>" << fits.str() << "</table>";
 
   s << "<div class=\"gallery\">";
   for (const auto& [kind, file] : outputsByKind(c)) {
-    if (kind == "normals") s << figure(pictures, *file, "Normal map", &report.picturesEmbedded);
+    if (kind == "normals") {
+      s << figure(pictures, *file, "Normal map", &report.picturesEmbedded);
+      s << normalFallbackNote(c, pictures, *file);
+    }
     else if (kind == "albedo") s << figure(pictures, *file, "Albedo", &report.picturesEmbedded);
     else if (kind == "preview")
       s << figure(pictures, *file, previewCaption(file->path), &report.picturesEmbedded);
@@ -312,7 +370,7 @@ Report buildReport(const carrier::Carrier& c, const ReportSource& source, const 
   progress(0.05 + 0.9 * shareAfterPictures(shown));
   const std::string detection = detectionSection(c, pictures, report);
   const std::string results = resultsSection(c, pictures, report);
-  const RelightSection relight = relightSection(c, models, report);
+  const RelightSection relight = relightSection(c, models, lightPoints, report);
   const std::string priorWork = auditSection(c, source, &report.picturesEmbedded);
   progress(0.95);
   const std::string generated = options.generatedAt.empty() ? carrier::timestampNow() : options.generatedAt;

@@ -3,6 +3,7 @@
 #include <map>
 #include <sstream>
 
+#include "meta/camera_text.h"
 #include "report/html.h"
 
 namespace surrogate::report {
@@ -113,6 +114,8 @@ std::string provenanceSection(const carrier::Carrier& c) {
   return s.str();
 }
 
+std::string takenText(const std::string& exifDateTime) { return meta::dateTimeText(exifDateTime, std::nullopt); }
+
 std::string cameraSection(const carrier::Carrier& c) {
   // Distinct values of each EXIF field over the originals (exports when there are none).
   bool haveOriginals = false;
@@ -147,8 +150,8 @@ std::string cameraSection(const carrier::Carrier& c) {
     if (lastDate.empty() || d > lastDate) lastDate = d;
   }
   if (!firstDate.empty())
-    rows << "<tr><td>taken</td><td>" << escapeHtml(firstDate)
-         << (lastDate != firstDate ? " to " + escapeHtml(lastDate) : std::string()) << "</td></tr>";
+    rows << "<tr><td>taken</td><td>" << escapeHtml(takenText(firstDate))
+         << (lastDate != firstDate ? " to " + escapeHtml(takenText(lastDate)) : std::string()) << "</td></tr>";
   std::ostringstream s;
   s << "<section id=\"camera\"><h2>Camera and lens</h2>";
   if (rows.str().empty())

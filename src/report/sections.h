@@ -19,8 +19,14 @@ namespace surrogate::report {
 std::string summarySection(const carrier::Carrier& c, const std::vector<LightPoint>& lights,
                            const Coverage& coverage,
                            const std::optional<std::vector<VerificationCheck>>& checks);
-// A step as people name it: "Fit: PTM (LRGB)", "Sphere detection"; its component otherwise.
+// A step as people name it: "Fit: PTM (LRGB)", "Web copy of HSH order 2", "Sphere
+// detection"; its component otherwise. Steps of one component made per model (RtiFit,
+// WebCopy, DerivedMaps) are told apart by their model.
 std::string stepTitle(const carrier::Step& step);
+// EXIF's date and time a photograph was taken ("2026:01:01 12:00:00") as ISO 8601
+// ("2026-01-01T12:00:00", meta::dateTimeText: the form of the page's other times, without a
+// zone since the carrier records none); other text as it is.
+std::string takenText(const std::string& exifDateTime);
 // A fitted model as people name it: "ptm-lrgb" -> "PTM (LRGB)", "hsh2" -> "HSH order 2".
 std::string modelTitle(const std::string& basis);
 

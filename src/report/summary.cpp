@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "report/explain.h"
 #include "report/html.h"
 #include "report/sections.h"
 
@@ -50,12 +51,6 @@ std::string cameraName(const carrier::FileRecord& f) {
   return make + " " + model;
 }
 
-// EXIF "2026:01:01 12:00:00" as "2026-01-01 12:00:00"; other text unchanged.
-std::string isoDate(std::string exif) {
-  if (exif.size() >= 10 && exif[4] == ':' && exif[7] == ':') exif[4] = exif[7] = '-';
-  return exif;
-}
-
 std::string dateRange(const std::vector<const carrier::FileRecord*>& files) {
   std::string first, last;
   for (const carrier::FileRecord* f : files) {
@@ -65,7 +60,7 @@ std::string dateRange(const std::vector<const carrier::FileRecord*>& files) {
     if (last.empty() || d > last) last = d;
   }
   if (first.empty()) return "";
-  return isoDate(first) + (last != first ? " to " + isoDate(last) : "");
+  return takenText(first) + (last != first ? " to " + takenText(last) : "");
 }
 
 int processedImages(const carrier::Carrier& c) {
@@ -146,7 +141,7 @@ std::string fitFigures(const carrier::Carrier& c) {
       if (v->get("name") != "psnr") continue;
       try {
         s << (s.str().empty() ? "" : "<br>") << escapeHtml(stepTitle(step)) << ": "
-          << displayNumber(v->number("value"), 1) << " dB";
+          << displayNumber(v->number("value"), 1) << " dB, " << judgePsnr(v->number("value"));
       } catch (const Error&) {
         // an unreadable PSNR is left out of the summary; the results table shows "-"
       }
@@ -212,6 +207,10 @@ std::string stepTitle(const carrier::Step& step) {
       {"Audit", "Audit of prior work"},
   };
   if (step.component == "RtiFit") return "Fit: " + modelTitle(step.param("basis", "?"));
+  // One step per model: the model tells two apart.
+  if (step.component == "WebCopy") return "Web copy of " + modelTitle(step.param("model", "?"));
+  if (step.component == "DerivedMaps" && step.hasParam("model"))
+    return "Normals, albedo and previews from " + modelTitle(step.param("model", "?"));
   const auto it = titles.find(step.component);
   return it == titles.end() ? step.component : it->second;
 }

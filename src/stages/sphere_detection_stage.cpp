@@ -55,8 +55,10 @@ pipeline::StageInfo SphereDetectionStage::info() {
   //    rim's confidence counts the edges within a pixel (1 % of the radius) of the circle
   // 7: the overlay PNG carries an iTXt chunk (PNG 1.2, fmt/13) and its PRONOM identifier is
   //    recorded (formats/pronom.h); the pixels are the same
+  // 8: the overlay labels a sphere given by hand "by hand", not "conf 1.00" (a confidence it
+  //    did not earn), so its bytes differ from version 7's for such a sphere
   pipeline::StageInfo info = pipeline::withOptions<hrti::SphereDetectionOptions>(
-      {kComponent, "7",
+      {kComponent, "8",
        "Find the reflective spheres: circle Hough transform on the gradient of the stack's upper "
        "quartile, sub-pixel circle fit, highlights that move against the per-pixel median",
        pipeline::PlanSlot::LightsFromSpheres});
@@ -85,7 +87,7 @@ void SphereDetectionStage::run(const carrier::Step& step, pipeline::Context& ctx
       if (!why.empty())
         throw Error(ErrorKind::Input, "sphere " + i->target + " given by hand (" + i->value + ")",
                     "sphere detection", why + "; give the sphere's circle again with --sphere CX,CY,R");
-      spheres->push_back(hrti::DetectedSphere{v[0], v[1], v[2], 1.0, 1.0});
+      spheres->push_back(hrti::DetectedSphere{v[0], v[1], v[2], 1.0, 1.0, true});
       ctx.carrier.addLog("intervention", step.id,
                          "sphere " + i->target + " set by hand to " + i->value + ": " + i->reason, i->who);
     }

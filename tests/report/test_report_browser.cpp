@@ -4,7 +4,9 @@
 // reaches past the viewport's edges (screenshots kept in the build tree,
 // tests/report/artefacts/report-1400.png and report-800.png); the page's relighting of a PTM
 // and of HSH models gives the pixels of `surrogate render` (src/fit/render.cpp) and changes
-// with the light. Also `surrogate report` on a bag directory and a .tar.
+// with the light (a model over the size budget, averaged down, against the render of the same
+// average); a run at 1200x800 keeps its page within the budget. Also `surrogate report` on a bag
+// directory and a .tar.
 //
 // Without chromium on PATH (or in $SURROGATE_CHROMIUM), the browser tests exit with code 77,
 // which ctest reports as skipped. scripts/install-deps installs it, so CI runs them.
@@ -24,6 +26,9 @@
 #include "e2e_support.h"
 #include "headless_chromium.h"
 #include "formats/lp.h"
+#include "formats/ptm.h"
+#include "formats/rti_hsh.h"
+#include "report/report.h"
 
 namespace fs = std::filesystem;
 using namespace surrogate;
@@ -85,7 +90,119 @@ int lightsInCarrier(const fs::path& capture) {
   return n;
 }
 
+// Block averages of `planes` arrays of width x height texels of `values` bytes each, over
+// blocks of step x step texels (fewer at the right and bottom edges), rounded half up: what
+// report/embed.h says the relighting copy of a model holds, computed here texel by texel.
+std::vector<std::uint8_t> blockAverages(const std::vector<std::uint8_t>& in, int width, int height, int values,
+                                        int planes, int step) {
+  const int w = (width + step - 1) / step, h = (height + step - 1) / step;
+  std::vector<std::uint8_t> out;
+  for (int c = 0; c < planes; ++c)
+    for (int by = 0; by < h; ++by)
+      for (int bx = 0; bx < w; ++bx)
+        for (int v = 0; v < values; ++v) {
+          long sum = 0, n = 0;
+          for (int y = by * step; y < std::min(height, (by + 1) * step); ++y)
+            for (int x = bx * step; x < std::min(width, (bx + 1) * step); ++x, ++n)
+              sum += in[((static_cast<std::size_t>(c) * height + y) * width + x) * values + v];
+          out.push_back(static_cast<std::uint8_t>((sum + n / 2) / n));
+        }
+  return out;
+}
+
+// `model` (.ptm or .rti) block-averaged by `step`, written to `out`: the model the page's
+// relighting view holds, as a file `surrogate render` reads.
+void writeReducedModel(const fs::path& model, int step, const fs::path& out) {
+  if (model.extension() == ".ptm") {
+    formats::PtmFile ptm = formats::readPtm(model);
+    const bool lrgb = ptm.format == formats::PtmFile::Format::Lrgb;
+    formats::PtmFile reduced = ptm;
+    reduced.width = (ptm.width + step - 1) / step;
+    reduced.height = (ptm.height + step - 1) / step;
+    reduced.coefficients = blockAverages(ptm.coefficients, ptm.width, ptm.height, 6, lrgb ? 1 : 3, step);
+    if (lrgb) reduced.rgb = blockAverages(ptm.rgb, ptm.width, ptm.height, 3, 1, step);
+    formats::writePtm(out, reduced);
+  } else {
+    formats::HshFile hsh = formats::readRti(model);
+    formats::HshFile reduced = hsh;
+    reduced.width = (hsh.width + step - 1) / step;
+    reduced.height = (hsh.height + step - 1) / step;
+    reduced.coefficients = blockAverages(hsh.coefficients, hsh.width, hsh.height, 3 * hsh.terms, 1, step);
+    formats::writeRti(out, reduced);
+  }
+}
+
+// The bytes of a page's pictures (data: URIs of <img>).
+std::size_t pictureBytes(const std::string& html) {
+  std::size_t n = 0;
+  const std::string start = "src=\"data:image/";
+  for (std::size_t at = html.find(start); at != std::string::npos; at = html.find(start, at + 1))
+    n += html.find('"', at + 5) - (at + 5);
+  return n;
+}
+
+// Compares the page's first rendering (mean and probes) with a picture `surrogate render`
+// wrote of the same model at the same light.
+void checkSameRendering(const BrowserRun& b, const fs::path& rendered) {
+  const cv::Mat bgr = cv::imread(rendered.string(), cv::IMREAD_COLOR);
+  REQUIRE_FALSE(bgr.empty());
+  const double pageMean = std::atof(bodyAttribute(b.dom, "data-relight-mean").c_str());
+  INFO("mean brightness: page " << pageMean << ", surrogate render " << meanOf(bgr));
+  // Rounding of the last bit may differ on a few texels; 0.05 of a level over the picture.
+  CHECK(std::abs(pageMean - meanOf(bgr)) < 0.05);
+  const std::vector<Probe> probes = parseProbes(bodyAttribute(b.dom, "data-relight-probes"));
+  REQUIRE(probes.size() == 9u);
+  for (const Probe& p : probes) {
+    const cv::Vec3b v = bgr.at<cv::Vec3b>(p.y, p.x);
+    for (int ch = 0; ch < 3; ++ch) {
+      INFO("texel " << p.x << "," << p.y << " channel " << ch);
+      CHECK(std::abs(p.rgb[ch] - int(v[2 - ch])) <= 1);
+    }
+  }
+}
+
 }  // namespace
+
+TEST_CASE("the report of a 1200x800 capture is within the size budget and its reduced models relight as surrogate render relights them") {
+  // The demo's size (scripts/demo: 24 images of 1200x800; 12 here): its two models kept whole
+  // made a page of 27 MB. Each is now averaged by 3 (400x267) to keep within kRelightModelBytes.
+  const fs::path work = e2e::freshDir("report-budget");
+  const fs::path capture = work / "capture";
+  const e2e::CommandResult made = e2e::runShell(std::string(GENERATOR_EXE) + " --out " + e2e::quote(capture) +
+                                                " --images 12 --width 1200 --height 800 --seed 1");
+  REQUIRE(made.exitCode == 0);
+  fs::remove_all(capture / "truth");
+  const e2e::CommandResult run = e2e::surrogate("run " + e2e::quote(capture) + " --quiet");
+  INFO(run.output);
+  REQUIRE(run.exitCode == 0);
+  const fs::path page = capture / "finished-files/report.html";
+  const std::string html = e2e::bytesOf(page);
+  INFO("page " << html.size() << " bytes, of which pictures " << pictureBytes(html));
+  CHECK(html.size() - pictureBytes(html) <= report::kReportBudgetBytes);
+  CHECK(html.size() <= report::kReportBudgetBytes);  // with the generated capture's pictures too
+
+  // The page's rendering at reduced coordinates against `surrogate render` of the reduced model
+  // (averaged by this test): the same pixels, as for a model kept whole.
+  const std::vector<std::string> models = {"ptm-lrgb.ptm", "hsh2.rti"};
+  const std::string light = "-0.8,-0.2,0.3";
+  for (std::size_t m = 0; m < models.size(); ++m) {
+    INFO("model " << models[m]);
+    const BrowserRun b = loadAt(page, work, 1400, 900, "#model=" + std::to_string(m) + "&light=" + light);
+    INFO(b.log);
+    REQUIRE(b.exitCode == 0);
+    REQUIRE(bodyAttribute(b.dom, "data-relight") == "rendered");
+    CHECK(bodyAttribute(b.dom, "data-errors").empty());
+    CHECK(intAttribute(b.dom, "data-viewer-width") == 402);  // 400 texels and the border
+    const fs::path reduced = work / ("reduced-" + models[m]);
+    writeReducedModel(capture / "finished-files" / models[m], 3, reduced);
+    const fs::path rendered = work / "rendered.png";
+    const e2e::CommandResult r =
+        e2e::surrogate("render " + e2e::quote(reduced) + " --light " + light + " -o " + e2e::quote(rendered));
+    INFO(r.output);
+    REQUIRE(r.exitCode == 0);
+    checkSameRendering(b, rendered);
+  }
+}
 
 TEST_CASE("the report of a run opens in headless chromium without errors, one point per light") {
   const fs::path work = e2e::freshDir("report-browser");
@@ -116,7 +233,24 @@ TEST_CASE("the report of a run opens in headless chromium without errors, one po
   INFO("mean brightness of the relit view: " << mean);
   CHECK(mean > 30);
   CHECK(mean < 230);
+  // It opens at the normalised mean of the carrier's light directions (x right, y up, z to the
+  // camera), not at a fixed light that may lie outside the captured range.
+  const carrier::Carrier recorded = carrier::loadCarrier(capture / "assembly-files/carrier.xml");
+  double x = 0, y = 0, z = 0;
+  for (const carrier::Result& r : recorded.data)
+    for (const carrier::DataItem* l : r.itemsOf("light")) {
+      const double norm = std::hypot(l->number("x"), l->number("y"), l->number("z"));
+      x += l->number("x") / norm;
+      y += l->number("y") / norm;
+      z += l->number("z") / norm;
+    }
+  const double pi = 3.14159265358979323846, n = std::hypot(x, y, z);
+  const std::string opened = bodyAttribute(b.dom, "data-relight-light");
+  INFO("opened at " << opened << "; mean direction " << x / n << "," << y / n << "," << z / n);
+  CHECK(std::atof(opened.c_str()) == Approx(std::atan2(y, x) * 180 / pi).margin(0.051));
+  CHECK(std::atof(opened.substr(opened.find(',') + 1).c_str()) == Approx(std::asin(z / n) * 180 / pi).margin(0.051));
 
+  fs::create_directories(REPORT_ARTEFACT_DIR);  // run alone (ctest), no other test made it
   fs::copy_file(page, fs::path(REPORT_ARTEFACT_DIR) / "report.html", fs::copy_options::overwrite_existing);
 }
 
@@ -172,9 +306,13 @@ TEST_CASE("the page relights PTM and HSH models with the pixels of surrogate ren
   struct Case {
     std::string runOptions;
     std::vector<std::string> models;  // data-relight-models, in the page's order
+    std::vector<int> steps;           // each model's block side in the page
   };
-  // The default run fits a PTM and an HSH; an HSH-only run must be relightable too.
-  const std::vector<Case> cases = {{"", {"ptm-lrgb", "hsh2"}}, {"--basis hsh3", {"hsh3"}}};
+  // The default run fits a PTM and an HSH; an HSH-only run must be relightable too. At 400x300
+  // the PTM (9 bytes a texel, 1.08 MB) and the HSH of order 2 (12, 1.44 MB) are kept whole; the
+  // HSH of order 3 (27, 3.24 MB) is over kRelightModelBytes and averaged by 2 (0.81 MB): the
+  // page is then compared with the render of the model averaged by this test.
+  const std::vector<Case> cases = {{"", {"ptm-lrgb", "hsh2"}, {1, 1}}, {"--basis hsh3", {"hsh3"}, {2}}};
   // Two lights far apart (x right, y up, z to the camera), as `surrogate render --light` takes them.
   const std::vector<std::string> lights = {"0.5,0.5,0.7071", "-0.8,-0.2,0.3"};
   int caseIndex = 0;
@@ -202,27 +340,18 @@ TEST_CASE("the page relights PTM and HSH models with the pixels of surrogate ren
         for (const std::string& name : c.models) expectedModels += (expectedModels.empty() ? "" : " ") + name;
         CHECK(bodyAttribute(b.dom, "data-relight-models") == expectedModels);
 
+        fs::path shown = model;
+        if (c.steps[m] > 1) {
+          shown = dir / ("reduced-" + model.filename().string());
+          writeReducedModel(model, c.steps[m], shown);
+        }
         const fs::path rendered = dir / "rendered.png";
-        const e2e::CommandResult r = e2e::surrogate("render " + e2e::quote(model) + " --light " + light + " -o " +
+        const e2e::CommandResult r = e2e::surrogate("render " + e2e::quote(shown) + " --light " + light + " -o " +
                                                     e2e::quote(rendered));
         INFO(r.output);
         REQUIRE(r.exitCode == 0);
-        const cv::Mat bgr = cv::imread(rendered.string(), cv::IMREAD_COLOR);
-        REQUIRE_FALSE(bgr.empty());
-        const double pageMean = std::atof(bodyAttribute(b.dom, "data-relight-mean").c_str());
-        INFO("mean brightness: page " << pageMean << ", surrogate render " << meanOf(bgr));
-        // Rounding of the last bit may differ on a few texels; 0.05 of a level over the picture.
-        CHECK(std::abs(pageMean - meanOf(bgr)) < 0.05);
-        const std::vector<Probe> probes = parseProbes(bodyAttribute(b.dom, "data-relight-probes"));
-        REQUIRE(probes.size() == 9u);
-        for (const Probe& p : probes) {
-          const cv::Vec3b v = bgr.at<cv::Vec3b>(p.y, p.x);
-          for (int ch = 0; ch < 3; ++ch) {
-            INFO("texel " << p.x << "," << p.y << " channel " << ch);
-            CHECK(std::abs(p.rgb[ch] - int(v[2 - ch])) <= 1);
-          }
-        }
-        means.push_back(pageMean);
+        checkSameRendering(b, rendered);
+        means.push_back(std::atof(bodyAttribute(b.dom, "data-relight-mean").c_str()));
       }
       // The relight changes the pixels: the two lights give pictures of different brightness.
       REQUIRE(means.size() == 2u);

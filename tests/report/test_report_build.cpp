@@ -2,6 +2,7 @@
 // copes with missing files.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <map>
 #include <memory>
 #include <tuple>
@@ -133,7 +134,10 @@ carrier::Carrier sampleCarrier() {
   mr.step = maps.id;
   mr.add("output").set("file", normals).set("kind", "normals");
   mr.add("output").set("file", albedo).set("kind", "albedo");
+  mr.add("value").set("name", "normalFallbackPixels").set("value", 600);
   c.data.push_back(mr);
+  for (carrier::FileRecord& f : c.files)
+    if (f.id == normals) f.createdBy = maps.id;
   c.addLog("warning", fit.id, std::string("something odd ") + kHostile);
   return c;
 }
@@ -216,10 +220,17 @@ TEST_CASE("the report shows lights, pictures, relighting, provenance and camera 
   CHECK_THAT(r.html, Catch::Contains("data-lights-expected=\"5\""));
   CHECK(r.picturesEmbedded == 3);
   CHECK(count(r.html, "src=\"data:image/jpeg;base64,") == 3);
+  // Beside the normal map (300x200): 600 pixels took the Lambertian normal, 1 %, said plainly.
+  CHECK_THAT(r.html, Catch::Contains("<p><span class=\"ok explain\">600 pixels (1 %) of the normal map have an "
+                                     "estimated normal"));
   // The 1600x1200 overlay is embedded at 720x540.
   CHECK_THAT(r.html, Catch::Contains("(1600\u00d71200, shown at 720\u00d7540)"));
   CHECK(r.relightable);
   CHECK_THAT(r.html, Catch::Contains("id=\"relight-data\""));
+  // The view opens at the lights' mean direction: elevations 30..70, azimuths -150..130 in
+  // steps of 70 (sampleCarrier). Summed (cos e cos a, cos e sin a, sin e) = (0.046198,
+  // -0.604023, 3.714550), normalised (0.0122749, -0.16049, 0.986961) (computed with Python).
+  CHECK_THAT(r.html, Catch::Contains("data-start-light=\"0.0122749,-0.16049,0.986961\""));
   // Coverage: lights from 30 to 70 degrees elevation: raking light missing, said on the page.
   REQUIRE_FALSE(r.coverageGaps.empty());
   CHECK_THAT(r.html, Catch::Contains("No light below 20"));
@@ -348,6 +359,61 @@ TEST_CASE("models given as interactive copies of the models in memory make the p
   CHECK(count(otherSize.html, "is not in this package or capture") == 2);
 }
 
+// The data: URIs of a page's pictures, in bytes.
+std::size_t pictureBytes(const std::string& html) {
+  std::size_t n = 0;
+  const std::string start = "src=\"data:image/";
+  for (std::size_t at = html.find(start); at != std::string::npos; at = html.find(start, at + 1))
+    n += html.find('"', at + 5) - (at + 5);
+  return n;
+}
+
+TEST_CASE("the page of a 3000x2000 capture keeps within the size budget with its models averaged down") {
+  // The default two models at 3000x2000, their bytes varying from texel to texel (no two blocks
+  // alike), and full-size pictures.
+  formats::PtmFile ptm;
+  ptm.width = 3000;
+  ptm.height = 2000;
+  ptm.scale = {0.5, 0.5, 0.5, 1, 1, 1};
+  ptm.bias = {128, 128, 128, 128, 128, 0};
+  ptm.coefficients.resize(ptm.texels() * 6);
+  ptm.rgb.resize(ptm.texels() * 3);
+  for (std::size_t i = 0; i < ptm.coefficients.size(); ++i) ptm.coefficients[i] = static_cast<std::uint8_t>(i * 31 % 251);
+  for (std::size_t i = 0; i < ptm.rgb.size(); ++i) ptm.rgb[i] = static_cast<std::uint8_t>(i * 13 % 256);
+  carrier::Carrier c = sampleCarrier();
+  carrier::Step& fit = c.addStep("RtiFit", "1");
+  fit.setParam("basis", "hsh2");
+  carrier::Result r;
+  r.step = fit.id;
+  r.add("output").set("file", c.putFile(output("finished-files/hsh2.rti", "result", "RTI_HSH"))).set("kind", "hsh2");
+  c.data.push_back(r);
+  MemorySource source(c);
+  source.files["finished-files/ptm-lrgb.ptm"] = formats::serializePtm(ptm);
+  source.files["finished-files/hsh2.rti"] = smallHsh(3000, 2000);
+  source.files["assembly-files/spheres.png"] = png(3000, 2000);
+  source.files["finished-files/normals.png"] = png(3000, 2000);
+  source.files["finished-files/albedo.png"] = png(3000, 2000);
+  ReportOptions options;
+  options.generatedAt = "2026-02-03T04:05:06Z";
+  const Report page = buildReport(source.carrier(), source, options);
+  REQUIRE(page.relightable);
+  REQUIRE(page.picturesEmbedded == 3);
+  INFO("page " << page.html.size() << " bytes, pictures " << pictureBytes(page.html));
+  CHECK(page.html.size() - pictureBytes(page.html) <= kReportBudgetBytes);
+  CHECK(page.html.size() <= kReportBudgetBytes);
+  // Each model averaged by the smallest whole factor within kRelightModelBytes, 7 for both:
+  // the PTM's 9 bytes a texel at 429x286 take 1.10 MB (at 6, 500x334 would take 1.503 MB),
+  // the HSH's 12 bytes 1.47 MB.
+  CHECK_THAT(page.html, Catch::Contains("\"basis\":\"ptm-lrgb\",\"format\":\"lrgb\",\"width\":429,\"height\":286"));
+  CHECK_THAT(page.html, Catch::Contains("\"basis\":\"hsh2\",\"terms\":4,\"width\":429,\"height\":286"));
+
+  // Without the limit on bytes (relightMaxSide alone, as before the budget: 1000x667), the
+  // models alone would be over the budget: the test means it.
+  options.relightMaxBytes = 0;
+  const Report whole = buildReport(source.carrier(), source, options);
+  CHECK(whole.html.size() > 3 * kReportBudgetBytes);
+}
+
 TEST_CASE("every text from the carrier is escaped: hostile fields cannot inject markup") {
   MemorySource source(sampleCarrier());
   const Report r = buildReport(source.carrier(), source, ReportOptions());
@@ -453,6 +519,24 @@ TEST_CASE("each image's highlight confidence is shown: lights table, hemisphere 
   CHECK_THAT(r.html, Catch::Contains("Highlights to check"));
   CHECK_THAT(r.html, Catch::Contains("multiple, confidence 0.25"));
   CHECK(r.html.find("<img src=x") == std::string::npos);
+  // The highlight given by hand says so wherever a confidence would be (the carrier's 1 was not
+  // measured): the list to check, the highlight table, the lights table and the tooltip.
+  CHECK_THAT(r.html, Catch::Contains("manual, confidence by hand"));
+  CHECK_THAT(r.html, Catch::Contains("<td>manual</td><td class=\"num\">by hand</td>"));
+  CHECK_THAT(r.html, Catch::Contains("<td class=\"num\">-</td><td class=\"num\">by hand</td></tr>"));
+  CHECK_THAT(r.html, Catch::Contains("IMG_0003.dng: elevation 60\u00b0, azimuth 300\u00b0, highlight confidence by hand"));
+}
+
+TEST_CASE("a sphere given by hand says by hand instead of its scores") {
+  carrier::Carrier c = sampleCarrier();
+  carrier::Result& lights = c.data.front();
+  lights.add("sphere").set("index", 1).set("cx", 30.0).set("cy", 40.0).set("r", 6.0).set("confidence", 1.0)
+      .set("evidence", 1.0).set("source", "manual");
+  MemorySource source(c);
+  const Report r = buildReport(source.carrier(), source, ReportOptions());
+  // The detected sphere keeps its figures; the one given by hand has none.
+  CHECK_THAT(r.html, Catch::Contains("<td class=\"num\">5</td><td class=\"num\">0.9</td><td class=\"num\">-</td><td>detected</td>"));
+  CHECK_THAT(r.html, Catch::Contains("<td class=\"num\">6</td><td class=\"num\">by hand</td><td class=\"num\">by hand</td><td>given by hand</td>"));
 }
 
 TEST_CASE("the page opens with the summary and the relighting view, steps and models in plain words") {
@@ -480,6 +564,14 @@ TEST_CASE("the page opens with the summary and the relighting view, steps and mo
   CHECK_THAT(head, Catch::Contains("Canon EOS 5D"));
   CHECK_THAT(head, Catch::Contains("PASSED"));
   CHECK_THAT(head, Catch::Contains("Fit: PTM (LRGB): 30 dB"));
+  // Each figure with its sentence: the PSNR in the summary, RMSE and PSNR in the fit table,
+  // the sphere's rim (0.9; its moving highlight is not recorded here).
+  CHECK_THAT(head, Catch::Contains("30 dB, <span class=\"ok explain\" title=\"Good: the model reproduces"));
+  CHECK_THAT(head, Catch::Contains("below 25 dB worrying).\">good</span>"));
+  CHECK_THAT(r.html, Catch::Contains("<th>what it means</th>"));
+  CHECK_THAT(r.html, Catch::Contains("differs from the photograph by 4.5 of 255 levels (1.8 %)"));
+  CHECK_THAT(r.html, Catch::Contains("<li>Sphere 1: <span class=\"ok explain\">Rim 0.9: the share of the circle's "
+                                     "rim that is a clean edge. Good"));
   CHECK_THAT(head, Catch::Contains("<dt>spheres</dt><dd>1</dd>"));
   // Step names as people say them, the component kept in the timeline for the record.
   CHECK(r.html.find("s3 RtiFit (ptm-lrgb)") == std::string::npos);
@@ -509,4 +601,36 @@ TEST_CASE("an HSH-only carrier is relightable in the page") {
   CHECK(r.relightable);
   CHECK_THAT(r.html, Catch::Contains("\"model\":\"hsh\",\"basis\":\"hsh2\""));
   CHECK(r.html.find("No model was fitted") == std::string::npos);
+}
+
+TEST_CASE("EXIF dates are shown in ISO 8601 as the page's other times") {
+  carrier::Carrier c = sampleCarrier();
+  int k = 0;
+  for (carrier::FileRecord& f : c.files)
+    if (f.role == "original") f.camera.push_back({"dateTimeOriginal", k++ == 0 ? "2026:01:02 08:30:00" : "2026:01:01 12:00:00"});
+  MemorySource source(c);
+  ReportOptions options;
+  options.generatedAt = "2026-02-03T04:05:06Z";
+  const Report r = buildReport(source.carrier(), source, options);
+  // The summary's "taken" and the camera section's: earliest to latest, as ISO 8601 local
+  // times (EXIF records no zone here); nowhere EXIF's colons in the date.
+  CHECK(count(r.html, "2026-01-01T12:00:00 to 2026-01-02T08:30:00") == 2);
+  CHECK(r.html.find("2026:01:0") == std::string::npos);
+}
+
+TEST_CASE("steps made per model have headings of their own: the two web copies say which model") {
+  carrier::Carrier c = sampleCarrier();
+  for (const char* model : {"ptm-lrgb", "hsh2"}) c.addStep("WebCopy", "4").setParam("model", model);
+  MemorySource source(c);
+  const Report r = buildReport(source.carrier(), source, ReportOptions());
+  CHECK_THAT(r.html, Catch::Contains("Web copy of PTM (LRGB) <span class=\"note\">(step s5, WebCopy v4)</span>"));
+  CHECK_THAT(r.html, Catch::Contains("Web copy of HSH order 2 <span class=\"note\">(step s6, WebCopy v4)</span>"));
+  // Every step's heading is its own.
+  std::vector<std::string> heads;
+  const std::string open = "<div class=\"step-head\">";
+  for (std::size_t at = r.html.find(open); at != std::string::npos; at = r.html.find(open, at + 1))
+    heads.push_back(r.html.substr(at + open.size(), r.html.find(" <span", at) - at - open.size()));
+  REQUIRE(heads.size() == c.process.size());
+  std::sort(heads.begin(), heads.end());
+  CHECK(std::adjacent_find(heads.begin(), heads.end()) == heads.end());
 }

@@ -11,8 +11,10 @@
 #include "formats/ptm.h"
 #include "formats/rti_hsh.h"
 #include "report/embed.h"
+#include "report/explain.h"
 #include "report/hemisphere.h"
 #include "report/html.h"
+#include "report/relight_section.h"
 
 using namespace surrogate;
 using namespace surrogate::report;
@@ -263,4 +265,81 @@ TEST_CASE("the hemisphere plot labels azimuths -180..180 as the light table does
   CHECK_THAT(svg, Catch::Contains("class=\"axis elevation\""));
   CHECK_THAT(svg, Catch::Contains(">el 30\u00b0<"));
   CHECK_THAT(svg, Catch::Contains("azimuth -52\u00b0"));
+}
+
+TEST_CASE("the relighting copy's block side is the smallest whole factor within the side and the bytes") {
+  // 1200x800 PTM (LRGB), 9 bytes a texel: 2 gives 600x400 = 2.16 MB, 3 gives 400x267 = 0.96 MB.
+  CHECK(relightBlockSide(1200, 800, 9, 1200, 1'500'000) == 3);
+  CHECK(relightBlockSide(1200, 800, 9, 1200, 2'160'000) == 2);
+  CHECK(relightBlockSide(1200, 800, 9, 1200, 2'159'999) == 3);
+  // No limit on bytes: the side alone, as --relight-side.
+  CHECK(relightBlockSide(1200, 800, 9, 1200, 0) == 1);
+  CHECK(relightBlockSide(2500, 7, 9, 1200, 0) == 3);
+  // The side's factor when it is the larger one.
+  CHECK(relightBlockSide(2500, 7, 9, 1200, 1'500'000) == 3);
+  // A small model stays whole (the test captures' 400x300 HSH of order 2: 1.44 MB).
+  CHECK(relightBlockSide(400, 300, 12, 1200, kRelightModelBytes) == 1);
+  // A budget below one texel: one block for the whole model, never more.
+  CHECK(relightBlockSide(30, 20, 27, 0, 1) == 30);
+
+  // The copy made holds what the factor says: 1200x800 averaged by 3.
+  formats::PtmFile ptm;
+  ptm.width = 1200;
+  ptm.height = 800;
+  ptm.coefficients.assign(ptm.texels() * 6, 100);
+  ptm.rgb.assign(ptm.texels() * 3, 50);
+  const std::string json = relightJson(ptm, 1200, 1'500'000);
+  CHECK_THAT(json, Catch::Contains("\"width\":400,\"height\":267,\"originalWidth\":1200,\"originalHeight\":800"));
+}
+
+TEST_CASE("the relighting view starts at the normalised mean of the captured lights' directions") {
+  // Four lights at 30 degrees elevation around the circle: the mean points at the camera.
+  auto start = meanLightDirection({light(30, 0), light(30, 90), light(30, 180), light(30, -90)});
+  REQUIRE(start);
+  CHECK((*start)[0] == Approx(0).margin(1e-12));
+  CHECK((*start)[1] == Approx(0).margin(1e-12));
+  CHECK((*start)[2] == Approx(1));
+  // Two lights at 20 degrees, azimuth 0 and 90: (cos20, cos20, 2 sin20) normalised, by hand:
+  // cos20 = 0.9396926, sin20 = 0.3420201, length sqrt(2 * 0.8830222 + 4 * 0.1169778) = 1.494641;
+  // the start is at azimuth 45 and elevation asin(0.6840403 / 1.494641) = 27.236 degrees, inside
+  // the captured lights' range, not at 45 degrees above them.
+  start = meanLightDirection({light(20, 0), light(20, 90)});
+  REQUIRE(start);
+  CHECK((*start)[0] == Approx(0.9396926 / 1.494641).epsilon(1e-6));
+  CHECK((*start)[1] == Approx((*start)[0]));
+  CHECK(std::asin((*start)[2]) * 180 / 3.14159265358979 == Approx(27.236).epsilon(1e-4));
+  // No light, or lights that cancel out (grazing from opposite sides): no start.
+  CHECK_FALSE(meanLightDirection({}));
+  CHECK_FALSE(meanLightDirection({light(0, 0), light(0, 180)}));
+}
+
+TEST_CASE("each figure's sentence judges it by the named thresholds") {
+  // PSNR: 30 dB and above good, 25 to 30 fair, below 25 worrying; the sentence names the scale.
+  CHECK_THAT(explainPsnr(kGoodPsnrDb), Catch::StartsWith("<span class=\"ok explain\">Good"));
+  CHECK_THAT(explainPsnr(29.99), Catch::StartsWith("<span class=\"warning explain\">Fair"));
+  CHECK_THAT(explainPsnr(kPoorPsnrDb), Catch::StartsWith("<span class=\"warning explain\">"));
+  CHECK_THAT(explainPsnr(24.9), Catch::StartsWith("<span class=\"bad explain\">Worrying"));
+  CHECK_THAT(explainPsnr(26), Catch::Contains("30 dB and above is good, below 25 dB worrying"));
+  // In a word for the summary, the sentence as its tooltip.
+  CHECK(judgePsnr(31) == "<span class=\"ok explain\" title=\"Good: the model reproduces the photographs closely; "
+                         "higher is closer (30 dB and above is good, below 25 dB worrying).\">good</span>");
+  CHECK_THAT(judgePsnr(26), Catch::EndsWith("\">fair</span>"));
+  CHECK_THAT(judgePsnr(20), Catch::EndsWith("\">worrying</span>"));
+  // RMSE in levels of 255, judged as the PSNR it gives: 20 log10(255 / 8) = 30.07 dB (good),
+  // 20 log10(255 / 12.71) = 26.05 dB (fair), 20 log10(255 / 15) = 24.6 dB (worrying).
+  CHECK_THAT(explainRmse(8), Catch::StartsWith("<span class=\"ok explain\">"));
+  CHECK_THAT(explainRmse(12.71), Catch::Contains("warning explain\">On average a pixel of the model differs from the "
+                                                 "photograph by 12.7 of 255 levels (5 %)"));
+  CHECK_THAT(explainRmse(15), Catch::StartsWith("<span class=\"bad explain\">"));
+  // Rim and moving highlight: 0.8 good, 0.5 the detection's own minimum.
+  CHECK_THAT(explainRimConfidence(0.93), Catch::Contains("ok explain"));
+  CHECK_THAT(explainRimConfidence(0.6), Catch::Contains("warning explain"));
+  CHECK_THAT(explainRimConfidence(0.4), Catch::Contains("bad explain"));
+  CHECK_THAT(explainEvidence(0.8), Catch::Contains("ok explain"));
+  CHECK_THAT(explainEvidence(0.79), Catch::Contains("warning explain"));
+  CHECK_THAT(explainEvidence(0.49), Catch::Contains("bad explain"));
+  // Normals: 12704 of 960000 pixels (1.32 %) is usual; above 5 % it is a warning.
+  CHECK_THAT(explainNormalFallback(12704, 960000), Catch::Contains("ok explain\">12704 pixels (1.32 %)"));
+  CHECK_THAT(explainNormalFallback(12704, 960000), Catch::Contains("Up to 5 % is usual"));
+  CHECK_THAT(explainNormalFallback(60000, 960000), Catch::Contains("warning explain\">60000 pixels (6.25 %)"));
 }
