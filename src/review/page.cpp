@@ -11,7 +11,7 @@ std::string pageHtml() {
                      "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">"
                      "<meta name=\"generator\" content=\"Surrogate ") +
          report::escapeHtml(surrogateVersion()) + R"HTML(">
-<title>Surrogate review</title><link rel="stylesheet" href="/review.css"></head>
+<title>Surrogate review</title><link rel="icon" href="data:,"><link rel="stylesheet" href="/review.css"></head>
 <body>
 <header><h1 id="title-shown">Surrogate review</h1>
 <p class="note" id="capture-line">Loading the capture&hellip;</p></header>
@@ -77,8 +77,8 @@ button { font:inherit; padding:4px 10px; border:1px solid var(--line); border-ra
 button[aria-pressed="true"], button.primary { background:var(--accent); color:#fff; border-color:var(--accent); }
 button:disabled { opacity:.5; cursor:default; }
 input[type=text] { font:inherit; padding:3px 6px; border:1px solid var(--line); border-radius:4px; min-width:0; }
-#viewer { position:relative; display:inline-block; max-width:100%; line-height:0; border:1px solid var(--line); background:#000; }
-#frame-image { display:block; max-width:100%; height:auto; }
+#viewer { position:relative; display:block; line-height:0; border:1px solid var(--line); background:#000; }
+#frame-image { display:block; width:100%; height:auto; }
 #overlay { position:absolute; left:0; top:0; width:100%; height:100%; touch-action:none; cursor:crosshair; }
 #overlay .sphere { fill:rgba(52,70,184,.08); stroke:#4cc3ff; stroke-width:2; vector-effect:non-scaling-stroke; cursor:move; }
 #overlay .sphere.changed { stroke:#ffb000; stroke-dasharray:6 3; }
@@ -615,11 +615,10 @@ const char* const kReviewJs = R"JS(
       watchProgress(false);
       if (r.ok) {
         pending = emptyPending();
-        ++applied;
-        body.setAttribute("data-applied", applied);
         return loadState().then(function () {
           var run = state.runs[state.runs.length - 1];
           say("Applied: " + (run ? "run " + run.id + " " + run.outcome + ". " : "") + "The same as: surrogate run " + quoted(state.capture) + " " + r.body.options.map(quoted).join(" "), "ok");
+          body.setAttribute("data-applied", ++applied);
         });
       }
       if (r.status === 409) {
