@@ -491,7 +491,10 @@ const char* const kReviewJs = R"JS(
     else box.appendChild(ul);
     if (pending.spheres) box.appendChild(reasonField("sphere-reason", "Why the circles are placed by hand", "sphereReason"));
     if (Object.keys(pending.highlights).length) box.appendChild(reasonField("highlight-reason", "Why the highlights are placed by hand", "highlightReason"));
-    $("apply").disabled = busy || !n;
+    // A capture never run can be run as it is (its first run); otherwise Apply needs a change.
+    var first = state.revision === "none";
+    $("apply").textContent = first && !n ? "Run the capture" : "Apply";
+    $("apply").disabled = busy || (!n && !first);
     $("discard").disabled = busy || !n;
     body.setAttribute("data-pending", n);
     clearTimeout(equivalentTimer);

@@ -267,3 +267,50 @@ TEST_CASE("review: Apply records what surrogate run records for the same options
   }
   CHECK(review.stop() == 0);
 }
+
+TEST_CASE("review: a capture a check stopped goes to a verified package without a typed option", "[review]") {
+  // Frame 3 exposed at 5 %: the exposure check stops the first run (hrti/light_checks.h).
+  const fs::path dir = e2e::freshDir("review-stopped");
+  const fs::path capture = dir / "capture";
+  REQUIRE(e2e::runShell(std::string(GENERATOR_EXE) + " --out " + e2e::quote(capture) +
+                        " --images 8 --width 400 --height 300 --sphere-radius 45 --seed 7 --dark-frame 3")
+              .exitCode == 0);
+  fs::remove_all(capture / "truth");
+
+  review_test::ReviewProcess review(capture, {}, dir / "review.log");
+  httplib::Client client("127.0.0.1", review.port());
+  json state = stateOf(client);
+  CHECK(state["revision"] == "none");
+  CHECK(state["frames"].size() == 8);
+  CHECK(state["spheres"].empty());
+  // The first run, as the page's "Run the capture" sends it: no decision.
+  auto res = apply(client, {{"revision", "none"}}, review.port());
+  REQUIRE(res);
+  CHECK(res->status == 422);
+  CHECK(json::parse(res->body)["message"].get<std::string>().find("exposure-outlier") != std::string::npos);
+  state = stateOf(client);
+  CHECK(state["stoppedBy"] == json::array({"exposure-outlier"}));
+  bool failedShown = false;
+  for (const json& c : state["checks"]) failedShown = failedShown || (c["name"] == "exposure-outlier" && c["status"] == "failed");
+  CHECK(failedShown);
+
+  // The frame left out in the page, with its reason.
+  res = apply(client,
+              {{"revision", state["revision"]}, {"exclude", {{{"image", "IMG_0003"}, {"reason", "the flash fired weakly"}}}}},
+              review.port());
+  REQUIRE(res);
+  INFO(res->body);
+  REQUIRE(res->status == 200);
+  state = stateOf(client);
+  CHECK(state["runs"].back()["outcome"] == "completed");
+  CHECK(state["stoppedBy"].empty());
+  CHECK(review.stop() == 0);
+
+  const fs::path package = dir / "stela.zip";
+  const e2e::CommandResult pack = e2e::surrogate("pack " + e2e::quote(capture) + " -o " + e2e::quote(package) + " --quiet");
+  INFO(pack.output);
+  REQUIRE(pack.exitCode == 0);
+  const e2e::CommandResult verify = e2e::surrogate("verify " + e2e::quote(package) + " --quiet");
+  INFO(verify.output);
+  CHECK(verify.exitCode == 0);
+}

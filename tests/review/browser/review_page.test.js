@@ -162,7 +162,10 @@ async function main() {
     await page.click('.thumb[data-frame="IMG_0007"]');
     await page.click("#exclude-frame");
     await page.type("#exclude-reason", "the flash did not fire");
-    assert.equal(await page.$eval("body", b => b.getAttribute("data-pending")), "3");
+    // And the title, typed over the folder's name.
+    await page.click("#field-title", { clickCount: 3 });
+    await page.type("#field-title", "Stela 12");
+    assert.equal(await page.$eval("body", b => b.getAttribute("data-pending")), "4");
     await page.waitForFunction(() => document.getElementById("equivalent").textContent.includes("--exclude IMG_0007"));
 
     await page.screenshot({ path: path.join(work, "before-apply.png") });
@@ -178,16 +181,18 @@ async function main() {
     assert.equal(recorded.outcome, "completed");
     const args = recorded.arguments;
     assert.deepEqual(args.filter((a, i) => i % 2 === 0),
-                     ["--operator", "--sphere", "--reason", "--highlight", "--reason", "--exclude", "--reason"]);
+                     ["--operator", "--title", "--sphere", "--reason", "--highlight", "--reason", "--exclude", "--reason"]);
     assert.equal(args[1], "Ana Silva");
-    const circle = args[3].split(",").map(Number);
+    assert.equal(args[3], "Stela 12");
+    assert.equal(after.header.title, "Stela 12");
+    const circle = args[5].split(",").map(Number);
     // Within the 0.1-pixel rounding of the options and a pixel of the mouse's own rounding.
     assert.ok(Math.abs(circle[0] - moved.cx) < 1 && Math.abs(circle[1] - moved.cy) < 1 && Math.abs(circle[2] - moved.r) < 0.06,
-              "the circle " + args[3] + " is where the drag put it: " + JSON.stringify(moved));
-    const hl = /^IMG_0003:0=([-0-9.]+),([-0-9.]+)$/.exec(args[7]);
-    assert.ok(hl, args[7]);
-    assert.ok(Math.abs(Number(hl[1]) - (h.x + 0.5)) < 1 && Math.abs(Number(hl[2]) - (h.y - 0.5)) < 1, "the highlight " + args[7]);
-    assert.deepEqual(args.slice(10), ["--exclude", "IMG_0007", "--reason", "the flash did not fire"]);
+              "the circle " + args[5] + " is where the drag put it: " + JSON.stringify(moved));
+    const hl = /^IMG_0003:0=([-0-9.]+),([-0-9.]+)$/.exec(args[9]);
+    assert.ok(hl, args[9]);
+    assert.ok(Math.abs(Number(hl[1]) - (h.x + 0.5)) < 1 && Math.abs(Number(hl[2]) - (h.y - 0.5)) < 1, "the highlight " + args[9]);
+    assert.deepEqual(args.slice(12), ["--exclude", "IMG_0007", "--reason", "the flash did not fire"]);
     assert.equal(after.frames.find(f => f.name === "IMG_0007").excluded.reason, "the flash did not fire");
     assert.equal(after.spheres[0].source, "manual");
 
