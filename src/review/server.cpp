@@ -1,5 +1,6 @@
 // The review server (review.h) on cpp-httplib, Debian's libcpp-httplib (whose types stay in
 // this file).
+#include <algorithm>
 #include <atomic>
 #include <map>
 #include <mutex>
@@ -51,10 +52,12 @@ struct ReviewServer::Impl {
   httplib::Server server;
   int port = 0;
 
-  // The state of the revision last read, and the frames' previews made for it.
+  // The state of the revision last read.
   std::mutex stateMutex;
   std::optional<CaptureState> state;
-  std::map<std::size_t, std::string> previews;  // by frame index, for state->revision
+  // The frames' previews, by file and decode settings: a run that changes no setting leaves
+  // them as they are (the originals are never written), so a new revision keeps them.
+  std::map<std::string, std::string> previews;
   std::mutex previewMutex;  // one decode at a time: a raw frame is hundreds of megabytes
 
   // One Apply at a time, and where its run is.
@@ -66,10 +69,8 @@ struct ReviewServer::Impl {
 
   CaptureState currentState() {
     const std::lock_guard<std::mutex> lock(stateMutex);
-    if (!state || state->revision != captureRevision(capture)) {
+    if (!state || state->revision != captureRevision(capture))
       state = readCaptureState(capture, options.who, options.threads);
-      previews.clear();
-    }
     return *state;
   }
 
@@ -222,21 +223,19 @@ ReviewServer::ReviewServer(ReviewOptions options) : impl_(std::make_unique<Impl>
       answerError(res, 404, "not found", "the capture has no frame " + std::to_string(n));
       return;
     }
+    std::string key = st.frames[n].path;
+    for (const auto& [name, value] : st.decodeSettings) key += "\n" + name + "=" + value;
     const std::lock_guard<std::mutex> decode(m.previewMutex);
-    std::string jpeg;
-    {
-      const std::lock_guard<std::mutex> lock(m.stateMutex);
-      if (m.state && m.state->revision == st.revision && m.previews.count(n)) jpeg = m.previews[n];
-    }
+    std::string& jpeg = m.previews[key];
     if (jpeg.empty()) {
       try {
-        jpeg = framePreview(m.capture, st.frames[n], st.decodeSettings, kPreviewSide);
+        jpeg = framePreview(m.capture, st.frames[n], st.decodeSettings, kPreviewSide,
+                            std::max(st.frameWidth, st.frameHeight));
       } catch (const Error& e) {
+        m.previews.erase(key);
         answerError(res, 422, "unreadable", e.text());
         return;
       }
-      const std::lock_guard<std::mutex> lock(m.stateMutex);
-      if (m.state && m.state->revision == st.revision) m.previews[n] = jpeg;
     }
     res.set_content(jpeg, "image/jpeg");
   });

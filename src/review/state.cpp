@@ -99,6 +99,8 @@ CaptureState readCaptureState(const fs::path& captureArg, const std::string& who
   for (const capture::ImageFile& f : capture::selectImages(layout, capture::parseSource(source)))
     out.frames.push_back({shotOf(f.relativePath), f.relativePath});
   const auto [width, height] = layout.frameSize();
+  out.frameWidth = width;
+  out.frameHeight = height;
 
   json state;
   state["revision"] = out.revision;
@@ -215,8 +217,10 @@ CaptureState readCaptureState(const fs::path& captureArg, const std::string& who
 }
 
 std::string framePreview(const fs::path& capture, const Frame& frame,
-                         const std::vector<std::pair<std::string, std::string>>& decodeSettings, int maxSide) {
-  const image::RawDecodeSettings settings = image::RawDecodeSettings::fromParameters(decodeSettings);
+                         const std::vector<std::pair<std::string, std::string>>& decodeSettings, int maxSide,
+                         int frameLongSide) {
+  image::RawDecodeSettings settings = image::RawDecodeSettings::fromParameters(decodeSettings);
+  if (frameLongSide >= 2 * maxSide) settings.halfSize = true;  // only camera raw decoding reads it
   image::DecodeOptions options;
   options.acceptDamage = true;  // only shown: a damaged frame is what the user may want to see
   Image picture = image::decodeImage(capture / fs::u8path(frame.path), settings, nullptr, options);
