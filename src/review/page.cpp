@@ -678,6 +678,19 @@ const char* const kReviewJs = R"JS(
   });
   $("frame-image").addEventListener("load", function () { drawOverlay(); });
 
+  // Another command (or page) may change the record while this page is open: it is shown as
+  // soon as that is seen, the changes waiting here kept.
+  setInterval(function () {
+    if (busy || !state) return;
+    fetch("/api/revision").then(function (r) { return r.json(); }).then(function (r) {
+      if (busy || !state || r.revision === state.revision) return;
+      return loadState().then(function () {
+        say("The capture's record changed while this page was open (another command ran): the page shows it now." +
+            (changeCount() ? " Your changes are kept: look at them, then apply." : ""), "warning");
+        body.setAttribute("data-stale", "true");
+      });
+    }).catch(function () {});
+  }, 3000);
   loadState().catch(function (e) { say("The capture could not be read: " + e.message, "bad"); record(e.message); });
 })();
 )JS";

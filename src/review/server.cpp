@@ -206,6 +206,11 @@ ReviewServer::ReviewServer(ReviewOptions options) : impl_(std::make_unique<Impl>
       answerError(res, 500, "unreadable", e.text());
     }
   });
+  // The carrier's revision alone, which the page asks every few seconds: a record that another
+  // command changed meanwhile is shown without waiting for an Apply to be refused.
+  s.Get("/api/revision", [&m](const httplib::Request&, httplib::Response& res) {
+    answer(res, 200, {{"revision", captureRevision(m.capture)}});
+  });
   s.Get("/api/progress", [&m](const httplib::Request&, httplib::Response& res) {
     const std::lock_guard<std::mutex> lock(m.progressMutex);
     answer(res, 200, {{"running", m.running}, {"label", m.progressLabel}, {"fraction", m.progressFraction}});

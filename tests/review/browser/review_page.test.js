@@ -3,7 +3,8 @@
 // reason, apply. Then the capture's carrier is compared with that of a copy run with
 // `surrogate run` and the options the page's Apply recorded: the same bytes apart from times
 // (and the command's name in the history). No console error or CSP violation may occur; a stale
-// page is told so and writes nothing; requests with another Host or Origin are refused (403).
+// page is told so and writes nothing, and a page open while another command changes the record
+// shows it; requests with another Host or Origin are refused (403).
 //
 // Run by ctest (tests/review/CMakeLists.txt) with SURROGATE_EXE and GENERATOR_EXE set; exits 77
 // (skipped) when chromium or the npm packages (scripts/install-deps: npm ci) are absent.
@@ -120,6 +121,10 @@ async function main() {
     const stalePage = await browser.newPage();
     await stalePage.setViewport({ width: 1400, height: 1000 });
     watch(stalePage, "stale page");
+    // This page never learns of the new record by itself (its look at the revision every few
+    // seconds is cut off here), so that its Apply meets the server's refusal.
+    await stalePage.setRequestInterception(true);
+    stalePage.on("request", r => (r.url().endsWith("/api/revision") ? r.abort() : r.continue()));
 
     await page.goto(base, { waitUntil: "networkidle0" });
     await page.waitForSelector("body[data-ready=true]");
@@ -229,10 +234,24 @@ async function main() {
     assert.equal((await request(review.port, "POST", "/api/apply", Object.assign({ Host: "rebound.example:" + review.port }, json), decisions)).status, 403);
     assert.equal(carrierOf(capture), fromPage);
 
+    // Another command changes the record while the first page is open: the page shows it
+    // within seconds, and says so.
+    await page.bringToFront();
+    run(surrogateExe, ["run", capture, "--title", "Stela 12, second title"]);
+    await page.waitForSelector("body[data-stale=true]", { timeout: 20000 });
+    assert.match(await page.$eval("#status", s => s.textContent), /record changed while this page was open/);
+    assert.equal(await page.$eval("#title-shown", t => t.textContent), "Stela 12, second title");
+    assert.equal(await page.$eval("body", b => b.getAttribute("data-revision")), "sha256:" +
+                 require("node:crypto").createHash("sha256").update(fs.readFileSync(path.join(capture, "assembly-files", "carrier.xml"))).digest("hex"));
+
     const errorsInPage = await page.$eval("body", b => b.getAttribute("data-errors"));
     assert.equal(errorsInPage, null, "script errors: " + errorsInPage);
-    // The stale page's own 409 answer (Chromium logs it) is expected; nothing else may go wrong.
-    assert.deepEqual(problems.filter(p => !/^stale page console error: .*status of 409 \(Conflict\)$/.test(p)), []);
+    // Expected: the stale page's 409 answer (Chromium logs it) and its looks at the revision cut
+    // off above. Nothing else may go wrong.
+    const expected = [/^stale page console error: .*status of 409 \(Conflict\)$/,
+                      /^stale page request failed: http:\/\/127\.0\.0\.1:\d+\/api\/revision net::ERR_FAILED$/,
+                      /^stale page console error: Failed to load resource: net::ERR_FAILED$/];
+    assert.deepEqual(problems.filter(p => !expected.some(e => e.test(p))), []);
   } finally {
     await browser.close();
     review.child.kill("SIGTERM");
@@ -240,7 +259,7 @@ async function main() {
   const code = await new Promise(resolve => review.child.on("exit", resolve));
   assert.equal(code, 0, "surrogate review stops cleanly on SIGTERM");
   fs.rmSync(work, { recursive: true, force: true });
-  console.log("review page: load, drag, highlight, exclude, apply, stale page, refusals: all as expected");
+  console.log("review page: load, drag, resize, highlight, exclude, title, apply, stale pages, refusals: all as expected");
 }
 
 main().catch(e => {
