@@ -1,6 +1,8 @@
 #include "review/state.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <optional>
 
