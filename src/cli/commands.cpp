@@ -20,6 +20,7 @@ const std::vector<Command>& commands() {
       {"publish", "write a .ptm, .rti or capture's results in the web layout (info.json, JPEG planes)", runCommandPublish},
       {"info", "describe a package, carrier, capture, image, .xmp sidecar, .ptm, .rti or .lp file", runCommandInfo},
       {"report", "write the HTML report of a capture or package", runCommandReport},
+      {"review", "review a capture in a local browser page: spheres, highlights, frames left out, checks, description", runCommandReview},
       {"verify", "check a package: fixity, schemas, metadata; --reexecute re-runs its steps", runCommandVerify},
       {"audit", "audit another tool's RTI (RTIBuilder's .lp, .ptm, .rti, log) read-only, in a work folder", runCommandAudit},
   };

@@ -29,6 +29,7 @@ int runCommandFit(int argc, char** argv);
 int runCommandRender(int argc, char** argv);
 int runCommandPublish(int argc, char** argv);
 int runCommandReport(int argc, char** argv);
+int runCommandReview(int argc, char** argv);
 int runCommandVerify(int argc, char** argv);
 int runCommandAudit(int argc, char** argv);
 

@@ -1,5 +1,5 @@
-// Private to src/report: the light directions, from the carrier to the hemisphere plot
-// (hemisphere.h) and its section, "Light directions".
+// Private to src/report and src/review (whose page shows the same plot): the light directions,
+// from the carrier to the hemisphere plot (hemisphere.h) and its section, "Light directions".
 #pragma once
 
 #include <string>

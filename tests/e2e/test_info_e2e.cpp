@@ -274,7 +274,7 @@ TEST_CASE("info on other XML still reads it as a carrier, and on a log in anothe
 
 TEST_CASE("help COMMAND and COMMAND --help print the help of that command for every command") {
   for (const char* command :
-       {"run", "pack", "lights", "fit", "render", "publish", "info", "report", "verify", "audit"}) {
+       {"run", "pack", "lights", "fit", "render", "publish", "info", "report", "review", "verify", "audit"}) {
     const e2e::CommandResult help = e2e::surrogate(std::string("help ") + command);
     const e2e::CommandResult option = e2e::surrogate(std::string(command) + " --help");
     INFO(command << "\n" << help.output);
@@ -290,7 +290,7 @@ TEST_CASE("help COMMAND and COMMAND --help print the help of that command for ev
   INFO(unknown.output);
   CHECK(unknown.exitCode == 2);
   CHECK_THAT(unknown.output, Contains("\"frobnicate\"") &&
-                                 Contains("run, pack, lights, fit, render, publish, info, report, verify, audit"));
+                                 Contains("run, pack, lights, fit, render, publish, info, report, review, verify, audit"));
 }
 
 TEST_CASE("run refuses a folder that is not a capture and writes nothing in it") {

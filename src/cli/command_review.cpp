@@ -1,0 +1,159 @@
+// surrogate review CAPTURE [--port N] [--no-browser]: the capture's decisions in a local page
+// (src/review). The page's Apply runs here exactly as `surrogate run CAPTURE OPTIONS` would:
+// the same parse of the options (requestFrom), the same run (run::runCapture) under the capture's
+// lock, the same report afterwards.
+#include <fcntl.h>
+#include <pthread.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <thread>
+
+#include "capture/capture.h"
+#include "capture/lock.h"
+#include "cli/args.h"
+#include "cli/commands.h"
+#include "cli/option_checks.h"
+#include "cli/pipeline_options.h"
+#include "core/error.h"
+#include "core/text.h"
+#include "report/report.h"
+#include "review/review.h"
+#include "run/plan.h"
+
+extern char** environ;
+
+namespace surrogate::cli {
+
+namespace {
+
+// Opens `url` with the desktop's browser (xdg-open; open on macOS) when there is a desktop,
+// without waiting for it; says so when there is none.
+void openBrowser(const std::string& url) {
+#ifdef __APPLE__
+  const char* opener = "open";
+  const bool desktop = true;
+#else
+  const char* opener = "xdg-open";
+  const bool desktop = std::getenv("DISPLAY") || std::getenv("WAYLAND_DISPLAY");
+#endif
+  if (!desktop) {
+    std::cout << "  (no desktop here to open a browser in: open the address in a browser on this computer)\n";
+    return;
+  }
+  posix_spawn_file_actions_t files;
+  posix_spawn_file_actions_init(&files);
+  posix_spawn_file_actions_addopen(&files, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&files, 2, "/dev/null", O_WRONLY, 0);
+  std::string program = opener, address = url;
+  char* argv[] = {program.data(), address.data(), nullptr};
+  pid_t pid = 0;
+  const int failed = posix_spawnp(&pid, opener, &files, nullptr, argv, environ);
+  posix_spawn_file_actions_destroy(&files);
+  if (failed) {
+    std::cout << "  (" << opener << " could not be started: open the address in a browser on this computer)\n";
+    return;
+  }
+  std::thread([pid] { waitpid(pid, nullptr, 0); }).detach();
+}
+
+}  // namespace
+
+int runCommandReview(int argc, char** argv) {
+  const std::vector<OptionSpec> specs = {
+      {"port", true, false, "serve the page on this port of 127.0.0.1 (default 0: a free port, printed)", "N"},
+      {"no-browser", false, false, "do not open the page in the desktop's browser; only print its address"},
+      {"operator", true, false, "who takes the decisions (recorded with each; default $USER)", "NAME"},
+      {"threads", true, false, "worker threads for the runs (default: all cores); results do not depend on it", "N"},
+      {"memory", true, false, "memory budget for the runs' streaming work (default 2G)", "SIZE"},
+  };
+  Args args(argc, argv, 1, specs);
+  if (helpShown(args, specs, "surrogate review CAPTURE [options]",
+                "Review a capture in a browser page on this computer: every frame with its sphere and "
+                "highlight, the light directions, the checks and the decisions. Drag a sphere's circle, "
+                "click a highlight, leave a frame out with a reason, accept a check, type the title, "
+                "creator, rights and licence; Apply records each as `surrogate run` records the same "
+                "options (who, when, why) and runs what they change. The page is served on 127.0.0.1 "
+                "only, to this computer's own browser; Ctrl+C stops it."))
+    return 0;
+  if (args.positional().size() != 1)
+    throw Error(ErrorKind::Usage, "", "command line",
+                "give exactly one capture folder: surrogate review CAPTURE (see --help)");
+  const std::string capture = args.positional()[0];
+  refuseCaptureSubfolder(capture, "review");
+  capture::requireCaptureFolder(capture);
+  const int port = args.intValue("port", 0);
+  const int threads = threadsOption(args);
+  pipeline::RunSettings base = settingsFrom(args);  // --threads, --memory, --operator checked now
+
+  review::ReviewOptions options;
+  options.capture = capture;
+  options.port = port;
+  options.threads = threads;
+  if (const auto who = args.value("operator")) options.leadingOptions = {"--operator", *who};
+  options.who = args.value("operator", "");
+  if (options.who.empty()) {
+    const char* user = std::getenv("USER");
+    options.who = user && *user ? user : "unknown";
+  }
+  // An Apply: the options parsed as `surrogate run` parses its own, run as it runs, the report
+  // written after it under the same lock.
+  options.runner = [capture, base](const std::vector<std::string>& given, const review::ProgressFunction& progress) {
+    std::vector<std::string> words = {"run", capture};
+    words.insert(words.end(), given.begin(), given.end());
+    std::vector<char*> argvRun;
+    for (std::string& w : words) argvRun.push_back(w.data());
+    std::vector<OptionSpec> runSpecs = pipelineOptions(true);
+    const Args runArgs(static_cast<int>(argvRun.size()), argvRun.data(), 1, runSpecs);
+    run::RunRequest request = requestFrom(runArgs);
+    request.command = "review";
+    pipeline::RunSettings settings = base;
+    settings.who = runArgs.value("operator", "");
+    settings.progress = progress;
+    capture::CaptureLock lock(capture, "review");
+    run::runCapture(capture, request, settings, /*takeLock=*/false);
+    report::ReportOptions reportOptions;
+    reportOptions.threads = settings.threads;
+    reportOptions.progress = progress;
+    report::writeCaptureReport(capture, reportOptions);
+  };
+  options.applied = [capture](const std::vector<std::string>& given, const std::string& outcome) {
+    std::string line;
+    for (const std::string& g : given) line += " " + escapedText(g);
+    std::cout << (outcome == "applied" ? "applied, as: surrogate run " : "not applied: surrogate run ")
+              << escapedText(capture) << line << "\n";
+    if (outcome != "applied") std::cout << "  " << escapedText(outcome) << "\n";
+    std::cout.flush();
+  };
+
+  // Ctrl+C and SIGTERM end the serving, from a thread of their own (httplib's threads inherit
+  // the blocked signals, so none of them is interrupted).
+  sigset_t stopSignals;
+  sigemptyset(&stopSignals);
+  sigaddset(&stopSignals, SIGINT);
+  sigaddset(&stopSignals, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &stopSignals, nullptr);
+  review::ReviewServer server(std::move(options));
+  std::thread waiter([&server, stopSignals] {
+    int signal = 0;
+    sigwait(&stopSignals, &signal);
+    server.stop();
+  });
+
+  const std::string url = "http://127.0.0.1:" + std::to_string(server.port()) + "/";
+  std::cout << "Review of " << escapedText(capture) << ": " << url << "\n"
+            << "  open it in a browser on this computer; Ctrl+C stops the review.\n";
+  if (!args.has("no-browser")) openBrowser(url);
+  std::cout.flush();
+  server.serve();
+  pthread_kill(waiter.native_handle(), SIGTERM);  // a no-op for the waiter when a signal ended it
+  waiter.join();
+  std::cout << "Review stopped.\n";
+  return 0;
+}
+
+}  // namespace surrogate::cli

@@ -1,0 +1,142 @@
+#include "review/decisions.h"
+
+#include <cmath>
+
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+#include "core/text.h"
+
+namespace surrogate::review {
+
+namespace {
+
+using nlohmann::json;
+
+[[noreturn]] void refuse(const std::string& what, const std::string& why) {
+  throw Error(ErrorKind::Usage, what, "review page", why);
+}
+
+json parse(const std::string& body) {
+  json j = json::parse(body, nullptr, /*allow_exceptions=*/false);
+  if (j.is_discarded() || !j.is_object()) refuse("the decisions sent", "are not a JSON object");
+  return j;
+}
+
+std::string text(const json& object, const char* member, const std::string& where, bool required) {
+  const auto it = object.find(member);
+  if (it == object.end() || it->is_null()) {
+    if (required) refuse(where, std::string("needs \"") + member + "\"");
+    return "";
+  }
+  if (!it->is_string()) refuse(where + "." + member, "must be text");
+  return it->get<std::string>();
+}
+
+double number(const json& object, const char* member, const std::string& where) {
+  const auto it = object.find(member);
+  if (it == object.end() || !it->is_number()) refuse(where + "." + member, "must be a number");
+  const double v = it->get<double>();
+  if (!std::isfinite(v)) refuse(where + "." + member, "must be a finite number");
+  return v;
+}
+
+int index(const json& object, const char* member, const std::string& where) {
+  const auto it = object.find(member);
+  if (it == object.end() || !it->is_number_integer() || it->get<long long>() < 0 || it->get<long long>() > 99)
+    refuse(where + "." + member, "must be a sphere number from 0");
+  return static_cast<int>(it->get<long long>());
+}
+
+// The members that are lists of objects, each visited with its place for messages.
+template <class Visit>
+void eachOf(const json& body, const char* member, Visit visit) {
+  const auto it = body.find(member);
+  if (it == body.end() || it->is_null()) return;
+  if (!it->is_array()) refuse(member, "must be a list");
+  for (std::size_t n = 0; n < it->size(); ++n) {
+    const json& item = (*it)[n];
+    const std::string where = std::string(member) + "[" + std::to_string(n) + "]";
+    if (!item.is_object()) refuse(where, "must be an object");
+    visit(item, where);
+  }
+}
+
+}  // namespace
+
+std::string coordinateText(double value) {
+  const double tenths = std::round(value * 10) / 10;
+  return formatNumber(tenths == 0 ? 0.0 : tenths);  // never "-0"
+}
+
+std::string revisionOf(const std::string& applyJson) {
+  return text(parse(applyJson), "revision", "the decisions sent", false);
+}
+
+std::vector<std::string> argumentsFor(const std::string& applyJson) {
+  const json body = parse(applyJson);
+  std::vector<std::string> out;
+  auto option = [&](const std::string& name, const std::string& value) {
+    out.push_back("--" + name);
+    out.push_back(value);
+  };
+  auto reason = [&](const std::string& value) {
+    if (!value.empty()) option("reason", value);
+  };
+
+  for (const char* field : {"title"}) {
+    const std::string v = text(body, field, "the decisions sent", false);
+    if (!v.empty()) option(field, v);
+  }
+  if (const auto it = body.find("creators"); it != body.end() && !it->is_null()) {
+    if (!it->is_array()) refuse("creators", "must be a list");
+    for (const json& c : *it) {
+      if (!c.is_string()) refuse("creators", "must be a list of names");
+      if (!c.get<std::string>().empty()) option("creator", c.get<std::string>());
+    }
+  }
+  for (const char* field : {"rights", "license"}) {
+    const std::string v = text(body, field, "the decisions sent", false);
+    if (!v.empty()) option(field, v);
+  }
+  eachOf(body, "meta", [&](const json& m, const std::string& where) {
+    option("meta", text(m, "key", where, true) + "=" + text(m, "value", where, true));
+  });
+  eachOf(body, "spheres", [&](const json& s, const std::string& where) {
+    option("sphere", coordinateText(number(s, "cx", where)) + "," + coordinateText(number(s, "cy", where)) + "," +
+                         coordinateText(number(s, "r", where)));
+    reason(text(s, "reason", where, false));
+  });
+  eachOf(body, "forgetSpheres", [&](const json& s, const std::string& where) {
+    option("forget-sphere", std::to_string(index(s, "sphere", where)));
+    reason(text(s, "reason", where, true));
+  });
+  eachOf(body, "highlights", [&](const json& h, const std::string& where) {
+    option("highlight", text(h, "image", where, true) + ":" + std::to_string(index(h, "sphere", where)) + "=" +
+                            coordinateText(number(h, "x", where)) + "," + coordinateText(number(h, "y", where)));
+    reason(text(h, "reason", where, false));
+  });
+  eachOf(body, "forgetHighlights", [&](const json& h, const std::string& where) {
+    option("forget-highlight", text(h, "image", where, true) + ":" + std::to_string(index(h, "sphere", where)));
+    reason(text(h, "reason", where, true));
+  });
+  eachOf(body, "exclude", [&](const json& e, const std::string& where) {
+    option("exclude", text(e, "image", where, true));
+    reason(text(e, "reason", where, true));
+  });
+  eachOf(body, "forgetExclusions", [&](const json& e, const std::string& where) {
+    option("forget-exclusion", text(e, "image", where, true));
+    reason(text(e, "reason", where, true));
+  });
+  eachOf(body, "accept", [&](const json& a, const std::string& where) {
+    option("accept", text(a, "check", where, true));
+    reason(text(a, "reason", where, true));
+  });
+  eachOf(body, "forgetAccept", [&](const json& a, const std::string& where) {
+    option("forget-accept", text(a, "check", where, true));
+    reason(text(a, "reason", where, true));
+  });
+  return out;
+}
+
+}  // namespace surrogate::review
