@@ -65,20 +65,31 @@ void openBrowser(const std::string& url) {
 
 int runCommandReview(int argc, char** argv) {
   const std::vector<OptionSpec> specs = {
-      {"port", true, false, "serve the page on this port of 127.0.0.1 (default 0: a free port, printed)", "N"},
-      {"no-browser", false, false, "do not open the page in the desktop's browser; only print its address"},
-      {"operator", true, false, "who takes the decisions (recorded with each; default $USER)", "NAME"},
+      {"operator", true, false, "who takes the decisions (recorded with each; default $USER)", "NAME",
+       OptionGroup::Decisions},
       {"threads", true, false, "worker threads for the runs (default: all cores); results do not depend on it", "N"},
       {"memory", true, false, "memory budget for the runs' streaming work (default 2G)", "SIZE"},
+      {"port", true, false, "serve the page on this port of 127.0.0.1 (default 0: a free port, printed)", "N",
+       OptionGroup::Output},
+      {"no-browser", false, false, "do not open the page in the desktop's browser; only print its address", "",
+       OptionGroup::Output},
   };
   Args args(argc, argv, 1, specs);
-  if (helpShown(args, specs, "surrogate review CAPTURE [options]",
-                "Review a capture in a browser page on this computer: every frame with its sphere and "
-                "highlight, the light directions, the checks and the decisions. Drag a sphere's circle, "
-                "click a highlight, leave a frame out with a reason, accept a check, type the title, "
-                "creator, rights and licence; Apply records each as `surrogate run` records the same "
-                "options (who, when, why) and runs what they change. The page is served on 127.0.0.1 "
-                "only, to this computer's own browser; Ctrl+C stops it."))
+  if (helpShown(args, specs,
+                {"surrogate review CAPTURE [options]",
+                 "Review a capture in a browser page on this computer: every frame with its sphere and "
+                 "highlight, the light directions, the checks and the decisions. Drag a sphere's circle, "
+                 "click a highlight, leave a frame out with a reason, accept a check, type the title, "
+                 "creator, rights and licence; Apply records each as `surrogate run` records the same "
+                 "options (who, when, why) and runs what they change. The page is served on 127.0.0.1 "
+                 "only, to this computer's own browser; Ctrl+C stops it.",
+                 {{"surrogate review stela12", "open the capture stela12 in the desktop's browser"},
+                  {"surrogate review stela12 --no-browser --port 8642 --operator \"Ana Silva\"",
+                   "serve it on a chosen port, for a browser opened by hand, recording Ana Silva's decisions"}},
+                 {{0, "stopped with Ctrl+C (or SIGTERM)"},
+                  {1, "the folder is not a capture, or the port given is taken"},
+                  {2, "bad usage: an unknown option, a port outside 0..65535"},
+                  {5, "internal error: a bug, or the environment"}}}))
     return 0;
   if (args.positional().size() != 1)
     throw Error(ErrorKind::Usage, "", "command line",
@@ -110,7 +121,9 @@ int runCommandReview(int argc, char** argv) {
     std::vector<OptionSpec> runSpecs = pipelineOptions(true);
     const Args runArgs(static_cast<int>(argvRun.size()), argvRun.data(), 1, runSpecs);
     run::RunRequest request = requestFrom(runArgs);
-    request.command = "review";
+    // Recorded as the `surrogate run` command line it stands for (the page shows it before
+    // Apply, and the server prints it after): the decisions and the carrier are the same
+    // whether they were typed or made in the page, byte for byte apart from times.
     pipeline::RunSettings settings = base;
     settings.who = runArgs.value("operator", "");
     settings.progress = progress;

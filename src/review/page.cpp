@@ -10,7 +10,7 @@ std::string pageHtml() {
   return std::string("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
                      "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">"
                      "<meta name=\"generator\" content=\"Surrogate ") +
-         report::escapeHtml(surrogateVersion()) + R"HTML(">
+         escapeHtml(surrogateVersion()) + R"HTML(">
 <title>Surrogate review</title><link rel="icon" href="data:,"><link rel="stylesheet" href="/review.css"></head>
 <body>
 <header><h1 id="title-shown">Surrogate review</h1>
