@@ -24,6 +24,7 @@ const std::vector<Command>& commands() {
       {"report", "write the HTML report of a capture or package", runCommandReport},
       {"verify", "check a package: fixity, schemas, metadata; --reexecute re-runs its steps", runCommandVerify},
       {"audit", "audit another tool's RTI (RTIBuilder's .lp, .ptm, .rti, log) read-only, in a work folder", runCommandAudit},
+      {"batch", "process, pack and verify a list of captures (or verify packages), one job each, with a ledger", runCommandBatch},
   };
   return list;
 }

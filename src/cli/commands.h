@@ -31,6 +31,7 @@ int runCommandPublish(int argc, char** argv);
 int runCommandReport(int argc, char** argv);
 int runCommandVerify(int argc, char** argv);
 int runCommandAudit(int argc, char** argv);
+int runCommandBatch(int argc, char** argv);
 
 // Shared by commands: the head of a command's --help.
 std::string usageHeader(const std::string& synopsis, const std::string& description);
