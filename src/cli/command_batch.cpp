@@ -1,5 +1,7 @@
 // surrogate batch LIST -o LEDGER [--do run,pack,verify] [--jobs N] [--memory SIZE] [options]
 #include <chrono>
+#include <cmath>
+#include <map>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
@@ -39,7 +41,10 @@ std::vector<OptionSpec> batchOptions() {
       {"no-report", false, false, "run and pack write no finished-files/report.html"},
       {"dry-run", false, false, "say what would be done for each item, do nothing"},
       {"one", true, false, "do only the Nth item of the list (1 is the first; for GNU parallel and Slurm)", "N"},
-      {"emit", true, false, "print a script that runs this batch on GNU parallel (parallel), one --one N a job", "ENGINE"},
+      {"emit", true, false,
+       "print a script that runs this batch on GNU parallel (parallel) or as a Slurm job array (slurm), one --one N a "
+       "job or task",
+       "ENGINE"},
       {"summary", false, false, "read the ledger (-o) and report where each item stands, without doing anything"},
       {"json", false, false, "print the result (or --summary) as one JSON object"},
       {"quiet", false, false, "no progress bar and no line per job"},
@@ -154,6 +159,81 @@ void emitParallel(const std::string& list, std::size_t items, const std::vector<
   std::cout << " --one {}\n";
 }
 
+// The files of a capture's largest folder of photographs (its images, for the time a task
+// takes): original-captures/, raw-images/ or jpeg-exports/, whichever holds most.
+std::size_t imagesOf(const std::string& capture) {
+  std::size_t most = 0;
+  for (const char* folder : {"original-captures", "raw-images", "jpeg-exports"}) {
+    std::error_code ec;
+    std::size_t n = 0;
+    for (std::filesystem::directory_iterator it(std::filesystem::path(capture) / folder, ec), end; !ec && it != end;
+         it.increment(ec))
+      n += it->is_regular_file(ec);
+    most = std::max(most, n);
+  }
+  return most;
+}
+
+// A task's time limit, minutes: the slowest image cost the ledger records (a capture's steps'
+// seconds over its images) times the largest capture of the list, three times over for a
+// busier node, at least kLeastTaskMinutes; kUnmeasuredTaskMinutes when the ledger has no
+// finished capture to measure.
+constexpr int kLeastTaskMinutes = 10;
+constexpr int kUnmeasuredTaskMinutes = 120;
+
+int taskMinutes(const std::vector<batch::WorkItem>& items, const std::string& ledgerPath, std::string& how) {
+  const batch::Ledger ledger = batch::readLedger(ledgerPath);
+  std::map<std::string, double> seconds;
+  for (const batch::LedgerEntry& e : ledger.entries)
+    if (e.succeeded() && !e.adopted) seconds[e.capture] += e.seconds;
+  double perImage = 0;
+  for (const auto& [capture, s] : seconds)
+    if (const std::size_t n = imagesOf(capture); n > 0) perImage = std::max(perImage, s / static_cast<double>(n));
+  std::size_t largest = 0;
+  for (const batch::WorkItem& item : items) largest = std::max(largest, imagesOf(item.path));
+  if (perImage <= 0 || largest == 0) {
+    how = "no finished capture in the ledger to measure: " + std::to_string(kUnmeasuredTaskMinutes) + " minutes";
+    return kUnmeasuredTaskMinutes;
+  }
+  const double minutes = std::ceil(3 * perImage * static_cast<double>(largest) / 60);
+  char text[160];
+  std::snprintf(text, sizeof text, "%.2f s an image measured in the ledger x %zu images x 3", perImage, largest);
+  how = text;
+  return std::max(kLeastTaskMinutes, static_cast<int>(minutes));
+}
+
+// --emit slurm: a job-array script, one task per item, each a `surrogate batch --one N`
+// appending to the shared ledger; requeued tasks start their item again, which skips what is
+// done.
+void emitSlurm(const std::string& list, const std::vector<batch::WorkItem>& items, const std::vector<std::string>& passOn,
+               int jobs, int threads, const std::string& ledger, std::uint64_t memory) {
+  namespace fs = std::filesystem;
+  const std::string absList = fs::absolute(list).lexically_normal().string();
+  const std::string absLedger = fs::absolute(ledger).lexically_normal().string();
+  std::string how;
+  const int minutes = taskMinutes(items, ledger, how);
+  std::cout << "#!/bin/sh\n"
+               "# Slurm runs the batch of " << absList << " as a job array, one `surrogate batch --one N` a task\n"
+               "# appending to " << absLedger << "; a requeued task does its item again, skipping what is done.\n"
+               "# Submit with sbatch; report with: surrogate batch --summary -o " << absLedger << "\n"
+               "#SBATCH --job-name=surrogate-batch\n"
+               "#SBATCH --array=1-" << items.size() << "%" << jobs << "\n"
+               "#SBATCH --cpus-per-task=" << threads << "\n";
+  // Slurm's limit a quarter above the job's budget: the job's own stop, with its message in
+  // the ledger, comes first.
+  if (memory > 0) std::cout << "#SBATCH --mem=" << (memory / 4 * 5 + (1u << 20) - 1) / (1u << 20) << "M\n";
+  std::cout << "#SBATCH --time=" << minutes << "\n"
+               "#SBATCH --requeue\n"
+               "#SBATCH --open-mode=append\n"
+               "#SBATCH --chdir=" << fs::current_path().string() << "\n"
+               "#SBATCH --output=" << absLedger << ".slurm-%A_%a.out\n"
+               "# time per task: " << how << "\n"
+               "exec " << shellWord(batch::selfExecutable()) << " batch " << shellWord(absList) << " -o "
+            << shellWord(absLedger);
+  for (const std::string& a : passOn) std::cout << " " << shellWord(a);
+  std::cout << " --one \"$SLURM_ARRAY_TASK_ID\"\n";
+}
+
 }  // namespace
 
 int runCommandBatch(int argc, char** argv) {
@@ -169,7 +249,7 @@ int runCommandBatch(int argc, char** argv) {
                 "same command again skips what the ledger records as done and what is unchanged "
                 "since (the carrier's and package's SHA-256), retries failures and never packs a "
                 "capture twice. --summary reads a ledger and reports; --emit parallel prints a "
-                "script for GNU parallel.\n\n"
+                "script for GNU parallel, --emit slurm a Slurm job-array script.\n\n"
                 "exit codes: 0 every job done; otherwise the highest exit code of a failed step "
                 "(1 bad input, 2 usage or invalid package, 3 fixity failure, 4 not reproduced, 5 "
                 "internal error, a crash or a memory budget passed)"))
@@ -203,8 +283,9 @@ int runCommandBatch(int argc, char** argv) {
   std::vector<batch::WorkItem> items = batch::readWorkList(list);
 
   if (const auto engine = args.value("emit")) {
-    if (*engine != "parallel")
-      throw Error(ErrorKind::Usage, "--emit " + *engine, "command line", "give parallel (GNU parallel)");
+    if (*engine != "parallel" && *engine != "slurm")
+      throw Error(ErrorKind::Usage, "--emit " + *engine, "command line",
+                  "give parallel (GNU parallel) or slurm (a Slurm job-array script)");
     if (list == "-")
       throw Error(ErrorKind::Usage, "--emit", "command line", "needs the list in a file, which each job reads again");
     std::vector<std::string> passOn;
@@ -214,13 +295,16 @@ int runCommandBatch(int argc, char** argv) {
       passOn.push_back("--" + name);
       if (!value.empty()) passOn.push_back(value);
     }
-    if (!args.has("threads")) {  // each job's share of the cores, as the batch gives it
-      const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    // Each job's share of the cores, as the batch gives it; a Slurm task, its own core.
+    const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    const int threads = args.has("threads") ? o.threadsPerJob : *engine == "slurm" ? 1 : std::max(1, cores / o.jobs);
+    if (!args.has("threads")) {
       passOn.push_back("--threads");
-      passOn.push_back(std::to_string(std::max(1, cores / o.jobs)));
+      passOn.push_back(std::to_string(threads));
     }
     passOn.push_back("--quiet");
-    emitParallel(list, items.size(), passOn, o.jobs, *ledger, args.value("memory", ""));
+    if (*engine == "slurm") emitSlurm(list, items, passOn, o.jobs, threads, *ledger, o.memory);
+    else emitParallel(list, items.size(), passOn, o.jobs, *ledger, args.value("memory", ""));
     return 0;
   }
   if (args.has("one")) {

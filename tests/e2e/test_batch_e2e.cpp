@@ -399,3 +399,157 @@ TEST_CASE("GNU parallel runs the script batch --emit parallel writes and reruns 
   CHECK(jobLines == 1 + 4 + 1);
   CHECK(e2e::surrogate("batch --summary -o " + quote(ledger)).exitCode == 0);
 }
+
+namespace {
+
+// A single-host Slurm cluster in a scratch folder: munged with its own key and socket,
+// slurmctld and slurmd (Debian's munge and slurm-wlm) on two free ports, stopped (by their
+// process ids) when the test ends. `error` says why it could not start.
+class SlurmCluster {
+ public:
+  explicit SlurmCluster(const fs::path& dir) : dir_(dir) {
+    for (const char* tool : {"munged", "slurmctld", "slurmd", "sbatch", "squeue", "scontrol", "sinfo"})
+      if (e2e::runShell(std::string("command -v ") + tool + " || test -x /usr/sbin/" + tool).exitCode != 0) {
+        error = std::string(tool) + " is not installed (scripts/install-deps installs Debian's slurm-wlm and munge)";
+        return;
+      }
+    fs::create_directories(dir_ / "munge");
+    fs::permissions(dir_ / "munge", fs::perms::owner_all, fs::perm_options::replace);
+    for (const char* sub : {"state", "spool", "log"}) fs::create_directories(dir_ / sub);
+    const std::string d = quote(dir_);
+    if (e2e::runShell("dd if=/dev/urandom of=" + d + "/munge/munge.key bs=1024 count=1 2>/dev/null && chmod 600 " + d +
+                      "/munge/munge.key").exitCode != 0) {
+      error = "cannot make a munge key";
+      return;
+    }
+    const auto munge = e2e::runShell("PATH=\"$PATH:/usr/sbin\" munged -f --key-file=" + d + "/munge/munge.key --socket=" + d +
+                                     "/munge/socket --pid-file=" + d + "/munge/munged.pid --log-file=" + d +
+                                     "/log/munged.log --seed-file=" + d + "/munge/seed");
+    if (munge.exitCode != 0) {
+      error = "munged did not start: " + munge.output;
+      return;
+    }
+    mungeStarted_ = true;
+    const std::string host = trimmed(e2e::runShell("hostname -s").output);
+    const std::string user = trimmed(e2e::runShell("id -un").output);
+    const int port = 20000 + static_cast<int>(::getpid() % 20000);
+    const long memoryMb = sysconf(_SC_PHYS_PAGES) / 1024 * sysconf(_SC_PAGESIZE) / 1024;
+    std::ofstream conf(dir_ / "slurm.conf");
+    conf << "ClusterName=surrogate-test\nSlurmctldHost=" << host << "(127.0.0.1)\n"
+         << "SlurmctldPort=" << port << "\nSlurmdPort=" << port + 1 << "\n"
+         << "AuthType=auth/munge\nAuthInfo=socket=" << dir_.string() << "/munge/socket\nCredType=cred/munge\n"
+         << "SlurmUser=" << user << "\nSlurmdUser=" << user << "\n"
+         << "StateSaveLocation=" << dir_.string() << "/state\nSlurmdSpoolDir=" << dir_.string() << "/spool\n"
+         << "SlurmctldPidFile=" << dir_.string() << "/slurmctld.pid\nSlurmdPidFile=" << dir_.string() << "/slurmd.pid\n"
+         << "SlurmctldLogFile=" << dir_.string() << "/log/slurmctld.log\nSlurmdLogFile=" << dir_.string() << "/log/slurmd.log\n"
+         << "ProctrackType=proctrack/linuxproc\nTaskPlugin=task/none\n"
+         << "SelectType=select/cons_tres\nSelectTypeParameters=CR_Core_Memory\n"
+         << "JobAcctGatherType=jobacct_gather/none\nAccountingStorageType=accounting_storage/none\n"
+         << "MpiDefault=none\nReturnToService=2\nJobRequeue=1\nSchedulerParameters=sched_interval=1\n"
+         << "NodeName=" << host << " NodeAddr=127.0.0.1 CPUs=" << sysconf(_SC_NPROCESSORS_ONLN)
+         << " RealMemory=" << memoryMb / 2 << " State=UNKNOWN\n"
+         << "PartitionName=batch Nodes=ALL Default=YES MaxTime=INFINITE State=UP\n";
+    conf.close();
+    env_ = "export SLURM_CONF=" + quote(dir_ / "slurm.conf") + " PATH=\"$PATH:/usr/sbin\"; ";
+    if (e2e::runShell(env_ + "slurmctld -i -f " + quote(dir_ / "slurm.conf")).exitCode != 0 ||
+        e2e::runShell(env_ + "slurmd -f " + quote(dir_ / "slurm.conf")).exitCode != 0) {
+      error = "slurmctld or slurmd did not start: " + e2e::bytesOf(dir_ / "log/slurmctld.log") +
+              e2e::bytesOf(dir_ / "log/slurmd.log");
+      return;
+    }
+    for (int i = 0; i < 100; ++i) {
+      if (trimmed(run("sinfo -h -o %T").output) == "idle") return;
+      std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    }
+    error = "the node did not become idle in 20 s: " + run("sinfo").output + e2e::bytesOf(dir_ / "log/slurmd.log");
+  }
+
+  ~SlurmCluster() {
+    run("scancel --user=$(id -un)");
+    // Only the daemons this test started, by the process ids they wrote.
+    for (const char* pidFile : {"slurmd.pid", "slurmctld.pid", "munge/munged.pid"}) {
+      const std::string pid = trimmed(e2e::bytesOf(dir_ / pidFile));
+      if (!pid.empty() && pid.find_first_not_of("0123456789") == std::string::npos) {
+        ::kill(std::stoi(pid), SIGTERM);
+        for (int i = 0; i < 50 && ::kill(std::stoi(pid), 0) == 0; ++i)
+          std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      }
+    }
+  }
+
+  e2e::CommandResult run(const std::string& command) const { return e2e::runShell(env_ + command); }
+
+  std::string error;
+
+ private:
+  static std::string trimmed(std::string s) {
+    while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
+    return s;
+  }
+  fs::path dir_;
+  std::string env_;
+  bool mungeStarted_ = false;
+};
+
+}  // namespace
+
+TEST_CASE("a Slurm job array does the batch with one task killed and requeued and the ledger shows each capture done once",
+          "[batch][slurm]") {
+  const fs::path dir = e2e::freshDir("batch-slurm");
+  SlurmCluster cluster(dir / "cluster");
+  if (!cluster.error.empty()) {
+    WARN("single-host Slurm cluster could not start, test skipped: " << cluster.error);
+    return;
+  }
+  const fs::path list = makeCaptures(dir, 6);
+  const fs::path ledger = dir / "ledger.jsonl";
+  const auto emitted = e2e::runShell("cd " + quote(dir) + " && " + SURROGATE_EXE + " batch " + quote(list) + " -o " +
+                                     quote(ledger) + " --jobs 2 --memory 512M --no-report --emit slurm");
+  REQUIRE(emitted.exitCode == 0);
+  CHECK(emitted.output.find("#SBATCH --array=1-6%2") != std::string::npos);
+  CHECK(emitted.output.find("#SBATCH --mem=640M") != std::string::npos);
+  CHECK(emitted.output.find("#SBATCH --requeue") != std::string::npos);
+  std::ofstream(dir / "array.sh") << emitted.output;
+  const auto submitted = cluster.run("cd " + quote(dir) + " && sbatch --parsable " + quote(dir / "array.sh"));
+  INFO(submitted.output);
+  REQUIRE(submitted.exitCode == 0);
+  const std::string job = submitted.output.substr(0, submitted.output.find_first_of(";\n"));
+  // Task 1 is killed while it runs and put back in the queue (then released at once: Slurm
+  // delays a requeued job's start by default).
+  bool requeued = false;
+  for (int i = 0; i < 300 && !requeued; ++i) {
+    if (cluster.run("squeue -h -t R -o %i").output.find(job + "_1\n") != std::string::npos)
+      requeued = cluster.run("scontrol requeue " + job + "_1").exitCode == 0;
+    else std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  REQUIRE(requeued);
+  bool released = false;
+  for (int i = 0; i < 300 && !released; ++i) {
+    // Once the kill is complete, the task waits for its begin time: moved to now.
+    if (cluster.run("squeue -h -j " + job + "_1 -o %r").output.find("BeginTime") != std::string::npos)
+      released = cluster.run("scontrol update jobid=" + job + "_1 StartTime=now").exitCode == 0;
+    if (!released) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  CHECK(released);
+  bool finished = false;
+  for (int i = 0; i < 600 && !finished; ++i) {
+    finished = cluster.run("squeue -h -j " + job).output.empty();
+    if (!finished) std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  }
+  REQUIRE(finished);
+  CHECK(cluster.run("scontrol show job " + job + "_1").output.find("Restarts=1") != std::string::npos);
+
+  const auto summary = e2e::surrogate("batch --summary -o " + quote(ledger) + " --json");
+  INFO(summary.output << e2e::bytesOf(ledger));
+  CHECK(summary.exitCode == 0);
+  const json s = json::parse(summary.output);
+  CHECK(s["items"] == 6);
+  CHECK(s["done"] == 6);
+  CHECK(s["failed"] == 0);
+  const std::vector<json> lines = ledgerLines(ledger);
+  for (int i = 1; i <= 6; ++i) {
+    const std::string cap = (dir / ("cap" + std::to_string(i))).string();
+    CHECK(count(lines, cap, "pack", 0) == 1);
+    CHECK(count(lines, cap, "verify", 0) == 1);
+  }
+}
