@@ -119,6 +119,7 @@ class Runner {
     const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     threads_ = o_.threadsPerJob > 0 ? o_.threadsPerJob : std::max(1, cores / std::max(1, o_.jobs));
     host_ = hostName();
+    requireDistinctPackages(items_, o_.packagesDir);
     ledger_ = readLedger(o_.ledger);
   }
 

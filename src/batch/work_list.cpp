@@ -73,4 +73,18 @@ fs::path packagePathFor(const fs::path& capture, const fs::path& packagesDir) {
   return folder.parent_path() / file;
 }
 
+void requireDistinctPackages(const std::vector<WorkItem>& items, const fs::path& packagesDir) {
+  std::map<std::string, const WorkItem*> byPackage;
+  for (const WorkItem& item : items) {
+    if (item.isPackage) continue;
+    const std::string package = fs::absolute(packagePathFor(item.path, packagesDir)).lexically_normal().string();
+    const auto [it, added] = byPackage.emplace(package, &item);
+    if (!added)
+      throw Error(ErrorKind::Usage, item.path, "batch list",
+                  "would be packed into " + package + ", as item " + std::to_string(it->second->number) + " (" +
+                      it->second->path + ") would: two captures of one name cannot share a --packages folder; "
+                      "rename one, or give the batch no --packages (each package is then beside its capture)");
+  }
+}
+
 }  // namespace surrogate::batch

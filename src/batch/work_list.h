@@ -34,4 +34,8 @@ bool looksLikePackage(const std::filesystem::path& path);
 std::filesystem::path packagePathFor(const std::filesystem::path& capture,
                                      const std::filesystem::path& packagesDir);
 
+// Refuses, with Error(Usage) naming both lines, two captures of the list whose packages would
+// be the same file (two folders of one name packed into one --packages folder).
+void requireDistinctPackages(const std::vector<WorkItem>& items, const std::filesystem::path& packagesDir);
+
 }  // namespace surrogate::batch

@@ -184,3 +184,16 @@ TEST_CASE("a capture's package is NAME.zip beside it or in --packages") {
   CHECK(packagePathFor("/data/stela12/", "") == fs::path("/data/stela12.zip"));
   CHECK(packagePathFor("stela12", "/archive/in") == fs::path("/archive/in/stela12.zip"));
 }
+
+TEST_CASE("two captures of one name cannot share a packages folder") {
+  std::istringstream in("/data/2025/stela12\n/data/2026/stela12\n");
+  const auto items = readWorkList(in, "list.txt");
+  CHECK_NOTHROW(requireDistinctPackages(items, ""));  // beside each capture: two files
+  try {
+    requireDistinctPackages(items, "/archive/in");
+    FAIL("two captures were given one package");
+  } catch (const Error& e) {
+    CHECK(e.file() == "/data/2026/stela12");
+    CHECK(e.message().find("/archive/in/stela12.zip, as item 1 (/data/2025/stela12)") != std::string::npos);
+  }
+}
