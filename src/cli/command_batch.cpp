@@ -31,8 +31,8 @@ std::vector<OptionSpec> batchOptions() {
       {"do", true, false, "the steps, in this order, of run, pack and verify (default run,pack,verify)", "STEPS"},
       {"jobs", true, false, "jobs at a time, each a process of its own (default 1)", "N"},
       {"memory", true, false,
-       "memory budget of each job: its streaming budget, and the job is stopped (recorded as such, the others go "
-       "on) when its resident memory passes it (default: none)",
+       "memory of each job: it streams within three quarters of it (run --memory), and is stopped (recorded as "
+       "such, the others go on) when its resident memory passes it (default: no limit)",
        "SIZE"},
       {"threads", true, false, "worker threads of each job (default: the cores shared among the jobs)", "N"},
       {"packages", true, false, "write each capture's package into this folder (default: beside the capture), named CAPTURE.zip", "DIR"},
@@ -45,7 +45,8 @@ std::vector<OptionSpec> batchOptions() {
        "print a script that runs this batch on GNU parallel (parallel) or as a Slurm job array (slurm), one --one N a "
        "job or task",
        "ENGINE"},
-      {"summary", false, false, "read the ledger (-o) and report where each item stands, without doing anything"},
+      {"summary", false, false,
+       "read the ledger (-o LEDGER, or LEDGER alone) and report where each item stands, without doing anything"},
       {"json", false, false, "print the result (or --summary) as one JSON object"},
       {"quiet", false, false, "no progress bar and no line per job"},
   };
@@ -256,9 +257,10 @@ int runCommandBatch(int argc, char** argv) {
     return 0;
   const auto ledger = outputOption(args);
   if (args.has("summary")) {
-    if (!ledger || !args.positional().empty())
+    // The ledger with -o, or as the one argument: surrogate batch --summary LEDGER.
+    if (ledger ? !args.positional().empty() : args.positional().size() != 1)
       throw Error(ErrorKind::Usage, "", "command line", "give the ledger only: surrogate batch --summary -o LEDGER");
-    return printSummary(*ledger, args.has("json"));
+    return printSummary(ledger ? *ledger : args.positional()[0], args.has("json"));
   }
   if (args.positional().size() != 1 || !ledger || ledger->empty())
     throw Error(ErrorKind::Usage, "", "command line",

@@ -170,6 +170,9 @@ TEST_CASE("batch runs packs and verifies every capture of a list and run again d
   CHECK(s["items"] == 3);
   CHECK(s["done"] == 3);
   CHECK(s["failed"] == 0);
+  const auto plain = e2e::surrogate("batch --summary " + quote(ledger));  // the ledger alone
+  CHECK(plain.exitCode == 0);
+  CHECK(plain.output.find("3 item(s), 3 done, 0 failed (12 lines)") != std::string::npos);
 }
 
 TEST_CASE("a batch killed with kill -9 midway and run again finishes the rest and packs nothing twice", "[batch]") {
