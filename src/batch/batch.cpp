@@ -120,6 +120,7 @@ class Runner {
     threads_ = o_.threadsPerJob > 0 ? o_.threadsPerJob : std::max(1, cores / std::max(1, o_.jobs));
     host_ = hostName();
     requireDistinctPackages(items_, o_.packagesDir);
+    if (!o_.dryRun) requireWritableLedger(o_.ledger);
     ledger_ = readLedger(o_.ledger);
   }
 

@@ -139,6 +139,12 @@ void appendToLedger(const std::filesystem::path& ledger, const LedgerEntry& entr
   if (::fdatasync(d.fd) != 0 && errno != EINVAL) throw writeError(ledger, "batch ledger", errno);
 }
 
+void requireWritableLedger(const std::filesystem::path& ledger) {
+  Descriptor d;
+  d.fd = ::open(ledger.c_str(), O_RDWR | O_APPEND | O_CREAT | O_CLOEXEC, 0644);
+  if (d.fd < 0) throw writeError(ledger, "batch ledger", errno);
+}
+
 Ledger readLedger(const std::filesystem::path& ledger) {
   Ledger out;
   Descriptor d;

@@ -57,6 +57,10 @@ bool parseLedgerLine(const std::string& line, LedgerEntry& entry);
 // ledger when it cannot be written (a full disk, no permission).
 void appendToLedger(const std::filesystem::path& ledger, const LedgerEntry& entry);
 
+// Opens the ledger for appending (making it when absent) and closes it: a ledger that cannot be
+// written is reported before any job runs. Throws as appendToLedger.
+void requireWritableLedger(const std::filesystem::path& ledger);
+
 // Reads the whole ledger (an absent file: an empty ledger), under a shared flock() so that no
 // append is read half-way. Throws Error(Input) when the file cannot be read.
 Ledger readLedger(const std::filesystem::path& ledger);

@@ -197,3 +197,16 @@ TEST_CASE("two captures of one name cannot share a packages folder") {
     CHECK(e.message().find("/archive/in/stela12.zip, as item 1 (/data/2025/stela12)") != std::string::npos);
   }
 }
+
+TEST_CASE("a ledger in a folder that does not exist is reported before any job") {
+  const fs::path dir = freshFolder("unwritable");
+  try {
+    requireWritableLedger(dir / "no-such-folder" / "ledger.jsonl");
+    FAIL("an unwritable ledger was accepted");
+  } catch (const Error& e) {
+    CHECK(e.file() == (dir / "no-such-folder" / "ledger.jsonl").string());
+  }
+  requireWritableLedger(dir / "ledger.jsonl");
+  CHECK(fs::exists(dir / "ledger.jsonl"));
+  CHECK(fs::file_size(dir / "ledger.jsonl") == 0);
+}
