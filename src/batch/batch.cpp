@@ -7,6 +7,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <thread>
+#include <unordered_map>
 
 #include "archive/package.h"
 #include "archive/package_reader.h"
@@ -122,6 +123,7 @@ class Runner {
     requireDistinctPackages(items_, o_.packagesDir);
     if (!o_.dryRun) requireWritableLedger(o_.ledger);
     ledger_ = readLedger(o_.ledger);
+    for (std::size_t i = 0; i < ledger_.entries.size(); ++i) byItem_[ledger_.entries[i].capture].push_back(i);
   }
 
   BatchResult run() {
@@ -179,28 +181,42 @@ class Runner {
   // The steps of `o_.steps` that apply to the item (a package has only verify).
   bool applies(const Job& job, const std::string& step) const { return !job.item.isPackage || step == "verify"; }
 
-  const LedgerEntry* lastSuccess(const std::string& item, const std::string& step) const {
-    for (auto it = ledger_.entries.rbegin(); it != ledger_.entries.rend(); ++it)
-      if (it->capture == item && it->step == step && it->succeeded()) return &*it;
+  // The item's lines, in file order (a copy: a ledger of 100 000 packages is not searched whole
+  // for each decision).
+  Ledger ledgerOf(const std::string& item) const {
+    Ledger l;
+    if (const auto it = byItem_.find(item); it != byItem_.end())
+      for (std::size_t i : it->second) l.entries.push_back(ledger_.entries[i]);
+    return l;
+  }
+
+  const LedgerEntry* lastMatching(const std::string& item, const std::function<bool(const LedgerEntry&)>& wanted) const {
+    const auto it = byItem_.find(item);
+    if (it == byItem_.end()) return nullptr;
+    for (auto i = it->second.rbegin(); i != it->second.rend(); ++i)
+      if (wanted(ledger_.entries[*i])) return &ledger_.entries[*i];
     return nullptr;
+  }
+
+  const LedgerEntry* lastSuccess(const std::string& item, const std::string& step) const {
+    return lastMatching(item, [&](const LedgerEntry& e) { return e.step == step && e.succeeded(); });
   }
 
   // The ledger's record of the package file as it was last seen (by a pack or a verify), so
   // that an unchanged package is not read again.
   const LedgerEntry* knownPackage(const std::string& item) const {
-    for (auto it = ledger_.entries.rbegin(); it != ledger_.entries.rend(); ++it)
-      if (it->capture == item && it->succeeded() && !it->packageSha256.empty()) return &*it;
-    return nullptr;
+    return lastMatching(item, [](const LedgerEntry& e) { return e.succeeded() && !e.packageSha256.empty(); });
   }
 
   // Whether the step is done and still valid; `why` says why not.
   bool stillValid(const Job& job, const std::string& step, std::string& why) const {
     const std::string& item = job.item.path;
-    if (step == "run") return runStillValid(historyOf(ledger_, item, "run"), carrierState(item), why);
+    const Ledger mine = ledgerOf(item);
+    if (step == "run") return runStillValid(historyOf(mine, item, "run"), carrierState(item), why);
     if (step == "pack")
-      return packStillValid(historyOf(ledger_, item, "pack"), carrierState(item),
+      return packStillValid(historyOf(mine, item, "pack"), carrierState(item),
                             packageState(job.package, knownPackage(item)), why);
-    return verifyStillValid(historyOf(ledger_, item, "verify"), packageState(job.package, knownPackage(item)),
+    return verifyStillValid(historyOf(mine, item, "verify"), packageState(job.package, knownPackage(item)),
                             o_.reexecute, why);
   }
 
@@ -256,7 +272,7 @@ class Runner {
     LedgerEntry e;
     e.capture = job.item.path;
     e.step = step;
-    e.attempt = historyOf(ledger_, job.item.path, step).nextAttempt();
+    e.attempt = historyOf(ledgerOf(job.item.path), job.item.path, step).nextAttempt();
     e.start = ledgerTime();
     e.memoryBudget = o_.memory;
     e.host = host_;
@@ -267,6 +283,7 @@ class Runner {
 
   void record(LedgerEntry e) {
     appendToLedger(o_.ledger, e);
+    byItem_[e.capture].push_back(ledger_.entries.size());
     ledger_.entries.push_back(std::move(e));
   }
 
@@ -436,6 +453,7 @@ class Runner {
   std::string program_, host_;
   int threads_ = 1;
   Ledger ledger_;
+  std::unordered_map<std::string, std::vector<std::size_t>> byItem_;  // positions in ledger_.entries
 };
 
 }  // namespace
