@@ -1,6 +1,10 @@
 // surrogate verify PACKAGE [--reexecute] [--json]
 #include <iostream>
 
+#include "batch/batch.h"
+#include "batch/ledger.h"
+#include "batch/resume.h"
+#include "batch/work_list.h"
 #include "cli/args.h"
 #include "cli/commands.h"
 #include "cli/option_checks.h"
@@ -142,6 +146,80 @@ void printText(const verify::Report& report, bool quiet) {
               << report.checks.size() << " checks failed.\n";
 }
 
+// verify --batch LIST -o LEDGER: the packages of the list, each verified by `surrogate verify`
+// in a process of its own (batch/batch.h), a ledger line each; --sample N of those not yet
+// verified.
+int verifyBatch(const Args& args) {
+  const auto ledger = outputOption(args);
+  if (!ledger || ledger->empty() || !args.positional().empty())
+    throw Error(ErrorKind::Usage, "--batch", "command line",
+                "give the list and the ledger only: surrogate verify --batch LIST -o LEDGER (see --help)");
+  std::vector<batch::WorkItem> items = batch::readWorkList(*args.value("batch"));
+  for (batch::WorkItem& item : items) item.isPackage = true;  // verify takes each as a package
+  batch::BatchOptions o;
+  o.ledger = *ledger;
+  o.steps = {"verify"};
+  o.reexecute = args.has("reexecute");
+  o.jobs = args.intValue("jobs", 1);
+  if (o.jobs < 1) throw Error(ErrorKind::Usage, "--jobs", "command line", "give 1 or more jobs");
+  o.threadsPerJob = args.intValue("threads", 0);
+  if (args.has("strict") || args.has("tolerance"))
+    throw Error(ErrorKind::Usage, args.has("strict") ? "--strict" : "--tolerance", "command line",
+                "is not taken with --batch (each package is verified with the defaults)");
+  if (args.has("sample")) {
+    const int n = args.intValue("sample", 0);
+    const int seed = args.intValue("seed", 1);
+    if (n < 1) throw Error(ErrorKind::Usage, "--sample", "command line", "give the number of packages to verify, 1 or more");
+    std::vector<std::string> paths;
+    for (const batch::WorkItem& item : items) paths.push_back(item.path);
+    const std::vector<std::size_t> open = batch::notYetVerified(paths, batch::readLedger(*ledger), o.reexecute);
+    std::vector<batch::WorkItem> drawn;
+    for (std::size_t k : batch::drawSample(open.size(), static_cast<std::size_t>(n), static_cast<std::uint64_t>(seed)))
+      drawn.push_back(items[open[k]]);
+    if (!args.has("quiet") && !args.has("json"))
+      std::cout << "Sample of " << drawn.size() << " package(s), drawn with seed " << seed << " from the "
+                << open.size() << " of " << items.size() << " the ledger does not record as verified.\n";
+    items = std::move(drawn);
+  } else if (args.has("seed")) {
+    throw Error(ErrorKind::Usage, "--seed", "command line", "goes with --sample N");
+  }
+  const bool quiet = args.has("quiet") || args.has("json");
+  std::size_t sound = 0;
+  std::vector<std::pair<std::string, std::string>> failures;
+  ProgressBar bar(quiet);
+  o.jobFinished = [&](const batch::JobReport& r) {
+    const batch::StepOutcome* s = r.steps.empty() ? nullptr : &r.steps.back();
+    if (r.succeeded) ++sound;
+    else failures.emplace_back(r.item.path, s ? s->message : "");
+    if (quiet) return;
+    bar.finish();
+    std::cout << (r.succeeded ? "  ok    " : "  FAIL  ") << escapedText(r.item.path, true) << "  "
+              << escapedText(!s ? "" : s->outcome == "skipped" ? "sound (verified before, unchanged since)"
+                                     : r.succeeded ? "sound" : s->message, true)
+              << std::endl;
+  };
+  o.progress = [&](std::size_t done, std::size_t total) {
+    bar.update("verifying: " + std::to_string(done) + " of " + std::to_string(total) + " packages",
+               total ? static_cast<double>(done) / static_cast<double>(total) : 1.0);
+  };
+  const batch::BatchResult r = items.empty() ? batch::BatchResult{} : batch::runBatch(items, o);
+  bar.finish();
+  if (args.has("json")) {
+    JsonWriter j;
+    j.beginObject().key("ledger").value(*ledger).key("packages").value(static_cast<unsigned long long>(r.items))
+        .key("sound").value(static_cast<unsigned long long>(sound)).key("exitCode").value(r.exitCode);
+    j.key("failures").beginArray();
+    for (const auto& [package, message] : failures)
+      j.beginObject().key("package").value(package).key("message").value(message).endObject();
+    j.endArray().endObject();
+    std::cout << j.str() << "\n";
+  } else if (!args.has("quiet")) {
+    std::cout << r.items << " package(s): " << sound << " sound, " << failures.size() << " not; ledger " << *ledger
+              << "\n";
+  }
+  return r.exitCode;
+}
+
 }  // namespace
 
 int runCommandVerify(int argc, char** argv) {
@@ -157,6 +235,17 @@ int runCommandVerify(int argc, char** argv) {
       {"quiet", false, false, "no progress bar; print only the failed checks and the verdict line", "",
        OptionGroup::Output},
       {"json", false, false, "print the report as JSON", "", OptionGroup::Output},
+      {"batch", true, false,
+       "verify every package of LIST (a text file, or - for standard input, one package a line), each in a "
+       "process of its own, writing the ledger -o (as surrogate batch --do verify)",
+       "LIST", OptionGroup::Input},
+      {"jobs", true, false, "with --batch: packages verified at a time (default 1)", "N"},
+      {"sample", true, false,
+       "with --batch: verify only N packages, drawn from those the ledger does not record as verified", "N"},
+      {"seed", true, false, "with --sample: the draw's seed, so that a draw can be repeated (default 1)", "S"},
+      {"o", true, false, "with --batch: the ledger, one JSON line per package and attempt", "LEDGER",
+       OptionGroup::Output},
+      {"output", true, false, "same as -o", "LEDGER", OptionGroup::Output},
   };
   Args args(argc, argv, 1, specs);
   if (helpShown(args, specs,
@@ -178,9 +267,11 @@ int runCommandVerify(int argc, char** argv) {
                  "leaves (.DS_Store, ._*, Thumbs.db) that no manifest lists are set aside with a warning and the "
                  "command to remove them (--strict: fixity failures). The verdict has two parts: \"BagIt: "
                  "valid/invalid\" and \"Surrogate package: sound/not sound/not a Surrogate package\".",
-                 {{"surrogate verify stela12.zip", "fixity, completeness, schemas and metadata of a package"},
-                  {"surrogate verify stela12.zip --reexecute",
-                   "the same, and every recorded step run again on the bagged originals and compared"}},
+                 {{"surrogate verify stela12.zip --reexecute",
+                   "fixity, completeness, schemas and metadata of a package, and every recorded step run again on "
+                   "the bagged originals and compared"},
+                  {"surrogate verify --batch packages.txt -o fixity-2026.jsonl --sample 1000 --seed 2026",
+                   "this year's fixity audit of 1000 packages of a list not yet checked, one ledger line each"}},
                  {{0, "sound (a bag that is not a Surrogate package: valid)"},
                   {1, "the package cannot be read (missing file)"},
                   {2, "invalid or refused package (including steps that cannot run, resources of another version, "
@@ -190,6 +281,10 @@ int runCommandVerify(int argc, char** argv) {
                   {4, "re-execution did not reproduce the recorded results"},
                   {5, "internal error"}}}))
     return 0;
+  if (args.has("batch")) return verifyBatch(args);
+  for (const char* name : {"o", "output", "jobs", "sample", "seed"})
+    if (args.has(name))
+      throw Error(ErrorKind::Usage, std::string("--") + name, "command line", "goes with --batch LIST only");
   if (args.positional().size() != 1)
     throw Error(ErrorKind::Usage, "", "command line",
                 "give exactly one package: surrogate verify PACKAGE [--reexecute] (see --help)");

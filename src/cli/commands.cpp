@@ -23,6 +23,7 @@ const std::vector<Command>& commands() {
       {"review", "review a capture in a local browser page: spheres, highlights, frames left out, checks, description", runCommandReview},
       {"verify", "check a package: fixity, schemas, metadata; --reexecute re-runs its steps", runCommandVerify},
       {"audit", "audit another tool's RTI (RTIBuilder's .lp, .ptm, .rti, log) read-only, in a work folder", runCommandAudit},
+      {"batch", "process, pack and verify a list of captures (or verify packages), one job each, with a ledger", runCommandBatch},
   };
   return list;
 }

@@ -32,6 +32,7 @@ int runCommandReport(int argc, char** argv);
 int runCommandReview(int argc, char** argv);
 int runCommandVerify(int argc, char** argv);
 int runCommandAudit(int argc, char** argv);
+int runCommandBatch(int argc, char** argv);
 
 // When --help was given: prints the command's help (Args::describe) and returns true, so the
 // command returns 0.

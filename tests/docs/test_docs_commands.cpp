@@ -199,6 +199,7 @@ TEST_CASE("every JSON member the commands print on the sample is documented in t
   const fs::path work = workFolder("json");
   const std::string c = e2e::quote(work / "stela12");
   const std::string w = e2e::quote(work);
+  std::ofstream(work / "list.txt") << (work / "p.tar").string() << "\n";  // for the batches
   // Runs whose output has every kind of member: a creator, an exclusion (decisions,
   // exclusions), a package, a verification with re-execution, an error.
   const std::vector<std::pair<std::string, std::string>> commands = {
@@ -213,6 +214,9 @@ TEST_CASE("every JSON member the commands print on the sample is documented in t
       {"pack " + c + " -o " + w + "/p.tar --json", "pack --json"},
       {"verify " + w + "/p.tar --reexecute --json", "verify --json"},
       {"report " + w + "/p.tar --verify -o " + w + "/r.html --json", "report --json"},
+      {"batch " + w + "/list.txt -o " + w + "/l.jsonl --do verify --json", "batch --json"},
+      {"batch --summary -o " + w + "/l.jsonl --json", "batch --json"},
+      {"verify --batch " + w + "/list.txt -o " + w + "/a.jsonl --json", "verify --batch --json"},
       {"info " + c + " --json", "info --json"},
       {"info " + c + "/assembly-files/carrier.xml --json", "info --json"},
       {"info " + w + "/p.tar --json", "info --json"},

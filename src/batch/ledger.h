@@ -1,0 +1,88 @@
+// The ledger of a batch: one JSON line per job, step and attempt, appended to a file that
+// several batches (GNU parallel's jobs, a Slurm array's tasks) share.
+//
+// An append is one write() of one whole line to a file opened with O_APPEND, under an
+// exclusive flock() of that file: lines from several processes never interleave, whatever
+// their length (a line is longer than PIPE_BUF when a message lists many files). A process
+// killed meanwhile leaves at most a last line without its newline, which readLedger skips
+// (and counts) and the next append starts on a line of its own.
+//
+//   appendToLedger("ledger.jsonl", entry);
+//   const Ledger ledger = readLedger("ledger.jsonl");
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace surrogate::batch {
+
+// One attempt of one step on one item of the list. The member names are the ledger's keys.
+struct LedgerEntry {
+  std::string capture;          // the item as the list gives it: a capture folder or a package
+  std::string step;             // "run", "pack" or "verify"
+  int attempt = 1;              // 1, 2, ... for this item and step, across batches
+  std::string start, end;       // UTC, ISO 8601 with milliseconds
+  double seconds = 0;           // end - start
+  int exit = 0;                 // the command's exit code; 128 + N when signal N ended it
+  std::string message;          // what went wrong in the command's own words, or what was done
+  std::string package;          // the package written or checked, "" for run
+  std::string packageId;        // its identifier (urn:surrogate:package:...), "" when unknown
+  std::string carrierSha256;    // the capture's carrier after the step ("" for a package item)
+  std::string packageSha256;    // the package after the step (see resume.h, packageState)
+  std::uint64_t packageSize = 0;
+  std::int64_t packageMtimeNs = 0;  // modification time, nanoseconds since 1970
+  std::uint64_t peakMemory = 0;     // bytes: the job's peak resident memory (wait4's ru_maxrss)
+  std::uint64_t memoryBudget = 0;   // bytes: --memory, 0 when none was given
+  bool reexecuted = false;      // verify: with --reexecute
+  bool adopted = false;         // pack: a package found made, recorded without packing again
+  std::string host;             // where it ran
+  std::string version;          // Surrogate's version
+
+  bool succeeded() const { return exit == 0; }
+};
+
+struct Ledger {
+  std::vector<LedgerEntry> entries;  // in file order
+  std::size_t damagedLines = 0;      // lines that are not a ledger entry (a torn last line)
+};
+
+// The entry as one line of JSON, without the newline.
+std::string ledgerLine(const LedgerEntry& entry);
+// Parses one line; false when it is not a ledger entry.
+bool parseLedgerLine(const std::string& line, LedgerEntry& entry);
+
+// Appends the entry as one line: see the header comment. Throws Error(Internal) naming the
+// ledger when it cannot be written (a full disk, no permission).
+void appendToLedger(const std::filesystem::path& ledger, const LedgerEntry& entry);
+
+// Opens the ledger for appending (making it when absent) and closes it: a ledger that cannot be
+// written is reported before any job runs. Throws as appendToLedger.
+void requireWritableLedger(const std::filesystem::path& ledger);
+
+// Reads the whole ledger (an absent file: an empty ledger), under a shared flock() so that no
+// append is read half-way. Throws Error(Input) when the file cannot be read.
+Ledger readLedger(const std::filesystem::path& ledger);
+
+// Now, as the ledger writes times: "2026-12-05T05:01:02.345Z".
+std::string ledgerTime();
+
+}  // namespace surrogate::batch
+
+namespace surrogate::batch {
+
+// Where each item stands by the ledger: its last attempt of each step.
+struct ItemStanding {
+  std::string item;
+  std::vector<const LedgerEntry*> lastOfStep;  // one per step met, in the order first met
+  std::size_t attempts = 0;                    // lines of this item
+  std::size_t packsMade = 0;                   // successful packs that wrote a package (not adopted)
+  bool failed() const;                         // some step's last attempt failed
+  const LedgerEntry* last(const std::string& step) const;
+};
+
+// The items in the order of their first line.
+std::vector<ItemStanding> standings(const Ledger& ledger);
+
+}  // namespace surrogate::batch

@@ -1,0 +1,41 @@
+// The list a batch works through: capture folders or packages, one a line, and where each
+// capture's package goes.
+#pragma once
+
+#include <filesystem>
+#include <istream>
+#include <string>
+#include <vector>
+
+namespace surrogate::batch {
+
+// One line of the list.
+struct WorkItem {
+  std::size_t number = 0;  // 1-based among the items (what --one N and a Slurm task count)
+  std::string path;        // as the line gives it
+  bool isPackage = false;  // a .zip or .tar file, or a folder holding bagit.txt
+};
+
+// The items of a list: one path a line; blank lines and lines starting with # are not items,
+// a line's trailing spaces and carriage return (a list written on Windows) are dropped.
+// Throws Error(Usage) naming the line for a line that repeats an earlier item (the same
+// capture twice would be two jobs on one capture).
+std::vector<WorkItem> readWorkList(std::istream& in, const std::string& listName);
+// The same from a file, or standard input when `list` is "-". Error(Input) when it cannot be
+// read, Error(Usage) when it holds no item.
+std::vector<WorkItem> readWorkList(const std::string& list);
+
+// Whether a path names a package rather than a capture: a .zip or .tar file, or a folder
+// holding bagit.txt.
+bool looksLikePackage(const std::filesystem::path& path);
+
+// The package a capture is packed into: DIR/NAME.zip with --packages DIR, else NAME.zip beside
+// the capture (NAME: the capture folder's name).
+std::filesystem::path packagePathFor(const std::filesystem::path& capture,
+                                     const std::filesystem::path& packagesDir);
+
+// Refuses, with Error(Usage) naming both lines, two captures of the list whose packages would
+// be the same file (two folders of one name packed into one --packages folder).
+void requireDistinctPackages(const std::vector<WorkItem>& items, const std::filesystem::path& packagesDir);
+
+}  // namespace surrogate::batch

@@ -1,0 +1,382 @@
+// surrogate batch LIST -o LEDGER [--do run,pack,verify] [--jobs N] [--memory SIZE] [options]
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+#include <thread>
+
+#include "batch/jobs.h"
+
+#include "batch/batch.h"
+#include "batch/ledger.h"
+#include "batch/work_list.h"
+#include "cli/args.h"
+#include "cli/commands.h"
+#include "cli/progress.h"
+#include "core/error.h"
+#include "core/json.h"
+#include "core/memory_budget.h"
+#include "core/text.h"
+
+namespace surrogate::cli {
+
+namespace {
+
+std::vector<OptionSpec> batchOptions() {
+  constexpr OptionGroup kInput = OptionGroup::Input, kOutput = OptionGroup::Output;
+  return {
+      {"one", true, false, "do only the Nth item of the list (1 is the first; for GNU parallel and Slurm)", "N", kInput},
+      {"do", true, false, "the steps, in this order, of run, pack and verify (default run,pack,verify)", "STEPS"},
+      {"jobs", true, false, "jobs at a time, each a process of its own (default 1)", "N"},
+      {"memory", true, false,
+       "memory of each job: it streams within three quarters of it (run --memory), and is stopped (recorded as "
+       "such, the others go on) when its resident memory passes it (default: no limit)",
+       "SIZE"},
+      {"threads", true, false, "worker threads of each job (default: the cores shared among the jobs)", "N"},
+      {"retries", true, false, "attempts of a failed step after the first, in this batch (default 1)", "N"},
+      {"reexecute", false, false, "verify re-executes the recorded steps (verify --reexecute)"},
+      {"dry-run", false, false, "say what would be done for each item, do nothing"},
+      {"o", true, false, "the ledger: one JSON line per job, step and attempt, appended (shared by several batches)",
+       "LEDGER", kOutput},
+      {"output", true, false, "same as -o", "LEDGER", kOutput},
+      {"packages", true, false, "write each capture's package into this folder (default: beside the capture), named CAPTURE.zip",
+       "DIR", kOutput},
+      {"no-report", false, false, "run and pack write no finished-files/report.html", "", kOutput},
+      {"emit", true, false,
+       "print a script that runs this batch on GNU parallel (parallel) or as a Slurm job array (slurm), one --one N a "
+       "job or task",
+       "ENGINE", kOutput},
+      {"summary", false, false,
+       "read the ledger (-o LEDGER, or LEDGER alone) and report where each item stands, without doing anything", "",
+       kOutput},
+      {"json", false, false, "print the result (or --summary) as one JSON object", "", kOutput},
+      {"quiet", false, false, "no progress bar and no line per job: one summary line", "", kOutput},
+  };
+}
+
+int positiveOption(const Args& args, const std::string& name, int fallback, int least) {
+  const int n = args.intValue(name, fallback);
+  if (n < least)
+    throw Error(ErrorKind::Usage, "--" + name, "command line",
+                "give a whole number, " + std::to_string(least) + " or more, not " + std::to_string(n));
+  return n;
+}
+
+std::vector<std::string> stepsOf(const std::string& text) {
+  std::vector<std::string> steps;
+  std::stringstream in(text);
+  std::string s;
+  while (std::getline(in, s, ',')) {
+    if (std::find(batch::kSteps.begin(), batch::kSteps.end(), s) == batch::kSteps.end())
+      throw Error(ErrorKind::Usage, "--do " + text, "command line",
+                  "\"" + s + "\" is not a step: give run, pack and/or verify, separated by commas");
+    if (std::find(steps.begin(), steps.end(), s) != steps.end())
+      throw Error(ErrorKind::Usage, "--do " + text, "command line", "names " + s + " twice");
+    steps.push_back(s);
+  }
+  // They run in their one possible order whatever the order given.
+  std::vector<std::string> ordered;
+  for (const std::string& k : batch::kSteps)
+    if (std::find(steps.begin(), steps.end(), k) != steps.end()) ordered.push_back(k);
+  if (ordered.empty()) throw Error(ErrorKind::Usage, "--do", "command line", "give run, pack and/or verify");
+  return ordered;
+}
+
+// A shell word: the text in single quotes.
+std::string shellWord(const std::string& text) {
+  std::string out = "'";
+  for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+std::string duration(double seconds) {
+  char text[32];
+  if (seconds < 60) std::snprintf(text, sizeof text, "%.1f s", seconds);
+  else if (seconds < 3600) std::snprintf(text, sizeof text, "%.0f min", seconds / 60);
+  else std::snprintf(text, sizeof text, "%.1f h", seconds / 3600);
+  return text;
+}
+
+int printSummary(const std::string& ledgerPath, bool json) {
+  const batch::Ledger ledger = batch::readLedger(ledgerPath);
+  const std::vector<batch::ItemStanding> items = batch::standings(ledger);
+  std::size_t failed = 0, duplicates = 0;
+  for (const batch::ItemStanding& s : items) {
+    failed += s.failed();
+    duplicates += s.packsMade > 1;
+  }
+  if (json) {
+    JsonWriter j;
+    j.beginObject().key("ledger").value(ledgerPath)
+        .key("items").value(static_cast<unsigned long long>(items.size()))
+        .key("done").value(static_cast<unsigned long long>(items.size() - failed))
+        .key("failed").value(static_cast<unsigned long long>(failed))
+        .key("lines").value(static_cast<unsigned long long>(ledger.entries.size()))
+        .key("damagedLines").value(static_cast<unsigned long long>(ledger.damagedLines));
+    j.key("captures").beginArray();
+    for (const batch::ItemStanding& s : items) {
+      j.beginObject().key("capture").value(s.item).key("state").value(s.failed() ? "failed" : "done")
+          .key("attempts").value(static_cast<unsigned long long>(s.attempts))
+          .key("packsMade").value(static_cast<unsigned long long>(s.packsMade));
+      j.key("steps").beginArray();
+      for (const batch::LedgerEntry* e : s.lastOfStep)
+        j.beginObject().key("step").value(e->step).key("exit").value(e->exit).key("message").value(e->message)
+            .key("package").value(e->package).key("packageId").value(e->packageId).key("end").value(e->end)
+            .endObject();
+      j.endArray().endObject();
+    }
+    j.endArray().endObject();
+    std::cout << j.str() << "\n";
+  } else {
+    std::cout << "Ledger " << ledgerPath << ": " << items.size() << " item(s), " << (items.size() - failed)
+              << " done, " << failed << " failed (" << ledger.entries.size() << " lines";
+    if (ledger.damagedLines) std::cout << ", " << ledger.damagedLines << " torn line(s) left out";
+    std::cout << ")\n";
+    for (const batch::ItemStanding& s : items) {
+      std::cout << (s.failed() ? "  FAIL  " : "  done  ") << escapedText(s.item, true);
+      for (const batch::LedgerEntry* e : s.lastOfStep)
+        std::cout << "; " << e->step << (e->succeeded() ? " ok" : " exit " + std::to_string(e->exit));
+      std::cout << "\n";
+      for (const batch::LedgerEntry* e : s.lastOfStep)
+        if (!e->succeeded()) std::cout << "          " << e->step << ": " << escapedText(e->message, true) << "\n";
+    }
+    if (duplicates) std::cout << duplicates << " item(s) were packed more than once (their carrier changed between packs)\n";
+  }
+  return failed ? 1 : 0;
+}
+
+// --emit parallel: a script that runs one `surrogate batch --one N` per item under GNU
+// parallel, which keeps its own job log, reruns the failed ones and starts a job only when
+// enough memory is free.
+void emitParallel(const std::string& list, std::size_t items, const std::vector<std::string>& passOn,
+                  int jobs, const std::string& ledger, const std::string& memory) {
+  std::cout << "#!/bin/sh\n"
+               "# GNU parallel runs the batch of " << list << ", one `surrogate batch --one N` a job;\n"
+               "# run this again to rerun the failed jobs (--resume-failed, from the job log).\n"
+               "seq 1 " << items << " | parallel --jobs " << jobs
+            << " --joblog " << shellWord(ledger + ".joblog") << " --resume-failed";
+  if (!memory.empty()) std::cout << " --memfree " << memory;
+  std::cout << " \\\n  " << shellWord(batch::selfExecutable()) << " batch " << shellWord(list) << " -o "
+            << shellWord(ledger);
+  for (const std::string& a : passOn) std::cout << " " << shellWord(a);
+  std::cout << " --one {}\n";
+}
+
+// The files of a capture's largest folder of photographs (its images, for the time a task
+// takes): original-captures/, raw-images/ or jpeg-exports/, whichever holds most.
+std::size_t imagesOf(const std::string& capture) {
+  std::size_t most = 0;
+  for (const char* folder : {"original-captures", "raw-images", "jpeg-exports"}) {
+    std::error_code ec;
+    std::size_t n = 0;
+    for (std::filesystem::directory_iterator it(std::filesystem::path(capture) / folder, ec), end; !ec && it != end;
+         it.increment(ec))
+      n += it->is_regular_file(ec);
+    most = std::max(most, n);
+  }
+  return most;
+}
+
+// A task's time limit, minutes: the slowest image cost the ledger records (a capture's steps'
+// seconds over its images) times the largest capture of the list, three times over for a
+// busier node, at least kLeastTaskMinutes; kUnmeasuredTaskMinutes when the ledger has no
+// finished capture to measure.
+constexpr int kLeastTaskMinutes = 10;
+constexpr int kUnmeasuredTaskMinutes = 120;
+
+int taskMinutes(const std::vector<batch::WorkItem>& items, const std::string& ledgerPath, std::string& how) {
+  const batch::Ledger ledger = batch::readLedger(ledgerPath);
+  std::map<std::string, double> seconds;
+  for (const batch::LedgerEntry& e : ledger.entries)
+    if (e.succeeded() && !e.adopted) seconds[e.capture] += e.seconds;
+  double perImage = 0;
+  for (const auto& [capture, s] : seconds)
+    if (const std::size_t n = imagesOf(capture); n > 0) perImage = std::max(perImage, s / static_cast<double>(n));
+  std::size_t largest = 0;
+  for (const batch::WorkItem& item : items) largest = std::max(largest, imagesOf(item.path));
+  if (perImage <= 0 || largest == 0) {
+    how = "no finished capture in the ledger to measure: " + std::to_string(kUnmeasuredTaskMinutes) + " minutes";
+    return kUnmeasuredTaskMinutes;
+  }
+  const double minutes = std::ceil(3 * perImage * static_cast<double>(largest) / 60);
+  char text[160];
+  std::snprintf(text, sizeof text, "%.2f s an image measured in the ledger x %zu images x 3", perImage, largest);
+  how = text;
+  return std::max(kLeastTaskMinutes, static_cast<int>(minutes));
+}
+
+// --emit slurm: a job-array script, one task per item, each a `surrogate batch --one N`
+// appending to the shared ledger; requeued tasks start their item again, which skips what is
+// done.
+void emitSlurm(const std::string& list, const std::vector<batch::WorkItem>& items, const std::vector<std::string>& passOn,
+               int jobs, int threads, const std::string& ledger, std::uint64_t memory) {
+  namespace fs = std::filesystem;
+  const std::string absList = fs::absolute(list).lexically_normal().string();
+  const std::string absLedger = fs::absolute(ledger).lexically_normal().string();
+  std::string how;
+  const int minutes = taskMinutes(items, ledger, how);
+  std::cout << "#!/bin/sh\n"
+               "# Slurm runs the batch of " << absList << " as a job array, one `surrogate batch --one N` a task\n"
+               "# appending to " << absLedger << "; a requeued task does its item again, skipping what is done.\n"
+               "# Submit with sbatch; report with: surrogate batch --summary -o " << absLedger << "\n"
+               "#SBATCH --job-name=surrogate-batch\n"
+               "#SBATCH --array=1-" << items.size() << "%" << jobs << "\n"
+               "#SBATCH --cpus-per-task=" << threads << "\n";
+  // Slurm's limit a quarter above the job's budget: the job's own stop, with its message in
+  // the ledger, comes first.
+  if (memory > 0) std::cout << "#SBATCH --mem=" << (memory / 4 * 5 + (1u << 20) - 1) / (1u << 20) << "M\n";
+  std::cout << "#SBATCH --time=" << minutes << "\n"
+               "#SBATCH --requeue\n"
+               "#SBATCH --open-mode=append\n"
+               "#SBATCH --chdir=" << fs::current_path().string() << "\n"
+               "#SBATCH --output=" << absLedger << ".slurm-%A_%a.out\n"
+               "# time per task: " << how << "\n"
+               "exec " << shellWord(batch::selfExecutable()) << " batch " << shellWord(absList) << " -o "
+            << shellWord(absLedger);
+  for (const std::string& a : passOn) std::cout << " " << shellWord(a);
+  std::cout << " --one \"$SLURM_ARRAY_TASK_ID\"\n";
+}
+
+}  // namespace
+
+int runCommandBatch(int argc, char** argv) {
+  const std::vector<OptionSpec> specs = batchOptions();
+  Args args(argc, argv, 1, specs);
+  if (helpShown(args, specs,
+                {"surrogate batch LIST -o LEDGER [--do run,pack,verify] [--jobs N] [--memory SIZE] [options]",
+                 "Process a backlog: LIST is a text file (or - for standard input) of capture folders or "
+                 "packages, one a line (# starts a comment). Each capture is taken through the steps of --do, each "
+                 "step the ordinary command (surrogate run, pack -o CAPTURE.zip, verify) in a process of its own "
+                 "holding the capture's lock; a package is verified. LEDGER gets one JSON line per job, step and "
+                 "attempt (appended whole under a lock, so that several batches can share it). Running the same "
+                 "command again skips what the ledger records as done and what is unchanged since (the carrier's "
+                 "and package's SHA-256), retries failures and never packs a capture twice. --summary reads a "
+                 "ledger and reports; --emit parallel prints a script for GNU parallel, --emit slurm a Slurm "
+                 "job-array script. When steps failed, the exit code is the highest of theirs.",
+                 {{"surrogate batch captures.txt -o backlog.jsonl --jobs 2 --memory 4G",
+                   "run, pack and verify every capture of the list, two at a time; run it again after a crash to "
+                   "finish the rest"},
+                  {"surrogate batch captures.txt -o backlog.jsonl --emit slurm > backlog.sbatch",
+                   "the same as a Slurm job array, to submit with sbatch backlog.sbatch"}},
+                 {{0, "every job done"},
+                  {1, "bad input: the list names something that is neither a capture nor a package, or a step "
+                      "failed on bad input"},
+                  {2, "bad usage, or a step found an invalid package"},
+                  {3, "a verify step found a fixity failure"},
+                  {4, "a verify --reexecute step did not reproduce the recorded results"},
+                  {5, "internal error, a crash, or a job stopped for passing its memory budget"}}}))
+    return 0;
+  const auto ledger = outputOption(args);
+  if (args.has("summary")) {
+    // The ledger with -o, or as the one argument: surrogate batch --summary LEDGER.
+    if (ledger ? !args.positional().empty() : args.positional().size() != 1)
+      throw Error(ErrorKind::Usage, "", "command line", "give the ledger only: surrogate batch --summary -o LEDGER");
+    return printSummary(ledger ? *ledger : args.positional()[0], args.has("json"));
+  }
+  if (args.positional().size() != 1 || !ledger || ledger->empty())
+    throw Error(ErrorKind::Usage, "", "command line",
+                "give the list and the ledger: surrogate batch LIST -o LEDGER (see --help)");
+  const std::string list = args.positional()[0];
+  batch::BatchOptions o;
+  o.ledger = *ledger;
+  o.steps = stepsOf(args.value("do", "run,pack,verify"));
+  o.jobs = positiveOption(args, "jobs", 1, 1);
+  o.threadsPerJob = positiveOption(args, "threads", 0, 0);
+  o.retries = positiveOption(args, "retries", 1, 0);
+  if (const auto m = args.value("memory")) o.memory = parseByteSize(*m, "--memory");
+  if (const auto p = args.value("packages")) {
+    std::error_code ec;
+    if (!std::filesystem::is_directory(*p, ec))
+      throw Error(ErrorKind::Usage, "--packages " + *p, "command line", "is not a folder; make it first");
+    o.packagesDir = *p;
+  }
+  o.reexecute = args.has("reexecute");
+  o.noReport = args.has("no-report");
+  o.dryRun = args.has("dry-run");
+  std::vector<batch::WorkItem> items = batch::readWorkList(list);
+
+  if (const auto engine = args.value("emit")) {
+    if (*engine != "parallel" && *engine != "slurm")
+      throw Error(ErrorKind::Usage, "--emit " + *engine, "command line",
+                  "give parallel (GNU parallel) or slurm (a Slurm job-array script)");
+    if (list == "-")
+      throw Error(ErrorKind::Usage, "--emit", "command line", "needs the list in a file, which each job reads again");
+    std::vector<std::string> passOn;
+    for (const auto& [name, value] : args.ordered()) {
+      if (name == "emit" || name == "o" || name == "output" || name == "jobs" || name == "quiet" || name == "one")
+        continue;
+      passOn.push_back("--" + name);
+      if (!value.empty()) passOn.push_back(value);
+    }
+    // Each job's share of the cores, as the batch gives it; a Slurm task, its own core.
+    const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    const int threads = args.has("threads") ? o.threadsPerJob : *engine == "slurm" ? 1 : std::max(1, cores / o.jobs);
+    if (!args.has("threads")) {
+      passOn.push_back("--threads");
+      passOn.push_back(std::to_string(threads));
+    }
+    passOn.push_back("--quiet");
+    if (*engine == "slurm") emitSlurm(list, items, passOn, o.jobs, threads, *ledger, o.memory);
+    else emitParallel(list, items.size(), passOn, o.jobs, *ledger, args.value("memory", ""));
+    return 0;
+  }
+  if (args.has("one")) {
+    const int n = positiveOption(args, "one", 1, 1);
+    if (static_cast<std::size_t>(n) > items.size())
+      throw Error(ErrorKind::Usage, "--one " + std::to_string(n), "command line",
+                  "the list holds " + std::to_string(items.size()) + " item(s)");
+    items = {items[static_cast<std::size_t>(n - 1)]};
+    o.jobs = 1;
+  }
+
+  const bool quiet = args.has("quiet") || args.has("json");
+  ProgressBar bar(quiet);
+  const auto started = std::chrono::steady_clock::now();
+  std::size_t worked = 0;
+  o.plan = [](const std::string& line) { std::cout << escapedText(line, true) << "\n"; };
+  o.jobFinished = [&](const batch::JobReport& r) {
+    worked += r.workDone;
+    if (quiet) return;
+    std::ostringstream line;
+    line << (r.succeeded ? "done  " : "FAIL  ") << r.item.path << ":";
+    for (const batch::StepOutcome& s : r.steps) {
+      line << " " << s.step << " ";
+      if (s.outcome == "done") line << duration(s.seconds) << (s.peakMemory ? ", " + memorySize(s.peakMemory) : "");
+      else if (s.outcome == "failed") line << "FAILED (exit " << s.exit << "): " << s.message;
+      else line << s.outcome;
+      line << ";";
+    }
+    std::string text = line.str();
+    text.pop_back();
+    bar.finish();
+    std::cout << escapedText(text, true) << std::endl;
+  };
+  o.progress = [&](std::size_t finished, std::size_t total) {
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    std::string label = "batch: " + std::to_string(finished) + " of " + std::to_string(total) + " jobs finished";
+    if (worked > 0 && finished < total)
+      label += ", about " + duration(elapsed / static_cast<double>(worked) * static_cast<double>(total - finished)) + " left";
+    bar.update(label, static_cast<double>(finished) / static_cast<double>(total));
+  };
+  const batch::BatchResult r = batch::runBatch(items, o);
+  bar.finish();
+  if (o.dryRun) return 0;
+  if (args.has("json")) {
+    JsonWriter j;
+    j.beginObject().key("list").value(list).key("ledger").value(*ledger)
+        .key("items").value(static_cast<unsigned long long>(r.items))
+        .key("succeeded").value(static_cast<unsigned long long>(r.succeeded))
+        .key("failed").value(static_cast<unsigned long long>(r.failed))
+        .key("untouched").value(static_cast<unsigned long long>(r.untouched))
+        .key("exitCode").value(r.exitCode).endObject();
+    std::cout << j.str() << "\n";
+  } else if (!args.has("quiet")) {
+    std::cout << "Batch of " << r.items << ": " << r.succeeded << " done (" << r.untouched
+              << " of them done before), " << r.failed << " failed; ledger " << *ledger << "\n";
+  }
+  return r.exitCode;
+}
+
+}  // namespace surrogate::cli

@@ -1,0 +1,212 @@
+// The ledger: its lines are JSON another parser reads (nlohmann's), appends from several
+// processes never interleave, and a torn last line costs only itself.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "batch/ledger.h"
+#include "batch/work_list.h"
+#include "core/error.h"
+
+namespace fs = std::filesystem;
+using namespace surrogate;
+using namespace surrogate::batch;
+
+namespace {
+fs::path freshFolder(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("batch-" + name + "-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+LedgerEntry sample(const std::string& capture, const std::string& step, int exit) {
+  LedgerEntry e;
+  e.capture = capture;
+  e.step = step;
+  e.exit = exit;
+  e.start = "2026-12-05T05:01:02.345Z";
+  e.end = "2026-12-05T05:01:04.000Z";
+  e.seconds = 1.655;
+  e.message = "a \"quoted\" message\nwith a line break and \xc3\xa9";
+  e.package = "/data/stela 12.zip";
+  e.packageId = "urn:surrogate:package:abc";
+  e.carrierSha256 = std::string(64, 'a');
+  e.packageSha256 = std::string(64, 'b');
+  e.packageSize = 123456789012ull;
+  e.packageMtimeNs = 1'764'911'000'123'456'789;
+  e.peakMemory = 300ull << 20;
+  e.memoryBudget = 1ull << 30;
+  e.host = "node1";
+  e.version = "1.0";
+  return e;
+}
+}  // namespace
+
+TEST_CASE("a ledger line is one line of JSON with the documented keys") {
+  const LedgerEntry e = sample("cap", "pack", 0);
+  const std::string line = ledgerLine(e);
+  REQUIRE(line.find('\n') == std::string::npos);
+  const nlohmann::json j = nlohmann::json::parse(line);
+  CHECK(j["capture"] == "cap");
+  CHECK(j["step"] == "pack");
+  CHECK(j["attempt"] == 1);
+  CHECK(j["exit"] == 0);
+  CHECK(j["message"] == e.message);
+  CHECK(j["package"] == "/data/stela 12.zip");
+  CHECK(j["packageId"] == "urn:surrogate:package:abc");
+  CHECK(j["packageSize"].get<std::uint64_t>() == 123456789012ull);
+  CHECK(j["packageMtimeNs"].get<std::int64_t>() == 1'764'911'000'123'456'789);
+  CHECK(j["peakMemory"].get<std::uint64_t>() == 300ull << 20);
+  CHECK(j["version"] == "1.0");
+  CHECK(j["start"] == "2026-12-05T05:01:02.345Z");
+
+  LedgerEntry back;
+  REQUIRE(parseLedgerLine(line, back));
+  CHECK(back.message == e.message);
+  CHECK(back.packageMtimeNs == e.packageMtimeNs);
+  CHECK(back.carrierSha256 == e.carrierSha256);
+  CHECK_FALSE(parseLedgerLine("{\"capture\":\"x\"}", back));  // no step, no exit
+  CHECK_FALSE(parseLedgerLine("{\"capture\":\"x\",\"step\":\"run\",\"exit\":0", back));  // torn
+}
+
+TEST_CASE("ledgerTime is UTC ISO 8601 with milliseconds") {
+  const std::string t = ledgerTime();
+  REQUIRE(t.size() == 24);
+  CHECK(t[4] == '-');
+  CHECK(t[10] == 'T');
+  CHECK(t[19] == '.');
+  CHECK(t.back() == 'Z');
+}
+
+TEST_CASE("appends of long lines from several processes at once never interleave") {
+  const fs::path ledger = freshFolder("shared") / "ledger.jsonl";
+  constexpr int kProcesses = 6, kLines = 60;
+  std::vector<pid_t> children;
+  for (int p = 0; p < kProcesses; ++p) {
+    const pid_t pid = ::fork();
+    REQUIRE(pid >= 0);
+    if (pid == 0) {
+      int status = 0;
+      try {
+        for (int i = 0; i < kLines; ++i) {
+          LedgerEntry e = sample("capture-" + std::to_string(p), "run", 0);
+          e.attempt = i + 1;
+          // Longer than PIPE_BUF (4096): one write() alone would not be atomic on every file system.
+          e.message = std::string(9000, static_cast<char>('a' + p));
+          appendToLedger(ledger, e);
+        }
+      } catch (...) {
+        status = 1;
+      }
+      ::_exit(status);
+    }
+    children.push_back(pid);
+  }
+  for (pid_t pid : children) {
+    int status = 0;
+    REQUIRE(::waitpid(pid, &status, 0) == pid);
+    REQUIRE(WIFEXITED(status));
+    REQUIRE(WEXITSTATUS(status) == 0);
+  }
+  const Ledger read = readLedger(ledger);
+  CHECK(read.damagedLines == 0);
+  REQUIRE(read.entries.size() == kProcesses * kLines);
+  std::map<std::string, std::set<int>> attempts;
+  for (const LedgerEntry& e : read.entries) {
+    const char expected = static_cast<char>('a' + std::stoi(e.capture.substr(8)));
+    CHECK(e.message == std::string(9000, expected));
+    attempts[e.capture].insert(e.attempt);
+  }
+  for (const auto& [capture, numbers] : attempts) CHECK(numbers.size() == kLines);
+}
+
+TEST_CASE("a torn last line is left out and the next append starts a line of its own") {
+  const fs::path ledger = freshFolder("torn") / "ledger.jsonl";
+  appendToLedger(ledger, sample("one", "run", 0));
+  {
+    std::ofstream f(ledger, std::ios::app | std::ios::binary);
+    f << "{\"capture\":\"two\",\"step\":\"pa";  // a process killed in its write
+  }
+  appendToLedger(ledger, sample("three", "verify", 3));
+  const Ledger read = readLedger(ledger);
+  CHECK(read.damagedLines == 1);
+  REQUIRE(read.entries.size() == 2);
+  CHECK(read.entries[0].capture == "one");
+  CHECK(read.entries[1].capture == "three");
+  CHECK(read.entries[1].exit == 3);
+}
+
+TEST_CASE("an absent ledger is empty and standings give each item's last attempt per step") {
+  const fs::path dir = freshFolder("standings");
+  CHECK(readLedger(dir / "none.jsonl").entries.empty());
+  Ledger l;
+  l.entries = {sample("a", "run", 5), sample("a", "run", 0), sample("a", "pack", 0), sample("b", "run", 1)};
+  l.entries[2].adopted = false;
+  const auto s = standings(l);
+  REQUIRE(s.size() == 2);
+  CHECK(s[0].item == "a");
+  CHECK(s[0].attempts == 3);
+  CHECK_FALSE(s[0].failed());
+  CHECK(s[0].packsMade == 1);
+  CHECK(s[0].last("run")->exit == 0);
+  CHECK(s[1].failed());
+}
+
+TEST_CASE("a work list drops comments and blank lines and CRLF and trailing slashes and refuses a repeated item") {
+  std::istringstream in("# captures of 2026\n\n/data/stela12\r\n  /data/stela13/  \n/data/old.zip\n");
+  const auto items = readWorkList(in, "list.txt");
+  REQUIRE(items.size() == 3);
+  CHECK(items[0].path == "/data/stela12");
+  CHECK(items[0].number == 1);
+  CHECK(items[1].path == "/data/stela13");
+  CHECK(items[2].number == 3);
+  CHECK(items[2].isPackage);
+  CHECK_FALSE(items[0].isPackage);
+  std::istringstream twice("/data/a\n/data/b\n/data/a/\n");
+  try {
+    readWorkList(twice, "list.txt");
+    FAIL("a repeated capture was taken");
+  } catch (const Error& e) {
+    CHECK(e.message().find("line 3") != std::string::npos);
+    CHECK(e.message().find("repeats line 1") != std::string::npos);
+  }
+}
+
+TEST_CASE("a capture's package is NAME.zip beside it or in --packages") {
+  CHECK(packagePathFor("/data/stela12", "") == fs::path("/data/stela12.zip"));
+  CHECK(packagePathFor("/data/stela12/", "") == fs::path("/data/stela12.zip"));
+  CHECK(packagePathFor("stela12", "/archive/in") == fs::path("/archive/in/stela12.zip"));
+}
+
+TEST_CASE("two captures of one name cannot share a packages folder") {
+  std::istringstream in("/data/2025/stela12\n/data/2026/stela12\n");
+  const auto items = readWorkList(in, "list.txt");
+  CHECK_NOTHROW(requireDistinctPackages(items, ""));  // beside each capture: two files
+  try {
+    requireDistinctPackages(items, "/archive/in");
+    FAIL("two captures were given one package");
+  } catch (const Error& e) {
+    CHECK(e.file() == "/data/2026/stela12");
+    CHECK(e.message().find("/archive/in/stela12.zip, as item 1 (/data/2025/stela12)") != std::string::npos);
+  }
+}
+
+TEST_CASE("a ledger in a folder that does not exist is reported before any job") {
+  const fs::path dir = freshFolder("unwritable");
+  try {
+    requireWritableLedger(dir / "no-such-folder" / "ledger.jsonl");
+    FAIL("an unwritable ledger was accepted");
+  } catch (const Error& e) {
+    CHECK(e.file() == (dir / "no-such-folder" / "ledger.jsonl").string());
+  }
+  requireWritableLedger(dir / "ledger.jsonl");
+  CHECK(fs::exists(dir / "ledger.jsonl"));
+  CHECK(fs::file_size(dir / "ledger.jsonl") == 0);
+}
