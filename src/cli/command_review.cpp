@@ -113,7 +113,8 @@ int runCommandReview(int argc, char** argv) {
   }
   // An Apply: the options parsed as `surrogate run` parses its own, run as it runs, the report
   // written after it under the same lock.
-  options.runner = [capture, base](const std::vector<std::string>& given, const review::ProgressFunction& progress) {
+  options.runner = [capture, base](const std::vector<std::string>& given, const std::string& revision,
+                                   const review::ProgressFunction& progress) {
     std::vector<std::string> words = {"run", capture};
     words.insert(words.end(), given.begin(), given.end());
     std::vector<char*> argvRun;
@@ -128,6 +129,7 @@ int runCommandReview(int argc, char** argv) {
     settings.who = runArgs.value("operator", "");
     settings.progress = progress;
     capture::CaptureLock lock(capture, "review");
+    review::requireRevision(capture, revision);  // a commit between the page's check and the lock
     run::runCapture(capture, request, settings, /*takeLock=*/false);
     report::ReportOptions reportOptions;
     reportOptions.threads = settings.threads;

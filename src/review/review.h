@@ -20,7 +20,8 @@
 //
 //   ReviewOptions o;
 //   o.capture = "/data/stela12";
-//   o.runner = [](const std::vector<std::string>& options, const ProgressFunction& progress) {...};
+//   o.runner = [](const std::vector<std::string>& options, const std::string& revision,
+//                 const ProgressFunction& progress) {...};
 //   ReviewServer server(o);
 //   std::cout << "http://127.0.0.1:" << server.port() << "/\n";
 //   server.serve();  // until stop()
@@ -39,9 +40,19 @@ using ProgressFunction = std::function<void(const std::string& label, double fra
 
 // Runs `surrogate run CAPTURE OPTIONS...` in this process (the command line's parse of the
 // options and run::runCapture, with the capture's lock held for the whole run), reporting its
-// progress. Throws surrogate::Error as `surrogate run` does: Usage for a decision the options
-// refuse (nothing written), Input for a run that failed (recorded in the carrier's history).
-using Runner = std::function<void(const std::vector<std::string>& options, const ProgressFunction& progress)>;
+// progress. Once it holds the lock, and before it runs, it calls requireRevision(capture,
+// revision): the page's revision was checked before, but another command may have committed
+// between that check and the lock. Throws surrogate::Error as `surrogate run` does: Usage for a
+// decision the options refuse (nothing written), Input for a run that failed (recorded in the
+// carrier's history); and requireRevision's.
+using Runner = std::function<void(const std::vector<std::string>& options, const std::string& revision,
+                                  const ProgressFunction& progress)>;
+
+// The step name of the Error requireRevision throws, which the server answers with 409.
+inline constexpr const char* kStaleStep = "stale page";
+// Throws Error(Usage, capture, kStaleStep, ...) unless the capture's carrier is at `revision`
+// (the "sha256:HEX" of its file, or "none"), the one the page was shown.
+void requireRevision(const std::filesystem::path& capture, const std::string& revision);
 
 struct ReviewOptions {
   std::filesystem::path capture;

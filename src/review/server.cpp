@@ -141,7 +141,7 @@ struct ReviewServer::Impl {
     int status = 200;
     json body;
     try {
-      options.runner(given, [this](const std::string& label, double fraction) {
+      options.runner(given, revision, [this](const std::string& label, double fraction) {
         const std::lock_guard<std::mutex> lock(progressMutex);
         progressLabel = label;
         progressFraction = fraction;
@@ -151,8 +151,9 @@ struct ReviewServer::Impl {
       // The run's own words: a refused option names it and says what to do; a failed run is in
       // the carrier's history (the page shows it once reloaded); the capture held by another
       // command is its lock's message.
-      status = e.step() == "lock" ? 423 : e.kind() == ErrorKind::Usage ? 400 : 422;
-      body = {{"error", status == 423 ? "busy" : status == 400 ? "usage" : "failed"}, {"message", e.text()}};
+      status = e.step() == "lock" ? 423 : e.step() == kStaleStep ? 409 : e.kind() == ErrorKind::Usage ? 400 : 422;
+      body = {{"error", status == 423 ? "busy" : status == 409 ? "stale" : status == 400 ? "usage" : "failed"},
+              {"message", status == 409 ? e.message() : e.text()}};
     } catch (const std::exception& e) {
       status = 500;
       body = {{"error", "internal"}, {"message", e.what()}};

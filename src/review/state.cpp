@@ -18,6 +18,7 @@
 #include "report/embed.h"
 #include "report/hemisphere.h"
 #include "report/lights_section.h"
+#include "review/review.h"
 
 namespace surrogate::review {
 
@@ -28,6 +29,13 @@ std::string captureRevision(const fs::path& capture) {
   const fs::path file = capture / capture::kCarrierPath;
   if (!fs::exists(file)) return "none";
   return "sha256:" + digestFile(file).sha256;
+}
+
+void requireRevision(const fs::path& capture, const std::string& revision) {
+  if (captureRevision(capture) != revision)
+    throw Error(ErrorKind::Usage, capture.string(), kStaleStep,
+                "the capture's record changed since this page was loaded (another command or page ran); "
+                "nothing was applied. The page now shows the new record: look at it, then apply again");
 }
 
 namespace {

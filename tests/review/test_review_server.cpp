@@ -8,10 +8,13 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include <cmath>
+#include <fstream>
 #include <regex>
 
 #include "core/digest.h"
+#include "core/error.h"
 #include "e2e_support.h"
+#include "review/review.h"
 #include "review_process.h"
 
 namespace fs = std::filesystem;
@@ -312,4 +315,28 @@ TEST_CASE("review: a capture a check stopped goes to a verified package without 
   const e2e::CommandResult verify = e2e::surrogate("verify " + e2e::quote(package) + " --quiet");
   INFO(verify.output);
   CHECK(verify.exitCode == 0);
+}
+
+TEST_CASE("review: the revision is checked again under the lock, against the carrier's SHA-256", "[review]") {
+  // The runner calls requireRevision once it holds the capture's lock: a commit by another
+  // command between the page's check and the lock is refused there (409), not run over.
+  const fs::path capture = e2e::processedCapture(e2e::freshDir("review-revision"));
+  const fs::path carrierFile = capture / "assembly-files/carrier.xml";
+  // The revision as sha256sum(1) gives it, not as the code under test computes it.
+  const e2e::CommandResult sum = e2e::runShell("sha256sum " + e2e::quote(carrierFile));
+  REQUIRE(sum.exitCode == 0);
+  const std::string revision = "sha256:" + sum.output.substr(0, 64);
+  CHECK_NOTHROW(surrogate::review::requireRevision(capture, revision));
+  std::ofstream(carrierFile, std::ios::app) << " ";
+  try {
+    surrogate::review::requireRevision(capture, revision);
+    FAIL("a changed carrier passed as the page's revision");
+  } catch (const surrogate::Error& e) {
+    CHECK(std::string(e.step()) == surrogate::review::kStaleStep);
+    CHECK(e.kind() == surrogate::ErrorKind::Usage);
+    CHECK_THAT(e.message(), Catch::Contains("nothing was applied"));
+  }
+  const fs::path fresh = e2e::smallCapture(e2e::freshDir("review-revision-none"));
+  CHECK_NOTHROW(surrogate::review::requireRevision(fresh, "none"));
+  CHECK_THROWS_AS(surrogate::review::requireRevision(fresh, revision), surrogate::Error);
 }
