@@ -84,13 +84,6 @@ std::vector<std::string> stepsOf(const std::string& text) {
   return ordered;
 }
 
-// A shell word: the text in single quotes.
-std::string shellWord(const std::string& text) {
-  std::string out = "'";
-  for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
 std::string duration(double seconds) {
   char text[32];
   if (seconds < 60) std::snprintf(text, sizeof text, "%.1f s", seconds);

@@ -138,9 +138,10 @@ int runCommandReview(int argc, char** argv) {
   };
   options.applied = [capture](const std::vector<std::string>& given, const std::string& outcome) {
     std::string line;
-    for (const std::string& g : given) line += " " + escapedText(g);
+    // A command line the user can copy: each word quoted for the shell, control bytes escaped.
+    for (const std::string& g : given) line += " " + escapedText(shellWord(g));
     std::cout << (outcome == "applied" ? "applied, as: surrogate run " : "not applied: surrogate run ")
-              << escapedText(capture) << line << "\n";
+              << escapedText(shellWord(capture)) << line << "\n";
     if (outcome != "applied") std::cout << "  " << escapedText(outcome) << "\n";
     std::cout.flush();
   };

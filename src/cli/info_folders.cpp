@@ -18,22 +18,16 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A path as one shell word: as it is when it needs no quoting, else in single quotes; never
-// starting with '-', which would read as an option.
-std::string shellWord(const std::string& path) {
-  const std::string s = !path.empty() && path[0] == '-' ? "./" + path : path;
-  const bool plain = !s.empty() && s.find_first_not_of(
-      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789._/+-:,@%=") == std::string::npos;
-  if (plain) return s;
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
+// A path as one shell word (core's shellWord), never starting with '-', which would read as an
+// option.
+std::string shellPath(const std::string& path) {
+  return shellWord(!path.empty() && path[0] == '-' ? "./" + path : path);
 }
 
 // The commands that verify the package: fixity and records, and for a Surrogate package the
 // re-execution of its recorded steps.
 std::vector<std::string> verifyCommands(const fs::path& path, bool surrogate) {
-  const std::string word = shellWord(path.string());
+  const std::string word = shellPath(path.string());
   std::vector<std::string> out = {"surrogate verify " + word};
   if (surrogate) out.push_back("surrogate verify " + word + " --reexecute");
   return out;

@@ -39,6 +39,11 @@ std::string escapedText(const std::string& bytes, bool keepLineBreaks = false);
 // references, so that no title or file name can open a tag or end an attribute. Other bytes
 // (UTF-8 included) pass through. Used by every page Surrogate writes (report, web copy).
 std::string escapeHtml(const std::string& text);
+// `text` as one word for a POSIX shell, for a command line the user may copy: as it is when it
+// holds only characters no shell treats specially, else in single quotes (a quote inside as
+// '\''). A word starting with '-' stays an option's word: a path that must not read as an
+// option is the caller's to prefix with "./".
+std::string shellWord(const std::string& text);
 // Whether escapedText would change `bytes`.
 bool needsEscaping(const std::string& bytes, bool keepLineBreaks = false);
 // The bytes as lowercase hexadecimal, two digits each ("43616e" for "Can").

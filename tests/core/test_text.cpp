@@ -1,6 +1,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <optional>
 #include <string>
@@ -143,4 +144,21 @@ TEST_CASE("nearestName suggests only a close name or the one name a prefix begin
 TEST_CASE("escapeHtml neutralises markup in element content and quoted attributes") {
   CHECK(escapeHtml("<b a=\"x\" b='y'>&</b>") == "&lt;b a=&quot;x&quot; b=&#39;y&#39;&gt;&amp;&lt;/b&gt;");
   CHECK(escapeHtml("Stela 12 \xc3\xa9") == "Stela 12 \xc3\xa9");  // UTF-8 passes through
+}
+
+TEST_CASE("shellWord gives one word that a POSIX shell reads back as the text") {
+  CHECK(shellWord("stela12/IMG_0001.dng") == "stela12/IMG_0001.dng");
+  CHECK(shellWord("--reset") == "--reset");  // an option's value stays a word of its own
+  // Read back by /bin/sh itself, not by a second copy of the rule.
+  for (const std::string text : {"Stela 12", "it's", "$HOME `id` \"q\"", "a;b|c&d", "", "*?[x]", "tab\there"}) {
+    INFO(text);
+    const std::string word = shellWord(text);
+    FILE* sh = popen(("printf '%s' " + word).c_str(), "r");
+    REQUIRE(sh);
+    std::string read;
+    char buffer[256];
+    for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, sh)) > 0;) read.append(buffer, n);
+    CHECK(pclose(sh) == 0);
+    CHECK(read == text);
+  }
 }
