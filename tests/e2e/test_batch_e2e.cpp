@@ -514,19 +514,30 @@ TEST_CASE("a Slurm job array does the batch with one task killed and requeued an
   CHECK(emitted.output.find("#SBATCH --array=1-6%2") != std::string::npos);
   CHECK(emitted.output.find("#SBATCH --mem=640M") != std::string::npos);
   CHECK(emitted.output.find("#SBATCH --requeue") != std::string::npos);
-  std::ofstream(dir / "array.sh") << emitted.output;
+  // Task 1's first attempt does the run step, then hangs where a slow pack would be, so that
+  // the test kills it while it runs whatever the machine's speed (polling for a short task in
+  // the R state missed it on a fast machine). The requeued attempt must take the capture on
+  // from there: its run not redone, one pack.
+  const std::string script = emitted.output;
+  const std::size_t execAt = script.find("\nexec ");
+  REQUIRE(execAt != std::string::npos);
+  std::string command = script.substr(execAt + 6);
+  command = command.substr(0, command.find('\n'));
+  const fs::path hanging = dir / "task1-hanging";
+  std::ofstream(dir / "array.sh") << script.substr(0, execAt + 1)
+                                  << "if [ \"$SLURM_ARRAY_TASK_ID\" = 1 ] && [ \"${SLURM_RESTART_COUNT:-0}\" = 0 ]; then\n  "
+                                  << command << " --do run\n  touch " << quote(hanging) << "\n  sleep 600\nfi\n"
+                                  << script.substr(execAt + 1);
   const auto submitted = cluster.run("cd " + quote(dir) + " && sbatch --parsable " + quote(dir / "array.sh"));
   INFO(submitted.output);
   REQUIRE(submitted.exitCode == 0);
   const std::string job = submitted.output.substr(0, submitted.output.find_first_of(";\n"));
-  // Task 1 is killed while it runs and put back in the queue (then released at once: Slurm
-  // delays a requeued job's start by default).
   bool requeued = false;
-  for (int i = 0; i < 300 && !requeued; ++i) {
-    if (cluster.run("squeue -h -t R -o %i").output.find(job + "_1\n") != std::string::npos)
-      requeued = cluster.run("scontrol requeue " + job + "_1").exitCode == 0;
-    else std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  for (int i = 0; i < 1200 && !requeued; ++i) {
+    if (fs::exists(hanging)) requeued = cluster.run("scontrol requeue " + job + "_1").exitCode == 0;
+    else std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
+  INFO(cluster.run("squeue").output);
   REQUIRE(requeued);
   bool released = false;
   for (int i = 0; i < 300 && !released; ++i) {
@@ -554,6 +565,7 @@ TEST_CASE("a Slurm job array does the batch with one task killed and requeued an
   const std::vector<json> lines = ledgerLines(ledger);
   for (int i = 1; i <= 6; ++i) {
     const std::string cap = (dir / ("cap" + std::to_string(i))).string();
+    CHECK(count(lines, cap, "run", 0) == 1);
     CHECK(count(lines, cap, "pack", 0) == 1);
     CHECK(count(lines, cap, "verify", 0) == 1);
   }
