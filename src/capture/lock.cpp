@@ -11,6 +11,7 @@
 
 #include "capture/capture.h"
 #include "core/error.h"
+#include "core/identity.h"
 
 namespace surrogate::capture {
 
@@ -19,14 +20,11 @@ namespace fs = std::filesystem;
 namespace {
 
 std::string holderText(const std::string& command) {
-  char host[256] = {0};
-  gethostname(host, sizeof host - 1);
-  const char* user = std::getenv("USER");
   char when[32];
   const std::time_t now = std::time(nullptr);
   std::strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
-  return "process " + std::to_string(getpid()) + " on " + host + ", `surrogate " + command +
-         "` started " + when + " by " + (user && *user ? user : "unknown") + "\n";
+  return "process " + std::to_string(getpid()) + " on " + hostName() + ", `surrogate " + command +
+         "` started " + when + " by " + currentUserName() + "\n";
 }
 
 std::string readHolder(int fd) {

@@ -16,6 +16,7 @@
 #include "capture/capture.h"
 #include "capture/lock.h"
 #include "cli/args.h"
+#include "core/identity.h"
 #include "cli/commands.h"
 #include "cli/option_checks.h"
 #include "cli/pipeline_options.h"
@@ -107,10 +108,7 @@ int runCommandReview(int argc, char** argv) {
   options.threads = threads;
   if (const auto who = args.value("operator")) options.leadingOptions = {"--operator", *who};
   options.who = args.value("operator", "");
-  if (options.who.empty()) {
-    const char* user = std::getenv("USER");
-    options.who = user && *user ? user : "unknown";
-  }
+  if (options.who.empty()) options.who = currentUserName();
   // An Apply: the options parsed as `surrogate run` parses its own, run as it runs, the report
   // written after it under the same lock.
   options.runner = [capture, base](const std::vector<std::string>& given, const std::string& revision,

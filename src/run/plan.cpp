@@ -12,6 +12,7 @@
 #include "carrier/xml.h"
 #include "core/digest.h"
 #include "core/error.h"
+#include "core/identity.h"
 #include "core/text.h"
 #include "core/version.h"
 #include "fit/basis.h"
@@ -51,10 +52,7 @@ std::vector<carrier::Software> softwareVersions() {
 }
 
 namespace {
-std::string defaultWho() {
-  if (const char* user = std::getenv("USER"); user && *user) return user;
-  return "unknown";
-}
+std::string defaultWho() { return currentUserName(); }
 }  // namespace
 
 namespace {
