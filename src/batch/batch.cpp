@@ -16,6 +16,7 @@
 #include "batch/resume.h"
 #include "capture/capture.h"
 #include "core/error.h"
+#include "core/identity.h"
 #include "core/memory_budget.h"
 #include "core/version.h"
 
@@ -38,12 +39,6 @@ namespace {
 
 // The least streaming budget `run --memory` takes.
 constexpr std::uint64_t kLeastJobBudget = 64ull << 20;
-
-std::string hostName() {
-  char name[256] = {};
-  if (::gethostname(name, sizeof name - 1) != 0) return "";
-  return name;
-}
 
 // The last line of a command's output that is a JSON object (its --json report), parsed; null
 // when there is none.
@@ -220,27 +215,28 @@ class Runner {
                             o_.reexecute, why);
   }
 
-  std::string planOf(const WorkItem& item) const {
+  ItemPlan planOf(const WorkItem& item) const {
     Job job;
     job.item = item;
     job.package = item.isPackage ? fs::path(item.path) : packagePathFor(item.path, o_.packagesDir);
-    std::string line = item.path + ":";
+    ItemPlan plan;
+    plan.item = item;
     std::string before;  // an earlier step that will run: the later ones follow it
     for (const std::string& step : o_.steps) {
       if (!applies(job, step)) continue;
+      PlannedStep p;
+      p.step = step;
+      if (step != "run") p.package = job.package.string();
       std::string why;
       if (before.empty() && stillValid(job, step, why)) {
-        line += " " + step + " done (skipped);";
-        continue;
+        p.skipped = true;
+      } else {
+        p.why = before.empty() ? why : "after " + before;
+        before = step;
       }
-      line += " " + step;
-      if (step == "pack") line += " into " + job.package.string();
-      if (step == "verify") line += " " + job.package.string();
-      line += before.empty() ? " (" + why + ");" : " (after " + before + ");";
-      before = step;
+      plan.steps.push_back(p);
     }
-    line.pop_back();
-    return line;
+    return plan;
   }
 
   std::vector<std::string> commandFor(const Job& job, const std::string& step) const {
@@ -424,6 +420,11 @@ class Runner {
       e.message = lastErrorLine(r.err);
       if (e.message.empty()) e.message = "ended with exit code " + std::to_string(r.exit);
     }
+    if (!r.overBudget && o_.memory > 0 && r.peakMemory > o_.memory)
+      // Ended between two looks at its memory: its work stands, and the budget is still named
+      // as passed, so that --memory can be set right for the rest of a backlog.
+      e.message += " (its memory peaked at " + memorySize(r.peakMemory) + ", above the budget of " +
+                   memorySize(o_.memory) + " per job (--memory); it ended before it could be stopped)";
     if (step == "pack" && report.is_object()) e.packageId = textOf(report, "packageId");
     if (step != "verify" && !job.item.isPackage) e.carrierSha256 = carrierState(job.item.path).sha256;
     if (step != "run") {

@@ -39,6 +39,19 @@ struct JobReport {
   int exit = 0;           // the failed step's exit code
 };
 
+// --dry-run: what a batch would do with one item, step by step.
+struct PlannedStep {
+  std::string step;     // "run", "pack" or "verify"
+  bool skipped = false; // done before and still valid
+  std::string package;  // the package a pack writes or a verify checks; "" for run
+  std::string why;      // why it runs: the ledger's or the capture's state, or "after STEP"
+};
+
+struct ItemPlan {
+  WorkItem item;
+  std::vector<PlannedStep> steps;
+};
+
 struct BatchOptions {
   std::vector<std::string> steps = kSteps;  // a subset of kSteps, in its order
   std::filesystem::path ledger;
@@ -54,8 +67,8 @@ struct BatchOptions {
   // Each finished job, in the order they finish; and (finished, total) after each.
   std::function<void(const JobReport&)> jobFinished;
   std::function<void(std::size_t, std::size_t)> progress;
-  // --dry-run: one line per item saying what would be done.
-  std::function<void(const std::string&)> plan;
+  // --dry-run: each item's plan, in the list's order.
+  std::function<void(const ItemPlan&)> plan;
 };
 
 struct BatchResult {

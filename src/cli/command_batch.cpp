@@ -146,7 +146,7 @@ int printSummary(const std::string& ledgerPath, bool json) {
 void emitParallel(const std::string& list, std::size_t items, const std::vector<std::string>& passOn,
                   int jobs, const std::string& ledger, const std::string& memory) {
   std::cout << "#!/bin/sh\n"
-               "# GNU parallel runs the batch of " << list << ", one `surrogate batch --one N` a job;\n"
+               "# GNU parallel runs the batch of " << escapedText(list) << ", one `surrogate batch --one N` a job;\n"
                "# run this again to rerun the failed jobs (--resume-failed, from the job log).\n"
                "seq 1 " << items << " | parallel --jobs " << jobs
             << " --joblog " << shellWord(ledger + ".joblog") << " --resume-failed";
@@ -200,20 +200,38 @@ int taskMinutes(const std::vector<batch::WorkItem>& items, const std::string& le
   return std::max(kLeastTaskMinutes, static_cast<int>(minutes));
 }
 
+// A value of an #SBATCH line: sbatch splits those lines at blanks, like a shell, and reads a
+// double-quoted value whole (a path with spaces, a # that would start a comment).
+std::string sbatchValue(const std::string& value) {
+  if (value.find_first_of(" \t\"\\#'") == std::string::npos) return value;
+  std::string quoted = "\"";
+  for (const char c : value) {
+    if (c == '"' || c == '\\') quoted += '\\';
+    quoted += c;
+  }
+  return quoted + "\"";
+}
+
 // --emit slurm: a job-array script, one task per item, each a `surrogate batch --one N`
 // appending to the shared ledger; requeued tasks start their item again, which skips what is
-// done.
+// done. The task works in the folder the script was made in (relative paths among the passed
+// options), entered by the script's shell rather than by #SBATCH --chdir, whose value sbatch
+// would split at a space.
 void emitSlurm(const std::string& list, const std::vector<batch::WorkItem>& items, const std::vector<std::string>& passOn,
                int jobs, int threads, const std::string& ledger, std::uint64_t memory) {
   namespace fs = std::filesystem;
   const std::string absList = fs::absolute(list).lexically_normal().string();
   const std::string absLedger = fs::absolute(ledger).lexically_normal().string();
+  for (const std::string& path : {absList, absLedger, fs::current_path().string()})
+    if (path.find_first_of("\n\r") != std::string::npos)
+      throw Error(ErrorKind::Usage, escapedText(path), "command line",
+                  "a path with a line break cannot be written in a Slurm script; rename it");
   std::string how;
   const int minutes = taskMinutes(items, ledger, how);
   std::cout << "#!/bin/sh\n"
-               "# Slurm runs the batch of " << absList << " as a job array, one `surrogate batch --one N` a task\n"
-               "# appending to " << absLedger << "; a requeued task does its item again, skipping what is done.\n"
-               "# Submit with sbatch; report with: surrogate batch --summary -o " << absLedger << "\n"
+               "# Slurm runs the batch of " << escapedText(absList) << " as a job array, one `surrogate batch --one N` a task\n"
+               "# appending to " << escapedText(absLedger) << "; a requeued task does its item again, skipping what is done.\n"
+               "# Submit with sbatch; report with: surrogate batch --summary -o " << shellWord(absLedger) << "\n"
                "#SBATCH --job-name=surrogate-batch\n"
                "#SBATCH --array=1-" << items.size() << "%" << jobs << "\n"
                "#SBATCH --cpus-per-task=" << threads << "\n";
@@ -223,9 +241,9 @@ void emitSlurm(const std::string& list, const std::vector<batch::WorkItem>& item
   std::cout << "#SBATCH --time=" << minutes << "\n"
                "#SBATCH --requeue\n"
                "#SBATCH --open-mode=append\n"
-               "#SBATCH --chdir=" << fs::current_path().string() << "\n"
-               "#SBATCH --output=" << absLedger << ".slurm-%A_%a.out\n"
+               "#SBATCH --output=" << sbatchValue(absLedger + ".slurm-%A_%a.out") << "\n"
                "# time per task: " << how << "\n"
+               "cd " << shellWord(fs::current_path().string()) << " || exit 1\n"
                "exec " << shellWord(batch::selfExecutable()) << " batch " << shellWord(absList) << " -o "
             << shellWord(absLedger);
   for (const std::string& a : passOn) std::cout << " " << shellWord(a);
@@ -328,7 +346,32 @@ int runCommandBatch(int argc, char** argv) {
   ProgressBar bar(quiet);
   const auto started = std::chrono::steady_clock::now();
   std::size_t worked = 0;
-  o.plan = [](const std::string& line) { std::cout << escapedText(line, true) << "\n"; };
+  JsonWriter planJson;
+  if (args.has("json") && o.dryRun)
+    planJson.beginObject().key("list").value(list).key("ledger").value(*ledger).key("dryRun").value(true)
+        .key("items").beginArray();
+  o.plan = [&](const batch::ItemPlan& plan) {
+    if (args.has("json")) {
+      planJson.beginObject().key("capture").value(plan.item.path).key("steps").beginArray();
+      for (const batch::PlannedStep& p : plan.steps) {
+        planJson.beginObject().key("step").value(p.step).key("skipped").value(p.skipped);
+        if (!p.package.empty()) planJson.key("package").value(p.package);
+        if (!p.skipped) planJson.key("why").value(p.why);
+        planJson.endObject();
+      }
+      planJson.endArray().endObject();
+      return;
+    }
+    std::string line = plan.item.path + ":";
+    for (const batch::PlannedStep& p : plan.steps) {
+      line += " " + p.step;
+      if (p.skipped) line += " done (skipped)";
+      else line += (p.step == "pack" ? " into " : p.step == "verify" ? " " : "") + p.package + " (" + p.why + ")";
+      line += ";";
+    }
+    if (!plan.steps.empty()) line.pop_back();
+    std::cout << escapedText(line, true) << "\n";
+  };
   o.jobFinished = [&](const batch::JobReport& r) {
     worked += r.workDone;
     if (quiet) return;
@@ -355,7 +398,10 @@ int runCommandBatch(int argc, char** argv) {
   };
   const batch::BatchResult r = batch::runBatch(items, o);
   bar.finish();
-  if (o.dryRun) return 0;
+  if (o.dryRun) {
+    if (args.has("json")) std::cout << planJson.endArray().endObject().str() << "\n";
+    return 0;
+  }
   if (args.has("json")) {
     JsonWriter j;
     j.beginObject().key("list").value(list).key("ledger").value(*ledger)

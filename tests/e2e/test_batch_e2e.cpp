@@ -156,6 +156,22 @@ TEST_CASE("batch runs packs and verifies every capture of a list and run again d
   const auto dry2 = e2e::surrogate(command + " --dry-run");
   CHECK(dry2.output.find((dir / "cap2").string() + ": run (the carrier changed since the run); pack into " +
                          (dir / "cap2.zip").string() + " (after run)") != std::string::npos);
+  const auto dryJson = e2e::surrogate(command + " --dry-run --json");
+  INFO(dryJson.output);
+  REQUIRE(dryJson.exitCode == 0);
+  const json plan = json::parse(dryJson.output);
+  CHECK(plan["dryRun"] == true);
+  REQUIRE(plan["items"].size() == 3);
+  CHECK(plan["items"][0]["capture"] == (dir / "cap1").string());
+  CHECK(plan["items"][0]["steps"][1]["skipped"] == true);
+  const json& cap2 = plan["items"][1];
+  CHECK(cap2["capture"] == (dir / "cap2").string());
+  REQUIRE(cap2["steps"].size() == 3);
+  CHECK(cap2["steps"][0]["step"] == "run");
+  CHECK(cap2["steps"][0]["skipped"] == false);
+  CHECK(cap2["steps"][0]["why"] == "the carrier changed since the run");
+  CHECK(cap2["steps"][1]["package"] == (dir / "cap2.zip").string());
+  CHECK(cap2["steps"][2]["why"] == "after pack");
   REQUIRE(e2e::surrogate(command).exitCode == 0);
   const std::vector<json> after = ledgerLines(ledger);
   CHECK(after.size() == 12);
@@ -500,8 +516,10 @@ class SlurmCluster {
 
 TEST_CASE("a Slurm job array does the batch with one task killed and requeued and the ledger shows each capture done once",
           "[batch][slurm]") {
-  const fs::path dir = e2e::freshDir("batch-slurm");
-  SlurmCluster cluster(dir / "cluster");
+  // The captures, list and ledger under a folder with a space (sbatch splits #SBATCH values
+  // at blanks); the cluster's own files apart.
+  const fs::path dir = e2e::freshDir("batch slurm");
+  SlurmCluster cluster(e2e::freshDir("batch-slurm-cluster"));
   if (!cluster.error.empty()) {
     WARN("single-host Slurm cluster could not start, test skipped: " << cluster.error);
     return;
@@ -554,6 +572,9 @@ TEST_CASE("a Slurm job array does the batch with one task killed and requeued an
   }
   REQUIRE(finished);
   CHECK(cluster.run("scontrol show job " + job + "_1").output.find("Restarts=1") != std::string::npos);
+  // The tasks' output where the script's quoted #SBATCH --output put it, space and all.
+  CHECK(fs::exists(dir / ("ledger.jsonl.slurm-" + job + "_1.out")));
+  CHECK(fs::exists(dir / ("ledger.jsonl.slurm-" + job + "_6.out")));
 
   const auto summary = e2e::surrogate("batch --summary -o " + quote(ledger) + " --json");
   INFO(summary.output << e2e::bytesOf(ledger));
