@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "core/text.h"
 #include "formats/summary.h"
+#include "verify/held_bag.h"
 
 namespace surrogate::cli {
 
@@ -20,10 +21,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Whether `path` is a package: a folder with bagit.txt, or a .tar or .zip file.
+// Whether `path` is a package: a folder with bagit.txt, an OCFL object or an E-ARK SIP, or a
+// .tar or .zip file.
 bool isPackage(const fs::path& path, const fs::file_status& st) {
   std::error_code ec;
-  if (fs::is_directory(st)) return fs::exists(path / "bagit.txt", ec);
+  if (fs::is_directory(st))
+    return fs::exists(path / "bagit.txt", ec) || verify::holdsBagInLayout(path);
   const std::string ext = lowerCase(path.extension().string());
   return fs::is_regular_file(st) && (ext == ".tar" || ext == ".zip");
 }
@@ -43,7 +46,7 @@ int runCommandInfo(int argc, char** argv) {
   Args args(argc, argv, 1, specs);
   if (helpShown(args, specs,
                 {"surrogate info FILE",
-                 "Describe a package (a bag folder, .tar or .zip: what it holds by role, who made it when, the "
+                 "Describe a package (a bag folder, .tar or .zip, or the bag an OCFL object or E-ARK SIP holds: what it holds by role, who made it when, the "
                  "steps, decisions and results, and the command to verify it), a carrier (carrier.xml: "
                  "creators, metadata, steps, decisions with who, when and why, runs, warnings), a capture "
                  "folder, an image (camera, lens, exposure, date; also one Surrogate cannot decode), an .xmp "

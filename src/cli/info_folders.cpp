@@ -11,6 +11,7 @@
 #include "capture/capture_summary.h"
 #include "cli/info_print.h"
 #include "core/text.h"
+#include "verify/held_bag.h"
 
 namespace surrogate::cli {
 
@@ -121,7 +122,10 @@ std::string shotsText(const capture::CaptureSummary& s) {
 }  // namespace
 
 void printPackage(const fs::path& path, bool json) {
-  const archive::PackageSummary s = archive::describePackage(path);
+  // An OCFL object or E-ARK SIP: the bag it holds, described as the package's.
+  const std::unique_ptr<verify::HeldBag> held = verify::openHeldBag(path);
+  archive::PackageSummary s = archive::describePackage(held ? held->bag : path);
+  if (held) s.format = json ? held->format : held->layout;
   if (json) printPackageJson(path, s);
   else printPackageText(path, s);
 }

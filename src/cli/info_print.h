@@ -18,7 +18,8 @@ void printCarrier(const std::filesystem::path& path, bool json);
 void printCarrierText(const carrier::Carrier& c);
 void carrierJson(JsonWriter& j, const carrier::Carrier& c);
 
-// A package, a bag folder, .tar or .zip (info_folders.cpp).
+// A package: a bag folder, .tar or .zip, or the bag an OCFL object or E-ARK SIP holds
+// (info_folders.cpp).
 void printPackage(const std::filesystem::path& path, bool json);
 // A capture folder; with --json, a processed capture's carrier is nested under "carrier".
 void printCapture(const std::filesystem::path& path, bool json);

@@ -1,5 +1,6 @@
-// ReportSource: a capture folder, a bag directory, or a .tar/.zip bag (the files a report shows
-// unpacked by the verifier's reader into a temporary folder).
+// ReportSource: a capture folder, a bag directory, a .tar/.zip bag (the files a report shows
+// unpacked by the verifier's reader into a temporary folder), or the bag an OCFL object or an
+// E-ARK SIP holds (verify/held_bag.h, put together in a temporary folder).
 
 #include <algorithm>
 #include <map>
@@ -12,6 +13,7 @@
 #include "core/temp_dir.h"
 #include "core/text.h"
 #include "report/report.h"
+#include "verify/held_bag.h"
 
 namespace surrogate::report {
 
@@ -116,6 +118,16 @@ std::unique_ptr<ReportSource> openReportSource(const fs::path& path, const archi
       return std::make_unique<FolderSource>(path, "capture folder " + path.string(), false);
     if (fs::is_regular_file(path / "data" / kCarrierPath, ec))
       return std::make_unique<FolderSource>(path / "data", "bag " + path.string(), true);
+    if (std::unique_ptr<verify::HeldBag> held = verify::openHeldBag(path)) {
+      const fs::path data = held->bag / "data";
+      if (!fs::is_regular_file(data / kCarrierPath, ec))
+        throwInputError(path.string(), kStep,
+                        "is an " + held->layout + " whose bag holds no data/assembly-files/carrier.xml: "
+                        "not a package made by surrogate pack");
+      carrier::Carrier c = carrier::loadCarrier(data / kCarrierPath);
+      return std::make_unique<FolderSource>(data, held->layout + " " + path.string(), true, std::move(c),
+                                            std::move(held->temp));
+    }
     throwInputError(path.string(), kStep,
                     "has no assembly-files/carrier.xml (a capture processed by surrogate run) "
                     "and no data/assembly-files/carrier.xml (a package made by surrogate pack)");

@@ -34,6 +34,7 @@
 #include "core/digest.h"
 #include "core/error.h"
 #include "core/temp_dir.h"
+#include "core/text.h"
 #include "mapping/mapping.h"
 #include "verify/checks.h"
 #include "verify/ocfl_checks.h"
@@ -176,7 +177,36 @@ void add(Report& report, const std::string& name, Severity severity, const std::
   report.checks.push_back(makeCheck(name, severity, passed, failed, problems));
 }
 
+// The SIP's files put back where the bag had them, in `into`.
+void assembleSip(const fs::path& sip, const FolderWalk& walk, const fs::path& into) {
+  fs::create_directories(into);
+  for (const std::string& f : walk.files) {
+    const auto back = archive::bagPathOf(f);
+    if (!back) continue;
+    const fs::path target = into / fs::path(*back);
+    std::error_code ec;
+    fs::create_directories(target.parent_path(), ec);
+    fs::create_hard_link(sip / f, target, ec);
+    if (ec) {
+      ec.clear();
+      fs::copy_file(sip / f, target, ec);
+      if (ec)
+        throw Error(ErrorKind::Internal, target.string(), "reading an E-ARK SIP",
+                    "cannot put the SIP's bag together in a temporary folder (" + ec.message() +
+                        "): free space in the temporary folder (TMPDIR) and try again");
+    }
+  }
+}
+
 }  // namespace
+
+void assembleSipBag(const fs::path& sip, const fs::path& into) {
+  const FolderWalk walk = walkFolder(sip, "an E-ARK SIP");
+  if (!walk.problems.empty())
+    throw Error(ErrorKind::Usage, sip.string(), "reading an E-ARK SIP",
+                walk.problems.front() + "; surrogate verify " + shellWord(sip.string()) + " says what is wrong");
+  assembleSip(sip, walk, into);
+}
 
 bool isEarkSip(const fs::path& package) {
   std::error_code ec;
@@ -246,23 +276,7 @@ Report verifyEarkSip(const fs::path& sip, const VerifyOptions& options) {
   // The bag, put back together.
   TempDir temp("verify-eark");
   const fs::path bag = temp.path() / sip.filename();
-  fs::create_directory(bag);
-  for (const std::string& f : walk.files) {
-    const auto back = archive::bagPathOf(f);
-    if (!back) continue;
-    const fs::path target = bag / fs::path(*back);
-    std::error_code ec;
-    fs::create_directories(target.parent_path(), ec);
-    fs::create_hard_link(sip / f, target, ec);
-    if (ec) {
-      ec.clear();
-      fs::copy_file(sip / f, target, ec);
-      if (ec)
-        throw Error(ErrorKind::Internal, target.string(), "verifying",
-                    "cannot put the SIP's bag together in a temporary folder (" + ec.message() +
-                        "): free space in the temporary folder (TMPDIR) and verify again");
-    }
-  }
+  assembleSip(sip, walk, bag);
   Report held = verifyBag(bag, options);
   const std::string tempText = bag.string(), shown = (sip / "(bag)").string();
   for (Check& c : held.checks) {

@@ -15,4 +15,8 @@ bool isEarkSip(const std::filesystem::path& package);
 // (archive::bagPathOf) in a private temporary folder and verified by verifyBag.
 Report verifyEarkSip(const std::filesystem::path& sip, const VerifyOptions& options);
 
+// The bag the SIP's files make up again (archive::bagPathOf), put together in the folder
+// `into` (made here): hard links where the file systems allow, copies otherwise.
+void assembleSipBag(const std::filesystem::path& sip, const std::filesystem::path& into);
+
 }  // namespace surrogate::verify

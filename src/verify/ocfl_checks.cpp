@@ -35,6 +35,7 @@
 #include "core/digest.h"
 #include "core/error.h"
 #include "core/temp_dir.h"
+#include "core/text.h"
 #include "verify/checks.h"
 
 namespace fs = std::filesystem;
@@ -261,6 +262,25 @@ bool isOcflObject(const fs::path& package) {
   for (const fs::directory_entry& e : fs::directory_iterator(package, ec))
     if (e.path().filename().string().rfind("0=ocfl_object_", 0) == 0) return true;
   return false;
+}
+
+std::string assembleOcflHead(const fs::path& object, const fs::path& into) {
+  const FolderWalk walk = walkFolder(object, "an OCFL object");
+  std::string declared;
+  for (const std::string& f : walk.files)
+    if (f == "0=ocfl_object_1.1" || f == "0=ocfl_object_1.0") declared = f.substr(f.size() - 3);
+  std::vector<std::string> problems = walk.problems;
+  std::optional<OcflInventory> inv;
+  if (declared.empty()) problems.push_back("no 0=ocfl_object_1.1 declaration at the object's root");
+  else if (!walk.files.count("inventory.json")) problems.push_back("inventory.json: missing at the object's root");
+  else inv = parseRoot(readText(object / "inventory.json"), declared, problems);
+  if (!inv || !problems.empty())
+    throw Error(ErrorKind::Usage, object.string(), "reading an OCFL object",
+                "cannot be read as an OCFL object (" + (problems.empty() ? std::string("no usable inventory") : problems.front()) +
+                    "); surrogate verify " + shellWord(object.string()) + " says what is wrong");
+  fs::create_directories(into);
+  assembleHead(object, *inv, walk, into);
+  return inv->head;
 }
 
 Report verifyOcflObject(const fs::path& object, const VerifyOptions& options) {

@@ -20,4 +20,9 @@ bool isOcflObject(const std::filesystem::path& package);
 // and verified as a bag folder by verifyBag, its checks appended after the object's.
 Report verifyOcflObject(const std::filesystem::path& object, const VerifyOptions& options);
 
+// The head version's bag of `object` put together in the folder `into` (made here), for a
+// reader that shows it (held_bag.h); returns the head's name ("v2"). Error(Usage) naming the
+// object when its declaration or root inventory cannot be used: verify says what is wrong.
+std::string assembleOcflHead(const std::filesystem::path& object, const std::filesystem::path& into);
+
 }  // namespace surrogate::verify

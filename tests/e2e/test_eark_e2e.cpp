@@ -7,6 +7,8 @@
 #include <fstream>
 #include <functional>
 
+#include <nlohmann/json.hpp>
+
 #include "core/digest.h"
 #include "e2e_support.h"
 
@@ -224,4 +226,33 @@ TEST_CASE("verify never says SOUND of an E-ARK SIP cut, flipped, forged or missi
       CHECK(r.output.find("\nSOUND") == std::string::npos);
     }
   }
+}
+
+TEST_CASE("info and report show the bag an E-ARK SIP holds as they show the same bag packed plainly", "[eark]") {
+  const Sip& s = packed();
+  const e2e::CommandResult sipInfo = e2e::surrogate("info " + quote(s.sip) + " --json");
+  const e2e::CommandResult bagInfo = e2e::surrogate("info " + quote(s.bag) + " --json");
+  INFO(sipInfo.output);
+  REQUIRE(sipInfo.exitCode == 0);
+  REQUIRE(bagInfo.exitCode == 0);
+  nlohmann::json fromSip = nlohmann::json::parse(sipInfo.output), fromBag = nlohmann::json::parse(bagInfo.output);
+  CHECK(fromSip["format"] == "eark");
+  CHECK(fromBag["format"] == "directory");
+  // Packed at the same SOURCE_DATE_EPOCH: the same bag, so the same description but for the
+  // layout and the verify commands (which name each package).
+  for (const char* member : {"surrogatePackage", "files", "bytes", "bagInfo", "manifests", "roles", "results", "carrier"}) {
+    INFO(member);
+    CHECK(fromSip[member] == fromBag[member]);
+  }
+  CHECK_THAT(e2e::surrogate("info " + quote(s.sip)).output, Contains("Surrogate package (E-ARK SIP)"));
+
+  const fs::path html = s.dir / "sip-report.html";
+  const e2e::CommandResult report =
+      e2e::surrogate("report " + quote(s.sip) + " -o " + quote(html) + " --verify --json");
+  INFO(report.output);
+  REQUIRE(report.exitCode == 0);
+  const nlohmann::json r = nlohmann::json::parse(report.output);
+  CHECK_THAT(r["source"].get<std::string>(), Contains("E-ARK SIP " + s.sip.string()));
+  CHECK(r["relightable"] == true);
+  CHECK(r["verification"]["failed"] == 0);
 }

@@ -322,3 +322,51 @@ TEST_CASE("verify never says SOUND of an OCFL object cut, flipped, forged or mis
     }
   }
 }
+
+TEST_CASE("info and report show the bag of an OCFL object's head version and name the verify command when it cannot be read",
+          "[ocfl]") {
+  const Object& o = twoVersions();
+  const nlohmann::json inv = inventoryOf(o.object);
+  const e2e::CommandResult info = e2e::surrogate("info " + quote(o.object) + " --json");
+  INFO(info.output);
+  REQUIRE(info.exitCode == 0);
+  const nlohmann::json j = nlohmann::json::parse(info.output);
+  CHECK(j["kind"] == "package");
+  CHECK(j["format"] == "ocfl");
+  CHECK(j["surrogatePackage"] == true);
+  // Every logical file of the head state (the inventory, read here with nlohmann's JSON).
+  std::size_t logical = 0;
+  for (const auto& [digest, paths] : inv["versions"]["v2"]["state"].items()) logical += paths.size();
+  CHECK(j["files"] == logical);
+  // v2's bag-info, not v1's: packed at the second SOURCE_DATE_EPOCH.
+  std::string packedAt;
+  for (const auto& field : j["bagInfo"])
+    if (field["label"] == "Surrogate-Packaging-Time") packedAt = field["value"];
+  CHECK(packedAt == "2023-11-15T22:13:20Z");
+  CHECK(j["carrier"]["creators"][0]["name"] == "Ann Photographer");
+  const e2e::CommandResult text = e2e::surrogate("info " + quote(o.object));
+  CHECK_THAT(text.output, Contains("Surrogate package (OCFL object, head version v2)"));
+  CHECK_THAT(text.output, Contains("surrogate verify " + o.object.string()));
+
+  const fs::path html = o.dir / "object-report.html";
+  const e2e::CommandResult report = e2e::surrogate("report " + quote(o.object) + " -o " + quote(html) + " --json");
+  INFO(report.output);
+  REQUIRE(report.exitCode == 0);
+  CHECK_THAT(nlohmann::json::parse(report.output)["source"].get<std::string>(),
+             Contains("OCFL object, head version v2 " + o.object.string()));
+  CHECK_THAT(e2e::bytesOf(html), Contains("Ann Photographer"));
+  // Nothing written into the object.
+  CHECK(e2e::snapshot(o.object) == e2e::snapshot(copyOf(o.object, "ocfl-read-only")));
+
+  // Without its root inventory: refused, with the command that says what is wrong.
+  const fs::path broken = copyOf(o.object, "ocfl-no-inventory");
+  fs::remove(broken / "inventory.json");
+  for (const std::string& command : {"info " + quote(broken), "report " + quote(broken) + " -o " + quote(o.dir / "x.html")}) {
+    const e2e::CommandResult r = e2e::surrogate(command);
+    INFO(r.output);
+    CHECK(r.exitCode == 2);
+    CHECK_THAT(r.output, Contains("inventory.json: missing"));
+    CHECK_THAT(r.output, Contains("surrogate verify " + broken.string()));
+  }
+  CHECK(!fs::exists(o.dir / "x.html"));
+}
