@@ -43,6 +43,23 @@ class CopiesByPath {
   std::mutex mutex_;
   std::shared_ptr<std::map<std::string, Copy>> copies_ = std::make_shared<std::map<std::string, Copy>>();
 };
+
+// The models the run's carrier will list, for each one's share of the report's bytes: those
+// --basis names, else those the capture's carrier lists now (the run keeps them), else the
+// default two. A wrong guess costs time only: the report then reads the models from their
+// files, and the page is the same.
+std::size_t expectedModels(const std::string& capture, const run::RunRequest& request) {
+  if (request.bases) return request.bases->size();
+  const std::filesystem::path recorded = std::filesystem::path(capture) / capture::kCarrierPath;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(recorded, ec)) return 2;
+  try {
+    const std::size_t listed = report::relightModelCount(carrier::loadCarrier(recorded));
+    return listed > 0 ? listed : 2;
+  } catch (const Error&) {
+    return 2;  // the run itself says what is wrong with the carrier
+  }
+}
 }  // namespace
 
 int runCommandRun(int argc, char** argv) {
@@ -76,13 +93,13 @@ int runCommandRun(int argc, char** argv) {
   report::ReportOptions reportOptions;
   CopiesByPath<report::DisplayPicture> displayed;
   CopiesByPath<report::RelightCopy> relightCopies;
+  std::size_t modelBytes = 0;  // each model's share of the page's bytes, once the lock is held
   if (!args.has("no-report")) {
     const int pictureSide = reportOptions.maxImageSide, modelSide = reportOptions.relightMaxSide;
-    const std::size_t modelBytes = reportOptions.relightMaxBytes;
     settings.pictureWritten = [&displayed, pictureSide](const std::string& path, const Image& picture) {
       displayed.put(path, report::displayPicture(picture, pictureSide));
     };
-    const auto copyModel = [&relightCopies, modelSide, modelBytes](const std::string& path, const auto& model) {
+    const auto copyModel = [&relightCopies, &modelBytes, modelSide](const std::string& path, const auto& model) {
       relightCopies.put(path, {report::relightJson(model, modelSide, modelBytes), modelSide, modelBytes});
     };
     settings.ptmWritten = copyModel;  // PTM and HSH alike
@@ -92,6 +109,7 @@ int runCommandRun(int argc, char** argv) {
   capture::requireCaptureFolder(capture);
   // The lock covers the report too: it is written from the carrier this run committed.
   capture::CaptureLock lock(capture, "run");
+  modelBytes = report::relightShare(reportOptions.relightModelsBytes, expectedModels(capture, request));
   const carrier::Carrier c = run::runCapture(capture, request, settings, /*takeLock=*/false);
   bar.finish();
   // The report is a derived view of the carrier, not a recorded step (it holds the time it was

@@ -202,6 +202,11 @@ Bytes blockAveraged(const std::uint8_t* in, int width, int height, int values, i
 
 }  // namespace
 
+std::size_t relightShare(std::size_t totalBytes, std::size_t models) {
+  if (totalBytes == 0) return 0;
+  return std::min(kRelightModelBytes, totalBytes / std::max<std::size_t>(1, models));
+}
+
 int relightBlockSide(int width, int height, std::size_t bytesPerTexel, int maxSide, std::size_t maxBytes) {
   const int side = std::max(width, height);
   int step = maxSide > 0 && side > maxSide ? (side + maxSide - 1) / maxSide : 1;

@@ -21,6 +21,16 @@ namespace surrogate::report {
 // pictures (kReportBudgetBytes, report.h), under 5 MB at any capture size.
 inline constexpr std::size_t kRelightModelBytes = 1'500'000;
 
+// The bytes of coefficients of all the models of the relighting view together: the default two
+// take kRelightModelBytes each, a capture with more shares them out (four models: 0.75 MB
+// each), so that the page stays within its budget whatever the number of models (four made a
+// page of 8.5 MB when each had its own 1.5 MB).
+inline constexpr std::size_t kRelightModelsBytes = 2 * kRelightModelBytes;
+
+// One model's share of `totalBytes` among `models` models: at most kRelightModelBytes; 0 (no
+// limit) when totalBytes is 0.
+std::size_t relightShare(std::size_t totalBytes, std::size_t models);
+
 struct EmbeddedPicture {
   std::string dataUri;  // "data:image/jpeg;base64,..."
   int width = 0, height = 0;               // as embedded

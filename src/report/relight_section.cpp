@@ -27,9 +27,12 @@ std::vector<const carrier::FileRecord*> fittedModels(const carrier::Carrier& c) 
 
 }  // namespace
 
+std::size_t relightModelCount(const carrier::Carrier& c) { return fittedModels(c).size(); }
+
 std::vector<RelightModel> relightModels(const carrier::Carrier& c, const ReportSource& source,
                                         const ReportOptions& options) {
   const std::vector<const carrier::FileRecord*> files = fittedModels(c);
+  const std::size_t share = relightShare(options.relightModelsBytes, files.size());
   std::vector<RelightModel> out(files.size());
   parallelFor(files.size(), 1, effectiveThreads(options.threads), [&](std::size_t begin, std::size_t end) {
     for (std::size_t k = begin; k < end; ++k) {
@@ -38,7 +41,7 @@ std::vector<RelightModel> relightModels(const carrier::Carrier& c, const ReportS
       if (options.relightCopies) {
         const auto copy = options.relightCopies->find(m.file->path);
         if (copy != options.relightCopies->end() && copy->second.maxSide == options.relightMaxSide &&
-            copy->second.maxBytes == options.relightMaxBytes) {
+            copy->second.maxBytes == share) {
           m.found = true;
           m.copied = &copy->second.json;
           continue;
@@ -48,7 +51,7 @@ std::vector<RelightModel> relightModels(const carrier::Carrier& c, const ReportS
       m.found = bytes.has_value();
       if (!bytes) continue;
       try {
-        m.made = relightJson(*bytes, options.relightMaxSide, m.file->path, options.relightMaxBytes);
+        m.made = relightJson(*bytes, options.relightMaxSide, m.file->path, share);
       } catch (const Error& e) {
         m.problem = e.text();
       }

@@ -73,9 +73,10 @@ struct ReportOptions {
   // The interactive copy of each model: at its own resolution up to this longer side, else
   // downscaled by a whole factor. Its size in the page grows with the square of this.
   int relightMaxSide = 1200;
-  // And at most this many bytes of coefficients (kRelightModelBytes; 0 = no limit), downscaled
-  // by a whole factor too: the page's size does not grow with the capture's.
-  std::size_t relightMaxBytes = kRelightModelBytes;
+  // And all the models together at most this many bytes of coefficients (kRelightModelsBytes;
+  // 0 = no limit), each its share (relightShare), downscaled by a whole factor too: the page's
+  // size does not grow with the capture's or with the number of models.
+  std::size_t relightModelsBytes = kRelightModelsBytes;
   std::string generatedAt;   // shown in the header; empty = now (UTC)
   // The verifier's checks; absent = the section says the package was not verified here.
   std::optional<std::vector<VerificationCheck>> verification;
@@ -91,18 +92,22 @@ struct ReportOptions {
   // The same for the fitted models, by carrier path ("finished-files/hsh2.rti"): surrogate run
   // passes the interactive copies of the models its fits have just written (relightJson of
   // each model in memory), which spares reading and parsing the files again. One made for
-  // another relightMaxSide or relightMaxBytes is not used. The page is the same either way.
+  // another relightMaxSide or another share of relightModelsBytes is not used. The page is the same either way.
   std::shared_ptr<const std::map<std::string, RelightCopy>> relightCopies;
   // Called with (kProgressLabel, fraction done 0..1) as the page is built; may be empty.
   std::function<void(const std::string&, double)> progress;
 };
 
 // The page's size budget, its pictures aside: the models of the relighting view (at most
-// kRelightModelBytes each, the default two taking 4 MB with base64) and the text, whatever the
+// kRelightModelsBytes together, 4 MB with base64) and the text, whatever the
 // capture's size. Each picture adds at most a JPEG of maxImageSide pixels a side (0.03-0.1 MB
 // each at 720 px for the generated captures, 7 of them). Before the budget the page of 24 x
 // 1200x800 was 27.4 MB and that of 24 x 2000x1500 21.6 MB, the models 98 % of it.
 inline constexpr std::size_t kReportBudgetBytes = 5'000'000;
+
+// The fitted models (PTM and HSH) a carrier lists, which the relighting view shares
+// ReportOptions::relightModelsBytes among.
+std::size_t relightModelCount(const carrier::Carrier& c);
 
 // The label of the report's progress.
 inline constexpr const char* kProgressLabel = "Writing the report";

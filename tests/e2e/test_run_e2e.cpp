@@ -6,6 +6,7 @@
 #include "carrier/carrier.h"
 #include "core/digest.h"
 #include "e2e_support.h"
+#include "report/report.h"
 
 namespace fs = std::filesystem;
 using namespace surrogate;
@@ -78,6 +79,30 @@ TEST_CASE("surrogate run records every file with its hash, metadata and decode p
   const std::string fromRun = e2e::bytesOf(capture / "finished-files/report.html");
   CHECK(fromRun.find("src=\"data:image/jpeg;base64,") != std::string::npos);
   CHECK(withoutTime(fromRun) == withoutTime(e2e::bytesOf(again)));
+}
+
+TEST_CASE("with four models the run's report shares the page's bytes among them as surrogate report does") {
+  // At 400x300 each model takes a quarter of the models' bytes (0.75 MB): the PTMs (9 and 18
+  // bytes a texel, 1.08 and 2.16 MB whole) and the HSHs (12 and 27) are averaged down. The
+  // run makes its copies as the fits write the models; a run that keeps the recorded four
+  // (no --basis) must share alike.
+  const fs::path capture = e2e::smallCapture(e2e::freshDir("four-models"), 12);
+  const auto withoutTime = [](const std::string& page) {
+    return std::regex_replace(page, std::regex("report made [^<]* by Surrogate"), "report made (time) by Surrogate");
+  };
+  for (const std::string& options : {std::string("--basis ptm-lrgb --basis ptm-rgb --basis hsh2 --basis hsh3"), std::string("--threads 1")}) {
+    INFO(options);
+    const e2e::CommandResult run = e2e::surrogate("run " + e2e::quote(capture) + " --quiet " + options);
+    INFO(run.output);
+    REQUIRE(run.exitCode == 0);
+    const fs::path again = e2e::freshDir("four-models-report") / "report.html";
+    REQUIRE(e2e::surrogate("report " + e2e::quote(capture) + " -o " + e2e::quote(again)).exitCode == 0);
+    const std::string fromRun = e2e::bytesOf(capture / "finished-files/report.html");
+    CHECK(withoutTime(fromRun) == withoutTime(e2e::bytesOf(again)));
+    CHECK(fromRun.size() <= report::kReportBudgetBytes);
+    for (const char* model : {"\"basis\":\"ptm-lrgb\"", "\"basis\":\"ptm-rgb\"", "\"basis\":\"hsh2\"", "\"basis\":\"hsh3\""})
+      CHECK(fromRun.find(model) != std::string::npos);
+  }
 }
 
 TEST_CASE("decoding is deterministic: two runs decode identical pixels") {

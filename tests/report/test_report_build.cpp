@@ -409,9 +409,53 @@ TEST_CASE("the page of a 3000x2000 capture keeps within the size budget with its
 
   // Without the limit on bytes (relightMaxSide alone, as before the budget: 1000x667), the
   // models alone would be over the budget: the test means it.
-  options.relightMaxBytes = 0;
+  options.relightModelsBytes = 0;
   const Report whole = buildReport(source.carrier(), source, options);
   CHECK(whole.html.size() > 3 * kReportBudgetBytes);
+}
+
+TEST_CASE("four models at 3000x2000 share the page's bytes and keep it within the size budget") {
+  // Two PTMs and two HSHs, as a run with four --basis options lists them: each
+  // gets a quarter of kRelightModelsBytes (0.75 MB); with 1.5 MB each the page was 8.5 MB.
+  formats::PtmFile ptm;
+  ptm.width = 3000;
+  ptm.height = 2000;
+  ptm.scale = {0.5, 0.5, 0.5, 1, 1, 1};
+  ptm.bias = {128, 128, 128, 128, 128, 0};
+  ptm.coefficients.resize(ptm.texels() * 6);
+  ptm.rgb.resize(ptm.texels() * 3);
+  for (std::size_t i = 0; i < ptm.coefficients.size(); ++i) ptm.coefficients[i] = static_cast<std::uint8_t>(i * 31 % 251);
+  for (std::size_t i = 0; i < ptm.rgb.size(); ++i) ptm.rgb[i] = static_cast<std::uint8_t>(i * 13 % 256);
+  carrier::Carrier c = sampleCarrier();
+  std::map<std::string, std::string> models = {{"finished-files/ptm-lrgb.ptm", formats::serializePtm(ptm)}};
+  for (const char* name : {"ptm-lrgb-copy", "hsh2", "hsh2-copy"}) {
+    const std::string n = name;
+    const bool isHsh = n.rfind("hsh", 0) == 0;
+    carrier::Step& fit = c.addStep("RtiFit", "1");
+    fit.setParam("basis", isHsh ? "hsh2" : "ptm-lrgb");
+    const std::string path = "finished-files/" + n + (isHsh ? ".rti" : ".ptm");
+    carrier::Result r;
+    r.step = fit.id;
+    r.add("output")
+        .set("file", c.putFile(output(path, "result", isHsh ? "RTI_HSH" : "PTM_FORMAT_LRGB")))
+        .set("kind", isHsh ? "hsh2" : "ptm-lrgb");
+    c.data.push_back(r);
+    models[path] = isHsh ? smallHsh(3000, 2000) : formats::serializePtm(ptm);
+  }
+  MemorySource source(c);
+  for (const auto& [path, bytes] : models) source.files[path] = bytes;
+  REQUIRE(relightModelCount(source.carrier()) == 4);
+  ReportOptions options;
+  options.generatedAt = "2026-02-03T04:05:06Z";
+  const Report page = buildReport(source.carrier(), source, options);
+  REQUIRE(page.relightable);
+  INFO("page " << page.html.size() << " bytes, pictures " << pictureBytes(page.html));
+  CHECK(page.html.size() <= kReportBudgetBytes);
+  // Each within 0.75 MB by the smallest whole factor: the PTM's 9 bytes a texel by 9 (334x223,
+  // 0.67 MB; by 8, 375x250 would take 0.84 MB), the HSH's 12 by 10 (300x200, 0.72 MB; by 9,
+  // 334x223 would take 0.89 MB).
+  CHECK(count(page.html, "\"basis\":\"ptm-lrgb\",\"format\":\"lrgb\",\"width\":334,\"height\":223") == 2);
+  CHECK(count(page.html, "\"basis\":\"hsh2\",\"terms\":4,\"width\":300,\"height\":200") == 2);
 }
 
 TEST_CASE("every text from the carrier is escaped: hostile fields cannot inject markup") {
