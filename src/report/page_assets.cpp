@@ -76,21 +76,32 @@ summary { cursor:pointer; color:var(--accent); }
 .columns { display:grid; grid-template-columns:repeat(auto-fit, minmax(360px, 1fr)); gap:0 32px; }
 )CSS";
 
-const char* const kReportJs = R"JS(
+const char* const kPageErrorsJs = R"JS(
 (function () {
   "use strict";
-  var body = document.body;
   var errors = [];
   function record(message) {
     errors.push(String(message));
-    body.setAttribute("data-errors", errors.join(" | "));
+    document.body.setAttribute("data-errors", errors.join(" | "));
   }
   window.addEventListener("error", function (e) { record(e.message || "script error"); });
+  window.addEventListener("unhandledrejection", function (e) {
+    record(e.reason && e.reason.message || String(e.reason));
+  });
   var originalConsoleError = console.error;
   console.error = function () {
     record(Array.prototype.join.call(arguments, " "));
     return originalConsoleError.apply(console, arguments);
   };
+  window.surrogateRecordError = record;
+})();
+)JS";
+
+const char* const kReportJs = R"JS(
+(function () {
+  "use strict";
+  var body = document.body;
+  var record = window.surrogateRecordError;
 
   function decodeBase64(text) {
     var bin = atob(text), out = new Uint8Array(bin.length);

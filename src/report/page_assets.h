@@ -10,4 +10,9 @@ extern const char* const kReportCss;
 // (data-relight, and data-relight-mean: the mean brightness of its first rendering).
 extern const char* const kReportJs;
 
+// Runs first on the report's page and on the review's: records every script error, unhandled
+// promise rejection and console.error in <body data-errors> (joined by " | "), which the
+// browser tests read, and offers window.surrogateRecordError(message) to the page's own script.
+extern const char* const kPageErrorsJs;
+
 }  // namespace surrogate::report

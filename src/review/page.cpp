@@ -116,13 +116,7 @@ const char* const kReviewJs = R"JS(
 (function () {
   "use strict";
   var body = document.body;
-  var errors = [];
-  function record(message) {
-    errors.push(String(message));
-    body.setAttribute("data-errors", errors.join(" | "));
-  }
-  window.addEventListener("error", function (e) { record(e.message || "script error"); });
-  window.addEventListener("unhandledrejection", function (e) { record(e.reason && e.reason.message || String(e.reason)); });
+  var record = window.surrogateRecordError;  // report/page_assets.h, kPageErrorsJs: served first
 
   var SVG = "http://www.w3.org/2000/svg";
   var DEFAULT_REASON = "placed by eye on the frame in surrogate review";

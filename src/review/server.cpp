@@ -11,6 +11,7 @@
 
 #include "capture/capture.h"
 #include "core/error.h"
+#include "report/page_assets.h"
 #include "review/decisions.h"
 #include "review/page.h"
 #include "review/review.h"
@@ -195,7 +196,7 @@ ReviewServer::ReviewServer(ReviewOptions options) : impl_(std::make_unique<Impl>
     res.set_content(pageHtml(), "text/html; charset=utf-8");
   });
   s.Get("/review.js", [](const httplib::Request&, httplib::Response& res) {
-    res.set_content(kReviewJs, "text/javascript; charset=utf-8");
+    res.set_content(std::string(report::kPageErrorsJs) + kReviewJs, "text/javascript; charset=utf-8");
   });
   s.Get("/review.css", [](const httplib::Request&, httplib::Response& res) {
     res.set_content(pageCss(), "text/css; charset=utf-8");
