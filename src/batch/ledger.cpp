@@ -10,6 +10,8 @@
 #include <cstring>
 #include <ctime>
 #include <map>
+#include <type_traits>
+#include <variant>
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
@@ -49,30 +51,85 @@ std::string ledgerTime() {
   return text;
 }
 
+namespace {
+
+// Every member of a ledger line, in the order a line lists them: the one list the writer and
+// the reader follow.
+using Member = std::variant<std::string LedgerEntry::*, int LedgerEntry::*, double LedgerEntry::*,
+                            std::uint64_t LedgerEntry::*, std::int64_t LedgerEntry::*, bool LedgerEntry::*>;
+struct Field {
+  const char* name;
+  Member member;
+};
+const Field kFields[] = {
+    {"capture", &LedgerEntry::capture},
+    {"step", &LedgerEntry::step},
+    {"attempt", &LedgerEntry::attempt},
+    {"start", &LedgerEntry::start},
+    {"end", &LedgerEntry::end},
+    {"seconds", &LedgerEntry::seconds},
+    {"exit", &LedgerEntry::exit},
+    {"message", &LedgerEntry::message},
+    {"package", &LedgerEntry::package},
+    {"packageId", &LedgerEntry::packageId},
+    {"carrierSha256", &LedgerEntry::carrierSha256},
+    {"packageSha256", &LedgerEntry::packageSha256},
+    {"packageSize", &LedgerEntry::packageSize},
+    {"packageMtimeNs", &LedgerEntry::packageMtimeNs},
+    {"peakMemory", &LedgerEntry::peakMemory},
+    {"memoryBudget", &LedgerEntry::memoryBudget},
+    {"reexecuted", &LedgerEntry::reexecuted},
+    {"adopted", &LedgerEntry::adopted},
+    {"host", &LedgerEntry::host},
+    {"version", &LedgerEntry::version},
+};
+
+template <class>
+inline constexpr bool kAlwaysFalse = false;
+
+void writeValue(JsonWriter& j, const LedgerEntry& e, const Member& member) {
+  std::visit(
+      [&](auto pointer) {
+        const auto& value = e.*pointer;
+        using T = std::decay_t<decltype(value)>;
+        if constexpr (std::is_same_v<T, std::uint64_t>) j.value(static_cast<unsigned long long>(value));
+        else if constexpr (std::is_same_v<T, std::int64_t>) j.value(static_cast<long long>(value));
+        else j.value(value);
+      },
+      member);
+}
+
+// The member's value from `v` when it has the member's type; else the member keeps its default.
+void readValue(const nlohmann::json& v, LedgerEntry& e, const Member& member) {
+  std::visit(
+      [&](auto pointer) {
+        auto& value = e.*pointer;
+        using T = std::decay_t<decltype(value)>;
+        if constexpr (std::is_same_v<T, std::string>) {
+          if (v.is_string()) value = v.get<std::string>();
+        } else if constexpr (std::is_same_v<T, bool>) {
+          if (v.is_boolean()) value = v.get<bool>();
+        } else if constexpr (std::is_same_v<T, double>) {
+          if (v.is_number()) value = v.get<double>();
+        } else if constexpr (std::is_integral_v<T>) {
+          if (v.is_number_integer()) value = v.get<T>();
+        } else {
+          static_assert(kAlwaysFalse<T>, "a ledger member of a type the reader does not know");
+        }
+      },
+      member);
+}
+
+}  // namespace
+
 std::string ledgerLine(const LedgerEntry& e) {
   JsonWriter j;
-  j.beginObject()
-      .key("capture").value(e.capture)
-      .key("step").value(e.step)
-      .key("attempt").value(e.attempt)
-      .key("start").value(e.start)
-      .key("end").value(e.end)
-      .key("seconds").value(e.seconds)
-      .key("exit").value(e.exit)
-      .key("message").value(e.message)
-      .key("package").value(e.package)
-      .key("packageId").value(e.packageId)
-      .key("carrierSha256").value(e.carrierSha256)
-      .key("packageSha256").value(e.packageSha256)
-      .key("packageSize").value(static_cast<unsigned long long>(e.packageSize))
-      .key("packageMtimeNs").value(static_cast<long long>(e.packageMtimeNs))
-      .key("peakMemory").value(static_cast<unsigned long long>(e.peakMemory))
-      .key("memoryBudget").value(static_cast<unsigned long long>(e.memoryBudget))
-      .key("reexecuted").value(e.reexecuted)
-      .key("adopted").value(e.adopted)
-      .key("host").value(e.host)
-      .key("version").value(e.version)
-      .endObject();
+  j.beginObject();
+  for (const Field& f : kFields) {
+    j.key(f.name);
+    writeValue(j, e, f.member);
+  }
+  j.endObject();
   return j.str();
 }
 
@@ -81,35 +138,9 @@ bool parseLedgerLine(const std::string& line, LedgerEntry& e) {
   if (!j.is_object() || !j.contains("capture") || !j["capture"].is_string() || !j.contains("step") ||
       !j["step"].is_string() || !j.contains("exit") || !j["exit"].is_number_integer())
     return false;
-  const auto text = [&](const char* key) {
-    return j.contains(key) && j[key].is_string() ? j[key].get<std::string>() : std::string();
-  };
-  const auto number = [&](const char* key, auto fallback) {
-    using T = decltype(fallback);
-    return j.contains(key) && j[key].is_number() ? j[key].get<T>() : fallback;
-  };
   e = LedgerEntry{};
-  e.capture = text("capture");
-  e.step = text("step");
-  e.attempt = number("attempt", 1);
-  e.start = text("start");
-  e.end = text("end");
-  e.seconds = number("seconds", 0.0);
-  e.exit = j["exit"].get<int>();
-  e.message = text("message");
-  e.package = text("package");
-  e.packageId = text("packageId");
-  e.carrierSha256 = text("carrierSha256");
-  e.packageSha256 = text("packageSha256");
-  e.packageSize = number("packageSize", std::uint64_t{0});
-  e.packageMtimeNs = number("packageMtimeNs", std::int64_t{0});
-  e.peakMemory = number("peakMemory", std::uint64_t{0});
-  e.memoryBudget = number("memoryBudget", std::uint64_t{0});
-  const auto flag = [&](const char* key) { return j.contains(key) && j[key].is_boolean() && j[key].get<bool>(); };
-  e.reexecuted = flag("reexecuted");
-  e.adopted = flag("adopted");
-  e.host = text("host");
-  e.version = text("version");
+  for (const Field& f : kFields)
+    if (const auto it = j.find(f.name); it != j.end()) readValue(*it, e, f.member);
   return true;
 }
 
