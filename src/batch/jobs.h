@@ -47,6 +47,7 @@ class Child {
   pid_t pid_ = -1;
   int outFd_ = -1, errFd_ = -1;
   std::uint64_t budget_ = 0;
+  std::uint64_t observedPeak_ = 0;  // VmHWM when it passed the budget
   bool done_ = false;
   std::chrono::steady_clock::time_point started_;
   ChildResult result_;
