@@ -135,7 +135,7 @@ TEST_CASE("a manifest path with an escape sequence reaches the terminal escaped"
 TEST_CASE("a NUL in an .lp is shown escaped in the whole message, not where it cut it") {
   const fs::path dir = e2e::freshDir("hostile-text-nul");
   std::ofstream(dir / "nul.lp", std::ios::binary) << "2\nIMG_0001.jpg 0.1 0.2 0.97\nIMG_0002.jpg 0.2\0x 0.1 0.97\n"s;
-  for (const std::string command : {"info " + e2e::quote(dir / "nul.lp"),
+  for (const std::string& command : {"info " + e2e::quote(dir / "nul.lp"),
                                     "fit --lp " + e2e::quote(dir / "nul.lp") + " -o " + e2e::quote(dir / "m.ptm")}) {
     const e2e::CommandResult r = e2e::surrogate(command);
     INFO(r.output);
