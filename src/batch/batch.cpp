@@ -1,11 +1,16 @@
 #include "batch/batch.h"
 
+#include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <deque>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <set>
 #include <thread>
 #include <unordered_map>
 
@@ -15,6 +20,7 @@
 #include "batch/ledger.h"
 #include "batch/resume.h"
 #include "capture/capture.h"
+#include "carrier/carrier.h"
 #include "core/error.h"
 #include "core/identity.h"
 #include "core/memory_budget.h"
@@ -36,6 +42,13 @@ std::string verifyVerdict(int exit) {
 }
 
 namespace {
+
+// A job whose capture another Surrogate command holds looks again after this long, and gives
+// up (the refusal recorded as the step's failure) after kBusyWaitLimit: a lock is held by a
+// live process only (flock), so the wait is for work being done, a 24 Mpx capture's run, pack
+// and verify in about a minute.
+constexpr std::chrono::seconds kBusyRetryInterval{1};
+constexpr std::chrono::minutes kBusyWaitLimit{30};
 
 // The least streaming budget `run --memory` takes.
 constexpr std::uint64_t kLeastJobBudget = 64ull << 20;
@@ -93,11 +106,57 @@ std::string failedChecks(const nlohmann::json& report) {
   return out;
 }
 
+// A batch's claim on a capture folder, held from its job's first step to its last step's
+// ledger line: a second batch on the same list (a rerun while the first still runs, another
+// Slurm task) finds the capture claimed and comes back later, rather than taking the capture's
+// lock in the moment between a step's end and its ledger line and doing the step again. An
+// exclusive flock() of CAPTURE/.surrogate/batch-claim, apart from the lock each step's command
+// takes itself; it goes with the process.
+class CaptureClaim {
+ public:
+  enum class Outcome { Claimed, HeldByAnother, NotAClaimableFolder };
+
+  Outcome claim(const fs::path& capture) {
+    std::error_code ec;
+    bool captureFolder = false;
+    for (const char* folder : {"original-captures", "raw-images", capture::kExportsDir})
+      captureFolder = captureFolder || fs::is_directory(capture / folder, ec);
+    if (!captureFolder) return Outcome::NotAClaimableFolder;  // the run step says what is wrong
+    fs::create_directories(capture / capture::kWorkDir, ec);
+    fd_ = ::open((capture / capture::kWorkDir / "batch-claim").c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
+    if (fd_ < 0) return Outcome::NotAClaimableFolder;  // read-only: no step can write there either
+    if (::flock(fd_, LOCK_EX | LOCK_NB) == 0) return Outcome::Claimed;
+    release();
+    return Outcome::HeldByAnother;
+  }
+
+  void release() {
+    if (fd_ >= 0) ::close(fd_);
+    fd_ = -1;
+  }
+
+  CaptureClaim() = default;
+  CaptureClaim(const CaptureClaim&) = delete;
+  CaptureClaim& operator=(const CaptureClaim&) = delete;
+  ~CaptureClaim() { release(); }
+
+ private:
+  int fd_ = -1;
+};
+
 struct Job {
   WorkItem item;
+  CaptureClaim claim;          // a capture item's, while the job is active
   fs::path package;
   std::size_t next = 0;        // index into the steps
   int attempts = 0;            // of the current step, in this batch
+  // Another Surrogate command held the capture's lock when the step started (another batch on
+  // the same list, a requeued Slurm task, a review's Apply): the job waits in the batch's
+  // queue, and its step is checked again when it comes back (the other may have done it).
+  bool waiting = false;
+  bool recheck = false;
+  std::optional<std::chrono::steady_clock::time_point> busySince;
+  std::string busySinceUtc;    // the same, as the carrier writes times
   bool forcePack = false;
   std::unique_ptr<Child> child;
   LedgerEntry entry;           // the attempt running
@@ -117,7 +176,7 @@ class Runner {
     host_ = hostName();
     requireDistinctPackages(items_, o_.packagesDir);
     if (!o_.dryRun) requireWritableLedger(o_.ledger);
-    ledger_ = readLedger(o_.ledger);
+    ledgerOffset_ = readLedgerSince(o_.ledger, 0, ledger_);
     for (std::size_t i = 0; i < ledger_.entries.size(); ++i) byItem_[ledger_.entries[i].capture].push_back(i);
   }
 
@@ -131,15 +190,34 @@ class Runner {
     std::deque<std::size_t> queue;
     for (std::size_t i = 0; i < items_.size(); ++i) queue.push_back(i);
     std::vector<std::unique_ptr<Job>> active;
+    // Jobs waiting for their capture's lock, with when each may try again, in that order.
+    std::deque<std::pair<std::unique_ptr<Job>, std::chrono::steady_clock::time_point>> parked;
     std::size_t finished = 0;
-    while (!queue.empty() || !active.empty()) {
+    while (!queue.empty() || !active.empty() || !parked.empty()) {
       bool changed = false;
-      while (static_cast<int>(active.size()) < std::max(1, o_.jobs) && !queue.empty()) {
-        auto job = std::make_unique<Job>();
-        job->item = items_[queue.front()];
-        queue.pop_front();
-        job->package = job->item.isPackage ? fs::path(job->item.path) : packagePathFor(job->item.path, o_.packagesDir);
-        job->report.item = job->item;
+      while (static_cast<int>(active.size()) < std::max(1, o_.jobs)) {
+        std::unique_ptr<Job> job;
+        if (!parked.empty() && parked.front().second <= std::chrono::steady_clock::now()) {
+          job = std::move(parked.front().first);
+          parked.pop_front();
+          job->waiting = false;
+        } else if (!queue.empty()) {
+          job = std::make_unique<Job>();
+          job->item = items_[queue.front()];
+          queue.pop_front();
+          job->package = job->item.isPackage ? fs::path(job->item.path) : packagePathFor(job->item.path, o_.packagesDir);
+          job->report.item = job->item;
+        } else {
+          break;
+        }
+        if (!job->item.isPackage &&
+            job->claim.claim(job->item.path) == CaptureClaim::Outcome::HeldByAnother &&
+            waitForCapture(*job, "another batch is working on this capture")) {
+          parked.emplace_back(std::move(job), std::chrono::steady_clock::now() + kBusyRetryInterval);
+          changed = true;
+          continue;
+        }
+        refreshLedger();  // what the batches beside this one have done meanwhile
         advance(*job);
         active.push_back(std::move(job));
         changed = true;
@@ -147,9 +225,18 @@ class Runner {
       for (auto& job : active)
         if (job->child && job->child->poll()) {
           ended(*job);
-          advance(*job);
+          if (!job->waiting) advance(*job);
           changed = true;
         }
+      for (auto it = active.begin(); it != active.end();) {
+        if ((*it)->waiting) {
+          (*it)->claim.release();
+          parked.emplace_back(std::move(*it), std::chrono::steady_clock::now() + kBusyRetryInterval);
+          it = active.erase(it);
+        } else {
+          ++it;
+        }
+      }
       for (auto it = active.begin(); it != active.end();) {
         if (!(*it)->finished) {
           ++it;
@@ -279,8 +366,30 @@ class Runner {
 
   void record(LedgerEntry e) {
     appendToLedger(o_.ledger, e);
+    ownUnread_.insert(ownKey(e));
     byItem_[e.capture].push_back(ledger_.entries.size());
     ledger_.entries.push_back(std::move(e));
+  }
+
+  // An entry as this batch knows its own: the item, step and start time (milliseconds) on this
+  // host.
+  static std::string ownKey(const LedgerEntry& e) {
+    return e.capture + '\n' + e.step + '\n' + e.start + '\n' + e.host + '\n' + std::to_string(e.attempt);
+  }
+
+  // The lines appended to the ledger since this batch last read it, its own aside (record()
+  // has them already).
+  void refreshLedger() {
+    Ledger fresh;
+    ledgerOffset_ = readLedgerSince(o_.ledger, ledgerOffset_, fresh);
+    for (LedgerEntry& e : fresh.entries) {
+      if (const auto own = ownUnread_.find(ownKey(e)); own != ownUnread_.end()) {
+        ownUnread_.erase(own);
+        continue;
+      }
+      byItem_[e.capture].push_back(ledger_.entries.size());
+      ledger_.entries.push_back(std::move(e));
+    }
   }
 
   void finishStep(Job& job, const std::string& step, const std::string& outcome, const LedgerEntry* e,
@@ -308,6 +417,36 @@ class Runner {
     }
     job.attempts = 0;
     job.forcePack = false;
+  }
+
+  // The capture is busy (claimed by another batch, or locked by another command): whether the
+  // job may wait for it, kBusyRetryInterval between looks, up to kBusyWaitLimit from the first
+  // time; after that the refusal is recorded as the step's failure. Its step is checked again
+  // when it comes back: the other may have done it.
+  bool waitForCapture(Job& job, const std::string& why) const {
+    const auto now = std::chrono::steady_clock::now();
+    if (!job.busySince) {
+      job.busySince = now;
+      job.busySinceUtc = carrier::timestampNow();
+      if (o_.waiting) o_.waiting(job.item, why);
+    }
+    job.recheck = true;
+    return now - *job.busySince < kBusyWaitLimit;
+  }
+
+  // Whether the capture's carrier records a completed run that ended after the job found the
+  // capture busy: the command it waited for processed it (another batch's run, whose ledger
+  // line may still be on its way, or a review's Apply), and running it again would only add
+  // a run to its history. A pack it waited for is recognised by its package (settlePackHere).
+  bool processedMeanwhile(const Job& job) const {
+    try {
+      const carrier::Carrier c = carrier::loadCarrier(fs::path(job.item.path) / capture::kCarrierPath);
+      for (auto r = c.header.runs.rbegin(); r != c.header.runs.rend(); ++r)
+        if (r->command == "run") return r->outcome == "completed" && r->ended >= job.busySinceUtc;
+    } catch (const Error&) {
+      // No carrier, or one this version cannot read: the run step runs and says what is wrong.
+    }
+    return false;
   }
 
   // A step that ends without a child: the pack of a package that exists already.
@@ -365,10 +504,16 @@ class Runner {
         ++job.next;
         continue;
       }
-      if (job.attempts == 0) {
+      if (job.attempts == 0 || job.recheck) {
+        const bool afterWaiting = job.recheck;
+        job.recheck = false;
         std::string why;
         if (stillValid(job, step, why)) {
           finishStep(job, step, "skipped", nullptr, "done before and still valid");
+          continue;
+        }
+        if (afterWaiting && step == "run" && processedMeanwhile(job)) {
+          finishStep(job, step, "skipped", nullptr, "processed meanwhile by the Surrogate command it waited for");
           continue;
         }
         if (step == "pack" && settlePackHere(job)) continue;
@@ -402,6 +547,18 @@ class Runner {
     e.peakMemory = r.peakMemory;
     e.reexecuted = step == "verify" && o_.reexecute;
     const nlohmann::json report = jsonReport(r.out);
+    const bool refused = report.is_object() && report.contains("error") && report["error"].is_object();
+    const std::string refusal = refused ? textOf(report["error"], "message") : "";
+    // The command's advice ("wait for it to finish, then run this command again") is the batch's
+    // to follow, not to print.
+    if (!r.overBudget && r.exit == static_cast<int>(ErrorKind::Input) && refused &&
+        textOf(report["error"], "step") == "lock" && waitForCapture(job, refusal.substr(0, refusal.find("; ")))) {
+      // Another command holds the capture's lock (a review's Apply, a run typed by hand): not an
+      // attempt; the job waits and its step is checked again when it comes back.
+      --job.attempts;
+      job.waiting = true;
+      return;
+    }
     if (r.overBudget) {
       e.message = "stopped: its memory (" + memorySize(r.peakMemory) + ") passed the budget of " +
                   memorySize(o_.memory) + " per job (--memory); give a larger --memory, or fewer --jobs with more memory each";
@@ -454,6 +611,8 @@ class Runner {
   std::string program_, host_;
   int threads_ = 1;
   Ledger ledger_;
+  std::uint64_t ledgerOffset_ = 0;           // where the last read of the ledger ended
+  std::multiset<std::string> ownUnread_;     // lines this batch wrote that it has not read back
   std::unordered_map<std::string, std::vector<std::size_t>> byItem_;  // positions in ledger_.entries
 };
 

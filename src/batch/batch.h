@@ -67,6 +67,8 @@ struct BatchOptions {
   // Each finished job, in the order they finish; and (finished, total) after each.
   std::function<void(const JobReport&)> jobFinished;
   std::function<void(std::size_t, std::size_t)> progress;
+  // A job that waits for its capture, busy with another command (`why`), once per job.
+  std::function<void(const WorkItem&, const std::string& why)> waiting;
   // --dry-run: each item's plan, in the list's order.
   std::function<void(const ItemPlan&)> plan;
 };

@@ -9,7 +9,9 @@
 #include <cstdio>
 #include <cstring>
 #include <ctime>
+#include <algorithm>
 #include <map>
+#include <optional>
 #include <type_traits>
 #include <variant>
 #include <nlohmann/json.hpp>
@@ -176,40 +178,65 @@ void requireWritableLedger(const std::filesystem::path& ledger) {
   if (d.fd < 0) throw writeError(ledger, "batch ledger", errno);
 }
 
-Ledger readLedger(const std::filesystem::path& ledger) {
-  Ledger out;
+namespace {
+
+// The bytes of the ledger from `offset` to its end, under a shared flock() (no append read
+// half-way); nullopt when the file does not exist.
+std::optional<std::string> ledgerBytesFrom(const std::filesystem::path& ledger, std::uint64_t offset) {
   Descriptor d;
   d.fd = ::open(ledger.c_str(), O_RDONLY | O_CLOEXEC);
   if (d.fd < 0) {
-    if (errno == ENOENT) return out;
+    if (errno == ENOENT) return std::nullopt;
     throw Error(ErrorKind::Input, ledger.string(), "batch ledger",
                 std::string("cannot be read (") + std::strerror(errno) + "); check its permissions");
   }
   lockWaitingOnSignals(d.fd, LOCK_SH);  // no lock on this file system: read without one
   std::string text;
   char buffer[1 << 16];
-  for (;;) {
-    const ssize_t n = ::read(d.fd, buffer, sizeof buffer);
+  for (off_t at = static_cast<off_t>(offset);;) {
+    const ssize_t n = ::pread(d.fd, buffer, sizeof buffer, at);
     if (n < 0 && errno == EINTR) continue;
     if (n < 0)
       throw Error(ErrorKind::Input, ledger.string(), "batch ledger",
                   std::string("cannot be read (") + std::strerror(errno) + ")");
     if (n == 0) break;
     text.append(buffer, static_cast<std::size_t>(n));
+    at += n;
   }
+  return text;
+}
+
+// Parses the lines of `text` into `into`; returns the bytes taken: all of them when
+// `takePartial` (a last line without its newline is counted damaged), else up to the last
+// newline.
+std::size_t parseLedgerText(const std::string& text, bool takePartial, Ledger& into) {
   std::size_t begin = 0;
   while (begin < text.size()) {
     std::size_t end = text.find('\n', begin);
     const bool whole = end != std::string::npos;
+    if (!whole && !takePartial) break;
     if (!whole) end = text.size();
     const std::string line = text.substr(begin, end - begin);
-    begin = end + 1;
+    begin = std::min(end + 1, text.size());
     if (line.empty()) continue;
     LedgerEntry e;
-    if (whole && parseLedgerLine(line, e)) out.entries.push_back(std::move(e));
-    else ++out.damagedLines;
+    if (whole && parseLedgerLine(line, e)) into.entries.push_back(std::move(e));
+    else ++into.damagedLines;
   }
+  return begin;
+}
+
+}  // namespace
+
+Ledger readLedger(const std::filesystem::path& ledger) {
+  Ledger out;
+  if (const std::optional<std::string> text = ledgerBytesFrom(ledger, 0)) parseLedgerText(*text, true, out);
   return out;
+}
+
+std::uint64_t readLedgerSince(const std::filesystem::path& ledger, std::uint64_t offset, Ledger& into) {
+  const std::optional<std::string> text = ledgerBytesFrom(ledger, offset);
+  return text ? offset + parseLedgerText(*text, false, into) : offset;
 }
 
 }  // namespace surrogate::batch

@@ -65,6 +65,13 @@ void requireWritableLedger(const std::filesystem::path& ledger);
 // append is read half-way. Throws Error(Input) when the file cannot be read.
 Ledger readLedger(const std::filesystem::path& ledger);
 
+// The lines appended since byte `offset` (where an earlier read ended), added to `into`, read
+// as readLedger reads; returns where this read ended: after the last whole line. A last line
+// without its newline (a killed writer's) is left for a later read, which counts it damaged
+// once the next append has ended it. A batch running beside others (GNU parallel's jobs, a
+// Slurm array's tasks, a second batch on the same list) sees their progress this way.
+std::uint64_t readLedgerSince(const std::filesystem::path& ledger, std::uint64_t offset, Ledger& into);
+
 // Now, as the ledger writes times: "2026-12-05T05:01:02.345Z".
 std::string ledgerTime();
 

@@ -389,6 +389,11 @@ int runCommandBatch(int argc, char** argv) {
     bar.finish();
     std::cout << escapedText(text, true) << std::endl;
   };
+  o.waiting = [&](const batch::WorkItem& item, const std::string& why) {
+    if (quiet) return;
+    bar.finish();
+    std::cout << escapedText("wait  " + item.path + ": " + why + "; the batch comes back to it", true) << std::endl;
+  };
   o.progress = [&](std::size_t finished, std::size_t total) {
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     std::string label = "batch: " + std::to_string(finished) + " of " + std::to_string(total) + " jobs finished";

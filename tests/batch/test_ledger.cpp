@@ -143,6 +143,37 @@ TEST_CASE("a torn last line is left out and the next append starts a line of its
   CHECK(read.entries[1].exit == 3);
 }
 
+TEST_CASE("readLedgerSince reads what was appended since its last read and leaves a torn line for later") {
+  const fs::path ledger = freshFolder("since") / "ledger.jsonl";
+  Ledger seen;
+  CHECK(readLedgerSince(ledger, 0, seen) == 0);  // absent: nothing, from the start
+  appendToLedger(ledger, sample("one", "run", 0));
+  appendToLedger(ledger, sample("two", "run", 0));
+  std::uint64_t at = readLedgerSince(ledger, 0, seen);
+  CHECK(at == fs::file_size(ledger));
+  REQUIRE(seen.entries.size() == 2);
+  CHECK(readLedgerSince(ledger, at, seen) == at);  // nothing new
+  CHECK(seen.entries.size() == 2);
+  {
+    std::ofstream f(ledger, std::ios::app | std::ios::binary);
+    f << "{\"capture\":\"three\",\"step\":\"pa";  // a process killed in its write
+  }
+  CHECK(readLedgerSince(ledger, at, seen) == at);  // not a whole line yet: left for later
+  CHECK(seen.damagedLines == 0);
+  appendToLedger(ledger, sample("four", "pack", 0));  // starts a line of its own
+  at = readLedgerSince(ledger, at, seen);
+  CHECK(at == fs::file_size(ledger));
+  CHECK(seen.damagedLines == 1);
+  REQUIRE(seen.entries.size() == 3);
+  CHECK(seen.entries[2].capture == "four");
+  CHECK(seen.entries[2].step == "pack");
+  // The same entries as one read of the whole file.
+  const Ledger whole = readLedger(ledger);
+  REQUIRE(whole.entries.size() == 3);
+  for (std::size_t i = 0; i < 3; ++i) CHECK(ledgerLine(whole.entries[i]) == ledgerLine(seen.entries[i]));
+  CHECK(whole.damagedLines == 1);
+}
+
 TEST_CASE("an absent ledger is empty and standings give each item's last attempt per step") {
   const fs::path dir = freshFolder("standings");
   CHECK(readLedger(dir / "none.jsonl").entries.empty());

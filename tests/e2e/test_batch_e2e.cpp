@@ -236,6 +236,69 @@ TEST_CASE("a batch killed with kill -9 midway and run again finishes the rest an
   CHECK(e2e::surrogate("batch --summary -o " + quote(ledger)).exitCode == 0);
 }
 
+TEST_CASE("two batches on the same list at once process pack and verify each capture once and both succeed", "[batch]") {
+  // A user starting the batch again while the first still runs, or two Slurm tasks on the same
+  // item: the second finds each capture claimed or done, waits, and takes up what the first
+  // has done (it used to fail on the capture's lock, and could run a capture again in the
+  // moment between a step's end and its ledger line).
+  const fs::path dir = e2e::freshDir("batch-twice");
+  const fs::path list = makeCaptures(dir, 4);
+  const fs::path ledger = dir / "ledger.jsonl";
+  const std::string command =
+      std::string(SURROGATE_EXE) + " batch " + quote(list) + " -o " + quote(ledger) + " --no-report --threads 1";
+  for (const char* stagger : {"0", "0.3"}) {
+    fs::remove(ledger);
+    for (int i = 1; i <= 4; ++i) {
+      const fs::path cap = dir / ("cap" + std::to_string(i));
+      for (const char* made : {"assembly-files", "finished-files", ".surrogate"}) fs::remove_all(cap / made);
+      fs::remove(dir / ("cap" + std::to_string(i) + ".zip"));
+    }
+    INFO("second batch " << stagger << " s after the first");
+    const auto both = e2e::runShell("(" + command + " > " + quote(dir / "a.out") + " 2>&1; echo $? > " + quote(dir / "a.exit") +
+                                    ") & (sleep " + stagger + "; " + command + " > " + quote(dir / "b.out") +
+                                    " 2>&1; echo $? > " + quote(dir / "b.exit") + "); wait");
+    INFO(e2e::bytesOf(dir / "a.out") << e2e::bytesOf(dir / "b.out"));
+    CHECK(e2e::bytesOf(dir / "a.exit") == "0\n");
+    CHECK(e2e::bytesOf(dir / "b.exit") == "0\n");
+    const std::vector<json> lines = ledgerLines(ledger);
+    for (int i = 1; i <= 4; ++i) {
+      const std::string cap = (dir / ("cap" + std::to_string(i))).string();
+      INFO(cap);
+      CHECK(count(lines, cap, "run", 0) == 1);
+      CHECK(count(lines, cap, "pack", 0) == 1);
+      CHECK(count(lines, cap, "verify", 0) == 1);
+      // The capture's own history: one run.
+      const auto info = e2e::surrogate("info " + quote(cap) + " --json");
+      REQUIRE(info.exitCode == 0);
+      CHECK(json::parse(info.output)["carrier"]["runs"].size() == 1);
+    }
+    for (const json& j : lines) CHECK(j["exit"] == 0);
+  }
+}
+
+TEST_CASE("a capture another command holds is waited for and then processed, not failed", "[batch]") {
+  const fs::path dir = e2e::freshDir("batch-busy");
+  const fs::path list = makeCaptures(dir, 2);
+  const fs::path ledger = dir / "ledger.jsonl";
+  // The capture's lock held for 2 s by another process, as a review's Apply or a run typed by
+  // hand holds it (util-linux flock on the same file, same kind of lock).
+  fs::create_directories(dir / "cap1" / ".surrogate");
+  const auto started = std::chrono::steady_clock::now();
+  const auto r = e2e::runShell("(flock -x " + quote(dir / "cap1" / ".surrogate" / "lock") + " sleep 2 &); sleep 0.2; " +
+                               SURROGATE_EXE + " batch " + quote(list) + " -o " + quote(ledger) + " --no-report");
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  INFO(r.output);
+  CHECK(r.exitCode == 0);
+  CHECK(seconds > 1.9);
+  CHECK(r.output.find("wait  " + (dir / "cap1").string() + ": another Surrogate command is working on this capture") !=
+        std::string::npos);
+  CHECK(r.output.find("then run this command again") == std::string::npos);  // advice for a person, not here
+  const std::vector<json> lines = ledgerLines(ledger);
+  CHECK(lines.size() == 6);  // no line for the refused start
+  for (const json& j : lines) CHECK(j["exit"] == 0);
+  CHECK(count(lines, (dir / "cap1").string(), "pack", 0) == 1);
+}
+
 TEST_CASE("a pack the ledger did not record is found and recorded and not made again", "[batch]") {
   const fs::path dir = e2e::freshDir("batch-adopt");
   const fs::path list = makeCaptures(dir, 2);
