@@ -104,6 +104,7 @@
        node, hence the for-each over $carrier (one node) around each lookup from the payload. -->
   <xsl:key name="file-by-bag-path" match="c:files/c:file" use="concat('data/', @path)"/>
   <xsl:key name="file-by-id" match="c:files/c:file" use="@id"/>
+  <xsl:key name="evidence-by-path" match="c:header/c:audited/c:evidence" use="@path"/>
   <xsl:key name="step-by-id" match="c:process/c:step" use="@id"/>
   <xsl:key name="file-by-creator" match="c:files/c:file" use="@createdBy"/>
   <xsl:key name="result-by-step" match="c:data/c:result" use="@step"/>
@@ -832,7 +833,14 @@
                   <xsl:with-param name="path" select="$path"/>
                 </xsl:call-template>
               </premis:objectCharacteristics>
-              <premis:originalName><xsl:value-of select="substring-after($path, 'data/')"/></premis:originalName>
+              <!-- an audit's evidence: the name it had in the folder or package audited -->
+              <xsl:variable name="evidence" select="key('evidence-by-path', $rec[1]/@path)"/>
+              <premis:originalName>
+                <xsl:choose>
+                  <xsl:when test="$evidence"><xsl:value-of select="$evidence/@from"/></xsl:when>
+                  <xsl:otherwise><xsl:value-of select="substring-after($path, 'data/')"/></xsl:otherwise>
+                </xsl:choose>
+              </premis:originalName>
               <!-- every file is part of the capture (the intellectual entity) -->
               <premis:relationship>
                 <premis:relationshipType>structural</premis:relationshipType>
@@ -888,6 +896,12 @@
                 <premis:linkingEventIdentifier>
                   <premis:linkingEventIdentifierType>Surrogate event</premis:linkingEventIdentifierType>
                   <premis:linkingEventIdentifierValue>event-capture</premis:linkingEventIdentifierValue>
+                </premis:linkingEventIdentifier>
+              </xsl:if>
+              <xsl:if test="key('evidence-by-path', $rec[1]/@path)">
+                <premis:linkingEventIdentifier>
+                  <premis:linkingEventIdentifierType>Surrogate event</premis:linkingEventIdentifierType>
+                  <premis:linkingEventIdentifierValue>event-evidence-transfer</premis:linkingEventIdentifierValue>
                 </premis:linkingEventIdentifier>
               </xsl:if>
               <!-- the step that made it (the events of the steps that used it list it as their
@@ -1133,6 +1147,7 @@
         <xsl:when test="$label = 'metadata modification'">mem</xsl:when>
         <xsl:when test="$label = 'message digest calculation'">mes</xsl:when>
         <xsl:when test="$label = 'information package creation'">ipc</xsl:when>
+        <xsl:when test="$label = 'transfer'">tra</xsl:when>
       </xsl:choose>
     </xsl:variable>
     <premis:eventType authority="eventType" authorityURI="{$event-types}" valueURI="{concat($event-types, '/', $code)}"><xsl:value-of select="$label"/></premis:eventType>
@@ -1275,6 +1290,51 @@
         </mets:xmlData>
       </mets:mdWrap>
     </mets:digiprovMD>
+
+    <!-- an audit: the evidence copied byte for byte from the folder or package audited -->
+    <xsl:for-each select="c:header/c:audited">
+      <mets:digiprovMD ID="event-evidence-transfer">
+        <mets:mdWrap MDTYPE="PREMIS:EVENT">
+          <mets:xmlData>
+            <premis:event version="3.0">
+              <premis:eventIdentifier>
+                <premis:eventIdentifierType>Surrogate event</premis:eventIdentifierType>
+                <premis:eventIdentifierValue>event-evidence-transfer</premis:eventIdentifierValue>
+              </premis:eventIdentifier>
+              <xsl:call-template name="event-type"><xsl:with-param name="label" select="'transfer'"/></xsl:call-template>
+              <premis:eventDateTime><xsl:value-of select="@copied"/></premis:eventDateTime>
+              <premis:eventDetailInformation>
+                <premis:eventDetail>
+                  <xsl:value-of select="concat('Evidence for the audit (surrogate audit) copied byte for byte from the ', @kind, ' ', @source)"/>
+                  <xsl:if test="@packageSha256">
+                    <xsl:value-of select="concat(' (', @packageSize, ' bytes, SHA-256 ', @packageSha256, ')')"/>
+                  </xsl:if>
+                  <xsl:value-of select="concat(': ', count(c:evidence), ' files')"/>
+                </premis:eventDetail>
+              </premis:eventDetailInformation>
+              <xsl:for-each select="c:evidence">
+                <premis:eventDetailInformation>
+                  <premis:eventDetail><xsl:value-of select="concat(@from, ' -> data/', @path, ': ', @size, ' bytes, SHA-256 ', @sha256, ' as read at the source')"/></premis:eventDetail>
+                </premis:eventDetailInformation>
+              </xsl:for-each>
+              <premis:eventOutcomeInformation>
+                <premis:eventOutcome>success</premis:eventOutcome>
+                <premis:eventOutcomeDetail>
+                  <premis:eventOutcomeDetailNote>each copy has the size and SHA-256 read from its source; surrogate verify checks them against the copies again (carrier.evidence)</premis:eventOutcomeDetailNote>
+                </premis:eventOutcomeDetail>
+              </premis:eventOutcomeInformation>
+              <xsl:call-template name="surrogate-agent"/>
+              <xsl:for-each select="c:evidence">
+                <xsl:call-template name="linking-object">
+                  <xsl:with-param name="file" select="."/>
+                  <xsl:with-param name="role" select="'outcome'"/>
+                </xsl:call-template>
+              </xsl:for-each>
+            </premis:event>
+          </mets:xmlData>
+        </mets:mdWrap>
+      </mets:digiprovMD>
+    </xsl:for-each>
 
     <!-- each recorded command run (the history of the record), oldest first -->
     <xsl:for-each select="c:header/c:run">

@@ -14,6 +14,7 @@
 #include "core/text.h"
 #include "evidence/evidence.h"
 #include "evidence/prior_files.h"
+#include "mapping/mapping.h"
 
 namespace surrogate::evidence {
 
@@ -132,6 +133,9 @@ PackageEvidence packageEvidence(const fs::path& package, const Progress& progres
   if (carrierFile != out.inventory.files.end() && carrierFile->second.content) {
     packed = carrier::parseCarrier(*carrierFile->second.content, package.string() + ": " + kBagCarrier);
     own = surrogateFiles(*packed);
+    // The RO-Crate metadata the packer wrote into the payload, derived from the carrier: no
+    // more another tool's work than the carrier is (and a capture may not hold one at its top).
+    own.insert(std::string(mapping::kRoCratePath).substr(5));
   }
   for (const auto& [bagPath, file] : out.inventory.files) {
     if (bagPath.rfind("data/", 0) != 0) continue;

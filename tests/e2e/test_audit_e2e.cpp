@@ -472,6 +472,7 @@ TEST_CASE("a packed audit re-executes SOUND and a changed audit figure does not"
   std::smatch step;
   REQUIRE(std::regex_search(sound.output, step, std::regex("ok +reexecute\\.(s[0-9]+)\\.Audit +reproduced exactly")));
 
+
   // The package audited as a folder is: its payload is the evidence, Surrogate's results left.
   const e2e::CommandResult packaged = e2e::surrogate("audit " + e2e::quote(bag) + " --json");
   INFO(packaged.output);
@@ -481,6 +482,41 @@ TEST_CASE("a packed audit re-executes SOUND and a changed audit figure does not"
   CHECK(workCarrier.find("kind=\"package\"") != std::string::npos);
   CHECK(workCarrier.find("from=\"data/finished-files/stela.ptm\"") != std::string::npos);
   CHECK(workCarrier.find("from=\"data/assembly-files/lights.lp\"") == std::string::npos);  // Surrogate's own
+
+  // The package's METS tells a repository where the evidence came from: one PREMIS transfer
+  // event linking every copy, and each copy's originalName its name in the folder audited.
+  // The audit of the package, packed in turn.
+  const fs::path auditBag = capture.parent_path() / "bag-audit-bag";
+  const e2e::CommandResult packedAudit = e2e::surrogate("pack " + e2e::quote(capture.parent_path() / "bag-audit") +
+                                                       " -o " + e2e::quote(auditBag) + " --quiet");
+  INFO(packedAudit.output);
+  REQUIRE(packedAudit.exitCode == 0);
+  const std::string mets = e2e::bytesOf(auditBag / "metadata" / "mets.xml");
+  const std::string bagCarrier = e2e::bytesOf(auditBag / "data" / "assembly-files" / "carrier.xml");
+  CHECK(mets.find("<premis:eventIdentifierValue>event-evidence-transfer</premis:eventIdentifierValue>") != std::string::npos);
+  CHECK(mets.find("eventType/tra\">transfer</premis:eventType>") != std::string::npos);
+  const std::regex evidenceRe("<evidence path=\"([^\"]+)\" from=\"([^\"]+)\"");
+  std::size_t evidence = 0;
+  for (std::sregex_iterator it(bagCarrier.begin(), bagCarrier.end(), evidenceRe), end; it != end; ++it, ++evidence) {
+    const std::string path = (*it)[1], from = (*it)[2];
+    INFO(path << " from " << from);
+    CHECK(mets.find("<premis:linkingObjectIdentifierValue>data/" + path + "</premis:linkingObjectIdentifierValue>") !=
+          std::string::npos);
+    // The copy's own object, found by its payload path, names where it came from.
+    const std::size_t object = mets.find("<premis:objectIdentifierValue>data/" + path + "</premis:objectIdentifierValue>");
+    REQUIRE(object != std::string::npos);
+    const std::size_t objectEnd = mets.find("</premis:object>", object);
+    const std::string text = mets.substr(object, objectEnd - object);
+    CHECK(text.find("<premis:originalName>" + from + "</premis:originalName>") != std::string::npos);
+    CHECK(text.find("<premis:linkingEventIdentifierValue>event-evidence-transfer</premis:linkingEventIdentifierValue>") !=
+          std::string::npos);
+  }
+  CHECK(evidence > 0);
+  // And the package of the audit verifies: its METS valid against the METS and PREMIS schemas
+  // and the one the stylesheet derives from its carrier.
+  const e2e::CommandResult auditVerified = e2e::surrogate("verify " + e2e::quote(auditBag));
+  INFO(auditVerified.output);
+  CHECK(auditVerified.exitCode == 0);
 
   // The recorded median angle of the prior light file, changed in the bag's carrier.
   const std::string carrierPath = "data/assembly-files/carrier.xml";
