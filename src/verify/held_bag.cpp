@@ -15,8 +15,9 @@ std::unique_ptr<HeldBag> openHeldBag(const std::filesystem::path& package) {
   auto held = std::make_unique<HeldBag>();
   held->temp = std::make_unique<TempDir>(ocfl ? "ocfl-head" : "eark-bag");
   // Named as the package is, so that what a reader shows of the bag's root reads as the package.
-  held->bag = held->temp->path() / std::filesystem::absolute(package).lexically_normal().filename();
-  if (held->bag == held->temp->path()) held->bag = held->temp->path() / "bag";
+  std::filesystem::path name = std::filesystem::absolute(package).lexically_normal();
+  if (!name.has_filename()) name = name.parent_path();  // "object/"
+  held->bag = held->temp->path() / (name.filename().empty() ? std::filesystem::path("bag") : name.filename());
   held->format = ocfl ? "ocfl" : "eark";
   if (ocfl) held->layout = "OCFL object, head version " + assembleOcflHead(package, held->bag);
   else {
