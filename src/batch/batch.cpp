@@ -174,7 +174,7 @@ class Runner {
     const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     threads_ = o_.threadsPerJob > 0 ? o_.threadsPerJob : std::max(1, cores / std::max(1, o_.jobs));
     host_ = hostName();
-    requireDistinctPackages(items_, o_.packagesDir);
+    requireDistinctPackages(items_, o_.packagesDir, o_.packageFormat);
     if (!o_.dryRun) requireWritableLedger(o_.ledger);
     ledgerOffset_ = readLedgerSince(o_.ledger, 0, ledger_);
     for (std::size_t i = 0; i < ledger_.entries.size(); ++i) byItem_[ledger_.entries[i].capture].push_back(i);
@@ -205,7 +205,8 @@ class Runner {
           job = std::make_unique<Job>();
           job->item = items_[queue.front()];
           queue.pop_front();
-          job->package = job->item.isPackage ? fs::path(job->item.path) : packagePathFor(job->item.path, o_.packagesDir);
+          job->package = job->item.isPackage ? fs::path(job->item.path)
+                                             : packagePathFor(job->item.path, o_.packagesDir, o_.packageFormat);
           job->report.item = job->item;
         } else {
           break;
@@ -305,7 +306,7 @@ class Runner {
   ItemPlan planOf(const WorkItem& item) const {
     Job job;
     job.item = item;
-    job.package = item.isPackage ? fs::path(item.path) : packagePathFor(item.path, o_.packagesDir);
+    job.package = item.isPackage ? fs::path(item.path) : packagePathFor(item.path, o_.packagesDir, o_.packageFormat);
     ItemPlan plan;
     plan.item = item;
     std::string before;  // an earlier step that will run: the later ones follow it

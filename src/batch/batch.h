@@ -56,6 +56,7 @@ struct BatchOptions {
   std::vector<std::string> steps = kSteps;  // a subset of kSteps, in its order
   std::filesystem::path ledger;
   std::filesystem::path packagesDir;        // "" : beside each capture
+  std::string packageFormat = "zip";        // "zip" or "tar": each package's file (--package-format)
   int jobs = 1;
   int threadsPerJob = 0;                    // 0: the cores shared among the jobs
   int retries = 1;                          // more attempts of a failed step in this batch

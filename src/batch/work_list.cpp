@@ -63,21 +63,22 @@ bool looksLikePackage(const fs::path& path) {
   return ext == ".zip" || ext == ".tar";
 }
 
-fs::path packagePathFor(const fs::path& capture, const fs::path& packagesDir) {
+fs::path packagePathFor(const fs::path& capture, const fs::path& packagesDir, const std::string& format) {
   fs::path folder = capture.lexically_normal();
   if (folder.filename().empty()) folder = folder.parent_path();  // "cap/"
   std::string name = folder.filename().string();
   if (name.empty() || name == "." || name == "..") name = fs::absolute(folder).lexically_normal().filename().string();
-  const fs::path file = name + ".zip";
+  const fs::path file = name + "." + format;
   if (!packagesDir.empty()) return packagesDir / file;
   return folder.parent_path() / file;
 }
 
-void requireDistinctPackages(const std::vector<WorkItem>& items, const fs::path& packagesDir) {
+void requireDistinctPackages(const std::vector<WorkItem>& items, const fs::path& packagesDir,
+                             const std::string& format) {
   std::map<std::string, const WorkItem*> byPackage;
   for (const WorkItem& item : items) {
     if (item.isPackage) continue;
-    const std::string package = fs::absolute(packagePathFor(item.path, packagesDir)).lexically_normal().string();
+    const std::string package = fs::absolute(packagePathFor(item.path, packagesDir, format)).lexically_normal().string();
     const auto [it, added] = byPackage.emplace(package, &item);
     if (!added)
       throw Error(ErrorKind::Usage, item.path, "batch list",

@@ -30,12 +30,14 @@ std::vector<WorkItem> readWorkList(const std::string& list);
 bool looksLikePackage(const std::filesystem::path& path);
 
 // The package a capture is packed into: DIR/NAME.zip with --packages DIR, else NAME.zip beside
-// the capture (NAME: the capture folder's name).
-std::filesystem::path packagePathFor(const std::filesystem::path& capture,
-                                     const std::filesystem::path& packagesDir);
+// the capture (NAME: the capture folder's name); `format` "tar" makes it NAME.tar (--package-
+// format), which pack writes as a tar.
+std::filesystem::path packagePathFor(const std::filesystem::path& capture, const std::filesystem::path& packagesDir,
+                                     const std::string& format = "zip");
 
 // Refuses, with Error(Usage) naming both lines, two captures of the list whose packages would
 // be the same file (two folders of one name packed into one --packages folder).
-void requireDistinctPackages(const std::vector<WorkItem>& items, const std::filesystem::path& packagesDir);
+void requireDistinctPackages(const std::vector<WorkItem>& items, const std::filesystem::path& packagesDir,
+                             const std::string& format = "zip");
 
 }  // namespace surrogate::batch

@@ -43,6 +43,8 @@ std::vector<OptionSpec> batchOptions() {
       {"output", true, false, "same as -o", "LEDGER", kOutput},
       {"packages", true, false, "write each capture's package into this folder (default: beside the capture), named CAPTURE.zip",
        "DIR", kOutput},
+      {"package-format", true, false, "zip (default) or tar: the serialization of each package (CAPTURE.zip or CAPTURE.tar)",
+       "FORMAT", kOutput},
       {"no-report", false, false, "run and pack write no finished-files/report.html", "", kOutput},
       {"emit", true, false,
        "print a script that runs this batch on GNU parallel (parallel) or as a Slurm job array (slurm), one --one N a "
@@ -303,6 +305,10 @@ int runCommandBatch(int argc, char** argv) {
       throw Error(ErrorKind::Usage, "--packages " + *p, "command line", "is not a folder; make it first");
     o.packagesDir = *p;
   }
+  o.packageFormat = args.value("package-format", "zip");
+  if (o.packageFormat != "zip" && o.packageFormat != "tar")
+    throw Error(ErrorKind::Usage, "--package-format " + o.packageFormat, "command line",
+                "give zip or tar (a package folder, OCFL object or E-ARK SIP is surrogate pack's, one capture at a time)");
   o.reexecute = args.has("reexecute");
   o.noReport = args.has("no-report");
   o.dryRun = args.has("dry-run");
@@ -416,7 +422,7 @@ int runCommandBatch(int argc, char** argv) {
         .key("untouched").value(static_cast<unsigned long long>(r.untouched))
         .key("exitCode").value(r.exitCode).endObject();
     std::cout << j.str() << "\n";
-  } else if (!args.has("quiet")) {
+  } else {  // --quiet too: its one summary line
     std::cout << "Batch of " << r.items << ": " << r.succeeded << " done (" << r.untouched
               << " of them done before), " << r.failed << " failed; ledger " << *ledger << "\n";
   }

@@ -213,7 +213,7 @@ int verifyBatch(const Args& args) {
       j.beginObject().key("package").value(package).key("message").value(message).endObject();
     j.endArray().endObject();
     std::cout << j.str() << "\n";
-  } else if (!args.has("quiet")) {
+  } else {  // --quiet too: the verdict line
     std::cout << r.items << " package(s): " << sound << " sound, " << failures.size() << " not; ledger " << *ledger
               << "\n";
   }

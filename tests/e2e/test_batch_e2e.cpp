@@ -299,6 +299,37 @@ TEST_CASE("a capture another command holds is waited for and then processed, not
   CHECK(count(lines, (dir / "cap1").string(), "pack", 0) == 1);
 }
 
+TEST_CASE("batch with --package-format tar packs each capture into NAME.tar that tar lists and verify passes", "[batch]") {
+  const fs::path dir = e2e::freshDir("batch-tar");
+  const fs::path list = makeCaptures(dir, 2);
+  fs::create_directories(dir / "packages");
+  const std::string command = "batch " + quote(list) + " -o " + quote(dir / "ledger.jsonl") + " --packages " +
+                              quote(dir / "packages") + " --package-format tar --no-report --quiet";
+  const auto first = e2e::surrogate(command);
+  INFO(first.output);
+  REQUIRE(first.exitCode == 0);
+  CHECK(first.output == "Batch of 2: 2 done (0 of them done before), 0 failed; ledger " + (dir / "ledger.jsonl").string() +
+                            "\n");  // --quiet: its one line
+  for (const char* name : {"cap1", "cap2"}) {
+    const fs::path tar = dir / "packages" / (std::string(name) + ".tar");
+    INFO(tar);
+    REQUIRE(fs::is_regular_file(tar));
+    CHECK(!fs::exists(dir / "packages" / (std::string(name) + ".zip")));
+    // GNU tar reads it: the bag's declaration and the carrier inside.
+    const auto listed = e2e::runShell("tar -tf " + quote(tar));
+    CHECK(listed.exitCode == 0);
+    CHECK(listed.output.find("bagit.txt") != std::string::npos);
+    CHECK(listed.output.find("data/assembly-files/carrier.xml") != std::string::npos);
+    CHECK(count(ledgerLines(dir / "ledger.jsonl"), (dir / name).string(), "verify", 0) == 1);
+  }
+  const auto again = e2e::surrogate(command);
+  CHECK(again.exitCode == 0);
+  CHECK(again.output.find("2 done (2 of them done before)") != std::string::npos);
+  const auto wrong = e2e::surrogate("batch " + quote(list) + " -o " + quote(dir / "ledger.jsonl") + " --package-format 7z");
+  CHECK(wrong.exitCode == 2);
+  CHECK(wrong.output.find("give zip or tar") != std::string::npos);
+}
+
 TEST_CASE("a pack the ledger did not record is found and recorded and not made again", "[batch]") {
   const fs::path dir = e2e::freshDir("batch-adopt");
   const fs::path list = makeCaptures(dir, 2);
