@@ -123,7 +123,8 @@ class CaptureClaim {
       captureFolder = captureFolder || fs::is_directory(capture / folder, ec);
     if (!captureFolder) return Outcome::NotAClaimableFolder;  // the run step says what is wrong
     fs::create_directories(capture / capture::kWorkDir, ec);
-    fd_ = ::open((capture / capture::kWorkDir / "batch-claim").c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
+    const fs::path file = capture / capture::kWorkDir / "batch-claim";
+    fd_ = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
     if (fd_ < 0) return Outcome::NotAClaimableFolder;  // read-only: no step can write there either
     if (::flock(fd_, LOCK_EX | LOCK_NB) == 0) return Outcome::Claimed;
     release();

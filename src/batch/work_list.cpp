@@ -78,7 +78,8 @@ void requireDistinctPackages(const std::vector<WorkItem>& items, const fs::path&
   std::map<std::string, const WorkItem*> byPackage;
   for (const WorkItem& item : items) {
     if (item.isPackage) continue;
-    const std::string package = fs::absolute(packagePathFor(item.path, packagesDir, format)).lexically_normal().string();
+    const std::string package =
+        fs::absolute(packagePathFor(item.path, packagesDir, format)).lexically_normal().string();
     const auto [it, added] = byPackage.emplace(package, &item);
     if (!added)
       throw Error(ErrorKind::Usage, item.path, "batch list",

@@ -46,7 +46,8 @@ int runCommandInfo(int argc, char** argv) {
   Args args(argc, argv, 1, specs);
   if (helpShown(args, specs,
                 {"surrogate info FILE",
-                 "Describe a package (a bag folder, .tar or .zip, or the bag an OCFL object or E-ARK SIP holds: what it holds by role, who made it when, the "
+                 "Describe a package (a bag folder, .tar or .zip, or the bag an OCFL object or E-ARK SIP "
+                 "holds: what it holds by role, who made it when, the "
                  "steps, decisions and results, and the command to verify it), a carrier (carrier.xml: "
                  "creators, metadata, steps, decisions with who, when and why, runs, warnings), a capture "
                  "folder, an image (camera, lens, exposure, date; also one Surrogate cannot decode), an .xmp "

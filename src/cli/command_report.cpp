@@ -31,7 +31,8 @@ int runCommandReport(int argc, char** argv) {
   if (helpShown(args, specs,
                 {"surrogate report PACKAGE|CAPTURE -o FILE.html [options]",
                  "Write a self-contained HTML report (one file, no network access) of a processed capture "
-                 "folder or a package (bag directory, .tar or .zip, or an OCFL object or E-ARK SIP): light directions and coverage gaps, "
+                 "folder or a package (bag directory, .tar or .zip, or an OCFL object or E-ARK SIP): light "
+                 "directions and coverage gaps, "
                  "sphere detection, normals, albedo, previews, an interactive relighting view, the provenance "
                  "timeline and the camera; with --verify, the verifier's result per check. surrogate run "
                  "writes one to CAPTURE/finished-files/report.html.",
