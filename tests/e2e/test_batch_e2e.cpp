@@ -284,8 +284,13 @@ TEST_CASE("a capture another command holds is waited for and then processed, not
   // hand holds it (util-linux flock on the same file, same kind of lock).
   fs::create_directories(dir / "cap1" / ".surrogate");
   const auto started = std::chrono::steady_clock::now();
-  const auto r = e2e::runShell("(flock -x " + quote(dir / "cap1" / ".surrogate" / "lock") + " sleep 2 &); sleep 0.2; " +
-                               SURROGATE_EXE + " batch " + quote(list) + " -o " + quote(ledger) + " --no-report");
+  // The batch starts once the holder has the lock (it leaves a mark then), however slow the
+  // machine is to start it.
+  const fs::path held = dir / "held";
+  const auto r = e2e::runShell("(flock -x " + quote(dir / "cap1" / ".surrogate" / "lock") +
+                               " sh -c 'touch \"$1\"; sleep 2' sh " + quote(held) + " &); while [ ! -e " + quote(held) +
+                               " ]; do sleep 0.05; done; " + SURROGATE_EXE + " batch " + quote(list) + " -o " +
+                               quote(ledger) + " --no-report");
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   INFO(r.output);
   CHECK(r.exitCode == 0);
