@@ -25,6 +25,7 @@
 #include "carrier/carrier.h"
 #include "e2e_support.h"
 #include "headless_chromium.h"
+#include "page_bytes.h"
 #include "formats/lp.h"
 #include "formats/ptm.h"
 #include "formats/rti_hsh.h"
@@ -38,6 +39,7 @@ namespace {
 using e2e::bodyAttribute;
 using e2e::BrowserRun;
 using e2e::consoleLines;
+using report_test::pictureBytes;
 
 const std::string& chromium() {
   static const std::string program = e2e::chromiumOrSkip("the report's browser test");
@@ -130,15 +132,6 @@ void writeReducedModel(const fs::path& model, int step, const fs::path& out) {
     reduced.coefficients = blockAverages(hsh.coefficients, hsh.width, hsh.height, 3 * hsh.terms, 1, step);
     formats::writeRti(out, reduced);
   }
-}
-
-// The bytes of a page's pictures (data: URIs of <img>).
-std::size_t pictureBytes(const std::string& html) {
-  std::size_t n = 0;
-  const std::string start = "src=\"data:image/";
-  for (std::size_t at = html.find(start); at != std::string::npos; at = html.find(start, at + 1))
-    n += html.find('"', at + 5) - (at + 5);
-  return n;
 }
 
 // Compares the page's first rendering (mean and probes) with a picture `surrogate render`

@@ -13,10 +13,12 @@
 #include "core/image.h"
 #include "formats/ptm.h"
 #include "formats/rti_hsh.h"
+#include "page_bytes.h"
 #include "report/report.h"
 
 using namespace surrogate;
 using namespace surrogate::report;
+using report_test::pictureBytes;
 
 namespace {
 
@@ -359,27 +361,25 @@ TEST_CASE("models given as interactive copies of the models in memory make the p
   CHECK(count(otherSize.html, "is not in this package or capture") == 2);
 }
 
-// The data: URIs of a page's pictures, in bytes.
-std::size_t pictureBytes(const std::string& html) {
-  std::size_t n = 0;
-  const std::string start = "src=\"data:image/";
-  for (std::size_t at = html.find(start); at != std::string::npos; at = html.find(start, at + 1))
-    n += html.find('"', at + 5) - (at + 5);
-  return n;
-}
-
-TEST_CASE("the page of a 3000x2000 capture keeps within the size budget with its models averaged down") {
-  // The default two models at 3000x2000, their bytes varying from texel to texel (no two blocks
-  // alike), and full-size pictures.
+// A PTM (LRGB) of width x height whose bytes vary from texel to texel: no two blocks alike,
+// so that averaging it down cannot make a smaller copy than its size says.
+std::string variedPtm(int width, int height) {
   formats::PtmFile ptm;
-  ptm.width = 3000;
-  ptm.height = 2000;
+  ptm.width = width;
+  ptm.height = height;
   ptm.scale = {0.5, 0.5, 0.5, 1, 1, 1};
   ptm.bias = {128, 128, 128, 128, 128, 0};
   ptm.coefficients.resize(ptm.texels() * 6);
   ptm.rgb.resize(ptm.texels() * 3);
   for (std::size_t i = 0; i < ptm.coefficients.size(); ++i) ptm.coefficients[i] = static_cast<std::uint8_t>(i * 31 % 251);
   for (std::size_t i = 0; i < ptm.rgb.size(); ++i) ptm.rgb[i] = static_cast<std::uint8_t>(i * 13 % 256);
+  return formats::serializePtm(ptm);
+}
+
+TEST_CASE("the page of a 3000x2000 capture keeps within the size budget with its models averaged down") {
+  // The default two models at 3000x2000, their bytes varying from texel to texel (no two blocks
+  // alike), and full-size pictures.
+  const std::string ptm = variedPtm(3000, 2000);
   carrier::Carrier c = sampleCarrier();
   carrier::Step& fit = c.addStep("RtiFit", "1");
   fit.setParam("basis", "hsh2");
@@ -388,7 +388,7 @@ TEST_CASE("the page of a 3000x2000 capture keeps within the size budget with its
   r.add("output").set("file", c.putFile(output("finished-files/hsh2.rti", "result", "RTI_HSH"))).set("kind", "hsh2");
   c.data.push_back(r);
   MemorySource source(c);
-  source.files["finished-files/ptm-lrgb.ptm"] = formats::serializePtm(ptm);
+  source.files["finished-files/ptm-lrgb.ptm"] = ptm;
   source.files["finished-files/hsh2.rti"] = smallHsh(3000, 2000);
   source.files["assembly-files/spheres.png"] = png(3000, 2000);
   source.files["finished-files/normals.png"] = png(3000, 2000);
@@ -417,17 +417,9 @@ TEST_CASE("the page of a 3000x2000 capture keeps within the size budget with its
 TEST_CASE("four models at 3000x2000 share the page's bytes and keep it within the size budget") {
   // Two PTMs and two HSHs, as a run with four --basis options lists them: each
   // gets a quarter of kRelightModelsBytes (0.75 MB); with 1.5 MB each the page was 8.5 MB.
-  formats::PtmFile ptm;
-  ptm.width = 3000;
-  ptm.height = 2000;
-  ptm.scale = {0.5, 0.5, 0.5, 1, 1, 1};
-  ptm.bias = {128, 128, 128, 128, 128, 0};
-  ptm.coefficients.resize(ptm.texels() * 6);
-  ptm.rgb.resize(ptm.texels() * 3);
-  for (std::size_t i = 0; i < ptm.coefficients.size(); ++i) ptm.coefficients[i] = static_cast<std::uint8_t>(i * 31 % 251);
-  for (std::size_t i = 0; i < ptm.rgb.size(); ++i) ptm.rgb[i] = static_cast<std::uint8_t>(i * 13 % 256);
+  const std::string ptm = variedPtm(3000, 2000);
   carrier::Carrier c = sampleCarrier();
-  std::map<std::string, std::string> models = {{"finished-files/ptm-lrgb.ptm", formats::serializePtm(ptm)}};
+  std::map<std::string, std::string> models = {{"finished-files/ptm-lrgb.ptm", ptm}};
   for (const char* name : {"ptm-lrgb-copy", "hsh2", "hsh2-copy"}) {
     const std::string n = name;
     const bool isHsh = n.rfind("hsh", 0) == 0;
@@ -440,7 +432,7 @@ TEST_CASE("four models at 3000x2000 share the page's bytes and keep it within th
         .set("file", c.putFile(output(path, "result", isHsh ? "RTI_HSH" : "PTM_FORMAT_LRGB")))
         .set("kind", isHsh ? "hsh2" : "ptm-lrgb");
     c.data.push_back(r);
-    models[path] = isHsh ? smallHsh(3000, 2000) : formats::serializePtm(ptm);
+    models[path] = isHsh ? smallHsh(3000, 2000) : ptm;
   }
   MemorySource source(c);
   for (const auto& [path, bytes] : models) source.files[path] = bytes;
