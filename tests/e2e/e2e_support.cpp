@@ -1,9 +1,12 @@
 #include "e2e_support.h"
 
+#include <fcntl.h>
+#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <array>
+#include <cstring>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -12,6 +15,8 @@
 #include "core/digest.h"
 
 namespace fs = std::filesystem;
+
+extern char** environ;
 
 namespace e2e {
 
@@ -37,6 +42,23 @@ CommandResult runShell(const std::string& commandLine) {
 
 CommandResult surrogate(const std::string& args) {
   return runShell(std::string(SURROGATE_EXE) + " " + args);
+}
+
+int startSurrogate(const std::vector<std::string>& args, const fs::path& output) {
+  std::vector<std::string> words = {SURROGATE_EXE};
+  words.insert(words.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (std::string& w : words) argv.push_back(w.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t files;
+  posix_spawn_file_actions_init(&files);
+  posix_spawn_file_actions_addopen(&files, 1, output.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&files, 1, 2);
+  pid_t pid = -1;
+  const int failed = posix_spawn(&pid, argv[0], &files, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&files);
+  if (failed) throw std::runtime_error(std::string("surrogate could not be started: ") + std::strerror(failed));
+  return pid;
 }
 
 fs::path freshDir(const std::string& name) {

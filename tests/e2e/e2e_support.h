@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <map>
 #include <string>
+#include <vector>
 
 namespace e2e {
 
@@ -17,6 +18,10 @@ struct CommandResult {
 CommandResult runShell(const std::string& commandLine);
 // Runs `surrogate ARGS`.
 CommandResult surrogate(const std::string& args);
+// Starts `surrogate ARGS...` without waiting (no shell), its standard output and error both to
+// the file `output` (made or emptied; /dev/null for none); its process id, for the test to
+// signal and wait for. Throws std::runtime_error when it cannot be started.
+int startSurrogate(const std::vector<std::string>& args, const std::filesystem::path& output);
 
 // A fresh, empty temporary folder for one test (removed at process exit is not needed: the
 // system's /tmp is fine; each call gets a new name).

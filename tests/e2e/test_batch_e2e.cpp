@@ -1,9 +1,7 @@
 // surrogate batch and verify --batch, run as a user runs them, on small generated captures.
 // The ledger is read with nlohmann's JSON, not with the batch's own reader; packages are
 // checked by their bytes (SHA-256) and by `surrogate verify`.
-#include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -23,8 +21,6 @@
 namespace fs = std::filesystem;
 using e2e::quote;
 using nlohmann::json;
-
-extern char** environ;
 
 namespace {
 
@@ -67,23 +63,6 @@ std::string version() {
   v = v.substr(v.find(' ') + 1);
   while (!v.empty() && v.back() == '\n') v.pop_back();
   return v;
-}
-
-// Starts `surrogate ARGS...` without waiting, its output to /dev/null.
-pid_t start(const std::vector<std::string>& args) {
-  std::vector<std::string> all = {SURROGATE_EXE};
-  all.insert(all.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (std::string& a : all) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
-  pid_t pid = -1;
-  REQUIRE(posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ) == 0);
-  posix_spawn_file_actions_destroy(&actions);
-  return pid;
 }
 
 // Processes whose command line names `text` (the jobs of a batch in a test's own folder).
@@ -196,7 +175,7 @@ TEST_CASE("a batch killed with kill -9 midway and run again finishes the rest an
   const fs::path list = makeCaptures(dir, 4);
   const fs::path ledger = dir / "ledger.jsonl";
   const std::vector<std::string> args = {"batch", list.string(), "-o", ledger.string(), "--no-report", "--quiet"};
-  const pid_t pid = start(args);
+  const pid_t pid = e2e::startSurrogate(args, "/dev/null");
   // Killed once the first capture is packed, the second being processed.
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(3);
   bool packed = false;

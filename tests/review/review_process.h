@@ -2,9 +2,7 @@
 // with the port it printed; stopped (SIGTERM) when the object goes.
 #pragma once
 
-#include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -18,7 +16,7 @@
 #include <thread>
 #include <vector>
 
-extern char** environ;
+#include "e2e_support.h"
 
 namespace review_test {
 
@@ -27,18 +25,9 @@ class ReviewProcess {
   ReviewProcess(const std::filesystem::path& capture, const std::vector<std::string>& extra,
                 const std::filesystem::path& logFile)
       : log_(logFile) {
-    std::vector<std::string> words = {SURROGATE_EXE, "review", capture.string(), "--no-browser", "--port", "0"};
+    std::vector<std::string> words = {"review", capture.string(), "--no-browser", "--port", "0"};
     words.insert(words.end(), extra.begin(), extra.end());
-    std::vector<char*> argv;
-    for (std::string& w : words) argv.push_back(w.data());
-    argv.push_back(nullptr);
-    posix_spawn_file_actions_t files;
-    posix_spawn_file_actions_init(&files);
-    posix_spawn_file_actions_addopen(&files, 1, log_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_adddup2(&files, 1, 2);
-    const int failed = posix_spawn(&pid_, argv[0], &files, nullptr, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&files);
-    if (failed) throw std::runtime_error("surrogate review could not be started");
+    pid_ = e2e::startSurrogate(words, log_);
     // The address it prints first ("Review of CAPTURE: http://127.0.0.1:PORT/").
     const std::regex address(R"(http://127\.0\.0\.1:(\d+)/)");
     for (int tries = 0; tries < 300; ++tries) {
