@@ -120,22 +120,18 @@ std::vector<std::string> argumentsFor(const std::string& applyJson) {
     option("forget-highlight", text(h, "image", where, true) + ":" + std::to_string(index(h, "sphere", where)));
     reason(text(h, "reason", where, true));
   });
-  eachOf(body, "exclude", [&](const json& e, const std::string& where) {
-    option("exclude", text(e, "image", where, true));
-    reason(text(e, "reason", where, true));
-  });
-  eachOf(body, "forgetExclusions", [&](const json& e, const std::string& where) {
-    option("forget-exclusion", text(e, "image", where, true));
-    reason(text(e, "reason", where, true));
-  });
-  eachOf(body, "accept", [&](const json& a, const std::string& where) {
-    option("accept", text(a, "check", where, true));
-    reason(text(a, "reason", where, true));
-  });
-  eachOf(body, "forgetAccept", [&](const json& a, const std::string& where) {
-    option("forget-accept", text(a, "check", where, true));
-    reason(text(a, "reason", where, true));
-  });
+  // The decisions that name one thing (an image, a check) and need a reason, in this order.
+  struct Named {
+    const char* member;  // of the page's JSON
+    const char* option;  // of surrogate run
+    const char* names;   // the member of each item holding the name
+  };
+  for (const Named& n : {Named{"exclude", "exclude", "image"}, Named{"forgetExclusions", "forget-exclusion", "image"},
+                         Named{"accept", "accept", "check"}, Named{"forgetAccept", "forget-accept", "check"}})
+    eachOf(body, n.member, [&](const json& item, const std::string& where) {
+      option(n.option, text(item, n.names, where, true));
+      reason(text(item, "reason", where, true));
+    });
   return out;
 }
 
