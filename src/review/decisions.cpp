@@ -84,10 +84,7 @@ std::vector<std::string> argumentsFor(const std::string& applyJson) {
     if (!value.empty()) option("reason", value);
   };
 
-  for (const char* field : {"title"}) {
-    const std::string v = text(body, field, "the decisions sent", false);
-    if (!v.empty()) option(field, v);
-  }
+  if (const std::string title = text(body, "title", "the decisions sent", false); !title.empty()) option("title", title);
   if (const auto it = body.find("creators"); it != body.end() && !it->is_null()) {
     if (!it->is_array()) refuse("creators", "must be a list");
     for (const json& c : *it) {
