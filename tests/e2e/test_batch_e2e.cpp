@@ -7,6 +7,7 @@
 
 #include <catch2/catch.hpp>
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -505,8 +506,21 @@ namespace {
 // slurmctld and slurmd (Debian's munge and slurm-wlm) on two free ports, stopped (by their
 // process ids) when the test ends. `error` says why it could not start.
 class SlurmCluster {
+  // The daemons get /dev/null for their input: started with descriptor 0 closed (CI runs the
+  // suite with no standard input), every batch launch failed ("launch failed requeued held").
+  static constexpr const char* kNoInput = " < /dev/null";
+
+  // The cluster's folder directly under /tmp, whatever TMPDIR says: slurmstepd makes a Unix
+  // socket in SlurmdSpoolDir, whose path may not pass 108 bytes (under scripts/test's TMPDIR
+  // it was 115, and every batch launch failed).
+  static fs::path shortScratchDir() {
+    std::string path = "/tmp/surrogate-slurm-XXXXXX";
+    if (!::mkdtemp(path.data())) throw std::runtime_error("cannot make a folder for the Slurm cluster in /tmp");
+    return path;
+  }
+
  public:
-  explicit SlurmCluster(const fs::path& dir) : dir_(dir) {
+  SlurmCluster() : dir_(shortScratchDir()) {
     for (const char* tool : {"munged", "slurmctld", "slurmd", "sbatch", "squeue", "scontrol", "sinfo"})
       if (e2e::runShell(std::string("command -v ") + tool + " || test -x /usr/sbin/" + tool).exitCode != 0) {
         error = std::string(tool) + " is not installed (scripts/install-deps installs Debian's slurm-wlm and munge)";
@@ -523,7 +537,7 @@ class SlurmCluster {
     }
     const auto munge = e2e::runShell("PATH=\"$PATH:/usr/sbin\" munged -f --key-file=" + d + "/munge/munge.key --socket=" + d +
                                      "/munge/socket --pid-file=" + d + "/munge/munged.pid --log-file=" + d +
-                                     "/log/munged.log --seed-file=" + d + "/munge/seed");
+                                     "/log/munged.log --seed-file=" + d + "/munge/seed" + kNoInput);
     if (munge.exitCode != 0) {
       error = "munged did not start: " + munge.output;
       return;
@@ -550,8 +564,8 @@ class SlurmCluster {
          << "PartitionName=batch Nodes=ALL Default=YES MaxTime=INFINITE State=UP\n";
     conf.close();
     env_ = "export SLURM_CONF=" + quote(dir_ / "slurm.conf") + " PATH=\"$PATH:/usr/sbin\"; ";
-    if (e2e::runShell(env_ + "slurmctld -i -f " + quote(dir_ / "slurm.conf")).exitCode != 0 ||
-        e2e::runShell(env_ + "slurmd -f " + quote(dir_ / "slurm.conf")).exitCode != 0) {
+    if (e2e::runShell(env_ + "slurmctld -i -f " + quote(dir_ / "slurm.conf") + kNoInput).exitCode != 0 ||
+        e2e::runShell(env_ + "slurmd -f " + quote(dir_ / "slurm.conf") + kNoInput).exitCode != 0) {
       error = "slurmctld or slurmd did not start: " + e2e::bytesOf(dir_ / "log/slurmctld.log") +
               e2e::bytesOf(dir_ / "log/slurmd.log");
       return;
@@ -574,9 +588,16 @@ class SlurmCluster {
           std::this_thread::sleep_for(std::chrono::milliseconds(100));
       }
     }
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
   }
 
   e2e::CommandResult run(const std::string& command) const { return e2e::runShell(env_ + command); }
+
+  // The daemons' last log lines, to say why a job did not start.
+  std::string logTail() const {
+    return e2e::runShell("tail -n 15 " + quote(dir_ / "log/slurmd.log") + " " + quote(dir_ / "log/slurmctld.log")).output;
+  }
 
   std::string error;
 
@@ -595,9 +616,9 @@ class SlurmCluster {
 TEST_CASE("a Slurm job array does the batch with one task killed and requeued and the ledger shows each capture done once",
           "[batch][slurm]") {
   // The captures, list and ledger under a folder with a space (sbatch splits #SBATCH values
-  // at blanks); the cluster's own files apart.
+  // at blanks); the cluster's own files apart (SlurmCluster: a short path).
   const fs::path dir = e2e::freshDir("batch slurm");
-  SlurmCluster cluster(e2e::freshDir("batch-slurm-cluster"));
+  SlurmCluster cluster;
   if (!cluster.error.empty()) {
     WARN("single-host Slurm cluster could not start, test skipped: " << cluster.error);
     return;
@@ -629,11 +650,14 @@ TEST_CASE("a Slurm job array does the batch with one task killed and requeued an
   REQUIRE(submitted.exitCode == 0);
   const std::string job = submitted.output.substr(0, submitted.output.find_first_of(";\n"));
   bool requeued = false;
-  for (int i = 0; i < 1200 && !requeued; ++i) {
+  bool launchFailed = false;
+  for (int i = 0; i < 1200 && !requeued && !launchFailed; ++i) {
     if (fs::exists(hanging)) requeued = cluster.run("scontrol requeue " + job + "_1").exitCode == 0;
     else std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    launchFailed = cluster.run("squeue -h -o %r").output.find("launch failed") != std::string::npos;
   }
-  INFO(cluster.run("squeue").output);
+  INFO(cluster.run("squeue").output << cluster.logTail());
+  REQUIRE(!launchFailed);
   REQUIRE(requeued);
   bool released = false;
   for (int i = 0; i < 300 && !released; ++i) {
