@@ -117,11 +117,8 @@ class CaptureClaim {
   enum class Outcome { Claimed, HeldByAnother, NotAClaimableFolder };
 
   Outcome claim(const fs::path& capture) {
+    if (!capture::hasSourceFolder(capture)) return Outcome::NotAClaimableFolder;  // the run step says what is wrong
     std::error_code ec;
-    bool captureFolder = false;
-    for (const char* folder : {"original-captures", "raw-images", capture::kExportsDir})
-      captureFolder = captureFolder || fs::is_directory(capture / folder, ec);
-    if (!captureFolder) return Outcome::NotAClaimableFolder;  // the run step says what is wrong
     fs::create_directories(capture / capture::kWorkDir, ec);
     const fs::path file = capture / capture::kWorkDir / "batch-claim";
     fd_ = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);

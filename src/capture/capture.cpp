@@ -234,6 +234,13 @@ bool isSystemFile(const std::string& name) {
   return name.rfind("._", 0) == 0;  // AppleDouble: resource forks macOS writes on FAT cards
 }
 
+bool hasSourceFolder(const fs::path& folder) {
+  std::error_code ec;  // an unreadable folder is not a capture: no exception
+  for (const char* source : kSourceFolders)
+    if (fs::is_directory(folder / source, ec)) return true;
+  return false;
+}
+
 bool isInterruptedWrite(const std::string& name) {
   return !name.empty() && name[0] == '.' && name.find(".part-") != std::string::npos;
 }
@@ -265,7 +272,7 @@ void requireCaptureFolder(const fs::path& root) {
   std::error_code ec;
   if (!fs::is_directory(fs::status(root, ec))) return;  // the lock and scanCapture say what it is
   std::string present;  // the input folders the folder has, "original-captures/ and ..."
-  for (const char* dir : {"original-captures", "raw-images", kExportsDir}) {
+  for (const char* dir : kSourceFolders) {
     if (!fs::is_directory(fs::status(root / dir, ec))) continue;
     present += (present.empty() ? "" : " and ") + std::string(dir) + "/";
     fs::directory_iterator it(root / dir, ec), end;

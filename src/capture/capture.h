@@ -16,6 +16,7 @@
 //   for (const Shot& s : layout.shots) ... s.original->relativePath ...
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -26,6 +27,9 @@ namespace surrogate::capture {
 inline constexpr const char* kAssemblyDir = "assembly-files";
 inline constexpr const char* kFinishedDir = "finished-files";
 inline constexpr const char* kExportsDir = "jpeg-exports";
+// The folders a photographer brings, in the order Surrogate looks for them: the originals
+// (under either name) and their exports. A folder with none of them is not a capture.
+inline constexpr std::array<const char*, 3> kSourceFolders = {"original-captures", "raw-images", kExportsDir};
 // The record and its view, relative to the capture: the carrier (the provenance document) and
 // the HTML report made from it (never listed in the carrier: it holds the time it was made).
 inline constexpr const char* kCarrierPath = "assembly-files/carrier.xml";
@@ -41,6 +45,10 @@ inline constexpr const char* kSupersededDir = "superseded-files";
 // Thumbs.db, desktop.ini, AppleDouble "._" files, Spotlight/Trash folders): not part of a
 // capture, never recorded, never bagged. The one rule run, pack and verify share.
 bool isSystemFile(const std::string& fileName);
+
+// True when `folder` holds one of kSourceFolders: what every command that writes into a capture
+// checks first, so that nothing is written into a folder that is not one.
+bool hasSourceFolder(const std::filesystem::path& folder);
 
 // The name of a file Surrogate was writing when it was interrupted (".NAME.part-PID-N", see
 // core/atomic_file.h). Inside assembly-files/ and finished-files/ such a file is Surrogate's

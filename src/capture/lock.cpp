@@ -48,8 +48,7 @@ CaptureLock::CaptureLock(const fs::path& capture, const std::string& command) {
                         ? "is a loop of symbolic links, not a folder; give the capture folder itself"
                     : fs::exists(st) ? "is not a folder; give the capture folder"
                                      : "the capture folder does not exist");
-  auto folder = [&](const char* name) { return fs::is_directory(capture / name, ec); };
-  if (!folder("original-captures") && !folder("raw-images") && !folder(kExportsDir))
+  if (!hasSourceFolder(capture))
     throwInputError(capture.string(), "lock",
                     "has no original-captures/ (or raw-images/) and no jpeg-exports/ folder; put "
                     "the camera files in original-captures/");

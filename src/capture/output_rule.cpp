@@ -14,7 +14,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr std::array<const char*, 3> kOriginalFolders = {"original-captures", "raw-images", kExportsDir};
 constexpr std::array<const char*, 4> kManagedFolders = {kAssemblyDir, kFinishedDir, kWorkDir, kSupersededDir};
 
 template <std::size_t N>
@@ -44,10 +43,7 @@ std::string specialKind(const fs::path& path) {
 
 bool isCaptureFolder(const fs::path& dir) {
   std::error_code ec;
-  if (fs::is_regular_file(dir / kCarrierPath, ec)) return true;
-  for (const char* f : kOriginalFolders)
-    if (fs::is_directory(dir / f, ec)) return true;
-  return false;
+  return fs::is_regular_file(dir / kCarrierPath, ec) || hasSourceFolder(dir);
 }
 
 // The rule inside one capture `root`; `out` is canonical and lies in it.
@@ -102,7 +98,7 @@ void checkOutputTarget(const fs::path& output, const std::string& option, Existi
   if (ec) out = fs::absolute(output, ec).lexically_normal();  // e.g. a file named as a folder
   for (fs::path dir = out.parent_path();; dir = dir.parent_path()) {
     const std::string name = dir.filename().string();
-    if (isOneOf(name, kOriginalFolders))
+    if (isOneOf(name, kSourceFolders))
       refuse(option, output,
              "is inside a capture's " + name + "/ folder (" + dir.string() +
                  "), which holds the untouched originals: Surrogate never writes there; choose a "

@@ -12,6 +12,7 @@
 #include "batch/batch.h"
 #include "batch/ledger.h"
 #include "batch/work_list.h"
+#include "capture/capture.h"
 #include "cli/args.h"
 #include "cli/commands.h"
 #include "cli/progress.h"
@@ -163,7 +164,7 @@ void emitParallel(const std::string& list, std::size_t items, const std::vector<
 // takes): original-captures/, raw-images/ or jpeg-exports/, whichever holds most.
 std::size_t imagesOf(const std::string& capture) {
   std::size_t most = 0;
-  for (const char* folder : {"original-captures", "raw-images", "jpeg-exports"}) {
+  for (const char* folder : surrogate::capture::kSourceFolders) {
     std::error_code ec;
     std::size_t n = 0;
     for (std::filesystem::directory_iterator it(std::filesystem::path(capture) / folder, ec), end; !ec && it != end;

@@ -172,8 +172,8 @@ void checkOutputFile(const std::string& option, const std::filesystem::path& out
 
 namespace {
 // The folders a capture holds, by the names capture/capture.h gives them.
-const char* const kCaptureFolders[] = {"original-captures", "raw-images", capture::kExportsDir, capture::kAssemblyDir,
-                                       capture::kFinishedDir};
+const char* const kCaptureFolders[] = {capture::kSourceFolders[0], capture::kSourceFolders[1],
+                                       capture::kSourceFolders[2], capture::kAssemblyDir, capture::kFinishedDir};
 
 // `path` as the user typed it, without trailing separators ("CAPTURE/original-captures/").
 std::filesystem::path withoutTrailingSlash(const std::filesystem::path& path) {
@@ -208,10 +208,7 @@ void refuseCaptureSubfolder(const std::filesystem::path& folder, const std::stri
 void refuseCaptureForPackage(const std::filesystem::path& path, const std::string& command) {
   std::error_code ec;
   if (!std::filesystem::is_directory(path, ec) || std::filesystem::exists(path / "bagit.txt", ec)) return;
-  bool capture = std::filesystem::is_regular_file(path / capture::kCarrierPath, ec);
-  for (const char* dir : {"original-captures", "raw-images", capture::kExportsDir})
-    capture = capture || std::filesystem::is_directory(path / dir, ec);
-  if (!capture) return;
+  if (!std::filesystem::is_regular_file(path / capture::kCarrierPath, ec) && !capture::hasSourceFolder(path)) return;
   const std::string name = escapedText(withoutTrailingSlash(path).string());
   throw Error(ErrorKind::Usage, name, "command line",
               "is a capture, not a package: pack it first with surrogate pack " + name + " -o OUT, then " +
