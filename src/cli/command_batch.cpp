@@ -13,6 +13,7 @@
 #include "batch/ledger.h"
 #include "batch/work_list.h"
 #include "capture/capture.h"
+#include "capture/output_rule.h"
 #include "cli/args.h"
 #include "cli/commands.h"
 #include "cli/progress.h"
@@ -304,6 +305,14 @@ int runCommandBatch(int argc, char** argv) {
     std::error_code ec;
     if (!std::filesystem::is_directory(*p, ec))
       throw Error(ErrorKind::Usage, "--packages " + *p, "command line", "is not a folder; make it first");
+    // pack's rule for its -o, checked once for the whole list: a packages folder inside a
+    // capture was found only at each capture's pack step, each a failed job.
+    if (surrogate::capture::hasSourceFolder(*p))
+      throw Error(ErrorKind::Input, "--packages " + *p, "command line",
+                  "is a capture folder, where packages would become part of the capture's record; choose a "
+                  "folder outside every capture");
+    surrogate::capture::checkOutputTarget(*p, "--packages", surrogate::capture::ExistingOutput::Replace,
+                                          surrogate::capture::OutputPlace::OutsideCaptures);
     o.packagesDir = *p;
   }
   o.packageFormat = args.value("package-format", "zip");

@@ -313,6 +313,17 @@ TEST_CASE("batch with --package-format tar packs each capture into NAME.tar that
   const auto wrong = e2e::surrogate("batch " + quote(list) + " -o " + quote(dir / "ledger.jsonl") + " --package-format 7z");
   CHECK(wrong.exitCode == 2);
   CHECK(wrong.output.find("give zip or tar") != std::string::npos);
+  // A packages folder inside a capture is refused before any job starts, as pack refuses its
+  // -o there (a package in a capture would be bagged into its next package).
+  for (const fs::path& inside : {dir / "cap1" / "original-captures", dir / "cap2", dir / "cap2" / "finished-files"}) {
+    INFO(inside);
+    const auto refused = e2e::surrogate("batch " + quote(list) + " -o " + quote(dir / "refused.jsonl") + " --packages " +
+                                        quote(inside) + " --no-report");
+    CHECK(refused.exitCode == 1);  // the exit of pack's refusal of its -o
+    CHECK(refused.output.find("--packages " + inside.string()) != std::string::npos);
+    CHECK(!fs::exists(dir / "refused.jsonl"));
+  }
+  CHECK(!fs::exists(dir / "cap1" / "original-captures" / "cap1.tar"));
 }
 
 TEST_CASE("a pack the ledger did not record is found and recorded and not made again", "[batch]") {
