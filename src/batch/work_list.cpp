@@ -2,8 +2,12 @@
 
 #include <fstream>
 #include <iostream>
+#include <iterator>
 #include <map>
+#include <optional>
+#include <sstream>
 
+#include "archive/bag_text.h"
 #include "core/error.h"
 
 namespace surrogate::batch {
@@ -11,12 +15,29 @@ namespace surrogate::batch {
 namespace fs = std::filesystem;
 
 std::vector<WorkItem> readWorkList(std::istream& in, const std::string& listName) {
+  // Lists made on Windows: PowerShell's > writes UTF-16 with a byte-order mark, editors put a
+  // mark before UTF-8. Taken as bytes, the mark became part of the first path, which then named
+  // a capture that does not exist, in a message where the mark cannot be seen.
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (text.rfind("\xFF\xFE", 0) == 0 || text.rfind("\xFE\xFF", 0) == 0) {
+    std::string why;
+    const std::optional<std::string> decoded = archive::decodeTagText(text, "UTF-16", &why);
+    if (!decoded)
+      throw Error(ErrorKind::Usage, listName, "batch list",
+                  "starts as UTF-16 text but cannot be read as such (" + why + "); save it as UTF-8, one path a line");
+    text = *decoded;
+  }
+  if (text.rfind("\xEF\xBB\xBF", 0) == 0) text.erase(0, 3);
+  std::istringstream lines(text);
   std::vector<WorkItem> items;
   std::map<std::string, std::size_t> seen;  // normalised path -> line
   std::string line;
   std::size_t lineNumber = 0;
-  while (std::getline(in, line)) {
+  while (std::getline(lines, line)) {
     ++lineNumber;
+    if (line.find('\0') != std::string::npos)
+      throw Error(ErrorKind::Usage, listName, "batch list",
+                  "line " + std::to_string(lineNumber) + " holds a NUL byte: this is not a text list of paths");
     while (!line.empty() && (line.back() == '\r' || line.back() == ' ' || line.back() == '\t')) line.pop_back();
     std::size_t first = line.find_first_not_of(" \t");
     if (first == std::string::npos || line[first] == '#') continue;

@@ -210,6 +210,30 @@ TEST_CASE("a work list drops comments and blank lines and CRLF and trailing slas
   }
 }
 
+TEST_CASE("a work list saved with a byte-order mark or in UTF-16 is read and a binary list is refused") {
+  std::istringstream bom("\xEF\xBB\xBF/data/stela12\r\n/data/stela13\r\n");
+  const auto items = readWorkList(bom, "list.txt");
+  REQUIRE(items.size() == 2);
+  CHECK(items[0].path == "/data/stela12");
+  // "/d\r\n#x\r\n/e" in UTF-16LE with its mark, as PowerShell's > writes it.
+  std::string utf16 = "\xFF\xFE";
+  for (char c : std::string("/d\r\n#x\r\n/e")) utf16 += std::string{c, '\0'};
+  std::istringstream wide(utf16);
+  const auto fromWide = readWorkList(wide, "list.txt");
+  REQUIRE(fromWide.size() == 2);
+  CHECK(fromWide[0].path == "/d");
+  CHECK(fromWide[1].path == "/e");
+  std::istringstream odd(std::string("\xFF\xFE/\0d", 5));  // a lone byte: not UTF-16
+  CHECK_THROWS_AS(readWorkList(odd, "list.txt"), Error);
+  std::istringstream binary(std::string("/data/a\n/da\0ta\n", 15));
+  try {
+    readWorkList(binary, "list.txt");
+    FAIL("a path with a NUL byte was taken");
+  } catch (const Error& e) {
+    CHECK(e.message().find("line 2 holds a NUL byte") != std::string::npos);
+  }
+}
+
 TEST_CASE("a capture's package is NAME.zip beside it or in --packages") {
   CHECK(packagePathFor("/data/stela12", "") == fs::path("/data/stela12.zip"));
   CHECK(packagePathFor("/data/stela12/", "") == fs::path("/data/stela12.zip"));
