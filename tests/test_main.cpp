@@ -7,9 +7,11 @@
 #define CATCH_CONFIG_RUNNER
 #include <catch2/catch.hpp>
 
+#include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
@@ -43,9 +45,19 @@ void removeScratch(const fs::path& dir) {
   if (ec) std::cerr << "could not remove the test scratch folder " << dir << ": " << ec.message() << "\n";
 }
 
+// CI runs the suite with standard input closed. A program started without descriptor 0 gives
+// that number to the next file or socket it opens, and a daemon a test starts (slurmd) then
+// failed every job it launched: the test program, and so everything it starts, gets /dev/null
+// for a standard stream that is closed.
+void openClosedStandardStreams() {
+  for (int fd = 0; fd <= 2; ++fd)
+    if (::fcntl(fd, F_GETFD) == -1 && errno == EBADF) ::open("/dev/null", fd == 0 ? O_RDONLY : O_WRONLY);
+}
+
 }  // namespace
 
 int main(int argc, char* argv[]) {
+  openClosedStandardStreams();  // lowest free descriptor first: each lands on its own number
   std::error_code ec;
   const fs::path scratch =
       fs::temp_directory_path(ec) / ("surrogate-tests-" + std::to_string(::getpid()));

@@ -133,12 +133,12 @@ PackageEvidence packageEvidence(const fs::path& package, const Progress& progres
   if (carrierFile != out.inventory.files.end() && carrierFile->second.content) {
     packed = carrier::parseCarrier(*carrierFile->second.content, package.string() + ": " + kBagCarrier);
     own = surrogateFiles(*packed);
-    // The RO-Crate metadata the packer wrote into the payload, derived from the carrier: no
-    // more another tool's work than the carrier is (and a capture may not hold one at its top).
-    own.insert(std::string(mapping::kRoCratePath).substr(5));
   }
   for (const auto& [bagPath, file] : out.inventory.files) {
     if (bagPath.rfind("data/", 0) != 0) continue;
+    // The RO-Crate metadata the packer wrote into the payload, derived from the carrier: no
+    // more another tool's work than the carrier is (and a capture may not hold one at its top).
+    if (packed && bagPath == mapping::kRoCratePath) continue;
     const std::string relative = bagPath.substr(5);
     const std::string name = fs::path(relative).filename().string();
     if (own.count(relative) || capture::isSystemFile(name) || relative.rfind(".surrogate/", 0) == 0 ||

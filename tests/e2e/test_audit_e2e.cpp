@@ -472,7 +472,6 @@ TEST_CASE("a packed audit re-executes SOUND and a changed audit figure does not"
   std::smatch step;
   REQUIRE(std::regex_search(sound.output, step, std::regex("ok +reexecute\\.(s[0-9]+)\\.Audit +reproduced exactly")));
 
-
   // The package audited as a folder is: its payload is the evidence, Surrogate's results left.
   const e2e::CommandResult packaged = e2e::surrogate("audit " + e2e::quote(bag) + " --json");
   INFO(packaged.output);

@@ -517,10 +517,6 @@ namespace {
 // slurmctld and slurmd (Debian's munge and slurm-wlm) on two free ports, stopped (by their
 // process ids) when the test ends. `error` says why it could not start.
 class SlurmCluster {
-  // The daemons get /dev/null for their input: started with descriptor 0 closed (CI runs the
-  // suite with no standard input), every batch launch failed ("launch failed requeued held").
-  static constexpr const char* kNoInput = " < /dev/null";
-
   // The cluster's folder directly under /tmp, whatever TMPDIR says: slurmstepd makes a Unix
   // socket in SlurmdSpoolDir, whose path may not pass 108 bytes (under scripts/test's TMPDIR
   // it was 115, and every batch launch failed).
@@ -548,7 +544,7 @@ class SlurmCluster {
     }
     const auto munge = e2e::runShell("PATH=\"$PATH:/usr/sbin\" munged -f --key-file=" + d + "/munge/munge.key --socket=" + d +
                                      "/munge/socket --pid-file=" + d + "/munge/munged.pid --log-file=" + d +
-                                     "/log/munged.log --seed-file=" + d + "/munge/seed" + kNoInput);
+                                     "/log/munged.log --seed-file=" + d + "/munge/seed");
     if (munge.exitCode != 0) {
       error = "munged did not start: " + munge.output;
       return;
@@ -575,8 +571,8 @@ class SlurmCluster {
          << "PartitionName=batch Nodes=ALL Default=YES MaxTime=INFINITE State=UP\n";
     conf.close();
     env_ = "export SLURM_CONF=" + quote(dir_ / "slurm.conf") + " PATH=\"$PATH:/usr/sbin\"; ";
-    if (e2e::runShell(env_ + "slurmctld -i -f " + quote(dir_ / "slurm.conf") + kNoInput).exitCode != 0 ||
-        e2e::runShell(env_ + "slurmd -f " + quote(dir_ / "slurm.conf") + kNoInput).exitCode != 0) {
+    if (e2e::runShell(env_ + "slurmctld -i -f " + quote(dir_ / "slurm.conf")).exitCode != 0 ||
+        e2e::runShell(env_ + "slurmd -f " + quote(dir_ / "slurm.conf")).exitCode != 0) {
       error = "slurmctld or slurmd did not start: " + e2e::bytesOf(dir_ / "log/slurmctld.log") +
               e2e::bytesOf(dir_ / "log/slurmd.log");
       return;
