@@ -20,6 +20,7 @@
 #include "batch/ledger.h"
 #include "batch/resume.h"
 #include "capture/capture.h"
+#include "capture/lock.h"
 #include "carrier/carrier.h"
 #include "core/error.h"
 #include "core/identity.h"
@@ -551,7 +552,7 @@ class Runner {
     // The command's advice ("wait for it to finish, then run this command again") is the batch's
     // to follow, not to print.
     if (!r.overBudget && r.exit == static_cast<int>(ErrorKind::Input) && refused &&
-        textOf(report["error"], "step") == "lock" && waitForCapture(job, refusal.substr(0, refusal.find("; ")))) {
+        textOf(report["error"], "step") == capture::kCaptureHeldStep && waitForCapture(job, refusal.substr(0, refusal.find("; ")))) {
       // Another command holds the capture's lock (a review's Apply, a run typed by hand): not an
       // attempt; the job waits and its step is checked again when it comes back.
       --job.attempts;

@@ -19,7 +19,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr const char* kStep = "capture ingest";
+constexpr const char* kStep = kCaptureCheckStep;
 
 void refuseSymlink(const fs::path& p, const fs::path& root) {
   if (!fs::is_symlink(p)) return;

@@ -46,6 +46,10 @@ inline constexpr const char* kSupersededDir = "superseded-files";
 // capture, never recorded, never bagged. The one rule run, pack and verify share.
 bool isSystemFile(const std::string& fileName);
 
+// The step an Error names when the folder given is not a capture Surrogate can take (missing,
+// not a folder, no source folder, unreadable).
+inline constexpr const char* kCaptureCheckStep = "capture ingest";
+
 // True when `folder` holds one of kSourceFolders: what every command that writes into a capture
 // checks first, so that nothing is written into a folder that is not one.
 bool hasSourceFolder(const std::filesystem::path& folder);

@@ -43,13 +43,13 @@ CaptureLock::CaptureLock(const fs::path& capture, const std::string& command) {
   std::error_code ec;
   const fs::file_status st = fs::status(capture, ec);
   if (!fs::is_directory(st))
-    throwInputError(capture.string(), "lock",
+    throwInputError(capture.string(), kCaptureCheckStep,
                     ec == std::errc::too_many_symbolic_link_levels
                         ? "is a loop of symbolic links, not a folder; give the capture folder itself"
                     : fs::exists(st) ? "is not a folder; give the capture folder"
                                      : "the capture folder does not exist");
   if (!hasSourceFolder(capture))
-    throwInputError(capture.string(), "lock",
+    throwInputError(capture.string(), kCaptureCheckStep,
                     "has no original-captures/ (or raw-images/) and no jpeg-exports/ folder; put "
                     "the camera files in original-captures/");
   const fs::path dir = capture / kWorkDir;
@@ -57,7 +57,7 @@ CaptureLock::CaptureLock(const fs::path& capture, const std::string& command) {
   const fs::path file = dir / "lock";
   fd_ = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
   if (fd_ < 0)
-    throw Error(ErrorKind::Input, file.string(), "lock",
+    throw Error(ErrorKind::Input, file.string(), kCaptureCheckStep,
                 std::string("cannot create the capture's lock file (") + std::strerror(errno) +
                     "); Surrogate needs to write in the capture folder");
   if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) refuseHeld(capture);
@@ -83,7 +83,7 @@ void CaptureLock::refuseHeld(const fs::path& capture) {
   const std::string holder = readHolder(fd_);
   ::close(fd_);
   fd_ = -1;
-  throw Error(ErrorKind::Input, capture.string(), "lock",
+  throw Error(ErrorKind::Input, capture.string(), kCaptureHeldStep,
               "another Surrogate command is working on this capture (" + holder +
                   "); wait for it to finish, then run this command again");
 }

@@ -12,7 +12,15 @@
 #include <filesystem>
 #include <string>
 
+#include "capture/capture.h"
+
 namespace surrogate::capture {
+
+// The step an Error names when another process holds the capture, and only then: a batch waits
+// for the capture and comes back, the review page answers "busy". The lock's other refusals (no
+// such folder, not a capture, no lock file can be made) name kCaptureCheckStep (capture.h):
+// they are not waited out.
+inline constexpr const char* kCaptureHeldStep = "lock";
 
 class CaptureLock {
  public:

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "capture/capture.h"
+#include "capture/lock.h"
 #include "core/error.h"
 #include "report/page_assets.h"
 #include "review/decisions.h"
@@ -152,7 +153,7 @@ struct ReviewServer::Impl {
       // The run's own words: a refused option names it and says what to do; a failed run is in
       // the carrier's history (the page shows it once reloaded); the capture held by another
       // command is its lock's message.
-      status = e.step() == "lock" ? 423 : e.step() == kStaleStep ? 409 : e.kind() == ErrorKind::Usage ? 400 : 422;
+      status = e.step() == capture::kCaptureHeldStep ? 423 : e.step() == kStaleStep ? 409 : e.kind() == ErrorKind::Usage ? 400 : 422;
       body = {{"error", status == 423 ? "busy" : status == 409 ? "stale" : status == 400 ? "usage" : "failed"},
               {"message", status == 409 ? e.message() : e.text()}};
     } catch (const std::exception& e) {

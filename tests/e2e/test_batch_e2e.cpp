@@ -326,6 +326,26 @@ TEST_CASE("batch with --package-format tar packs each capture into NAME.tar that
   CHECK(!fs::exists(dir / "cap1" / "original-captures" / "cap1.tar"));
 }
 
+TEST_CASE("a capture folder that does not exist fails at once and is not waited for as a busy capture", "[batch]") {
+  // The lock's refusal of a missing folder named the step the refusal of a held capture names,
+  // and the batch waited for it as for a busy capture, for 30 minutes.
+  const fs::path dir = e2e::freshDir("batch-missing");
+  const fs::path list = makeCaptures(dir, 1);
+  std::ofstream(list, std::ios::app) << (dir / "gone").string() << "\n";
+  const auto started = std::chrono::steady_clock::now();
+  const auto r = e2e::surrogate("batch " + quote(list) + " -o " + quote(dir / "ledger.jsonl") + " --no-report --retries 0");
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  INFO(r.output);
+  CHECK(r.exitCode == 1);
+  CHECK(seconds < 60);
+  CHECK(r.output.find("wait  ") == std::string::npos);
+  CHECK(r.output.find((dir / "gone").string() + ": run FAILED (exit 1): " + (dir / "gone").string() +
+                      ": the capture folder does not exist") != std::string::npos);
+  const std::vector<json> lines = ledgerLines(dir / "ledger.jsonl");
+  CHECK(count(lines, (dir / "gone").string(), "run", 1) == 1);
+  CHECK(count(lines, (dir / "cap1").string(), "verify", 0) == 1);
+}
+
 TEST_CASE("a pack the ledger did not record is found and recorded and not made again", "[batch]") {
   const fs::path dir = e2e::freshDir("batch-adopt");
   const fs::path list = makeCaptures(dir, 2);
