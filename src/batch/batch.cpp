@@ -19,6 +19,7 @@
 #include "batch/jobs.h"
 #include "batch/ledger.h"
 #include "batch/resume.h"
+#include "batch/step_output.h"
 #include "capture/capture.h"
 #include "capture/lock.h"
 #include "carrier/carrier.h"
@@ -53,59 +54,6 @@ constexpr std::chrono::minutes kBusyWaitLimit{30};
 
 // The least streaming budget `run --memory` takes.
 constexpr std::uint64_t kLeastJobBudget = 64ull << 20;
-
-// The last line of a command's output that is a JSON object (its --json report), parsed; null
-// when there is none.
-nlohmann::json jsonReport(const std::string& out) {
-  std::size_t end = out.size();
-  while (end > 0) {
-    std::size_t begin = out.rfind('\n', end - 1);
-    begin = begin == std::string::npos ? 0 : begin + 1;
-    const std::string line = out.substr(begin, end - begin);
-    if (!line.empty() && line[0] == '{') {
-      nlohmann::json j = nlohmann::json::parse(line, nullptr, false);
-      if (j.is_object()) return j;
-    }
-    if (begin == 0) break;
-    end = begin - 1;
-  }
-  return nullptr;
-}
-
-std::string textOf(const nlohmann::json& j, const char* key) {
-  return j.is_object() && j.contains(key) && j[key].is_string() ? j[key].get<std::string>() : "";
-}
-
-// The last non-empty line of a command's standard error, without "surrogate COMMAND: ".
-std::string lastErrorLine(const std::string& err) {
-  std::string text = err;
-  while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
-  const std::size_t nl = text.rfind('\n');
-  std::string line = nl == std::string::npos ? text : text.substr(nl + 1);
-  if (line.rfind("surrogate ", 0) == 0)
-    if (const std::size_t colon = line.find(": "); colon != std::string::npos) line = line.substr(colon + 2);
-  return line;
-}
-
-// verify --json's failed checks as "check: what (where, where, ...)", the files named.
-std::string failedChecks(const nlohmann::json& report) {
-  std::string out;
-  if (!report.contains("checks") || !report["checks"].is_array()) return out;
-  for (const nlohmann::json& c : report["checks"]) {
-    if (!c.is_object() || !c.contains("passed") || !c["passed"].is_boolean() || c["passed"].get<bool>()) continue;
-    std::string one = textOf(c, "name");
-    const std::string what = textOf(c, "what");
-    if (!what.empty()) one += ": " + what;
-    if (c.contains("where") && c["where"].is_array() && !c["where"].empty()) {
-      std::string where;
-      for (const nlohmann::json& w : c["where"])
-        if (w.is_string()) where += (where.empty() ? "" : ", ") + w.get<std::string>();
-      one += " (" + where + ")";
-    }
-    out += (out.empty() ? "" : "; ") + one;
-  }
-  return out;
-}
 
 // A batch's claim on a capture folder, held from its job's first step to its last step's
 // ledger line: a second batch on the same list (a rerun while the first still runs, another
@@ -329,15 +277,18 @@ class Runner {
   std::vector<std::string> commandFor(const Job& job, const std::string& step) const {
     std::vector<std::string> a;
     const std::string threads = std::to_string(threads_);
+    // Paths as paths, never options: an item "--help" was taken as run --help, which did
+    // nothing and exited 0, and a capture folder "-h" was never processed.
+    const std::string item = pathArgument(job.item.path), package = pathArgument(job.package.string());
     if (step == "run") {
-      a = {"run", job.item.path, "--quiet", "--json", "--threads", threads};
+      a = {"run", item, "--quiet", "--json", "--threads", threads};
       if (o_.noReport) a.push_back("--no-report");
     } else if (step == "pack") {
-      a = {"pack", job.item.path, "-o", job.package.string(), "--quiet", "--json", "--threads", threads};
+      a = {"pack", item, "-o", package, "--quiet", "--json", "--threads", threads};
       if (o_.noReport) a.push_back("--no-report");
       if (job.forcePack) a.push_back("--force");
     } else {
-      a = {"verify", job.package.string(), "--quiet", "--json", "--threads", threads};
+      a = {"verify", package, "--quiet", "--json", "--threads", threads};
       if (o_.reexecute) a.push_back("--reexecute");
     }
     // The job streams within three quarters of its budget (`run --memory`, at least the 64 MiB

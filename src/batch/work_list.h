@@ -16,14 +16,27 @@ struct WorkItem {
   bool isPackage = false;  // a .zip or .tar file, or a folder holding bagit.txt
 };
 
+// A list's bounds: a backlog of 100 000 captures with paths of 200 bytes is 20 MB; a line is a
+// path, at most PATH_MAX. What passes them is no list (/dev/zero on standard input, a binary
+// file given by mistake), refused before it fills the memory.
+inline constexpr std::size_t kMaxListBytes = 64u << 20;
+inline constexpr std::size_t kMaxListLineBytes = 4096;
+
 // The items of a list: one path a line; blank lines and lines starting with # are not items,
 // a line's trailing spaces and carriage return (a list written on Windows) are dropped.
-// Throws Error(Usage) naming the line for a line that repeats an earlier item (the same
-// capture twice would be two jobs on one capture).
+// Throws Error(Usage) naming both lines for a line that names an earlier item again, compared
+// by real path (a symbolic link to it, its absolute path: the same capture twice would be two
+// jobs on one capture); Error(Input) for text that is no list: a NUL byte, more than
+// kMaxListBytes, a line longer than kMaxListLineBytes.
 std::vector<WorkItem> readWorkList(std::istream& in, const std::string& listName);
 // The same from a file, or standard input when `list` is "-". Error(Input) when it cannot be
-// read, Error(Usage) when it holds no item.
+// read or is not a regular file (a FIFO, a device: refused without reading), Error(Usage) when
+// it holds no item.
 std::vector<WorkItem> readWorkList(const std::string& list);
+
+// A path as one argument of a command: "./" before a relative path starting with '-', which
+// the command would take as an option (an item "--help", a capture folder "-h").
+std::string pathArgument(const std::string& path);
 
 // Whether a path names a package rather than a capture: a .zip or .tar file, or a folder
 // holding bagit.txt.
