@@ -127,17 +127,19 @@ int printSummary(const std::string& ledgerPath, bool json) {
     j.endArray().endObject();
     std::cout << j.str() << "\n";
   } else {
-    std::cout << "Ledger " << ledgerPath << ": " << items.size() << " item(s), " << (items.size() - failed)
+    // Names as one line each: a tab, a line break or a byte that is not UTF-8 in a capture's
+    // name shows as \xHH, never as a forged line of the summary.
+    std::cout << "Ledger " << escapedText(ledgerPath) << ": " << items.size() << " item(s), " << (items.size() - failed)
               << " done, " << failed << " failed (" << ledger.entries.size() << " lines";
     if (ledger.damagedLines) std::cout << ", " << ledger.damagedLines << " torn line(s) left out";
     std::cout << ")\n";
     for (const batch::ItemStanding& s : items) {
-      std::cout << (s.failed() ? "  FAIL  " : "  done  ") << escapedText(s.item, true);
+      std::cout << (s.failed() ? "  FAIL  " : "  done  ") << escapedText(s.item);
       for (const batch::LedgerEntry* e : s.lastOfStep)
         std::cout << "; " << e->step << (e->succeeded() ? " ok" : " exit " + std::to_string(e->exit));
       std::cout << "\n";
       for (const batch::LedgerEntry* e : s.lastOfStep)
-        if (!e->succeeded()) std::cout << "          " << e->step << ": " << escapedText(e->message, true) << "\n";
+        if (!e->succeeded()) std::cout << "          " << e->step << ": " << escapedText(e->message) << "\n";
     }
     if (duplicates) std::cout << duplicates << " item(s) were packed more than once (their carrier changed between packs)\n";
   }
@@ -147,18 +149,51 @@ int printSummary(const std::string& ledgerPath, bool json) {
 // --emit parallel: a script that runs one `surrogate batch --one N` per item under GNU
 // parallel, which keeps its own job log, reruns the failed ones and starts a job only when
 // enough memory is free.
+//
+// parallel joins its command's words into one line for a shell, and reads replacement strings
+// ({}, {.}, and {= perl =} as code) in every word: a name in the command (a list
+// "l$(touch X).txt", --packages "pk;touch X;", "x{= system(...) =}") would run. So the command
+// holds only fixed words and replacement strings; each word that is a name (the program, the
+// list, the ledger, --packages) is an input source of one value (::: VALUE), substituted as
+// data and quoted by --quote, and the item number is the last source. --null reads every
+// source whole, a name with a line break included (parallel splits ::: values at line breaks
+// otherwise); the script's own shell reads each value in single quotes. A relative path gets
+// "./": no name can then start with '-' (an option) or be ":::" (a source's separator).
 void emitParallel(const std::string& list, std::size_t items, const std::vector<std::string>& passOn,
                   int jobs, const std::string& ledger, const std::string& memory) {
+  const auto asPath = [](const std::string& path) {
+    return std::filesystem::path(path).is_absolute() || path.rfind("./", 0) == 0 ? path : "./" + path;
+  };
+  std::vector<std::string> sources;
+  std::string command;
+  const auto word = [&](const std::string& w, bool name) {
+    if (!name && shellWord(w) == w) {  // a fixed word: letters, digits, . / , : - = and the like
+      command += " " + w;
+      return;
+    }
+    sources.push_back(w);
+    command += " {" + std::to_string(sources.size()) + "}";
+  };
+  word(batch::selfExecutable(), true);
+  word("batch", false);
+  word(asPath(list), true);
+  word("-o", false);
+  word(asPath(ledger), true);
+  for (std::size_t i = 0; i < passOn.size(); ++i) {
+    const bool isPath = i > 0 && passOn[i - 1] == "--packages";
+    word(isPath ? asPath(passOn[i]) : passOn[i], isPath);
+  }
+  command += " --one {" + std::to_string(sources.size() + 1) + "}";
   std::cout << "#!/bin/sh\n"
                "# GNU parallel runs the batch of " << escapedText(list) << ", one `surrogate batch --one N` a job;\n"
-               "# run this again to rerun the failed jobs (--resume-failed, from the job log).\n"
-               "seq 1 " << items << " | parallel --jobs " << jobs
-            << " --joblog " << shellWord(ledger + ".joblog") << " --resume-failed";
-  if (!memory.empty()) std::cout << " --memfree " << memory;
-  std::cout << " \\\n  " << shellWord(batch::selfExecutable()) << " batch " << shellWord(list) << " -o "
-            << shellWord(ledger);
-  for (const std::string& a : passOn) std::cout << " " << shellWord(a);
-  std::cout << " --one {}\n";
+               "# run this again to rerun the failed jobs (--resume-failed, from the job log). Names are\n"
+               "# given to parallel as data (::: sources, --null, --quote), never as part of its command.\n"
+               "seq 1 " << items << " | tr '\\n' '\\000' | parallel --null --jobs " << jobs
+            << " --joblog " << shellWord(asPath(ledger) + ".joblog") << " --resume-failed";
+  if (!memory.empty()) std::cout << " --memfree " << shellWord(memory);
+  std::cout << " --quote \\\n " << command << " \\\n ";
+  for (const std::string& source : sources) std::cout << " ::: " << shellWord(source);
+  std::cout << " :::: -\n";
 }
 
 // The files of a capture's largest folder of photographs (its images, for the time a task
@@ -386,7 +421,7 @@ int runCommandBatch(int argc, char** argv) {
       line += ";";
     }
     if (!plan.steps.empty()) line.pop_back();
-    std::cout << escapedText(line, true) << "\n";
+    std::cout << escapedText(line) << "\n";
   };
   o.jobFinished = [&](const batch::JobReport& r) {
     worked += r.workDone;
@@ -403,12 +438,12 @@ int runCommandBatch(int argc, char** argv) {
     std::string text = line.str();
     text.pop_back();
     bar.finish();
-    std::cout << escapedText(text, true) << std::endl;
+    std::cout << escapedText(text) << std::endl;
   };
   o.waiting = [&](const batch::WorkItem& item, const std::string& why) {
     if (quiet) return;
     bar.finish();
-    std::cout << escapedText("wait  " + item.path + ": " + why + "; the batch comes back to it", true) << std::endl;
+    std::cout << escapedText("wait  " + item.path + ": " + why + "; the batch comes back to it") << std::endl;
   };
   o.progress = [&](std::size_t finished, std::size_t total) {
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
@@ -434,7 +469,7 @@ int runCommandBatch(int argc, char** argv) {
     std::cout << j.str() << "\n";
   } else {  // --quiet too: its one summary line
     std::cout << "Batch of " << r.items << ": " << r.succeeded << " done (" << r.untouched
-              << " of them done before), " << r.failed << " failed; ledger " << *ledger << "\n";
+              << " of them done before), " << r.failed << " failed; ledger " << escapedText(*ledger) << "\n";
   }
   return r.exitCode;
 }

@@ -502,7 +502,9 @@ TEST_CASE("GNU parallel runs the script batch --emit parallel writes and reruns 
   CHECK(emitted.output.find("--joblog") != std::string::npos);
   CHECK(emitted.output.find("--resume-failed") != std::string::npos);
   CHECK(emitted.output.find("--memfree 1G") != std::string::npos);
-  CHECK(emitted.output.find("--one {}") != std::string::npos);
+  CHECK(emitted.output.find(" --one {") != std::string::npos);  // the item number, the last input source
+  CHECK(emitted.output.find("--null") != std::string::npos);
+  CHECK(emitted.output.find("--quote") != std::string::npos);
   std::ofstream(dir / "run.sh") << emitted.output;
   const auto first = e2e::runShell("cd " + quote(dir) + " && HOME=" + quote(dir) + " sh run.sh");
   INFO(first.output);
