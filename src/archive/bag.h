@@ -145,9 +145,18 @@ std::string bagInfoLabelProblem(const std::string& label);
 // writeBag calls this before writing.
 std::vector<std::string> removeStaleParts(const std::filesystem::path& out);
 
-// Checks, before any work, that `out` can be the bag's name: its folder exists, and it is not
-// an existing non-empty folder (directory bags), a folder (archives) or, unless `replace`
-// (pack --force), an existing file. Throws Error(Usage).
+// Checks that `out`'s own name (its last component) can name a package: valid UTF-8 with no
+// control character and no backslash (core/file_names.h: a .tar or .zip holds its bag in a
+// folder named after it, whose name verify judges as it judges every path of the package, and
+// libarchive cannot record a name that is not UTF-8), and before a .tar or .zip extension a
+// folder name other than "." or "..". Throws Error(Input) showing the name escaped, before
+// anything is written. checkOutput calls it; the OCFL and E-ARK layouts call it for their folder.
+void checkPackageName(const std::filesystem::path& out);
+
+// Checks, before any work, that `out` can be the bag's name: checkPackageName, its folder
+// exists, and it is not an existing non-empty folder (directory bags), a folder (archives) or,
+// unless `replace` (pack --force), an existing file. Throws Error(Usage), or Error(Input) for
+// the name or an existing file.
 void checkOutput(const std::filesystem::path& out, bool replace = false);
 
 // Writes the bag. Throws Error(Input) naming an unreadable or changing source file,

@@ -20,6 +20,8 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/file_names.h"
+#include "core/text.h"
 
 namespace surrogate::archive {
 
@@ -199,6 +201,12 @@ class ArchiveSink : public Sink {
   void begin(const std::string& bagPath, std::uint64_t size) override {
     archive_entry_clear(entry_);
     const std::string name = top_ + "/" + bagPath;
+    // libarchive keeps a name that is not UTF-8 without a word, then finds no name to write:
+    // a null pointer in its zip writer (a crash), "no pathname" in its tar writer. The names
+    // were judged before packing (checkPackageName, the capture's names): this is the guard.
+    if (!isValidUtf8(name))
+      throw Error(ErrorKind::Input, shownName(shown_.string()), "packing",
+                  "cannot hold the entry \"" + shownName(name) + "\": a package's names are UTF-8");
     archive_entry_set_pathname_utf8(entry_, name.c_str());
     archive_entry_set_size(entry_, static_cast<la_int64_t>(size));
     archive_entry_set_filetype(entry_, AE_IFREG);
@@ -233,7 +241,8 @@ class ArchiveSink : public Sink {
   }
   [[noreturn]] void fail() {
     const char* why = a_ ? archive_error_string(a_) : nullptr;
-    const int err = a_ ? archive_errno(a_) : 0;
+    // libarchive's own failures carry ARCHIVE_ERRNO_MISC (-1) or other values that are no errno.
+    const int err = a_ && archive_errno(a_) > 0 ? archive_errno(a_) : 0;
     throwWriteError(shown_, err, why ? why : "libarchive error");
   }
   // First, so that they hold from the archive's start to after it is freed.
@@ -276,26 +285,44 @@ std::vector<std::string> removeStaleParts(const fs::path& out) {
   return removed;
 }
 
+void checkPackageName(const fs::path& out) {
+  fs::path named = out.lexically_normal();
+  if (named.filename().empty()) named = named.parent_path();  // "pkg/" is the folder pkg
+  const std::string name = named.filename().string();
+  std::string why = unholdableCharacters(name);
+  if (why.empty() && bagFormatFor(named) != BagFormat::Directory) {
+    const std::string top = named.stem().string();
+    if (top == "." || top == "..")
+      why = "leaves \"" + top + "\" as the name of the folder the archive holds its bag in";
+  }
+  if (!why.empty())
+    throw Error(ErrorKind::Input, shownName(out.string()), "packing",
+                "cannot name a package: its name " + why + ", which a package cannot hold (verify "
+                "would refuse it, and other systems could not unpack it); nothing was written: "
+                "choose another name, of UTF-8 text without control characters or backslashes");
+}
+
 void checkOutput(const fs::path& out, bool replace) {
+  checkPackageName(out);
   const BagFormat format = bagFormatFor(out);
   std::error_code ec;
   if (!replace && format != BagFormat::Directory && fs::exists(fs::symlink_status(out, ec))) {
-    throw Error(ErrorKind::Input, out.string(), "packing",
+    throw Error(ErrorKind::Input, shownName(out.string()), "packing",
                 "already exists; pack never replaces a package silently: give --force to replace "
                 "it, or choose another name");
   }
   if (format == BagFormat::Directory && fs::exists(out) &&
       !(fs::is_directory(out) && fs::is_empty(out))) {
-    throw Error(ErrorKind::Usage, out.string(), "packing",
+    throw Error(ErrorKind::Usage, shownName(out.string()), "packing",
                 "already exists; remove it or choose another output name");
   }
   if (format != BagFormat::Directory && fs::is_directory(out)) {
-    throw Error(ErrorKind::Usage, out.string(), "packing",
+    throw Error(ErrorKind::Usage, shownName(out.string()), "packing",
                 "is a folder; choose a file name ending in .tar or .zip");
   }
   const fs::path parent = out.parent_path().empty() ? fs::path(".") : out.parent_path();
   if (!fs::is_directory(parent)) {
-    throw Error(ErrorKind::Usage, out.string(), "packing",
+    throw Error(ErrorKind::Usage, shownName(out.string()), "packing",
                 "cannot be written: the folder " + parent.string() + " does not exist");
   }
 }

@@ -209,6 +209,7 @@ std::optional<std::string> bagPathOf(const std::string& sipPath) {
 }
 
 EarkResult packEark(const fs::path& capture, const fs::path& given, const PackOptions& options) {
+  checkPackageName(given);  // the folder's name is the SIP's OBJID and LABEL
   fs::path dir = given.lexically_normal();
   if (dir.filename().empty()) dir = dir.parent_path();
   std::error_code ec;

@@ -118,6 +118,59 @@ TEST_CASE("surrogate pack explains a bad command line or an unwritable output", 
   CHECK(r.output.find("BagIt") != std::string::npos);
 }
 
+// Issue 51: a name that is not UTF-8 crashed libarchive's zip writer (exit 139) and gave "Unknown
+// error -1" for a .tar; a backslash, tab or line feed gave a package its own verify refused.
+// Every such name is refused before anything is written, shown escaped, in every layout.
+TEST_CASE("pack refuses a package name no package can hold before writing anything", "[e2e][pack]") {
+  const fs::path dir = e2e::freshDir("pack-names");
+  const fs::path capture = e2e::processedCapture(dir);
+  const auto captureBefore = e2e::snapshot(capture);
+  struct Name {
+    std::string name, shown, layout;
+  };
+  const std::vector<Name> names = {
+      {"lat\xe9.zip", "lat\\xE9.zip", ""},
+      {"lat\xe9.tar", "lat\\xE9.tar", ""},
+      {"lat\xe9", "lat\\xE9", ""},
+      {"back\\slash.zip", "back\\slash.zip", ""},
+      {"tab\there.zip", "tab\\x09here.zip", ""},
+      {"line\nfeed.tar", "line\\x0Afeed.tar", ""},
+      {"...zip", "\"..\"", ""},  // the folder inside would be ".."
+      {"object\xe9", "object\\xE9", "--layout ocfl"},
+      {"sip\x01", "sip\\x01", "--layout eark"},
+  };
+  for (const Name& n : names) {
+    INFO(n.shown);
+    const e2e::CommandResult r = e2e::surrogate("pack " + e2e::quote(capture) + " -o " + e2e::quote(dir / n.name) +
+                                                " --quiet " + n.layout);
+    INFO(r.output);
+    CHECK(r.exitCode == 1);
+    CHECK(r.output.find(n.shown) != std::string::npos);
+    if (n.shown.find("\\x") != std::string::npos)
+      CHECK(r.output.find(n.name) == std::string::npos);  // never the raw bytes
+  }
+  // Nothing beside the capture (no package, no leftover), nothing changed in it.
+  std::vector<std::string> left;
+  for (const auto& e : fs::directory_iterator(dir)) left.push_back(e.path().filename().string());
+  CHECK(left == std::vector<std::string>{"cap"});
+  CHECK(e2e::snapshot(capture) == captureBefore);
+}
+
+TEST_CASE("pack shows the tabs and line feeds of a capture's name and its bytes that are not UTF-8 escaped", "[e2e][pack]") {
+  const fs::path dir = e2e::freshDir("pack-shown");
+  const fs::path capture = dir / "cap\ttab\nline\xe9";  // the capture's name is not in its package
+  fs::rename(e2e::processedCapture(dir), capture);
+  for (const std::string& quiet : {"", " --quiet"}) {
+    const fs::path out = dir / ("pkg" + std::to_string(quiet.size()) + ".zip");
+    const e2e::CommandResult r = e2e::surrogate("pack " + e2e::quote(capture) + " -o " + e2e::quote(out) + quiet);
+    INFO(r.output);
+    REQUIRE(r.exitCode == 0);
+    CHECK(r.output.find("cap\\x09tab\\x0Aline\\xE9") != std::string::npos);
+    CHECK(r.output.find('\t') == std::string::npos);
+    CHECK(r.output.find("\xe9") == std::string::npos);
+  }
+}
+
 TEST_CASE("verify sets aside the files an operating system leaves in a bag folder, with a warning", "[e2e][pack]") {
   // A bag folder copied with a Mac or opened on Windows gains .DS_Store, ._* and Thumbs.db
   // files. run and pack ignore them; verify names each with the command to remove it and
