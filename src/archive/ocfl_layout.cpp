@@ -10,11 +10,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include "archive/ocfl_object.h"
 #include "capture/capture.h"
 #include "carrier/carrier.h"
 #include "core/atomic_file.h"
 #include "core/digest.h"
 #include "core/error.h"
+#include "core/file_names.h"
+#include "core/text.h"
 #include "core/version.h"
 
 namespace fs = std::filesystem;
@@ -36,16 +39,37 @@ std::string sha512Of(const std::string& bytes) {
 
 std::string sidecarText(const std::string& inventory) { return sha512Of(inventory) + " inventory.json\n"; }
 
-// The digest a sidecar names ("<digest> inventory.json"), or "" when it is not of that form.
-std::string sidecarDigest(const std::string& text) {
-  const auto space = text.find_first_of(" \t");
-  if (space == std::string::npos) return "";
-  std::string name = text.substr(text.find_first_not_of(" \t", space));
-  while (!name.empty() && (name.back() == '\n' || name.back() == '\r')) name.pop_back();
-  if (name != "inventory.json") return "";
-  std::string digest = text.substr(0, space);
-  std::transform(digest.begin(), digest.end(), digest.begin(), [](unsigned char ch) { return std::tolower(ch); });
-  return digest;
+// An object pack does not add to: damaged, edited, or holding what could make pack reuse a file
+// that is not the object's own (a link, a path out of it). Exit 2, as verify's refusal of an
+// invalid package, with the command that lists every problem; nothing has been written.
+[[noreturn]] void refuseObject(const fs::path& dir, const std::string& why) {
+  throw Error(ErrorKind::Usage, shownName(dir.string()), kStep,
+              shownName(why) + "; pack adds a version only to a sound object and wrote nothing: run `surrogate verify " +
+                  shellWord(dir.string()) + "` to see every problem, then restore the object from a copy or pack into a new folder");
+}
+
+// Refuses an inventory text whose paths or structure verify would refuse, before pack writes
+// anything from it (the root inventory or its sidecar, completing a killed pack).
+void requireSafeInventory(const fs::path& dir, const std::string& text) {
+  std::vector<std::string> problems;
+  if (!parseOcflInventory(text, "1.1", problems))
+    refuseObject(dir, problems.empty() ? "its inventory cannot be read" : problems.front());
+}
+
+// The whole object checked as verify checks it, every content file's digest included: after
+// this, every copy pack may reuse is the object's own file with the digest its manifest gives.
+void requireSoundObject(const fs::path& dir) {
+  const OcflObjectCheck c = checkOcflObject(dir);
+  const std::vector<std::string> problems = c.problems();
+  if (!problems.empty())
+    refuseObject(dir, problems.front() +
+                          (problems.size() == 2 ? std::string(" (and one more problem)")
+                           : problems.size() > 2 ? " (and " + std::to_string(problems.size() - 1) + " more problems)"
+                                                 : std::string()));
+  if (c.inventory->contentDirectory != "content")
+    throw Error(ErrorKind::Usage, shownName(dir.string()), kStep,
+                "keeps its content in \"" + shownName(c.inventory->contentDirectory) +
+                    "\" folders; Surrogate adds versions to objects that use content/ only: pack into a new folder");
 }
 
 bool readIfFile(const fs::path& path, std::string& out) {
@@ -55,23 +79,18 @@ bool readIfFile(const fs::path& path, std::string& out) {
   return true;
 }
 
+// A folder, not a link to one: what completing a killed pack may read an inventory from.
+bool isRealFolder(const fs::path& path) {
+  std::error_code ec;
+  return fs::is_directory(fs::symlink_status(path, ec));
+}
+
 // An inventory's text whose sidecar names its digest; false when either is missing or they
 // differ.
 bool matchedInventory(const fs::path& folder, std::string& text) {
   std::string sidecar;
   return readIfFile(folder / "inventory.json", text) &&
-         readIfFile(folder / "inventory.json.sha512", sidecar) && sidecarDigest(sidecar) == sha512Of(text);
-}
-
-// The version number of "vN" (or zero-padded "v00N"), 0 when not of that form.
-int versionNumber(const std::string& name) {
-  if (name.size() < 2 || name[0] != 'v' || name.size() > 10) return 0;
-  int n = 0;
-  for (std::size_t i = 1; i < name.size(); ++i) {
-    if (name[i] < '0' || name[i] > '9') return 0;
-    n = n * 10 + (name[i] - '0');
-  }
-  return n;
+         readIfFile(folder / "inventory.json.sha512", sidecar) && ocflSidecarDigest(sidecar) == sha512Of(text);
 }
 
 // "vN" with the zero padding of `like` ("v003" -> "v004"; "v3" -> "v4").
@@ -87,7 +106,7 @@ json parseInventory(const std::string& text, const fs::path& file) {
   try {
     inv = json::parse(text);
   } catch (const json::exception& e) {
-    throw Error(ErrorKind::Usage, file.string(), kStep,
+    throw Error(ErrorKind::Usage, shownName(file.string()), kStep,
                 std::string("is not valid JSON (") + e.what() + "); run `surrogate verify` on the object");
   }
   const bool shaped = inv.is_object() && inv.contains("id") && inv["id"].is_string() &&
@@ -95,13 +114,13 @@ json parseInventory(const std::string& text, const fs::path& file) {
                       inv.contains("manifest") && inv["manifest"].is_object() &&
                       inv.contains("versions") && inv["versions"].is_object() &&
                       inv.contains("digestAlgorithm") && inv["digestAlgorithm"].is_string() &&
-                      versionNumber(inv["head"].get<std::string>()) > 0;
+                      ocflVersionNumber(inv["head"].get<std::string>()) > 0;
   if (!shaped)
-    throw Error(ErrorKind::Usage, file.string(), kStep,
+    throw Error(ErrorKind::Usage, shownName(file.string()), kStep,
                 "is not an OCFL inventory (id, head, digestAlgorithm, manifest and versions are "
                 "required); run `surrogate verify` on the object");
   if (inv["digestAlgorithm"] != "sha512")
-    throw Error(ErrorKind::Usage, file.string(), kStep,
+    throw Error(ErrorKind::Usage, shownName(file.string()), kStep,
                 "uses digestAlgorithm " + inv["digestAlgorithm"].get<std::string>() +
                     "; Surrogate adds versions to sha512 objects only: pack into a new folder");
   return inv;
@@ -142,50 +161,45 @@ Existing openObject(const fs::path& dir, std::vector<std::string>& notes) {
   if (!readIfFile(dir / kNamaste, namaste) || namaste != "ocfl_object_1.1\n") {
     std::error_code ec;
     const bool older = fs::exists(dir / "0=ocfl_object_1.0", ec);
-    throw Error(ErrorKind::Usage, dir.string(), kStep,
+    throw Error(ErrorKind::Usage, shownName(dir.string()), kStep,
                 older ? "is an OCFL 1.0 object; Surrogate adds versions to OCFL 1.1 objects only: pack into a new folder"
                       : "exists and is not an OCFL object (no 0=ocfl_object_1.1 file); give an empty "
                         "or new folder, or an OCFL object made by an earlier `surrogate pack --layout ocfl`");
   }
   Existing e;
-  if (!readIfFile(dir / "inventory.json", e.text))
-    throw Error(ErrorKind::Fixity, (dir / "inventory.json").string(), kStep,
-                "is missing: the object is damaged; run `surrogate verify " + dir.string() + "`");
+  if (!readIfFile(dir / "inventory.json", e.text)) refuseObject(dir, "its inventory.json is missing or not a file");
   std::string sidecar;
   readIfFile(dir / "inventory.json.sha512", sidecar);
   e.inventory = parseInventory(e.text, dir / "inventory.json");
+  requireSafeInventory(dir, e.text);
   const std::string head = e.inventory["head"];
-  if (sidecarDigest(sidecar) != sha512Of(e.text)) {
+  if (ocflSidecarDigest(sidecar) != sha512Of(e.text)) {
     // Killed between replacing the root inventory and its sidecar: the head version holds
     // the same inventory with its own sidecar.
     std::string copy;
-    if (!matchedInventory(dir / head, copy) || copy != e.text)
-      throw Error(ErrorKind::Fixity, (dir / "inventory.json.sha512").string(), kStep,
-                  "does not match inventory.json: the object is damaged or was edited; run "
-                  "`surrogate verify " + dir.string() + "`");
+    if (!isRealFolder(dir / head) || !matchedInventory(dir / head, copy) || copy != e.text)
+      refuseObject(dir, "inventory.json.sha512 does not name the digest of inventory.json (the inventory was edited)");
     writeFileAtomically(dir / "inventory.json.sha512", sidecarText(e.text));
     notes.push_back("completed " + (dir / "inventory.json.sha512").string() +
                     ", which a pack that did not finish left unwritten");
   }
   // Killed between putting the next version in place and replacing the root inventory.
-  const std::string next = versionName(versionNumber(head) + 1, head);
+  const std::string next = versionName(ocflVersionNumber(head) + 1, head);
   std::error_code ec;
   if (fs::exists(fs::symlink_status(dir / next, ec))) {
     std::string text;
     json later;
-    bool extends = matchedInventory(dir / next, text);
+    bool extends = isRealFolder(dir / next) && matchedInventory(dir / next, text);
     if (extends) {
       later = parseInventory(text, dir / next / "inventory.json");
+      requireSafeInventory(dir, text);
       extends = later["id"] == e.inventory["id"] && later["head"] == next;
       for (const auto& [name, version] : e.inventory["versions"].items())
         extends = extends && later["versions"].contains(name) && later["versions"][name] == version;
       for (const auto& [digest, paths] : e.inventory["manifest"].items())
         extends = extends && later["manifest"].contains(digest) && later["manifest"][digest] == paths;
     }
-    if (!extends)
-      throw Error(ErrorKind::Usage, (dir / next).string(), kStep,
-                  "is a version folder the object's inventory does not list; the object is not as "
-                  "Surrogate leaves it: run `surrogate verify " + dir.string() + "`");
+    if (!extends) refuseObject(dir, next + "/ is a version folder the object's inventory does not list");
     writeFileAtomically(dir / "inventory.json", text);
     writeFileAtomically(dir / "inventory.json.sha512", sidecarText(text));
     notes.push_back("completed version " + next + " of " + dir.string() +
@@ -193,6 +207,7 @@ Existing openObject(const fs::path& dir, std::vector<std::string>& notes) {
     e.text = text;
     e.inventory = later;
   }
+  requireSoundObject(dir);
   return e;
 }
 
@@ -209,6 +224,7 @@ std::string captureObjectId(const carrier::Carrier& c) {
 }
 
 OcflResult packOcfl(const fs::path& capture, const fs::path& given, const PackOptions& options) {
+  checkPackageName(given);
   fs::path dir = given.lexically_normal();
   if (dir.filename().empty()) dir = dir.parent_path();
   OcflResult result;
@@ -223,7 +239,7 @@ OcflResult packOcfl(const fs::path& capture, const fs::path& given, const PackOp
   std::error_code ec;
   const bool exists = fs::exists(fs::symlink_status(dir, ec));
   if (exists && !fs::is_directory(fs::symlink_status(dir, ec)))
-    throw Error(ErrorKind::Usage, dir.string(), kStep,
+    throw Error(ErrorKind::Usage, shownName(dir.string()), kStep,
                 "is not a folder; --layout ocfl writes an OCFL object into a folder");
   result.created = !exists || fs::is_empty(dir, ec);
 
@@ -234,12 +250,12 @@ OcflResult packOcfl(const fs::path& capture, const fs::path& given, const PackOp
     Existing e = openObject(dir, result.notes);
     inventory = std::move(e.inventory);
     if (inventory["id"] != result.objectId)
-      throw Error(ErrorKind::Usage, dir.string(), kStep,
+      throw Error(ErrorKind::Usage, shownName(dir.string()), kStep,
                   "is the OCFL object of another capture (its id is " + inventory["id"].get<std::string>() +
                       ", this capture's is " + result.objectId +
                       ": the id names the capture's originals); give another folder for this capture");
     like = inventory["head"];
-    number = versionNumber(like) + 1;
+    number = ocflVersionNumber(like) + 1;
   } else {
     inventory = {{"digestAlgorithm", "sha512"}, {"id", result.objectId}, {"manifest", json::object()},
                  {"type", kInventoryType}, {"versions", json::object()}};
@@ -290,10 +306,8 @@ OcflResult packOcfl(const fs::path& capture, const fs::path& given, const PackOp
         })) {
       // Held by an earlier version: that copy serves this state too.
       const std::string earlier = manifest[digest][0];
-      if (!fs::is_regular_file(dir / earlier, ec))
-        throw Error(ErrorKind::Fixity, (dir / earlier).string(), kStep,
-                    "is missing, though the object's inventory lists it; run `surrogate verify " +
-                        dir.string() + "`");
+      if (!fs::is_regular_file(fs::symlink_status(dir / earlier, ec)))  // checked sound: gone since
+        refuseObject(dir, earlier + " is missing, though the object's inventory lists it");
       fs::remove(versionFolder / "content" / path);
       ++result.reusedFiles;
       continue;

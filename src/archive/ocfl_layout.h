@@ -53,10 +53,14 @@ struct OcflResult {
 };
 
 // Packs the capture as a new version of the OCFL object at `dir` (created when `dir` does
-// not exist or is an empty folder). Throws Error(Usage) when `dir` holds something else than
-// an OCFL 1.1 object, or the object of another capture (another id); Error(Fixity) when its
-// root inventory does not match its sidecar (verify the object); PayloadChanged as
-// packCapture. `options.replace` is not used (an object is never replaced, only added to).
+// not exist or is an empty folder). An existing object is first checked as verify checks it
+// (archive/ocfl_object.h: no link anywhere, safe paths, its sidecars, its versions, every
+// content file's digest), so that a file reused from an earlier version is the object's own
+// with the digest its manifest gives. Throws Error(Input) for a name no package can have
+// (checkPackageName); Error(Usage) when `dir` holds something else than an OCFL 1.1 object, an
+// object that fails those checks (the message names the first problem and the verify
+// command; nothing is written), or the object of another capture (another id);
+// PayloadChanged as packCapture. `options.replace` is not used (an object is only added to).
 OcflResult packOcfl(const std::filesystem::path& capture, const std::filesystem::path& dir,
                     const PackOptions& options = {});
 

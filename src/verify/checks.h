@@ -8,21 +8,17 @@
 #include <vector>
 
 #include "archive/bag_text.h"
+#include "archive/folder_walk.h"
 #include "archive/package_reader.h"
 #include "carrier/carrier.h"
 #include "verify/verify.h"
 
 namespace surrogate::verify {
 
-// What a folder package (an OCFL object, an E-ARK SIP) holds, walked without following links:
-// its files and folders relative to it, '/' separated, and one sentence for each entry that is
-// neither (a link, a device) or a listing that failed. `holder` names the package in those
-// sentences: "an OCFL object".
-struct FolderWalk {
-  std::set<std::string> files, folders;
-  std::vector<std::string> problems;
-};
-FolderWalk walkFolder(const std::filesystem::path& root, const std::string& holder);
+// What a folder package (an OCFL object, an E-ARK SIP) holds, walked without following links
+// (archive/folder_walk.h, shared with pack --layout ocfl).
+using archive::FolderWalk;
+using archive::walkFolder;
 
 // The package reader and the BagIt text formats live in src/archive; the checks use them.
 using archive::extractFiles;

@@ -370,3 +370,62 @@ TEST_CASE("info and report show the bag of an OCFL object's head version and nam
   }
   CHECK(!fs::exists(o.dir / "x.html"));
 }
+
+// Issue 51: pack --layout ocfl onto an existing object trusted it, adding a version (exit 0)
+// that reused whatever its inventory pointed at. Each of these objects is one verify refuses;
+// pack must refuse it too (exit 2, the verify command named) and write nothing, no v3 above all.
+TEST_CASE("pack --layout ocfl refuses an object whose paths leave it, that holds a link, or whose copy changed",
+          "[ocfl]") {
+  const Object& o = twoVersions();
+  const nlohmann::json inv = inventoryOf(o.object);
+  std::string originalPath, bagitPath;
+  for (const auto& [digest, paths] : inv["manifest"].items()) {
+    const std::string p = paths[0];
+    if (originalPath.empty() && p.rfind("v1/content/data/original-captures/", 0) == 0) originalPath = p;
+    if (p == "v1/content/bagit.txt") bagitPath = p;
+  }
+  REQUIRE(!originalPath.empty());
+  REQUIRE(!bagitPath.empty());  // bagit.txt never changes: every version reuses v1's copy
+
+  const std::vector<std::pair<std::string, std::function<void(const fs::path&)>>> hostile = {
+      {"a manifest path out of the object, every inventory and sidecar redone",
+       [&](const fs::path& obj) {
+         forgeInventories(obj, [&](std::string t) { return replaceAll(t, "\"" + bagitPath + "\"", "\"../../../../etc/passwd\""); });
+       }},
+      {"a state path with ..",
+       [](const fs::path& obj) { forgeInventories(obj, [](std::string t) { return replaceAll(t, "\"bagit.txt\"", "\"../bagit.txt\""); }); }},
+      {"an absolute state path",
+       [](const fs::path& obj) { forgeInventories(obj, [](std::string t) { return replaceAll(t, "\"bagit.txt\"", "\"/etc/passwd\""); }); }},
+      {"v1's bagit.txt a symbolic link to /etc/passwd",
+       [&](const fs::path& obj) {
+         fs::remove(obj / bagitPath);
+         fs::create_symlink("/etc/passwd", obj / bagitPath);
+       }},
+      {"v1 a symbolic link out of the object",
+       [](const fs::path& obj) {
+         const fs::path elsewhere = obj.parent_path() / "elsewhere-v1";
+         fs::rename(obj / "v1", elsewhere);
+         fs::create_symlink(elsewhere, obj / "v1");
+       }},
+      {"a bit flipped in v1's copy of an original",
+       [&](const fs::path& obj) {
+         std::string b = e2e::bytesOf(obj / originalPath);
+         b[b.size() / 2] = static_cast<char>(b[b.size() / 2] ^ 0x01);
+         write(obj / originalPath, b);
+       }},
+  };
+  for (const auto& [name, make] : hostile) {
+    SECTION(name) {
+      const fs::path obj = copyOf(o.object, "ocfl-hostile");
+      make(obj);
+      const auto before = e2e::snapshot(obj);
+      const e2e::CommandResult r = pack(o.capture, obj, 1700500000, "--layout ocfl");
+      INFO(r.output);
+      CHECK(r.exitCode == 2);
+      CHECK_THAT(r.output, Contains("surrogate verify " + obj.string()));
+      CHECK(!fs::exists(fs::symlink_status(obj / "v3")));
+      CHECK(e2e::snapshot(obj) == before);
+      CHECK(verifyExit(obj) != 0);
+    }
+  }
+}

@@ -1,10 +1,11 @@
-#include <system_error>
+// walkFolder (folder_walk.h): a folder package listed without following anything.
+#include "archive/folder_walk.h"
 
-#include "verify/checks.h"
+#include <system_error>
 
 namespace fs = std::filesystem;
 
-namespace surrogate::verify {
+namespace surrogate::archive {
 
 FolderWalk walkFolder(const fs::path& root, const std::string& holder) {
   FolderWalk w;
@@ -22,4 +23,4 @@ FolderWalk walkFolder(const fs::path& root, const std::string& holder) {
   return w;
 }
 
-}  // namespace surrogate::verify
+}  // namespace surrogate::archive
