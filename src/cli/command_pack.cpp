@@ -417,8 +417,10 @@ int runCommandPack(int argc, char** argv) {
                   {"surrogate pack stela12 --layout ocfl -o repository/stela12",
                    "add the package as a new version of an OCFL object (made on the first pack)"}},
                  {{0, "packed"},
-                  {1, "bad input: an unreadable file, or one that changed while it was packed"},
-                  {2, "bad usage: an unknown option, a missing or malformed value"},
+                  {1, "bad input: an unreadable file, or one that changed while it was packed; an OUT whose "
+                      "name no package can have (not UTF-8, a control character, a backslash)"},
+                  {2, "bad usage: an unknown option, a missing or malformed value; with --layout ocfl, an "
+                      "existing object that fails verify's OCFL checks (nothing is written)"},
                   {3, "an original no longer matches the SHA-256 the carrier records (it is evidence: "
                       "restore it, or accept the change with run --accept-changed)"},
                   {5, "could not write (disk full, permissions), or an internal error"}}}))
