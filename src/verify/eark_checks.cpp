@@ -12,7 +12,11 @@
 //                      METS.xml is referenced (the representation METS by the package METS)
 //   eark.fixity-METS   every referenced file has the size and checksum its METS gives it
 //
-// A failure is fixity (3) but for eark.read and eark.mets (invalid, 2). The SIP's files are then
+// A failure is fixity (3) but for eark.read and eark.mets (invalid, 2). A METS reference that is
+// not a safe relative path inside the SIP ("../../etc/passwd", "/etc/passwd", "a/../../b") makes
+// the METS unusable as the list of the SIP's files, as an unsafe path makes an OCFL inventory
+// unusable (ocfl_checks.h): verify stops after eark.mets with exit 2, rather than go on to judge
+// completeness and fixity from a list that names what is not the SIP's. The SIP's files are then
 // put back where the bag had them (archive::bagPathOf; hard links where the temporary folder is
 // on the SIP's file system, copies otherwise) and given to verifyBag, which checks the bag's
 // manifests, the carrier and the metadata derived from it: a METS whose checksums were redone
@@ -89,8 +93,9 @@ struct Reference {
 
 // The checks of one METS (the package's, or a representation's in `folder`), its references
 // appended to `refs`; returns the representation METS it points to (package METS only).
+// `unsafe` is set when a reference is not a safe relative path inside the SIP.
 std::vector<std::string> checkMets(const fs::path& sip, const std::string& path, bool package,
-                                   std::vector<Reference>& refs, std::vector<std::string>& problems) {
+                                   std::vector<Reference>& refs, std::vector<std::string>& problems, bool& unsafe) {
   const std::string text = [&] {
     try {
       return readFile(sip / path, "verifying");
@@ -138,7 +143,9 @@ std::vector<std::string> checkMets(const fs::path& sip, const std::string& path,
     std::string why;
     const auto safe = archive::safeBagPath(folder + href, &why);
     if (href.empty() || !safe || *safe != folder + href) {
-      problems.push_back(path + ": a file reference \"" + href + "\" is not a safe relative path");
+      problems.push_back(path + ": a file reference \"" + escapedText(href) + "\" is not a safe relative path inside the SIP" +
+                         (why.empty() ? "" : " (" + why + ")"));
+      unsafe = true;
       return;
     }
     r.path = *safe;
@@ -165,9 +172,13 @@ std::vector<std::string> checkMets(const fs::path& sip, const std::string& path,
       const std::string href = attribute(mptr, "href", kXlink);
       std::string why;
       const auto safe = archive::safeBagPath(href, &why);
-      if (!safe || *safe != href || href.size() < 9 || href.compare(href.size() - 9, 9, "/METS.xml") != 0)
-        problems.push_back(path + ": a representation pointer \"" + href + "\" is not a safe path to a METS.xml");
-      else pointed.push_back(href);
+      if (!safe || *safe != href || href.size() < 9 || href.compare(href.size() - 9, 9, "/METS.xml") != 0) {
+        problems.push_back(path + ": a representation pointer \"" + escapedText(href) + "\" is not a safe path to a METS.xml" +
+                           (why.empty() ? "" : " (" + why + ")"));
+        unsafe = true;
+      } else {
+        pointed.push_back(href);
+      }
     }
   return pointed;
 }
@@ -230,14 +241,17 @@ Report verifyEarkSip(const fs::path& sip, const VerifyOptions& options) {
 
   std::vector<std::string> problems;
   std::vector<Reference> refs;
-  const std::vector<std::string> representations = checkMets(sip, archive::kSipMets, true, refs, problems);
-  if (representations.empty()) problems.push_back(std::string(archive::kSipMets) + ": points to no representation METS (CSIP109)");
-  for (const std::string& rep : representations) checkMets(sip, rep, false, refs, problems);
+  bool unsafe = false;
+  const std::vector<std::string> representations = checkMets(sip, archive::kSipMets, true, refs, problems, unsafe);
+  if (representations.empty() && !unsafe)
+    problems.push_back(std::string(archive::kSipMets) + ": points to no representation METS (CSIP109)");
+  for (const std::string& rep : representations) checkMets(sip, rep, false, refs, problems, unsafe);
   add(report, "eark.mets", Severity::Invalid,
       std::string(archive::kSipMets) + " and " + std::to_string(representations.size()) +
           " representation METS are METS 1.12.1 with the CSIP and SIP essentials, " + std::to_string(refs.size()) +
           " file references",
       "the SIP's METS are not what an E-ARK SIP needs", problems);
+  if (unsafe) return report;  // invalid (2): the METS cannot say which files are the SIP's
 
   problems.clear();
   std::set<std::string> referenced;

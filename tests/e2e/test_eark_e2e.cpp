@@ -74,6 +74,16 @@ const Sip& packed() {
   return s;
 }
 
+// `mets` with the xlink:href of the first `element` (FLocat, mptr) replaced by `to`.
+std::string withHref(std::string mets, const std::string& element, const std::string& to) {
+  const auto at = mets.find(element + " ");
+  REQUIRE(at != std::string::npos);
+  const auto href = mets.find("xlink:href=\"", at);
+  REQUIRE(href != std::string::npos);
+  const auto start = href + 12;
+  return mets.replace(start, mets.find('"', start) - start, to);
+}
+
 fs::path copyOf(const fs::path& sip, const std::string& name) {
   const fs::path target = e2e::freshDir(name) / "stela-sip";
   fs::copy(sip, target, fs::copy_options::recursive);
@@ -175,7 +185,7 @@ TEST_CASE("pack --layout eark refuses a folder that is not empty", "[eark]") {
   CHECK(pack(s.capture, e2e::freshDir("eark-zip") / "x.zip", 1700000000, "--layout eark").exitCode == 2);
 }
 
-TEST_CASE("verify never says SOUND of an E-ARK SIP cut, flipped, forged or missing a file", "[eark]") {
+TEST_CASE("verify never says SOUND of an E-ARK SIP cut, flipped, forged, missing a file or pointing out of it", "[eark]") {
   const Sip& s = packed();
   const std::string original = "representations/rep1/data/original-captures/" +
                                e2e::snapshot(s.sip / "representations/rep1/data/original-captures").begin()->first;
@@ -214,6 +224,22 @@ TEST_CASE("verify never says SOUND of an E-ARK SIP cut, flipped, forged or missi
                                             "SIZE=\"" + std::to_string(repBefore.size()) + "\"",
                                             "SIZE=\"" + std::to_string(repAfter.size()) + "\""));
        }},
+      // Issue 51: a reference out of the SIP is an invalid package (2), as an unsafe OCFL path
+      // is, not a fixity failure (3) of the file it no longer references.
+      {"a file reference out of the SIP", "eark.mets", 2,
+       [](const fs::path& sip) {
+         const fs::path rep = sip / "representations/rep1/METS.xml";
+         write(rep, withHref(e2e::bytesOf(rep), "mets:FLocat", "../../../../etc/passwd"));
+       }},
+      {"an absolute file reference", "eark.mets", 2,
+       [](const fs::path& sip) {
+         const fs::path rep = sip / "representations/rep1/METS.xml";
+         write(rep, withHref(e2e::bytesOf(rep), "mets:FLocat", "/etc/passwd"));
+       }},
+      {"a representation pointer out of the SIP", "eark.mets", 2,
+       [](const fs::path& sip) {
+         write(sip / "METS.xml", withHref(e2e::bytesOf(sip / "METS.xml"), "mets:mptr", "../other-sip/METS.xml"));
+       }},
   };
   for (const Fault& f : faults) {
     SECTION(f.name) {
@@ -224,6 +250,10 @@ TEST_CASE("verify never says SOUND of an E-ARK SIP cut, flipped, forged or missi
       CHECK(r.exitCode == f.exit);
       CHECK_THAT(r.output, Contains("FAIL  " + f.check));
       CHECK(r.output.find("\nSOUND") == std::string::npos);
+      if (f.exit == 2) {
+        CHECK_THAT(r.output, Contains("is not a safe"));
+        CHECK_THAT(r.output, !Contains("FAIL  eark.complete") && !Contains("FAIL  eark.fixity"));
+      }
     }
   }
 }
