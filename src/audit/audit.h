@@ -315,6 +315,11 @@ struct VerdictSummary {
 std::vector<VerdictSummary> summarise(const AuditReport& report);
 // Whether every verdict says reproduced and every prior file was audited.
 bool auditReproduced(const AuditReport& report);
+// The exit code of `surrogate audit` for `report`: 1 (Error(Input)'s) when a prior file was left
+// out because it cannot be read, whatever the verdicts say (they were judged without it: a
+// model whose .lp is unreadable is compared with no lights); else 4 when a verdict says not
+// reproduced; 0 when every one says reproduced; 1 when there is none.
+int auditExitCode(const AuditReport& report);
 
 // The summaries for the terminal: per verdict, a line with its subject and REPRODUCED or NOT
 // REPRODUCED, then one line per part.

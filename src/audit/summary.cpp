@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "audit/audit.h"
+#include "core/error.h"
 #include "core/text.h"
 
 namespace surrogate::audit {
@@ -188,6 +189,13 @@ std::vector<VerdictSummary> summarise(const AuditReport& report) {
 bool auditReproduced(const AuditReport& report) {
   if (report.verdicts.empty() || !report.notAudited.empty()) return false;
   return std::all_of(report.verdicts.begin(), report.verdicts.end(), [](const Verdict& v) { return v.reproduced; });
+}
+
+int auditExitCode(const AuditReport& report) {
+  if (!report.notAudited.empty() || report.verdicts.empty()) return static_cast<int>(ErrorKind::Input);
+  for (const Verdict& v : report.verdicts)
+    if (!v.reproduced) return static_cast<int>(ErrorKind::NotReproduced);
+  return 0;
 }
 
 std::vector<std::string> summaryLines(const std::vector<VerdictSummary>& summaries) {

@@ -75,12 +75,6 @@ bool decisionsGiven(const Args& args) {
   return false;
 }
 
-int exitCodeOf(const audit::AuditReport& report) {
-  for (const audit::Verdict& v : report.verdicts)
-    if (!v.reproduced) return kNotReproduced;
-  return audit::auditReproduced(report) ? kReproduced : kUnreadable;
-}
-
 struct Outcome {
   fs::path prior, work;
   const evidence::WorkFolder* folder = nullptr;
@@ -115,6 +109,10 @@ void printText(const Outcome& o, const audit::AuditReport& report, int exitCode,
       exitCode == kReproduced ? "reproduced" : exitCode == kNotReproduced ? "not reproduced" : "cannot tell";
   if (verbosity == Verbosity::Quiet) {
     std::cout << "audit of " << escapedText(o.prior.string()) << ": " << verdict << " (exit " << exitCode << ")";
+    if (!report.notAudited.empty())
+      std::cout << "; " << escapedText(report.notAudited.front().file.generic_string()) << " cannot be read ("
+                << report.notAudited.front().reason << ")"
+                << (report.notAudited.size() > 1 ? " and " + std::to_string(report.notAudited.size() - 1) + " more" : "");
     if (o.report) std::cout << "; report: " << escapedText(o.report->string());
     std::cout << "\n";
     return;
@@ -183,8 +181,9 @@ int runCommandAudit(int argc, char** argv) {
                   {"surrogate audit coin.zip -o coin-audit --threshold 5",
                    "audit a package, naming only the lights that differ by more than 5 degrees"}},
                  {{0, "the prior work is reproduced"},
-                  {1, "the prior work cannot be read, or there is none"},
-                  {2, "bad usage: an unknown option, a missing or malformed value"},
+                  {1, "the prior work cannot be read (a file of it left out, named: this before 4), or there is none"},
+                  {2, "bad usage: an unknown option, a missing or malformed value, a work folder inside PRIOR or "
+                      "one that is something else"},
                   {3, "a package whose files differ from its record"},
                   {4, "not reproduced: the verdict says which part and why"},
                   {5, "internal error: a bug, or the environment (disk full, permissions)"}}}))
@@ -241,7 +240,7 @@ int runCommandAudit(int argc, char** argv) {
                         carrierPath.string() + ")");
   o.step = r->step;
   const audit::AuditReport report = audit::recordedAudit(*c, *r);
-  const int exitCode = exitCodeOf(report);
+  const int exitCode = audit::auditExitCode(report);
   if (json) printJson(o, report, exitCode);
   else printText(o, report, exitCode, verbosityOf(args));
   return exitCode;

@@ -13,9 +13,12 @@
 // carrier records as Surrogate's (roles assembly and result, the carrier, the report). Each
 // copy keeps its path relative to the capture, and PRIOR's modification time.
 //
-// PRIOR's files and folders are opened with O_NOATIME where the system allows it (the owner,
-// or root), so that not even their access times change. Symbolic links and special files in
-// PRIOR are refused as a capture's scan refuses them.
+// PRIOR's files and folders, and a package file, are opened with O_NOATIME where the system
+// allows it (the owner, or root), so that not even their access times change (a bag folder's
+// own folders are listed by archive's reader, which does not). Symbolic links and special files
+// in PRIOR are refused as a capture's scan refuses them; PRIOR itself may be a link to a folder
+// or a package, audited as what it points to, and "inside PRIOR" is judged with every link
+// followed, so that no work folder reached through a link lands in it.
 #pragma once
 
 #include <filesystem>
@@ -30,7 +33,7 @@ namespace surrogate::evidence {
 // Progress: (label, fraction 0..1).
 using Progress = std::function<void(const std::string&, double)>;
 
-// What PRIOR is, judged from its names without opening a file.
+// What PRIOR is (a link followed), judged from its names and its listing, read as above.
 enum class SourceKind {
   Folder,      // a capture folder (original-captures/, raw-images/ or jpeg-exports/)
   Package,     // a .zip or .tar file, or a bag folder (bagit.txt)

@@ -40,7 +40,40 @@ bool isInside(const fs::path& inner, const fs::path& outer) {
   return !rel.empty() && *rel.begin() != "..";
 }
 
+// Where a path really is, every symbolic link on the way followed (the part that does not
+// exist yet kept as written): what "inside PRIOR" is judged on, so that neither PRIOR reached
+// through a link nor a work folder reached through one can put the work inside PRIOR.
+fs::path realPlace(const fs::path& p) {
+  std::error_code ec;
+  const fs::path real = fs::weakly_canonical(p, ec);
+  return ec ? absoluteNormal(p) : absoluteNormal(real);
+}
+
+// PRIOR as the thing it names: a symbolic link (to a folder or a package) followed, so that it
+// is audited as what it points to; the audit still never writes into that.
+fs::path resolvedPrior(const fs::path& given) {
+  std::error_code ec;
+  const fs::file_status link = fs::symlink_status(given, ec);
+  if (ec || !fs::exists(link))
+    throwInputError(escapedText(given.string()), kStep, "does not exist: give the folder (or package) of the work to audit");
+  const fs::path real = fs::canonical(given, ec);
+  if (ec == std::errc::too_many_symbolic_link_levels)
+    throwInputError(escapedText(given.string()), kStep, "is a loop of symbolic links; give the folder (or package) itself");
+  if (ec)
+    throwInputError(escapedText(given.string()), kStep,
+                    fs::is_symlink(link) ? "is a symbolic link to " + escapedText(fs::read_symlink(given, ec).string()) +
+                                               ", which does not exist: give the folder (or package) itself"
+                                         : "cannot be read (" + ec.message() + "); check the path and your permissions");
+  return real;
+}
+
 std::string sourceText(const fs::path& prior) { return escapedText(absoluteNormal(prior).string()); }
+
+// Whether a work folder's record names this PRIOR: its real place (recorded since links are
+// followed) or the path it was given as (recorded by earlier audits).
+bool sameSource(const std::string& recorded, const fs::path& prior, const fs::path& given) {
+  return recorded == sourceText(prior) || recorded == sourceText(given);
+}
 
 // Surrogate's own files in a capture processed by Surrogate: never evidence of another tool.
 std::set<std::string> surrogateFiles(const carrier::Carrier& c) {
@@ -175,9 +208,9 @@ carrier::AuditedSource copyPackage(const fs::path& package, const fs::path& stag
   // The package file itself as read, for the record (a bag folder has no one digest). Only
   // when copying: finding an earlier work folder again compares the payload's files alone.
   if (fs::is_regular_file(package)) {
-    const FileDigests d = digestFile(package);
-    e.record.packageSize = d.size;
-    e.record.packageSha256 = d.sha256;
+    const carrier::AuditedSource::Item whole = hashFile(package.parent_path(), package.filename().string());
+    e.record.packageSize = whole.size;
+    e.record.packageSha256 = whole.sha256;
   }
   return e.record;
 }
@@ -233,22 +266,30 @@ std::optional<carrier::Carrier> workCarrier(const fs::path& folder) {
 
 }  // namespace
 
-SourceKind sourceKind(const fs::path& prior) {
+SourceKind sourceKind(const fs::path& priorArg) {
+  const fs::path prior = resolvedPrior(absoluteNormal(priorArg));
   std::error_code ec;
   const fs::file_status st = fs::symlink_status(prior, ec);
-  if (ec || !fs::exists(st))
-    throwInputError(prior.string(), kStep, "does not exist: give the folder (or package) of the work to audit");
   if (fs::is_regular_file(st)) return SourceKind::Package;
   if (!fs::is_directory(st))
-    throwInputError(prior.string(), kStep, "is neither a folder nor a package file (.zip, .tar)");
+    throwInputError(escapedText(priorArg.string()), kStep,
+                    "is neither a folder nor a package file (.zip, .tar): a device, pipe or socket");
   if (fs::is_regular_file(prior / capture::kCarrierPath, ec)) {
     const carrier::Carrier c =
         carrier::parseCarrier(readSmallFile(prior / capture::kCarrierPath), (prior / capture::kCarrierPath).string());
     if (c.header.audited) return SourceKind::WorkFolder;
   }
   if (fs::is_regular_file(prior / "bagit.txt", ec)) return SourceKind::Package;
+  // PRIOR's own listing, through O_NOATIME (prior_files.h): capture::requireCaptureFolder lists
+  // through opendir, which would update the folders' access times, so it is asked only to
+  // refuse a folder with no file in original-captures/, raw-images/ or jpeg-exports/, in the
+  // words of every command. Whether those files are images the run in the work folder judges.
+  for (const std::string& f : listFiles(prior))
+    for (const char* source : capture::kSourceFolders)
+      if (f.rfind(std::string(source) + "/", 0) == 0) return SourceKind::Folder;
   capture::requireCaptureFolder(prior);
-  return SourceKind::Folder;
+  throwInputError(escapedText(prior.string()), kStep,
+                  "is not a capture folder: it has no files in original-captures/, raw-images/ or jpeg-exports/");
 }
 
 fs::path defaultWorkFolder(const fs::path& prior) {
@@ -283,11 +324,12 @@ std::string evidenceDifference(const carrier::AuditedSource& recorded, const car
 }
 
 WorkFolder prepareWorkFolder(const fs::path& priorArg, const std::optional<fs::path>& workArg, const Progress& progress) {
-  const fs::path prior = absoluteNormal(priorArg);
+  const fs::path given = absoluteNormal(priorArg);
+  const fs::path prior = resolvedPrior(given);  // a link followed: read from where it points
   const SourceKind kind = sourceKind(prior);
   WorkFolder out;
   if (kind == SourceKind::WorkFolder) {
-    if (workArg && absoluteNormal(*workArg) != prior)
+    if (workArg && realPlace(*workArg) != prior)
       throw Error(ErrorKind::Usage, priorArg.string(), kStep,
                   "is the work folder of an earlier audit, audited again in place; give no -o, or audit its "
                   "source (named in its carrier) into another folder");
@@ -295,11 +337,13 @@ WorkFolder prepareWorkFolder(const fs::path& priorArg, const std::optional<fs::p
     out.reused = true;
     return out;
   }
-  out.folder = workArg ? absoluteNormal(*workArg) : defaultWorkFolder(prior);
-  if (out.folder == prior || isInside(out.folder, prior) || (kind == SourceKind::Folder && isInside(prior, out.folder)))
+  // The default is named after PRIOR as given (a link's name) and made beside it.
+  out.folder = workArg ? absoluteNormal(*workArg) : defaultWorkFolder(given);
+  const fs::path workPlace = realPlace(out.folder);
+  if (workPlace == prior || isInside(workPlace, prior) || (kind == SourceKind::Folder && isInside(prior, workPlace)))
     throw Error(ErrorKind::Usage, "-o " + out.folder.string(), kStep,
                 "lies inside the folder audited (or holds it); an audit never writes into what it audits: give "
-                "a work folder outside it, e.g. -o " + defaultWorkFolder(prior).string());
+                "a work folder outside it, e.g. -o " + defaultWorkFolder(given).string());
   std::error_code ec;
   if (!fs::exists(fs::symlink_status(out.folder, ec))) {
     capture::checkOutputTarget(out.folder, "-o", capture::ExistingOutput::Refuse, capture::OutputPlace::OutsideCaptures);
@@ -307,7 +351,7 @@ WorkFolder prepareWorkFolder(const fs::path& priorArg, const std::optional<fs::p
     return out;
   }
   const std::optional<carrier::Carrier> c = fs::is_directory(out.folder, ec) ? workCarrier(out.folder) : std::nullopt;
-  if (c && c->header.audited && c->header.audited->source == sourceText(prior)) {
+  if (c && c->header.audited && sameSource(c->header.audited->source, prior, given)) {
     const std::string changed = evidenceDifference(*c->header.audited, evidenceNow(prior, kind, progress));
     if (!changed.empty())
       throwInputError(prior.string(), kStep,
@@ -317,7 +361,7 @@ WorkFolder prepareWorkFolder(const fs::path& priorArg, const std::optional<fs::p
     out.reused = true;
     return out;
   }
-  if (!c && fs::is_directory(out.folder, ec) && markerOf(out.folder) == sourceText(prior)) {
+  if (!c && fs::is_directory(out.folder, ec) && sameSource(markerOf(out.folder), prior, given)) {
     // Begun by an audit of the same PRIOR and stopped before its first run made a carrier:
     // nothing in it but copies, made again.
     fs::remove_all(out.folder);

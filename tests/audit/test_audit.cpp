@@ -381,3 +381,22 @@ TEST_CASE("light statistics follow their definitions") {
   CHECK(l.maxDegrees == Approx(20.0).margin(1e-9));
   CHECK(l.aboveThreshold.size() == 5);                  // 16..20 degrees
 }
+
+// Issue 51: a prior file the audit cannot read (an .lp with NaN, inf, or a count of a million
+// lines) is exit 1, what the docs give to prior work that cannot be read, even when a verdict
+// made without it says "not reproduced" (a model whose .lp is unreadable is compared with no
+// lights, so 4 would blame the prior model for its light file's damage).
+TEST_CASE("the audit's exit code is 1 when a prior file cannot be read, before any verdict") {
+  audit::AuditReport report;
+  CHECK(audit::auditExitCode(report) == 1);  // nothing audited
+  audit::Verdict reproduced, differs;
+  reproduced.reproduced = true;
+  report.verdicts = {reproduced};
+  CHECK(audit::auditExitCode(report) == 0);
+  report.verdicts.push_back(differs);
+  CHECK(audit::auditExitCode(report) == 4);
+  report.notAudited.push_back({"assembly-files/stela.lp", "line 2: the light direction is not a number (nan)"});
+  CHECK(audit::auditExitCode(report) == 1);
+  report.verdicts = {reproduced};
+  CHECK(audit::auditExitCode(report) == 1);
+}
