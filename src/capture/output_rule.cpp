@@ -1,12 +1,16 @@
 #include "capture/output_rule.h"
 
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <array>
+#include <cstring>
 
 #include "capture/capture.h"
 #include "carrier/carrier.h"
 #include "core/error.h"
+#include "core/text.h"
 
 namespace surrogate::capture {
 
@@ -26,7 +30,7 @@ bool isOneOf(const std::string& name, const std::array<const char*, N>& names) {
 // Output-rule refusals are exit 1, like any input that cannot be processed: the path names
 // something the command must not touch (docs/user-guide.md, "Where commands write").
 [[noreturn]] void refuse(const std::string& option, const fs::path& output, const std::string& why) {
-  throw Error(ErrorKind::Input, option + " " + output.string(), "command line", why);
+  throw Error(ErrorKind::Input, option + " " + escapedText(output.string()), "command line", why);
 }
 
 // What a non-regular file is, in a user's words; "" for a regular file or nothing at all.
@@ -39,6 +43,53 @@ std::string specialKind(const fs::path& path) {
   if (S_ISSOCK(st.st_mode)) return "a socket";
   if (S_ISDIR(st.st_mode)) return "a folder";
   return "";
+}
+
+// What kind of package folder `dir` is, by the files each layout puts at its root; "" when
+// none. Files of a package are listed in its manifests or inventory: one added or replaced
+// makes the package invalid.
+std::string packageFolderKind(const fs::path& dir) {
+  std::error_code ec;
+  if (fs::exists(dir / "bagit.txt", ec)) return "a bag (it holds bagit.txt)";
+  for (const char* namaste : {"0=ocfl_object_1.0", "0=ocfl_object_1.1"})
+    if (fs::exists(dir / namaste, ec)) return "an OCFL object";
+  for (const char* namaste : {"0=ocfl_1.0", "0=ocfl_1.1"})
+    if (fs::exists(dir / namaste, ec)) return "an OCFL storage root";
+  if (fs::is_regular_file(dir / "METS.xml", ec) && fs::is_directory(dir / "representations", ec))
+    return "an E-ARK package";
+  return "";
+}
+
+// What archive the regular file at `path` is, by its first bytes (a ZIP's local header or end
+// record, a POSIX tar header's "ustar" magic); "" for anything else or a file that cannot be
+// read. Only `pack` writes archives: any other command meeting one is meeting a package.
+std::string archiveKind(const fs::path& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) return "";
+  char head[512] = {};
+  const ssize_t n = ::pread(fd, head, sizeof head, 0);
+  ::close(fd);
+  if (n >= 4 && (std::memcmp(head, "PK\x03\x04", 4) == 0 || std::memcmp(head, "PK\x05\x06", 4) == 0 ||
+                 std::memcmp(head, "PK\x07\x08", 4) == 0))
+    return "a ZIP archive";
+  if (n >= 262 && std::memcmp(head + 257, "ustar", 5) == 0) return "a tar archive";
+  return "";
+}
+
+// The checks of an existing regular file at the path, by what it is rather than where.
+void checkExistingFile(const fs::path& output, const std::string& option, ExistingOutput existing) {
+  struct stat st {};
+  if (::lstat(output.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return;
+  if (st.st_nlink > 1)
+    refuse(option, output,
+           "has " + std::to_string(st.st_nlink) + " names (hard links): it may be an original, a package or a "
+           "recorded file under another name, and Surrogate never writes over a file it cannot tell is not "
+           "one; choose another name, or remove this name first if the file is yours");
+  if (existing == ExistingOutput::ReplaceOutput)
+    if (const std::string kind = archiveKind(output); !kind.empty())
+      refuse(option, output,
+             "is " + kind + ", a package or someone's archive, which this command never replaces: choose "
+             "another name");
 }
 
 bool isCaptureFolder(const fs::path& dir) {
@@ -90,6 +141,7 @@ void checkOutputTarget(const fs::path& output, const std::string& option, Existi
            "is " + special + ", not a regular file; Surrogate writes only regular files and never "
            "replaces or writes through anything else: choose a file name");
   std::error_code ec;
+  checkExistingFile(output, option, existing);
   if (special.empty() && existing == ExistingOutput::Refuse && fs::exists(output, ec))
     refuse(option, output,
            "already exists; Surrogate does not replace it" + (refuseHint.empty() ? "" : ": " + refuseHint));
@@ -103,6 +155,10 @@ void checkOutputTarget(const fs::path& output, const std::string& option, Existi
              "is inside a capture's " + name + "/ folder (" + dir.string() +
                  "), which holds the untouched originals: Surrogate never writes there; choose a "
                  "place outside the capture");
+    if (const std::string kind = packageFolderKind(dir); !kind.empty())
+      refuse(option, output,
+             "is inside " + escapedText(dir.string()) + ", which is " + kind + ": a file written there makes the "
+             "package invalid (its manifests list every file); choose a place outside the package");
     if (isCaptureFolder(dir)) checkInsideCapture(dir, out, output, option, place);
     if (dir == dir.root_path() || dir.empty()) break;
   }

@@ -77,7 +77,7 @@ int runCommandPublish(int argc, char** argv) {
     throw Error(ErrorKind::Usage, "", "command line",
                 "give the model or capture and the folder to write: surrogate publish FILE.ptm -o DIR");
   // A new folder (publish refuses one that is not empty), never in a capture's own folders.
-  capture::checkOutputTarget(*out, "-o", capture::ExistingOutput::Replace);
+  capture::checkOutputTarget(*out, "-o", capture::ExistingOutput::ReplaceOutput);
   publish::PublishOptions options;
   if (const auto q = args.value("quality")) {
     options.quality = args.intValue("quality", 95);

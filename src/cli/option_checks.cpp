@@ -167,7 +167,7 @@ void checkOutputFile(const std::string& option, const std::filesystem::path& out
                      parent.string() + ") or write elsewhere");
   if (!fs::is_directory(st))
     usage(named, "is in " + parent.string() + ", which is not a folder; write elsewhere");
-  capture::checkOutputTarget(output, option, capture::ExistingOutput::Replace);
+  capture::checkOutputTarget(output, option, capture::ExistingOutput::ReplaceOutput);
 }
 
 namespace {

@@ -24,7 +24,8 @@ int threadsOption(const Args& args);
 // An output file the user names (`-o OUT`), checked before any work: not an existing folder,
 // in a folder that exists (Error(Usage) naming `option` and the path, saying what to do;
 // `example` is a file name the message suggests, "relit.png"), and allowed by the output rule
-// of capture/output_rule.h (an earlier output at the same path may be replaced).
+// of capture/output_rule.h (an earlier output at the same path may be replaced; a package, an
+// archive, a bag's file or a file of several names may not).
 void checkOutputFile(const std::string& option, const std::filesystem::path& output,
                      const std::string& example);
 
