@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -16,9 +17,11 @@
 #include <variant>
 #include <nlohmann/json.hpp>
 
+#include "capture/output_rule.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/json.h"
+#include "core/text.h"
 
 namespace surrogate::batch {
 
@@ -37,6 +40,84 @@ int lockWaitingOnSignals(int fd, int operation) {
   do r = ::flock(fd, operation);
   while (r != 0 && errno == EINTR);
   return r;
+}
+
+[[noreturn]] void refuseLedger(const std::filesystem::path& ledger, const std::string& why) {
+  throw Error(ErrorKind::Input, escapedText(ledger.string()), "batch ledger", why);
+}
+
+[[noreturn]] void refuseTooLarge(const std::filesystem::path& ledger) {
+  refuseLedger(ledger, "is larger than " + std::to_string(kMaxLedgerBytes >> 20) +
+                           " MiB, more than any batch writes (about 700 bytes a step): it is not a ledger, or "
+                           "one to close: start a new ledger for the rest of the work");
+}
+
+// What a file that is not a regular one is, in a user's words.
+std::string kindOf(mode_t mode) {
+  if (S_ISDIR(mode)) return "a folder";
+  if (S_ISFIFO(mode)) return "a FIFO (named pipe)";
+  if (S_ISCHR(mode) || S_ISBLK(mode)) return "a device";
+  if (S_ISSOCK(mode)) return "a socket";
+  if (S_ISLNK(mode)) return "a symbolic link";
+  return "not a regular file";
+}
+
+// A path that names something other than a regular file is refused before it is opened (a
+// device can act on being opened, a tape rewinding); `follow`: as the path's last link leads.
+void requireRegularBeforeOpening(const std::filesystem::path& ledger, bool follow) {
+  struct stat st {};
+  if ((follow ? ::stat(ledger.c_str(), &st) : ::lstat(ledger.c_str(), &st)) != 0) return;  // open() says why
+  if (S_ISLNK(st.st_mode))
+    refuseLedger(ledger, "is a symbolic link: Surrogate never writes through one; give the ledger's own name");
+  if (!S_ISREG(st.st_mode))
+    refuseLedger(ledger, "is " + kindOf(st.st_mode) + ", not a regular file: a ledger is a file that "
+                         "surrogate batch -o writes; give a file name");
+}
+
+// The checks on the descriptor itself: what the path names may have changed since the command
+// line was checked, and appending writes through every name of a file.
+void requireLedgerFile(const std::filesystem::path& ledger, int fd, bool writing) {
+  struct stat st {};
+  if (::fstat(fd, &st) != 0) throw writeError(ledger, "batch ledger", errno);
+  if (!S_ISREG(st.st_mode))
+    refuseLedger(ledger, "is " + kindOf(st.st_mode) + ", not a regular file: a ledger is a file that "
+                         "surrogate batch -o writes; give a file name");
+  if (writing && st.st_nlink > 1)
+    refuseLedger(ledger, "has " + std::to_string(st.st_nlink) + " names (hard links), and appending would "
+                         "change the file under each of them; give a ledger of its own");
+}
+
+// Opens the ledger to append, making it when absent: never through a symbolic link, never
+// waiting on a FIFO.
+int openToAppend(const std::filesystem::path& ledger) {
+  requireRegularBeforeOpening(ledger, false);
+  const int fd = ::open(ledger.c_str(), O_RDWR | O_APPEND | O_CREAT | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK, 0644);
+  if (fd < 0 && errno == ELOOP)
+    refuseLedger(ledger, "is a symbolic link: Surrogate never writes through one; give the ledger's own name");
+  if (fd < 0 && (errno == EISDIR || errno == ENXIO || errno == ENODEV))
+    refuseLedger(ledger, "is not a regular file: a ledger is a file that surrogate batch -o writes; give a file name");
+  if (fd < 0) throw writeError(ledger, "batch ledger", errno);
+  Descriptor d{fd};
+  requireLedgerFile(ledger, fd, true);
+  d.fd = -1;
+  return fd;
+}
+
+// Opens the ledger to read, following links; -1 when it does not exist. A FIFO opened without
+// blocking is refused by its type before anything is read.
+int openToRead(const std::filesystem::path& ledger) {
+  requireRegularBeforeOpening(ledger, true);
+  const int fd = ::open(ledger.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+  if (fd < 0) {
+    if (errno == ENOENT) return -1;
+    refuseLedger(ledger, std::string("cannot be read (") + std::strerror(errno) + "); check its permissions");
+  }
+  Descriptor d{fd};
+  requireLedgerFile(ledger, fd, false);
+  struct stat st {};
+  if (::fstat(fd, &st) == 0 && static_cast<std::uint64_t>(st.st_size) > kMaxLedgerBytes) refuseTooLarge(ledger);
+  d.fd = -1;
+  return fd;
 }
 
 }  // namespace
@@ -86,6 +167,10 @@ const Field kFields[] = {
     {"version", &LedgerEntry::version},
 };
 
+// How every line the writer makes begins (kFields' first member, JsonWriter's compact form):
+// what a torn first line still shows of a ledger.
+constexpr const char* kLedgerLineStart = "{\"capture\":";
+
 template <class>
 inline constexpr bool kAlwaysFalse = false;
 
@@ -124,7 +209,23 @@ void readValue(const nlohmann::json& v, LedgerEntry& e, const Member& member) {
 
 }  // namespace
 
-std::string ledgerLine(const LedgerEntry& e) {
+namespace {
+
+// The message within kMaxLedgerMessageBytes, cut at a character's start and saying so: every
+// other member is bounded by what it is (a path, a digest, a time), so the line stays well
+// within kMaxLedgerLineBytes, which the reader holds to.
+std::string boundedMessage(const std::string& message) {
+  if (message.size() <= kMaxLedgerMessageBytes) return message;
+  std::size_t cut = kMaxLedgerMessageBytes;
+  while (cut > 0 && (static_cast<unsigned char>(message[cut]) & 0xC0) == 0x80) --cut;
+  return message.substr(0, cut) + " ... (" + std::to_string(message.size() - cut) + " more bytes left out)";
+}
+
+}  // namespace
+
+std::string ledgerLine(const LedgerEntry& entry) {
+  LedgerEntry e = entry;
+  e.message = boundedMessage(entry.message);
   JsonWriter j;
   j.beginObject();
   for (const Field& f : kFields) {
@@ -147,9 +248,7 @@ bool parseLedgerLine(const std::string& line, LedgerEntry& e) {
 }
 
 void appendToLedger(const std::filesystem::path& ledger, const LedgerEntry& entry) {
-  Descriptor d;
-  d.fd = ::open(ledger.c_str(), O_RDWR | O_APPEND | O_CREAT | O_CLOEXEC, 0644);
-  if (d.fd < 0) throw writeError(ledger, "batch ledger", errno);
+  Descriptor d{openToAppend(ledger)};
   if (lockWaitingOnSignals(d.fd, LOCK_EX) != 0) throw writeError(ledger, "batch ledger", errno);
   std::string line = ledgerLine(entry) + "\n";
   // A process killed in the middle of its append left a line without its newline: this one
@@ -173,70 +272,108 @@ void appendToLedger(const std::filesystem::path& ledger, const LedgerEntry& entr
 }
 
 void requireWritableLedger(const std::filesystem::path& ledger) {
-  Descriptor d;
-  d.fd = ::open(ledger.c_str(), O_RDWR | O_APPEND | O_CREAT | O_CLOEXEC, 0644);
-  if (d.fd < 0) throw writeError(ledger, "batch ledger", errno);
+  Descriptor d{openToAppend(ledger)};
 }
 
 namespace {
 
-// The bytes of the ledger from `offset` to its end, under a shared flock() (no append read
-// half-way); nullopt when the file does not exist.
-std::optional<std::string> ledgerBytesFrom(const std::filesystem::path& ledger, std::uint64_t offset) {
-  Descriptor d;
-  d.fd = ::open(ledger.c_str(), O_RDONLY | O_CLOEXEC);
-  if (d.fd < 0) {
-    if (errno == ENOENT) return std::nullopt;
-    throw Error(ErrorKind::Input, ledger.string(), "batch ledger",
-                std::string("cannot be read (") + std::strerror(errno) + "); check its permissions");
-  }
-  lockWaitingOnSignals(d.fd, LOCK_SH);  // no lock on this file system: read without one
-  std::string text;
-  char buffer[1 << 16];
-  for (off_t at = static_cast<off_t>(offset);;) {
-    const ssize_t n = ::pread(d.fd, buffer, sizeof buffer, at);
+// Reads the lines of the open ledger from byte `offset` into `into`, one at a time, none held
+// past kMaxLedgerLineBytes (a longer one is counted damaged); returns the bytes taken: to the
+// end when `takePartial` (a last line without its newline is counted damaged), else up to the
+// last newline.
+std::uint64_t readLines(const std::filesystem::path& ledger, int fd, std::uint64_t offset, bool takePartial,
+                        Ledger& into) {
+  std::string line;
+  bool overlong = false;
+  std::uint64_t at = offset, lineStart = offset;
+  const auto endLine = [&] {
+    LedgerEntry e;
+    if (overlong) ++into.damagedLines;
+    else if (line.empty()) return;
+    else if (parseLedgerLine(line, e)) into.entries.push_back(std::move(e));
+    else ++into.damagedLines;
+  };
+  static thread_local char buffer[1 << 16];
+  for (;;) {
+    const ssize_t n = ::pread(fd, buffer, sizeof buffer, static_cast<off_t>(at));
     if (n < 0 && errno == EINTR) continue;
-    if (n < 0)
-      throw Error(ErrorKind::Input, ledger.string(), "batch ledger",
-                  std::string("cannot be read (") + std::strerror(errno) + ")");
+    if (n < 0) refuseLedger(ledger, std::string("cannot be read (") + std::strerror(errno) + ")");
     if (n == 0) break;
-    text.append(buffer, static_cast<std::size_t>(n));
-    at += n;
+    if (at + static_cast<std::uint64_t>(n) > kMaxLedgerBytes) refuseTooLarge(ledger);  // grew, or a size of 0 lied
+    for (const char *p = buffer, *end = buffer + n; p < end;) {
+      const char* newline = static_cast<const char*>(std::memchr(p, '\n', static_cast<std::size_t>(end - p)));
+      const char* stop = newline ? newline : end;
+      if (!overlong && line.size() + static_cast<std::size_t>(stop - p) > kMaxLedgerLineBytes) {
+        overlong = true;
+        std::string().swap(line);
+      }
+      if (!overlong) line.append(p, stop);
+      if (!newline) break;
+      endLine();
+      line.clear();
+      overlong = false;
+      lineStart = at + static_cast<std::uint64_t>(newline + 1 - buffer);
+      p = newline + 1;
+    }
+    at += static_cast<std::uint64_t>(n);
   }
-  return text;
+  if (line.empty() && !overlong) return at;
+  if (!takePartial) return lineStart;
+  ++into.damagedLines;
+  return at;
 }
 
-// Parses the lines of `text` into `into`; returns the bytes taken: all of them when
-// `takePartial` (a last line without its newline is counted damaged), else up to the last
-// newline.
-std::size_t parseLedgerText(const std::string& text, bool takePartial, Ledger& into) {
-  std::size_t begin = 0;
-  while (begin < text.size()) {
-    std::size_t end = text.find('\n', begin);
-    const bool whole = end != std::string::npos;
-    if (!whole && !takePartial) break;
-    if (!whole) end = text.size();
-    const std::string line = text.substr(begin, end - begin);
-    begin = std::min(end + 1, text.size());
-    if (line.empty()) continue;
-    LedgerEntry e;
-    if (whole && parseLedgerLine(line, e)) into.entries.push_back(std::move(e));
-    else ++into.damagedLines;
-  }
-  return begin;
+// Reads from `offset` under a shared flock() (no append read half-way); `offset` back when the
+// ledger does not exist.
+std::uint64_t readLedgerFrom(const std::filesystem::path& ledger, std::uint64_t offset, bool takePartial,
+                             Ledger& into) {
+  Descriptor d{openToRead(ledger)};
+  if (d.fd < 0) return offset;
+  lockWaitingOnSignals(d.fd, LOCK_SH);  // no lock on this file system: read without one
+  return readLines(ledger, d.fd, offset, takePartial, into);
 }
 
 }  // namespace
 
 Ledger readLedger(const std::filesystem::path& ledger) {
   Ledger out;
-  if (const std::optional<std::string> text = ledgerBytesFrom(ledger, 0)) parseLedgerText(*text, true, out);
+  readLedgerFrom(ledger, 0, true, out);
   return out;
 }
 
 std::uint64_t readLedgerSince(const std::filesystem::path& ledger, std::uint64_t offset, Ledger& into) {
-  const std::optional<std::string> text = ledgerBytesFrom(ledger, offset);
-  return text ? offset + parseLedgerText(*text, false, into) : offset;
+  return readLedgerFrom(ledger, offset, false, into);
+}
+
+void checkLedgerTarget(const std::filesystem::path& ledger, const std::filesystem::path& list) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (ledger.empty()) refuseLedger(ledger, "is no name: give the ledger's file name, e.g. -o ledger.jsonl");
+  if (list != "-" && fs::exists(ledger, ec) && fs::equivalent(ledger, list, ec))
+    refuseLedger(ledger, "is the list of the batch itself, which the ledger's lines would damage; give the "
+                         "ledger a name of its own, e.g. -o ledger.jsonl");
+  if (fs::is_directory(fs::symlink_status(ledger, ec)))
+    refuseLedger(ledger, "is a folder; give the ledger's file name, e.g. -o " + (ledger / "ledger.jsonl").string());
+  capture::checkOutputTarget(ledger, "-o", capture::ExistingOutput::ReplaceOutput,
+                             capture::OutputPlace::OutsideCaptures);
+  // The ledger's first line, read as the reader reads (regular, bounded).
+  Descriptor d{openToRead(ledger)};
+  if (d.fd < 0) return;
+  lockWaitingOnSignals(d.fd, LOCK_SH);
+  std::string head(kMaxLedgerLineBytes + 1, '\0');
+  ssize_t n;
+  do n = ::pread(d.fd, head.data(), head.size(), 0);
+  while (n < 0 && errno == EINTR);
+  if (n <= 0) return;  // empty: a ledger made by requireWritableLedger, or one to start
+  head.resize(static_cast<std::size_t>(n));
+  const std::size_t newline = head.find('\n');
+  LedgerEntry e;
+  const bool isLedger = newline != std::string::npos
+                            ? parseLedgerLine(head.substr(0, newline), e)
+                            : head.size() <= kMaxLedgerLineBytes && head.rfind(kLedgerLineStart, 0) == 0;
+  if (!isLedger)
+    refuseLedger(ledger, "is not a ledger: its first line is not a line surrogate batch writes, so it is some "
+                         "other file, which appending would damage; give a new file name for the ledger");
 }
 
 }  // namespace surrogate::batch

@@ -53,8 +53,26 @@ std::string ledgerLine(const LedgerEntry& entry);
 // Parses one line; false when it is not a ledger entry.
 bool parseLedgerLine(const std::string& line, LedgerEntry& entry);
 
-// Appends the entry as one line: see the header comment. Throws Error(Internal) naming the
-// ledger when it cannot be written (a full disk, no permission).
+// What a ledger may be. No line the writer makes is longer than kMaxLedgerLineBytes (it cuts a
+// message past kMaxLedgerMessageBytes); a longer line is read as damaged, without being held.
+// A ledger past kMaxLedgerBytes is refused: a step's line is about 700 bytes, so 100 000
+// captures of three steps are some 210 MB, and the reader holds every entry in memory.
+inline constexpr std::size_t kMaxLedgerMessageBytes = 64 << 10;
+inline constexpr std::size_t kMaxLedgerLineBytes = 1 << 20;
+inline constexpr std::uint64_t kMaxLedgerBytes = 512ull << 20;
+
+// The ledger a batch is told to write (`-o LEDGER` of `batch` and `verify --batch`), checked
+// before any job: the output rule of capture/output_rule.h, outside every capture (a pack would
+// bag it while it grows), not a folder, not the batch's `list` ("-" for standard input: none),
+// and, when it exists and is not empty, a ledger: its first line a ledger entry (or the start
+// of one, a writer's torn first line). Anything else is some other file, which appending would
+// damage. Throws Error(Input) (exit 1) naming the ledger and why.
+void checkLedgerTarget(const std::filesystem::path& ledger, const std::filesystem::path& list);
+
+// Appends the entry as one line: see the header comment. Throws Error(Input) when the ledger is
+// not a regular file of one name (a symbolic link, a FIFO, a device, a hard link: the checks of
+// checkLedgerTarget that need no reading, made again on the descriptor written), Error(Internal)
+// naming the ledger when it cannot be written (a full disk, no permission).
 void appendToLedger(const std::filesystem::path& ledger, const LedgerEntry& entry);
 
 // Opens the ledger for appending (making it when absent) and closes it: a ledger that cannot be
@@ -62,7 +80,9 @@ void appendToLedger(const std::filesystem::path& ledger, const LedgerEntry& entr
 void requireWritableLedger(const std::filesystem::path& ledger);
 
 // Reads the whole ledger (an absent file: an empty ledger), under a shared flock() so that no
-// append is read half-way. Throws Error(Input) when the file cannot be read.
+// append is read half-way, one bounded line at a time. Throws Error(Input) when the file cannot
+// be read, is not a regular file (a FIFO is refused without waiting for a writer, a device such
+// as /dev/zero without reading it) or is larger than kMaxLedgerBytes.
 Ledger readLedger(const std::filesystem::path& ledger);
 
 // The lines appended since byte `offset` (where an earlier read ended), added to `into`, read

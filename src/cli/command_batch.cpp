@@ -331,6 +331,7 @@ int runCommandBatch(int argc, char** argv) {
   const std::string list = args.positional()[0];
   batch::BatchOptions o;
   o.ledger = *ledger;
+  batch::checkLedgerTarget(*ledger, list);  // appending is writing: the output rule, before any job
   o.steps = stepsOf(args.value("do", "run,pack,verify"));
   o.jobs = positiveOption(args, "jobs", 1, 1);
   o.threadsPerJob = positiveOption(args, "threads", 0, 0);

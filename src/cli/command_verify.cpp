@@ -154,6 +154,7 @@ int verifyBatch(const Args& args) {
   if (!ledger || ledger->empty() || !args.positional().empty())
     throw Error(ErrorKind::Usage, "--batch", "command line",
                 "give the list and the ledger only: surrogate verify --batch LIST -o LEDGER (see --help)");
+  batch::checkLedgerTarget(*ledger, *args.value("batch"));  // appending is writing: the output rule
   std::vector<batch::WorkItem> items = batch::readWorkList(*args.value("batch"));
   for (batch::WorkItem& item : items) item.isPackage = true;  // verify takes each as a package
   batch::BatchOptions o;

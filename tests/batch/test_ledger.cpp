@@ -1,11 +1,15 @@
 // The ledger: its lines are JSON another parser reads (nlohmann's), appends from several
-// processes never interleave, and a torn last line costs only itself.
+// processes never interleave, a torn last line costs only itself, and a ledger is read bounded
+// and written only when it is one (never a FIFO, a device, the list, a link or another file).
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
@@ -264,4 +268,126 @@ TEST_CASE("a ledger in a folder that does not exist is reported before any job")
   requireWritableLedger(dir / "ledger.jsonl");
   CHECK(fs::exists(dir / "ledger.jsonl"));
   CHECK(fs::file_size(dir / "ledger.jsonl") == 0);
+}
+
+namespace {
+// The exit code of `read` done in a child process that SIGALRM ends after `seconds`: a reader
+// that waits on a FIFO fails the test (exit 124) instead of hanging it. 0 when `read` threw
+// Error(Input), 1 when it returned, 2 for any other throw.
+int inChild(const std::function<void()>& read, unsigned seconds = 5) {
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    ::alarm(seconds);
+    try {
+      read();
+      ::_exit(1);
+    } catch (const Error& e) {
+      ::_exit(e.kind() == ErrorKind::Input ? 0 : 2);
+    } catch (...) {
+      ::_exit(2);
+    }
+  }
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 124;
+}
+
+// True when `action` throws Error(Input) whose message holds `words`.
+bool refusedWith(const std::function<void()>& action, const std::string& words) {
+  try {
+    action();
+  } catch (const Error& e) {
+    INFO(e.file() << ": " << e.message());
+    return e.kind() == ErrorKind::Input && e.message().find(words) != std::string::npos;
+  }
+  return false;
+}
+}  // namespace
+
+TEST_CASE("a ledger that is a FIFO or a device is refused at once, without waiting or reading it") {
+  const fs::path dir = freshFolder("special");
+  const fs::path fifo = dir / "fifo.jsonl";
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  for (const fs::path& ledger : {fifo, fs::path("/dev/zero"), fs::path("/dev/full")}) {
+    INFO(ledger);
+    CHECK(inChild([&] { readLedger(ledger); }) == 0);
+    CHECK(inChild([&] {
+            Ledger l;
+            readLedgerSince(ledger, 0, l);
+          }) == 0);
+    CHECK(inChild([&] { requireWritableLedger(ledger); }) == 0);
+    CHECK(inChild([&] { appendToLedger(ledger, sample("one", "run", 0)); }) == 0);
+    CHECK(inChild([&] { checkLedgerTarget(ledger, dir / "list.txt"); }) == 0);
+  }
+  CHECK(refusedWith([&] { readLedger(dir); }, "a folder"));
+}
+
+TEST_CASE("a ledger line past the bound is read as damaged and a long message is cut when written") {
+  const fs::path ledger = freshFolder("long") / "ledger.jsonl";
+  appendToLedger(ledger, sample("one", "run", 0));
+  LedgerEntry huge = sample("two", "run", 1);
+  huge.message = std::string(3 * kMaxLedgerLineBytes, 'x');
+  {
+    std::ofstream f(ledger, std::ios::app | std::ios::binary);
+    // A whole, valid line, longer than any the writer makes: not held, counted damaged.
+    f << "{\"capture\":\"two\",\"step\":\"run\",\"exit\":1,\"message\":\"" << huge.message << "\"}\n";
+  }
+  appendToLedger(ledger, huge);  // written with its message cut
+  appendToLedger(ledger, sample("three", "run", 0));
+  const Ledger read = readLedger(ledger);
+  CHECK(read.damagedLines == 1);
+  REQUIRE(read.entries.size() == 3);
+  CHECK(read.entries[0].capture == "one");
+  CHECK(read.entries[1].capture == "two");
+  CHECK(read.entries[1].message.size() < kMaxLedgerMessageBytes + 100);
+  CHECK(read.entries[1].message.find("more bytes left out") != std::string::npos);
+  CHECK(read.entries[2].capture == "three");
+}
+
+TEST_CASE("a ledger larger than the bound is refused without being read") {
+  const fs::path ledger = freshFolder("large") / "ledger.jsonl";
+  appendToLedger(ledger, sample("one", "run", 0));
+  fs::resize_file(ledger, kMaxLedgerBytes + 1);  // sparse: no disk, no time
+  CHECK(refusedWith([&] { readLedger(ledger); }, "larger than"));
+  Ledger l;
+  CHECK(refusedWith([&] { readLedgerSince(ledger, 0, l); }, "larger than"));
+  CHECK(l.entries.empty());
+}
+
+TEST_CASE("a ledger is appended to only when it is one: never the list, a link, another name or another file") {
+  const fs::path dir = freshFolder("target");
+  const fs::path list = dir / "list.txt", ledger = dir / "ledger.jsonl";
+  std::ofstream(list) << "/data/stela12\n";
+  std::ofstream(dir / "notes.txt") << "the photographer's notes\n";
+  checkLedgerTarget(ledger, list);  // absent: made by the batch
+  appendToLedger(ledger, sample("one", "run", 0));
+  checkLedgerTarget(ledger, list);  // a ledger
+  checkLedgerTarget(ledger, "-");
+  {
+    std::ofstream(dir / "torn.jsonl") << "{\"capture\":\"two\",\"step\":\"pa";  // a writer killed in its first line
+    checkLedgerTarget(dir / "torn.jsonl", list);
+    std::ofstream(dir / "empty.jsonl");
+    checkLedgerTarget(dir / "empty.jsonl", list);
+  }
+  fs::create_symlink(ledger, dir / "link.jsonl");
+  fs::create_hard_link(ledger, dir / "hard.jsonl");
+  fs::create_symlink(list, dir / "list-link.txt");
+  const std::string before = [&] {
+    std::ifstream f(ledger, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(f), {});
+  }();
+  CHECK(refusedWith([&] { checkLedgerTarget(list, list); }, "the list of the batch"));
+  CHECK(refusedWith([&] { checkLedgerTarget(list, dir / "list-link.txt"); }, "the list of the batch"));
+  CHECK(refusedWith([&] { checkLedgerTarget(dir / "notes.txt", list); }, "is not a ledger"));
+  CHECK(refusedWith([&] { checkLedgerTarget(dir / "link.jsonl", list); }, "symbolic link"));
+  CHECK(refusedWith([&] { checkLedgerTarget(dir / "hard.jsonl", list); }, "hard links"));
+  CHECK(refusedWith([&] { checkLedgerTarget(dir, list); }, "a folder"));
+  CHECK(refusedWith([&] { appendToLedger(dir / "link.jsonl", sample("x", "run", 0)); }, "symbolic link"));
+  CHECK(refusedWith([&] { appendToLedger(dir / "hard.jsonl", sample("x", "run", 0)); }, "hard links"));
+  CHECK(refusedWith([&] { requireWritableLedger(dir / "link.jsonl"); }, "symbolic link"));
+  const std::string after = [&] {
+    std::ifstream f(ledger, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(f), {});
+  }();
+  CHECK(after == before);
 }
