@@ -88,6 +88,15 @@ void CaptureLock::refuseHeld(const fs::path& capture) {
                   "); wait for it to finish, then run this command again");
 }
 
+std::optional<std::string> captureHolder(const fs::path& capture) {
+  const int fd = ::open((capture / kWorkDir / "lock").c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
+  if (fd < 0) return std::nullopt;  // never locked, or unreadable: no holder to name
+  std::optional<std::string> holder;
+  if (::flock(fd, LOCK_SH | LOCK_NB) != 0) holder = readHolder(fd);
+  ::close(fd);  // releases the shared lock, if taken
+  return holder;
+}
+
 CaptureLock::~CaptureLock() {
   if (fd_ >= 0) {
     if (!shared_) {

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "capture/capture.h"
@@ -44,5 +45,10 @@ class CaptureLock {
   int fd_ = -1;
   bool shared_ = false;
 };
+
+// Who holds the capture for writing (the holder's text: process id, host, command, user, start
+// time), or nothing when no command that writes holds it. Takes nothing and makes nothing: for
+// `info`, which reads only. (A shared lock is tried for an instant, as a reader's.)
+std::optional<std::string> captureHolder(const std::filesystem::path& capture);
 
 }  // namespace surrogate::capture

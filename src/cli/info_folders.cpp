@@ -1,6 +1,7 @@
 // surrogate info on a package (archive::describePackage) or a capture folder
 // (capture::describeCapture), as text or JSON.
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -9,8 +10,10 @@
 #include "archive/package_summary.h"
 #include "capture/capture.h"
 #include "capture/capture_summary.h"
+#include "capture/lock.h"
 #include "cli/info_print.h"
 #include "core/text.h"
+#include "run/run_commit.h"
 #include "verify/held_bag.h"
 
 namespace surrogate::cli {
@@ -119,6 +122,46 @@ std::string shotsText(const capture::CaptureSummary& s) {
          (s.exports ? ", " + std::to_string(s.exports) + " exports in " + capture::kExportsDir + "/" : "");
 }
 
+// The commands that take the capture's lock and, before anything else, finish or discard what
+// a killed command left (run::recoverRun).
+constexpr const char* kRecoveringCommands = "the next run, lights, pack, audit or Apply in review";
+
+// What a command cut short in a commit left, and what the next command will do with it
+// (run::pendingRecovery); empty when nothing is pending.
+struct PendingText {
+  std::string state, text;
+};
+std::optional<PendingText> pendingText(const fs::path& capture) {
+  const std::optional<run::PendingRecovery> p = run::pendingRecovery(capture);
+  if (!p) return std::nullopt;
+  // A command working on the capture now has a staging folder (and, in its commit, a journal)
+  // of its own: its work in progress, not something left behind.
+  if (const std::optional<std::string> holder = capture::captureHolder(capture))
+    return PendingText{"in-progress", "a command is working on the capture now (" + escapedText(*holder) +
+                                          "): the record shown is the one before it, until it commits"};
+  switch (p->kind) {
+    case run::PendingRecovery::Kind::FinishCommit: {
+      const std::string which =
+          p->run ? escapedText("run " + p->run->id + " (" + p->run->command + ", started " + p->run->started + ")")
+                 : "a run";
+      return PendingText{"finish-commit",
+                         which + " was stopped while it committed its results (its journal is " +
+                             std::string(capture::kWorkDir) + "/commit): " + kRecoveringCommands +
+                             " first finishes that commit, and its results and record become the capture's; until "
+                             "then the record shown here is the one before it"};
+    }
+    case run::PendingRecovery::Kind::ClearJournal:
+      return PendingText{"clear-journal", "a commit was stopped after it had moved everything into place: " +
+                                              std::string(kRecoveringCommands) + " removes its journal (" +
+                                              capture::kWorkDir + "/commit); nothing else changes"};
+    case run::PendingRecovery::Kind::DiscardStaging:
+      return PendingText{"discard-staging", "a run was stopped before its commit: " + std::string(kRecoveringCommands) +
+                                                " discards its partial results (" + capture::kWorkDir +
+                                                "/staging); the capture stays as recorded"};
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 void printPackage(const fs::path& path, bool json) {
@@ -139,6 +182,10 @@ void printCapture(const fs::path& path, bool json) {
         .key("originalsFolder").value(s.originalsFolder)
         .key("width").value(s.width).key("height").value(s.height)
         .key("lp").value(s.lp.value_or(""));
+    j.key("pendingCommit");
+    if (const auto pending = pendingText(path))
+      j.beginObject().key("state").value(pending->state).key("description").value(pending->text).endObject();
+    else j.null();
     if (s.processed) {
       j.key("carrier");
       carrierJson(j, carrier::loadCarrier(path / capture::kCarrierPath));
@@ -155,6 +202,7 @@ void printCapture(const fs::path& path, bool json) {
   for (const std::string& lp : s.unusedLp)
     std::cout << "  note:      " << lp << " is kept as a file of the capture but not used; for "
               << "a dome capture whose lights it gives, run with --lp " << lp << "\n";
+  if (const auto pending = pendingText(path)) std::cout << "  pending:   " << pending->text << "\n";
 }
 
 }  // namespace surrogate::cli

@@ -45,4 +45,18 @@ void commitRun(const std::filesystem::path& capture, const carrier::Carrier* pre
 // Returns a sentence for the run history when it found an interrupted run, else nothing.
 std::optional<std::string> recoverRun(const std::filesystem::path& capture);
 
+// What recoverRun will find when the next command takes the capture's lock, read without the
+// lock and without changing anything (for `surrogate info`); nothing when no command was cut
+// short in a commit or before it.
+struct PendingRecovery {
+  enum class Kind {
+    FinishCommit,    // a journal and the staged carrier: the commit will be finished, its run recorded
+    ClearJournal,    // a journal alone: the commit had moved everything; the journal will be removed
+    DiscardStaging,  // a staging folder without a journal: a run killed before its commit, discarded
+  };
+  Kind kind;
+  std::optional<carrier::RunRecord> run;  // FinishCommit: the staged carrier's last run, when it reads
+};
+std::optional<PendingRecovery> pendingRecovery(const std::filesystem::path& capture);
+
 }  // namespace surrogate::run

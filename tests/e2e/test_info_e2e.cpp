@@ -315,3 +315,37 @@ TEST_CASE("run refuses a folder that is not a capture and writes nothing in it")
     }
   }
 }
+
+// Issue 51: a run killed in its commit leaves a journal the next command finishes (run/run_commit.h);
+// `info` said nothing of it, and showed the record before that run as the capture's.
+TEST_CASE("info on a capture says a commit is pending and what the next command will do with it") {
+  const fs::path capture = e2e::processedCapture(e2e::freshDir("info-pending"));
+  CHECK_THAT(info(capture, " --json").output, Contains("\"pendingCommit\":null"));
+  CHECK_THAT(info(capture).output, !Contains("pending:"));
+
+  // Killed between moving the results and the carrier (the fault injection of test_workflow_e2e).
+  const e2e::CommandResult crash = e2e::runShell("SURROGATE_FAULT_INJECTION=commit " + std::string(SURROGATE_EXE) +
+                                                 " run " + e2e::quote(capture) + " --basis hsh2 --no-report --quiet");
+  REQUIRE(crash.exitCode == 137);
+  REQUIRE(fs::exists(capture / ".surrogate/commit"));
+  const e2e::CommandResult text = info(capture);
+  INFO(text.output);
+  CHECK(text.exitCode == 0);
+  CHECK_THAT(text.output, Contains("  pending:   run r2 (run, started ") &&
+                              Contains(") was stopped while it committed its results (its journal is .surrogate/commit): "
+                                       "the next run, lights, pack, audit or Apply in review first finishes that commit"));
+  const e2e::CommandResult json = info(capture, " --json");
+  CHECK(json.exitCode == 0);
+  CHECK_THAT(json.output, Contains("\"pendingCommit\":{\"state\":\"finish-commit\",\"description\":\"run r2 (run, "));
+
+  // Finished by the next command: nothing pending any more, and info says nothing of it.
+  REQUIRE(e2e::surrogate("run " + e2e::quote(capture) + " --no-report --quiet").exitCode == 0);
+  CHECK_THAT(info(capture).output, !Contains("pending:"));
+
+  // A staging folder without a journal: a run killed before its commit, discarded next time.
+  fs::create_directories(capture / ".surrogate/staging/assembly-files");
+  CHECK_THAT(info(capture).output,
+             Contains("  pending:   a run was stopped before its commit: the next run, lights, pack, audit or Apply in "
+                      "review discards its partial results (.surrogate/staging); the capture stays as recorded\n"));
+  CHECK_THAT(info(capture, " --json").output, Contains("\"pendingCommit\":{\"state\":\"discard-staging\""));
+}
