@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdint>
 #include <cstring>
 #include <iostream>
 #include <map>
@@ -26,6 +27,11 @@ Error badList(const std::string& listName, const std::string& what) {
   return Error(ErrorKind::Input, escapedText(listName), "batch list", what);
 }
 
+Error tooLarge(const std::string& listName) {
+  return badList(listName, "is larger than " + std::to_string(kMaxListBytes >> 20) +
+                               " MiB: this is not a list of paths; split it into several batches");
+}
+
 // Reads at most kMaxListBytes through `readSome` (bytes read into the buffer, 0 at the end),
 // refusing a NUL byte as soon as it arrives: a stream of zeros on standard input ends at its
 // first block rather than after filling the memory.
@@ -35,8 +41,7 @@ std::string boundedText(ReadSome readSome, const std::string& listName) {
   char block[1 << 16];
   for (std::size_t n; (n = readSome(block, sizeof block)) > 0;) {
     if (text.size() + n > kMaxListBytes)
-      throw badList(listName, "is larger than " + std::to_string(kMaxListBytes >> 20) +
-                                  " MiB: this is not a list of paths; split it into several batches");
+      throw tooLarge(listName);
     const std::size_t start = text.size();
     text.append(block, n);
     // UTF-16 text holds a NUL in every other byte of ASCII: its lines are checked once decoded.
@@ -139,6 +144,10 @@ std::vector<WorkItem> readWorkList(const std::string& list) {
       throw badList(list, std::string("is not a regular file (") +
                               (S_ISDIR(st.st_mode) ? "a folder" : S_ISFIFO(st.st_mode) ? "a FIFO" : "a device or socket") +
                               "); give a text file of capture folders or packages, one a line, or - for standard input");
+    }
+    if (static_cast<std::uint64_t>(st.st_size) > kMaxListBytes) {
+      ::close(fd);
+      throw tooLarge(list);
     }
     try {
       items = itemsOf(boundedText(

@@ -311,9 +311,12 @@ int runCommandBatch(int argc, char** argv) {
                   {"surrogate batch captures.txt -o backlog.jsonl --emit slurm > backlog.sbatch",
                    "the same as a Slurm job array, to submit with sbatch backlog.sbatch"}},
                  {{0, "every job done"},
-                  {1, "bad input: the list names something that is neither a capture nor a package, or a step "
-                      "failed on bad input"},
-                  {2, "bad usage, or a step found an invalid package"},
+                  {1, "bad input: the list is not a regular file or standard input, or not a text list of paths "
+                      "(a NUL byte, over 64 MiB, a line over 4096 bytes), names something that is neither a capture "
+                      "nor a package, the ledger is a file no command may write (an original, a package, the list, a "
+                      "link, a device) or not a ledger, or a step failed on bad input"},
+                  {2, "bad usage (a list naming one capture twice, by its real path, or nothing), or a step found an "
+                      "invalid package"},
                   {3, "a verify step found a fixity failure"},
                   {4, "a verify --reexecute step did not reproduce the recorded results"},
                   {5, "internal error, a crash, or a job stopped for passing its memory budget"}}}))
