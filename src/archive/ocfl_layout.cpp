@@ -72,9 +72,11 @@ void requireSoundObject(const fs::path& dir) {
                     "\" folders; Surrogate adds versions to objects that use content/ only: pack into a new folder");
 }
 
+// A regular file (not a link) no larger than an inventory may be (kMaxOcflInventoryBytes), read.
 bool readIfFile(const fs::path& path, std::string& out) {
   std::error_code ec;
-  if (!fs::is_regular_file(fs::symlink_status(path, ec))) return false;
+  if (!fs::is_regular_file(fs::symlink_status(path, ec)) || fs::file_size(path, ec) > kMaxOcflInventoryBytes || ec)
+    return false;
   out = readFile(path, kStep);
   return true;
 }
@@ -167,7 +169,7 @@ Existing openObject(const fs::path& dir, std::vector<std::string>& notes) {
                         "or new folder, or an OCFL object made by an earlier `surrogate pack --layout ocfl`");
   }
   Existing e;
-  if (!readIfFile(dir / "inventory.json", e.text)) refuseObject(dir, "its inventory.json is missing or not a file");
+  if (!readIfFile(dir / "inventory.json", e.text)) refuseObject(dir, "its inventory.json is missing, not a regular file, or larger than an inventory may be");
   std::string sidecar;
   readIfFile(dir / "inventory.json.sha512", sidecar);
   e.inventory = parseInventory(e.text, dir / "inventory.json");

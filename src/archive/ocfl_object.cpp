@@ -19,12 +19,26 @@ namespace surrogate::archive {
 
 namespace {
 
+// The text of an inventory, sidecar or declaration; "" when it cannot be read or is larger
+// than kMaxOcflInventoryBytes (the checks then find it wrong: tooLarge says why for an inventory).
 std::string readText(const fs::path& path) {
+  std::error_code ec;
+  const std::uintmax_t size = fs::file_size(path, ec);
+  if (ec || size > kMaxOcflInventoryBytes) return "";
   try {
     return readFile(path, "reading an OCFL object");
   } catch (const Error&) {
     return "";
   }
+}
+
+// "NAME: larger than ..." when the file at `path` is too large to be read as an inventory; "" otherwise.
+std::string tooLarge(const fs::path& path, const std::string& name) {
+  std::error_code ec;
+  const std::uintmax_t size = fs::file_size(path, ec);
+  if (ec || size <= kMaxOcflInventoryBytes) return "";
+  return name + ": " + std::to_string(size) + " bytes, more than the " + std::to_string(kMaxOcflInventoryBytes >> 20) +
+         " MiB an inventory may have here (not read)";
 }
 
 std::string digestOfText(const std::string& algorithm, const std::string& text) {
@@ -207,6 +221,10 @@ void checkVersions(const fs::path& object, const ParsedInventory& root, OcflObje
       c.versions.push_back(v + "/inventory.json: missing");
       continue;
     }
+    if (const std::string big = tooLarge(object / v / "inventory.json", v + "/inventory.json"); !big.empty()) {
+      c.versions.push_back(big);
+      continue;
+    }
     const std::string text = readText(object / v / "inventory.json");
     if (!walk.files.count(v + "/" + sidecarName) ||
         ocflSidecarDigest(readText(object / v / sidecarName)) != digestOfText(inv.algorithm, text)) {
@@ -329,6 +347,8 @@ OcflObjectCheck checkOcflObject(const fs::path& object, const OcflCheckOptions& 
   if (!c.walk.files.count("inventory.json")) {
     c.inventoryMissing = true;
     c.inventoryProblems.push_back("inventory.json: missing at the object's root");
+  } else if (const std::string big = tooLarge(object / "inventory.json", "inventory.json"); !big.empty()) {
+    c.inventoryProblems.push_back(big);
   } else {
     root = parseRoot(readText(object / "inventory.json"), c.declared, c.inventoryProblems);
   }

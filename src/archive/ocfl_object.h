@@ -23,6 +23,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <map>
@@ -33,6 +34,11 @@
 #include "archive/folder_walk.h"
 
 namespace surrogate::archive {
+
+// The largest inventory, sidecar or declaration file the checks read, in bytes: a file larger
+// than this is a problem, never read whole (an inventory of 10,000 versions of a Surrogate bag
+// is about 2 MB; parsed, JSON takes several times its size in memory).
+inline constexpr std::uintmax_t kMaxOcflInventoryBytes = 64u << 20;
 
 // A root inventory as read (parseOcflInventory): what the checks, verify's assembly of the
 // head version's bag and pack's reuse of content need. Paths are as the inventory gives them,

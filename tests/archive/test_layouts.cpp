@@ -109,6 +109,7 @@ TEST_CASE("an OCFL inventory whose paths leave the object or its versions is ref
       {"[]", "not a JSON object"},
       {"{\"id\":1}", "\"id\""},
       {std::string(200000, '['), "not valid JSON"},
+      {std::string(100000, '[') + std::string(100000, ']'), "not a JSON object"},  // no recursion to overflow
   };
   for (const auto& [text, named] : hostile) {
     INFO(text.substr(0, 300));
@@ -140,6 +141,10 @@ TEST_CASE("checkOcflObject finds a link, a changed copy and an edited inventory 
   archive::OcflCheckOptions noDigests;
   noDigests.contentDigests = false;
   CHECK(archive::checkOcflObject(flipped, noDigests).sound());
+
+  const fs::path huge = soundObject("ocfl-huge");  // never read whole
+  fs::resize_file(huge / "inventory.json", archive::kMaxOcflInventoryBytes + 1);
+  CHECK(mentions(archive::checkOcflObject(huge).inventoryProblems, "more than the 64 MiB"));
 
   const fs::path edited = soundObject("ocfl-edited");
   put(edited / "inventory.json", inventory("BagIt-Version: 1.1\n"));
