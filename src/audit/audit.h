@@ -321,8 +321,8 @@ bool auditReproduced(const AuditReport& report);
 // reproduced; 0 when every one says reproduced; 1 when there is none.
 int auditExitCode(const AuditReport& report);
 
-// The summaries for the terminal: per verdict, a line with its subject and REPRODUCED or NOT
-// REPRODUCED, then one line per part.
+// The summaries for the terminal: per verdict, a line with its subject and REPRODUCED, NOT
+// REPRODUCED or (neither its lights nor its model compared) CANNOT TELL, then one line per part.
 std::vector<std::string> summaryLines(const std::vector<VerdictSummary>& summaries);
 void writeSummaryJson(JsonWriter& json, const std::vector<VerdictSummary>& summaries);
 // One line per prior processing log: what made it, and whether it agrees with the capture.

@@ -201,7 +201,12 @@ int auditExitCode(const AuditReport& report) {
 std::vector<std::string> summaryLines(const std::vector<VerdictSummary>& summaries) {
   std::vector<std::string> out;
   for (const VerdictSummary& s : summaries) {
-    out.push_back((s.reproduced ? "REPRODUCED      " : "NOT REPRODUCED  ") + s.subject);
+    // Neither the lights nor the model could be compared (a model whose light file cannot be
+    // read): nothing was found to differ, so the line does not say "not reproduced".
+    const bool nothingCompared = s.parts.size() >= 2 && s.parts[0].state == State::CannotTell &&
+                                 s.parts[1].state == State::CannotTell;
+    out.push_back((s.reproduced ? "REPRODUCED      " : nothingCompared ? "CANNOT TELL     " : "NOT REPRODUCED  ") +
+                  s.subject);
     for (const VerdictPart& p : s.parts) {
       std::string head = "  " + p.name;
       head.resize(13, ' ');
