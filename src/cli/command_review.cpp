@@ -10,7 +10,9 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <optional>
 #include <thread>
 
 #include "capture/capture.h"
@@ -21,10 +23,12 @@
 #include "cli/option_checks.h"
 #include "cli/pipeline_options.h"
 #include "core/error.h"
+#include "core/temp_dir.h"
 #include "core/text.h"
 #include "report/report.h"
 #include "review/review.h"
 #include "run/plan.h"
+#include "run/run_commit.h"
 
 extern char** environ;
 
@@ -32,9 +36,9 @@ namespace surrogate::cli {
 
 namespace {
 
-// Opens `url` with the desktop's browser (xdg-open; open on macOS) when there is a desktop,
-// without waiting for it; says so when there is none.
-void openBrowser(const std::string& url) {
+// Opens `target` (an address, or a page's file) with the desktop's browser (xdg-open; open on
+// macOS) when there is a desktop, without waiting for it; says so when there is none.
+void openBrowser(const std::string& target) {
 #ifdef __APPLE__
   const char* opener = "open";
   const bool desktop = true;
@@ -50,7 +54,7 @@ void openBrowser(const std::string& url) {
   posix_spawn_file_actions_init(&files);
   posix_spawn_file_actions_addopen(&files, 1, "/dev/null", O_WRONLY, 0);
   posix_spawn_file_actions_addopen(&files, 2, "/dev/null", O_WRONLY, 0);
-  std::string program = opener, address = url;
+  std::string program = opener, address = target;
   char* argv[] = {program.data(), address.data(), nullptr};
   pid_t pid = 0;
   const int failed = posix_spawnp(&pid, opener, &files, nullptr, argv, environ);
@@ -60,6 +64,25 @@ void openBrowser(const std::string& url) {
     return;
   }
   std::thread([pid] { waitpid(pid, nullptr, 0); }).detach();
+}
+
+// The page's address, key included, in a file only this account can read (a private temporary
+// folder), which sends the browser on to it: what the browser is started with is a program's
+// argument, which every account of the computer can read (ps, /proc), and the key must not be
+// among them.
+std::string launcherFile(const TempDir& folder, const std::string& url) {
+  const std::filesystem::path file = folder.path() / "open-review.html";
+  std::ofstream out(file);
+  // The address is 127.0.0.1, a port and hexadecimal digits: nothing in it needs escaping.
+  out << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\">"
+      << "<meta http-equiv=\"refresh\" content=\"0;url=" << url << "\"><title>Surrogate review</title></head>\n"
+      << "<body><p><a href=\"" << url << "\">Open the review page</a></p></body></html>\n";
+  out.close();
+  if (!out)
+    throw Error(ErrorKind::Internal, file.string(), "review",
+                "could not write the file that opens the page in the browser; give --no-browser and open the "
+                "address printed by hand");
+  return file.string();
 }
 
 }  // namespace
@@ -83,7 +106,8 @@ int runCommandReview(int argc, char** argv) {
                  "click a highlight, leave a frame out with a reason, accept a check, type the title, "
                  "creator, rights and licence; Apply records each as `surrogate run` records the same "
                  "options (who, when, why) and runs what they change. The page is served on 127.0.0.1 "
-                 "only, to this computer's own browser; Ctrl+C stops it.",
+                 "only, at an address holding a key made for this review (only that address opens it); "
+                 "Ctrl+C stops it.",
                  {{"surrogate review stela12", "open the capture stela12 in the desktop's browser"},
                   {"surrogate review stela12 --no-browser --port 8642 --operator \"Ana Silva\"",
                    "serve it on a chosen port, for a browser opened by hand, recording Ana Silva's decisions"}},
@@ -127,6 +151,12 @@ int runCommandReview(int argc, char** argv) {
     settings.who = runArgs.value("operator", "");
     settings.progress = progress;
     capture::CaptureLock lock(capture, "review");
+    // A commit a killed command left half-done puts its run's carrier in place when it is
+    // finished, a record the page never showed: finished first, so that the page's revision is
+    // checked against the record the run would build on (409 when it changed).
+    if (const auto pending = run::pendingRecovery(capture);
+        pending && pending->kind == run::PendingRecovery::Kind::FinishCommit)
+      run::recoverRun(capture);
     review::requireRevision(capture, revision);  // a commit between the page's check and the lock
     run::runCapture(capture, request, settings, /*takeLock=*/false);
     report::ReportOptions reportOptions;
@@ -158,10 +188,15 @@ int runCommandReview(int argc, char** argv) {
     server.stop();
   });
 
-  const std::string url = "http://127.0.0.1:" + std::to_string(server.port()) + "/";
+  // With the key (review/access_key.h): only whoever sees this address can use the page.
+  const std::string url = server.address();
   std::cout << "Review of " << escapedText(capture) << ": " << url << "\n"
             << "  open it in a browser on this computer; Ctrl+C stops the review.\n";
-  if (!args.has("no-browser")) openBrowser(url);
+  std::optional<TempDir> launcher;  // removed when the review stops
+  if (!args.has("no-browser")) {
+    launcher.emplace("review");
+    openBrowser(launcherFile(*launcher, url));
+  }
   std::cout.flush();
   server.serve();
   pthread_kill(waiter.native_handle(), SIGTERM);  // a no-op for the waiter when a signal ended it

@@ -33,11 +33,16 @@ std::string text(const json& object, const char* member, const std::string& wher
   return it->get<std::string>();
 }
 
+// Pixels: a million is beyond any frame's side, and well within what the options' numbers
+// carry (a larger value, 1e308, would overflow to infinity when rounded to tenths).
+constexpr double kMaxPixels = 1e6;
+
 double number(const json& object, const char* member, const std::string& where) {
   const auto it = object.find(member);
   if (it == object.end() || !it->is_number()) refuse(where + "." + member, "must be a number");
   const double v = it->get<double>();
-  if (!std::isfinite(v)) refuse(where + "." + member, "must be a finite number");
+  if (!std::isfinite(v) || std::fabs(v) > kMaxPixels)
+    refuse(where + "." + member, "must be a number of pixels, from -1000000 to 1000000");
   return v;
 }
 

@@ -12,8 +12,12 @@
 // but through that run (the capture's lock, the all-or-nothing commit of run/run_commit.h).
 //
 // The server answers only requests that come from the loopback interface, name it as their Host
-// (127.0.0.1:PORT or localhost:PORT, against DNS rebinding) and, when they carry an Origin, come
-// from the page itself; anything else is 403. Every state it gives carries the carrier's
+// (127.0.0.1:PORT or localhost:PORT, against DNS rebinding), when they carry an Origin, come
+// from the page itself, and carry the key made when it started (access_key.h: printed in the
+// address, then a cookie), which no other account of the computer has; anything else is 403.
+// A request body is at most 1 MiB, sent whole and uncompressed (413, 411, 415), and each
+// connection is held within a deadline and a byte budget (bounded_server.h), so that slow or
+// idle connections of another program never keep the page waiting. Every state it gives carries the carrier's
 // revision (its SHA-256); an Apply whose revision is no longer the carrier's is refused with 409
 // ("the capture changed since the page was loaded"), so a stale page never overrides a newer
 // record. One Apply at a time: a second one while a run goes is refused with 423.
@@ -23,7 +27,7 @@
 //   o.runner = [](const std::vector<std::string>& options, const std::string& revision,
 //                 const ProgressFunction& progress) {...};
 //   ReviewServer server(o);
-//   std::cout << "http://127.0.0.1:" << server.port() << "/\n";
+//   std::cout << server.address() << "\n";  // http://127.0.0.1:PORT/?key=KEY
 //   server.serve();  // until stop()
 #pragma once
 
@@ -79,6 +83,8 @@ class ReviewServer {
   ReviewServer& operator=(const ReviewServer&) = delete;
 
   int port() const;
+  // The page's address with its key, http://127.0.0.1:PORT/?key=KEY: the one to print and open.
+  std::string address() const;
   // Answers requests until stop() (from another thread or a signal handler's thread).
   void serve();
   void stop();

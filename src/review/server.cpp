@@ -1,7 +1,9 @@
 // The review server (review.h) on cpp-httplib, Debian's libcpp-httplib (whose types stay in
-// this file).
+// this file and bounded_server.h, private to src/review).
 #include <algorithm>
 #include <atomic>
+#include <cctype>
+#include <cstdint>
 #include <map>
 #include <mutex>
 #include <optional>
@@ -13,6 +15,8 @@
 #include "capture/lock.h"
 #include "core/error.h"
 #include "report/page_assets.h"
+#include "review/access_key.h"
+#include "review/bounded_server.h"
 #include "review/decisions.h"
 #include "review/page.h"
 #include "review/review.h"
@@ -46,13 +50,37 @@ void answerError(httplib::Response& res, int status, const std::string& kind, co
   answer(res, status, {{"error", kind}, {"message", message}});
 }
 
+// The sentence for an error httplib answered by itself (no handler ran, or none matched).
+std::string statusSentence(int status) {
+  switch (status) {
+    case 400: return "the request is not one this server understands (malformed HTTP, or its body ended early)";
+    case 404: return "no such page on this server";
+    case 413: return "the request's body is larger than the 1 MiB this server takes";
+    case 414: return "the request's address is too long";
+    default: return "the request could not be answered (HTTP " + std::to_string(status) + ")";
+  }
+}
+
+// The body's length as the request declares it, when it is a plain number.
+std::optional<std::uint64_t> declaredLength(const std::string& header) {
+  if (header.empty() || header.size() > 19) return std::nullopt;
+  for (const char c : header)
+    if (!std::isdigit(static_cast<unsigned char>(c))) return std::nullopt;
+  return std::stoull(header);
+}
+
 }  // namespace
 
 struct ReviewServer::Impl {
   ReviewOptions options;
   fs::path capture;
-  httplib::Server server;
+  BoundedServer server{[] {
+    BoundedServer::Limits limits;
+    limits.maxBodyBytes = kMaxBody;
+    return limits;
+  }()};
   int port = 0;
+  const AccessKey key = AccessKey::generate();
 
   // The state of the revision last read.
   std::mutex stateMutex;
@@ -96,12 +124,84 @@ struct ReviewServer::Impl {
         return false;
       }
     }
-    if (req.get_header_value("Sec-Fetch-Site") == "cross-site") {
+    // Another site's page may not make the browser ask anything of this server; but the
+    // printed address, key included, comes to the browser from elsewhere by design (review's
+    // launcher file, a link in a terminal), and whoever has the key is the operator.
+    if (req.get_header_value("Sec-Fetch-Site") == "cross-site" && !firstLoad(req)) {
       answerError(res, 403, "forbidden", "the request comes from another site");
       return false;
     }
+    if (!keyGiven(req, res)) return false;
+    if (!bodyBounded(req, res)) return false;
     if (req.method == "POST" && req.get_header_value("Content-Type").rfind(kJson, 0) != 0) {
       answerError(res, 415, "unsupported", "send the decisions as application/json");
+      return false;
+    }
+    // Checked: its body may be read, and its connection is no longer one to close for room.
+    BoundedServer::admitCurrentConnection();
+    return true;
+  }
+
+  // The page loaded from the address review printed, with the key.
+  bool firstLoad(const httplib::Request& req) const {
+    return req.method == "GET" && req.path == "/" && key.matches(req.get_param_value("key"));
+  }
+
+  // The key (access_key.h), from the cookie; or, on the page's first load, from the address
+  // review printed, answered with the cookie (the page's script then takes the key out of the
+  // address bar, kForgetKeyJs). Not a redirect to the address without the key: a browser
+  // opened on review's launcher file (cli/command_review.cpp) would count that redirect as
+  // coming from another site, and withhold the SameSite=Strict cookie from it.
+  bool keyGiven(const httplib::Request& req, httplib::Response& res) {
+    const std::string cookie = AccessKey::cookieName(port);
+    bool fromCookie = false;
+    for (std::size_t n = 0; n < req.get_header_value_count("Cookie"); ++n)
+      fromCookie = fromCookie || key.matches(cookieValue(req.get_header_value("Cookie", n), cookie));
+    if (firstLoad(req)) {
+      res.set_header("Set-Cookie", cookie + "=" + key.text() + "; Path=/; HttpOnly; SameSite=Strict");
+      return true;
+    }
+    if (fromCookie) return true;
+    const std::string message = "this review page opens only from the address `surrogate review` printed when it "
+                                "started (http://127.0.0.1:" + std::to_string(port) +
+                                "/?key=...): open that address in a browser on this computer";
+    if (req.path.rfind("/api/", 0) == 0) {
+      answerError(res, 403, "forbidden", message);
+    } else {
+      res.status = 403;
+      res.set_content(message + "\n", "text/plain; charset=utf-8");
+    }
+    return false;
+  }
+
+  // A body the server reads is at most kMaxBody bytes as it arrives and as it is used: its
+  // length is declared and within the bound (413 beyond), and it comes neither in chunks (of no
+  // declared length) nor compressed (httplib would inflate it without bound). The page's fetch
+  // sends neither.
+  bool bodyBounded(const httplib::Request& req, httplib::Response& res) {
+    if (req.has_header("Transfer-Encoding")) {
+      answerError(res, 411, "length required", "send the body whole, with its length (Content-Length), not in chunks");
+      return false;
+    }
+    const std::string encoding = req.get_header_value("Content-Encoding");
+    if (!encoding.empty() && encoding != "identity") {
+      answerError(res, 415, "unsupported", "send the body uncompressed (no Content-Encoding " + encoding + ")");
+      return false;
+    }
+    if (!req.has_header("Content-Length")) {
+      if (req.method == "GET" || req.method == "HEAD") return true;
+      answerError(res, 411, "length required", "send the body with its length (Content-Length)");
+      return false;
+    }
+    const std::optional<std::uint64_t> length = declaredLength(req.get_header_value("Content-Length"));
+    if (!length) {
+      answerError(res, 400, "bad request", "the request's Content-Length is not a number of bytes");
+      return false;
+    }
+    if (*length > kMaxBody) {
+      answerError(res, 413, "too large",
+                  "the request's body is " + std::to_string(*length) + " bytes, more than the " +
+                      std::to_string(kMaxBody) + " (1 MiB) this server takes; the decisions on a capture are a few kilobytes");
       return false;
     }
     return true;
@@ -119,7 +219,7 @@ struct ReviewServer::Impl {
       revision = revisionOf(req.body);
       arguments = argumentsFor(req.body);
     } catch (const Error& e) {
-      answerError(res, 400, "usage", e.message().empty() ? e.text() : e.file() + ": " + e.message());
+      answerError(res, 400, "usage", e.text());
       return;
     }
     const std::string now = captureRevision(capture);
@@ -181,7 +281,7 @@ ReviewServer::ReviewServer(ReviewOptions options) : impl_(std::make_unique<Impl>
   capture::requireCaptureFolder(m.capture);
   m.currentState();  // a carrier that cannot be read is said now, not in the browser
 
-  httplib::Server& s = m.server;
+  BoundedServer& s = m.server;
   s.set_payload_max_length(kMaxBody);
   s.set_default_headers({{"Cache-Control", "no-store"},
                          {"X-Content-Type-Options", "nosniff"},
@@ -197,7 +297,7 @@ ReviewServer::ReviewServer(ReviewOptions options) : impl_(std::make_unique<Impl>
     res.set_content(pageHtml(), "text/html; charset=utf-8");
   });
   s.Get("/review.js", [](const httplib::Request&, httplib::Response& res) {
-    res.set_content(std::string(report::kPageErrorsJs) + kReviewJs, "text/javascript; charset=utf-8");
+    res.set_content(std::string(report::kPageErrorsJs) + kForgetKeyJs + kReviewJs, "text/javascript; charset=utf-8");
   });
   s.Get("/review.css", [](const httplib::Request&, httplib::Response& res) {
     res.set_content(pageCss(), "text/css; charset=utf-8");
@@ -251,12 +351,12 @@ ReviewServer::ReviewServer(ReviewOptions options) : impl_(std::make_unique<Impl>
     try {
       answer(res, 200, {{"options", argumentsFor(req.body)}});
     } catch (const Error& e) {
-      answerError(res, 400, "usage", e.file() + ": " + e.message());
+      answerError(res, 400, "usage", e.text());
     }
   });
   s.Post("/api/apply", [&m](const httplib::Request& req, httplib::Response& res) { m.apply(req, res); });
   s.set_error_handler([](const httplib::Request&, httplib::Response& res) {
-    if (res.body.empty()) answerError(res, res.status, "error", "no such page on this server");
+    if (res.body.empty()) answerError(res, res.status, "error", statusSentence(res.status));
   });
 
   // The loopback interface only: nothing on the network can reach the page.
@@ -271,16 +371,23 @@ ReviewServer::ReviewServer(ReviewOptions options) : impl_(std::make_unique<Impl>
                   "choose another with --port, or --port 0 for a free one");
     m.port = m.options.port;
   }
+  s.widenListenQueue();
 }
 
 ReviewServer::~ReviewServer() { stop(); }
 
 int ReviewServer::port() const { return impl_->port; }
 
+std::string ReviewServer::address() const {
+  return "http://127.0.0.1:" + std::to_string(impl_->port) + "/?key=" + impl_->key.text();
+}
+
 void ReviewServer::serve() { impl_->server.listen_after_bind(); }
 
 void ReviewServer::stop() {
-  if (impl_) impl_->server.stop();
+  if (!impl_) return;
+  impl_->server.stop();
+  impl_->server.closeWaitingConnections();
 }
 
 }  // namespace surrogate::review

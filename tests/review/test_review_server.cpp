@@ -60,7 +60,7 @@ TEST_CASE("review: the page's state, frames and refusals over HTTP", "[review]")
   const fs::path dir = e2e::freshDir("review-state");
   const fs::path capture = e2e::processedCapture(dir);
   review_test::ReviewProcess review(capture, {"--operator", "Ana Silva"}, dir / "review.log");
-  httplib::Client client("127.0.0.1", review.port());
+  httplib::Client client = review_test::pageClient(review);
 
   const json state = stateOf(client);
   // The revision is the carrier file's SHA-256, as sha256sum gives it.
@@ -145,7 +145,7 @@ TEST_CASE("review: Apply records what surrogate run records for the same options
   const fs::path copy = copyDir / "cap";
 
   review_test::ReviewProcess review(capture, {"--operator", "Ana Silva"}, dir / "review.log");
-  httplib::Client client("127.0.0.1", review.port());
+  httplib::Client client = review_test::pageClient(review);
   const json state = stateOf(client);
   const json& sphere = state["spheres"][0];
   const json& highlight = state["frames"][2]["highlights"][0];
@@ -234,6 +234,12 @@ TEST_CASE("review: Apply records what surrogate run records for the same options
     REQUIRE(refused);
     CHECK(refused->status == 400);
     CHECK(json::parse(refused->body)["message"].get<std::string>().find("needs a reason") != std::string::npos);
+    // A number too large for a pixel (1e308 overflows once rounded to tenths): named, refused.
+    const json huge = {{"revision", state["revision"]}, {"spheres", {{{"cx", 1e308}, {"cy", 5}, {"r", 5}}}}};
+    const auto tooLarge = apply(client, huge, review.port());
+    REQUIRE(tooLarge);
+    CHECK(tooLarge->status == 400);
+    CHECK_THAT(json::parse(tooLarge->body)["message"].get<std::string>(), Catch::StartsWith("spheres[0].cx: must be"));
     CHECK(e2e::snapshot(capture) == before);
   }
 
@@ -280,7 +286,7 @@ TEST_CASE("review: a capture a check stopped goes to a verified package without 
   fs::remove_all(capture / "truth");
 
   review_test::ReviewProcess review(capture, {}, dir / "review.log");
-  httplib::Client client("127.0.0.1", review.port());
+  httplib::Client client = review_test::pageClient(review);
   json state = stateOf(client);
   CHECK(state["revision"] == "none");
   CHECK(state["frames"].size() == 8);

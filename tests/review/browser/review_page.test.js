@@ -73,8 +73,8 @@ function startReview() {
     const timer = setTimeout(() => reject(new Error("surrogate review printed no address: " + output)), 20000);
     const seen = chunk => {
       output += chunk;
-      const m = /http:\/\/127\.0\.0\.1:(\d+)\//.exec(output);
-      if (m) { clearTimeout(timer); resolve({ child, port: Number(m[1]), output: () => output }); }
+      const m = /(http:\/\/127\.0\.0\.1:(\d+)\/\?key=([0-9a-f]{64}))\n/.exec(output);
+      if (m) { clearTimeout(timer); resolve({ child, address: m[1], port: Number(m[2]), key: m[3], output: () => output }); }
     };
     child.stdout.on("data", seen);
     child.stderr.on("data", seen);
@@ -98,7 +98,9 @@ function request(port, method, urlPath, headers, body) {
 
 async function main() {
   const review = await startReview();
-  const base = "http://127.0.0.1:" + review.port + "/";
+  // The address review printed, with its key: the browser keeps the key as a cookie and is sent
+  // on to the address without it.
+  const base = review.address;
   const browser = await puppeteer.launch({
     executablePath: chromium,
     headless: true,
@@ -127,6 +129,9 @@ async function main() {
 
     await page.goto(base, { waitUntil: "networkidle0" });
     await page.waitForSelector("body[data-ready=true]");
+    // The key left the address bar, and the page's script cannot read the cookie (HttpOnly).
+    assert.equal(page.url(), "http://127.0.0.1:" + review.port + "/");
+    assert.equal(await page.evaluate(key => document.cookie.includes(key), review.key), false);
     await stalePage.goto(base, { waitUntil: "networkidle0" });
     await stalePage.waitForSelector("body[data-ready=true]");
     await page.bringToFront();
@@ -230,6 +235,9 @@ async function main() {
     // Requests from elsewhere: another Host (DNS rebinding), another Origin.
     const json = { "Content-Type": "application/json" };
     const decisions = JSON.stringify({ revision: after.revision, title: "Hijacked" });
+    // Without the key (another account of the computer knows the port, not the key).
+    assert.equal((await request(review.port, "GET", "/api/state", {})).status, 403);
+    assert.equal((await request(review.port, "POST", "/api/apply", Object.assign({ Origin: "http://127.0.0.1:" + review.port }, json), decisions)).status, 403);
     assert.equal((await request(review.port, "GET", "/api/state", { Host: "evil.example:" + review.port })).status, 403);
     assert.equal((await request(review.port, "POST", "/api/apply", Object.assign({ Origin: "http://evil.example" }, json), decisions)).status, 403);
     assert.equal((await request(review.port, "POST", "/api/apply", Object.assign({ Host: "rebound.example:" + review.port }, json), decisions)).status, 403);
