@@ -183,8 +183,8 @@ int runCommandAudit(int argc, char** argv) {
                  {{0, "the prior work is reproduced"},
                   {1, "the prior work cannot be read (a file of it left out, named: this before 4), or there is none"},
                   {2, "bad usage: an unknown option, a missing or malformed value, a work folder inside PRIOR or "
-                      "one that is something else"},
-                  {3, "a package whose files differ from its record"},
+                      "one that is something else; or a PRIOR file that is not a package (.zip, .tar)"},
+                  {3, "a package whose files differ from its record, or an archive truncated or damaged"},
                   {4, "not reproduced: the verdict says which part and why"},
                   {5, "internal error: a bug, or the environment (disk full, permissions)"}}}))
     return 0;

@@ -55,7 +55,12 @@ int runCommandInfo(int argc, char** argv) {
                  "found), or a web layout (the folder surrogate publish writes, or its info.json). Reads only.",
                  {{"surrogate info stela12", "the capture's record: decisions, runs and every warning"},
                   {"surrogate info stela12.zip --json", "what a package holds, as JSON for a script"}},
-                 commonExitCodes("described")}))
+                 {{0, "described"},
+                  {1, "bad input: a file that cannot be read or described (the message names it)"},
+                  {2, "bad usage (an unknown option, a missing or malformed value), or a package that is not "
+                      "one: not a bag, .tar or .zip, an OCFL object or E-ARK SIP that cannot be read as one"},
+                  {3, "a package archive truncated or damaged"},
+                  {5, "internal error: a bug, or the environment (disk full, permissions, missing data files)"}}}))
     return 0;
   if (args.positional().size() != 1)
     throw Error(ErrorKind::Usage, "", "command line", "give one file or folder: surrogate info FILE");

@@ -349,3 +349,18 @@ TEST_CASE("info on a capture says a commit is pending and what the next command 
                       "review discards its partial results (.surrogate/staging); the capture stays as recorded\n"));
   CHECK_THAT(info(capture, " --json").output, Contains("\"pendingCommit\":{\"state\":\"discard-staging\""));
 }
+
+// Issue 51: the help listed 0, 1, 2 and 5, while info exits 3 for a damaged archive and 2 for a
+// file named as a package that is none; each exit code info gives is in its help.
+TEST_CASE("info's help lists the exit codes info gives for a damaged archive and a file that is no package") {
+  const fs::path dir = e2e::freshDir("info-exits");
+  std::ofstream(dir / "damaged.zip", std::ios::binary) << std::string("PK\3\4", 4) << "a header cut short";
+  std::ofstream(dir / "text.zip", std::ios::binary) << "a text file named as a package\n";
+  const e2e::CommandResult damaged = info(dir / "damaged.zip");
+  const e2e::CommandResult none = info(dir / "text.zip");
+  CHECK(damaged.exitCode == 3);
+  CHECK(none.exitCode == 2);
+  const std::string help = e2e::surrogate("info --help").output;
+  CHECK_THAT(help, Contains("\n  3  a package archive truncated or damaged\n"));
+  CHECK_THAT(help, Contains("\n  2  bad usage (an unknown option, a missing or malformed value), or a package that is not"));
+}
