@@ -47,14 +47,13 @@ std::string specialKind(const fs::path& path) {
 
 // What kind of package folder `dir` is, by the files each layout puts at its root; "" when
 // none. Files of a package are listed in its manifests or inventory: one added or replaced
-// makes the package invalid.
+// makes the package invalid. (An OCFL storage root is not one: `pack --layout ocfl` may put a
+// new object anywhere in its hierarchy.)
 std::string packageFolderKind(const fs::path& dir) {
   std::error_code ec;
   if (fs::exists(dir / "bagit.txt", ec)) return "a bag (it holds bagit.txt)";
   for (const char* namaste : {"0=ocfl_object_1.0", "0=ocfl_object_1.1"})
     if (fs::exists(dir / namaste, ec)) return "an OCFL object";
-  for (const char* namaste : {"0=ocfl_1.0", "0=ocfl_1.1"})
-    if (fs::exists(dir / namaste, ec)) return "an OCFL storage root";
   if (fs::is_regular_file(dir / "METS.xml", ec) && fs::is_directory(dir / "representations", ec))
     return "an E-ARK package";
   return "";

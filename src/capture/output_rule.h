@@ -14,8 +14,8 @@
 //     carrier itself), by path or as the same file under another name (a hard link);
 //   - anything at the path that is not a regular file: a symbolic link, a device such as
 //     /dev/full, a FIFO, a socket (replacing it would destroy it, or write through it);
-//   - a path inside a package folder: a bag (a folder holding bagit.txt), an OCFL object or
-//     storage root (its 0=ocfl_... file), an E-ARK package (METS.xml beside representations/):
+//   - a path inside a package folder: a bag (a folder holding bagit.txt), an OCFL object (its
+//     0=ocfl_object_... file), an E-ARK package (METS.xml beside representations/):
 //     a file added or replaced there makes the package invalid;
 //   - an existing file with other names (more than one hard link): it may be an original, a
 //     package or a recorded file reached under a name no carrier gives, which the rule cannot
