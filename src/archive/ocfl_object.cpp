@@ -57,6 +57,30 @@ std::string lowerCase(std::string s) {
   return s;
 }
 
+// How deeply `text` nests arrays and objects (brackets inside strings not counted). An OCFL
+// inventory nests six levels (versions, a version, its state, a digest's paths; the fixity
+// block); pack writes an inventory it read back out, and nlohmann's writer recurses once per
+// level and indents each line by its depth: 100,000 levels took minutes and gigabytes.
+std::size_t nestingDepth(const std::string& text) {
+  std::size_t depth = 0, deepest = 0;
+  bool inString = false, escaped = false;
+  for (const char ch : text) {
+    if (inString) {
+      if (escaped) escaped = false;
+      else if (ch == '\\') escaped = true;
+      else if (ch == '"') inString = false;
+    } else if (ch == '"') {
+      inString = true;
+    } else if (ch == '[' || ch == '{') {
+      deepest = std::max(deepest, ++depth);
+    } else if ((ch == ']' || ch == '}') && depth > 0) {
+      --depth;
+    }
+  }
+  return deepest;
+}
+constexpr std::size_t kMaxInventoryDepth = 16;
+
 // The parsed root inventory beside what parseOcflInventory gives: the versions check compares
 // earlier inventories with its "versions" as JSON.
 struct ParsedInventory {
@@ -69,6 +93,11 @@ std::optional<ParsedInventory> parseRoot(const std::string& text, const std::str
   ParsedInventory r;
   OcflInventory& inv = r.inv;
   inv.text = text;
+  if (nestingDepth(text) > kMaxInventoryDepth) {
+    problems.push_back("inventory.json: nests arrays and objects more than " + std::to_string(kMaxInventoryDepth) +
+                       " levels deep, which no OCFL inventory does");
+    return std::nullopt;
+  }
   try {
     r.parsed = json::parse(text);
   } catch (const json::exception& e) {

@@ -108,8 +108,9 @@ TEST_CASE("an OCFL inventory whose paths leave the object or its versions is ref
       {inventory(content, "data/a\\\\b.txt"), "a\\b.txt"},
       {"[]", "not a JSON object"},
       {"{\"id\":1}", "\"id\""},
-      {std::string(200000, '['), "not valid JSON"},
-      {std::string(100000, '[') + std::string(100000, ']'), "not a JSON object"},  // no recursion to overflow
+      {std::string(200000, '['), "levels deep"},
+      {"{\"id\":", "not valid JSON"},
+      {std::string(100000, '[') + std::string(100000, ']'), "levels deep"},
   };
   for (const auto& [text, named] : hostile) {
     INFO(text.substr(0, 300));
@@ -117,6 +118,10 @@ TEST_CASE("an OCFL inventory whose paths leave the object or its versions is ref
     CHECK(!archive::parseOcflInventory(text, "1.1", problems));
     CHECK(mentions(problems, named));
   }
+  // Brackets inside a string do not nest.
+  problems.clear();
+  CHECK(archive::parseOcflInventory("{\"note\":\"[[[[[[[[[[[[[[[[[[[[\\\"[[\"," + inventory(content).substr(1), "1.1", problems));
+  CHECK(problems.empty());
 }
 
 TEST_CASE("checkOcflObject finds a link, a changed copy and an edited inventory in an object", "[layouts][ocfl]") {
@@ -145,6 +150,13 @@ TEST_CASE("checkOcflObject finds a link, a changed copy and an edited inventory 
   const fs::path huge = soundObject("ocfl-huge");  // never read whole
   fs::resize_file(huge / "inventory.json", archive::kMaxOcflInventoryBytes + 1);
   CHECK(mentions(archive::checkOcflObject(huge).inventoryProblems, "more than the 64 MiB"));
+
+  // Deeply nested, under an unknown key: pack would have written it back out (see nestingDepth).
+  const fs::path deep = soundObject("ocfl-deep");
+  const std::string deepText = "{\"x\":" + std::string(20, '[') + std::string(20, ']') + "," + inventory("BagIt-Version: 1.0\n").substr(1);
+  put(deep / "inventory.json", deepText);
+  put(deep / "inventory.json.sha512", sha512Of(deepText) + " inventory.json\n");
+  CHECK(mentions(archive::checkOcflObject(deep).inventoryProblems, "levels deep"));
 
   const fs::path edited = soundObject("ocfl-edited");
   put(edited / "inventory.json", inventory("BagIt-Version: 1.1\n"));
