@@ -36,36 +36,6 @@ namespace surrogate::cli {
 
 namespace {
 
-// Opens `target` (an address, or a page's file) with the desktop's browser (xdg-open; open on
-// macOS) when there is a desktop, without waiting for it; says so when there is none.
-void openBrowser(const std::string& target) {
-#ifdef __APPLE__
-  const char* opener = "open";
-  const bool desktop = true;
-#else
-  const char* opener = "xdg-open";
-  const bool desktop = std::getenv("DISPLAY") || std::getenv("WAYLAND_DISPLAY");
-#endif
-  if (!desktop) {
-    std::cout << "  (no desktop here to open a browser in: open the address in a browser on this computer)\n";
-    return;
-  }
-  posix_spawn_file_actions_t files;
-  posix_spawn_file_actions_init(&files);
-  posix_spawn_file_actions_addopen(&files, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&files, 2, "/dev/null", O_WRONLY, 0);
-  std::string program = opener, address = target;
-  char* argv[] = {program.data(), address.data(), nullptr};
-  pid_t pid = 0;
-  const int failed = posix_spawnp(&pid, opener, &files, nullptr, argv, environ);
-  posix_spawn_file_actions_destroy(&files);
-  if (failed) {
-    std::cout << "  (" << opener << " could not be started: open the address in a browser on this computer)\n";
-    return;
-  }
-  std::thread([pid] { waitpid(pid, nullptr, 0); }).detach();
-}
-
 // The page's address, key included, in a file only this account can read (a private temporary
 // folder), which sends the browser on to it: what the browser is started with is a program's
 // argument, which every account of the computer can read (ps, /proc), and the key must not be
@@ -83,6 +53,39 @@ std::string launcherFile(const TempDir& folder, const std::string& url) {
                 "could not write the file that opens the page in the browser; give --no-browser and open the "
                 "address printed by hand");
   return file.string();
+}
+
+// Opens the page at `url` with the desktop's browser (xdg-open; open on macOS) when there is a
+// desktop, without waiting for it, through a launcher file in `launcher` (made here, removed
+// with it); says so when there is no desktop.
+void openBrowser(const std::string& url, std::optional<TempDir>& launcher) {
+#ifdef __APPLE__
+  const char* opener = "open";
+  const bool desktop = true;
+#else
+  const char* opener = "xdg-open";
+  const bool desktop = std::getenv("DISPLAY") || std::getenv("WAYLAND_DISPLAY");
+#endif
+  if (!desktop) {
+    std::cout << "  (no desktop here to open a browser in: open the address in a browser on this computer)\n";
+    return;
+  }
+  launcher.emplace("review");
+  const std::string target = launcherFile(*launcher, url);
+  posix_spawn_file_actions_t files;
+  posix_spawn_file_actions_init(&files);
+  posix_spawn_file_actions_addopen(&files, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&files, 2, "/dev/null", O_WRONLY, 0);
+  std::string program = opener, address = target;
+  char* argv[] = {program.data(), address.data(), nullptr};
+  pid_t pid = 0;
+  const int failed = posix_spawnp(&pid, opener, &files, nullptr, argv, environ);
+  posix_spawn_file_actions_destroy(&files);
+  if (failed) {
+    std::cout << "  (" << opener << " could not be started: open the address in a browser on this computer)\n";
+    return;
+  }
+  std::thread([pid] { waitpid(pid, nullptr, 0); }).detach();
 }
 
 }  // namespace
@@ -193,10 +196,7 @@ int runCommandReview(int argc, char** argv) {
   std::cout << "Review of " << escapedText(capture) << ": " << url << "\n"
             << "  open it in a browser on this computer; Ctrl+C stops the review.\n";
   std::optional<TempDir> launcher;  // removed when the review stops
-  if (!args.has("no-browser")) {
-    launcher.emplace("review");
-    openBrowser(launcherFile(*launcher, url));
-  }
+  if (!args.has("no-browser")) openBrowser(url, launcher);
   std::cout.flush();
   server.serve();
   pthread_kill(waiter.native_handle(), SIGTERM);  // a no-op for the waiter when a signal ended it

@@ -1,7 +1,8 @@
 // Who and what surrogate review's server admits (review.h, access_key.h, bounded_server.h), as
 // another account of the computer would try it: without the key printed in the address; with
 // bodies too large, in chunks or compressed; with slow or idle connections held open; on the
-// port of a review already running; and an Apply over a commit a killed command left half-done.
+// port of a review already running; the key among the browser's arguments; and an Apply over a
+// commit a killed command left half-done.
 #include <catch2/catch.hpp>
 
 #include <arpa/inet.h>
@@ -12,9 +13,14 @@
 #include <httplib.h>
 #include <nlohmann/json.hpp>
 
+#include <signal.h>
+#include <sys/wait.h>
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cstdlib>
+#include <fstream>
 #include <thread>
 
 #include "e2e_support.h"
@@ -253,4 +259,55 @@ TEST_CASE("review: a commit a killed command left half-done is finished before t
   CHECK_FALSE(fs::exists(capture / ".surrogate/commit"));
   CHECK(bodyOf(res)["revision"] != shown);
   CHECK(review.stop() == 0);
+}
+
+TEST_CASE("review: the browser is started on a file only this account reads, never with the key as argument",
+          "[review]") {
+  const fs::path dir = e2e::freshDir("review-launcher");
+  const fs::path capture = e2e::processedCapture(dir);
+  // A desktop whose xdg-open records what it was given (every account can list a program's
+  // arguments: ps, /proc/PID/cmdline).
+  const fs::path bin = dir / "bin", given = dir / "xdg-open-arguments";
+  fs::create_directories(bin);
+  {
+    std::ofstream script(bin / "xdg-open");
+    script << "#!/bin/sh\nprintf '%s' \"$*\" > " << e2e::quote(given) << "\n";
+  }
+  fs::permissions(bin / "xdg-open", fs::perms::owner_all);
+  const std::string path = std::getenv("PATH") ? std::getenv("PATH") : "/usr/bin:/bin";
+  const char* display = std::getenv("DISPLAY");
+  const std::string savedDisplay = display ? display : "";
+  ::setenv("PATH", (bin.string() + ":" + path).c_str(), 1);
+  ::setenv("DISPLAY", ":99", 1);
+  std::string key, argument;
+  {
+    // With the browser opened (no --no-browser): the process's own words, not ReviewProcess's.
+    const pid_t pid = e2e::startSurrogate({"review", capture.string(), "--port", "0"}, dir / "review.log");
+    ::setenv("PATH", path.c_str(), 1);
+    if (display)
+      ::setenv("DISPLAY", savedDisplay.c_str(), 1);
+    else
+      ::unsetenv("DISPLAY");
+    for (int tries = 0; tries < 200 && !fs::exists(given); ++tries) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    const std::string printed = e2e::bytesOf(dir / "review.log");
+    const auto at = printed.find("?key=");
+    REQUIRE(at != std::string::npos);
+    key = printed.substr(at + 5, 64);
+    REQUIRE(fs::exists(given));
+    argument = e2e::bytesOf(given);
+    INFO(argument);
+    CHECK(argument.find(key) == std::string::npos);
+    // The file holds the address with the key, in a folder only its owner can open.
+    const fs::path file = argument;
+    REQUIRE(fs::exists(file));
+    CHECK(e2e::bytesOf(file).find("http://127.0.0.1:") != std::string::npos);
+    CHECK(e2e::bytesOf(file).find("?key=" + key) != std::string::npos);
+    CHECK((fs::status(file.parent_path()).permissions() & (fs::perms::group_all | fs::perms::others_all)) == fs::perms::none);
+    ::kill(pid, SIGTERM);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    CHECK(WIFEXITED(status));
+    CHECK(WEXITSTATUS(status) == 0);
+  }
+  CHECK_FALSE(fs::exists(fs::path(argument).parent_path()));  // removed when the review stopped
 }
