@@ -162,6 +162,25 @@ std::vector<std::string> listFiles(const fs::path& root) {
   return out;
 }
 
+bool holdsFile(const fs::path& folder) {
+  Fd fd(openReading(folder, O_DIRECTORY));
+  if (fd.get() < 0) return false;
+  DIR* stream = ::fdopendir(fd.get());
+  if (!stream) return false;
+  const int dirFd = fd.release();  // closedir closes it
+  bool found = false;
+  while (const dirent* e = ::readdir(stream)) {
+    struct stat st {};
+    if (::fstatat(dirFd, e->d_name, &st, AT_SYMLINK_NOFOLLOW) == 0 && S_ISREG(st.st_mode) &&
+        !capture::isSystemFile(e->d_name)) {
+      found = true;
+      break;
+    }
+  }
+  ::closedir(stream);
+  return found;
+}
+
 std::string readSmallFile(const fs::path& file) {
   Fd fd(openReading(file, 0));
   if (fd.get() < 0) unreadable(file.string(), errno);

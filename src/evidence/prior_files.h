@@ -17,6 +17,10 @@ namespace surrogate::evidence {
 // link, a special file or a folder that cannot be read.
 std::vector<std::string> listFiles(const std::filesystem::path& root);
 
+// Whether `folder` holds a regular file at its top (not in a subfolder), read as listFiles
+// reads; false when it cannot be opened as a folder.
+bool holdsFile(const std::filesystem::path& folder);
+
 // The whole of a small file (PRIOR's carrier), read without touching its access time.
 std::string readSmallFile(const std::filesystem::path& file);
 

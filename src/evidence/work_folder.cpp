@@ -280,13 +280,12 @@ SourceKind sourceKind(const fs::path& priorArg) {
     if (c.header.audited) return SourceKind::WorkFolder;
   }
   if (fs::is_regular_file(prior / "bagit.txt", ec)) return SourceKind::Package;
-  // PRIOR's own listing, through O_NOATIME (prior_files.h): capture::requireCaptureFolder lists
-  // through opendir, which would update the folders' access times, so it is asked only to
+  // The source folders listed through O_NOATIME (prior_files.h): capture::requireCaptureFolder
+  // lists through opendir, which would update their access times, so it is asked only to
   // refuse a folder with no file in original-captures/, raw-images/ or jpeg-exports/, in the
   // words of every command. Whether those files are images the run in the work folder judges.
-  for (const std::string& f : listFiles(prior))
-    for (const char* source : capture::kSourceFolders)
-      if (f.rfind(std::string(source) + "/", 0) == 0) return SourceKind::Folder;
+  for (const char* source : capture::kSourceFolders)
+    if (holdsFile(prior / source)) return SourceKind::Folder;
   capture::requireCaptureFolder(prior);
   throwInputError(escapedText(prior.string()), kStep,
                   "is not a capture folder: it has no files in original-captures/, raw-images/ or jpeg-exports/");

@@ -440,6 +440,13 @@ TEST_CASE("audit refuses what it cannot audit and never writes into it", "[e2e][
   const e2e::CommandResult notCapture = e2e::surrogate("audit " + e2e::quote(root / "nowhere"));
   CHECK(notCapture.exitCode == 1);
   CHECK(notCapture.output.find("does not exist") != std::string::npos);
+  // A folder that is no capture is refused as one, from its source folders alone: nothing else
+  // in it is walked (a home folder, or /, with its links).
+  fs::create_directories(root / "not-a-capture" / "stuff");
+  fs::create_directory_symlink("/", root / "not-a-capture" / "stuff" / "everything");
+  const e2e::CommandResult noCapture = e2e::surrogate("audit " + e2e::quote(root / "not-a-capture"));
+  CHECK(noCapture.exitCode == 1);
+  CHECK(noCapture.output.find("is not a capture folder") != std::string::npos);
 
   // A work folder inside the folder audited, or a folder that is some other thing.
   const fs::path prior = rtibuilderCapture("audit-refusals");
