@@ -26,16 +26,17 @@ const char* const kForgetKeyJs =
     "if (window.location.search && window.history.replaceState)\n"
     "  window.history.replaceState(null, \"\", window.location.pathname);\n";
 
-std::string cookieValue(const std::string& cookieHeader, const std::string& name) {
+std::vector<std::string> cookieValues(const std::string& cookieHeader, const std::string& name) {
+  std::vector<std::string> values;
   std::size_t start = 0;
   while (start <= cookieHeader.size()) {
     const std::size_t end = std::min(cookieHeader.find(';', start), cookieHeader.size());
     const std::string pair = trimmed(cookieHeader.substr(start, end - start));
     const auto equals = pair.find('=');
-    if (equals != std::string::npos && trimmed(pair.substr(0, equals)) == name) return trimmed(pair.substr(equals + 1));
+    if (equals != std::string::npos && trimmed(pair.substr(0, equals)) == name) values.push_back(trimmed(pair.substr(equals + 1)));
     start = end + 1;
   }
-  return "";
+  return values;
 }
 
 AccessKey AccessKey::generate() {
@@ -55,6 +56,12 @@ AccessKey AccessKey::generate() {
 bool AccessKey::matches(const std::string& given) const {
   // The length is public (64 digits): only the contents are compared in constant time.
   return given.size() == text_.size() && CRYPTO_memcmp(given.data(), text_.data(), text_.size()) == 0;
+}
+
+bool AccessKey::matchesOneOf(const std::vector<std::string>& given) const {
+  bool found = false;
+  for (const std::string& g : given) found = matches(g) || found;  // every one compared, in constant time each
+  return found;
 }
 
 std::string AccessKey::cookieName(int port) { return "surrogate-review-" + std::to_string(port); }

@@ -12,10 +12,11 @@
 //
 //   const AccessKey key = AccessKey::generate();
 //   std::cout << "http://127.0.0.1:" << port << "/?key=" << key.text() << "\n";
-//   if (!key.matches(cookieValue(request.get_header_value("Cookie"), key.cookieName(port)))) refuse();
+//   if (!key.matchesOneOf(cookieValues(request.get_header_value("Cookie"), key.cookieName(port)))) refuse();
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace surrogate::review {
 
@@ -30,6 +31,7 @@ class AccessKey {
   // Whether `given` is this key, compared in constant time (CRYPTO_memcmp): how long a refusal
   // takes says nothing of how many characters were right.
   bool matches(const std::string& given) const;
+  bool matchesOneOf(const std::vector<std::string>& given) const;
   // The cookie's name: one per port, since cookies are not kept apart by port and two reviews
   // served at once (two captures) must not overwrite each other's key in the browser.
   static std::string cookieName(int port);
@@ -42,7 +44,9 @@ class AccessKey {
 // (the key), as the page's history entry.
 extern const char* const kForgetKeyJs;
 
-// The value of cookie `name` in a Cookie header ("a=1; b=2"), or "" when it has none.
-std::string cookieValue(const std::string& cookieHeader, const std::string& name);
+// The values of cookie `name` in a Cookie header ("a=1; b=2"). There may be more than one: a
+// page served by another program on 127.0.0.1 (cookies are not kept apart by port) can set one
+// of the same name with another path, which the browser then sends first.
+std::vector<std::string> cookieValues(const std::string& cookieHeader, const std::string& name);
 
 }  // namespace surrogate::review

@@ -156,7 +156,7 @@ struct ReviewServer::Impl {
     const std::string cookie = AccessKey::cookieName(port);
     bool fromCookie = false;
     for (std::size_t n = 0; n < req.get_header_value_count("Cookie"); ++n)
-      fromCookie = fromCookie || key.matches(cookieValue(req.get_header_value("Cookie", n), cookie));
+      fromCookie = key.matchesOneOf(cookieValues(req.get_header_value("Cookie", n), cookie)) || fromCookie;
     if (firstLoad(req)) {
       res.set_header("Set-Cookie", cookie + "=" + key.text() + "; Path=/; HttpOnly; SameSite=Strict");
       return true;

@@ -128,7 +128,10 @@ TEST_CASE("review: without the key printed in the address, nothing is served and
   // another site: let in with the key, refused without it.
   CHECK(stranger.Get("/?key=" + review.key(), {{"Sec-Fetch-Site", "cross-site"}})->status == 200);
   CHECK(stranger.Get("/", {{"Sec-Fetch-Site", "cross-site"}})->status == 403);
-  const auto page = stranger.Get("/", {{"Cookie", "other=1; surrogate-review-" + port + "=" + review.key()}});
+  // A cookie of the same name set by another program's page on 127.0.0.1, sent first, does not
+  // hide the page's own.
+  const auto page = stranger.Get(
+      "/", {{"Cookie", "surrogate-review-" + port + "=planted; other=1; surrogate-review-" + port + "=" + review.key()}});
   REQUIRE(page);
   CHECK(page->status == 200);
   CHECK(page->body.find("<script src=\"/review.js\">") != std::string::npos);
