@@ -146,7 +146,8 @@ std::string bagInfoLabelProblem(const std::string& label);
 std::vector<std::string> removeStaleParts(const std::filesystem::path& out);
 
 // Checks that `out`'s own name (its last component) can name a package: valid UTF-8 with no
-// control character and no backslash (core/file_names.h: a .tar or .zip holds its bag in a
+// control character (C0 or C1), no U+FFFE or U+FFFF (an E-ARK SIP's METS names it) and no
+// backslash (core/file_names.h, core/text.h needsEscaping: a .tar or .zip holds its bag in a
 // folder named after it, whose name verify judges as it judges every path of the package, and
 // libarchive cannot record a name that is not UTF-8), and before a .tar or .zip extension a
 // folder name other than "." or "..". Throws Error(Input) showing the name escaped, before

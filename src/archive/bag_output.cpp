@@ -290,13 +290,17 @@ void checkPackageName(const fs::path& out) {
   if (named.filename().empty()) named = named.parent_path();  // "pkg/" is the folder pkg
   const std::string name = named.filename().string();
   std::string why = unholdableCharacters(name);
+  // An E-ARK SIP's METS names it (OBJID): no character XML cannot hold (U+FFFE, U+FFFF), and
+  // none a terminal shows only escaped (C1 controls), in any layout.
+  if (why.empty() && needsEscaping(name))
+    why = "contains a character XML cannot hold or a terminal cannot show (U+FFFE, U+FFFF, a C1 control)";
   if (why.empty() && bagFormatFor(named) != BagFormat::Directory) {
     const std::string top = named.stem().string();
     if (top == "." || top == "..")
       why = "leaves \"" + top + "\" as the name of the folder the archive holds its bag in";
   }
   if (!why.empty())
-    throw Error(ErrorKind::Input, shownName(out.string()), "packing",
+    throw Error(ErrorKind::Input, escapedText(out.string()), "packing",
                 "cannot name a package: its name " + why + ", which a package cannot hold (verify "
                 "would refuse it, and other systems could not unpack it); nothing was written: "
                 "choose another name, of UTF-8 text without control characters or backslashes");

@@ -16,7 +16,6 @@
 #include "core/atomic_file.h"
 #include "core/digest.h"
 #include "core/error.h"
-#include "core/file_names.h"
 #include "core/text.h"
 #include "core/version.h"
 
@@ -43,8 +42,8 @@ std::string sidecarText(const std::string& inventory) { return sha512Of(inventor
 // that is not the object's own (a link, a path out of it). Exit 2, as verify's refusal of an
 // invalid package, with the command that lists every problem; nothing has been written.
 [[noreturn]] void refuseObject(const fs::path& dir, const std::string& why) {
-  throw Error(ErrorKind::Usage, shownName(dir.string()), kStep,
-              shownName(why) + "; pack adds a version only to a sound object and wrote nothing: run `surrogate verify " +
+  throw Error(ErrorKind::Usage, escapedText(dir.string()), kStep,
+              escapedText(why) + "; pack adds a version only to a sound object and wrote nothing: run `surrogate verify " +
                   shellWord(dir.string()) + "` to see every problem, then restore the object from a copy or pack into a new folder");
 }
 
@@ -67,8 +66,8 @@ void requireSoundObject(const fs::path& dir) {
                            : problems.size() > 2 ? " (and " + std::to_string(problems.size() - 1) + " more problems)"
                                                  : std::string()));
   if (c.inventory->contentDirectory != "content")
-    throw Error(ErrorKind::Usage, shownName(dir.string()), kStep,
-                "keeps its content in \"" + shownName(c.inventory->contentDirectory) +
+    throw Error(ErrorKind::Usage, escapedText(dir.string()), kStep,
+                "keeps its content in \"" + escapedText(c.inventory->contentDirectory) +
                     "\" folders; Surrogate adds versions to objects that use content/ only: pack into a new folder");
 }
 
@@ -108,7 +107,7 @@ json parseInventory(const std::string& text, const fs::path& file) {
   try {
     inv = json::parse(text);
   } catch (const json::exception& e) {
-    throw Error(ErrorKind::Usage, shownName(file.string()), kStep,
+    throw Error(ErrorKind::Usage, escapedText(file.string()), kStep,
                 std::string("is not valid JSON (") + e.what() + "); run `surrogate verify` on the object");
   }
   const bool shaped = inv.is_object() && inv.contains("id") && inv["id"].is_string() &&
@@ -118,11 +117,11 @@ json parseInventory(const std::string& text, const fs::path& file) {
                       inv.contains("digestAlgorithm") && inv["digestAlgorithm"].is_string() &&
                       ocflVersionNumber(inv["head"].get<std::string>()) > 0;
   if (!shaped)
-    throw Error(ErrorKind::Usage, shownName(file.string()), kStep,
+    throw Error(ErrorKind::Usage, escapedText(file.string()), kStep,
                 "is not an OCFL inventory (id, head, digestAlgorithm, manifest and versions are "
                 "required); run `surrogate verify` on the object");
   if (inv["digestAlgorithm"] != "sha512")
-    throw Error(ErrorKind::Usage, shownName(file.string()), kStep,
+    throw Error(ErrorKind::Usage, escapedText(file.string()), kStep,
                 "uses digestAlgorithm " + inv["digestAlgorithm"].get<std::string>() +
                     "; Surrogate adds versions to sha512 objects only: pack into a new folder");
   return inv;
@@ -163,7 +162,7 @@ Existing openObject(const fs::path& dir, std::vector<std::string>& notes) {
   if (!readIfFile(dir / kNamaste, namaste) || namaste != "ocfl_object_1.1\n") {
     std::error_code ec;
     const bool older = fs::exists(dir / "0=ocfl_object_1.0", ec);
-    throw Error(ErrorKind::Usage, shownName(dir.string()), kStep,
+    throw Error(ErrorKind::Usage, escapedText(dir.string()), kStep,
                 older ? "is an OCFL 1.0 object; Surrogate adds versions to OCFL 1.1 objects only: pack into a new folder"
                       : "exists and is not an OCFL object (no 0=ocfl_object_1.1 file); give an empty "
                         "or new folder, or an OCFL object made by an earlier `surrogate pack --layout ocfl`");
@@ -241,7 +240,7 @@ OcflResult packOcfl(const fs::path& capture, const fs::path& given, const PackOp
   std::error_code ec;
   const bool exists = fs::exists(fs::symlink_status(dir, ec));
   if (exists && !fs::is_directory(fs::symlink_status(dir, ec)))
-    throw Error(ErrorKind::Usage, shownName(dir.string()), kStep,
+    throw Error(ErrorKind::Usage, escapedText(dir.string()), kStep,
                 "is not a folder; --layout ocfl writes an OCFL object into a folder");
   result.created = !exists || fs::is_empty(dir, ec);
 
@@ -252,7 +251,7 @@ OcflResult packOcfl(const fs::path& capture, const fs::path& given, const PackOp
     Existing e = openObject(dir, result.notes);
     inventory = std::move(e.inventory);
     if (inventory["id"] != result.objectId)
-      throw Error(ErrorKind::Usage, shownName(dir.string()), kStep,
+      throw Error(ErrorKind::Usage, escapedText(dir.string()), kStep,
                   "is the OCFL object of another capture (its id is " + inventory["id"].get<std::string>() +
                       ", this capture's is " + result.objectId +
                       ": the id names the capture's originals); give another folder for this capture");

@@ -24,8 +24,8 @@
 #include "cli/pipeline_options.h"
 #include "cli/progress.h"
 #include "core/error.h"
-#include "core/file_names.h"
 #include "core/json.h"
+#include "core/text.h"
 #include "report/report.h"
 
 namespace surrogate::cli {
@@ -73,7 +73,7 @@ bool givesDecisions(const Args& args) {
               what + ". An original (or prior work another tool made) is evidence: pack never records a "
               "new baseline for it. "
               "Restore the file from the card or a backup; if the change is deliberate, accept it "
-              "with `surrogate run " + shownName(capture) + " --accept-changed " + shownName(path) + " --reason \"why\"`, then pack");
+              "with `surrogate run " + escapedText(capture) + " --accept-changed " + escapedText(path) + " --reason \"why\"`, then pack");
 }
 
 std::vector<OptionSpec> packOptions() {
@@ -264,9 +264,10 @@ void endPackJson(JsonWriter& j, const PackReport& p) {
 }
 
 // `text` (a note holding paths) as a sentence of its own, its first letter capitalised, and
-// its names' tabs, line breaks and bytes that are not UTF-8 shown escaped (core/file_names.h).
+// its names' tabs, line breaks, other control characters and bytes that are not UTF-8 shown
+// escaped (core/text.h).
 void printSentence(const std::string& text) {
-  const std::string shown = shownName(text);
+  const std::string shown = escapedText(text);
   if (shown.empty()) return;
   std::cout << char(std::toupper(static_cast<unsigned char>(shown[0]))) << shown.substr(1) << ".\n";
 }
@@ -274,8 +275,8 @@ void printSentence(const std::string& text) {
 // The sentences before every layout's summary: why the pipeline ran, what leftovers went.
 void printPackPreamble(const PackReport& p) {
   if (p.processing.ran)
-    std::cout << "Processed " << shownName(p.capture) << " first (" << shownName(p.processing.why) << "), with the decisions its "
-              << "carrier records (see `surrogate info " << shownName(p.capture) << "`).\n";
+    std::cout << "Processed " << escapedText(p.capture) << " first (" << escapedText(p.processing.why) << "), with the decisions its "
+              << "carrier records (see `surrogate info " << escapedText(p.capture) << "`).\n";
   for (const std::string& removed : p.removedLeftovers) printSentence(removed);
 }
 
@@ -309,14 +310,14 @@ void printJson(const PackReport& p, const archive::PackResult& r) {
 
 void printSummary(const PackReport& p, const archive::PackResult& r, Verbosity verbosity) {
   if (verbosity == Verbosity::Quiet) {
-    std::cout << "Packed " << shownName(p.capture) << " into " << shownName(p.out) << " (package id " << r.packageId << ").\n";
+    std::cout << "Packed " << escapedText(p.capture) << " into " << escapedText(p.out) << " (package id " << r.packageId << ").\n";
     return;
   }
   printPackPreamble(p);
   char rate[64];
   std::snprintf(rate, sizeof rate, "%.1f MB in %.2f s", static_cast<double>(r.bag.payloadBytes) / 1e6,
                 r.bag.seconds);
-  std::cout << "Packed " << shownName(p.capture) << " into " << shownName(p.out) << " (BagIt 1.0, "
+  std::cout << "Packed " << escapedText(p.capture) << " into " << escapedText(p.out) << " (BagIt 1.0, "
             << archive::bagFormatName(r.bag.format) << ").\n"
             << "  payload: " << r.bag.payloadFiles << " files, " << rate << "\n"
             << "  package id: " << r.packageId << "\n"
@@ -351,19 +352,19 @@ void printOcflJson(const PackReport& p, const archive::OcflResult& r) {
 
 void printOcflSummary(const PackReport& p, const archive::OcflResult& r, Verbosity verbosity) {
   if (verbosity == Verbosity::Quiet) {
-    std::cout << (r.unchanged ? "Unchanged: " : "Packed " + shownName(p.capture) + " into ") << shownName(p.out) << " version "
+    std::cout << (r.unchanged ? "Unchanged: " : "Packed " + escapedText(p.capture) + " into ") << escapedText(p.out) << " version "
               << r.version << " (package id " << r.pack.packageId << ").\n";
     return;
   }
   printPackPreamble(p);
   for (const std::string& n : r.notes) printSentence(n);
   if (r.unchanged) {
-    std::cout << shownName(p.out) << " already holds this package as its head version " << r.version
+    std::cout << escapedText(p.out) << " already holds this package as its head version " << r.version
               << " (the same bytes): no version added.\n";
     return;
   }
-  std::cout << (r.created ? "Made the OCFL 1.1 object " : "Added a version to the OCFL object ") << shownName(p.out)
-            << ": " << r.version << ", the BagIt package of " << shownName(p.capture) << ".\n"
+  std::cout << (r.created ? "Made the OCFL 1.1 object " : "Added a version to the OCFL object ") << escapedText(p.out)
+            << ": " << r.version << ", the BagIt package of " << escapedText(p.capture) << ".\n"
             << "  object id: " << r.objectId << " (the capture's)\n"
             << "  new content: " << r.newFiles << " files, " << r.newBytes << " bytes"
             << (r.reusedFiles ? ", " + std::to_string(r.reusedFiles) + " unchanged files kept from earlier versions" : "")
@@ -384,12 +385,12 @@ void printEarkJson(const PackReport& p, const archive::EarkResult& r) {
 
 void printEarkSummary(const PackReport& p, const archive::EarkResult& r, Verbosity verbosity) {
   if (verbosity == Verbosity::Quiet) {
-    std::cout << "Packed " << shownName(p.capture) << " into " << shownName(p.out) << " (E-ARK SIP; package id " << r.pack.packageId << ").\n";
+    std::cout << "Packed " << escapedText(p.capture) << " into " << escapedText(p.out) << " (E-ARK SIP; package id " << r.pack.packageId << ").\n";
     return;
   }
   printPackPreamble(p);
-  std::cout << "Packed " << shownName(p.capture) << " into " << shownName(p.out) << " (E-ARK SIP 2.2, " << r.files << " files).\n"
-            << "  METS: " << shownName(p.out) << "/METS.xml, representation " << shownName(p.out) << "/representations/rep1/METS.xml\n"
+  std::cout << "Packed " << escapedText(p.capture) << " into " << escapedText(p.out) << " (E-ARK SIP 2.2, " << r.files << " files).\n"
+            << "  METS: " << escapedText(p.out) << "/METS.xml, representation " << escapedText(p.out) << "/representations/rep1/METS.xml\n"
             << "  payload: " << r.pack.bag.payloadFiles << " files in representations/rep1/data/\n"
             << "  package id: " << r.pack.packageId << "\n";
   printHolderFields(p);

@@ -138,6 +138,7 @@ TEST_CASE("pack refuses a package name no package can hold before writing anythi
       {"...zip", "\"..\"", ""},  // the folder inside would be ".."
       {"object\xe9", "object\\xE9", "--layout ocfl"},
       {"sip\x01", "sip\\x01", "--layout eark"},
+      {"sip\xef\xbf\xbe", "sip\\xEF\\xBF\\xBE", "--layout eark"},  // U+FFFE: its METS could not name it
   };
   for (const Name& n : names) {
     INFO(n.shown);
