@@ -85,6 +85,12 @@ std::vector<LightEntry> parseLp(const std::string& text, const std::string& name
            " bytes: the file is damaged or not a light file");
     }
     const double norm = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    // Components near the largest double (1e308) overflow the length to infinity: divided by it,
+    // the direction would be (0, 0, 0), passed on as if read.
+    if (!std::isfinite(norm)) {
+      fail("the light direction of \"" + e.filename +
+           "\" is too large to be a direction (its length overflows); the file is damaged");
+    }
     if (!(norm >= 1e-4)) {
       fail("the light direction of \"" + e.filename +
            "\" has (almost) zero length; it cannot be a direction");

@@ -662,7 +662,8 @@ TEST_CASE("audit leaves the access times of a folder and a .zip PRIOR and follow
 }
 
 // Issue 51: a prior .lp that cannot be read was left out and the model beside it judged without
-// lights, "not reproduced", exit 4; the docs give 1 to prior work that cannot be read.
+// lights, "not reproduced", exit 4; the docs give 1 to prior work that cannot be read. One whose
+// numbers overflow was read as a zero direction and stopped the run with a message naming no file.
 TEST_CASE("audit of a prior .lp that cannot be read names it and exits 1", "[e2e][audit]") {
   const fs::path capture = rtibuilderCapture("audit-bad-lp", /*clampBias=*/false);
   const std::string lp = e2e::bytesOf(capture / "assembly-files" / "stela.lp");
@@ -671,7 +672,9 @@ TEST_CASE("audit of a prior .lp that cannot be read names it and exits 1", "[e2e
   const std::vector<std::pair<std::string, std::string>> damaged = {
       {"nan", std::string(lp).replace(lp.find(firstLight), firstLight.size(), image + " nan 0.5 0.8")},
       {"inf", std::string(lp).replace(lp.find(firstLight), firstLight.size(), image + " inf 0.5 0.8")},
-      {"count", "1000000" + lp.substr(lp.find("\r\n"))}};
+      {"count", "1000000" + lp.substr(lp.find("\r\n"))},
+      // Finite numbers whose length overflows: read as (0, 0, 0), the run then failed naming no file.
+      {"huge", std::string(lp).replace(lp.find(firstLight), firstLight.size(), image + " 1e308 1e308 1e308")}};
   for (const auto& [name, bytes] : damaged) {
     SECTION(name) {
       REQUIRE(bytes != lp);
