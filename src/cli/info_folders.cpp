@@ -141,6 +141,12 @@ std::optional<PendingText> pendingText(const fs::path& capture) {
                                           "): the record shown is the one before it, until it commits"};
   switch (p->kind) {
     case run::PendingRecovery::Kind::FinishCommit: {
+      if (!p->stagedProblem.empty())
+        return PendingText{"finish-commit",
+                           "a run was stopped while it committed its results, and its staged record (" +
+                               std::string(capture::kWorkDir) + "/staging/" + capture::kCarrierPath +
+                               ") cannot be read (" + escapedText(p->stagedProblem) + "): " + kRecoveringCommands +
+                               " stops on it; restore the capture from a backup or package"};
       const std::string which =
           p->run ? escapedText("run " + p->run->id + " (" + p->run->command + ", started " + p->run->started + ")")
                  : "a run";

@@ -141,17 +141,17 @@ std::optional<PendingRecovery> pendingRecovery(const fs::path& capture) {
   const fs::path staging = stagingRoot(capture);
   std::error_code ec;
   if (fs::exists(journalPath(capture), ec)) {
-    if (!fs::exists(staging / kCarrierPath, ec)) return PendingRecovery{PendingRecovery::Kind::ClearJournal, {}};
-    PendingRecovery p{PendingRecovery::Kind::FinishCommit, {}};
+    if (!fs::exists(staging / kCarrierPath, ec)) return PendingRecovery{PendingRecovery::Kind::ClearJournal, {}, {}};
+    PendingRecovery p{PendingRecovery::Kind::FinishCommit, {}, {}};
     try {
       const carrier::Carrier staged = carrier::loadCarrier(staging / kCarrierPath);
       if (!staged.header.runs.empty()) p.run = staged.header.runs.back();
-    } catch (const Error&) {
-      // Unreadable: still finished by the next command, which then says what is wrong with it.
+    } catch (const Error& e) {
+      p.stagedProblem = e.message();  // recoverRun will stop on it too
     }
     return p;
   }
-  if (fs::exists(staging, ec)) return PendingRecovery{PendingRecovery::Kind::DiscardStaging, {}};
+  if (fs::exists(staging, ec)) return PendingRecovery{PendingRecovery::Kind::DiscardStaging, {}, {}};
   return std::nullopt;
 }
 

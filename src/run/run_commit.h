@@ -56,6 +56,7 @@ struct PendingRecovery {
   };
   Kind kind;
   std::optional<carrier::RunRecord> run;  // FinishCommit: the staged carrier's last run, when it reads
+  std::string stagedProblem;  // FinishCommit: why the staged carrier cannot be read (recovery will stop on it)
 };
 std::optional<PendingRecovery> pendingRecovery(const std::filesystem::path& capture);
 

@@ -348,6 +348,13 @@ TEST_CASE("info on a capture says a commit is pending and what the next command 
              Contains("  pending:   a run was stopped before its commit: the next run, lights, pack, audit or Apply in "
                       "review discards its partial results (.surrogate/staging); the capture stays as recorded\n"));
   CHECK_THAT(info(capture, " --json").output, Contains("\"pendingCommit\":{\"state\":\"discard-staging\""));
+
+  // A journal with a staged record that cannot be read: recovery stops on it, and info says so.
+  std::ofstream(capture / ".surrogate/staging/assembly-files/carrier.xml") << "<garbage";
+  std::ofstream(capture / ".surrogate/commit") << "commit\n";
+  CHECK_THAT(info(capture).output, Contains("its staged record (.surrogate/staging/assembly-files/carrier.xml) cannot be "
+                                            "read (") &&
+                                       Contains("stops on it; restore the capture from a backup or package\n"));
 }
 
 // Issue 51: the help listed 0, 1, 2 and 5, while info exits 3 for a damaged archive and 2 for a
