@@ -84,7 +84,8 @@ void printJson(const verify::Report& report) {
 // --quiet: the failed checks and the verdict line only.
 void printText(const verify::Report& report, bool quiet) {
   if (!quiet)
-    std::cout << "Verifying " << report.package << (report.kind.empty() ? "" : " (" + report.kind + ")") << "\n";
+    std::cout << "Verifying " << escapedText(report.package)
+              << (report.kind.empty() ? "" : " (" + report.kind + ")") << "\n";
   std::size_t width = 0;
   for (const verify::Check& c : report.checks) width = std::max(width, c.name.size());
   for (const verify::Check& c : report.checks) {
@@ -113,7 +114,7 @@ void printText(const verify::Report& report, bool quiet) {
   if (quiet) {
     const int code = report.exitCode();
     std::cout << (code == 0 ? (report.surrogatePackage ? "SOUND" : "VALID BAG") : report.surrogatePackage ? "NOT SOUND" : "NOT VALID")
-              << ": " << report.package << " (" << report.checks.size() - report.failures() << " of "
+              << ": " << escapedText(report.package) << " (" << report.checks.size() - report.failures() << " of "
               << report.checks.size() << " checks passed" << (report.reexecuted ? ", re-executed" : "")
               << (report.warnings.empty() ? "" : "; " + std::to_string(report.warnings.size()) + " warnings") << ")\n";
     return;
@@ -194,7 +195,7 @@ int verifyBatch(const Args& args) {
     else failures.emplace_back(r.item.path, s ? s->message : "");
     if (quiet) return;
     bar.finish();
-    std::cout << (r.succeeded ? "  ok    " : "  FAIL  ") << escapedText(r.item.path, true) << "  "
+    std::cout << (r.succeeded ? "  ok    " : "  FAIL  ") << escapedText(r.item.path) << "  "
               << escapedText(!s ? "" : s->outcome == "skipped" ? "sound (verified before, unchanged since)"
                                      : r.succeeded ? "sound" : s->message, true)
               << std::endl;
@@ -215,8 +216,8 @@ int verifyBatch(const Args& args) {
     j.endArray().endObject();
     std::cout << j.str() << "\n";
   } else {  // --quiet too: the verdict line
-    std::cout << r.items << " package(s): " << sound << " sound, " << failures.size() << " not; ledger " << *ledger
-              << "\n";
+    std::cout << r.items << " package(s): " << sound << " sound, " << failures.size() << " not; ledger "
+              << escapedText(*ledger) << "\n";
   }
   return r.exitCode;
 }
