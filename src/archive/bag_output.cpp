@@ -18,6 +18,7 @@
 #include <optional>
 #include <vector>
 
+#include "archive/bag_text.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/file_names.h"
@@ -295,9 +296,14 @@ void checkPackageName(const fs::path& out) {
   if (why.empty() && needsEscaping(name))
     why = "contains a character XML cannot hold or a terminal cannot show (U+FFFE, U+FFFF, a C1 control)";
   if (why.empty() && bagFormatFor(named) != BagFormat::Directory) {
+    // An archive holds its bag in a folder named after it: every entry's path begins with that
+    // name, so it must be one verify reads as a path inside the package ("a:b" reads as a drive
+    // letter, "~x" as a home folder, "." and ".." as no folder at all).
     const std::string top = named.stem().string();
-    if (top == "." || top == "..")
-      why = "leaves \"" + top + "\" as the name of the folder the archive holds its bag in";
+    std::string entryWhy;
+    if (!safeBagPath(top + "/bagit.txt", &entryWhy) || top == "." || top == "..")
+      why = "leaves \"" + top + "\" as the name of the folder the archive holds its bag in (" +
+            (entryWhy.empty() ? "no folder" : entryWhy) + ")";
   }
   if (!why.empty())
     throw Error(ErrorKind::Input, escapedText(out.string()), "packing",

@@ -165,12 +165,13 @@ TEST_CASE("checkOcflObject finds a link, a changed copy and an edited inventory 
 }
 
 TEST_CASE("a package name that is not UTF-8 or holds a control character or backslash is refused", "[layouts][names]") {
-  for (const char* good : {"pkg.zip", "stela 12 \xc3\xa9.tar", "bag", "repo/stela12/", "a.b.zip"}) {
+  for (const char* good : {"pkg.zip", "stela 12 \xc3\xa9.tar", "bag", "repo/stela12/", "a.b.zip", "a:b", "x~.zip"}) {
     INFO(good);
     CHECK_NOTHROW(archive::checkPackageName(good));
   }
   for (const char* bad : {"lat\xe9.zip", "lat\xe9.tar", "lat\xe9", "back\\slash.zip", "tab\t.zip", "line\n.tar",
-                          "...zip", "..tar", "sip\x01/", "sip\xef\xbf\xbe", "c1\xc2\x85.zip"}) {
+                          "...zip", "..tar", "sip\x01/", "sip\xef\xbf\xbe", "c1\xc2\x85.zip", "a:b.zip",
+                          "~home.tar"}) {
     INFO(bad);
     try {
       archive::checkPackageName(bad);
