@@ -18,6 +18,7 @@
 
 #include "core/digest.h"
 #include "e2e_support.h"
+#include "ledger_lines.h"
 
 namespace fs = std::filesystem;
 using e2e::quote;
@@ -42,13 +43,7 @@ fs::path makeCaptures(const fs::path& dir, int count, int images = 6, int width 
   return dir / "list.txt";
 }
 
-std::vector<json> ledgerLines(const fs::path& ledger) {
-  std::vector<json> out;
-  std::ifstream in(ledger);
-  std::string line;
-  while (std::getline(in, line)) out.push_back(json::parse(line));
-  return out;
-}
+using e2e::ledgerLines;
 
 std::size_t count(const std::vector<json>& lines, const std::string& capture, const std::string& step, int exit) {
   std::size_t n = 0;

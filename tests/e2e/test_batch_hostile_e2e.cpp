@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "e2e_support.h"
+#include "ledger_lines.h"
 
 namespace fs = std::filesystem;
 using e2e::quote;
@@ -30,13 +31,7 @@ std::vector<std::string> markers(const fs::path& dir) {
   return out;
 }
 
-std::vector<json> ledgerLines(const fs::path& ledger) {
-  std::vector<json> out;
-  std::ifstream in(ledger);
-  std::string line;
-  while (std::getline(in, line)) out.push_back(json::parse(line));
-  return out;
-}
+using e2e::ledgerLines;
 
 // The exit code of the last line of `capture`'s `step` in the ledger; -1 when there is none.
 int lastExit(const std::vector<json>& lines, const std::string& capture, const std::string& step) {
