@@ -157,9 +157,7 @@ int runCommandReview(int argc, char** argv) {
     // A commit a killed command left half-done puts its run's carrier in place when it is
     // finished, a record the page never showed: finished first, so that the page's revision is
     // checked against the record the run would build on (409 when it changed).
-    if (const auto pending = run::pendingRecovery(capture);
-        pending && pending->kind == run::PendingRecovery::Kind::FinishCommit)
-      run::recoverRun(capture);
+    if (run::pendingKind(capture) == run::PendingRecovery::Kind::FinishCommit) run::recoverRun(capture);
     review::requireRevision(capture, revision);  // a commit between the page's check and the lock
     run::runCapture(capture, request, settings, /*takeLock=*/false);
     report::ReportOptions reportOptions;

@@ -108,27 +108,38 @@ void commitRun(const fs::path& capture, const carrier::Carrier* previous, const 
   finishCommit(capture, previous);
 }
 
+std::optional<PendingRecovery::Kind> pendingKind(const fs::path& capture) {
+  std::error_code ec;
+  if (fs::exists(journalPath(capture), ec))
+    return fs::exists(stagingRoot(capture) / kCarrierPath, ec) ? PendingRecovery::Kind::FinishCommit
+                                                               : PendingRecovery::Kind::ClearJournal;
+  if (fs::exists(stagingRoot(capture), ec)) return PendingRecovery::Kind::DiscardStaging;
+  return std::nullopt;
+}
+
 std::optional<std::string> recoverRun(const fs::path& capture) {
   const std::vector<std::string> leftovers = removeInterruptedWrites(capture);
   const fs::path staging = stagingRoot(capture);
   std::error_code ec;
-  if (fs::exists(journalPath(capture), ec)) {
-    if (fs::exists(staging / kCarrierPath, ec)) {
-      std::optional<carrier::Carrier> previous;
-      if (fs::exists(capture / kCarrierPath, ec)) previous = carrier::loadCarrier(capture / kCarrierPath);
-      // When the staged carrier is still there, the old carrier is still in place too (it is
-      // renamed last): the superseded files are computed against it as in the first attempt.
-      finishCommit(capture, previous ? &*previous : nullptr);
-      return std::nullopt;  // the interrupted run completed: its record is the carrier now
+  if (const std::optional<PendingRecovery::Kind> kind = pendingKind(capture)) {
+    switch (*kind) {
+      case PendingRecovery::Kind::FinishCommit: {
+        std::optional<carrier::Carrier> previous;
+        if (fs::exists(capture / kCarrierPath, ec)) previous = carrier::loadCarrier(capture / kCarrierPath);
+        // When the staged carrier is still there, the old carrier is still in place too (it is
+        // renamed last): the superseded files are computed against it as in the first attempt.
+        finishCommit(capture, previous ? &*previous : nullptr);
+        return std::nullopt;  // the interrupted run completed: its record is the carrier now
+      }
+      case PendingRecovery::Kind::ClearJournal:
+        fs::remove(journalPath(capture));
+        fs::remove_all(staging, ec);
+        return std::nullopt;
+      case PendingRecovery::Kind::DiscardStaging:
+        fs::remove_all(staging, ec);
+        return "an earlier command on this capture was interrupted before it finished (killed or "
+               "crashed); its partial results were discarded";
     }
-    fs::remove(journalPath(capture));
-    fs::remove_all(staging, ec);
-    return std::nullopt;
-  }
-  if (fs::exists(staging, ec)) {
-    fs::remove_all(staging, ec);
-    return "an earlier command on this capture was interrupted before it finished (killed or "
-           "crashed); its partial results were discarded";
   }
   if (!leftovers.empty())
     return "an earlier command on this capture was interrupted while it wrote " + leftovers.front() +
@@ -138,21 +149,18 @@ std::optional<std::string> recoverRun(const fs::path& capture) {
 }
 
 std::optional<PendingRecovery> pendingRecovery(const fs::path& capture) {
-  const fs::path staging = stagingRoot(capture);
-  std::error_code ec;
-  if (fs::exists(journalPath(capture), ec)) {
-    if (!fs::exists(staging / kCarrierPath, ec)) return PendingRecovery{PendingRecovery::Kind::ClearJournal, {}, {}};
-    PendingRecovery p{PendingRecovery::Kind::FinishCommit, {}, {}};
+  const std::optional<PendingRecovery::Kind> kind = pendingKind(capture);
+  if (!kind) return std::nullopt;
+  PendingRecovery p{*kind, {}, {}};
+  if (*kind == PendingRecovery::Kind::FinishCommit) {
     try {
-      const carrier::Carrier staged = carrier::loadCarrier(staging / kCarrierPath);
+      const carrier::Carrier staged = carrier::loadCarrier(stagingRoot(capture) / kCarrierPath);
       if (!staged.header.runs.empty()) p.run = staged.header.runs.back();
     } catch (const Error& e) {
       p.stagedProblem = e.message();  // recoverRun will stop on it too
     }
-    return p;
   }
-  if (fs::exists(staging, ec)) return PendingRecovery{PendingRecovery::Kind::DiscardStaging, {}, {}};
-  return std::nullopt;
+  return p;
 }
 
 }  // namespace surrogate::run

@@ -59,5 +59,8 @@ struct PendingRecovery {
   std::string stagedProblem;  // FinishCommit: why the staged carrier cannot be read (recovery will stop on it)
 };
 std::optional<PendingRecovery> pendingRecovery(const std::filesystem::path& capture);
+// The kind alone, from which of the journal, the staged carrier and the staging folder are
+// there (nothing read): the one decision recoverRun acts on and pendingRecovery describes.
+std::optional<PendingRecovery::Kind> pendingKind(const std::filesystem::path& capture);
 
 }  // namespace surrogate::run
