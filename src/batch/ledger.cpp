@@ -17,6 +17,7 @@
 #include <variant>
 #include <nlohmann/json.hpp>
 
+#include "batch/descriptor.h"
 #include "capture/output_rule.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -26,14 +27,6 @@
 namespace surrogate::batch {
 
 namespace {
-
-// A descriptor closed however the function leaves (the flock goes with it).
-struct Descriptor {
-  int fd = -1;
-  ~Descriptor() {
-    if (fd >= 0) ::close(fd);
-  }
-};
 
 int lockWaitingOnSignals(int fd, int operation) {
   int r;
@@ -52,14 +45,10 @@ int lockWaitingOnSignals(int fd, int operation) {
                            "one to close: start a new ledger for the rest of the work");
 }
 
-// What a file that is not a regular one is, in a user's words.
-std::string kindOf(mode_t mode) {
-  if (S_ISDIR(mode)) return "a folder";
-  if (S_ISFIFO(mode)) return "a FIFO (named pipe)";
-  if (S_ISCHR(mode) || S_ISBLK(mode)) return "a device";
-  if (S_ISSOCK(mode)) return "a socket";
-  if (S_ISLNK(mode)) return "a symbolic link";
-  return "not a regular file";
+// A ledger path naming a file of type `mode` that is not a regular one.
+[[noreturn]] void refuseNotRegular(const std::filesystem::path& ledger, mode_t mode) {
+  refuseLedger(ledger, "is " + capture::fileTypeName(mode) + ", not a regular file: a ledger is a file that "
+                       "surrogate batch -o writes; give a file name");
 }
 
 // A path that names something other than a regular file is refused before it is opened (a
@@ -69,9 +58,7 @@ void requireRegularBeforeOpening(const std::filesystem::path& ledger, bool follo
   if ((follow ? ::stat(ledger.c_str(), &st) : ::lstat(ledger.c_str(), &st)) != 0) return;  // open() says why
   if (S_ISLNK(st.st_mode))
     refuseLedger(ledger, "is a symbolic link: Surrogate never writes through one; give the ledger's own name");
-  if (!S_ISREG(st.st_mode))
-    refuseLedger(ledger, "is " + kindOf(st.st_mode) + ", not a regular file: a ledger is a file that "
-                         "surrogate batch -o writes; give a file name");
+  if (!S_ISREG(st.st_mode)) refuseNotRegular(ledger, st.st_mode);
 }
 
 // The checks on the descriptor itself: what the path names may have changed since the command
@@ -79,9 +66,7 @@ void requireRegularBeforeOpening(const std::filesystem::path& ledger, bool follo
 void requireLedgerFile(const std::filesystem::path& ledger, int fd, bool writing) {
   struct stat st {};
   if (::fstat(fd, &st) != 0) throw writeError(ledger, "batch ledger", errno);
-  if (!S_ISREG(st.st_mode))
-    refuseLedger(ledger, "is " + kindOf(st.st_mode) + ", not a regular file: a ledger is a file that "
-                         "surrogate batch -o writes; give a file name");
+  if (!S_ISREG(st.st_mode)) refuseNotRegular(ledger, st.st_mode);
   if (writing && st.st_nlink > 1)
     refuseLedger(ledger, "has " + std::to_string(st.st_nlink) + " names (hard links), and appending would "
                          "change the file under each of them; give a ledger of its own");

@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "archive/bag_text.h"
+#include "batch/descriptor.h"
 #include "core/error.h"
 #include "core/text.h"
 
@@ -134,38 +135,27 @@ std::vector<WorkItem> readWorkList(const std::string& list) {
     // Opened without waiting (a FIFO with no writer would hold the batch forever), then read
     // only as a regular file, from the descriptor checked: a device or a FIFO is no list, and
     // /dev/zero never ends.
-    const int fd = ::open(list.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-    if (fd < 0)
+    const Descriptor d{::open(list.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC)};
+    if (d.fd < 0)
       throw badList(list, std::string("cannot be read (") + std::strerror(errno) +
                               "); give a text file of capture folders or packages, one a line");
     struct stat st {};
-    if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
-      ::close(fd);
+    if (::fstat(d.fd, &st) != 0 || !S_ISREG(st.st_mode))
       throw badList(list, std::string("is not a regular file (") +
                               (S_ISDIR(st.st_mode) ? "a folder" : S_ISFIFO(st.st_mode) ? "a FIFO" : "a device or socket") +
                               "); give a text file of capture folders or packages, one a line, or - for standard input");
-    }
-    if (static_cast<std::uint64_t>(st.st_size) > kMaxListBytes) {
-      ::close(fd);
-      throw tooLarge(list);
-    }
-    try {
-      items = itemsOf(boundedText(
-                          [&](char* buffer, std::size_t size) -> std::size_t {
-                            for (;;) {
-                              const ssize_t n = ::read(fd, buffer, size);
-                              if (n >= 0) return static_cast<std::size_t>(n);
-                              if (errno != EINTR)
-                                throw badList(list, std::string("cannot be read (") + std::strerror(errno) + ")");
-                            }
-                          },
-                          list),
-                      list);
-    } catch (...) {
-      ::close(fd);
-      throw;
-    }
-    ::close(fd);
+    if (static_cast<std::uint64_t>(st.st_size) > kMaxListBytes) throw tooLarge(list);
+    items = itemsOf(boundedText(
+                        [&](char* buffer, std::size_t size) -> std::size_t {
+                          for (;;) {
+                            const ssize_t n = ::read(d.fd, buffer, size);
+                            if (n >= 0) return static_cast<std::size_t>(n);
+                            if (errno != EINTR)
+                              throw badList(list, std::string("cannot be read (") + std::strerror(errno) + ")");
+                          }
+                        },
+                        list),
+                    list);
   }
   if (items.empty())
     throw Error(ErrorKind::Usage, list == "-" ? "standard input" : escapedText(list), "batch list",

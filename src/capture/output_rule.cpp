@@ -33,16 +33,12 @@ bool isOneOf(const std::string& name, const std::array<const char*, N>& names) {
   throw Error(ErrorKind::Input, option + " " + escapedText(output.string()), "command line", why);
 }
 
-// What a non-regular file is, in a user's words; "" for a regular file or nothing at all.
+// What is at the path when it is not a regular file (fileTypeName); "" for a regular file or
+// nothing at all.
 std::string specialKind(const fs::path& path) {
   struct stat st {};
   if (::lstat(path.c_str(), &st) != 0) return "";
-  if (S_ISLNK(st.st_mode)) return "a symbolic link";
-  if (S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode)) return "a device";
-  if (S_ISFIFO(st.st_mode)) return "a FIFO (named pipe)";
-  if (S_ISSOCK(st.st_mode)) return "a socket";
-  if (S_ISDIR(st.st_mode)) return "a folder";
-  return "";
+  return fileTypeName(st.st_mode);
 }
 
 // What kind of package folder `dir` is, by the files each layout puts at its root; "" when
@@ -131,6 +127,16 @@ void checkInsideCapture(const fs::path& root, const fs::path& out, const fs::pat
 }
 
 }  // namespace
+
+std::string fileTypeName(mode_t mode) {
+  if (S_ISREG(mode)) return "";
+  if (S_ISLNK(mode)) return "a symbolic link";
+  if (S_ISCHR(mode) || S_ISBLK(mode)) return "a device";
+  if (S_ISFIFO(mode)) return "a FIFO (named pipe)";
+  if (S_ISSOCK(mode)) return "a socket";
+  if (S_ISDIR(mode)) return "a folder";
+  return "";
+}
 
 void checkOutputTarget(const fs::path& output, const std::string& option, ExistingOutput existing,
                        OutputPlace place, const std::string& refuseHint) {

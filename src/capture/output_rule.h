@@ -28,6 +28,8 @@
 // one of the originals' folders.
 #pragma once
 
+#include <sys/types.h>
+
 #include <filesystem>
 #include <string>
 
@@ -53,5 +55,10 @@ enum class OutputPlace {
 void checkOutputTarget(const std::filesystem::path& output, const std::string& option,
                        ExistingOutput existing, OutputPlace place = OutputPlace::OutsideManagedFolders,
                        const std::string& refuseHint = "");
+
+// What a file of type `mode` (stat's st_mode) is, in a user's words, when it is not a regular
+// file: "a symbolic link", "a device", "a FIFO (named pipe)", "a socket", "a folder"; "" for a
+// regular file. The words of the rule's refusals, and of the ledger's (batch/ledger.h).
+std::string fileTypeName(mode_t mode);
 
 }  // namespace surrogate::capture
