@@ -117,6 +117,9 @@ struct Highlight {
   double peak = 0;        // the brightest value at the highlight, 0..1 (flag none: the highest rise over the median)
   double confidence = 0;  // 0..1: the lowest score (see above); 1 when given by hand
   HighlightMeasures measures;
+  // The covariance (pixels^2) of (x, y) as an estimate of the point where the light's mirror
+  // reflection is, from the core's extent and saturation; 0 when not measured (by hand).
+  double covXX = 0, covXY = 0, covYY = 0;
   // Why a highlight is refused or doubtful, for people: "18 % of the sphere is at least
   // halfway up to its brightest value (a highlight covers under 10 %)". Empty when Ok.
   std::string reason;

@@ -63,6 +63,9 @@ struct DetectedSphere {
   double confidence = 0;  // share of the rim that is a clean edge on the fitted circle
   double evidence = 0;    // share of the images with a moving highlight in front (1 by hand)
   bool byHand = false;    // given by hand (--sphere): confidence and evidence measure nothing
+  // Standard errors (1 sigma, pixels) of the rim fit's centre (each axis) and radius, from its
+  // residuals; 0 when not measured (a circle given by hand and not refined).
+  double centreSigmaPx = 0, radiusSigmaPx = 0;
 };
 
 struct SphereDetectionOptions {
