@@ -51,6 +51,28 @@ void geometric(const std::vector<Point2>& p, CircleFit& fit) {
   }
 }
 
+// The standard errors from the residuals at the solution: s^2 (J^T J)^-1.
+void covariance(const std::vector<Point2>& p, CircleFit& fit) {
+  if (p.size() < 4) return;
+  Eigen::Matrix3d jtj = Eigen::Matrix3d::Zero();
+  double sum2 = 0;
+  for (const Point2& q : p) {
+    const double dx = q.x - fit.cx, dy = q.y - fit.cy, d = std::hypot(dx, dy);
+    if (d < 1e-12) continue;
+    const Eigen::Vector3d row(-dx / d, -dy / d, -1);
+    jtj += row * row.transpose();
+    sum2 += (d - fit.r) * (d - fit.r);
+  }
+  const double s2 = sum2 / double(p.size() - 3);
+  const Eigen::FullPivLU<Eigen::Matrix3d> lu(jtj);
+  if (!lu.isInvertible()) return;
+  const Eigen::Matrix3d cov = s2 * lu.inverse();
+  fit.sigmaCx = std::sqrt(std::max(0.0, cov(0, 0)));
+  fit.sigmaCy = std::sqrt(std::max(0.0, cov(1, 1)));
+  fit.sigmaR = std::sqrt(std::max(0.0, cov(2, 2)));
+  fit.residualSd = std::sqrt(s2);
+}
+
 }  // namespace
 
 CircleFit fitCircle(const std::vector<Point2>& points, double outlierPixels) {
@@ -72,6 +94,7 @@ CircleFit fitCircle(const std::vector<Point2>& points, double outlierPixels) {
     kept = std::move(next);
   }
   fit.inliers = static_cast<int>(kept.size());
+  covariance(kept, fit);
   return fit;
 }
 

@@ -245,7 +245,7 @@ Highlight detectHighlight(const Image& crop, const Image* median, int cropX0, in
   struct Component {
     double sum = 0, sx = 0, sy = 0, peak = 0;
     double px = 0, py = 0, pxx = 0, pyy = 0, pxy = 0;  // unweighted position moments
-    int area = 0;
+    int area = 0, saturated = 0;  // pixels, and those whose image value is saturated
   };
   std::vector<Component> comps(count);
   for (int y = 0; y < hh; ++y) {
@@ -259,6 +259,7 @@ Highlight detectHighlight(const Image& crop, const Image* median, int cropX0, in
       c.sy += v * (y + y0 + cropY0);
       c.peak = std::max(c.peak, v);
       c.area++;
+      c.saturated += values.at<float>(y, x) >= static_cast<float>(HighlightLimits::kSaturatedLevel);
       c.px += x;
       c.py += y;
       c.pxx += double(x) * x;
@@ -284,6 +285,15 @@ Highlight detectHighlight(const Image& crop, const Image* median, int cropX0, in
   const double l1 = mean + diff + HighlightLimits::kBlurPx2;
   const double l2 = std::max(0.0, mean - diff) + HighlightLimits::kBlurPx2;
   h.measures.elongation = std::sqrt(l2 / l1);
+  // The centre's covariance as an estimate (Highlight::covXX..): the core's own covariance
+  // divided by the number of independent looks at it, the blur's footprints (4 pi sigma^2
+  // pixels each) in the core's unsaturated pixels. Where the image is clipped the plateau hides
+  // where the peak is, so a saturated core counts as one look: the centre anywhere in it. An
+  // elongated core is uncertain along its length, which Sigma carries.
+  const double looks = std::max(1.0, (c.area - c.saturated) / (4 * M_PI * sigma * sigma));
+  h.covXX = vxx / looks;
+  h.covYY = vyy / looks;
+  h.covXY = vxy / looks;
   bool second = false;
   for (int l = 1; l < count; ++l)
     if (l != chosen && comps[l].peak >= HighlightLimits::kSecondPeak * peak) second = true;

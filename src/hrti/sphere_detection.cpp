@@ -186,6 +186,30 @@ std::vector<Candidate> hough(const Gradients& g, cv::Rect area, const std::vecto
 // circle and count as the rim.
 constexpr double kRimTolerance = 1.0, kRimToleranceShare = 0.01;
 
+// Independent arcs of the rim assumed at most (see rimSigmas).
+constexpr double kIndependentArcs = 12;
+// Edge points closer than this along the rim (pixels) share their errors: the sigma-1 blur and
+// the 3x3 Sobel make the gradient of a pixel from a neighbourhood about 3 pixels wide.
+constexpr double kCorrelationLength = 3;
+
+// The standard errors of the rim fit (DetectedSphere::centreSigmaPx, radiusSigmaPx): the
+// Gauss-Newton covariance s^2 (J^T J)^-1 of the fit (hrti/circle_fit.h), its variances inflated
+// when neighbouring rays are closer than kCorrelationLength (a small circle's 360 rays
+// sample the same pixels), and not below what kIndependentArcs independent arcs with the
+// residuals' spread s give (2 s^2 / n for each centre axis, s^2 / n for the radius: for n
+// points spread evenly round a circle): the edge's bias changes with the background, the
+// light and the stand along whole arcs, and those errors do not average out over rays.
+void rimSigmas(const CircleFit& fit, int rays, DetectedSphere& out) {
+  if (fit.inliers < 4) return;
+  const double spacing = 2 * M_PI * fit.r / rays;
+  const double inflation = std::max(1.0, kCorrelationLength / std::max(spacing, 1e-9));
+  const double arcs = std::min(kIndependentArcs, double(fit.inliers));
+  const double s2 = fit.residualSd * fit.residualSd;
+  const double centre2 = 0.5 * (fit.sigmaCx * fit.sigmaCx + fit.sigmaCy * fit.sigmaCy) * inflation;
+  out.centreSigmaPx = std::sqrt(std::max(centre2, 2 * s2 / arcs));
+  out.radiusSigmaPx = std::sqrt(std::max(fit.sigmaR * fit.sigmaR * inflation, s2 / arcs));
+}
+
 // Sub-pixel edge points along rays from the centre, and the circle through them.
 DetectedSphere refine(const StackMedian& median, Candidate start, double margin) {
   DetectedSphere out{start.x, start.y, start.r, 0};
@@ -251,6 +275,7 @@ DetectedSphere refine(const StackMedian& median, Candidate start, double margin)
     out.cx = fit.cx;
     out.cy = fit.cy;
     out.r = fit.r;
+    rimSigmas(fit, kRays, out);
     // The share of all rays whose edge lies on the circle, within a pixel (more for a large
     // circle, whose rim is blurred over more pixels): the fit's own inliers are judged against
     // the spread of the points, which on texture grows until every ray is an inlier.
