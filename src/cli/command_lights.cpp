@@ -19,6 +19,41 @@ namespace surrogate::cli {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// "images": each light of FILE.lp, named as FILE.lp names its image, with its direction and
+// uncertaintyDegrees (the 95 % bound in degrees on its angle from the true direction,
+// hrti/light_uncertainty.h; null for a light read from the capture's own .lp file), from the
+// carrier's light items, matched to the .lp's lines by the image file they name.
+void writeLightImages(JsonWriter& j, const carrier::Carrier& c, const fs::path& capture, const fs::path& written,
+                      const std::vector<formats::LightEntry>& entries) {
+  const std::vector<formats::LightEntry> lines = formats::readLp(written);
+  const carrier::Result* result = nullptr;
+  for (const carrier::Result& r : c.data)
+    if (!r.itemsOf("light").empty()) result = &r;
+  auto same = [](const fs::path& a, const fs::path& b) {
+    std::error_code ea, eb;
+    return fs::weakly_canonical(a, ea) == fs::weakly_canonical(b, eb);
+  };
+  j.key("images").beginArray();
+  for (std::size_t n = 0; n < entries.size() && n < lines.size(); ++n) {
+    const auto image = formats::resolveLpImage(written, lines[n].filename);
+    const carrier::DataItem* item = nullptr;
+    for (const carrier::DataItem* l : result ? result->itemsOf("light") : std::vector<const carrier::DataItem*>{}) {
+      const carrier::FileRecord* f = c.findFile(l->get("image").value_or(""));
+      if (f && image && same(capture / f->path, *image)) item = l;
+    }
+    j.beginObject().key("image").value(entries[n].filename).key("x").value(entries[n].x)
+        .key("y").value(entries[n].y).key("z").value(entries[n].z).key("uncertaintyDegrees");
+    if (item && item->get("uncertaintyDegrees")) j.value(item->number("uncertaintyDegrees"));
+    else j.null();
+    j.endObject();
+  }
+  j.endArray();
+}
+
+}  // namespace
+
 int runCommandLights(int argc, char** argv) {
   std::vector<OptionSpec> specs = pipelineOptions(false);
   specs.push_back({"o", true, false, "the .lp file to write", "FILE.lp", OptionGroup::Output});
@@ -71,7 +106,9 @@ int runCommandLights(int argc, char** argv) {
     JsonWriter j;
     j.beginObject().key("output").value(*out).key("lights").value(lights)
         .key("flaggedHighlights").value(flagged)
-        .key("carrier").value((capture / capture::kAssemblyDir / "carrier.xml").string()).endObject();
+        .key("carrier").value((capture / capture::kAssemblyDir / "carrier.xml").string());
+    writeLightImages(j, c, capture, written, entries);
+    j.endObject();
     std::cout << j.str() << "\n";
   } else {
     const Verbosity verbosity = verbosityOf(args);

@@ -14,6 +14,7 @@
 #include "hrti/light_checks.h"
 #include "hrti/light_direction.h"
 #include "hrti/light_position.h"
+#include "hrti/light_uncertainty.h"
 #include "hrti/stack_median.h"
 #include "image/decode.h"
 #include "pipeline/context.h"
@@ -145,8 +146,10 @@ pipeline::StageInfo LightDirectionsStage::info() {
   //    accepted (intervention accept-check); the checks are recorded
   // 5: exposure-outlier compares exposures in linear light (it compared sRGB values, and let a
   //    frame at 5 % exposure through)
+  // 6: each light records its uncertainty, uncertaintyDegrees (hrti/light_uncertainty.h), and
+  //    the light checks are given it (LightCheckInput::uncertaintyDeg)
   pipeline::StageInfo info = pipeline::withOptions<LightDirectionsOptions>(
-      {kComponent, "5",
+      {kComponent, "6",
        "Light direction of each image from its highlights by the law of reflection, checked for "
        "plausibility",
        pipeline::PlanSlot::LightsFromSpheres});
@@ -176,6 +179,7 @@ void LightDirectionsStage::run(const carrier::Step& step, pipeline::Context& ctx
   for (std::size_t n = 0; n < inputs->size(); ++n) {
     std::array<double, 3> sum{0, 0, 0};
     std::string from;
+    std::vector<hrti::SphereEvidence> evidence;
     checks.perSphere.emplace_back(spheres->size());
     for (std::size_t k = 0; k < spheres->size(); ++k) {
       const hrti::Highlight& h = (*highlights)[n][k];
@@ -199,6 +203,7 @@ void LightDirectionsStage::run(const carrier::Step& step, pipeline::Context& ctx
       sum[1] += l.y;
       sum[2] += l.z;
       checks.perSphere.back()[k] = std::array<double, 3>{l.x, l.y, l.z};
+      evidence.push_back({(*spheres)[k], h});
       from += (from.empty() ? "sphere " : ",") + std::to_string(k);
     }
     const double norm = std::sqrt(sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]);
@@ -209,7 +214,10 @@ void LightDirectionsStage::run(const carrier::Step& step, pipeline::Context& ctx
                       "highlight by hand (--highlight " + (*inputs)[n].stem + ":0=x,y --reason ...)");
     }
     lights->push_back({sum[0] / norm, sum[1] / norm, sum[2] / norm});
-    addLightItem(result, (*inputs)[n].fileId, lights->back(), from);
+    const double bound =
+        hrti::lightUncertaintyDeg(evidence, model == "perspective" ? &*intrinsics : nullptr);
+    checks.uncertaintyDeg.push_back(bound);
+    addLightItem(result, (*inputs)[n].fileId, lights->back(), from, bound);
 
     if (spheres->size() >= 2 && diameter > 0 && intrinsics) {
       std::vector<hrti::SphereGeometry> geometry;

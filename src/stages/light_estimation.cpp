@@ -62,11 +62,12 @@ void writeLights(pipeline::Context& ctx, const carrier::Step& step, carrier::Res
 }
 
 void addLightItem(carrier::Result& result, const std::string& fileId, const std::array<double, 3>& l,
-                  const std::string& source) {
+                  const std::string& source, double uncertaintyDeg) {
   const double elevation = std::asin(std::clamp(l[2], -1.0, 1.0)) * 180.0 / M_PI;
   const double azimuth = std::atan2(l[1], l[0]) * 180.0 / M_PI;
   result.add("light").set("image", fileId).set("x", l[0]).set("y", l[1]).set("z", l[2])
       .set("elevationDeg", elevation).set("azimuthDeg", azimuth).set("source", source);
+  if (uncertaintyDeg >= 0) result.items.back().set("uncertaintyDegrees", uncertaintyDeg);
 }
 
 }  // namespace surrogate::stages

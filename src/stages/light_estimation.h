@@ -39,8 +39,11 @@ std::vector<std::string> lightsFileOutput(const carrier::Step&);
 void writeLights(pipeline::Context& ctx, const carrier::Step& step, carrier::Result& result,
                  const InputImages& inputs, const Lights& lights);
 
-// One <light> item of a step's result: the direction, its elevation and azimuth in degrees.
+// One <light> item of a step's result: the direction, its elevation and azimuth in degrees, and
+// when measured (uncertaintyDeg >= 0) its uncertainty: uncertaintyDegrees, the 95 % bound on the
+// angle between this direction and the true one (hrti/light_uncertainty.h). A light read from a
+// user's .lp file states none.
 void addLightItem(carrier::Result& result, const std::string& fileId, const std::array<double, 3>& l,
-                  const std::string& source);
+                  const std::string& source, double uncertaintyDeg = -1);
 
 }  // namespace surrogate::stages
