@@ -39,10 +39,7 @@ inline constexpr const char* kCheckLightsClustered = "lights-clustered";
 inline constexpr const char* kCheckExposureOutlier = "exposure-outlier";
 // Checked after each fit (RtiFit), not with the lights: see residualOutliers below.
 inline constexpr const char* kCheckResidualOutlier = "residual-outlier";
-// Checked by highlight detection, before the highlights are judged: see frameMovedCheck below.
-inline constexpr const char* kCheckFrameMoved = "frame-moved";
-// Every check's name: frame-moved, those of checkLights in the order they run, then
-// residual-outlier.
+// Every check's name: those of checkLights in the order they run, then residual-outlier.
 const std::vector<std::string>& lightCheckNames();
 
 struct LightCheckLimits {
@@ -89,12 +86,6 @@ std::vector<LightCheck> checkLights(const LightCheckInput& input);
 std::vector<int> residualOutliers(const std::vector<double>& perImageRmse);
 // The check residual-outlier on a fit's per-image RMSE, its images named by `names`.
 LightCheck residualCheck(const std::vector<double>& perImageRmse, const std::vector<std::string>& names);
-
-// frame-moved: the images (movedPx: how far each moved against the stack, full-resolution
-// pixels, hrti/frame_registration.h; negative when not measured) that moved more than limitPx.
-// A frame whose camera, sphere or object moved gives every pixel of the fit a sample of another
-// point, and its light is measured on a circle that is not where its sphere is.
-LightCheck frameMovedCheck(const std::vector<double>& movedPx, double limitPx, const std::vector<std::string>& names);
 
 // The angle between two directions, in degrees.
 double angleDeg(const std::array<double, 3>& a, const std::array<double, 3>& b);
