@@ -241,6 +241,12 @@ void Carrier::addLog(const std::string& level, const std::string& step, const st
   log.push_back(LogEntry{timestampNow(), level, step, who, escapedText(text, true)});
 }
 
+const std::vector<Step>& standingProcess(const Carrier& carrier) {
+  const std::vector<RunRecord>& runs = carrier.header.runs;
+  if (!runs.empty() && runs.back().outcome == "failed" && !runs.back().planned.empty()) return runs.back().planned;
+  return carrier.process;
+}
+
 Carrier newCarrier(const std::string& title, const std::vector<Creator>& creators) {
   Carrier c;
   c.header.title = title;

@@ -54,6 +54,8 @@ struct Software {
   std::string name, version, role;
 };
 
+struct Step;  // below: a step of the process list
+
 // One invocation of a command that changed (or tried to change) the capture's record: the
 // history an auditor reads to see the iterative process. Failed runs stay too.
 struct RunRecord {
@@ -64,6 +66,10 @@ struct RunRecord {
   std::string outcome;  // completed, failed
   std::vector<std::string> arguments;  // the command line after the command, as given
   std::vector<std::string> notes;      // what changed; for a failed run, the cause
+  // A failed run on a capture that kept its previous state: the process list it planned (its
+  // steps' parameters and interventions, no results), so that the decisions given on it stand
+  // for the next run as those of a completed run do (standingProcess). Empty otherwise.
+  std::vector<Step> planned;
 };
 
 // The evidence an audit examined (`surrogate audit PRIOR`): another tool's work, copied byte for
@@ -216,6 +222,11 @@ struct Carrier {
   void addLog(const std::string& level, const std::string& step, const std::string& text,
               const std::string& who = "");
 };
+
+// The process list whose decisions stand: the carrier's own, or, when its last run failed and
+// left the previous state in place, the list that run planned. Following a refusal's advice
+// one option at a time then adds up, whether or not the runs in between succeeded.
+const std::vector<Step>& standingProcess(const Carrier& carrier);
 
 // A new carrier with the header filled in: title, creators, timestamps, this machine, and
 // Surrogate's own version. Library versions are added by the caller (software list).

@@ -59,6 +59,28 @@ void writeAudited(xmlNodePtr header, const AuditedSource& a) {
   }
 }
 
+void writeStep(xmlNodePtr list, const Step& s) {
+  xmlNodePtr n = child(list, "step");
+  attr(n, "id", s.id);
+  attr(n, "component", s.component);
+  attr(n, "version", s.version);
+  optionalAttr(n, "algorithm", s.algorithm);
+  if (!s.description.empty()) textChild(n, "description", s.description);
+  for (const Param& p : s.params) {
+    xmlNodePtr pn = child(n, "param");
+    attr(pn, "name", p.name);
+    attr(pn, "value", p.value);
+  }
+  for (const Intervention& i : s.interventions) {
+    xmlNodePtr in = textChild(n, "intervention", i.reason);
+    attr(in, "kind", i.kind);
+    attr(in, "target", i.target);
+    optionalAttr(in, "value", i.value);
+    attr(in, "who", i.who);
+    attr(in, "time", i.time);
+  }
+}
+
 void writeHeader(xmlNodePtr root, const Header& h) {
   xmlNodePtr header = child(root, "header");
   textChild(header, "title", h.title);
@@ -95,6 +117,10 @@ void writeHeader(xmlNodePtr root, const Header& h) {
     attr(n, "outcome", r.outcome);
     for (const std::string& a : r.arguments) textChild(n, "arg", a);
     for (const std::string& note : r.notes) textChild(n, "note", note);
+    if (!r.planned.empty()) {
+      xmlNodePtr planned = child(n, "planned");
+      for (const Step& s : r.planned) writeStep(planned, s);
+    }
   }
 }
 
@@ -138,27 +164,7 @@ void writeFiles(xmlNodePtr root, const std::vector<FileRecord>& files) {
 
 void writeProcess(xmlNodePtr root, const std::vector<Step>& steps) {
   xmlNodePtr list = child(root, "process");
-  for (const Step& s : steps) {
-    xmlNodePtr n = child(list, "step");
-    attr(n, "id", s.id);
-    attr(n, "component", s.component);
-    attr(n, "version", s.version);
-    optionalAttr(n, "algorithm", s.algorithm);
-    if (!s.description.empty()) textChild(n, "description", s.description);
-    for (const Param& p : s.params) {
-      xmlNodePtr pn = child(n, "param");
-      attr(pn, "name", p.name);
-      attr(pn, "value", p.value);
-    }
-    for (const Intervention& i : s.interventions) {
-      xmlNodePtr in = textChild(n, "intervention", i.reason);
-      attr(in, "kind", i.kind);
-      attr(in, "target", i.target);
-      optionalAttr(in, "value", i.value);
-      attr(in, "who", i.who);
-      attr(in, "time", i.time);
-    }
-  }
+  for (const Step& s : steps) writeStep(list, s);
 }
 
 void writeData(xmlNodePtr root, const std::vector<Result>& results) {
@@ -239,6 +245,8 @@ AuditedSource readAudited(xmlNodePtr node) {
   return a;
 }
 
+Step readStep(xmlNodePtr n);
+
 Header readHeader(xmlNodePtr node) {
   Header h;
   forChildren(node, [&](xmlNodePtr c) {
@@ -262,10 +270,14 @@ Header readHeader(xmlNodePtr node) {
       h.software.push_back({prop(c, "name"), prop(c, "version"), prop(c, "role")});
     } else if (is(c, "run")) {
       RunRecord r{prop(c, "id"), prop(c, "command"), prop(c, "who"), prop(c, "started"),
-                  prop(c, "ended"), prop(c, "outcome"), {}, {}};
+                  prop(c, "ended"), prop(c, "outcome"), {}, {}, {}};
       forChildren(c, [&](xmlNodePtr a) {
         if (is(a, "arg")) r.arguments.push_back(text(a));
         else if (is(a, "note")) r.notes.push_back(text(a));
+        else if (is(a, "planned"))
+          forChildren(a, [&](xmlNodePtr step) {
+            if (is(step, "step")) r.planned.push_back(readStep(step));
+          });
       });
       h.runs.push_back(std::move(r));
     }

@@ -54,6 +54,9 @@ CarrierSummary describeCarrier(const Carrier& c) {
     const Result* r = c.findResult(step.id);
     s.steps.push_back({step.id, step.component, step.version, r ? r->status : "not run", r ? r->seconds : 0.0,
                        step.interventions.size()});
+  }
+  // The decisions that stand, those a failed last run was given included.
+  for (const Step& step : standingProcess(c)) {
     for (const Intervention& i : step.interventions) {
       DecisionSummary d{step.id, step.component, i, interventionText(i)};
       if (i.kind == "exclude-image") s.exclusions.push_back(d);

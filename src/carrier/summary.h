@@ -46,7 +46,9 @@ struct CarrierSummary {
   std::size_t files = 0;
   std::size_t images = 0;  // files with a recorded image size
   std::vector<StepSummary> steps;
-  std::vector<DecisionSummary> decisions;      // every intervention, in step order
+  // Every standing intervention, in step order: those of the process list, or of the list a
+  // failed last run planned (standingProcess), whose step ids they then carry.
+  std::vector<DecisionSummary> decisions;
   std::vector<DecisionSummary> exclusions;     // those of kind exclude-image, in step order
   std::vector<std::string> domeLights;         // the .lp of each CaptureIngest step that names one
   std::vector<RunRecord> runs;                 // oldest first

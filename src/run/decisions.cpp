@@ -127,7 +127,7 @@ RunRequest standingDecisions(const carrier::Carrier& recorded) {
   r.audited = recorded.header.audited;
   stages::registerBuiltinStages();
   std::vector<std::string> bases;
-  for (const carrier::Step& s : recorded.process) {
+  for (const carrier::Step& s : carrier::standingProcess(recorded)) {
     const pipeline::StageInfo* info = pipeline::StageRegistry::instance().info(s.component);
     const pipeline::PlanSlot slot = info ? info->slot : pipeline::PlanSlot::NotPlanned;
     if (s.component == stages::IngestStage::kComponent) {

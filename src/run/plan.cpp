@@ -332,6 +332,8 @@ carrier::Carrier runCapture(const fs::path& captureArg, const RunRequest& reques
   ctx.previous = previous ? &*previous : nullptr;
   const std::size_t steps = request.lightsOnly ? lightStepCount(c) : c.process.size();
   const fs::path stagedCarrier = staging / capture::kCarrierPath;
+  // The plan as made, for a failure's record: its decisions stand though its results are dropped.
+  const std::vector<carrier::Step> planned = c.process;
   try {
     pipeline::runProcess(ctx, stagedCarrier, steps);
   } catch (const Error& e) {
@@ -341,7 +343,10 @@ carrier::Carrier runCapture(const fs::path& captureArg, const RunRequest& reques
     if (previous) {
       // The last state stays whole (complete or not: a failure must never re-record what the
       // previous carrier holds, such as an original's hash): its carrier only learns that this
-      // run failed.
+      // run failed, and the decisions it stood on (the plan), which the next run starts from
+      // (carrier::standingProcess): dropped, they would make a user who follows a refusal's
+      // advice one frame at a time go round in circles.
+      record.planned = planned;
       previous->header.runs.push_back(record);
       previous->header.modified = carrier::timestampNow();
       carrier::saveCarrier(*previous, capture / capture::kCarrierPath);

@@ -170,9 +170,58 @@ TEST_CASE("a failed run leaves the previous results and carrier whole, and is in
   REQUIRE(c.header.runs.size() == 2);
   CHECK(c.header.runs[1].outcome == "failed");
   CHECK_THAT(c.header.runs[1].notes.back(), Catch::Contains("IMG_0008"));
-  CHECK(stepOf(c, "CaptureIngest")->param("source") == "auto");  // the failed run's decision does not stand
+  // The process list is the completed run's; the failed run's decision stands for the next run,
+  // recorded with the plan it made.
+  CHECK(stepOf(c, "CaptureIngest")->param("source") == "auto");
+  REQUIRE_FALSE(c.header.runs[1].planned.empty());
+  CHECK(c.header.runs[1].planned.front().param("source") == "export");
+  CHECK(carrier::standingProcess(c).front().param("source") == "export");
   CHECK(disagreements(capture) == kAgree);
   CHECK_FALSE(fs::exists(capture / ".surrogate/staging"));
+}
+
+TEST_CASE("decisions given on a failed run stand, so a refusal's advice followed frame by frame adds up", "[e2e][workflow]") {
+  // Two frames at 5 % exposure (the generator's weak flash): IMG_0003 of one capture and IMG_0008
+  // of another of the same seed, whose other frames are the same bytes.
+  const fs::path dir = e2e::freshDir("failed-decisions");
+  auto generate = [&](const std::string& name, int darkFrame) {
+    const fs::path out = dir / name;
+    const e2e::CommandResult g = e2e::runShell(std::string(GENERATOR_EXE) + " --out " + e2e::quote(out) +
+                                               " --images 12 --width 400 --height 300 --sphere-radius 50"
+                                               " --formats jpeg --dark-frame " + std::to_string(darkFrame));
+    REQUIRE(g.exitCode == 0);
+    fs::remove_all(out / "truth");
+    return out;
+  };
+  const fs::path capture = generate("capture", 3);
+  fs::copy_file(generate("other", 8) / "jpeg-exports/IMG_0008.jpg", capture / "jpeg-exports/IMG_0008.jpg",
+                fs::copy_options::overwrite_existing);
+  const fs::path lp = dir / "lights.lp";
+  auto lights = [&](const std::string& options) {
+    return e2e::surrogate("lights " + e2e::quote(capture) + " -o " + e2e::quote(lp) + " --quiet " + options);
+  };
+  const e2e::CommandResult first = lights("");
+  INFO(first.output);
+  CHECK(first.exitCode == 1);
+  CHECK_THAT(first.output, Catch::Contains("IMG_0003") && Catch::Contains("IMG_0008"));
+  // The refusal's advice, one frame at a time: each run fails until the last, and the
+  // exclusion of the run before stands (it was dropped, and the third run named IMG_0003 again).
+  const e2e::CommandResult second = lights("--exclude IMG_0003 --reason \"weak flash\"");
+  INFO(second.output);
+  CHECK(second.exitCode == 1);
+  CHECK_THAT(second.output, Catch::Contains("--exclude IMG_0008"));
+  CHECK(e2e::surrogate("info " + e2e::quote(capture)).output.find("excluded images: IMG_0003") != std::string::npos);
+  const e2e::CommandResult third = lights("--exclude IMG_0008 --reason \"weak flash again\"");
+  INFO(third.output);
+  REQUIRE(third.exitCode == 0);
+  const carrier::Carrier c = carrierOf(capture);
+  CHECK(hasIntervention(c, "exclude-image", "IMG_0003"));
+  CHECK(hasIntervention(c, "exclude-image", "IMG_0008"));
+  CHECK(c.header.runs.size() == 3);
+  std::ifstream in(lp);
+  int count = 0;
+  in >> count;
+  CHECK(count == 10);
 }
 
 TEST_CASE("a changed original is a fixity failure in run, pack and verify, never a new baseline", "[e2e][workflow]") {
