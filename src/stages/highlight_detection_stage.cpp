@@ -82,10 +82,14 @@ pipeline::StageInfo HighlightDetectionStage::info() {
   //    recorded (formats/pronom.h); the pixels are the same
   // 8: the overview's labels never overlap (hrti::placeLabels): one crowded out of its place
   //    goes further out, joined to its highlight by a line, so the bytes differ from version 7's
+  // 9: a clipped highlight's centre is the deepest point of its saturated plateau (a glare streak
+  //    through it pulled the centroid 2 to 8 px on PSBox's light probes), and the core's centroid
+  //    is weighted by the height above its edge: positions differ from version 8's
   pipeline::StageInfo info = pipeline::withOptions<hrti::HighlightOptions>(
-      {kComponent, "8",
+      {kComponent, "9",
        "Find the specular highlight on each sphere in each image: the peak of the image's rise "
-       "above the stack's median, blurred; the weighted centroid of its core",
+       "above the stack's median, blurred; the centroid of its core, or the deepest point of its "
+       "saturated plateau when clipped",
        pipeline::PlanSlot::LightsFromSpheres});
   info.outputs = [](const carrier::Step&) { return std::vector<std::string>{highlightOverview("*")}; };
   info.reads = pipeline::alwaysReads({kLuminanceStack, kInputImages, kSpheres, kStackMedian});
