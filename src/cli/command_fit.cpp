@@ -32,6 +32,24 @@ fs::path resolveImage(const fs::path& lpFile, const std::string& name) {
                   "original-captures/ there");
 }
 
+// A basis fits at least as many photographs as it has terms: checked before decoding, naming
+// the basis as it came (given, or the default for the output's extension) and suggesting only
+// a basis that fits, never the one refused.
+void checkEnoughLights(fit::Basis basis, bool given, const std::string& ext, const std::string& lp, int lights) {
+  const int terms = fit::basisTerms(basis);
+  if (lights >= terms) return;
+  const std::string name = fit::basisName(basis);
+  const int hsh2 = fit::basisTerms(fit::Basis::Hsh2);
+  const std::string fix =
+      lights < hsh2 ? "no basis fits fewer than " + std::to_string(hsh2) + " photographs (hsh2 needs " +
+                          std::to_string(hsh2) + "): add photographs to the .lp"
+                  : "fit an .rti with --basis hsh2 (" + std::to_string(hsh2) + " coefficients), or add photographs to the .lp";
+  throw Error(ErrorKind::Usage, given ? "--basis " + name : "the default basis " + name + " of a " + ext + " file (no --basis given)",
+              "command line",
+              "fits " + std::to_string(terms) + " coefficients per pixel and needs at least " + std::to_string(terms) +
+                  " photographs; " + lp + " lists " + std::to_string(lights) + ". To fit these: " + fix);
+}
+
 }  // namespace
 
 int runCommandFit(int argc, char** argv) {
@@ -78,6 +96,7 @@ int runCommandFit(int argc, char** argv) {
     files.push_back(resolveImage(*lp, e.filename));
     lights.push_back({e.x, e.y, e.z});
   }
+  checkEnoughLights(basis, args.has("basis"), ext, *lp, static_cast<int>(lights.size()));
   ProgressBar bar(args.has("quiet") || args.has("json"));
   pipeline::RunSettings run;
   run.threads = threads;

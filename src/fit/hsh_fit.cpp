@@ -49,7 +49,7 @@ formats::HshFile fitHsh(const ImageStack& stack, const std::vector<std::array<do
                     " makes a .ptm file, not an .rti");
   }
   const int terms = basisTerms(options.basis);
-  const auto l = checkedLights(stack, lights, terms);
+  const auto l = checkedLights(stack, lights, options.basis);
   const int n = static_cast<int>(l.size());
   std::vector<double> design(static_cast<std::size_t>(n) * terms);
   for (int i = 0; i < n; ++i) hshBasis(l[i][0], l[i][1], l[i][2], terms, &design[i * terms]);

@@ -188,7 +188,7 @@ formats::PtmFile fitPtm(const ImageStack& stack, const std::vector<std::array<do
                 std::string("the basis ") + basisName(options.basis) +
                     " makes an .rti file, not a .ptm");
   }
-  const auto l = checkedLights(stack, lights, 6);
+  const auto l = checkedLights(stack, lights, options.basis);
   const int n = static_cast<int>(l.size());
   const std::vector<double> design = ptmDesign(l);
   // Plain least squares, or damped toward the lower order when the lights condition it poorly.

@@ -17,7 +17,8 @@ constexpr int kHeldBands = 32;  // bands of a pass over images held in memory (s
 
 std::vector<std::array<double, 3>> checkedLights(const ImageStack& stack,
                                                  const std::vector<std::array<double, 3>>& lights,
-                                                 int terms) {
+                                                 Basis basis) {
+  const int terms = basisTerms(basis);
   if (stack.size() == 0 || stack.width() <= 0 || stack.height() <= 0) {
     throw Error(ErrorKind::Input, "", kStep, "there are no photographs to fit");
   }
@@ -31,8 +32,9 @@ std::vector<std::array<double, 3>> checkedLights(const ImageStack& stack,
   }
   if (stack.size() < terms) {
     throw Error(ErrorKind::Input, "", kStep,
-                "this basis needs at least " + std::to_string(terms) + " photographs, the "
-                "capture has " + std::to_string(stack.size()));
+                std::string("the basis ") + basisName(basis) + " fits " + std::to_string(terms) +
+                    " coefficients per pixel and needs at least " + std::to_string(terms) +
+                    " photographs; there are " + std::to_string(stack.size()));
   }
   std::vector<std::array<double, 3>> out;
   for (std::size_t i = 0; i < lights.size(); ++i) {

@@ -43,10 +43,11 @@ class RowFitter {
   virtual void quantise(const RowView& row, double* scratch, double* sqErr) const = 0;
 };
 
-// Validated light vectors, normalised. Throws Error(Input) (see fitPtm).
+// Validated light vectors, normalised, for a fit of `basis` (at least as many photographs as it
+// has terms). Throws Error(Input) naming the basis (see fitPtm).
 std::vector<std::array<double, 3>> checkedLights(const ImageStack& stack,
                                                  const std::vector<std::array<double, 3>>& lights,
-                                                 int terms);
+                                                 Basis basis);
 
 // Runs both passes; returns the per-image squared luminance errors (summed over pixels in row
 // order) and sets stats->passes. `modelBytes`, the model already allocated for the output,

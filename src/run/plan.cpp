@@ -230,21 +230,48 @@ void addAcceptedDamage(const fs::path& capture, const capture::CaptureLayout& la
 }
 
 // Every basis to fit needs at least as many photographs as it has coefficients: checked before
-// any processing, naming the option, since the basis choice stands for later runs.
-void checkEnoughPhotographs(const capture::CaptureLayout& layout, const RunRequest& request) {
+// any processing, naming the option, since the basis choice stands for later runs. The message
+// names the bases as they came (this command's --basis, an earlier run's, or the default) and
+// suggests only bases that fit and are not the one refused.
+void checkEnoughPhotographs(const capture::CaptureLayout& layout, const RunRequest& request, const RunRequest& given) {
   if (request.lightsOnly) return;
   std::set<std::string> excluded;
   for (const Exclusion& e : request.exclusions)
     if (const auto stem = capture::findShotStem(layout, e.image)) excluded.insert(*stem);
   const int photographs = static_cast<int>(layout.shots.size() - excluded.size());
-  for (const std::string& basis : request.bases.value_or(std::vector<std::string>{"ptm-lrgb", "hsh2"})) {
+  const std::vector<std::string> defaults{"ptm-lrgb", "hsh2"};
+  const std::vector<std::string> bases = request.bases.value_or(defaults);
+  for (const std::string& basis : bases) {
     const int terms = fit::basisTerms(fit::parseBasis(basis));
     if (photographs >= terms) continue;
-    throw Error(ErrorKind::Usage, "--basis " + basis, "command line",
+    // The bases in use that fit; else the largest that fits (the first of equals in the
+    // order of --basis's help).
+    std::vector<std::string> fitting;
+    for (const std::string& b : bases)
+      if (fit::basisTerms(fit::parseBasis(b)) <= photographs) fitting.push_back(b);
+    if (fitting.empty()) {
+      int most = 0;
+      for (fit::Basis b : {fit::Basis::PtmLrgb, fit::Basis::PtmRgb, fit::Basis::Hsh2, fit::Basis::Hsh3})
+        if (fit::basisTerms(b) <= photographs && fit::basisTerms(b) > most) {
+          most = fit::basisTerms(b);
+          fitting = {fit::basisName(b)};
+        }
+    }
+    std::string option;
+    for (const std::string& b : fitting) option += " --basis " + b;
+    const std::string fix = fitting.empty()
+                                ? ". No basis fits fewer than " + std::to_string(fit::basisTerms(fit::Basis::Hsh2)) +
+                                      " photographs (hsh2 needs " + std::to_string(fit::basisTerms(fit::Basis::Hsh2)) +
+                                      "): include more photographs, or estimate the lights only (surrogate lights)"
+                                : ". Fit only what the photographs allow (" + option.substr(1) +
+                                      ") or include more photographs";
+    const std::string which = given.bases        ? "--basis " + basis
+                              : bases != defaults ? "--basis " + basis + " (standing from an earlier run)"
+                                                  : "the default basis " + basis + " (no --basis given)";
+    throw Error(ErrorKind::Usage, which, "command line",
                 "fits " + std::to_string(terms) + " coefficients per pixel and needs at least " +
                     std::to_string(terms) + " photographs; the capture has " + std::to_string(photographs) +
-                    (excluded.empty() ? "" : " once " + std::to_string(excluded.size()) + " excluded") +
-                    ". Choose a smaller basis (e.g. --basis ptm-lrgb) or include more photographs");
+                    (excluded.empty() ? "" : " once " + std::to_string(excluded.size()) + " excluded") + fix);
   }
 }
 
@@ -298,7 +325,7 @@ carrier::Carrier runCapture(const fs::path& captureArg, const RunRequest& reques
   const auto [width, height] = layout.frameSize();
   checkRequestAgainstFrame(merged, width, height);
   checkRequestNames(request, layout);
-  checkEnoughPhotographs(layout, merged);
+  checkEnoughPhotographs(layout, merged, request);
 
   carrier::Carrier c = planRunWithAudit(capture, previous ? &*previous : nullptr, merged);
   // Before anything runs: never a plan that writes over a file another tool made. The files

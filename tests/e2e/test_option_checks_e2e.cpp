@@ -8,6 +8,7 @@
 // e2e::smallCapture), made once the capture's images are known, before any step runs.
 #include <catch2/catch.hpp>
 
+#include <fstream>
 #include <functional>
 #include <iterator>
 #include <map>
@@ -161,6 +162,46 @@ TEST_CASE("a highlight given by hand outside the frame or off its given circle i
                  {"--highlight IMG_0004:0=100,200", "339,57,45"});
   requireRefused("--sphere 339,57,45 --reason moved --highlight IMG_0004:1=330,60 --reason typo",
                  {"--highlight IMG_0004:1=330,60", "sphere 1"});
+}
+
+TEST_CASE("too few photographs for a basis: the message names the basis used and suggests one that fits") {
+  // No --basis given: the default ptm-lrgb (6 terms) cannot fit the 4 photographs left; hsh2 can.
+  const auto byDefault = requireRefused("--exclude IMG_0001 --reason a --exclude IMG_0002 --reason b --exclude "
+                                        "IMG_0003 --reason c --exclude IMG_0004 --reason d",
+                                        {"the default basis ptm-lrgb (no --basis given)", "has 4 once 4 excluded",
+                                         "(--basis hsh2)"});
+  CHECK(byDefault.exitCode == 2);
+  CHECK_THAT(byDefault.output, !Catch::Contains("--basis ptm-lrgb"));  // once said "e.g. --basis ptm-lrgb"
+  // Given: named as given, and the suggestion is another basis, never the refused one.
+  const auto given = requireRefused("--basis hsh3", {"--basis hsh3: fits 9 coefficients", "has 8", "(--basis ptm-lrgb)"});
+  CHECK(given.output.find("--basis hsh3") == given.output.rfind("--basis hsh3"));
+  // Fewer than any basis needs: no basis suggested.
+  const auto none = requireRefused("--basis hsh2 --exclude IMG_0001 --reason a --exclude IMG_0002 --reason b --exclude "
+                                   "IMG_0003 --reason c --exclude IMG_0004 --reason d --exclude IMG_0005 --reason e",
+                                   {"--basis hsh2: fits 4 coefficients", "No basis fits fewer than 4 photographs"});
+  CHECK(none.output.find("--basis", none.output.find("fits 4")) == std::string::npos);
+}
+
+TEST_CASE("surrogate fit names the basis it would use when the .lp has too few photographs") {
+  const fs::path dir = e2e::freshDir("fit-few");
+  const fs::path capture = e2e::smallCapture(dir);
+  const fs::path lp = dir / "four.lp";
+  {
+    std::ofstream out(lp);
+    out << "4\n";
+    for (int i = 1; i <= 4; ++i)
+      out << (capture / ("jpeg-exports/IMG_000" + std::to_string(i) + ".jpg")).string() << " 0.1 0.2 0.97\n";
+  }
+  const auto ptm = e2e::surrogate("fit --lp " + e2e::quote(lp) + " -o " + e2e::quote(dir / "m.ptm"));
+  INFO(ptm.output);
+  CHECK(ptm.exitCode == 2);
+  CHECK_THAT(ptm.output, Catch::Contains("the default basis ptm-lrgb of a .ptm file (no --basis given)") &&
+                             Catch::Contains("lists 4") && Catch::Contains("--basis hsh2"));
+  const auto hsh3 = e2e::surrogate("fit --lp " + e2e::quote(lp) + " -o " + e2e::quote(dir / "m.rti") + " --basis hsh3");
+  INFO(hsh3.output);
+  CHECK(hsh3.exitCode == 2);
+  CHECK_THAT(hsh3.output, Catch::Contains("--basis hsh3: fits 9 coefficients") && Catch::Contains("--basis hsh2"));
+  CHECK_FALSE(fs::exists(dir / "m.ptm"));
 }
 
 TEST_CASE("a crop or grey region reaching outside the frame is refused before any processing") {
