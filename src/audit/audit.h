@@ -35,9 +35,10 @@ namespace surrogate::audit {
 using Light = std::array<double, 3>;  // x right, y up, z towards the camera (docs/formats.md)
 
 struct AuditOptions {
-  // Images whose two light directions differ by more than this are named. 2 degrees is about
-  // what sphere-based estimates of one light agree to between tools; a wrong light in an .lp
-  // (a swapped line, a sign error) is off by far more.
+  // Images whose two light directions differ by more than this and by more than their combined
+  // uncertainty are named (ImageAngle::differs). 2 degrees is about what sphere-based estimates
+  // of one light agree to between tools; a wrong light in an .lp (a swapped line, a sign error)
+  // is off by far more.
   double angleThresholdDegrees = 2.0;
   // The prior counts as reproduced when its PSNR is at most this far below Surrogate's fit of
   // the same basis with the prior's own lights: quantisation and fitting details differ by
@@ -79,7 +80,11 @@ struct PriorLights {
   std::filesystem::path file;
   std::vector<formats::LightEntry> lines;
   std::vector<std::optional<std::size_t>> lineOfImage;  // per photograph
+  // Per line, the 95 % bound in degrees the prior states on its light's error; unset (or the
+  // vector shorter) where it states none. An .lp states none: the format has no place for it.
+  std::vector<std::optional<double>> uncertaintyOfLine;
   std::vector<std::optional<Light>> lightOfImage() const;  // unit vectors, per photograph
+  std::optional<double> uncertaintyOfImage(std::size_t image) const;
 };
 // Reads and matches; Error(Input) naming the file when it cannot be read or the names are
 // ambiguous (formats/lp.h).
@@ -93,21 +98,42 @@ struct ImageAngle {
   std::string image;  // the photograph's file name
   double degrees = 0; // angle between the prior's and Surrogate's unit vectors
   Light prior{};      // the prior's unit vector (for the report's hemisphere plot)
+  // The 95 % bounds in degrees on each light's error: Surrogate's as its light item records it
+  // (uncertaintyDegrees), the prior's where it states one; unset = none stated, taken as exact.
+  std::optional<double> ours, priors;
+  // sqrt(ours^2 + priors^2): the distance two estimates of one true light can lie apart.
+  double combinedDegrees() const;
+  // The light differs only where its distance exceeds both the combined uncertainty and the
+  // threshold (docs/hrti-math.md, "Auditing a prior RTI").
+  bool differs(double thresholdDegrees) const;
 };
+
+// One light judged, in words, naming its distance, the combined uncertainty with its parts and
+// the threshold: "Image_05.JPG: 2.3 deg apart; within the combined uncertainty 2.6 deg (ours 2.6,
+// the prior states none); threshold 2.0 deg".
+std::string lightJudgement(const ImageAngle& angle, double thresholdDegrees);
 
 struct LightComparison {
   std::filesystem::path file;             // the prior light file
   double thresholdDegrees = 0;
   std::vector<ImageAngle> angles;         // photographs with both lights, in stack order
   double medianDegrees = 0, p95Degrees = 0, maxDegrees = 0;  // 0 when `angles` is empty
-  std::vector<ImageAngle> aboveThreshold; // in stack order
+  // The lights that differ (ImageAngle::differs: beyond both the combined uncertainty and the
+  // threshold), in stack order; the name is the carrier's and the JSON's since Audit version 1.
+  std::vector<ImageAngle> aboveThreshold;
   std::vector<std::string> onlyInPrior;   // .lp lines naming no photograph (as written)
   std::vector<std::string> onlyInSurrogate;  // photographs the .lp does not name
+  // The light of `angles` farthest from Surrogate's (the first in stack order among equals), or
+  // null when there is none.
+  const ImageAngle* largest() const;
 };
 
-// `surrogateLights`: one per photograph (the stack order of `prior.lineOfImage`).
+// `surrogateLights`: one per photograph (the stack order of `prior.lineOfImage`);
+// `surrogateUncertainty`: the 95 % bound of each, in degrees (unset, or the vector shorter:
+// none recorded).
 LightComparison compareLights(const PriorLights& prior, const std::vector<std::string>& imageNames,
-                              const std::vector<Light>& surrogateLights, double thresholdDegrees);
+                              const std::vector<Light>& surrogateLights, double thresholdDegrees,
+                              const std::vector<std::optional<double>>& surrogateUncertainty = {});
 
 // ---- 2. Model check -------------------------------------------------------------------------
 
@@ -257,6 +283,9 @@ struct AuditInputs {
   std::vector<std::filesystem::path> priorModels;      // .ptm / .rti
   Photographs photographs;
   std::vector<Light> surrogateLights;  // per photograph; empty when there are none
+  // Per photograph, the 95 % bound in degrees on Surrogate's light (its carrier item's
+  // uncertaintyDegrees); unset, or empty, where none is recorded: the light is then taken as exact.
+  std::vector<std::optional<double>> surrogateUncertainty;
 };
 
 struct AuditReport {
@@ -309,6 +338,7 @@ const char* stateName(VerdictPart::State state);  // "reproduced", "differs", "c
 struct VerdictSummary {
   std::string subject;  // "finished-files/stela.ptm with the lights of assembly-files/stela.lp"
   bool reproduced = false;
+  double thresholdDegrees = 0;  // the audit's (AuditReport::thresholdDegrees), shown on its line
   std::vector<VerdictPart> parts;  // lights, model, tone, integrity
 };
 // One summary per verdict of `report`, in its order.

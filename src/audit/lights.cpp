@@ -6,6 +6,7 @@
 
 #include "audit/audit.h"
 #include "audit/statistics.h"
+#include "core/text.h"
 
 namespace surrogate::audit {
 namespace {
@@ -47,7 +48,42 @@ Light unit(const Light& l) {
   return {l[0] / n, l[1] / n, l[2] / n};
 }
 
+std::string deg(double d) { return fixedDecimals(d, 1) + " deg"; }
+
 }  // namespace
+
+double ImageAngle::combinedDegrees() const {
+  const double a = ours.value_or(0), b = priors.value_or(0);
+  return std::sqrt(a * a + b * b);
+}
+
+bool ImageAngle::differs(double thresholdDegrees) const {
+  return degrees > thresholdDegrees && degrees > combinedDegrees();
+}
+
+std::string lightJudgement(const ImageAngle& a, double thresholdDegrees) {
+  const std::string uncertainty =
+      "the combined uncertainty " + deg(a.combinedDegrees()) + " (ours " +
+      (a.ours ? fixedDecimals(*a.ours, 1) : std::string("not recorded")) + ", " +
+      (a.priors ? "the prior's " + fixedDecimals(*a.priors, 1) : std::string("the prior states none")) + ")";
+  const std::string head = a.image + ": " + deg(a.degrees) + " apart; ";
+  if (a.differs(thresholdDegrees)) return head + "beyond " + uncertainty + " and the threshold " + deg(thresholdDegrees);
+  if (a.degrees <= a.combinedDegrees()) return head + "within " + uncertainty + "; threshold " + deg(thresholdDegrees);
+  return head + "within the threshold " + deg(thresholdDegrees) + ", beyond " + uncertainty;
+}
+
+const ImageAngle* LightComparison::largest() const {
+  const ImageAngle* out = nullptr;
+  for (const ImageAngle& a : angles)
+    if (!out || a.degrees > out->degrees) out = &a;
+  return out;
+}
+
+std::optional<double> PriorLights::uncertaintyOfImage(std::size_t image) const {
+  if (image >= lineOfImage.size() || !lineOfImage[image] || *lineOfImage[image] >= uncertaintyOfLine.size())
+    return std::nullopt;
+  return uncertaintyOfLine[*lineOfImage[image]];
+}
 
 std::vector<std::optional<Light>> PriorLights::lightOfImage() const {
   std::vector<std::optional<Light>> out;
@@ -82,7 +118,8 @@ PriorLights readPriorLights(const std::filesystem::path& lpFile,
 }
 
 LightComparison compareLights(const PriorLights& prior, const std::vector<std::string>& imageNames,
-                              const std::vector<Light>& surrogateLights, double thresholdDegrees) {
+                              const std::vector<Light>& surrogateLights, double thresholdDegrees,
+                              const std::vector<std::optional<double>>& surrogateUncertainty) {
   LightComparison out;
   out.file = prior.file;
   out.thresholdDegrees = thresholdDegrees;
@@ -95,9 +132,11 @@ LightComparison compareLights(const PriorLights& prior, const std::vector<std::s
       out.onlyInSurrogate.push_back(imageNames[i]);
       continue;
     }
-    const ImageAngle a{imageNames[i], angleDegrees(*priorOfImage[i], unit(surrogateLights[i])), *priorOfImage[i]};
+    ImageAngle a{imageNames[i], angleDegrees(*priorOfImage[i], unit(surrogateLights[i])), *priorOfImage[i],
+                 std::nullopt, prior.uncertaintyOfImage(i)};
+    if (i < surrogateUncertainty.size()) a.ours = surrogateUncertainty[i];
     out.angles.push_back(a);
-    if (a.degrees > thresholdDegrees) out.aboveThreshold.push_back(a);
+    if (a.differs(thresholdDegrees)) out.aboveThreshold.push_back(a);
   }
   for (std::size_t line = 0; line < prior.lines.size(); ++line)
     if (!lineUsed[line]) out.onlyInPrior.push_back(prior.lines[line].filename);

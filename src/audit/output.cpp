@@ -21,10 +21,22 @@ const char* relationName(SizeRelation::Kind kind) {
   return "unknown";
 }
 
-void angleList(JsonWriter& j, const std::vector<ImageAngle>& angles) {
+void optionalDegrees(JsonWriter& j, const char* key, const std::optional<double>& v) {
+  j.key(key);
+  if (v) j.value(degrees(*v));
+  else j.null();
+}
+
+// Each light with the uncertainties it was judged with (null: none stated) and the judgement.
+void angleList(JsonWriter& j, const std::vector<ImageAngle>& angles, double threshold) {
   j.beginArray();
-  for (const ImageAngle& a : angles)
-    j.beginObject().key("image").value(a.image).key("degrees").value(degrees(a.degrees)).endObject();
+  for (const ImageAngle& a : angles) {
+    j.beginObject().key("image").value(a.image).key("degrees").value(degrees(a.degrees));
+    j.key("uncertaintyDegrees").value(degrees(a.combinedDegrees()));
+    optionalDegrees(j, "ourUncertaintyDegrees", a.ours);
+    optionalDegrees(j, "priorUncertaintyDegrees", a.priors);
+    j.key("differs").value(a.differs(threshold)).key("judgement").value(lightJudgement(a, threshold)).endObject();
+  }
   j.endArray();
 }
 
@@ -39,13 +51,13 @@ void lightsJson(JsonWriter& j, const LightComparison& l) {
   j.key("medianDegrees").value(degrees(l.medianDegrees)).key("p95Degrees").value(degrees(l.p95Degrees));
   j.key("maxDegrees").value(degrees(l.maxDegrees)).key("thresholdDegrees").value(l.thresholdDegrees);
   j.key("aboveThreshold");
-  angleList(j, l.aboveThreshold);
+  angleList(j, l.aboveThreshold, l.thresholdDegrees);
   j.key("onlyInPrior");
   nameList(j, l.onlyInPrior);
   j.key("onlyInSurrogate");
   nameList(j, l.onlyInSurrogate);
   j.key("angles");
-  angleList(j, l.angles);
+  angleList(j, l.angles, l.thresholdDegrees);
   j.endObject();
 }
 
@@ -118,10 +130,14 @@ void lightLines(std::vector<std::string>& out, const LightComparison& l) {
   std::string line = "prior light file " + l.file.string() + ": " + std::to_string(l.angles.size()) +
                      " images compared, median " + fixedDecimals(l.medianDegrees, 1) + ", p95 " +
                      fixedDecimals(l.p95Degrees, 1) + ", max " + fixedDecimals(l.maxDegrees, 1) + " degrees; " +
-                     std::to_string(l.aboveThreshold.size()) + " above " + fixedDecimals(l.thresholdDegrees, 1);
+                     std::to_string(l.aboveThreshold.size()) + " differ (beyond both the combined uncertainty and " +
+                     "the threshold " + fixedDecimals(l.thresholdDegrees, 1) + " deg)";
   for (std::size_t i = 0; i < l.aboveThreshold.size(); ++i)
     line += (i ? ", " : ": ") + l.aboveThreshold[i].image + " (" + fixedDecimals(l.aboveThreshold[i].degrees, 1) + ")";
   out.push_back(line);
+  // Every light past the threshold, judged: those the uncertainty covers are said so.
+  for (const ImageAngle& a : l.angles)
+    if (a.degrees > l.thresholdDegrees) out.push_back("  " + lightJudgement(a, l.thresholdDegrees));
   auto names = [](const std::vector<std::string>& v) {
     std::string s;
     for (std::size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + v[i];

@@ -72,6 +72,9 @@ void writeLights(Writer& w, const LightComparison& l, const RecordedIds& ids) {
     const std::string photo = idOf(ids.photographs, a.image);
     w.number(photo, "lightAngle", a.degrees, "degree");
     w.text(photo, "priorLight", triple(a.prior));
+    // The uncertainties the light was judged with (Audit version 7), where stated.
+    if (a.ours) w.number(photo, "lightUncertainty", *a.ours, "degree");
+    if (a.priors) w.number(photo, "priorLightUncertainty", *a.priors, "degree");
   }
   for (const ImageAngle& a : l.aboveThreshold) w.number(idOf(ids.photographs, a.image), "aboveThreshold", a.degrees, "degree");
   for (const std::string& name : l.onlyInSurrogate) w.text(idOf(ids.photographs, name), "noPriorLight", "true");
@@ -308,8 +311,11 @@ class Reader {
 
   void perPhotograph(const std::string& image, const std::string& name, const std::string& v) {
     if (lights_) {
-      if (name == "lightAngle") lights_->angles.push_back({image, numberIn(v, name), {}});
-      else if (name == "aboveThreshold") lights_->aboveThreshold.push_back({image, numberIn(v, name), {}});
+      ImageAngle* last = !lights_->angles.empty() && lights_->angles.back().image == image ? &lights_->angles.back() : nullptr;
+      if (name == "lightAngle") lights_->angles.push_back({image, numberIn(v, name), {}, std::nullopt, std::nullopt});
+      else if (name == "lightUncertainty" && last) last->ours = numberIn(v, name);
+      else if (name == "priorLightUncertainty" && last) last->priors = numberIn(v, name);
+      else if (name == "aboveThreshold") aboveThreshold(image, numberIn(v, name));
       else if (name == "noPriorLight") lights_->onlyInSurrogate.push_back(image);
       else if (name == "priorLight" && !lights_->angles.empty() && lights_->angles.back().image == image) {
         const auto w = words(v);
@@ -328,6 +334,15 @@ class Reader {
       e->images.back().rmse = numberIn(v, name);
     else if (figure == "light" && !e->images.empty() && e->images.back().image == image)
       e->images.back().light = lightIn(v, name);
+  }
+
+  // A light that differs, with the uncertainties its angle was recorded with (written before it).
+  void aboveThreshold(const std::string& image, double degrees) {
+    ImageAngle a{image, degrees, {}, std::nullopt, std::nullopt};
+    for (const ImageAngle& known : lights_->angles)
+      if (known.image == image) a = known;
+    a.degrees = degrees;
+    lights_->aboveThreshold.push_back(a);
   }
 
   void verdict(const std::string& name, const std::string& v, const std::string& path) {

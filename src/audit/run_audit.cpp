@@ -46,7 +46,7 @@ AuditReport runAudit(const AuditInputs& inputs, const AuditOptions& options) {
     if (inputs.surrogateLights.empty()) continue;  // a dome capture without spheres: fit only
     comparisonOf.back() = static_cast<int>(report.lights.size());
     report.lights.push_back(compareLights(priors.back(), names, inputs.surrogateLights,
-                                          options.angleThresholdDegrees));
+                                          options.angleThresholdDegrees, inputs.surrogateUncertainty));
   }
 
   std::vector<bool> used(priors.size(), false);

@@ -53,18 +53,24 @@ VerdictPart lightsPart(const LightComparison* l, const Verdict& v) {
   }
   const std::string n = std::to_string(l->angles.size());
   if (l->aboveThreshold.empty()) {
+    // The largest distance, judged in words: a light beyond the threshold is seen to be within
+    // its uncertainty.
     p.state = State::Reproduced;
-    p.figure = "all " + n + " lights within " + deg(l->thresholdDegrees) + " of Surrogate's (median " +
-               fixedDecimals(l->medianDegrees, 1) + ", largest " + deg(l->maxDegrees) + ")" + missingText(*l);
+    p.figure = "all " + n + " lights agree with Surrogate's within their combined uncertainty or the threshold " +
+               deg(l->thresholdDegrees) + " (median " + fixedDecimals(l->medianDegrees, 1) + " degrees; largest " +
+               lightJudgement(*l->largest(), l->thresholdDegrees) + ")" + missingText(*l);
     return p;
   }
   p.state = State::Differs;
   std::vector<ImageAngle> worst = l->aboveThreshold;
   std::stable_sort(worst.begin(), worst.end(), [](const ImageAngle& a, const ImageAngle& b) { return a.degrees > b.degrees; });
   std::vector<std::string> worstNames;
-  for (const ImageAngle& a : worst) worstNames.push_back(a.image + " " + fixedDecimals(a.degrees, 1));
-  const std::string named = listedWithMore(worstNames, kNamesListed);
-  p.figure = std::to_string(l->aboveThreshold.size()) + " of " + n + " images differ by more than " +
+  for (const ImageAngle& a : worst) worstNames.push_back(lightJudgement(a, l->thresholdDegrees));
+  std::string named;
+  for (std::size_t i = 0; i < worstNames.size() && i < kNamesListed; ++i) named += (i ? "; " : "") + worstNames[i];
+  if (worstNames.size() > kNamesListed) named += "; and " + std::to_string(worstNames.size() - kNamesListed) + " more";
+  p.figure = std::to_string(l->aboveThreshold.size()) + " of " + n +
+             " images differ by more than both their combined uncertainty and the threshold " +
              deg(l->thresholdDegrees) + ": " + named + " (median of all " + n + ": " +
              fixedDecimals(l->medianDegrees, 1) + " degrees)" + missingText(*l);
   p.cause = 2 * l->aboveThreshold.size() > l->angles.size()
@@ -180,7 +186,7 @@ std::vector<VerdictSummary> summarise(const AuditReport& report) {
   for (const Verdict& v : report.verdicts) {
     const LightComparison* l = lightsOf(report, v);
     const ModelCheck* m = modelOf(report, v);
-    out.push_back({subjectOf(v), v.reproduced,
+    out.push_back({subjectOf(v), v.reproduced, report.thresholdDegrees,
                    {lightsPart(l, v), modelPart(m, v, report.reproducedDb), tonePart(m), integrityPart(m)}});
   }
   return out;
@@ -205,8 +211,9 @@ std::vector<std::string> summaryLines(const std::vector<VerdictSummary>& summari
     // read): nothing was found to differ, so the line does not say "not reproduced".
     const bool nothingCompared = s.parts.size() >= 2 && s.parts[0].state == State::CannotTell &&
                                  s.parts[1].state == State::CannotTell;
+    // The threshold on the verdict's own line: it is this audit's, given or the default.
     out.push_back((s.reproduced ? "REPRODUCED      " : nothingCompared ? "CANNOT TELL     " : "NOT REPRODUCED  ") +
-                  s.subject);
+                  s.subject + " (threshold " + fixedDecimals(s.thresholdDegrees, 1) + " deg)");
     for (const VerdictPart& p : s.parts) {
       std::string head = "  " + p.name;
       head.resize(13, ' ');
@@ -233,7 +240,8 @@ std::vector<std::string> logSummaryLines(const AuditReport& report) {
 void writeSummaryJson(JsonWriter& j, const std::vector<VerdictSummary>& summaries) {
   j.beginArray();
   for (const VerdictSummary& s : summaries) {
-    j.beginObject().key("subject").value(s.subject).key("reproduced").value(s.reproduced).key("parts").beginArray();
+    j.beginObject().key("subject").value(s.subject).key("reproduced").value(s.reproduced);
+    j.key("thresholdDegrees").value(s.thresholdDegrees).key("parts").beginArray();
     for (const VerdictPart& p : s.parts) {
       j.beginObject().key("part").value(p.name).key("state").value(stateName(p.state)).key("figure").value(p.figure);
       if (!p.cause.empty()) j.key("likelyCause").value(p.cause);

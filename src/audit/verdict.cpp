@@ -19,10 +19,13 @@ std::string listNames(const std::vector<std::string>& names) { return listedWith
 void lightFindings(Verdict& v, const LightComparison& lights, const ModelCheck* model) {
   if (!lights.aboveThreshold.empty()) {
     std::vector<std::string> named;
-    for (const ImageAngle& a : lights.aboveThreshold) named.push_back(a.image + " " + degreesText(a.degrees));
+    for (const ImageAngle& a : lights.aboveThreshold)
+      named.push_back(a.image + " " + degreesText(a.degrees) + ", combined uncertainty " +
+                      fixedDecimals(a.combinedDegrees(), 1));
     std::string text = std::to_string(lights.aboveThreshold.size()) + " of " +
-                       std::to_string(lights.angles.size()) + " prior lights differ from Surrogate's by more than " +
-                       degreesText(lights.thresholdDegrees) + " (" + listNames(named) + ")";
+                       std::to_string(lights.angles.size()) +
+                       " prior lights differ from Surrogate's by more than both their combined uncertainty and the "
+                       "threshold " + degreesText(lights.thresholdDegrees) + " (" + listNames(named) + ")";
     if (model && model->prior.computed && model->refitSurrogateLights.computed)
       text += "; with Surrogate's lights the same basis reaches " + dbText(model->refitSurrogateLights.psnr) +
               " against the prior's " + dbText(model->prior.psnr);
@@ -81,11 +84,16 @@ void modelFindings(Verdict& v, const ModelCheck& m, const AuditOptions& options)
                               "(another fitting method, or other photographs)"});
 }
 
-std::string reproducedSentence(const Verdict& v, bool hasLights, bool hasModel) {
+// The lights' part names the largest distance with the uncertainty and the threshold it was
+// judged against, so that a light farther than the threshold is seen to be within its
+// uncertainty.
+std::string reproducedSentence(const Verdict& v, const LightComparison* lights, bool hasModel) {
   std::string s = "reproduced within ";
   if (hasModel) s += dbText(std::max(0.0, v.dbBelowRefit));
-  if (hasModel && hasLights) s += " / ";
-  if (hasLights) s += degreesText(v.maxDegrees);
+  if (hasModel && lights) s += " / ";
+  if (lights) s += degreesText(v.maxDegrees);
+  if (const ImageAngle* largest = lights ? lights->largest() : nullptr)
+    s += " (largest " + lightJudgement(*largest, lights->thresholdDegrees) + ")";
   return s;
 }
 
@@ -117,7 +125,7 @@ Verdict diagnose(const LightComparison* lights, const ModelCheck* model, const A
   std::vector<std::string> texts;
   for (const Finding& f : v.findings) texts.push_back(f.text);
   if (v.reproduced) {
-    v.sentence = reproducedSentence(v, lights != nullptr, model != nullptr);
+    v.sentence = reproducedSentence(v, lights, model != nullptr);
     for (const std::string& t : texts) v.sentence += "; " + t;
     return v;
   }

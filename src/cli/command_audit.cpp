@@ -3,6 +3,7 @@
 // a work folder of its own (evidence/evidence.h), never writing into PRIOR; prints the verdict
 // first, and exits 0 when the prior work is reproduced, 4 when it is not, 1 when it cannot be
 // read.
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 
@@ -31,15 +32,19 @@ constexpr int kReproduced = 0;
 constexpr int kNotReproduced = static_cast<int>(ErrorKind::NotReproduced);
 constexpr int kUnreadable = static_cast<int>(ErrorKind::Input);
 
-// The recorded Audit result, when it was made with `threshold` and the difference images of
-// `at` (unset: any).
+// The recorded Audit result, when it was made with the threshold of this audit (`threshold`, or
+// the default when none is given: a threshold given to an earlier audit was that audit's only)
+// and the difference images of `at` (unset: any).
 const carrier::Result* usableResult(const carrier::Carrier& c, const std::optional<double>& threshold,
                                     const std::optional<std::string>& at) {
   const carrier::Result* r = audit::auditResult(c);
-  if (!r || (!threshold && !at)) return r;
+  if (!r) return r;
   const carrier::Step* step = c.findStep(r->step);
   if (!step) return nullptr;
-  if (threshold && step->param("angleThresholdDegrees") != formatNumber(*threshold)) return nullptr;
+  const double wanted = threshold.value_or(stages::AuditStageOptions{}.angleThresholdDegrees);
+  if (step->param("angleThresholdDegrees", formatNumber(stages::AuditStageOptions{}.angleThresholdDegrees)) !=
+      formatNumber(wanted))
+    return nullptr;
   if (at && step->param("differenceImages") != *at) return nullptr;
   return r;
 }
@@ -108,7 +113,16 @@ void printText(const Outcome& o, const audit::AuditReport& report, int exitCode,
   const char* verdict =
       exitCode == kReproduced ? "reproduced" : exitCode == kNotReproduced ? "not reproduced" : "cannot tell";
   if (verbosity == Verbosity::Quiet) {
-    std::cout << "audit of " << escapedText(o.prior.string()) << ": " << verdict << " (exit " << exitCode << ")";
+    // The threshold this audit judged at, and the farthest light that differs, judged in words.
+    std::cout << "audit of " << escapedText(o.prior.string()) << ": " << verdict << " (exit " << exitCode
+              << "; threshold " << fixedDecimals(report.thresholdDegrees, 1) << " deg)";
+    for (const audit::LightComparison& l : report.lights)
+      if (!l.aboveThreshold.empty()) {
+        const auto worst = std::max_element(l.aboveThreshold.begin(), l.aboveThreshold.end(),
+                                            [](const auto& a, const auto& b) { return a.degrees < b.degrees; });
+        std::cout << "; " << audit::lightJudgement(*worst, l.thresholdDegrees);
+        break;
+      }
     if (!report.notAudited.empty())
       std::cout << "; " << escapedText(report.notAudited.front().file.generic_string()) << " cannot be read ("
                 << report.notAudited.front().reason << ")"
@@ -159,7 +173,10 @@ int runCommandAudit(int argc, char** argv) {
   std::vector<OptionSpec> specs = {
       {"o", true, false, "the work folder (default: beside PRIOR, named PRIOR-audit)", "WORK", kOutput},
       {"output", true, false, "same as -o", "WORK", kOutput},
-      {"threshold", true, false, "name the images whose prior light differs by more than this (default 2)", "DEG"},
+      {"threshold", true, false,
+       "name the images whose prior light differs by more than this and than the lights' combined uncertainty, "
+       "for this audit only (default 2)",
+       "DEG"},
       {"at", true, true, "also make a difference image at this photograph (file or shot name)", "PHOTO", kOutput}};
   for (const OptionSpec& o : runtimeOptions()) specs.push_back(o);
   for (const OptionSpec& o : runOptionsForAnotherCommand()) specs.push_back(o);

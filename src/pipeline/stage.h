@@ -80,6 +80,10 @@ struct StageInfo {
   // photographs do not outlive the last step that needs them. Empty: the stage may read
   // anything, and nothing is let go while a step of it is still to come.
   std::function<std::vector<std::string>(const carrier::Step& step)> reads;
+  // Parameters that a command gives for the step it plans only (`surrogate audit --threshold`):
+  // recorded in that step like any parameter, so that re-execution repeats it, but never a
+  // standing decision (run::standingDecisions leaves them out): a later run plans the default.
+  std::vector<std::string> perCommand;
 };
 
 // A `reads` for a stage that always reads the same keys.

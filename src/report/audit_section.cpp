@@ -102,15 +102,20 @@ std::string lightsPart(const audit::LightComparison& l) {
     << l.angles.size() << " images compared with Surrogate's lights: median "
     << displayNumber(l.medianDegrees, 1) << "\u00b0, 95th percentile " << displayNumber(l.p95Degrees, 1)
     << "\u00b0, largest " << displayNumber(l.maxDegrees, 1) << "\u00b0. Crosses on the light plot above "
-       "mark its lights, red when more than " << displayNumber(l.thresholdDegrees, 1)
-    << "\u00b0 from Surrogate's.</p>";
+       "mark its lights, red when farther from Surrogate's than both the threshold "
+    << displayNumber(l.thresholdDegrees, 1) << "\u00b0 and the two lights' combined uncertainty.</p>";
   if (l.aboveThreshold.empty()) {
-    s << "<p class=\"ok\">No image above " << displayNumber(l.thresholdDegrees, 1) << "\u00b0.</p>";
+    s << "<p class=\"ok\">No light differs";
+    if (const audit::ImageAngle* largest = l.largest())
+      s << " (largest " << escapeHtml(audit::lightJudgement(*largest, l.thresholdDegrees)) << ")";
+    s << ".</p>";
   } else {
-    s << "<table class=\"audit-lights\"><tr><th>image</th><th>angle to Surrogate's light \u00b0</th></tr>";
+    s << "<table class=\"audit-lights\"><tr><th>image</th><th>angle to Surrogate's light \u00b0</th>"
+         "<th>combined uncertainty \u00b0</th><th>judged</th></tr>";
     for (const audit::ImageAngle& a : l.aboveThreshold)
       s << "<tr><td><code>" << escapeHtml(a.image) << "</code></td><td class=\"num\">"
-        << displayNumber(a.degrees, 1) << "</td></tr>";
+        << displayNumber(a.degrees, 1) << "</td><td class=\"num\">" << displayNumber(a.combinedDegrees(), 1)
+        << "</td><td>" << escapeHtml(audit::lightJudgement(a, l.thresholdDegrees)) << "</td></tr>";
     s << "</table>";
   }
   if (!l.onlyInPrior.empty() || !l.onlyInSurrogate.empty())
@@ -203,7 +208,7 @@ std::vector<PriorLightPoint> priorLightPoints(const carrier::Carrier& c) {
       p.elevationDeg = elevationOf(a.prior);
       p.azimuthDeg = azimuthOf(a.prior);
       p.angleDeg = a.degrees;
-      p.aboveThreshold = a.degrees > l.thresholdDegrees;
+      p.aboveThreshold = a.differs(l.thresholdDegrees);
       out.push_back(p);
     }
   return out;

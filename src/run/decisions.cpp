@@ -115,6 +115,12 @@ void settlePublishOptions(RunRequest& r, const RunRequest& given) {
                params.end());
 }
 
+// A parameter of the step the command plans only (pipeline::StageInfo::perCommand).
+bool isPerCommand(const RunRequest::StageParam& p) {
+  const pipeline::StageInfo* info = pipeline::StageRegistry::instance().info(p.component);
+  return info && std::find(info->perCommand.begin(), info->perCommand.end(), p.name) != info->perCommand.end();
+}
+
 }  // namespace
 
 RunRequest standingDecisions(const carrier::Carrier& recorded) {
@@ -153,6 +159,9 @@ RunRequest standingDecisions(const carrier::Carrier& recorded) {
     } else if (!info || !info->forModel) {  // the plan derives a forModel stage's parameters
       const pipeline::Parameters defaults = info ? info->defaults : pipeline::Parameters{};
       for (const carrier::Param& p : s.params) {
+        // A parameter given for that step only (an audit's threshold, in carriers of every
+        // version): the step keeps it for re-execution; the next run plans the default.
+        if (isPerCommand({s.component, p.name, p.value})) continue;
         const std::string value = recordedValue(p.value);
         const auto d = std::find_if(defaults.begin(), defaults.end(),
                                     [&](const auto& kv) { return kv.first == p.name; });
@@ -298,7 +307,8 @@ RunRequest applyDecisions(const RunRequest& standing, const RunRequest& given,
     const auto old = replaceOrAdd(r.stageParams, p, [&](const RunRequest::StageParam& k) {
       return k.component == p.component && k.name == p.name;
     });
-    if (!old) changes.push_back(p.component + " " + p.name + " = " + p.value);
+    if (isPerCommand(p)) changes.push_back(p.component + " " + p.name + " = " + p.value + " (this run only)");
+    else if (!old) changes.push_back(p.component + " " + p.name + " = " + p.value);
     else if (old->value != p.value) changes.push_back(p.component + " " + p.name + ": " + old->value + " -> " + p.value);
   }
   for (const RunRequest::StageIntervention& i : given.stageInterventions) {

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
+#include <optional>
 
 #include "audit/audit.h"
 #include "audit/rtibuilder_log.h"
@@ -139,6 +141,23 @@ void auditLogs(audit::AuditReport& report, audit::RecordedIds& ids, const ImageS
   }
 }
 
+// Per photograph (in `inputs`' order), the 95 % bound on Surrogate's light that its light item
+// records (uncertaintyDegrees, from the last result holding light items); unset where none is
+// recorded (a carrier from before the bound was measured): the light is then taken as exact.
+std::vector<std::optional<double>> lightUncertainties(const carrier::Carrier& c, const InputImages& inputs) {
+  const carrier::Result* lights = nullptr;
+  for (const carrier::Result& r : c.data)
+    if (!r.itemsOf("light").empty()) lights = &r;
+  std::vector<std::optional<double>> out(inputs.size());
+  if (!lights) return out;
+  std::map<std::string, double> byImage;
+  for (const carrier::DataItem* l : lights->itemsOf("light"))
+    if (l->get("uncertaintyDegrees")) byImage[l->get("image").value_or("")] = l->number("uncertaintyDegrees");
+  for (std::size_t i = 0; i < inputs.size(); ++i)
+    if (const auto it = byImage.find(inputs[i].fileId); it != byImage.end()) out[i] = it->second;
+  return out;
+}
+
 // Lights from a dome's .lp are not an independent estimate: the audit compares the fit only.
 bool lightsFromSpheres(const carrier::Carrier& c) {
   for (const carrier::Step& s : c.process)
@@ -185,8 +204,11 @@ pipeline::StageInfo AuditStage::info() {
   // compared with the capture (audit/rtibuilder_log.h); the result has a section per log.
   // Version 6: the difference PNGs carry an iTXt chunk (PNG 1.2, fmt/13) and their PRONOM
   // identifier is recorded (formats/pronom.h); the pixels are the same.
+  // Version 7: a light differs only beyond both the threshold and the combined uncertainty of
+  // the two lights (Surrogate's light items' uncertaintyDegrees, the prior's where it states
+  // one); each photograph's uncertainties are recorded (lightUncertainty, priorLightUncertainty).
   pipeline::StageInfo info = pipeline::withOptions<AuditStageOptions>(
-      {kComponent, "6",
+      {kComponent, "7",
        "Audit of prior work: its light file against Surrogate's lights, its model against the "
        "photographs beside Surrogate's refits, and a verdict",
        pipeline::PlanSlot::PriorWork});
@@ -197,6 +219,10 @@ pipeline::StageInfo AuditStage::info() {
     return out;
   };
   info.reads = pipeline::alwaysReads({kDecodedRgbStack, kRgbStack, kLights, kInputImages});
+  // The threshold is the audit's own (`surrogate audit --threshold`): recorded in the step it was
+  // given for, so that re-execution repeats that audit, but no standing decision; a later audit
+  // without it judges at the default.
+  info.perCommand = {kThresholdParameter};
   return info;
 }
 
@@ -226,6 +252,7 @@ void AuditStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier:
   in.photographs.stack = rgb.get();
   if (lightsFromSpheres(ctx.carrier)) {
     in.surrogateLights = *lights;
+    in.surrogateUncertainty = lightUncertainties(ctx.carrier, *inputs);
   } else if (in.priorLightFiles.empty()) {
     // A dome capture: its .lp came with the dome and is what a prior fit used too, unless the
     // prior work brought a light file of its own. The fits are compared at those lights.

@@ -168,8 +168,8 @@ TEST_CASE("the audit names exactly the images whose prior light was perturbed") 
   CHECK_FALSE(atLight.worst);
 
   const auto lines = audit::auditLines(report);
-  CHECK(lines.at(0).find("3 above 2.0: IMG_0004.jpg (6.0), IMG_0011.jpg (6.0), IMG_0018.jpg (6.0)") !=
-        std::string::npos);
+  CHECK(lines.at(0).find("3 differ (beyond both the combined uncertainty and the threshold 2.0 deg): IMG_0004.jpg "
+                         "(6.0), IMG_0011.jpg (6.0), IMG_0018.jpg (6.0)") != std::string::npos);
 }
 
 TEST_CASE("a prior fitted with the right lights is reproduced") {
@@ -380,6 +380,79 @@ TEST_CASE("light statistics follow their definitions") {
   CHECK(l.p95Degrees == Approx(19.0).margin(1e-9));     // nearest rank: the 19th of 20
   CHECK(l.maxDegrees == Approx(20.0).margin(1e-9));
   CHECK(l.aboveThreshold.size() == 5);                  // 16..20 degrees
+}
+
+// Issue 52: a light differs only where its distance exceeds both the threshold and the combined
+// uncertainty sqrt(ours^2 + prior's^2); the verdict's line names both.
+TEST_CASE("a light differs only beyond both the combined uncertainty and the threshold") {
+  // Four lights off by exactly 1, 3, 5 and 7 degrees; the threshold 2 degrees.
+  std::vector<formats::LightEntry> lines;
+  std::vector<audit::Light> surrogate;
+  std::vector<fs::path> files;
+  std::vector<std::string> names;
+  for (const double off : {1.0, 3.0, 5.0, 7.0}) {
+    const test::Light t = {0, std::cos(M_PI / 3), std::sin(M_PI / 3)};  // 60 degrees up
+    const test::Light moved = test::tilted(t, off);
+    names.push_back("off" + std::to_string(static_cast<int>(off)) + ".jpg");
+    files.push_back(names.back());
+    lines.push_back({names.back(), moved[0], moved[1], moved[2]});
+    surrogate.push_back(t);
+  }
+  auto prior = audit::matchPriorLights("lights.lp", lines, files);
+  // Ours: 4 degrees on each (3 and 4 make 5 with the prior's 3 below).
+  const std::vector<std::optional<double>> ours(4, 4.0);
+  const auto exact = audit::compareLights(prior, names, surrogate, 2.0);
+  CHECK(exact.aboveThreshold.size() == 3);  // no uncertainty recorded: as before, 3, 5, 7
+  const auto withOurs = audit::compareLights(prior, names, surrogate, 2.0, ours);
+  REQUIRE(withOurs.aboveThreshold.size() == 2);  // 5 and 7 beyond 4
+  CHECK(withOurs.aboveThreshold[0].image == "off5.jpg");
+  // The prior stating 3 degrees on its lights: combined 5, so only 7 differs (5 is not beyond).
+  prior.uncertaintyOfLine.assign(4, 3.0);
+  const auto both = audit::compareLights(prior, names, surrogate, 2.0, ours);
+  REQUIRE(both.aboveThreshold.size() == 1);
+  CHECK(both.aboveThreshold[0].image == "off7.jpg");
+  CHECK(both.aboveThreshold[0].combinedDegrees() == Approx(5.0).margin(1e-12));
+  // A threshold above the uncertainty still decides.
+  CHECK(audit::compareLights(prior, names, surrogate, 8.0, ours).aboveThreshold.empty());
+
+  CHECK(audit::lightJudgement(withOurs.angles[1], 2.0) ==
+        "off3.jpg: 3.0 deg apart; within the combined uncertainty 4.0 deg (ours 4.0, the prior states none); "
+        "threshold 2.0 deg");
+  CHECK(audit::lightJudgement(both.angles[3], 2.0) ==
+        "off7.jpg: 7.0 deg apart; beyond the combined uncertainty 5.0 deg (ours 4.0, the prior's 3.0) and the "
+        "threshold 2.0 deg");
+  CHECK(audit::lightJudgement(exact.angles[0], 0.5) ==
+        "off1.jpg: 1.0 deg apart; beyond the combined uncertainty 0.0 deg (ours not recorded, the prior states "
+        "none) and the threshold 0.5 deg");
+  CHECK(audit::lightJudgement(withOurs.angles[0], 0.5).find("off1.jpg: 1.0 deg apart; within the combined "
+                                                           "uncertainty 4.0 deg") == 0);
+  audit::ImageAngle small = exact.angles[1];
+  small.ours = 1.0;
+  CHECK(audit::lightJudgement(small, 5.0) ==
+        "off3.jpg: 3.0 deg apart; within the threshold 5.0 deg, beyond the combined uncertainty 1.0 deg (ours "
+        "1.0, the prior states none)");
+
+  // The verdict and its lights part name the distance, the uncertainty and the threshold.
+  const audit::Verdict v = audit::diagnose(&withOurs, nullptr, {});
+  CHECK_FALSE(v.reproduced);
+  CHECK(v.sentence.find("2 of 4 prior lights differ from Surrogate's by more than both their combined uncertainty "
+                        "and the threshold 2.0 degrees (off5.jpg 5.0 degrees, combined uncertainty 4.0") !=
+        std::string::npos);
+  audit::AuditReport report;
+  report.thresholdDegrees = 2.0;
+  report.lights = {withOurs};
+  report.verdicts = {v};
+  const auto summary = audit::summaryLines(audit::summarise(report));
+  CHECK(summary.at(0) == "NOT REPRODUCED  lights.lp (threshold 2.0 deg)");
+  CHECK(summary.at(1).find("off7.jpg: 7.0 deg apart; beyond the combined uncertainty 4.0 deg (ours 4.0, the prior "
+                           "states none) and the threshold 2.0 deg; off5.jpg: 5.0 deg apart") != std::string::npos);
+  // The prior stating 6 degrees: combined 7.2, every light within it.
+  prior.uncertaintyOfLine.assign(4, 6.0);
+  const auto covered = audit::compareLights(prior, names, surrogate, 2.0, ours);
+  const audit::Verdict within = audit::diagnose(&covered, nullptr, {});
+  CHECK(within.reproduced);
+  CHECK(within.sentence.find("(largest off7.jpg: 7.0 deg apart; within the combined uncertainty 7.2 deg (ours 4.0, the "
+                             "prior's 6.0); threshold 2.0 deg)") != std::string::npos);
 }
 
 // Issue 51: a prior file the audit cannot read (an .lp with NaN, inf, or a count of a million

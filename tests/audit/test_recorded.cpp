@@ -28,6 +28,10 @@ audit::AuditReport sampleReport() {
   l.thresholdDegrees = 2.5;
   l.angles = {{"IMG_0001.jpg", 0.30000000000000004, {0.1, 0.2, 0.9746794344808963}},
               {"IMG_0002.jpg", 6.125, {-0.5, 0.25, 0.82915619758885}}};
+  // Surrogate's uncertainty on both lights, the prior's on one (Audit version 7).
+  l.angles[0].ours = 1.25;
+  l.angles[1].ours = 2.5;
+  l.angles[1].priors = 0.75;
   l.aboveThreshold = {l.angles[1]};
   l.medianDegrees = 3.2125, l.p95Degrees = 5.83, l.maxDegrees = 6.125;
   l.onlyInPrior = {"jpeg-exports\\IMG_0099.JPG"};
@@ -102,6 +106,10 @@ TEST_CASE("an audit recorded in a carrier result reads back with every figure th
   // Exact doubles, beyond what the JSON's rounding shows.
   CHECK(back.lights.at(0).angles.at(0).degrees == 0.30000000000000004);
   CHECK(back.lights.at(0).angles.at(1).prior[2] == 0.82915619758885);
+  CHECK(back.lights.at(0).angles.at(0).ours == 1.25);
+  CHECK_FALSE(back.lights.at(0).angles.at(0).priors.has_value());
+  CHECK(back.lights.at(0).aboveThreshold.at(0).ours == 2.5);
+  CHECK(back.lights.at(0).aboveThreshold.at(0).priors == 0.75);
   CHECK(back.models.at(0).prior.images.at(1).rmse == 12.25);
   CHECK(back.models.at(0).colour.rmseAfter == 11.25);
   CHECK(back.models.at(0).size.kind == audit::SizeRelation::Kind::UniformScale);

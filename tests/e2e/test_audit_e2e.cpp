@@ -177,10 +177,12 @@ TEST_CASE("audit of a read-only RTIBuilder folder names the tilted lights, exits
   const e2e::CommandResult text = e2e::surrogate("audit " + e2e::quote(capture));
   INFO(text.output);
   CHECK(text.exitCode == 4);
-  CHECK(text.output.rfind("NOT REPRODUCED  finished-files/stela.ptm with the lights of assembly-files/stela.lp\n"
-                          "  lights     differs     3 of 12 images differ by more than 2.0 degrees: ", 0) == 0);
+  CHECK(text.output.rfind("NOT REPRODUCED  finished-files/stela.ptm with the lights of assembly-files/stela.lp "
+                          "(threshold 2.0 deg)\n  lights     differs     3 of 12 images differ by more than both their "
+                          "combined uncertainty and the threshold 2.0 degrees: ", 0) == 0);
   CHECK(text.output.find("as recorded") != std::string::npos);
-  CHECK(text.output.find("3 above 2.0: IMG_0003.jpg") != std::string::npos);
+  CHECK(text.output.find("3 differ (beyond both the combined uncertainty and the threshold 2.0 deg): IMG_0003.jpg") !=
+        std::string::npos);
   CHECK(untouchedState(capture) == before);
 
   // The report opens on the audit's card, and plots the prior lights.
@@ -252,11 +254,17 @@ TEST_CASE("audit separates lights that differ from a model that is reproduced", 
   const std::string carrier = e2e::bytesOf(capture.parent_path() / "work" / "assembly-files" / "carrier.xml");
   CHECK(carrier.find("<param name=\"angleThresholdDegrees\" value=\"10\"/>") != std::string::npos);
   CHECK(carrier.find("command=\"audit\"") != std::string::npos);
-  // The threshold stands: asked again without it, the recorded audit is printed.
+  // The threshold was that audit's only (issue 52): asked again without it, the audit is run
+  // again at the default; asked again with it, the record is printed.
+  const e2e::CommandResult same = e2e::surrogate("audit " + e2e::quote(capture) + " --json --threshold 10 -o " +
+                                                 e2e::quote(capture.parent_path() / "work"));
+  CHECK(same.exitCode == 0);
+  CHECK(same.output.find("\"ran\":false") != std::string::npos);
   const e2e::CommandResult again = e2e::surrogate("audit " + e2e::quote(capture) + " --json -o " +
                                                   e2e::quote(capture.parent_path() / "work"));
-  CHECK(again.exitCode == 0);
-  CHECK(again.output.find("\"ran\":false") != std::string::npos);
+  CHECK(again.exitCode == 4);
+  CHECK(again.output.find("\"ran\":true") != std::string::npos);
+  CHECK(again.output.find("\"thresholdDegrees\":2,") != std::string::npos);
 }
 
 // The photographs named with --at get difference images of their own beside the worst one's;

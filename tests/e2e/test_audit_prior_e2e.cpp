@@ -149,12 +149,13 @@ TEST_CASE("audit of a prior .lp that cannot be read names it and exits 1", "[e2e
       const e2e::CommandResult quiet = e2e::surrogate("audit " + e2e::quote(capture) + " --quiet -o " +
                                                       e2e::quote(capture.parent_path() / ("work-" + name)));
       CHECK(quiet.exitCode == 1);
-      CHECK(quiet.output.find("cannot tell (exit 1); assembly-files/stela.lp cannot be read (") != std::string::npos);
+      CHECK(quiet.output.find("cannot tell (exit 1; threshold 2.0 deg); assembly-files/stela.lp cannot be read (") !=
+            std::string::npos);
       // The model, left without lights, is not said to be "not reproduced" either.
       const e2e::CommandResult text = e2e::surrogate("audit " + e2e::quote(capture) + " -o " +
                                                      e2e::quote(capture.parent_path() / ("work-" + name)));
       CHECK(text.exitCode == 1);
-      CHECK(text.output.rfind("CANNOT TELL     finished-files/stela.ptm\n", 0) == 0);
+      CHECK(text.output.rfind("CANNOT TELL     finished-files/stela.ptm (threshold 2.0 deg)\n", 0) == 0);
       CHECK(text.output.find("CANNOT TELL     assembly-files/stela.lp: cannot be read (") != std::string::npos);
     }
   }

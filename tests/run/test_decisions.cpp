@@ -2,6 +2,8 @@
 // them (run/plan.h). Built from carriers written here, not from a run.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+
 #include "carrier/carrier.h"
 #include "core/error.h"
 #include "run/plan.h"
@@ -252,4 +254,29 @@ TEST_CASE("a recorded web copy stands with its options and is withdrawn with the
   RunRequest quality;
   quality.stageParams.push_back({"WebCopy", "quality", "50"});
   CHECK_THROWS_AS(run::applyDecisions(withdrawn, quality, changes), Error);
+}
+
+// Issue 52: an audit's threshold was kept as a standing decision, so that the same `audit PRIOR`
+// later answered otherwise without saying why. It is that audit's only: a carrier whose Audit
+// step records one (as every carrier did) loads, and the next run plans the default; the other
+// Audit parameters stand as before.
+TEST_CASE("an audit's threshold is no standing decision; a carrier recording one still loads", "[stages][decisions]") {
+  carrier::Carrier c = recorded();
+  carrier::Step& audit = c.addStep("Audit", "6");
+  audit.setParam("angleThresholdDegrees", "15");
+  audit.setParam("reproducedMarginDb", "3");
+  const RunRequest standing = run::standingDecisions(c);
+  for (const auto& p : standing.stageParams) CHECK(p.name != "angleThresholdDegrees");
+  bool margin = false;
+  for (const auto& p : standing.stageParams) margin = margin || (p.component == "Audit" && p.name == "reproducedMarginDb");
+  CHECK(margin);
+
+  // Given again, it goes to this run's step, and the history says it is for this run only.
+  RunRequest given;
+  given.stageParams.push_back({"Audit", "angleThresholdDegrees", "5"});
+  std::vector<std::string> changes;
+  const RunRequest r = run::applyDecisions(standing, given, changes);
+  CHECK(std::count_if(r.stageParams.begin(), r.stageParams.end(),
+                      [](const auto& p) { return p.name == "angleThresholdDegrees" && p.value == "5"; }) == 1);
+  CHECK(changes == std::vector<std::string>{"Audit angleThresholdDegrees = 5 (this run only)"});
 }

@@ -99,7 +99,7 @@ TEST_CASE("built-in stages keep their recorded names, versions and default param
   const std::vector<std::pair<std::string, std::string>> versions = {
       {"CaptureIngest", "3"}, {"ImageDecode", "3"}, {"SphereDetection", "8"}, {"HighlightDetection", "9"},
       {"LightDirections", "6"}, {"LightsFromFile", "3"}, {"WhiteBalance", "1"}, {"Crop", "1"},
-      {"Resize", "1"}, {"RtiFit", "5"}, {"DerivedMaps", "4"}, {"WebCopy", "4"}, {"Audit", "6"}};
+      {"Resize", "1"}, {"RtiFit", "5"}, {"DerivedMaps", "4"}, {"WebCopy", "4"}, {"Audit", "7"}};
   for (const auto& [component, version] : versions) {
     INFO(component);
     REQUIRE(r.info(component));
@@ -114,6 +114,8 @@ TEST_CASE("built-in stages keep their recorded names, versions and default param
   CHECK(r.info("Audit")->defaults == pipeline::Parameters{{"angleThresholdDegrees", "2"},
                                                          {"reproducedMarginDb", "1"},
                                                          {"differenceImages", ""}});
+  // The audit's threshold is that audit's alone, never a standing decision (issue 52).
+  CHECK(r.info("Audit")->perCommand == std::vector<std::string>{"angleThresholdDegrees"});
   CHECK(r.info("Crop")->defaults.empty());
   CHECK(r.info("Resize")->defaults.empty());
   CHECK(r.info("LightsFromFile")->defaults.empty());
