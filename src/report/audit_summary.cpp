@@ -50,7 +50,8 @@ std::string auditSummarySection(const carrier::Carrier& c) {
   for (const audit::VerdictSummary& v : audit::summarise(report)) {
     s << "<div class=\"fact\"><h3><code>" << escapeHtml(v.subject) << "</code>: <span class=\""
       << (v.reproduced ? "ok" : "bad") << "\">" << (v.reproduced ? "reproduced" : "not reproduced")
-      << "</span></h3><table class=\"audit-verdict\"><tr><th>part</th><th>state</th><th>figure</th><th>likely cause</th></tr>";
+      << "</span> (threshold " << displayNumber(v.thresholdDegrees, 1)
+      << "\u00b0)</h3><table class=\"audit-verdict\"><tr><th>part</th><th>state</th><th>figure</th><th>likely cause</th></tr>";
     for (const audit::VerdictPart& p : v.parts)
       s << "<tr><td>" << escapeHtml(p.name) << "</td><td class=\"" << stateClass(p.state) << "\"><b>"
         << audit::stateName(p.state) << "</b></td><td>" << escapeHtml(p.figure) << "</td><td>" << escapeHtml(p.cause)
