@@ -525,6 +525,18 @@ std::vector<DetectedSphere> detectSpheres(const StackMedian& median, const Stack
     DetectedSphere s;
     double score = 0;
   };
+  // The refusal names at most three circles, each once (candidates that refine to the same
+  // circle, within a pixel, are one), and only circles whose centre is in the frame: those the
+  // user could give back with --sphere.
+  std::vector<DetectedSphere> named;
+  auto noteTried = [&](std::vector<std::string>& tried, const DetectedSphere& s, const std::string& why) {
+    if (tried.size() >= 3 || !(s.cx >= 0 && s.cy >= 0 && s.cx <= median.width() - 1 && s.cy <= median.height() - 1))
+      return;
+    for (const DetectedSphere& n : named)
+      if (std::abs(n.cx - s.cx) <= 1 && std::abs(n.cy - s.cy) <= 1 && std::abs(n.r - s.r) <= 1) return;
+    named.push_back(s);
+    tried.push_back(circleText(s) + " (" + why + ")");
+  };
   auto checkAll = [&](const std::vector<Candidate>& candidates, std::vector<std::string>& tried) {
     std::vector<Checked> passed;
     for (const Candidate& c : candidates) {
@@ -532,7 +544,7 @@ std::vector<DetectedSphere> detectSpheres(const StackMedian& median, const Stack
       DetectedSphere s = refine(rim, f, 3 * scale * c.level + 4);
       if (!(s.r >= 3)) continue;
       if (s.confidence < o.minConfidence) {
-        if (tried.size() < 3) tried.push_back(circleText(s) + " (rim " + fixedDecimals(s.confidence, 2) + ")");
+        noteTried(tried, s, "rim " + fixedDecimals(s.confidence, 2));
         continue;
       }
       s.evidence = highlightEvidence(median, s, o.threads);
@@ -540,9 +552,7 @@ std::vector<DetectedSphere> detectSpheres(const StackMedian& median, const Stack
       // round texture by its darkness alone.
       if (median.stack().size() < 3 && !isDarkDisc(median, s)) continue;
       if (s.evidence < kMinEvidence) {
-        if (tried.size() < 3)
-          tried.push_back(circleText(s) + " (a moving highlight in " + std::to_string(std::lround(s.evidence * 100)) +
-                          " % of the images)");
+        noteTried(tried, s, "a moving highlight in " + std::to_string(std::lround(s.evidence * 100)) + " % of the images");
         continue;
       }
       passed.push_back({s, s.confidence * s.evidence});

@@ -3,7 +3,14 @@
 // regressions, not tune the method.
 #include <catch2/catch.hpp>
 
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <array>
 #include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
 
 #include "core/error.h"
 #include "core/stack.h"
@@ -145,6 +152,55 @@ TEST_CASE("no sphere: a clear error that suggests giving a region") {
   } catch (const Error& e) {
     CHECK_THAT(e.message(), Catch::Contains("--sphere-roi"));
   }
+}
+
+TEST_CASE("a refusal names each circle once, and only circles whose centre is in the frame") {
+  // Tiny frames of blurred noise (64x43, as a hostile capture had): no sphere, and the Hough
+  // candidates refine to circles that repeat or leave the frame. Each refusal's circles are
+  // read back from its words ("as CX,CY,R: 49,15,11 (rim 0.42); ...").
+  constexpr int kWidth = 64, kHeight = 43;
+  int refusals = 0;
+  for (int seed = 1; seed <= 60; ++seed) {
+    cv::RNG rng(static_cast<std::uint64_t>(seed));
+    std::vector<Image> frames;
+    for (int i = 0; i < 12; ++i) {
+      cv::Mat noise(kHeight, kWidth, CV_8U);
+      rng.fill(noise, cv::RNG::UNIFORM, 0, 255);
+      cv::GaussianBlur(noise, noise, cv::Size(5, 5), 1.5);
+      Image frame(kWidth, kHeight, 1);
+      for (int p = 0; p < kWidth * kHeight; ++p) frame.pixels[p] = static_cast<std::uint16_t>(noise.data[p] * 257);
+      frames.push_back(std::move(frame));
+    }
+    const MemoryImageStack stack(std::move(frames));
+    SphereDetectionOptions o;
+    o.threads = 1;
+    std::string message;
+    try {
+      detectSpheres(StackMedian(stack, o.coarseWidth, 1), o);
+      continue;
+    } catch (const Error& e) {
+      message = e.message();
+    }
+    ++refusals;
+    const auto from = message.find("as CX,CY,R: ");
+    if (from == std::string::npos) continue;
+    std::vector<std::array<int, 3>> circles;
+    for (std::size_t at = from + 12; at < message.size();) {
+      std::array<int, 3> c{};
+      if (std::sscanf(message.c_str() + at, "%d,%d,%d", &c[0], &c[1], &c[2]) != 3) break;
+      circles.push_back(c);
+      const auto next = message.find("); ", at);
+      if (next == std::string::npos) break;
+      at = next + 3;
+    }
+    INFO("seed " << seed << ": " << message);
+    CHECK_FALSE(circles.empty());
+    for (std::size_t a = 0; a < circles.size(); ++a) {
+      CHECK((circles[a][0] >= 0 && circles[a][0] < kWidth && circles[a][1] >= 0 && circles[a][1] < kHeight));
+      for (std::size_t b = a + 1; b < circles.size(); ++b) CHECK(circles[a] != circles[b]);
+    }
+  }
+  CHECK(refusals >= 50);  // noise holds no sphere; a few seeds may still pass a circle
 }
 
 TEST_CASE("median, spheres and highlights are bit-identical with 1 and 2 threads") {
