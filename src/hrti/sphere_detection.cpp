@@ -210,8 +210,12 @@ void rimSigmas(const CircleFit& fit, int rays, DetectedSphere& out) {
   out.radiusSigmaPx = std::sqrt(std::max(fit.sigmaR * fit.sigmaR * inflation, s2 / arcs));
 }
 
-// Sub-pixel edge points along rays from the centre, and the circle through them.
-DetectedSphere refine(const StackMedian& median, Candidate start, double margin) {
+// Sub-pixel edge points along rays from the centre, and the circle through them. A ray whose
+// rim point (on the last circle) lies outside the frame, or within kFrameInset of its edge, is
+// no evidence of an edge: it is not searched (a sphere cut by the frame's edge). The confidence
+// is the share of all kRays rays on the circle, or with `ofVisible` of the rays searched.
+constexpr double kFrameInset = 2;
+DetectedSphere refine(const StackMedian& median, Candidate start, double margin, bool ofVisible = false) {
   DetectedSphere out{start.x, start.y, start.r, 0};
   // Each pass searches the rim within `margin` of the last circle, the margin shrinking to 3 px.
   for (int pass = 0; pass < 3; ++pass) {
@@ -237,8 +241,14 @@ DetectedSphere refine(const StackMedian& median, Candidate start, double margin)
     std::vector<double> strengths;
     constexpr int kRays = 360;
     constexpr double kStep = 0.25;
+    int visible = 0;
     for (int k = 0; k < kRays; ++k) {
       const double a = 2 * M_PI * k / kRays, ca = std::cos(a), sa = std::sin(a);
+      const double rimX = out.cx + out.r * ca, rimY = out.cy + out.r * sa;
+      if (rimX < kFrameInset || rimY < kFrameInset || rimX > median.width() - 1 - kFrameInset ||
+          rimY > median.height() - 1 - kFrameInset)
+        continue;
+      ++visible;
       double bestValue = -1, bestT = 0, before = 0, after = 0;
       std::vector<double> profile;
       for (double t = out.r - margin; t <= out.r + margin; t += kStep) {
@@ -282,7 +292,7 @@ DetectedSphere refine(const StackMedian& median, Candidate start, double margin)
     const double onRim = std::max(kRimTolerance, kRimToleranceShare * fit.r);
     int onCircle = 0;
     for (const Point2& q : strong) onCircle += std::abs(std::hypot(q.x - fit.cx, q.y - fit.cy) - fit.r) <= onRim;
-    out.confidence = double(onCircle) / kRays;
+    out.confidence = double(onCircle) / (ofVisible ? std::max(1, visible) : kRays);
     margin = std::max(3.0, margin / 3);
   }
   return out;
@@ -432,6 +442,18 @@ bool isDarkDisc(const StackMedian& median, const DetectedSphere& s) {
   if (nIn == 0 || nOut == 0) return false;
   return inside / nIn < 0.6 * (outside / nOut);
 }
+
+}  // namespace
+
+DetectedSphere fitVisibleRim(const StackMedian& rim, const DetectedSphere& given) {
+  const double margin = std::max(kGivenRimMargin, kGivenRimMarginShare * given.r);
+  DetectedSphere fitted = refine(rim, Candidate{given.cx, given.cy, given.r, 0, 1}, margin, true);
+  fitted.byHand = true;
+  fitted.evidence = 1;
+  return fitted;
+}
+
+namespace {
 
 std::string circleText(const DetectedSphere& s) {
   return fixedDecimals(s.cx, 0) + "," + fixedDecimals(s.cy, 0) + "," + fixedDecimals(s.r, 0);

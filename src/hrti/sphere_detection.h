@@ -93,6 +93,15 @@ std::vector<DetectedSphere> detectSpheres(const StackMedian& median, const Spher
 inline constexpr double kRimQuantile = 0.75;
 std::vector<DetectedSphere> detectSpheres(const StackMedian& median, const StackMedian& rim,
                                           const SphereDetectionOptions& options);
+// A circle given by hand that the frame's edge cuts, fitted to its visible rim in `rim` (the
+// stack's kRimQuantile, or its median with fewer than four images): the rim searched within
+// kGivenRimMargin pixels (kGivenRimMarginShare of the radius when more) of the given circle,
+// along the rays whose rim lies inside the frame only. The result is byHand; its confidence is
+// the share of those rays whose edge lies on the fitted circle, with its standard errors. The
+// caller decides whether to use it: a fit far from the given circle, or on a rim that is not a
+// clean edge, did not find the sphere.
+inline constexpr double kGivenRimMargin = 4, kGivenRimMarginShare = 0.03;
+DetectedSphere fitVisibleRim(const StackMedian& rim, const DetectedSphere& given);
 // The same on one image taken as the median (tests on drawn images).
 std::vector<DetectedSphere> detectSpheres(const Image& median, const SphereDetectionOptions& options);
 

@@ -38,11 +38,31 @@ std::string sphereCircleProblem(double cx, double cy, double r, int width, int h
            ": CX must be from 0 to " + std::to_string(width - 1) + " and CY from 0 to " +
            std::to_string(height - 1);
   const double largest = std::min(width, height) / 2.0;
-  if (r > largest)
-    return "the radius R is " + num(r) + " pixels, more than half the smaller side of the " +
-           frameText(width, height) + " (" + num(largest) + " pixels): a sphere that size "
-           "cannot be in the images";
-  return "";
+  if (r <= largest) return "";
+  const double inside = discShareInFrame(cx, cy, r, width, height);
+  if (inside >= kMinDiscShareInFrame) return "";
+  return "the radius R is " + num(r) + " pixels, more than half the smaller side of the " +
+         frameText(width, height) + " (" + num(largest) + " pixels), and only " +
+         std::to_string(static_cast<int>(std::floor(inside * 100))) +
+         " % of its disc is inside the frame: a sphere that size cannot be in the images (a sphere "
+         "cut by the frame's edge needs at least half of its disc inside it)";
+}
+
+double discShareInFrame(double cx, double cy, double r, int width, int height) {
+  if (!(r > 0) || width <= 0 || height <= 0) return 0;
+  // Column by column (midpoint rule over 4096 strips): the chord of the disc at each x, clipped
+  // to the frame's rows; the frame covers -0.5 to width - 0.5 (pixel centres at whole numbers).
+  constexpr int kStrips = 4096;
+  double area = 0;
+  const double step = 2 * r / kStrips;
+  for (int i = 0; i < kStrips; ++i) {
+    const double x = cx - r + (i + 0.5) * step;
+    if (x < -0.5 || x > width - 0.5) continue;
+    const double half = std::sqrt(std::max(0.0, r * r - (x - cx) * (x - cx)));
+    const double top = std::max(cy - half, -0.5), bottom = std::min(cy + half, height - 0.5);
+    if (bottom > top) area += (bottom - top) * step;
+  }
+  return area / (M_PI * r * r);
 }
 
 std::string highlightPointProblem(double x, double y, int width, int height,

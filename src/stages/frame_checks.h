@@ -27,13 +27,20 @@ struct SphereCircle {
 // when it can. With width or height 0, only what needs no frame: finite numbers, a centre at
 // coordinates >= 0, a radius of at least kMinSphereRadius.
 //
-// The rule for the frame: the centre is a pixel of the frame and the radius at most half the
-// frame's smaller side. The circle may reach past the frame's edge: a sphere cut by the edge
-// happens in real captures, its visible part still shows the highlights, and every stage
-// clips to the frame. A centre outside the frame leaves at most a sliver of the sphere, and
-// a sphere wider than the frame's smaller side cannot be in the picture at all (a 400 px
-// radius in a 400x300 frame gives lights at 82-88 degrees for any highlight): both are typos.
+// The rule for the frame: the centre is a pixel of the frame, and the radius is at most half
+// the frame's smaller side or at least half of the disc (kMinDiscShareInFrame) is inside the
+// frame. The circle may reach past the frame's edge: a sphere cut by the edge happens in real
+// captures (a light probe filling the frame, cropped), its visible part still shows the
+// highlights, the sphere detection stage fits the circle to its visible rim, and every stage
+// clips to the frame. A centre outside the frame leaves at most a sliver of the sphere, and a
+// sphere much larger than the frame cannot be in the picture at all (a 400 px radius in a
+// 400x300 frame, a quarter of its disc inside, gives lights at 82-88 degrees for any
+// highlight): both are typos.
 std::string sphereCircleProblem(double cx, double cy, double r, int width = 0, int height = 0);
+inline constexpr double kMinDiscShareInFrame = 0.5;
+// The share (0..1) of the disc of radius r at (cx, cy) that lies inside a width x height frame
+// (pixel centres at whole numbers: the frame covers -0.5 to width - 0.5).
+double discShareInFrame(double cx, double cy, double r, int width, int height);
 
 // Why (x, y) cannot be a highlight given by hand, or "" when it can: finite coordinates >= 0;
 // with a frame, inside it; with a sphere's circle, on the sphere (up to half a pixel past its

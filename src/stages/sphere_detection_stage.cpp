@@ -57,8 +57,11 @@ pipeline::StageInfo SphereDetectionStage::info() {
   //    recorded (formats/pronom.h); the pixels are the same
   // 8: the overlay labels a sphere given by hand "by hand", not "conf 1.00" (a confidence it
   //    did not earn), so its bytes differ from version 7's for such a sphere
+  // 9: a circle given by hand that the frame's edge cuts is fitted to its visible rim (and may
+  //    be larger than half the frame's smaller side when half its disc is inside); rays whose
+  //    rim lies outside the frame are not searched for an edge
   pipeline::StageInfo info = pipeline::withOptions<hrti::SphereDetectionOptions>(
-      {kComponent, "8",
+      {kComponent, "9",
        "Find the reflective spheres: circle Hough transform on the gradient of the stack's upper "
        "quartile, sub-pixel circle fit, highlights that move against the per-pixel median",
        pipeline::PlanSlot::LightsFromSpheres});
@@ -87,9 +90,33 @@ void SphereDetectionStage::run(const carrier::Step& step, pipeline::Context& ctx
       if (!why.empty())
         throw Error(ErrorKind::Input, "sphere " + i->target + " given by hand (" + i->value + ")",
                     "sphere detection", why + "; give the sphere's circle again with --sphere CX,CY,R");
-      spheres->push_back(hrti::DetectedSphere{v[0], v[1], v[2], 1.0, 1.0, true});
+      hrti::DetectedSphere given{v[0], v[1], v[2], 1.0, 1.0, true};
+      std::string fitted;
+      if (v[0] - v[2] < 0 || v[1] - v[2] < 0 || v[0] + v[2] > median->width() - 1 || v[1] + v[2] > median->height() - 1) {
+        // Cut by the frame's edge: fitted to its visible rim (hrti::fitVisibleRim). The fit is
+        // kept when its rim is a clean edge and it stays within the margin searched of the circle
+        // given; otherwise the circle stays as given, and the log says why.
+        const hrti::StackMedian rim(lum, options.coarseWidth, ctx.settings.threads, hrti::StackMedian::kCoarseBudget,
+                                    lum->size() >= 4 ? hrti::kRimQuantile : 0.5);
+        const hrti::DetectedSphere f = hrti::fitVisibleRim(rim, given);
+        const double margin = std::max(hrti::kGivenRimMargin, hrti::kGivenRimMarginShare * v[2]);
+        const std::string share = std::to_string(static_cast<int>(
+            std::lround(100 * discShareInFrame(v[0], v[1], v[2], median->width(), median->height()))));
+        if (f.confidence >= options.minConfidence && std::hypot(f.cx - v[0], f.cy - v[1]) <= margin &&
+            std::abs(f.r - v[2]) <= margin) {
+          given = f;
+          given.confidence = 1;  // by hand: the overlay and the record show no earned confidence
+          fitted = "; " + share + " % of its disc in the frame, fitted to its visible rim: " +
+                   fixedDecimals(f.cx, 2) + "," + fixedDecimals(f.cy, 2) + "," + fixedDecimals(f.r, 2) +
+                   " (" + fixedDecimals(100 * f.confidence, 0) + " % of the visible rim on it)";
+        } else {
+          fitted = "; " + share + " % of its disc in the frame; its visible rim was not fitted (" +
+                   fixedDecimals(100 * f.confidence, 0) + " % of it a clean edge near the circle): used as given";
+        }
+      }
+      spheres->push_back(given);
       ctx.carrier.addLog("intervention", step.id,
-                         "sphere " + i->target + " set by hand to " + i->value + ": " + i->reason, i->who);
+                         "sphere " + i->target + " set by hand to " + i->value + ": " + i->reason + fitted, i->who);
     }
   } else {
     ctx.progress("Sphere detection", 0.6);

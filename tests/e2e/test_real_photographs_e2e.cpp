@@ -167,3 +167,36 @@ TEST_CASE("an accepted check is recorded and lets the run go on") {
   CHECK(carrier.find("name=\"exposure-outlier\" status=\"accepted\"") != std::string::npos);
   CHECK(carrier.find("a test of the record") != std::string::npos);
 }
+
+TEST_CASE("a sphere cut by the frame's edge, given by hand, is fitted to its visible rim") {
+  // LightProbe-1 cropped to columns 300-1099: the sphere (the dataset's circle 535.9,478.0,421.1)
+  // loses 185 px to the left edge, and its radius is more than half the 800x1000 frame's smaller
+  // side, which was refused as "a sphere that size cannot be in the images". 84 % of its disc is
+  // in the frame.
+  const fs::path capture = e2e::freshDir("cut-sphere") / "capture";
+  fs::create_directories(capture / "jpeg-exports");
+  for (int i = 1; i <= 12; ++i) {
+    const std::string name = std::string("Image_") + (i < 10 ? "0" : "") + std::to_string(i);
+    const cv::Mat image = cv::imread((realData("lightprobe-1") / (name + ".JPG")).string(), cv::IMREAD_COLOR);
+    REQUIRE(image.cols == 1100);
+    REQUIRE(cv::imwrite((capture / "jpeg-exports" / (name + ".png")).string(), image(cv::Rect(300, 0, 800, 1000))));
+  }
+  const fs::path lp = capture.parent_path() / "lights.lp";
+  // The dataset's circle moved into the crop, rounded as a person would give it.
+  const auto r = e2e::surrogate("lights " + e2e::quote(capture) + " -o " + e2e::quote(lp) +
+                                " --quiet --sphere 236,478,421 --reason \"the light probe, cut by the left edge\"");
+  INFO(r.output);
+  REQUIRE(r.exitCode == 0);
+  const e2e::LightErrors e = e2e::lightErrors(lpLights(lp), psboxLights(realData("lightprobe-1") / "light_directions.txt"));
+  INFO("median " << e.median << " max " << e.max);
+  CHECK(e.median <= 1.0);  // measured 0.79 / 1.30 deg (the whole frame, no hints: 0.63 / 1.20)
+  CHECK(e.max <= 1.6);
+  const std::string carrier = e2e::bytesOf(capture / "assembly-files/carrier.xml");
+  CHECK(carrier.find("84 % of its disc in the frame, fitted to its visible rim") != std::string::npos);
+
+  // Less than half of the disc in the frame is still refused, saying so.
+  const auto sliver = e2e::surrogate("lights " + e2e::quote(capture) + " -o " + e2e::quote(lp) +
+                                     " --quiet --sphere 10,478,700 --reason \"a typo\"");
+  CHECK(sliver.exitCode == 2);
+  CHECK(sliver.output.find("needs at least half of its disc inside it") != std::string::npos);
+}

@@ -3,6 +3,7 @@
 // grey-region rectangles. Every bad value is Error(Usage) naming the option and the value.
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <functional>
 #include <string>
 
@@ -58,7 +59,7 @@ TEST_CASE("a request with no values given by hand passes the frame checks") {
   CHECK_NOTHROW(checkRequestAgainstFrame(RunRequest{}, kWidth, kHeight));
 }
 
-TEST_CASE("a circle given by hand must have its centre in the frame and fit its smaller side") {
+TEST_CASE("a circle given by hand must have its centre in the frame and half its disc, or fit its smaller side") {
   CHECK_NOTHROW(checkRequestAgainstFrame(withSphere("339,57,45"), kWidth, kHeight));
   // Cut by the frame's edge, centre inside: a real capture can have that.
   CHECK_NOTHROW(checkRequestAgainstFrame(withSphere("390,10,45"), kWidth, kHeight));
@@ -68,7 +69,11 @@ TEST_CASE("a circle given by hand must have its centre in the frame and fit its 
   CHECK_THAT(refusal(withSphere("900,57,45"), "--sphere 900,57,45"), Catch::Contains("400x300"));
   CHECK_THAT(refusal(withSphere("339,300,45"), "--sphere 339,300,45"), Catch::Contains("CY from 0 to 299"));
   CHECK_THAT(refusal(withSphere("339,57,400"), "--sphere 339,57,400"), Catch::Contains("150"));
-  CHECK_THAT(refusal(withSphere("339,57,150.5"), "--sphere 339,57,150.5"), Catch::Contains("radius"));
+  // Larger than half the smaller side: taken when at least half of its disc is in the frame
+  // (54 % here), refused below (46 %).
+  CHECK_NOTHROW(checkRequestAgainstFrame(withSphere("339,57,150.5"), kWidth, kHeight));
+  CHECK_NOTHROW(checkRequestAgainstFrame(withSphere("200,150,160"), kWidth, kHeight));
+  CHECK_THAT(refusal(withSphere("339,57,200"), "--sphere 339,57,200"), Catch::Contains("only 46 % of its disc"));
   CHECK_THAT(refusal(withSphere("339,57,-5"), "--sphere 339,57,-5"), Catch::Contains("above 0"));
   CHECK_THAT(refusal(withSphere("339,57,0"), "--sphere 339,57,0"), Catch::Contains("above 0"));
   CHECK_THAT(refusal(withSphere("339,57,2"), "--sphere 339,57,2"), Catch::Contains("at least 3"));
@@ -76,6 +81,18 @@ TEST_CASE("a circle given by hand must have its centre in the frame and fit its 
   CHECK_THAT(refusal(withSphere("339,57,nan"), "--sphere 339,57,nan"), Catch::Contains("finite"));
   CHECK_THAT(refusal(withSphere("339,57"), "--sphere 339,57"), Catch::Contains("3 comma-separated numbers"));
   CHECK_THAT(refusal(withSphere("339,57,45,"), "--sphere 339,57,45,"), Catch::Contains("CX,CY,R"));
+}
+
+TEST_CASE("the share of a disc in the frame is the circular segment's closed form") {
+  // A disc cut by one edge at distance d from its centre loses the segment
+  // r^2 acos(d / r) - d sqrt(r^2 - d^2).
+  const double r = 100;
+  for (const double d : {0.0, 30.0, 70.0}) {
+    const double segment = r * r * std::acos(d / r) - d * std::sqrt(r * r - d * d);
+    // The left edge of the frame is at x = -0.5.
+    CHECK(stages::discShareInFrame(d - 0.5, 150, r, 1000, 300) == Approx(1 - segment / (M_PI * r * r)).epsilon(1e-3));  // 4096 strips
+  }
+  CHECK(stages::discShareInFrame(500, 150, r, 1000, 300) == Approx(1).epsilon(1e-4));
 }
 
 TEST_CASE("the second of two circles given by hand is checked too") {
