@@ -128,6 +128,12 @@ std::string listedWithMore(const std::vector<std::string>& items, std::size_t mo
   return out;
 }
 
+std::string listedInFull(const std::vector<std::string>& items, const std::string& separator) {
+  std::string out;
+  for (std::size_t i = 0; i < items.size(); ++i) out += (i ? separator : "") + items[i];
+  return out;
+}
+
 std::size_t editDistance(const std::string& a, const std::string& b) {
   // Three rows of the dynamic-programming table: the swap looks two rows back.
   std::vector<std::size_t> before(b.size() + 1), previous(b.size() + 1), row(b.size() + 1);

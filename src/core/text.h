@@ -50,8 +50,13 @@ bool needsEscaping(const std::string& bytes, bool keepLineBreaks = false);
 std::string hexBytes(const std::string& bytes);
 
 // The first `most` items joined by ", ", then " and N more" for the rest: "IMG_0003, IMG_0007
-// and 2 more". The one way messages list names.
+// and 2 more". The way messages list names the reader need not act on one by one.
 std::string listedWithMore(const std::vector<std::string>& items, std::size_t most);
+
+// Every item joined by `separator`: how a refusal names the frames it refuses, all of them, since
+// the user acts on each ("8 frames and 2 more" left two to guess). The run's note in the carrier
+// keeps the whole message too (surrogate info CAPTURE shows it).
+std::string listedInFull(const std::vector<std::string>& items, const std::string& separator = ", ");
 
 // The number of single-byte insertions, deletions, substitutions and swaps of two neighbours
 // that turn `a` into `b` (the optimal string alignment distance, a restricted

@@ -18,9 +18,6 @@ double median(std::vector<double> v) {
   return *mid;
 }
 
-// Images a check names before "and N more": "IMG_0003 (-41 deg), IMG_0007 (-12 deg) and 2 more".
-constexpr std::size_t kImagesNamed = 6;
-
 LightCheck belowHorizon(const LightCheckInput& in) {
   LightCheck c{kCheckBelowHorizon, false, "", {}};
   std::vector<std::string> named;
@@ -32,7 +29,7 @@ LightCheck belowHorizon(const LightCheckInput& in) {
   }
   c.failed = !c.images.empty();
   c.detail = c.failed ? std::to_string(c.images.size()) + " of " + std::to_string(in.lights.size()) +
-                            " lights come from behind the object (elevation below 0): " + listedWithMore(named, kImagesNamed) +
+                            " lights come from behind the object (elevation below 0): " + listedInFull(named) +
                             ". Their highlights lie near the sphere's rim, where no light in front of the object "
                             "puts one: the circle is probably not the sphere, or not where it is"
                       : "every light is in front of the object";
@@ -137,7 +134,7 @@ LightCheck exposureOutlier(const LightCheckInput& in) {
     named.push_back(in.names[i] + " (" + why + ")");
   }
   c.failed = !c.images.empty();
-  c.detail = c.failed ? "an exposure unlike the others': " + listedWithMore(named, kImagesNamed) +
+  c.detail = c.failed ? "an exposure unlike the others': " + listedInFull(named) +
                             ". A misfired flash or a wrong exposure gives a wrong sample to every pixel of the fit"
                       : "every image is exposed like the others";
   return c;
@@ -181,7 +178,7 @@ LightCheck residualCheck(const std::vector<double>& rmse, const std::vector<std:
     named.push_back(names[static_cast<std::size_t>(i)] + " (RMSE " + fixedDecimals(rmse[static_cast<std::size_t>(i)], 1) +
                     " levels)");
   c.failed = !c.images.empty();
-  c.detail = c.failed ? "the model misses " + listedWithMore(named, kImagesNamed) + " far more than the other images (" + typical +
+  c.detail = c.failed ? "the model misses " + listedInFull(named) + " far more than the other images (" + typical +
                             "): a misfired flash, a moved object or a wrong light direction, which pulls every "
                             "pixel's fit toward it"
                       : "no image stands out of the others' fit error (" + typical + ")";

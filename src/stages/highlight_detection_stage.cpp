@@ -32,7 +32,8 @@ std::string highlightOverview(const std::string& sphere) {
 
 std::string confidenceText(double c) { return fixedDecimals(c, 2); }
 
-// Up to `most` items joined by "; ", then "and N more".
+// Up to `most` items joined by "; ", then "and N more": for an image's reasons; frames are
+// named in full (listedInFull).
 std::string listed(const std::vector<std::string>& items, std::size_t most = 6) {
   std::string out;
   for (std::size_t i = 0; i < items.size() && i < most; ++i) out += (i ? "; " : "") + items[i];
@@ -47,7 +48,7 @@ constexpr std::size_t kSphereRefusals = 3;
 void refuseSphereWithoutHighlights(const carrier::Step& sphereStep, const hrti::DetectedSphere& s, std::size_t k,
                                    const std::vector<std::string>& refused, std::size_t images) {
   const std::string counted = "shows no trustworthy highlight in " + std::to_string(refused.size()) + " of " +
-                              std::to_string(images) + " images (" + listed(refused, 3) + ")";
+                              std::to_string(images) + " images (" + listedInFull(refused, "; ") + ")";
   const std::string circle = fixedDecimals(s.cx, 1) + "," + fixedDecimals(s.cy, 1) + "," + fixedDecimals(s.r, 1);
   for (const carrier::Intervention* i : sphereStep.interventionsOfKind("manual-sphere")) {
     if (i->target != std::to_string(k)) continue;
@@ -202,7 +203,7 @@ void HighlightDetectionStage::run(const carrier::Step& step, pipeline::Context& 
     throw Error(ErrorKind::Input, one ? unusableImages.front()->relativePath : "", "highlight detection",
                 (one ? std::string("this image has") : std::to_string(unusable.size()) + " images have") +
                     " no trustworthy highlight on any sphere, so " + (one ? "its" : "their") +
-                    " light direction cannot be measured: " + listed(unusable, 8) + ". Leave each out with "
+                    " light direction cannot be measured: " + listedInFull(unusable, "; ") + ". Leave each out with "
                     "--exclude " + stem + " --reason \"...\", or give its highlight by hand with --highlight " +
                     stem + ":0=X,Y --reason \"...\" (X,Y in pixels of the full frame)");
   }

@@ -164,6 +164,37 @@ TEST_CASE("several refused frames are named in one message") {
   CHECK_FALSE(fs::exists(capture.parent_path() / "x.lp"));
 }
 
+TEST_CASE("a refusal names every frame it refuses, however many") {
+  // 10 flat frames of 24: each is named (the message once named 8 "and 2 more"). The sphere is
+  // given (the generator's circle), as flat frames in the median would hide it from detection.
+  const fs::path capture = e2e::smallCapture(e2e::freshDir("inputs-ten"), 24);
+  std::vector<std::string> flat;
+  for (int n = 2; n <= 20; n += 2) {
+    const std::string stem = std::string(n < 10 ? "IMG_000" : "IMG_00") + std::to_string(n);
+    uniformExport(capture, stem, 128);
+    flat.push_back("jpeg-exports/" + stem + ".jpg (flat");
+  }
+  flat.push_back("10 images");
+  const e2e::CommandResult r = e2e::surrogate("lights " + e2e::quote(capture) + " -o " +
+                                              e2e::quote(capture.parent_path() / "x.lp") +
+                                              " --quiet --source export --sphere 339,57,45 --reason measured");
+  requireRefused(r, flat);
+  CHECK_THAT(r.output, !Catch::Matches(".*and [0-9]+ more.*", Catch::CaseSensitive::Yes));
+
+  // Most frames without a highlight: the sphere is refused, naming all 5 frames.
+  const fs::path few = e2e::smallCapture(e2e::freshDir("inputs-five"));
+  std::vector<std::string> five{"5 of 8 images"};
+  for (int n = 1; n <= 5; ++n) {
+    uniformExport(few, "IMG_000" + std::to_string(n), 128);
+    five.push_back("IMG_000" + std::to_string(n));
+  }
+  const e2e::CommandResult sphere = e2e::surrogate("lights " + e2e::quote(few) + " -o " +
+                                                   e2e::quote(few.parent_path() / "x.lp") +
+                                                   " --quiet --source export --sphere 339,57,45 --reason measured");
+  requireRefused(sphere, five);
+  CHECK_THAT(sphere.output, !Catch::Matches(".*and [0-9]+ more.*", Catch::CaseSensitive::Yes));
+}
+
 TEST_CASE("a circle given by hand away from the sphere stops the run naming --sphere") {
   // The sphere of the small capture is at about (339, 57), radius 45.
   const fs::path capture = e2e::smallCapture(e2e::freshDir("inputs-wrong-sphere"));

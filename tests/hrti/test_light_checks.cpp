@@ -95,3 +95,20 @@ TEST_CASE("a residual far above the others' is an outlier, a spread of residuals
   CHECK(residualOutliers({4.4, 3.5, 6.9, 8.3, 12.5, 9.7, 11.6, 9.0, 6.3, 13.2, 8.8, 9.1}).empty());  // a real probe
   CHECK(residualOutliers({1, 1, 50}).empty());  // too few to tell
 }
+
+TEST_CASE("a check names every image it fails, not the first six and a count") {
+  // 30 images, 8 of which the model misses 25 times as much: each one is to be left out, so
+  // each is named ("and 2 more" once left the user to guess which).
+  std::vector<double> rmse;
+  std::vector<std::string> names;
+  for (int i = 0; i < 30; ++i) {
+    rmse.push_back(i % 4 == 1 ? 50.0 : 2.0 + 0.01 * i);
+    names.push_back("IMG_" + std::to_string(100 + i));
+  }
+  const LightCheck c = residualCheck(rmse, names);
+  INFO(c.detail);
+  REQUIRE(c.failed);
+  REQUIRE(c.images.size() == 8);
+  for (int i : c.images) CHECK(c.detail.find(names[static_cast<std::size_t>(i)] + " (RMSE 50") != std::string::npos);
+  CHECK_THAT(c.detail, !Catch::Matches(".*and [0-9]+ more.*"));
+}
