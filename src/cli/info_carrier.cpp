@@ -20,6 +20,62 @@ namespace surrogate::cli {
 
 namespace {
 
+// The lights the carrier records last (the light estimation's result): each image's path, its
+// direction's elevation and azimuth, and its uncertainty (light/@uncertaintyDegrees: the 95 %
+// bound in degrees on its angle from the true direction; absent for lights from an .lp file).
+struct RecordedLight {
+  std::string image;
+  double elevationDeg = 0, azimuthDeg = 0;
+  std::optional<double> uncertaintyDeg;
+};
+std::vector<RecordedLight> recordedLights(const carrier::Carrier& c) {
+  const carrier::Result* result = nullptr;
+  for (const carrier::Result& r : c.data)
+    if (!r.itemsOf("light").empty()) result = &r;
+  std::vector<RecordedLight> out;
+  if (!result) return out;
+  for (const carrier::DataItem* l : result->itemsOf("light")) {
+    RecordedLight rl;
+    const carrier::FileRecord* f = c.findFile(l->get("image").value_or(""));
+    rl.image = f ? f->path : l->get("image").value_or("");
+    try {
+      rl.elevationDeg = l->number("elevationDeg");
+      rl.azimuthDeg = l->number("azimuthDeg");
+      if (l->get("uncertaintyDegrees")) rl.uncertaintyDeg = l->number("uncertaintyDegrees");
+    } catch (const Error&) {
+      continue;  // a light that is not numbers is not shown
+    }
+    out.push_back(rl);
+  }
+  return out;
+}
+
+// "  lights: 12, each within 0.8-1.6 deg (median 1.1) of the true direction (95 %); the widest
+// jpeg-exports/IMG_0004.jpg", or without uncertainties "  lights: 12 (from an .lp file, no uncertainty)".
+void printLights(const carrier::Carrier& c) {
+  const std::vector<RecordedLight> lights = recordedLights(c);
+  if (lights.empty()) return;
+  std::vector<double> bounds;
+  const RecordedLight* widest = nullptr;
+  for (const RecordedLight& l : lights)
+    if (l.uncertaintyDeg) {
+      bounds.push_back(*l.uncertaintyDeg);
+      if (!widest || *l.uncertaintyDeg > *widest->uncertaintyDeg) widest = &l;
+    }
+  std::cout << "  lights: " << lights.size();
+  if (bounds.empty()) {
+    std::cout << " (no uncertainty recorded: given by an .lp file)\n";
+    return;
+  }
+  std::sort(bounds.begin(), bounds.end());
+  const double median = bounds.size() % 2 ? bounds[bounds.size() / 2]
+                                          : (bounds[bounds.size() / 2 - 1] + bounds[bounds.size() / 2]) / 2;
+  std::cout << ", each within " << fixedDecimals(bounds.front(), 1) << "-" << fixedDecimals(bounds.back(), 1)
+            << " deg (median " << fixedDecimals(median, 1) << ") of the true direction (95 %); the widest "
+            << widest->image << "\n";
+}
+
+
 using carrier::shownValue;
 
 // The processing choices a carrier records besides the human interventions: what a run without
@@ -214,6 +270,14 @@ void carrierJson(JsonWriter& j, const carrier::Carrier& c) {
     for (const std::string& n : r.notes) j.value(n);
     j.endArray().endObject();
   }
+  j.endArray().key("lights").beginArray();
+  for (const RecordedLight& l : recordedLights(c)) {
+    j.beginObject().key("image").value(l.image).key("elevationDeg").value(l.elevationDeg)
+        .key("azimuthDeg").value(l.azimuthDeg).key("uncertaintyDegrees");
+    if (l.uncertaintyDeg) j.value(*l.uncertaintyDeg);
+    else j.null();
+    j.endObject();
+  }
   j.endArray().key("warnings").beginArray();
   for (const carrier::WarningSummary& w : s.warnings)
     j.beginObject().key("step").value(w.step).key("component").value(w.component).key("time").value(w.time)
@@ -237,6 +301,7 @@ void printCarrierText(const carrier::Carrier& c) {
       std::cout << ", " << step.interventions << (step.interventions == 1 ? " decision" : " decisions") << " (below)";
     std::cout << "\n";
   }
+  printLights(c);
   printDecisionsAndRuns(c, s);
   if (s.warnings.empty()) std::cout << "  warnings: none\n";
   else printWarnings(s, 0, "");

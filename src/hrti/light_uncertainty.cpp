@@ -20,16 +20,6 @@ Vec lightOf(const DetectedSphere& s, double hx, double hy, const CameraIntrinsic
   return {l.x, l.y, l.z};
 }
 
-// Two unit vectors orthogonal to l and to each other.
-void tangentBasis(const Vec& l, Vec& e1, Vec& e2) {
-  // The axis least aligned with l, crossed with it.
-  const Vec a = std::fabs(l[0]) < 0.9 ? Vec{1, 0, 0} : Vec{0, 1, 0};
-  e1 = {l[1] * a[2] - l[2] * a[1], l[2] * a[0] - l[0] * a[2], l[0] * a[1] - l[1] * a[0]};
-  const double n = std::sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
-  for (double& v : e1) v /= n;
-  e2 = {l[1] * e1[2] - l[2] * e1[1], l[2] * e1[0] - l[0] * e1[2], l[0] * e1[1] - l[1] * e1[0]};
-}
-
 double dot(const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 // Adds J S J^T to c (2x2), J the 2x5 Jacobian on the tangent plane, S the inputs' 5x5 covariance.
@@ -45,7 +35,50 @@ void addPropagated(const double j[2][5], const double s[5][5], double weight, do
 
 double rmsDeg(const double c[2][2]) { return std::sqrt(std::max(0.0, (c[0][0] + c[1][1]) / 2)) / kDeg; }
 
+// The Jacobian (2x5) of the normalised sum's direction with respect to one sphere's hx, hy,
+// cx, cy, r, on the basis e1, e2: central differences a twentieth of a pixel apart; the
+// derivative of sum / |sum| is the tangent part of d(L_k) / |sum|.
+void jacobian(const DetectedSphere& s, double hx, double hy, const CameraIntrinsics* camera, double norm,
+              const Vec& e1, const Vec& e2, double j[2][5]) {
+  const double step = 0.05;
+  for (int p = 0; p < 5; ++p) {
+    double plus[5] = {hx, hy, s.cx, s.cy, s.r}, minus[5] = {hx, hy, s.cx, s.cy, s.r};
+    plus[p] += step;
+    minus[p] -= step;
+    DetectedSphere sp = s, sm = s;
+    sp.cx = plus[2], sp.cy = plus[3], sp.r = plus[4];
+    sm.cx = minus[2], sm.cy = minus[3], sm.r = minus[4];
+    const Vec a = lightOf(sp, plus[0], plus[1], camera), b = lightOf(sm, minus[0], minus[1], camera);
+    Vec d;
+    for (int i = 0; i < 3; ++i) d[i] = (a[i] - b[i]) / (2 * step) / norm;
+    j[0][p] = dot(d, e1);
+    j[1][p] = dot(d, e2);
+  }
+}
+
 }  // namespace
+
+void tangentBasis(const Vec& l, Vec& e1, Vec& e2) {
+  // The axis least aligned with l, crossed with it.
+  const Vec a = std::fabs(l[0]) < 0.9 ? Vec{1, 0, 0} : Vec{0, 1, 0};
+  e1 = {l[1] * a[2] - l[2] * a[1], l[2] * a[0] - l[0] * a[2], l[0] * a[1] - l[1] * a[0]};
+  const double n = std::sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
+  for (double& v : e1) v /= n;
+  e2 = {l[1] * e1[2] - l[2] * e1[1], l[2] * e1[0] - l[0] * e1[2], l[0] * e1[1] - l[1] * e1[0]};
+}
+
+
+LightCovariance propagate(const DetectedSphere& sphere, double hx, double hy, const double inputs[5][5],
+                          const CameraIntrinsics* camera) {
+  LightCovariance out;
+  out.direction = lightOf(sphere, hx, hy, camera);
+  Vec e1, e2;
+  tangentBasis(out.direction, e1, e2);
+  double j[2][5];
+  jacobian(sphere, hx, hy, camera, 1, e1, e2, j);
+  addPropagated(j, inputs, 1, out.c);
+  return out;
+}
 
 void highlightCovariance(const Highlight& h, const DetectedSphere& sphere, double out[2][2]) {
   (void)sphere;
@@ -105,23 +138,8 @@ LightCovariance lightCovariance(const std::vector<SphereEvidence>& evidence, con
   for (std::size_t k = 0; k < evidence.size(); ++k) {
     const DetectedSphere& s = evidence[k].sphere;
     const Highlight& h = evidence[k].highlight;
-    // Central differences of the direction in hx, hy, cx, cy, r, a twentieth of a pixel apart;
-    // the derivative of the sum's normalised direction is the tangent part of d(L_k) / |sum|.
-    const double step = 0.05;
     double j[2][5];
-    for (int p = 0; p < 5; ++p) {
-      double plus[5] = {h.x, h.y, s.cx, s.cy, s.r}, minus[5] = {h.x, h.y, s.cx, s.cy, s.r};
-      plus[p] += step;
-      minus[p] -= step;
-      DetectedSphere sp = s, sm = s;
-      sp.cx = plus[2], sp.cy = plus[3], sp.r = plus[4];
-      sm.cx = minus[2], sm.cy = minus[3], sm.r = minus[4];
-      const Vec a = lightOf(sp, plus[0], plus[1], camera), b = lightOf(sm, minus[0], minus[1], camera);
-      Vec d;
-      for (int i = 0; i < 3; ++i) d[i] = (a[i] - b[i]) / (2 * step) / norm;
-      j[0][p] = dot(d, e1);
-      j[1][p] = dot(d, e2);
-    }
+    jacobian(s, h.x, h.y, camera, norm, e1, e2, j);
     double hc[2][2];
     highlightCovariance(h, s, hc);
     double centrePx = 0, radiusPx = 0;
@@ -155,25 +173,27 @@ LightCovariance lightCovariance(const std::vector<SphereEvidence>& evidence, con
 }
 
 double gaussianRadius(const double c[2][2], double p) {
-  // Eigenvalues of c; P(|X| <= t) = 1/(2 pi sqrt(l1 l2)) * integral over the angle of
-  // (1 - exp(-t^2 a / 2)) / a, a = cos^2/l1 + sin^2/l2 (polar coordinates), solved for t by
-  // bisection. The integrand is symmetric: a quarter turn, midpoint rule.
+  // Along the eigenvectors (variances l1 >= l2): P(|X| <= t) = integral over x in [-t, t] of the
+  // normal density of x (variance l1) times P(|Y| <= sqrt(t^2 - x^2)) = erf(sqrt(t^2 - x^2) /
+  // sqrt(2 l2)); with x = t sin u the integrand is smooth (midpoint rule), and as l2 -> 0 it
+  // tends to erf(t / sqrt(2 l1)). Solved for t by bisection.
   const double mean = (c[0][0] + c[1][1]) / 2;
   const double det = c[0][0] * c[1][1] - c[0][1] * c[1][0];
   const double diff = std::sqrt(std::max(0.0, mean * mean - det));
-  const double l1 = std::max(mean + diff, 1e-300), l2 = std::max(mean - diff, l1 * 1e-12);
+  const double l1 = mean + diff, l2 = std::max(0.0, mean - diff);
+  if (!(l1 > 0)) return 0;
   auto probability = [&](double t) {
-    constexpr int kSteps = 256;
+    constexpr int kSteps = 512;
     double sum = 0;
     for (int i = 0; i < kSteps; ++i) {
-      const double th = (i + 0.5) * (M_PI / 2) / kSteps;
-      const double a = std::cos(th) * std::cos(th) / l1 + std::sin(th) * std::sin(th) / l2;
-      sum += (1 - std::exp(-t * t * a / 2)) / a;
+      const double u = -M_PI / 2 + (i + 0.5) * M_PI / kSteps;
+      const double x = t * std::sin(u), y = t * std::cos(u);
+      const double across = l2 > 0 ? std::erf(y / std::sqrt(2 * l2)) : 1.0;
+      sum += std::exp(-x * x / (2 * l1)) / std::sqrt(2 * M_PI * l1) * across * t * std::cos(u);
     }
-    return sum * (M_PI / 2) / kSteps * 4 / (2 * M_PI * std::sqrt(l1 * l2));
+    return sum * M_PI / kSteps;
   };
-  double lo = 0, hi = 10 * std::sqrt(l1);
-  while (probability(hi) < p) hi *= 2;
+  double lo = 0, hi = 4 * std::sqrt(l1 + l2);  // P(|X| <= 4 sqrt(trace)) > 0.999
   for (int i = 0; i < 60; ++i) {
     const double mid = (lo + hi) / 2;
     (probability(mid) < p ? lo : hi) = mid;

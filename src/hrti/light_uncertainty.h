@@ -41,14 +41,14 @@ struct LightUncertaintyModel {
   // (a glare streak, a clipped side, an extended lamp seen obliquely), Sigma's excess over its
   // smaller eigenvalue l2. Covariance taken: kAsymmetry^2 (Sigma - l2 I) + kSpread^2 Sigma +
   // kMinHighlightPx^2 I.
-  static constexpr double kAsymmetry = 0.5;
+  static constexpr double kAsymmetry = 0.25;
   static constexpr double kSpread = 0.0;
   static constexpr double kMinHighlightPx = 0.05;
   // The circle: the rim fit's standard errors times kCircleFactor (the edge's bias along whole
   // arcs, which the fit's residuals do not show); without them kCircleShare of the radius.
-  static constexpr double kCircleFactor = 2.0;
+  static constexpr double kCircleFactor = 1.5;
   static constexpr double kCircleShare = 0.003;
-  static constexpr double kFloorDeg = 0.3;  // per axis, 1 sigma
+  static constexpr double kFloorDeg = 0.4;  // per axis, 1 sigma
   static constexpr double kScale = 1.0;     // bound = kScale * the 95 % radius
 };
 
@@ -71,6 +71,15 @@ LightCovariance lightCovariance(const std::vector<SphereEvidence>& evidence, con
 
 // The 95 % bound in degrees (model above) of the light these spheres give.
 double lightUncertaintyDeg(const std::vector<SphereEvidence>& evidence, const CameraIntrinsics* camera);
+
+// One sphere's direction's covariance on the plane tangent to it (radians^2, basis
+// tangentBasis(direction)) from its inputs' covariance `inputs` (pixels^2, order hx, hy, cx, cy,
+// r), through the model's Jacobian: the propagation alone, without the model's terms.
+LightCovariance propagate(const DetectedSphere& sphere, double hx, double hy, const double inputs[5][5],
+                          const CameraIntrinsics* camera);
+
+// Two unit vectors orthogonal to l and to each other: the basis of LightCovariance::c.
+void tangentBasis(const std::array<double, 3>& l, std::array<double, 3>& e1, std::array<double, 3>& e2);
 
 // The radius holding `p` of a zero-mean 2D Gaussian of covariance c (any units).
 double gaussianRadius(const double c[2][2], double p);

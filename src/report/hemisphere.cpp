@@ -14,6 +14,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kCentre = 180, kRadius = 150;
+constexpr double kLightDot = 6;  // a light's dot, radius in the plot's units
 
 double wrap360(double deg) {
   double d = std::fmod(deg, 360.0);
@@ -186,6 +187,17 @@ std::string hemisphereSvg(const std::vector<LightPoint>& lights, const Coverage&
     s << "<path class=\"gap\" d=\"" << sectorPath(0, 90, g.fromDeg, g.fromDeg + width) << "\"/>\n";
   }
   drawGrid(s);
+  // Each light's uncertainty, beneath the lights: a ring of its 95 % bound (the plot's radius is
+  // 90 degrees of elevation, so the ring is exact along the elevation and close across it),
+  // where it reaches beyond the light's dot (radius 6, 3.6 degrees).
+  for (const LightPoint& l : lights) {
+    const double ring = l.uncertaintyDeg ? std::min(*l.uncertaintyDeg, 90.0) / 90 * kRadius : 0;
+    if (!(ring > kLightDot)) continue;
+    double x, y;
+    project(l.elevationDeg, l.azimuthDeg, x, y);
+    s << "<circle class=\"light-bound\" cx=\"" << num(x) << "\" cy=\"" << num(y) << "\" r=\"" << num(ring)
+      << "\" fill=\"none\" stroke=\"#555555\" stroke-dasharray=\"2,2\"/>\n";
+  }
   // The lights.
   for (const LightPoint& l : lights) {
     double x, y;
@@ -199,6 +211,7 @@ std::string hemisphereSvg(const std::vector<LightPoint>& lights, const Coverage&
       << escapeHtml(l.image) << "\"><title>" << escapeHtml(l.image)
       << ": elevation " << displayNumber(l.elevationDeg, 1) << "\u00b0, azimuth "
       << displayNumber(l.azimuthDeg, 1) << "\u00b0"
+      << (l.uncertaintyDeg ? ", within " + displayNumber(*l.uncertaintyDeg, 1) + "\u00b0 (95 %)" : std::string())
       << (l.rmse ? ", residual " + displayNumber(*l.rmse, 2) + " levels" : std::string())
       << (l.highlightConfidence || l.highlightByHand ? ", highlight confidence " + highlightConfidenceText(l)
                                                      : std::string())

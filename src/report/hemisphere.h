@@ -35,6 +35,9 @@ struct LightPoint {
   // A highlight the light was measured from was given by hand (flag "manual"): it has no
   // confidence of its own (the carrier records 1), so it does not count in highlightConfidence.
   bool highlightByHand = false;
+  // The 95 % bound in degrees on the light's angle from the true direction (carrier
+  // light/@uncertaintyDegrees, hrti/light_uncertainty.h); absent for lights from an .lp file.
+  std::optional<double> uncertaintyDeg;
 };
 
 // The highlight confidence as the page shows it: "0.93", "by hand", "0.93, and one by hand",

@@ -88,6 +88,13 @@ std::vector<LightPoint> collectLights(const carrier::Carrier& c, std::string* fi
     } catch (const Error&) {
       continue;  // a light that is not numbers cannot be plotted
     }
+    if (l->get("uncertaintyDegrees")) {
+      try {
+        p.uncertaintyDeg = l->number("uncertaintyDegrees");
+      } catch (const Error&) {
+        // not a number: shown as unknown
+      }
+    }
     if (const auto it = rmse.find(id); it != rmse.end()) p.rmse = it->second;
     if (const auto it = confidence.find(id); it != confidence.end()) p.highlightConfidence = it->second;
     p.highlightByHand = byHand.count(id) > 0;
@@ -133,11 +140,18 @@ std::string lightsSection(const carrier::Carrier& c, const std::vector<LightPoin
   if (anyDoubtful)
     s << "<p class=\"warning\">A red ring marks a light measured from a highlight of confidence below "
       << displayNumber(kDoubtfulConfidence, 1) << ": check it on the highlight overview.</p>";
+  const bool anyBound = std::any_of(lights.begin(), lights.end(), [](const LightPoint& l) { return l.uncertaintyDeg; });
+  if (anyBound)
+    s << "<p>Each light is within its uncertainty of the true direction, 95 times in 100: the column "
+         "\u00b1\u00b0 below (from its highlight, its sphere's circle and, with several spheres, their "
+         "disagreement); on the plot, a dashed ring where it is wider than the light's dot (3.6\u00b0).</p>";
   s << "</div></div><details><summary>Every light</summary><table><tr><th>image</th>"
-       "<th>elevation \u00b0</th><th>azimuth \u00b0</th><th>residual</th><th>highlight confidence</th></tr>";
+       "<th>elevation \u00b0</th><th>azimuth \u00b0</th><th>\u00b1\u00b0 (95 %)</th><th>residual</th>"
+       "<th>highlight confidence</th></tr>";
   for (const LightPoint& l : lights)
     s << "<tr><td><code>" << escapeHtml(l.image) << "</code></td><td class=\"num\">"
       << displayNumber(l.elevationDeg, 1) << "</td><td class=\"num\">" << displayNumber(l.azimuthDeg, 1)
+      << "</td><td class=\"num\">" << (l.uncertaintyDeg ? displayNumber(*l.uncertaintyDeg, 1) : "-")
       << "</td><td class=\"num\">" << (l.rmse ? displayNumber(*l.rmse, 2) : "-") << "</td><td class=\"num\">"
       << highlightConfidenceText(l) << "</td></tr>";
   s << "</table></details></section>";

@@ -305,6 +305,7 @@ const char* const kReviewJs = R"JS(
     function row(k, v) { dl.appendChild(el("dt", { text: k })); dl.appendChild(el("dd", { text: v })); }
     row("file", f.path);
     if (f.light) row("light", "elevation " + shown(f.light.elevation) + "\u00b0, azimuth " + shown(f.light.azimuth) + "\u00b0" +
+                     (f.light.uncertaintyDegrees != null ? " \u00b1" + shown(f.light.uncertaintyDegrees) + "\u00b0 (95 %)" : "") +
                      (f.light.rmse != null ? ", residual " + shown(f.light.rmse, 2) + " levels" : ""));
     f.highlights.forEach(function (h) {
       row("sphere " + (h.sphere + 1), h.flag + (h.x != null ? " at " + shown(h.x) + ", " + shown(h.y) : "") +

@@ -188,6 +188,7 @@ CaptureState readCaptureState(const fs::path& captureArg, const std::string& who
       json light = {{"elevation", l.elevationDeg}, {"azimuth", l.azimuthDeg}};
       if (l.rmse) light["rmse"] = *l.rmse;
       if (l.highlightConfidence) light["confidence"] = *l.highlightConfidence;
+      if (l.uncertaintyDeg) light["uncertaintyDegrees"] = *l.uncertaintyDeg;
       it->second["light"] = light;
     }
     state["fitLabel"] = fitLabel;
