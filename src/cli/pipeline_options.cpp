@@ -272,8 +272,10 @@ run::RunRequest requestFrom(const Args& args) {
       }
     }
     if (name == "accept") {
-      // The residual check runs after each fit, the others with the lights.
+      // The residual check runs after each fit, frame-moved with the highlights, the others with
+      // the lights.
       const char* component = value == hrti::kCheckResidualOutlier ? stages::RtiFitStage::kComponent
+                              : value == hrti::kCheckFrameMoved    ? stages::HighlightDetectionStage::kComponent
                                                                    : stages::LightDirectionsStage::kComponent;
       r.stageInterventions.push_back({component, {stages::kAcceptCheck, value, "", "", "", ""}});
       last = &r.stageInterventions.back().intervention;

@@ -77,6 +77,8 @@ const char* flagName(HighlightFlag f) {
     case HighlightFlag::Large: return "large";
     case HighlightFlag::NotCompact: return "not-compact";
     case HighlightFlag::Shaded: return "shaded";
+    case HighlightFlag::Fixed: return "fixed";
+    case HighlightFlag::Faint: return "faint";
   }
   return "none";
 }

@@ -82,10 +82,13 @@ enum class HighlightFlag {
   Large,       // refused: bright over a large part of the disc, not a highlight
   NotCompact,  // refused: the peak is a single pixel, a speck or a streak
   Shaded,      // refused: the whole disc follows the light (a matte object, not a mirror sphere)
+  // Judged against the other images (hrti/highlight_consistency.h):
+  Fixed,       // refused: the spot rises in other images too, or is bright in most: a reflection or dust
+  Faint,       // refused: far less light than the other images' highlights: the highlight is missing
 };
 
-// "ok", "multiple", "manual", "none", "flat", "saturated", "large", "not-compact", "shaded": the carrier's
-// highlight/@flag.
+// "ok", "multiple", "manual", "none", "flat", "saturated", "large", "not-compact", "shaded", "fixed",
+// "faint": the carrier's highlight/@flag.
 const char* flagName(HighlightFlag flag);
 // Ok, Multiple and Manual give a light direction; the others do not.
 bool isUsable(HighlightFlag flag);
@@ -120,6 +123,10 @@ struct Highlight {
   // The covariance (pixels^2) of (x, y) as an estimate of the point where the light's mirror
   // reflection is, from the core's extent and saturation; 0 when not measured (by hand).
   double covXX = 0, covXY = 0, covYY = 0;
+  // Pixels at full scale (kSaturatedLevel) within 0.2 of the radius around it, counted by
+  // judgeAcrossImages (hrti/highlight_consistency.h): what exposure-outlier compares for a frame
+  // too bright. 0 when not counted.
+  double clippedArea = 0;
   // Why a highlight is refused or doubtful, for people: "18 % of the sphere is at least
   // halfway up to its brightest value (a highlight covers under 10 %)". Empty when Ok.
   std::string reason;

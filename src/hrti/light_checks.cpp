@@ -21,9 +21,15 @@ double median(std::vector<double> v) {
 LightCheck belowHorizon(const LightCheckInput& in) {
   LightCheck c{kCheckBelowHorizon, false, "", {}};
   std::vector<std::string> named;
+  // Behind the horizon when even the light's 95 % bound does not reach it: the margin is its
+  // uncertainty when measured (at most kMaxHorizonMarginDeg), else kHorizonMarginDeg.
+  const bool bounds = in.uncertaintyDeg.size() == in.lights.size();
   for (std::size_t i = 0; i < in.lights.size(); ++i) {
     const double e = elevationDeg(in.lights[i]);
-    if (e >= -LightCheckLimits::kHorizonMarginDeg) continue;
+    const double u = bounds && std::isfinite(in.uncertaintyDeg[i]) && in.uncertaintyDeg[i] >= 0
+                         ? std::min(in.uncertaintyDeg[i], LightCheckLimits::kMaxHorizonMarginDeg)
+                         : LightCheckLimits::kHorizonMarginDeg;
+    if (e >= -u) continue;
     c.images.push_back(static_cast<int>(i));
     named.push_back(in.names[i] + " (" + fixedDecimals(e, 0) + " deg)");
   }
@@ -107,6 +113,16 @@ LightCheck exposureOutlier(const LightCheckInput& in) {
       if (p > 0) peaks.push_back(p);
     typicalPeak = median(peaks);
   }
+  // The clipped area around the highlight: the lamp's halo reaches full scale farther out in a
+  // frame exposed too long, whatever the light's direction (the peak itself is clipped and
+  // cannot tell).
+  double typicalClipped = 0;
+  if (in.clippedAreas.size() == n) {
+    std::vector<double> areas;
+    for (double a : in.clippedAreas)
+      if (a > 0) areas.push_back(a);
+    if (areas.size() * 2 > n) typicalClipped = median(areas);
+  }
   // The mean brightness against the photographs lit from the nearest directions: catches a
   // frame far too bright, or dark where the highlight is not measured.
   const bool means = in.imageMeans.size() == n && n >= static_cast<std::size_t>(LightCheckLimits::kNeighbours) + 2;
@@ -116,6 +132,10 @@ LightCheck exposureOutlier(const LightCheckInput& in) {
         in.highlightPeaks[i] < LightCheckLimits::kPeakRatio * typicalPeak) {
       why = "its highlight peaks at " + fixedDecimals(100 * in.highlightPeaks[i] / typicalPeak, 0) +
             " % of the others': too dark";
+    } else if (typicalClipped >= LightCheckLimits::kMinClippedPx &&
+               in.clippedAreas[i] > LightCheckLimits::kClippedRatio * typicalClipped) {
+      why = "its highlight's halo is clipped at full scale over " +
+            fixedDecimals(in.clippedAreas[i] / typicalClipped, 1) + " times the others' area: too bright";
     } else if (means) {
       std::vector<std::pair<double, std::size_t>> near;
       for (std::size_t j = 0; j < n; ++j)
@@ -143,7 +163,7 @@ LightCheck exposureOutlier(const LightCheckInput& in) {
 }  // namespace
 
 const std::vector<std::string>& lightCheckNames() {
-  static const std::vector<std::string> names = {kCheckBelowHorizon,     kCheckSpheresOverlap,
+  static const std::vector<std::string> names = {kCheckFrameMoved,       kCheckBelowHorizon,     kCheckSpheresOverlap,
                                                  kCheckSpheresDisagree,  kCheckLightsClustered,
                                                  kCheckExposureOutlier, kCheckResidualOutlier};
   return names;
@@ -182,6 +202,24 @@ LightCheck residualCheck(const std::vector<double>& rmse, const std::vector<std:
                             "): a misfired flash, a moved object or a wrong light direction, which pulls every "
                             "pixel's fit toward it"
                       : "no image stands out of the others' fit error (" + typical + ")";
+  return c;
+}
+
+LightCheck frameMovedCheck(const std::vector<double>& movedPx, double limitPx, const std::vector<std::string>& names) {
+  LightCheck c{kCheckFrameMoved, false, "", {}};
+  std::vector<std::string> named;
+  for (std::size_t i = 0; i < movedPx.size() && i < names.size(); ++i) {
+    if (!(movedPx[i] > limitPx)) continue;
+    c.images.push_back(static_cast<int>(i));
+    named.push_back(names[i] + " (" + fixedDecimals(movedPx[i], 0) + " px)");
+  }
+  c.failed = !c.images.empty();
+  c.detail = c.failed ? "the picture moved against the other images by more than " + fixedDecimals(limitPx, 0) +
+                            " pixels: " + listedInFull(named) +
+                            ". The camera was knocked or turned, or the sphere or the object was bumped, between the "
+                            "shots: every pixel of the fit would mix different points, and the light would be "
+                            "measured on a circle that is not where the sphere is"
+                      : "no image moved against the others by more than " + fixedDecimals(limitPx, 0) + " pixels";
   return c;
 }
 

@@ -1,6 +1,7 @@
 #include "stages/highlight_detection_stage.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 
 #include "capture/capture.h"
@@ -8,13 +9,17 @@
 #include "core/error.h"
 #include "core/text.h"
 #include "hrti/drawing.h"
+#include "hrti/frame_registration.h"
+#include "hrti/highlight_consistency.h"
 #include "hrti/highlight_detection.h"
+#include "hrti/light_checks.h"
 #include "hrti/stack_median.h"
 #include "pipeline/context.h"
 #include "stages/frame_checks.h"
 #include "stages/inputs.h"
 #include "stages/light_estimation.h"
 #include "stages/outputs.h"
+#include "stages/recorded_checks.h"
 #include "stages/sphere_detection_stage.h"
 #include "stages/stack_views.h"
 
@@ -86,8 +91,10 @@ pipeline::StageInfo HighlightDetectionStage::info() {
   // 9: a clipped highlight's centre is the deepest point of its saturated plateau (a glare streak
   //    through it pulled the centroid 2 to 8 px on PSBox's light probes), and the core's centroid
   //    is weighted by the height above its edge: positions differ from version 8's
+  // 10: each highlight judged against the other images (flags fixed and faint refused,
+  //    hrti/highlight_consistency.h), and every frame registered to the stack: check frame-moved
   pipeline::StageInfo info = pipeline::withOptions<hrti::HighlightOptions>(
-      {kComponent, "9",
+      {kComponent, "10",
        "Find the specular highlight on each sphere in each image: the peak of the image's rise "
        "above the stack's median, blurred; the centroid of its core, or the deepest point of its "
        "saturated plateau when clipped",
@@ -107,6 +114,19 @@ void HighlightDetectionStage::run(const carrier::Step& step, pipeline::Context& 
   ctx.progress("Highlight detection", 0);
   auto highlights = std::make_shared<Highlights>(
       hrti::detectHighlights(*lum, *spheres, options, ctx.settings.threads, median.get()));
+  // A spot that rises in the other images too, or is bright in most of them, is not this image's
+  // highlight; one that rises far less than the others' highlights is not one either
+  // (hrti/highlight_consistency.h). Exposures compared in linear light, like exposure-outlier's.
+  std::vector<double> linearMeans;
+  for (double m : median->imageMeans())
+    linearMeans.push_back(
+        toLinear(static_cast<std::uint16_t>(std::lround(std::clamp(m, 0.0, 1.0) * 65535)), median->transfer()));
+  hrti::judgeAcrossImages(*lum, *median, *spheres, *highlights, linearMeans, ctx.settings.threads);
+  // Every frame registered to the stack (hrti/frame_registration.h): a frame that moved is named
+  // as such before its highlight is judged, whatever its highlight looks like.
+  std::vector<double> movedPx;
+  for (const hrti::FrameMotion& m : hrti::registerFrames(*lum, ctx.settings.threads))
+    movedPx.push_back(m.measured ? m.largestPx : -1);
 
   // Manual highlights: target "IMAGE:SPHERE" (sphere index from 0), value "x,y".
   for (const carrier::Intervention* i : step.interventionsOfKind("manual-highlight")) {
@@ -194,6 +214,9 @@ void HighlightDetectionStage::run(const carrier::Step& step, pipeline::Context& 
   const carrier::Step* sphereStep = nullptr;
   for (const carrier::Step& s : ctx.carrier.process)
     if (s.component == SphereDetectionStage::kComponent) sphereStep = &s;
+  recordChecks(step, ctx, result, {hrti::frameMovedCheck(movedPx, hrti::movedLimitPx(lum->width()), imageLabels)},
+               {"highlight detection", "the frames", "they do not show the same scene"},
+               [&](const hrti::LightCheck& c) { return excludeImagesFix(c, imageLabels); });
   for (std::size_t k = 0; k < spheres->size(); ++k)
     if (2 * refusedOn[k].size() > inputs->size() && refusedOn[k].size() >= kSphereRefusals && sphereStep)
       refuseSphereWithoutHighlights(*sphereStep, (*spheres)[k], k, refusedOn[k], inputs->size());

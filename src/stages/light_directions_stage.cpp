@@ -147,7 +147,8 @@ pipeline::StageInfo LightDirectionsStage::info() {
   // 5: exposure-outlier compares exposures in linear light (it compared sRGB values, and let a
   //    frame at 5 % exposure through)
   // 6: each light records its uncertainty, uncertaintyDegrees (hrti/light_uncertainty.h), and
-  //    the light checks are given it (LightCheckInput::uncertaintyDeg)
+  //    the light checks are given it (LightCheckInput::uncertaintyDeg: lights-below-horizon's
+  //    margin); exposure-outlier also compares each highlight's clipped area (a frame too bright)
   pipeline::StageInfo info = pipeline::withOptions<LightDirectionsOptions>(
       {kComponent, "6",
        "Light direction of each image from its highlights by the law of reflection, checked for "
@@ -255,6 +256,10 @@ void LightDirectionsStage::run(const carrier::Step& step, pipeline::Context& ctx
     for (const hrti::Highlight& h : row)
       if (hrti::isUsable(h.flag) && h.flag != hrti::HighlightFlag::Manual) peak = std::max(peak, h.peak);
     checks.highlightPeaks.push_back(peak > 0 ? linear(peak) : 0);
+    double clipped = 0;
+    for (const hrti::Highlight& h : row)
+      if (hrti::isUsable(h.flag)) clipped = std::max(clipped, h.clippedArea);
+    checks.clippedAreas.push_back(clipped);
   }
   for (const InputImage& in : *inputs) checks.names.push_back(in.stem);
   recordChecks(step, ctx, result, hrti::checkLights(checks),

@@ -1,0 +1,179 @@
+#include "hrti/frame_registration.h"
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+
+#include "core/parallel.h"
+
+namespace surrogate::hrti {
+
+namespace {
+
+// Frame `index` reduced f times: the mean of the f pixels of each f x f block's middle row (the
+// right and bottom remainders left out), 0..1.
+cv::Mat reduced(const ImageStack& stack, int index, int f) {
+  const int w = stack.width() / f, h = stack.height() / f;
+  cv::Mat out(h, w, CV_32F);
+  std::vector<std::uint16_t> row(static_cast<std::size_t>(stack.width()));
+  for (int y = 0; y < h; ++y) {
+    stack.readWindow(index, 0, y * f + f / 2, w * f, y * f + f / 2 + 1, row.data());
+    for (int x = 0; x < w; ++x) {
+      double sum = 0;
+      for (int k = 0; k < f; ++k) sum += row[static_cast<std::size_t>(x * f + k)];
+      out.at<float>(y, x) = static_cast<float>(sum / (65535.0 * f));
+    }
+  }
+  return out;
+}
+
+cv::Mat gradient(const cv::Mat& image) {
+  cv::Mat gx, gy, magnitude;
+  cv::Sobel(image, gx, CV_32F, 1, 0);
+  cv::Sobel(image, gy, CV_32F, 0, 1);
+  cv::magnitude(gx, gy, magnitude);
+  return magnitude;
+}
+
+struct Fit {
+  bool ok = false;
+  double tx = 0, ty = 0, theta = 0, worst = 1e300;
+};
+
+// The rigid motion s = t + theta (-cy, cx) through the shifts `used` of the quarters (centres c
+// relative to the frame's centre), by least squares.
+Fit fitMotion(const std::array<cv::Point2d, 4>& centre, const std::array<cv::Point2d, 4>& shift,
+              const std::vector<int>& used) {
+  cv::Mat a(static_cast<int>(used.size()) * 2, 3, CV_64F, cv::Scalar(0)), b(a.rows, 1, CV_64F);
+  for (std::size_t k = 0; k < used.size(); ++k) {
+    const int q = used[k], r = static_cast<int>(2 * k);
+    a.at<double>(r, 0) = 1;
+    a.at<double>(r, 2) = -centre[q].y;
+    b.at<double>(r) = shift[q].x;
+    a.at<double>(r + 1, 1) = 1;
+    a.at<double>(r + 1, 2) = centre[q].x;
+    b.at<double>(r + 1) = shift[q].y;
+  }
+  cv::Mat x;
+  Fit f;
+  if (!cv::solve(a, b, x, cv::DECOMP_SVD)) return f;
+  f.tx = x.at<double>(0);
+  f.ty = x.at<double>(1);
+  f.theta = x.at<double>(2);
+  f.worst = 0;
+  for (int q : used) {
+    const double px = f.tx - f.theta * centre[q].y, py = f.ty + f.theta * centre[q].x;
+    f.worst = std::max(f.worst, std::hypot(px - shift[q].x, py - shift[q].y));
+  }
+  // A rotation shifts each quarter's features by different amounts, so the tolerance grows with
+  // the motion: a fraction of its largest displacement at the points used.
+  double largest = 0;
+  for (int q : used) largest = std::max(largest, std::hypot(f.tx - f.theta * centre[q].y, f.ty + f.theta * centre[q].x));
+  using L = RegistrationLimits;
+  // The model holds for small turns only: a large theta fits any three shifts.
+  f.ok = f.worst <= std::min(L::kAgreeMaxPx, std::max(L::kAgreePx, L::kAgreeShare * largest)) &&
+         std::abs(f.theta) <= L::kMaxTurn;
+  return f;
+}
+
+}  // namespace
+
+int registrationFactor(int width) {
+  return std::max(1, static_cast<int>(std::lround(double(width) / RegistrationLimits::kWidth)));
+}
+
+double movedLimitPx(int width) { return RegistrationLimits::kMovedPx * registrationFactor(width); }
+
+std::vector<FrameMotion> registerFrames(const ImageStack& stack, int threads) {
+  const int n = stack.size();
+  std::vector<FrameMotion> out(static_cast<std::size_t>(std::max(0, n)));
+  const int f = registrationFactor(stack.width());
+  const int w = stack.width() / f, h = stack.height() / f;
+  if (n < 3 || stack.channels() != 1 || w < 16 || h < 16) return out;
+  std::vector<cv::Mat> frames(static_cast<std::size_t>(n));
+  const int workers = effectiveThreads(threads);
+  parallelFor(static_cast<std::size_t>(n), 1, workers, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) frames[i] = reduced(stack, static_cast<int>(i), f);
+  });
+  // The per-pixel median of the reduced frames: the lower of the two middle values.
+  cv::Mat median(h, w, CV_32F);
+  parallelFor(static_cast<std::size_t>(h), 8, workers, [&](std::size_t b, std::size_t e) {
+    std::vector<float> values(static_cast<std::size_t>(n));
+    for (std::size_t y = b; y < e; ++y)
+      for (int x = 0; x < w; ++x) {
+        for (int i = 0; i < n; ++i)
+          values[static_cast<std::size_t>(i)] = frames[static_cast<std::size_t>(i)].at<float>(static_cast<int>(y), x);
+        std::nth_element(values.begin(), values.begin() + (n - 1) / 2, values.end());
+        median.at<float>(static_cast<int>(y), x) = values[static_cast<std::size_t>((n - 1) / 2)];
+      }
+  });
+  const cv::Mat reference = gradient(median);
+  const int qw = w / 2, qh = h / 2;
+  cv::Mat window;
+  cv::createHanningWindow(window, cv::Size(qw, qh), CV_32F);
+  std::array<cv::Rect, 4> quarters;
+  std::array<cv::Point2d, 4> centres;
+  for (int q = 0; q < 4; ++q) {
+    quarters[q] = cv::Rect((q % 2) * qw, (q / 2) * qh, qw, qh);  // centres[q] below
+    centres[q] = {(q % 2) * qw + qw / 2.0 - w / 2.0, (q / 2) * qh + qh / 2.0 - h / 2.0};
+  }
+  // Each quarter's shift is that of its strongest edges: the point it applies to is the centroid
+  // of the median's gradient there (weighted by the window), not the quarter's centre.
+  std::array<cv::Mat, 4> referenceQuarters;
+  for (int q = 0; q < 4; ++q) {
+    referenceQuarters[q] = reference(quarters[q]).clone();
+    const cv::Mat weight = referenceQuarters[q].mul(window);
+    const cv::Moments m = cv::moments(weight);
+    if (m.m00 > 0)
+      centres[q] = {quarters[q].x + m.m10 / m.m00 - w / 2.0, quarters[q].y + m.m01 / m.m00 - h / 2.0};
+  }
+  parallelFor(static_cast<std::size_t>(n), 1, workers, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) {
+      const cv::Mat g = gradient(frames[i]);
+      std::array<cv::Point2d, 4> shift;
+      std::array<bool, 4> usable;
+      std::array<double, 4> response;
+      for (int q = 0; q < 4; ++q) {
+        shift[q] = cv::phaseCorrelate(referenceQuarters[q], g(quarters[q]).clone(), window, &response[q]);
+        usable[q] = response[q] >= RegistrationLimits::kMinResponse;
+      }
+      // The quarters a motion is fitted to must, together, correlate clearly: three weak peaks
+      // (shadows that moved with the light) can agree by chance.
+      const auto clear = [&](const std::vector<int>& used) {
+        double sum = 0;
+        for (int q : used) sum += response[q];
+        return sum >= RegistrationLimits::kMinMeanResponse * used.size();
+      };
+      // All four quarters, else the three that agree best; a quarter whose correlation has no
+      // clear peak (nothing steady in it) is not used.
+      Fit best;
+      if (usable[0] && usable[1] && usable[2] && usable[3] && clear({0, 1, 2, 3}))
+        best = fitMotion(centres, shift, {0, 1, 2, 3});
+      if (!best.ok)
+        for (int drop = 0; drop < 4; ++drop) {
+          std::vector<int> used;
+          for (int q = 0; q < 4; ++q)
+            if (q != drop && usable[q]) used.push_back(q);
+          if (used.size() < 3 || !clear(used)) continue;
+          const Fit f3 = fitMotion(centres, shift, used);
+          if (f3.ok && f3.worst < best.worst) best = f3;
+        }
+      if (!best.ok) continue;
+      FrameMotion& m = out[i];
+      m.measured = true;
+      m.dx = best.tx * f;
+      m.dy = best.ty * f;
+      m.rotationDeg = best.theta * 180 / M_PI;
+      for (int q = 0; q < 4; ++q)
+        m.largestPx = std::max(m.largestPx, f * std::hypot(best.tx - best.theta * centres[q].y,
+                                                            best.ty + best.theta * centres[q].x));
+    }
+  });
+  return out;
+}
+
+}  // namespace surrogate::hrti
