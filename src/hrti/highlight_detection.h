@@ -14,7 +14,11 @@
 //      blob several pixels wide and keeps its height, a hot pixel or a thin glare streak
 //      does not;
 //   3. the peak of B; the 8-connected pixels around it with B >= threshold * peak; the
-//      B-weighted centroid of that core (sub-pixel), not of the streak or halo around it.
+//      centroid of that core weighted by B - threshold * peak (sub-pixel), not of the streak or
+//      halo around it;
+//   4. where the image is clipped inside the core in a plateau at least 6 px deep, the
+//      plateau's deepest point instead (the centre of the largest disc inside it): a glare
+//      streak clipped with the highlight is thinner, so it pulls a centroid but not that point.
 // Without a median (a stack of fewer than three images) D is the image itself.
 //
 // Seven measures say whether the peak is a highlight. M is the disc within 0.85 of the
@@ -121,7 +125,10 @@ struct Highlight {
   double confidence = 0;  // 0..1: the lowest score (see above); 1 when given by hand
   HighlightMeasures measures;
   // The covariance (pixels^2) of (x, y) as an estimate of the point where the light's mirror
-  // reflection is, from the core's extent and saturation; 0 when not measured (by hand).
+  // reflection is, 1 sigma, uncalibrated; 0 when not measured (by hand). A core's centroid: the
+  // covariance of its pixel positions divided by the blur footprints (4 pi sigma^2 pixels)
+  // among its unsaturated pixels, at least 1. A plateau's deepest point: the covariance of the
+  // plateau's points within 80 % of its greatest depth (long along a plateau with no one centre).
   double covXX = 0, covXY = 0, covYY = 0;
   // Pixels at full scale (kSaturatedLevel) within 0.2 of the radius around it, counted by
   // judgeAcrossImages (hrti/highlight_consistency.h): what exposure-outlier compares for a frame

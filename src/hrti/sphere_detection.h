@@ -64,7 +64,10 @@ struct DetectedSphere {
   double evidence = 0;    // share of the images with a moving highlight in front (1 by hand)
   bool byHand = false;    // given by hand (--sphere): confidence and evidence measure nothing
   // Standard errors (1 sigma, pixels) of the rim fit's centre (each axis) and radius, from its
-  // residuals; 0 when not measured (a circle given by hand and not refined).
+  // residuals (the fit's covariance, at most 12 independent arcs of rim counted: rimSigmas in
+  // sphere_detection.cpp); uncalibrated, and blind to a bias of where the silhouette lies on
+  // its edge (1-3 px on PSBox's light probes, docs/hrti-math.md "What limits the accuracy").
+  // 0 when not measured (a circle given by hand inside the frame: not refined).
   double centreSigmaPx = 0, radiusSigmaPx = 0;
 };
 
