@@ -138,7 +138,9 @@ std::vector<FrameMotion> registerFrames(const ImageStack& stack, int threads) {
       std::array<bool, 4> usable;
       std::array<double, 4> response;
       for (int q = 0; q < 4; ++q) {
-        shift[q] = cv::phaseCorrelate(referenceQuarters[q], g(quarters[q]).clone(), window, &response[q]);
+        // Both clones: with sizes the DFT takes as they are, phaseCorrelate multiplies its
+        // inputs by the window in place, which would change the shared reference.
+        shift[q] = cv::phaseCorrelate(referenceQuarters[q].clone(), g(quarters[q]).clone(), window, &response[q]);
         usable[q] = response[q] >= RegistrationLimits::kMinResponse;
       }
       // The quarters a motion is fitted to must, together, correlate clearly: three weak peaks
