@@ -212,6 +212,11 @@ void printDecisionsAndRuns(const carrier::Carrier& c, const carrier::CarrierSumm
   std::string excluded;
   for (const carrier::DecisionSummary& d : s.exclusions) excluded += (excluded.empty() ? "" : ", ") + d.intervention.target;
   std::cout << "  excluded images: " << (excluded.empty() ? "none" : excluded) << "\n";
+  // Decisions given on a failed last run stand (carrier::standingProcess) though the results
+  // are still those of the run before: said, so that the two are not taken for one another.
+  if (&carrier::standingProcess(c) != &c.process)
+    std::cout << "  (the decisions above include those of " << c.header.runs.back().id
+              << ", which failed: the next run starts from them; the steps and results are the run before's)\n";
   printChoices(c);
   if (s.runs.empty()) return;
   std::cout << "  runs:\n";

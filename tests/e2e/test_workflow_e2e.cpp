@@ -210,7 +210,8 @@ TEST_CASE("decisions given on a failed run stand, so a refusal's advice followed
   INFO(second.output);
   CHECK(second.exitCode == 1);
   CHECK_THAT(second.output, Catch::Contains("--exclude IMG_0008"));
-  CHECK(e2e::surrogate("info " + e2e::quote(capture)).output.find("excluded images: IMG_0003") != std::string::npos);
+  const std::string info = e2e::surrogate("info " + e2e::quote(capture)).output;
+  CHECK_THAT(info, Catch::Contains("excluded images: IMG_0003") && Catch::Contains("those of r2, which failed"));
   const e2e::CommandResult third = lights("--exclude IMG_0008 --reason \"weak flash again\"");
   INFO(third.output);
   REQUIRE(third.exitCode == 0);
