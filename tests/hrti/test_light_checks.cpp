@@ -2,6 +2,7 @@
 // the answer in closed form: a light at elevation asin(z), the angle between two directions.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -111,4 +112,46 @@ TEST_CASE("a check names every image it fails, not the first six and a count") {
   REQUIRE(c.images.size() == 8);
   for (int i : c.images) CHECK(c.detail.find(names[static_cast<std::size_t>(i)] + " (RMSE 50") != std::string::npos);
   CHECK_THAT(c.detail, !Catch::Matches(".*and [0-9]+ more.*"));
+}
+
+TEST_CASE("below the horizon by more than its own 95 % bound fails; within it, it does not") {
+  LightCheckInput in = ring();
+  const double e = -3 * M_PI / 180;  // 3 degrees behind the object's plane
+  in.lights[4] = {std::cos(e), 0, std::sin(e)};
+  in.uncertaintyDeg.assign(12, 1.0);
+  CHECK(named(checkLights(in), kCheckBelowHorizon).failed);  // 3 > 1: behind even at the bound
+  in.uncertaintyDeg[4] = 4.0;
+  CHECK_FALSE(named(checkLights(in), kCheckBelowHorizon).failed);  // the bound reaches the front
+  in.uncertaintyDeg[4] = 20.0;  // a bound that large is taken as 5 degrees
+  in.lights[4] = {std::cos(-6 * M_PI / 180), 0, std::sin(-6 * M_PI / 180)};
+  CHECK(named(checkLights(in), kCheckBelowHorizon).failed);
+}
+
+TEST_CASE("a frame whose highlight's halo clips over three times the others' area is too bright") {
+  LightCheckInput in = ring();
+  in.clippedAreas.assign(12, 400);
+  in.clippedAreas[3] = 1200;  // a frame at 300 % exposure: 2.7-4.6 times on the real probes
+  in.clippedAreas[7] = 560;   // 1.4 times: within the probes' own range (0.51-1.42)
+  const auto checks = checkLights(in);
+  const LightCheck& c = named(checks, kCheckExposureOutlier);
+  CHECK(c.failed);
+  CHECK(c.images == std::vector<int>{3});
+  CHECK(c.detail.find("IMG_3 (its highlight's halo is clipped at full scale over 3.0 times the others' area: too "
+                      "bright)") != std::string::npos);
+  // Highlights that do not clip (most frames at 0) are not compared.
+  in.clippedAreas.assign(12, 0);
+  in.clippedAreas[3] = 50;
+  CHECK_FALSE(named(checkLights(in), kCheckExposureOutlier).failed);
+}
+
+TEST_CASE("frame-moved names each frame moved beyond the limit with how far") {
+  const std::vector<std::string> names = {"A", "B", "C", "D"};
+  const LightCheck c = frameMovedCheck({0.4, 40.3, -1, 7.2}, 7, names);  // C not measured
+  CHECK(c.name == "frame-moved");
+  CHECK(c.failed);
+  CHECK(c.images == std::vector<int>{1, 3});
+  CHECK(c.detail.find("B (40 px), D (7 px)") != std::string::npos);
+  CHECK_FALSE(frameMovedCheck({0.4, 6.9, -1, 2}, 7, names).failed);
+  const auto& all = lightCheckNames();
+  CHECK(std::find(all.begin(), all.end(), std::string("frame-moved")) != all.end());
 }
