@@ -30,10 +30,11 @@
 //           least kDarkImage of the median image's: a dark frame is exposure-outlier's): the same
 //           lamp mirrored in the same sphere gives about the same flux in every image, so the
 //           highlight is missing and what was found is a reflection or a remnant of glare (flag
-//           faint, refused). On the real light probes a highlight gives 0.88-1.03 of the median
-//           flux; the spots a frame whose highlight was painted out offers give under 0.5. A
-//           hand-held flash whose distance varies by more than 1.4 times (flux as 1/d^2 where not
-//           clipped) would give less: keep its distance, as H-RTI practice does
+//           faint, refused). On the real light probes and generated captures a highlight gives
+//           0.88-1.09 of the median flux; the spots a frame whose highlight was painted out
+//           offers give under 0.7 (0.5-0.7 for the glare left beside a small painted disc). A
+//           hand-held flash whose distance varies by more than 1.2 times (flux as 1/d^2 where
+//           not clipped) would give less: keep its distance, as H-RTI practice does
 //
 // Manual highlights are never judged. Fewer than kMinImages images with a detected highlight on
 // a sphere: nothing is judged there (too few to tell what is shared).
@@ -57,7 +58,7 @@ class StackMedian;
 struct ConsistencyLimits {
   static constexpr double kSharedRise = 0.10;
   static constexpr double kSteadyRatio = 0.15;
-  static constexpr double kFaintRatio = 0.5;
+  static constexpr double kFaintRatio = 0.7;
   static constexpr double kDarkImage = 0.3;
   static constexpr int kMinImages = 4;
   static constexpr double kClippedRadius = 0.2;  // of the sphere's radius: Highlight::clippedArea
