@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "core/error.h"
-#include <cstdio>
 
 namespace surrogate::hrti {
 

@@ -48,7 +48,7 @@ struct LightUncertaintyModel {
   // arcs, which the fit's residuals do not show); without them kCircleShare of the radius.
   static constexpr double kCircleFactor = 1.5;
   static constexpr double kCircleShare = 0.003;
-  static constexpr double kFloorDeg = 0.4;  // per axis, 1 sigma
+  static constexpr double kFloorDeg = 0.45;  // per axis, 1 sigma
   static constexpr double kScale = 1.0;     // bound = kScale * the 95 % radius
 };
 
