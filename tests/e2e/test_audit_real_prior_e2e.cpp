@@ -125,7 +125,7 @@ TEST_CASE("a correct prior of real photographs is reproduced, its lights judged 
 // before, it stood: the same `audit PRIOR` later answered REPRODUCED without saying why. The
 // carrier of the audit given --threshold records it in its Audit step as carriers always did,
 // so the later audit also shows what becomes of an older carrier holding one.
-TEST_CASE("a prior light moved 10 degrees is named; a threshold given once is that audit's only", "[e2e][audit]") {
+TEST_CASE("a prior light moved 10 degrees is named, and a threshold given once is that audit's only", "[e2e][audit]") {
   const fs::path capture = probeCapture("audit-probe-moved", kMoved);
   const fs::path work = capture.parent_path() / "work";
   const std::string audit = "audit " + e2e::quote(capture) + " -o " + e2e::quote(work);

@@ -141,7 +141,7 @@ TEST_CASE("generated captures, hard cases included: 90 % of the lights within th
   }
 }
 
-TEST_CASE("lights --json names each image as the .lp does, with its bound; info and the report show it") {
+TEST_CASE("lights --json names each image as the .lp does with its bound, and info and the report show it") {
   const fs::path capture = generated("shown", "--sphere-radius 60 --seed 3");
   const fs::path lp = capture.parent_path() / "out" / "l.lp";
   fs::create_directories(lp.parent_path());

@@ -114,7 +114,7 @@ TEST_CASE("a check names every image it fails, not the first six and a count") {
   CHECK_THAT(c.detail, !Catch::Matches(".*and [0-9]+ more.*"));
 }
 
-TEST_CASE("below the horizon by more than its own 95 % bound fails; within it, it does not") {
+TEST_CASE("below the horizon by more than its own 95 % bound fails, within it it does not") {
   LightCheckInput in = ring();
   const double e = -3 * M_PI / 180;  // 3 degrees behind the object's plane
   in.lights[4] = {std::cos(e), 0, std::sin(e)};

@@ -122,7 +122,7 @@ TEST_CASE("a circle and a highlight given by hand are taken at the hand's error,
   CHECK(deg == Approx(LightUncertaintyModel::kScale * 2.4477 * axis * 180 / M_PI).epsilon(1e-3));
 }
 
-TEST_CASE("an asymmetric or doubtful highlight widens the bound; a round one's size does not") {
+TEST_CASE("an asymmetric or doubtful highlight widens the bound, a round one's size does not") {
   const DetectedSphere s{300, 200, 80, 1};
   Highlight round = highlightAt(320, 190);
   round.covXX = round.covYY = 4;

@@ -260,7 +260,7 @@ TEST_CASE("a recorded web copy stands with its options and is withdrawn with the
 // later answered otherwise without saying why. It is that audit's only: a carrier whose Audit
 // step records one (as every carrier did) loads, and the next run plans the default; the other
 // Audit parameters stand as before.
-TEST_CASE("an audit's threshold is no standing decision; a carrier recording one still loads", "[stages][decisions]") {
+TEST_CASE("an audit's threshold is no standing decision and a carrier recording one still loads", "[stages][decisions]") {
   carrier::Carrier c = recorded();
   carrier::Step& audit = c.addStep("Audit", "6");
   audit.setParam("angleThresholdDegrees", "15");
