@@ -70,9 +70,13 @@ void printLights(const carrier::Carrier& c) {
   std::sort(bounds.begin(), bounds.end());
   const double median = bounds.size() % 2 ? bounds[bounds.size() / 2]
                                           : (bounds[bounds.size() / 2 - 1] + bounds[bounds.size() / 2]) / 2;
-  std::cout << ", each within " << fixedDecimals(bounds.front(), 1) << "-" << fixedDecimals(bounds.back(), 1)
-            << " deg (median " << fixedDecimals(median, 1) << ") of the true direction (95 %); the widest "
-            << widest->image << "\n";
+  const std::string lowest = fixedDecimals(bounds.front(), 1), highest = fixedDecimals(bounds.back(), 1);
+  if (lowest == highest) {  // "within 1.2-1.2 deg (median 1.2)" says one figure three times
+    std::cout << ", each within " << lowest << " deg of the true direction (95 %)\n";
+    return;
+  }
+  std::cout << ", each within " << lowest << "-" << highest << " deg (median " << fixedDecimals(median, 1)
+            << ") of the true direction (95 %); the widest " << widest->image << "\n";
 }
 
 

@@ -15,6 +15,7 @@
 #include "hrti/accumulator_peaks.h"
 #include "hrti/circle_fit.h"
 #include "hrti/highlight_detection.h"
+#include "hrti/rim_fit.h"
 #include "hrti/stack_median.h"
 
 namespace surrogate::hrti {
@@ -33,41 +34,6 @@ constexpr double kMinEvidence = 0.5;
 constexpr double kEvidenceRadius = 100;
 // Distinct Hough candidates refined when searching the whole frame (plus four per octave).
 constexpr std::size_t kCandidates = 40;
-
-cv::Mat toFloat(const Image& im) {
-  cv::Mat m(im.height, im.width, CV_32F);
-  for (int y = 0; y < im.height; ++y)
-    for (int x = 0; x < im.width; ++x) m.at<float>(y, x) = im.at(x, y) / 65535.0f;
-  return m;
-}
-
-// Values the full-resolution median gives over rows [y0, y1) and columns [x0, x1) (clipped to
-// the frame), as floats in 0..1, and where that window lies.
-struct FullWindow {
-  cv::Mat values;
-  int x0 = 0, y0 = 0;
-};
-
-FullWindow fullWindow(const StackMedian& median, int x0, int y0, int x1, int y1) {
-  x0 = std::max(0, x0);
-  y0 = std::max(0, y0);
-  x1 = std::min(median.width(), x1);
-  y1 = std::min(median.height(), y1);
-  if (x1 <= x0 || y1 <= y0) return {cv::Mat(), x0, y0};
-  return {toFloat(median.window({x0, y0, x1 - x0, y1 - y0})), x0, y0};
-}
-
-// The Gaussian blur (sigma 1) of the full-resolution median over [x0, x1) x [y0, y1), as a
-// blur of the whole frame would give it there: the window is read with the kernel's reach
-// around it (OpenCV's kernel for sigma 1 on floats is 9 wide), and reflected only at the frame's
-// edges.
-cv::Mat blurredWindow(const StackMedian& median, int x0, int y0, int x1, int y1) {
-  constexpr int kReach = 4;
-  const FullWindow padded = fullWindow(median, x0 - kReach, y0 - kReach, x1 + kReach, y1 + kReach);
-  cv::Mat blurred;
-  cv::GaussianBlur(padded.values, blurred, cv::Size(0, 0), 1.0);
-  return blurred(cv::Rect(x0 - padded.x0, y0 - padded.y0, x1 - x0, y1 - y0)).clone();
-}
 
 struct Candidate {
   double x = 0, y = 0, r = 0, score = -1;
@@ -180,122 +146,6 @@ std::vector<Candidate> hough(const Gradients& g, cv::Rect area, const std::vecto
   for (const auto& list : perR) all.insert(all.end(), list.begin(), list.end());
   std::stable_sort(all.begin(), all.end(), [](const Candidate& a, const Candidate& b) { return a.score > b.score; });
   return all;
-}
-
-// How far (pixels, or a share of the radius when more) an edge point may lie from the fitted
-// circle and count as the rim.
-constexpr double kRimTolerance = 1.0, kRimToleranceShare = 0.01;
-
-// Independent arcs of the rim assumed at most (see rimSigmas).
-constexpr double kIndependentArcs = 12;
-// Edge points closer than this along the rim (pixels) share their errors: the sigma-1 blur and
-// the 3x3 Sobel make the gradient of a pixel from a neighbourhood about 3 pixels wide.
-constexpr double kCorrelationLength = 3;
-
-// The standard errors of the rim fit (DetectedSphere::centreSigmaPx, radiusSigmaPx): the
-// Gauss-Newton covariance s^2 (J^T J)^-1 of the fit (hrti/circle_fit.h), its variances inflated
-// when neighbouring rays are closer than kCorrelationLength (a small circle's 360 rays
-// sample the same pixels), and not below what kIndependentArcs independent arcs with the
-// residuals' spread s give (2 s^2 / n for each centre axis, s^2 / n for the radius: for n
-// points spread evenly round a circle): the edge's bias changes with the background, the
-// light and the stand along whole arcs, and those errors do not average out over rays.
-void rimSigmas(const CircleFit& fit, int rays, DetectedSphere& out) {
-  if (fit.inliers < 4) return;
-  const double spacing = 2 * M_PI * fit.r / rays;
-  const double inflation = std::max(1.0, kCorrelationLength / std::max(spacing, 1e-9));
-  const double arcs = std::min(kIndependentArcs, double(fit.inliers));
-  const double s2 = fit.residualSd * fit.residualSd;
-  const double centre2 = 0.5 * (fit.sigmaCx * fit.sigmaCx + fit.sigmaCy * fit.sigmaCy) * inflation;
-  out.centreSigmaPx = std::sqrt(std::max(centre2, 2 * s2 / arcs));
-  out.radiusSigmaPx = std::sqrt(std::max(fit.sigmaR * fit.sigmaR * inflation, s2 / arcs));
-}
-
-// Sub-pixel edge points along rays from the centre, and the circle through them. A ray whose
-// rim point (on the last circle) lies outside the frame, or within kFrameInset of its edge, is
-// no evidence of an edge: it is not searched (a sphere cut by the frame's edge). The confidence
-// is the share of all kRays rays on the circle, or with `ofVisible` of the rays searched.
-constexpr double kFrameInset = 2;
-DetectedSphere refine(const StackMedian& median, Candidate start, double margin, bool ofVisible = false) {
-  DetectedSphere out{start.x, start.y, start.r, 0};
-  // Each pass searches the rim within `margin` of the last circle, the margin shrinking to 3 px.
-  for (int pass = 0; pass < 3; ++pass) {
-    const int x0 = std::max(0, static_cast<int>(out.cx - out.r - margin - 3));
-    const int y0 = std::max(0, static_cast<int>(out.cy - out.r - margin - 3));
-    const int x1 = std::min(median.width(), static_cast<int>(out.cx + out.r + margin + 4));
-    const int y1 = std::min(median.height(), static_cast<int>(out.cy + out.r + margin + 4));
-    if (x1 - x0 < 8 || y1 - y0 < 8) return out;
-    const cv::Mat window = blurredWindow(median, x0, y0, x1, y1);
-    cv::Mat gx, gy;
-    cv::Sobel(window, gx, CV_32F, 1, 0, 3);
-    cv::Sobel(window, gy, CV_32F, 0, 1, 3);
-    auto sample = [&](const cv::Mat& m, double x, double y) {
-      x -= x0;
-      y -= y0;
-      const int ix = static_cast<int>(std::floor(x)), iy = static_cast<int>(std::floor(y));
-      if (ix < 0 || iy < 0 || ix + 1 >= m.cols || iy + 1 >= m.rows) return std::nan("");
-      const double fx = x - ix, fy = y - iy;
-      return (m.at<float>(iy, ix) * (1 - fx) + m.at<float>(iy, ix + 1) * fx) * (1 - fy) +
-             (m.at<float>(iy + 1, ix) * (1 - fx) + m.at<float>(iy + 1, ix + 1) * fx) * fy;
-    };
-    std::vector<Point2> points;
-    std::vector<double> strengths;
-    constexpr int kRays = 360;
-    constexpr double kStep = 0.25;
-    int visible = 0;
-    for (int k = 0; k < kRays; ++k) {
-      const double a = 2 * M_PI * k / kRays, ca = std::cos(a), sa = std::sin(a);
-      const double rimX = out.cx + out.r * ca, rimY = out.cy + out.r * sa;
-      if (rimX < kFrameInset || rimY < kFrameInset || rimX > median.width() - 1 - kFrameInset ||
-          rimY > median.height() - 1 - kFrameInset)
-        continue;
-      ++visible;
-      double bestValue = -1, bestT = 0, before = 0, after = 0;
-      std::vector<double> profile;
-      for (double t = out.r - margin; t <= out.r + margin; t += kStep) {
-        const double x = out.cx + t * ca, y = out.cy + t * sa;
-        const double v = sample(gx, x, y) * ca + sample(gy, x, y) * sa;  // radial derivative
-        profile.push_back(v);
-      }
-      for (std::size_t i = 1; i + 1 < profile.size(); ++i) {
-        if (std::isnan(profile[i])) continue;
-        if (profile[i] > bestValue) {
-          bestValue = profile[i];
-          bestT = out.r - margin + i * kStep;
-          before = profile[i - 1];
-          after = profile[i + 1];
-        }
-      }
-      if (!(bestValue > 0) || std::isnan(before) || std::isnan(after)) continue;
-      const double denom = before - 2 * bestValue + after;
-      const double offset = denom < 0 ? 0.5 * (before - after) / denom : 0;
-      const double t = bestT + std::clamp(offset, -0.5, 0.5) * kStep;
-      points.push_back({out.cx + t * ca, out.cy + t * sa});
-      strengths.push_back(bestValue);
-    }
-    if (points.size() < 20) return out;
-    // Rays where the outline is faint (the sphere's own shadow, a dark background) are left out.
-    std::vector<double> sorted = strengths;
-    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
-    const double floor = 0.25 * sorted[sorted.size() / 2];
-    std::vector<Point2> strong;
-    for (std::size_t i = 0; i < points.size(); ++i)
-      if (strengths[i] >= floor) strong.push_back(points[i]);
-    const CircleFit fit = fitCircle(strong, 1.0);
-    if (!fit.ok) return out;
-    out.cx = fit.cx;
-    out.cy = fit.cy;
-    out.r = fit.r;
-    rimSigmas(fit, kRays, out);
-    // The share of all rays whose edge lies on the circle, within a pixel (more for a large
-    // circle, whose rim is blurred over more pixels): the fit's own inliers are judged against
-    // the spread of the points, which on texture grows until every ray is an inlier.
-    const double onRim = std::max(kRimTolerance, kRimToleranceShare * fit.r);
-    int onCircle = 0;
-    for (const Point2& q : strong) onCircle += std::abs(std::hypot(q.x - fit.cx, q.y - fit.cy) - fit.r) <= onRim;
-    out.confidence = double(onCircle) / (ofVisible ? std::max(1, visible) : kRays);
-    margin = std::max(3.0, margin / 3);
-  }
-  return out;
 }
 
 // The Hough transform at several scales: level l searches the radii of 24 to 48 of its own
@@ -426,7 +276,7 @@ bool isDarkDisc(const StackMedian& median, const DetectedSphere& s) {
   int nIn = 0, nOut = 0;
   const int x0 = std::max(0, static_cast<int>(s.cx - 1.4 * s.r)), x1 = std::min(median.width() - 1, static_cast<int>(s.cx + 1.4 * s.r));
   const int y0 = std::max(0, static_cast<int>(s.cy - 1.4 * s.r)), y1 = std::min(median.height() - 1, static_cast<int>(s.cy + 1.4 * s.r));
-  const FullWindow full = fullWindow(median, x0, y0, x1 + 1, y1 + 1);
+  const MedianWindow full = medianWindow(median, x0, y0, x1 + 1, y1 + 1);
   for (int y = y0; y <= y1; ++y) {
     for (int x = x0; x <= x1; ++x) {
       const double d = std::hypot(x - s.cx, y - s.cy) / s.r;
@@ -447,7 +297,7 @@ bool isDarkDisc(const StackMedian& median, const DetectedSphere& s) {
 
 DetectedSphere fitVisibleRim(const StackMedian& rim, const DetectedSphere& given) {
   const double margin = std::max(kGivenRimMargin, kGivenRimMarginShare * given.r);
-  DetectedSphere fitted = refine(rim, Candidate{given.cx, given.cy, given.r, 0, 1}, margin, true);
+  DetectedSphere fitted = refineRim(rim, given.cx, given.cy, given.r, margin, true);
   fitted.byHand = true;
   fitted.evidence = 1;
   return fitted;
@@ -525,7 +375,7 @@ std::vector<DetectedSphere> detectSpheres(const StackMedian& median, const Stack
     throw Error(ErrorKind::Internal, "", kStep, "the rim's stack quantile and the median differ in size");
   if (median.factor() != StackMedian::factorFor(median.width(), o.coarseWidth))
     throw Error(ErrorKind::Internal, "", kStep, "the median was reduced for another coarse width");
-  const cv::Mat coarse = toFloat(rim.coarse());
+  const cv::Mat coarse = medianToFloat(rim.coarse());
   double maxValue = 0;
   cv::minMaxLoc(coarse, nullptr, &maxValue);
   const double scale = median.factor();
@@ -563,7 +413,7 @@ std::vector<DetectedSphere> detectSpheres(const StackMedian& median, const Stack
     std::vector<Checked> passed;
     for (const Candidate& c : candidates) {
       const Candidate f = toFull(c);
-      DetectedSphere s = refine(rim, f, 3 * scale * c.level + 4);
+      DetectedSphere s = refineRim(rim, f.x, f.y, f.r, 3 * scale * c.level + 4);
       if (!(s.r >= 3)) continue;
       if (s.confidence < o.minConfidence) {
         noteTried(tried, s, "rim " + fixedDecimals(s.confidence, 2));

@@ -65,7 +65,7 @@ struct DetectedSphere {
   bool byHand = false;    // given by hand (--sphere): confidence and evidence measure nothing
   // Standard errors (1 sigma, pixels) of the rim fit's centre (each axis) and radius, from its
   // residuals (the fit's covariance, at most 12 independent arcs of rim counted: rimSigmas in
-  // sphere_detection.cpp); uncalibrated, and blind to a bias of where the silhouette lies on
+  // hrti/rim_fit.cpp); uncalibrated, and blind to a bias of where the silhouette lies on
   // its edge (1-3 px on PSBox's light probes, docs/hrti-math.md "What limits the accuracy").
   // 0 when not measured (a circle given by hand inside the frame: not refined).
   double centreSigmaPx = 0, radiusSigmaPx = 0;
