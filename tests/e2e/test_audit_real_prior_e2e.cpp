@@ -17,6 +17,7 @@
 
 #include "../audit/prior_rti.h"
 #include "e2e_support.h"
+#include "real_sets.h"
 
 namespace fs = std::filesystem;
 using namespace surrogate;
@@ -31,22 +32,12 @@ constexpr double kMoveDegrees = 10;
 // the distance to a light moved by 10 degrees lies within this of 10.
 constexpr double kOurError = 3;
 
-fs::path probeSet() { return fs::path(SURROGATE_SOURCE_DIR) / "tests/data/real-rti/lightprobe-1"; }
+fs::path probeSet() { return e2e::realData("lightprobe-1"); }
 
-// PSBox's light_directions.txt: three rows (x, y, z), one column per image, y up (as an .lp).
+// PSBox's reference lights, y up as in an .lp.
 std::vector<test::Light> referenceLights() {
-  std::ifstream in(probeSet() / "light_directions.txt");
-  std::vector<std::vector<double>> rows;
-  for (std::string line; std::getline(in, line);) {
-    std::istringstream s(line);
-    std::vector<double> row;
-    for (double v; s >> v;) row.push_back(v);
-    if (!row.empty()) rows.push_back(row);
-  }
-  REQUIRE(rows.size() == 3);
-  REQUIRE(rows[0].size() == kImages);
-  std::vector<test::Light> out;
-  for (int i = 0; i < kImages; ++i) out.push_back({rows[0][i], rows[1][i], rows[2][i]});
+  std::vector<test::Light> out = e2e::psboxLights("lightprobe-1");
+  REQUIRE(out.size() == kImages);
   return out;
 }
 

@@ -14,12 +14,13 @@
 #include "bad_frames.h"
 #include "e2e_support.h"
 #include "light_errors.h"
+#include "real_sets.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-fs::path realData(const std::string& set) { return fs::path(SURROGATE_SOURCE_DIR) / "tests/data/real-rti" / set; }
+using e2e::realData;
 
 // The set's frames and median, read once per test process.
 const e2e::ProbeSet& probe(const std::string& set) {

@@ -19,40 +19,12 @@
 
 #include "e2e_support.h"
 #include "light_errors.h"
+#include "real_sets.h"
 
 namespace fs = std::filesystem;
 using e2e::Direction;
 
 namespace {
-
-fs::path realData(const std::string& set) { return fs::path(SURROGATE_SOURCE_DIR) / "tests/data/real-rti" / set; }
-
-// A capture whose jpeg-exports/ holds a real set's images (JPG or PNG).
-fs::path realCapture(const std::string& set) {
-  const fs::path capture = e2e::freshDir(set) / "capture";
-  fs::create_directories(capture / "jpeg-exports");
-  for (const auto& entry : fs::directory_iterator(realData(set))) {
-    const std::string ext = entry.path().extension().string();
-    if (ext == ".JPG" || ext == ".png") fs::copy_file(entry.path(), capture / "jpeg-exports" / entry.path().filename());
-  }
-  return capture;
-}
-
-// PSBox's light_directions.txt: three rows (x, y, z), one column per image, y up.
-std::vector<Direction> psboxLights(const fs::path& file) {
-  std::ifstream in(file);
-  std::vector<std::vector<double>> rows;
-  for (std::string line; std::getline(in, line);) {
-    std::istringstream s(line);
-    std::vector<double> row;
-    for (double v; s >> v;) row.push_back(v);
-    if (!row.empty()) rows.push_back(row);
-  }
-  REQUIRE(rows.size() == 3);
-  std::vector<Direction> out;
-  for (std::size_t i = 0; i < rows[0].size(); ++i) out.push_back({rows[0][i], rows[1][i], rows[2][i]});
-  return out;
-}
 
 // A generated capture (JPEG exports, 12 shots of 480x360) with `options`; the truth beside it.
 fs::path generated(const std::string& name, const std::string& options) {
@@ -115,13 +87,13 @@ void requireCalibrated(const Bounds& b) {
 }  // namespace
 
 TEST_CASE("PSBox LightProbe-1: 90 % of the lights within their bound, the bound under 2 degrees (median)") {
-  const fs::path capture = realCapture("lightprobe-1");
-  requireCalibrated(boundsOf(capture, psboxLights(realData("lightprobe-1") / "light_directions.txt")));
+  const fs::path capture = e2e::realCapture("lightprobe-1", "lightprobe-1");
+  requireCalibrated(boundsOf(capture, e2e::psboxLights("lightprobe-1")));
 }
 
 TEST_CASE("PSBox LightProbe-2: 90 % of the lights within their bound, the bound under 2 degrees (median)") {
-  const fs::path capture = realCapture("lightprobe-2");
-  requireCalibrated(boundsOf(capture, psboxLights(realData("lightprobe-2") / "light_directions.txt")));
+  const fs::path capture = e2e::realCapture("lightprobe-2", "lightprobe-2");
+  requireCalibrated(boundsOf(capture, e2e::psboxLights("lightprobe-2")));
 }
 
 TEST_CASE("generated captures, hard cases included: 90 % of the lights within their bound, under 2 degrees") {

@@ -17,41 +17,14 @@
 
 #include "e2e_support.h"
 #include "light_errors.h"
+#include "real_sets.h"
 
 namespace fs = std::filesystem;
 using e2e::Direction;
 using e2e::lpLights;
+using e2e::realData;
 
 namespace {
-
-fs::path realData(const std::string& set) { return fs::path(SURROGATE_SOURCE_DIR) / "tests/data/real-rti" / set; }
-
-// A capture whose jpeg-exports/ holds the set's images (JPG or PNG).
-fs::path captureOf(const std::string& set, const std::string& name) {
-  const fs::path capture = e2e::freshDir(name) / "capture";
-  fs::create_directories(capture / "jpeg-exports");
-  for (const auto& entry : fs::directory_iterator(realData(set))) {
-    const std::string ext = entry.path().extension().string();
-    if (ext == ".JPG" || ext == ".png") fs::copy_file(entry.path(), capture / "jpeg-exports" / entry.path().filename());
-  }
-  return capture;
-}
-
-// PSBox's light_directions.txt: three rows (x, y, z), one column per image, y up.
-std::vector<Direction> psboxLights(const fs::path& file) {
-  std::ifstream in(file);
-  std::vector<std::vector<double>> rows;
-  for (std::string line; std::getline(in, line);) {
-    std::istringstream s(line);
-    std::vector<double> row;
-    for (double v; s >> v;) row.push_back(v);
-    if (!row.empty()) rows.push_back(row);
-  }
-  REQUIRE(rows.size() == 3);
-  std::vector<Direction> out;
-  for (std::size_t i = 0; i < rows[0].size(); ++i) out.push_back({rows[0][i], rows[1][i], rows[2][i]});
-  return out;
-}
 
 // lights.txt of the CSE 576 sets: the count, then x y z per image, y up.
 std::vector<Direction> countedLights(const fs::path& file) {
@@ -67,12 +40,12 @@ std::vector<Direction> countedLights(const fs::path& file) {
 
 // `surrogate lights` with no hints on a PSBox light probe set, against its reference lights.
 e2e::LightErrors probeErrors(const std::string& set) {
-  const fs::path capture = captureOf(set, set);
+  const fs::path capture = e2e::realCapture(set, set);
   const fs::path lp = capture.parent_path() / "lights.lp";
   const auto r = e2e::surrogate("lights " + e2e::quote(capture) + " -o " + e2e::quote(lp) + " --quiet");
   INFO(r.output);
   REQUIRE(r.exitCode == 0);
-  return e2e::lightErrors(lpLights(lp), psboxLights(realData(set) / "light_directions.txt"));
+  return e2e::lightErrors(lpLights(lp), e2e::psboxLights(set));
 }
 
 TEST_CASE("a black sphere filling the frame, the scene reflected in it, is found without hints") {
@@ -93,7 +66,7 @@ TEST_CASE("the second PSBox light probe, another sphere and room, is found witho
 }
 
 TEST_CASE("a chrome ball on black is found, or refused, never confidently wrong") {
-  const fs::path capture = captureOf("chrome", "chrome");
+  const fs::path capture = e2e::realCapture("chrome", "chrome");
   const fs::path lp = capture.parent_path() / "lights.lp";
   const auto r = e2e::surrogate("lights " + e2e::quote(capture) + " -o " + e2e::quote(lp) + " --quiet");
   INFO(r.output);
@@ -110,7 +83,7 @@ TEST_CASE("a chrome ball on black is found, or refused, never confidently wrong"
 }
 
 TEST_CASE("photographs without a sphere are refused, saying what to do") {
-  const fs::path capture = captureOf("objects", "objects");
+  const fs::path capture = e2e::realCapture("objects", "objects");
   const auto r = e2e::surrogate("lights " + e2e::quote(capture) + " -o " +
                                 e2e::quote(capture.parent_path() / "lights.lp") + " --quiet");
   INFO(r.output);
@@ -122,7 +95,7 @@ TEST_CASE("photographs without a sphere are refused, saying what to do") {
 }
 
 TEST_CASE("a dark frame among good ones is named with the command that leaves it out") {
-  const fs::path capture = captureOf("lightprobe-1", "dark");
+  const fs::path capture = e2e::realCapture("lightprobe-1", "dark");
   const fs::path shot = capture / "jpeg-exports/Image_05.JPG";
   cv::Mat image = cv::imread(shot.string(), cv::IMREAD_COLOR);
   REQUIRE(!image.empty());
@@ -153,7 +126,7 @@ TEST_CASE("a dark frame among good ones is named with the command that leaves it
 }
 
 TEST_CASE("an accepted check is recorded and lets the run go on") {
-  const fs::path capture = captureOf("lightprobe-1", "accepted");
+  const fs::path capture = e2e::realCapture("lightprobe-1", "accepted");
   const fs::path shot = capture / "jpeg-exports/Image_05.JPG";
   cv::Mat image = cv::imread(shot.string(), cv::IMREAD_COLOR);
   image.convertTo(image, -1, 0.12, 0);
@@ -187,7 +160,7 @@ TEST_CASE("a sphere cut by the frame's edge, given by hand, is fitted to its vis
                                 " --quiet --sphere 236,478,421 --reason \"the light probe, cut by the left edge\"");
   INFO(r.output);
   REQUIRE(r.exitCode == 0);
-  const e2e::LightErrors e = e2e::lightErrors(lpLights(lp), psboxLights(realData("lightprobe-1") / "light_directions.txt"));
+  const e2e::LightErrors e = e2e::lightErrors(lpLights(lp), e2e::psboxLights("lightprobe-1"));
   INFO("median " << e.median << " max " << e.max);
   CHECK(e.median <= 1.0);  // measured 0.79 / 1.30 deg (the whole frame, no hints: 0.63 / 1.20)
   CHECK(e.max <= 1.6);
