@@ -1,7 +1,6 @@
 #include "stages/highlight_detection_stage.h"
 
 #include <algorithm>
-#include <cmath>
 #include <cstdlib>
 
 #include "capture/capture.h"
@@ -119,8 +118,7 @@ void HighlightDetectionStage::run(const carrier::Step& step, pipeline::Context& 
   // (hrti/highlight_consistency.h). Exposures compared in linear light, like exposure-outlier's.
   std::vector<double> linearMeans;
   for (double m : median->imageMeans())
-    linearMeans.push_back(
-        toLinear(static_cast<std::uint16_t>(std::lround(std::clamp(m, 0.0, 1.0) * 65535)), median->transfer()));
+    linearMeans.push_back(linearOf(m, median->transfer()));
   hrti::judgeAcrossImages(*lum, *median, *spheres, *highlights, linearMeans, ctx.settings.threads);
   // Every frame registered to the stack (hrti/frame_registration.h): a frame that moved is named
   // as such before its highlight is judged, whatever its highlight looks like.

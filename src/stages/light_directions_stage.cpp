@@ -247,9 +247,7 @@ void LightDirectionsStage::run(const carrier::Step& step, pipeline::Context& ctx
   // exposure-outlier compares exposures, so values in linear light: a frame at 5 % of the
   // others' exposure has 29 % of their mean and a highlight at 52 % of their peak in sRGB.
   const hrti::StackMedian& median = *ctx.get<hrti::StackMedian>(kStackMedian);
-  auto linear = [&median](double v) {
-    return toLinear(static_cast<std::uint16_t>(std::lround(std::clamp(v, 0.0, 1.0) * 65535)), median.transfer());
-  };
+  auto linear = [&median](double v) { return linearOf(v, median.transfer()); };
   for (double m : median.imageMeans()) checks.imageMeans.push_back(linear(m));
   for (const auto& row : *highlights) {
     double peak = 0;

@@ -128,6 +128,10 @@ double toLinear(std::uint16_t value, Transfer transfer) {
   return transfer == Transfer::Srgb ? srgbToLinear(v) : v;
 }
 
+double linearOf(double value, Transfer transfer) {
+  return toLinear(static_cast<std::uint16_t>(std::lround(std::clamp(value, 0.0, 1.0) * 65535)), transfer);
+}
+
 std::array<TableStack::Table, 3> gainTables(const std::array<double, 3>& gains, Transfer input,
                                             Transfer output) {
   std::array<TableStack::Table, 3> tables;

@@ -99,6 +99,9 @@ std::array<TableStack::Table, 3> gainTables(const std::array<double, 3>& gains, 
 // Linear light of a 16-bit sample (sRGB decoding, IEC 61966-2-1), 0..1; identity scaled for
 // Transfer::Linear.
 double toLinear(std::uint16_t value, Transfer transfer);
+// The same for a value 0..1 of such a stack (clamped; rounded to 16 bits first), such as a
+// median's image mean or a highlight's peak: exposures are compared in linear light.
+double linearOf(double value, Transfer transfer);
 
 // Reduces every image to width x height (at most the input's) by area averaging in linear
 // light: each output pixel is the mean of the input pixels it covers, each weighted by the
