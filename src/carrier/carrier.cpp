@@ -229,6 +229,13 @@ const Result* Carrier::findResult(const std::string& stepId) const {
   return nullptr;
 }
 
+const Result* Carrier::lastResultWith(const std::string& element) const {
+  const Result* last = nullptr;
+  for (const Result& r : data)
+    if (!r.itemsOf(element).empty()) last = &r;
+  return last;
+}
+
 void Carrier::clearResult(const std::string& stepId) {
   std::vector<Result> kept;
   for (Result& r : data)

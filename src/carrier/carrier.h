@@ -217,6 +217,9 @@ struct Carrier {
   Step* findStep(const std::string& id);
   const Step* findStep(const std::string& id) const;
   const Result* findResult(const std::string& stepId) const;
+  // The last result holding an item of this element (e.g. "light": the lights the capture's
+  // last light estimation recorded); null when none does.
+  const Result* lastResultWith(const std::string& element) const;
   // Removes the result of a step (before running it again), keeping the others.
   void clearResult(const std::string& stepId);
   void addLog(const std::string& level, const std::string& step, const std::string& text,

@@ -28,9 +28,7 @@ namespace {
 void writeLightImages(JsonWriter& j, const carrier::Carrier& c, const fs::path& capture, const fs::path& written,
                       const std::vector<formats::LightEntry>& entries) {
   const std::vector<formats::LightEntry> lines = formats::readLp(written);
-  const carrier::Result* result = nullptr;
-  for (const carrier::Result& r : c.data)
-    if (!r.itemsOf("light").empty()) result = &r;
+  const carrier::Result* result = c.lastResultWith("light");
   auto same = [](const fs::path& a, const fs::path& b) {
     std::error_code ea, eb;
     return fs::weakly_canonical(a, ea) == fs::weakly_canonical(b, eb);

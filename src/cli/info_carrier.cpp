@@ -29,9 +29,7 @@ struct RecordedLight {
   std::optional<double> uncertaintyDeg;
 };
 std::vector<RecordedLight> recordedLights(const carrier::Carrier& c) {
-  const carrier::Result* result = nullptr;
-  for (const carrier::Result& r : c.data)
-    if (!r.itemsOf("light").empty()) result = &r;
+  const carrier::Result* result = c.lastResultWith("light");
   std::vector<RecordedLight> out;
   if (!result) return out;
   for (const carrier::DataItem* l : result->itemsOf("light")) {

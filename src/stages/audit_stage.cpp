@@ -145,9 +145,7 @@ void auditLogs(audit::AuditReport& report, audit::RecordedIds& ids, const ImageS
 // records (uncertaintyDegrees, from the last result holding light items); unset where none is
 // recorded (a carrier from before the bound was measured): the light is then taken as exact.
 std::vector<std::optional<double>> lightUncertainties(const carrier::Carrier& c, const InputImages& inputs) {
-  const carrier::Result* lights = nullptr;
-  for (const carrier::Result& r : c.data)
-    if (!r.itemsOf("light").empty()) lights = &r;
+  const carrier::Result* lights = c.lastResultWith("light");
   std::vector<std::optional<double>> out(inputs.size());
   if (!lights) return out;
   std::map<std::string, double> byImage;
