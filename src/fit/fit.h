@@ -62,6 +62,7 @@
 
 #include "core/stack.h"
 #include "fit/basis.h"
+#include "fit/near_lights.h"
 #include "formats/ptm.h"
 #include "formats/rti_hsh.h"
 
@@ -72,6 +73,10 @@ using Parameters = std::vector<std::pair<std::string, std::string>>;
 struct FitOptions {
   // Recorded in the carrier (they change the result):
   Basis basis = Basis::PtmLrgb;  // which model and which file (.ptm or .rti)
+  // Lights at known positions (fit/near_lights.h): empty, or one entry per light. Empty, or no
+  // entry near, is every light at infinity: today's fit, the same bytes. Not in toParameters():
+  // the stage records the positions itself.
+  std::vector<NearLight> nearLights;
 
   // Not recorded (the result is bit-identical whatever their value):
   std::size_t memoryBudgetBytes = 2ull << 30;  // the output model plus the row bands; smaller = thinner bands
