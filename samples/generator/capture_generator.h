@@ -7,12 +7,22 @@
 //
 //     highlight centre (pixels) = (cx + r Nx, cy - r Ny)
 //
+// Near lights (lightDistance D > 0, frame widths; the frame coordinates of issue 53: origin at
+// image point ((W-1)/2, (H-1)/2) on the object's plane, X right, Y up, Z towards the camera):
+// light i stands at X_i = D W l_i, l_i the direction planCapture gives (so lights.lp keeps it).
+// Every point p of the relief (its own height as z) and of a sphere (centre (cx - (W-1)/2,
+// (H-1)/2 - cy, r) + r N) is lit from L(p) = normalize(X_i - p) with the flash's intensity times
+// (|X_i| / |X_i - p|)^2: Lambert, cast shadows and the specular lobe all use that L(p), so a
+// sphere's highlight is where N bisects V and L of that very point. The room's ambient light and
+// reflections do not fall off. D = 0 (the default) is the distant light, byte for byte.
+//
 // Each shot is written twice, as a photographer's card and export would hold it:
 //   original-captures/IMG_0001.dng   uncompressed 16-bit RGGB Bayer mosaic (libtiff), with the
 //                                    DNG and EXIF tags LibRaw and Exiv2 need
 //   jpeg-exports/IMG_0001.jpg        the sRGB-encoded 8-bit export
-// and the truth beside them in truth/ (lights.lp, spheres.txt, generator.txt): never inside
-// the folders a tool reads.
+// and the truth beside them in truth/ (lights.lp, spheres.txt, generator.txt, normals.png: the
+// true normals encoded as the pipeline's normals.png, src/fit/normals.h; light-positions.txt for
+// near lights): never inside the folders a tool reads.
 //
 //   GeneratorOptions o;  o.images = 24;  o.seed = 7;
 //   writeCapture(o, "/tmp/capture");          // identical bytes for identical options
@@ -43,6 +53,9 @@ struct GeneratorOptions {
   bool shadows = true;           // cast shadows of the relief and the spheres
   OutputFormats formats = OutputFormats::Both;
   int threads = 0;               // 0 = all cores; output is identical at any count
+  double lightDistance = 0;      // frame widths from the frame's centre; 0 = at infinity
+  double sphereSeparation = 0;   // > 0 (two spheres): pixels from the first sphere's centre to
+                                 // the second's, on its row to its left; 0 = the two corners
 
   // Hard cases (docs/hrti-math.md, "Generated hard cases"). Each is off by default, and a
   // capture made without them has the bytes it had before they existed.
@@ -72,7 +85,13 @@ struct SphereTruth {
 struct CaptureTruth {
   std::vector<std::array<double, 3>> lights;  // unit vectors, one per shot
   std::vector<SphereTruth> spheres;
+  // Near lights only (empty at infinity): each light's position in the frame coordinates
+  // above, pixels: lightDistance * width * lights[i].
+  std::vector<std::array<double, 3>> positions;
 };
+
+// The lowest near-light distance, frame widths: nearer, a light would hang over the frame.
+inline constexpr double kMinLightDistance = 1;
 
 // The lights and spheres the options give (deterministic in the seed).
 CaptureTruth planCapture(const GeneratorOptions& options);
@@ -80,6 +99,11 @@ CaptureTruth planCapture(const GeneratorOptions& options);
 // Linear 16-bit RGB of shot `index` (0-based) after exposure and noise: what the DNG's
 // mosaic samples (before its black level is added).
 Image renderShot(const GeneratorOptions& options, const CaptureTruth& truth, int index);
+
+// The true normals as the pipeline's normals.png encodes them (src/fit/normals.h): 16-bit RGB,
+// value = round((n + 1) / 2 * 65535), x right, y up, z towards the camera, rows top first; the
+// relief's normal, or the sphere's where the pixel's centre is on a sphere.
+Image trueNormals(const GeneratorOptions& options, const CaptureTruth& truth);
 
 // DNG tags that vary per shot.
 struct DngInfo {

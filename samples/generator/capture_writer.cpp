@@ -1,4 +1,5 @@
 #include <atomic>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -9,6 +10,7 @@
 #include "generator/capture_generator.h"
 #include "generator/scene.h"
 #include "image/decode.h"
+#include "image/write.h"
 
 namespace surrogate::generator {
 
@@ -35,6 +37,8 @@ std::string describe(const GeneratorOptions& o) {
   if (o.darkFrame >= 0) s << "dark-frame " << o.darkFrame + 1 << "\n";
   if (o.noFlashFrame >= 0) s << "no-flash-frame " << o.noFlashFrame + 1 << "\n";
   if (o.lightConeDeg > 0) s << "light-cone " << o.lightConeDeg << "\nlight-cone-elevation " << o.lightConeElevationDeg << "\n";
+  if (o.lightDistance > 0) s << "light-distance " << o.lightDistance << "\n";
+  if (o.sphereSeparation > 0) s << "sphere-separation " << o.sphereSeparation << "\n";
   return s.str();
 }
 
@@ -69,17 +73,32 @@ void writeCapture(const GeneratorOptions& o, const fs::path& dir) {
     }
   }
 
+  const auto fileName = [&](std::size_t i) {
+    return jpeg ? "jpeg-exports/" + shotName(static_cast<int>(i)) + ".jpg"
+                : "original-captures/" + shotName(static_cast<int>(i)) + ".dng";
+  };
   std::ostringstream lp;
   lp << truth.lights.size() << "\n";
   char line[256];
   for (std::size_t i = 0; i < truth.lights.size(); ++i) {
-    std::snprintf(line, sizeof line, "%s %.9f %.9f %.9f\n",
-                  (jpeg ? "jpeg-exports/" + shotName(static_cast<int>(i)) + ".jpg"
-                        : "original-captures/" + shotName(static_cast<int>(i)) + ".dng").c_str(),
-                  truth.lights[i][0], truth.lights[i][1], truth.lights[i][2]);
+    std::snprintf(line, sizeof line, "%s %.9f %.9f %.9f\n", fileName(i).c_str(), truth.lights[i][0],
+                  truth.lights[i][1], truth.lights[i][2]);
     lp << line;
   }
   writeFileAtomically(dir / "truth/lights.lp", lp.str());
+  if (!truth.positions.empty()) {
+    std::ostringstream positions;
+    positions << "# file X Y Z (pixels; origin at image point ((W-1)/2, (H-1)/2) on the object's plane, X right, "
+                 "Y up, Z towards the camera) distance (|X| in frame widths)\n";
+    for (std::size_t i = 0; i < truth.positions.size(); ++i) {
+      const auto& x = truth.positions[i];
+      std::snprintf(line, sizeof line, "%s %.6f %.6f %.6f %.9g\n", fileName(i).c_str(), x[0], x[1], x[2],
+                    std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) / o.width);
+      positions << line;
+    }
+    writeFileAtomically(dir / "truth/light-positions.txt", positions.str());
+  }
+  image::writePng(trueNormals(scene, o), dir / "truth/normals.png");
   std::ostringstream spheres;
   for (const SphereTruth& s : truth.spheres) {
     std::snprintf(line, sizeof line, "%.9f %.9f %.9f\n", s.cx, s.cy, s.r);
@@ -87,12 +106,23 @@ void writeCapture(const GeneratorOptions& o, const fs::path& dir) {
   }
   writeFileAtomically(dir / "truth/spheres.txt", spheres.str());
   writeFileAtomically(dir / "truth/generator.txt", describe(o));
-  writeFileAtomically(dir / "truth/README.txt",
-                      "The truth of this generated capture (not part of the capture itself):\n"
-                      "  lights.lp    the true light direction of every shot (x right, y up, z to the camera)\n"
-                      "  spheres.txt  the true sphere circles: cx cy r in pixels (origin at the centre of\n"
-                      "               the top-left pixel, y down)\n"
-                      "  generator.txt  the options used\n");
+  std::string readme =
+      "The truth of this generated capture (not part of the capture itself):\n"
+      "  lights.lp    the true light direction of every shot (x right, y up, z to the camera)\n"
+      "  spheres.txt  the true sphere circles: cx cy r in pixels (origin at the centre of\n"
+      "               the top-left pixel, y down)\n"
+      "  generator.txt  the options used\n"
+      "  normals.png  the true normals, encoded as the pipeline's normals.png: 16-bit RGB,\n"
+      "               value = round((n + 1) / 2 * 65535), x right, y up, z to the camera,\n"
+      "               rows top first; on a sphere, the sphere's own normal\n";
+  if (!truth.positions.empty())
+    readme +=
+        "  light-positions.txt  every light's position: file, X Y Z in pixels (origin at image point\n"
+        "               ((W-1)/2, (H-1)/2) on the object's plane, X right, Y up, Z to the camera),\n"
+        "               and its distance from there in frame widths. Each point p of the scene is\n"
+        "               lit from normalize(X - p), at (|X| / |X - p|)^2 the intensity of the\n"
+        "               light at infinity; lights.lp gives X / |X|\n";
+  writeFileAtomically(dir / "truth/README.txt", readme);
 }
 
 }  // namespace surrogate::generator

@@ -13,7 +13,8 @@ namespace {
 const char* kHelp =
     "usage: surrogate-generate --out DIR [options]\n\n"
     "Writes a synthetic Highlight-RTI capture: DNG originals (real Bayer mosaic) in\n"
-    "DIR/original-captures/, JPEG exports in DIR/jpeg-exports/, the truth in DIR/truth/.\n\n"
+    "DIR/original-captures/, JPEG exports in DIR/jpeg-exports/, the truth in DIR/truth/\n"
+    "(light directions, sphere circles, true normals as a normals.png; README.txt there).\n\n"
     "options:\n"
     "  --images N           number of shots (default 24)\n"
     "  --width W --height H image size (default 1200x800)\n"
@@ -25,7 +26,14 @@ const char* kHelp =
     "  --texture normal|strong\n"
     "  --no-shadows         no cast shadows\n"
     "  --formats both|dng|jpeg\n"
-    "  --threads T          (default: all cores; output identical at any count)\n\n"
+    "  --threads T          (default: all cores; output identical at any count)\n"
+    "  --light-distance D   near lights: each D frame widths from the frame's centre along its\n"
+    "                       direction (at least 1, and above the spheres); every point lit\n"
+    "                       from its own direction with inverse-square fall-off; truth/\n"
+    "                       light-positions.txt gives the positions (default 0: at infinity)\n"
+    "  --sphere-separation S\n"
+    "                       with --spheres 2: the second sphere S pixels left of the first,\n"
+    "                       on its row (default: the two top corners)\n\n"
     "hard cases (each off by default; docs/hrti-math.md, \"Generated hard cases\"):\n"
     "  --reflections        a bright window and a dim room mirrored in the sphere(s), the\n"
     "                       same in every shot\n"
@@ -83,6 +91,8 @@ int main(int argc, char** argv) {
       else if (a == "--no-flash-frame") o.noFlashFrame = static_cast<int>(number(a, v)) - 1;
       else if (a == "--light-cone") o.lightConeDeg = number(a, v);
       else if (a == "--light-cone-elevation") o.lightConeElevationDeg = number(a, v);
+      else if (a == "--light-distance") o.lightDistance = number(a, v);
+      else if (a == "--sphere-separation") o.sphereSeparation = number(a, v);
       else if (a == "--texture") {
         if (std::string(v) != "normal" && std::string(v) != "strong")
           throw Error(ErrorKind::Usage, a, "command line", "is normal or strong");

@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 
 #include "core/error.h"
 #include "core/parallel.h"
@@ -26,6 +27,13 @@ CaptureTruth planCapture(const GeneratorOptions& o) {
                 "impossible light cone: its angle under 90 degrees, and its direction's elevation at most 90 and at "
                 "least the angle plus " + std::to_string(static_cast<int>(kMinConeElevationDeg)) +
                     " degrees, so that every light stays above the horizon");
+  if (!(o.lightDistance == 0 || (o.lightDistance >= kMinLightDistance && o.lightDistance <= 1e6)))
+    throw Error(ErrorKind::Usage, "--light-distance", "generator",
+                "is 0 (lights at infinity) or between " + std::to_string(static_cast<int>(kMinLightDistance)) +
+                    " and 1000000 frame widths from the frame's centre: a nearer light would hang over the frame");
+  if (!(o.sphereSeparation >= 0) || (o.sphereSeparation > 0 && o.spheres != 2))
+    throw Error(ErrorKind::Usage, "--sphere-separation", "generator",
+                "is the distance in pixels between the centres of two spheres: give --spheres 2 with it");
   CaptureTruth t;
   // Lights: elevations evenly spread in sin(elevation) between 15 and 75 degrees, azimuths on
   // a golden-angle spiral, rotated by the seed: full, irregular coverage of the hemisphere.
@@ -59,18 +67,70 @@ CaptureTruth planCapture(const GeneratorOptions& o) {
   const double r = o.sphereRadius;
   const double jitterX = uniform(hash3(o.seed, 2, 0)), jitterY = uniform(hash3(o.seed, 2, 1));
   t.spheres.push_back({o.width - r - 12 - 7.3 * jitterX, r + 12 + 5.7 * jitterY, r + 0.37 * jitterX});
-  if (o.spheres == 2) t.spheres.push_back({r + 14 + 6.1 * jitterY, r + 13 + 4.9 * jitterX, r - 0.29 * jitterY});
+  if (o.spheres == 2 && o.sphereSeparation == 0)
+    t.spheres.push_back({r + 14 + 6.1 * jitterY, r + 13 + 4.9 * jitterX, r - 0.29 * jitterY});
+  if (o.spheres == 2 && o.sphereSeparation > 0) {
+    // On the first one's row, to its left; apart (2 px between the discs at least) and inside
+    // the frame with the same 12 px margin as the first.
+    const SphereTruth& first = t.spheres[0];
+    const SphereTruth second = {first.cx - o.sphereSeparation, first.cy, r - 0.29 * jitterY};
+    const double least = first.r + second.r + 2, most = first.cx - second.r - 12;
+    if (o.sphereSeparation < least || o.sphereSeparation > most) {
+      char range[96];
+      std::snprintf(range, sizeof range, "between %.0f and %.0f", std::ceil(least), std::floor(most));
+      throw Error(ErrorKind::Usage, "--sphere-separation", "generator",
+                  std::string("puts the two spheres ") + (o.sphereSeparation < least ? "over each other" : "out of the frame") +
+                      ": give " + range + " pixels for spheres of radius " + std::to_string(static_cast<int>(r)) +
+                      " in a frame " + std::to_string(o.width) + " pixels wide");
+    }
+    t.spheres.push_back(second);
+  }
+  if (o.lightDistance > 0) {
+    // Each light at D frame widths along its direction; it must stand above every sphere and
+    // the relief (at most 0.15 of the frame's smaller side, scene.cpp), or the scene's cast
+    // shadows and the sphere's lobe would see it from below.
+    double top = 0.15 * std::min(o.width, o.height) + 2;
+    for (const SphereTruth& s : t.spheres) top = std::max(top, 2 * s.r + 1);
+    for (std::size_t i = 0; i < t.lights.size(); ++i) {
+      const double d = o.lightDistance * o.width;
+      t.positions.push_back({d * t.lights[i][0], d * t.lights[i][1], d * t.lights[i][2]});
+      if (t.positions.back()[2] <= top) {
+        char what[200];
+        std::snprintf(what, sizeof what,
+                      "puts light %zu (elevation %.1f degrees) %.0f pixels above the plane, not above the "
+                      "spheres and the relief (%.0f pixels): give a larger distance",
+                      i + 1, std::asin(t.lights[i][2]) * 180 / M_PI, t.positions.back()[2], top);
+        throw Error(ErrorKind::Usage, "--light-distance", "generator", what);
+      }
+    }
+  }
   return t;
+}
+
+Image trueNormals(const GeneratorOptions& o, const CaptureTruth& t) { return trueNormals(Scene(o, t), o); }
+
+Image trueNormals(const Scene& scene, const GeneratorOptions& o) {
+  Image im(o.width, o.height, 3);
+  im.transfer = Transfer::Linear;
+  parallelFor(o.height, 16, effectiveThreads(o.threads), [&](std::size_t y0, std::size_t y1) {
+    for (int y = static_cast<int>(y0); y < static_cast<int>(y1); ++y)
+      for (int x = 0; x < o.width; ++x) {
+        const auto n = scene.normal(x, y);
+        for (int c = 0; c < 3; ++c)
+          im.at(x, y, c) = static_cast<std::uint16_t>(std::clamp(std::lround((n[c] + 1) / 2 * 65535), 0L, 65535L));
+      }
+  });
+  return im;
 }
 
 Image renderShot(const GeneratorOptions& o, const CaptureTruth& t, int index) {
   return renderShot(Scene(o, t), o, t, index);
 }
 
-Image renderShot(const Scene& scene, const GeneratorOptions& o, const CaptureTruth& t, int index) {
+Image renderShot(const Scene& scene, const GeneratorOptions& o, const CaptureTruth& /*the scene's own*/, int index) {
   Image im(o.width, o.height, 3);
   im.transfer = Transfer::Linear;
-  const auto& l = t.lights.at(index);
+  const ShotLight l = scene.shotLight(index);
   const double exposure = index == o.darkFrame ? kExposure * kDarkExposure : kExposure;
   const bool flash = index != o.noFlashFrame;
   parallelFor(o.height, 16, effectiveThreads(o.threads), [&](std::size_t y0, std::size_t y1) {

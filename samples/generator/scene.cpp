@@ -128,12 +128,67 @@ double Scene::environment(double rx, double ry, double rz) const {
   return v;
 }
 
-double Scene::glare(int x, int y, const std::array<double, 3>& l) const {
-  double v = 0;
-  double hx = l[0], hy = l[1], hz = l[2] + 1;
-  const double hl = std::sqrt(hx * hx + hy * hy + hz * hz);
+ShotLight Scene::shotLight(int index) const {
+  ShotLight light;
+  const std::array<double, 3>& l = t_.lights.at(index);
+  light.direction = l;
+  light.near = !t_.positions.empty();
+  if (!light.near) {
+    double hx = l[0], hy = l[1], hz = l[2] + 1;
+    const double hl = std::sqrt(hx * hx + hy * hy + hz * hz);
+    for (const SphereTruth& s : t_.spheres) light.highlights.push_back({s.cx + s.r * hx / hl, s.cy - s.r * hy / hl});
+    return light;
+  }
+  const std::array<double, 3>& x = t_.positions.at(index);
+  light.position = x;
+  light.distanceSquared = x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
+  // Each sphere's highlight: the point P = C + r N whose normal bisects V and the direction
+  // from P itself to the light. The fixed point of N <- normalize(normalize(X - C - r N) + V)
+  // contracts by about r / |X - P| (at most 1/2 with kMinLightDistance): 60 rounds are exact.
   for (const SphereTruth& s : t_.spheres) {
-    const double px = s.cx + s.r * hx / hl, py = s.cy - s.r * hy / hl;  // the highlight (mirror point)
+    const std::array<double, 3> c = {s.cx - (w_ - 1) / 2.0, (h_ - 1) / 2.0 - s.cy, s.r};
+    std::array<double, 3> n = {0, 0, 1};
+    for (int round = 0; round < 60; ++round) {
+      std::array<double, 3> d;
+      for (int k = 0; k < 3; ++k) d[k] = x[k] - c[k] - s.r * n[k];
+      const double dl = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      std::array<double, 3> hv = {d[0] / dl, d[1] / dl, d[2] / dl + 1};
+      const double hl = std::sqrt(hv[0] * hv[0] + hv[1] * hv[1] + hv[2] * hv[2]);
+      for (int k = 0; k < 3; ++k) n[k] = hv[k] / hl;
+    }
+    light.highlights.push_back({s.cx + s.r * n[0], s.cy - s.r * n[1]});
+  }
+  return light;
+}
+
+void Scene::lightAt(const ShotLight& light, double px, double py, double z, std::array<double, 3>* l,
+                    double* falloff) const {
+  if (!light.near) {
+    *l = light.direction;
+    *falloff = 1;
+    return;
+  }
+  const double dx = light.position[0] - (px - (w_ - 1) / 2.0), dy = light.position[1] - ((h_ - 1) / 2.0 - py),
+               dz = light.position[2] - z;
+  const double d2 = dx * dx + dy * dy + dz * dz, d = std::sqrt(d2);
+  *l = {dx / d, dy / d, dz / d};
+  *falloff = light.distanceSquared / d2;
+}
+
+std::array<double, 3> Scene::normal(int x, int y) const {
+  for (const SphereTruth& s : t_.spheres) {
+    const double nx = (x - s.cx) / s.r, ny = -(y - s.cy) / s.r, d2 = nx * nx + ny * ny;
+    if (d2 < 1) return {nx, ny, std::sqrt(1 - d2)};
+  }
+  const auto& n = normal_[std::size_t(y) * w_ + x];
+  return {n[0], n[1], n[2]};
+}
+
+double Scene::glare(int x, int y, const ShotLight& light) const {
+  double v = 0;
+  for (std::size_t k = 0; k < t_.spheres.size(); ++k) {
+    const SphereTruth& s = t_.spheres[k];
+    const double px = light.highlights[k][0], py = light.highlights[k][1];  // the highlight (mirror point)
     const double along = (x - px) * glareCos_ + (y - py) * glareSin_;
     const double across = -(x - px) * glareSin_ + (y - py) * glareCos_;
     const double width = std::max(0.8, kGlareWidth * s.r);
@@ -172,16 +227,19 @@ bool Scene::shadowedBySphere(double x, double y, double z, const std::array<doub
   return false;
 }
 
-bool Scene::sphereRadiance(double sx, double sy, const std::array<double, 3>& l, bool flash, double* out) const {
+bool Scene::sphereRadiance(double sx, double sy, const ShotLight& light, bool flash, double* out) const {
   for (const SphereTruth& s : t_.spheres) {
     const double nx = (sx - s.cx) / s.r, ny = -(sy - s.cy) / s.r;
     const double d2 = nx * nx + ny * ny;
     if (d2 >= 1) continue;
     const double nz = std::sqrt(1 - d2);
+    std::array<double, 3> l;
+    double falloff;
+    lightAt(light, sx, sy, s.r + s.r * nz, &l, &falloff);  // the point C + r N, C at height r
     const double ndotl = nx * l[0] + ny * l[1] + nz * l[2];
     for (const Speck& d : specks_)
       if (std::hypot(sx - d.x, sy - d.y) < d.radius) {
-        *out = d.brightness * (kDustAmbient + (flash ? kDustLit * std::max(0.0, ndotl) : 0.0));
+        *out = d.brightness * (kDustAmbient + (flash ? kDustLit * std::max(0.0, ndotl) * falloff : 0.0));
         return true;
       }
     // The room mirrored (reflections): the direction the camera sees reflected, 2 (N.V) N - V.
@@ -195,15 +253,15 @@ bool Scene::sphereRadiance(double sx, double sy, const std::array<double, 3>& l,
     const double hl = std::sqrt(hx * hx + hy * hy + hz * hz);
     hx /= hl; hy /= hl; hz /= hl;
     const double ndoth = std::max(0.0, nx * hx + ny * hy + nz * hz);
-    const double spec = ndotl > 0 ? 6.0 * std::pow(ndoth, 600.0) : 0.0;
-    *out = 0.02 * std::max(0.0, ndotl) + 0.004 + spec;
+    const double spec = ndotl > 0 ? 6.0 * std::pow(ndoth, 600.0) * falloff : 0.0;
+    *out = 0.02 * std::max(0.0, ndotl) * falloff + 0.004 + spec;
     if (o_.reflections) *out += room;
     return true;
   }
   return false;
 }
 
-std::array<double, 3> Scene::radiance(int x, int y, const std::array<double, 3>& l, bool flash) const {
+std::array<double, 3> Scene::radiance(int x, int y, const ShotLight& light, bool flash) const {
   // Pixels near a sphere's outline are supersampled (4x4) so the edge and the highlight are
   // anti-aliased: detection must then find centres to sub-pixel accuracy.
   bool nearSphere = false;
@@ -213,13 +271,16 @@ std::array<double, 3> Scene::radiance(int x, int y, const std::array<double, 3>&
   const auto& n = normal_[i];
   const auto& a = albedo_[i];
   auto surface = [&]() {
+    std::array<double, 3> l;
+    double falloff;
+    lightAt(light, x, y, height(x, y), &l, &falloff);
     double lambert = flash ? std::max(0.0, n[0] * l[0] + n[1] * l[1] + n[2] * l[2]) : 0.0;
     if (o_.shadows && lambert > 0 && (shadowedByRelief(x, y, l) || shadowedBySphere(x, y, height(x, y), l)))
       lambert = 0;
-    const double e = 0.85 * lambert + 0.03;
+    const double e = 0.85 * lambert * falloff + 0.03;  // falloff 1 at infinity: the same bits
     return std::array<double, 3>{a[0] * e, a[1] * e, a[2] * e};
   };
-  const double streak = flash && o_.glare > 0 ? glare(x, y, l) : 0.0;
+  const double streak = flash && o_.glare > 0 ? glare(x, y, light) : 0.0;
   if (!nearSphere) {
     std::array<double, 3> v = surface();
     if (streak > 0)
@@ -231,7 +292,7 @@ std::array<double, 3> Scene::radiance(int x, int y, const std::array<double, 3>&
   for (int sy = 0; sy < 4; ++sy) {
     for (int sx = 0; sx < 4; ++sx) {
       double v;
-      if (sphereRadiance(x + (sx + 0.5) / 4 - 0.5, y + (sy + 0.5) / 4 - 0.5, l, flash, &v)) {
+      if (sphereRadiance(x + (sx + 0.5) / 4 - 0.5, y + (sy + 0.5) / 4 - 0.5, light, flash, &v)) {
         for (double& c : sum) c += v;
       } else {
         for (int c = 0; c < 3; ++c) sum[c] += ground[c];
