@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "generator/capture_generator.h"
+#include "generator/scene.h"
 #include "image/decode.h"
 
 using namespace surrogate;
@@ -140,11 +141,14 @@ TEST_CASE("near lights: a sphere's highlight is where its normal bisects the vie
   o.sphereSeparation = 150;
   const generator::CaptureTruth t = generator::planCapture(o);
   REQUIRE(t.spheres.size() == 2);
+  const generator::Scene scene(o, t);
   int shifted = 0;
   for (int i = 0; i < o.images; ++i) {
-    const Image im = generator::renderShot(o, t, i);
+    const Image im = generator::renderShot(scene, o, t, i);
+    const generator::ShotLight shot = scene.shotLight(i);  // where the glare streaks start
     const Vec& x = t.positions[i];
-    for (const auto& s : t.spheres) {
+    for (std::size_t k = 0; k < t.spheres.size(); ++k) {
+      const auto& s = t.spheres[k];
       // The mirror point lies in the vertical plane through the centre C and the light:
       // N(a) = (cos a u, sin a). Bisection on a for N = normalize(V + normalize(X - C - r N)).
       const Vec c = framePoint(o, s.cx, s.cy, s.r);
@@ -175,6 +179,7 @@ TEST_CASE("near lights: a sphere's highlight is where its normal bisects the vie
       INFO("shot " << i << ", sphere at " << s.cx << "," << s.cy << ": expected " << ex << "," << ey << ", far " << fx << "," << fy);
       REQUIRE(sw > 0);
       CHECK(std::hypot(sx / sw - ex, sy / sw - ey) < 0.5);
+      CHECK(std::hypot(shot.highlights[k][0] - ex, shot.highlights[k][1] - ey) < 1e-6);
       if (std::hypot(fx - ex, fy - ey) > 2) ++shifted;
     }
   }
