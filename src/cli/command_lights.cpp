@@ -1,6 +1,8 @@
 // surrogate lights CAPTURE -o FILE.lp: light estimation only (ingest, decode, spheres,
 // highlights, light directions), recorded in the capture's carrier like a run.
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <iostream>
 
 #include "capture/capture.h"
@@ -10,6 +12,7 @@
 #include "cli/option_checks.h"
 #include "cli/pipeline_options.h"
 #include "cli/progress.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/json.h"
 #include "core/text.h"
@@ -24,7 +27,8 @@ namespace {
 // "images": each light of FILE.lp, named as FILE.lp names its image, with its direction and
 // uncertaintyDegrees (the 95 % bound in degrees on its angle from the true direction,
 // hrti/light_uncertainty.h; null for a light read from the capture's own .lp file), from the
-// carrier's light items, matched to the .lp's lines by the image file they name.
+// carrier's light items, matched to the .lp's lines by the image file they name; and where the
+// light was, position and distance (nearLight), null for a light at infinity.
 void writeLightImages(JsonWriter& j, const carrier::Carrier& c, const fs::path& capture, const fs::path& written,
                       const std::vector<formats::LightEntry>& entries) {
   const std::vector<formats::LightEntry> lines = formats::readLp(written);
@@ -44,6 +48,18 @@ void writeLightImages(JsonWriter& j, const carrier::Carrier& c, const fs::path& 
     j.beginObject().key("image").value(entries[n].filename).key("x").value(entries[n].x)
         .key("y").value(entries[n].y).key("z").value(entries[n].z).key("uncertaintyDegrees");
     if (item && item->get("uncertaintyDegrees")) j.value(item->number("uncertaintyDegrees"));
+    else j.null();
+    // Where the light was (nearLight): its position in frame coordinates (pixels, origin at the
+    // frame's centre, y up) and distance in frame widths; null for a light at infinity.
+    const carrier::DataItem* place = nullptr;
+    for (const carrier::DataItem* p : result && item ? result->itemsOf("nearLight") : std::vector<const carrier::DataItem*>{})
+      if (p->get("image") == item->get("image")) place = p;
+    j.key("position");
+    if (place)
+      j.beginArray().value(place->number("x")).value(place->number("y")).value(place->number("z")).endArray();
+    else j.null();
+    j.key("distance");
+    if (place) j.value(place->number("distance"));
     else j.null();
     j.endObject();
   }
@@ -75,6 +91,9 @@ int runCommandLights(int argc, char** argv) {
   const fs::path capture = args.positional()[0];
   refuseCaptureSubfolder(capture, "lights");
   checkOutputFile("-o", *out, "lights.lp");  // before the run, not after it
+  // Near lights' positions go beside it, in relight's dome file (stages/light_estimation.h).
+  const fs::path dome = fs::path(*out).replace_extension(".dome");
+  checkOutputFile("-o", dome, "lights.dome");
   run::RunRequest request = requestFrom(args);
   request.lightsOnly = true;
   request.command = "lights";
@@ -95,6 +114,14 @@ int runCommandLights(int argc, char** argv) {
     e.filename = formats::lpImageName(*out, image ? *image : written.parent_path() / e.filename);
   }
   formats::writeLp(*out, entries);
+  bool near = false;
+  if (const carrier::Result* r = c.lastResultWith("light")) near = !r->itemsOf("nearLight").empty();
+  if (near) {
+    std::ifstream in(capture / capture::kAssemblyDir / "lights.dome", std::ios::binary);
+    std::ostringstream bytes;
+    bytes << in.rdbuf();
+    writeFileAtomically(dome, bytes.str());
+  }
   int lights = 0, flagged = 0;
   for (const carrier::Result& r : c.data) {
     lights += static_cast<int>(r.itemsOf("light").size());
@@ -102,7 +129,10 @@ int runCommandLights(int argc, char** argv) {
   }
   if (args.has("json")) {
     JsonWriter j;
-    j.beginObject().key("output").value(*out).key("lights").value(lights)
+    j.beginObject().key("output").value(*out).key("positions");
+    if (near) j.value(dome.string());
+    else j.null();
+    j.key("lights").value(lights)
         .key("flaggedHighlights").value(flagged)
         .key("carrier").value((capture / capture::kAssemblyDir / "carrier.xml").string());
     writeLightImages(j, c, capture, written, entries);
@@ -112,6 +142,7 @@ int runCommandLights(int argc, char** argv) {
     const Verbosity verbosity = verbosityOf(args);
     const carrier::CarrierSummary summary = carrier::describeCarrier(c);
     std::cout << "wrote " << *out << " (" << lights << " lights";
+    if (near) std::cout << "; their positions in " << dome.string();
     if (flagged) std::cout << ", " << flagged << " highlight(s) flagged";
     if (!summary.warnings.empty())
       std::cout << ", " << summary.warnings.size() << (summary.warnings.size() == 1 ? " warning" : " warnings");

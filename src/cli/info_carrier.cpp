@@ -27,6 +27,10 @@ struct RecordedLight {
   std::string image;
   double elevationDeg = 0, azimuthDeg = 0;
   std::optional<double> uncertaintyDeg;
+  // Where the light was (nearLight, LightDirections version 7): distance in frame widths and
+  // how it was placed (spheres, stated-distance); absent for a light at infinity.
+  std::optional<double> distance;
+  std::string placedBy;
 };
 std::vector<RecordedLight> recordedLights(const carrier::Carrier& c) {
   const carrier::Result* result = c.lastResultWith("light");
@@ -40,6 +44,11 @@ std::vector<RecordedLight> recordedLights(const carrier::Carrier& c) {
       rl.elevationDeg = l->number("elevationDeg");
       rl.azimuthDeg = l->number("azimuthDeg");
       if (l->get("uncertaintyDegrees")) rl.uncertaintyDeg = l->number("uncertaintyDegrees");
+      for (const carrier::DataItem* p : result->itemsOf("nearLight"))
+        if (p->get("image") == l->get("image")) {
+          rl.distance = p->number("distance");
+          rl.placedBy = p->get("source").value_or("");
+        }
     } catch (const Error&) {
       continue;  // a light that is not numbers is not shown
     }
@@ -282,6 +291,12 @@ void carrierJson(JsonWriter& j, const carrier::Carrier& c) {
     j.beginObject().key("image").value(l.image).key("elevationDeg").value(l.elevationDeg)
         .key("azimuthDeg").value(l.azimuthDeg).key("uncertaintyDegrees");
     if (l.uncertaintyDeg) j.value(*l.uncertaintyDeg);
+    else j.null();
+    j.key("distance");  // frame widths from the frame's centre; null: at infinity
+    if (l.distance) j.value(*l.distance);
+    else j.null();
+    j.key("placedBy");
+    if (l.distance) j.value(l.placedBy);
     else j.null();
     j.endObject();
   }

@@ -43,6 +43,7 @@ std::vector<OptionSpec> pipelineOptions(bool withFit) {
       {"focal-length", true, false, "lens focal length for the perspective model (default: EXIF)", "MM"},
       {"pixel-pitch", true, false, "sensor pixel pitch for the perspective model (default: EXIF)", "MM"},
       {"sphere-diameter", true, false, "real sphere diameter: with 2 spheres, gives light positions", "MM"},
+      {"light-distance", true, false, "how far the lights were from the frame's centre: frame widths (3), a length (1.2m, with --sphere-diameter), infinity or auto (default: two spheres place each light where they can)", "D"},
       // The capture's memory: decisions recorded by earlier runs stand until withdrawn.
       {"lp", true, false, "dome capture: take the lights from this .lp file in the capture (none: back to the spheres)", "FILE.lp"},
       {"forget-exclusion", true, true, "withdraw a recorded exclusion (needs --reason after it)", "IMAGE"},
@@ -117,7 +118,7 @@ void param(run::RunRequest& r, const char* component, const std::pair<std::strin
   r.stageParams.push_back({component, p.first, p.second});
 }
 
-// --light-model, --focal-length, --pixel-pitch, --sphere-diameter: the LightDirections
+// --light-model, --focal-length, --pixel-pitch, --sphere-diameter, --light-distance: the LightDirections
 // parameters given, each recorded on its own (a standing decision for the others stays).
 void lightDirections(run::RunRequest& r, const Args& args) {
   using stages::LightDirectionsOptions;
@@ -137,6 +138,11 @@ void lightDirections(run::RunRequest& r, const Args& args) {
     if (!text) continue;
     given.*field = parseNumberList(*text, 1, std::string("--") + option)[0];
     param(r, component, given.parameter(field));
+  }
+  if (const auto d = args.value("light-distance")) {
+    stages::StatedDistance::parse(*d, "--light-distance");  // Error(Usage) before any work
+    given.lightDistance = *d;
+    param(r, component, given.lightDistanceParameter());
   }
 }
 
@@ -263,6 +269,15 @@ run::RunRequest requestFrom(const Args& args) {
   bool lastIsExclusion = false;
   std::string* lastReason = nullptr;  // of a withdrawal, --reset or --accept-changed
   for (const auto& [name, value] : args.ordered()) {
+    if (name == "light-distance") {
+      // The distance is a decision like a circle: its reason, if given, is recorded with it.
+      for (run::RunRequest::StageParam& p : r.stageParams)
+        if (p.component == stages::LightDirectionsStage::kComponent && p.name == "lightDistance")
+          lastReason = &p.reason;
+      last = nullptr;
+      lastIsExclusion = false;
+      continue;
+    }
     if (name == "accept" || name == "forget-accept") {
       const auto& known = hrti::lightCheckNames();
       if (std::find(known.begin(), known.end(), value) == known.end()) {
@@ -348,7 +363,7 @@ run::RunRequest requestFrom(const Args& args) {
         last->reason = value;
       } else {
         throw Error(ErrorKind::Usage, "--reason", "command line",
-                    "must follow the --exclude, --sphere, --highlight or --accept it explains");
+                    "must follow the --exclude, --sphere, --highlight, --light-distance or --accept it explains");
       }
     }
   }

@@ -78,7 +78,10 @@ LightCheck spheresDisagree(const LightCheckInput& in) {
   c.detail = "the spheres' directions for the same image differ by " + fixedDecimals(m, 1) + " deg (median over " +
              std::to_string(angles.size()) + " images; a near light makes them differ, but not by more than " +
              fixedDecimals(LightCheckLimits::kMaxDisagreementDeg, 0) + " deg)" +
-             (c.failed ? ": one of the circles is probably not a sphere" : "");
+             (c.failed ? ": one of the circles is probably not a sphere, or the light was so near that the "
+                         "spheres see it from directions this far apart (then say how far with --light-distance, "
+                         "or leave it auto for the spheres to place it)"
+                       : "");
   return c;
 }
 

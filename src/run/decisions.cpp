@@ -307,9 +307,11 @@ RunRequest applyDecisions(const RunRequest& standing, const RunRequest& given,
     const auto old = replaceOrAdd(r.stageParams, p, [&](const RunRequest::StageParam& k) {
       return k.component == p.component && k.name == p.name;
     });
-    if (isPerCommand(p)) changes.push_back(p.component + " " + p.name + " = " + p.value + " (this run only)");
-    else if (!old) changes.push_back(p.component + " " + p.name + " = " + p.value);
-    else if (old->value != p.value) changes.push_back(p.component + " " + p.name + ": " + old->value + " -> " + p.value);
+    const std::string why = p.reason.empty() ? "" : ": " + p.reason;
+    if (isPerCommand(p)) changes.push_back(p.component + " " + p.name + " = " + p.value + " (this run only)" + why);
+    else if (!old) changes.push_back(p.component + " " + p.name + " = " + p.value + why);
+    else if (old->value != p.value) changes.push_back(p.component + " " + p.name + ": " + old->value + " -> " + p.value + why);
+    else if (!p.reason.empty()) changes.push_back(p.component + " " + p.name + " = " + p.value + " confirmed" + why);
   }
   for (const RunRequest::StageIntervention& i : given.stageInterventions) {
     const auto old = replaceOrAdd(r.stageInterventions, i, [&](const RunRequest::StageIntervention& k) {

@@ -84,6 +84,7 @@ struct RunRequest {
   // Stage parameters given on the command line, by stage component: {component, name, value}.
   struct StageParam {
     std::string component, name, value;
+    std::string reason = {};  // why, when the user gave one (--light-distance ... --reason): the run's note
   };
   std::vector<StageParam> stageParams;
   // Interventions given on the command line for later stages (manual spheres, highlights); one

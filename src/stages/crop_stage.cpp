@@ -21,7 +21,7 @@ pipeline::StageInfo CropStage::info() {
        "Crop the images the fit reads to a rectangle (given, or the largest clear of the "
        "spheres); light estimation keeps the full frame",
        pipeline::PlanSlot::Preprocessing});
-  info.reads = pipeline::alwaysReads({kRgbStack, kLuminanceStack});
+  info.reads = pipeline::alwaysReads({kRgbStack, kLuminanceStack, kStackFrame});
   return info;
 }
 
@@ -67,8 +67,16 @@ void CropStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier::
   recordValue(result, "rectangle", rect.text(), "pixels x,y,w,h");
   recordValue(result, "inputSize", sizeText(input->width(), input->height()), "pixels");
   recordValue(result, "outputSize", sizeText(rect.width, rect.height), "pixels");
-  if (rect.x != 0 || rect.y != 0 || rect.width != input->width() || rect.height != input->height())
+  if (rect.x != 0 || rect.y != 0 || rect.width != input->width() || rect.height != input->height()) {
     ctx.put<ImageStack>(kRgbStack, std::make_shared<CropStack>(input, rect));
+    // Near lights need to know where the fitted pixels lie in the frame.
+    if (ctx.has(kStackFrame)) {
+      StackFrame frame = *ctx.get<StackFrame>(kStackFrame);
+      frame.x0 += frame.sx * rect.x;
+      frame.y0 += frame.sy * rect.y;
+      ctx.put(kStackFrame, std::make_shared<StackFrame>(frame));
+    }
+  }
   ctx.carrier.addLog("info", step.id,
                      "the fit reads the rectangle " + rect.text() + " (" +
                          (options.method == "user" ? "given by the user" : "clear of the spheres") +

@@ -176,6 +176,7 @@ void DecodeStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
   ctx.put(kRgbStack, decoded.rgb);
   ctx.put(kDecodedRgbStack, decoded.rgb);
   ctx.put(kLuminanceStack, decoded.luminance);
+  ctx.put(kStackFrame, std::make_shared<StackFrame>(StackFrame{decoded.rgb->width(), decoded.rgb->height()}));
   // Stacks kept in memory count against --memory for the rest of the run (they replace any
   // earlier ones on the blackboard). The log says where they are: a spilled run is slower.
   ctx.settings.heldBytes = decoded.bytesInMemory;

@@ -2,6 +2,7 @@
 // blackboard keys (ctx.put, ctx.get) and what the ingest stage puts.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -22,6 +23,12 @@ inline constexpr const char* kSpheres = "spheres";
 inline constexpr const char* kStackMedian = "stack-median";  // hrti::StackMedian
 inline constexpr const char* kHighlights = "highlights";
 inline constexpr const char* kLights = "lights";
+// Where each light was (LightDirections, LightsFromFile): LightPlaces. Absent or all far: every
+// light at infinity.
+inline constexpr const char* kLightPlaces = "light-places";
+// How the pixels of kRgbStack lie in the full frame the lights were measured in (StackFrame):
+// ImageDecode puts the identity, Crop and Resize compose theirs.
+inline constexpr const char* kStackFrame = "stack-frame";
 
 // One photograph the pipeline uses (after exclusions), in capture order.
 struct InputImage {
@@ -30,5 +37,29 @@ struct InputImage {
   std::string stem;          // the shot's name
 };
 using InputImages = std::vector<InputImage>;
+
+// One light's place, in the frame coordinates of docs/hrti-math.md ("Near lights"): pixels of
+// the full frame, origin at the frame's centre on the object's plane, x right, y up, z towards
+// the camera. `near` false: the light is at infinity (a direction only).
+struct LightPlace {
+  bool near = false;
+  std::array<double, 3> position{};
+};
+struct LightPlaces {
+  int frameWidth = 0, frameHeight = 0;  // the full frame, pixels
+  std::vector<LightPlace> lights;       // one per input image, in order
+  bool anyNear() const {
+    for (const LightPlace& l : lights)
+      if (l.near) return true;
+    return false;
+  }
+};
+
+// Full-frame pixel (u, v) of the stack's pixel (x, y): u = x0 + sx x, v = y0 + sy y (pixel
+// centres; a resize by f maps a pixel's centre to the centre of the f x f block it averages).
+struct StackFrame {
+  int fullWidth = 0, fullHeight = 0;
+  double x0 = 0, y0 = 0, sx = 1, sy = 1;
+};
 
 }  // namespace surrogate::stages

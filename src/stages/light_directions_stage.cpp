@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -20,6 +21,7 @@
 #include "pipeline/context.h"
 #include "stages/inputs.h"
 #include "stages/light_estimation.h"
+#include "stages/light_places.h"
 #include "stages/outputs.h"
 #include "stages/recorded_checks.h"
 #include "stages/stack_views.h"
@@ -49,6 +51,7 @@ constexpr Length kLengths[] = {
     {"sphereDiameterMm", &LightDirectionsOptions::sphereDiameterMm, "--sphere-diameter"},
 };
 constexpr const char* kModelParameter = "model";
+constexpr const char* kLightDistanceParameter = "lightDistance";
 
 const Length& lengthOf(double LightDirectionsOptions::*field) {
   for (const Length& l : kLengths)
@@ -100,7 +103,42 @@ std::string lightCheckFix(const hrti::LightCheck& c, const hrti::LightCheckInput
 pipeline::Parameters LightDirectionsOptions::toParameters() const {
   pipeline::Parameters p = {modelParameter()};
   for (const Length& l : kLengths) p.push_back(parameter(l.field));
+  p.push_back(lightDistanceParameter());
   return p;
+}
+
+std::pair<std::string, std::string> LightDirectionsOptions::lightDistanceParameter() const {
+  return {kLightDistanceParameter, lightDistance};
+}
+
+StatedDistance StatedDistance::parse(const std::string& text, const std::string& where) {
+  StatedDistance d;
+  if (text == "auto") return d;
+  if (text == "infinity" || text == "inf") {
+    d.kind = Kind::Infinity;
+    return d;
+  }
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  const std::string unit = end ? std::string(end) : std::string();
+  const bool number = !text.empty() && end != text.c_str() && std::isfinite(v) && v > 0 &&
+                      !std::isspace(static_cast<unsigned char>(text[0]));
+  if (number && unit.empty() && v >= kMinLightDistanceWidths && v <= kMaxLightDistanceWidths) {
+    d.kind = Kind::FrameWidths;
+    d.value = v;
+    return d;
+  }
+  const double mm = unit == "mm" ? 1 : unit == "cm" ? 10 : unit == "m" ? 1000 : 0;
+  if (number && mm > 0 && v * mm >= 10 && v * mm <= 1e6) {
+    d.kind = Kind::Millimetres;
+    d.value = v * mm;
+    return d;
+  }
+  throw Error(ErrorKind::Usage, where + " " + text, "light directions",
+              "is not a light distance: give frame widths from the frame's centre (a number from " +
+                  shown(kMinLightDistanceWidths) + " to " + shown(kMaxLightDistanceWidths) +
+                  ", e.g. 3), a length with its unit (e.g. 1.2m, 80cm, 950mm; with --sphere-diameter), "
+                  "infinity (every light a direction) or auto");
 }
 
 std::pair<std::string, std::string> LightDirectionsOptions::modelParameter() const {
@@ -114,6 +152,11 @@ std::pair<std::string, std::string> LightDirectionsOptions::parameter(double Lig
 LightDirectionsOptions LightDirectionsOptions::fromParameters(const pipeline::Parameters& parameters) {
   LightDirectionsOptions o;
   for (const auto& [name, value] : parameters) {
+    if (name == kLightDistanceParameter) {
+      StatedDistance::parse(value, "lightDistance");  // Error(Usage) naming it
+      o.lightDistance = value;
+      continue;
+    }
     if (name == kModelParameter) {
       if (value != "orthographic" && value != "perspective")
         throw Error(ErrorKind::Usage, value, "light directions", "unknown light model; use orthographic or perspective");
@@ -126,7 +169,7 @@ LightDirectionsOptions LightDirectionsOptions::fromParameters(const pipeline::Pa
     if (!length)
       throw Error(ErrorKind::Input, name + "=" + value, "light directions",
                   "is not a parameter of LightDirections (model, focalLengthMm, pixelPitchMm, "
-                  "sphereDiameterMm)");
+                  "sphereDiameterMm, lightDistance)");
     char* end = nullptr;
     const double v = std::strtod(value.c_str(), &end);
     if (value.empty() || end != value.c_str() + value.size() || !std::isfinite(v) || v < 0)
@@ -149,8 +192,11 @@ pipeline::StageInfo LightDirectionsStage::info() {
   // 6: each light records its uncertainty, uncertaintyDegrees (hrti/light_uncertainty.h), and
   //    the light checks are given it (LightCheckInput::uncertaintyDeg: lights-below-horizon's
   //    margin); exposure-outlier also compares each highlight's clipped area (a frame too bright)
+  // 7: where the lights were (parameter lightDistance; light_places.h): two spheres place a
+  //    light where their uncertainty allows, a stated distance places the others; a placed
+  //    light's direction is the one from the frame's centre, recorded with a nearLight item
   pipeline::StageInfo info = pipeline::withOptions<LightDirectionsOptions>(
-      {kComponent, "6",
+      {kComponent, "7",
        "Light direction of each image from its highlights by the law of reflection, checked for "
        "plausibility",
        pipeline::PlanSlot::LightsFromSpheres});
@@ -177,6 +223,8 @@ void LightDirectionsStage::run(const carrier::Step& step, pipeline::Context& ctx
 
   auto lights = std::make_shared<Lights>();
   hrti::LightCheckInput checks;
+  std::vector<MeasuredLight> measured(inputs->size());
+  std::vector<std::string> sources;
   for (std::size_t n = 0; n < inputs->size(); ++n) {
     std::array<double, 3> sum{0, 0, 0};
     std::string from;
@@ -205,6 +253,8 @@ void LightDirectionsStage::run(const carrier::Step& step, pipeline::Context& ctx
       sum[2] += l.z;
       checks.perSphere.back()[k] = std::array<double, 3>{l.x, l.y, l.z};
       evidence.push_back({(*spheres)[k], h});
+      measured[n].perSphere.push_back({l.x, l.y, l.z});
+      measured[n].sphereNumbers.push_back(static_cast<int>(k));
       from += (from.empty() ? "sphere " : ",") + std::to_string(k);
     }
     const double norm = std::sqrt(sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]);
@@ -218,7 +268,9 @@ void LightDirectionsStage::run(const carrier::Step& step, pipeline::Context& ctx
     const double bound =
         hrti::lightUncertaintyDeg(evidence, model == "perspective" ? &*intrinsics : nullptr);
     checks.uncertaintyDeg.push_back(bound);
-    addLightItem(result, (*inputs)[n].fileId, lights->back(), from, bound);
+    measured[n].direction = lights->back();
+    measured[n].evidence = evidence;
+    sources.push_back(from);
 
     if (spheres->size() >= 2 && diameter > 0 && intrinsics) {
       std::vector<hrti::SphereGeometry> geometry;
@@ -242,6 +294,21 @@ void LightDirectionsStage::run(const carrier::Step& step, pipeline::Context& ctx
       }
     }
   }
+  // Where the lights were (light_places.h): a placed light's direction is the one from the
+  // frame's centre, with its own bound.
+  auto places = std::make_shared<LightPlaces>();
+  {
+    PlacedLights placed = placeLights(options, measured, *inputs, lum->width(), lum->height(), ctx.carrier,
+                                      step.id, result);
+    for (std::size_t n = 0; n < inputs->size(); ++n) {
+      (*lights)[n] = placed.directions[n];
+      if (placed.uncertaintyDeg[n] >= 0) checks.uncertaintyDeg[n] = placed.uncertaintyDeg[n];
+      for (std::size_t k = 0; k < placed.perSphereFromCentre[n].size(); ++k)
+        checks.perSphere[n][static_cast<std::size_t>(measured[n].sphereNumbers[k])] = placed.perSphereFromCentre[n][k];
+      addLightItem(result, (*inputs)[n].fileId, (*lights)[n], sources[n], checks.uncertaintyDeg[n]);
+    }
+    *places = std::move(placed.places);
+  }
   checks.lights = *lights;
   checks.spheres = *spheres;
   // exposure-outlier compares exposures, so values in linear light: a frame at 5 % of the
@@ -264,7 +331,9 @@ void LightDirectionsStage::run(const carrier::Step& step, pipeline::Context& ctx
                {"light checks", "the light directions", "they cannot be trusted"},
                [&](const hrti::LightCheck& c) { return lightCheckFix(c, checks); });
   writeLights(ctx, step, result, *inputs, *lights);
+  writeLightsDome(ctx, step, result, *inputs, *lights, *places);
   ctx.put(kLights, lights);
+  ctx.put(kLightPlaces, places);
 }
 
 }  // namespace surrogate::stages

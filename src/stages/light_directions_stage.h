@@ -24,6 +24,11 @@ struct LightDirectionsOptions {
   double focalLengthMm = 0;     // 0: the first image's EXIF focal length
   double pixelPitchMm = 0;      // 0: from the EXIF focal-plane resolution
   double sphereDiameterMm = 0;  // with two spheres and the lens known: light positions; 0: none
+  // How far the lights were from the object (docs/hrti-math.md, "Near lights"): "auto", not
+  // stated (two spheres place a light where they can); "infinity": every light a direction;
+  // a number: frame widths from the frame's centre (relight's dome ratio); a length with a unit
+  // ("1.2m", "800mm", "90cm"): needs sphereDiameterMm, which gives the frame's scale.
+  std::string lightDistance = "auto";
 
   pipeline::Parameters toParameters() const;
   // Missing names keep their defaults. Error(Usage) for an unknown model; Error(Input) naming
@@ -33,6 +38,19 @@ struct LightDirectionsOptions {
   // that field): parameter(&LightDirectionsOptions::focalLengthMm), or the model's.
   std::pair<std::string, std::string> parameter(double LightDirectionsOptions::*length) const;
   std::pair<std::string, std::string> modelParameter() const;
+  std::pair<std::string, std::string> lightDistanceParameter() const;
+};
+
+// The range of a light distance in frame widths: closer than half a width the light would
+// stand over the object; past 1000 widths it is at infinity for any fit.
+inline constexpr double kMinLightDistanceWidths = 0.5, kMaxLightDistanceWidths = 1000;
+
+// A stated light distance read: infinity, frame widths, or millimetres. Error(Usage) naming
+// `where` for any other text ("2 m" with a space is refused: one word).
+struct StatedDistance {
+  enum class Kind { Auto, Infinity, FrameWidths, Millimetres } kind = Kind::Auto;
+  double value = 0;  // frame widths or millimetres
+  static StatedDistance parse(const std::string& text, const std::string& where);
 };
 
 class LightDirectionsStage : public pipeline::DescribedStage<LightDirectionsStage> {

@@ -39,6 +39,14 @@ std::vector<std::string> lightsFileOutput(const carrier::Step&);
 void writeLights(pipeline::Context& ctx, const carrier::Step& step, carrier::Result& result,
                  const InputImages& inputs, const Lights& lights);
 
+// Where the lights were, when any is near (LightPlaces): assembly-files/lights.dome, relight's
+// dome file (relightlab's "3D light positions": lightConfiguration lights3d, positions3d), the
+// companion of lights.lp, which stays the directions (relight's .lp reader normalises every
+// vector, so positions cannot go in it). docs/formats.md, "Light positions".
+inline constexpr double kFarLightWidths = 1000;  // where the dome file puts a light at infinity
+void writeLightsDome(pipeline::Context& ctx, const carrier::Step& step, carrier::Result& result,
+                     const InputImages& inputs, const Lights& lights, const LightPlaces& places);
+
 // One <light> item of a step's result: the direction, its elevation and azimuth in degrees, and
 // when measured (uncertaintyDeg >= 0) its uncertainty: uncertaintyDegrees, the 95 % bound on the
 // angle between this direction and the true one (hrti/light_uncertainty.h). A light read from a

@@ -107,17 +107,56 @@ pipeline::StageInfo RtiFitStage::info() {
       // the run unless the check is accepted. Version 4: every fit records the light matrix's
       // condition and the quantisation noise gain (how well the lights support the basis).
       // Version 5: a .ptm's PRONOM identifier (fmt/519) is recorded (formats/pronom.h); the
-      // files are the same.
-      {kComponent, "5", "Least-squares fit of a per-pixel reflectance model over the light directions",
+      // files are the same. Version 6: lights at known positions (LightDirections version 7,
+      // value nearLights): each pixel is fitted to its own light directions and its values
+      // brought to the frame centre's light by the inverse square of its distance
+      // (fit/near_lights.h); lights at infinity give version 5's bytes.
+      {kComponent, "6", "Least-squares fit of a per-pixel reflectance model over the light directions",
        pipeline::PlanSlot::EachModel});
   info.forModel = [](const std::string& basis) { return RtiFitOptions::forBasis(basis).toParameters(); };
   info.outputs = [](const carrier::Step& step) {
     const RtiFitOptions o = RtiFitOptions::fromParameters(parametersOf(step));
     return std::vector<std::string>{o.output.empty() ? defaultFitOutput(fit::basisName(o.fit.basis)) : o.output};
   };
-  info.reads = pipeline::alwaysReads({kRgbStack, kLights, kInputImages});
+  info.reads = pipeline::alwaysReads({kRgbStack, kLights, kInputImages, kLightPlaces, kStackFrame});
   return info;
 }
+
+namespace {
+
+// The fit's near lights (fit/near_lights.h) from the lights' places (LightDirections): the
+// frame coordinates of docs/hrti-math.md ("Near lights") taken to the stack's pixels, which a
+// crop or a resize moved (StackFrame). Returns how many lights are near (0: the far fit).
+int nearLightsOf(pipeline::Context& ctx, std::size_t lights,
+                 std::vector<fit::NearLight>* out) {
+  out->clear();
+  if (!ctx.has(kLightPlaces) || !ctx.has(kStackFrame)) return 0;
+  const auto places = ctx.get<LightPlaces>(kLightPlaces);
+  if (!places->anyNear()) return 0;
+  const StackFrame frame = *ctx.get<StackFrame>(kStackFrame);
+  if (places->lights.size() != lights || frame.fullWidth != places->frameWidth ||
+      frame.fullHeight != places->frameHeight)
+    throw Error(ErrorKind::Internal, "", "RtiFit",
+                "the lights' places do not match the images fitted; this is a bug in Surrogate, please report it");
+  // Frame point (X, Y) of full-frame pixel (u, v): (u - cu, cv - v); the stack's pixel (x, y)
+  // is the point (x, -y) of the fit's own units, u = x0 + sx x, v = y0 + sy y.
+  const double cu = (frame.fullWidth - 1) / 2.0, cv = (frame.fullHeight - 1) / 2.0;
+  int near = 0;
+  for (const LightPlace& p : places->lights) {
+    fit::NearLight l;
+    if (p.near) {
+      const auto& X = p.position;
+      l.near = true;
+      l.position = {(X[0] + cu - frame.x0) / frame.sx, (X[1] - cv + frame.y0) / frame.sy, X[2] / frame.sx};
+      l.referenceDistance = std::sqrt(X[0] * X[0] + X[1] * X[1] + X[2] * X[2]) / frame.sx;
+      ++near;
+    }
+    out->push_back(l);
+  }
+  return near;
+}
+
+}  // namespace
 
 void RtiFitStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier::Result& result) {
   const auto rgb = ctx.get<ImageStack>(kRgbStack);
@@ -132,6 +171,15 @@ void RtiFitStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
   options.progress = [&](double f) { ctx.progress(label, f); };
   ctx.progress(label, 0);  // the fit reports once per band of rows: show the bar from the start
   const std::string output = recorded.output.empty() ? defaultFitOutput(basis) : recorded.output;
+  const int nearCount = nearLightsOf(ctx, lights->size(), &options.nearLights);
+  if (nearCount > 0) {
+    result.add("value").set("name", "nearLights").set("value", std::to_string(nearCount))
+        .set("unit", "of " + std::to_string(lights->size()) + " lights");
+    ctx.carrier.addLog("info", step.id,
+                       basis + " fit: " + std::to_string(nearCount) + " of the " + std::to_string(lights->size()) +
+                           " lights at known positions: each pixel fitted to its own light directions, its "
+                           "values brought to the frame centre's light by the inverse square of the distance");
+  }
 
   fit::FitStatistics stats;
   std::shared_ptr<fit::Relightable> model;

@@ -20,6 +20,7 @@
 #include "stages/outputs.h"
 #include "stages/registry.h"
 #include "stages/frame_checks.h"
+#include "stages/light_directions_stage.h"
 #include "stages/preprocess.h"
 #include "verify/checks.h"
 
@@ -104,7 +105,14 @@ std::vector<std::string> parameterProblems(const carrier::Step& step,
   } else if (c == "HighlightDetection") {
     parse([](const Parameters& p) { hrti::HighlightOptions::fromParameters(p); });
   } else if (c == "LightDirections") {
-    only({"model", "focalLengthMm", "pixelPitchMm", "sphereDiameterMm"});
+    only({"model", "focalLengthMm", "pixelPitchMm", "sphereDiameterMm", "lightDistance"});
+    if (step.hasParam("lightDistance")) {
+      try {
+        stages::StatedDistance::parse(step.param("lightDistance"), "lightDistance");
+      } catch (const Error& e) {
+        out.push_back("parameter lightDistance=" + step.param("lightDistance").substr(0, 80) + ": " + e.message());
+      }
+    }
     const std::string model = step.param("model", "orthographic");
     if (model != "orthographic" && model != "perspective")
       out.push_back("parameter model=" + model.substr(0, 80) +

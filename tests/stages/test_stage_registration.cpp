@@ -98,8 +98,8 @@ TEST_CASE("built-in stages keep their recorded names, versions and default param
   // What existing carriers record: changing any of these makes old packages fail verification.
   const std::vector<std::pair<std::string, std::string>> versions = {
       {"CaptureIngest", "3"}, {"ImageDecode", "3"}, {"SphereDetection", "9"}, {"HighlightDetection", "10"},
-      {"LightDirections", "6"}, {"LightsFromFile", "3"}, {"WhiteBalance", "1"}, {"Crop", "1"},
-      {"Resize", "1"}, {"RtiFit", "5"}, {"DerivedMaps", "4"}, {"WebCopy", "4"}, {"Audit", "7"}};
+      {"LightDirections", "7"}, {"LightsFromFile", "3"}, {"WhiteBalance", "1"}, {"Crop", "1"},
+      {"Resize", "1"}, {"RtiFit", "6"}, {"DerivedMaps", "4"}, {"WebCopy", "4"}, {"Audit", "7"}};
   for (const auto& [component, version] : versions) {
     INFO(component);
     REQUIRE(r.info(component));
@@ -108,7 +108,7 @@ TEST_CASE("built-in stages keep their recorded names, versions and default param
   }
   CHECK(r.info("LightDirections")->defaults ==
         pipeline::Parameters{{"model", "orthographic"}, {"focalLengthMm", "0"}, {"pixelPitchMm", "0"},
-                             {"sphereDiameterMm", "0"}});
+                             {"sphereDiameterMm", "0"}, {"lightDistance", "auto"}});
   CHECK(r.info("DerivedMaps")->defaults == pipeline::Parameters{{"model", "ptm-lrgb"}});
   CHECK(r.info("RtiFit")->defaults == pipeline::Parameters{{"basis", "ptm-lrgb"}});
   CHECK(r.info("Audit")->defaults == pipeline::Parameters{{"angleThresholdDegrees", "2"},
