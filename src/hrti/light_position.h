@@ -1,5 +1,8 @@
-// The 3D position of a light from its highlights on two or more spheres of known size
-// (dissertation 6.2, future work there).
+// The 3D position of a light from its highlights on two or more spheres (dissertation 6.2,
+// future work there), in two forms: below, a perspective camera of known intrinsics and spheres
+// of known size (millimetres, camera frame); further down, the orthographic camera in frame
+// coordinates (pixels; issue 53's conventions), with an uncertainty and a verdict, which the
+// pipeline uses.
 //
 // With the camera's intrinsics and the real sphere diameter, each sphere's centre is known
 // in millimetres (camera frame, camera at the origin); each highlight is a point P_k on its
