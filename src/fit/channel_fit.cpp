@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 
+#include "fit/near_fit.h"
 #include "fit/row_kernels.h"
 
 namespace surrogate::fit {
@@ -25,18 +26,23 @@ ChannelFitter::ChannelFitter(std::vector<double> p, std::vector<double> basisAtL
     : p_(std::move(p)), basis_(std::move(basisAtLights)), n_(n), terms_(terms),
       displayScale_(displayScale) {}
 
-std::size_t ChannelFitter::scratchDoubles(int width) const {
+std::size_t ChannelFitter::ownScratch(int width) const {
   const std::size_t row = static_cast<std::size_t>(width) * 3;
   // Coefficients, decoded coefficients, one N x kBlockSamples block (samples or re-rendering),
   // a row of quantised bytes.
   return 2 * terms_ * row + static_cast<std::size_t>(n_) * kBlockSamples + (row + 7) / 8;
 }
 
+std::size_t ChannelFitter::scratchDoubles(int width) const {
+  return ownScratch(width) + (near_ ? near_->scratchDoubles(width) : 0);  // the near model's after ours
+}
+
 // coefficients (T x block) = P (T x N) * samples (N x block), block after block. Whole blocks
 // go through multiplyBlock, which adds as Eigen's product does; the row's last, partial block
 // stays with Eigen, which adds the last two or three samples of some lengths in another order
 // (vectorised over the photographs), so that the models keep their bytes for every width.
-void ChannelFitter::fitRow(const RowView& row, double* acc, double* block) const {
+void ChannelFitter::fitRow(const RowView& row, double* acc, double* block, double* nearScratch) const {
+  if (near_) return near_->fitChannels(row, acc, nearScratch);
   const std::size_t m = static_cast<std::size_t>(row.width) * 3;
   const Eigen::Map<const RowMajor> p(p_.data(), terms_, n_);
   for (std::size_t j0 = 0; j0 < m; j0 += kBlockSamples) {
@@ -56,7 +62,7 @@ void ChannelFitter::fitRow(const RowView& row, double* acc, double* block) const
 
 void ChannelFitter::measure(const RowView& row, double* scratch, double* lo, double* hi) const {
   const std::size_t m = static_cast<std::size_t>(row.width) * 3;
-  fitRow(row, scratch, scratch + 2 * terms_ * m);
+  fitRow(row, scratch, scratch + 2 * terms_ * m, scratch + ownScratch(row.width));
   for (int k = 0; k < terms_; ++k) {
     const double* a = scratch + k * m;
     lo[k] = *std::min_element(a, a + m);
@@ -71,23 +77,25 @@ void ChannelFitter::quantise(const RowView& row, double* scratch, double* sqErr)
   double* block = decoded + terms_ * m;
   auto* bytes = reinterpret_cast<std::uint8_t*>(block + static_cast<std::size_t>(n_) * kBlockSamples);
   // Rounded to float, as RtiFit version 2 kept them between the passes (fit.h).
-  fitRow(row, acc, block);
+  double* nearScratch = scratch + ownScratch(row.width);
+  fitRow(row, acc, block, nearScratch);
   for (std::size_t j = 0; j < terms_ * m; ++j) acc[j] = static_cast<float>(acc[j]);
   for (int k = 0; k < terms_; ++k) {
     double* d = decoded + k * m;
     quantiseRow(k, row.y, acc + k * m, m, bytes, d);
     for (std::size_t j = 0; j < m; ++j) d[j] *= displayScale_;
   }
-  measureError(row, decoded, block, sqErr);
+  measureError(row, decoded, block, nearScratch, sqErr);
 }
 
 // Re-renders the stored model at every captured light (N x block = basis (N x T) * decoded
 // (T x block)) and compares luminance; each sqErr[i] still sums the pixels in row order.
 void ChannelFitter::measureError(const RowView& row, const double* decoded, double* block,
-                                 double* sqErr) const {
+                                 double* nearScratch, double* sqErr) const {
   const std::size_t m = static_cast<std::size_t>(row.width) * 3;
   const Eigen::Map<const RowMajor> basis(basis_.data(), n_, terms_);
   std::fill(sqErr, sqErr + n_, 0.0);
+  if (near_) return near_->errorsChannels(row, decoded, nearScratch, sqErr);
   std::array<double, kBlockSamples / 3> d2;
   std::vector<const double*> decodedRows(terms_);
   for (int k = 0; k < terms_; ++k) decodedRows[k] = decoded + k * m;

@@ -16,6 +16,8 @@
 
 namespace surrogate::fit {
 
+class NearModel;
+
 class ChannelFitter : public RowFitter {
  public:
   // p: T x N in the model's units per 16-bit sample; basisAtLights: N x T;
@@ -27,6 +29,8 @@ class ChannelFitter : public RowFitter {
   std::size_t scratchDoubles(int width) const override;
   void measure(const RowView& row, double* scratch, double* lo, double* hi) const override;
   void quantise(const RowView& row, double* scratch, double* sqErr) const override;
+  // Lights at known positions: the rows are fitted and measured by `near` (fit/near_fit.h).
+  void useNear(const NearModel* near) { near_ = near; }
 
  protected:
   // Quantises coefficient k of row y, a[j] for the m = 3 width samples (pixel j / 3, channel
@@ -37,12 +41,14 @@ class ChannelFitter : public RowFitter {
 
  private:
   // acc: T x (3 width); block: N x kBlockSamples doubles of scratch.
-  void fitRow(const RowView& row, double* acc, double* block) const;
-  void measureError(const RowView& row, const double* decoded, double* block,
+  void fitRow(const RowView& row, double* acc, double* block, double* nearScratch) const;
+  void measureError(const RowView& row, const double* decoded, double* block, double* nearScratch,
                     double* sqErr) const;
+  std::size_t ownScratch(int width) const;
   std::vector<double> p_, basis_;
   int n_, terms_;
   double displayScale_;
+  const NearModel* near_ = nullptr;
 };
 
 }  // namespace surrogate::fit

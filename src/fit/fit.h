@@ -45,6 +45,21 @@
 // whatever the band height or thread count; reductions are kept per row and combined in row
 // order, so results (bytes and statistics) are bit-identical for any threads/budget.
 //
+// Lights at known positions (FitOptions::nearLights, fit/near_lights.h; docs/hrti-math.md, "Near
+// lights in the fit"): each pixel p has its own light matrix, from the directions
+// l_i(p) = normalize(X_i - p), and its samples are multiplied by the fall-off factors
+// f_i(p) = |X_i - p|^2 / r_i^2 before fitting, so a pixel's coefficients are the least-squares
+// fit (same basis, same conditioning rule) to its own normalised samples, and relighting the
+// file from one direction shows the surface under a distant light from there. The exact
+// inverse P(p) is computed at nodes every G pixels (G = d / 48 from the lights' closest
+// approach d to the frame, 2..64) and interpolated bilinearly; its error against the exact
+// per-pixel inverse moves no normal by 0.01 degree (tests/fit/test_near_lights.cpp); the f_i
+// are exact per pixel. The conditioning weight is one for the frame: the largest any node's
+// own light matrix asks for. The fit's statistics then re-render the stored model at each
+// pixel's own direction, divide by f_i and compare with the photograph: PSNR "relit at the
+// captured lights". The passes, bands and determinism are those below; every value is a
+// function of (x, y) alone. When no light is near, the fit is the far fit, byte for byte.
+//
 //   FitOptions options;
 //   options.basis = Basis::PtmLrgb;
 //   FitStatistics stats;
@@ -92,7 +107,11 @@ struct FitOptions {
 
 // How well the QUANTISED model reproduces the photographs: each photograph is re-rendered at
 // its own light from the stored bytes (clamped to 0..255, not rounded) and compared with the
-// captured image, on Rec. 709 luminance in 0..255 units, over every pixel.
+// captured image, on Rec. 709 luminance in 0..255 units, over every pixel. With near lights
+// (FitOptions::nearLights), "its own light" is each pixel's own direction to the light, and the
+// rendering is divided by the pixel's fall-off factor before the clamp: the PSNR is that of the
+// model relit at the captured lights. The conditioning figures are then the worst node's, the
+// rank the lowest (docs/hrti-math.md, "Near lights in the fit").
 struct FitStatistics {
   double rmse = 0;                  // over all pixels of all photographs
   double psnr = 0;                  // 20 log10(255 / rmse), capped at 100 dB (rmse ~ 0)

@@ -1,9 +1,12 @@
 // HshFit: .rti HSH from an ImageStack (the method is described in fit.h).
+#include <memory>
+
 #include "core/error.h"
 #include "core/resident.h"
 #include "fit/channel_fit.h"
 #include "fit/conditioning.h"
 #include "fit/fit.h"
+#include "fit/near_fit.h"
 #include "fit/pseudo_inverse.h"
 #include "fit/quantise.h"
 #include "fit/row_kernels.h"
@@ -43,6 +46,11 @@ class HshFitter : public ChannelFitter {
 
 formats::HshFile fitHsh(const ImageStack& stack, const std::vector<std::array<double, 3>>& lights,
                         const FitOptions& options, FitStatistics* stats) {
+  return fitHshSpaced(stack, lights, options, 0, stats);
+}
+
+formats::HshFile fitHshSpaced(const ImageStack& stack, const std::vector<std::array<double, 3>>& lights,
+                              const FitOptions& options, int spacing, FitStatistics* stats) {
   if (isPtm(options.basis)) {
     throw Error(ErrorKind::Usage, "--basis", "fit",
                 std::string("the basis ") + basisName(options.basis) +
@@ -56,6 +64,13 @@ formats::HshFile fitHsh(const ImageStack& stack, const std::vector<std::array<do
   // Plain least squares, or damped toward the lower order when the lights condition it poorly.
   const Conditioning conditioning = conditionedInverse(design, n, options.basis);
   const PseudoInverse& pinv = conditioning.inverse;
+  // Lights at known positions: per-pixel inverses in the fit's units (as p below).
+  std::unique_ptr<NearModel> near;
+  if (hasNearLights(l, options)) {
+    near = std::make_unique<NearModel>(
+        stack.width(), stack.height(), l, options.nearLights, options.basis, 1.0 / 65535.0,
+        spacing > 0 ? spacing : nearNodeSpacing(stack.width(), stack.height(), options.nearLights), options.threads);
+  }
 
   formats::HshFile hsh;
   hsh.width = stack.width();
@@ -67,11 +82,13 @@ formats::HshFile fitHsh(const ImageStack& stack, const std::vector<std::array<do
   std::vector<double> p = pinv.matrix;
   for (double& v : p) v /= 65535.0;  // 16-bit samples -> 0..1 units
   HshFitter fitter(std::move(p), design, n, terms, &hsh);
+  fitter.useNear(near.get());
   int passes = 0;
   const std::vector<double> sqErr =
-      streamFit(stack, fitter, options, hsh.coefficients.size(), &passes);
-  finishStatistics(sqErr, hsh.texels(), pinv.rank, passes, stats);
-  recordConditioning(conditioning, l, stats);
+      streamFit(stack, fitter, options, hsh.coefficients.size() + (near ? near->bytes() : 0), &passes);
+  const Conditioning& used = near ? near->conditioning() : conditioning;
+  finishStatistics(sqErr, hsh.texels(), used.inverse.rank, passes, stats);
+  recordConditioning(used, l, stats);
   return hsh;
 }
 

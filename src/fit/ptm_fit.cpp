@@ -1,12 +1,14 @@
 // PtmFit: LRGB and RGB .ptm from an ImageStack (the method is described in fit.h).
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include "core/error.h"
 #include "core/resident.h"
 #include "fit/channel_fit.h"
 #include "fit/conditioning.h"
 #include "fit/fit.h"
+#include "fit/near_fit.h"
 #include "fit/pseudo_inverse.h"
 #include "fit/quantise.h"
 #include "fit/row_kernels.h"
@@ -61,7 +63,12 @@ class LrgbFitter : public RowFitter {
   int ranges() const override { return 6; }
   // Scratch layout (doubles): acc 6w | chroma 3w | mean 3w | sum w | decoded 6w. Pass 2 reuses
   // mean for the colour bytes in planes and sum for the squared errors.
-  std::size_t scratchDoubles(int width) const override { return 19 * std::size_t(width); }
+  // The near model's scratch, if any, follows (nearScratch).
+  std::size_t scratchDoubles(int width) const override {
+    return 19 * std::size_t(width) + (near_ ? near_->scratchDoubles(width) : 0);
+  }
+  // Lights at known positions: the rows are fitted and measured by `near` (fit/near_fit.h).
+  void useNear(const NearModel* near) { near_ = near; }
 
   // The stored colour bytes are final after pass 1: they are written to the result here.
   void measure(const RowView& row, double* scratch, double* lo, double* hi) const override {
@@ -104,6 +111,10 @@ class LrgbFitter : public RowFitter {
     for (int x = 0; x < w; ++x)
       for (int c = 0; c < 3; ++c) planes[c * w + x] = chroma[3 * x + c];
     double* d2 = scratch + 12 * w;  // where fitRow kept the sums
+    if (near_) {
+      std::fill(sqErr, sqErr + n_, 0.0);
+      return near_->errorsLrgb(row, planes, planes + w, planes + 2 * w, decoded, nearScratch(scratch, w), sqErr);
+    }
     for (int i = 0; i < n_; ++i) {
       withSamples(row, [&](auto images) {
         squaredErrorsLrgb(planes, planes + w, planes + 2 * w, decoded, w, &basis_[static_cast<std::size_t>(i) * 6],
@@ -129,7 +140,8 @@ class LrgbFitter : public RowFitter {
     std::fill(mean, mean + m, 0.0);
     // Blocks of pixels, each through every photograph: the block's sums stay in the cache
     // (each value still adds the photographs in order, as the whole row at once would).
-    withSamples(row, [&](auto images) {
+    if (near_) near_->fitLrgb(row, acc, mean, nearScratch(scratch, w));
+    else withSamples(row, [&](auto images) {
       for (int x0 = 0; x0 < w; x0 += kAccumulateBlock)
         accumulateLrgb(images, n_, w, x0, std::min(w, x0 + kAccumulateBlock), p_.data(), weight_.data(), acc, mean,
                        sum);
@@ -144,10 +156,13 @@ class LrgbFitter : public RowFitter {
     }
   }
 
+  static double* nearScratch(double* scratch, int w) { return scratch + 19 * std::size_t(w); }
+
   int n_;
   formats::PtmFile* out_;
   std::vector<double> p_, weight_, basis_;
   PtmQuantisation q_[6];
+  const NearModel* near_ = nullptr;
 };
 
 // RGB: one polynomial per channel, coefficients in 0..255 units, scale/bias shared.
@@ -183,6 +198,11 @@ class RgbPtmFitter : public ChannelFitter {
 
 formats::PtmFile fitPtm(const ImageStack& stack, const std::vector<std::array<double, 3>>& lights,
                         const FitOptions& options, FitStatistics* stats) {
+  return fitPtmSpaced(stack, lights, options, 0, stats);
+}
+
+formats::PtmFile fitPtmSpaced(const ImageStack& stack, const std::vector<std::array<double, 3>>& lights,
+                              const FitOptions& options, int spacing, FitStatistics* stats) {
   if (!isPtm(options.basis)) {
     throw Error(ErrorKind::Usage, "--basis", "fit",
                 std::string("the basis ") + basisName(options.basis) +
@@ -194,6 +214,15 @@ formats::PtmFile fitPtm(const ImageStack& stack, const std::vector<std::array<do
   // Plain least squares, or damped toward the lower order when the lights condition it poorly.
   const Conditioning conditioning = conditionedInverse(design, n, options.basis);
   const PseudoInverse& pinv = conditioning.inverse;
+  // Lights at known positions: per-pixel inverses in the fit's units (as the fitters scale P).
+  std::unique_ptr<NearModel> near;
+  if (hasNearLights(l, options)) {
+    near = std::make_unique<NearModel>(
+        stack.width(), stack.height(), l, options.nearLights, options.basis,
+        options.basis == Basis::PtmLrgb ? 255.0 / 257.0 : 1.0 / 257.0,
+        spacing > 0 ? spacing : nearNodeSpacing(stack.width(), stack.height(), options.nearLights), options.threads);
+  }
+  const std::size_t nearBytes = near ? near->bytes() : 0;
 
   formats::PtmFile ptm;
   ptm.width = stack.width();
@@ -205,17 +234,20 @@ formats::PtmFile fitPtm(const ImageStack& stack, const std::vector<std::array<do
     resizeResident(ptm.coefficients, ptm.texels() * 6);
     resizeResident(ptm.rgb, ptm.texels() * 3);
     LrgbFitter fitter(pinv.matrix, l, &ptm);
-    sqErr = streamFit(stack, fitter, options, ptm.coefficients.size() + ptm.rgb.size(), &passes);
+    fitter.useNear(near.get());
+    sqErr = streamFit(stack, fitter, options, ptm.coefficients.size() + ptm.rgb.size() + nearBytes, &passes);
   } else {
     ptm.format = formats::PtmFile::Format::Rgb;
     resizeResident(ptm.coefficients, ptm.texels() * 18);
     std::vector<double> p = pinv.matrix;
     for (double& v : p) v /= 257.0;  // 16-bit samples -> 0..255 units
     RgbPtmFitter fitter(std::move(p), design, n, &ptm);
-    sqErr = streamFit(stack, fitter, options, ptm.coefficients.size(), &passes);
+    fitter.useNear(near.get());
+    sqErr = streamFit(stack, fitter, options, ptm.coefficients.size() + nearBytes, &passes);
   }
-  finishStatistics(sqErr, ptm.texels(), pinv.rank, passes, stats);
-  recordConditioning(conditioning, l, stats);
+  const Conditioning& used = near ? near->conditioning() : conditioning;
+  finishStatistics(sqErr, ptm.texels(), used.inverse.rank, passes, stats);
+  recordConditioning(used, l, stats);
   return ptm;
 }
 
