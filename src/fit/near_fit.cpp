@@ -53,13 +53,14 @@ struct Ctx {
   double* acc;          // 3 T x kBlock
 };
 
-// The block [x0, x1) of cell c: fills t and, for every light, f (or 1 / f).
-SURROGATE_INLINE void blockFalloff(const Ctx& k, int c, int x0, int len, bool inverse) {
+// The block [x0, x1) of cell c: fills t and, for every light, f, or `over` / f when `over` is not
+// 0 (the errors: one division per pixel and light, the rest multiplications).
+SURROGATE_INLINE void blockFalloff(const Ctx& k, int c, int x0, int len, double over) {
   for (int b = 0; b < len; ++b) k.t[b] = static_cast<double>(x0 + b - c * k.g) / k.g;
   for (int i = 0; i < k.n; ++i) {
     double* __restrict fi = k.f + i * kBlock;
     if (!k.near[i]) {
-      for (int b = 0; b < len; ++b) fi[b] = 1.0;
+      for (int b = 0; b < len; ++b) fi[b] = over != 0 ? over : 1.0;
       continue;
     }
     const double xi = k.x[i], ei = k.e[i], ri = k.inv[i];
@@ -67,8 +68,8 @@ SURROGATE_INLINE void blockFalloff(const Ctx& k, int c, int x0, int len, bool in
       const double dx = xi - static_cast<double>(x0 + b);
       fi[b] = (dx * dx + ei) * ri;
     }
-    if (inverse)
-      for (int b = 0; b < len; ++b) fi[b] = 1.0 / fi[b];
+    if (over != 0)
+      for (int b = 0; b < len; ++b) fi[b] = over / fi[b];
   }
 }
 
@@ -95,9 +96,9 @@ constexpr int kLanes = 4;
 // Fills f (and, for `samples`, fs: the fall-off-scaled samples in planes ch * n + i) for the
 // block, zero beyond `len` up to whole lane groups.
 template <typename Sample>
-SURROGATE_INLINE int blockSamples(const Ctx& k, const Sample* const* images, int c, int x0, int len, bool inverse,
+SURROGATE_INLINE int blockSamples(const Ctx& k, const Sample* const* images, int c, int x0, int len, double over,
                                   bool samples) {
-  blockFalloff(k, c, x0, len, inverse);
+  blockFalloff(k, c, x0, len, over);
   const int up = (len + kLanes - 1) / kLanes * kLanes;
   for (int b = len; b < up; ++b) k.t[b] = 0.0;
   for (int i = 0; i < k.n; ++i) {
@@ -119,7 +120,7 @@ SURROGATE_INLINE void fitChannelsBody(const Ctx& k, const Sample* const* images,
   const std::size_t m = static_cast<std::size_t>(k.w) * 3;
   const int n = k.n, T = k.terms;
   NEAR_FOR_BLOCKS(k) {
-    const int up = blockSamples(k, images, c, x0, len, false, true);
+    const int up = blockSamples(k, images, c, x0, len, 0.0, true);
     const double* Rc = k.R + c * k.stride;
     const double* Dc = k.D + c * k.stride;
     for (int j = 0; j < T; ++j) {
@@ -159,7 +160,7 @@ SURROGATE_INLINE void errorsChannelsBody(const Ctx& k, const Sample* const* imag
   const int n = k.n, T = k.terms;
   const std::size_t basisAt = static_cast<std::size_t>(T) * n;
   NEAR_FOR_BLOCKS(k) {
-    const int up = blockSamples(k, images, c, x0, len, true, false);
+    const int up = blockSamples(k, images, c, x0, len, 1.0, false);
     double* dec = k.acc;  // the block's decoded coefficients in planes ch * T + j
     for (int j = 0; j < T; ++j)
       for (int ch = 0; ch < 3; ++ch) {
@@ -196,8 +197,8 @@ SURROGATE_INLINE void errorsChannelsBody(const Ctx& k, const Sample* const* imag
         const double model = kLumR * clamp255(r[b] * gi[b]) + kLumG * clamp255(r[kBlock + b] * gi[b]) +
                              kLumB * clamp255(r[2 * kBlock + b] * gi[b]);
         const double captured =
-            (kLumR * sampleValue(s[3 * b]) + kLumG * sampleValue(s[3 * b + 1]) + kLumB * sampleValue(s[3 * b + 2])) /
-            257.0;
+            (kLumR * sampleValue(s[3 * b]) + kLumG * sampleValue(s[3 * b + 1]) + kLumB * sampleValue(s[3 * b + 2])) *
+            (1.0 / 257.0);
         d2[b] = (model - captured) * (model - captured);
       }
       double err = sqErr[i];
@@ -212,7 +213,7 @@ SURROGATE_INLINE void fitLrgbBody(const Ctx& k, const Sample* const* images, dou
   const int n = k.n;
   const std::size_t weightsAt = 2 * static_cast<std::size_t>(6) * n;
   NEAR_FOR_BLOCKS(k) {
-    const int up = blockSamples(k, images, c, x0, len, false, true);
+    const int up = blockSamples(k, images, c, x0, len, 0.0, true);
     const double* Rc = k.R + c * k.stride;
     const double* Dc = k.D + c * k.stride;
     double* sums = k.acc;  // 9 x kBlock: the six coefficients, then the mean colour's planes
@@ -250,7 +251,7 @@ SURROGATE_INLINE void errorsLrgbBody(const Ctx& k, const Sample* const* images, 
   const int n = k.n;
   const std::size_t basisAt = static_cast<std::size_t>(6) * n;
   NEAR_FOR_BLOCKS(k) {
-    const int up = blockSamples(k, images, c, x0, len, true, false);
+    const int up = blockSamples(k, images, c, x0, len, 1.0 / 255.0, false);
     double* dec = k.acc;  // the block's six decoded planes
     for (int j = 0; j < 6; ++j) {
       for (int b = 0; b < len; ++b) dec[j * kBlock + b] = decoded[j * k.w + x0 + b];
@@ -274,12 +275,12 @@ SURROGATE_INLINE void errorsLrgbBody(const Ctx& k, const Sample* const* images, 
       const Sample* __restrict s = images[i] + 3 * static_cast<std::size_t>(x0);
       const double* __restrict gi = k.f + i * kBlock;
       for (int b = 0; b < len; ++b) {
-        const double l = lum[b] * gi[b] / 255.0;
+        const double l = lum[b] * gi[b];  // gi = 1 / (255 f)
         const double model = kLumR * clamp255(cr[x0 + b] * l) + kLumG * clamp255(cg[x0 + b] * l) +
                              kLumB * clamp255(cb[x0 + b] * l);
         const double captured =
-            (kLumR * sampleValue(s[3 * b]) + kLumG * sampleValue(s[3 * b + 1]) + kLumB * sampleValue(s[3 * b + 2])) /
-            257.0;
+            (kLumR * sampleValue(s[3 * b]) + kLumG * sampleValue(s[3 * b + 1]) + kLumB * sampleValue(s[3 * b + 2])) *
+            (1.0 / 257.0);
         d2[b] = (model - captured) * (model - captured);
       }
       double err = sqErr[i];
