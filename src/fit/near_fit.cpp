@@ -322,10 +322,7 @@ SURROGATE_NEAR_AVX2 void errorsLrgbAvx2(const Ctx& k, const S* const* im, const 
   errorsLrgbBody(k, im, cr, cg, cb, d, e);
 }
 
-bool useAvx2() {
-  static const bool avx2 = kAvx2Compiled && activeKernelIsa() == KernelIsa::Avx2;
-  return avx2;
-}
+bool useAvx2(KernelIsa isa) { return kAvx2Compiled && isa == KernelIsa::Avx2; }
 
 std::vector<double> designRow(Basis basis, const std::array<double, 3>& l) {
   const int terms = basisTerms(basis);
@@ -532,39 +529,40 @@ std::vector<double> NearModel::pixelInverse(int x, int y) const {
   return p;
 }
 
-void NearModel::fitChannels(const RowView& row, double* acc, double* scratch) const {
+void NearModel::fitChannels(const RowView& row, double* acc, double* scratch, KernelIsa isa) const {
   Ctx k = startRow(row.y, scratch, false).ctx;
   k.w = row.width;
   withSamples(row, [&](auto images) {
-    if (useAvx2()) fitChannelsAvx2(k, images, acc);
+    if (useAvx2(isa)) fitChannelsAvx2(k, images, acc);
     else fitChannelsBase(k, images, acc);
   });
 }
 
-void NearModel::errorsChannels(const RowView& row, const double* decoded, double* scratch, double* sqErr) const {
+void NearModel::errorsChannels(const RowView& row, const double* decoded, double* scratch, double* sqErr,
+                               KernelIsa isa) const {
   Ctx k = startRow(row.y, scratch, true).ctx;
   k.w = row.width;
   withSamples(row, [&](auto images) {
-    if (useAvx2()) errorsChannelsAvx2(k, images, decoded, sqErr);
+    if (useAvx2(isa)) errorsChannelsAvx2(k, images, decoded, sqErr);
     else errorsChannelsBase(k, images, decoded, sqErr);
   });
 }
 
-void NearModel::fitLrgb(const RowView& row, double* acc, double* mean, double* scratch) const {
+void NearModel::fitLrgb(const RowView& row, double* acc, double* mean, double* scratch, KernelIsa isa) const {
   Ctx k = startRow(row.y, scratch, false).ctx;
   k.w = row.width;
   withSamples(row, [&](auto images) {
-    if (useAvx2()) fitLrgbAvx2(k, images, acc, mean);
+    if (useAvx2(isa)) fitLrgbAvx2(k, images, acc, mean);
     else fitLrgbBase(k, images, acc, mean);
   });
 }
 
 void NearModel::errorsLrgb(const RowView& row, const double* cr, const double* cg, const double* cb,
-                           const double* decoded, double* scratch, double* sqErr) const {
+                           const double* decoded, double* scratch, double* sqErr, KernelIsa isa) const {
   Ctx k = startRow(row.y, scratch, true).ctx;
   k.w = row.width;
   withSamples(row, [&](auto images) {
-    if (useAvx2()) errorsLrgbAvx2(k, images, cr, cg, cb, decoded, sqErr);
+    if (useAvx2(isa)) errorsLrgbAvx2(k, images, cr, cg, cb, decoded, sqErr);
     else errorsLrgbBase(k, images, cr, cg, cb, decoded, sqErr);
   });
 }

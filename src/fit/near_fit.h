@@ -20,6 +20,7 @@
 
 #include "fit/conditioning.h"
 #include "fit/fit.h"
+#include "fit/row_kernels.h"
 #include "fit/stream_fit.h"
 
 namespace surrogate::fit {
@@ -49,16 +50,19 @@ class NearModel {
   std::vector<double> pixelInverse(int x, int y) const;
 
   // Per channel (PTM RGB, HSH): acc[k * 3w + 3x + c], the fitted coefficients of the row.
-  void fitChannels(const RowView& row, double* acc, double* scratch) const;
+  // Each takes the kernel variant (row_kernels.h); both give the same bits.
+  void fitChannels(const RowView& row, double* acc, double* scratch, KernelIsa isa = activeKernelIsa()) const;
   // sqErr[i] += sum over the row (in pixel order) of the squared luminance error at light i of
   // the decoded model (decoded[k * 3w + 3x + c], 0..255 units) re-rendered at the pixel's own
   // direction, divided by f_i, clamped to 0..255.
-  void errorsChannels(const RowView& row, const double* decoded, double* scratch, double* sqErr) const;
+  void errorsChannels(const RowView& row, const double* decoded, double* scratch, double* sqErr,
+                      KernelIsa isa = activeKernelIsa()) const;
   // LRGB: acc[k * w + x] += sum_i P_ki f_i (R + G + B)_i, mean[3x + c] += sum_i w_i f_i s_ic.
-  void fitLrgb(const RowView& row, double* acc, double* mean, double* scratch) const;
+  void fitLrgb(const RowView& row, double* acc, double* mean, double* scratch,
+               KernelIsa isa = activeKernelIsa()) const;
   // LRGB errors: the colour bytes in planes cr, cg, cb; decoded[k * w + x].
   void errorsLrgb(const RowView& row, const double* cr, const double* cg, const double* cb,
-                  const double* decoded, double* scratch, double* sqErr) const;
+                  const double* decoded, double* scratch, double* sqErr, KernelIsa isa = activeKernelIsa()) const;
 
  private:
   struct Row;

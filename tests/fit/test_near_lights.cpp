@@ -343,6 +343,64 @@ TEST_CASE("fit near lights: bit-identical for 1 or 2 threads and any band height
   }
 }
 
+TEST_CASE("fit near lights: the baseline and AVX2 kernels give the same bits, bytes as their 16-bit values") {
+  const Capture c = render(70, 9, 1.5, 24, 5);
+  std::vector<KernelIsa> isas = {KernelIsa::Baseline};
+  if (activeKernelIsa() == KernelIsa::Avx2) isas.push_back(KernelIsa::Avx2);
+  const int w = c.w, n = 24;
+  for (Basis b : {Basis::PtmLrgb, Basis::Hsh3}) {
+    const int T = basisTerms(b);
+    const NearModel model(w, c.h, c.lights, c.near, b, 1.0 / 257.0, 4, 1);
+    std::vector<double> scratch(model.scratchDoubles(w));
+    for (int y = 0; y < c.h; ++y) {
+      // The row as 16-bit samples, as bytes, and as the bytes' 16-bit values 257 b.
+      std::vector<std::vector<std::uint16_t>> wide(n), widened(n);
+      std::vector<std::vector<std::uint8_t>> bytes(n);
+      std::vector<const std::uint16_t*> wideRows, widenedRows;
+      std::vector<const std::uint8_t*> byteRows;
+      for (int i = 0; i < n; ++i) {
+        const std::uint16_t* row = c.stack.heldRow(i, y);
+        wide[i].assign(row, row + 3 * w);
+        for (std::uint16_t v : wide[i]) {
+          bytes[i].push_back(static_cast<std::uint8_t>(v >> 8));
+          widened[i].push_back(static_cast<std::uint16_t>(257 * (v >> 8)));
+        }
+        wideRows.push_back(wide[i].data());
+        widenedRows.push_back(widened[i].data());
+        byteRows.push_back(bytes[i].data());
+      }
+      const RowView views[3] = {{wideRows.data(), nullptr, w, y},
+                                {widenedRows.data(), nullptr, w, y},
+                                {nullptr, byteRows.data(), w, y}};
+      // Everything each variant computes for a view: coefficients, mean colour, squared errors.
+      auto run = [&](const RowView& v, KernelIsa isa) {
+        std::vector<double> out;
+        if (b == Basis::PtmLrgb) {
+          std::vector<double> acc(6 * w, 0.0), mean(3 * w, 0.0), err(n, 0.0), colour(3 * w, 150.0);
+          model.fitLrgb(v, acc.data(), mean.data(), scratch.data(), isa);
+          model.errorsLrgb(v, colour.data(), colour.data() + w, colour.data() + 2 * w, acc.data(), scratch.data(),
+                           err.data(), isa);
+          for (const auto* part : {&acc, &mean, &err}) out.insert(out.end(), part->begin(), part->end());
+        } else {
+          std::vector<double> acc(T * 3 * w), err(n, 0.0);
+          model.fitChannels(v, acc.data(), scratch.data(), isa);
+          model.errorsChannels(v, acc.data(), scratch.data(), err.data(), isa);
+          out = acc;
+          out.insert(out.end(), err.begin(), err.end());
+        }
+        return out;
+      };
+      const std::vector<double> reference = run(views[0], KernelIsa::Baseline);
+      const std::vector<double> widenedReference = run(views[1], KernelIsa::Baseline);
+      for (KernelIsa isa : isas) {
+        INFO(basisName(b) << " row " << y << (isa == KernelIsa::Avx2 ? " avx2" : " baseline"));
+        CHECK(run(views[0], isa) == reference);
+        CHECK(run(views[2], isa) == widenedReference);
+      }
+    }
+  }
+}
+
 TEST_CASE("fit near lights: none near is the far fit with the bytes it had before") {
   // Digests of the fit as it was before near lights existed (commit 668fa01's fit, built and run
   // on this stack): the far path keeps its bytes.
