@@ -35,10 +35,97 @@ inline double clamp255(double v) {  // as row_kernels.cpp: std::clamp(v, 0, 255)
   return 255.0 < low ? 255.0 : low;
 }
 
+double srgbDecodeExact(double v) {  // encoded 0..1 (and beyond) -> linear
+  if (v < 0) return -srgbDecodeExact(-v);
+  return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
+}
+double srgbEncodeExact(double l) {  // linear -> encoded
+  if (l < 0) return -srgbEncodeExact(-l);
+  return l <= 0.0031308 ? 12.92 * l : 1.055 * std::pow(l, 1 / 2.4) - 0.055;
+}
+
+// The tables of srgbScaled and srgbUnscaled, made once (the same values on every call), small
+// enough to stay in the first-level cache: a 512 KB table read at random cost the fit as much as
+// its arithmetic. Encoding is tabulated against u = sqrt(L), where it is smooth enough for 4096
+// steps (interpolation error under 2e-6 of full scale); decoding against the encoded value.
+constexpr int kTable = 4096;
+constexpr double kEncodeRangeU = 2.8284271247461903;  // sqrt(8): linear values up to 8 tabulated
+constexpr double kDecodeRange = 4.0;                   // encoded values (0..1 full scale) up to 4
+constexpr double kRootRangeU = 8.0;  // sqrt of the largest factor tabulated (64)
+struct SrgbTables {
+  std::vector<double> decode16, encode, decode, root;
+  SrgbTables() : decode16(65536), encode(kTable + 1), decode(kTable + 1), root(kTable + 1) {
+    for (int v = 0; v < 65536; ++v) decode16[v] = srgbDecodeExact(v / 65535.0);
+    for (int j = 0; j <= kTable; ++j) {
+      const double u = kEncodeRangeU * j / kTable;
+      encode[j] = srgbEncodeExact(u * u);
+      decode[j] = srgbDecodeExact(kDecodeRange * j / kTable);
+      const double w = kRootRangeU * j / kTable;
+      root[j] = std::pow(w * w, 1 / 2.4);
+    }
+  }
+};
+const SrgbTables& srgbTables() {
+  static const SrgbTables tables;
+  return tables;
+}
+
+// f(x) from a table of f at range * j / kTable, linearly interpolated (x in [0, range)).
+SURROGATE_INLINE double interpolated(const double* table, double range, double x) {
+  const double at = x * (kTable / range);
+  const int j = static_cast<int>(at);
+  const double u = at - j;
+  return table[j] + u * (table[j + 1] - table[j]);
+}
+
+SURROGATE_INLINE double encodeLinear(const double* encode, double l) {
+  if (!(l >= 0 && l < 8.0)) return srgbEncodeExact(l);
+  return interpolated(encode, kEncodeRangeU, std::sqrt(l));
+}
+
+SURROGATE_INLINE double decodeEncoded(const double* decode, double v) {
+  if (!(v >= 0 && v < kDecodeRange)) return srgbDecodeExact(v);
+  return interpolated(decode, kDecodeRange, v);
+}
+
+// f^(1/2.4), against sqrt(f) (smooth enough for 4096 steps: relative error under 1e-8).
+SURROGATE_INLINE double rootWith(const double* root, double f) {
+  if (!(f >= 0 && f < kRootRangeU * kRootRangeU)) return std::pow(f, 1 / 2.4);
+  return interpolated(root, kRootRangeU, std::sqrt(f));
+}
+
+// srgbScaled and srgbUnscaled (near_fit.h) on the tables. Above the curve's linear toe, where
+// v = 1.055 L^(1/2.4) - 0.055, scaling L by f gives exactly (v + 0.055) f^(1/2.4) - 0.055: one
+// multiply-add a sample, with fp = f^(1/2.4) shared by the pixel's three channels. In the toe
+// (v or the result at most 0.04045, L at most 0.0031308) the tables.
+constexpr double kToe = 0.04045;
+SURROGATE_INLINE double scaledWith(const double* decode16, const double* encode, unsigned v16, double f,
+                                   double fp) {
+  const double v = v16 * (1.0 / 65535.0);
+  if (v > kToe) {
+    const double y = (v + 0.055) * fp - 0.055;
+    if (y > kToe) return 65535.0 * y;
+  }
+  return 65535.0 * encodeLinear(encode, decode16[v16] * f);
+}
+SURROGATE_INLINE double unscaledWith(const double* decode, const double* encode, double m255, double g,
+                                     double gp) {
+  const double v = m255 * (1.0 / 255.0);
+  if (v > kToe) {
+    const double y = (v + 0.055) * gp - 0.055;
+    if (y > kToe) return 255.0 * y;
+  }
+  return 255.0 * encodeLinear(encode, decodeEncoded(decode, v) * g);
+}
+
 // One row's view of the model: the nodes interpolated to the row (R, cols x stride), their
 // differences along x (D), the per-light parts of the squared distances, and block scratch.
 struct Ctx {
   int n, terms, g, cols, w;
+  bool srgb;  // samples sRGB-encoded: the fall-off applied in linear light (srgbScaled)
+  const double* dec16;  // the sRGB tables (SrgbTables)
+  const double* enc;
+  const double* dec;
   std::size_t stride;
   const double* R;
   const double* D;
@@ -51,6 +138,8 @@ struct Ctx {
   double* fs;           // 3 N x kBlock
   double* pk;           // kBlock
   double* acc;          // 3 T x kBlock
+  double* fp;           // N x kBlock, sRGB only: f_i^(1/2.4) (of what f holds)
+  const double* pw;     // the table of rootWith (SrgbTables::root)
 };
 
 // The block [x0, x1) of cell c: fills t and, for every light, f, or `over` / f when `over` is not
@@ -71,6 +160,12 @@ SURROGATE_INLINE void blockFalloff(const Ctx& k, int c, int x0, int len, double 
     if (over != 0)
       for (int b = 0; b < len; ++b) fi[b] = over / fi[b];
   }
+  if (k.srgb)
+    for (int i = 0; i < k.n; ++i) {
+      const double* __restrict fi = k.f + i * kBlock;
+      double* __restrict pi = k.fp + i * kBlock;
+      for (int b = 0; b < len; ++b) pi[b] = rootWith(k.pw, fi[b]);
+    }
 }
 
 // The row's blocks, left to right, none across a node column: the one starting at x0 lies in
@@ -108,7 +203,11 @@ SURROGATE_INLINE int blockSamples(const Ctx& k, const Sample* const* images, int
     const Sample* __restrict s = images[i] + 3 * static_cast<std::size_t>(x0);
     for (int ch = 0; ch < 3; ++ch) {
       double* __restrict o = k.fs + (ch * k.n + i) * kBlock;
-      for (int b = 0; b < len; ++b) o[b] = fi[b] * sampleValue(s[3 * b + ch]);
+      const double* __restrict pi = k.fp + i * kBlock;
+      if (k.srgb)
+        for (int b = 0; b < len; ++b) o[b] = scaledWith(k.dec16, k.enc, sampleValue(s[3 * b + ch]), fi[b], pi[b]);
+      else
+        for (int b = 0; b < len; ++b) o[b] = fi[b] * sampleValue(s[3 * b + ch]);
       for (int b = len; b < up; ++b) o[b] = 0.0;
     }
   }
@@ -192,10 +291,14 @@ SURROGATE_INLINE void errorsChannelsBody(const Ctx& k, const Sample* const* imag
       }
       const Sample* __restrict s = images[i] + 3 * static_cast<std::size_t>(x0);
       const double* __restrict gi = k.f + i * kBlock;
+      const double* __restrict gp = k.fp + i * kBlock;  // sRGB: gi^(1/2.4)
       double* __restrict d2 = r + 3 * kBlock;
       for (int b = 0; b < len; ++b) {
-        const double model = kLumR * clamp255(r[b] * gi[b]) + kLumG * clamp255(r[kBlock + b] * gi[b]) +
-                             kLumB * clamp255(r[2 * kBlock + b] * gi[b]);
+        const double model =
+            k.srgb ? kLumR * clamp255(unscaledWith(k.dec, k.enc, r[b], gi[b], gp[b])) + kLumG * clamp255(unscaledWith(k.dec, k.enc, r[kBlock + b], gi[b], gp[b])) +
+                         kLumB * clamp255(unscaledWith(k.dec, k.enc, r[2 * kBlock + b], gi[b], gp[b]))
+                   : kLumR * clamp255(r[b] * gi[b]) + kLumG * clamp255(r[kBlock + b] * gi[b]) +
+                         kLumB * clamp255(r[2 * kBlock + b] * gi[b]);
         const double captured =
             (kLumR * sampleValue(s[3 * b]) + kLumG * sampleValue(s[3 * b + 1]) + kLumB * sampleValue(s[3 * b + 2])) *
             (1.0 / 257.0);
@@ -251,7 +354,8 @@ SURROGATE_INLINE void errorsLrgbBody(const Ctx& k, const Sample* const* images, 
   const int n = k.n;
   const std::size_t basisAt = static_cast<std::size_t>(6) * n;
   NEAR_FOR_BLOCKS(k) {
-    const int up = blockSamples(k, images, c, x0, len, 1.0 / 255.0, false);
+    // gi = 1 / (255 f); sRGB: 1 / f, the model's value made first (its colour times L / 255).
+    const int up = blockSamples(k, images, c, x0, len, k.srgb ? 1.0 : 1.0 / 255.0, false);
     double* dec = k.acc;  // the block's six decoded planes
     for (int j = 0; j < 6; ++j) {
       for (int b = 0; b < len; ++b) dec[j * kBlock + b] = decoded[j * k.w + x0 + b];
@@ -274,10 +378,18 @@ SURROGATE_INLINE void errorsLrgbBody(const Ctx& k, const Sample* const* images, 
       }
       const Sample* __restrict s = images[i] + 3 * static_cast<std::size_t>(x0);
       const double* __restrict gi = k.f + i * kBlock;
+      const double* __restrict gp = k.fp + i * kBlock;  // sRGB: gi^(1/2.4)
       for (int b = 0; b < len; ++b) {
-        const double l = lum[b] * gi[b];  // gi = 1 / (255 f)
-        const double model = kLumR * clamp255(cr[x0 + b] * l) + kLumG * clamp255(cg[x0 + b] * l) +
-                             kLumB * clamp255(cb[x0 + b] * l);
+        double model;
+        if (k.srgb) {
+          const double l = lum[b] * (1.0 / 255.0);
+          model = kLumR * clamp255(unscaledWith(k.dec, k.enc, cr[x0 + b] * l, gi[b], gp[b])) +
+                  kLumG * clamp255(unscaledWith(k.dec, k.enc, cg[x0 + b] * l, gi[b], gp[b])) +
+                  kLumB * clamp255(unscaledWith(k.dec, k.enc, cb[x0 + b] * l, gi[b], gp[b]));
+        } else {
+          const double l = lum[b] * gi[b];  // gi = 1 / (255 f)
+          model = kLumR * clamp255(cr[x0 + b] * l) + kLumG * clamp255(cg[x0 + b] * l) + kLumB * clamp255(cb[x0 + b] * l);
+        }
         const double captured =
             (kLumR * sampleValue(s[3 * b]) + kLumG * sampleValue(s[3 * b + 1]) + kLumB * sampleValue(s[3 * b + 2])) *
             (1.0 / 257.0);
@@ -338,6 +450,16 @@ std::vector<double> designRow(Basis basis, const std::array<double, 3>& l) {
 
 }  // namespace
 
+double srgbScaled(unsigned v16, double f) {
+  const SrgbTables& t = srgbTables();
+  return scaledWith(t.decode16.data(), t.encode.data(), v16, f, rootWith(t.root.data(), f));
+}
+
+double srgbUnscaled(double m255, double g) {
+  const SrgbTables& t = srgbTables();
+  return unscaledWith(t.decode.data(), t.encode.data(), m255, g, rootWith(t.root.data(), g));
+}
+
 bool hasNearLights(const std::vector<std::array<double, 3>>& lights, const FitOptions& options) {
   const auto& near = options.nearLights;
   if (near.empty()) return false;
@@ -376,9 +498,10 @@ int nearNodeSpacing(int width, int height, const std::vector<NearLight>& near) {
 }
 
 NearModel::NearModel(int width, int height, const std::vector<std::array<double, 3>>& lights,
-                     const std::vector<NearLight>& near, Basis basis, double scale, int spacing, int threads)
+                     const std::vector<NearLight>& near, Basis basis, double scale, int spacing, int threads,
+                     Transfer transfer)
     : n_(static_cast<int>(lights.size())), terms_(basisTerms(basis)), g_(std::max(1, spacing)),
-      lrgb_(basis == Basis::PtmLrgb) {
+      lrgb_(basis == Basis::PtmLrgb), srgb_(transfer == Transfer::Srgb) {
   cols_ = std::max(2, (width - 1 + g_ - 1) / g_ + 1);
   rows_ = std::max(2, (height - 1 + g_ - 1) / g_ + 1);
   const std::size_t tn = static_cast<std::size_t>(terms_) * n_;
@@ -462,7 +585,7 @@ NearModel::NearModel(int width, int height, const std::vector<std::array<double,
 
 std::size_t NearModel::scratchDoubles(int) const {
   return 2 * static_cast<std::size_t>(cols_) * stride_ + n_ +
-         static_cast<std::size_t>(kBlock) * (2 + n_ + 3 * n_ + 3 * terms_ + 4);
+         static_cast<std::size_t>(kBlock) * (2 + n_ + 3 * n_ + 3 * terms_ + n_ + 4);
 }
 
 struct NearModel::Row {
@@ -500,6 +623,11 @@ NearModel::Row NearModel::startRow(int y, double* scratch, bool basis) const {
   Row r;
   Ctx& k = r.ctx;
   k.n = n_;
+  k.srgb = srgb_;
+  const SrgbTables& tables = srgbTables();
+  k.dec16 = tables.decode16.data();
+  k.enc = tables.encode.data();
+  k.dec = tables.decode.data();
   k.terms = terms_;
   k.g = g_;
   k.cols = cols_;
@@ -516,6 +644,8 @@ NearModel::Row NearModel::startRow(int y, double* scratch, bool basis) const {
   k.f = k.pk + kBlock;
   k.fs = k.f + static_cast<std::size_t>(n_) * kBlock;
   k.acc = k.fs + static_cast<std::size_t>(3) * n_ * kBlock;
+  k.fp = k.acc + static_cast<std::size_t>(3) * terms_ * kBlock;
+  k.pw = tables.root.data();
   return r;
 }
 

@@ -39,8 +39,11 @@ class NearModel {
   // multiplies P (the fit's units per 16-bit sample); `spacing` G (1: an exact inverse at every
   // pixel). The conditioning is the far fit's rule at every node with one weight for the frame:
   // the largest any node's own light matrix asks for.
+  // `transfer`: the samples' encoding. The fall-off is light, so sRGB samples are scaled in
+  // linear light and encoded again (srgbScaled below); linear samples are multiplied.
   NearModel(int width, int height, const std::vector<std::array<double, 3>>& lights,
-            const std::vector<NearLight>& near, Basis basis, double scale, int spacing, int threads);
+            const std::vector<NearLight>& near, Basis basis, double scale, int spacing, int threads,
+            Transfer transfer = Transfer::Linear);
 
   const Conditioning& conditioning() const { return summary_; }  // worst node; weight used
   std::size_t bytes() const { return nodes_.size() * sizeof(double); }
@@ -73,8 +76,19 @@ class NearModel {
   std::vector<double> nodes_;          // rows_ x cols_ x stride_
   std::vector<double> x_, yz_, inv_;   // per light: X, (Y, Z), 1 / r^2; inv_ = 0 for far lights
   std::vector<std::uint8_t> near_;
+  bool srgb_ = false;
   Conditioning summary_;
 };
+
+// The fall-off on sRGB-encoded values (IEC 61966-2-1: v = 1.055 L^(1/2.4) - 0.055, L <= 0.0031308:
+// 12.92 L), the same way for every pixel: decoding a 16-bit value is a table of 65536 exact
+// values; decoding a model's value (0..255 units) and encoding (against sqrt(L)) are tables of
+// 4097 exact values, interpolated linearly (error under 2e-6 of full scale), with the formula
+// past their range (linear light 8, four times full scale encoded). Exposed for tests.
+//   srgbScaled(v, f)      65535 E(D(v / 65535) f)   a 16-bit sample v lit f times as much
+//   srgbUnscaled(m, g)    255 E(D(m / 255) g)       a model value m (0..255 units) lit g times
+double srgbScaled(unsigned v16, double f);
+double srgbUnscaled(double m255, double g);
 
 // The fits with the node spacing forced (for tests: 1 = the exact per-pixel inverse).
 formats::PtmFile fitPtmSpaced(const ImageStack& stack, const std::vector<std::array<double, 3>>& lights,

@@ -220,7 +220,7 @@ formats::PtmFile fitPtmSpaced(const ImageStack& stack, const std::vector<std::ar
     near = std::make_unique<NearModel>(
         stack.width(), stack.height(), l, options.nearLights, options.basis,
         options.basis == Basis::PtmLrgb ? 255.0 / 257.0 : 1.0 / 257.0,
-        spacing > 0 ? spacing : nearNodeSpacing(stack.width(), stack.height(), options.nearLights), options.threads);
+        spacing > 0 ? spacing : nearNodeSpacing(stack.width(), stack.height(), options.nearLights), options.threads, stack.transfer());
   }
   const std::size_t nearBytes = near ? near->bytes() : 0;
 
