@@ -6,6 +6,7 @@
 
 #include "core/parallel.h"
 #include "core/text.h"
+#include "hrti/light_position.h"
 #include "hrti/stack_median.h"
 
 namespace surrogate::hrti {
@@ -49,7 +50,8 @@ bool detected(const Highlight& h) { return h.flag == HighlightFlag::Ok || h.flag
 std::vector<std::vector<HighlightSupport>> judgeAcrossImages(const ImageStack& stack, const StackMedian& med,
                                                              const std::vector<DetectedSphere>& spheres,
                                                              std::vector<std::vector<Highlight>>& highlights,
-                                                             const std::vector<double>& imageMeans, int threads) {
+                                                             const std::vector<double>& imageMeans, int threads,
+                                                             double lightDistancePx) {
   using L = ConsistencyLimits;
   const std::size_t n = highlights.size();
   std::vector<std::vector<HighlightSupport>> out(n, std::vector<HighlightSupport>(spheres.size()));
@@ -130,6 +132,24 @@ std::vector<std::vector<HighlightSupport>> judgeAcrossImages(const ImageStack& s
       }
     });
     for (std::size_t c = 0; c < judged.size(); ++c) highlights[judged[c]][k].clippedArea = clippedArea[c];
+    // A near light: a highlight whose light was farther from the sphere than the median is
+    // brought to the median distance. Never lowered: a clipped highlight's flux grows far less
+    // than 1/t^2 as its light comes nearer, so scaling the near ones down would make them faint.
+    if (lightDistancePx > 0) {
+      std::vector<double> t(judged.size(), 0), known;
+      for (std::size_t c = 0; c < judged.size(); ++c) {
+        const Highlight& h = highlights[judged[c]][k];
+        Vec3 point, ray;
+        mirrorRay(s, h.x, h.y, stack.width(), stack.height(), point, ray);
+        const PositionAtDistance x = positionAtDistance(s, ray, lightDistancePx, stack.width(), stack.height());
+        if (!x.ok) continue;
+        t[c] = std::hypot(x.position[0] - point[0], x.position[1] - point[1], x.position[2] - point[2]);
+        known.push_back(t[c]);
+      }
+      const double typical = median(known);
+      for (std::size_t c = 0; c < judged.size() && typical > 0; ++c)
+        if (t[c] > typical) flux[c] *= (t[c] / typical) * (t[c] / typical);
+    }
     // fixed: shared with other images, or bright in the median.
     std::vector<bool> fixed(judged.size(), false);
     for (std::size_t c = 0; c < judged.size(); ++c) {
@@ -176,7 +196,11 @@ std::vector<std::vector<HighlightSupport>> judgeAcrossImages(const ImageStack& s
         h.reason = at + ", gives " + percent(size) + " of the light of the other images' highlights (the same lamp "
                    "mirrored in the sphere gives at least " + percent(L::kFaintRatio) +
                    " of it): the highlight is missing, what was found is a reflection of the room or glare. The "
-                   "light probably missed the sphere or did not fire";
+                   "light probably missed the sphere or did not fire" +
+                   std::string(lightDistancePx > 0 ? ""
+                                                   : "; or the flash was near, and farther from this sphere than in the "
+                                                     "other images: then state its distance with --light-distance D "
+                                                     "(frame widths from the frame's centre)");
       }
     }
   }

@@ -34,7 +34,9 @@
 //           0.88-1.09 of the median flux; the spots a frame whose highlight was painted out
 //           offers give under 0.7 (0.5-0.7 for the glare left beside a small painted disc). A
 //           hand-held flash whose distance varies by more than 1.2 times (flux as 1/d^2 where
-//           not clipped) would give less: keep its distance, as H-RTI practice does
+//           not clipped) would give less: keep its distance, as H-RTI practice does. A near
+//           light's distance to each sphere varies with its direction even so: with the
+//           distance stated (lightDistancePx below) the flux is corrected for it
 //
 // Manual highlights are never judged. Fewer than kMinImages images with a detected highlight on
 // a sphere: nothing is judged there (too few to tell what is shared).
@@ -77,9 +79,16 @@ struct HighlightSupport {
 // them) against the others, and refuses the fixed and faint ones (flag, confidence 0, reason).
 // `imageMeans`: each image's mean in linear light (empty: faint is not judged). Returns what was
 // measured, [image][sphere]. Reads small windows of the stack; identical at any thread count.
+// lightDistancePx > 0: the lights' stated distance from the frame's centre (docs/hrti-math.md,
+// "Near lights"), in pixels: a highlight whose light was farther from the sphere than the
+// median is brought to the median distance, its flux times (t / t_median)^2 with t the distance
+// from its mirror point to the light placed at that distance along its reflected ray
+// (positionAtDistance), as a near flash on the far side of the frame gives the sphere 1/t^2 of
+// its light; never lowered (a clipped highlight's flux grows far less than 1/t^2).
 std::vector<std::vector<HighlightSupport>> judgeAcrossImages(const ImageStack& luminance, const StackMedian& median,
                                                              const std::vector<DetectedSphere>& spheres,
                                                              std::vector<std::vector<Highlight>>& highlights,
-                                                             const std::vector<double>& imageMeans, int threads);
+                                                             const std::vector<double>& imageMeans, int threads,
+                                                             double lightDistancePx = 0);
 
 }  // namespace surrogate::hrti

@@ -16,6 +16,7 @@
 #include "pipeline/context.h"
 #include "stages/frame_checks.h"
 #include "stages/inputs.h"
+#include "stages/light_directions_stage.h"
 #include "stages/light_estimation.h"
 #include "stages/outputs.h"
 #include "stages/recorded_checks.h"
@@ -92,8 +93,11 @@ pipeline::StageInfo HighlightDetectionStage::info() {
   //    is weighted by the height above its edge: positions differ from version 8's
   // 10: each highlight judged against the other images (flags fixed and faint refused,
   //    hrti/highlight_consistency.h), and every frame registered to the stack: check frame-moved
+  // 11: with the lights' distance stated (LightDirections' lightDistance), the faint rule brings
+  //    each highlight's light to the sphere's median distance (a near flash on the far side of
+  //    the frame gives a sphere less light, and was refused as faint)
   pipeline::StageInfo info = pipeline::withOptions<hrti::HighlightOptions>(
-      {kComponent, "10",
+      {kComponent, "11",
        "Find the specular highlight on each sphere in each image: the peak of the image's rise "
        "above the stack's median, blurred; the centroid of its core, or the deepest point of its "
        "saturated plateau when clipped",
@@ -102,6 +106,31 @@ pipeline::StageInfo HighlightDetectionStage::info() {
   info.reads = pipeline::alwaysReads({kLuminanceStack, kInputImages, kSpheres, kStackMedian});
   return info;
 }
+
+namespace {
+
+// The lights' distance the plan states (LightDirections' lightDistance, docs/hrti-math.md "Near
+// lights") in pixels of the frame; 0 when none is stated (auto, infinity) or a length cannot be
+// scaled (no sphere diameter). The faint rule corrects each highlight's light by it.
+double statedLightDistancePx(const carrier::Carrier& plan, const Spheres& spheres, int width) {
+  for (const carrier::Step& s : plan.process) {
+    if (s.component != LightDirectionsStage::kComponent) continue;
+    try {
+      const LightDirectionsOptions o = LightDirectionsOptions::fromParameters(parametersOf(s));
+      const StatedDistance d = StatedDistance::parse(o.lightDistance, "lightDistance");
+      if (d.kind == StatedDistance::Kind::FrameWidths) return d.value * width;
+      if (d.kind != StatedDistance::Kind::Millimetres || o.sphereDiameterMm <= 0 || spheres.empty()) return 0;
+      double r = 0;
+      for (const hrti::DetectedSphere& sphere : spheres) r += sphere.r / spheres.size();
+      return d.value * 2 * r / o.sphereDiameterMm;
+    } catch (const Error&) {
+      return 0;  // LightDirections refuses its own parameters, naming them
+    }
+  }
+  return 0;
+}
+
+}  // namespace
 
 void HighlightDetectionStage::run(const carrier::Step& step, pipeline::Context& ctx,
                                   carrier::Result& result) {
@@ -119,7 +148,8 @@ void HighlightDetectionStage::run(const carrier::Step& step, pipeline::Context& 
   std::vector<double> linearMeans;
   for (double m : median->imageMeans())
     linearMeans.push_back(linearOf(m, median->transfer()));
-  hrti::judgeAcrossImages(*lum, *median, *spheres, *highlights, linearMeans, ctx.settings.threads);
+  hrti::judgeAcrossImages(*lum, *median, *spheres, *highlights, linearMeans, ctx.settings.threads,
+                          statedLightDistancePx(ctx.carrier, *spheres, lum->width()));
   // Every frame registered to the stack (hrti/frame_registration.h): a frame that moved is named
   // as such before its highlight is judged, whatever its highlight looks like.
   std::vector<double> movedPx;

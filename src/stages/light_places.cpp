@@ -60,44 +60,64 @@ PlacedLights placeLights(const LightDirectionsOptions& options, const std::vecto
   out.places.frameHeight = height;
   std::vector<std::string> bySpheres, byDistance, untrusted;
   std::string firstReason;
-  std::vector<double> distances, bounds;
+  std::vector<double> bounds;
+  // The spheres first: triangulation is orthographic (hrti/light_position.h); with the
+  // perspective model only a stated distance places the lights.
+  std::vector<hrti::NearLightPosition> triangulated(measured.size());
+  std::vector<double> placedWidths;
+  for (std::size_t n = 0; n < measured.size(); ++n) {
+    const MeasuredLight& m = measured[n];
+    if (stated.kind == StatedDistance::Kind::Infinity || options.model != "orthographic" || m.evidence.size() < 2)
+      continue;
+    triangulated[n] = hrti::positionFromSpheres(m.evidence, width, height, m.sphereNumbers);
+    if (triangulated[n].trusted) placedWidths.push_back(triangulated[n].distancePx / width);
+  }
+  // No distance stated, and the spheres placed enough lights (at least 3, and a quarter of
+  // them) to say how far the flash was held: the others go at the median of their distances,
+  // which stands for the distance a photographer would have stated.
+  double fallback = widths;
+  std::string fallbackSource = "stated-distance";
+  if (fallback == 0 && stated.kind == StatedDistance::Kind::Auto && placedWidths.size() >= 3 &&
+      4 * placedWidths.size() >= measured.size()) {
+    fallback = median(placedWidths);
+    fallbackSource = "spheres-median";
+  }
   for (std::size_t n = 0; n < measured.size(); ++n) {
     const MeasuredLight& m = measured[n];
     LightPlace place;
     double bound = -1;
     std::string source;
     double distanceBound = -1;
-    // Triangulation is orthographic (hrti/light_position.h); with the perspective model only a
-    // stated distance places the lights.
-    if (stated.kind != StatedDistance::Kind::Infinity && options.model == "orthographic" && m.evidence.size() >= 2) {
-      const hrti::NearLightPosition p = hrti::positionFromSpheres(m.evidence, width, height, m.sphereNumbers);
-      if (p.trusted) {
-        place = {true, p.position};
-        bound = p.directionBoundDeg;
-        distanceBound = p.distanceBoundPx / width;
-        source = "spheres";
-        bySpheres.push_back(inputs[n].stem);
-        bounds.push_back(distanceBound);
-      } else {
-        untrusted.push_back(inputs[n].stem);
-        if (firstReason.empty()) firstReason = inputs[n].stem + ": " + p.reason;
-      }
+    if (triangulated[n].trusted) {
+      const hrti::NearLightPosition& p = triangulated[n];
+      place = {true, p.position};
+      bound = p.directionBoundDeg;
+      distanceBound = p.distanceBoundPx / width;
+      source = "spheres";
+      bySpheres.push_back(inputs[n].stem);
+      bounds.push_back(distanceBound);
+    } else if (!triangulated[n].reason.empty()) {
+      untrusted.push_back(inputs[n].stem);
+      if (firstReason.empty()) firstReason = inputs[n].stem + ": " + triangulated[n].reason;
     }
-    if (!place.near && widths > 0) {
-      // Along each sphere's own reflected ray to the stated distance; the spheres' points
-      // averaged (they differ by the error of the highlights).
+    if (!place.near && fallback > 0) {
+      // Along each sphere's own reflected ray to that distance; the spheres' points averaged
+      // (they differ by the error of the highlights).
       std::array<double, 3> sum{0, 0, 0};
+      bool ok = true;
       for (std::size_t k = 0; k < m.evidence.size(); ++k) {
         const hrti::PositionAtDistance p =
-            hrti::positionAtDistance(m.evidence[k].sphere, m.perSphere[k], widths * width, width, height);
-        if (!p.ok)
+            hrti::positionAtDistance(m.evidence[k].sphere, m.perSphere[k], fallback * width, width, height);
+        if (!p.ok && fallbackSource == "stated-distance")
           throw Error(ErrorKind::Usage, "--light-distance " + options.lightDistance, "light directions",
                       inputs[n].relativePath + ", sphere " + std::to_string(m.sphereNumbers[k]) + ": " + p.reason);
+        ok = ok && p.ok;
         for (int c = 0; c < 3; ++c) sum[c] += p.position[c] / m.evidence.size();
       }
-      if (!m.evidence.empty()) {
+      if (!ok) sum = {0, 0, 0};
+      if (!m.evidence.empty() && ok) {
         place = {true, sum};
-        source = "stated-distance";
+        source = fallbackSource;
         byDistance.push_back(inputs[n].stem);
       }
     }
@@ -122,7 +142,6 @@ PlacedLights placeLights(const LightDirectionsOptions& options, const std::vecto
     const hrti::Vec3 d = hrti::directionOfPosition(place.position);
     out.directions.push_back({d[0], d[1], d[2]});
     const double distance = std::hypot(place.position[0], place.position[1], place.position[2]) / width;
-    distances.push_back(distance);
     auto& item = result.add("nearLight").set("image", inputs[n].fileId).set("x", place.position[0])
                      .set("y", place.position[1]).set("z", place.position[2]).set("distance", distance)
                      .set("source", source);
@@ -132,11 +151,12 @@ PlacedLights placeLights(const LightDirectionsOptions& options, const std::vecto
   std::vector<std::string> parts;
   if (!bySpheres.empty())
     parts.push_back(std::to_string(bySpheres.size()) + " placed by the two spheres (median distance " +
-                    fixedDecimals(median(std::vector<double>(distances.begin(), distances.begin() + bySpheres.size())), 2) +
+                    fixedDecimals(median(placedWidths), 2) +
                     " frame widths, 95 % bound " + fixedDecimals(median(bounds), 2) + ")");
   if (!byDistance.empty())
-    parts.push_back(std::to_string(byDistance.size()) + " at the stated distance, " + fixedDecimals(widths, 2) +
-                    " frame widths");
+    parts.push_back(std::to_string(byDistance.size()) +
+                    (fallbackSource == "spheres-median" ? " at the median distance of those, " : " at the stated distance, ") +
+                    fixedDecimals(fallback, 2) + " frame widths");
   const std::size_t far = measured.size() - bySpheres.size() - byDistance.size();
   const bool someNear = !bySpheres.empty() || !byDistance.empty();
   if (far > 0 && someNear) parts.push_back(std::to_string(far) + " at infinity (a direction only)");
@@ -156,7 +176,10 @@ PlacedLights placeLights(const LightDirectionsOptions& options, const std::vecto
                    "the two spheres could not place the light of " + std::to_string(untrusted.size()) + " of the " +
                        std::to_string(measured.size()) + " images (" + listedInFull(untrusted) + "), e.g. " +
                        firstReason +
-                       (!byDistance.empty() ? "; they are placed at the stated distance"
+                       (!byDistance.empty() ? (fallbackSource == "spheres-median"
+                                                   ? "; they are placed at the median distance of the lights the spheres "
+                                                     "placed (state the distance with --light-distance D if it was another)"
+                                                   : "; they are placed at the stated distance")
                                             : "; they are taken at infinity. State the distance with --light-distance D "
                                               "(frame widths) to place them"));
   }
