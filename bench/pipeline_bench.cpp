@@ -7,11 +7,14 @@
 //    PTM LRGB, HSH order 2, derived maps) as child processes, measuring wall time and peak
 //    resident memory (getrusage of the child).
 // 4. Fits each basis alone with `surrogate fit` on the .lp that `lights` wrote.
+// 5. With --light-distance D (frame widths; issue 53) the capture's lights are near, and the run
+//    is made twice more: lights taken at infinity, and at the stated distance (each pixel its own
+//    directions and fall-off): the near light's cost beside the far one's.
 // Prints each time and its ratio to the decode floor. Targets: lights below 2x decode (light
 // estimation itself below 1x decode), the whole run within 1.5x of decode on JPEG input, peak
 // memory under 2 GiB.
 //
-//   pipeline_bench --surrogate PATH [--dir DIR] [--images N] [--width W] [--height H]
+//   pipeline_bench --surrogate PATH [--dir DIR] [--images N] [--width W] [--height H] [--light-distance D]
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -78,16 +81,19 @@ int main(int argc, char** argv) {
     else if (a == "--images") o.images = std::atoi(argv[++i]);
     else if (a == "--width") o.width = std::atoi(argv[++i]);
     else if (a == "--height") o.height = std::atoi(argv[++i]);
+    else if (a == "--light-distance") o.lightDistance = std::atof(argv[++i]);
   }
   if (surrogate.empty()) {
-    std::fprintf(stderr, "usage: pipeline_bench --surrogate PATH [--dir DIR] [--images N] [--width W] [--height H] [--dng]\n");
+    std::fprintf(stderr, "usage: pipeline_bench --surrogate PATH [--dir DIR] [--images N] [--width W] [--height H] "
+                         "[--light-distance D] [--dng]\n");
     return 2;
   }
   o.sphereRadius = std::min(o.width, o.height) / 13.0;
   const fs::path capture = dir / "capture";
   const fs::path stamp = dir / "generated.txt";
   const std::string want = std::to_string(o.images) + " " + std::to_string(o.width) + "x" + std::to_string(o.height) +
-                           (o.formats == generator::OutputFormats::Jpeg ? " jpeg" : " both");
+                           (o.formats == generator::OutputFormats::Jpeg ? " jpeg" : " both") +
+                           (o.lightDistance > 0 ? " near " + std::to_string(o.lightDistance) : "");
   std::string have;
   if (FILE* f = std::fopen(stamp.c_str(), "r")) {
     char buffer[128] = {0};
@@ -149,5 +155,24 @@ int main(int argc, char** argv) {
   const ChildRun run = runChild({surrogate, "run", capture.string(), "--quiet", "--source", "export"});
   std::printf("  surrogate run (ptm-lrgb, hsh2): %5.1f s  (%.2fx decode) peak %.0f MiB%s\n", run.seconds,
               run.seconds / decode, run.peakMiB, run.status == 0 ? "" : "  FAILED");
-  return run.status == 0 && lights.status == 0 ? 0 : 1;
+  bool nearOk = true;
+  if (o.lightDistance > 0) {
+    // The same run, lights at infinity and then at the stated distance, each from a clean start.
+    double seconds[2] = {0, 0};
+    const std::string stated = std::to_string(o.lightDistance);
+    for (int k = 0; k < 2; ++k) {
+      fs::remove_all(capture / "assembly-files");
+      fs::remove_all(capture / "finished-files");
+      const ChildRun r = runChild({surrogate, "run", capture.string(), "--quiet", "--source", "export", "--no-report",
+                                   "--light-distance", k == 0 ? std::string("infinity") : stated});
+      seconds[k] = r.seconds;
+      nearOk = nearOk && r.status == 0;
+      std::printf("  surrogate run --light-distance %-8s %5.1f s  (%.2fx decode) peak %.0f MiB%s\n",
+                  k == 0 ? "infinity" : stated.c_str(), r.seconds, r.seconds / decode, r.peakMiB,
+                  r.status == 0 ? "" : "  FAILED");
+      std::fflush(stdout);
+    }
+    std::printf("  near run / far run: %.2f\n", seconds[1] / std::max(1e-9, seconds[0]));
+  }
+  return run.status == 0 && lights.status == 0 && nearOk ? 0 : 1;
 }

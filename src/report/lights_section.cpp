@@ -103,6 +103,43 @@ std::vector<LightPoint> collectLights(const carrier::Carrier& c, std::string* fi
   return out;
 }
 
+namespace {
+
+// Where the lights were, when any was placed (nearLight, docs/hrti-math.md "Near lights").
+std::string nearLightsParagraph(const carrier::Carrier& c) {
+  const carrier::Result* r = c.lastResultWith("light");
+  if (!r) return "";
+  std::vector<double> distances;
+  std::map<std::string, int> bySource;
+  for (const carrier::DataItem* p : r->itemsOf("nearLight")) {
+    try {
+      distances.push_back(p->number("distance"));
+    } catch (const Error&) {
+      continue;
+    }
+    ++bySource[p->get("source").value_or("")];
+  }
+  if (distances.empty()) return "";
+  std::sort(distances.begin(), distances.end());
+  const auto words = [](const std::string& source) {
+    return source == "spheres"           ? std::string("by the two spheres")
+           : source == "stated-distance" ? std::string("at the stated distance")
+           : source == "spheres-median"  ? std::string("at the median distance of those the spheres placed")
+                                         : source;
+  };
+  std::string how;
+  for (const auto& [source, n] : bySource) how += (how.empty() ? "" : ", ") + std::to_string(n) + " " + words(source);
+  std::ostringstream s;
+  s << "<p>" << distances.size() << " of the lights were placed (" << escapeHtml(how) << "), "
+    << displayNumber(distances.front(), 2) << " to " << displayNumber(distances.back(), 2)
+    << " frame widths from the frame's centre: the fits give each pixel its own light direction and "
+       "bring its values to the light the frame's centre had (inverse square). The directions shown "
+       "are from the frame's centre.</p>";
+  return s.str();
+}
+
+}  // namespace
+
 std::string lightsSection(const carrier::Carrier& c, const std::vector<LightPoint>& lights,
                           const Coverage& coverage, const std::string& fitLabel) {
   std::ostringstream s;
@@ -145,6 +182,7 @@ std::string lightsSection(const carrier::Carrier& c, const std::vector<LightPoin
     s << "<p>Each light is within its uncertainty of the true direction, 95 times in 100: the column "
          "\u00b1\u00b0 below (from its highlight, its sphere's circle and, with several spheres, their "
          "disagreement); on the plot, a dashed ring where it is wider than the light's dot (3.6\u00b0).</p>";
+  s << nearLightsParagraph(c);
   s << "</div></div><details><summary>Every light</summary><table><tr><th>image</th>"
        "<th>elevation \u00b0</th><th>azimuth \u00b0</th><th>\u00b1\u00b0 (95 %)</th><th>residual</th>"
        "<th>highlight confidence</th></tr>";
