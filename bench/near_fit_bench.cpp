@@ -7,7 +7,8 @@
 // The photographs are rendered here (not timed): a Lambertian surface with normals varying across
 // the frame (tilts up to 16 degrees) and a textured albedo, lit by N point lights on a spiral of
 // elevations 20..80 degrees, D frame widths from the frame's centre, each pixel from its own
-// direction with inverse-square fall-off; held in memory as 8-bit samples, as decoded JPEGs are.
+// direction with inverse-square fall-off; encoded as sRGB and held in memory as 8-bit samples, as
+// decoded JPEG exports are.
 //
 //   near_fit_bench [--width 1200] [--height 800] [--images 36] [--distance 1.5] [--runs 5]
 //                  [--threads 0]
@@ -121,9 +122,12 @@ int main(int argc, char** argv) {
           const double shade = std::max(0.0, (nn[0] * dx + nn[1] * dy + nn[2] * dz) / dist) * falloff;
           const double albedo = 0.35 + 0.1 * std::sin(x * 0.05) * std::cos(y * 0.07);
           const double colour[3] = {0.9, 0.7, 0.5};
-          for (int c = 0; c < 3; ++c)
-            images[i][(static_cast<std::size_t>(y) * w + x) * 3 + c] = static_cast<std::uint8_t>(
-                std::lround(std::clamp(255 * albedo * colour[c] * shade, 0.0, 255.0)));
+          // Encoded as sRGB, as a JPEG export's values are (the fit then scales them in linear light).
+          for (int c = 0; c < 3; ++c) {
+            const double l = std::clamp(albedo * colour[c] * shade, 0.0, 1.0);
+            const double v = l <= 0.0031308 ? 12.92 * l : 1.055 * std::pow(l, 1 / 2.4) - 0.055;
+            images[i][(static_cast<std::size_t>(y) * w + x) * 3 + c] = static_cast<std::uint8_t>(std::lround(255 * v));
+          }
         }
     }
     return ByteStack(w, h, std::move(images));

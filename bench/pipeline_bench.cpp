@@ -9,7 +9,8 @@
 // 4. Fits each basis alone with `surrogate fit` on the .lp that `lights` wrote.
 // 5. With --light-distance D (frame widths; issue 53) the capture's lights are near, and the run
 //    is made twice more: lights taken at infinity, and at the stated distance (each pixel its own
-//    directions and fall-off): the near light's cost beside the far one's.
+//    directions and fall-off): the near light's cost beside the far one's. (Closer than about 2
+//    frame widths the far run refuses the far side's highlights as faint: use D = 3 for the ratio.)
 // Prints each time and its ratio to the decode floor. Targets: lights below 2x decode (light
 // estimation itself below 1x decode), the whole run within 1.5x of decode on JPEG input, peak
 // memory under 2 GiB.
@@ -159,7 +160,9 @@ int main(int argc, char** argv) {
   if (o.lightDistance > 0) {
     // The same run, lights at infinity and then at the stated distance, each from a clean start.
     double seconds[2] = {0, 0};
-    const std::string stated = std::to_string(o.lightDistance);
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", o.lightDistance);
+    const std::string stated = text;
     for (int k = 0; k < 2; ++k) {
       fs::remove_all(capture / "assembly-files");
       fs::remove_all(capture / "finished-files");

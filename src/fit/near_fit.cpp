@@ -188,6 +188,52 @@ constexpr int kLanes = 4;
 #define NEAR_LOAD(v, p) __builtin_memcpy(&(v), (p), sizeof(V))
 #define NEAR_STORE(p, v) __builtin_memcpy((p), &(v), sizeof(V))
 
+// o[b] = scaledWith(sample b, fi[b], pi[b]) for the samples s[3 b] (one channel of a row),
+// four at a time above the toe (the same operations lane by lane as scaledWith's, so the same
+// bits), one at a time where a lane is in the toe.
+template <typename Sample>
+SURROGATE_INLINE void scaleSrgb(const Ctx& k, const Sample* s, const double* fi, const double* pi, double* o,
+                                int len) {
+  int b = 0;
+  for (; b + kLanes <= len; b += kLanes) {
+    const V v = V{static_cast<double>(sampleValue(s[3 * b])), static_cast<double>(sampleValue(s[3 * b + 3])),
+                  static_cast<double>(sampleValue(s[3 * b + 6])), static_cast<double>(sampleValue(s[3 * b + 9]))} *
+                (1.0 / 65535.0);
+    V p;
+    NEAR_LOAD(p, pi + b);
+    const V y = (v + 0.055) * p - 0.055;
+    const auto above = (v > kToe) & (y > kToe);
+    if (above[0] & above[1] & above[2] & above[3]) {
+      const V r = y * 65535.0;
+      NEAR_STORE(o + b, r);
+    } else {
+      for (int j = b; j < b + kLanes; ++j) o[j] = scaledWith(k.dec16, k.enc, sampleValue(s[3 * j]), fi[j], pi[j]);
+    }
+  }
+  for (; b < len; ++b) o[b] = scaledWith(k.dec16, k.enc, sampleValue(s[3 * b]), fi[b], pi[b]);
+}
+
+// m[b] = unscaledWith(m[b], gi[b], gp[b]) in place, four at a time above the toe (the same
+// operations lane by lane), one at a time where a lane is in the toe.
+SURROGATE_INLINE void unscaleSrgb(const Ctx& k, double* m, const double* gi, const double* gp, int len) {
+  int b = 0;
+  for (; b + kLanes <= len; b += kLanes) {
+    V v, p;
+    NEAR_LOAD(v, m + b);
+    NEAR_LOAD(p, gp + b);
+    v = v * (1.0 / 255.0);
+    const V y = (v + 0.055) * p - 0.055;
+    const auto above = (v > kToe) & (y > kToe);
+    if (above[0] & above[1] & above[2] & above[3]) {
+      const V r = 255.0 * y;
+      NEAR_STORE(m + b, r);
+    } else {
+      for (int j = b; j < b + kLanes; ++j) m[j] = unscaledWith(k.dec, k.enc, m[j], gi[j], gp[j]);
+    }
+  }
+  for (; b < len; ++b) m[b] = unscaledWith(k.dec, k.enc, m[b], gi[b], gp[b]);
+}
+
 // Fills f (and, for `samples`, fs: the fall-off-scaled samples in planes ch * n + i) for the
 // block, zero beyond `len` up to whole lane groups.
 template <typename Sample>
@@ -205,7 +251,7 @@ SURROGATE_INLINE int blockSamples(const Ctx& k, const Sample* const* images, int
       double* __restrict o = k.fs + (ch * k.n + i) * kBlock;
       const double* __restrict pi = k.fp + i * kBlock;
       if (k.srgb)
-        for (int b = 0; b < len; ++b) o[b] = scaledWith(k.dec16, k.enc, sampleValue(s[3 * b + ch]), fi[b], pi[b]);
+        scaleSrgb(k, s + ch, fi, pi, o, len);
       else
         for (int b = 0; b < len; ++b) o[b] = fi[b] * sampleValue(s[3 * b + ch]);
       for (int b = len; b < up; ++b) o[b] = 0.0;
@@ -293,10 +339,11 @@ SURROGATE_INLINE void errorsChannelsBody(const Ctx& k, const Sample* const* imag
       const double* __restrict gi = k.f + i * kBlock;
       const double* __restrict gp = k.fp + i * kBlock;  // sRGB: gi^(1/2.4)
       double* __restrict d2 = r + 3 * kBlock;
+      if (k.srgb)  // the fall-off undone on each channel (srgbUnscaled): then plain sums
+        for (int ch = 0; ch < 3; ++ch) unscaleSrgb(k, r + ch * kBlock, gi, gp, len);
       for (int b = 0; b < len; ++b) {
         const double model =
-            k.srgb ? kLumR * clamp255(unscaledWith(k.dec, k.enc, r[b], gi[b], gp[b])) + kLumG * clamp255(unscaledWith(k.dec, k.enc, r[kBlock + b], gi[b], gp[b])) +
-                         kLumB * clamp255(unscaledWith(k.dec, k.enc, r[2 * kBlock + b], gi[b], gp[b]))
+            k.srgb ? kLumR * clamp255(r[b]) + kLumG * clamp255(r[kBlock + b]) + kLumB * clamp255(r[2 * kBlock + b])
                    : kLumR * clamp255(r[b] * gi[b]) + kLumG * clamp255(r[kBlock + b] * gi[b]) +
                          kLumB * clamp255(r[2 * kBlock + b] * gi[b]);
         const double captured =
@@ -379,13 +426,21 @@ SURROGATE_INLINE void errorsLrgbBody(const Ctx& k, const Sample* const* images, 
       const Sample* __restrict s = images[i] + 3 * static_cast<std::size_t>(x0);
       const double* __restrict gi = k.f + i * kBlock;
       const double* __restrict gp = k.fp + i * kBlock;  // sRGB: gi^(1/2.4)
+      // sRGB: each channel's model value (its colour times L / 255), the fall-off undone, in
+      // three planes of the scratch after d2.
+      double* __restrict rgb = d2 + kBlock;
+      if (k.srgb) {
+        const double* colour[3] = {cr + x0, cg + x0, cb + x0};
+        for (int ch = 0; ch < 3; ++ch) {
+          double* m = rgb + ch * kBlock;
+          for (int b = 0; b < len; ++b) m[b] = colour[ch][b] * (lum[b] * (1.0 / 255.0));
+          unscaleSrgb(k, m, gi, gp, len);
+        }
+      }
       for (int b = 0; b < len; ++b) {
         double model;
         if (k.srgb) {
-          const double l = lum[b] * (1.0 / 255.0);
-          model = kLumR * clamp255(unscaledWith(k.dec, k.enc, cr[x0 + b] * l, gi[b], gp[b])) +
-                  kLumG * clamp255(unscaledWith(k.dec, k.enc, cg[x0 + b] * l, gi[b], gp[b])) +
-                  kLumB * clamp255(unscaledWith(k.dec, k.enc, cb[x0 + b] * l, gi[b], gp[b]));
+          model = kLumR * clamp255(rgb[b]) + kLumG * clamp255(rgb[kBlock + b]) + kLumB * clamp255(rgb[2 * kBlock + b]);
         } else {
           const double l = lum[b] * gi[b];  // gi = 1 / (255 f)
           model = kLumR * clamp255(cr[x0 + b] * l) + kLumG * clamp255(cg[x0 + b] * l) + kLumB * clamp255(cb[x0 + b] * l);
