@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -42,15 +43,26 @@ fs::path generated(const std::string& name, const std::string& options) {
 // The median angle, in degrees, between the normals of two 16-bit normal maps (value =
 // (n + 1) / 2 * 65535, x right, y up: src/fit/normals.h), over the pixels 12 px or more from
 // the frame's edge and from every true sphere (truth/spheres.txt).
-double medianNormalErrorDeg(const fs::path& measured, const fs::path& truthDir) {
+// `at` and `scale`: where the measured map lies in the truth's frame (a crop's corner, a
+// resize's factor: the truth is area-averaged to it first).
+double medianNormalErrorDeg(const fs::path& measured, const fs::path& truthDir, cv::Point at = {0, 0},
+                            double scale = 1) {
   const cv::Mat a = cv::imread(measured.string(), cv::IMREAD_UNCHANGED);
-  const cv::Mat b = cv::imread((truthDir / "normals.png").string(), cv::IMREAD_UNCHANGED);
+  cv::Mat b = cv::imread((truthDir / "normals.png").string(), cv::IMREAD_UNCHANGED);
+  if (scale != 1) {
+    cv::Mat f;
+    b.convertTo(f, CV_64FC3);
+    cv::resize(f, f, cv::Size(), scale, scale, cv::INTER_AREA);
+    f.convertTo(b, CV_16UC3);
+  }
+  b = b(cv::Rect(at.x, at.y, a.cols, a.rows)).clone();
   REQUIRE(a.type() == CV_16UC3);
   REQUIRE(b.type() == CV_16UC3);
   REQUIRE(a.size() == b.size());
   std::vector<std::array<double, 3>> spheres;
   std::ifstream in(truthDir / "spheres.txt");
-  for (double cx, cy, r; in >> cx >> cy >> r;) spheres.push_back({cx, cy, r});
+  for (double cx, cy, r; in >> cx >> cy >> r;)
+    spheres.push_back({(cx + 0.5) * scale - 0.5 - at.x, (cy + 0.5) * scale - 0.5 - at.y, r * scale});
   REQUIRE(!spheres.empty());
   std::vector<double> errors;
   const int margin = 12;
@@ -197,6 +209,24 @@ TEST_CASE("near lights: a near run packs and re-executes SOUND", "[e2e][near]") 
   CHECK(r.output.find("NOT SOUND") == std::string::npos);
   CHECK(std::regex_search(r.output, std::regex("ok +reexecute\\.s[0-9]+\\.LightDirections")));
   CHECK(std::regex_search(r.output, std::regex("ok +reexecute\\.s[0-9]+\\.RtiFit")));
+}
+
+TEST_CASE("near lights: a crop and a resize keep every pixel lit from its own place", "[e2e][near]") {
+  // The fit reads a rectangle of the frame, or the frame reduced: each pixel must still be lit
+  // from where it lay in the frame the lights were measured in.
+  const fs::path capture = generated("near-crop", "--light-distance 2");
+  const fs::path truth = capture.parent_path() / "truth";
+  auto r = run(capture, "--light-distance 2 --crop 40,150,480,240");
+  INFO(r.output);
+  REQUIRE(r.exitCode == 0);
+  const double cropped = medianNormalErrorDeg(capture / "finished-files" / "normals.png", truth, {40, 150});
+  r = run(capture, "--light-distance 2 --crop 0,0,600,400 --resize 0.5");
+  INFO(r.output);
+  REQUIRE(r.exitCode == 0);
+  const double reduced = medianNormalErrorDeg(capture / "finished-files" / "normals.png", truth, {0, 0}, 0.5);
+  INFO("cropped " << cropped << " deg, reduced " << reduced << " deg");
+  CHECK(cropped < 2);
+  CHECK(reduced < 2.5);
 }
 
 TEST_CASE("near lights: a distance that cannot be is refused, naming the option", "[e2e][near]") {
