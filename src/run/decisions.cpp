@@ -294,6 +294,15 @@ RunRequest applyDecisions(const RunRequest& standing, const RunRequest& given,
                                         : "lights from " + *given.lp + " (dome capture)");
     r.lp = given.lp;
   }
+  // The lights' distance is a decision about the lights whichever stage gives them: the
+  // spheres' (LightDirections) or a dome's .lp (LightsFromFile: its radius). It follows --lp.
+  const bool dome = r.lp && !r.lp->empty();
+  auto lightsStage = [dome](RunRequest::StageParam p) {
+    if (p.name == "lightDistance" && (p.component == "LightDirections" || p.component == "LightsFromFile"))
+      p.component = dome ? "LightsFromFile" : "LightDirections";
+    return p;
+  };
+  for (RunRequest::StageParam& p : r.stageParams) p = lightsStage(p);
   for (const Exclusion& e : given.exclusions) {
     const auto old = replaceOrAdd(r.exclusions, e, [&](const Exclusion& k) { return shotOf(k.image) == shotOf(e.image); });
     if (old) changes.push_back("replaced the " + describe({"exclude-image", old->image, "", old->who, old->time, old->reason}));
@@ -303,7 +312,8 @@ RunRequest applyDecisions(const RunRequest& standing, const RunRequest& given,
     const auto old = replaceOrAdd(r.decodeSettings, kv, [&](const auto& k) { return k.first == kv.first; });
     if (old && old->second != kv.second) changes.push_back("LibRaw " + kv.first + ": " + old->second + " -> " + kv.second);
   }
-  for (const RunRequest::StageParam& p : given.stageParams) {
+  for (const RunRequest::StageParam& g : given.stageParams) {
+    const RunRequest::StageParam p = lightsStage(g);
     const auto old = replaceOrAdd(r.stageParams, p, [&](const RunRequest::StageParam& k) {
       return k.component == p.component && k.name == p.name;
     });

@@ -21,6 +21,7 @@
 #include "stages/registry.h"
 #include "stages/frame_checks.h"
 #include "stages/light_directions_stage.h"
+#include "stages/lights_from_file_stage.h"
 #include "stages/preprocess.h"
 #include "verify/checks.h"
 
@@ -124,7 +125,8 @@ std::vector<std::string> parameterProblems(const carrier::Step& step,
                       " is not a length in millimetres (a finite number, 0 or more)");
     }
   } else if (c == "LightsFromFile") {
-    only({});
+    only({"lightDistance"});
+    parse([](const Parameters& p) { stages::LightsFromFileOptions::fromParameters(p); });
   } else if (c == "WhiteBalance") {
     parse([](const Parameters& p) { stages::WhiteBalanceOptions::fromParameters(p, "carrier"); });
   } else if (c == "Crop") {

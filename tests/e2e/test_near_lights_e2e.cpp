@@ -134,6 +134,26 @@ TEST_CASE("near lights: stating the distance brings the normals within 2 degrees
     CHECK(c.find("lightDistance: infinity -&gt; " + distance + ": flash on a stand, measured") != std::string::npos);
     if (std::getenv("SURROGATE_TEST_FIGURES"))
       std::printf("D %s stated: normals median error far %.2f deg, near %.2f deg\n", distance.c_str(), far, near);
+    if (d != 1.5) continue;
+    // The same photographs as a dome capture: its .lp gives the directions, the dome's radius
+    // is the distance (relight-cli's -3), and the decision follows the lights to LightsFromFile.
+    fs::copy_file(truth / "lights.lp", capture / "dome.lp");
+    r = run(capture, "--lp dome.lp");
+    INFO(r.output);
+    REQUIRE(r.exitCode == 0);
+    const std::string dome = carrierText(capture);
+    CHECK(dome.find("<note>LightsFromFile lightDistance") == std::string::npos);  // it stood, unchanged
+    CHECK(count(dome, "<nearLight ") == 24);
+    CHECK(medianNormalErrorDeg(capture / "finished-files" / "normals.png", truth) < 2);
+    r = run(capture, "--light-distance infinity");
+    INFO(r.output);
+    REQUIRE(r.exitCode == 0);
+    CHECK(count(carrierText(capture), "<nearLight ") == 0);
+    CHECK(medianNormalErrorDeg(capture / "finished-files" / "normals.png", truth) > 10);
+    r = run(capture, "--light-distance 1.2m");
+    INFO(r.output);
+    CHECK(r.exitCode == 2);
+    CHECK(r.output.find("a dome capture has no spheres") != std::string::npos);
   }
 }
 

@@ -98,7 +98,7 @@ TEST_CASE("built-in stages keep their recorded names, versions and default param
   // What existing carriers record: changing any of these makes old packages fail verification.
   const std::vector<std::pair<std::string, std::string>> versions = {
       {"CaptureIngest", "3"}, {"ImageDecode", "3"}, {"SphereDetection", "9"}, {"HighlightDetection", "11"},
-      {"LightDirections", "7"}, {"LightsFromFile", "3"}, {"WhiteBalance", "1"}, {"Crop", "1"},
+      {"LightDirections", "7"}, {"LightsFromFile", "4"}, {"WhiteBalance", "1"}, {"Crop", "1"},
       {"Resize", "1"}, {"RtiFit", "6"}, {"DerivedMaps", "4"}, {"WebCopy", "4"}, {"Audit", "7"}};
   for (const auto& [component, version] : versions) {
     INFO(component);
@@ -118,7 +118,7 @@ TEST_CASE("built-in stages keep their recorded names, versions and default param
   CHECK(r.info("Audit")->perCommand == std::vector<std::string>{"angleThresholdDegrees"});
   CHECK(r.info("Crop")->defaults.empty());
   CHECK(r.info("Resize")->defaults.empty());
-  CHECK(r.info("LightsFromFile")->defaults.empty());
+  CHECK(r.info("LightsFromFile")->defaults == pipeline::Parameters{{"lightDistance", "auto"}});
 }
 
 TEST_CASE("a bad parameter value in a recorded step is a failed step naming it, not a crash", "[stages][registry]") {
