@@ -97,6 +97,13 @@ int runCommandFit(int argc, char** argv) {
     lights.push_back({e.x, e.y, e.z});
   }
   checkEnoughLights(basis, args.has("basis"), ext, *lp, static_cast<int>(lights.size()));
+  // `surrogate lights -o FILE.lp` writes near lights' positions beside it (FILE.dome); this
+  // command fits the .lp's directions as lights at infinity, and says so rather than differ
+  // silently from the run that placed them.
+  if (const fs::path dome = fs::path(*lp).replace_extension(".dome"); fs::exists(dome) && !args.has("json"))
+    std::cerr << "warning: " << dome.string() << " gives the lights' positions, which fit does not use: it takes "
+              << "the .lp's directions as lights at infinity. surrogate run on the capture, with the same "
+                 "decisions, fits each pixel to its own light directions (the user guide, \"Lights at a known distance\")\n";
   ProgressBar bar(args.has("quiet") || args.has("json"));
   pipeline::RunSettings run;
   run.threads = threads;
