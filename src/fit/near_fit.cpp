@@ -11,12 +11,12 @@
 #include "fit/basis.h"
 #include "fit/pseudo_inverse.h"
 #include "fit/row_kernels.h"
+#include "fit/srgb_falloff.h"
 
 namespace surrogate::fit {
 
 namespace {
 
-const char* const kStep = "fit";
 // Pixels per block of the kernels: a block's fall-off-scaled samples (3 N doubles a pixel)
 // stay in the first-level cache for 36 photographs.
 constexpr int kBlock = 32;
@@ -35,88 +35,7 @@ inline double clamp255(double v) {  // as row_kernels.cpp: std::clamp(v, 0, 255)
   return 255.0 < low ? 255.0 : low;
 }
 
-double srgbDecodeExact(double v) {  // encoded 0..1 (and beyond) -> linear
-  if (v < 0) return -srgbDecodeExact(-v);
-  return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
-}
-double srgbEncodeExact(double l) {  // linear -> encoded
-  if (l < 0) return -srgbEncodeExact(-l);
-  return l <= 0.0031308 ? 12.92 * l : 1.055 * std::pow(l, 1 / 2.4) - 0.055;
-}
-
-// The tables of srgbScaled and srgbUnscaled, made once (the same values on every call), small
-// enough to stay in the first-level cache: a 512 KB table read at random cost the fit as much as
-// its arithmetic. Encoding is tabulated against u = sqrt(L), where it is smooth enough for 4096
-// steps (interpolation error under 2e-6 of full scale); decoding against the encoded value.
-constexpr int kTable = 4096;
-constexpr double kEncodeRangeU = 2.8284271247461903;  // sqrt(8): linear values up to 8 tabulated
-constexpr double kDecodeRange = 4.0;                   // encoded values (0..1 full scale) up to 4
-constexpr double kRootRangeU = 8.0;  // sqrt of the largest factor tabulated (64)
-struct SrgbTables {
-  std::vector<double> decode16, encode, decode, root;
-  SrgbTables() : decode16(65536), encode(kTable + 1), decode(kTable + 1), root(kTable + 1) {
-    for (int v = 0; v < 65536; ++v) decode16[v] = srgbDecodeExact(v / 65535.0);
-    for (int j = 0; j <= kTable; ++j) {
-      const double u = kEncodeRangeU * j / kTable;
-      encode[j] = srgbEncodeExact(u * u);
-      decode[j] = srgbDecodeExact(kDecodeRange * j / kTable);
-      const double w = kRootRangeU * j / kTable;
-      root[j] = std::pow(w * w, 1 / 2.4);
-    }
-  }
-};
-const SrgbTables& srgbTables() {
-  static const SrgbTables tables;
-  return tables;
-}
-
-// f(x) from a table of f at range * j / kTable, linearly interpolated (x in [0, range)).
-SURROGATE_INLINE double interpolated(const double* table, double range, double x) {
-  const double at = x * (kTable / range);
-  const int j = static_cast<int>(at);
-  const double u = at - j;
-  return table[j] + u * (table[j + 1] - table[j]);
-}
-
-SURROGATE_INLINE double encodeLinear(const double* encode, double l) {
-  if (!(l >= 0 && l < 8.0)) return srgbEncodeExact(l);
-  return interpolated(encode, kEncodeRangeU, std::sqrt(l));
-}
-
-SURROGATE_INLINE double decodeEncoded(const double* decode, double v) {
-  if (!(v >= 0 && v < kDecodeRange)) return srgbDecodeExact(v);
-  return interpolated(decode, kDecodeRange, v);
-}
-
-// f^(1/2.4), against sqrt(f) (smooth enough for 4096 steps: relative error under 1e-8).
-SURROGATE_INLINE double rootWith(const double* root, double f) {
-  if (!(f >= 0 && f < kRootRangeU * kRootRangeU)) return std::pow(f, 1 / 2.4);
-  return interpolated(root, kRootRangeU, std::sqrt(f));
-}
-
-// srgbScaled and srgbUnscaled (near_fit.h) on the tables. Above the curve's linear toe, where
-// v = 1.055 L^(1/2.4) - 0.055, scaling L by f gives exactly (v + 0.055) f^(1/2.4) - 0.055: one
-// multiply-add a sample, with fp = f^(1/2.4) shared by the pixel's three channels. In the toe
-// (v or the result at most 0.04045, L at most 0.0031308) the tables.
-constexpr double kToe = 0.04045;
-SURROGATE_INLINE double scaledWith(const double* decode16, const double* encode, unsigned v16, double f,
-                                   double fp) {
-  const double v = v16 * (1.0 / 65535.0);
-  if (v > kToe) {
-    const double y = (v + 0.055) * fp - 0.055;
-    if (y > kToe) return 65535.0 * y;
-  }
-  return 65535.0 * encodeLinear(encode, decode16[v16] * f);
-}
-SURROGATE_INLINE double unscaledWith(const double* decode, const double* encode, double m255, double g,
-                                     double gp) {
-  const double v = m255 * (1.0 / 255.0);
-  if (v > kToe) {
-    const double y = (v + 0.055) * gp - 0.055;
-    if (y > kToe) return 255.0 * y;
-  }
-  return 255.0 * encodeLinear(encode, decodeEncoded(decode, v) * g);
-}
+using namespace falloff;
 
 // One row's view of the model: the nodes interpolated to the row (R, cols x stride), their
 // differences along x (D), the per-light parts of the squared distances, and block scratch.
@@ -491,152 +410,7 @@ SURROGATE_NEAR_AVX2 void errorsLrgbAvx2(const Ctx& k, const S* const* im, const 
 
 bool useAvx2(KernelIsa isa) { return kAvx2Compiled && isa == KernelIsa::Avx2; }
 
-std::vector<double> designRow(Basis basis, const std::array<double, 3>& l) {
-  const int terms = basisTerms(basis);
-  std::vector<double> w(terms);
-  if (isPtm(basis)) {
-    const auto p = ptmBasis(l[0], l[1]);
-    std::copy(p.begin(), p.end(), w.begin());
-  } else {
-    hshBasis(l[0], l[1], l[2], terms, w.data());
-  }
-  return w;
-}
-
 }  // namespace
-
-double srgbScaled(unsigned v16, double f) {
-  const SrgbTables& t = srgbTables();
-  return scaledWith(t.decode16.data(), t.encode.data(), v16, f, rootWith(t.root.data(), f));
-}
-
-double srgbUnscaled(double m255, double g) {
-  const SrgbTables& t = srgbTables();
-  return unscaledWith(t.decode.data(), t.encode.data(), m255, g, rootWith(t.root.data(), g));
-}
-
-bool hasNearLights(const std::vector<std::array<double, 3>>& lights, const FitOptions& options) {
-  const auto& near = options.nearLights;
-  if (near.empty()) return false;
-  if (near.size() != lights.size()) {
-    throw Error(ErrorKind::Input, "", kStep,
-                "there are " + std::to_string(lights.size()) + " lights but " + std::to_string(near.size()) +
-                    " light positions; give one position (or none) per light");
-  }
-  bool any = false;
-  for (std::size_t i = 0; i < near.size(); ++i) {
-    if (!near[i].near) continue;
-    any = true;
-    const auto& p = near[i].position;
-    const double r = near[i].referenceDistance;
-    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]) || !(p[2] > 0) ||
-        !std::isfinite(r) || !(r > 0)) {
-      throw Error(ErrorKind::Input, "", kStep,
-                  "light " + std::to_string(i + 1) +
-                      "'s position must be finite and above the surface (z > 0), with a positive reference "
-                      "distance; give its direction alone if its position is not known");
-    }
-  }
-  return any;
-}
-
-int nearNodeSpacing(int width, int height, const std::vector<NearLight>& near) {
-  double closest = std::numeric_limits<double>::infinity();
-  for (const NearLight& l : near) {
-    if (!l.near) continue;
-    const double dx = std::max({0.0, -l.position[0], l.position[0] - (width - 1)});
-    const double dy = std::max({0.0, l.position[1], -l.position[1] - (height - 1)});
-    closest = std::min(closest, std::sqrt(dx * dx + dy * dy + l.position[2] * l.position[2]));
-  }
-  if (!std::isfinite(closest)) return 64;
-  return static_cast<int>(std::clamp(std::floor(closest / 48.0), 2.0, 64.0));
-}
-
-NearModel::NearModel(int width, int height, const std::vector<std::array<double, 3>>& lights,
-                     const std::vector<NearLight>& near, Basis basis, double scale, int spacing, int threads,
-                     Transfer transfer)
-    : n_(static_cast<int>(lights.size())), terms_(basisTerms(basis)), g_(std::max(1, spacing)),
-      lrgb_(basis == Basis::PtmLrgb), srgb_(transfer == Transfer::Srgb) {
-  cols_ = std::max(2, (width - 1 + g_ - 1) / g_ + 1);
-  rows_ = std::max(2, (height - 1 + g_ - 1) / g_ + 1);
-  const std::size_t tn = static_cast<std::size_t>(terms_) * n_;
-  stride_ = 2 * tn + (lrgb_ ? n_ : 0);
-  for (int i = 0; i < n_; ++i) {
-    const bool isNear = near[i].near;
-    near_.push_back(isNear ? 1 : 0);
-    x_.push_back(isNear ? near[i].position[0] : 0.0);
-    yz_.push_back(isNear ? near[i].position[1] : 0.0);
-    yz_.push_back(isNear ? near[i].position[2] : 0.0);
-    inv_.push_back(isNear ? 1.0 / (near[i].referenceDistance * near[i].referenceDistance) : 0.0);
-  }
-  const std::size_t count = static_cast<std::size_t>(rows_) * cols_;
-  // The design at a node: each light's direction from the node's surface point (gx G, -gy G, 0).
-  auto design = [&](std::size_t node, std::vector<std::array<double, 3>>* dirs) {
-    const double px = static_cast<double>(node % cols_) * g_, py = -static_cast<double>(node / cols_) * g_;
-    std::vector<double> a;
-    dirs->clear();
-    for (int i = 0; i < n_; ++i) {
-      std::array<double, 3> l = lights[i];
-      if (near_[i]) {
-        const double dx = x_[i] - px, dy = yz_[2 * i] - py, dz = yz_[2 * i + 1];
-        const double len = std::sqrt(dx * dx + dy * dy + dz * dz);
-        l = {dx / len, dy / len, dz / len};
-      }
-      dirs->push_back(l);
-      const auto w = designRow(basis, l);
-      a.insert(a.end(), w.begin(), w.end());
-    }
-    return a;
-  };
-  // Each node's own conditioning (the far fit's rule), then one weight for the whole frame.
-  std::vector<Conditioning> at(count);
-  parallelFor(count, 8, threads, [&](std::size_t b, std::size_t e) {
-    std::vector<std::array<double, 3>> dirs;
-    for (std::size_t j = b; j < e; ++j) at[j] = conditionedInverse(design(j, &dirs), n_, basis);
-  });
-  double mu = 0;
-  for (const Conditioning& c : at) mu = std::max(mu, c.weight);
-  nodes_.assign(count * stride_, 0.0);
-  parallelFor(count, 8, threads, [&](std::size_t b, std::size_t e) {
-    std::vector<std::array<double, 3>> dirs;
-    for (std::size_t j = b; j < e; ++j) {
-      const std::vector<double> a = design(j, &dirs);
-      if (mu > 0 && at[j].weight != mu) {
-        const int rank = at[j].inverse.rank;
-        at[j].inverse = dampedPseudoInverse(a, n_, terms_, higherTerms(basis), mu);
-        at[j].inverse.rank = rank;
-        at[j].noiseGain = noiseGain(a, n_, terms_, at[j].inverse.matrix);
-      }
-      double* node = nodes_.data() + j * stride_;
-      for (std::size_t q = 0; q < tn; ++q) node[q] = at[j].inverse.matrix[q] * scale;
-      for (int i = 0; i < n_; ++i)
-        for (int k = 0; k < terms_; ++k) node[tn + k * n_ + i] = a[static_cast<std::size_t>(i) * terms_ + k];
-      if (lrgb_) {  // the chroma weights of LrgbFitter (ptm_fit.cpp), at the node's directions
-        double* w = node + 2 * tn;
-        double total = 0;
-        for (int i = 0; i < n_; ++i) {
-          const double el = std::asin(std::clamp(dirs[i][2], -1.0, 1.0)) / (M_PI / 2) - 0.5;
-          w[i] = std::max(0.0, 0.25 - el * el);
-          total += w[i];
-        }
-        if (!(total > 0)) {
-          std::fill(w, w + n_, 1.0);
-          total = n_;
-        }
-        for (int i = 0; i < n_; ++i) w[i] /= total * 257.0;
-      }
-    }
-  });
-  summary_ = at[0];
-  summary_.weight = mu;
-  summary_.damped = mu > 0 ? higherTerms(basis) : std::vector<int>{};
-  for (const Conditioning& c : at) {
-    summary_.conditionNumber = std::max(summary_.conditionNumber, c.conditionNumber);
-    summary_.noiseGain = std::max(summary_.noiseGain, c.noiseGain);
-    summary_.plainNoiseGain = std::max(summary_.plainNoiseGain, c.plainNoiseGain);
-    summary_.inverse.rank = std::min(summary_.inverse.rank, c.inverse.rank);
-  }
-}
 
 std::size_t NearModel::scratchDoubles(int) const {
   return 2 * static_cast<std::size_t>(cols_) * stride_ + n_ +
