@@ -72,6 +72,14 @@ PlacedLights placeLights(const LightDirectionsOptions& options, const std::vecto
     triangulated[n] = hrti::positionFromSpheres(m.evidence, width, height, m.sphereNumbers);
     if (triangulated[n].trusted) placedWidths.push_back(triangulated[n].distancePx / width);
   }
+  // Stated and measured both: the spheres' positions are used; a statement far from them is
+  // worth a word (the wrong unit, or the dome's diameter given for its radius).
+  if (widths > 0 && placedWidths.size() >= 3 && std::abs(median(placedWidths) / widths - 1) > 0.2)
+    carrier.addLog("warning", stepId,
+                   "the two spheres place " + std::to_string(placedWidths.size()) + " lights at a median " +
+                       fixedDecimals(median(placedWidths), 2) + " frame widths from the frame's centre, but the "
+                       "stated distance is " + fixedDecimals(widths, 2) + ": those lights take the spheres' "
+                       "positions, the others the stated distance; check --light-distance");
   // No distance stated, and the spheres placed enough lights (at least 3, and a quarter of
   // them) to say how far the flash was held: the others go at the median of their distances,
   // which stands for the distance a photographer would have stated.

@@ -199,6 +199,12 @@ TEST_CASE("near lights: two spheres place the lights without a stated distance",
   CHECK(dome["lightConfiguration"] == "lights3d");
   CHECK(dome["imageWidth"] == 600);
   REQUIRE(dome["positions3d"].size() == 24);
+  // A stated distance the spheres contradict (the dome's diameter given for its radius, say):
+  // the spheres' positions stand, and the log says so.
+  r = run(capture, "--light-distance 1.5");
+  INFO(r.output);
+  REQUIRE(r.exitCode == 0);
+  CHECK(carrierText(capture).find("but the stated distance is 1.50") != std::string::npos);
   // relight's dome: the positions in pixels of the frame, as the truth gives them (within 5 %).
   std::ifstream truth(capture.parent_path() / "truth" / "light-positions.txt");
   std::string line;
