@@ -107,6 +107,19 @@ constexpr int kLanes = 4;
 #define NEAR_LOAD(v, p) __builtin_memcpy(&(v), (p), sizeof(V))
 #define NEAR_STORE(p, v) __builtin_memcpy((p), &(v), sizeof(V))
 
+// The errors' two shared pieces: the photograph's Rec. 709 luminance at pixel b of a row
+// (0..255 units), and a row's squared errors added to a light's sum in pixel order.
+template <typename Sample>
+SURROGATE_INLINE double capturedLuminance(const Sample* s, int b) {
+  return (kLumR * sampleValue(s[3 * b]) + kLumG * sampleValue(s[3 * b + 1]) + kLumB * sampleValue(s[3 * b + 2])) *
+         (1.0 / 257.0);
+}
+SURROGATE_INLINE void addInOrder(const double* d2, int len, double* sum) {
+  double err = *sum;
+  for (int b = 0; b < len; ++b) err += d2[b];
+  *sum = err;
+}
+
 // o[b] = scaledWith(sample b, fi[b], pi[b]) for the samples s[3 b] (one channel of a row),
 // four at a time above the toe (the same operations lane by lane as scaledWith's, so the same
 // bits), one at a time where a lane is in the toe.
@@ -265,14 +278,10 @@ SURROGATE_INLINE void errorsChannelsBody(const Ctx& k, const Sample* const* imag
             k.srgb ? kLumR * clamp255(r[b]) + kLumG * clamp255(r[kBlock + b]) + kLumB * clamp255(r[2 * kBlock + b])
                    : kLumR * clamp255(r[b] * gi[b]) + kLumG * clamp255(r[kBlock + b] * gi[b]) +
                          kLumB * clamp255(r[2 * kBlock + b] * gi[b]);
-        const double captured =
-            (kLumR * sampleValue(s[3 * b]) + kLumG * sampleValue(s[3 * b + 1]) + kLumB * sampleValue(s[3 * b + 2])) *
-            (1.0 / 257.0);
+        const double captured = capturedLuminance(s, b);
         d2[b] = (model - captured) * (model - captured);
       }
-      double err = sqErr[i];
-      for (int b = 0; b < len; ++b) err += d2[b];  // in pixel order
-      sqErr[i] = err;
+      addInOrder(d2, len, &sqErr[i]);
     }
   }
 }
@@ -364,14 +373,10 @@ SURROGATE_INLINE void errorsLrgbBody(const Ctx& k, const Sample* const* images, 
           const double l = lum[b] * gi[b];  // gi = 1 / (255 f)
           model = kLumR * clamp255(cr[x0 + b] * l) + kLumG * clamp255(cg[x0 + b] * l) + kLumB * clamp255(cb[x0 + b] * l);
         }
-        const double captured =
-            (kLumR * sampleValue(s[3 * b]) + kLumG * sampleValue(s[3 * b + 1]) + kLumB * sampleValue(s[3 * b + 2])) *
-            (1.0 / 257.0);
+        const double captured = capturedLuminance(s, b);
         d2[b] = (model - captured) * (model - captured);
       }
-      double err = sqErr[i];
-      for (int b = 0; b < len; ++b) err += d2[b];  // in pixel order
-      sqErr[i] = err;
+      addInOrder(d2, len, &sqErr[i]);
     }
   }
 }

@@ -122,7 +122,6 @@ PlacedLights placeLights(const LightDirectionsOptions& options, const std::vecto
         ok = ok && p.ok;
         for (int c = 0; c < 3; ++c) sum[c] += p.position[c] / m.evidence.size();
       }
-      if (!ok) sum = {0, 0, 0};
       if (!m.evidence.empty() && ok) {
         place = {true, sum};
         source = fallbackSource;

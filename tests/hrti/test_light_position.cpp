@@ -9,6 +9,7 @@
 #include <string>
 
 #include "hrti/light_position.h"
+#include "mirror_point.h"
 
 using namespace surrogate::hrti;
 
@@ -18,8 +19,8 @@ constexpr int kW = 1200, kH = 900;
 constexpr double kR = 80;
 
 Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
+using test::dot;
+using test::norm;
 Vec3 unit(const Vec3& a) {
   const double n = norm(a);
   return {a[0] / n, a[1] / n, a[2] / n};
@@ -37,38 +38,8 @@ Vec3 lightAt(double d, double elevationDeg, double azimuthDeg) {
   return {d * kW * std::cos(e) * std::cos(a), d * kW * std::cos(e) * std::sin(a), d * kW * std::sin(e)};
 }
 
-// The highlight of a light at x on a sphere, without the code under test: the mirror point's
-// normal lies in the plane of V and x - C, at the angle a from V where it bisects V and the
-// direction to x from the point itself; bisection on a.
-Highlight highlightOf(const DetectedSphere& s, const Vec3& x) {
-  const Vec3 c{s.cx - (kW - 1) / 2.0, (kH - 1) / 2.0 - s.cy, s.r};
-  const Vec3 w = sub(x, c);
-  const double across = std::hypot(w[0], w[1]);
-  const Vec3 side{w[0] / across, w[1] / across, 0};
-  double lo = 0, hi = std::atan2(across, w[2]);
-  for (int i = 0; i < 200; ++i) {
-    const double a = (lo + hi) / 2;
-    const Vec3 n{std::sin(a) * side[0], std::sin(a) * side[1], std::cos(a)};
-    const Vec3 p{c[0] + s.r * n[0], c[1] + s.r * n[1], c[2] + s.r * n[2]};
-    const double f = n[2] - dot(n, unit(sub(x, p)));  // > 0 while the normal leans towards V
-    (f > 0 ? lo : hi) = a;
-  }
-  const double a = (lo + hi) / 2;
-  Highlight h;
-  h.x = s.cx + s.r * std::sin(a) * side[0];
-  h.y = s.cy - s.r * std::sin(a) * side[1];
-  h.flag = HighlightFlag::Ok;
-  h.confidence = 1;
-  return h;
-}
-
-// Portable normal deviates (Box-Muller on mt19937's 32-bit output).
-struct Noise {
-  std::mt19937 rng;
-  explicit Noise(std::uint32_t seed) : rng(seed) {}
-  double uniform() { return (rng() + 0.5) / 4294967296.0; }
-  double normal() { return std::sqrt(-2 * std::log(uniform())) * std::cos(2 * M_PI * uniform()); }
-};
+Highlight highlightOf(const DetectedSphere& s, const Vec3& x) { return test::mirrorHighlight(s, x, kW, kH); }
+using test::Noise;
 
 double angleDeg(const Vec3& a, const Vec3& b) {
   return std::acos(std::min(1.0, dot(unit(a), unit(b)))) * 180 / M_PI;

@@ -20,6 +20,7 @@
 #include "hrti/highlight_detection.h"
 #include "hrti/light_position.h"
 #include "hrti/sphere_detection.h"
+#include "mirror_point.h"
 #include "hrti/stack_median.h"
 
 using namespace surrogate;
@@ -34,8 +35,8 @@ constexpr double kR = 80, kFirstX = 1102, kRowY = 97;
 
 bool figures() { return std::getenv("SURROGATE_TEST_FIGURES") != nullptr; }
 
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
+using test::dot;
+using test::norm;
 double angleDeg(const Vec3& a, const Vec3& b) {
   return std::acos(std::min(1.0, dot(a, b) / (norm(a) * norm(b)))) * 180 / M_PI;
 }
@@ -46,34 +47,10 @@ DetectedSphere sphereAt(double cx, double cy, double r = kR) {
   return s;
 }
 
-// The highlight of a light at x on a sphere by bisection on the mirror point's angle from V
-// (as tests/hrti/test_light_position.cpp, for this frame).
 Highlight highlightOf(const DetectedSphere& s, const Vec3& x, int width = kW, int height = kH) {
-  const Vec3 c{s.cx - (width - 1) / 2.0, (height - 1) / 2.0 - s.cy, s.r};
-  const Vec3 w{x[0] - c[0], x[1] - c[1], x[2] - c[2]};
-  const double across = std::hypot(w[0], w[1]);
-  const double sx = w[0] / across, sy = w[1] / across;
-  double lo = 0, hi = std::atan2(across, w[2]);
-  for (int i = 0; i < 200; ++i) {
-    const double a = (lo + hi) / 2;
-    const Vec3 n{std::sin(a) * sx, std::sin(a) * sy, std::cos(a)};
-    const Vec3 d{x[0] - c[0] - s.r * n[0], x[1] - c[1] - s.r * n[1], x[2] - c[2] - s.r * n[2]};
-    (n[2] - dot(n, d) / norm(d) > 0 ? lo : hi) = a;
-  }
-  Highlight h;
-  h.x = s.cx + s.r * std::sin((lo + hi) / 2) * sx;
-  h.y = s.cy - s.r * std::sin((lo + hi) / 2) * sy;
-  h.flag = HighlightFlag::Ok;
-  h.confidence = 1;
-  return h;
+  return test::mirrorHighlight(s, x, width, height);
 }
-
-struct Noise {
-  std::mt19937 rng;
-  explicit Noise(std::uint32_t seed) : rng(seed) {}
-  double uniform() { return (rng() + 0.5) / 4294967296.0; }
-  double normal() { return std::sqrt(-2 * std::log(uniform())) * std::cos(2 * M_PI * uniform()); }
-};
+using test::Noise;
 
 double quantile(std::vector<double> v, double q) {
   if (v.empty()) return NAN;
