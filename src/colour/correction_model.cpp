@@ -1,0 +1,1 @@
+// placeholder: filled by the correction_model work
