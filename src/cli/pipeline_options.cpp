@@ -15,6 +15,8 @@
 #include "stages/recorded_checks.h"
 #include "stages/sphere_detection_stage.h"
 #include "stages/preprocess.h"
+#include "stages/colour_chart_options.h"
+#include "stages/colour_chart_stage.h"
 #include "stages/crop_stage.h"
 #include "stages/resize_stage.h"
 #include "stages/white_balance_stage.h"
@@ -57,6 +59,11 @@ std::vector<OptionSpec> pipelineOptions(bool withFit) {
       {"forget-accept", true, true, "withdraw an accepted check (needs --reason)", "CHECK"},
   };
   if (withFit) {
+    // Colour from a chart (the ColourCorrection step, stages/colour_chart_stage.h), a standing
+    // decision like the others.
+    specs.push_back({"colour-chart", true, false, "the ColorChecker: auto (default: looked for, used if found), none, the image it is in (IMG_0003), or with its corners IMG_0003:X1,Y1,...,X4,Y4 (dark skin, bluish green, black, white)", "IMAGE[:X1,Y1,...]"});
+    specs.push_back({"chart-reference", true, false, "the chart's edition: colorchecker-classic-2014 (default: charts made since November 2014) or colorchecker-classic-pre-2014", "ID"});
+    specs.push_back({"colour-model", true, false, "the correction fitted to the chart: matrix (3x3, default) or root-polynomial", "MODEL"});
     specs.push_back({"basis", true, true, "model to fit: ptm-lrgb, ptm-rgb, hsh2, hsh3 (default: ptm-lrgb and hsh2)", "BASIS"});
     // Pre-processing of the images the fit reads (recorded steps WhiteBalance, Crop, Resize,
     // planned in that order after light estimation, which always reads the full frame).
@@ -143,6 +150,27 @@ void lightDirections(run::RunRequest& r, const Args& args) {
     stages::StatedDistance::parse(*d, "--light-distance");  // Error(Usage) before any work
     given.lightDistance = *d;
     param(r, component, given.lightDistanceParameter());
+  }
+}
+
+// --colour-chart, --chart-reference, --colour-model: the ColourCorrection parameters given,
+// checked as the stage reads them; --colour-chart sets the chart and its corners together (so
+// corners given earlier go when the chart changes).
+void colourChart(run::RunRequest& r, const Args& args) {
+  const char* component = stages::ColourChartStage::kComponent;
+  if (const auto text = args.value("colour-chart")) {
+    stages::ColourChartOptions o;
+    stages::ColourChartOptions::parseChartText(*text, "--colour-chart", o);
+    param(r, component, {"chart", o.chart});
+    param(r, component, {"corners", o.cornersText()});
+  }
+  if (const auto ref = args.value("chart-reference")) {
+    stages::ColourChartOptions::fromParameters({{"reference", *ref}}, "--chart-reference");
+    param(r, component, {"reference", *ref});
+  }
+  if (const auto model = args.value("colour-model")) {
+    stages::ColourChartOptions::fromParameters({{"model", *model}}, "--colour-model");
+    param(r, component, {"model", *model});
   }
 }
 
@@ -259,6 +287,7 @@ run::RunRequest requestFrom(const Args& args) {
     param(r, stages::HighlightDetectionStage::kComponent, {"threshold", formatNumber(v)});
   }
   lightDirections(r, args);
+  colourChart(r, args);
   if (args.has("basis")) r.bases = args.values("basis");
   preprocessing(r, args);
   webCopy(r, args);

@@ -43,6 +43,7 @@ enum class PlanSlot {
   Decode,             // second: decodes the images
   LightsFromSpheres,  // light estimation, for a capture without a dome .lp
   LightsFromFile,     // light directions, for a capture with a dome .lp
+  Colour,             // after the lights, before pre-processing: colour from a chart
   Preprocessing,      // only when the request asks for it, in the order asked
   EachModel,          // once per model fitted (`forModel` gives the parameters)
   AfterModels,        // once after the fits, for the first model (`forModel`, if set)

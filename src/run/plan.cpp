@@ -81,6 +81,7 @@ std::vector<PlannedStage> analysisStages(bool captureHasLp, const RunRequest& re
                                                                          : pipeline::Parameters{}});
   };
   addSlot(captureHasLp ? PlanSlot::LightsFromFile : PlanSlot::LightsFromSpheres, "");
+  addSlot(PlanSlot::Colour, "");
   for (const PlannedStage& p : request.preprocessing) {
     if (!inSlot(p.component, PlanSlot::Preprocessing))
       throw Error(ErrorKind::Internal, p.component, "plan", "is not a pre-processing stage");

@@ -4,6 +4,7 @@
 
 #include "pipeline/stage.h"
 #include "stages/audit_stage.h"
+#include "stages/colour_chart_stage.h"
 #include "stages/crop_stage.h"
 #include "stages/decode_stage.h"
 #include "stages/derived_maps_stage.h"
@@ -30,6 +31,7 @@ void registerBuiltinStages() {
     r.add<HighlightDetectionStage>();
     r.add<LightDirectionsStage>();
     r.add<LightsFromFileStage>();
+    r.add<ColourChartStage>();
     r.add<WhiteBalanceStage>();
     r.add<CropStage>();
     r.add<ResizeStage>();
