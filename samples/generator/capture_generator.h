@@ -22,7 +22,11 @@
 //   jpeg-exports/IMG_0001.jpg        the sRGB-encoded 8-bit export
 // and the truth beside them in truth/ (lights.lp, spheres.txt, generator.txt, normals.png: the
 // true normals encoded as the pipeline's normals.png, src/fit/normals.h; light-positions.txt for
-// near lights): never inside the folders a tool reads.
+// near lights; colour-chart.txt with a chart): never inside the folders a tool reads.
+//
+// Colour (issue 54): with colourChart a ColorChecker Classic lies flat on the relief, its patches'
+// albedo the reference's linear sRGB; colourCast is the camera's 3x3 response applied to every
+// pixel's linear RGB (both outputs), so an uncorrected capture is measurably off.
 //
 //   GeneratorOptions o;  o.images = 24;  o.seed = 7;
 //   writeCapture(o, "/tmp/capture");          // identical bytes for identical options
@@ -39,6 +43,13 @@
 namespace surrogate::generator {
 
 enum class OutputFormats { Both, Dng, Jpeg };
+
+inline constexpr std::array<double, 9> kNoColourCast = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+
+// The colour casts by name: "none" (identity), "warm" (a tungsten-like cast: red up, blue well
+// down, with cross-talk between channels), "cool" (the opposite), or nine numbers "m00,m01,
+// ...,m22" (row-major). Error(Usage) otherwise. The matrices are in generator/chart.cpp.
+std::array<double, 9> parseColourCast(const std::string& text);
 
 struct GeneratorOptions {
   int images = 24;               // number of shots (lights)
@@ -71,6 +82,14 @@ struct GeneratorOptions {
                                  // cone of lights), instead of spread over the hemisphere
   double lightConeElevationDeg = 90;  // that direction's elevation (90: the view axis); the cone
                                       // must stay kMinConeElevationDeg above the horizon
+
+  // Colour (issue 54): a ColorChecker Classic lying flat on the relief, and the camera's
+  // colour response. Off by default, and a capture made without them keeps its bytes.
+  bool colourChart = false;      // the chart in the bottom-left of the frame (generator/chart.h)
+  std::string chartReference = "colorchecker-classic-2014";  // its edition (colour/chart_reference.h)
+  std::array<double, 9> colourCast = kNoColourCast;  // camera RGB = M * scene RGB, row-major,
+                                                     // in linear light before exposure and noise
+  double exposure = 1;           // multiplies the exposure of every shot (kExposure)
 };
 
 // The dark frame's exposure, a fraction of the others' (GeneratorOptions::darkFrame).
@@ -82,12 +101,24 @@ struct SphereTruth {
   double cx, cy, r;  // pixels, origin at the centre of the top-left pixel
 };
 
+// The chart of GeneratorOptions::colourChart: the grid's corners (the outer corners of patches
+// 0, 5, 23 and 18, colour/chart_detection.h's order) and each patch's centre, in pixels (x
+// right, y down, pixel centres at integer coordinates). reference empty: no chart.
+struct ChartTruth {
+  std::string reference;
+  double angleDeg = 0;                        // its rotation in the image (clockwise on screen)
+  double patchSide = 0, gap = 0, border = 0;  // pixels
+  std::array<std::array<double, 2>, 4> corners{};
+  std::array<std::array<double, 2>, 24> centres{};
+};
+
 struct CaptureTruth {
   std::vector<std::array<double, 3>> lights;  // unit vectors, one per shot
   std::vector<SphereTruth> spheres;
   // Near lights only (empty at infinity): each light's position in the frame coordinates
   // above, pixels: lightDistance * width * lights[i].
   std::vector<std::array<double, 3>> positions;
+  ChartTruth chart;  // GeneratorOptions::colourChart only
 };
 
 // The lowest near-light distance, frame widths: nearer, a light would hang over the frame.

@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "generator/capture_generator.h"
+#include "generator/chart.h"
 #include "generator/scene.h"
 #include "image/decode.h"
 #include "image/write.h"
@@ -39,6 +40,13 @@ std::string describe(const GeneratorOptions& o) {
   if (o.lightConeDeg > 0) s << "light-cone " << o.lightConeDeg << "\nlight-cone-elevation " << o.lightConeElevationDeg << "\n";
   if (o.lightDistance > 0) s << "light-distance " << o.lightDistance << "\n";
   if (o.sphereSeparation > 0) s << "sphere-separation " << o.sphereSeparation << "\n";
+  if (o.colourChart) s << "colour-chart " << o.chartReference << "\n";
+  if (o.colourCast != kNoColourCast) {
+    s << "colour-cast";
+    for (std::size_t k = 0; k < o.colourCast.size(); ++k) s << (k ? "," : " ") << o.colourCast[k];
+    s << "\n";
+  }
+  if (o.exposure != 1) s << "exposure " << o.exposure << "\n";
   return s.str();
 }
 
@@ -122,6 +130,16 @@ void writeCapture(const GeneratorOptions& o, const fs::path& dir) {
         "               and its distance from there in frame widths. Each point p of the scene is\n"
         "               lit from normalize(X - p), at (|X| / |X - p|)^2 the intensity of the\n"
         "               light at infinity; lights.lp gives X / |X|\n";
+  if (!truth.chart.reference.empty()) {
+    writeFileAtomically(dir / "truth/colour-chart.txt", chartTruthText(truth.chart, o.width, o.height));
+    readme +=
+        "  colour-chart.txt  the ColorChecker Classic lying flat in the frame: its reference (the\n"
+        "               edition whose values painted it), the grid's four corners (the outer corners\n"
+        "               of patches 0, 5, 23, 18, src/colour/chart_detection.h's order) and every\n"
+        "               patch's centre and side in pixels (x right, y down, pixel centres at\n"
+        "               integer coordinates), its reference Lab (D50) and its albedo (linear sRGB);\n"
+        "               bench/chart_error measures an image's colour error on it\n";
+  }
   writeFileAtomically(dir / "truth/README.txt", readme);
 }
 

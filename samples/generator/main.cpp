@@ -45,7 +45,18 @@ const char* kHelp =
     "  --light-cone DEG     every light within DEG degrees of one direction (a narrow cone)\n"
     "  --light-cone-elevation E\n"
     "                       that direction's elevation in degrees (default 90, the view\n"
-    "                       axis); the cone must stay 5 degrees above the horizon\n";
+    "                       axis); the cone must stay 5 degrees above the horizon\n\n"
+    "colour (issue 54; each off by default):\n"
+    "  --colour-chart       a ColorChecker Classic lying flat in the bottom-left of the frame,\n"
+    "                       turned 3 degrees, painted with its reference values; truth/\n"
+    "                       colour-chart.txt gives its corners and patches\n"
+    "  --chart-reference ID its edition (default colorchecker-classic-2014; also\n"
+    "                       colorchecker-classic-pre-2014)\n"
+    "  --colour-cast C      the camera's response in linear light, camera RGB = M * scene RGB:\n"
+    "                       none (default), warm (rows 1.10 0.14 0.04 / 0.10 0.88 0.08 /\n"
+    "                       0.03 0.16 0.72), cool (0.80 0.06 0.00 / 0.04 0.94 0.06 /\n"
+    "                       0.02 0.08 1.14) or nine numbers m00,m01,...,m22 (row-major)\n"
+    "  --exposure F         multiplies the exposure of every shot (default 1)\n";
 
 double number(const std::string& option, const char* text) {
   char* end = nullptr;
@@ -58,7 +69,7 @@ double number(const std::string& option, const char* text) {
 int main(int argc, char** argv) {
   try {
     generator::GeneratorOptions o;
-    std::string out;
+    std::string out, chartReference;
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
       if (a == "--help" || a == "-h") {
@@ -67,6 +78,10 @@ int main(int argc, char** argv) {
       }
       if (a == "--no-shadows") {
         o.shadows = false;
+        continue;
+      }
+      if (a == "--colour-chart") {
+        o.colourChart = true;
         continue;
       }
       if (a == "--reflections") {
@@ -93,6 +108,9 @@ int main(int argc, char** argv) {
       else if (a == "--light-cone-elevation") o.lightConeElevationDeg = number(a, v);
       else if (a == "--light-distance") o.lightDistance = number(a, v);
       else if (a == "--sphere-separation") o.sphereSeparation = number(a, v);
+      else if (a == "--chart-reference") chartReference = v;
+      else if (a == "--colour-cast") o.colourCast = generator::parseColourCast(v);
+      else if (a == "--exposure") o.exposure = number(a, v);
       else if (a == "--texture") {
         if (std::string(v) != "normal" && std::string(v) != "strong")
           throw Error(ErrorKind::Usage, a, "command line", "is normal or strong");
@@ -107,6 +125,9 @@ int main(int argc, char** argv) {
         throw Error(ErrorKind::Usage, a, "command line", "is not an option (see --help)");
       }
     }
+    if (!chartReference.empty() && !o.colourChart)
+      throw Error(ErrorKind::Usage, "--chart-reference", "command line", "names the chart's edition: give --colour-chart with it");
+    if (!chartReference.empty()) o.chartReference = chartReference;
     if (out.empty()) throw Error(ErrorKind::Usage, "--out", "command line", "is required (see --help)");
     generator::writeCapture(o, out);
     std::cout << "wrote " << o.images << " shots to " << out << "\n";

@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "generator/capture_generator.h"
+#include "generator/chart.h"
 #include "generator/random.h"
 #include "generator/scene.h"
 
@@ -34,6 +35,11 @@ CaptureTruth planCapture(const GeneratorOptions& o) {
   if (!(o.sphereSeparation >= 0) || (o.sphereSeparation > 0 && o.spheres != 2))
     throw Error(ErrorKind::Usage, "--sphere-separation", "generator",
                 "is the distance in pixels between the centres of two spheres: give --spheres 2 with it");
+  if (!(o.exposure > 0 && o.exposure <= 100))
+    throw Error(ErrorKind::Usage, "--exposure", "generator", "multiplies the exposure: give a number above 0, at most 100");
+  for (double m : o.colourCast)
+    if (!(std::abs(m) <= 10))
+      throw Error(ErrorKind::Usage, "--colour-cast", "generator", "is a matrix of numbers within -10..10");
   CaptureTruth t;
   // Lights: elevations evenly spread in sin(elevation) between 15 and 75 degrees, azimuths on
   // a golden-angle spiral, rotated by the seed: full, irregular coverage of the hemisphere.
@@ -85,6 +91,7 @@ CaptureTruth planCapture(const GeneratorOptions& o) {
     }
     t.spheres.push_back(second);
   }
+  if (o.colourChart) t.chart = planChart(o, t.spheres);
   if (o.lightDistance > 0) {
     // Each light at D frame widths along its direction; it must stand above every sphere and
     // the relief (at most 0.15 of the frame's smaller side, scene.cpp), or the scene's cast
@@ -131,12 +138,18 @@ Image renderShot(const Scene& scene, const GeneratorOptions& o, const CaptureTru
   Image im(o.width, o.height, 3);
   im.transfer = Transfer::Linear;
   const ShotLight l = scene.shotLight(index);
-  const double exposure = index == o.darkFrame ? kExposure * kDarkExposure : kExposure;
+  // o.exposure 1 and no cast: the bits of a capture made before they existed.
+  const double exposure = (index == o.darkFrame ? kExposure * kDarkExposure : kExposure) * o.exposure;
+  const bool cast = o.colourCast != kNoColourCast;
+  const auto& m = o.colourCast;
   const bool flash = index != o.noFlashFrame;
   parallelFor(o.height, 16, effectiveThreads(o.threads), [&](std::size_t y0, std::size_t y1) {
     for (int y = static_cast<int>(y0); y < static_cast<int>(y1); ++y) {
       for (int x = 0; x < o.width; ++x) {
-        const auto rad = scene.radiance(x, y, l, flash);
+        auto rad = scene.radiance(x, y, l, flash);
+        if (cast)  // the camera's response to the scene's light
+          rad = {m[0] * rad[0] + m[1] * rad[1] + m[2] * rad[2], m[3] * rad[0] + m[4] * rad[1] + m[5] * rad[2],
+                 m[6] * rad[0] + m[7] * rad[1] + m[8] * rad[2]};
         for (int c = 0; c < 3; ++c) {
           const double signal = rad[c] * exposure * 65535;
           const std::uint64_t h = hash3(o.seed * 1000003 + index, static_cast<std::uint64_t>(y) * o.width + x, c);

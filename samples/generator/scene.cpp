@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "generator/chart.h"
 #include "generator/random.h"
 
 namespace surrogate::generator {
@@ -90,6 +91,9 @@ Scene::Scene(const GeneratorOptions& o, const CaptureTruth& t) : o_(o), t_(t), w
                                           static_cast<float>(tone * (0.38 - 0.08 * tint))};
     }
   }
+  // The chart (colourChart): flat and level, so its normals are (0, 0, 1) whatever the relief.
+  const std::vector<std::uint8_t> flat = t.chart.reference.empty() ? std::vector<std::uint8_t>()
+                                                                    : paintChart(t.chart, w_, h_, &height_, &albedo_);
   for (int y = 0; y < h_; ++y) {
     for (int x = 0; x < w_; ++x) {
       const double dx = (height(std::min(x + 1, w_ - 1), y) - height(std::max(x - 1, 0), y)) / 2;
@@ -97,6 +101,7 @@ Scene::Scene(const GeneratorOptions& o, const CaptureTruth& t) : o_(o), t_(t), w
       // Height rises with +dy in image rows (down) = -Y in the camera frame.
       const double nx = -dx, ny = dy, nz = 1, len = std::sqrt(nx * nx + ny * ny + nz * nz);
       normal_[std::size_t(y) * w_ + x] = {static_cast<float>(nx / len), static_cast<float>(ny / len), static_cast<float>(nz / len)};
+      if (!flat.empty() && flat[std::size_t(y) * w_ + x]) normal_[std::size_t(y) * w_ + x] = {0, 0, 1};
     }
   }
   for (std::size_t k = 0; k < t.spheres.size(); ++k)
