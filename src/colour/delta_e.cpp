@@ -21,9 +21,8 @@ double hueDegrees(double b, double aPrime) {
   return h < 0 ? h + 360.0 : h;
 }
 
-}  // namespace
-
-double deltaE2000(const Lab& reference, const Lab& sample) {
+// unitLightnessWeight: S_L = 1 instead of its function of L* (Metamorfoze 2.0's variant).
+double ciede2000(const Lab& reference, const Lab& sample, bool unitLightnessWeight) {
   // (1)-(4): a' stretched by G near the neutral axis, then C' and h'.
   const double c1 = std::hypot(reference.a, reference.b);
   const double c2 = std::hypot(sample.a, sample.b);
@@ -64,13 +63,23 @@ double deltaE2000(const Lab& reference, const Lab& sample) {
   const double cpMean7 = std::pow(cpMean, 7.0);
   const double rC = 2.0 * std::sqrt(cpMean7 / (cpMean7 + kTwentyFiveToTheSeventh));
   const double l50 = (lMean - 50.0) * (lMean - 50.0);
-  const double sL = 1.0 + 0.015 * l50 / std::sqrt(20.0 + l50);
+  const double sL = unitLightnessWeight ? 1.0 : 1.0 + 0.015 * l50 / std::sqrt(20.0 + l50);
   const double sC = 1.0 + 0.045 * cpMean;
   const double sH = 1.0 + 0.015 * cpMean * t;
   const double rT = -std::sin(radians(2.0 * dTheta)) * rC;
 
   const double l = dL / sL, c = dC / sC, h = dH / sH;
   return std::sqrt(l * l + c * c + h * h + rT * c * h);
+}
+
+}  // namespace
+
+double deltaE2000(const Lab& reference, const Lab& sample) {
+  return ciede2000(reference, sample, false);
+}
+
+double deltaE2000UnitSL(const Lab& reference, const Lab& sample) {
+  return ciede2000(reference, sample, true);
 }
 
 double deltaE76(const Lab& reference, const Lab& sample) {

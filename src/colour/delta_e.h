@@ -11,6 +11,11 @@
 namespace surrogate::colour {
 
 double deltaE2000(const Lab& reference, const Lab& sample);
+// CIEDE2000 with the lightness weight S_L fixed at 1, the variant the Metamorfoze Preservation
+// Imaging Guidelines 2.0 judge colour accuracy by ("CIE2000 SL=1"). Added for quality_levels:
+// S_L >= 1 everywhere, so this is never below deltaE2000 (it counts lightness errors of light
+// and dark patches more).
+double deltaE2000UnitSL(const Lab& reference, const Lab& sample);
 // CIE 1976 (Euclidean in L*a*b*), which some guidelines still quote.
 double deltaE76(const Lab& reference, const Lab& sample);
 

@@ -4,6 +4,8 @@
 // http://www2.ece.rochester.edu/~gsharma/ciede2000/), to the table's 4 decimals.
 #include <catch2/catch.hpp>
 
+#include <cmath>
+
 #include "colour/delta_e.h"
 
 using namespace surrogate::colour;
@@ -69,4 +71,21 @@ TEST_CASE("CIEDE2000 and CIE76 of identical colours and of a pure lightness step
   CHECK(deltaE2000({48.5, 0, 0}, {51.5, 0, 0}) == Approx(3.0).margin(1e-12));
   // CIE76: Euclidean distance, a 3-4-12 box has diagonal 13.
   CHECK(deltaE76({50, 10, -20}, {53, 14, -8}) == Approx(13.0).margin(1e-12));
+}
+
+TEST_CASE("CIEDE2000 with unit lightness weight counts lightness steps whole") {
+  // Sharma pairs 1-16 and 21-24 lie at L* = 50, where S_L is 1 anyway: both agree there.
+  for (int i = 0; i < 24; ++i)
+    if (kSharma[i].first.L == 50 && kSharma[i].second.L == 50)
+      CHECK(deltaE2000UnitSL(kSharma[i].first, kSharma[i].second) ==
+            Approx(deltaE2000(kSharma[i].first, kSharma[i].second)).margin(1e-12));
+  // A pure L* step of 3 around L* = 91.5 (white patch): 3 with S_L = 1; the standard formula
+  // divides by S_L = 1 + 0.015 * 41.5^2 / sqrt(20 + 41.5^2) = 1.6189
+  const Lab a{90, 0, 0}, b{93, 0, 0};
+  CHECK(deltaE2000UnitSL(a, b) == Approx(3.0).margin(1e-12));
+  const double sL = 1 + 0.015 * 41.5 * 41.5 / std::sqrt(20 + 41.5 * 41.5);
+  CHECK(deltaE2000(a, b) == Approx(3.0 / sL).margin(1e-12));
+  // Chroma and hue differences are untouched by S_L.
+  CHECK(deltaE2000UnitSL({90, 10, 0}, {90, 12, 1}) ==
+        Approx(deltaE2000({90, 10, 0}, {90, 12, 1})).margin(1e-12));
 }
