@@ -481,7 +481,7 @@
            there and mappings/carrier-to-crm.md). -->
       <xsl:variable name="explicit" select="boolean($result/c:input/@file or $result/*/@image)"/>
       <xsl:variable name="decodeIds" select="$carrier/c:process/c:step[@component = 'ImageDecode']/@id"/>
-      <xsl:variable name="useDecoded" select="not($explicit) and $step/@component != 'CaptureIngest' and $step/@component != 'ImageDecode' and $step/@component != 'DerivedMaps'"/>
+      <xsl:variable name="useDecoded" select="(not($explicit) or ($step/@component = 'ColourCorrection' and $result/c:value[@name = 'outcome']/@value = 'corrected')) and $step/@component != 'CaptureIngest' and $step/@component != 'ImageDecode' and $step/@component != 'DerivedMaps'"/>
       <xsl:variable name="lights" select="key('result-by-step', $step/preceding-sibling::c:step[@component = 'LightDirections' or @component = 'LightsFromFile']/@id)/c:output[@kind = 'lp']/@file[$step/@component = 'RtiFit']"/>
       <xsl:variable name="model" select="key('result-by-step', $step/preceding-sibling::c:step[@component = 'RtiFit'][c:param[@name = 'basis']/@value = $step/c:param[@name = 'model']/@value]/@id)/c:output/@file[$step/@component = 'DerivedMaps']"/>
       <xsl:variable name="sources" select="$carrier/c:files/c:file[
@@ -514,6 +514,9 @@
         <xsl:for-each select="$result/c:value">
           <crm:P3_has_note><xsl:value-of select="normalize-space(concat('result ', @name, ' = ', @value, ' ', @unit))"/></crm:P3_has_note>
         </xsl:for-each>
+      </xsl:if>
+      <xsl:if test="@component = 'ColourCorrection' and $result/c:value[@name = 'outcome']/@value = 'corrected'">
+        <xsl:call-template name="colour-correction"><xsl:with-param name="result" select="$result"/><xsl:with-param name="uri" select="$uri"/></xsl:call-template>
       </xsl:if>
     </rdf:Description>
 
@@ -571,6 +574,67 @@
         </xsl:call-template>
       </crm:E7_Activity>
     </xsl:for-each>
+  </xsl:template>
+
+  <!-- Colour from a chart (a ColourCorrection step that corrected; mappings/carrier-to-crm.md,
+       "Colour correction"), said of its step: it used a chart of the edition the reference
+       values belong to (P125, an E55 named by the reference) and the correction model (P33, an
+       E29); it consists of (P9) the measurement (E16) of the chart image (P39) whose observed
+       dimensions (P40, E54) are the CIEDE2000 figures, before, after and held out, in the unit
+       CIEDE2000 (E58), with the quality levels they reach as notes. The coefficients and the
+       per-patch values are the step's notes and the carrier's. -->
+  <xsl:template name="colour-correction">
+    <xsl:param name="result"/>
+    <xsl:param name="uri"/>
+    <xsl:variable name="reference" select="$result/c:value[@name = 'reference']/@value"/>
+    <xsl:variable name="model" select="$result/c:value[@name = 'model']/@value"/>
+    <crm:P125_used_object_of_type>
+      <crm:E55_Type rdf:about="{$base}type/colour-chart/{translate($reference, $unsafe, $safe)}">
+        <rdfs:label><xsl:value-of select="$result/c:value[@name = 'referenceTitle']/@value"/></rdfs:label>
+        <xsl:for-each select="$result/c:value[@name = 'referenceSource']">
+          <crm:P3_has_note><xsl:value-of select="concat('reference values (', $reference, '): ', @value)"/></crm:P3_has_note>
+        </xsl:for-each>
+      </crm:E55_Type>
+    </crm:P125_used_object_of_type>
+    <crm:P33_used_specific_technique>
+      <crm:E29_Design_or_Procedure rdf:about="{$base}technique/colour-model/{translate($model, $unsafe, $safe)}">
+        <rdfs:label><xsl:value-of select="concat('colour correction model ', $model, ' (linear light, fitted to the chart)')"/></rdfs:label>
+      </crm:E29_Design_or_Procedure>
+    </crm:P33_used_specific_technique>
+    <crm:P9_consists_of>
+      <crm:E16_Measurement rdf:about="{$uri}/colour-accuracy">
+        <rdfs:label><xsl:value-of select="concat('colour accuracy of ', $result/@step, ' on the chart (CIEDE2000 to the reference values)')"/></rdfs:label>
+        <xsl:for-each select="$result/c:input[@kind = 'chart']">
+          <crm:P39_measured rdf:resource="{$base}file/{@file}"/>
+        </xsl:for-each>
+        <xsl:for-each select="$result/c:value[starts-with(@name, 'deltaE2000')][number(@value) = number(@value)]">
+          <crm:P40_observed_dimension>
+            <crm:E54_Dimension rdf:about="{$uri}/colour-accuracy/{@name}">
+              <crm:P2_has_type>
+                <crm:E55_Type rdf:about="{$base}type/dimension/{@name}">
+                  <rdfs:label>
+                    <xsl:choose>
+                      <xsl:when test="starts-with(@name, 'deltaE2000Mean')">CIEDE2000 mean</xsl:when>
+                      <xsl:otherwise>CIEDE2000 max</xsl:otherwise>
+                    </xsl:choose>
+                    <xsl:choose>
+                      <xsl:when test="contains(@name, 'Before')"> before correction</xsl:when>
+                      <xsl:when test="contains(@name, 'HeldOut')"> held out (each patch corrected by a fit without it)</xsl:when>
+                      <xsl:otherwise> after correction</xsl:otherwise>
+                    </xsl:choose>
+                  </rdfs:label>
+                </crm:E55_Type>
+              </crm:P2_has_type>
+              <crm:P90_has_value rdf:datatype="{$xsd}decimal"><xsl:value-of select="@value"/></crm:P90_has_value>
+              <crm:P91_has_unit><crm:E58_Measurement_Unit rdf:about="{$base}unit/CIEDE2000"><rdfs:label>CIEDE2000 colour difference (CIE 142-2001)</rdfs:label></crm:E58_Measurement_Unit></crm:P91_has_unit>
+            </crm:E54_Dimension>
+          </crm:P40_observed_dimension>
+        </xsl:for-each>
+        <xsl:for-each select="$result/c:value[@name = 'qualityLevel']">
+          <crm:P3_has_note><xsl:value-of select="concat('quality level: ', @value)"/></crm:P3_has_note>
+        </xsl:for-each>
+      </crm:E16_Measurement>
+    </crm:P9_consists_of>
   </xsl:template>
 
   <!-- a file -->

@@ -940,7 +940,9 @@
        reads (mappings/carrier-to-mets.md, "What each step used"): a step after decoding that
        names no file worked on the decoded images (the ImageDecode step's); RtiFit fitted to the
        light directions, which the lights step wrote to its .lp; DerivedMaps computed from the
-       model of the RtiFit step whose basis it names, which that step wrote to its file.
+       model of the RtiFit step whose basis it names, which that step wrote to its file; a
+       ColourCorrection step that corrected measured the chart in the decoded images and changed
+       the colours of all of them as the fit reads them, so it used them besides its chart image.
        Must stay the same expression as in carrier-to-crm.xsl (L10_had_input). -->
   <xsl:template name="step-sources">
     <xsl:param name="step"/>
@@ -949,7 +951,7 @@
       <xsl:variable name="result" select="key('result-by-step', $step/@id)"/>
       <xsl:variable name="explicit" select="boolean($result/c:input/@file or $result/*/@image)"/>
       <xsl:variable name="decodeIds" select="$carrier/c:process/c:step[@component = 'ImageDecode']/@id"/>
-      <xsl:variable name="useDecoded" select="not($explicit) and $step/@component != 'CaptureIngest' and $step/@component != 'ImageDecode' and $step/@component != 'DerivedMaps'"/>
+      <xsl:variable name="useDecoded" select="(not($explicit) or ($step/@component = 'ColourCorrection' and $result/c:value[@name = 'outcome']/@value = 'corrected')) and $step/@component != 'CaptureIngest' and $step/@component != 'ImageDecode' and $step/@component != 'DerivedMaps'"/>
       <xsl:variable name="lights" select="key('result-by-step', $step/preceding-sibling::c:step[@component = 'LightDirections' or @component = 'LightsFromFile']/@id)/c:output[@kind = 'lp']/@file[$step/@component = 'RtiFit']"/>
       <xsl:variable name="model" select="key('result-by-step', $step/preceding-sibling::c:step[@component = 'RtiFit'][c:param[@name = 'basis']/@value = $step/c:param[@name = 'model']/@value]/@id)/c:output/@file[$step/@component = 'DerivedMaps']"/>
       <xsl:variable name="sources" select="$carrier/c:files/c:file[
@@ -1145,12 +1147,76 @@
         <xsl:when test="$label = 'interpreting'">int</xsl:when>
         <xsl:when test="$label = 'metadata extraction'">mee</xsl:when>
         <xsl:when test="$label = 'metadata modification'">mem</xsl:when>
+        <xsl:when test="$label = 'modification'">mod</xsl:when>
         <xsl:when test="$label = 'message digest calculation'">mes</xsl:when>
         <xsl:when test="$label = 'information package creation'">ipc</xsl:when>
         <xsl:when test="$label = 'transfer'">tra</xsl:when>
       </xsl:choose>
     </xsl:variable>
     <premis:eventType authority="eventType" authorityURI="{$event-types}" valueURI="{concat($event-types, '/', $code)}"><xsl:value-of select="$label"/></premis:eventType>
+  </xsl:template>
+
+  <!-- Colour from a chart (the ColourCorrection step, docs/carrier.md; mappings/carrier-to-mets.md,
+       "Colour correction"): what a reader of the event needs without the carrier. The figures
+       are the carrier's strings, unrounded again. -->
+  <xsl:template name="colour-figures">
+    <xsl:param name="result"/>
+    <xsl:param name="suffix"/>
+    <xsl:value-of select="concat('mean ', $result/c:value[@name = concat('deltaE2000Mean', $suffix)]/@value,
+                                 ', max ', $result/c:value[@name = concat('deltaE2000Max', $suffix)]/@value)"/>
+  </xsl:template>
+  <xsl:template name="colour-levels">
+    <xsl:param name="result"/>
+    <xsl:for-each select="$result/c:value[@name = 'qualityLevel']">
+      <xsl:value-of select="concat('; ', @value)"/>
+    </xsl:for-each>
+  </xsl:template>
+  <!-- The outcome in one line: "CIEDE2000 mean 1.2, max 3.1 after correction (mean 6.3, max 10.1
+       before; mean 1.4, max 3.5 held out); FADGI 2023: 4 star; ...", or why the colours were
+       kept ("colours not corrected: no ColorChecker found in ..."). -->
+  <xsl:template name="colour-outcome">
+    <xsl:param name="result"/>
+    <xsl:choose>
+      <xsl:when test="$result/c:value[@name = 'outcome']/@value = 'corrected'">
+        <xsl:text>CIEDE2000 </xsl:text>
+        <xsl:call-template name="colour-figures"><xsl:with-param name="result" select="$result"/><xsl:with-param name="suffix" select="''"/></xsl:call-template>
+        <xsl:text> after correction (</xsl:text>
+        <xsl:call-template name="colour-figures"><xsl:with-param name="result" select="$result"/><xsl:with-param name="suffix" select="'Before'"/></xsl:call-template>
+        <xsl:text> before; </xsl:text>
+        <xsl:call-template name="colour-figures"><xsl:with-param name="result" select="$result"/><xsl:with-param name="suffix" select="'HeldOut'"/></xsl:call-template>
+        <xsl:text> held out)</xsl:text>
+        <xsl:call-template name="colour-levels"><xsl:with-param name="result" select="$result"/></xsl:call-template>
+      </xsl:when>
+      <xsl:otherwise><xsl:value-of select="concat('colours not corrected: ', $result/c:value[@name = 'outcome']/@value)"/></xsl:otherwise>
+    </xsl:choose>
+  </xsl:template>
+  <!-- The correction in full: the chart's edition and where it was, the model and its
+       coefficients, the figures and the quality levels. -->
+  <xsl:template name="colour-detail">
+    <xsl:param name="result"/>
+    <xsl:variable name="chart" select="key('file-by-id', $result/c:input[@kind = 'chart']/@file)"/>
+    <xsl:variable name="coefficients" select="$result/c:value[@name = 'coefficients']"/>
+    <xsl:value-of select="concat('Colour corrected to a ', $result/c:value[@name = 'referenceTitle']/@value,
+                                 ' (reference values ', $result/c:value[@name = 'reference']/@value)"/>
+    <xsl:if test="$result/c:value[@name = 'referenceSource']/@value != ''"><xsl:value-of select="concat(': ', $result/c:value[@name = 'referenceSource']/@value)"/></xsl:if>
+    <xsl:text>)</xsl:text>
+    <xsl:if test="$chart"><xsl:value-of select="concat(', chart ', $result/c:value[@name = 'method']/@value, ' in data/', $chart/@path)"/></xsl:if>
+    <xsl:value-of select="concat('; model ', $result/c:value[@name = 'model']/@value, ', coefficients ', $coefficients/@value)"/>
+    <xsl:if test="$coefficients/@unit != ''"><xsl:value-of select="concat(' (', $coefficients/@unit, ')')"/></xsl:if>
+    <xsl:value-of select="concat('; CIEDE2000 to the reference (', count($result/c:chartPatch[@deltaE2000 != '']), ' of ', count($result/c:chartPatch), ' patches measured): ')"/>
+    <xsl:call-template name="colour-figures"><xsl:with-param name="result" select="$result"/><xsl:with-param name="suffix" select="'Before'"/></xsl:call-template>
+    <xsl:text> before correction, </xsl:text>
+    <xsl:call-template name="colour-figures"><xsl:with-param name="result" select="$result"/><xsl:with-param name="suffix" select="''"/></xsl:call-template>
+    <xsl:text> after, </xsl:text>
+    <xsl:call-template name="colour-figures"><xsl:with-param name="result" select="$result"/><xsl:with-param name="suffix" select="'HeldOut'"/></xsl:call-template>
+    <xsl:text> held out (each patch corrected by a fit without it); quality levels</xsl:text>
+    <xsl:for-each select="$result/c:value[@name = 'qualityLevel']">
+      <xsl:choose>
+        <xsl:when test="position() = 1"><xsl:value-of select="concat(': ', @value)"/></xsl:when>
+        <xsl:otherwise><xsl:value-of select="concat('; ', @value)"/></xsl:otherwise>
+      </xsl:choose>
+    </xsl:for-each>
+    <xsl:if test="not($result/c:value[@name = 'qualityLevel'])">: none recorded</xsl:if>
   </xsl:template>
 
   <!-- The libraries a step used, by the stage code (mappings/carrier-to-mets.md, "What each
@@ -1171,6 +1237,7 @@
         <xsl:when test="$step/@component = 'RtiFit'">|Eigen|OpenSSL|</xsl:when>
         <xsl:when test="$step/@component = 'DerivedMaps'">|OpenCV|Eigen|OpenSSL|</xsl:when>
         <xsl:when test="$step/@component = 'WebCopy'">|libjpeg-turbo|libjpeg|OpenCV|OpenSSL|</xsl:when>
+        <xsl:when test="$step/@component = 'ColourCorrection'">|OpenCV|Eigen|</xsl:when>
       </xsl:choose>
     </xsl:variable>
     <xsl:for-each select="$carrier/c:header/c:software[@name != 'Surrogate']">
@@ -1413,6 +1480,7 @@
               <xsl:call-template name="event-type">
                 <xsl:with-param name="label">
                   <xsl:choose>
+                    <xsl:when test="@component = 'ColourCorrection' and $result/c:value[@name = 'outcome']/@value = 'corrected'">modification</xsl:when>
                     <xsl:when test="$result/c:output">creation</xsl:when>
                     <xsl:when test="@component = 'ImageDecode'">interpreting</xsl:when>
                     <xsl:otherwise>metadata extraction</xsl:otherwise>
@@ -1437,6 +1505,11 @@
                   </xsl:if>
                 </premis:eventDetail>
               </premis:eventDetailInformation>
+              <xsl:if test="@component = 'ColourCorrection' and $result/c:value[@name = 'outcome']/@value = 'corrected'">
+                <premis:eventDetailInformation>
+                  <premis:eventDetail><xsl:call-template name="colour-detail"><xsl:with-param name="result" select="$result"/></xsl:call-template></premis:eventDetail>
+                </premis:eventDetailInformation>
+              </xsl:if>
               <premis:eventOutcomeInformation>
                 <premis:eventOutcome>
                   <xsl:choose>
@@ -1445,6 +1518,11 @@
                     <xsl:otherwise>not run</xsl:otherwise>
                   </xsl:choose>
                 </premis:eventOutcome>
+                <xsl:if test="@component = 'ColourCorrection' and $result/c:value[@name = 'outcome']">
+                  <premis:eventOutcomeDetail>
+                    <premis:eventOutcomeDetailNote><xsl:call-template name="colour-outcome"><xsl:with-param name="result" select="$result"/></xsl:call-template></premis:eventOutcomeDetailNote>
+                  </premis:eventOutcomeDetail>
+                </xsl:if>
                 <xsl:for-each select="$result/c:value">
                   <premis:eventOutcomeDetail>
                     <premis:eventOutcomeDetailNote><xsl:value-of select="normalize-space(concat(@name, ' = ', @value, ' ', @unit))"/></premis:eventOutcomeDetailNote>

@@ -390,7 +390,7 @@
     <xsl:variable name="result" select="key('result-by-step', @id)"/>
     <xsl:variable name="explicit" select="boolean($result/c:input/@file or $result/*/@image)"/>
     <xsl:variable name="decodeIds" select="$carrier/c:process/c:step[@component = 'ImageDecode']/@id"/>
-    <xsl:variable name="useDecoded" select="not($explicit) and $step/@component != 'CaptureIngest' and $step/@component != 'ImageDecode' and $step/@component != 'DerivedMaps'"/>
+    <xsl:variable name="useDecoded" select="(not($explicit) or ($step/@component = 'ColourCorrection' and $result/c:value[@name = 'outcome']/@value = 'corrected')) and $step/@component != 'CaptureIngest' and $step/@component != 'ImageDecode' and $step/@component != 'DerivedMaps'"/>
     <xsl:variable name="lights" select="key('result-by-step', $step/preceding-sibling::c:step[@component = 'LightDirections' or @component = 'LightsFromFile']/@id)/c:output[@kind = 'lp']/@file[$step/@component = 'RtiFit']"/>
     <xsl:variable name="model" select="key('result-by-step', $step/preceding-sibling::c:step[@component = 'RtiFit'][c:param[@name = 'basis']/@value = $step/c:param[@name = 'model']/@value]/@id)/c:output/@file[$step/@component = 'DerivedMaps']"/>
     <xsl:variable name="sources" select="$carrier/c:files/c:file[
@@ -399,6 +399,12 @@
         or @id = $lights or @id = $model]"/>
     <xsl:variable name="outputs" select="key('file-by-id', $result/c:output/@file) | key('file-by-creator', @id)"/>
     <xsl:variable name="action" select="concat('#execution-', @id)"/>
+    <!-- Colour from a chart: what a reuser judges the colours of the results by (the chart's
+         edition, the model, the CIEDE2000 figures and the quality levels they reach), as
+         PropertyValues of the execution's result (Workflow Run Crate: an output that is not a
+         file). Other steps' values stay in the carrier. -->
+    <xsl:variable name="figures" select="$result[c:value[@name = 'outcome']/@value = 'corrected'][$step/@component = 'ColourCorrection']/c:value[
+        @name = 'referenceTitle' or @name = 'model' or starts-with(@name, 'deltaE2000') or @name = 'qualityLevel']"/>
 
     <xsl:call-template name="open"><xsl:with-param name="id" select="$action"/><xsl:with-param name="type" select="'CreateAction'"/></xsl:call-template>
     <xsl:call-template name="prop"><xsl:with-param name="name" select="'name'"/><xsl:with-param name="value" select="concat('Execution of step ', @id, ': ', @component, ' ', @version)"/></xsl:call-template>
@@ -450,7 +456,7 @@
       </xsl:for-each>
       <xsl:call-template name="list-close"/>
     </xsl:if>
-    <xsl:if test="$outputs">
+    <xsl:if test="$outputs or $figures">
       <xsl:call-template name="list-open"><xsl:with-param name="name" select="'result'"/></xsl:call-template>
       <xsl:for-each select="$outputs">
         <xsl:call-template name="item">
@@ -458,9 +464,26 @@
           <xsl:with-param name="first" select="position() = 1"/>
         </xsl:call-template>
       </xsl:for-each>
+      <xsl:for-each select="$figures">
+        <xsl:call-template name="item">
+          <xsl:with-param name="id" select="concat($action, '-figure-', position())"/>
+          <xsl:with-param name="first" select="not($outputs) and position() = 1"/>
+        </xsl:call-template>
+      </xsl:for-each>
       <xsl:call-template name="list-close"/>
     </xsl:if>
     <xsl:call-template name="close"/>
+
+    <xsl:for-each select="$figures">
+      <xsl:call-template name="open"><xsl:with-param name="id" select="concat($action, '-figure-', position())"/><xsl:with-param name="type" select="'PropertyValue'"/></xsl:call-template>
+      <xsl:call-template name="prop"><xsl:with-param name="name" select="'name'"/><xsl:with-param name="value" select="@name"/></xsl:call-template>
+      <xsl:value-of select="concat(',', $nl, '      &quot;value&quot;: ')"/>
+      <xsl:call-template name="json"><xsl:with-param name="s" select="@value"/></xsl:call-template>
+      <xsl:if test="starts-with(@name, 'deltaE2000')">
+        <xsl:call-template name="prop"><xsl:with-param name="name" select="'unitText'"/><xsl:with-param name="value" select="'CIEDE2000'"/></xsl:call-template>
+      </xsl:if>
+      <xsl:call-template name="close"/>
+    </xsl:for-each>
 
     <xsl:for-each select="c:param">
       <xsl:call-template name="open"><xsl:with-param name="id" select="concat($action, '-parameter-', position())"/><xsl:with-param name="type" select="'PropertyValue'"/></xsl:call-template>
