@@ -300,7 +300,9 @@ void carrierJson(JsonWriter& j, const carrier::Carrier& c) {
     else j.null();
     j.endObject();
   }
-  j.endArray().key("warnings").beginArray();
+  j.endArray();
+  colourJson(j, c);
+  j.key("warnings").beginArray();
   for (const carrier::WarningSummary& w : s.warnings)
     j.beginObject().key("step").value(w.step).key("component").value(w.component).key("time").value(w.time)
         .key("text").value(w.text).endObject();
@@ -324,6 +326,7 @@ void printCarrierText(const carrier::Carrier& c) {
     std::cout << "\n";
   }
   printLights(c);
+  printColour(c);
   printDecisionsAndRuns(c, s);
   if (s.warnings.empty()) std::cout << "  warnings: none\n";
   else printWarnings(s, 0, "");

@@ -17,6 +17,10 @@ void printCarrier(const std::filesystem::path& path, bool json);
 // object, written into `j` (alone, or nested in a capture's or a package's object).
 void printCarrierText(const carrier::Carrier& c);
 void carrierJson(JsonWriter& j, const carrier::Carrier& c);
+// The colour step's record (carrier/colour_summary.h) in the carrier's lines ("  colour: ...")
+// and as its "colour" key (info_colour.cpp); nothing at all for a carrier without the step.
+void printColour(const carrier::Carrier& c);
+void colourJson(JsonWriter& j, const carrier::Carrier& c);
 
 // A package: a bag folder, .tar or .zip, or the bag an OCFL object or E-ARK SIP holds
 // (info_folders.cpp).

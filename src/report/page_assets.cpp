@@ -74,6 +74,14 @@ details { margin:6px 0; }
 footer { padding:8px 24px 24px; max-width:1680px; margin:0 auto; }
 summary { cursor:pointer; color:var(--accent); }
 .columns { display:grid; grid-template-columns:repeat(auto-fit, minmax(360px, 1fr)); gap:0 32px; }
+.colour-chart { display:grid; grid-template-columns:repeat(6, minmax(0, 1fr)); gap:6px; list-style:none; padding:8px; margin:8px 0; max-width:780px; background:#2b2b2e; border-radius:6px; }
+.colour-chart .patch { background:var(--card); border-radius:4px; padding:4px; font-size:12px; line-height:1.3; min-width:0; }
+.patch-swatches { display:flex; gap:2px; height:44px; border-radius:3px; overflow:hidden; }
+.patch-swatches > span { flex:2; }
+.patch-swatches > .as-shot { flex:1; }
+.patch-swatches > .unmeasured { display:flex; align-items:center; justify-content:center; color:var(--muted); background:repeating-linear-gradient(45deg, #eee 0 4px, #fff 4px 8px); font-size:11px; text-align:center; }
+.patch-name, .patch-de { display:block; overflow-wrap:anywhere; }
+.patch-de { font-variant-numeric:tabular-nums; color:var(--muted); }
 )CSS";
 
 const char* const kPageErrorsJs = R"JS(

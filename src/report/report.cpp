@@ -13,6 +13,7 @@
 #include "core/parallel.h"
 #include "core/resident.h"
 #include "core/version.h"
+#include "report/colour_section.h"
 #include "report/embed.h"
 #include "report/hemisphere.h"
 #include "report/explain.h"
@@ -369,6 +370,7 @@ Report buildReport(const carrier::Carrier& c, const ReportSource& source, const 
   }
   progress(0.05 + 0.9 * shareAfterPictures(shown));
   const std::string detection = detectionSection(c, pictures, report);
+  const std::string colour = colourSection(c);
   const std::string results = resultsSection(c, pictures, report);
   const RelightSection relight = relightSection(c, models, lightPoints, report);
   const std::string priorWork = auditSection(c, source, &report.picturesEmbedded);
@@ -398,10 +400,10 @@ Report buildReport(const carrier::Carrier& c, const ReportSource& source, const 
   // the right size, not streamed.
   const std::string first = head.str(), last = tail.str();
   reserveResident(report.html, first.size() + relight.size() + lights.size() + detection.size() +
-                                   results.size() + priorWork.size() + last.size() + 8);
+                                   colour.size() + results.size() + priorWork.size() + last.size() + 8);
   report.html.append(first);
   relight.appendTo(report.html);
-  report.html.append(lights).append("</div>").append(detection).append(results).append(priorWork).append(last);
+  report.html.append(lights).append("</div>").append(detection).append(colour).append(results).append(priorWork).append(last);
   progress(1);
   return report;
 }
