@@ -1,5 +1,7 @@
 #include "fit/normals.h"
 
+#include "fit/basis.h"
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -106,14 +108,14 @@ Image normalMap(const formats::HshFile& hsh, int* fallbackCount, int threads) {
 Image albedoMap(const formats::PtmFile& ptm, int threads) {
   Image out = albedoImage(ptm.width, ptm.height);
   forEachTexel(ptm.width, ptm.height, threads, [&](int x, int y) {
+    const PtmCoefficients lum = ptmLuminance(ptm, x, y);
+    const auto n = ptmNormal(lum);
     if (ptm.format == formats::PtmFile::Format::Lrgb) {
-      const double rho = length(ptmLambert(ptmChannel(ptm, x, y, 0)));
+      const double l = evaluatePtm(lum, n[0], n[1]);
       for (int c = 0; c < 3; ++c)
-        out.at(x, y, c) = encodeByte(ptm.rgb[(static_cast<std::size_t>(y) * ptm.width + x) * 3 + c] *
-                                     rho / 255.0);
+        out.at(x, y, c) = encodeByte(ptm.rgb[(static_cast<std::size_t>(y) * ptm.width + x) * 3 + c] * l / 255.0);
     } else {
-      for (int c = 0; c < 3; ++c)
-        out.at(x, y, c) = encodeByte(length(ptmLambert(ptmChannel(ptm, x, y, c))));
+      for (int c = 0; c < 3; ++c) out.at(x, y, c) = encodeByte(evaluatePtm(ptmChannel(ptm, x, y, c), n[0], n[1]));
     }
     return 0;
   });
@@ -125,7 +127,17 @@ Image albedoMap(const formats::HshFile& hsh, int threads) {
   forEachTexel(hsh.width, hsh.height, threads, [&](int x, int y) {
     std::array<double, 3> b[3];
     hshLambert(hsh, x, y, b);
-    for (int c = 0; c < 3; ++c) out.at(x, y, c) = encodeByte(length(b[c]));
+    std::array<double, 3> sum{}, n;
+    for (int c = 0; c < 3; ++c)
+      for (int r = 0; r < 3; ++r) sum[r] += b[c][r] / 3.0;
+    normalFromLambert(sum, &n);  // (0, 0, 1) where there is no normal, as normalMap gives
+    double w[16];
+    hshBasis(n[0], n[1], n[2], hsh.terms, w);
+    for (int c = 0; c < 3; ++c) {
+      double v = 0;
+      for (int t = 0; t < hsh.terms; ++t) v += w[t] * hsh.coefficient(x, y, c, t);
+      out.at(x, y, c) = encodeByte(255 * v);  // 0..255 units, as the PTM's
+    }
     return 0;
   });
   return out;

@@ -10,8 +10,10 @@
 // azimuths, and the zenith): n = b/|b| (or (0, 0, 1) when b is 0 or faces away).
 // HSH: the same Lambertian fit of the rendered luminance for every texel (there is no closed
 // form); the fallback count is the number of texels left at (0, 0, 1).
-// Albedo: |b_c| per colour channel, the intensity a light along the normal would give, from
-// the Lambertian fit of each channel (LRGB: colour_c * |b_L| / 255).
+// Albedo: the intensity a light along the normal would give: each channel's model evaluated at
+// the normal above (LRGB: colour_c * L(n) / 255), in the model's own encoding. (Before
+// DerivedMaps version 5 it was |b_c| of each channel's Lambertian fit, which for sRGB-encoded
+// models is not that intensity: a Lambertian fit to encoded values overshoots it by ~15 %.)
 //
 // Encoding: normals as 16-bit RGB, value = round((n + 1) / 2 * 65535), x right, y UP, z towards
 // the camera (the light convention), rows top-first, Transfer::Linear. Albedo as 8-bit sRGB.

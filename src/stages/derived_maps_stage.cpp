@@ -159,8 +159,10 @@ pipeline::StageInfo DerivedMapsStage::info() {
       // run-length deflate (src/image/png_encoder.h). Version 3: those PNG files compressed by
       // libdeflate at level 1 (src/image/png_encoder.h). Version 4: the PNG files carry an iTXt
       // chunk (PNG 1.2, fmt/13) and their PRONOM identifier is recorded (formats/pronom.h); the
-      // pixels are the same.
-      {kComponent, "4", "Surface normals, albedo and relit previews from a model",
+      // pixels are the same. Version 5: albedo.png is the model at the normal (the intensity a
+      // light along the normal gives, in the model's encoding: src/fit/normals.h), no longer
+      // |b| of the Lambertian fit, which overshoots it for sRGB-encoded models.
+      {kComponent, "5", "Surface normals, albedo and relit previews from a model",
        pipeline::PlanSlot::AfterModels});
   info.forModel = [](const std::string& basis) {
     DerivedMapsOptions o;

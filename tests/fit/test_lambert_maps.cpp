@@ -1,8 +1,10 @@
 // Normals and albedo of HSH and PTM files against a Lambertian fit written out here from its
 // definition (src/fit/lambert.h): the model evaluated at 61 fixed directions (elevations 15 to
 // 75 degrees in steps of 15 by 12 azimuths, plus the zenith), b = the least-squares solution of
-// I(l) = b . l through them (3 x 3 normal equations), albedo |b|, normal b / |b| of the mean of
-// the channels' b. The basis comes from reference_basis.h, not from src/fit.
+// I(l) = b . l through them (3 x 3 normal equations), normal b / |b| of the mean of the
+// channels' b; the albedo is each channel's model evaluated at that normal (for a PTM, at the
+// maximum of the luminance polynomial, written out here from the closed form). The basis comes
+// from reference_basis.h, not from src/fit.
 #include <catch2/catch.hpp>
 
 #include <array>
@@ -69,9 +71,16 @@ std::array<int, 3> normalLevels(const std::array<double, 3>& b) {
   return out;
 }
 
+// The unit normal of b, or (0, 0, 1) when it faces away (as normalLevels encodes it).
+std::array<double, 3> unitNormal(const std::array<double, 3>& b) {
+  const double len = length(b);
+  return len > 1e-9 && b[2] > 0 ? std::array<double, 3>{b[0] / len, b[1] / len, b[2] / len}
+                                : std::array<double, 3>{0, 0, 1};
+}
+
 }  // namespace
 
-TEST_CASE("lambert maps: HSH normals and albedo are the least-squares Lambertian fit at 61 directions") {
+TEST_CASE("lambert maps: HSH normals are the least-squares Lambertian fit at 61 directions and albedo the model there") {
   std::mt19937 random(5);
   std::uniform_int_distribution<int> byte(0, 255);
   const auto d = directions();
@@ -100,15 +109,20 @@ TEST_CASE("lambert maps: HSH normals and albedo are the least-squares Lambertian
           }
           const auto b = lambertReference(values);
           for (int r = 0; r < 3; ++r) mean[r] += b[r] / 3;
-          CHECK(std::abs(albedo.at(x, y, c) / 257 - albedoLevel(length(b))) <= 1);
         }
         const auto want = normalLevels(mean);
         for (int c = 0; c < 3; ++c) CHECK(std::abs(int(normals.at(x, y, c)) - want[c]) <= 1);
+        const auto n = unitNormal(mean);
+        for (int c = 0; c < 3; ++c) {
+          double v = 0;
+          for (int t = 0; t < terms; ++t) v += hsh.coefficient(x, y, c, t) * ref::hshTerm(t, n[0], n[1], n[2]);
+          CHECK(std::abs(albedo.at(x, y, c) / 257 - albedoLevel(255 * v)) <= 1);
+        }
       }
   }
 }
 
-TEST_CASE("lambert maps: RGB PTM albedo is the least-squares Lambertian fit at 61 directions") {
+TEST_CASE("lambert maps: RGB PTM albedo is each channel at the maximum of the luminance polynomial") {
   std::mt19937 random(9);
   std::uniform_int_distribution<int> byte(0, 255);
   formats::PtmFile ptm;
@@ -119,16 +133,40 @@ TEST_CASE("lambert maps: RGB PTM albedo is the least-squares Lambertian fit at 6
   ptm.bias = {128, 120, 130, 100, 110, 20};
   for (std::size_t i = 0; i < ptm.texels() * 18; ++i) ptm.coefficients.push_back(byte(random));
   const Image albedo = fit::albedoMap(ptm);
+  int maxima = 0, fallbacks = 0;
   for (int y = 0; y < ptm.height; ++y)
-    for (int x = 0; x < ptm.width; ++x)
-      for (int c = 0; c < 3; ++c) {
+    for (int x = 0; x < ptm.width; ++x) {
+      // The luminance polynomial (the channels' mean) and its maximum (docs/hrti-math.md).
+      double a[6] = {};
+      for (int k = 0; k < 6; ++k)
+        for (int c = 0; c < 3; ++c) a[k] += ptm.coefficient(x, y, k, c) / 3;
+      const double d = 4 * a[0] * a[1] - a[2] * a[2];
+      double lu = 0, lv = 0;
+      if (d > 0 && a[0] < 0) {
+        ++maxima;
+        lu = (a[2] * a[4] - 2 * a[1] * a[3]) / d;
+        lv = (a[2] * a[3] - 2 * a[0] * a[4]) / d;
+        const double r = std::hypot(lu, lv);
+        if (r > 1) lu /= r, lv /= r;
+      } else {
+        ++fallbacks;
         std::vector<double> values;
         for (const auto& l : directions()) {
           const auto uv = ref::ptmArguments(l[0], l[1], l[2]);
           double v = 0;
-          for (int k = 0; k < 6; ++k) v += ptm.coefficient(x, y, k, c) * ref::ptmTerm(k, uv[0], uv[1]);
+          for (int k = 0; k < 6; ++k) v += a[k] * ref::ptmTerm(k, uv[0], uv[1]);
           values.push_back(v);
         }
-        CHECK(std::abs(albedo.at(x, y, c) / 257 - albedoLevel(length(lambertReference(values)))) <= 1);
+        const auto n = unitNormal(lambertReference(values));
+        lu = n[0], lv = n[1];
       }
+      for (int c = 0; c < 3; ++c) {
+        double v = 0;
+        for (int k = 0; k < 6; ++k) v += ptm.coefficient(x, y, k, c) * ref::ptmTerm(k, lu, lv);
+        CHECK(std::abs(albedo.at(x, y, c) / 257 - albedoLevel(v)) <= 1);
+      }
+    }
+  // Random coefficients give both kinds of texel, so both paths are checked.
+  CHECK(maxima > 0);
+  CHECK(fallbacks > 0);
 }
