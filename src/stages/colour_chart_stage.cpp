@@ -18,6 +18,7 @@
 #include "stages/colour_stack.h"
 #include "stages/inputs.h"
 #include "stages/light_estimation.h"
+#include "stages/outputs.h"
 #include "stages/preprocess_steps.h"
 
 namespace surrogate::stages {
@@ -34,8 +35,9 @@ const std::vector<int> kWhitePointPatches{18, 19, 20, 21, 22};
 // a ColorChecker (mcc can take a shelf of books for one): a real chart under even a strong cast
 // fits a 3x3 matrix to a few units.
 constexpr double kPhantomMeanDeltaE = 10;
-// The after-correction mean above which the run warns (FADGI's 3-star limit).
-constexpr double kWarnMeanDeltaE = 4;
+// The after-correction mean above which the run warns (FADGI 2023's 3-star limit: below it,
+// the correction reaches no more than 2 stars; colour/quality_levels.cpp).
+constexpr double kWarnMeanDeltaE = 3.5;
 
 double luminance(const colour::Rgb& c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
 
@@ -207,14 +209,24 @@ void ColourChartStage::run(const carrier::Step& step, pipeline::Context& ctx, ca
   else for (int i = 0; i < input->size(); ++i) frames.push_back(i);
   std::vector<FrameReading> readings;
   std::string chartFrameReason;
+  int uneven = 0;
   for (std::size_t n = 0; n < frames.size(); ++n) {
     FrameReading f;
     f.image = frames[n];
     f.reading = colour::readChart(readBand(*input, f.image, y0, y1), band);
     for (int k = 0; k < kChartPatches; ++k) f.irradiance[k] = irradianceAt(*lights, places.get(), f.image, centreOf(regions[k]));
-    const std::string why = colour::unusableReason(place, f.reading);
-    if (f.image == frame) chartFrameReason = why;
-    f.usable = why.empty();
+    // A near light's fall-off over the chart is in each patch's irradiance factor, so only a
+    // frame lit from infinity must light the chart evenly; clipping is judged patch by patch
+    // (a frame with a clipped white still measures the other patches).
+    const bool near = places && f.image < static_cast<int>(places->lights.size()) && places->lights[f.image].near;
+    f.usable = near || f.reading.lightGradient <= colour::kMaxLightGradient;
+    uneven += !f.usable;
+    if (f.image == frame) chartFrameReason = colour::unusableReason(place, f.reading);
+    if (f.image == frame && near && f.reading.lightGradient > colour::kMaxLightGradient) {
+      colour::ChartReading even = f.reading;
+      even.lightGradient = 0;
+      chartFrameReason = colour::unusableReason(place, even);
+    }
     readings.push_back(f);
     ctx.progress("Colour chart", 0.8 * (n + 1) / frames.size());
   }
@@ -224,8 +236,19 @@ void ColourChartStage::run(const carrier::Step& step, pipeline::Context& ctx, ca
   if (m.framesUsable == 0)
     throw Error(ErrorKind::Input, where, step.component,
                 "the chart cannot be measured in any frame: " + chartFrameReason +
-                    " (every frame is clipped or unevenly lit on the chart); re-shoot, name a target shot "
-                    "with --colour-chart IMAGE, or --colour-chart none");
+                    " (every frame lights the chart unevenly); re-shoot, name a target shot with "
+                    "--colour-chart IMAGE, or --colour-chart none");
+  for (int k = 0; k < kChartPatches; ++k)
+    if (!m.patches[k].measured)
+      throw Error(ErrorKind::Input, where, step.component,
+                  "patch " + std::to_string(k + 1) + " (" + colour::chartReference(options.reference).patchNames[k] +
+                      ") cannot be measured in any frame (clipped, or lit too obliquely, in all " +
+                      std::to_string(m.framesUsable) + " usable frames): re-shoot with a lower exposure, name a "
+                      "target shot with --colour-chart IMAGE, or --colour-chart none");
+  if (uneven > 0)
+    ctx.carrier.addLog("info", step.id, std::to_string(uneven) + " frame(s) light the chart unevenly (more than " +
+                                            fixedDecimals(100 * colour::kMaxLightGradient, 0) +
+                                            " % from one side to the other) and were not used to measure it");
   recordValue(result, "framesMeasured", std::to_string(m.framesUsable));
 
   // The fit.
@@ -253,7 +276,7 @@ void ColourChartStage::run(const carrier::Step& step, pipeline::Context& ctx, ca
   double refY = 0, measuredY = 0;
   for (int k : neutrals) refY += luminance(refRgb[k]), measuredY += luminance(measured[k]);
   const double exposure = measuredY > 0 ? refY / measuredY : 1;
-  std::vector<double> before, after, held;
+  std::vector<double> before, after, held, afterUnitSL;
   for (int k = 0; k < kChartPatches; ++k) {
     if (!use[k]) continue;
     colour::Rgb scaled = measured[k];
@@ -262,6 +285,7 @@ void ColourChartStage::run(const carrier::Step& step, pipeline::Context& ctx, ca
     const colour::Lab a = colour::labD50FromLinearSrgb(model.apply(measured[k]));
     before.push_back(colour::deltaE2000(ref.lab[k], b));
     after.push_back(colour::deltaE2000(ref.lab[k], a));
+    afterUnitSL.push_back(colour::deltaE2000UnitSL(ref.lab[k], a));
     held.push_back(colour::deltaE2000(ref.lab[k], colour::labD50FromLinearSrgb(heldOut[k])));
     result.add("chartPatch").set("index", std::to_string(k)).set("name", ref.patchNames[k])
         .set("reference", labText(ref.lab[k]))
@@ -272,7 +296,7 @@ void ColourChartStage::run(const carrier::Step& step, pipeline::Context& ctx, ca
         .set("deltaE2000", fixedDecimals(after.back(), 3))
         .set("deltaE2000HeldOut", fixedDecimals(held.back(), 3));
   }
-  const colour::ChartFigures fb = colour::chartFigures(before), fa = colour::chartFigures(after),
+  const colour::ChartFigures fb = colour::chartFigures(before), fa = colour::chartFigures(after, afterUnitSL),
                              fh = colour::chartFigures(held);
   if (!options.cornersGiven && fa.mean > kPhantomMeanDeltaE) {
     if (options.named())
