@@ -99,13 +99,17 @@ TEST_CASE("built-in stages keep their recorded names, versions and default param
   const std::vector<std::pair<std::string, std::string>> versions = {
       {"CaptureIngest", "3"}, {"ImageDecode", "3"}, {"SphereDetection", "9"}, {"HighlightDetection", "11"},
       {"LightDirections", "7"}, {"LightsFromFile", "4"}, {"WhiteBalance", "1"}, {"Crop", "1"},
-      {"Resize", "1"}, {"RtiFit", "6"}, {"DerivedMaps", "4"}, {"WebCopy", "4"}, {"Audit", "7"}};
+      {"Resize", "1"}, {"RtiFit", "6"}, {"DerivedMaps", "5"}, {"WebCopy", "4"}, {"Audit", "7"},
+      {"ColourCorrection", "1"}};
   for (const auto& [component, version] : versions) {
     INFO(component);
     REQUIRE(r.info(component));
     CHECK(r.info(component)->version == version);
     CHECK(r.create(component)->version() == version);
   }
+  CHECK(r.info("ColourCorrection")->defaults ==
+        pipeline::Parameters{{"chart", "auto"}, {"corners", ""}, {"reference", "colorchecker-classic-2014"},
+                             {"model", "matrix"}});
   CHECK(r.info("LightDirections")->defaults ==
         pipeline::Parameters{{"model", "orthographic"}, {"focalLengthMm", "0"}, {"pixelPitchMm", "0"},
                              {"sphereDiameterMm", "0"}, {"lightDistance", "auto"}});

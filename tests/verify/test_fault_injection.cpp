@@ -116,7 +116,7 @@ TEST_CASE("the clean bag is sound, and re-executes exactly with another thread c
   INFO(r.output);
   CHECK(r.exitCode == 0);
   CHECK_THAT(r.output, Contains("SOUND"));
-  CHECK_THAT(r.output, Contains("reexecute.s6.RtiFit"));
+  CHECK_THAT(r.output, Contains("reexecute.s7.RtiFit"));
   r = verify(f.tar, "--reexecute --threads 1 --json");
   INFO(r.output);
   CHECK(r.exitCode == 0);
@@ -231,7 +231,7 @@ TEST_CASE("every injected fault is detected with the right check and exit code",
          rehashBag(b);
          return b;
        },
-       4, "reexecute.s6.RtiFit", true, "coefficients differ by at most"},
+       4, "reexecute.s7.RtiFit", true, "coefficients differ by at most"},
       {"edit a recorded parameter, hashes and metadata updated consistently",
        [] {
          auto b = copyOfBag("param");
