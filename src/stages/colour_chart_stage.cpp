@@ -156,6 +156,22 @@ void ColourChartStage::run(const carrier::Step& step, pipeline::Context& ctx, ca
   }
   const InputImage& chartImage = (*inputs)[frame];
   const std::string where = chartImage.relativePath;
+  // A chart that cannot be measured: refused when the user named it (they asked for a
+  // correction); found by the automatic search, the run goes on without one, with a warning
+  // that says why (a default must not stop a capture that ran before), and the record says so.
+  auto cannotUse = [&](const std::string& why) {
+    if (options.named()) throw Error(ErrorKind::Input, where, step.component, why);
+    result.items.clear();
+    recordValue(result, "chart", options.chart);
+    recordValue(result, "outcome", "a ColorChecker found in " + where + " cannot be measured: " + why +
+                                       ": the images keep their colours");
+    result.add("input").set("file", chartImage.fileId).set("kind", "chart-search");
+    ctx.carrier.addLog("warning", step.id,
+                       "a ColorChecker was found in " + where + " but cannot be measured: " + why +
+                           "; the images keep their colours (say --colour-chart none if the chart is not "
+                           "to be used)");
+    ctx.progress("Colour chart", 1);
+  };
   colour::ChartPlace place;
   if (options.cornersGiven) {
     std::array<colour::Point, 4> corners;
@@ -186,10 +202,13 @@ void ColourChartStage::run(const carrier::Step& step, pipeline::Context& ctx, ca
     }
   }
   for (const auto& c : place.corners)
-    if (c[0] < 0 || c[1] < 0 || c[0] > input->width() - 1 || c[1] > input->height() - 1)
-      throw Error(ErrorKind::Usage, "--colour-chart", step.component,
-                  "the chart's corners reach outside the " + sizeText(input->width(), input->height()) +
-                      " frame of " + where + "; give corners inside it");
+    if (c[0] < 0 || c[1] < 0 || c[0] > input->width() - 1 || c[1] > input->height() - 1) {
+      if (options.cornersGiven)
+        throw Error(ErrorKind::Usage, "--colour-chart", step.component,
+                    "the chart's corners reach outside the " + sizeText(input->width(), input->height()) +
+                        " frame of " + where + "; give corners inside it");
+      return cannotUse("the chart reaches outside the frame");
+    }
   result.add("input").set("file", chartImage.fileId).set("kind", "chart");
   recordValue(result, "method", place.method);
   std::string cornerText;
@@ -231,20 +250,17 @@ void ColourChartStage::run(const carrier::Step& step, pipeline::Context& ctx, ca
     ctx.progress("Colour chart", 0.8 * (n + 1) / frames.size());
   }
   if (place.patchSide < colour::kMinPatchSide || (options.named() && !chartFrameReason.empty()))
-    throw Error(ErrorKind::Input, where, step.component, chartFrameReason);
+    return cannotUse(chartFrameReason);
   const ChartMeasurement m = measureAtNormalIncidence(readings);
   if (m.framesUsable == 0)
-    throw Error(ErrorKind::Input, where, step.component,
-                "the chart cannot be measured in any frame: " + chartFrameReason +
-                    " (every frame lights the chart unevenly); re-shoot, name a target shot with "
-                    "--colour-chart IMAGE, or --colour-chart none");
+    return cannotUse("every frame lights it unevenly (" + chartFrameReason +
+                     "); re-shoot, name a target shot with --colour-chart IMAGE, or --colour-chart none");
   for (int k = 0; k < kChartPatches; ++k)
     if (!m.patches[k].measured)
-      throw Error(ErrorKind::Input, where, step.component,
-                  "patch " + std::to_string(k + 1) + " (" + colour::chartReference(options.reference).patchNames[k] +
-                      ") cannot be measured in any frame (clipped, or lit too obliquely, in all " +
-                      std::to_string(m.framesUsable) + " usable frames): re-shoot with a lower exposure, name a "
-                      "target shot with --colour-chart IMAGE, or --colour-chart none");
+      return cannotUse("patch " + std::to_string(k + 1) + " (" + colour::chartReference(options.reference).patchNames[k] +
+                       ") is clipped, or lit too obliquely, in all " + std::to_string(m.framesUsable) +
+                       " usable frames: re-shoot with a lower exposure, name a target shot with --colour-chart "
+                       "IMAGE, or --colour-chart none");
   if (uneven > 0)
     ctx.carrier.addLog("info", step.id, std::to_string(uneven) + " frame(s) light the chart unevenly (more than " +
                                             fixedDecimals(100 * colour::kMaxLightGradient, 0) +
@@ -265,9 +281,8 @@ void ColourChartStage::run(const carrier::Step& step, pipeline::Context& ctx, ca
   for (int k : kWhitePointPatches)
     if (use[k]) neutrals.push_back(k);
   if (neutrals.empty())
-    throw Error(ErrorKind::Input, where, step.component,
-                "none of the chart's white and grey patches can be measured (clipped in every frame); expose "
-                "lower or name a frame where they are not clipped with --colour-chart IMAGE");
+    return cannotUse("none of its white and grey patches can be measured (clipped in every frame); expose "
+                     "lower or name a frame where they are not clipped with --colour-chart IMAGE");
   const colour::ColourModelKind kind = colour::parseModelName(options.model, "--colour-model");
   const colour::ColourModel model = colour::fitColourModel(measured, reference, kind, neutrals, use);
   const std::vector<colour::Rgb> heldOut = colour::leaveOneOut(measured, reference, kind, neutrals);

@@ -257,6 +257,12 @@ TEST_CASE("colour chart: a chart that cannot be measured is refused naming the i
   CHECK(r.exitCode != 0);
   CHECK(r.output.find(frame) != std::string::npos);
   CHECK(r.output.find("clipped") != std::string::npos);
+  // Found by the automatic search instead, a chart that cannot be used never stops the run: it
+  // is measured where it can be, or left with a warning. (The failed run's decision stands, as
+  // every decision does: auto takes it back.)
+  r = run(capture, "--colour-chart auto");
+  INFO(r.output);
+  CHECK(r.exitCode == 0);
   // A corner list that is not one is refused before any work.
   r = run(capture, "--colour-chart IMG_0001:1,2,3");
   CHECK(r.exitCode == 2);
