@@ -34,7 +34,7 @@ std::vector<OptionSpec> pipelineOptions(bool withFit) {
       {"license", true, false, "the licence of the capture, as a URI, e.g. https://creativecommons.org/licenses/by/4.0/", "URI"},
       {"operator", true, false, "who runs this (recorded with interventions; default $USER)", "NAME"},
       {"exclude", true, true, "leave an image out (needs --reason after it)", "IMAGE"},
-      {"reason", true, true, "why: follows --exclude, --sphere, --highlight, --accept-... or --forget-...", "TEXT"},
+      {"reason", true, true, "why: follows --exclude, --sphere, --highlight, --colour-chart, --accept-... or --forget-...", "TEXT"},
       {"source", true, false, "images to use: auto (raw if present), original, export", "WHICH"},
       {"raw", true, true, "LibRaw setting, e.g. demosaic=AHD, whiteBalance=camera", "NAME=VALUE"},
       {"sphere-roi", true, true, "search a sphere only in this region (one per sphere)", "X,Y,W,H"},
@@ -307,6 +307,14 @@ run::RunRequest requestFrom(const Args& args) {
       lastIsExclusion = false;
       continue;
     }
+    if (name == "colour-chart") {
+      // The chart, like the distance: its reason, if given, goes with it into the run's note.
+      for (run::RunRequest::StageParam& p : r.stageParams)
+        if (p.component == stages::ColourChartStage::kComponent && p.name == "chart") lastReason = &p.reason;
+      last = nullptr;
+      lastIsExclusion = false;
+      continue;
+    }
     if (name == "accept" || name == "forget-accept") {
       const auto& known = hrti::lightCheckNames();
       if (std::find(known.begin(), known.end(), value) == known.end()) {
@@ -392,7 +400,8 @@ run::RunRequest requestFrom(const Args& args) {
         last->reason = value;
       } else {
         throw Error(ErrorKind::Usage, "--reason", "command line",
-                    "must follow the --exclude, --sphere, --highlight, --light-distance or --accept it explains");
+                    "must follow the --exclude, --sphere, --highlight, --light-distance, --colour-chart or --accept it "
+                    "explains");
       }
     }
   }

@@ -37,13 +37,16 @@ std::string text(const json& object, const char* member, const std::string& wher
 // carry (a larger value, 1e308, would overflow to infinity when rounded to tenths).
 constexpr double kMaxPixels = 1e6;
 
+double pixels(const json& value, const std::string& where) {
+  if (!value.is_number()) refuse(where, "must be a number");
+  const double v = value.get<double>();
+  if (!std::isfinite(v) || std::fabs(v) > kMaxPixels) refuse(where, "must be a number of pixels, from -1000000 to 1000000");
+  return v;
+}
+
 double number(const json& object, const char* member, const std::string& where) {
   const auto it = object.find(member);
-  if (it == object.end() || !it->is_number()) refuse(where + "." + member, "must be a number");
-  const double v = it->get<double>();
-  if (!std::isfinite(v) || std::fabs(v) > kMaxPixels)
-    refuse(where + "." + member, "must be a number of pixels, from -1000000 to 1000000");
-  return v;
+  return pixels(it == object.end() ? json() : *it, where + "." + member);
 }
 
 int index(const json& object, const char* member, const std::string& where) {
@@ -122,6 +125,26 @@ std::vector<std::string> argumentsFor(const std::string& applyJson) {
     option("forget-highlight", text(h, "image", where, true) + ":" + std::to_string(index(h, "sphere", where)));
     reason(text(h, "reason", where, true));
   });
+  // The colour chart: its corners marked on a frame, or no chart (stages/colour_chart_options.h).
+  if (const auto it = body.find("chart"); it != body.end() && !it->is_null()) {
+    const json& chart = *it;
+    if (!chart.is_object()) refuse("chart", "must be an object");
+    if (const auto none = chart.find("none"); none != chart.end() && !none->is_null()) {
+      if (!none->is_boolean() || !none->get<bool>()) refuse("chart.none", "must be true (or left out)");
+      if (chart.contains("image") || chart.contains("corners")) refuse("chart", "gives no chart and a chart: give one");
+      option("colour-chart", "none");
+    } else {
+      const auto corners = chart.find("corners");
+      if (corners == chart.end() || !corners->is_array() || corners->size() != 8)
+        refuse("chart.corners", "must be the four corners' 8 numbers x1,y1,...,x4,y4");
+      std::string spec = text(chart, "image", "chart", true) + ":";
+      for (std::size_t n = 0; n < 8; ++n) {
+        spec += (n ? "," : "") + coordinateText(pixels((*corners)[n], "chart.corners[" + std::to_string(n) + "]"));
+      }
+      option("colour-chart", spec);
+    }
+    reason(text(chart, "reason", "chart", false));
+  }
   // The decisions that name one thing (an image, a check) and need a reason, in this order.
   struct Named {
     const char* member;  // of the page's JSON

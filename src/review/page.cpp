@@ -22,6 +22,7 @@ std::string pageHtml() {
   <div class="toolbar" role="toolbar" aria-label="What a click on the frame does">
     <button type="button" id="mode-sphere" aria-pressed="true">Move or resize a sphere</button>
     <button type="button" id="mode-highlight" aria-pressed="false">Place this frame&rsquo;s highlight</button>
+    <button type="button" id="mode-chart" aria-pressed="false">Mark the colour chart</button>
     <button type="button" id="add-sphere">Add a sphere</button>
     <span class="spacer"></span>
     <button type="button" id="previous-frame" aria-label="Previous frame">&larr;</button>
@@ -32,6 +33,7 @@ std::string pageHtml() {
   <div id="viewer"><img id="frame-image" alt=""><svg id="overlay" xmlns="http://www.w3.org/2000/svg"></svg></div>
   <div id="frame-facts"></div>
   <div id="exclusion" class="decision-box"></div>
+  <div id="chart-box" class="decision-box" hidden></div>
   <div id="thumbnails" aria-label="Every frame"></div>
 </section>
 <aside id="side">
@@ -89,6 +91,13 @@ input[type=text] { font:inherit; padding:3px 6px; border:1px solid var(--line); 
 #overlay .highlight.manual { stroke:#4cc3ff; }
 #overlay .highlight.flagged { stroke:#ff4d4f; }
 #overlay .highlight.pending { stroke:#ffb000; stroke-width:3; }
+#overlay .chart, #overlay .chart-corner, #overlay .chart-label { pointer-events:none; vector-effect:non-scaling-stroke; }
+#overlay .chart { fill:none; stroke-width:2; }
+#overlay .chart.found { stroke:#37d67a; }
+#overlay .chart.pending { stroke:#ffb000; stroke-dasharray:6 3; fill:rgba(255,176,0,.08); }
+#overlay .chart-corner { fill:#ffb000; stroke:#000; stroke-width:1; }
+#overlay .chart-label { fill:#ffb000; font:bold 14px system-ui, sans-serif; }
+#overlay .chart-label.found { fill:#37d67a; }
 #thumbnails { display:grid; grid-template-columns:repeat(auto-fill, minmax(110px, 1fr)); gap:8px; margin-top:12px; }
 .thumb { position:relative; padding:3px; text-align:center; font-size:12px; line-height:1.2; }
 .thumb img { display:block; width:100%; height:auto; }
@@ -120,12 +129,15 @@ const char* const kReviewJs = R"JS(
 
   var SVG = "http://www.w3.org/2000/svg";
   var DEFAULT_REASON = "placed by eye on the frame in surrogate review";
+  // The chart's corners, in the order --colour-chart takes them (stages/colour_chart_options.h).
+  var CHART_CORNERS = ["dark skin", "bluish green", "black", "white"];
   var state = null, current = 0, mode = "sphere", applied = 0, busy = false;
   var pending = emptyPending();
 
   function emptyPending() {
     return { spheres: null, sphereReason: DEFAULT_REASON, highlightReason: DEFAULT_REASON, highlights: {},
              forgetHighlights: {}, forgetSpheres: {}, exclude: {}, forgetExclusions: {}, accept: {}, forgetAccept: {},
+             chart: null, chartReason: DEFAULT_REASON,  // chart: {image, points: [{x, y}...]} or {none: true}
              title: "", rights: "", license: "", creators: [], meta: [] };
   }
   function $(id) { return document.getElementById(id); }
@@ -161,7 +173,7 @@ const char* const kReviewJs = R"JS(
   function spheres() { return pending.spheres || state.spheres; }
   function highlightKey(image, sphere) { return image + ":" + sphere; }
   function changeCount() {
-    var n = (pending.spheres ? 1 : 0) + pending.creators.length + pending.meta.length;
+    var n = (pending.spheres ? 1 : 0) + (pending.chart ? 1 : 0) + pending.creators.length + pending.meta.length;
     ["highlights", "forgetHighlights", "forgetSpheres", "exclude", "forgetExclusions", "accept", "forgetAccept"].forEach(function (k) {
       n += Object.keys(pending[k]).length;
     });
@@ -185,6 +197,10 @@ const char* const kReviewJs = R"JS(
     list("forgetSpheres", function (k, reason) { return { sphere: Number(k), reason: reason }; });
     list("highlights", function (k, h) { return { image: h.image, sphere: h.sphere, x: round1(h.x), y: round1(h.y), reason: pending.highlightReason }; });
     list("forgetHighlights", function (k, h) { return { image: h.image, sphere: h.sphere, reason: h.reason }; });
+    // A chart still being marked (fewer than four corners) is not sent: Apply asks for the rest.
+    if (pending.chart && pending.chart.none) d.chart = { none: true, reason: pending.chartReason };
+    else if (chartMarked()) d.chart = { image: pending.chart.image, reason: pending.chartReason,
+      corners: pending.chart.points.reduce(function (a, p) { return a.concat([round1(p.x), round1(p.y)]); }, []) };
     list("exclude", function (k, reason) { return { image: k, reason: reason }; });
     list("forgetExclusions", function (k, reason) { return { image: k, reason: reason }; });
     list("accept", function (k, reason) { return { check: k, reason: reason }; });
@@ -222,6 +238,7 @@ const char* const kReviewJs = R"JS(
   function pendingFor(name) {
     var n = (pending.exclude[name] != null) + (pending.forgetExclusions[name] != null);
     for (var k in pending.highlights) if (pending.highlights[k].image === name) ++n;
+    if (pending.chart && pending.chart.image === name) ++n;
     return n;
   }
 
@@ -263,8 +280,10 @@ const char* const kReviewJs = R"JS(
     drawOverlay();
     renderFrameFacts();
     renderExclusion();
+    renderChartBox();
     $("mode-help").textContent = mode === "sphere"
       ? "Drag a circle to move it, its orange square to resize it. The circles are the same in every frame."
+      : mode === "chart" ? chartHelp()
       : "Click the centre of the highlight inside a sphere's circle: it becomes this frame's highlight on that sphere.";
   }
 
@@ -296,6 +315,82 @@ const char* const kReviewJs = R"JS(
       o.appendChild(svg("path", { class: "highlight " + m.cls, d: "M" + (m.x - 2 * r) + " " + m.y + "h" + r + "m" + 2 * r + " 0h" + r +
                                  "M" + m.x + " " + (m.y - 2 * r) + "v" + r + "m0 " + 2 * r + "v" + r }));
     });
+    drawChart(o, f, scale);
+  }
+
+  // --- the colour chart: the outline the last run recorded, and the corners marked here ---
+  function chartMarked() { return !!(pending.chart && !pending.chart.none && pending.chart.points.length === 4); }
+  function chartPointsText(points) { return points.map(function (p) { return shown(p.x) + "," + shown(p.y); }).join(" "); }
+  function drawChart(o, f, scale) {
+    var c = state.chart;
+    if (c && c.corners && c.image === f.name) {
+      var pts = [0, 1, 2, 3].map(function (i) { return c.corners[2 * i] + "," + c.corners[2 * i + 1]; }).join(" ");
+      o.appendChild(svg("polygon", { class: "chart found", points: pts }));
+      var t = svg("text", { class: "chart-label found", x: c.corners[0], y: c.corners[1] - 6 * scale });
+      t.textContent = "colour chart (" + (c.method === "given" ? "given" : "found") + ")";
+      o.appendChild(t);
+    }
+    var p = pending.chart;
+    if (!p || p.none || p.image !== f.name || !p.points.length) return;
+    var marked = p.points.map(function (q) { return q.x + "," + q.y; }).join(" ");
+    o.appendChild(svg(p.points.length === 4 ? "polygon" : "polyline", { class: "chart pending", points: marked }));
+    p.points.forEach(function (q, i) {
+      o.appendChild(svg("circle", { class: "chart-corner", cx: q.x, cy: q.y, r: 5 * scale, "data-corner": i }));
+      var t = svg("text", { class: "chart-label", x: q.x + 8 * scale, y: q.y - 8 * scale });
+      t.textContent = (i + 1) + " " + CHART_CORNERS[i];
+      o.appendChild(t);
+    });
+  }
+  function chartHelp() {
+    if (pending.chart && pending.chart.none) return "No colour chart: the images keep their colours. Press \u201cNo colour chart\u201d again to mark one instead.";
+    var n = pending.chart && pending.chart.image === frame().name ? pending.chart.points.length : 0;
+    if (n === 4) return "The chart is marked on this frame: Reset the corners to mark it again.";
+    return "Click the outer corner of the " + CHART_CORNERS[n] + " patch (corner " + (n + 1) + " of 4). The corners go in this order: " +
+      "dark skin, bluish green, black, white; the grid they span is measured in every frame.";
+  }
+  function chartClick(p) {
+    var f = frame(), c = pending.chart;
+    if (c && !c.none && c.image === f.name && c.points.length === 4) { say("All four corners are marked: Reset the corners to mark them again.", "warning"); return; }
+    if (!c || c.none || c.image !== f.name) {
+      if (c && !c.none) say("The corners marked on " + c.image + " are dropped: the chart is marked on one frame.", "warning");
+      if (!c || c.none) pending.chartReason = DEFAULT_REASON;
+      c = pending.chart = { image: f.name, points: [] };
+    }
+    c.points.push({ x: Math.min(state.frameWidth, Math.max(0, p.x)), y: Math.min(state.frameHeight, Math.max(0, p.y)) });
+    var n = c.points.length;
+    say("Corner " + n + " (" + CHART_CORNERS[n - 1] + ") at " + shown(p.x) + ", " + shown(p.y) +
+        (n < 4 ? "; next: the " + CHART_CORNERS[n] + " patch." : ": the chart is marked (apply to record it)."), n < 4 ? "" : "ok");
+    renderFrame(); renderThumbnails(); renderPending();
+  }
+  function renderChartBox() {
+    var box = $("chart-box"), c = state.chart, f = frame();
+    box.hidden = mode !== "chart";
+    box.textContent = "";
+    if (box.hidden) return;
+    var text;
+    if (!c) text = "No colour correction is recorded yet: a run with a fit looks for a chart.";
+    else if (c.outcome === "corrected")
+      text = "The last run " + (c.method === "given" ? "took the chart as given" : "found the chart") + " in " + c.image +
+        " (green outline): CIEDE2000 " + shown(c.deltaE2000MeanBefore, 2) + " before, " + shown(c.deltaE2000Mean, 2) +
+        " mean and " + shown(c.deltaE2000Max, 2) + " largest after correction.";
+    else if (c.chart === "none") text = "The last run used no colour chart (--colour-chart none): the images keep their colours.";
+    else text = "The last run: " + (c.outcome || "no chart recorded") + ".";
+    box.appendChild(el("p", { id: "chart-recorded", text: text }));
+    var where = c && (c.image || c.searched);  // the frame it was found in, or searched
+    if (where && where !== f.name)
+      box.appendChild(el("button", { type: "button", id: "chart-show", text: "Show " + where,
+        onclick: function () { for (var i = 0; i < state.frames.length; ++i) if (state.frames[i].name === where) select(i); } }));
+    var none = !!(pending.chart && pending.chart.none);
+    box.appendChild(el("button", { type: "button", id: "chart-reset", text: "Reset the corners",
+      onclick: function () { if (pending.chart && !pending.chart.none) pending.chart = null; renderFrame(); renderThumbnails(); renderPending(); } }));
+    if (!pending.chart || pending.chart.none || !pending.chart.points.length) box.lastChild.disabled = true;
+    box.appendChild(el("button", { type: "button", id: "chart-none", "aria-pressed": String(none), text: "No colour chart",
+      onclick: function () {
+        pending.chart = none ? null : { none: true };
+        pending.chartReason = none ? DEFAULT_REASON : "";
+        renderFrame(); renderThumbnails(); renderPending();
+        if (!none) { say("Say why there is no colour chart (under Changes to apply): it is recorded with the decision.", ""); $("chart-reason").focus(); }
+      } }));
   }
 
   function renderFrameFacts() {
@@ -311,6 +406,9 @@ const char* const kReviewJs = R"JS(
       row("sphere " + (h.sphere + 1), h.flag + (h.x != null ? " at " + shown(h.x) + ", " + shown(h.y) : "") +
           (h.confidence != null ? ", confidence " + shown(h.confidence, 2) : "") + (h.reason ? " \u2014 " + h.reason : ""));
     });
+    var c = state.chart;
+    if (c && c.corners && c.image === f.name)
+      row("colour chart", (c.method === "given" ? "given" : "found") + ", CIEDE2000 " + shown(c.deltaE2000Mean, 2) + " mean after correction");
     var p = 0;
     for (var k in pending.highlights) if (pending.highlights[k].image === f.name) {
       var h = pending.highlights[k];
@@ -472,6 +570,11 @@ const char* const kReviewJs = R"JS(
       var h = pending.highlights[k];
       item("highlight of " + h.image + " on sphere " + (h.sphere + 1) + " at " + shown(h.x) + ", " + shown(h.y), function () { delete pending.highlights[k]; });
     });
+    if (pending.chart && pending.chart.none) item("no colour chart (--colour-chart none)", function () { pending.chart = null; });
+    else if (pending.chart) item("colour chart in " + pending.chart.image + ": " + (chartMarked()
+      ? "corners at " + chartPointsText(pending.chart.points)
+      : pending.chart.points.length + " of 4 corners marked, next the " + CHART_CORNERS[pending.chart.points.length] + " patch"),
+      function () { pending.chart = null; });
     Object.keys(pending.exclude).forEach(function (k) { item("leave " + k + " out: \u201c" + pending.exclude[k] + "\u201d", function () { delete pending.exclude[k]; }); });
     Object.keys(pending.forgetExclusions).forEach(function (k) { item("take " + k + " back: \u201c" + pending.forgetExclusions[k] + "\u201d", function () { delete pending.forgetExclusions[k]; }); });
     Object.keys(pending.forgetSpheres).forEach(function (k) { item("withdraw the circle of sphere " + (Number(k) + 1), function () { delete pending.forgetSpheres[k]; }); });
@@ -486,6 +589,7 @@ const char* const kReviewJs = R"JS(
     else box.appendChild(ul);
     if (pending.spheres) box.appendChild(reasonField("sphere-reason", "Why the circles are placed by hand", "sphereReason"));
     if (Object.keys(pending.highlights).length) box.appendChild(reasonField("highlight-reason", "Why the highlights are placed by hand", "highlightReason"));
+    if (pending.chart) box.appendChild(reasonField("chart-reason", pending.chart.none ? "Why there is no colour chart (needed)" : "Why the chart is marked by hand", "chartReason"));
     // A capture never run can be run as it is (its first run); otherwise Apply needs a change.
     var first = state.revision === "none";
     $("apply").textContent = first && !n ? "Run the capture" : "Apply";
@@ -519,6 +623,7 @@ const char* const kReviewJs = R"JS(
   function overlayDown(e) {
     if (busy || !state) return;
     var p = framePoint(e), list = spheres();
+    if (mode === "chart") { chartClick(p); return; }
     if (mode === "highlight") {
       var k = -1;
       list.forEach(function (s, i) { if (k < 0 && Math.hypot(p.x - s.cx, p.y - s.cy) <= s.r) k = i; });
@@ -562,6 +667,7 @@ const char* const kReviewJs = R"JS(
     mode = m;
     $("mode-sphere").setAttribute("aria-pressed", String(m === "sphere"));
     $("mode-highlight").setAttribute("aria-pressed", String(m === "highlight"));
+    $("mode-chart").setAttribute("aria-pressed", String(m === "chart"));
     renderFrame();
   }
 
@@ -598,6 +704,10 @@ const char* const kReviewJs = R"JS(
   function missingReason() {
     for (var k in pending.exclude) if (!pending.exclude[k].trim()) return "Say why " + k + " is left out: the reason is recorded with the decision.";
     for (var j in pending.forgetExclusions) if (!pending.forgetExclusions[j].trim()) return "Say why " + j + " comes back: the reason is recorded with the decision.";
+    if (pending.chart && pending.chart.none && !pending.chartReason.trim()) return "Say why there is no colour chart: the reason is recorded with the decision.";
+    if (pending.chart && !pending.chart.none && !chartMarked())
+      return "Mark the colour chart's four corners (" + pending.chart.points.length + " of 4 so far, next the " +
+        CHART_CORNERS[pending.chart.points.length] + " patch), or undo it.";
     return "";
   }
 
@@ -609,16 +719,20 @@ const char* const kReviewJs = R"JS(
     say("Running\u2026 the page will show the new record when the run ends.", "");
     watchProgress(true);
     post("/api/apply", decisions()).then(function (r) {
-      busy = false;
       watchProgress(false);
       if (r.ok) {
         pending = emptyPending();
+        // Busy until the new record is shown: the look at the revision every few seconds would
+        // otherwise take this page's own Apply for another command's change.
         return loadState().then(function () {
+          busy = false;
+          renderPending();
           var run = state.runs[state.runs.length - 1];
           say("Applied: " + (run ? "run " + run.id + " " + run.outcome + ". " : "") + "The same as: surrogate run " + quoted(state.capture) + " " + r.body.options.map(quoted).join(" "), "ok");
           body.setAttribute("data-applied", ++applied);
         });
       }
+      busy = false;
       if (r.status === 409) {
         return loadState().then(function () { say("This page was out of date: " + r.body.message + ".", "warning"); body.setAttribute("data-stale", "true"); });
       }
@@ -634,6 +748,7 @@ const char* const kReviewJs = R"JS(
 
   $("mode-sphere").addEventListener("click", function () { setMode("sphere"); });
   $("mode-highlight").addEventListener("click", function () { setMode("highlight"); });
+  $("mode-chart").addEventListener("click", function () { setMode("chart"); });
   $("add-sphere").addEventListener("click", function () {
     if (!pending.spheres) pending.spheres = state.spheres.map(function (s) { return { cx: s.cx, cy: s.cy, r: s.r }; });
     pending.spheres.push({ cx: state.frameWidth / 2, cy: state.frameHeight / 2, r: Math.min(state.frameWidth, state.frameHeight) / 8 });

@@ -81,6 +81,44 @@ std::vector<std::string> checksThatStopped(const carrier::RunRecord& run) {
   return out;
 }
 
+// The chart as the last ColourCorrection step recorded it (stages/colour_chart_stage.cpp):
+// what was asked (chart, corners given), what came of it (outcome, method), where it is (the
+// four corners in the image it was found or given in) and how well it corrected; null when no
+// such step ran. The page draws the outline on that frame and offers to mark it by hand.
+json chartState(const carrier::Carrier& c, const carrier::Step* step) {
+  if (!step) return nullptr;
+  json chart = {{"step", step->id}, {"asked", step->param("chart", "auto")}, {"cornersGiven", step->param("corners", "")},
+                {"chart", nullptr}, {"outcome", nullptr}, {"method", nullptr}, {"corners", nullptr},
+                {"image", nullptr}, {"imagePath", nullptr}, {"searched", nullptr}};
+  const carrier::Result* r = c.findResult(step->id);
+  if (!r) return chart;
+  for (const carrier::DataItem* v : r->itemsOf("value")) {
+    const std::string name = v->get("name").value_or(""), value = v->get("value").value_or("");
+    if (name == "chart" || name == "outcome" || name == "method") chart[name] = value;
+    if (name == "deltaE2000Mean" || name == "deltaE2000Max" || name == "deltaE2000MeanBefore")
+      if (const auto x = numberOf(*v, "value")) chart[name] = *x;
+    if (name == "corners") {
+      json corners = json::array();
+      double x[8];
+      if (std::sscanf(value.c_str(), "%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf", &x[0], &x[1], &x[2], &x[3], &x[4], &x[5], &x[6],
+                      &x[7]) == 8)
+        for (double k : x) corners.push_back(k);
+      if (corners.size() == 8) chart["corners"] = corners;
+    }
+  }
+  for (const carrier::DataItem* i : r->itemsOf("input")) {
+    const std::string kind = i->get("kind").value_or("");
+    const carrier::FileRecord* f = c.findFile(i->get("file").value_or(""));
+    if (!f) continue;
+    if (kind == "chart") {
+      chart["image"] = shotOf(f->path);
+      chart["imagePath"] = f->path;
+    }
+    if (kind == "chart-search") chart["searched"] = shotOf(f->path);
+  }
+  return chart;
+}
+
 }  // namespace
 
 CaptureState readCaptureState(const fs::path& captureArg, const std::string& who, int threads) {
@@ -95,6 +133,7 @@ CaptureState readCaptureState(const fs::path& captureArg, const std::string& who
 
   std::string source = "auto", lp;
   const carrier::Step* sphereStep = nullptr;
+  const carrier::Step* chartStep = nullptr;
   if (c)
     for (const carrier::Step& s : c->process) {
       if (s.component == "CaptureIngest") {
@@ -104,6 +143,7 @@ CaptureState readCaptureState(const fs::path& captureArg, const std::string& who
       if (s.component == "ImageDecode")
         for (const carrier::Param& p : s.params) out.decodeSettings.emplace_back(p.name, p.value);
       if (s.component == "SphereDetection") sphereStep = &s;
+      if (s.component == "ColourCorrection") chartStep = &s;
     }
   const capture::CaptureLayout layout = capture::scanCapture(capture, threads, lp);
   for (const capture::ImageFile& f : capture::selectImages(layout, capture::parseSource(source)))
@@ -211,6 +251,7 @@ CaptureState readCaptureState(const fs::path& captureArg, const std::string& who
                       {"ended", r.ended}, {"outcome", r.outcome}, {"arguments", r.arguments}, {"notes", r.notes}});
     if (!c->header.runs.empty()) state["stoppedBy"] = checksThatStopped(c->header.runs.back());
   }
+  state["chart"] = c ? chartState(*c, chartStep) : json(nullptr);
   if (!state.contains("stoppedBy")) state["stoppedBy"] = json::array();
   json frames = json::array();
   for (const Frame& f : out.frames) frames.push_back(byShot[f.name]);
