@@ -10,43 +10,12 @@
 "use strict";
 
 const assert = require("node:assert/strict");
-const childProcess = require("node:child_process");
 const fs = require("node:fs");
-const os = require("node:os");
 const path = require("node:path");
 
-function skip(why) {
-  console.error("SKIPPED: " + why);
-  process.exit(77);
-}
-const surrogateExe = process.env.SURROGATE_EXE, generatorExe = process.env.GENERATOR_EXE;
-if (!surrogateExe || !generatorExe) {
-  console.error("set SURROGATE_EXE and GENERATOR_EXE (ctest does)");
-  process.exit(2);
-}
-function chromiumPath() {
-  const candidates = process.env.SURROGATE_CHROMIUM ? [process.env.SURROGATE_CHROMIUM] : ["chromium", "chromium-browser"];
-  for (const name of candidates) {
-    const found = childProcess.spawnSync("sh", ["-c", "command -v \"$0\"", name], { encoding: "utf8" });
-    if (found.status === 0 && found.stdout.trim()) return found.stdout.trim();
-  }
-  return null;
-}
-const chromium = chromiumPath();
-if (!chromium) skip("chromium is not installed (apt-get install chromium, or scripts/install-deps)");
-let puppeteer;
-try {
-  puppeteer = require("puppeteer-core");
-} catch (e) {
-  skip("puppeteer-core is not installed: run scripts/install-deps (npm ci in tests/review/browser)");
-}
+const { surrogateExe, generatorExe, run, workDir, startReview, launchBrowser } = require("./harness");
 
-const work = fs.mkdtempSync(path.join(os.tmpdir(), "surrogate-review-chart-"));
-function run(program, args) {
-  const r = childProcess.spawnSync(program, args, { encoding: "utf8" });
-  if (r.status !== 0) throw new Error(program + " " + args.join(" ") + " failed: " + r.stdout + r.stderr);
-  return r.stdout;
-}
+const work = workDir("surrogate-review-chart-");
 
 // A capture with a chart and a warm cast (JPEG, 16 frames of 900 x 600), processed once: the
 // chart is found. The generator's truth gives the corners a person would click.
@@ -59,31 +28,10 @@ assert.equal(truth.length, 8);
 fs.rmSync(path.join(capture, "truth"), { recursive: true });
 run(surrogateExe, ["run", capture, "--quiet", "--no-report"]);
 
-function startReview() {
-  return new Promise((resolve, reject) => {
-    const child = childProcess.spawn(surrogateExe, ["review", capture, "--no-browser", "--port", "0", "--operator", "Ana Silva"],
-                                     { stdio: ["ignore", "pipe", "pipe"] });
-    let output = "";
-    const timer = setTimeout(() => reject(new Error("surrogate review printed no address: " + output)), 20000);
-    const seen = chunk => {
-      output += chunk;
-      const m = /(http:\/\/127\.0\.0\.1:(\d+)\/\?key=([0-9a-f]{64}))\n/.exec(output);
-      if (m) { clearTimeout(timer); resolve({ child, address: m[1] }); }
-    };
-    child.stdout.on("data", seen);
-    child.stderr.on("data", seen);
-    child.on("exit", code => reject(new Error("surrogate review ended (" + code + "): " + output)));
-  });
-}
 
 async function main() {
-  const review = await startReview();
-  const browser = await puppeteer.launch({
-    executablePath: chromium,
-    headless: true,
-    protocolTimeout: 60000,
-    args: ["--no-sandbox", "--disable-gpu", "--no-first-run", "--user-data-dir=" + path.join(work, "profile")],
-  });
+  const review = await startReview(capture);
+  const browser = await launchBrowser(work);
   const problems = [];
   try {
     const page = await browser.newPage();

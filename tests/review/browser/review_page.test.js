@@ -11,45 +11,13 @@
 "use strict";
 
 const assert = require("node:assert/strict");
-const childProcess = require("node:child_process");
 const fs = require("node:fs");
 const http = require("node:http");
-const os = require("node:os");
 const path = require("node:path");
 
-function skip(why) {
-  console.error("SKIPPED: " + why);
-  process.exit(77);
-}
+const { surrogateExe, generatorExe, run, workDir, startReview, launchBrowser } = require("./harness");
 
-const surrogateExe = process.env.SURROGATE_EXE, generatorExe = process.env.GENERATOR_EXE;
-if (!surrogateExe || !generatorExe) {
-  console.error("set SURROGATE_EXE and GENERATOR_EXE (ctest does)");
-  process.exit(2);
-}
-function chromiumPath() {
-  const candidates = process.env.SURROGATE_CHROMIUM ? [process.env.SURROGATE_CHROMIUM] : ["chromium", "chromium-browser"];
-  for (const name of candidates) {
-    const found = childProcess.spawnSync("sh", ["-c", "command -v \"$0\"", name], { encoding: "utf8" });
-    if (found.status === 0 && found.stdout.trim()) return found.stdout.trim();
-  }
-  return null;
-}
-const chromium = chromiumPath();
-if (!chromium) skip("chromium is not installed (apt-get install chromium, or scripts/install-deps)");
-let puppeteer;
-try {
-  puppeteer = require("puppeteer-core");
-} catch (e) {
-  skip("puppeteer-core is not installed: run scripts/install-deps (npm ci in tests/review/browser)");
-}
-
-const work = fs.mkdtempSync(path.join(os.tmpdir(), "surrogate-review-browser-"));
-function run(program, args) {
-  const r = childProcess.spawnSync(program, args, { encoding: "utf8" });
-  if (r.status !== 0) throw new Error(program + " " + args.join(" ") + " failed: " + r.stdout + r.stderr);
-  return r.stdout;
-}
+const work = workDir("surrogate-review-browser-");
 
 // A generated capture (DNG originals and JPEG exports, 8 frames of 400 x 300), processed once.
 const capture = path.join(work, "capture");
@@ -65,22 +33,6 @@ const masked = xml => xml
   .replace(/<(modified|created)>[^<]*</g, "<$1>T<")
   .replace(/completed in [0-9.]+ s/g, "completed in T s");
 
-function startReview() {
-  return new Promise((resolve, reject) => {
-    const child = childProcess.spawn(surrogateExe, ["review", capture, "--no-browser", "--port", "0", "--operator", "Ana Silva"],
-                                     { stdio: ["ignore", "pipe", "pipe"] });
-    let output = "";
-    const timer = setTimeout(() => reject(new Error("surrogate review printed no address: " + output)), 20000);
-    const seen = chunk => {
-      output += chunk;
-      const m = /(http:\/\/127\.0\.0\.1:(\d+)\/\?key=([0-9a-f]{64}))\n/.exec(output);
-      if (m) { clearTimeout(timer); resolve({ child, address: m[1], port: Number(m[2]), key: m[3], output: () => output }); }
-    };
-    child.stdout.on("data", seen);
-    child.stderr.on("data", seen);
-    child.on("exit", code => reject(new Error("surrogate review ended (" + code + "): " + output)));
-  });
-}
 
 // A request from outside the page (node's http), with the headers given.
 function request(port, method, urlPath, headers, body) {
@@ -97,16 +49,11 @@ function request(port, method, urlPath, headers, body) {
 }
 
 async function main() {
-  const review = await startReview();
+  const review = await startReview(capture);
   // The address review printed, with its key: the browser keeps the key as a cookie and is sent
   // on to the address without it.
   const base = review.address;
-  const browser = await puppeteer.launch({
-    executablePath: chromium,
-    headless: true,
-    protocolTimeout: 60000,
-    args: ["--no-sandbox", "--disable-gpu", "--no-first-run", "--user-data-dir=" + path.join(work, "profile")],
-  });
+  const browser = await launchBrowser(work);
   const problems = [];
   function watch(page, name) {
     page.on("console", m => { if (m.type() === "error" || m.type() === "warn") problems.push(name + " console " + m.type() + ": " + m.text()); });
