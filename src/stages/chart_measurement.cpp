@@ -3,15 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "stages/preprocess.h"
+
 namespace surrogate::stages {
 
 namespace {
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 // The line v = a e + b through the points with keep[i], least squares; false when the e's do
 // not spread (a line is not determined).
@@ -42,7 +38,7 @@ double valueAtNormal(const std::vector<double>& e, const std::vector<double>& v,
       for (std::size_t i = 0; i < e.size(); ++i) residuals.push_back(std::abs(v[i] - (a * e[i] + b)));
       // 1.4826 MAD: the standard deviation of normal residuals; the floor keeps a perfect
       // line (generated, noise-free) from rejecting frames over rounding.
-      const double limit = std::max(4 * 1.4826 * median(residuals), 1e-4);
+      const double limit = std::max(4 * 1.4826 * medianOf(residuals), 1e-4);
       int kept = 0;
       for (std::size_t i = 0; i < e.size(); ++i) kept += keep[i] = residuals[i] <= limit;
       if (kept >= kMinFramesForLine && fitLine(e, v, keep, &a, &b)) {
@@ -54,7 +50,7 @@ double valueAtNormal(const std::vector<double>& e, const std::vector<double>& v,
   std::vector<double> ratios;
   for (std::size_t i = 0; i < e.size(); ++i) ratios.push_back(v[i] / e[i]);
   *used = static_cast<int>(ratios.size());
-  return median(ratios);
+  return medianOf(ratios);
 }
 
 }  // namespace

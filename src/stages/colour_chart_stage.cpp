@@ -54,15 +54,6 @@ colour::ChartPlace shifted(colour::ChartPlace p, double dy) {
   return p;
 }
 
-// The input image `name` names (shot name, file name or path), or -1.
-int imageNamed(const InputImages& inputs, const std::string& name) {
-  const std::string stem = fs::path(name).stem().string();
-  for (std::size_t i = 0; i < inputs.size(); ++i)
-    if (inputs[i].stem == name || inputs[i].stem == stem || inputs[i].relativePath == name)
-      return static_cast<int>(i);
-  return -1;
-}
-
 // The frame lit most nearly along the camera's axis: the most even light on a chart lying on
 // the object, and the least shadow across it.
 int mostFrontalFrame(const Lights& lights) {
@@ -148,7 +139,7 @@ void ColourChartStage::run(const carrier::Step& step, pipeline::Context& ctx, ca
   // The frame the chart is found (or given) in.
   int frame = mostFrontalFrame(*lights);
   if (options.named()) {
-    frame = imageNamed(*inputs, options.chart);
+    frame = inputIndexOf(*inputs, options.chart);
     if (frame < 0)
       throw Error(ErrorKind::Usage, "--colour-chart " + options.chart, step.component,
                   "names no image of this capture (after exclusions); give a shot name such as " +

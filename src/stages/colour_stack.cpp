@@ -5,6 +5,7 @@
 
 #include "colour/colour_space.h"
 #include "core/error.h"
+#include "stages/stack_views.h"
 
 namespace surrogate::stages {
 
@@ -22,7 +23,7 @@ ColourStack::ColourStack(std::shared_ptr<const ImageStack> inner, colour::Colour
   if (inner_->channels() != 3)
     throw Error(ErrorKind::Internal, "colour correction", "ColourStack", "needs RGB images");
   const bool srgb = inner_->transfer() == Transfer::Srgb;
-  for (int v = 0; v < 65536; ++v) toLinear_[v] = srgb ? colour::srgbDecode(v / 65535.0) : v / 65535.0;
+  for (int v = 0; v < 65536; ++v) toLinear_[v] = toLinear(static_cast<std::uint16_t>(v), inner_->transfer());
   for (int i = 0; i <= kEncodeSteps; ++i) {
     const double l = static_cast<double>(i) / kEncodeSteps;
     encode_[i] = static_cast<std::uint16_t>(std::lround((srgb ? colour::srgbEncode(l) : l) * 65535));

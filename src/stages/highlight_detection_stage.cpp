@@ -161,10 +161,8 @@ void HighlightDetectionStage::run(const carrier::Step& step, pipeline::Context& 
     const auto colon = i->target.rfind(':');
     const std::string name = colon == std::string::npos ? i->target : i->target.substr(0, colon);
     const int sphere = colon == std::string::npos ? 0 : std::atoi(i->target.c_str() + colon + 1);
-    const std::string stem = fs::path(name).stem().string();
-    auto it = std::find_if(inputs->begin(), inputs->end(),
-                           [&](const InputImage& in) { return in.stem == stem || in.stem == name; });
-    if (it == inputs->end() || sphere < 0 || sphere >= static_cast<int>(spheres->size()))
+    const int image = inputIndexOf(*inputs, name);
+    if (image < 0 || sphere < 0 || sphere >= static_cast<int>(spheres->size()))
       throw Error(ErrorKind::Usage, i->target, "highlight detection",
                   "a manual highlight names an image or sphere that is not processed");
     const std::vector<double> v = recordedNumbers(i->value, 2, "manual highlight");
@@ -174,7 +172,7 @@ void HighlightDetectionStage::run(const carrier::Step& step, pipeline::Context& 
     if (!why.empty())
       throw Error(ErrorKind::Input, "highlight of " + i->target + " given by hand (" + i->value + ")",
                   "highlight detection", why + "; give it again with --highlight " + i->target + "=X,Y");
-    hrti::Highlight& h = (*highlights)[it - inputs->begin()][sphere];
+    hrti::Highlight& h = (*highlights)[image][sphere];
     h.x = v[0];
     h.y = v[1];
     h.flag = hrti::HighlightFlag::Manual;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -37,6 +38,15 @@ struct InputImage {
   std::string stem;          // the shot's name
 };
 using InputImages = std::vector<InputImage>;
+
+// The index of the image `name` names: its shot name, or a file name or path whose stem is the
+// shot's (what an option or an intervention gives); -1 when none does.
+inline int inputIndexOf(const InputImages& inputs, const std::string& name) {
+  const std::string stem = std::filesystem::path(name).stem().string();
+  for (std::size_t i = 0; i < inputs.size(); ++i)
+    if (inputs[i].stem == stem || inputs[i].stem == name) return static_cast<int>(i);
+  return -1;
+}
 
 // One light's place, in the frame coordinates of docs/hrti-math.md ("Near lights"): pixels of
 // the full frame, origin at the frame's centre on the object's plane, x right, y up, z towards
