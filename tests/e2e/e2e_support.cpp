@@ -71,6 +71,14 @@ fs::path freshDir(const std::string& name) {
   return dir;
 }
 
+fs::path generatedWithTruth(const std::string& name, const std::string& arguments) {
+  const fs::path capture = freshDir(name) / "capture";
+  const CommandResult r = runShell(std::string(GENERATOR_EXE) + " --out " + quote(capture) + " " + arguments);
+  if (r.exitCode != 0) throw std::runtime_error("generator failed: " + r.output);
+  fs::rename(capture / "truth", capture.parent_path() / "truth");
+  return capture;
+}
+
 fs::path smallCapture(const fs::path& dir, int images) {
   static std::map<int, fs::path> made;
   if (!made.count(images)) {

@@ -31,6 +31,11 @@ std::filesystem::path freshDir(const std::string& name);
 // copied to `dir` for each test that wants to change it.
 std::filesystem::path smallCapture(const std::filesystem::path& dir, int images = 8);
 
+// A capture made by `surrogate-generate --out DIR ARGUMENTS` in a fresh folder named `name`
+// (DIR is its capture/), its truth/ moved beside it: outside the capture, where no tool reads
+// it. Throws std::runtime_error with the generator's output when the generator fails.
+std::filesystem::path generatedWithTruth(const std::string& name, const std::string& arguments);
+
 // smallCapture after `surrogate run --no-report` (a carrier, .lp, .ptm and .rti), made once per
 // test process and copied to `dir`/cap for each test.
 std::filesystem::path processedCapture(const std::filesystem::path& dir);

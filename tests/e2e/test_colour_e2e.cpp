@@ -37,13 +37,7 @@ namespace {
 
 // A generated capture of 16 JPEG shots, 900x600, with `options`; its truth beside it.
 fs::path generated(const std::string& name, const std::string& options) {
-  const fs::path capture = e2e::freshDir(name) / "capture";
-  const auto r = e2e::runShell(std::string(GENERATOR_EXE) + " --out " + e2e::quote(capture) +
-                               " --images 16 --width 900 --height 600 --sphere-radius 50 --formats jpeg " + options);
-  INFO(r.output);
-  REQUIRE(r.exitCode == 0);
-  fs::rename(capture / "truth", capture.parent_path() / "truth");
-  return capture;
+  return e2e::generatedWithTruth(name, "--images 16 --width 900 --height 600 --sphere-radius 50 --formats jpeg " + options);
 }
 
 e2e::CommandResult run(const fs::path& capture, const std::string& options = "") {

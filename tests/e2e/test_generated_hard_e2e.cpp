@@ -24,14 +24,7 @@ namespace {
 // The scene of tests/hrti/test_detection.cpp (480x360, a sphere of radius 60, 12 shots, seed
 // 5) as JPEG exports, with `hard` options; the truth is moved beside the capture.
 fs::path generated(const std::string& name, const std::string& hard) {
-  const fs::path capture = e2e::freshDir(name) / "capture";
-  const auto r = e2e::runShell(std::string(GENERATOR_EXE) + " --out " + e2e::quote(capture) +
-                               " --images 12 --width 480 --height 360 --sphere-radius 60 --seed 5 --formats jpeg " +
-                               hard);
-  INFO(r.output);
-  REQUIRE(r.exitCode == 0);
-  fs::rename(capture / "truth", capture.parent_path() / "truth");
-  return capture;
+  return e2e::generatedWithTruth(name, "--images 12 --width 480 --height 360 --sphere-radius 60 --seed 5 --formats jpeg " + hard);
 }
 
 // The lights against the truth's, the truth's shot `skipped` (0-based) left out.
@@ -144,11 +137,8 @@ TEST_CASE("a sphere near the frame's edge with its shadows beside it is the sphe
   // inliers, whose limit grows with the points' spread: a circle of radius 59 through the
   // texture and shadows around the sphere scored 0.91, the sphere 0.89, and the lights were
   // 29 / 45 deg off with exit 0. Measured now: 0.39 / 0.60 deg.
-  const fs::path capture = e2e::freshDir("edge-sphere") / "capture";
-  const auto made = e2e::runShell(std::string(GENERATOR_EXE) + " --out " + e2e::quote(capture) +
-                                  " --images 8 --width 400 --height 300 --sphere-radius 45 --seed 7");
-  REQUIRE(made.exitCode == 0);
-  fs::rename(capture / "truth", capture.parent_path() / "truth");
+  const fs::path capture =
+      e2e::generatedWithTruth("edge-sphere", "--images 8 --width 400 --height 300 --sphere-radius 45 --seed 7");
   const fs::path lp = capture.parent_path() / "lights.lp";
   const auto r = e2e::surrogate("lights " + e2e::quote(capture) + " -o " + e2e::quote(lp) + " --quiet");
   INFO(r.output);

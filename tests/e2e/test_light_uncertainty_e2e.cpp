@@ -28,13 +28,7 @@ namespace {
 
 // A generated capture (JPEG exports, 12 shots of 480x360) with `options`; the truth beside it.
 fs::path generated(const std::string& name, const std::string& options) {
-  const fs::path capture = e2e::freshDir(name) / "capture";
-  const auto r = e2e::runShell(std::string(GENERATOR_EXE) + " --out " + e2e::quote(capture) +
-                               " --images 12 --width 480 --height 360 --formats jpeg " + options);
-  INFO(r.output);
-  REQUIRE(r.exitCode == 0);
-  fs::rename(capture / "truth", capture.parent_path() / "truth");
-  return capture;
+  return e2e::generatedWithTruth(name, "--images 12 --width 480 --height 360 --formats jpeg " + options);
 }
 
 struct Bounds {

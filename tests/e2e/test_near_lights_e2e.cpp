@@ -31,13 +31,7 @@ namespace {
 // A generated capture of 24 JPEG shots, 600x400, with `options`; its truth beside it (outside
 // the capture: a tool must not read it).
 fs::path generated(const std::string& name, const std::string& options) {
-  const fs::path capture = e2e::freshDir(name) / "capture";
-  const auto r = e2e::runShell(std::string(GENERATOR_EXE) + " --out " + e2e::quote(capture) +
-                               " --images 24 --width 600 --height 400 --sphere-radius 45 --formats jpeg " + options);
-  INFO(r.output);
-  REQUIRE(r.exitCode == 0);
-  fs::rename(capture / "truth", capture.parent_path() / "truth");
-  return capture;
+  return e2e::generatedWithTruth(name, "--images 24 --width 600 --height 400 --sphere-radius 45 --formats jpeg " + options);
 }
 
 // The median angle, in degrees, between the normals of two 16-bit normal maps (value =
