@@ -4,13 +4,12 @@
 
 #include <catch2/catch.hpp>
 
-#include <algorithm>
 #include <fstream>
 #include <regex>
 
 #include "carrier/carrier.h"
-#include "core/digest.h"
 #include "sample_capture.h"
+#include "sample_facts.h"
 #include "test_files.h"
 
 namespace fs = std::filesystem;
@@ -103,17 +102,7 @@ Sample sample(const std::string& name, Outcome outcome) {
   std::ofstream(s.capture / "assembly-files/carrier.xml", std::ios::binary) << xml;
 
   s.carrierXml = xml;
-  s.facts.packageId = "urn:sha256:" + surrogate::sha256Hex(xml);
-  s.facts.packagingTime = "2026-01-03T00:00:00Z";
-  s.facts.softwareAgent = "Surrogate 0.1.0";
-  std::vector<std::string> paths;
-  for (auto it = fs::recursive_directory_iterator(s.capture); it != fs::recursive_directory_iterator(); ++it)
-    if (it->is_regular_file()) paths.push_back(it->path().lexically_relative(s.capture).generic_string());
-  std::sort(paths.begin(), paths.end());
-  for (const std::string& p : paths) {
-    const surrogate::FileDigests d = surrogate::digestFile(s.capture / p, true);
-    s.facts.payload.push_back({"data/" + p, d.size, d.sha256, d.sha512});
-  }
+  s.facts = samplefacts::of(s.capture, xml);
   return s;
 }
 

@@ -17,6 +17,7 @@
 #include "mapping/mapping.h"
 #include "archival_checks.h"
 #include "sample_capture.h"
+#include "sample_facts.h"
 #include "test_files.h"
 
 namespace fs = std::filesystem;
@@ -44,17 +45,7 @@ Sample sampleOf(const fs::path& capture) {
   Sample s;
   s.capture = capture;
   s.carrierXml = slurp(s.capture / "assembly-files/carrier.xml");
-  s.facts.packageId = "urn:sha256:" + sha256Hex(s.carrierXml);
-  s.facts.packagingTime = "2026-01-03T00:00:00Z";
-  s.facts.softwareAgent = "Surrogate 0.1.0";
-  std::vector<std::string> paths;
-  for (auto it = fs::recursive_directory_iterator(s.capture); it != fs::recursive_directory_iterator(); ++it)
-    if (it->is_regular_file()) paths.push_back(it->path().lexically_relative(s.capture).generic_string());
-  std::sort(paths.begin(), paths.end());
-  for (const std::string& p : paths) {
-    const FileDigests d = digestFile(s.capture / p, true);
-    s.facts.payload.push_back({"data/" + p, d.size, d.sha256, d.sha512});
-  }
+  s.facts = samplefacts::of(s.capture, s.carrierXml);
   return s;
 }
 
