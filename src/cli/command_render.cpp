@@ -1,6 +1,7 @@
 // surrogate render FILE.ptm|FILE.rti|DIR --light x,y,z -o OUT.png|OUT.jpg|OUT.tif [--gain g]
 // [--specular] [--quality Q]: the output's format is the one its name ends in. DIR (or
-// DIR/info.json) is a web layout, read back by publish/web_reader.h.
+// DIR/info.json) is a web layout, read back by publish/web_reader.h (PTM, HSH, or a learned
+// rbf or bilinear basis, fit/learned_relightable.h).
 #include <cmath>
 #include <iostream>
 
@@ -10,6 +11,7 @@
 #include "core/error.h"
 #include "core/json.h"
 #include "core/memory_budget.h"
+#include "fit/learned_relightable.h"
 #include "fit/render.h"
 #include "image/write_any.h"
 #include "publish/web_reader.h"
@@ -25,6 +27,7 @@ std::unique_ptr<fit::Relightable> openModel(const std::string& path, std::uint64
   publish::WebLayoutModel web = publish::readWebLayout(path, budget);
   *from = "from the web layout " + web.infoJson.string();
   if (web.requantised) *from += ", its coefficients re-quantised to 8 bits per term";
+  if (web.isLearned) return fit::makeRelightable(std::move(web.learned));
   return web.isPtm ? fit::makeRelightable(std::move(web.ptm)) : fit::makeRelightable(std::move(web.hsh));
 }
 }  // namespace
@@ -46,7 +49,8 @@ int runCommandRender(int argc, char** argv) {
   if (helpShown(args, specs,
                 {"surrogate render FILE.ptm|FILE.rti|DIR --light x,y,z -o OUT.png|OUT.jpg|OUT.tif [--gain g] [--specular]",
                  "Relight a PTM or HSH file, or a web layout (a folder `surrogate publish` wrote, or its "
-                 "info.json), under any light and save the picture, in the format its name ends in.",
+                 "info.json, of a PTM, HSH or learned rbf or bln basis), under any light and save the picture, in "
+                 "the format its name ends in.",
                  {{"surrogate render stela12/finished-files/stela12-ptm.ptm --light -0.5,0.3,0.81 -o raking.png",
                    "the model lit from the upper left at about 54 degrees elevation"},
                   {"surrogate render coin.ptm --light 0,0,1 --gain 3 -o relief.jpg",

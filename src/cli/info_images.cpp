@@ -169,6 +169,8 @@ void printWebLayout(const fs::path& path, bool json) {
         .key("basis").value(s.basis).key("width").value(s.width).key("height").value(s.height)
         .key("nplanes").value(s.nplanes).key("format").value(s.format);
     if (s.quality >= 0) j.key("quality").value(s.quality);
+    if (s.resolution > 0) j.key("resolution").value(s.resolution);
+    if (s.nodes > 0) j.key("nodes").value(s.nodes);
     j.key("planes").beginArray();
     for (const std::string& p : s.planes) j.value(p);
     j.endArray().key("missingPlanes").beginArray();
@@ -181,7 +183,14 @@ void printWebLayout(const fs::path& path, bool json) {
   }
   std::cout << path.string() << ": web layout (OpenLIME, relight)\n"
             << "  model:   " << s.type << " " << s.colorspace << (s.basis.empty() ? "" : " (" + s.basis + ")") << ", "
-            << s.width << "x" << s.height << ", " << s.nplanes << " coefficients per texel\n"
+            << s.width << "x" << s.height << ", " << s.nplanes << " coefficients per texel\n";
+  // A learned basis (rbf, bilinear): where its interpolation's nodes are.
+  if (s.type == "bilinear" && s.resolution > 0)
+    std::cout << "  basis:   learned, " << s.resolution << "x" << s.resolution << " grid of light nodes (" << s.nodes
+              << "), " << s.nplanes << " planes\n";
+  else if (s.type == "rbf" && s.nodes > 0)
+    std::cout << "  basis:   learned, radial basis over " << s.nodes << " light nodes, " << s.nplanes << " planes\n";
+  std::cout
             << "  planes:  " << s.planes.size() << " " << s.format << " images"
             << (s.tiles.empty() ? std::string() : " (" + s.tiles + " tiles)")
             << (s.quality >= 0 ? ", quality " + std::to_string(s.quality) : std::string()) << ", " << s.bytes

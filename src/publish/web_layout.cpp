@@ -456,6 +456,20 @@ WebLayoutFiles webLayoutOf(const formats::HshFile& hsh, const PublishOptions& op
   return assemble(std::move(m), hshLayout(hsh), derivedPictures(hsh, options.threads), options);
 }
 
+void writeWebLayoutFolder(const WebLayoutFiles& layout, const fs::path& out) {
+  checkOutputFolder(out);
+  removeInterruptedPublishes(out);
+  StagingFolder staging(out);
+  try {
+    writeLayout(layout, staging.path());
+  } catch (const Error& e) {  // named as the user will look for it, as publish() does
+    const fs::path inside = fs::path(e.file()).lexically_relative(staging.path());
+    if (e.file().empty() || inside.empty() || *inside.begin() == "..") throw;
+    throw Error(e.kind(), (out / inside).string(), e.step(), e.message());
+  }
+  staging.commit();
+}
+
 std::vector<PublishedModel> publish(const fs::path& source, const fs::path& out, const PublishOptions& options,
                                     std::vector<std::string>* removedLeftovers) {
   checkOptions(options);

@@ -60,6 +60,10 @@ struct PublishOptions {
   // JPEG quality 1..100 of the planes: lower gives smaller files and a larger error in the
   // relit image (docs/formats.md, "The web layout", has the measured figures).
   int quality = 95;
+  // Learned layouts only (learned_layout.h): one quality per JPEG plane, nplanes / 3 of them,
+  // so that planes of little energy can be compressed harder; empty = `quality` for all.
+  // info.json's "quality" is then the highest used.
+  std::vector<int> planeQualities;
   // Tiles let a web viewer load only the part and the resolution on screen, at the cost of
   // many small files and a third more bytes (the reduced levels).
   TileLayout tiles = TileLayout::Auto;
@@ -148,6 +152,12 @@ std::vector<PublishedModel> publish(const std::filesystem::path& source, const s
                                     const PublishOptions& options,
                                     std::vector<std::string>* removedLeftovers = nullptr);
 
+// Writes `layout`'s files (webLayoutOf's, any kind) into the folder `out` as publish() writes a
+// model: `out` must not exist or be empty, the files go into a hidden partial folder beside it
+// renamed into place when complete, and killed publishes' leftovers are removed first. Throws
+// Error(Usage) naming `out` when it is a file or a folder that is not empty.
+void writeWebLayoutFolder(const WebLayoutFiles& layout, const std::filesystem::path& out);
+
 // What a web layout's info.json says (any writer's, Surrogate's or relight's), checked against
 // the plane files beside it, for `surrogate info DIR/info.json`.
 struct WebLayoutSummary {
@@ -156,7 +166,10 @@ struct WebLayoutSummary {
   int nplanes = 0;               // coefficients per texel
   int quality = -1;              // -1 when info.json does not say
   std::string format;            // the planes' extension ("jpg")
-  std::string basis;             // Surrogate's name: "ptm-lrgb", "ptm-rgb", "hsh2", "hsh3"; "" else
+  std::string basis;             // Surrogate's name: "ptm-lrgb", "ptm-rgb", "hsh2", "hsh3", and
+                                 // "rbf", "bln" (learned, "mrgb"); "" else
+  int resolution = 0;            // bilinear: the grid's side; else 0
+  int nodes = 0;                 // learned: the basis's nodes (rbf: lights; bilinear: resolution^2)
   std::vector<std::string> planes;         // the plane files the layout names, in order
   std::vector<std::string> missingPlanes;  // those not beside info.json, in no form
   std::string tiles;             // "deepzoom" or "tarzoom" when planes are tiled; "" else

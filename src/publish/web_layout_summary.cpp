@@ -37,6 +37,9 @@ std::string basisName(const WebLayoutSummary& s) {
   if (s.type == "ptm" && s.colorspace == "rgb" && s.nplanes == 18) return "ptm-rgb";
   if (s.type == "hsh" && s.colorspace == "rgb" && s.nplanes == 12) return "hsh2";
   if (s.type == "hsh" && s.colorspace == "rgb" && s.nplanes == 27) return "hsh3";
+  // Learned bases (learned_reader.h): a JPEG holds three coefficients, so planes come in threes.
+  if (s.colorspace == "mrgb" && s.nplanes % 3 == 0 && s.type == "rbf") return "rbf";
+  if (s.colorspace == "mrgb" && s.nplanes % 3 == 0 && s.type == "bilinear") return "bln";
   return "";
 }
 
@@ -92,6 +95,13 @@ WebLayoutSummary describeWebLayout(const fs::path& infoJson) {
   s.format = info.find("format") ? member(info, "format", JsonValue::Kind::String, file).text() : "jpg";
   checkMaterial(info, s.nplanes, file);
   s.basis = basisName(s);
+  if (s.type == "bilinear" && info.find("resolution")) {
+    s.resolution = wholeNumber(info, "resolution", file, 2, 256);
+    s.nodes = s.resolution * s.resolution;
+  }
+  if (s.type == "rbf")
+    if (const std::optional<JsonValue> lights = info.find("lights"); lights && lights->kind() == JsonValue::Kind::Array)
+      s.nodes = static_cast<int>(lights->size() / 3);
   s.bytes = size;
   for (int j = 0; j * 3 < s.nplanes; ++j) {
     const std::string name = "plane_" + std::to_string(j) + "." + s.format;

@@ -11,6 +11,7 @@
 #include "publish/deep_zoom_reader.h"
 #include "publish/info_json.h"
 #include "publish/layout_files.h"
+#include "publish/learned_reader.h"
 #include "publish/plane_decode.h"
 #include "publish/web_layout.h"
 #include "publish/web_terms.h"
@@ -40,13 +41,16 @@ fs::path infoJsonOf(const fs::path& path) {
   return path / "info.json";
 }
 
-// What render reads: the four bases Surrogate publishes, and HSH order 4 as the same layout.
+bool isLearnedType(const std::string& type) { return type == "rbf" || type == "bilinear"; }
+
+// What render reads: the four bases Surrogate publishes, HSH order 4 as the same layout, and
+// the learned bases (learned_reader.h, which says what is wrong with one it refuses).
 void checkBasis(const WebLayoutSummary& s, const fs::path& info) {
   const bool hsh = s.type == "hsh" && s.colorspace == "rgb" && (s.nplanes == 12 || s.nplanes == 27 || s.nplanes == 48);
-  if (s.basis.empty() && !hsh)
+  if (s.basis.empty() && !hsh && !isLearnedType(s.type))
     refuse(info, "is a web layout of type \"" + s.type + "\", colour space \"" + s.colorspace + "\" with " +
-                     std::to_string(s.nplanes) + " planes; render reads PTM (\"lrgb\", 9 planes, or \"rgb\", 18) and "
-                     "HSH (\"rgb\", 12 or 27 planes) layouts only");
+                     std::to_string(s.nplanes) + " planes; render reads PTM (\"lrgb\", 9 planes, or \"rgb\", 18), "
+                     "HSH (\"rgb\", 12 or 27 planes) and learned (\"rbf\" or \"bilinear\", \"mrgb\") layouts only");
   if (s.format != "jpg")
     refuse(info, "names planes in the format \"" + s.format +
                      "\"; render reads JPEG planes (\"format\": \"jpg\") only");
@@ -313,9 +317,13 @@ WebLayoutModel readWebLayout(const fs::path& path, const formats::ModelBudget& b
   const WebLayoutSummary s = describeWebLayout(out.infoJson);
   checkBasis(s, out.infoJson);
   checkSize(s, out.infoJson);
+  const bool learned = isLearnedType(s.type);
+  // A learned layout's basis and materials are checked before anything else is read.
+  if (learned) out.learned = learnedModelOf(out.infoJson, s);
   const Material material = materialOf(out.infoJson, s.nplanes);
-  const bool requantised = s.type == "ptm" ? !ptmBytesCarryOver(material, s.colorspace == "lrgb")
-                                           : !hshBytesCarryOver(material, s.nplanes / 3);
+  const bool requantised = learned ? false
+                           : s.type == "ptm" ? !ptmBytesCarryOver(material, s.colorspace == "lrgb")
+                                             : !hshBytesCarryOver(material, s.nplanes / 3);
   requireWithinMemory(out.infoJson.string(), kStep,
                       std::to_string(s.width) + "x" + std::to_string(s.height) + " texels in " +
                           std::to_string(s.nplanes) + " planes",
@@ -324,7 +332,10 @@ WebLayoutModel readWebLayout(const fs::path& path, const formats::ModelBudget& b
   planes.texels = static_cast<std::size_t>(s.width) * static_cast<std::size_t>(s.height);
   for (int j = 0; j * 3 < s.nplanes; ++j) planes.images.push_back(readPlane(out.infoJson.parent_path(), s, j));
   out.isPtm = s.type == "ptm";
-  if (out.isPtm) {
+  out.isLearned = learned;
+  if (learned) {
+    setLearnedCoefficients(planes.images, &out.learned);
+  } else if (out.isPtm) {
     out.ptm = ptmOf(planes, material, s, &out.requantised);
     formats::validatePtm(out.ptm, out.infoJson.string());
   } else {

@@ -3,11 +3,12 @@
 // `surrogate render DIR` relights a published folder as `surrogate render FILE.ptm` relights
 // the file it came from, up to the JPEG error of the planes.
 //
-// Read: "ptm" with "lrgb" (9 planes) or "rgb" (18), and "hsh" with "rgb" (12, 27 or 48), in
+// Read: "ptm" with "lrgb" (9 planes) or "rgb" (18), "hsh" with "rgb" (12, 27 or 48), and the
+// learned "rbf" and "bilinear" with "mrgb" (into a fit::LearnedModel, learned_reader.h), in
 // whole planes (plane_N.jpg) or Deep Zoom tiles (plane_N.dzi, publish/deep_zoom_reader.h), as
 // Surrogate writes them or as another tool (relight) does; other members of info.json
 // ("lights", "pixelSizeInMM", ...) are ignored. Refused, with Error(Input) naming the file:
-// other bases and colour spaces (rbf, bilinear, the PCA colour spaces), planes in another
+// other bases and colour spaces (the learned ones in "mycc"), planes in another
 // format or tiled only in another form (.tzi), a missing plane or tile, one that is not a JPEG
 // or not of the size info.json gives, a file that is a symbolic link, and sizes beyond the
 // readers' limits or the memory budget (checked before any plane is decoded).
@@ -20,12 +21,14 @@
 // step of that range (`requantised` says so).
 //
 //   WebLayoutModel web = readWebLayout("web/stela");        // or "web/stela/info.json"
-//   auto model = web.isPtm ? fit::makeRelightable(std::move(web.ptm)) : fit::makeRelightable(std::move(web.hsh));
+//   auto model = web.isLearned ? fit::makeRelightable(std::move(web.learned))   // fit/learned_relightable.h
+//              : web.isPtm ? fit::makeRelightable(std::move(web.ptm)) : fit::makeRelightable(std::move(web.hsh));
 #pragma once
 
 #include <filesystem>
 #include <string>
 
+#include "fit/learned.h"
 #include "formats/ptm.h"
 #include "formats/rti_hsh.h"
 
@@ -33,9 +36,11 @@ namespace surrogate::publish {
 
 struct WebLayoutModel {
   std::filesystem::path infoJson;  // the info.json read
-  bool isPtm = false;              // ptm holds the model; else hsh
+  bool isPtm = false;              // ptm holds the model; else hsh (or learned)
+  bool isLearned = false;          // learned holds the model (rbf or bilinear, "mrgb")
   formats::PtmFile ptm;
   formats::HshFile hsh;
+  fit::LearnedModel learned;       // coefficients as decoded from the JPEGs
   bool requantised = false;        // the planes' bytes were re-quantised (see above)
 };
 

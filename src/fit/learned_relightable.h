@@ -1,0 +1,30 @@
+// A learned model (fit/learned.h: relight's RBF and bilinear bases) behind the Relightable
+// interface of fit/render.h, so that `surrogate render` relights a learned web layout as it
+// relights a .ptm, an .rti or their layouts.
+//
+//   render:     renderLearned at the light, as OpenLIME draws it;
+//   --gain, --specular: refused (Error(Usage) naming the option): a learned basis has no
+//               closed-form normal or polynomial to enhance around;
+//   normals:    a least-squares Lambertian fit b = rho n of the model as the viewer shows it
+//               (values 0..1, clamped) at kLearnedLambertDirections fixed directions, the mean
+//               of the three channels' b; (0, 0, 1) where b is 0 or faces away (fit/lambert.h);
+//   albedo:     the model at that normal (0..255 units, as the PTM's and HSH's albedo).
+//
+//   auto model = fit::makeRelightable(std::move(web.learned));
+//   Image relit = model->render({0.3, 0.2, 0.93}, {});
+#pragma once
+
+#include <memory>
+
+#include "fit/learned.h"
+#include "fit/render.h"
+
+namespace surrogate::fit {
+
+// 3 elevations (30, 50, 70 degrees) x 8 azimuths (0, 45, ... 315) and the zenith: enough to
+// fix the three unknowns of b, few enough to cost 25 weighted sums a texel.
+constexpr int kLearnedLambertDirections = 25;
+
+std::unique_ptr<Relightable> makeRelightable(LearnedModel model);
+
+}  // namespace surrogate::fit
