@@ -1,8 +1,10 @@
-// surrogate fit --lp FILE.lp -o OUT.ptm|OUT.rti [--basis B]: fit a model from a light file and
-// its images, outside any capture folder or carrier (a tool for people who already have an
-// .lp from elsewhere, e.g. a dome).
+// surrogate fit --lp FILE.lp -o OUT.ptm|OUT.rti|DIR [--basis B] [--holdout K]: fit a model from a
+// light file and its images, outside any capture folder or carrier (a tool for people who
+// already have an .lp from elsewhere, e.g. a dome). The learned bases (rbf, bln) are written as
+// the web layout they are read in (a folder); --holdout measures any basis at lights it never saw.
 #include <cmath>
 #include <iostream>
+#include <optional>
 
 #include "cli/args.h"
 #include "cli/commands.h"
@@ -13,7 +15,9 @@
 #include "core/text.h"
 #include "fit/fit.h"
 #include "formats/lp.h"
+#include "publish/learned_layout.h"
 #include "stages/decode_images.h"
+#include "stages/held_out_quality.h"
 
 namespace surrogate::cli {
 
@@ -55,10 +59,14 @@ void checkEnoughLights(fit::Basis basis, bool given, const std::string& ext, con
 int runCommandFit(int argc, char** argv) {
   const std::vector<OptionSpec> specs = {
       {"lp", true, false, "the light file naming the images and their light directions", "FILE.lp", OptionGroup::Input},
-      {"basis", true, false, "ptm-lrgb, ptm-rgb (for .ptm), hsh2, hsh3 (for .rti)", "BASIS"},
+      {"basis", true, false, "ptm-lrgb, ptm-rgb (for .ptm), hsh2, hsh3 (for .rti), rbf, bln (learned: a folder)", "BASIS"},
+      {"planes", true, false, "rbf, bln: coefficients per pixel, a multiple of 3 (default 45)", "N"},
+      {"resolution", true, false, "bln: the side of the grid over the light directions (default 8)", "R"},
+      {"quality", true, false, "rbf, bln: JPEG quality of the planes, 1..100 (default 75)", "Q"},
+      {"holdout", true, false, "also fit without K photographs and report PSNR/SSIM at their lights", "K"},
       {"threads", true, false, "worker threads (default: all cores)", "N"},
       {"memory", true, false, "memory budget (default 2G)", "SIZE"},
-      {"o", true, false, "output: .ptm (PTM) or .rti (HSH)", "OUT", OptionGroup::Output},
+      {"o", true, false, "output: .ptm (PTM), .rti (HSH) or a folder (rbf, bln)", "OUT", OptionGroup::Output},
       {"output", true, false, "same as -o", "OUT", OptionGroup::Output},
       {"quiet", false, false, "no progress bar, and at most one summary line", "", OptionGroup::Output},
       {"json", false, false, "print the fit quality as JSON", "", OptionGroup::Output},
@@ -72,7 +80,9 @@ int runCommandFit(int argc, char** argv) {
                  {{"surrogate fit --lp coin/lights.lp -o coin.ptm",
                    "fit a PTM (luminance and colour, as RTIViewer opens it) to the photographs lights.lp names"},
                   {"surrogate fit --lp coin/lights.lp -o coin.rti --basis hsh3",
-                   "fit third-order hemispherical harmonics"}},
+                   "fit third-order hemispherical harmonics"},
+                  {"surrogate fit --lp coin/lights.lp -o coin-bln --basis bln --holdout 6",
+                   "a learned bilinear basis as a web layout (OpenLIME, relight), with its quality at 6 lights left out"}},
                  commonExitCodes("the model is written")}))
     return 0;
   const auto lp = args.value("lp");
@@ -80,15 +90,33 @@ int runCommandFit(int argc, char** argv) {
   if (!lp || !out)
     throw Error(ErrorKind::Usage, "", "command line", "give the light file and the output: --lp FILE.lp -o OUT.ptm");
   const std::string ext = lowerCase(fs::path(*out).extension().string());
-  checkOutputFile("-o", *out, ext == ".ptm" ? "model.ptm" : "model.rti");
-  if (ext != ".ptm" && ext != ".rti")
-    throw Error(ErrorKind::Usage, "-o " + *out, "command line", "the output must end in .ptm or .rti");
-  const int threads = threadsOption(args);
-  const fit::Basis basis = fit::parseBasis(args.value("basis", ext == ".ptm" ? "ptm-lrgb" : "hsh2"));
-  const bool ptm = basis == fit::Basis::PtmLrgb || basis == fit::Basis::PtmRgb;
-  if (ptm != (ext == ".ptm"))
+  const std::string basisName = args.value("basis", ext == ".ptm" ? "ptm-lrgb" : ext == ".rti" ? "hsh2" : "");
+  const bool learned = fit::isLearnedBasisName(basisName);
+  if (basisName.empty())
+    throw Error(ErrorKind::Usage, "-o " + *out, "command line",
+                "the output must end in .ptm or .rti, or be a folder with --basis rbf or --basis bln");
+  for (const char* option : {"planes", "resolution", "quality"})
+    if (!learned && args.has(option))
+      throw Error(ErrorKind::Usage, std::string("--") + option, "command line",
+                  "applies to the learned bases only (--basis rbf or bln)");
+  if (learned && (ext == ".ptm" || ext == ".rti"))
     throw Error(ErrorKind::Usage, *out, "command line",
-                std::string("basis ") + fit::basisName(basis) + " is written as " + (ptm ? ".ptm" : ".rti"));
+                "basis " + basisName + " is written as a web layout: give a folder for -o (it must not exist or be empty)");
+  fit::Basis basis = fit::Basis::PtmLrgb;
+  if (!learned) {
+    checkOutputFile("-o", *out, ext == ".ptm" ? "model.ptm" : "model.rti");
+    if (ext != ".ptm" && ext != ".rti")
+      throw Error(ErrorKind::Usage, "-o " + *out, "command line", "the output must end in .ptm or .rti");
+    basis = fit::parseBasis(basisName);
+    const bool ptm = fit::isPtm(basis);
+    if (ptm != (ext == ".ptm"))
+      throw Error(ErrorKind::Usage, *out, "command line",
+                  std::string("basis ") + fit::basisName(basis) + " is written as " + (ptm ? ".ptm" : ".rti"));
+  } else if (fs::exists(*out) && (!fs::is_directory(*out) || !fs::is_empty(*out))) {
+    throw Error(ErrorKind::Usage, "-o " + *out, "command line",
+                "the web layout goes into a new or empty folder; this one exists and is not empty: give another name");
+  }
+  const int threads = threadsOption(args);
 
   std::vector<fs::path> files;
   std::vector<std::array<double, 3>> lights;
@@ -96,7 +124,7 @@ int runCommandFit(int argc, char** argv) {
     files.push_back(resolveImage(*lp, e.filename));
     lights.push_back({e.x, e.y, e.z});
   }
-  checkEnoughLights(basis, args.has("basis"), ext, *lp, static_cast<int>(lights.size()));
+  if (!learned) checkEnoughLights(basis, args.has("basis"), ext, *lp, static_cast<int>(lights.size()));
   // `surrogate lights -o FILE.lp` writes near lights' positions beside it (FILE.dome); this
   // command fits the .lp's directions as lights at infinity, and says so rather than differ
   // silently from the run that placed them.
@@ -111,35 +139,83 @@ int runCommandFit(int argc, char** argv) {
   run.progress = [&bar](const std::string& label, double f) { bar.update(label, f); };
   // The output model is held besides the stacks: counted when deciding whether they stay in
   // memory, and the stacks held there leave the fit what remains of the budget.
-  const stages::DecodedStacks decoded = stages::decodeImages(files, image::RawDecodeSettings(), run, {},
-                                                             stages::modelBytesPerPixel(fit::basisName(basis)));
+  const stages::DecodedStacks decoded = stages::decodeImages(
+      files, image::RawDecodeSettings(), run, {}, stages::modelBytesPerPixel(learned ? "hsh3" : fit::basisName(basis)));
   run.heldBytes = decoded.bytesInMemory;
 
-  fit::FitOptions options;
-  options.basis = basis;
-  options.threads = run.threads;
-  options.memoryBudgetBytes = run.fitBudget();
-  options.progress = [&bar](double f) { bar.update("Fitting", f); };
+  stages::ModelRecipe recipe;
+  recipe.basis = basisName;
+  recipe.threads = run.threads;
+  recipe.learned.planes = args.intValue("planes", 45);
+  recipe.learned.resolution = args.intValue("resolution", 8);
+  recipe.web.quality = args.intValue("quality", 75);
+  recipe.web.tiles = publish::TileLayout::None;
+  std::optional<stages::HeldOutQuality> heldOut;
+  if (args.has("holdout")) {
+    bar.update("Fitting without the held-out photographs", 0);
+    heldOut = stages::measureHeldOut(*decoded.rgb, lights, recipe, args.intValue("holdout", 0));
+  }
+
   fit::FitStatistics stats;
-  if (ptm) formats::writePtm(*out, fit::fitPtm(*decoded.rgb, lights, options, &stats));
-  else formats::writeRti(*out, fit::fitHsh(*decoded.rgb, lights, options, &stats));
+  fit::LearnedStatistics learnedStats;
+  if (learned) {
+    fit::LearnedOptions options = recipe.learned;
+    options.kind = fit::parseLearnedKind(basisName);
+    options.threads = run.threads;
+    options.progress = [&bar](double f) { bar.update("Fitting", f); };
+    const fit::LearnedModel model = fit::fitLearned(*decoded.rgb, lights, options, &learnedStats);
+    publish::writeWebLayoutFolder(publish::webLayoutOf(model, recipe.web), *out);
+  } else {
+    fit::FitOptions options;
+    options.basis = basis;
+    options.threads = run.threads;
+    options.memoryBudgetBytes = run.fitBudget();
+    options.progress = [&bar](double f) { bar.update("Fitting", f); };
+    if (fit::isPtm(basis)) formats::writePtm(*out, fit::fitPtm(*decoded.rgb, lights, options, &stats));
+    else formats::writeRti(*out, fit::fitHsh(*decoded.rgb, lights, options, &stats));
+  }
   bar.finish();
   if (args.has("json")) {
     JsonWriter j;
-    j.beginObject().key("output").value(*out).key("basis").value(fit::basisName(basis))
-        .key("images").value(static_cast<int>(files.size())).key("rmse").value(stats.rmse)
-        .key("psnr").value(stats.psnr).key("regularisation").value(stats.regularisation)
-        .key("dampedTerms").beginArray();
-    for (int k : stats.dampedTerms) j.value(k);
-    j.endArray();
-    if (std::isfinite(stats.conditionNumber)) j.key("conditionNumber").value(stats.conditionNumber);
+    j.beginObject().key("output").value(*out).key("basis").value(basisName)
+        .key("images").value(static_cast<int>(files.size()));
+    if (learned) {
+      j.key("planes").value(recipe.learned.planes).key("psnr").value(learnedStats.psnr)
+          .key("leaveOneOutPsnr").value(learnedStats.leaveOneOutPsnr)
+          .key("explainedVariance").value(learnedStats.explainedVariance);
+    } else {
+      j.key("rmse").value(stats.rmse).key("psnr").value(stats.psnr).key("regularisation").value(stats.regularisation)
+          .key("dampedTerms").beginArray();
+      for (int k : stats.dampedTerms) j.value(k);
+      j.endArray();
+      if (std::isfinite(stats.conditionNumber)) j.key("conditionNumber").value(stats.conditionNumber);
+    }
+    if (heldOut) {
+      j.key("heldOut").beginObject().key("psnr").value(heldOut->model.psnr).key("ssim").value(heldOut->model.ssim)
+          .key("nearestBlendPsnr").value(heldOut->nearestBlend.psnr)
+          .key("nearestBlendSsim").value(heldOut->nearestBlend.ssim).key("images").beginArray();
+      for (std::size_t i = 0; i < heldOut->indices.size(); ++i)
+        j.beginObject().key("image").value(files[heldOut->indices[i]].filename().string())
+            .key("psnr").value(heldOut->perLight[i].psnr).key("ssim").value(heldOut->perLight[i].ssim).endObject();
+      j.endArray().endObject();
+    }
     j.endObject();
     std::cout << j.str() << "\n";
   } else {
-    std::cout << "wrote " << *out << " (" << fit::basisName(basis) << ", " << files.size()
-              << " images): RMSE " << stats.rmse << ", PSNR " << stats.psnr << " dB\n";
+    if (learned)
+      std::cout << "wrote " << *out << "/ (" << basisName << ", " << recipe.learned.planes << " planes, " << files.size()
+                << " images): PSNR " << fixedDecimals(learnedStats.psnr, 2) << " dB at the captured lights\n";
+    else
+      std::cout << "wrote " << *out << " (" << fit::basisName(basis) << ", " << files.size()
+                << " images): RMSE " << stats.rmse << ", PSNR " << stats.psnr << " dB\n";
+    if (heldOut)
+      std::cout << "at " << heldOut->indices.size() << " lights left out of the fit: PSNR "
+                << fixedDecimals(heldOut->model.psnr, 2) << " dB, SSIM " << fixedDecimals(heldOut->model.ssim, 3)
+                << " (the 3 nearest photographs blended: " << fixedDecimals(heldOut->nearestBlend.psnr, 2) << " dB, SSIM "
+                << fixedDecimals(heldOut->nearestBlend.ssim, 3) << ")\n";
     // The light set conditioned the fit (docs/hrti-math.md, "Conditioning on the light set").
-    const std::string warning = fit::conditioningWarning(basis, static_cast<int>(files.size()), stats);
+    const std::string warning =
+        learned ? "" : fit::conditioningWarning(basis, static_cast<int>(files.size()), stats);
     if (!warning.empty()) std::cerr << "warning: " << warning << "\n";
   }
   return 0;

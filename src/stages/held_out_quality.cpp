@@ -1,0 +1,107 @@
+#include "stages/held_out_quality.h"
+
+#include "core/error.h"
+#include "fit/basis.h"
+#include "fit/render.h"
+#include "publish/learned_layout.h"
+#include "publish/learned_reader.h"
+#include "publish/plane_decode.h"
+
+namespace surrogate::stages {
+
+namespace {
+
+// The photographs of a stack but some, in order: the fit sees only these.
+class SubsetStack : public ImageStack {
+ public:
+  SubsetStack(const ImageStack& base, std::vector<int> keep) : base_(base), keep_(std::move(keep)) {}
+  int size() const override { return static_cast<int>(keep_.size()); }
+  int width() const override { return base_.width(); }
+  int height() const override { return base_.height(); }
+  int channels() const override { return base_.channels(); }
+  Transfer transfer() const override { return base_.transfer(); }
+  void readRows(int index, int y0, int y1, std::uint16_t* out) const override {
+    base_.readRows(keep_[index], y0, y1, out);
+  }
+  const std::uint16_t* heldRow(int index, int y) const override { return base_.heldRow(keep_[index], y); }
+  const std::uint8_t* heldByteRow(int index, int y) const override { return base_.heldByteRow(keep_[index], y); }
+
+ private:
+  const ImageStack& base_;
+  std::vector<int> keep_;
+};
+
+Image photograph(const ImageStack& stack, int index) {
+  Image image(stack.width(), stack.height(), stack.channels());
+  stack.readRows(index, 0, stack.height(), image.pixels.data());
+  return image;
+}
+
+}  // namespace
+
+fit::LearnedModel learnedAsViewed(const fit::LearnedModel& model, const publish::PublishOptions& web) {
+  publish::PublishOptions whole = web;
+  whole.tiles = publish::TileLayout::None;
+  const publish::WebLayoutFiles files = publish::webLayoutOf(model, whole);
+  std::vector<std::vector<std::uint8_t>> planes;
+  for (int j = 0; j < model.planes / 3; ++j) {
+    const std::string name = "plane_" + std::to_string(j) + ".jpg";
+    for (const auto& [file, bytes] : files.files)
+      if (file == name) planes.push_back(publish::decodePlaneJpeg(bytes, model.width, model.height, name));
+  }
+  fit::LearnedModel viewed = model;
+  publish::setLearnedCoefficients(planes, &viewed);
+  return viewed;
+}
+
+HeldOutQuality measureHeldOut(const ImageStack& stack, const std::vector<std::array<double, 3>>& lights,
+                              const ModelRecipe& recipe, int count) {
+  const int N = stack.size();
+  if (count < 1 || count > N - 4)
+    throw Error(ErrorKind::Usage, "--holdout " + std::to_string(count), "command line",
+                "leave out 1 to " + std::to_string(std::max(1, N - 4)) + " of the " + std::to_string(N) +
+                    " photographs: the fit needs at least 4 (and as many as its basis has terms)");
+  HeldOutQuality q;
+  q.indices = fit::chooseHeldOut(lights, count);
+  std::vector<int> keep;
+  std::vector<std::array<double, 3>> kept;
+  for (int i = 0, j = 0; i < N; ++i) {
+    if (j < count && q.indices[j] == i) {
+      ++j;
+      continue;
+    }
+    keep.push_back(i);
+    kept.push_back(lights[i]);
+  }
+  const SubsetStack training(stack, keep);
+
+  std::unique_ptr<fit::Relightable> classic;
+  fit::LearnedModel learned;
+  const bool isLearned = fit::isLearnedBasisName(recipe.basis);
+  if (isLearned) {
+    fit::LearnedOptions options = recipe.learned;
+    options.kind = fit::parseLearnedKind(recipe.basis);
+    options.threads = recipe.threads;
+    options.progress = nullptr;
+    learned = learnedAsViewed(fit::fitLearned(training, kept, options), recipe.web);
+  } else {
+    fit::FitOptions options;
+    options.basis = fit::parseBasis(recipe.basis);
+    options.threads = recipe.threads;
+    if (fit::isPtm(options.basis)) classic = fit::makeRelightable(fit::fitPtm(training, kept, options));
+    else classic = fit::makeRelightable(fit::fitHsh(training, kept, options));
+  }
+  std::vector<fit::HeldOutScore> blends;
+  for (int i : q.indices) {
+    const Image truth = photograph(stack, i);
+    const Image relit = isLearned ? fit::renderLearned(learned, lights[i], recipe.threads)
+                                  : classic->render(lights[i], fit::RenderOptions{});
+    q.perLight.push_back(fit::compareImages(relit, truth));
+    blends.push_back(fit::compareImages(fit::nearestPhotographBlend(training, kept, lights[i]), truth));
+  }
+  q.model = fit::meanScore(q.perLight);
+  q.nearestBlend = fit::meanScore(blends);
+  return q;
+}
+
+}  // namespace surrogate::stages
