@@ -14,6 +14,7 @@
 #include "publish/learned_layout.h"
 #include "publish/web_reader.h"
 #include "learned_decoder.h"
+#include "learned_samples.h"
 
 namespace fs = std::filesystem;
 using namespace surrogate;
@@ -28,42 +29,7 @@ fs::path freshDir(const std::string& name) {
   return d;
 }
 
-std::vector<std::array<double, 3>> ringLights() {  // 12 lights, 3 decimals as info.json holds them
-  std::vector<std::array<double, 3>> l;
-  for (double e : {0.5, 1.0})
-    for (int a = 0; a < 6; ++a) {
-      const double phi = a * M_PI / 3 + e;
-      l.push_back({std::round(1000 * std::cos(e) * std::cos(phi)) / 1000, std::round(1000 * std::cos(e) * std::sin(phi)) / 1000,
-                   std::round(1000 * std::sin(e)) / 1000});
-    }
-  return l;
-}
-
-// 16 x 12 texels, 9 planes; smooth coefficients (JPEG keeps them to a level at quality 100).
-fit::LearnedModel handMade(fit::LearnedKind kind) {
-  fit::LearnedModel m;
-  m.kind = kind;
-  m.width = 16;
-  m.height = 12;
-  m.planes = 9;
-  m.resolution = kind == fit::LearnedKind::Bilinear ? 6 : 0;
-  m.lights = ringLights();
-  const int nodes = m.nodes();
-  for (int p = 0; p <= m.planes; ++p)
-    for (int n = 0; n < nodes; ++n)
-      for (int k = 0; k < 3; ++k)
-        m.basis.push_back(static_cast<std::uint8_t>(p == 0 ? 90 + (n * 37 + k * 53) % 100 : 87 + (n * 29 + p * 17 + k * 11) % 81));
-  for (int p = 0; p < m.planes; ++p) {
-    m.range.push_back(300.0f + 40.0f * p + 0.123456f);
-    m.scale.push_back(1.5f - 0.1f * p + 1e-5f);
-    m.bias.push_back(0.45f + 0.01f * p);
-  }
-  for (int y = 0; y < m.height; ++y)
-    for (int x = 0; x < m.width; ++x)
-      for (int p = 0; p < m.planes; ++p)
-        m.coefficients.push_back(static_cast<std::uint8_t>(std::lround(128 + 70 * std::sin(0.3 * x + 0.7 * p) * std::cos(0.25 * y + 0.3 * p))));
-  return m;
-}
+fit::LearnedModel handMade(fit::LearnedKind kind) { return learnedsample::handMade(kind, 16, 12); }
 
 fs::path written(const fit::LearnedModel& m, const std::string& name, int quality = 100) {
   publish::PublishOptions o;

@@ -68,13 +68,13 @@ function startReview(capture) {
   });
 }
 
-// Headless chromium with its profile in `work`.
-function launchBrowser(work) {
+// Headless chromium with its profile in `work`; `extraArgs` for a test that needs more (WebGL).
+function launchBrowser(work, extraArgs = []) {
   return puppeteer.launch({
     executablePath: chromium,
     headless: true,
     protocolTimeout: 60000,
-    args: ["--no-sandbox", "--disable-gpu", "--no-first-run", "--user-data-dir=" + path.join(work, "profile")],
+    args: ["--no-sandbox", "--disable-gpu", "--no-first-run", "--user-data-dir=" + path.join(work, "profile"), ...extraArgs],
   });
 }
 
