@@ -19,7 +19,8 @@ namespace {
 
 using Direction = std::array<double, 3>;
 
-constexpr int kSampleTexels = 200000;
+// Enough texels for a stable covariance of a few hundred values; more only costs time.
+constexpr int kSampleTexels = 65536;
 // Coefficients beyond these quantiles of the sampled texels are clamped: a few outliers (specks
 // of dust, clipped highlights) would otherwise spend most of a plane's 256 levels.
 constexpr double kRangeQuantile = 0.0005;
@@ -180,7 +181,9 @@ LearnedModel fitLearned(const ImageStack& stack, const std::vector<Direction>& r
   const Eigen::MatrixXd Mk = perChannel(M);
   const Eigen::VectorXd mean = S.rowwise().mean();
   const Eigen::MatrixXd centred = S.colwise() - mean;
-  const Eigen::MatrixXd covS = centred * centred.transpose() / double(S.cols());
+  Eigen::MatrixXd covS = Eigen::MatrixXd::Zero(3 * N, 3 * N);
+  covS.selfadjointView<Eigen::Lower>().rankUpdate(centred, 1.0 / double(S.cols()));
+  covS = covS.selfadjointView<Eigen::Lower>();
   const Eigen::MatrixXd B = perChannel(Lroot) * Mk;
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> pe(B * covS * B.transpose());
   const Eigen::Index dims = pe.eigenvalues().size();
@@ -279,6 +282,8 @@ LearnedModel fitLearned(const ImageStack& stack, const std::vector<Direction>& r
     stats->sampledTexels = static_cast<int>(S.cols());
     // At the captured lights, the quantised model on the sampled texels, in 8-bit units.
     const Eigen::MatrixXd Vl = perChannel(viewerWeights(o.kind, o.resolution, model.lights, lights));
+    const Eigen::MatrixXd VlE = Vl * EQ;
+    const Eigen::VectorXd VlMean = Vl * meanQ;
     double se = 0;
     for (Eigen::Index t = 0; t < S.cols(); ++t) {
       Eigen::VectorXd c(P);
@@ -286,7 +291,7 @@ LearnedModel fitLearned(const ImageStack& stack, const std::vector<Direction>& r
         const float q = std::lround(std::min(255.0f, std::max(0.0f, (sampleCoefficients(p, t) * invScale[p] + bias[p]) * 255.0f)));
         c(p) = (q / 255.0f - bias[p]) * model.scale[p];
       }
-      const Eigen::VectorXd r = (Vl * (meanQ + EQ * c)).cwiseMax(0).cwiseMin(1) - S.col(t);
+      const Eigen::VectorXd r = (VlMean + VlE * c).cwiseMax(0).cwiseMin(1) - S.col(t);
       se += r.squaredNorm();
     }
     const double mse = se / (double(S.cols()) * 3 * N);
