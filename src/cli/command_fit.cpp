@@ -18,6 +18,7 @@
 #include "publish/learned_layout.h"
 #include "stages/decode_images.h"
 #include "stages/held_out_quality.h"
+#include "stages/learned_fit_stage.h"
 
 namespace surrogate::cli {
 
@@ -60,9 +61,9 @@ int runCommandFit(int argc, char** argv) {
   const std::vector<OptionSpec> specs = {
       {"lp", true, false, "the light file naming the images and their light directions", "FILE.lp", OptionGroup::Input},
       {"basis", true, false, "ptm-lrgb, ptm-rgb (for .ptm), hsh2, hsh3 (for .rti), rbf, bln (learned: a folder)", "BASIS"},
-      {"planes", true, false, "rbf, bln: coefficients per pixel, a multiple of 3 (default 45)", "N"},
-      {"resolution", true, false, "bln: the side of the grid over the light directions (default 8)", "R"},
-      {"quality", true, false, "rbf, bln: JPEG quality of the planes, 1..100 (default 75)", "Q"},
+      {"planes", true, false, "rbf, bln: coefficients per pixel, a multiple of 3 (default " + std::to_string(stages::kLearnedPlanes) + ")", "N"},
+      {"resolution", true, false, "bln: the side of the grid over the light directions (default " + std::to_string(stages::kLearnedResolution) + ")", "R"},
+      {"quality", true, false, "rbf, bln: JPEG quality of the planes, 1..100 (default " + std::to_string(stages::kLearnedQuality) + ")", "Q"},
       {"holdout", true, false, "also fit without K photographs and report PSNR/SSIM at their lights", "K"},
       {"threads", true, false, "worker threads (default: all cores)", "N"},
       {"memory", true, false, "memory budget (default 2G)", "SIZE"},
@@ -146,9 +147,9 @@ int runCommandFit(int argc, char** argv) {
   stages::ModelRecipe recipe;
   recipe.basis = basisName;
   recipe.threads = run.threads;
-  recipe.learned.planes = args.intValue("planes", 45);
-  recipe.learned.resolution = args.intValue("resolution", 8);
-  recipe.web.quality = args.intValue("quality", 75);
+  recipe.learned.planes = args.intValue("planes", stages::kLearnedPlanes);
+  recipe.learned.resolution = args.intValue("resolution", stages::kLearnedResolution);
+  recipe.web.quality = args.intValue("quality", stages::kLearnedQuality);
   recipe.web.tiles = publish::TileLayout::None;
   std::optional<stages::HeldOutQuality> heldOut;
   if (args.has("holdout")) {

@@ -9,6 +9,7 @@
 #include "cli/option_checks.h"
 #include "core/error.h"
 #include "hrti/light_checks.h"
+#include "stages/learned_fit_stage.h"
 #include "stages/rti_fit_stage.h"
 #include "stages/highlight_detection_stage.h"
 #include "stages/light_directions_stage.h"
@@ -64,7 +65,12 @@ std::vector<OptionSpec> pipelineOptions(bool withFit) {
     specs.push_back({"colour-chart", true, false, "the ColorChecker: auto (default: looked for, used if found), none, the image it is in (IMG_0003), or with its corners IMG_0003:X1,Y1,...,X4,Y4 (dark skin, bluish green, black, white)", "IMAGE[:X1,Y1,...]"});
     specs.push_back({"chart-reference", true, false, "the chart's edition: colorchecker-classic-2014 (default: charts made since November 2014) or colorchecker-classic-pre-2014", "ID"});
     specs.push_back({"colour-model", true, false, "the correction fitted to the chart: matrix (3x3, default) or root-polynomial", "MODEL"});
-    specs.push_back({"basis", true, true, "model to fit: ptm-lrgb, ptm-rgb, hsh2, hsh3 (default: ptm-lrgb and hsh2)", "BASIS"});
+    specs.push_back({"basis", true, true, "model to fit, repeatable: ptm-lrgb, ptm-rgb, hsh2, hsh3, or a learned basis rbf, bln (a web layout in finished-files/BASIS/) (default: ptm-lrgb and hsh2)", "BASIS"});
+    // The learned fit's options (LearnedFit steps, stages/learned_fit_stage.h), as `surrogate fit` names them.
+    specs.push_back({"planes", true, false, "rbf, bln: coefficients per pixel, a multiple of 3 (default 45)", "N"});
+    specs.push_back({"resolution", true, false, "bln: the side of the grid over the light directions (default 8)", "R"});
+    specs.push_back({"quality", true, false, "rbf, bln: JPEG quality of the planes, 1..100 (default 75)", "Q"});
+    specs.push_back({"holdout", true, false, "rbf, bln: also fit without K photographs and record PSNR/SSIM at their lights (0: not measured)", "K"});
     // Pre-processing of the images the fit reads (recorded steps WhiteBalance, Crop, Resize,
     // planned in that order after light estimation, which always reads the full frame).
     specs.push_back({"wb", true, false, "white balance for the fit: as-shot, region:X,Y,W,H (a grey area, full-frame pixels) or multipliers:R,G,B", "MODE"});
@@ -74,7 +80,7 @@ std::vector<OptionSpec> pipelineOptions(bool withFit) {
     specs.push_back({"crop-margin", true, false, "with --crop auto: clearance around each sphere, fraction of its radius (default 0.25)", "F"});
     specs.push_back({"resize", true, false, "reduce the fitted result: a factor (0.5) or a size (WxH), area averaging", "FACTOR|WxH"});
     // The web copy of each model (WebCopy steps, stages/web_copy_stage.h), a standing decision.
-    specs.push_back({"publish", false, false, "also write each model's web copy to finished-files/web/ (kept for later runs)"});
+    specs.push_back({"publish", false, false, "also write each model's web copy to finished-files/web/ (kept for later runs; rbf and bln are web layouts already)"});
     specs.push_back({"no-publish", false, false, "withdraw the web copy (its files go to superseded-files/)"});
     specs.push_back({"publish-quality", true, false, "JPEG quality 1..100 of the web copy's planes (default 95)", "Q"});
     specs.push_back({"publish-tiles", true, false, "web copy tiles: auto (default), none or deepzoom", "LAYOUT"});
@@ -233,6 +239,21 @@ void webCopy(run::RunRequest& r, const Args& args) {
   }
 }
 
+// --planes, --resolution, --quality, --holdout: the learned fit's options, checked as LearnedFit
+// reads them, for every LearnedFit step (one per learned basis).
+void learnedFit(run::RunRequest& r, const Args& args) {
+  for (const char* option : {"planes", "resolution", "quality", "holdout"}) {
+    const auto value = args.value(option);
+    if (!value) continue;
+    try {
+      stages::LearnedFitOptions::fromParameters({{option, *value}});
+    } catch (const Error& e) {
+      throw Error(ErrorKind::Usage, std::string("--") + option + " " + *value, "command line", e.message());
+    }
+    param(r, stages::LearnedFitStage::kComponent, {option, *value});
+  }
+}
+
 }  // namespace
 
 run::RunRequest requestFrom(const Args& args) {
@@ -289,6 +310,7 @@ run::RunRequest requestFrom(const Args& args) {
   lightDirections(r, args);
   colourChart(r, args);
   if (args.has("basis")) r.bases = args.values("basis");
+  learnedFit(r, args);
   preprocessing(r, args);
   webCopy(r, args);
 

@@ -72,6 +72,9 @@ struct StageInfo {
   std::function<void(const Parameters&)> check;
   // EachModel and AfterModels: the parameters of the step for the model `basis` ("hsh2").
   std::function<Parameters(const std::string& basis)> forModel;
+  // EachModel and Publish: whether the stage has a step for the model `basis` (RtiFit fits
+  // the PTM and HSH bases, LearnedFit the learned ones). Empty: every model.
+  std::function<bool(const std::string& basis)> takesModel;
   // The files a step of this stage writes (capture-relative paths), known from the step before
   // it runs; a '*' stands for any text (one overview per sphere found). `surrogate run`
   // refuses a plan that would write over prior work (stages/prior_work.h). Empty: no file.

@@ -12,6 +12,7 @@
 #include "run/plan.h"
 #include "pipeline/stage.h"
 #include "stages/decode_stage.h"
+#include "stages/learned_fit_stage.h"
 #include "stages/rti_fit_stage.h"
 #include "stages/ingest_stage.h"
 #include "stages/registry.h"
@@ -156,6 +157,16 @@ RunRequest standingDecisions(const carrier::Carrier& recorded) {
       r.publish = true;
     } else if (s.component == stages::RtiFitStage::kComponent) {
       bases.push_back(fit::basisName(stages::RtiFitOptions::fromParameters(stages::parametersOf(s)).fit.basis));
+    } else if (s.component == stages::LearnedFitStage::kComponent) {
+      // One step per learned basis, with the same options (--planes, --holdout, ...): those of
+      // the first that differ from the defaults, without its basis, which the plan gives.
+      const stages::LearnedFitOptions o = stages::LearnedFitOptions::fromParameters(stages::parametersOf(s));
+      if (std::find(bases.begin(), bases.end(), "rbf") == bases.end() &&
+          std::find(bases.begin(), bases.end(), "bln") == bases.end())
+        for (const auto& [name, value] : o.toParameters())
+          for (const auto& [dname, dvalue] : info->defaults)
+            if (name == dname && name != "basis" && value != dvalue) r.stageParams.push_back({s.component, name, value});
+      bases.push_back(o.basis);
     } else if (!info || !info->forModel) {  // the plan derives a forModel stage's parameters
       const pipeline::Parameters defaults = info ? info->defaults : pipeline::Parameters{};
       for (const carrier::Param& p : s.params) {

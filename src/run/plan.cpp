@@ -16,6 +16,7 @@
 #include "core/text.h"
 #include "core/version.h"
 #include "fit/basis.h"
+#include "fit/learned.h"
 #include "image/decode.h"
 #include "image/write.h"
 #include "meta/metadata.h"
@@ -24,6 +25,7 @@
 #include "stages/audit_stage.h"
 #include "stages/decode_stage.h"
 #include "stages/ingest_stage.h"
+#include "stages/learned_fit_stage.h"
 #include "stages/registry.h"
 #include "stages/prior_work.h"
 #include "run/descriptive_run.h"
@@ -76,7 +78,7 @@ std::vector<PlannedStage> analysisStages(bool captureHasLp, const RunRequest& re
   std::vector<PlannedStage> out;
   auto addSlot = [&](PlanSlot slot, const std::string& basis) {
     for (const pipeline::StageInfo* info : stages)
-      if (info->slot == slot)
+      if (info->slot == slot && (basis.empty() || !info->takesModel || info->takesModel(basis)))
         out.push_back({info->component, info->forModel && !basis.empty() ? info->forModel(basis)
                                                                          : pipeline::Parameters{}});
   };
@@ -157,6 +159,9 @@ carrier::Carrier planRun(const fs::path& capture, const RunRequest& request) {
   for (const RunRequest::StageParam& p : request.stageParams) {
     bool found = false;
     for (const carrier::Step& s : c.process) found = found || s.component == p.component;
+    if (!found && p.component == stages::LearnedFitStage::kComponent)
+      throw Error(ErrorKind::Usage, "--" + p.name, "options",
+                  "applies to the learned bases only: add --basis bln or --basis rbf");
     if (!found)
       throw Error(ErrorKind::Usage, p.name, "options",
                   "is an option of " + p.component + ", which this run does not include");
@@ -230,6 +235,28 @@ void addAcceptedDamage(const fs::path& capture, const capture::CaptureLayout& la
   }
 }
 
+// A learned basis (fit/learned.h) needs 4 photographs, and no more planes than the photographs'
+// three channels give (planes + 1 <= 3 N): checked before any processing, naming --planes when
+// that is what to change.
+void checkLearnedPhotographs(const std::string& basis, const RunRequest& request, const RunRequest& given,
+                             int photographs) {
+  pipeline::Parameters params;
+  for (const RunRequest::StageParam& p : request.stageParams)
+    if (p.component == stages::LearnedFitStage::kComponent) params.emplace_back(p.name, p.value);
+  const int planes = stages::LearnedFitOptions::fromParameters(params).planes;
+  const std::string which = given.bases ? "--basis " + basis : "--basis " + basis + " (standing from an earlier run)";
+  if (photographs < 4)
+    throw Error(ErrorKind::Usage, which, "command line",
+                "a learned basis needs at least 4 photographs; the capture has " + std::to_string(photographs) +
+                    ". Include more photographs, or fit --basis hsh2");
+  if (planes + 1 > 3 * photographs)
+    throw Error(ErrorKind::Usage, "--planes " + std::to_string(planes), "command line",
+                "the " + std::to_string(photographs) + " photographs give " + std::to_string(3 * photographs) +
+                    " values per texel, and " + basis + " with " + std::to_string(planes) +
+                    " planes needs one more than its planes: give --planes " +
+                    std::to_string((3 * photographs - 1) / 3 * 3) + " or fewer");
+}
+
 // Every basis to fit needs at least as many photographs as it has coefficients: checked before
 // any processing, naming the option, since the basis choice stands for later runs. The message
 // names the bases as they came (this command's --basis, an earlier run's, or the default) and
@@ -243,13 +270,17 @@ void checkEnoughPhotographs(const capture::CaptureLayout& layout, const RunReque
   const std::vector<std::string> defaults{"ptm-lrgb", "hsh2"};
   const std::vector<std::string> bases = request.bases.value_or(defaults);
   for (const std::string& basis : bases) {
+    if (fit::isLearnedBasisName(basis)) {
+      checkLearnedPhotographs(basis, request, given, photographs);
+      continue;
+    }
     const int terms = fit::basisTerms(fit::parseBasis(basis));
     if (photographs >= terms) continue;
     // The bases in use that fit; else the largest that fits (the first of equals in the
     // order of --basis's help).
     std::vector<std::string> fitting;
     for (const std::string& b : bases)
-      if (fit::basisTerms(fit::parseBasis(b)) <= photographs) fitting.push_back(b);
+      if (!fit::isLearnedBasisName(b) && fit::basisTerms(fit::parseBasis(b)) <= photographs) fitting.push_back(b);
     if (fitting.empty()) {
       int most = 0;
       for (fit::Basis b : {fit::Basis::PtmLrgb, fit::Basis::PtmRgb, fit::Basis::Hsh2, fit::Basis::Hsh3})

@@ -5,6 +5,7 @@
 #include "pipeline/context.h"
 #include "image/raw_settings.h"
 #include "stages/decode_images.h"
+#include "stages/learned_fit_stage.h"
 #include "stages/rti_fit_stage.h"
 #include "stages/inputs.h"
 #include "stages/outputs.h"
@@ -90,6 +91,8 @@ void DecodeStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
   std::uint64_t modelBytes = 0;
   for (const carrier::Step& s : ctx.carrier.process)
     if (s.component == RtiFitStage::kComponent && s.hasParam("basis")) modelBytes += modelBytesPerPixel(s.param("basis"));
+    else if (s.component == LearnedFitStage::kComponent)  // its coefficient bytes, one per plane
+      modelBytes += static_cast<std::uint64_t>(LearnedFitOptions::fromParameters(parametersOf(s)).planes);
   DecodedStacks decoded;
   try {
     decoded = decodeImages(files, settings, ctx.settings, acceptDamage, modelBytes);

@@ -17,6 +17,7 @@
 #include "core/parallel.h"
 #include "core/text.h"
 #include "fit/fit.h"
+#include "fit/learned.h"
 #include "fit/render.h"
 #include "image/decode.h"
 #include "pipeline/context.h"
@@ -141,12 +142,12 @@ DerivedMapsOptions DerivedMapsOptions::fromParameters(const pipeline::Parameters
       throw Error(ErrorKind::Input, name + "=" + value, "derived maps",
                   "is not a parameter of DerivedMaps (model)");
     try {
-      fit::parseBasis(value);
+      if (!fit::isLearnedBasisName(value)) fit::parseBasis(value);
     } catch (const Error&) {
       throw Error(ErrorKind::Input, name + "=" + value, "derived maps",
-                  "is not a model Surrogate fits (ptm-lrgb, ptm-rgb, hsh2, hsh3)");
+                  "is not a model Surrogate fits (ptm-lrgb, ptm-rgb, hsh2, hsh3, rbf, bln)");
     }
-    o.model = value;  // as recorded: the key RtiFit put the model under (modelKey)
+    o.model = value;  // as recorded: the key RtiFit or LearnedFit put the model under (modelKey)
   }
   return o;
 }
@@ -166,7 +167,8 @@ pipeline::StageInfo DerivedMapsStage::info() {
        pipeline::PlanSlot::AfterModels});
   info.forModel = [](const std::string& basis) {
     DerivedMapsOptions o;
-    o.model = fit::basisName(fit::parseBasis(basis));
+    // A learned basis first: the maps of the model as a viewer shows it (LearnedFit).
+    o.model = fit::isLearnedBasisName(basis) ? basis : fit::basisName(fit::parseBasis(basis));
     return o.toParameters();
   };
   info.outputs = [](const carrier::Step&) {

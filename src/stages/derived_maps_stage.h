@@ -1,4 +1,5 @@
-// DerivedMaps: from a model an earlier RtiFit step fitted: surface normals (16-bit PNG),
+// DerivedMaps: from a model an earlier RtiFit or LearnedFit step fitted (a learned one as a
+// viewer shows it): surface normals (16-bit PNG),
 // albedo, and relit previews at a few fixed lights, in finished-files/.
 #pragma once
 
@@ -10,7 +11,7 @@ namespace surrogate::stages {
 
 // The parameters of DerivedMaps: which fitted model the maps come from.
 struct DerivedMapsOptions {
-  std::string model = "ptm-lrgb";  // a basis name fitted by an earlier RtiFit step
+  std::string model = "ptm-lrgb";  // a basis name fitted by an earlier RtiFit or LearnedFit step
 
   pipeline::Parameters toParameters() const;
   // Error(Input) for an unknown basis or name.

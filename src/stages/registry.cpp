@@ -10,6 +10,7 @@
 #include "stages/derived_maps_stage.h"
 #include "stages/highlight_detection_stage.h"
 #include "stages/ingest_stage.h"
+#include "stages/learned_fit_stage.h"
 #include "stages/light_directions_stage.h"
 #include "stages/lights_from_file_stage.h"
 #include "stages/registry.h"
@@ -36,6 +37,7 @@ void registerBuiltinStages() {
     r.add<CropStage>();
     r.add<ResizeStage>();
     r.add<RtiFitStage>();
+    r.add<LearnedFitStage>();
     r.add<DerivedMapsStage>();
     r.add<WebCopyStage>();
     r.add<AuditStage>();

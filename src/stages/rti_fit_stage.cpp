@@ -13,6 +13,7 @@
 #include "core/parallel.h"
 #include "core/text.h"
 #include "fit/fit.h"
+#include "fit/learned.h"
 #include "fit/render.h"
 #include "hrti/light_checks.h"
 #include "image/decode.h"
@@ -114,6 +115,8 @@ pipeline::StageInfo RtiFitStage::info() {
       {kComponent, "6", "Least-squares fit of a per-pixel reflectance model over the light directions",
        pipeline::PlanSlot::EachModel});
   info.forModel = [](const std::string& basis) { return RtiFitOptions::forBasis(basis).toParameters(); };
+  // The learned bases (rbf, bln) are LearnedFit's (stages/learned_fit_stage.h).
+  info.takesModel = [](const std::string& basis) { return !fit::isLearnedBasisName(basis); };
   info.outputs = [](const carrier::Step& step) {
     const RtiFitOptions o = RtiFitOptions::fromParameters(parametersOf(step));
     return std::vector<std::string>{o.output.empty() ? defaultFitOutput(fit::basisName(o.fit.basis)) : o.output};

@@ -7,6 +7,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "fit/basis.h"
+#include "fit/learned.h"
 #include "pipeline/context.h"
 #include "publish/web_layout.h"
 #include "stages/rti_fit_stage.h"
@@ -115,6 +116,9 @@ pipeline::StageInfo WebCopyStage::info() {
   info.forModel = [](const std::string& basis) {
     return pipeline::Parameters{{"model", fit::basisName(fit::parseBasis(basis))}};
   };
+  // A learned basis (rbf, bln) is written as its web layout by LearnedFit itself
+  // (finished-files/<basis>/): no copy of it is made.
+  info.takesModel = [](const std::string& basis) { return !fit::isLearnedBasisName(basis); };
   // Any WebCopy step may be the last of its process list, which writes the index.
   info.outputs = [](const carrier::Step& step) {
     return std::vector<std::string>{webCopyFolder(WebCopyOptions::fromParameters(parametersOf(step)).model) + "/*",

@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "fit/basis.h"
 #include "fit/fit.h"
+#include "fit/learned.h"
 #include "hrti/highlight_detection.h"
 #include "hrti/sphere_detection.h"
 #include "image/raw_settings.h"
@@ -20,6 +21,7 @@
 #include "stages/outputs.h"
 #include "stages/registry.h"
 #include "stages/frame_checks.h"
+#include "stages/learned_fit_stage.h"
 #include "stages/light_directions_stage.h"
 #include "stages/lights_from_file_stage.h"
 #include "stages/preprocess.h"
@@ -149,16 +151,18 @@ std::vector<std::string> parameterProblems(const carrier::Step& step,
         out.push_back("parameter output=" + step.param("output").substr(0, 200) + ": " + e.message());
       }
     }
+  } else if (c == "LearnedFit") {
+    parse([](const Parameters& p) { stages::LearnedFitOptions::fromParameters(p); });
   } else if (c == "DerivedMaps") {
     only({"model"});
     const std::string model = step.param("model", "ptm-lrgb");
     try {
-      const std::string name = fit::basisName(fit::parseBasis(model));
+      const std::string name = fit::isLearnedBasisName(model) ? model : fit::basisName(fit::parseBasis(model));
       if (!fittedBases.count(name))
-        out.push_back("parameter model=" + model + " names a model no earlier RtiFit step fits");
+        out.push_back("parameter model=" + model + " names a model no earlier RtiFit or LearnedFit step fits");
     } catch (const Error&) {
       out.push_back("parameter model=" + model.substr(0, 80) + " is not a model basis (ptm-lrgb, "
-                    "ptm-rgb, hsh2, hsh3)");
+                    "ptm-rgb, hsh2, hsh3, rbf, bln)");
     }
   }
 
@@ -213,6 +217,11 @@ bool checkSteps(const carrier::Carrier& c, std::vector<Check>& checks) {
         if (p.name != "output") fitParams.emplace_back(p.name, p.value);
       try {
         fittedBases.insert(fit::basisName(fit::FitOptions::fromParameters(fitParams).basis));
+      } catch (const Error&) {
+      }
+    } else if (step.component == "LearnedFit") {
+      try {
+        fittedBases.insert(stages::LearnedFitOptions::fromParameters(parametersOf(step)).basis);
       } catch (const Error&) {
       }
     }
