@@ -55,7 +55,7 @@ bool isLearnedBasisName(const std::string& name);
 struct LearnedOptions {
   // Recorded (they change the result):
   LearnedKind kind = LearnedKind::Bilinear;
-  int planes = 18;        // coefficients per texel, a multiple of 3 (a JPEG holds three), 3..60
+  int planes = 45;        // coefficients per texel, a multiple of 3 (a JPEG holds three), 3..120
   int resolution = 12;    // bilinear: the grid's side R, 4..32 (the basis holds (planes+1) R^2 3 bytes)
   // 0 = chosen by leave-one-out (step 1); else the kernel's width in radians and its ridge.
   double kernelWidth = 0;
