@@ -133,6 +133,23 @@ int runCommandFit(int argc, char** argv) {
     std::cerr << "warning: " << dome.string() << " gives the lights' positions, which fit does not use: it takes "
               << "the .lp's directions as lights at infinity. surrogate run on the capture, with the same "
                  "decisions, fits each pixel to its own light directions (the user guide, \"Lights at a known distance\")\n";
+  stages::ModelRecipe recipe;
+  recipe.basis = basisName;
+  recipe.learned.planes = args.intValue("planes", stages::kLearnedPlanes);
+  recipe.learned.resolution = args.intValue("resolution", stages::kLearnedResolution);
+  recipe.web.quality = args.intValue("quality", stages::kLearnedQuality);
+  recipe.web.tiles = publish::TileLayout::None;
+  // Everything the command line decides is checked before the photographs are decoded.
+  if (learned) {
+    recipe.learned.kind = fit::parseLearnedKind(basisName);
+    fit::checkLearnedOptions(recipe.learned);
+    publish::planeQualitiesOf(recipe.web, recipe.learned.planes / 3);
+  }
+  const int holdout = args.intValue("holdout", 0);
+  if (args.has("holdout") && (holdout < 1 || holdout > static_cast<int>(lights.size()) - 4))
+    throw Error(ErrorKind::Usage, "--holdout " + std::to_string(holdout), "command line",
+                "leave out 1 to " + std::to_string(std::max(1, static_cast<int>(lights.size()) - 4)) + " of the " +
+                    std::to_string(lights.size()) + " photographs the .lp names: the fit needs at least 4");
   ProgressBar bar(args.has("quiet") || args.has("json"));
   pipeline::RunSettings run;
   run.threads = threads;
@@ -144,17 +161,11 @@ int runCommandFit(int argc, char** argv) {
       files, image::RawDecodeSettings(), run, {}, stages::modelBytesPerPixel(learned ? "hsh3" : fit::basisName(basis)));
   run.heldBytes = decoded.bytesInMemory;
 
-  stages::ModelRecipe recipe;
-  recipe.basis = basisName;
   recipe.threads = run.threads;
-  recipe.learned.planes = args.intValue("planes", stages::kLearnedPlanes);
-  recipe.learned.resolution = args.intValue("resolution", stages::kLearnedResolution);
-  recipe.web.quality = args.intValue("quality", stages::kLearnedQuality);
-  recipe.web.tiles = publish::TileLayout::None;
   std::optional<stages::HeldOutQuality> heldOut;
   if (args.has("holdout")) {
     bar.update("Fitting without the held-out photographs", 0);
-    heldOut = stages::measureHeldOut(*decoded.rgb, lights, recipe, args.intValue("holdout", 0));
+    heldOut = stages::measureHeldOut(*decoded.rgb, lights, recipe, holdout);
   }
 
   fit::FitStatistics stats;

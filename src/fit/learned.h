@@ -56,7 +56,7 @@ struct LearnedOptions {
   // Recorded (they change the result):
   LearnedKind kind = LearnedKind::Bilinear;
   int planes = 45;        // coefficients per texel, a multiple of 3 (a JPEG holds three), 3..120
-  int resolution = 12;    // bilinear: the grid's side R, 4..32 (the basis holds (planes+1) R^2 3 bytes)
+  int resolution = 8;     // bilinear: the grid's side R, 4..32 (the basis holds (planes+1) R^2 3 bytes)
   // 0 = chosen by leave-one-out (step 1); else the kernel's width in radians and its ridge.
   double kernelWidth = 0;
   double ridge = 0;
@@ -100,6 +100,10 @@ struct LearnedStatistics {
   double explainedVariance = 0;  // fraction of the node values' variance the P planes keep
   int sampledTexels = 0;
 };
+
+// Error(Usage) naming the option for planes or resolution out of range: what fitLearned checks
+// first, for callers that check before decoding the photographs.
+void checkLearnedOptions(const LearnedOptions& options);
 
 // Throws Error(Input) when the light count differs from the stack's, a light is not a direction
 // or is below the horizon, there are fewer than 4 photographs or planes + 1 > 3 * photographs;

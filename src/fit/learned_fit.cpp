@@ -102,13 +102,21 @@ Eigen::MatrixXd sampleTexels(const ImageStack& stack, int* strideOut) {
   return S;
 }
 
-void checkInputs(const ImageStack& stack, const std::vector<Direction>& lights, const LearnedOptions& o) {
+}  // namespace
+
+void checkLearnedOptions(const LearnedOptions& o) {
   if (o.planes < 3 || o.planes > 120 || o.planes % 3 != 0)
     throw Error(ErrorKind::Usage, "--planes " + std::to_string(o.planes), "command line",
                 "give a multiple of 3 from 3 to 120 (each web-layout JPEG holds three planes)");
   if (o.kind == LearnedKind::Bilinear && (o.resolution < 4 || o.resolution > 32))
     throw Error(ErrorKind::Usage, "--resolution " + std::to_string(o.resolution), "command line",
                 "give the bilinear grid's side, 4 to 32");
+}
+
+namespace {
+
+void checkInputs(const ImageStack& stack, const std::vector<Direction>& lights, const LearnedOptions& o) {
+  checkLearnedOptions(o);
   if (stack.channels() != 3) throw Error(ErrorKind::Internal, "stack", "fit", "a learned fit reads RGB photographs");
   const int N = stack.size();
   if (static_cast<int>(lights.size()) != N)
