@@ -154,8 +154,68 @@ const char* const kReportJs = R"JS(
   //   PTM LRGB: out_c = C_c * L(lx, ly) / 255; RGB: out_c = L_c(lx, ly);
   //   L = a0 lx^2 + a1 ly^2 + a2 lx ly + a3 lx + a4 ly + a5, a_k = (byte - bias_k) * scale_k;
   //   HSH: out_c = 255 * sum_k (byte / 255 * scale_k + bias_k) H_k(theta, phi).
+  // A learned model's weights at light l as src/fit/learned_render.cpp (learnedLightWeights)
+  // and OpenLIME compute them: the nodes' weights (rbf: exp(-eps d^2) normalised, eps = 8 / the
+  // exp(-2 d)-weighted mean distance; bln: bilinear on the rotated octahedral map), then per
+  // plane and channel the weighted basis values, summed in float as a Float32Array does.
+  function learnedWeights(m, basisBytes, l) {
+    var norm = Math.hypot(l[0], l[1], l[2]), x = l[0] / norm, y = l[1] / norm, z = l[2] / norm, nodes = [];
+    if (m.basis === "rbf") {
+      var count = m.nodes.length / 3, d = [], num = 0, den = 0, total = 0;
+      for (var i = 0; i < count; ++i) {
+        var dx = m.nodes[3 * i] - x, dy = m.nodes[3 * i + 1] - y, dz = m.nodes[3 * i + 2] - z;
+        d.push(Math.sqrt(dx * dx + dy * dy + dz * dz));
+        var e = Math.exp(-2 * d[i]); num += d[i] * e; den += e;
+      }
+      var eps = 8 / (num / den);
+      for (var j = 0; j < count; ++j) { nodes.push([j, Math.exp(-eps * d[j] * d[j])]); total += nodes[j][1]; }
+      nodes.forEach(function (nw) { nw[1] /= total; });
+    } else {
+      var R = m.resolution, s = Math.abs(x) + Math.abs(y) + Math.abs(z);
+      var u = ((x + y) / s + 1) / 2 * (R - 1), v = ((y - x) / s + 1) / 2 * (R - 1);
+      var sx = Math.min(R - 2, Math.max(0, Math.floor(u))), sy = Math.min(R - 2, Math.max(0, Math.floor(v)));
+      var fx = u - sx, fy = v - sy;
+      nodes = [[sx + sy * R, (1 - fx) * (1 - fy)], [sx + 1 + sy * R, fx * (1 - fy)],
+               [sx + (sy + 1) * R, (1 - fx) * fy], [sx + 1 + (sy + 1) * R, fx * fy]];
+    }
+    var count = m.basis === "rbf" ? m.nodes.length / 3 : m.resolution * m.resolution;
+    var W = new Float32Array((m.planes + 1) * 3), f = Math.fround;
+    for (var p = 0; p <= m.planes; ++p)
+      for (var k = 0; k < 3; ++k) {
+        var sum = 0;
+        nodes.forEach(function (nw) {
+          var b = basisBytes[(p * count + nw[0]) * 3 + k];
+          var value = p === 0 ? f(b / 255) : f(f(b - 127) / m.range[p - 1]);
+          sum = f(sum + f(f(nw[1]) * value));
+        });
+        W[p * 3 + k] = sum;
+      }
+    return W;
+  }
+
   function makeModel(m) {
     var w = m.width, h = m.height, n = w * h, coef = decodeBase64(m.coefficients);
+    if (m.model === "learned") {
+      var basisBytes = decodeBase64(m.basisBytes), P = m.planes;
+      if (coef.length !== n * P) throw new Error("learned relighting data has the wrong size");
+      return { m: m, render: function (l, px) {
+        // out_k = W_0k + sum_p W_(p+1)k (byte_p / 255 - bias_p) scale_p, clamped to 0..1.
+        var W = learnedWeights(m, basisBytes, l), a = new Float32Array(P * 3), base = [W[0], W[1], W[2]];
+        for (var k = 0; k < 3; ++k)
+          for (var p = 0; p < P; ++p) {
+            a[p * 3 + k] = W[(p + 1) * 3 + k] * m.scale[p] / 255;
+            base[k] -= W[(p + 1) * 3 + k] * m.bias[p] * m.scale[p];
+          }
+        for (var t = 0; t < n; ++t) {
+          for (var c = 0; c < 3; ++c) {
+            var v = base[c], o = t * P;
+            for (var q = 0; q < P; ++q) v += a[q * 3 + c] * coef[o + q];
+            px[t * 4 + c] = sample(Math.min(1, Math.max(0, v)) * 255);
+          }
+          px[t * 4 + 3] = 255;
+        }
+      } };
+    }
     if (m.model === "hsh") {
       if (coef.length !== n * 3 * m.terms) throw new Error("HSH relighting data has the wrong size");
       return { m: m, render: function (l, px) {

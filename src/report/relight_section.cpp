@@ -9,6 +9,7 @@
 #include "core/parallel.h"
 #include "report/embed.h"
 #include "report/html.h"
+#include "report/learned_relight.h"
 #include "report/outputs.h"
 #include "report/sections.h"
 
@@ -16,11 +17,15 @@ namespace surrogate::report {
 
 namespace {
 
-// The fitted models (.ptm and .rti HSH) the carrier lists as outputs, in carrier order.
+// A learned model's info.json (LearnedFit: finished-files/<basis>/info.json).
+bool isLearnedInfo(const std::string& kind) { return kind == "learned-model"; }
+
+// The fitted models (.ptm, .rti HSH and the learned layouts' info.json) the carrier lists as
+// outputs, in carrier order.
 std::vector<const carrier::FileRecord*> fittedModels(const carrier::Carrier& c) {
   std::vector<const carrier::FileRecord*> out;
   for (const auto& [kind, file] : outputsByKind(c))
-    if (file->format.rfind("PTM_FORMAT", 0) == 0 || file->format == "RTI_HSH")
+    if (file->format.rfind("PTM_FORMAT", 0) == 0 || file->format == "RTI_HSH" || isLearnedInfo(kind))
       if (std::find(out.begin(), out.end(), file) == out.end()) out.push_back(file);
   return out;
 }
@@ -47,12 +52,20 @@ std::vector<RelightModel> relightModels(const carrier::Carrier& c, const ReportS
           continue;
         }
       }
-      const std::optional<std::string> bytes = source.read(m.file->path);
-      m.found = bytes.has_value();
-      if (!bytes) continue;
       try {
+        if (m.file->format == "JSON") {  // a learned layout: its info.json and planes
+          const std::optional<std::string> json =
+              learnedRelightJson(c, source, *m.file, options.relightMaxSide, share);
+          m.found = json.has_value();
+          if (json) m.made = *json;
+          continue;
+        }
+        const std::optional<std::string> bytes = source.read(m.file->path);
+        m.found = bytes.has_value();
+        if (!bytes) continue;
         m.made = relightJson(*bytes, options.relightMaxSide, m.file->path, share);
       } catch (const Error& e) {
+        m.found = true;
         m.problem = e.text();
       }
     }

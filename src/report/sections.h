@@ -29,6 +29,8 @@ std::string stepTitle(const carrier::Step& step);
 std::string takenText(const std::string& exifDateTime);
 // A fitted model as people name it: "ptm-lrgb" -> "PTM (LRGB)", "hsh2" -> "HSH order 2".
 std::string modelTitle(const std::string& basis);
+// The learned fits' figures (learned_fits.cpp), "" when the carrier has none.
+std::string learnedFitsTable(const carrier::Carrier& c);
 
 // Software and machine, then one timeline entry per step: component, version, algorithm,
 // status, start, duration, parameters, interventions (who, when, why) and the step's log.

@@ -206,7 +206,7 @@ std::string stepTitle(const carrier::Step& step) {
       {"DerivedMaps", "Normals, albedo and previews"},
       {"Audit", "Audit of prior work"},
   };
-  if (step.component == "RtiFit") return "Fit: " + modelTitle(step.param("basis", "?"));
+  if (step.component == "RtiFit" || step.component == "LearnedFit") return "Fit: " + modelTitle(step.param("basis", "?"));
   // One step per model: the model tells two apart.
   if (step.component == "WebCopy") return "Web copy of " + modelTitle(step.param("model", "?"));
   if (step.component == "DerivedMaps" && step.hasParam("model"))
@@ -221,6 +221,8 @@ std::string modelTitle(const std::string& basis) {
   if (basis == "hsh2") return "HSH order 2";
   if (basis == "hsh3") return "HSH order 3";
   if (basis == "hsh4") return "HSH order 4";
+  if (basis == "rbf") return "RBF (learned)";
+  if (basis == "bln") return "Bilinear (learned)";
   return basis;
 }
 
