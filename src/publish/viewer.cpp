@@ -73,6 +73,8 @@ std::string basisLabel(const std::string& basis) {
   if (basis == "ptm-rgb") return "PTM RGB";
   if (basis.size() == 4 && basis.compare(0, 3, "hsh") == 0 && basis[3] >= '1' && basis[3] <= '3')
     return std::string("HSH order ") + basis[3];
+  if (basis == "rbf") return "RBF (learned)";
+  if (basis == "bln") return "Bilinear (learned)";
   return basis;
 }
 
@@ -85,9 +87,14 @@ std::string viewerHtml(const WebDescription& description, const std::string& bas
 
 std::string webIndexHtml(const WebDescription& description, const std::vector<IndexedModel>& models) {
   std::string list;
-  for (const IndexedModel& m : models)
-    list += "<li><a href=\"" + segment(m.folder) + "/index.html\">" + escapeHtml(basisLabel(m.basis)) + "</a> (" +
-            escapeHtml(m.basis) + "), in " + escapeHtml(m.folder) + "/</li>\n";
+  for (const IndexedModel& m : models) {
+    // A learned basis has no page of its own: this viewer draws PTM and HSH only; its folder
+    // is what OpenLIME's RTI layer or relight's viewer reads.
+    const bool learned = m.basis == "rbf" || m.basis == "bln";
+    list += "<li><a href=\"" + segment(m.folder) + (learned ? "/info.json" : "/index.html") + "\">" +
+            escapeHtml(basisLabel(m.basis)) + "</a> (" + escapeHtml(m.basis) + "), in " + escapeHtml(m.folder) + "/" +
+            (learned ? " (for OpenLIME or relight's viewer)" : "") + "</li>\n";
+  }
   std::string page = kIndexTemplate;
   replaceOnce(page, "@TITLE@", escapeHtml(shownTitle(description)));
   replaceOnce(page, "@ABOUT@", aboutHtml(description, ""));

@@ -390,15 +390,53 @@ std::vector<CaptureModel> recordedModels(const fs::path& capture) {
     for (char& ch : name) ch = ch == '.' ? '-' : ch;
     m.folder = name;
   }
-  if (models.empty())
-    throw Error(ErrorKind::Input, capture.string(), kStep,
-                "its carrier records no PTM or HSH result in finished-files/; run `surrogate run` on it first");
   return models;
+}
+
+// The learned layouts the capture's carrier records (LearnedFit, stages/learned_fit_stage.h:
+// finished-files/<basis>/info.json and its planes), each file checked against its recorded
+// digest and copied as it is: the layout is already what a viewer reads, and writing it again
+// would compress its planes twice.
+std::vector<WebLayoutFiles> recordedLearnedLayouts(const fs::path& capture, const carrier::Carrier& c) {
+  std::vector<WebLayoutFiles> out;
+  for (const carrier::FileRecord& info : c.files) {
+    const fs::path path(info.path);
+    const std::string basis = path.parent_path().filename().string();
+    if (info.role != "result" || path.filename() != "info.json" ||
+        path.parent_path().parent_path() != "finished-files" || (basis != "rbf" && basis != "bln"))
+      continue;
+    const std::string folder = path.parent_path().generic_string() + "/";
+    WebLayoutFiles layout;
+    for (const carrier::FileRecord& f : c.files) {
+      if (f.role != "result" || !startsWith(f.path, folder) || f.path.find('/', folder.size()) != std::string::npos) continue;
+      checkRecordedPath(capture, f.path);
+      const std::string bytes = readFile(capture / f.path, kStep);
+      if (sha256Hex(bytes) != f.sha256)
+        throw Error(ErrorKind::Fixity, (capture / f.path).string(), kStep,
+                    "is not the file the carrier records (its SHA-256 differs); run the capture again "
+                    "or restore the file");
+      const std::string name = f.path.substr(folder.size());
+      layout.files.emplace(name == "info.json" ? layout.files.begin() : layout.files.end(), name, bytes);
+      layout.model.files.push_back(name);
+    }
+    const WebLayoutSummary summary = describeWebLayout(capture / info.path);
+    layout.model.source = info.path;
+    layout.model.folder = basis;
+    layout.model.type = summary.type;
+    layout.model.colorspace = summary.colorspace;
+    layout.model.width = summary.width;
+    layout.model.height = summary.height;
+    layout.model.nplanes = summary.nplanes;
+    out.push_back(std::move(layout));
+  }
+  return out;
 }
 }  // namespace
 
 std::string basisOf(const PublishedModel& model) {
   if (model.type == "ptm") return "ptm-" + model.colorspace;
+  if (model.type == "rbf") return "rbf";
+  if (model.type == "bilinear") return "bln";
   int order = 1;
   while (3 * (order + 1) * (order + 1) <= model.nplanes) ++order;
   return "hsh" + std::to_string(order);
@@ -492,6 +530,12 @@ std::vector<PublishedModel> publish(const fs::path& source, const fs::path& out,
       layout.model.folder = m.folder;
       layouts.push_back(std::move(layout));
     }
+    for (WebLayoutFiles& layout :
+         recordedLearnedLayouts(source, carrier::loadCarrier(source / "assembly-files" / "carrier.xml")))
+      layouts.push_back(std::move(layout));
+    if (layouts.empty())
+      throw Error(ErrorKind::Input, source.string(), kStep,
+                  "its carrier records no PTM, HSH or learned result in finished-files/; run `surrogate run` on it first");
   } else {
     layouts.push_back(webLayoutOfFile(source, options));
     layouts.back().model.source = source.string();
