@@ -243,7 +243,8 @@ void checkLearnedPhotographs(const std::string& basis, const RunRequest& request
   pipeline::Parameters params;
   for (const RunRequest::StageParam& p : request.stageParams)
     if (p.component == stages::LearnedFitStage::kComponent) params.emplace_back(p.name, p.value);
-  const int planes = stages::LearnedFitOptions::fromParameters(params).planes;
+  const stages::LearnedFitOptions options = stages::LearnedFitOptions::fromParameters(params);
+  const int planes = options.planes;
   const std::string which = given.bases ? "--basis " + basis : "--basis " + basis + " (standing from an earlier run)";
   if (photographs < 4)
     throw Error(ErrorKind::Usage, which, "command line",
@@ -255,6 +256,14 @@ void checkLearnedPhotographs(const std::string& basis, const RunRequest& request
                     " values per texel, and " + basis + " with " + std::to_string(planes) +
                     " planes needs one more than its planes: give --planes " +
                     std::to_string((3 * photographs - 1) / 3 * 3) + " or fewer");
+  // --holdout K fits again on N - K photographs: the same bounds there.
+  const int kept = photographs - options.holdout;
+  if (options.holdout > 0 && (kept < 4 || planes + 1 > 3 * kept))
+    throw Error(ErrorKind::Usage, "--holdout " + std::to_string(options.holdout), "command line",
+                "the fit without them has " + std::to_string(kept) + " photographs, and " + basis + " with " +
+                    std::to_string(planes) + " planes needs at least " + std::to_string(std::max(4, (planes + 3) / 3)) +
+                    ": leave out at most " + std::to_string(std::max(0, photographs - std::max(4, (planes + 3) / 3))) +
+                    ", or give fewer --planes");
 }
 
 // Every basis to fit needs at least as many photographs as it has coefficients: checked before

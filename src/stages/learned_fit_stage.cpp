@@ -62,7 +62,7 @@ LearnedFitOptions LearnedFitOptions::fromParameters(const pipeline::Parameters& 
       if (!fit::isLearnedBasisName(value)) throw badParameter(name, value, "is not a learned basis (rbf, bln)");
       o.basis = value;
     } else if (name == "planes") {
-      o.planes = integerIn(name, value, 3, 60);
+      o.planes = integerIn(name, value, 3, 120);
       if (o.planes % 3) throw badParameter(name, value, "needs a multiple of 3 (a JPEG plane holds three)");
     } else if (name == "resolution") {
       o.resolution = integerIn(name, value, 4, 32);

@@ -23,11 +23,12 @@
 
 namespace surrogate::stages {
 
-// The defaults of a learned fit, one place for `surrogate fit` and `surrogate run`. Recorded in
-// every LearnedFit step, so changing them changes only later plans, never a recorded step.
-inline constexpr int kLearnedPlanes = 45;      // coefficients per texel (15 JPEG planes)
-inline constexpr int kLearnedResolution = 8;   // bln: the side of the grid over the directions
-inline constexpr int kLearnedQuality = 75;     // JPEG quality of the planes
+// The defaults of a learned fit, one place for `surrogate fit` and `surrogate run`: the fit's
+// own (fit::LearnedOptions) and the planes' JPEG quality. Recorded in every LearnedFit step, so
+// changing them changes only later plans, never a recorded step.
+inline const int kLearnedPlanes = fit::LearnedOptions().planes;          // coefficients per texel
+inline const int kLearnedResolution = fit::LearnedOptions().resolution;  // bln: the grid's side
+inline constexpr int kLearnedQuality = 75;                               // JPEG quality of the planes
 
 // The parameters of LearnedFit. Names and defaults are a record: never change them.
 struct LearnedFitOptions {
@@ -39,7 +40,7 @@ struct LearnedFitOptions {
 
   pipeline::Parameters toParameters() const;
   // Error(Input) naming the parameter for an unknown name, a basis that is not learned, or a
-  // number out of range (planes a multiple of 3 in 3..60, resolution 4..32, quality 1..100,
+  // number out of range (planes a multiple of 3 in 3..120, resolution 4..32, quality 1..100,
   // holdout 0..1000; the holdout's bound by the photographs is checked when the step runs).
   static LearnedFitOptions fromParameters(const pipeline::Parameters& parameters);
   // The fit's own options (kind, planes, resolution).
