@@ -99,7 +99,7 @@ TEST_CASE("built-in stages keep their recorded names, versions and default param
   const std::vector<std::pair<std::string, std::string>> versions = {
       {"CaptureIngest", "3"}, {"ImageDecode", "3"}, {"SphereDetection", "9"}, {"HighlightDetection", "11"},
       {"LightDirections", "7"}, {"LightsFromFile", "4"}, {"WhiteBalance", "1"}, {"Crop", "1"},
-      {"Resize", "1"}, {"RtiFit", "6"}, {"DerivedMaps", "5"}, {"WebCopy", "4"}, {"Audit", "7"},
+      {"Resize", "1"}, {"RtiFit", "6"}, {"LearnedFit", "1"}, {"DerivedMaps", "5"}, {"WebCopy", "4"}, {"Audit", "7"},
       {"ColourCorrection", "1"}};
   for (const auto& [component, version] : versions) {
     INFO(component);
@@ -115,6 +115,8 @@ TEST_CASE("built-in stages keep their recorded names, versions and default param
                              {"sphereDiameterMm", "0"}, {"lightDistance", "auto"}});
   CHECK(r.info("DerivedMaps")->defaults == pipeline::Parameters{{"model", "ptm-lrgb"}});
   CHECK(r.info("RtiFit")->defaults == pipeline::Parameters{{"basis", "ptm-lrgb"}});
+  CHECK(r.info("LearnedFit")->defaults == pipeline::Parameters{{"basis", "bln"}, {"planes", "45"}, {"resolution", "8"},
+                                                              {"quality", "75"}, {"holdout", "0"}});
   CHECK(r.info("Audit")->defaults == pipeline::Parameters{{"angleThresholdDegrees", "2"},
                                                          {"reproducedMarginDb", "1"},
                                                          {"differenceImages", ""}});
@@ -140,7 +142,8 @@ TEST_CASE("a bad parameter value in a recorded step is a failed step naming it, 
       {"LightDirections", {{"sphereDiameterMm", "-3"}}, "sphereDiameterMm=-3"},
       {"LightDirections", {{"focalLength", "50"}}, "focalLength=50"},
       {"LightDirections", {{"model", "fisheye"}}, "fisheye"},
-      {"DerivedMaps", {{"model", "rbf"}}, "model=rbf"},
+      {"DerivedMaps", {{"model", "hsh9"}}, "model=hsh9"},
+      {"LearnedFit", {{"basis", "bln"}, {"planes", "44"}}, "planes=44"},
       {"RtiFit", {{"basis", "hsh2"}, {"output", "../elsewhere.rti"}}, "../elsewhere.rti"},
       {"Crop", {{"method", "user"}, {"rectangle", "1,2,x,4"}}, "rectangle=1,2,x,4"},
       {"LightsFromFile", {{"file", "dome.lp"}}, "file=dome.lp"},

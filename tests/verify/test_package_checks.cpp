@@ -283,7 +283,7 @@ TEST_CASE("carriers whose steps cannot run are invalid (exit 2), and never re-ex
        "intervention manual-sphere 0"},
       {"maps of a model no step fits",
        [](carrier::Carrier& c) { c.addStep("DerivedMaps", stageVersion("DerivedMaps")).setParam("model", "hsh3"); },
-       "model=hsh3 names a model no earlier RtiFit step fits"},
+       "model=hsh3 names a model no earlier RtiFit or LearnedFit step fits"},
   };
   for (const Case& k : cases) {
     const fs::path bag = bagWithSteps("steps", k.steps);
