@@ -67,9 +67,9 @@ std::vector<OptionSpec> pipelineOptions(bool withFit) {
     specs.push_back({"colour-model", true, false, "the correction fitted to the chart: matrix (3x3, default) or root-polynomial", "MODEL"});
     specs.push_back({"basis", true, true, "model to fit, repeatable: ptm-lrgb, ptm-rgb, hsh2, hsh3, or a learned basis rbf, bln (a web layout in finished-files/BASIS/) (default: ptm-lrgb and hsh2)", "BASIS"});
     // The learned fit's options (LearnedFit steps, stages/learned_fit_stage.h), as `surrogate fit` names them.
-    specs.push_back({"planes", true, false, "rbf, bln: coefficients per pixel, a multiple of 3 (default 45)", "N"});
-    specs.push_back({"resolution", true, false, "bln: the side of the grid over the light directions (default 8)", "R"});
-    specs.push_back({"quality", true, false, "rbf, bln: JPEG quality of the planes, 1..100 (default 75)", "Q"});
+    specs.push_back({"planes", true, false, "rbf, bln: coefficients per pixel, a multiple of 3 (default " + std::to_string(stages::kLearnedPlanes) + ")", "N"});
+    specs.push_back({"resolution", true, false, "bln: the side of the grid over the light directions (default " + std::to_string(stages::kLearnedResolution) + ")", "R"});
+    specs.push_back({"quality", true, false, "rbf, bln: JPEG quality of the planes, 1..100 (default " + std::to_string(stages::kLearnedQuality) + ")", "Q"});
     specs.push_back({"holdout", true, false, "rbf, bln: also fit without K photographs and record PSNR/SSIM at their lights (0: not measured)", "K"});
     // Pre-processing of the images the fit reads (recorded steps WhiteBalance, Crop, Resize,
     // planned in that order after light estimation, which always reads the full frame).
