@@ -10,6 +10,7 @@
 #include "cli/commands.h"
 #include "cli/option_checks.h"
 #include "cli/progress.h"
+#include "capture/output_rule.h"
 #include "core/error.h"
 #include "core/json.h"
 #include "core/text.h"
@@ -74,14 +75,12 @@ int runCommandFit(int argc, char** argv) {
   };
   Args args(argc, argv, 1, specs);
   if (helpShown(args, specs,
-                {"surrogate fit --lp FILE.lp -o OUT.ptm|OUT.rti [--basis BASIS]",
+                {"surrogate fit --lp FILE.lp -o OUT.ptm|OUT.rti|DIR [--basis BASIS] [--holdout K]",
                  "Fit a PTM or HSH model to the images an .lp file names, with its light directions, "
                  "outside any capture and with no record. (surrogate run does this for a capture, with "
                  "provenance.)",
                  {{"surrogate fit --lp coin/lights.lp -o coin.ptm",
                    "fit a PTM (luminance and colour, as RTIViewer opens it) to the photographs lights.lp names"},
-                  {"surrogate fit --lp coin/lights.lp -o coin.rti --basis hsh3",
-                   "fit third-order hemispherical harmonics"},
                   {"surrogate fit --lp coin/lights.lp -o coin-bln --basis bln --holdout 6",
                    "a learned bilinear basis as a web layout (OpenLIME, relight), with its quality at 6 lights left out"}},
                  commonExitCodes("the model is written")}))
@@ -93,9 +92,11 @@ int runCommandFit(int argc, char** argv) {
   const std::string ext = lowerCase(fs::path(*out).extension().string());
   const std::string basisName = args.value("basis", ext == ".ptm" ? "ptm-lrgb" : ext == ".rti" ? "hsh2" : "");
   const bool learned = fit::isLearnedBasisName(basisName);
-  if (basisName.empty())
+  if (basisName.empty()) {
+    checkOutputFile("-o", *out, "model.ptm");  // a package or a bag's file is refused as such first
     throw Error(ErrorKind::Usage, "-o " + *out, "command line",
                 "the output must end in .ptm or .rti, or be a folder with --basis rbf or --basis bln");
+  }
   for (const char* option : {"planes", "resolution", "quality"})
     if (!learned && args.has(option))
       throw Error(ErrorKind::Usage, std::string("--") + option, "command line",
@@ -113,7 +114,11 @@ int runCommandFit(int argc, char** argv) {
     if (ptm != (ext == ".ptm"))
       throw Error(ErrorKind::Usage, *out, "command line",
                   std::string("basis ") + fit::basisName(basis) + " is written as " + (ptm ? ".ptm" : ".rti"));
-  } else if (fs::exists(*out) && (!fs::is_directory(*out) || !fs::is_empty(*out))) {
+  } else {
+    // A new folder, never inside a package, a bag or a capture's own folders (as publish).
+    capture::checkOutputTarget(*out, "-o", capture::ExistingOutput::ReplaceOutput);
+  }
+  if (learned && fs::exists(*out) && (!fs::is_directory(*out) || !fs::is_empty(*out))) {
     throw Error(ErrorKind::Usage, "-o " + *out, "command line",
                 "the web layout goes into a new or empty folder; this one exists and is not empty: give another name");
   }
@@ -170,12 +175,14 @@ int runCommandFit(int argc, char** argv) {
 
   fit::FitStatistics stats;
   fit::LearnedStatistics learnedStats;
+  int fittedPlanes = 0;
   if (learned) {
     fit::LearnedOptions options = recipe.learned;
     options.kind = fit::parseLearnedKind(basisName);
     options.threads = run.threads;
     options.progress = [&bar](double f) { bar.update("Fitting", f); };
     const fit::LearnedModel model = fit::fitLearned(*decoded.rgb, lights, options, &learnedStats);
+    fittedPlanes = model.planes;
     publish::writeWebLayoutFolder(publish::webLayoutOf(model, recipe.web), *out);
   } else {
     fit::FitOptions options;
@@ -192,7 +199,7 @@ int runCommandFit(int argc, char** argv) {
     j.beginObject().key("output").value(*out).key("basis").value(basisName)
         .key("images").value(static_cast<int>(files.size()));
     if (learned) {
-      j.key("planes").value(recipe.learned.planes).key("psnr").value(learnedStats.psnr)
+      j.key("planes").value(fittedPlanes).key("psnr").value(learnedStats.psnr)
           .key("leaveOneOutPsnr").value(learnedStats.leaveOneOutPsnr)
           .key("explainedVariance").value(learnedStats.explainedVariance);
     } else {
@@ -215,7 +222,8 @@ int runCommandFit(int argc, char** argv) {
     std::cout << j.str() << "\n";
   } else {
     if (learned)
-      std::cout << "wrote " << *out << "/ (" << basisName << ", " << recipe.learned.planes << " planes, " << files.size()
+      std::cout << "wrote " << *out << "/ (" << basisName << ", " << fittedPlanes << " planes"
+                << (fittedPlanes < recipe.learned.planes ? " (all the photographs hold)" : "") << ", " << files.size()
                 << " images): PSNR " << fixedDecimals(learnedStats.psnr, 2) << " dB at the captured lights\n";
     else
       std::cout << "wrote " << *out << " (" << fit::basisName(basis) << ", " << files.size()

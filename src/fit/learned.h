@@ -101,13 +101,19 @@ struct LearnedStatistics {
   int sampledTexels = 0;
 };
 
+// The planes fitted for `requested` on `photographs` photographs: at most 3 N - 3 (their three
+// channels give 3 N values a texel, one of which the mean takes), so that a default of 45 planes
+// fits 12 photographs with 33, and a fit that leaves photographs out with what remains.
+int learnedPlanesFor(int requested, int photographs);
+
 // Error(Usage) naming the option for planes or resolution out of range: what fitLearned checks
 // first, for callers that check before decoding the photographs.
 void checkLearnedOptions(const LearnedOptions& options);
 
-// Throws Error(Input) when the light count differs from the stack's, a light is not a direction
-// or is below the horizon, there are fewer than 4 photographs or planes + 1 > 3 * photographs;
-// Error(Usage) naming the option for planes/resolution out of range.
+// Fits learnedPlanesFor(options.planes, N) planes (model.planes says how many). Throws
+// Error(Input) when the light count differs from the stack's, a light is not a direction or is
+// below the horizon, or there are fewer than 4 photographs; Error(Usage) naming the option for
+// planes/resolution out of range.
 LearnedModel fitLearned(const ImageStack& stack, const std::vector<std::array<double, 3>>& lights,
                         const LearnedOptions& options, LearnedStatistics* stats = nullptr);
 

@@ -104,6 +104,8 @@ Eigen::MatrixXd sampleTexels(const ImageStack& stack, int* strideOut) {
 
 }  // namespace
 
+int learnedPlanesFor(int requested, int photographs) { return std::max(3, std::min(requested, 3 * photographs - 3)); }
+
 void checkLearnedOptions(const LearnedOptions& o) {
   if (o.planes < 3 || o.planes > 120 || o.planes % 3 != 0)
     throw Error(ErrorKind::Usage, "--planes " + std::to_string(o.planes), "command line",
@@ -123,9 +125,6 @@ void checkInputs(const ImageStack& stack, const std::vector<Direction>& lights, 
     throw Error(ErrorKind::Input, "lights", "fit",
                 std::to_string(lights.size()) + " light directions for " + std::to_string(N) + " photographs");
   if (N < 4) throw Error(ErrorKind::Input, "lights", "fit", "a learned basis needs at least 4 photographs");
-  if (o.planes > 3 * N)
-    throw Error(ErrorKind::Usage, "--planes " + std::to_string(o.planes), "command line",
-                "the " + std::to_string(N) + " photographs give at most " + std::to_string(3 * N) + " planes");
   for (const Direction& l : lights) {
     const double n = std::sqrt(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
     if (!(n > 0) || !std::isfinite(n) || !(l[2] / n > 0))
@@ -138,7 +137,7 @@ void checkInputs(const ImageStack& stack, const std::vector<Direction>& lights, 
 LearnedModel fitLearned(const ImageStack& stack, const std::vector<Direction>& rawLights, const LearnedOptions& o,
                         LearnedStatistics* stats) {
   checkInputs(stack, rawLights, o);
-  const int N = stack.size(), W = stack.width(), H = stack.height(), P = o.planes;
+  const int N = stack.size(), W = stack.width(), H = stack.height(), P = learnedPlanesFor(o.planes, N);
   const auto progress = [&](double f) { if (o.progress) o.progress(f); };
   std::vector<Direction> lights;
   for (const Direction& l : rawLights) lights.push_back(normalised(l));

@@ -235,35 +235,26 @@ void addAcceptedDamage(const fs::path& capture, const capture::CaptureLayout& la
   }
 }
 
-// A learned basis (fit/learned.h) needs 4 photographs, and no more planes than the photographs'
-// three channels give (planes + 1 <= 3 N): checked before any processing, naming --planes when
-// that is what to change.
+// A learned basis (fit/learned.h) needs 4 photographs (and fits as many planes as they hold,
+// fit::learnedPlanesFor): checked before any processing.
 void checkLearnedPhotographs(const std::string& basis, const RunRequest& request, const RunRequest& given,
                              int photographs) {
   pipeline::Parameters params;
   for (const RunRequest::StageParam& p : request.stageParams)
     if (p.component == stages::LearnedFitStage::kComponent) params.emplace_back(p.name, p.value);
   const stages::LearnedFitOptions options = stages::LearnedFitOptions::fromParameters(params);
-  const int planes = options.planes;
   const std::string which = given.bases ? "--basis " + basis : "--basis " + basis + " (standing from an earlier run)";
   if (photographs < 4)
     throw Error(ErrorKind::Usage, which, "command line",
                 "a learned basis needs at least 4 photographs; the capture has " + std::to_string(photographs) +
                     ". Include more photographs, or fit --basis hsh2");
-  if (planes + 1 > 3 * photographs)
-    throw Error(ErrorKind::Usage, "--planes " + std::to_string(planes), "command line",
-                "the " + std::to_string(photographs) + " photographs give " + std::to_string(3 * photographs) +
-                    " values per texel, and " + basis + " with " + std::to_string(planes) +
-                    " planes needs one more than its planes: give --planes " +
-                    std::to_string((3 * photographs - 1) / 3 * 3) + " or fewer");
-  // --holdout K fits again on N - K photographs: the same bounds there.
+  // --holdout K fits again on N - K photographs, with as many planes as they hold
+  // (fit::learnedPlanesFor): at least 4 of them must remain.
   const int kept = photographs - options.holdout;
-  if (options.holdout > 0 && (kept < 4 || planes + 1 > 3 * kept))
+  if (options.holdout > 0 && kept < 4)
     throw Error(ErrorKind::Usage, "--holdout " + std::to_string(options.holdout), "command line",
-                "the fit without them has " + std::to_string(kept) + " photographs, and " + basis + " with " +
-                    std::to_string(planes) + " planes needs at least " + std::to_string(std::max(4, (planes + 3) / 3)) +
-                    ": leave out at most " + std::to_string(std::max(0, photographs - std::max(4, (planes + 3) / 3))) +
-                    ", or give fewer --planes");
+                "the fit without them has " + std::to_string(kept) + " photographs, and " + basis +
+                    " needs at least 4: leave out at most " + std::to_string(std::max(0, photographs - 4)));
 }
 
 // Every basis to fit needs at least as many photographs as it has coefficients: checked before

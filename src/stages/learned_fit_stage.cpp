@@ -167,6 +167,8 @@ void LearnedFitStage::run(const carrier::Step& step, pipeline::Context& ctx, car
     else recordOutput(ctx, step, result, relative, "result", "JPEG", "learned-plane", "image/jpeg");
   }
 
+  // The planes the photographs hold (fit::learnedPlanesFor): fewer than asked for a small capture.
+  result.add("value").set("name", "planesFitted").set("value", std::to_string(model.planes));
   result.add("value").set("name", "kernelWidth").set("value", formatNumber(model.kernelWidth)).set("unit", "radians");
   result.add("value").set("name", "ridge").set("value", formatNumber(model.ridge));
   result.add("value").set("name", "psnr").set("value", formatNumber(stats.psnr)).set("unit", "dB");
@@ -174,7 +176,10 @@ void LearnedFitStage::run(const carrier::Step& step, pipeline::Context& ctx, car
   result.add("value").set("name", "explainedVariance").set("value", formatNumber(stats.explainedVariance));
   result.add("value").set("name", "sampledTexels").set("value", std::to_string(stats.sampledTexels));
   ctx.carrier.addLog("info", step.id,
-                     o.basis + " fit: " + std::to_string(o.planes) + " planes, PSNR " + fixedDecimals(stats.psnr, 2) +
+                     o.basis + " fit: " + std::to_string(model.planes) + " planes" +
+                         (model.planes < o.planes ? " (the " + std::to_string(lights->size()) + " photographs hold no more; " +
+                                                        std::to_string(o.planes) + " asked)" : std::string()) +
+                         ", PSNR " + fixedDecimals(stats.psnr, 2) +
                          " dB at the captured lights, " + fixedDecimals(stats.leaveOneOutPsnr, 2) +
                          " dB leaving each photograph out; " + std::to_string(layout.files.size()) + " files in " +
                          folder + "/ (JPEG quality " + std::to_string(o.quality) + ")");

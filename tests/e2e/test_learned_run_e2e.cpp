@@ -14,8 +14,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// 18 photographs of 200x150: the default 45 planes need 16 (planes + 1 <= 3 N), 2 more can be
-// left out (--holdout 2), and the fit takes a fraction of a second.
+// 18 photographs of 200x150: they hold the default 45 planes (3 N - 3 = 51), the fit that leaves
+// 2 out fits 45 on 16 too, and the fit takes a fraction of a second.
 fs::path learnedCapture(const std::string& name, const std::string& options) {
   const fs::path capture =
       e2e::generatedWithTruth(name, "--images 18 --width 200 --height 150 --sphere-radius 30 --formats jpeg --seed 3");
@@ -122,16 +122,20 @@ TEST_CASE("the learned options stand for later runs and are refused without a le
   CHECK(carrier.find("<param name=\"quality\" value=\"90\"/>") != std::string::npos);
   CHECK(carrier.find("<param name=\"holdout\" value=\"2\"/>") != std::string::npos);
 
-  // --planes applies to the learned bases only; too many planes for the photographs is refused
-  // before any work.
+  // --planes applies to the learned bases only; more planes than the photographs hold are fitted
+  // as many as they hold (3 N - 3), and said so; a holdout that leaves fewer than 4 is refused.
   const e2e::CommandResult ptm =
       e2e::surrogate("run " + e2e::quote(capture) + " --basis ptm-lrgb --planes 30 --quiet");
   CHECK(ptm.exitCode == 2);
   CHECK(ptm.output.find("--planes: applies to the learned bases only") != std::string::npos);
-  const e2e::CommandResult many = e2e::surrogate("run " + e2e::quote(capture) + " --planes 54 --quiet");
-  CHECK(many.exitCode == 2);
-  CHECK(many.output.find("give --planes 51 or fewer") != std::string::npos);
-  const e2e::CommandResult left = e2e::surrogate("run " + e2e::quote(capture) + " --planes 45 --holdout 3 --quiet");
+  const e2e::CommandResult many = e2e::surrogate("run " + e2e::quote(capture) + " --planes 54 --holdout 0 --quiet");
+  INFO(many.output);
+  CHECK(many.exitCode == 0);
+  const std::string capped = carrierOf(capture);
+  CHECK(capped.find("<param name=\"planes\" value=\"54\"/>") != std::string::npos);
+  CHECK(capped.find("name=\"planesFitted\" value=\"51\"") != std::string::npos);
+  CHECK(capped.find("51 planes (the 18 photographs hold no more; 54 asked)") != std::string::npos);
+  const e2e::CommandResult left = e2e::surrogate("run " + e2e::quote(capture) + " --holdout 15 --quiet");
   CHECK(left.exitCode == 2);
-  CHECK(left.output.find("leave out at most 2") != std::string::npos);
+  CHECK(left.output.find("leave out at most 14") != std::string::npos);
 }
