@@ -21,6 +21,7 @@ using Direction = std::array<double, 3>;
 
 // Enough texels for a stable covariance of a few hundred values; more only costs time.
 constexpr int kSampleTexels = 65536;
+constexpr double kSampleValues = 16.0 * 1024 * 1024;
 // Coefficients beyond these quantiles of the sampled texels are clamped: a few outliers (specks
 // of dust, clipped highlights) would otherwise spend most of a plane's 256 levels.
 constexpr double kRangeQuantile = 0.0005;
@@ -84,21 +85,27 @@ Eigen::MatrixXd perChannel(const Eigen::MatrixXd& A) {
   return K;
 }
 
-// The sampled texels' values in 0..1, one column of 3N per texel ([light][channel]).
-Eigen::MatrixXd sampleTexels(const ImageStack& stack, int* strideOut) {
+// The sampled texels' values in 0..1, one column of 3N per texel ([light][channel]), as floats:
+// at most kSampleValues values (64 MB), fewer texels when there are many photographs. A row of
+// every photograph is read, then each texel's column written whole.
+Eigen::MatrixXf sampleTexels(const ImageStack& stack, int* strideOut) {
   const int W = stack.width(), H = stack.height(), N = stack.size();
-  const int stride = std::max(1, static_cast<int>(std::ceil(std::sqrt(double(W) * H / kSampleTexels))));
+  const double texels = std::min<double>(kSampleTexels, kSampleValues / (3.0 * N));
+  const int stride = std::max(1, static_cast<int>(std::ceil(std::sqrt(double(W) * H / texels))));
   *strideOut = stride;
   const int cols = (W + stride - 1) / stride, rows = (H + stride - 1) / stride;
-  Eigen::MatrixXd S(3 * N, static_cast<Eigen::Index>(cols) * rows);
-  std::vector<std::uint16_t> row(static_cast<std::size_t>(W) * 3);
-  for (int i = 0; i < N; ++i)
-    for (int r = 0; r < rows; ++r) {
-      stack.readRows(i, r * stride, r * stride + 1, row.data());
-      for (int c = 0; c < cols; ++c)
-        for (int k = 0; k < 3; ++k)
-          S(i * 3 + k, static_cast<Eigen::Index>(r) * cols + c) = row[static_cast<std::size_t>(c) * stride * 3 + k] / 65535.0;
+  Eigen::MatrixXf S(3 * N, static_cast<Eigen::Index>(cols) * rows);
+  const std::size_t rowSize = static_cast<std::size_t>(W) * 3;
+  std::vector<std::uint16_t> row(rowSize * N);
+  for (int r = 0; r < rows; ++r) {
+    for (int i = 0; i < N; ++i) stack.readRows(i, r * stride, r * stride + 1, row.data() + i * rowSize);
+    for (int c = 0; c < cols; ++c) {
+      float* column = S.col(static_cast<Eigen::Index>(r) * cols + c).data();
+      const std::size_t at = static_cast<std::size_t>(c) * stride * 3;
+      for (int i = 0; i < N; ++i)
+        for (int k = 0; k < 3; ++k) column[i * 3 + k] = row[i * rowSize + at + k] / 65535.0f;
     }
+  }
   return S;
 }
 
@@ -154,14 +161,23 @@ LearnedModel fitLearned(const ImageStack& stack, const std::vector<Direction>& r
 
   // Step 1: the response's smoothness, by leave-one-out on the sampled texels.
   int stride = 1;
-  const Eigen::MatrixXd S = sampleTexels(stack, &stride);
+  const Eigen::MatrixXf S = sampleTexels(stack, &stride);
   progress(0.1);
-  Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(N, N);
-  for (int k = 0; k < 3; ++k) {
-    Eigen::MatrixXd channel(N, S.cols());
-    for (int i = 0; i < N; ++i) channel.row(i) = S.row(i * 3 + k);
-    gram += channel * channel.transpose();
+  // One second-moment matrix of the samples (3N x 3N, its lower half by a symmetric rank update)
+  // gives both the leave-one-out's Gram matrix (the channels' diagonal blocks summed) and the
+  // covariance of step 3.
+  Eigen::MatrixXd moment = Eigen::MatrixXd::Zero(3 * N, 3 * N);
+  Eigen::VectorXd sum = Eigen::VectorXd::Zero(3 * N);
+  for (Eigen::Index t0 = 0; t0 < S.cols(); t0 += 4096) {  // in double, a block at a time
+    const Eigen::MatrixXd block = S.middleCols(t0, std::min<Eigen::Index>(4096, S.cols() - t0)).cast<double>();
+    moment.selfadjointView<Eigen::Lower>().rankUpdate(block);
+    sum += block.rowwise().sum();
   }
+  moment = moment.selfadjointView<Eigen::Lower>();
+  Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(N, N);
+  for (int i = 0; i < N; ++i)
+    for (int j = 0; j < N; ++j)
+      for (int k = 0; k < 3; ++k) gram(i, j) += moment(i * 3 + k, j * 3 + k);
   const Interpolant f = chooseInterpolant(lights, gram, double(S.cols()) * 3, o.kernelWidth, o.ridge);
   model.kernelWidth = f.width;
   model.ridge = f.ridge;
@@ -186,11 +202,8 @@ LearnedModel fitLearned(const ImageStack& stack, const std::vector<Direction>& r
   const Eigen::MatrixXd Lroot = qe.eigenvectors() * qs.asDiagonal() * qe.eigenvectors().transpose();
   const Eigen::MatrixXd LrootInv = qe.eigenvectors() * qs.cwiseInverse().asDiagonal() * qe.eigenvectors().transpose();
   const Eigen::MatrixXd Mk = perChannel(M);
-  const Eigen::VectorXd mean = S.rowwise().mean();
-  const Eigen::MatrixXd centred = S.colwise() - mean;
-  Eigen::MatrixXd covS = Eigen::MatrixXd::Zero(3 * N, 3 * N);
-  covS.selfadjointView<Eigen::Lower>().rankUpdate(centred, 1.0 / double(S.cols()));
-  covS = covS.selfadjointView<Eigen::Lower>();
+  const Eigen::VectorXd mean = sum / double(S.cols());
+  const Eigen::MatrixXd covS = moment / double(S.cols()) - mean * mean.transpose();
   const Eigen::MatrixXd B = perChannel(Lroot) * Mk;
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> pe(B * covS * B.transpose());
   const Eigen::Index dims = pe.eigenvalues().size();
@@ -234,7 +247,7 @@ LearnedModel fitLearned(const ImageStack& stack, const std::vector<Direction>& r
 
   // Each plane's range from the sampled texels (quantiles), then scale and bias as info.json
   // stores them: c = (byte / 255 - bias) * scale.
-  const Eigen::MatrixXf sampleCoefficients = (C * S.cast<float>()).colwise() + c0;
+  const Eigen::MatrixXf sampleCoefficients = (C * S).colwise() + c0;
   for (int p = 0; p < P; ++p) {
     std::vector<float> w(sampleCoefficients.cols());
     for (Eigen::Index t = 0; t < sampleCoefficients.cols(); ++t) w[t] = sampleCoefficients(p, t);
@@ -291,15 +304,19 @@ LearnedModel fitLearned(const ImageStack& stack, const std::vector<Direction>& r
     const Eigen::MatrixXd Vl = perChannel(viewerWeights(o.kind, o.resolution, model.lights, lights));
     const Eigen::MatrixXd VlE = Vl * EQ;
     const Eigen::VectorXd VlMean = Vl * meanQ;
+    // In blocks of texels, so that the relit values (3N a texel) stay a few megabytes.
     double se = 0;
-    for (Eigen::Index t = 0; t < S.cols(); ++t) {
-      Eigen::VectorXd c(P);
-      for (int p = 0; p < P; ++p) {
-        const float q = std::lround(std::min(255.0f, std::max(0.0f, (sampleCoefficients(p, t) * invScale[p] + bias[p]) * 255.0f)));
-        c(p) = (q / 255.0f - bias[p]) * model.scale[p];
-      }
-      const Eigen::VectorXd r = (VlMean + VlE * c).cwiseMax(0).cwiseMin(1) - S.col(t);
-      se += r.squaredNorm();
+    const Eigen::Index block = 2048;
+    for (Eigen::Index t0 = 0; t0 < S.cols(); t0 += block) {
+      const Eigen::Index n = std::min(block, S.cols() - t0);
+      Eigen::MatrixXd c(P, n);
+      for (Eigen::Index t = 0; t < n; ++t)
+        for (int p = 0; p < P; ++p) {
+          const float q = std::lround(std::min(255.0f, std::max(0.0f, (sampleCoefficients(p, t0 + t) * invScale[p] + bias[p]) * 255.0f)));
+          c(p, t) = (q / 255.0f - bias[p]) * model.scale[p];
+        }
+      const Eigen::MatrixXd relit = ((VlE * c).colwise() + VlMean).cwiseMax(0).cwiseMin(1);
+      se += (relit - S.middleCols(t0, n).cast<double>()).squaredNorm();
     }
     const double mse = se / (double(S.cols()) * 3 * N);
     stats->psnr = mse > 0 ? std::min(100.0, -10 * std::log10(mse)) : 100;
