@@ -70,7 +70,7 @@ std::vector<OptionSpec> pipelineOptions(bool withFit) {
     specs.push_back({"planes", true, false, "rbf, bln: coefficients per pixel, a multiple of 3 (default " + std::to_string(stages::kLearnedPlanes) + ")", "N"});
     specs.push_back({"resolution", true, false, "bln: the side of the grid over the light directions (default " + std::to_string(stages::kLearnedResolution) + ")", "R"});
     specs.push_back({"quality", true, false, "rbf, bln: JPEG quality of the planes, 1..100 (default " + std::to_string(stages::kLearnedQuality) + ")", "Q"});
-    specs.push_back({"holdout", true, false, "rbf, bln: also fit without K photographs and record PSNR/SSIM at their lights (0: not measured)", "K"});
+    specs.push_back({"holdout", true, false, "every fit: also fit without K photographs and record PSNR/SSIM at their lights (0: not measured)", "K"});
     // Pre-processing of the images the fit reads (recorded steps WhiteBalance, Crop, Resize,
     // planned in that order after light estimation, which always reads the full frame).
     specs.push_back({"wb", true, false, "white balance for the fit: as-shot, region:X,Y,W,H (a grey area, full-frame pixels) or multipliers:R,G,B", "MODE"});
@@ -251,6 +251,8 @@ void learnedFit(run::RunRequest& r, const Args& args) {
       throw Error(ErrorKind::Usage, std::string("--") + option + " " + *value, "command line", e.message());
     }
     param(r, stages::LearnedFitStage::kComponent, {option, *value});
+    // --holdout measures every fit, the PTM and HSH ones too (RtiFit's parameter of that name).
+    if (std::string(option) == "holdout") param(r, stages::RtiFitStage::kComponent, {option, *value});
   }
 }
 

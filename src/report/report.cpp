@@ -299,6 +299,7 @@ std::string resultsSection(const carrier::Carrier& c, const Pictures& pictures,
     s << "<table><tr><th>fit</th><th>file</th><th>RMSE (8-bit levels)</th>"
          "<th>PSNR (dB)</th><th>what it means</th></tr>" << fits.str() << "</table>";
   s << learnedFitsTable(c);
+  s << heldOutTable(c);
 
   s << "<div class=\"gallery\">";
   for (const auto& [kind, file] : outputsByKind(c)) {

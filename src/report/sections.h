@@ -31,6 +31,9 @@ std::string takenText(const std::string& exifDateTime);
 std::string modelTitle(const std::string& basis);
 // The learned fits' figures (learned_fits.cpp), "" when the carrier has none.
 std::string learnedFitsTable(const carrier::Carrier& c);
+// Every fit's PSNR and SSIM at the photographs `--holdout` left out, when a PTM or HSH fit has
+// them (held_out_table.cpp); "" otherwise.
+std::string heldOutTable(const carrier::Carrier& c);
 
 // Software and machine, then one timeline entry per step: component, version, algorithm,
 // status, start, duration, parameters, interventions (who, when, why) and the step's log.

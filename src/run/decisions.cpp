@@ -156,7 +156,14 @@ RunRequest standingDecisions(const carrier::Carrier& recorded) {
       if (!r.publish) addPublishOptions(s, info->defaults, r);
       r.publish = true;
     } else if (s.component == stages::RtiFitStage::kComponent) {
-      bases.push_back(fit::basisName(stages::RtiFitOptions::fromParameters(stages::parametersOf(s)).fit.basis));
+      const stages::RtiFitOptions fitted = stages::RtiFitOptions::fromParameters(stages::parametersOf(s));
+      bases.push_back(fit::basisName(fitted.fit.basis));
+      // --holdout stands like the bases (the same K for every fit step: the first one's).
+      const bool known = std::any_of(r.stageParams.begin(), r.stageParams.end(), [](const RunRequest::StageParam& p) {
+        return p.component == stages::RtiFitStage::kComponent && p.name == "holdout";
+      });
+      if (fitted.holdout > 0 && !known)
+        r.stageParams.push_back({s.component, "holdout", std::to_string(fitted.holdout)});
     } else if (s.component == stages::LearnedFitStage::kComponent) {
       // One step per learned basis, with the same options (--planes, --holdout, ...): those of
       // the first that differ from the defaults, without its basis, which the plan gives.

@@ -26,6 +26,7 @@
 #include "stages/decode_stage.h"
 #include "stages/ingest_stage.h"
 #include "stages/learned_fit_stage.h"
+#include "stages/rti_fit_stage.h"
 #include "stages/registry.h"
 #include "stages/prior_work.h"
 #include "run/descriptive_run.h"
@@ -159,6 +160,11 @@ carrier::Carrier planRun(const fs::path& capture, const RunRequest& request) {
   for (const RunRequest::StageParam& p : request.stageParams) {
     bool found = false;
     for (const carrier::Step& s : c.process) found = found || s.component == p.component;
+    // --holdout is an option of every fit: enough that one of them is planned.
+    if (!found && p.name == "holdout" &&
+        (p.component == stages::LearnedFitStage::kComponent || p.component == stages::RtiFitStage::kComponent))
+      for (const carrier::Step& s : c.process)
+        found = found || s.component == stages::LearnedFitStage::kComponent || s.component == stages::RtiFitStage::kComponent;
     if (!found && p.component == stages::LearnedFitStage::kComponent)
       throw Error(ErrorKind::Usage, "--" + p.name, "options",
                   "applies to the learned bases only: add --basis bln or --basis rbf");
@@ -275,7 +281,18 @@ void checkEnoughPhotographs(const capture::CaptureLayout& layout, const RunReque
       continue;
     }
     const int terms = fit::basisTerms(fit::parseBasis(basis));
-    if (photographs >= terms) continue;
+    if (photographs >= terms) {
+      // --holdout K fits again on N - K photographs: they must still determine every term.
+      int holdout = 0;
+      for (const RunRequest::StageParam& p : request.stageParams)
+        if (p.component == stages::RtiFitStage::kComponent && p.name == "holdout") holdout = std::atoi(p.value.c_str());
+      if (holdout > 0 && photographs - holdout < terms)
+        throw Error(ErrorKind::Usage, "--holdout " + std::to_string(holdout), "command line",
+                    basis + " fits " + std::to_string(terms) + " coefficients per pixel, and the fit without them has " +
+                        std::to_string(photographs - holdout) + " photographs: leave out at most " +
+                        std::to_string(photographs - terms));
+      continue;
+    }
     // The bases in use that fit; else the largest that fits (the first of equals in the
     // order of --basis's help).
     std::vector<std::string> fitting;

@@ -10,6 +10,7 @@
 #include "pipeline/context.h"
 #include "publish/learned_layout.h"
 #include "stages/held_out_quality.h"
+#include "stages/held_out_record.h"
 #include "stages/inputs.h"
 #include "stages/outputs.h"
 #include "stages/rti_fit_stage.h"
@@ -102,44 +103,6 @@ pipeline::StageInfo LearnedFitStage::info() {
   return info;
 }
 
-namespace {
-
-// The held-out figures (holdout > 0): pooled and per photograph left out.
-void recordHeldOut(const carrier::Step& step, pipeline::Context& ctx, carrier::Result& result,
-                   const LearnedFitOptions& o, const ImageStack& rgb, const Lights& lights) {
-  ctx.progress("Fitting " + o.basis + " without " + std::to_string(o.holdout) + " photographs", 0);
-  ModelRecipe recipe;
-  recipe.basis = o.basis;
-  recipe.learned = o.fitOptions();
-  recipe.web = webOptions(o);
-  recipe.threads = ctx.settings.threads;
-  HeldOutQuality q;
-  try {
-    q = measureHeldOut(rgb, lights, recipe, o.holdout);
-  } catch (const Error& e) {  // the recorded parameter, not the command line's option
-    throw Error(ErrorKind::Input, "holdout=" + std::to_string(o.holdout), kStep, e.message());
-  }
-  const auto inputs = ctx.get<InputImages>(kInputImages);
-  result.add("value").set("name", "heldOutImages").set("value", std::to_string(q.indices.size()));
-  result.add("value").set("name", "heldOutPsnr").set("value", formatNumber(q.model.psnr)).set("unit", "dB");
-  result.add("value").set("name", "heldOutSsim").set("value", formatNumber(q.model.ssim));
-  result.add("value").set("name", "nearestBlendPsnr").set("value", formatNumber(q.nearestBlend.psnr)).set("unit", "dB");
-  result.add("value").set("name", "nearestBlendSsim").set("value", formatNumber(q.nearestBlend.ssim));
-  for (std::size_t i = 0; i < q.indices.size(); ++i) {
-    const std::string image = (*inputs)[q.indices[i]].fileId;
-    result.add("imageValue").set("image", image).set("name", "heldOutPsnr")
-        .set("value", formatNumber(q.perLight[i].psnr)).set("unit", "dB");
-    result.add("imageValue").set("image", image).set("name", "heldOutSsim")
-        .set("value", formatNumber(q.perLight[i].ssim));
-  }
-  ctx.carrier.addLog("info", step.id,
-                     o.basis + " at " + std::to_string(q.indices.size()) + " lights left out of the fit: PSNR " +
-                         fixedDecimals(q.model.psnr, 2) + " dB, SSIM " + fixedDecimals(q.model.ssim, 3) +
-                         " (the 3 nearest photographs blended: " + fixedDecimals(q.nearestBlend.psnr, 2) +
-                         " dB, SSIM " + fixedDecimals(q.nearestBlend.ssim, 3) + ")");
-}
-
-}  // namespace
 
 void LearnedFitStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier::Result& result) {
   const auto rgb = ctx.get<ImageStack>(kRgbStack);
@@ -183,7 +146,14 @@ void LearnedFitStage::run(const carrier::Step& step, pipeline::Context& ctx, car
                          " dB at the captured lights, " + fixedDecimals(stats.leaveOneOutPsnr, 2) +
                          " dB leaving each photograph out; " + std::to_string(layout.files.size()) + " files in " +
                          folder + "/ (JPEG quality " + std::to_string(o.quality) + ")");
-  if (o.holdout > 0) recordHeldOut(step, ctx, result, o, *rgb, *lights);
+  if (o.holdout > 0) {
+    ModelRecipe recipe;
+    recipe.basis = o.basis;
+    recipe.learned = o.fitOptions();
+    recipe.web = webOptions(o);
+    recipe.threads = ctx.settings.threads;
+    measureAndRecordHeldOut(step, ctx, result, recipe, *rgb, *lights, o.holdout);
+  }
   // As a viewer shows it: maps, previews and the report's view see the planes' JPEG compression.
   ctx.put(modelKey(o.basis), std::shared_ptr<fit::Relightable>(fit::makeRelightable(learnedAsViewed(model, web))));
 }

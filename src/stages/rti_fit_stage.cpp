@@ -1,6 +1,7 @@
 #include "stages/rti_fit_stage.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <array>
 #include <cmath>
 #include <functional>
@@ -18,6 +19,7 @@
 #include "hrti/light_checks.h"
 #include "image/decode.h"
 #include "pipeline/context.h"
+#include "stages/held_out_record.h"
 #include "stages/inputs.h"
 #include "stages/outputs.h"
 #include "stages/recorded_checks.h"
@@ -36,6 +38,7 @@ std::string defaultFitOutput(const std::string& basisText) {
 
 namespace {
 constexpr const char* kOutputParameter = "output";
+constexpr const char* kHoldoutParameter = "holdout";
 
 // Writes `model` to `path` (writeFile: formats::writePtm or writeRti) and takes the file's
 // digests, while `written` (RunSettings::ptmWritten or hshWritten, when set) gets the model on
@@ -75,6 +78,7 @@ FileDigests writeModel(const std::filesystem::path& path, const Model& model,
 pipeline::Parameters RtiFitOptions::toParameters() const {
   pipeline::Parameters p = fit.toParameters();
   if (!output.empty()) p.emplace_back(kOutputParameter, output);
+  if (holdout > 0) p.emplace_back(kHoldoutParameter, std::to_string(holdout));
   return p;
 }
 
@@ -82,8 +86,17 @@ RtiFitOptions RtiFitOptions::fromParameters(const pipeline::Parameters& paramete
   RtiFitOptions o;
   pipeline::Parameters fitParameters;
   for (const auto& [name, value] : parameters) {
-    if (name == kOutputParameter) o.output = checkedOutputPath(value);
-    else fitParameters.emplace_back(name, value);
+    if (name == kOutputParameter) {
+      o.output = checkedOutputPath(value);
+    } else if (name == kHoldoutParameter) {
+      char* end = nullptr;
+      const long k = std::strtol(value.c_str(), &end, 10);
+      if (end == value.c_str() || *end || k < 0 || k > 1000)
+        throw Error(ErrorKind::Input, "holdout=" + value, "RtiFit", "needs a whole number of photographs, 0 to 1000");
+      o.holdout = static_cast<int>(k);
+    } else {
+      fitParameters.emplace_back(name, value);
+    }
   }
   o.fit = fit::FitOptions::fromParameters(fitParameters);
   return o;
@@ -111,8 +124,10 @@ pipeline::StageInfo RtiFitStage::info() {
       // files are the same. Version 6: lights at known positions (LightDirections version 7,
       // value nearLights): each pixel is fitted to its own light directions and its values
       // brought to the frame centre's light by the inverse square of its distance
-      // (fit/near_lights.h); lights at infinity give version 5's bytes.
-      {kComponent, "6", "Least-squares fit of a per-pixel reflectance model over the light directions",
+      // (fit/near_lights.h); lights at infinity give version 5's bytes. Version 7: parameter
+      // holdout K > 0 also fits without K photographs and records the model's PSNR and SSIM at
+      // their lights (stages/held_out_record.h); the files are version 6's.
+      {kComponent, "7", "Least-squares fit of a per-pixel reflectance model over the light directions",
        pipeline::PlanSlot::EachModel});
   info.forModel = [](const std::string& basis) { return RtiFitOptions::forBasis(basis).toParameters(); };
   // The learned bases (rbf, bln) are LearnedFit's (stages/learned_fit_stage.h).
@@ -249,6 +264,20 @@ void RtiFitStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
                                                std::to_string(fit::basisTerms(options.basis)) +
                                                " terms of " + basis + " (rank " + std::to_string(stats.rank) +
                                                "): add lights at other elevations and azimuths");
+  if (recorded.holdout > 0) {
+    // A near-light model is relit at a direction, not at a pixel's own light and distance: its
+    // figure at an unseen light would not be the photograph's. Said, not measured.
+    if (nearCount > 0) {
+      ctx.carrier.addLog("warning", step.id,
+                         basis + ": not measured at lights left out (holdout " + std::to_string(recorded.holdout) +
+                             "): the lights are at known positions, and the comparison is made for lights at infinity");
+    } else {
+      ModelRecipe recipe;
+      recipe.basis = basis;
+      recipe.threads = ctx.settings.threads;
+      measureAndRecordHeldOut(step, ctx, result, recipe, *rgb, *lights, recorded.holdout);
+    }
+  }
   ctx.put(modelKey(basis), model);
 }
 

@@ -16,12 +16,14 @@ std::string modelKey(const std::string& basis);
 // Where RtiFit writes a basis unless told otherwise: finished-files/ptm-lrgb.ptm, .../hsh2.rti.
 std::string defaultFitOutput(const std::string& basis);
 
-// The parameters of RtiFit: the fit's (fit::FitOptions: basis) and where the model goes.
+// The parameters of RtiFit: the fit's (fit::FitOptions: basis), where the model goes, and how
+// many photographs a second fit leaves out to measure the model at unseen lights.
 struct RtiFitOptions {
   fit::FitOptions fit;
   std::string output;  // relative to the capture; empty: defaultFitOutput(basis)
+  int holdout = 0;     // 0: not measured (stages/held_out_record.h)
 
-  pipeline::Parameters toParameters() const;  // basis, then output when given
+  pipeline::Parameters toParameters() const;  // basis, then output when given, holdout when > 0
   // Error(Input) for an unknown basis or name, or an output outside assembly-files/ and
   // finished-files/ (checkedOutputPath).
   static RtiFitOptions fromParameters(const pipeline::Parameters& parameters);

@@ -22,6 +22,7 @@
 #include "stages/registry.h"
 #include "stages/frame_checks.h"
 #include "stages/learned_fit_stage.h"
+#include "stages/rti_fit_stage.h"
 #include "stages/light_directions_stage.h"
 #include "stages/lights_from_file_stage.h"
 #include "stages/preprocess.h"
@@ -140,7 +141,7 @@ std::vector<std::string> parameterProblems(const carrier::Step& step,
     for (const auto& p : params)
       if (p.first != "output") fitParams.push_back(p);
     try {
-      fit::FitOptions::fromParameters(fitParams);
+      stages::RtiFitOptions::fromParameters(fitParams);  // the fit's and holdout (RtiFit 7)
     } catch (const Error& e) {
       out.push_back(e.text() + " (recorded: " + listed(params) + ")");
     }
@@ -216,7 +217,7 @@ bool checkSteps(const carrier::Carrier& c, std::vector<Check>& checks) {
       for (const carrier::Param& p : step.params)
         if (p.name != "output") fitParams.emplace_back(p.name, p.value);
       try {
-        fittedBases.insert(fit::basisName(fit::FitOptions::fromParameters(fitParams).basis));
+        fittedBases.insert(fit::basisName(stages::RtiFitOptions::fromParameters(fitParams).fit.basis));
       } catch (const Error&) {
       }
     } else if (step.component == "LearnedFit") {

@@ -66,9 +66,17 @@ TEST_CASE("run --basis bln records the learned layout and verify reexecute repro
                             "heldOutSsim", "nearestBlendPsnr", "nearestBlendSsim"})
     CHECK(carrier.find("<value name=\"" + std::string(value) + "\"") != std::string::npos);
 
-  // The report shows the learned fit's figures and relights it.
+  // --holdout measures the PTM too (RtiFit's parameter), the same photographs left out.
+  std::smatch ptmStep;
+  REQUIRE(std::regex_search(carrier, ptmStep, std::regex("<step id=\"(s[0-9]+)\" component=\"RtiFit\"[\\s\\S]*?</step>")));
+  CHECK(ptmStep.str().find("<param name=\"holdout\" value=\"2\"/>") != std::string::npos);
+  CHECK(std::regex_search(carrier, std::regex("<result step=\"" + ptmStep[1].str() + "\"((?!</result>)[\\s\\S])*<value name=\"heldOutPsnr\"")));
+
+  // The report shows the learned fit's figures and relights it, and compares the two fits at
+  // the photographs left out.
   const std::string report = e2e::bytesOf(capture / "finished-files" / "report.html");
   CHECK(report.find("<table class=\"learned-fits\">") != std::string::npos);
+  CHECK(report.find("<table class=\"held-out\">") != std::string::npos);
   CHECK(report.find("\"model\":\"learned\",\"basis\":\"bln\"") != std::string::npos);
   CHECK(report.find(">Bilinear (learned)</button>") != std::string::npos);
 
@@ -135,6 +143,11 @@ TEST_CASE("the learned options stand for later runs and are refused without a le
   CHECK(capped.find("<param name=\"planes\" value=\"54\"/>") != std::string::npos);
   CHECK(capped.find("name=\"planesFitted\" value=\"51\"") != std::string::npos);
   CHECK(capped.find("51 planes (the 18 photographs hold no more; 54 asked)") != std::string::npos);
+  const e2e::CommandResult terms =
+      e2e::surrogate("run " + e2e::quote(capture) + " --basis hsh3 --basis rbf --holdout 10 --quiet");
+  CHECK(terms.exitCode == 2);
+  CHECK(terms.output.find("--holdout 10: hsh3 fits 9 coefficients per pixel") != std::string::npos);
+  CHECK(terms.output.find("leave out at most 9") != std::string::npos);
   const e2e::CommandResult left = e2e::surrogate("run " + e2e::quote(capture) + " --holdout 15 --quiet");
   CHECK(left.exitCode == 2);
   CHECK(left.output.find("leave out at most 14") != std::string::npos);
