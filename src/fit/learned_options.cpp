@@ -1,7 +1,7 @@
 #include <cstdlib>
-#include <sstream>
 
 #include "core/error.h"
+#include "core/text.h"
 #include "fit/learned.h"
 
 namespace surrogate::fit {
@@ -19,13 +19,6 @@ LearnedKind parseLearnedKind(const std::string& name) {
 
 namespace {
 
-std::string number(double v) {
-  std::ostringstream s;
-  s.precision(17);
-  s << v;
-  return s.str();
-}
-
 [[noreturn]] void unknown(const std::string& what) {
   throw Error(ErrorKind::Input, "carrier", "fit", "the recorded learned-basis " + what + " is unknown to this version");
 }
@@ -36,8 +29,8 @@ std::vector<std::pair<std::string, std::string>> LearnedOptions::toParameters() 
   std::vector<std::pair<std::string, std::string>> p = {{"basis", learnedKindName(kind)},
                                                         {"planes", std::to_string(planes)}};
   if (kind == LearnedKind::Bilinear) p.push_back({"resolution", std::to_string(resolution)});
-  if (kernelWidth > 0) p.push_back({"kernelWidth", number(kernelWidth)});
-  if (ridge > 0) p.push_back({"ridge", number(ridge)});
+  if (kernelWidth > 0) p.push_back({"kernelWidth", formatNumber(kernelWidth)});
+  if (ridge > 0) p.push_back({"ridge", formatNumber(ridge)});
   return p;
 }
 

@@ -20,14 +20,7 @@ std::string heldOutTable(const carrier::Carrier& c) {
     if (step.component != "RtiFit" && step.component != "LearnedFit") continue;
     const carrier::Result* r = c.findResult(step.id);
     if (!r) continue;
-    std::map<std::string, double> v;
-    for (const carrier::DataItem* item : r->itemsOf("value")) {
-      try {
-        v[item->get("name").value_or("")] = item->number("value");
-      } catch (const Error&) {
-        // a figure that is not a number is left out
-      }
-    }
+    const std::map<std::string, double> v = numericValues(*r);
     if (!v.count("heldOutPsnr")) continue;
     classic = classic || step.component == "RtiFit";
     const auto shown = [&](const char* name, int digits) {

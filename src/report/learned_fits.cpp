@@ -13,6 +13,18 @@
 
 namespace surrogate::report {
 
+std::map<std::string, double> numericValues(const carrier::Result& result) {
+  std::map<std::string, double> v;
+  for (const carrier::DataItem* item : result.itemsOf("value")) {
+    try {
+      v[item->get("name").value_or("")] = item->number("value");
+    } catch (const Error&) {
+      // a figure that is not a number is shown as "-"
+    }
+  }
+  return v;
+}
+
 std::string learnedFitsTable(const carrier::Carrier& c) {
   std::ostringstream rows;
   bool heldOut = false;
@@ -20,14 +32,7 @@ std::string learnedFitsTable(const carrier::Carrier& c) {
     if (step.component != "LearnedFit") continue;
     const carrier::Result* r = c.findResult(step.id);
     if (!r) continue;
-    std::map<std::string, double> v;
-    for (const carrier::DataItem* item : r->itemsOf("value")) {
-      try {
-        v[item->get("name").value_or("")] = item->number("value");
-      } catch (const Error&) {
-        // a figure that is not a number is shown as "-"
-      }
-    }
+    std::map<std::string, double> v = numericValues(*r);
     const auto shown = [&](const char* name, int digits) {
       const auto it = v.find(name);
       return it == v.end() ? std::string("-") : displayNumber(it->second, digits);

@@ -4,6 +4,7 @@
 
 #include <functional>
 #include <optional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,8 @@ std::string stepTitle(const carrier::Step& step);
 std::string takenText(const std::string& exifDateTime);
 // A fitted model as people name it: "ptm-lrgb" -> "PTM (LRGB)", "hsh2" -> "HSH order 2".
 std::string modelTitle(const std::string& basis);
+// A step result's values that are numbers, by name (a value that is not a number is left out).
+std::map<std::string, double> numericValues(const carrier::Result& result);
 // The learned fits' figures (learned_fits.cpp), "" when the carrier has none.
 std::string learnedFitsTable(const carrier::Carrier& c);
 // Every fit's PSNR and SSIM at the photographs `--holdout` left out, when a PTM or HSH fit has

@@ -1,6 +1,5 @@
 #include "stages/learned_fit_stage.h"
 
-#include <charconv>
 #include <filesystem>
 
 #include "capture/capture.h"
@@ -13,6 +12,7 @@
 #include "stages/held_out_record.h"
 #include "stages/inputs.h"
 #include "stages/outputs.h"
+#include "stages/recorded_numbers.h"
 #include "stages/rti_fit_stage.h"
 
 namespace surrogate::stages {
@@ -23,18 +23,6 @@ using Lights = std::vector<std::array<double, 3>>;
 namespace {
 constexpr const char* kStep = "learned fit";
 
-Error badParameter(const std::string& name, const std::string& value, const std::string& what) {
-  return Error(ErrorKind::Input, name + "=" + value, kStep, what);
-}
-
-int integerIn(const std::string& name, const std::string& value, int low, int high) {
-  int v = 0;
-  const char* end = value.data() + value.size();
-  const auto r = std::from_chars(value.data(), end, v);
-  if (r.ec != std::errc() || r.ptr != end || v < low || v > high)
-    throw badParameter(name, value, "needs a whole number from " + std::to_string(low) + " to " + std::to_string(high));
-  return v;
-}
 
 // The planes' JPEG qualities as the viewer reads them: whole planes (no Deep Zoom tiles), one
 // quality for all.
@@ -60,19 +48,19 @@ LearnedFitOptions LearnedFitOptions::fromParameters(const pipeline::Parameters& 
   LearnedFitOptions o;
   for (const auto& [name, value] : parameters) {
     if (name == "basis") {
-      if (!fit::isLearnedBasisName(value)) throw badParameter(name, value, "is not a learned basis (rbf, bln)");
+      if (!fit::isLearnedBasisName(value)) throw badParameter(kStep, name, value, "is not a learned basis (rbf, bln)");
       o.basis = value;
     } else if (name == "planes") {
-      o.planes = integerIn(name, value, 3, 120);
-      if (o.planes % 3) throw badParameter(name, value, "needs a multiple of 3 (a JPEG plane holds three)");
+      o.planes = recordedInteger(kStep, name, value, 3, 120);
+      if (o.planes % 3) throw badParameter(kStep, name, value, "needs a multiple of 3 (a JPEG plane holds three)");
     } else if (name == "resolution") {
-      o.resolution = integerIn(name, value, 4, 32);
+      o.resolution = recordedInteger(kStep, name, value, 4, 32);
     } else if (name == "quality") {
-      o.quality = integerIn(name, value, 1, 100);
+      o.quality = recordedInteger(kStep, name, value, 1, 100);
     } else if (name == "holdout") {
-      o.holdout = integerIn(name, value, 0, 1000);
+      o.holdout = recordedInteger(kStep, name, value, 0, 1000);
     } else {
-      throw badParameter(name, value,
+      throw badParameter(kStep, name, value,
                          "is not a parameter of LearnedFit (basis, planes, resolution, quality, holdout)");
     }
   }

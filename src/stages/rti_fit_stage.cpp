@@ -1,7 +1,6 @@
 #include "stages/rti_fit_stage.h"
 
 #include <algorithm>
-#include <cstdlib>
 #include <array>
 #include <cmath>
 #include <functional>
@@ -22,6 +21,7 @@
 #include "stages/held_out_record.h"
 #include "stages/inputs.h"
 #include "stages/outputs.h"
+#include "stages/recorded_numbers.h"
 #include "stages/recorded_checks.h"
 
 namespace surrogate::stages {
@@ -89,11 +89,7 @@ RtiFitOptions RtiFitOptions::fromParameters(const pipeline::Parameters& paramete
     if (name == kOutputParameter) {
       o.output = checkedOutputPath(value);
     } else if (name == kHoldoutParameter) {
-      char* end = nullptr;
-      const long k = std::strtol(value.c_str(), &end, 10);
-      if (end == value.c_str() || *end || k < 0 || k > 1000)
-        throw Error(ErrorKind::Input, "holdout=" + value, "RtiFit", "needs a whole number of photographs, 0 to 1000");
-      o.holdout = static_cast<int>(k);
+      o.holdout = recordedInteger("RtiFit", name, value, 0, 1000);
     } else {
       fitParameters.emplace_back(name, value);
     }

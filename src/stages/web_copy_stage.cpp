@@ -1,6 +1,5 @@
 #include "stages/web_copy_stage.h"
 
-#include <charconv>
 #include <filesystem>
 
 #include "capture/capture.h"
@@ -12,6 +11,7 @@
 #include "publish/web_layout.h"
 #include "stages/rti_fit_stage.h"
 #include "stages/outputs.h"
+#include "stages/recorded_numbers.h"
 
 namespace surrogate::stages {
 
@@ -20,18 +20,6 @@ namespace fs = std::filesystem;
 namespace {
 constexpr const char* kStep = "web copy";
 
-Error badParameter(const std::string& name, const std::string& value, const std::string& what) {
-  return Error(ErrorKind::Input, name + "=" + value, kStep, what);
-}
-
-int integerIn(const std::string& name, const std::string& value, int low, int high) {
-  int v = 0;
-  const char* end = value.data() + value.size();
-  const auto r = std::from_chars(value.data(), end, v);
-  if (r.ec != std::errc() || r.ptr != end || v < low || v > high)
-    throw badParameter(name, value, "needs a whole number from " + std::to_string(low) + " to " + std::to_string(high));
-  return v;
-}
 
 // What a file of the layout is, for the carrier: format, media type and the output's kind.
 struct FileKind {
@@ -82,19 +70,19 @@ WebCopyOptions WebCopyOptions::fromParameters(const pipeline::Parameters& parame
       try {
         fit::parseBasis(value);
       } catch (const Error&) {
-        throw badParameter(name, value, "is not a model Surrogate fits (ptm-lrgb, ptm-rgb, hsh2, hsh3)");
+        throw badParameter(kStep, name, value, "is not a model Surrogate fits (ptm-lrgb, ptm-rgb, hsh2, hsh3)");
       }
       o.model = value;
     } else if (name == "quality") {
-      o.quality = integerIn(name, value, 1, 100);
+      o.quality = recordedInteger(kStep, name, value, 1, 100);
     } else if (name == "tiles") {
       if (value != "auto" && value != "none" && value != "deepzoom")
-        throw badParameter(name, value, "is not a tile layout (auto, none, deepzoom)");
+        throw badParameter(kStep, name, value, "is not a tile layout (auto, none, deepzoom)");
       o.tiles = value;
     } else if (name == "tileSize") {
-      o.tileSize = integerIn(name, value, 16, 4096);
+      o.tileSize = recordedInteger(kStep, name, value, 16, 4096);
     } else {
-      throw badParameter(name, value, "is not a parameter of WebCopy (model, quality, tiles, tileSize)");
+      throw badParameter(kStep, name, value, "is not a parameter of WebCopy (model, quality, tiles, tileSize)");
     }
   }
   return o;
