@@ -10,7 +10,8 @@
 //                 [--config bln:27:12:95]... [--web-quality 95] [--threads 0]
 //   learned_bases --lp ALL.lp --folds 8 [--relight-cli EXE --relight-args "-b bilinear -p 27 -I srgb"]...
 //
-// --config kind:planes:resolution:quality (kind rbf or bln; resolution ignored for rbf).
+// --config kind:planes:resolution:quality (kind rbf or bln; resolution ignored for rbf; quality
+// Q for every plane or Q-LAST from the first plane to the last).
 // --folds K: fold f leaves out the photographs at .lp rows f, f + K, f + 2K, ... (a dome listed
 // ring by ring is thus spread over each fold); the figures pool all folds' held-out images.
 // --relight DIR: a layout relight-cli fitted on the --fit photographs (fit/test mode only).
@@ -133,7 +134,7 @@ Evaluated runRelight(const Options& o, const Photographs& fit, const std::string
   return e;
 }
 
-fit::LearnedOptions parseConfig(const std::string& text, int threads, int* quality) {
+fit::LearnedOptions parseConfig(const std::string& text, int threads, int* quality, int* lastQuality) {
   std::vector<std::string> parts;
   std::size_t from = 0;
   for (std::size_t colon; (colon = text.find(':', from)) != std::string::npos; from = colon + 1)
@@ -147,7 +148,10 @@ fit::LearnedOptions parseConfig(const std::string& text, int threads, int* quali
   options.resolution = std::stoi(parts[2]);
   if (options.kind == fit::LearnedKind::Rbf || options.resolution == 0) options.resolution = 12;
   options.threads = threads;
-  *quality = std::stoi(parts[3]);
+  // "90" for every plane, "90-40" from the first plane to the last.
+  const std::size_t dash = parts[3].find('-');
+  *quality = std::stoi(parts[3].substr(0, dash));
+  *lastQuality = dash == std::string::npos ? *quality : std::stoi(parts[3].substr(dash + 1));
   return options;
 }
 
@@ -176,9 +180,9 @@ void evaluateFold(const Options& o, const Photographs& fitPhotos, const std::vec
   for (fit::Basis b : {fit::Basis::PtmLrgb, fit::Basis::Hsh2, fit::Basis::Hsh3})
     for (bool web : {false, true}) score(evaluateSurrogate(fold, b, web, o.webQuality, o.threads), fold, order, rows);
   for (const std::string& c : o.configs) {
-    int quality = 95;
-    fit::LearnedOptions options = parseConfig(c, o.threads, &quality);
-    score(evaluateLearned(fold, options, quality, scratch), fold, order, rows);
+    int quality = 95, lastQuality = 95;
+    fit::LearnedOptions options = parseConfig(c, o.threads, &quality, &lastQuality);
+    score(evaluateLearned(fold, options, quality, lastQuality, scratch), fold, order, rows);
   }
   if (firstFold) {
     for (const std::string& dir : o.relightLayouts) score(evaluateLayout(dir, o.threads), fold, order, rows);

@@ -92,7 +92,7 @@ Evaluated evaluateSurrogate(const Fold& fold, fit::Basis basis, bool web, int qu
   return e;
 }
 
-Evaluated evaluateLearned(const Fold& fold, const fit::LearnedOptions& options, int quality,
+Evaluated evaluateLearned(const Fold& fold, const fit::LearnedOptions& options, int quality, int lastQuality,
                           const fs::path& scratch) {
   const auto start = std::chrono::steady_clock::now();
   fit::LearnedModel model = fit::fitLearned(*fold.fit, fold.fitLights, options);
@@ -100,9 +100,10 @@ Evaluated evaluateLearned(const Fold& fold, const fit::LearnedOptions& options, 
   e.seconds = secondsSince(start);
   e.name = std::string(fit::learnedKindName(options.kind)) + " " + std::to_string(options.planes) +
            (options.kind == fit::LearnedKind::Bilinear ? " R" + std::to_string(options.resolution) : "") +
-           " q" + std::to_string(quality);
+           " q" + std::to_string(quality) + (lastQuality != quality ? "-" + std::to_string(lastQuality) : "");
   publish::PublishOptions publishOptions;
   publishOptions.quality = quality;
+  publishOptions.lastQuality = lastQuality;
   publishOptions.tiles = publish::TileLayout::None;
   const fs::path folder = freshFolder(scratch, "learned");
   publish::writeWebLayoutFolder(publish::webLayoutOf(model, publishOptions), folder);

@@ -44,9 +44,10 @@ struct Evaluated {
 // written, read back by readWebLayout and relit (`web` true).
 Evaluated evaluateSurrogate(const Fold& fold, fit::Basis basis, bool web, int quality, int threads);
 
-// fitLearned, then the artefact a viewer gets: webLayoutOf -> a temporary folder ->
+// fitLearned, then the artefact a viewer gets (JPEG quality from `quality` on the first plane to
+// `lastQuality` on the last): webLayoutOf -> a temporary folder ->
 // readWebLayout -> renderLearned.
-Evaluated evaluateLearned(const Fold& fold, const fit::LearnedOptions& options, int quality,
+Evaluated evaluateLearned(const Fold& fold, const fit::LearnedOptions& options, int quality, int lastQuality,
                           const std::filesystem::path& scratch);
 
 // A layout fitted elsewhere (relight-cli's): readWebLayout, then renderLearned or fit::render.

@@ -64,7 +64,8 @@ int runCommandFit(int argc, char** argv) {
       {"basis", true, false, "ptm-lrgb, ptm-rgb (for .ptm), hsh2, hsh3 (for .rti), rbf, bln (learned: a folder)", "BASIS"},
       {"planes", true, false, "rbf, bln: coefficients per pixel, a multiple of 3 (default " + std::to_string(stages::kLearnedPlanes) + ")", "N"},
       {"resolution", true, false, "bln: the side of the grid over the light directions (default " + std::to_string(stages::kLearnedResolution) + ")", "R"},
-      {"quality", true, false, "rbf, bln: JPEG quality of the planes, 1..100 (default " + std::to_string(stages::kLearnedQuality) + ")", "Q"},
+      {"quality", true, false, "rbf, bln: JPEG quality of the planes, 1..100, or Q:LAST from the first plane to the last (default " +
+                                   std::to_string(stages::kLearnedQuality) + ":" + std::to_string(stages::kLearnedLastQuality) + ")", "Q[:LAST]"},
       {"holdout", true, false, "also fit without K photographs and report PSNR/SSIM at their lights", "K"},
       {"threads", true, false, "worker threads (default: all cores)", "N"},
       {"memory", true, false, "memory budget (default 2G)", "SIZE"},
@@ -142,7 +143,18 @@ int runCommandFit(int argc, char** argv) {
   recipe.basis = basisName;
   recipe.learned.planes = args.intValue("planes", stages::kLearnedPlanes);
   recipe.learned.resolution = args.intValue("resolution", stages::kLearnedResolution);
-  recipe.web.quality = args.intValue("quality", stages::kLearnedQuality);
+  if (const auto quality = args.value("quality")) {
+    try {  // as a LearnedFit step records it
+      const stages::LearnedFitOptions q = stages::LearnedFitOptions::fromParameters({{"quality", *quality}});
+      recipe.web.quality = q.quality;
+      recipe.web.lastQuality = q.lastQuality;
+    } catch (const Error& e) {
+      throw Error(ErrorKind::Usage, "--quality " + *quality, "command line", e.message());
+    }
+  } else {
+    recipe.web.quality = stages::kLearnedQuality;
+    recipe.web.lastQuality = stages::kLearnedLastQuality;
+  }
   recipe.web.tiles = publish::TileLayout::None;
   // Everything the command line decides is checked before the photographs are decoded.
   if (learned) {

@@ -69,7 +69,8 @@ std::vector<OptionSpec> pipelineOptions(bool withFit) {
     // The learned fit's options (LearnedFit steps, stages/learned_fit_stage.h), as `surrogate fit` names them.
     specs.push_back({"planes", true, false, "rbf, bln: coefficients per pixel, a multiple of 3 (default " + std::to_string(stages::kLearnedPlanes) + ")", "N"});
     specs.push_back({"resolution", true, false, "bln: the side of the grid over the light directions (default " + std::to_string(stages::kLearnedResolution) + ")", "R"});
-    specs.push_back({"quality", true, false, "rbf, bln: JPEG quality of the planes, 1..100 (default " + std::to_string(stages::kLearnedQuality) + ")", "Q"});
+    specs.push_back({"quality", true, false, "rbf, bln: JPEG quality of the planes, 1..100, or Q:LAST from the first plane to the last (default " +
+                                             std::to_string(stages::kLearnedQuality) + ":" + std::to_string(stages::kLearnedLastQuality) + ")", "Q[:LAST]"});
     specs.push_back({"holdout", true, false, "every fit: also fit without K photographs and record PSNR/SSIM at their lights (0: not measured)", "K"});
     // Pre-processing of the images the fit reads (recorded steps WhiteBalance, Crop, Resize,
     // planned in that order after light estimation, which always reads the full frame).

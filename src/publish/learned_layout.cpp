@@ -81,8 +81,13 @@ std::vector<std::uint8_t> planeImage(const fit::LearnedModel& m, int j) {
 }  // namespace
 
 std::vector<int> planeQualitiesOf(const PublishOptions& options, int jpegs) {
-  std::vector<int> q = options.planeQualities.empty() ? std::vector<int>(static_cast<std::size_t>(jpegs), options.quality)
-                                                      : options.planeQualities;
+  std::vector<int> q = options.planeQualities;
+  if (q.empty()) {
+    const int last = options.lastQuality > 0 ? options.lastQuality : options.quality;
+    for (int j = 0; j < jpegs; ++j)
+      q.push_back(jpegs < 2 ? options.quality
+                            : static_cast<int>(std::lround(options.quality + double(last - options.quality) * j / (jpegs - 1))));
+  }
   if (q.size() != static_cast<std::size_t>(jpegs))
     throw Error(ErrorKind::Usage, "--quality", kStep,
                 "gives " + std::to_string(q.size()) + " plane qualities for " + std::to_string(jpegs) +

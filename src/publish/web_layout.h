@@ -64,6 +64,10 @@ struct PublishOptions {
   // so that planes of little energy can be compressed harder; empty = `quality` for all.
   // info.json's "quality" is then the highest used.
   std::vector<int> planeQualities;
+  // Learned layouts: when > 0 (and planeQualities is empty), the JPEG planes go from `quality`
+  // (the first, the planes of most energy) to this (the last) in equal steps, rounded: the later
+  // planes carry little of the image and lose little to a harder compression (docs/formats.md).
+  int lastQuality = 0;
   // Tiles let a web viewer load only the part and the resolution on screen, at the cost of
   // many small files and a third more bytes (the reduced levels).
   TileLayout tiles = TileLayout::Auto;

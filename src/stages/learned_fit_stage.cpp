@@ -24,11 +24,12 @@ namespace {
 constexpr const char* kStep = "learned fit";
 
 
-// The planes' JPEG qualities as the viewer reads them: whole planes (no Deep Zoom tiles), one
-// quality for all.
+// The planes' JPEG qualities as the viewer reads them: whole planes (no Deep Zoom tiles), from
+// `quality` on the first to `lastQuality` on the last.
 publish::PublishOptions webOptions(const LearnedFitOptions& o) {
   publish::PublishOptions web;
   web.quality = o.quality;
+  web.lastQuality = o.lastQuality;
   web.tiles = publish::TileLayout::None;
   return web;
 }
@@ -40,7 +41,7 @@ pipeline::Parameters LearnedFitOptions::toParameters() const {
   return {{"basis", basis},
           {"planes", std::to_string(planes)},
           {"resolution", std::to_string(resolution)},
-          {"quality", std::to_string(quality)},
+          {"quality", std::to_string(quality) + (lastQuality != quality ? ":" + std::to_string(lastQuality) : "")},
           {"holdout", std::to_string(holdout)}};
 }
 
@@ -56,7 +57,9 @@ LearnedFitOptions LearnedFitOptions::fromParameters(const pipeline::Parameters& 
     } else if (name == "resolution") {
       o.resolution = recordedInteger(kStep, name, value, 4, 32);
     } else if (name == "quality") {
-      o.quality = recordedInteger(kStep, name, value, 1, 100);
+      const std::size_t colon = value.find(':');
+      o.quality = recordedInteger(kStep, name, value.substr(0, colon), 1, 100);
+      o.lastQuality = colon == std::string::npos ? o.quality : recordedInteger(kStep, name, value.substr(colon + 1), 1, 100);
     } else if (name == "holdout") {
       o.holdout = recordedInteger(kStep, name, value, 0, 1000);
     } else {
@@ -133,7 +136,8 @@ void LearnedFitStage::run(const carrier::Step& step, pipeline::Context& ctx, car
                          ", PSNR " + fixedDecimals(stats.psnr, 2) +
                          " dB at the captured lights, " + fixedDecimals(stats.leaveOneOutPsnr, 2) +
                          " dB leaving each photograph out; " + std::to_string(layout.files.size()) + " files in " +
-                         folder + "/ (JPEG quality " + std::to_string(o.quality) + ")");
+                         folder + "/ (JPEG quality " + std::to_string(o.quality) +
+                         (o.lastQuality != o.quality ? " to " + std::to_string(o.lastQuality) : "") + ")");
   if (o.holdout > 0) {
     ModelRecipe recipe;
     recipe.basis = o.basis;
