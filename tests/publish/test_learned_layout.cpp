@@ -119,6 +119,18 @@ TEST_CASE("per-plane JPEG qualities are used and info.json gives the highest") {
   CHECK_THROWS_AS(publish::webLayoutOf(m, o), Error);
 }
 
+TEST_CASE("a quality ramp goes from the first plane to the last in equal rounded steps") {
+  publish::PublishOptions o;
+  o.quality = 90;
+  o.lastQuality = 40;
+  // 90 + (40 - 90) j / 14, rounded: 90, 86.4, 82.9, 79.3, ... 43.6, 40.
+  const std::vector<int> expected = {90, 86, 83, 79, 76, 72, 69, 65, 61, 58, 54, 51, 47, 44, 40};
+  CHECK(publish::planeQualitiesOf(o, 15) == expected);
+  CHECK(publish::planeQualitiesOf(o, 1) == std::vector<int>{90});
+  o.lastQuality = 0;  // no ramp: one quality for all
+  CHECK(publish::planeQualitiesOf(o, 3) == std::vector<int>{90, 90, 90});
+}
+
 TEST_CASE("closed forms: a light on a bilinear node and a light halfway between two rbf nodes") {
   // Bilinear R = 5: the light (0, 0, 1) falls on node (2, 2) = 12 with weight 1. Plane 0 byte
   // 200, plane 1 byte 177 with range 250 (+0.2), coefficient (255 / 255 - 0) * 1 = 1, the
