@@ -116,7 +116,7 @@ TEST_CASE("built-in stages keep their recorded names, versions and default param
   CHECK(r.info("DerivedMaps")->defaults == pipeline::Parameters{{"model", "ptm-lrgb"}});
   CHECK(r.info("RtiFit")->defaults == pipeline::Parameters{{"basis", "ptm-lrgb"}});
   CHECK(r.info("LearnedFit")->defaults == pipeline::Parameters{{"basis", "bln"}, {"planes", "45"}, {"resolution", "8"},
-                                                              {"quality", "75"}, {"holdout", "0"}});
+                                                              {"quality", "90:40"}, {"holdout", "0"}});
   CHECK(r.info("Audit")->defaults == pipeline::Parameters{{"angleThresholdDegrees", "2"},
                                                          {"reproducedMarginDb", "1"},
                                                          {"differenceImages", ""}});
