@@ -34,30 +34,6 @@ constexpr double kToneExplains = 0.5;
 // doubly encoded rendering); a fit outside says the error is no tone curve at all.
 constexpr double kToneMinGain = 0.25, kToneMaxGain = 4.0, kToneMinGamma = 0.4, kToneMaxGamma = 2.5;
 
-// Images [index] of another stack, in the order given.
-class SubsetStack : public ImageStack {
- public:
-  SubsetStack(const ImageStack& inner, std::vector<int> index) : inner_(inner), index_(std::move(index)) {}
-  int size() const override { return static_cast<int>(index_.size()); }
-  int width() const override { return inner_.width(); }
-  int height() const override { return inner_.height(); }
-  int channels() const override { return inner_.channels(); }
-  Transfer transfer() const override { return inner_.transfer(); }
-  void readRows(int i, int y0, int y1, std::uint16_t* out) const override {
-    inner_.readRows(index_[i], y0, y1, out);
-  }
-
- private:
-  const ImageStack& inner_;
-  std::vector<int> index_;
-};
-
-Image readImage(const ImageStack& stack, int index) {
-  Image im(stack.width(), stack.height(), stack.channels());
-  im.transfer = stack.transfer();
-  stack.readRows(index, 0, stack.height(), im.pixels.data());
-  return im;
-}
 
 // The photographs at the model's size (a uniform scale): area averaging to shrink, bilinear
 // to enlarge, on the values as encoded, as the exporting tools resize.

@@ -43,4 +43,11 @@ const std::uint16_t* MemoryImageStack::heldRow(int index, int y) const {
   return im.pixels.data() + static_cast<std::size_t>(y) * im.width * im.channels;
 }
 
+Image readImage(const ImageStack& stack, int index) {
+  Image im(stack.width(), stack.height(), stack.channels());
+  im.transfer = stack.transfer();
+  stack.readRows(index, 0, stack.height(), im.pixels.data());
+  return im;
+}
+
 }  // namespace surrogate

@@ -67,4 +67,27 @@ class MemoryImageStack : public ImageStack {
   std::vector<Image> images_;
 };
 
+// Images index[0], index[1], ... of another stack, which must outlive it: a fit on some of a
+// capture's photographs (the audit's refit without one, the quality at photographs left out,
+// stages/held_out_quality.h) reads them where they are, rows held in memory included.
+class SubsetStack : public ImageStack {
+ public:
+  SubsetStack(const ImageStack& inner, std::vector<int> index) : inner_(inner), index_(std::move(index)) {}
+  int size() const override { return static_cast<int>(index_.size()); }
+  int width() const override { return inner_.width(); }
+  int height() const override { return inner_.height(); }
+  int channels() const override { return inner_.channels(); }
+  Transfer transfer() const override { return inner_.transfer(); }
+  void readRows(int i, int y0, int y1, std::uint16_t* out) const override { inner_.readRows(index_[i], y0, y1, out); }
+  const std::uint16_t* heldRow(int i, int y) const override { return inner_.heldRow(index_[i], y); }
+  const std::uint8_t* heldByteRow(int i, int y) const override { return inner_.heldByteRow(index_[i], y); }
+
+ private:
+  const ImageStack& inner_;
+  std::vector<int> index_;
+};
+
+// Image `index` of a stack, whole, with the stack's transfer.
+Image readImage(const ImageStack& stack, int index);
+
 }  // namespace surrogate

@@ -1,6 +1,7 @@
 #include "stages/held_out_quality.h"
 
 #include "core/error.h"
+#include "core/stack.h"
 #include "fit/basis.h"
 #include "fit/render.h"
 #include "publish/learned_layout.h"
@@ -9,40 +10,13 @@
 
 namespace surrogate::stages {
 
-namespace {
-
-// The photographs of a stack but some, in order: the fit sees only these.
-class SubsetStack : public ImageStack {
- public:
-  SubsetStack(const ImageStack& base, std::vector<int> keep) : base_(base), keep_(std::move(keep)) {}
-  int size() const override { return static_cast<int>(keep_.size()); }
-  int width() const override { return base_.width(); }
-  int height() const override { return base_.height(); }
-  int channels() const override { return base_.channels(); }
-  Transfer transfer() const override { return base_.transfer(); }
-  void readRows(int index, int y0, int y1, std::uint16_t* out) const override {
-    base_.readRows(keep_[index], y0, y1, out);
-  }
-  const std::uint16_t* heldRow(int index, int y) const override { return base_.heldRow(keep_[index], y); }
-  const std::uint8_t* heldByteRow(int index, int y) const override { return base_.heldByteRow(keep_[index], y); }
-
- private:
-  const ImageStack& base_;
-  std::vector<int> keep_;
-};
-
-Image photograph(const ImageStack& stack, int index) {
-  Image image(stack.width(), stack.height(), stack.channels());
-  stack.readRows(index, 0, stack.height(), image.pixels.data());
-  return image;
-}
-
-}  // namespace
-
 fit::LearnedModel learnedAsViewed(const fit::LearnedModel& model, const publish::PublishOptions& web) {
   publish::PublishOptions whole = web;
   whole.tiles = publish::TileLayout::None;
-  const publish::WebLayoutFiles files = publish::webLayoutOf(model, whole);
+  return learnedAsViewed(model, publish::webLayoutOf(model, whole));
+}
+
+fit::LearnedModel learnedAsViewed(const fit::LearnedModel& model, const publish::WebLayoutFiles& files) {
   std::vector<std::vector<std::uint8_t>> planes;
   for (int j = 0; j < model.planes / 3; ++j) {
     const std::string name = "plane_" + std::to_string(j) + ".jpg";
@@ -93,7 +67,7 @@ HeldOutQuality measureHeldOut(const ImageStack& stack, const std::vector<std::ar
   }
   std::vector<fit::HeldOutScore> blends;
   for (int i : q.indices) {
-    const Image truth = photograph(stack, i);
+    const Image truth = readImage(stack, i);
     const Image relit = isLearned ? fit::renderLearned(learned, lights[i], recipe.threads)
                                   : classic->render(lights[i], fit::RenderOptions{});
     q.perLight.push_back(fit::compareImages(relit, truth));

@@ -45,5 +45,8 @@ HeldOutQuality measureHeldOut(const ImageStack& stack, const std::vector<std::ar
 
 // A learned model as a viewer reads it: its planes through the JPEG compression `web` asks for.
 fit::LearnedModel learnedAsViewed(const fit::LearnedModel& model, const publish::PublishOptions& web);
+// The same from the layout already made of it (publish::webLayoutOf, whole planes): its JPEGs
+// decoded, not encoded again.
+fit::LearnedModel learnedAsViewed(const fit::LearnedModel& model, const publish::WebLayoutFiles& layout);
 
 }  // namespace surrogate::stages

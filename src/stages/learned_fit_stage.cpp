@@ -147,7 +147,7 @@ void LearnedFitStage::run(const carrier::Step& step, pipeline::Context& ctx, car
     measureAndRecordHeldOut(step, ctx, result, recipe, *rgb, *lights, o.holdout);
   }
   // As a viewer shows it: maps, previews and the report's view see the planes' JPEG compression.
-  ctx.put(modelKey(o.basis), std::shared_ptr<fit::Relightable>(fit::makeRelightable(learnedAsViewed(model, web))));
+  ctx.put(modelKey(o.basis), std::shared_ptr<fit::Relightable>(fit::makeRelightable(learnedAsViewed(model, layout))));
 }
 
 }  // namespace surrogate::stages
