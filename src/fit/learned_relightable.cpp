@@ -14,41 +14,6 @@ namespace surrogate::fit {
 
 namespace {
 const char* const kStep = "render";
-constexpr double kPi = 3.14159265358979323846;
-
-std::vector<std::array<double, 3>> lambertLights() {
-  std::vector<std::array<double, 3>> d;
-  for (double elevation : {30.0, 50.0, 70.0})
-    for (int a = 0; a < 8; ++a) {
-      const double e = elevation * kPi / 180, phi = a * kPi / 4;
-      d.push_back({std::cos(e) * std::cos(phi), std::cos(e) * std::sin(phi), std::sin(e)});
-    }
-  d.push_back({0, 0, 1});
-  return d;
-}
-
-// Q = (D^T D)^-1 D^T, 3 x K row-major, for the K directions D.
-std::vector<double> lambertSolve(const std::vector<std::array<double, 3>>& d) {
-  double m[3][3] = {};
-  for (const auto& v : d)
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) m[r][c] += v[r] * v[c];
-  const double det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
-                     m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
-                     m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
-  double inv[3][3];
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) {
-      // cofactor of (c, r), transposed: the adjugate
-      const int r1 = (c + 1) % 3, r2 = (c + 2) % 3, c1 = (r + 1) % 3, c2 = (r + 2) % 3;
-      inv[r][c] = (m[r1][c1] * m[r2][c2] - m[r1][c2] * m[r2][c1]) / det;
-    }
-  std::vector<double> q(3 * d.size());
-  for (int r = 0; r < 3; ++r)
-    for (std::size_t k = 0; k < d.size(); ++k)
-      q[static_cast<std::size_t>(r) * d.size() + k] = inv[r][0] * d[k][0] + inv[r][1] * d[k][1] + inv[r][2] * d[k][2];
-  return q;
-}
 
 Image picture(int w, int h, int bits, Transfer transfer) {
   Image out(w, h, 3);
@@ -141,24 +106,32 @@ class LearnedRelightable : public Relightable {
   // fn(x, y, normal, found) for every texel, rows over threads; the sum of fn's results. The
   // Lambertian vector is linear in the texel's coefficient bytes (the viewer's sums, unclamped),
   // so Q (base_d + A_d byte) is folded into b0 + G byte once: 3 x P numbers a texel rather than
-  // 25 relightings.
+  // 61 relightings.
   int eachTexel(int threads, const std::function<int(int, int, const std::array<double, 3>&, bool)>& fn) const {
-    static const std::vector<std::array<double, 3>> lights = lambertLights();
-    static const std::vector<double> q = lambertSolve(lights);
-    const std::size_t k = lights.size(), P = static_cast<std::size_t>(m_.planes);
+    // Per channel, the table of the viewer's value at each direction of fit/lambert.h as an
+    // affine function of the bytes (column 0 the constant, column p + 1 byte p's factor),
+    // folded by lambertOfBasis; the mean of the three channels' b.
+    const LambertDirections& lambert = lambertDirections();
+    const std::size_t k = lambert.directions.size(), P = static_cast<std::size_t>(m_.planes), terms = P + 1;
+    std::vector<std::vector<float>> weights;
+    for (const auto& d : lambert.directions) weights.push_back(learnedLightWeights(m_, d));
     std::array<double, 3> b0{};
     std::vector<double> G(3 * P, 0.0);
-    for (std::size_t d = 0; d < k; ++d) {
-      const std::vector<float> w = learnedLightWeights(m_, lights[d]);
-      for (int c = 0; c < 3; ++c) {
-        // The channel's value: w_c - sum_p w_pc bias_p scale_p + sum_p (w_pc scale_p / 255) byte_p.
+    for (int c = 0; c < 3; ++c) {
+      std::vector<double> table(k * terms);
+      for (std::size_t d = 0; d < k; ++d) {
+        const std::vector<float>& w = weights[d];
         double base = w[static_cast<std::size_t>(c)];
-        for (std::size_t p = 0; p < P; ++p) base -= w[(p + 1) * 3 + c] * m_.bias[p] * m_.scale[p];
-        for (std::size_t r = 0; r < 3; ++r) {
-          const double f = q[r * k + d] / 3.0;  // the mean of the three channels' b
-          b0[r] += f * base;
-          for (std::size_t p = 0; p < P; ++p) G[r * P + p] += f * w[(p + 1) * 3 + c] * m_.scale[p] / 255.0;
+        for (std::size_t p = 0; p < P; ++p) {
+          base -= w[(p + 1) * 3 + c] * m_.bias[p] * m_.scale[p];
+          table[d * terms + 1 + p] = w[(p + 1) * 3 + c] * m_.scale[p] / 255.0;
         }
+        table[d * terms] = base;
+      }
+      const std::vector<double> qb = lambertOfBasis(table, static_cast<int>(terms));
+      for (std::size_t r = 0; r < 3; ++r) {
+        b0[r] += qb[r * terms] / 3.0;
+        for (std::size_t p = 0; p < P; ++p) G[r * P + p] += qb[r * terms + 1 + p] / 3.0;
       }
     }
     std::vector<int> rows(static_cast<std::size_t>(m_.height), 0);

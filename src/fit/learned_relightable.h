@@ -7,8 +7,8 @@
 //               closed-form normal or polynomial to enhance around;
 //   normals:    a least-squares Lambertian fit b = rho n of the model as the viewer computes it
 //               (values 0..1 before the viewer's clamp, so that b is linear in the texel's
-//               bytes) at kLearnedLambertDirections fixed directions, the mean of the three
-//               channels' b; (0, 0, 1) where b is 0 or faces away (fit/lambert.h);
+//               bytes) at fit/lambert.h's 61 directions (those of every model), the mean of
+//               the three channels' b; (0, 0, 1) where b is 0 or faces away;
 //   albedo:     the model at that normal (0..255 units, as the PTM's and HSH's albedo); for rbf
 //               the weights at the normal come from a 65 x 65 table over the octahedral map.
 //
@@ -22,10 +22,6 @@
 #include "fit/render.h"
 
 namespace surrogate::fit {
-
-// 3 elevations (30, 50, 70 degrees) x 8 azimuths (0, 45, ... 315) and the zenith: enough to
-// fix the three unknowns of b; the fit folds them into 3 x planes numbers (see the .cpp).
-constexpr int kLearnedLambertDirections = 25;
 
 std::unique_ptr<Relightable> makeRelightable(LearnedModel model);
 
