@@ -163,10 +163,7 @@ int runCommandFit(int argc, char** argv) {
     publish::planeQualitiesOf(recipe.web, recipe.learned.planes / 3);
   }
   const int holdout = args.intValue("holdout", 0);
-  if (args.has("holdout") && (holdout < 1 || holdout > static_cast<int>(lights.size()) - 4))
-    throw Error(ErrorKind::Usage, "--holdout " + std::to_string(holdout), "command line",
-                "leave out 1 to " + std::to_string(std::max(1, static_cast<int>(lights.size()) - 4)) + " of the " +
-                    std::to_string(lights.size()) + " photographs the .lp names: the fit needs at least 4");
+  if (args.has("holdout")) stages::checkHoldoutCount(holdout, static_cast<int>(lights.size()));
   ProgressBar bar(args.has("quiet") || args.has("json"));
   pipeline::RunSettings run;
   run.threads = threads;
@@ -175,7 +172,8 @@ int runCommandFit(int argc, char** argv) {
   // The output model is held besides the stacks: counted when deciding whether they stay in
   // memory, and the stacks held there leave the fit what remains of the budget.
   const stages::DecodedStacks decoded = stages::decodeImages(
-      files, image::RawDecodeSettings(), run, {}, stages::modelBytesPerPixel(learned ? "hsh3" : fit::basisName(basis)));
+      files, image::RawDecodeSettings(), run, {}, learned ? static_cast<std::uint64_t>(recipe.learned.planes)  // one byte a plane
+                                                    : stages::modelBytesPerPixel(fit::basisName(basis)));
   run.heldBytes = decoded.bytesInMemory;
 
   recipe.threads = run.threads;

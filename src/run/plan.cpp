@@ -25,6 +25,7 @@
 #include "stages/audit_stage.h"
 #include "stages/decode_stage.h"
 #include "stages/ingest_stage.h"
+#include "stages/held_out_quality.h"
 #include "stages/learned_fit_stage.h"
 #include "stages/rti_fit_stage.h"
 #include "stages/registry.h"
@@ -256,11 +257,7 @@ void checkLearnedPhotographs(const std::string& basis, const RunRequest& request
                     ". Include more photographs, or fit --basis hsh2");
   // --holdout K fits again on N - K photographs, with as many planes as they hold
   // (fit::learnedPlanesFor): at least 4 of them must remain.
-  const int kept = photographs - options.holdout;
-  if (options.holdout > 0 && kept < 4)
-    throw Error(ErrorKind::Usage, "--holdout " + std::to_string(options.holdout), "command line",
-                "the fit without them has " + std::to_string(kept) + " photographs, and " + basis +
-                    " needs at least 4: leave out at most " + std::to_string(std::max(0, photographs - 4)));
+  if (options.holdout > 0) stages::checkHoldoutCount(options.holdout, photographs);
 }
 
 // Every basis to fit needs at least as many photographs as it has coefficients: checked before

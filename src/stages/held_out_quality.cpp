@@ -28,13 +28,17 @@ fit::LearnedModel learnedAsViewed(const fit::LearnedModel& model, const publish:
   return viewed;
 }
 
+void checkHoldoutCount(int count, int photographs) {
+  if (count < 1 || count > photographs - 4)
+    throw Error(ErrorKind::Usage, "--holdout " + std::to_string(count), "command line",
+                "leave out at most " + std::to_string(std::max(0, photographs - 4)) + " of the " +
+                    std::to_string(photographs) + " photographs, and at least 1: the fit without them keeps at least 4");
+}
+
 HeldOutQuality measureHeldOut(const ImageStack& stack, const std::vector<std::array<double, 3>>& lights,
                               const ModelRecipe& recipe, int count) {
   const int N = stack.size();
-  if (count < 1 || count > N - 4)
-    throw Error(ErrorKind::Usage, "--holdout " + std::to_string(count), "command line",
-                "leave out 1 to " + std::to_string(std::max(1, N - 4)) + " of the " + std::to_string(N) +
-                    " photographs: the fit needs at least 4 (and as many as its basis has terms)");
+  checkHoldoutCount(count, N);
   HeldOutQuality q;
   q.indices = fit::chooseHeldOut(lights, count);
   std::vector<int> keep;

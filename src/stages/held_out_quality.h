@@ -38,8 +38,12 @@ struct HeldOutQuality {
   fit::HeldOutScore nearestBlend;           // the three nearest photographs, pooled
 };
 
-// Throws what the fit throws (too few photographs left for the basis, ...) and Error(Usage)
-// naming "--holdout" for a count outside 1..N-4.
+// Error(Usage) naming "--holdout K" unless 1 <= K <= N - 4: a fit keeps at least 4 photographs.
+// What fit, run and measureHeldOut check, before any work where they can.
+void checkHoldoutCount(int count, int photographs);
+
+// Throws what the fit throws (too few photographs left for the basis, ...) and
+// checkHoldoutCount's error.
 HeldOutQuality measureHeldOut(const ImageStack& stack, const std::vector<std::array<double, 3>>& lights,
                               const ModelRecipe& recipe, int count);
 
