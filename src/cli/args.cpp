@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <map>
 #include <sstream>
 
 #include "core/error.h"
@@ -14,49 +15,84 @@ namespace {
 [[noreturn]] void usage(const std::string& option, const std::string& message) {
   throw Error(ErrorKind::Usage, option, "command line", message);
 }
+
+// What an unknown option most likely meant: for one letter, the long option people abbreviate
+// that way (-q --quiet, -v --verbose) or the only one beginning with it; for a word given with
+// one dash, the option of that name; else the nearest name within two letters (nearestName).
+std::optional<std::string> suggestionFor(const std::string& name, const std::vector<OptionSpec>& specs) {
+  std::vector<std::string> names;
+  for (const OptionSpec& s : specs) names.push_back(s.name);
+  const auto known = [&](const std::string& n) { return std::find(names.begin(), names.end(), n) != names.end(); };
+  if (name.size() == 1) {
+    static const std::map<char, std::string> usual = {{'q', "quiet"}, {'v', "verbose"}, {'j', "jobs"},
+                                                      {'t', "threads"}, {'n', "dry-run"}};
+    if (const auto it = usual.find(name[0]); it != usual.end() && known(it->second)) return it->second;
+  } else if (known(name)) {
+    return name;
+  }
+  return nearestName(name, names);
+}
+
+// "-o" as people type a one-letter option, "--output" for the others.
+std::string typedName(const std::string& name) { return name.size() == 1 ? "-" + name : "--" + name; }
+
 }  // namespace
 
+std::string optionName(const std::string& name) { return typedName(name); }
+
 Args::Args(int argc, char** argv, int first, std::vector<OptionSpec> specs) {
+  // The command, for a message that points to its --help.
+  const std::string command = first >= 1 && argc >= 1 ? std::string(argv[0]) : std::string();
+  bool optionsEnd = false;
   for (int i = first; i < argc; ++i) {
-    std::string arg = argv[i];
+    const std::string arg = argv[i];
+    if (optionsEnd) {
+      positional_.push_back(arg);
+      continue;
+    }
     if (arg == "--help" || arg == "-h") {
       help_ = true;
       continue;
     }
-    // A one-letter option may be given with one dash, as people type it: -o FILE.
-    if (arg.size() == 2 && arg[0] == '-' && std::isalpha(static_cast<unsigned char>(arg[1]))) {
-      for (const OptionSpec& s : specs)
-        if (s.name == arg.substr(1)) arg = "-" + arg;
+    if (arg == "--") {  // what follows is positional, even a name that begins with a dash
+      optionsEnd = true;
+      continue;
     }
-    if (arg.rfind("--", 0) != 0 || arg == "--") {
+    // An option begins with a dash and a letter (-o, --output, -q); "-" alone (standard input)
+    // and "-0.5" are not options.
+    const bool doubleDash = arg.rfind("--", 0) == 0;
+    const std::size_t letter = doubleDash ? 2 : 1;
+    if (arg.size() <= letter || arg[0] != '-' || !std::isalpha(static_cast<unsigned char>(arg[letter]))) {
       positional_.push_back(arg);
       continue;
     }
-    std::string name = arg.substr(2), value;
+    std::string name = arg.substr(letter), value;
     bool inlineValue = false;
     if (const auto eq = name.find('='); eq != std::string::npos) {
       value = name.substr(eq + 1);
       name = name.substr(0, eq);
       inlineValue = true;
     }
+    const std::string typed = arg.substr(0, letter) + name;  // as given: -o, --o, --output
     const OptionSpec* spec = nullptr;
+    // With one dash only a one-letter option: -quiet is not --quiet (it is suggested).
     for (const OptionSpec& s : specs)
-      if (s.name == name) spec = &s;
+      if (s.name == name && (doubleDash || name.size() == 1)) spec = &s;
     if (!spec) {
-      std::vector<std::string> names;
-      for (const OptionSpec& s : specs) names.push_back(s.name);
-      const auto near = nearestName(name, names);
-      usage("--" + name, "is not an option of this command" +
-                             (near ? "; did you mean --" + *near + "?" : std::string(" (see --help)")));
+      const auto near = suggestionFor(name, specs);
+      throw Error(ErrorKind::Usage, "", "command line",
+                  "unknown option \"" + escapedText(typed) + "\"" +
+                      (near ? ": did you mean " + typedName(*near) + "?"
+                            : " (surrogate " + (command.empty() ? std::string("COMMAND") : command) +
+                                  " --help lists the options)"));
     }
     if (spec->takesValue && !inlineValue) {
-      if (i + 1 >= argc) usage("--" + name, "needs a value: --" + name + " " + spec->valueName);
+      if (i + 1 >= argc) usage(typed, "needs a value: " + typed + " " + spec->valueName);
       value = argv[++i];
     } else if (!spec->takesValue && inlineValue) {
-      usage("--" + name, "takes no value");
+      usage(typed, "takes no value");
     }
-    if (!spec->repeatable && values_.count(name))
-      usage("--" + name, "is given twice; give it once");
+    if (!spec->repeatable && values_.count(name)) usage(typed, "is given twice; give it once");
     values_[name].push_back(value);
     ordered_.emplace_back(name, value);
   }
@@ -88,13 +124,13 @@ int Args::intValue(const std::string& name, int fallback) const {
     if (used == v->size()) return n;
   } catch (const std::exception&) {
   }
-  usage("--" + name, "needs a whole number, not \"" + *v + "\"");
+  usage(typedName(name), "needs a whole number, not \"" + *v + "\"");
 }
 
 double Args::doubleValue(const std::string& name, double fallback) const {
   const auto v = value(name);
   if (!v) return fallback;
-  return parseNumberList(*v, 1, "--" + name)[0];
+  return parseNumberList(*v, 1, typedName(name))[0];
 }
 
 namespace {

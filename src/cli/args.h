@@ -42,8 +42,11 @@ struct CommandHelp {
 
 class Args {
  public:
-  // Parses argv[first..argc) against `specs`. `--help` is always accepted; a one-letter option
-  // may be written -o as well as --o.
+  // Parses argv[first..argc) against `specs` (argv[0] is the command's name). `--help` is always
+  // accepted; a one-letter option may be written -o as well as --o. Anything else beginning with
+  // a dash and a letter is an option: an unknown one is a usage error naming it as typed, with
+  // the option it most likely meant ("unknown option \"-q\": did you mean --quiet?"). After
+  // "--" every argument is positional.
   Args(int argc, char** argv, int first, std::vector<OptionSpec> specs);
 
   bool helpRequested() const { return help_; }
@@ -68,6 +71,10 @@ class Args {
   std::vector<std::pair<std::string, std::string>> ordered_;
   std::map<std::string, std::vector<std::string>> values_;
 };
+
+// An option's name as a person types it and as the carrier records it: "-o" for a one-letter
+// option, "--output" for the others (never "--o").
+std::string optionName(const std::string& name);
 
 // How much a command prints: --quiet (at most a summary line), --verbose (every file and
 // warning), or neither. Both together are a usage error.

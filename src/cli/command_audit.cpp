@@ -198,12 +198,13 @@ int runCommandAudit(int argc, char** argv) {
                   {"surrogate audit coin.zip -o coin-audit --threshold 5",
                    "audit a package, naming only the lights that differ by more than 5 degrees"}},
                  {{0, "the prior work is reproduced"},
-                  {1, "the prior work cannot be read (a file of it left out, named: this before 4), or there is none"},
+                  {1, "the prior work cannot be read (a file of it left out, named: this before 4), or there is none; or " +
+                          std::string(kWriteRefused) + " in the work folder"},
                   {2, "bad usage: an unknown option, a missing or malformed value, a work folder inside PRIOR or "
                       "one that is something else; or a PRIOR file that is not a package (.zip, .tar)"},
                   {3, "a package whose files differ from its record, or an archive truncated or damaged"},
                   {4, "not reproduced: the verdict says which part and why"},
-                  {5, "internal error: a bug, or the environment (disk full, permissions)"}}}))
+                  {5, kInternalError}}}))
     return 0;
   if (args.positional().size() != 1)
     throw Error(ErrorKind::Usage, "", "command line", "give the folder or package to audit: surrogate audit PRIOR");

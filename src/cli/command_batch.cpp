@@ -314,12 +314,12 @@ int runCommandBatch(int argc, char** argv) {
                   {1, "bad input: the list is not a regular file or standard input, or not a text list of paths "
                       "(a NUL byte, over 64 MiB, a line over 4096 bytes), names something that is neither a capture "
                       "nor a package, the ledger is a file no command may write (an original, a package, the list, a "
-                      "link, a device) or not a ledger, or a step failed on bad input"},
+                      "link, a device) or not a ledger, a step failed on bad input, or " + std::string(kWriteRefused)},
                   {2, "bad usage (a list naming one capture twice, by its real path, or nothing), or a step found an "
                       "invalid package"},
                   {3, "a verify step found a fixity failure"},
                   {4, "a verify --reexecute step did not reproduce the recorded results"},
-                  {5, "internal error, a crash, or a job stopped for passing its memory budget"}}}))
+                  {5, "internal error: a bug, a broken installation, a crash, or a job stopped for passing its memory budget"}}}))
     return 0;
   const auto ledger = outputOption(args);
   if (args.has("summary")) {
@@ -373,7 +373,7 @@ int runCommandBatch(int argc, char** argv) {
     for (const auto& [name, value] : args.ordered()) {
       if (name == "emit" || name == "o" || name == "output" || name == "jobs" || name == "quiet" || name == "one")
         continue;
-      passOn.push_back("--" + name);
+      passOn.push_back(optionName(name));
       if (!value.empty()) passOn.push_back(value);
     }
     // Each job's share of the cores, as the batch gives it; a Slurm task, its own core.

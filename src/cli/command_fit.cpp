@@ -58,6 +58,29 @@ void checkEnoughLights(fit::Basis basis, bool given, const std::string& ext, con
 
 }  // namespace
 
+namespace {
+// --verbose: what the summary line leaves out.
+void printFitDetail(bool learned, const fit::FitStatistics& stats, const fit::LearnedStatistics& learnedStats,
+                    const std::optional<stages::HeldOutQuality>& heldOut, const std::vector<std::filesystem::path>& files) {
+  if (learned) {
+    std::cout << "  explained variance " << fixedDecimals(learnedStats.explainedVariance, 4)
+              << ", PSNR leaving each photograph out " << fixedDecimals(learnedStats.leaveOneOutPsnr, 2) << " dB\n";
+  } else {
+    std::cout << "  regularisation " << stats.regularisation << ", condition number of the lights "
+              << (std::isfinite(stats.conditionNumber) ? fixedDecimals(stats.conditionNumber, 1) : std::string("not finite"))
+              << ", damped terms " << (stats.dampedTerms.empty() ? std::string("none") : "");
+    for (std::size_t i = 0; i < stats.dampedTerms.size(); ++i)
+      std::cout << (i ? "," : "") << stats.dampedTerms[i];
+    std::cout << "\n";
+  }
+  if (heldOut)
+    for (std::size_t i = 0; i < heldOut->indices.size(); ++i)
+      std::cout << "  left out " << files[heldOut->indices[i]].filename().string() << ": PSNR "
+                << fixedDecimals(heldOut->perLight[i].psnr, 2) << " dB, SSIM " << fixedDecimals(heldOut->perLight[i].ssim, 3)
+                << "\n";
+}
+}  // namespace
+
 int runCommandFit(int argc, char** argv) {
   const std::vector<OptionSpec> specs = {
       {"lp", true, false, "the light file naming the images and their light directions", "FILE.lp", OptionGroup::Input},
@@ -72,9 +95,12 @@ int runCommandFit(int argc, char** argv) {
       {"o", true, false, "output: .ptm (PTM), .rti (HSH) or a folder (rbf, bln)", "OUT", OptionGroup::Output},
       {"output", true, false, "same as -o", "OUT", OptionGroup::Output},
       {"quiet", false, false, "no progress bar, and at most one summary line", "", OptionGroup::Output},
+      {"verbose", false, false, "also the fit's detail: its conditioning and damped terms, and each photograph "
+                                "left out by --holdout", "", OptionGroup::Output},
       {"json", false, false, "print the fit quality as JSON", "", OptionGroup::Output},
   };
   Args args(argc, argv, 1, specs);
+  const Verbosity verbosity = verbosityOf(args);
   if (helpShown(args, specs,
                 {"surrogate fit --lp FILE.lp -o OUT.ptm|OUT.rti|DIR [--basis BASIS] [--holdout K]",
                  "Fit a PTM or HSH model to the images an .lp file names, with its light directions, "
@@ -238,7 +264,8 @@ int runCommandFit(int argc, char** argv) {
     else
       std::cout << "wrote " << *out << " (" << fit::basisName(basis) << ", " << files.size()
                 << " images): RMSE " << stats.rmse << ", PSNR " << stats.psnr << " dB\n";
-    if (heldOut)
+    if (verbosity == Verbosity::Verbose) printFitDetail(learned, stats, learnedStats, heldOut, files);
+    if (heldOut && verbosity != Verbosity::Quiet)
       std::cout << "at " << heldOut->indices.size() << " lights left out of the fit: PSNR "
                 << fixedDecimals(heldOut->model.psnr, 2) << " dB, SSIM " << fixedDecimals(heldOut->model.ssim, 3)
                 << " (the 3 nearest photographs blended: " << fixedDecimals(heldOut->nearestBlend.psnr, 2) << " dB, SSIM "

@@ -7,6 +7,7 @@
 
 #include "audit/rtibuilder_log.h"
 #include "capture/capture.h"
+#include "carrier/carrier.h"
 #include "cli/args.h"
 #include "cli/commands.h"
 #include "cli/info_print.h"
@@ -39,11 +40,42 @@ bool isWebLayoutFolder(const fs::path& path) {
          !fs::exists(path / "original-captures", ec) && !fs::exists(path / capture::kExportsDir, ec);
 }
 
+// Sends std::cout nowhere while it lives, when `active`.
+class NullOutput {
+ public:
+  explicit NullOutput(bool active) : saved_(active ? std::cout.rdbuf(nullptr) : nullptr), active_(active) {}
+  ~NullOutput() {
+    if (active_) {
+      std::cout.rdbuf(saved_);
+      std::cout.clear();
+    }
+  }
+  NullOutput(const NullOutput&) = delete;
+  NullOutput& operator=(const NullOutput&) = delete;
+
+ private:
+  std::streambuf* saved_;
+  bool active_;
+};
+
+// --verbose: every file the carrier records, as a fixity list a person can compare by eye.
+void printRecordedFiles(const carrier::Carrier& c) {
+  std::cout << "  recorded files (role, size, SHA-256):\n";
+  for (const carrier::FileRecord& f : c.files)
+    std::cout << "    " << escapedText(f.path) << "  " << f.role << ", " << f.size << " bytes, " << f.sha256 << "\n";
+}
+
 }  // namespace
 
 int runCommandInfo(int argc, char** argv) {
-  const std::vector<OptionSpec> specs = {{"json", false, false, "print as JSON", "", OptionGroup::Output}};
+  const std::vector<OptionSpec> specs = {
+      {"json", false, false, "print as JSON", "", OptionGroup::Output},
+      {"quiet", false, false, "print nothing but errors: the exit code says whether the file could be described",
+       "", OptionGroup::Output},
+      {"verbose", false, false, "of a capture or carrier, also every file the carrier records, with its role, size "
+                                "and SHA-256", "", OptionGroup::Output}};
   Args args(argc, argv, 1, specs);
+  const Verbosity verbosity = verbosityOf(args);
   if (helpShown(args, specs,
                 {"surrogate info FILE",
                  "Describe a package (a bag folder, .tar or .zip, or the bag an OCFL object or E-ARK SIP "
@@ -60,12 +92,16 @@ int runCommandInfo(int argc, char** argv) {
                   {2, "bad usage (an unknown option, a missing or malformed value), or a package that is not "
                       "one: not a bag, .tar or .zip, an OCFL object or E-ARK SIP that cannot be read as one"},
                   {3, "a package archive truncated or damaged"},
-                  {5, "internal error: a bug, or the environment (disk full, permissions, missing data files)"}}}))
+                  {5, kInternalError}}}))
     return 0;
   if (args.positional().size() != 1)
     throw Error(ErrorKind::Usage, "", "command line", "give one file or folder: surrogate info FILE");
   const fs::path path = args.positional()[0];
   const bool json = args.has("json");
+  if (verbosity == Verbosity::Quiet && json)
+    throw Error(ErrorKind::Usage, "--quiet", "command line", "does not go with --json: give one of them");
+  // --quiet: everything is read and checked as without it; only what it prints is dropped.
+  NullOutput quiet(verbosity == Verbosity::Quiet);
   // Error codes, not exceptions: a loop of symbolic links is the user's path, not a bug.
   std::error_code ec;
   const fs::file_status st = fs::status(path, ec);
@@ -98,6 +134,12 @@ int runCommandInfo(int argc, char** argv) {
     std::cout << (json ? s.toJson() : s.toText()) << "\n";
   } else {
     printImage(path, json);
+  }
+  if (verbosity == Verbosity::Verbose && !json) {
+    const fs::path carrierFile = fs::is_directory(st) ? path / capture::kAssemblyDir / "carrier.xml" : path;
+    if ((fs::is_directory(st) || ext == ".xml") && fs::is_regular_file(carrierFile, ec) &&
+        !audit::looksLikeRtiBuilderLog(carrierFile))
+      printRecordedFiles(carrier::loadCarrier(carrierFile));
   }
   return 0;
 }

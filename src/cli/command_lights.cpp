@@ -83,7 +83,7 @@ int runCommandLights(int argc, char** argv) {
                  {{"surrogate lights stela12 -o stela12.lp", "the light directions of the capture stela12"},
                   {"surrogate lights stela12 --sphere 412,300,88 --reason \"detection missed the sphere\" -o stela12.lp",
                    "the same with the sphere's circle given by hand"}},
-                 commonExitCodes("the .lp file is written")}))
+                 commonExitCodes("the .lp file is written", {{3, kChangedOriginal}})}))
     return 0;
   const auto out = outputOption(args);
   if (args.positional().size() != 1 || !out)

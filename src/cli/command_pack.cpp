@@ -121,6 +121,9 @@ std::pair<std::string, std::string> captureAndOutput(const Args& args) {
   const std::string capture = args.positional()[0];
   refuseCaptureSubfolder(capture, "pack");
   std::error_code ec;  // a symbolic-link loop is no folder either, not an internal error
+  // A capture that is not there is missing input (exit 1), as for run and lights.
+  if (!std::filesystem::exists(std::filesystem::symlink_status(capture, ec)))
+    throwInputError(capture, "command line", "the capture folder does not exist");
   if (!std::filesystem::is_directory(capture, ec))
     throw Error(ErrorKind::Usage, capture, "command line",
                 ec ? "cannot be read as a folder (" + ec.message() + "); give the capture folder"
@@ -419,12 +422,12 @@ int runCommandPack(int argc, char** argv) {
                    "add the package as a new version of an OCFL object (made on the first pack)"}},
                  {{0, "packed"},
                   {1, "bad input: an unreadable file, or one that changed while it was packed; an OUT whose "
-                      "name no package can have (not UTF-8, a control character, a backslash)"},
+                      "name no package can have (not UTF-8, a control character, a backslash); or " +
+                          std::string(kWriteRefused)},
                   {2, "bad usage: an unknown option, a missing or malformed value; with --layout ocfl, an "
                       "existing object that fails verify's OCFL checks (nothing is written)"},
-                  {3, "an original no longer matches the SHA-256 the carrier records (it is evidence: "
-                      "restore it, or accept the change with run --accept-changed)"},
-                  {5, "could not write (disk full, permissions), or an internal error"}}}))
+                  {3, kChangedOriginal},
+                  {5, kInternalError}}}))
     return 0;
   const auto [capture, out] = captureAndOutput(args);
   (void)holderFields(args);  // a malformed --bag-info is refused before any work

@@ -70,7 +70,9 @@ int runCommandPublish(int argc, char** argv) {
                    "every model of the capture stela12, with an index page linking them"},
                   {"surrogate publish coin.ptm -o web/coin --tiles deepzoom --quality 90",
                    "one model as Deep Zoom tiles, for a web server"}},
-                 commonExitCodes("the web layout is written")}))
+                 commonExitCodes("the web layout is written",
+                                 {{3, "a capture's result no longer matches the SHA-256 the carrier records: run "
+                                      "the capture again, or restore the file"}})}))
     return 0;
   const auto out = outputOption(args);
   if (args.positional().size() != 1 || !out)

@@ -2,6 +2,7 @@
 // [--specular] [--quality Q]: the output's format is the one its name ends in. DIR (or
 // DIR/info.json) is a web layout, read back by publish/web_reader.h (PTM, HSH, or a learned
 // rbf or bilinear basis, fit/learned_relightable.h).
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 
@@ -11,6 +12,7 @@
 #include "core/error.h"
 #include "core/json.h"
 #include "core/memory_budget.h"
+#include "core/text.h"
 #include "fit/learned_relightable.h"
 #include "fit/render.h"
 #include "image/write_any.h"
@@ -43,15 +45,19 @@ int runCommandRender(int argc, char** argv) {
       {"o", true, false, "the picture to write: .png, .jpg/.jpeg (JPEG) or .tif/.tiff (TIFF)", "OUT", OptionGroup::Output},
       {"output", true, false, "same as -o", "OUT", OptionGroup::Output},
       {"quality", true, false, "JPEG quality 1..100 (default 95; JPEG output only)", "Q", OptionGroup::Output},
+      {"quiet", false, false, "print nothing but errors", "", OptionGroup::Output},
+      {"verbose", false, false, "also the light as elevation and azimuth, and the gain, enhancement and quality used",
+       "", OptionGroup::Output},
       {"json", false, false, "print what was written as JSON", "", OptionGroup::Output},
   };
   Args args(argc, argv, 1, specs);
+  const Verbosity verbosity = verbosityOf(args);
   if (helpShown(args, specs,
                 {"surrogate render FILE.ptm|FILE.rti|DIR --light x,y,z -o OUT.png|OUT.jpg|OUT.tif [--gain g] [--specular]",
                  "Relight a PTM or HSH file, or a web layout (a folder `surrogate publish` wrote, or its "
                  "info.json, of a PTM, HSH or learned rbf or bln basis), under any light and save the picture, in "
                  "the format its name ends in.",
-                 {{"surrogate render stela12/finished-files/stela12-ptm.ptm --light -0.5,0.3,0.81 -o raking.png",
+                 {{"surrogate render stela12/finished-files/ptm-lrgb.ptm --light -0.5,0.3,0.81 -o raking.png",
                    "the model lit from the upper left at about 54 degrees elevation"},
                   {"surrogate render coin.ptm --light 0,0,1 --gain 3 -o relief.jpg",
                    "lit from the camera, with the relief shown more strongly, as a JPEG"}},
@@ -100,8 +106,22 @@ int runCommandRender(int argc, char** argv) {
     std::cout << j.str() << "\n";
     return 0;
   }
+  if (verbosity == Verbosity::Quiet) return 0;
   std::cout << "wrote " << *out << " (" << image::pictureFormatName(*format) << ", " << model->width() << "x"
             << model->height() << ", " << model->basis() << (from.empty() ? "" : ", " + from) << ")\n";
+  if (verbosity == Verbosity::Verbose) {
+    // The direction as a photographer sets a lamp: elevation above the object's plane, azimuth
+    // anticlockwise from the right (x right, y up).
+    const double length = std::sqrt(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
+    constexpr double kDegrees = 180.0 / 3.14159265358979323846;
+    const double elevation = length > 0 ? std::asin(std::clamp(l[2] / length, -1.0, 1.0)) * kDegrees : 0.0;
+    const double azimuth = std::atan2(l[1], l[0]) * kDegrees;
+    std::cout << "  light " << l[0] << "," << l[1] << "," << l[2] << ": elevation " << fixedDecimals(elevation, 1)
+              << " deg, azimuth " << fixedDecimals(azimuth < 0 ? azimuth + 360 : azimuth, 1) << " deg\n"
+              << "  gain " << options.diffuseGain << ", specular enhancement " << (options.specular ? "on" : "off");
+    if (*format == image::PictureFormat::Jpeg) std::cout << ", JPEG quality " << quality;
+    std::cout << "\n";
+  }
   return 0;
 }
 

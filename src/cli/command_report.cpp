@@ -40,7 +40,8 @@ int runCommandReport(int argc, char** argv) {
                    "the report of a package, read without extracting it"},
                   {"surrogate report stela12.zip --verify -o checked.html",
                    "the same, with the verifier's result for every check"}},
-                 commonExitCodes("the report is written, whatever the checks found (surrogate verify gives the verdict)")}))
+                 commonExitCodes("the report is written, whatever the checks found (surrogate verify gives the verdict)",
+                                 {{3, "a package archive truncated or damaged"}})}))
     return 0;
   const auto out = outputOption(args);
   if (args.positional().size() != 1 || !out)

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <thread>
 
@@ -58,7 +59,7 @@ std::string launcherFile(const TempDir& folder, const std::string& url) {
 // Opens the page at `url` with the desktop's browser (xdg-open; open on macOS) when there is a
 // desktop, without waiting for it, through a launcher file in `launcher` (made here, removed
 // with it); says so when there is no desktop.
-void openBrowser(const std::string& url, std::optional<TempDir>& launcher) {
+void openBrowser(const std::string& url, std::optional<TempDir>& launcher, bool quiet) {
 #ifdef __APPLE__
   const char* opener = "open";
   const bool desktop = true;
@@ -67,6 +68,7 @@ void openBrowser(const std::string& url, std::optional<TempDir>& launcher) {
   const bool desktop = std::getenv("DISPLAY") || std::getenv("WAYLAND_DISPLAY");
 #endif
   if (!desktop) {
+    if (quiet) return;
     std::cout << "  (no desktop here to open a browser in: open the address in a browser on this computer)\n";
     return;
   }
@@ -100,8 +102,11 @@ int runCommandReview(int argc, char** argv) {
        OptionGroup::Output},
       {"no-browser", false, false, "do not open the page in the desktop's browser; only print its address", "",
        OptionGroup::Output},
+      {"quiet", false, false, "print the page's address only, and errors", "", OptionGroup::Output},
+      {"verbose", false, false, "also each step an Apply runs, as it starts", "", OptionGroup::Output},
   };
   Args args(argc, argv, 1, specs);
+  const Verbosity verbosity = verbosityOf(args);
   if (helpShown(args, specs,
                 {"surrogate review CAPTURE [options]",
                  "Review a capture in a browser page on this computer: every frame with its sphere and "
@@ -117,7 +122,7 @@ int runCommandReview(int argc, char** argv) {
                  {{0, "stopped with Ctrl+C (or SIGTERM)"},
                   {1, "the folder is not a capture, or the port given is taken"},
                   {2, "bad usage: an unknown option, a port outside 0..65535"},
-                  {5, "internal error: a bug, or the environment"}}}))
+                  {5, kInternalError}}}))
     return 0;
   if (args.positional().size() != 1)
     throw Error(ErrorKind::Usage, "", "command line",
@@ -138,8 +143,17 @@ int runCommandReview(int argc, char** argv) {
   if (options.who.empty()) options.who = currentUserName();
   // An Apply: the options parsed as `surrogate run` parses its own, run as it runs, the report
   // written after it under the same lock.
-  options.runner = [capture, base](const std::vector<std::string>& given, const std::string& revision,
-                                   const review::ProgressFunction& progress) {
+  options.runner = [capture, base, verbosity](const std::vector<std::string>& given, const std::string& revision,
+                                              const review::ProgressFunction& pageProgress) {
+    // --verbose: each step's label once, as the run reaches it.
+    auto lastLabel = std::make_shared<std::string>();
+    const review::ProgressFunction progress = [pageProgress, verbosity, lastLabel](const std::string& label, double f) {
+      if (verbosity == Verbosity::Verbose && label != *lastLabel) {
+        *lastLabel = label;
+        std::cout << "  running: " << escapedText(label) << std::endl;
+      }
+      if (pageProgress) pageProgress(label, f);
+    };
     std::vector<std::string> words = {"run", capture};
     words.insert(words.end(), given.begin(), given.end());
     std::vector<char*> argvRun;
@@ -165,7 +179,8 @@ int runCommandReview(int argc, char** argv) {
     reportOptions.progress = progress;
     report::writeCaptureReport(capture, reportOptions);
   };
-  options.applied = [capture](const std::vector<std::string>& given, const std::string& outcome) {
+  options.applied = [capture, verbosity](const std::vector<std::string>& given, const std::string& outcome) {
+    if (verbosity == Verbosity::Quiet) return;
     std::string line;
     // A command line the user can copy: each word quoted for the shell, control bytes escaped.
     for (const std::string& g : given) line += " " + escapedText(shellWord(g));
@@ -191,15 +206,15 @@ int runCommandReview(int argc, char** argv) {
 
   // With the key (review/access_key.h): only whoever sees this address can use the page.
   const std::string url = server.address();
-  std::cout << "Review of " << escapedText(capture) << ": " << url << "\n"
-            << "  open it in a browser on this computer; Ctrl+C stops the review.\n";
+  std::cout << "Review of " << escapedText(capture) << ": " << url << "\n";
+  if (verbosity != Verbosity::Quiet) std::cout << "  open it in a browser on this computer; Ctrl+C stops the review.\n";
   std::optional<TempDir> launcher;  // removed when the review stops
-  if (!args.has("no-browser")) openBrowser(url, launcher);
+  if (!args.has("no-browser")) openBrowser(url, launcher, verbosity == Verbosity::Quiet);
   std::cout.flush();
   server.serve();
   pthread_kill(waiter.native_handle(), SIGTERM);  // a no-op for the waiter when a signal ended it
   waiter.join();
-  std::cout << "Review stopped.\n";
+  if (verbosity != Verbosity::Quiet) std::cout << "Review stopped.\n";
   return 0;
 }
 

@@ -79,7 +79,7 @@ int runCommandRun(int argc, char** argv) {
                    "process the capture folder stela12, naming it and its photographer"},
                   {"surrogate run stela12 --exclude IMG_0007.CR2 --reason \"flash misfired\"",
                    "leave one photograph out from now on, saying why (recorded, with who and when)"}},
-                 commonExitCodes("processed (warnings, if any, are printed and kept in the carrier)")}))
+                 commonExitCodes("processed (warnings, if any, are printed and kept in the carrier)", {{3, kChangedOriginal}})}))
     return 0;
   if (args.positional().size() != 1)
     throw Error(ErrorKind::Usage, "", "command line",

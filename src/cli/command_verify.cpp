@@ -81,8 +81,15 @@ void printJson(const verify::Report& report) {
   std::cout << j.str() << "\n";
 }
 
-// --quiet: the failed checks and the verdict line only.
-void printText(const verify::Report& report, bool quiet) {
+// What a failure of `c` means, for --verbose.
+std::string failureMeaning(const verify::Check& c) {
+  const int code = static_cast<int>(c.severity);
+  return std::string("a failure here: ") + verdict(code) + " (exit " + std::to_string(code) + ")";
+}
+
+// --quiet: the failed checks and the verdict line only; --verbose: each check with what its
+// failure means.
+void printText(const verify::Report& report, bool quiet, bool verbose = false) {
   if (!quiet)
     std::cout << "Verifying " << escapedText(report.package)
               << (report.kind.empty() ? "" : " (" + report.kind + ")") << "\n";
@@ -95,6 +102,7 @@ void printText(const verify::Report& report, bool quiet) {
     // Paths from a manifest are the package's text, whatever it holds: escaped (core/text.h).
     std::cout << (c.passed ? "  ok    " : "  FAIL  ") << name << "  " << escapedText(c.what, true) << "\n";
     for (const std::string& w : c.where) std::cout << "          " << escapedText(w, true) << "\n";
+    if (verbose) std::cout << "          " << failureMeaning(c) << "\n";
   }
   if (!quiet && !report.holderFields.empty()) {
     std::cout << "bag-info.txt fields added by the holder (not written by Surrogate, not checked "
@@ -238,6 +246,8 @@ int runCommandVerify(int argc, char** argv) {
        OptionGroup::Output},
       {"json", false, false, "print the report as JSON", "", OptionGroup::Output},
       {"batch", true, false,
+      {"verbose", false, false, "also say under each check what its failure means (invalid package, fixity "
+                                "failure, not reproduced) and its exit code", "", OptionGroup::Output},
        "verify every package of LIST (a text file, or - for standard input, one package a line), each in a "
        "process of its own, writing the ledger -o (as surrogate batch --do verify)",
        "LIST", OptionGroup::Input},
@@ -275,16 +285,21 @@ int runCommandVerify(int argc, char** argv) {
                   {"surrogate verify --batch packages.txt -o fixity-2026.jsonl --sample 1000 --seed 2026",
                    "this year's fixity audit of 1000 packages of a list not yet checked, one ledger line each"}},
                  {{0, "sound (a bag that is not a Surrogate package: valid)"},
-                  {1, "the package cannot be read (missing file)"},
+                  {1, "the package cannot be read (missing file); with --batch, " + std::string(kWriteRefused) +
+                          " for the ledger"},
                   {2, "invalid or refused package (including steps that cannot run, resources of another version, "
                       "bag-info.txt that disagrees with the carrier), or bad usage"},
                   {3, "fixity failure: a file changed, is missing or unlisted, the package is incomplete, or the "
                       "archive is truncated or has data after its end"},
                   {4, "re-execution did not reproduce the recorded results"},
-                  {5, "internal error"}}}))
+                  {5, kInternalError}}}))
     return 0;
   if (args.has("batch")) return verifyBatch(args);
   for (const char* name : {"o", "output", "jobs", "sample", "seed"})
+  const Verbosity verbosity = verbosityOf(args);
+  if (args.has("batch") && verbosity == Verbosity::Verbose)
+    throw Error(ErrorKind::Usage, "--verbose", "command line",
+                "is not taken with --batch (each package's checks are in the ledger); verify one package to see them");
     if (args.has(name))
       throw Error(ErrorKind::Usage, std::string("--") + name, "command line", "goes with --batch LIST only");
   if (args.positional().size() != 1)
@@ -308,7 +323,7 @@ int runCommandVerify(int argc, char** argv) {
   const verify::Report report = verify::verifyPackage(args.positional()[0], options);
   bar.finish();
   if (args.has("json")) printJson(report);
-  else printText(report, args.has("quiet"));
+  else printText(report, verbosity == Verbosity::Quiet, verbosity == Verbosity::Verbose);
   return report.exitCode();
 }
 

@@ -96,11 +96,17 @@ bool helpShown(const Args& args, const std::vector<OptionSpec>& specs, const Com
   return true;
 }
 
-std::vector<std::pair<int, std::string>> commonExitCodes(const std::string& success) {
-  return {{0, success},
-          {1, "bad input: a file that cannot be read or processed (the message names it)"},
-          {2, "bad usage: an unknown option, a missing or malformed value"},
-          {5, "internal error: a bug, or the environment (disk full, permissions, missing data files)"}};
+std::vector<std::pair<int, std::string>> commonExitCodes(const std::string& success,
+                                                         std::vector<std::pair<int, std::string>> more) {
+  std::vector<std::pair<int, std::string>> codes = {
+      {0, success},
+      {1, "bad input: a file that cannot be read or processed, or " + std::string(kWriteRefused) +
+              "; the message names the file"},
+      {2, "bad usage: an unknown option, a missing or malformed value"},
+      {5, kInternalError}};
+  codes.insert(codes.end(), more.begin(), more.end());
+  std::stable_sort(codes.begin(), codes.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  return codes;
 }
 
 std::optional<std::string> outputOption(const Args& args) {

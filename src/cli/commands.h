@@ -37,8 +37,19 @@ int runCommandBatch(int argc, char** argv);
 // When --help was given: prints the command's help (Args::describe) and returns true, so the
 // command returns 0.
 bool helpShown(const Args& args, const std::vector<OptionSpec>& specs, const CommandHelp& help);
-// The exit codes most commands share: 0 `success`, 1 bad input, 2 bad usage, 5 internal error.
-std::vector<std::pair<int, std::string>> commonExitCodes(const std::string& success);
+// The exit codes most commands share: 0 `success`, 1 bad input (a write the system refused
+// among them: atomic_file.h reports it as Input), 2 bad usage, 5 internal error; `more` adds
+// the command's own (3 for a changed original), in order of code.
+std::vector<std::pair<int, std::string>> commonExitCodes(const std::string& success,
+                                                         std::vector<std::pair<int, std::string>> more = {});
+// The meanings every --help gives these codes the same words: a write the system refused is
+// exit 1, with the file named (core/atomic_file.h); exit 5 is a bug, a broken installation or
+// memory, never the disk.
+inline constexpr const char* kWriteRefused = "a write the system refused (disk full, read-only, no permission, a file-size limit)";
+inline constexpr const char* kInternalError = "internal error: a bug, a broken installation (missing data files), or out of memory";
+inline constexpr const char* kChangedOriginal =
+    "an original no longer matches the SHA-256 the carrier records (it is evidence: restore it, or accept the "
+    "change with run --accept-changed PATH --reason WHY)";
 // Prints the carrier's warnings (carrier::CarrierSummary::warnings) grouped by the step that
 // logged them, a heading line per step ("    s3 SphereDetection:") over its warnings' one-line
 // texts, in at most `mostLines` lines in all (0: no limit); the warnings left out are counted

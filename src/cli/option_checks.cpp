@@ -51,23 +51,23 @@ bool hasC1Control(const std::string& s) {
 // Every value goes into the carrier (XML, UTF-8) and some into bag-info.txt.
 void checkText(const std::string& name, const std::string& value) {
   if (!isValidUtf8(value))
-    usage("--" + name + " " + printable(value, false),
+    usage(optionName(name) + " " + printable(value, false),
           "is not valid UTF-8 text (the bytes above 0x7F are shown as \\xNN); give the text "
           "in UTF-8, as a terminal with a UTF-8 locale does");
   if (std::any_of(value.begin(), value.end(), [](unsigned char c) { return isControl(c); }) ||
       hasC1Control(value))
-    usage("--" + name + " " + printable(value, true),
+    usage(optionName(name) + " " + printable(value, true),
           "contains a control character (a line break, tab or other invisible character, shown "
           "as \\xNN); give plain text on one line");
 }
 
 void checkMeasure(const std::string& name, const std::string& value, double low, double high,
                   const std::string& what) {
-  const double v = parseNumberList(value, 1, "--" + name)[0];
+  const double v = parseNumberList(value, 1, optionName(name))[0];
   if (!(v >= low && v <= high)) {
     char range[64];
     std::snprintf(range, sizeof range, "from %g to %g", low, high);
-    usage("--" + name + " " + value, std::string("must be a number ") + range + ": " + what);
+    usage(optionName(name) + " " + value, std::string("must be a number ") + range + ": " + what);
   }
 }
 
@@ -124,7 +124,7 @@ void checkPipelineOptionValues(const Args& args) {
     else if (name == "sphere-roi") checkRegion(value);
     else if (name == "meta") checkMeta(value);
     else if ((name == "exclude" || name == "creator") && value.empty())
-      usage("--" + name + " \"\"", name == "exclude" ? "needs the name of an image, e.g. IMG_0003"
+      usage(optionName(name) + " \"\"", name == "exclude" ? "needs the name of an image, e.g. IMG_0003"
                                                      : "needs a name, e.g. \"Ana Silva:photographer\"");
   }
   if (const auto m = args.value("light-model"); m && *m != "orthographic" && *m != "perspective")

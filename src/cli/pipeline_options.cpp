@@ -290,7 +290,7 @@ run::RunRequest requestFrom(const Args& args) {
   if (!r.source.empty()) capture::parseSource(r.source);  // an unknown source is a usage error now
   if (const auto lp = args.value("lp")) r.lp = *lp == "none" ? std::string() : *lp;
   for (const auto& [name, value] : args.ordered()) {
-    r.arguments.push_back("--" + name);
+    r.arguments.push_back(optionName(name));
     if (name != "quiet" && name != "json" && name != "no-report" && name != "reset" && name != "publish" &&
         name != "no-publish")
       r.arguments.push_back(value);

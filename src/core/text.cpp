@@ -158,7 +158,7 @@ std::optional<std::string> nearestName(const std::string& name, const std::vecto
   bool tie = false;
   for (const std::string& c : candidates) {
     const std::size_t d = editDistance(name, c);
-    if (d == 0 || 2 * d >= name.size()) continue;
+    if (d == 0 || 2 * d > name.size()) continue;
     if (d < bestDistance) {
       best = c;
       bestDistance = d;

@@ -64,8 +64,8 @@ std::string listedInFull(const std::vector<std::string>& items, const std::strin
 std::size_t editDistance(const std::string& a, const std::string& b);
 
 // The candidate a mistyped `name` most likely meant, for "did you mean ...?": the nearest by
-// editDistance when it is at most 2 and less than half of `name`'s length (so that "x" does not
-// suggest "o"), else one `name` is a prefix of (when only one is); none when nothing is close
+// editDistance when it is at most 2 and at most half of `name`'s length (so that "x" does not
+// suggest "o", while "rn" suggests "run"), else one `name` is a prefix of (when only one is); none when nothing is close
 // or two are equally near. Candidates are compared as given (case matters).
 std::optional<std::string> nearestName(const std::string& name, const std::vector<std::string>& candidates);
 

@@ -128,7 +128,8 @@ TEST_CASE("nearestName suggests only a close name or the one name a prefix begin
   // Too far, or too short for a distance to mean anything.
   CHECK_FALSE(nearestName("frobnicate", commands));
   CHECK_FALSE(nearestName("x", commands));
-  CHECK_FALSE(nearestName("rn", commands));  // 1 edit from "run", but half of two letters
+  CHECK(nearestName("rn", commands) == std::optional<std::string>("run"));  // 1 edit in two letters
+  CHECK_FALSE(nearestName("xy", commands));  // 2 edits in two letters: too far
   CHECK_FALSE(nearestName("", commands));
   CHECK_FALSE(nearestName("run", commands));  // the name itself is no suggestion
   // Equally near to two: no guess.
