@@ -41,8 +41,6 @@ std::string typedName(const std::string& name) { return name.size() == 1 ? "-" +
 std::string optionName(const std::string& name) { return typedName(name); }
 
 Args::Args(int argc, char** argv, int first, std::vector<OptionSpec> specs) {
-  // The command, for a message that points to its --help.
-  const std::string command = first >= 1 && argc >= 1 ? std::string(argv[0]) : std::string();
   bool optionsEnd = false;
   for (int i = first; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -83,8 +81,7 @@ Args::Args(int argc, char** argv, int first, std::vector<OptionSpec> specs) {
       throw Error(ErrorKind::Usage, "", "command line",
                   "unknown option \"" + escapedText(typed) + "\"" +
                       (near ? ": did you mean " + typedName(*near) + "?"
-                            : " (surrogate " + (command.empty() ? std::string("COMMAND") : command) +
-                                  " --help lists the options)"));
+                            : " (see --help)"));
     }
     if (spec->takesValue && !inlineValue) {
       if (i + 1 >= argc) usage(typed, "needs a value: " + typed + " " + spec->valueName);

@@ -42,7 +42,7 @@ struct CommandHelp {
 
 class Args {
  public:
-  // Parses argv[first..argc) against `specs` (argv[0] is the command's name). `--help` is always
+  // Parses argv[first..argc) against `specs`. `--help` is always
   // accepted; a one-letter option may be written -o as well as --o. Anything else beginning with
   // a dash and a letter is an option: an unknown one is a usage error naming it as typed, with
   // the option it most likely meant ("unknown option \"-q\": did you mean --quiet?"). After

@@ -20,7 +20,7 @@ TEST_CASE("an unknown one-letter option is named as typed with the long option i
       {"run -v CAP", "surrogate run: unknown option \"-v\": did you mean --verbose?"},
       {"run CAP --titel Stela", "surrogate run: unknown option \"--titel\": did you mean --title?"},
       {"verify X.zip -quiet", "surrogate verify: unknown option \"-quiet\": did you mean --quiet?"},
-      {"render -x", "surrogate render: unknown option \"-x\" (surrogate render --help lists the options)"},
+      {"render -x", "surrogate render: unknown option \"-x\" (see --help)"},
   };
   for (const auto& c : cases) {
     const e2e::CommandResult r = e2e::surrogate(c.command);
