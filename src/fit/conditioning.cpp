@@ -7,6 +7,7 @@
 #include <limits>
 #include <string>
 
+#include "core/advice.h"
 #include "core/text.h"
 
 namespace surrogate::fit {
@@ -96,12 +97,16 @@ std::string conditioningWarning(Basis basis, int lights, const FitStatistics& st
                                                  : "PTM's three quadratic terms were damped toward a plane";
   std::ostringstream weight;
   weight << std::setprecision(3) << stats.regularisation;
-  return "the " + std::to_string(lights) + " lights lie within " + fixedDecimals(stats.lightSpreadDegrees, 0) +
-         " degrees of the view axis, too narrow a cone for all the terms of " + basisName(basis) +
-         " to survive quantisation to 8 bits: " + terms + " (weight " + weight.str() +
-         ", quantisation noise gain " + fixedDecimals(stats.plainNoiseGain, 1) + " -> " +
-         fixedDecimals(stats.noiseGain, 1) + "); its PSNR is " + fixedDecimals(stats.psnr, 2) +
-         " dB. Lights at lower elevations would let the fit use them";
+  return adviceText(
+      {"the " + std::to_string(lights) + " lights lie within " + fixedDecimals(stats.lightSpreadDegrees, 0) +
+           " degrees of the view axis, too narrow a cone for all the terms of " + basisName(basis) +
+           " to survive being stored in 8 bits, so the fit kept the simpler terms and damped the others",
+       Usable::WithCare,
+       "the model relights well near the photographed lights, but raking light (low angles) shows less than the "
+       "surface has",
+       "for raking light, photograph the object again with lights at lower elevations as well",
+       terms + " (weight " + weight.str() + ", quantisation noise gain " + fixedDecimals(stats.plainNoiseGain, 1) +
+           " -> " + fixedDecimals(stats.noiseGain, 1) + "); PSNR " + fixedDecimals(stats.psnr, 2) + " dB"});
 }
 
 }  // namespace surrogate::fit

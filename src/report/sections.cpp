@@ -209,16 +209,28 @@ std::string filesSection(const carrier::Carrier& c) {
   return s.str();
 }
 
+namespace {
+
+// What a check looked at, so that the same check on two fits reads as two checks: the step's
+// title, which names a fit's model ("Fit: PTM (LRGB)").
+std::string checkedOn(const carrier::Carrier& c, const carrier::Result& r) {
+  const carrier::Step* step = c.findStep(r.step);
+  return step ? stepTitle(*step) : r.step;
+}
+
+}  // namespace
+
 std::string lightChecksTable(const carrier::Carrier& c) {
   std::ostringstream s;
   bool any = false;
   for (const carrier::Result& r : c.data)
     for (const carrier::DataItem* d : r.itemsOf("check")) {
-      if (!any) s << "<h3>Checks on the lights</h3><table><tr><th>check</th><th>status</th><th>figures</th></tr>";
+      if (!any) s << "<h3>Checks on the lights</h3><table><tr><th>check</th><th>on</th><th>status</th><th>figures</th></tr>";
       any = true;
       const std::string status = d->get("status").value_or("");
       s << "<tr" << (status == "passed" ? "" : " class=\"warning\"") << "><td><code>"
-        << escapeHtml(d->get("name").value_or("")) << "</code></td><td>" << escapeHtml(status) << "</td><td>"
+        << escapeHtml(d->get("name").value_or("")) << "</code></td><td>" << escapeHtml(checkedOn(c, r)) << "</td><td>"
+        << escapeHtml(status) << "</td><td>"
         << escapeHtml(d->get("detail").value_or("")) << "</td></tr>";
     }
   if (any)

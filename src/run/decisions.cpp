@@ -274,7 +274,9 @@ RunRequest applyDecisions(const RunRequest& standing, const RunRequest& given,
   }
 
   if (!given.title.empty() && given.title != r.title) {
-    if (!r.title.empty()) changes.push_back("title \"" + r.title + "\" -> \"" + given.title + "\"");
+    // A first run states its title too: the change list is the record of what the user gave.
+    changes.push_back(r.title.empty() ? "title \"" + given.title + "\""
+                                      : "title \"" + r.title + "\" -> \"" + given.title + "\"");
     r.title = given.title;
   }
   for (const carrier::Creator& c : given.creators) {

@@ -9,6 +9,7 @@
 
 #include "capture/capture.h"
 #include "capture/lock.h"
+#include "carrier/advice.h"
 #include "carrier/xml.h"
 #include "core/digest.h"
 #include "core/error.h"
@@ -467,9 +468,11 @@ carrier::Carrier replayCarrier(const fs::path& captureRoot, const carrier::Carri
   for (const carrier::Step& s : c.process) {
     auto stage = pipeline::StageRegistry::instance().create(s.component);
     if (stage->version() != s.version)
-      c.addLog("warning", s.id, s.component + " is version " + stage->version() +
-                                    " here but the carrier records version " + s.version +
-                                    ": its results may differ");
+      carrier::addWarning(c, s.id,
+                          {s.component + " is another version here than the one the record was made with",
+                           carrier::Usable::WithCare, "its results may differ a little from the recorded ones",
+                           "compare them with surrogate verify --reexecute, which names every difference",
+                           "version " + stage->version() + " here; the carrier records version " + s.version});
   }
   fs::create_directories(captureRoot / capture::kAssemblyDir);
   fs::create_directories(captureRoot / capture::kFinishedDir);

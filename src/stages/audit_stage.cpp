@@ -1,5 +1,7 @@
 #include "stages/audit_stage.h"
 
+#include "carrier/advice.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -105,7 +107,12 @@ audit::AuditReport auditReadable(audit::AuditInputs& in, const audit::AuditOptio
           if (it->string() != e.file()) continue;
           const std::string relative = captureRelative(*it, ctx.capture);
           left.push_back({relative, e.message()});
-          ctx.carrier.addLog("warning", step.id, relative + " is not audited: " + e.message());
+          carrier::addWarning(ctx.carrier, step.id,
+                              {relative + " is not audited: it cannot be read", carrier::Usable::Yes,
+                               "the other prior files are audited; this one is kept and packed as found",
+                               "if it should be audited, check that it is complete (copy it again from its source) "
+                               "and run again",
+                               e.message()});
           list->erase(it);
           dropped = true;
           break;
@@ -136,7 +143,12 @@ void auditLogs(audit::AuditReport& report, audit::RecordedIds& ids, const ImageS
       report.logs.push_back(audit::auditedLog(audit::readRtiBuilderLog(file), f.path, facts));
     } catch (const Error& e) {
       report.notAudited.push_back({f.path, e.message()});
-      ctx.carrier.addLog("warning", step.id, f.path + " is not audited: " + e.message());
+      carrier::addWarning(ctx.carrier, step.id,
+                          {f.path + " is not audited: it cannot be read as RTIBuilder's log", carrier::Usable::Yes,
+                           "the other prior files are audited; this one is kept and packed as found",
+                           "if it should be audited, check that it is complete (copy it again from its source) and "
+                           "run again",
+                           e.message()});
     }
   }
 }

@@ -1,5 +1,7 @@
 #include "stages/colour_chart_stage.h"
 
+#include "carrier/advice.h"
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -157,10 +159,15 @@ void ColourChartStage::run(const carrier::Step& step, pipeline::Context& ctx, ca
     recordValue(result, "outcome", "a ColorChecker found in " + where + " cannot be measured: " + why +
                                        ": the images keep their colours");
     result.add("input").set("file", chartImage.fileId).set("kind", "chart-search");
-    ctx.carrier.addLog("warning", step.id,
-                       "a ColorChecker was found in " + where + " but cannot be measured: " + why +
-                           "; the images keep their colours (say --colour-chart none if the chart is not "
-                           "to be used)");
+    carrier::addWarning(ctx.carrier, step.id,
+                        {"A ColorChecker was found in " + where + " but cannot be measured (" + why +
+                             "), so the colours are not corrected",
+                         carrier::Usable::Yes,
+                         "the results keep the photographs' own colours, as they would without a chart",
+                         "if the chart should be used, give its corners by hand (--colour-chart " + chartImage.stem +
+                             ":X1,Y1,...,X4,Y4, see the user guide); if it is not a chart to use, say "
+                             "--colour-chart none",
+                         ""});
     ctx.progress("Colour chart", 1);
   };
   colour::ChartPlace place;
@@ -356,10 +363,13 @@ void ColourChartStage::run(const carrier::Step& step, pipeline::Context& ctx, ca
                          fixedDecimals(fa.mean, 2) + ", max " + fixedDecimals(fb.max, 2) + " -> " + fixedDecimals(fa.max, 2) +
                          " (patches held out of the fit: mean " + fixedDecimals(fh.mean, 2) + "); " + levels);
   if (fa.mean > kWarnMeanDeltaE)
-    ctx.carrier.addLog("warning", step.id,
-                       "the chart's colours stay far from its reference after correction (mean CIEDE2000 " +
-                           fixedDecimals(fa.mean, 2) + "): check the chart's edition (--chart-reference), its "
-                           "lighting, or try --colour-model root-polynomial");
+    carrier::addWarning(ctx.carrier, step.id,
+                        {"After correction the chart's colours are still far from what they should be",
+                         carrier::Usable::WithCare,
+                         "the colours are closer than before, but not close enough to be quoted as measured colour",
+                         "check that the chart's edition is the one named (--chart-reference), that it is evenly lit "
+                         "and not glossy in the chosen frame, or try --colour-model root-polynomial",
+                         "mean CIEDE2000 " + fixedDecimals(fa.mean, 2) + " after correction"});
   ctx.progress("Colour chart", 1);
 }
 

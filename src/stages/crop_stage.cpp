@@ -1,5 +1,7 @@
 #include "stages/crop_stage.h"
 
+#include "carrier/advice.h"
+
 #include <algorithm>
 
 #include "core/text.h"
@@ -59,9 +61,12 @@ void CropStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier::
     recordValue(result, "spheresAvoided", std::to_string(circles.size()));
     recordValue(result, "margin", formatNumber(options.margin), "fraction of the sphere radius");
     if (!detection)
-      ctx.carrier.addLog("warning", step.id,
-                         "no sphere detection in this process list (light directions from a file): "
-                         "the automatic crop keeps the full frame");
+      carrier::addWarning(ctx.carrier, step.id,
+                          {"--crop auto keeps the full frame: the lights come from a file, so no spheres were found "
+                           "to crop away",
+                           carrier::Usable::Yes, "the results cover the whole frame, spheres included",
+                           "if the spheres should be cropped away, give the rectangle with --crop X,Y,W,H",
+                           ""});
   }
   recordValue(result, "method", options.method == "user" ? "given by the user" : "automatic: largest rectangle clear of the spheres");
   recordValue(result, "rectangle", rect.text(), "pixels x,y,w,h");

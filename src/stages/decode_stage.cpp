@@ -1,5 +1,7 @@
 #include "stages/decode_stage.h"
 
+#include "carrier/advice.h"
+
 #include <algorithm>
 
 #include "pipeline/context.h"
@@ -37,10 +39,15 @@ std::vector<const carrier::Intervention*> acceptedDamage(const carrier::Step& st
     }
     const carrier::FileRecord* f = ctx.carrier.findFile(in->fileId);
     if (!f || i->value != "sha256:" + f->sha256) {
-      ctx.carrier.addLog("warning", step.id,
-                         "the accepted damage in " + i->target + " was accepted for other bytes (" + i->value +
-                             "); the file is now sha256:" + (f ? f->sha256 : std::string("?")) +
-                             ", so its decoder's warnings refuse it again until accepted anew", i->who);
+      carrier::addWarning(
+          ctx.carrier, step.id,
+          {i->target + " has changed since its damage was accepted, so that acceptance no longer applies to it",
+           carrier::Usable::Yes,
+           "the file is read as any other: if its decoder still reports damage, the run stops and says so",
+           "nothing if the file was replaced by a sound copy; if the damage is reported again, look at the file and "
+           "accept it anew with --accept-damaged " + i->target + " --reason \"...\"",
+           "accepted for " + i->value + "; the file is now sha256:" + (f ? f->sha256 : std::string("?"))},
+          i->who);
       continue;
     }
     accepted[static_cast<std::size_t>(in - inputs.begin())] = i;
@@ -135,8 +142,15 @@ void DecodeStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
       result.add("imageValue").set("image", (*inputs)[i].fileId).set("name", "channelBlackLevels")
           .set("value", levels).set("unit", "raw levels R G B G2");
     }
+    // The raw decoder's own fallbacks (white balance, demosaic): the picture is whole, its
+    // colour or fine detail may differ a little from its neighbours'.
     for (const std::string& w : d.report.warnings)
-      ctx.carrier.addLog("warning", step.id, (*inputs)[i].relativePath + ": " + w);
+      carrier::addWarning(ctx.carrier, step.id,
+                          {(*inputs)[i].relativePath + ": " + w, carrier::Usable::Yes,
+                           "the photograph is whole; its colour or fine detail may differ slightly from the others'",
+                           "nothing if it looks like its neighbours in the report; if not, develop the raw files in "
+                           "your own software and run on their exports (--source export)",
+                           ""});
     if (const carrier::Intervention* a = accepted[i]) {
       if (d.report.decoderWarnings.empty()) {
         ctx.carrier.addLog("info", step.id,
@@ -164,15 +178,18 @@ void DecodeStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
     outside.push_back(in.relativePath);
   }
   if (!outside.empty())
-    ctx.carrier.addLog("warning", step.id,
-                       std::to_string(outside.size()) + " of the " + std::to_string(inputs->size()) +
-                           " images decoded (e.g. " + outside.front() +
-                           ") were processed by other software (raw development, white balance, "
-                           "edits) outside any record; their XMP, where present, is kept in the "
-                           "files section" +
-                           (originalsExist ? ". Use the camera originals (--source original) for "
-                                             "a fully recorded result"
-                                           : ""));
+    carrier::addWarning(
+        ctx.carrier, step.id,
+        {std::to_string(outside.size()) + " of the " + std::to_string(inputs->size()) +
+             " photographs used (e.g. " + outside.front() + ") were processed by other software (raw development, "
+             "white balance, edits) before Surrogate saw them, and that processing is not in this record",
+         carrier::Usable::Yes,
+         "the results are sound for viewing, but a reader of the record cannot see every step between the camera "
+         "and the result",
+         originalsExist ? "use the camera originals for a fully recorded result: run again with --source original"
+                        : "if you have the camera's raw files, put them in original-captures/ and run again; "
+                          "otherwise nothing (the files are flagged in the record)",
+         "flagged unrecordedProcessing; their XMP, where present, is kept in the files section"});
   result.add("value").set("name", "fitInputTransfer").set("value", "srgb");
   result.add("value").set("name", "detectionInputTransfer")
       .set("value", decoded.luminance->transfer() == Transfer::Linear ? "linear" : "srgb");

@@ -12,6 +12,7 @@
 #include <numeric>
 
 #include "capture/capture.h"
+#include "carrier/advice.h"
 #include "core/digest.h"
 #include "core/error.h"
 #include "core/parallel.h"
@@ -182,6 +183,46 @@ pipeline::StageInfo DerivedMapsStage::info() {
   return info;
 }
 
+namespace {
+
+// The pixels whose normal is not the model's own (fit/normals.h, FALLBACK), in words: a few
+// are usual (info); above 5 % a warning says the map is still usable and what a user who
+// measures shape from it can do. PTM: no brightest direction, so the Lambertian fit stands in
+// (as HSH and learned normals use everywhere); the others: no fit at all, left facing the camera.
+void logNormalFallback(pipeline::Context& ctx, const carrier::Step& step, const std::string& basis, int fallback,
+                       double pixels) {
+  const double fraction = fallback / pixels;
+  const std::string figure = std::to_string(fallback) + " pixels (" + fixedDecimals(100 * fraction, 2) + " %)";
+  const bool ptm = basis.rfind("ptm", 0) == 0;
+  if (!(fraction > 0.05)) {
+    ctx.carrier.addLog("info", step.id,
+                       figure + (ptm ? " had no valid PTM maximum and took the least-squares Lambertian normal"
+                                     : " had no Lambertian normal and were left facing the camera"));
+    return;
+  }
+  carrier::Advice a;
+  a.detail = figure + (ptm ? " had no valid PTM maximum and took the least-squares Lambertian normal"
+                           : " had no Lambertian normal and were left facing the camera");
+  if (ptm) {
+    a.what = "In " + fixedDecimals(100 * fraction, 0) + " % of the picture the PTM has no single brightest light "
+             "direction (usual in shadows, shiny or dark areas), so the normal map takes their direction from a "
+             "matte-surface fit instead, the method the HSH normals use everywhere";
+    a.usable = carrier::Usable::Yes;
+    a.why = "the normal map is complete and the relighting is not affected";
+    a.todo = "nothing for viewing; if you measure shape from the normals, compare them with those of the HSH fit "
+             "(run again with --basis hsh2 --basis ptm-lrgb: the first basis named gives the normals)";
+  } else {
+    a.what = "In " + fixedDecimals(100 * fraction, 0) + " % of the picture the " + basis + " fit gives no surface "
+             "direction (the pixels stay dark under every light), so the normal map shows them facing the camera";
+    a.usable = carrier::Usable::WithCare;
+    a.why = "the normals of those pixels are a placeholder, the rest of the map and the relighting are not affected";
+    a.todo = "check the normal map's dark or shadowed areas; if they matter, photograph them with lights that reach them";
+  }
+  carrier::addWarning(ctx.carrier, step.id, a);
+}
+
+}  // namespace
+
 void DerivedMapsStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier::Result& result) {
   const std::string basis = DerivedMapsOptions::fromParameters(parametersOf(step)).model;
   const auto model = ctx.get<fit::Relightable>(modelKey(basis));
@@ -200,10 +241,7 @@ void DerivedMapsStage::run(const carrier::Step& step, pipeline::Context& ctx, ca
   writes.add(model->normalMap(&fallback, ctx.settings.threads), finished(kNormalsFile), [&] {
     record(kNormalsFile, "normals");
     result.add("value").set("name", "normalFallbackPixels").set("value", std::to_string(fallback));
-    const double fraction = double(fallback) / (double(model->width()) * model->height());
-    ctx.carrier.addLog(fraction > 0.05 ? "warning" : "info", step.id,
-                       std::to_string(fallback) + " pixels (" + fixedDecimals(100 * fraction, 2) +
-                           " %) had no valid PTM maximum and took the least-squares Lambertian normal");
+    logNormalFallback(ctx, step, basis, fallback, double(model->width()) * model->height());
   });
   writes.add(model->albedoMap(ctx.settings.threads), finished(kAlbedoFile),
              [&] { record(kAlbedoFile, "albedo"); });

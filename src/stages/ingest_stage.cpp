@@ -1,5 +1,7 @@
 #include "stages/ingest_stage.h"
 
+#include "carrier/advice.h"
+
 #include <algorithm>
 #include <atomic>
 #include <set>
@@ -66,9 +68,11 @@ std::string setFormatIdentifiers(carrier::FileRecord& f, const fs::path& abs, bo
   const KnownFormat* content = *contentExt ? byExtension(contentExt) : named;
   if (content) f.mediaType = content->mediaType;
   if (named && content && std::string(named->mediaType) != content->mediaType)
-    return f.path + " is a " + f.format + " file named " + ext + ": recorded as " + content->mediaType +
-           " (from its content, not its name); rename it to " + contentExt + " so that other software "
-           "opens it as what it is";
+    return carrier::adviceText({f.path + " is a " + f.format + " file named " + ext + ": it is recorded and read as " +
+                                    content->mediaType + " (from its content, not its name)",
+                                carrier::Usable::Yes, "the photograph is read correctly",
+                                "rename it to " + std::string(contentExt) + " so that other software opens it as what it is",
+                                ""});
   return {};
 }
 
@@ -206,7 +210,8 @@ std::vector<PendingFile> pendingFiles(const capture::CaptureLayout& layout, cons
 // One file's record, with what went wrong reading it (logged as warnings, never fatal).
 struct ReadFile {
   carrier::FileRecord record;
-  std::string formatWarning, metadataWarning;
+  std::string formatWarning;  // already in the words of carrier/advice.h
+  std::string metadataWarning;
 };
 
 // Hashes the file and reads its metadata (images: EXIF/XMP; sidecars: their XMP).
@@ -228,7 +233,12 @@ ReadFile readFile(const PendingFile& p, const fs::path& capture) {
     f.format = prior.format;
     f.mediaType = prior.mediaType;
     f.puid = formats::identifyPronomFile(abs).puid;
-    out.formatWarning = prior.warning;
+    if (!prior.warning.empty())
+      out.formatWarning = carrier::adviceText({prior.warning, carrier::Usable::Yes,
+                                               "the file is kept and packed as found; only what made it is not recorded",
+                                               "nothing, unless you need to know what made it: then check that it is "
+                                               "the file you meant to keep beside the capture",
+                                               ""});
     return out;
   }
   out.formatWarning = setFormatIdentifiers(f, abs, p.isImage);
@@ -247,7 +257,7 @@ ReadFile readFile(const PendingFile& p, const fs::path& capture) {
       f.xmp = meta::readXmpSidecar(abs, &f.xmpEscaped);
     }
   } catch (const Error& e) {
-    out.metadataWarning = e.text();
+    out.metadataWarning = e.message();  // the warning names the file itself
   }
   return out;
 }
@@ -273,11 +283,21 @@ void recordFiles(pipeline::Context& ctx, const carrier::Step& step, const std::v
   for (const ReadFile& r : read) records.push_back(r.record);
   ctx.carrier.putFiles(std::move(records));  // one pass: putFile per file was quadratic
   for (const ReadFile& r : read) {
-    if (!r.formatWarning.empty()) ctx.carrier.addLog("warning", step.id, r.formatWarning);
-    if (!r.metadataWarning.empty())
-      ctx.carrier.addLog("warning", step.id,
-                         (r.record.role == "sidecar" ? "unreadable XMP sidecar: " : "no camera metadata: ") +
-                             r.metadataWarning);
+    if (!r.formatWarning.empty()) ctx.carrier.addLog("warning", step.id, r.formatWarning);  // adviceText's words
+    if (!r.metadataWarning.empty()) {
+      const bool sidecar = r.record.role == "sidecar";
+      carrier::addWarning(
+          ctx.carrier, step.id,
+          {r.record.path + (sidecar ? ": the XMP sidecar cannot be read" : ": its camera metadata (EXIF, XMP) cannot be read"),
+           carrier::Usable::Yes,
+           sidecar ? "the sidecar is kept and packed as found, but what it says is not in the record"
+                   : "the photograph is used as usual, but the record lacks its camera settings (exposure, lens, date)",
+           sidecar ? "open the sidecar in a text editor or your photo software to see whether it is damaged; a "
+                     "repaired copy is read on the next run"
+                   : "nothing for the result; if the camera settings matter for the record, check the file in the "
+                     "camera maker's software",
+           r.metadataWarning});
+    }
   }
   std::unordered_map<std::string, carrier::FileRecord*> byPath;
   for (carrier::FileRecord& f : ctx.carrier.files) byPath.emplace(f.path, &f);
@@ -323,10 +343,14 @@ void logOtherFiles(pipeline::Context& ctx, const carrier::Step& step, const capt
 void logUnrecordedProcessing(pipeline::Context& ctx, const carrier::Step& step, const capture::CaptureLayout& layout) {
   for (const carrier::FileRecord& f : ctx.carrier.files)
     if (f.role == "original" && f.unrecordedProcessing)
-      ctx.carrier.addLog("warning", step.id,
-                         f.path + " is a " + f.format + " whose XMP records processing by other "
-                         "software (editing history or raw development settings): that processing "
-                         "is not recorded here (flagged unrecordedProcessing; its XMP is kept)");
+      carrier::addWarning(ctx.carrier, step.id,
+                          {f.path + " is a " + f.format + " whose XMP records processing by other software (editing "
+                               "history or raw development settings), which is not in this record",
+                           carrier::Usable::Yes,
+                           "the result is sound, but a reader of the record cannot see that processing",
+                           "if you have the unprocessed camera file, use it instead; otherwise nothing (the file is "
+                           "flagged and its XMP is kept)",
+                           "flagged unrecordedProcessing"});
   if (layout.hasOriginals() && layout.hasExports()) {
     ctx.carrier.addLog("info", step.id,
                        "the files in jpeg-exports/ were made by other software: their processing "

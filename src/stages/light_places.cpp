@@ -1,5 +1,7 @@
 #include "stages/light_places.h"
 
+#include "carrier/advice.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -75,11 +77,16 @@ PlacedLights placeLights(const LightDirectionsOptions& options, const std::vecto
   // Stated and measured both: the spheres' positions are used; a statement far from them is
   // worth a word (the wrong unit, or the dome's diameter given for its radius).
   if (widths > 0 && placedWidths.size() >= 3 && std::abs(median(placedWidths) / widths - 1) > 0.2)
-    carrier.addLog("warning", stepId,
-                   "the two spheres place " + std::to_string(placedWidths.size()) + " lights at a median " +
-                       fixedDecimals(median(placedWidths), 2) + " frame widths from the frame's centre, but the "
-                       "stated distance is " + fixedDecimals(widths, 2) + ": those lights take the spheres' "
-                       "positions, the others the stated distance; check --light-distance");
+    carrier::addWarning(carrier, stepId,
+                        {"the two spheres place the lights at another distance than the one stated "
+                         "(--light-distance); the lights they place take their positions, the others the stated "
+                         "distance",
+                         carrier::Usable::WithCare,
+                         "if the stated distance is wrong, the lights it places are wrong too",
+                         "check the distance you stated: it is measured from the frame's centre in frame widths (a "
+                         "dome's radius, not its diameter)",
+                         std::to_string(placedWidths.size()) + " lights placed at a median " +
+                             fixedDecimals(median(placedWidths), 2) + " frame widths; stated " + fixedDecimals(widths, 2)});
   // No distance stated, and the spheres placed enough lights (at least 3, and a quarter of
   // them) to say how far the flash was held: the others go at the median of their distances,
   // which stands for the distance a photographer would have stated.
@@ -179,16 +186,24 @@ PlacedLights placeLights(const LightDirectionsOptions& options, const std::vecto
                        std::to_string(measured.size()) + " images checked; e.g. " + firstReason +
                        "); if the light was nearer, state its distance with --light-distance D (frame widths)");
   } else if (!untrusted.empty()) {
-    carrier.addLog(byDistance.empty() ? "warning" : "info", stepId,
-                   "the two spheres could not place the light of " + std::to_string(untrusted.size()) + " of the " +
-                       std::to_string(measured.size()) + " images (" + listedInFull(untrusted) + "), e.g. " +
-                       firstReason +
-                       (!byDistance.empty() ? (fallbackSource == "spheres-median"
-                                                   ? "; they are placed at the median distance of the lights the spheres "
-                                                     "placed (state the distance with --light-distance D if it was another)"
-                                                   : "; they are placed at the stated distance")
-                                            : "; they are taken at infinity. State the distance with --light-distance D "
-                                              "(frame widths) to place them"));
+    const std::string couldNot = "the two spheres could not place the light of " + std::to_string(untrusted.size()) +
+                                 " of the " + std::to_string(measured.size()) + " images (" + listedInFull(untrusted) +
+                                 "), e.g. " + firstReason;
+    if (!byDistance.empty())
+      carrier.addLog("info", stepId,
+                     couldNot + (fallbackSource == "spheres-median"
+                                     ? "; they are placed at the median distance of the lights the spheres "
+                                       "placed (state the distance with --light-distance D if it was another)"
+                                     : "; they are placed at the stated distance"));
+    else
+      carrier::addWarning(carrier, stepId,
+                          {"the two spheres could not place the light of " + std::to_string(untrusted.size()) +
+                               " of the " + std::to_string(measured.size()) +
+                               " images, so those lights are taken as far away (parallel rays)",
+                           carrier::Usable::WithCare,
+                           "if the flash was held near, the shading of those photographs is modelled less well",
+                           "state how far the flash was with --light-distance D (in frame widths) to place them",
+                           listedInFull(untrusted) + "; e.g. " + firstReason});
   }
   return out;
 }

@@ -1,5 +1,7 @@
 #include "stages/recorded_checks.h"
 
+#include "carrier/advice.h"
+
 #include "core/error.h"
 
 namespace surrogate::stages {
@@ -17,7 +19,16 @@ void recordChecks(const carrier::Step& step, pipeline::Context& ctx, carrier::Re
     if (!c.failed) continue;
     if (accepted) {
       ctx.carrier.addLog("intervention", step.id, "check " + c.name + " accepted: " + accepted->reason, accepted->who);
-      ctx.carrier.addLog("warning", step.id, "check " + c.name + " failed and was accepted: " + c.detail);
+      carrier::addWarning(ctx.carrier, step.id,
+                          {"the check " + c.name + " failed, and " + (accepted->who.empty() ? std::string("someone")
+                                                                                               : accepted->who) +
+                               " accepted the result on the record",
+                           carrier::Usable::WithCare,
+                           "the result stands on that person's judgement, which the record keeps with their reason",
+                           "nothing if the reason holds; otherwise withdraw it with --forget-accept " + c.name +
+                               " --reason \"...\" and follow the check's advice",
+                           c.detail},
+                          accepted->who);
       continue;
     }
     failures.push_back(c.name + ": " + c.detail + ". To fix: " + fixFor(c) + ". If the result is right, accept it with "

@@ -1,5 +1,7 @@
 #include "stages/rti_fit_stage.h"
 
+#include "carrier/advice.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -252,21 +254,30 @@ void RtiFitStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
     result.add("value").set("name", "regularisation").set("value", formatNumber(stats.regularisation));
     result.add("value").set("name", "dampedTerms").set("value", damped);
     result.add("value").set("name", "plainQuantisationNoiseGain").set("value", formatNumber(stats.plainNoiseGain));
-    ctx.carrier.addLog("warning", step.id,
+    ctx.carrier.addLog("warning", step.id,  // in core/advice.h's words
                        fit::conditioningWarning(options.basis, static_cast<int>(lights->size()), stats));
   }
   if (stats.rank < fit::basisTerms(options.basis))
-    ctx.carrier.addLog("warning", step.id, "the light directions do not determine all " +
-                                               std::to_string(fit::basisTerms(options.basis)) +
-                                               " terms of " + basis + " (rank " + std::to_string(stats.rank) +
-                                               "): add lights at other elevations and azimuths");
+    carrier::addWarning(ctx.carrier, step.id,
+                        {"the light directions are too alike to determine every term of " + basis +
+                             "; where they cannot tell terms apart, the fit takes the smallest model that matches",
+                         carrier::Usable::WithCare,
+                         "the model shows the surface under lights like the photographed ones, but not under others",
+                         "photograph the object again with lights spread over more elevations and directions, or "
+                         "use a simpler basis (ptm-lrgb needs 6 well-spread lights, hsh2 4)",
+                         "rank " + std::to_string(stats.rank) + " of " + std::to_string(fit::basisTerms(options.basis)) +
+                             " terms"});
   if (recorded.holdout > 0) {
     // A near-light model is relit at a direction, not at a pixel's own light and distance: its
     // figure at an unseen light would not be the photograph's. Said, not measured.
     if (nearCount > 0) {
-      ctx.carrier.addLog("warning", step.id,
-                         basis + ": not measured at lights left out (holdout " + std::to_string(recorded.holdout) +
-                             "): the lights are at known positions, and the comparison is made for lights at infinity");
+      carrier::addWarning(ctx.carrier, step.id,
+                          {basis + " was not measured at the lights left out (--holdout): the lights are near, "
+                               "at known positions, and the comparison is made for lights far away",
+                           carrier::Usable::Yes, "the fit itself uses every photograph as usual",
+                           "nothing; to compare bases at unseen lights, use a capture whose lights are far (or "
+                           "leave --holdout out)",
+                           "holdout " + std::to_string(recorded.holdout)});
     } else {
       ModelRecipe recipe;
       recipe.basis = basis;

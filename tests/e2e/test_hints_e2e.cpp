@@ -65,7 +65,7 @@ TEST_CASE("run prints each warning's text under its step and info lists them as 
   const std::size_t recorded = recordedWarnings(capture);
   CHECK(recorded >= 3);
   const std::string heading = std::to_string(recorded) + " warnings in the carrier's log:\n";
-  CHECK_THAT(r.output, Contains(heading + "    s1 CaptureIngest:\n      unreadable XMP sidecar: "));
+  CHECK_THAT(r.output, Contains(heading + "    s1 CaptureIngest:\n      original-captures/IMG_0001.xmp: the XMP sidecar cannot be read. "));
   CHECK(count(r.output, "\n      ") == recorded);
   for (const char* name : {"IMG_0001.xmp", "IMG_0002.xmp", "IMG_0003.xmp"})
     CHECK(count(from(r.output, "warnings in the carrier's log"), name) == 1);
@@ -74,8 +74,8 @@ TEST_CASE("run prints each warning's text under its step and info lists them as 
   const e2e::CommandResult text = e2e::surrogate("info " + e2e::quote(capture));
   INFO(text.output);
   REQUIRE(text.exitCode == 0);
-  CHECK_THAT(text.output, Contains(heading + "    s1 CaptureIngest:\n      unreadable XMP sidecar: "));
-  CHECK(count(text.output, "unreadable XMP sidecar: ") == 3);
+  CHECK_THAT(text.output, Contains(heading + "    s1 CaptureIngest:\n      original-captures/IMG_0001.xmp: the XMP sidecar cannot be read. "));
+  CHECK(count(text.output, ": the XMP sidecar cannot be read. ") == 3);
 
   // The JSON, read by Python's json module: the capture's object nests the carrier's.
   const e2e::CommandResult json = e2e::runShell(
@@ -84,13 +84,13 @@ TEST_CASE("run prints each warning's text under its step and info lists them as 
       "w = json.load(sys.stdin)[\"carrier\"][\"warnings\"]\n"
       "print(len(w))\n"
       "for x in w:\n"
-      "  if x[\"text\"].startswith(\"unreadable\"): print(x[\"step\"], x[\"component\"], bool(x[\"time\"]), x[\"text\"][:22], x[\"text\"].count(\".xmp\"))'");
+      "  if \": the XMP sidecar cannot\" in x[\"text\"]: print(x[\"step\"], x[\"component\"], bool(x[\"time\"]), x[\"text\"][30:62])'");
   INFO(json.output);
   REQUIRE(json.exitCode == 0);
   CHECK(json.output == std::to_string(recorded) + "\n"
-                       "s1 CaptureIngest True unreadable XMP sidecar 1\n"
-                       "s1 CaptureIngest True unreadable XMP sidecar 1\n"
-                       "s1 CaptureIngest True unreadable XMP sidecar 1\n");
+                       "s1 CaptureIngest True : the XMP sidecar cannot be read\n"
+                       "s1 CaptureIngest True : the XMP sidecar cannot be read\n"
+                       "s1 CaptureIngest True : the XMP sidecar cannot be read\n");
 }
 
 TEST_CASE("a carrier without warnings says so in info", "[e2e][hints]") {
@@ -119,13 +119,13 @@ TEST_CASE("run prints at most 15 lines of warnings and counts the rest, which in
   const std::string listing = from(r.output, "  " + std::to_string(recorded) + " warnings in the carrier's log:\n");
   REQUIRE_FALSE(listing.empty());
   CHECK_THAT(listing, Contains("\n    s1 CaptureIngest:\n"));
-  CHECK(count(listing, "\n      unreadable XMP sidecar: ") == 13);
+  CHECK(count(listing, ": the XMP sidecar cannot be read. ") == 13);
   CHECK_THAT(listing, Contains("\n    and " + std::to_string(recorded - 13) + " more: surrogate info " + capture.string() +
                                " lists them all\n"));
   CHECK(count(listing, "\n") == 1 + 15);
 
   const e2e::CommandResult text = e2e::surrogate("info " + e2e::quote(capture));
-  CHECK(count(text.output, "\n      unreadable XMP sidecar: ") == 20);
+  CHECK(count(text.output, ": the XMP sidecar cannot be read. ") == 20);
   CHECK_THAT(text.output, !Contains("more:"));
 }
 

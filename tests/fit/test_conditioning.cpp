@@ -227,4 +227,7 @@ TEST_CASE("conditioning: a narrow cone of lights damps HSH order 3 toward order 
   const std::string warning = conditioningWarning(o3.basis, 12, s3);
   CHECK(warning.find("the 12 lights lie within 21 degrees of the view axis") == 0);
   CHECK(warning.find("HSH order 3's five highest terms were damped") != std::string::npos);
+  // In the words of every warning (core/advice.h): usable or not, and what to do.
+  CHECK(warning.find(". Usable with care: ") != std::string::npos);
+  CHECK(warning.find(". What to do: ") != std::string::npos);
 }
