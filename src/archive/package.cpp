@@ -141,8 +141,9 @@ CarrierState checkCarrier(const fs::path& capture) {
   if (c.process.empty()) incomplete("the carrier records no processing");
   for (const carrier::Step& s : c.process) {
     const carrier::Result* r = c.findResult(s.id);
-    if (!r) incomplete("step " + s.id + " (" + s.component + ") never ran");
-    else if (r->status != "completed") incomplete("step " + s.id + " (" + s.component + ") failed");
+    // Said as what an earlier run did: `pack` prints it as the reason it processes again.
+    if (!r) incomplete("an earlier run did not reach step " + s.id + " (" + s.component + ")");
+    else if (r->status != "completed") incomplete("an earlier run stopped at step " + s.id + " (" + s.component + "), which failed");
   }
   for (const std::string& rel : files)
     if (!isOutputPath(rel) && !byPath.count(rel))

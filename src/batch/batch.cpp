@@ -152,14 +152,13 @@ class Runner {
           job = std::make_unique<Job>();
           job->item = items_[queue.front()];
           queue.pop_front();
-          job->package = job->item.isPackage ? fs::path(job->item.path)
-                                             : packagePathFor(job->item.path, o_.packagesDir, o_.packageFormat);
+          job->package = packageOf(job->item);
           job->report.item = job->item;
         } else {
           break;
         }
         if (!job->item.isPackage &&
-            job->claim.claim(job->item.path) == CaptureClaim::Outcome::HeldByAnother &&
+            job->claim.claim(job->item.where()) == CaptureClaim::Outcome::HeldByAnother &&
             waitForCapture(*job, "another batch is working on this capture")) {
           parked.emplace_back(std::move(job), std::chrono::steady_clock::now() + kBusyRetryInterval);
           changed = true;
@@ -210,6 +209,9 @@ class Runner {
  private:
   // The steps of `o_.steps` that apply to the item (a package has only verify).
   bool applies(const Job& job, const std::string& step) const { return !job.item.isPackage || step == "verify"; }
+  fs::path packageOf(const WorkItem& item) const {
+    return item.isPackage ? fs::path(item.where()) : packagePathFor(item.where(), o_.packagesDir, o_.packageFormat);
+  }
 
   // The item's lines, in file order (a copy: a ledger of 100 000 packages is not searched whole
   // for each decision).
@@ -240,11 +242,11 @@ class Runner {
 
   // Whether the step is done and still valid; `why` says why not.
   bool stillValid(const Job& job, const std::string& step, std::string& why) const {
-    const std::string& item = job.item.path;
+    const std::string& item = job.item.path;  // the ledger's name of it; the files are at where()
     const Ledger mine = ledgerOf(item);
-    if (step == "run") return runStillValid(historyOf(mine, item, "run"), carrierState(item), why);
+    if (step == "run") return runStillValid(historyOf(mine, item, "run"), carrierState(job.item.where()), why);
     if (step == "pack")
-      return packStillValid(historyOf(mine, item, "pack"), carrierState(item),
+      return packStillValid(historyOf(mine, item, "pack"), carrierState(job.item.where()),
                             packageState(job.package, knownPackage(item)), why);
     return verifyStillValid(historyOf(mine, item, "verify"), packageState(job.package, knownPackage(item)),
                             o_.reexecute, why);
@@ -253,7 +255,7 @@ class Runner {
   ItemPlan planOf(const WorkItem& item) const {
     Job job;
     job.item = item;
-    job.package = item.isPackage ? fs::path(item.path) : packagePathFor(item.path, o_.packagesDir, o_.packageFormat);
+    job.package = packageOf(item);
     ItemPlan plan;
     plan.item = item;
     std::string before;  // an earlier step that will run: the later ones follow it
@@ -279,7 +281,7 @@ class Runner {
     const std::string threads = std::to_string(threads_);
     // Paths as paths, never options: an item "--help" was taken as run --help, which did
     // nothing and exited 0, and a capture folder "-h" was never processed.
-    const std::string item = pathArgument(job.item.path), package = pathArgument(job.package.string());
+    const std::string item = pathArgument(job.item.where()), package = pathArgument(job.package.string());
     if (step == "run") {
       a = {"run", item, "--quiet", "--json", "--threads", threads};
       if (o_.noReport) a.push_back("--no-report");
@@ -305,6 +307,7 @@ class Runner {
   LedgerEntry newEntry(const Job& job, const std::string& step) const {
     LedgerEntry e;
     e.capture = job.item.path;
+    e.packageItem = job.item.isPackage;
     e.step = step;
     e.attempt = historyOf(ledgerOf(job.item.path), job.item.path, step).nextAttempt();
     e.start = ledgerTime();
@@ -391,7 +394,7 @@ class Runner {
   // a run to its history. A pack it waited for is recognised by its package (settlePackHere).
   bool processedMeanwhile(const Job& job) const {
     try {
-      const carrier::Carrier c = carrier::loadCarrier(fs::path(job.item.path) / capture::kCarrierPath);
+      const carrier::Carrier c = carrier::loadCarrier(fs::path(job.item.where()) / capture::kCarrierPath);
       for (auto r = c.header.runs.rbegin(); r != c.header.runs.rend(); ++r)
         if (r->command == "run") return r->outcome == "completed" && r->ended >= job.busySinceUtc;
     } catch (const Error&) {
@@ -406,11 +409,12 @@ class Runner {
     const LedgerEntry* known = lastSuccess(job.item.path, "pack");
     const FileState package = packageState(job.package, knownPackage(job.item.path));
     if (!package.exists) return false;
-    if (known && known->packageSha256 == package.sha256) {
-      job.forcePack = true;  // this batch's package of an earlier state of the capture
+    const FileState carrier = carrierState(job.item.where());
+    // Its package of an earlier carrier is packed again; of this one (restored) recorded below.
+    if (known && known->packageSha256 == package.sha256 && known->carrierSha256 != carrier.sha256) {
+      job.forcePack = true;
       return false;
     }
-    const FileState carrier = carrierState(job.item.path);
     LedgerEntry e = newEntry(job, "pack");
     std::string inside;
     std::string problem;
@@ -534,7 +538,7 @@ class Runner {
       e.message += " (its memory peaked at " + memorySize(r.peakMemory) + ", above the budget of " +
                    memorySize(o_.memory) + " per job (--memory); it ended before it could be stopped)";
     if (step == "pack" && report.is_object()) e.packageId = textOf(report, "packageId");
-    if (step != "verify" && !job.item.isPackage) e.carrierSha256 = carrierState(job.item.path).sha256;
+    if (step != "verify" && !job.item.isPackage) e.carrierSha256 = carrierState(job.item.where()).sha256;
     if (step != "run") {
       // After a pack the package is new: read whole. After a verify, as the ledger knows it.
       const FileState p = packageState(job.package, step == "pack" ? nullptr : knownPackage(job.item.path));
@@ -545,12 +549,8 @@ class Runner {
         if (const LedgerEntry* packed = lastSuccess(job.item.path, "pack")) e.packageId = packed->packageId;
     }
     record(e);
-    if (r.exit == 0) {
-      finishStep(job, step, "done", &ledger_.entries.back(), e.message);
-      job.report.workDone = true;
-      return;
-    }
     job.report.workDone = true;
+    if (r.exit == 0) return finishStep(job, step, "done", &ledger_.entries.back(), e.message);
     // A budget passed is passed again: no retry. A verification's verdict is the package's.
     const bool retry = !r.overBudget && !(step == "verify" && r.exit >= 1 && r.exit <= 4) &&
                        job.attempts < 1 + std::max(0, o_.retries);

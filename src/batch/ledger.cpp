@@ -11,7 +11,6 @@
 #include <cstdio>
 #include <cstring>
 #include <ctime>
-#include <map>
 #include <optional>
 #include <type_traits>
 #include <variant>
@@ -152,9 +151,10 @@ const Field kFields[] = {
     {"version", &LedgerEntry::version},
 };
 
-// How every line the writer makes begins (kFields' first member, JsonWriter's compact form):
-// what a torn first line still shows of a ledger.
+// How every line the writer makes begins (kFields' first member, JsonWriter's compact form; a
+// package item's line names it first as "package"): what a torn first line still shows of a ledger.
 constexpr const char* kLedgerLineStart = "{\"capture\":";
+constexpr const char* kPackageLineStart = "{\"package\":";
 
 template <class>
 inline constexpr bool kAlwaysFalse = false;
@@ -213,7 +213,9 @@ std::string ledgerLine(const LedgerEntry& entry) {
   e.message = boundedMessage(entry.message);
   JsonWriter j;
   j.beginObject();
+  if (e.packageItem) j.key("package").value(e.capture);
   for (const Field& f : kFields) {
+    if (e.packageItem && (std::strcmp(f.name, "capture") == 0 || std::strcmp(f.name, "package") == 0)) continue;
     j.key(f.name);
     writeValue(j, e, f.member);
   }
@@ -223,12 +225,18 @@ std::string ledgerLine(const LedgerEntry& entry) {
 
 bool parseLedgerLine(const std::string& line, LedgerEntry& e) {
   const nlohmann::json j = nlohmann::json::parse(line, nullptr, /*allow_exceptions=*/false);
-  if (!j.is_object() || !j.contains("capture") || !j["capture"].is_string() || !j.contains("step") ||
-      !j["step"].is_string() || !j.contains("exit") || !j["exit"].is_number_integer())
+  if (!j.is_object() || !j.contains("step") || !j["step"].is_string() || !j.contains("exit") ||
+      !j["exit"].is_number_integer())
     return false;
+  const bool hasCapture = j.contains("capture") && j["capture"].is_string();
+  if (!hasCapture && !(j.contains("package") && j["package"].is_string())) return false;
   e = LedgerEntry{};
   for (const Field& f : kFields)
     if (const auto it = j.find(f.name); it != j.end()) readValue(*it, e, f.member);
+  // A package item: named "package" alone; or, in a ledger written before it was, a
+  // verification whose "capture" is its package.
+  if (!hasCapture) e.capture = e.package;
+  e.packageItem = !hasCapture || (e.step == "verify" && !e.package.empty() && e.capture == e.package);
   return true;
 }
 
@@ -355,49 +363,11 @@ void checkLedgerTarget(const std::filesystem::path& ledger, const std::filesyste
   LedgerEntry e;
   const bool isLedger = newline != std::string::npos
                             ? parseLedgerLine(head.substr(0, newline), e)
-                            : head.size() <= kMaxLedgerLineBytes && head.rfind(kLedgerLineStart, 0) == 0;
+                            : head.size() <= kMaxLedgerLineBytes && (head.rfind(kLedgerLineStart, 0) == 0 ||
+                                                                     head.rfind(kPackageLineStart, 0) == 0);
   if (!isLedger)
     refuseLedger(ledger, "is not a ledger: its first line is not a line surrogate batch writes, so it is some "
                          "other file, which appending would damage; give a new file name for the ledger");
-}
-
-}  // namespace surrogate::batch
-
-namespace surrogate::batch {
-
-bool ItemStanding::failed() const {
-  for (const LedgerEntry* e : lastOfStep)
-    if (!e->succeeded()) return true;
-  return false;
-}
-
-const LedgerEntry* ItemStanding::last(const std::string& step) const {
-  for (const LedgerEntry* e : lastOfStep)
-    if (e->step == step) return e;
-  return nullptr;
-}
-
-std::vector<ItemStanding> standings(const Ledger& ledger) {
-  std::vector<ItemStanding> out;
-  std::map<std::string, std::size_t> index;
-  for (const LedgerEntry& e : ledger.entries) {
-    auto it = index.find(e.capture);
-    if (it == index.end()) {
-      it = index.emplace(e.capture, out.size()).first;
-      out.push_back(ItemStanding{e.capture, {}, 0, 0});
-    }
-    ItemStanding& s = out[it->second];
-    ++s.attempts;
-    if (e.step == "pack" && e.succeeded() && !e.adopted) ++s.packsMade;
-    bool replaced = false;
-    for (const LedgerEntry*& last : s.lastOfStep)
-      if (last->step == e.step) {
-        last = &e;
-        replaced = true;
-      }
-    if (!replaced) s.lastOfStep.push_back(&e);
-  }
-  return out;
 }
 
 }  // namespace surrogate::batch

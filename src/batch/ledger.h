@@ -18,9 +18,12 @@
 
 namespace surrogate::batch {
 
-// One attempt of one step on one item of the list. The member names are the ledger's keys.
+// One attempt of one step on one item of the list. The member names are the ledger's keys, but
+// for a package item (verify --batch, a package in a batch's list): its line names the item
+// "package" and has no "capture", a package being no capture.
 struct LedgerEntry {
   std::string capture;          // the item as the list gives it: a capture folder or a package
+  bool packageItem = false;     // the item is a package (its line: "package", no "capture")
   std::string step;             // "run", "pack" or "verify"
   int attempt = 1;              // 1, 2, ... for this item and step, across batches
   std::string start, end;       // UTC, ISO 8601 with milliseconds
@@ -94,22 +97,5 @@ std::uint64_t readLedgerSince(const std::filesystem::path& ledger, std::uint64_t
 
 // Now, as the ledger writes times: "2026-12-05T05:01:02.345Z".
 std::string ledgerTime();
-
-}  // namespace surrogate::batch
-
-namespace surrogate::batch {
-
-// Where each item stands by the ledger: its last attempt of each step.
-struct ItemStanding {
-  std::string item;
-  std::vector<const LedgerEntry*> lastOfStep;  // one per step met, in the order first met
-  std::size_t attempts = 0;                    // lines of this item
-  std::size_t packsMade = 0;                   // successful packs that wrote a package (not adopted)
-  bool failed() const;                         // some step's last attempt failed
-  const LedgerEntry* last(const std::string& step) const;
-};
-
-// The items in the order of their first line.
-std::vector<ItemStanding> standings(const Ledger& ledger);
 
 }  // namespace surrogate::batch

@@ -61,8 +61,22 @@ StepHistory historyOf(const Ledger& ledger, const std::string& item, const std::
   return h;
 }
 
+namespace {
+
+// The latest attempt decides: a step whose last attempt failed is done again (or, for a pack
+// whose package is again the one packed, recorded again), however its files compare with an
+// earlier success, so that the batch and --summary (which reads each step's last attempt) agree.
+bool lastFailed(const StepHistory& h, const std::string& step, std::string& why) {
+  if (h.attempts.empty() || h.attempts.back()->succeeded()) return false;
+  why = "its last " + step + " failed";
+  return true;
+}
+
+}  // namespace
+
 bool runStillValid(const StepHistory& run, const FileState& carrier, std::string& why) {
   const LedgerEntry* done = run.lastSuccess();
+  if (lastFailed(run, "run", why)) return false;
   if (!done) {
     why = run.attempts.empty() ? "no run recorded" : "its last run failed";
     return false;
@@ -80,6 +94,7 @@ bool runStillValid(const StepHistory& run, const FileState& carrier, std::string
 
 bool packStillValid(const StepHistory& pack, const FileState& carrier, const FileState& package, std::string& why) {
   const LedgerEntry* done = pack.lastSuccess();
+  if (lastFailed(pack, "pack", why)) return false;
   if (!done) {
     why = pack.attempts.empty() ? "no pack recorded" : "its last pack failed";
     return false;
@@ -103,6 +118,7 @@ bool verifyStillValid(const StepHistory& verify, const FileState& package, bool 
   const LedgerEntry* done = nullptr;
   for (auto it = verify.attempts.rbegin(); it != verify.attempts.rend() && !done; ++it)
     if ((*it)->succeeded() && (!reexecute || (*it)->reexecuted)) done = *it;
+  if (lastFailed(verify, "verification", why)) return false;
   if (!done) {
     why = verify.attempts.empty() ? "no verification recorded"
           : reexecute             ? "no re-execution recorded as sound"

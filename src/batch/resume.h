@@ -1,7 +1,8 @@
 // What a batch finds done and still valid, from its ledger and the files as they are now, so
 // that running the same batch again does only what is left.
 //
-// A step is done when the ledger holds a success of it whose digests still describe the files:
+// A step is done when its last attempt in the ledger succeeded (the latest attempt decides, as
+// in --summary) and a success of it has digests that still describe the files:
 //   run     the carrier's SHA-256 recorded after the run is the carrier's now;
 //   pack    the same, and the package's SHA-256 recorded after the pack is the package's now;
 //   verify  the package's SHA-256 recorded when it was verified is the package's now (and it

@@ -65,7 +65,15 @@ std::string realPathOf(const std::string& path) {
   return key;
 }
 
-std::vector<WorkItem> itemsOf(std::string text, const std::string& listName) {
+// The folder a list's relative paths are read from: the list file's own ("" : the current one).
+fs::path listFolder(const std::string& list) { return list == "-" ? fs::path() : fs::path(list).parent_path(); }
+
+// A line's path as read from `base`: itself when absolute or when `base` is the current folder.
+std::string within(const fs::path& base, const std::string& line) {
+  return fs::path(line).is_absolute() || base.empty() ? line : (base / line).string();
+}
+
+std::vector<WorkItem> itemsOf(std::string text, const std::string& listName, const fs::path& base) {
   // Lists made on Windows: PowerShell's > writes UTF-16 with a byte-order mark, editors put a
   // mark before UTF-8. Taken as bytes, the mark became part of the first path, which then named
   // a capture that does not exist, in a message where the mark cannot be seen.
@@ -97,7 +105,7 @@ std::vector<WorkItem> itemsOf(std::string text, const std::string& listName) {
     // "cap/" and "cap", a link to cap, its absolute path: one capture, the same lock, the same
     // carrier. Taken twice, it would be run and packed once per spelling, each pack's change to
     // the carrier making the other's package out of date, in every batch.
-    const std::string key = realPathOf(line);
+    const std::string key = realPathOf(within(base, line));
     if (const auto it = seen.find(key); it != seen.end())
       throw Error(ErrorKind::Usage, escapedText(listName), "batch list",
                   "line " + std::to_string(lineNumber) + " (" + escapedText(line) + ") repeats line " +
@@ -109,7 +117,8 @@ std::vector<WorkItem> itemsOf(std::string text, const std::string& listName) {
     WorkItem item;
     item.number = items.size() + 1;
     item.path = line;
-    item.isPackage = looksLikePackage(line);
+    item.location = within(base, line);
+    item.isPackage = looksLikePackage(item.location);
     items.push_back(std::move(item));
   }
   return items;
@@ -117,14 +126,14 @@ std::vector<WorkItem> itemsOf(std::string text, const std::string& listName) {
 
 }  // namespace
 
-std::vector<WorkItem> readWorkList(std::istream& in, const std::string& listName) {
+std::vector<WorkItem> readWorkList(std::istream& in, const std::string& listName, const fs::path& base) {
   return itemsOf(boundedText(
                      [&](char* buffer, std::size_t size) {
                        in.read(buffer, static_cast<std::streamsize>(size));
                        return static_cast<std::size_t>(in.gcount());
                      },
                      listName),
-                 listName);
+                 listName, base);
 }
 
 std::vector<WorkItem> readWorkList(const std::string& list) {
@@ -155,12 +164,23 @@ std::vector<WorkItem> readWorkList(const std::string& list) {
                           }
                         },
                         list),
-                    list);
+                    list, listFolder(list));
   }
   if (items.empty())
     throw Error(ErrorKind::Usage, list == "-" ? "standard input" : escapedText(list), "batch list",
                 "holds no capture folder or package (one a line; # starts a comment)");
   return items;
+}
+
+std::string listFolderNote(const std::string& list, const std::vector<WorkItem>& items) {
+  const bool relative = std::any_of(items.begin(), items.end(),
+                                    [](const WorkItem& i) { return !fs::path(i.path).is_absolute(); });
+  if (!relative) return "";
+  const fs::path base = listFolder(list);
+  std::string folder = (base.empty() ? fs::current_path() : fs::absolute(base)).lexically_normal().string();
+  while (folder.size() > 1 && folder.back() == '/') folder.pop_back();
+  return list == "-" ? "Relative paths in the list are read from the current folder, " + escapedText(folder) + "."
+                     : "Relative paths in " + escapedText(list) + " are read from its folder, " + escapedText(folder) + ".";
 }
 
 std::string pathArgument(const std::string& path) { return path.rfind('-', 0) == 0 ? "./" + path : path; }
@@ -188,7 +208,7 @@ void requireDistinctPackages(const std::vector<WorkItem>& items, const fs::path&
   for (const WorkItem& item : items) {
     if (item.isPackage) continue;
     const std::string package =
-        fs::absolute(packagePathFor(item.path, packagesDir, format)).lexically_normal().string();
+        fs::absolute(packagePathFor(item.where(), packagesDir, format)).lexically_normal().string();
     const auto [it, added] = byPackage.emplace(package, &item);
     if (!added)
       throw Error(ErrorKind::Usage, item.path, "batch list",

@@ -15,6 +15,7 @@
 #include "capture/capture.h"
 #include "capture/output_rule.h"
 #include "cli/args.h"
+#include "cli/batch_summary.h"
 #include "cli/commands.h"
 #include "cli/progress.h"
 #include "core/error.h"
@@ -96,56 +97,6 @@ std::string duration(double seconds) {
   return text;
 }
 
-int printSummary(const std::string& ledgerPath, bool json) {
-  const batch::Ledger ledger = batch::readLedger(ledgerPath);
-  const std::vector<batch::ItemStanding> items = batch::standings(ledger);
-  std::size_t failed = 0, duplicates = 0;
-  for (const batch::ItemStanding& s : items) {
-    failed += s.failed();
-    duplicates += s.packsMade > 1;
-  }
-  if (json) {
-    JsonWriter j;
-    j.beginObject().key("ledger").value(ledgerPath)
-        .key("items").value(static_cast<unsigned long long>(items.size()))
-        .key("done").value(static_cast<unsigned long long>(items.size() - failed))
-        .key("failed").value(static_cast<unsigned long long>(failed))
-        .key("lines").value(static_cast<unsigned long long>(ledger.entries.size()))
-        .key("damagedLines").value(static_cast<unsigned long long>(ledger.damagedLines));
-    j.key("captures").beginArray();
-    for (const batch::ItemStanding& s : items) {
-      j.beginObject().key("capture").value(s.item).key("state").value(s.failed() ? "failed" : "done")
-          .key("attempts").value(static_cast<unsigned long long>(s.attempts))
-          .key("packsMade").value(static_cast<unsigned long long>(s.packsMade));
-      j.key("steps").beginArray();
-      for (const batch::LedgerEntry* e : s.lastOfStep)
-        j.beginObject().key("step").value(e->step).key("exit").value(e->exit).key("message").value(e->message)
-            .key("package").value(e->package).key("packageId").value(e->packageId).key("end").value(e->end)
-            .endObject();
-      j.endArray().endObject();
-    }
-    j.endArray().endObject();
-    std::cout << j.str() << "\n";
-  } else {
-    // Names as one line each: a tab, a line break or a byte that is not UTF-8 in a capture's
-    // name shows as \xHH, never as a forged line of the summary.
-    std::cout << "Ledger " << escapedText(ledgerPath) << ": " << items.size() << " item(s), " << (items.size() - failed)
-              << " done, " << failed << " failed (" << ledger.entries.size() << " lines";
-    if (ledger.damagedLines) std::cout << ", " << ledger.damagedLines << " torn line(s) left out";
-    std::cout << ")\n";
-    for (const batch::ItemStanding& s : items) {
-      std::cout << (s.failed() ? "  FAIL  " : "  done  ") << escapedText(s.item);
-      for (const batch::LedgerEntry* e : s.lastOfStep)
-        std::cout << "; " << e->step << (e->succeeded() ? " ok" : " exit " + std::to_string(e->exit));
-      std::cout << "\n";
-      for (const batch::LedgerEntry* e : s.lastOfStep)
-        if (!e->succeeded()) std::cout << "          " << e->step << ": " << escapedText(e->message) << "\n";
-    }
-    if (duplicates) std::cout << duplicates << " item(s) were packed more than once (their carrier changed between packs)\n";
-  }
-  return failed ? 1 : 0;
-}
-
 // --emit parallel: a script that runs one `surrogate batch --one N` per item under GNU
 // parallel, which keeps its own job log, reruns the failed ones and starts a job only when
 // enough memory is free.
@@ -224,10 +175,12 @@ int taskMinutes(const std::vector<batch::WorkItem>& items, const std::string& le
   for (const batch::LedgerEntry& e : ledger.entries)
     if (e.succeeded() && !e.adopted) seconds[e.capture] += e.seconds;
   double perImage = 0;
+  std::map<std::string, std::string> where;  // the list's items by their ledger name
+  for (const batch::WorkItem& item : items) where[item.path] = item.where();
   for (const auto& [capture, s] : seconds)
-    if (const std::size_t n = imagesOf(capture); n > 0) perImage = std::max(perImage, s / static_cast<double>(n));
+    if (const std::size_t n = imagesOf(where.count(capture) ? where[capture] : capture); n > 0) perImage = std::max(perImage, s / static_cast<double>(n));
   std::size_t largest = 0;
-  for (const batch::WorkItem& item : items) largest = std::max(largest, imagesOf(item.path));
+  for (const batch::WorkItem& item : items) largest = std::max(largest, imagesOf(item.where()));
   if (perImage <= 0 || largest == 0) {
     how = "no finished capture in the ledger to measure: " + std::to_string(kUnmeasuredTaskMinutes) + " minutes";
     return kUnmeasuredTaskMinutes;
@@ -326,7 +279,7 @@ int runCommandBatch(int argc, char** argv) {
     // The ledger with -o, or as the one argument: surrogate batch --summary LEDGER.
     if (ledger ? !args.positional().empty() : args.positional().size() != 1)
       throw Error(ErrorKind::Usage, "", "command line", "give the ledger only: surrogate batch --summary -o LEDGER");
-    return printSummary(ledger ? *ledger : args.positional()[0], args.has("json"));
+    return printBatchSummary(ledger ? *ledger : args.positional()[0], args.has("json"));
   }
   if (args.positional().size() != 1 || !ledger || ledger->empty())
     throw Error(ErrorKind::Usage, "", "command line",
@@ -398,6 +351,7 @@ int runCommandBatch(int argc, char** argv) {
   }
 
   const bool quiet = args.has("quiet") || args.has("json");
+  if (const std::string note = batch::listFolderNote(list, items); !quiet && !note.empty()) std::cout << note << "\n";
   ProgressBar bar(quiet);
   const auto started = std::chrono::steady_clock::now();
   std::size_t worked = 0;
@@ -407,7 +361,7 @@ int runCommandBatch(int argc, char** argv) {
         .key("items").beginArray();
   o.plan = [&](const batch::ItemPlan& plan) {
     if (args.has("json")) {
-      planJson.beginObject().key("capture").value(plan.item.path).key("steps").beginArray();
+      planJson.beginObject().key(plan.item.isPackage ? "package" : "capture").value(plan.item.path).key("steps").beginArray();
       for (const batch::PlannedStep& p : plan.steps) {
         planJson.beginObject().key("step").value(p.step).key("skipped").value(p.skipped);
         if (!p.package.empty()) planJson.key("package").value(p.package);

@@ -278,8 +278,11 @@ void printSentence(const std::string& text) {
 // The sentences before every layout's summary: why the pipeline ran, what leftovers went.
 void printPackPreamble(const PackReport& p) {
   if (p.processing.ran)
-    std::cout << "Processed " << escapedText(p.capture) << " first (" << escapedText(p.processing.why) << "), with the decisions its "
-              << "carrier records (see `surrogate info " << escapedText(p.capture) << "`).\n";
+    // The cause first, as what was found before this pack (an earlier run's failed step is not
+    // this pack's), then what this pack did about it.
+    std::cout << "Processed " << escapedText(p.capture) << " before packing it, because " << escapedText(p.processing.why)
+              << "; every step of this processing completed, with the decisions its carrier records (see `surrogate "
+              << "info " << escapedText(p.capture) << "`).\n";
   for (const std::string& removed : p.removedLeftovers) printSentence(removed);
 }
 

@@ -194,6 +194,8 @@ int verifyBatch(const Args& args) {
     throw Error(ErrorKind::Usage, "--seed", "command line", "goes with --sample N");
   }
   const bool quiet = args.has("quiet") || args.has("json");
+  if (const std::string note = batch::listFolderNote(*args.value("batch"), items); !quiet && !note.empty())
+    std::cout << note << "\n";
   std::size_t sound = 0;
   std::vector<std::pair<std::string, std::string>> failures;
   ProgressBar bar(quiet);

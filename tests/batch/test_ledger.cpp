@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "batch/ledger.h"
+#include "batch/standing.h"
 #include "batch/work_list.h"
 #include "core/error.h"
 

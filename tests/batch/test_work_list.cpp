@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <sstream>
 #include <streambuf>
@@ -126,4 +127,34 @@ TEST_CASE("an item that reads as an option is passed to its job as a path") {
   CHECK(pathArgument("-h.zip") == "./-h.zip");
   CHECK(pathArgument("cap") == "cap");
   CHECK(pathArgument("/data/-h") == "/data/-h");
+}
+
+TEST_CASE("relative paths of a list file are read from its folder and keep their line as their name") {
+  const fs::path dir = freshFolder("relative");
+  fs::create_directories(dir / "lists");
+  fs::create_directories(dir / "cap");
+  std::ofstream(dir / "lists/backlog.txt") << "../cap\n" << (dir / "elsewhere").string() << "\npackages/p.zip\n";
+  const std::string list = (dir / "lists/backlog.txt").string();
+  const std::vector<WorkItem> items = readWorkList(list);
+  REQUIRE(items.size() == 3);
+  CHECK(items[0].path == "../cap");  // the ledger's name of it
+  CHECK(items[0].where() == (dir / "lists/../cap").string());
+  CHECK(items[1].where() == (dir / "elsewhere").string());  // an absolute path is itself
+  CHECK(items[2].isPackage);
+  CHECK(items[2].where() == (dir / "lists/packages/p.zip").string());
+  // The capture by a second spelling, relative to the list, is one item twice.
+  std::ofstream(dir / "lists/twice.txt") << "../cap\n" << (dir / "cap").string() << "\n";
+  CHECK(kindOfRefusal([&] { readWorkList((dir / "lists/twice.txt").string()); }) == ErrorKind::Usage);
+  // The folder is said once, in full.
+  CHECK(listFolderNote(list, items) == "Relative paths in " + list + " are read from its folder, " +
+                                           (dir / "lists").string() + ".");
+  const std::vector<WorkItem> absolute = {items[1]};
+  CHECK(listFolderNote(list, absolute).empty());
+  // Standard input: the current folder.
+  std::istringstream in("cap\n");
+  const std::vector<WorkItem> fromInput = readWorkList(in, "standard input");
+  CHECK(fromInput[0].where() == "cap");
+  CHECK(listFolderNote("-", fromInput) ==
+        "Relative paths in the list are read from the current folder, " + fs::current_path().string() + ".");
+  fs::remove_all(dir);
 }

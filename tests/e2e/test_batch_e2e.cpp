@@ -163,7 +163,7 @@ TEST_CASE("batch runs packs and verifies every capture of a list and run again d
   CHECK(s["failed"] == 0);
   const auto plain = e2e::surrogate("batch --summary " + quote(ledger));  // the ledger alone
   CHECK(plain.exitCode == 0);
-  CHECK(plain.output.find("3 item(s), 3 done, 0 failed (12 lines)") != std::string::npos);
+  CHECK(plain.output.find("3 captures, 3 done, 0 failed (12 lines)") != std::string::npos);
 }
 
 TEST_CASE("a batch killed with kill -9 midway and run again finishes the rest and packs nothing twice", "[batch]") {
@@ -436,7 +436,7 @@ TEST_CASE("verify --batch names the one package of a list whose byte was flipped
   REQUIRE(lines.size() == 3);
   for (const json& j : lines) {
     CHECK(j["step"] == "verify");
-    if (j["capture"] == (dir / "cap2.zip").string()) {
+    if (j["package"] == (dir / "cap2.zip").string()) {  // a package, named so
       CHECK(j["exit"] == 3);
       // The damaged entry is named: the file to restore from another copy.
       CHECK(j["message"].get<std::string>().find("cap2/data/") != std::string::npos);
@@ -467,9 +467,9 @@ TEST_CASE("verify --batch --sample draws packages the ledger has not verified an
   REQUIRE(lb.size() == 2);
   std::set<std::string> drawn;
   for (std::size_t i = 0; i < 2; ++i) {
-    drawn.insert(la[i]["capture"].get<std::string>());
+    drawn.insert(la[i]["package"].get<std::string>());
     bool same = false;
-    for (const json& j : lb) same = same || j["capture"] == la[i]["capture"];
+    for (const json& j : lb) same = same || j["package"] == la[i]["package"];
     CHECK(same);  // the same seed, the same draw
   }
   // The next run of the audit takes the one left.
@@ -477,7 +477,7 @@ TEST_CASE("verify --batch --sample draws packages the ledger has not verified an
   CHECK(next.output.find("Sample of 1 package(s), drawn with seed 7 from the 1 of 3") != std::string::npos);
   const auto all = ledgerLines(dir / "a.jsonl");
   REQUIRE(all.size() == 3);
-  CHECK(drawn.count(all[2]["capture"].get<std::string>()) == 0);
+  CHECK(drawn.count(all[2]["package"].get<std::string>()) == 0);
 }
 
 TEST_CASE("GNU parallel runs the script batch --emit parallel writes and reruns only the failed job", "[batch]") {
