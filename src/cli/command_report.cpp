@@ -4,12 +4,14 @@
 
 #include "capture/capture.h"
 #include "capture/lock.h"
+#include "carrier/summary.h"
 #include "cli/args.h"
 #include "cli/commands.h"
 #include "cli/option_checks.h"
 #include "cli/progress.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/text.h"
 #include "core/json.h"
 #include "report/report.h"
 #include "verify/verify.h"
@@ -25,6 +27,7 @@ int runCommandReport(int argc, char** argv) {
       {"max-image-side", true, false, "longest side of the embedded pictures in pixels (default 720)", "N", OptionGroup::Output},
       {"relight-side", true, false, "longest side of each model's interactive copy in pixels (default 1200)", "N", OptionGroup::Output},
       {"quiet", false, false, "no progress bar, and at most one summary line", "", OptionGroup::Output},
+      {"verbose", false, false, "also list every check of --verify and every warning of the record", "", OptionGroup::Output},
       {"json", false, false, "print what the report shows as JSON", "", OptionGroup::Output},
   };
   Args args(argc, argv, 1, specs);
@@ -54,7 +57,8 @@ int runCommandReport(int argc, char** argv) {
   if (options.maxImageSide < 16 || options.relightMaxSide < 16)
     throw Error(ErrorKind::Usage, "--max-image-side/--relight-side", "command line", "needs at least 16 pixels");
 
-  ProgressBar bar(args.has("quiet") || args.has("json"));
+  const Verbosity verbosity = verbosityOf(args);
+  ProgressBar bar(verbosity == Verbosity::Quiet || args.has("json"));
   // A capture is read under a reader's lock: a run committing meanwhile would show half of
   // one record and half of the next.
   std::optional<capture::CaptureLock> lock;
@@ -107,13 +111,24 @@ int runCommandReport(int argc, char** argv) {
     std::cout << "wrote " << *out << " (" << r.lightsPlotted << " lights, " << r.picturesEmbedded
               << " pictures" << (r.relightable ? ", interactive relighting" : "") << ", "
               << r.html.size() / 1024 << " KiB)\n";
-    if (args.has("quiet")) return 0;
+    if (verbosity == Verbosity::Quiet) return 0;
     for (const std::string& g : r.coverageGaps) std::cout << "  coverage: " << g << "\n";
     if (options.verification) {
       int failed = 0;
       for (const report::VerificationCheck& c : *options.verification) failed += !c.passed;
       std::cout << "  verification: " << options.verification->size() << " checks, " << failed
                 << " failed (details in the report; surrogate verify gives the verdict as its exit code)\n";
+      // Verbose: each check as the page shows it, names from the package escaped.
+      if (verbosity == Verbosity::Verbose)
+        for (const report::VerificationCheck& c : *options.verification)
+          std::cout << "    " << (c.passed ? "ok   " : "FAIL ") << escapedText(c.name)
+                    << (c.detail.empty() ? "" : ": " + escapedText(c.detail)) << "\n";
+    }
+    // Verbose: the record's warnings, every one (the page shows them in its provenance).
+    if (verbosity == Verbosity::Verbose) {
+      const carrier::CarrierSummary summary = carrier::describeCarrier(source->carrier());
+      if (summary.warnings.empty()) std::cout << "  warnings: none in the record\n";
+      else printWarnings(summary, 0, "");
     }
   }
   return 0;

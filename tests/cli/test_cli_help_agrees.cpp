@@ -140,11 +140,11 @@ TEST_CASE("every --help example is a command line its command takes", "[cli][hel
   }
 }
 
-TEST_CASE("render, verify, fit, info and review take --quiet and --verbose with a meaning", "[cli][help]") {
+TEST_CASE("render, verify, fit, info, report and review take --quiet and --verbose with a meaning", "[cli][help]") {
   for (const auto& [name, missing] : kMissingInput) {
     const e2e::CommandResult help = e2e::surrogate(name + " --help");
     INFO(name);
-    if (name == "batch" || name == "report") continue;  // left to their own owners: see the report
+    if (name == "batch") continue;  // its own test: tests/e2e/test_batch_e2e.cpp
     CHECK_THAT(help.output, Contains("\n  --quiet "));
     CHECK_THAT(help.output, Contains("\n  --verbose "));
   }
@@ -188,4 +188,17 @@ TEST_CASE("render, verify, fit, info and review take --quiet and --verbose with 
   CHECK(fitVerbose.exitCode == 0);
   CHECK_THAT(fitVerbose.output, Contains("condition number of the lights"));
   CHECK(std::regex_search(fitVerbose.output, std::regex("  left out [^ ]+: PSNR [0-9.]+ dB, SSIM [0-9.]+")));
+
+  // report: quiet is its one line; verbose adds each check of --verify and the record's warnings.
+  const std::string report = "report " + e2e::quote(package) + " --verify -o " + e2e::quote(work / "r.html");
+  const e2e::CommandResult reportQuiet = e2e::surrogate(report + " --quiet");
+  INFO(reportQuiet.output);
+  CHECK(reportQuiet.exitCode == 0);
+  CHECK(std::count(reportQuiet.output.begin(), reportQuiet.output.end(), '\n') == 1);
+  const e2e::CommandResult reportVerbose = e2e::surrogate(report + " --verbose");
+  INFO(reportVerbose.output);
+  CHECK(reportVerbose.exitCode == 0);
+  CHECK(std::regex_search(reportVerbose.output, std::regex("\n    ok   [a-z]")));
+  CHECK(std::regex_search(reportVerbose.output, std::regex("\n  (warnings: none in the record|[0-9]+ warnings? in the carrier's log:)\n")));
+  CHECK(e2e::surrogate(report + " --quiet --verbose").exitCode == 2);
 }
