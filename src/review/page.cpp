@@ -41,7 +41,8 @@ std::string pageHtml() {
     <p><button type="button" id="apply" class="primary" disabled>Apply</button>
        <button type="button" id="discard" disabled>Discard the changes</button></p>
     <p class="note">Apply records each change as a decision of the capture (who, when, why) and runs
-      what it needs again, exactly as these options of <code>surrogate run</code> would:</p>
+      what it needs again, exactly as this command would (its options count spheres from 0: sphere 1 is
+      <code>IMAGE:0</code> in <code>--highlight</code>, <code>0</code> in <code>--forget-sphere</code>):</p>
     <pre id="equivalent" class="mono"></pre>
     <div id="progress" hidden><progress id="progress-bar" max="1" value="0"></progress> <span id="progress-label"></span></div>
   </section>
@@ -59,7 +60,8 @@ std::string pageHtml() {
     </div>
     <div id="description-shown"></div>
   </section>
-  <section id="history-section"><h2>Runs</h2><div id="runs"></div></section>
+  <section id="history-section"><h2>Runs</h2><div id="runs"></div>
+    <p class="note">Each run&rsquo;s notes as the record keeps them, in the command line&rsquo;s words (spheres from 0).</p></section>
 </aside>
 </main>
 <script src="/review.js"></script>
@@ -111,7 +113,9 @@ input[type=text] { font:inherit; padding:3px 6px; border:1px solid var(--line); 
 .form { display:grid; grid-template-columns:max-content 1fr; gap:6px 10px; align-items:center; }
 #pending ul, #decisions ul { padding-left:18px; margin:4px 0; }
 #pending li, #decisions li { margin:4px 0; }
-#equivalent { white-space:pre-wrap; background:#f0f0f3; padding:6px 8px; border-radius:4px; min-height:1.5em; }
+#equivalent, #runs pre { white-space:pre-wrap; overflow-wrap:anywhere; }
+#runs li { overflow-wrap:anywhere; }
+#equivalent { background:#f0f0f3; padding:6px 8px; border-radius:4px; min-height:1.5em; }
 #hemisphere-box svg { width:100%; max-width:420px; }
 #hemisphere-box .light { cursor:pointer; }
 #hemisphere-box .light.selected { stroke:#ff4d4f; stroke-width:3; }
@@ -128,16 +132,15 @@ const char* const kReviewJs = R"JS(
   var record = window.surrogateRecordError;  // report/page_assets.h, kPageErrorsJs: served first
 
   var SVG = "http://www.w3.org/2000/svg";
-  var DEFAULT_REASON = "placed by eye on the frame in surrogate review";
   // The chart's corners, in the order --colour-chart takes them (stages/colour_chart_options.h).
   var CHART_CORNERS = ["dark skin", "bluish green", "black", "white"];
   var state = null, current = 0, mode = "sphere", applied = 0, busy = false;
   var pending = emptyPending();
 
   function emptyPending() {
-    return { spheres: null, sphereReason: DEFAULT_REASON, highlightReason: DEFAULT_REASON, highlights: {},
+    return { spheres: null, sphereReason: "", highlightReason: "", highlights: {},
              forgetHighlights: {}, forgetSpheres: {}, exclude: {}, forgetExclusions: {}, accept: {}, forgetAccept: {},
-             chart: null, chartReason: DEFAULT_REASON,  // chart: {image, points: [{x, y}...]} or {none: true}
+             chart: null, chartReason: "",  // chart: {image, points: [{x, y}...]} or {none: true}
              title: "", rights: "", license: "", creators: [], meta: [] };
   }
   function $(id) { return document.getElementById(id); }
@@ -281,7 +284,11 @@ const char* const kReviewJs = R"JS(
     renderFrameFacts();
     renderExclusion();
     renderChartBox();
-    $("mode-help").textContent = mode === "sphere"
+    showMode();
+    $("mode-help").textContent = mode === "none" ? (state.revision === "none"
+        ? "Not processed yet: first press \u201cRun the capture\u201d (under Changes to apply); Surrogate finds the spheres and their highlights, which you can then check and correct here."
+        : "No sphere circle yet: press \u201cAdd a sphere\u201d, drag the circle onto the sphere and resize it with its orange square.")
+      : mode === "sphere"
       ? "Drag a circle to move it, its orange square to resize it. The circles are the same in every frame."
       : mode === "chart" ? chartHelp()
       : "Click the centre of the highlight inside a sphere's circle: it becomes this frame's highlight on that sphere.";
@@ -353,7 +360,7 @@ const char* const kReviewJs = R"JS(
     if (c && !c.none && c.image === f.name && c.points.length === 4) { say("All four corners are marked: Reset the corners to mark them again.", "warning"); return; }
     if (!c || c.none || c.image !== f.name) {
       if (c && !c.none) say("The corners marked on " + c.image + " are dropped: the chart is marked on one frame.", "warning");
-      if (!c || c.none) pending.chartReason = DEFAULT_REASON;
+      if (!c || c.none) pending.chartReason = "";
       c = pending.chart = { image: f.name, points: [] };
     }
     c.points.push({ x: Math.min(state.frameWidth, Math.max(0, p.x)), y: Math.min(state.frameHeight, Math.max(0, p.y)) });
@@ -387,7 +394,7 @@ const char* const kReviewJs = R"JS(
     box.appendChild(el("button", { type: "button", id: "chart-none", "aria-pressed": String(none), text: "No colour chart",
       onclick: function () {
         pending.chart = none ? null : { none: true };
-        pending.chartReason = none ? DEFAULT_REASON : "";
+        pending.chartReason = "";
         renderFrame(); renderThumbnails(); renderPending();
         if (!none) { say("Say why there is no colour chart (under Changes to apply): it is recorded with the decision.", ""); $("chart-reason").focus(); }
       } }));
@@ -513,7 +520,8 @@ const char* const kReviewJs = R"JS(
                   el("span", { class: "note", text: "by " + d.who + ", " + d.time + ": \u201c" + d.reason + "\u201d " }));
       var forget = null;
       if (d.kind === "exclude-image") forget = function (reason) { pending.forgetExclusions[d.target.replace(/^.*\//, "").replace(/\.[^.]*$/, "")] = reason; };
-      if (d.kind === "manual-sphere") forget = function (reason) { pending.forgetSpheres[d.target] = reason; };
+      // Circles moved here would give the withdrawn circle again: dropped with it.
+      if (d.kind === "manual-sphere") forget = function (reason) { pending.forgetSpheres[d.target] = reason; pending.spheres = null; };
       if (d.kind === "manual-highlight") forget = function (reason) {
         var colon = d.target.lastIndexOf(":");
         pending.forgetHighlights[d.target] = { image: d.target.slice(0, colon), sphere: Number(d.target.slice(colon + 1)), reason: reason };
@@ -578,7 +586,7 @@ const char* const kReviewJs = R"JS(
     Object.keys(pending.exclude).forEach(function (k) { item("leave " + k + " out: \u201c" + pending.exclude[k] + "\u201d", function () { delete pending.exclude[k]; }); });
     Object.keys(pending.forgetExclusions).forEach(function (k) { item("take " + k + " back: \u201c" + pending.forgetExclusions[k] + "\u201d", function () { delete pending.forgetExclusions[k]; }); });
     Object.keys(pending.forgetSpheres).forEach(function (k) { item("withdraw the circle of sphere " + (Number(k) + 1), function () { delete pending.forgetSpheres[k]; }); });
-    Object.keys(pending.forgetHighlights).forEach(function (k) { item("withdraw the highlight " + k, function () { delete pending.forgetHighlights[k]; }); });
+    Object.keys(pending.forgetHighlights).forEach(function (k) { item("withdraw the highlight of " + pending.forgetHighlights[k].image + " on sphere " + (pending.forgetHighlights[k].sphere + 1), function () { delete pending.forgetHighlights[k]; }); });
     Object.keys(pending.accept).forEach(function (k) { item("accept the check " + k, function () { delete pending.accept[k]; }); });
     Object.keys(pending.forgetAccept).forEach(function (k) { item("withdraw the acceptance of " + k, function () { delete pending.forgetAccept[k]; }); });
     ["title", "rights", "license"].forEach(function (k) { if (pending[k]) item(k + ": \u201c" + pending[k] + "\u201d", function () { pending[k] = ""; }); });
@@ -600,7 +608,7 @@ const char* const kReviewJs = R"JS(
     equivalentTimer = setTimeout(showEquivalent, 150);
   }
   function reasonField(id, label, key) {
-    var input = el("input", { type: "text", id: id });
+    var input = el("input", { type: "text", id: id, placeholder: "needed: recorded with the decision" });
     input.value = pending[key];
     input.addEventListener("input", function () { pending[key] = input.value; clearTimeout(equivalentTimer); equivalentTimer = setTimeout(showEquivalent, 300); });
     return el("p", { class: "inline-reason" }, el("label", { for: id, text: label }), input);
@@ -623,6 +631,7 @@ const char* const kReviewJs = R"JS(
   function overlayDown(e) {
     if (busy || !state) return;
     var p = framePoint(e), list = spheres();
+    if (mode === "none") return;
     if (mode === "chart") { chartClick(p); return; }
     if (mode === "highlight") {
       var k = -1;
@@ -663,12 +672,15 @@ const char* const kReviewJs = R"JS(
     renderPending();
   }
 
-  function setMode(m) {
-    mode = m;
-    $("mode-sphere").setAttribute("aria-pressed", String(m === "sphere"));
-    $("mode-highlight").setAttribute("aria-pressed", String(m === "highlight"));
-    $("mode-chart").setAttribute("aria-pressed", String(m === "chart"));
-    renderFrame();
+  function setMode(m) { mode = m; renderFrame(); }
+  // With no circle yet (a capture never run, or no sphere found) there is nothing to drag nor to
+  // click a highlight in: no mode is on, and the help says what to do first.
+  function showMode() {
+    var none = !spheres().length;
+    if (none && mode !== "chart") mode = "none";
+    else if (mode === "none") mode = "sphere";
+    ["sphere", "highlight", "chart"].forEach(function (m) { $("mode-" + m).setAttribute("aria-pressed", String(mode === m)); });
+    $("mode-sphere").disabled = $("mode-highlight").disabled = none;
   }
 
   // --- the server ---
@@ -705,6 +717,10 @@ const char* const kReviewJs = R"JS(
     for (var k in pending.exclude) if (!pending.exclude[k].trim()) return "Say why " + k + " is left out: the reason is recorded with the decision.";
     for (var j in pending.forgetExclusions) if (!pending.forgetExclusions[j].trim()) return "Say why " + j + " comes back: the reason is recorded with the decision.";
     if (pending.chart && pending.chart.none && !pending.chartReason.trim()) return "Say why there is no colour chart: the reason is recorded with the decision.";
+    // A reason is the person's: none is written for them, and a change made by hand needs one.
+    if (pending.spheres && !pending.sphereReason.trim()) return "Say why the circles are placed by hand (under Changes to apply): the reason is recorded with the decision.";
+    if (Object.keys(pending.highlights).length && !pending.highlightReason.trim()) return "Say why the highlights are placed by hand (under Changes to apply): the reason is recorded with the decision.";
+    if (chartMarked() && !pending.chartReason.trim()) return "Say why the colour chart is marked by hand (under Changes to apply): the reason is recorded with the decision.";
     if (pending.chart && !pending.chart.none && !chartMarked())
       return "Mark the colour chart's four corners (" + pending.chart.points.length + " of 4 so far, next the " +
         CHART_CORNERS[pending.chart.points.length] + " patch), or undo it.";
@@ -737,7 +753,7 @@ const char* const kReviewJs = R"JS(
         return loadState().then(function () { say("This page was out of date: " + r.body.message + ".", "warning"); body.setAttribute("data-stale", "true"); });
       }
       if (r.status === 423) { renderPending(); say(r.body.message, "warning"); return; }
-      return loadState().then(function () { say("Not applied: " + r.body.message, "bad"); });
+      return loadState().then(function () { say((r.status === 422 ? "The run stopped: " : "Not applied: ") + r.body.message, "bad"); });
     }).catch(function (e) {
       busy = false;
       watchProgress(false);

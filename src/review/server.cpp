@@ -19,6 +19,7 @@
 #include "review/bounded_server.h"
 #include "review/decisions.h"
 #include "review/page.h"
+#include "review/refusal_words.h"
 #include "review/review.h"
 #include "review/state.h"
 
@@ -242,6 +243,7 @@ struct ReviewServer::Impl {
     }
     int status = 200;
     json body;
+    std::string terminalText;
     try {
       options.runner(given, revision, [this](const std::string& label, double fraction) {
         const std::lock_guard<std::mutex> lock(progressMutex);
@@ -254,8 +256,11 @@ struct ReviewServer::Impl {
       // the carrier's history (the page shows it once reloaded); the capture held by another
       // command is its lock's message.
       status = e.step() == capture::kCaptureHeldStep ? 423 : e.step() == kStaleStep ? 409 : e.kind() == ErrorKind::Usage ? 400 : 422;
+      // A refusal the page words itself says what to do on the page (refusal_words.h); the
+      // terminal, which prints the command line, keeps the run's words.
       body = {{"error", status == 423 ? "busy" : status == 409 ? "stale" : status == 400 ? "usage" : "failed"},
-              {"message", status == 409 ? e.message() : e.text()}};
+              {"message", status == 409 ? e.message() : pageWords(e)}};
+      terminalText = e.text();
     } catch (const std::exception& e) {
       status = 500;
       body = {{"error", "internal"}, {"message", e.what()}};
@@ -266,7 +271,8 @@ struct ReviewServer::Impl {
     }
     body["options"] = given;
     body["revision"] = captureRevision(capture);
-    if (options.applied) options.applied(given, status == 200 ? "applied" : body.value("message", ""));
+    if (options.applied)
+      options.applied(given, status == 200 ? "applied" : terminalText.empty() ? body.value("message", "") : terminalText);
     answer(res, status, body);
   }
 };
@@ -347,9 +353,13 @@ ReviewServer::ReviewServer(ReviewOptions options) : impl_(std::make_unique<Impl>
     }
     res.set_content(jpeg, "image/jpeg");
   });
-  s.Post("/api/options", [](const httplib::Request& req, httplib::Response& res) {
+  // The options an Apply would run with, the command line's own first (--operator): the page
+  // shows exactly the command the run records.
+  s.Post("/api/options", [&m](const httplib::Request& req, httplib::Response& res) {
     try {
-      answer(res, 200, {{"options", argumentsFor(req.body)}});
+      std::vector<std::string> given = m.options.leadingOptions;
+      for (std::string& a : argumentsFor(req.body)) given.push_back(std::move(a));
+      answer(res, 200, {{"options", given}});
     } catch (const Error& e) {
       answerError(res, 400, "usage", e.text());
     }

@@ -11,6 +11,7 @@
 #include "hrti/frame_registration.h"
 #include "hrti/highlight_consistency.h"
 #include "hrti/highlight_detection.h"
+#include "hrti/highlight_refusal.h"
 #include "hrti/light_checks.h"
 #include "hrti/stack_median.h"
 #include "pipeline/context.h"
@@ -57,21 +58,25 @@ void refuseSphereWithoutHighlights(const carrier::Step& sphereStep, const hrti::
   const std::string circle = fixedDecimals(s.cx, 1) + "," + fixedDecimals(s.cy, 1) + "," + fixedDecimals(s.r, 1);
   for (const carrier::Intervention* i : sphereStep.interventionsOfKind("manual-sphere")) {
     if (i->target != std::to_string(k)) continue;
-    throw Error(ErrorKind::Input, "--sphere " + i->value, "highlight detection",
-                "the circle given by hand for sphere " + std::to_string(k) + " " + counted +
-                    ": it is probably not where the sphere is in the images. Give the sphere's circle "
-                    "again, as it appears in the images, with --sphere CX,CY,R --reason \"...\", or "
-                    "withdraw it with --forget-sphere " + std::to_string(k) +
-                    " --reason \"...\" to let Surrogate find the sphere. (If the circle is right, these "
-                    "images show no highlight: leave them out with --exclude or give their highlights by "
-                    "hand with --highlight.)");
+    throw hrti::HighlightRefusal(
+        Error(ErrorKind::Input, "--sphere " + i->value, "highlight detection",
+              "the circle given by hand for sphere " + std::to_string(k) + " " + counted +
+                  ": it is probably not where the sphere is in the images. Give the sphere's circle "
+                  "again, as it appears in the images, with --sphere CX,CY,R --reason \"...\", or "
+                  "withdraw it with --forget-sphere " + std::to_string(k) +
+                  " --reason \"...\" to let Surrogate find the sphere. (If the circle is right, these "
+                  "images show no highlight: leave them out with --exclude or give their highlights by "
+                  "hand with --highlight.)"),
+        hrti::HighlightRefusal::Subject::CircleByHand, k, refused, images);
   }
-  throw Error(ErrorKind::Input, "sphere " + std::to_string(k) + " at " + circle, "highlight detection",
-              "the circle found for sphere " + std::to_string(k) + " " + counted +
-                  ": it is probably not a sphere. Give the sphere's circle by hand with --sphere CX,CY,R "
-                  "--reason \"...\", or restrict the search to the sphere with --sphere-roi X,Y,W,H. (If "
-                  "the circle is right, these images show no highlight: leave them out with --exclude or "
-                  "give their highlights by hand with --highlight.)");
+  throw hrti::HighlightRefusal(
+      Error(ErrorKind::Input, "sphere " + std::to_string(k) + " at " + circle, "highlight detection",
+            "the circle found for sphere " + std::to_string(k) + " " + counted +
+                ": it is probably not a sphere. Give the sphere's circle by hand with --sphere CX,CY,R "
+                "--reason \"...\", or restrict the search to the sphere with --sphere-roi X,Y,W,H. (If "
+                "the circle is right, these images show no highlight: leave them out with --exclude or "
+                "give their highlights by hand with --highlight.)"),
+      hrti::HighlightRefusal::Subject::CircleFound, k, refused, images);
 }
 
 }  // namespace
@@ -249,12 +254,16 @@ void HighlightDetectionStage::run(const carrier::Step& step, pipeline::Context& 
   if (!unusable.empty()) {
     const bool one = unusable.size() == 1;
     const std::string& stem = unusableImages.front()->stem;
-    throw Error(ErrorKind::Input, one ? unusableImages.front()->relativePath : "", "highlight detection",
-                (one ? std::string("this image has") : std::to_string(unusable.size()) + " images have") +
-                    " no trustworthy highlight on any sphere, so " + (one ? "its" : "their") +
-                    " light direction cannot be measured: " + listedInFull(unusable, "; ") + ". Leave each out with "
-                    "--exclude " + stem + " --reason \"...\", or give its highlight by hand with --highlight " +
-                    stem + ":0=X,Y --reason \"...\" (X,Y in pixels of the full frame)");
+    std::vector<std::string> frames;
+    for (const InputImage* in : unusableImages) frames.push_back(in->stem);
+    throw hrti::HighlightRefusal(
+        Error(ErrorKind::Input, one ? unusableImages.front()->relativePath : "", "highlight detection",
+              (one ? std::string("this image has") : std::to_string(unusable.size()) + " images have") +
+                  " no trustworthy highlight on any sphere, so " + (one ? "its" : "their") +
+                  " light direction cannot be measured: " + listedInFull(unusable, "; ") + ". Leave each out with "
+                  "--exclude " + stem + " --reason \"...\", or give its highlight by hand with --highlight " +
+                  stem + ":0=X,Y --reason \"...\" (X,Y in pixels of the full frame)"),
+        hrti::HighlightRefusal::Subject::Frames, 0, frames, inputs->size());
   }
   ctx.put(kHighlights, highlights);
   ctx.progress("Highlight detection", 1);

@@ -3,7 +3,8 @@
 // manual-highlight interventions override single images. Refuses (Error(Input)) an image with
 // no trustworthy highlight on any sphere, naming it and what to do (--exclude or --highlight),
 // and a sphere without one in most images (the circle is not on a sphere: --sphere,
-// --forget-sphere, --sphere-roi). Writes one overview per sphere
+// --forget-sphere, --sphere-roi), both as hrti::HighlightRefusal (the review page words them
+// itself). Writes one overview per sphere
 // (assembly-files/highlights-sphereN.png). Puts kHighlights (stages/inputs.h).
 #pragma once
 

@@ -122,6 +122,10 @@ async function main() {
     const click = await toScreen(h.x + 0.5, h.y - 0.5);
     await page.mouse.click(click.x, click.y);
 
+    // The reasons for the circle and the highlight, typed (none is written for the user).
+    await page.type("#sphere-reason", "the rim was cut by the frame");
+    await page.type("#highlight-reason", "a reflection was taken for the highlight");
+
     // Leave IMG_0007 out, with a reason.
     await page.click('.thumb[data-frame="IMG_0007"]');
     await page.click("#exclude-frame");
@@ -158,6 +162,7 @@ async function main() {
     const hl = /^IMG_0003:0=([-0-9.]+),([-0-9.]+)$/.exec(args[9]);
     assert.ok(hl, args[9]);
     assert.ok(Math.abs(Number(hl[1]) - (h.x + 0.5)) < 1 && Math.abs(Number(hl[2]) - (h.y - 0.5)) < 1, "the highlight " + args[9]);
+    assert.deepEqual([args[7], args[11]], ["the rim was cut by the frame", "a reflection was taken for the highlight"]);
     assert.deepEqual(args.slice(12), ["--exclude", "IMG_0007", "--reason", "the flash did not fire"]);
     assert.equal(after.frames.find(f => f.name === "IMG_0007").excluded.reason, "the flash did not fire");
     assert.equal(after.spheres[0].source, "manual");
