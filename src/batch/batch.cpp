@@ -134,6 +134,9 @@ class Runner {
       for (const WorkItem& item : items_) o_.plan(planOf(item));
       return result;
     }
+    // --verbose: the same plan, said before the work starts.
+    if (o_.plan)
+      for (const WorkItem& item : items_) o_.plan(planOf(item));
     std::deque<std::size_t> queue;
     for (std::size_t i = 0; i < items_.size(); ++i) queue.push_back(i);
     std::vector<std::unique_ptr<Job>> active;

@@ -70,7 +70,8 @@ struct BatchOptions {
   std::function<void(std::size_t, std::size_t)> progress;
   // A job that waits for its capture, busy with another command (`why`), once per job.
   std::function<void(const WorkItem&, const std::string& why)> waiting;
-  // --dry-run: each item's plan, in the list's order.
+  // --dry-run (or --verbose, before the work): each item's plan, in the list's order; unset,
+  // no plan is made for a batch that runs.
   std::function<void(const ItemPlan&)> plan;
 };
 

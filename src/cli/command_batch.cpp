@@ -58,6 +58,7 @@ std::vector<OptionSpec> batchOptions() {
        kOutput},
       {"json", false, false, "print the result (or --summary) as one JSON object", "", kOutput},
       {"quiet", false, false, "no progress bar and no line per job: one summary line", "", kOutput},
+      {"verbose", false, false, "also say each item's plan before the work, and each step's attempts", "", kOutput},
   };
 }
 
@@ -324,7 +325,7 @@ int runCommandBatch(int argc, char** argv) {
       throw Error(ErrorKind::Usage, "--emit", "command line", "needs the list in a file, which each job reads again");
     std::vector<std::string> passOn;
     for (const auto& [name, value] : args.ordered()) {
-      if (name == "emit" || name == "o" || name == "output" || name == "jobs" || name == "quiet" || name == "one")
+      if (name == "emit" || name == "o" || name == "output" || name == "jobs" || name == "quiet" || name == "verbose" || name == "one")
         continue;
       passOn.push_back(optionName(name));
       if (!value.empty()) passOn.push_back(value);
@@ -350,7 +351,9 @@ int runCommandBatch(int argc, char** argv) {
     o.jobs = 1;
   }
 
-  const bool quiet = args.has("quiet") || args.has("json");
+  const Verbosity verbosity = verbosityOf(args);
+  const bool quiet = verbosity == Verbosity::Quiet || args.has("json");
+  const bool verbose = verbosity == Verbosity::Verbose && !args.has("json");
   if (const std::string note = batch::listFolderNote(list, items); !quiet && !note.empty()) std::cout << note << "\n";
   ProgressBar bar(quiet);
   const auto started = std::chrono::steady_clock::now();
@@ -379,8 +382,9 @@ int runCommandBatch(int argc, char** argv) {
       line += ";";
     }
     if (!plan.steps.empty()) line.pop_back();
-    std::cout << escapedText(line) << "\n";
+    std::cout << escapedText((verbose && !o.dryRun ? "plan  " : "") + line) << "\n";
   };
+  if (!o.dryRun && !verbose) o.plan = nullptr;
   o.jobFinished = [&](const batch::JobReport& r) {
     worked += r.workDone;
     if (quiet) return;
@@ -397,6 +401,11 @@ int runCommandBatch(int argc, char** argv) {
     text.pop_back();
     bar.finish();
     std::cout << escapedText(text) << std::endl;
+    if (!verbose) return;
+    for (const batch::StepOutcome& s : r.steps)
+      if (s.attempts > 0)
+        std::cout << "      " << s.step << ": " << s.outcome << " after " << s.attempts
+                  << (s.attempts == 1 ? " attempt" : " attempts") << " in this batch\n";
   };
   o.waiting = [&](const batch::WorkItem& item, const std::string& why) {
     if (quiet) return;

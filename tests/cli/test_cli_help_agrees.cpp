@@ -5,6 +5,8 @@
 // that print take --quiet and --verbose with a meaning.
 #include <catch2/catch.hpp>
 
+#include <fstream>
+
 #include <algorithm>
 #include <filesystem>
 #include <map>
@@ -140,11 +142,10 @@ TEST_CASE("every --help example is a command line its command takes", "[cli][hel
   }
 }
 
-TEST_CASE("render, verify, fit, info, report and review take --quiet and --verbose with a meaning", "[cli][help]") {
+TEST_CASE("render, verify, fit, info, report, batch and review take --quiet and --verbose with a meaning", "[cli][help]") {
   for (const auto& [name, missing] : kMissingInput) {
     const e2e::CommandResult help = e2e::surrogate(name + " --help");
     INFO(name);
-    if (name == "batch") continue;  // its own test: tests/e2e/test_batch_e2e.cpp
     CHECK_THAT(help.output, Contains("\n  --quiet "));
     CHECK_THAT(help.output, Contains("\n  --verbose "));
   }
@@ -201,4 +202,18 @@ TEST_CASE("render, verify, fit, info, report and review take --quiet and --verbo
   CHECK(std::regex_search(reportVerbose.output, std::regex("\n    ok   [a-z]")));
   CHECK(std::regex_search(reportVerbose.output, std::regex("\n  (warnings: none in the record|[0-9]+ warnings? in the carrier's log:)\n")));
   CHECK(e2e::surrogate(report + " --quiet --verbose").exitCode == 2);
+
+  // batch: quiet is its one summary line; verbose says each item's plan first and each step's attempts.
+  std::ofstream(work / "list.txt") << "cap.zip\n";
+  const std::string batch = "batch " + e2e::quote(work / "list.txt") + " -o " + e2e::quote(work / "ledger.jsonl");
+  const e2e::CommandResult batchVerbose = e2e::surrogate(batch + " --verbose");
+  INFO(batchVerbose.output);
+  CHECK(batchVerbose.exitCode == 0);
+  CHECK_THAT(batchVerbose.output, Contains("\nplan  cap.zip: verify"));
+  CHECK_THAT(batchVerbose.output, Contains("\n      verify: done after 1 attempt in this batch\n"));
+  const e2e::CommandResult batchQuiet = e2e::surrogate(batch + " --quiet");
+  INFO(batchQuiet.output);
+  CHECK(batchQuiet.exitCode == 0);
+  CHECK(std::count(batchQuiet.output.begin(), batchQuiet.output.end(), '\n') == 1);
+  CHECK(e2e::surrogate(batch + " --quiet --verbose").exitCode == 2);
 }
