@@ -609,6 +609,8 @@
               <xsl:when test="$key = 'PTM'">application/x-ptm</xsl:when>
               <xsl:when test="$key = 'RTI'">application/x-rti</xsl:when>
               <xsl:when test="$key = 'LP' or $key = 'TXT'">text/plain</xsl:when>
+              <xsl:when test="$key = 'JSON'">application/json</xsl:when>
+              <xsl:when test="$key = 'JavaScript'">text/javascript</xsl:when>
               <xsl:otherwise>application/octet-stream</xsl:otherwise>
             </xsl:choose>
           </xsl:otherwise>
@@ -998,6 +1000,8 @@
       <xsl:when test="substring($lower, string-length($lower) - 3) = '.rti'">RTI</xsl:when>
       <xsl:when test="substring($lower, string-length($lower) - 2) = '.lp'">LP</xsl:when>
       <xsl:when test="substring($lower, string-length($lower) - 3) = '.txt'">TXT</xsl:when>
+      <xsl:when test="substring($lower, string-length($lower) - 4) = '.json'">JSON</xsl:when>
+      <xsl:when test="substring($lower, string-length($lower) - 2) = '.js'">JavaScript</xsl:when>
       <xsl:otherwise>unknown</xsl:otherwise>
     </xsl:choose>
   </xsl:template>
@@ -1036,13 +1040,15 @@
       </xsl:choose>
     </xsl:variable>
     <!-- The carrier's identifier, found from the file's bytes as DROID and Siegfried find it
-         (src/formats/pronom.h, mappings/pronom.md); only the two files the carrier cannot
-         record, itself and the report, take theirs from this table (tests/formats check them). -->
+         (src/formats/pronom.h, mappings/pronom.md); only the three files the carrier cannot
+         record, itself, the report and the RO-Crate's metadata, take theirs from this table
+         (tests/formats and tests/mapping check them). -->
     <xsl:variable name="puid">
       <xsl:choose>
         <xsl:when test="$rec"><xsl:value-of select="$rec/@puid"/></xsl:when>
         <xsl:when test="$key = 'XML' and $path = $carrier-path">fmt/101</xsl:when>
         <xsl:when test="$key = 'HTML'">fmt/471</xsl:when>
+        <xsl:when test="$key = 'JSON' and $path = 'data/ro-crate-metadata.json'">fmt/817</xsl:when>
       </xsl:choose>
     </xsl:variable>
     <premis:format>
@@ -1059,6 +1065,12 @@
       </xsl:if>
       <xsl:if test="$rec/@mediaType != ''">
         <premis:formatNote><xsl:value-of select="concat('media type ', $rec/@mediaType)"/></premis:formatNote>
+      </xsl:if>
+      <xsl:if test="not($rec) and $key = 'JSON'">
+        <premis:formatNote>media type application/json</premis:formatNote>
+      </xsl:if>
+      <xsl:if test="$puid = 'x-fmt/111' and $key = 'LP'">
+        <premis:formatNote>PRONOM has no entry for .lp light-position files; PRONOM's tools (Siegfried, fido) identify them as Plain Text File (x-fmt/111)</premis:formatNote>
       </xsl:if>
       <xsl:if test="$rec and $rec/@format != $name">
         <premis:formatNote><xsl:value-of select="concat('carrier format name ', $rec/@format)"/></premis:formatNote>

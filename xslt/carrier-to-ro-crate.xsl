@@ -168,6 +168,8 @@
     <xsl:choose>
       <xsl:when test="normalize-space($carrier/c:header/c:license) != ''"><xsl:value-of select="normalize-space($carrier/c:header/c:license)"/></xsl:when>
       <xsl:when test="normalize-space($carrier/c:header/c:rights) != ''">#rights</xsl:when>
+      <!-- RO-Crate 1.1 requires a licence on the root: one that says none was stated. -->
+      <xsl:otherwise>#no-licence-stated</xsl:otherwise>
     </xsl:choose>
   </xsl:variable>
   <xsl:variable name="surrogate" select="$carrier/c:header/c:software[@name = 'Surrogate'][1]"/>
@@ -643,11 +645,20 @@
         <xsl:with-param name="value">
           <xsl:choose>
             <xsl:when test="$license-id = '#rights'">Rights statement</xsl:when>
+            <xsl:when test="$license-id = '#no-licence-stated'">No licence stated</xsl:when>
             <xsl:otherwise><xsl:value-of select="$license-id"/></xsl:otherwise>
           </xsl:choose>
         </xsl:with-param>
       </xsl:call-template>
-      <xsl:call-template name="prop"><xsl:with-param name="name" select="'description'"/><xsl:with-param name="value" select="$rights"/></xsl:call-template>
+      <xsl:call-template name="prop">
+        <xsl:with-param name="name" select="'description'"/>
+        <xsl:with-param name="value">
+          <xsl:choose>
+            <xsl:when test="$license-id = '#no-licence-stated'">No licence or rights statement was recorded with the capture (surrogate run, options --license and --rights): the terms of use are not stated here; ask the depositor.</xsl:when>
+            <xsl:otherwise><xsl:value-of select="$rights"/></xsl:otherwise>
+          </xsl:choose>
+        </xsl:with-param>
+      </xsl:call-template>
       <xsl:call-template name="close"/>
     </xsl:if>
   </xsl:template>

@@ -214,7 +214,12 @@ Existing openObject(const fs::path& dir, std::vector<std::string>& notes) {
 
 }  // namespace
 
-std::string captureObjectId(const carrier::Carrier& c) {
+std::string captureObjectId(const carrier::Carrier& c) { return captureIdentifier(c); }
+
+namespace {
+// The id objects made before the capture identifier became the object's: the SHA-256 of the
+// list of the capture's evidence. Such an object keeps it (an OCFL object's id never changes).
+std::string evidenceListId(const carrier::Carrier& c) {
   std::vector<std::pair<std::string, std::string>> evidence;
   for (const carrier::FileRecord& f : c.files)
     if (carrier::isEvidenceRole(f.role)) evidence.emplace_back(f.path, f.sha256);
@@ -223,6 +228,7 @@ std::string captureObjectId(const carrier::Carrier& c) {
   for (const auto& [path, sha256] : evidence) list += sha256 + "  " + path + "\n";
   return "urn:sha256:" + sha256Hex(list);
 }
+}  // namespace
 
 OcflResult packOcfl(const fs::path& capture, const fs::path& given, const PackOptions& options) {
   checkPackageName(given);
@@ -250,11 +256,17 @@ OcflResult packOcfl(const fs::path& capture, const fs::path& given, const PackOp
   if (!result.created) {
     Existing e = openObject(dir, result.notes);
     inventory = std::move(e.inventory);
+    if (inventory["id"] != result.objectId && inventory["id"] == evidenceListId(recorded)) {
+      result.objectId = evidenceListId(recorded);
+      result.notes.push_back("kept the object's id " + result.objectId + ", given by an earlier Surrogate (an OCFL "
+                             "object's id never changes); objects made now take the capture identifier " +
+                             captureIdentifier(recorded));
+    }
     if (inventory["id"] != result.objectId)
       throw Error(ErrorKind::Usage, escapedText(dir.string()), kStep,
                   "is the OCFL object of another capture (its id is " + inventory["id"].get<std::string>() +
                       ", this capture's is " + result.objectId +
-                      ": the id names the capture's originals); give another folder for this capture");
+                      ": the id is the capture identifier, named from its first photograph); give another folder for this capture");
     like = inventory["head"];
     number = ocflVersionNumber(like) + 1;
   } else {

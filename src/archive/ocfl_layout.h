@@ -12,7 +12,7 @@
 //   DIR/v2/content/bag-info.txt, ...   only what v1 does not already hold (the manifest points
 //                                      unchanged files at their v1 copy)
 //
-// The object's id is the capture's (captureObjectId): packing the same capture again adds a
+// The object's id is the capture identifier (captureObjectId): packing the same capture again adds a
 // version, packing another capture into DIR is refused. A version is written complete under a
 // temporary name beside DIR, renamed to DIR/vN, and only then is the root inventory replaced
 // (then its sidecar): the earlier versions are never touched, and a pack killed half-way
@@ -35,10 +35,11 @@ struct Carrier;
 
 namespace surrogate::archive {
 
-// "urn:sha256:<hex>": the SHA-256 of the list of the capture's evidence (its originals,
-// exports, sidecars, the dome's .lp, prior work: carrier::isEvidenceRole), one line
-// "<sha256>  <path>\n" each, sorted by path. Evidence is never re-recorded silently, so every
-// pack of a capture gives the same id, and another capture another one.
+// The capture identifier (captureIdentifier, package.h: "urn:surrogate:capture:<SHA-256 of the
+// carrier's first file>"), which the bag holds in bag-info.txt (Surrogate-Capture-Identifier),
+// README.txt, mets.xml, crm.rdf and the RO-Crate: every package of one capture is a version of
+// one object, and another capture has another id. An object made by an earlier Surrogate, whose
+// id is the SHA-256 of the list of the capture's evidence, keeps that id (OCFL ids never change).
 std::string captureObjectId(const carrier::Carrier& c);
 
 struct OcflResult {

@@ -10,6 +10,7 @@ namespace surrogate::archive {
 namespace {
 
 constexpr const char* kCarrierPath = "data/assembly-files/carrier.xml";
+constexpr const char* kRoCratePath = "data/ro-crate-metadata.json";
 
 }  // namespace
 
@@ -17,6 +18,7 @@ std::string packageRole(const std::string& path, const std::map<std::string, std
                         bool surrogate) {
   if (!surrogate) return path.compare(0, 5, "data/") == 0 ? "payload" : "bag files";
   if (path == kCarrierPath) return "carrier";
+  if (path == kRoCratePath) return "RO-Crate metadata";  // written by pack, never in the carrier
   if (path.compare(0, 5, "data/") == 0) {
     const auto it = carrierRoles.find(path.substr(5));
     if (it != carrierRoles.end()) {
@@ -79,7 +81,8 @@ PackageSummary describePackage(const std::filesystem::path& package, const Limit
   s.surrogate = s.surrogate || carrierFile != inv.files.end();
 
   static const char* kRoleOrder[] = {"originals", "exports", "assembly", "carrier", "results",
-                                     "prior work", "other payload", "payload", "metadata", "bag files"};
+                                     "prior work", "other payload", "RO-Crate metadata", "payload", "metadata",
+                                     "bag files"};
   std::map<std::string, RoleTotal> totals;
   for (const auto& [file, f] : inv.files) {
     if (manifestName(file) && manifestName(file)->first == "manifest") s.manifests.push_back(file);

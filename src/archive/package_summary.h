@@ -24,7 +24,8 @@ namespace surrogate::archive {
 
 struct RoleTotal {
   std::string role;  // "originals", "exports", "assembly", "carrier", "results", "prior work",
-                     // "other payload"; in another tool's bag "payload"; "metadata", "bag files"
+                     // "other payload", "RO-Crate metadata" (data/ro-crate-metadata.json);
+                     // in another tool's bag "payload"; "metadata", "bag files"
   std::size_t files = 0;
   std::uint64_t bytes = 0;
 };

@@ -331,7 +331,8 @@ void printSummary(const PackReport& p, const archive::PackResult& r, Verbosity v
             << (r.previousPackageId.empty() ? std::string()
                                             : "  revises the package " + r.previousPackageId +
                                                   " (made of this capture before its record changed)\n")
-            << "  metadata: metadata/crm.rdf (CIDOC-CRM), metadata/mets.xml (METS+PREMIS)\n";
+            << "  metadata: metadata/crm.rdf (CIDOC-CRM), metadata/mets.xml (METS+PREMIS), "
+               "data/ro-crate-metadata.json (RO-Crate: the payload folder described as a crate)\n";
   printHolderFields(p);
   if (verbosity == Verbosity::Verbose)
     for (const std::string& t : r.bag.tagFiles) std::cout << "  tag file: " << t << "\n";
@@ -371,7 +372,7 @@ void printOcflSummary(const PackReport& p, const archive::OcflResult& r, Verbosi
   }
   std::cout << (r.created ? "Made the OCFL 1.1 object " : "Added a version to the OCFL object ") << escapedText(p.out)
             << ": " << r.version << ", the BagIt package of " << escapedText(p.capture) << ".\n"
-            << "  object id: " << r.objectId << " (the capture's)\n"
+            << "  object id: " << r.objectId << " (the capture identifier: every package of the capture is a version)\n"
             << "  new content: " << r.newFiles << " files, " << r.newBytes << " bytes"
             << (r.reusedFiles ? ", " + std::to_string(r.reusedFiles) + " unchanged files kept from earlier versions" : "")
             << "\n  package id: " << r.pack.packageId << "\n";

@@ -1,5 +1,6 @@
 // surrogate info on a package (archive::describePackage) or a capture folder
 // (capture::describeCapture), as text or JSON.
+#include <algorithm>
 #include <iostream>
 #include <optional>
 #include <string>
@@ -92,9 +93,11 @@ void printPackageText(const fs::path& path, const archive::PackageSummary& s) {
   std::cout << "  holds:      " << s.files << " files, " << archive::humanSize(s.bytes) << " (manifests:";
   for (const std::string& m : s.manifests) std::cout << " " << m;
   std::cout << ")\n";
+  std::size_t width = 14;  // the longest role and a space
+  for (const archive::RoleTotal& t : s.roles) width = std::max(width, t.role.size() + 1);
   for (const archive::RoleTotal& t : s.roles) {
     std::string name = t.role;
-    name.resize(14, ' ');
+    name.resize(width, ' ');
     std::cout << "    " << name << t.files << (t.files == 1 ? " file,  " : " files, ") << archive::humanSize(t.bytes)
               << "\n";
   }

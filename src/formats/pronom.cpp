@@ -13,6 +13,7 @@
 #include <unordered_map>
 
 #include "core/error.h"
+#include "core/text.h"
 #include "formats/pronom_signatures.h"
 
 namespace surrogate::formats {
@@ -272,6 +273,9 @@ bool matchParts(Bytes& bytes, const std::vector<Part>& parts, std::size_t k, std
 }  // namespace
 
 std::string PronomIdentity::describe() const {
+  if (identified() && fromText)
+    return name + " (" + puid + ", named from its text" + (puid == "x-fmt/111" ? "" : " and its name's extension") +
+           " as Siegfried and fido name it: PRONOM gives it no signature)";
   if (identified()) return name + (version.empty() ? "" : " " + version) + " (" + puid + ")";
   if (matches.empty()) return "no PRONOM signature matches";
   std::string list;
@@ -306,6 +310,38 @@ PronomIdentity identifyPronom(std::string_view data) {
   return id;
 }
 
+bool isPlainText(std::string_view bytes) {
+  if (bytes.empty()) return false;
+  for (const char ch : bytes) {
+    const auto b = static_cast<unsigned char>(ch);
+    if ((b < 0x20 && b != '\t' && b != '\n' && b != '\r' && b != '\v' && b != '\f') || b == 0x7f) return false;
+  }
+  return isValidUtf8(std::string(bytes));
+}
+
+PronomIdentity identifyPronomNamed(std::string_view bytes, const std::string& fileName) {
+  PronomIdentity id = identifyPronom(bytes);
+  // Several matching formats stay ambiguous; text is only the answer when no signature matches.
+  if (!id.matches.empty() || !isPlainText(bytes)) return id;
+  const std::string lower = lowerCase(fileName);
+  auto endsWith = [&](const std::string& tail) {
+    return lower.size() > tail.size() && lower.compare(lower.size() - tail.size(), tail.size(), tail) == 0;
+  };
+  id.fromText = true;
+  if (endsWith(".json")) {
+    id.puid = "fmt/817";
+    id.name = "JSON Data Interchange Format";
+  } else if (endsWith(".js")) {
+    id.puid = "x-fmt/423";
+    id.name = "JavaScript file";
+  } else {
+    id.puid = "x-fmt/111";
+    id.name = "Plain Text File";
+  }
+  id.matches = {id.puid};
+  return id;
+}
+
 PronomIdentity identifyPronomFile(const std::filesystem::path& file) {
   const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0)
@@ -318,7 +354,7 @@ PronomIdentity identifyPronomFile(const std::filesystem::path& file) {
   }
   if (st.st_size == 0) {
     ::close(fd);
-    return identifyPronom({});
+    return identifyPronomNamed({}, file.filename().string());
   }
   void* mapped = ::mmap(nullptr, static_cast<std::size_t>(st.st_size), PROT_READ, MAP_PRIVATE, fd, 0);
   const int code = errno;
@@ -330,7 +366,7 @@ PronomIdentity identifyPronomFile(const std::filesystem::path& file) {
     std::size_t n;
     ~Unmap() { ::munmap(p, n); }
   } unmap{mapped, static_cast<std::size_t>(st.st_size)};
-  return identifyPronom(std::string_view(static_cast<const char*>(mapped), unmap.n));
+  return identifyPronomNamed(std::string_view(static_cast<const char*>(mapped), unmap.n), file.filename().string());
 }
 
 std::string pronomRelease() { return kPronomRelease; }

@@ -134,32 +134,42 @@ FileSummary summarize(const fs::path& path) {
   return s;
 }
 
+// The layout `surrogate info` gives every kind: "PATH: what it is" first, then one indented
+// "label: value" line per fact, the values in one column (as for an image, a capture or a
+// package).
 std::string FileSummary::toText() const {
   std::ostringstream o;
-  o << "file: " << path << "\n" << "kind: " << kind << "\n" << "format: " << format << "\n";
-  if (!version.empty()) o << "version: " << version << "\n";
+  o << path << ": ";
+  if (kind == "lp")
+    o << "light positions (.lp), " << lightCount << (lightCount == 1 ? " light" : " lights") << "\n";
+  else
+    o << (kind == "ptm" ? "PTM" : "RTI") << " model " << basis << ", " << width << "x" << height << "\n";
+  auto line = [&](const std::string& label, const std::string& value) {
+    std::string padded = label + ":";
+    padded.resize(std::max<std::size_t>(padded.size() + 1, 11), ' ');
+    o << "  " << padded << value << "\n";
+  };
+  line("PRONOM", pronom);
   if (kind == "lp") {
-    o << "lights: " << lightCount << "\n"
-      // Angles to 0.1 degree, as the report shows them; --json has the full values.
-      << "elevation: " << fixedDecimals(minElevationDegrees, 1) << " to "
-      << fixedDecimals(maxElevationDegrees, 1) << " degrees\n";
+    // Angles to 0.1 degree, as the report shows them; --json has the full values.
+    line("elevation", fixedDecimals(minElevationDegrees, 1) + " to " + fixedDecimals(maxElevationDegrees, 1) + " degrees");
   } else {
-    o << "basis: " << basis << "\n"
-      << "size: " << width << " x " << height << "\n"
-      << "terms per channel: " << terms << "\n";
+    line("format", version.empty() ? format : version + ", " + format);
+    line("terms", std::to_string(terms) + " per channel");
     auto list = [&](const char* label, const std::vector<double>& v) {
       if (v.empty()) return;
-      o << label << ":";
-      for (double x : v) o << " " << formatNumber(x);
-      o << "\n";
+      std::string values;
+      for (double x : v) values += (values.empty() ? "" : " ") + formatNumber(x);
+      line(label, values);
     };
     list("scale", scale);
     list("bias", bias);
   }
-  o << "PRONOM: " << pronom << "\n";
-  o << "bytes: " << fileBytes;
-  for (const std::string& n : notes) o << "\nnote: " << n;
-  return o.str();
+  line("bytes", std::to_string(fileBytes));
+  for (const std::string& n : notes) line("note", n);
+  std::string text = o.str();
+  text.pop_back();  // the caller ends the last line
+  return text;
 }
 
 std::string FileSummary::toJson() const {

@@ -34,7 +34,7 @@ struct FileSummary {
   std::uint64_t trailingBytes = 0;  // bytes after the payload (ignored by readers)
   std::vector<std::string> notes;   // compatibility remarks, one sentence each
 
-  std::string toText() const;  // "key: value" lines
+  std::string toText() const;  // "PATH: what it is", then indented "label: value" lines
   std::string toJson() const;  // one JSON object
 };
 

@@ -9,6 +9,8 @@
 #include <fstream>
 #include <memory>
 
+#include <nlohmann/json.hpp>
+
 #include "archive/package.h"
 #include "carrier/carrier.h"
 #include "core/digest.h"
@@ -102,4 +104,67 @@ TEST_CASE("a capture's own file where the RO-Crate goes is refused by pack, nami
                              Catch::Matchers::Contains("move it into a folder of the capture"));
   }
   CHECK_FALSE(fs::exists(dir / "pkg"));
+}
+
+namespace {
+
+// The root's licence and the entity it names, read with nlohmann's JSON parser.
+std::pair<std::string, nlohmann::json> rootLicence(const fs::path& bag) {
+  const nlohmann::json crate = nlohmann::json::parse(slurp(bag / mapping::kRoCratePath));
+  nlohmann::json root, named;
+  for (const auto& e : crate["@graph"])
+    if (e["@id"] == "./") root = e;
+  REQUIRE(root.is_object());
+  REQUIRE(root.contains("license"));
+  const std::string id = root["license"]["@id"];
+  for (const auto& e : crate["@graph"])
+    if (e["@id"] == id) named = e;
+  return {id, named};
+}
+
+}  // namespace
+
+// Issue 56: RO-Crate 1.1 requires `license` on the root data entity (ro-crate-js reports
+// "licenseRequired"); a capture recorded without --license or --rights has an entity that says
+// no licence was stated.
+TEST_CASE("the RO-Crate root always names a licence, the one given or one saying none was stated",
+          "[archive][package][ro-crate]") {
+  const fs::path dir = freshDir("ro-crate-licence");
+  const fs::path capture = samplecapture::make(dir);
+  (void)archive::packCapture(capture, dir / "none");
+  const auto [noneId, none] = rootLicence(dir / "none");
+  CHECK(noneId == "#no-licence-stated");
+  REQUIRE(none.is_object());
+  CHECK(none["@type"] == "CreativeWork");
+  CHECK(none["name"] == "No licence stated");
+  CHECK_THAT(none["description"].get<std::string>(), Catch::Matchers::Contains("ask the depositor"));
+  {
+    const auto [status, output] = check(dir / "none");
+    INFO(output);
+    CHECK(status == 0);
+  }
+
+  carrier::Carrier c = carrier::loadCarrier(capture / "assembly-files/carrier.xml");
+  c.header.license = "https://creativecommons.org/licenses/by/4.0/";
+  carrier::saveCarrier(c, capture / "assembly-files/carrier.xml");
+  (void)archive::packCapture(capture, dir / "given");
+  const auto [givenId, given] = rootLicence(dir / "given");
+  CHECK(givenId == "https://creativecommons.org/licenses/by/4.0/");
+  REQUIRE(given.is_object());
+  CHECK(given["name"] == "https://creativecommons.org/licenses/by/4.0/");
+  CHECK(slurp(dir / "given" / mapping::kRoCratePath).find("no-licence-stated") == std::string::npos);
+  const auto [status, output] = check(dir / "given");
+  INFO(output);
+  CHECK(status == 0);
+
+  // The checker finds a root without a licence (as the crate of 9cd773a was).
+  std::string crate = slurp(dir / "none" / mapping::kRoCratePath);
+  const std::string ref = ",\n      \"license\": {\"@id\": \"#no-licence-stated\"}";
+  REQUIRE(crate.find(ref) != std::string::npos);
+  crate.erase(crate.find(ref), ref.size());
+  std::ofstream(dir / "none" / mapping::kRoCratePath, std::ios::binary | std::ios::trunc) << crate;
+  const auto [cutStatus, cutOutput] = check(dir / "none");
+  INFO(cutOutput);
+  CHECK(cutStatus != 0);
+  CHECK(cutOutput.find("licenseRequired") != std::string::npos);
 }

@@ -66,6 +66,11 @@ TEST_CASE("describePackage counts a Surrogate package's files by role, as the ca
       {"finished-files/report.html", fs::file_size(capture / "finished-files/report.html")}};
   CHECK(s.results == results);
   CHECK(role(s, "payload") == nullptr);
+  // The RO-Crate's metadata pack writes is named for what it is, not "other payload" (issue 56).
+  REQUIRE(role(s, "RO-Crate metadata"));
+  CHECK(role(s, "RO-Crate metadata")->files == 1);
+  CHECK(role(s, "RO-Crate metadata")->bytes == fs::file_size(dir / "pkg/data/ro-crate-metadata.json"));
+  CHECK(role(s, "other payload") == nullptr);
   // Roles in their fixed order: originals first, bag files last.
   REQUIRE(s.roles.size() >= 2);
   CHECK(s.roles.front().role == "originals");
@@ -116,6 +121,7 @@ TEST_CASE("packageRole follows the carrier's roles, then the package layout", "[
   CHECK(packageRole("data/original-captures/a.xmp", roles, true) == "originals");
   CHECK(packageRole("data/finished-files/x.ptm", roles, true) == "prior work");
   CHECK(packageRole("data/notes.txt", roles, true) == "other payload");
+  CHECK(packageRole("data/ro-crate-metadata.json", roles, true) == "RO-Crate metadata");
   CHECK(packageRole("data/assembly-files/carrier.xml", roles, true) == "carrier");
   CHECK(packageRole("data/jpeg-exports/b.jpg", roles, true) == "exports");
   CHECK(packageRole("data/finished-files/report.html", roles, true) == "results");

@@ -8,6 +8,8 @@
 #include <catch2/catch.hpp>
 
 #include <fstream>
+#include <regex>
+#include <sstream>
 
 #include "e2e_support.h"
 
@@ -128,7 +130,7 @@ TEST_CASE("info names an image's and a model's PRONOM format from their bytes") 
   const fs::path capture = e2e::processedCapture(e2e::freshDir("info-pronom"));
   const e2e::CommandResult ptm = info(capture / "finished-files/ptm-lrgb.ptm");
   INFO(ptm.output);
-  CHECK_THAT(ptm.output, Contains("\nPRONOM: Polynomial Texture Map (fmt/519)\n"));
+  CHECK_THAT(ptm.output, Contains("\n  PRONOM:    Polynomial Texture Map (fmt/519)\n"));
   const e2e::CommandResult rti = info(capture / "finished-files/hsh2.rti", " --json");
   INFO(rti.output);
   CHECK_THAT(rti.output, Contains("\"puid\":\"\",\"pronom\":\"no PRONOM signature matches\""));
@@ -370,4 +372,64 @@ TEST_CASE("info's help lists the exit codes info gives for a damaged archive and
   const std::string help = e2e::surrogate("info --help").output;
   CHECK_THAT(help, Contains("\n  3  a package archive truncated or damaged\n"));
   CHECK_THAT(help, Contains("\n  2  bad usage (an unknown option, a missing or malformed value), or a package that is not"));
+}
+
+// Issue 56: an .lp, a .ptm and an .rti are described in the layout of every other kind (an
+// image, a capture, a package): "PATH: what it is", then indented "label: value" lines, the
+// values in one column.
+TEST_CASE("info on an .lp and a .ptm and an .rti uses the layout of an image and a capture and a package") {
+  const fs::path capture = e2e::processedCapture(e2e::freshDir("info-layout"));
+  const std::regex factLine("  [A-Za-z][A-Za-z ]*: +[^ ].*");
+  auto checkLayout = [&](const fs::path& file, const std::string& heading) {
+    const e2e::CommandResult r = info(file);
+    INFO(r.output);
+    REQUIRE(r.exitCode == 0);
+    std::istringstream lines(r.output);
+    std::string first, line;
+    std::getline(lines, first);
+    CHECK(first == file.string() + ": " + heading);
+    std::size_t column = 0;
+    int facts = 0;
+    while (std::getline(lines, line)) {
+      INFO(line);
+      CHECK(std::regex_match(line, factLine));
+      const std::size_t value = line.find_first_not_of(' ', line.find(':') + 1);
+      if (column == 0) column = value;
+      CHECK(value == column);  // one column of values
+      ++facts;
+    }
+    CHECK(facts >= 3);
+  };
+  checkLayout(capture / "assembly-files/lights.lp", "light positions (.lp), 8 lights");
+  checkLayout(capture / "finished-files/ptm-lrgb.ptm", "PTM model ptm-lrgb, 400x300");
+  checkLayout(capture / "finished-files/hsh2.rti", "RTI model hsh2, 400x300");
+  // The kinds they now match: an image, and the first lines of a capture folder.
+  const e2e::CommandResult image = info(capture / "jpeg-exports/IMG_0001.jpg");
+  CHECK_THAT(image.output, Contains(capture.string() + "/jpeg-exports/IMG_0001.jpg: image ") && Contains("\n  PRONOM:  "));
+  const e2e::CommandResult folder = info(capture);
+  CHECK_THAT(folder.output, Contains(capture.string() + ": capture folder\n  shots: "));
+  // The facts themselves.
+  const e2e::CommandResult lp = info(capture / "assembly-files/lights.lp");
+  CHECK_THAT(lp.output, Contains("\n  PRONOM:    Plain Text File (x-fmt/111,") && Contains("\n  elevation: ") &&
+                            Contains("\n  bytes:     "));
+  const e2e::CommandResult ptm = info(capture / "finished-files/ptm-lrgb.ptm");
+  CHECK_THAT(ptm.output, Contains("\n  format:    PTM_1.2, PTM_FORMAT_LRGB\n  terms:     6 per channel\n  scale:     "));
+}
+
+// Issue 56: pack says it writes data/ro-crate-metadata.json, and info names it for what it is,
+// not "other payload".
+TEST_CASE("pack mentions the RO-Crate metadata it writes and info names it for what it is") {
+  const fs::path dir = e2e::freshDir("info-ro-crate");
+  const fs::path capture = e2e::processedCapture(dir);
+  const e2e::CommandResult pack = e2e::surrogate("pack " + e2e::quote(capture) + " -o " + e2e::quote(dir / "pkg"));
+  INFO(pack.output);
+  REQUIRE(pack.exitCode == 0);
+  CHECK_THAT(pack.output, Contains("data/ro-crate-metadata.json (RO-Crate"));
+  const e2e::CommandResult text = info(dir / "pkg");
+  INFO(text.output);
+  CHECK_THAT(text.output, Contains("\n    RO-Crate metadata 1 file, "));
+  CHECK(text.output.find("other payload") == std::string::npos);
+  const e2e::CommandResult json = info(dir / "pkg", " --json");
+  CHECK_THAT(json.output, Contains("{\"role\":\"RO-Crate metadata\",\"files\":1,"));
+  CHECK(json.output.find("other payload") == std::string::npos);
 }

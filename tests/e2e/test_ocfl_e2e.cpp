@@ -6,6 +6,8 @@
 
 #include <fstream>
 #include <functional>
+#include <map>
+#include <regex>
 
 #include <nlohmann/json.hpp>
 
@@ -105,6 +107,31 @@ std::string replaceAll(std::string text, const std::string& from, const std::str
   for (auto at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))
     text.replace(at, from.size(), to);
   return text;
+}
+
+// The carrier's capture identifier, read from its text here: "urn:surrogate:capture:" and the
+// SHA-256 of its first file.
+std::string captureIdentifierOf(const fs::path& capture) {
+  const std::string carrier = e2e::bytesOf(capture / "assembly-files/carrier.xml");
+  std::smatch m;
+  REQUIRE(std::regex_search(carrier, m, std::regex("<file [^>]*sha256=\"([0-9a-f]{64})\"")));
+  return "urn:surrogate:capture:" + m[1].str();
+}
+
+// The id an object made before issue 56 got: the SHA-256 of "<sha256>  <path>\n" of each
+// evidence file of the carrier (originals, exports, sidecars, the .lp, prior work), by path.
+std::string evidenceListId(const fs::path& capture) {
+  const std::string carrier = e2e::bytesOf(capture / "assembly-files/carrier.xml");
+  std::map<std::string, std::string> evidence;
+  const std::regex file("<file [^>]*path=\"([^\"]+)\" role=\"(original|export|sidecar|lp|prior)\"[^>]*sha256=\"([0-9a-f]{64})\"");
+  for (auto it = std::sregex_iterator(carrier.begin(), carrier.end(), file); it != std::sregex_iterator(); ++it)
+    evidence[(*it)[1].str()] = (*it)[3].str();
+  REQUIRE_FALSE(evidence.empty());
+  std::string list;
+  for (const auto& [path, sha256] : evidence) list += sha256 + "  " + path + "\n";
+  surrogate::MultiDigest d({surrogate::DigestAlgorithm::Sha256});
+  d.update(list.data(), list.size());
+  return "urn:sha256:" + d.hex(surrogate::DigestAlgorithm::Sha256);
 }
 
 }  // namespace
@@ -428,4 +455,48 @@ TEST_CASE("pack --layout ocfl refuses an object whose paths leave it, that holds
       CHECK(verifyExit(obj) != 0);
     }
   }
+}
+
+// Issue 56: the object's id is the capture identifier, which the bag itself holds (bag-info.txt
+// and the RO-Crate), so that every package of one capture, before and after its record changes,
+// is a version of one object a repository can find from the bag.
+TEST_CASE("the OCFL object id is the capture identifier, the same for every pack of the capture and named in the bag",
+          "[ocfl]") {
+  const Object& o = twoVersions();
+  const std::string captureId = captureIdentifierOf(o.capture);
+  const nlohmann::json inventory = inventoryOf(o.object);
+  CHECK(inventory["id"] == captureId);
+  CHECK(inventoryOf(o.object / "v1")["id"] == captureId);
+  CHECK(inventoryOf(o.object / "v2")["id"] == captureId);
+  // In the bag: bag-info.txt and the RO-Crate's identifiers.
+  CHECK_THAT(e2e::bytesOf(o.object / "v1/content/bag-info.txt"),
+             Contains("Surrogate-Capture-Identifier: " + captureId + "\n"));
+  CHECK_THAT(e2e::bytesOf(o.object / "v1/content/data/ro-crate-metadata.json"), Contains("\"" + captureId + "\""));
+
+  // A changed record is a new package of the same capture: a new version of the same object.
+  const fs::path copy = copyOf(o.object, "ocfl-same-capture");
+  const fs::path capture = e2e::freshDir("ocfl-same-capture-cap") / "cap";
+  fs::copy(o.capture, capture, fs::copy_options::recursive);
+  const e2e::CommandResult retitled = e2e::surrogate("run " + quote(capture) + " --title \"Stela 12, again\" --no-report --quiet");
+  REQUIRE(retitled.exitCode == 0);
+  const e2e::CommandResult r = pack(capture, copy, 1700300000, "--layout ocfl --json");
+  INFO(r.output);
+  REQUIRE(r.exitCode == 0);
+  CHECK_THAT(r.output, Contains("\"objectId\":\"" + captureId + "\"") && Contains("\"version\":\"v3\""));
+  CHECK(inventoryOf(copy)["id"] == captureId);
+  CHECK(ocflValid(copy));
+}
+
+TEST_CASE("pack --layout ocfl adds to an object made before the id was the capture identifier, keeping its id",
+          "[ocfl]") {
+  const Object& o = twoVersions();
+  const fs::path older = copyOf(o.object, "ocfl-older-id");
+  const std::string legacy = evidenceListId(o.capture);
+  forgeInventories(older, [&](std::string text) { return replaceAll(text, captureIdentifierOf(o.capture), legacy); });
+  const e2e::CommandResult r = pack(o.capture, older, 1700400000, "--layout ocfl");
+  INFO(r.output);
+  REQUIRE(r.exitCode == 0);
+  CHECK(inventoryOf(older)["id"] == legacy);
+  CHECK(fs::exists(older / "v3"));
+  CHECK(ocflValid(older));
 }

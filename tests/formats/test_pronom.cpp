@@ -240,11 +240,52 @@ TEST_CASE("PRONOM: a file repeating the start of a signature is read through onc
   CHECK(identifyPronom(bytes).puid == "fmt/353");
 }
 
-TEST_CASE("PRONOM: the file's name plays no part", "[formats][pronom]") {
+TEST_CASE("PRONOM: the name plays no part when a signature matches", "[formats][pronom]") {
   const fs::path dir = fs::temp_directory_path() / "surrogate-test-pronom-names";
   fs::create_directories(dir);
   const fs::path misnamed = dir / "IMG_0001.png";
   std::ofstream(misnamed, std::ios::binary) << jpeg(jfif(1));
   CHECK(identifyPronomFile(misnamed).puid == "fmt/43");
   CHECK_THROWS_WITH(identifyPronomFile(dir / "absent.jpg"), Catch::Contains("cannot be opened"));
+}
+
+// Issue 56: the formats PRONOM gives no signature, named as Siegfried and fido name them: text
+// is Plain Text File (x-fmt/111), and text named .json or .js is JSON (fmt/817) or JavaScript
+// (x-fmt/423). A signature still decides first, and nothing is named text that is not.
+TEST_CASE("PRONOM: text, JSON and JavaScript get the PUIDs Siegfried and fido give them", "[formats][pronom]") {
+  using formats::identifyPronomNamed;
+  const std::string lp = "3\nIMG_1.jpg 0 0 1\nIMG_2.jpg 0.5 0 0.866\nIMG_3.jpg 0 0.5 0.866\n";
+  CHECK(identifyPronomNamed(lp, "lights.lp").puid == "x-fmt/111");
+  CHECK(identifyPronomNamed(lp, "lights.lp").name == "Plain Text File");
+  CHECK(identifyPronomNamed("notes in UTF-8: caf\xc3\xa9\r\n\tend\n", "README.txt").puid == "x-fmt/111");
+  CHECK(identifyPronomNamed("{\"type\": \"rti\", \"planes\": 3}\n", "info.json").puid == "fmt/817");
+  CHECK(identifyPronomNamed("{\"@context\": []}\n", "ro-crate-metadata.JSON").puid == "fmt/817");
+  CHECK(identifyPronomNamed("window.viewerData = {};\n", "viewer-data.js").puid == "x-fmt/423");
+  CHECK(identifyPronomNamed("{\"a\": 1}\n", "data.js").puid == "x-fmt/423");
+  // The same text with no name is plain text; the signature-only reading finds nothing.
+  CHECK(identifyPronomNamed("{\"a\": 1}\n", "").puid == "x-fmt/111");
+  CHECK_FALSE(identifyPronom(lp).identified());
+  // A signature first: XML named .json stays XML, a PTM stays a PTM.
+  CHECK(identifyPronomNamed("<?xml version=\"1.0\"?>\n<a/>\n", "odd.json").puid == "fmt/101");
+  CHECK(identifyPronomNamed("PTM_1.2\nPTM_FORMAT_LRGB\n3\n2\n", "a.ptm").puid == "fmt/519");
+  // Not text: a NUL, another control character, bytes that are not UTF-8, nothing at all.
+  CHECK_FALSE(identifyPronomNamed(std::string("{\"a\": 1}\0\n", 10), "info.json").identified());
+  CHECK_FALSE(identifyPronomNamed("line\x01\n", "a.lp").identified());
+  CHECK_FALSE(identifyPronomNamed("caf\xe9\n", "a.txt").identified());
+  CHECK_FALSE(identifyPronomNamed("", "empty.json").identified());
+  // The description says how it was named.
+  CHECK(identifyPronomNamed(lp, "lights.lp").describe() ==
+        "Plain Text File (x-fmt/111, named from its text as Siegfried and fido name it: PRONOM gives it no signature)");
+  CHECK_THAT(identifyPronomNamed("{}\n", "info.json").describe(),
+             Catch::Contains("JSON Data Interchange Format (fmt/817, named from its text and its name's extension"));
+
+  // identifyPronomFile names a file by its own name.
+  const fs::path dir = fs::temp_directory_path() / "surrogate-test-pronom-text";
+  fs::create_directories(dir);
+  std::ofstream(dir / "lights.lp", std::ios::binary) << lp;
+  std::ofstream(dir / "info.json", std::ios::binary) << "{\"planes\": 3}\n";
+  std::ofstream(dir / "viewer-data.js", std::ios::binary) << "var data = 1;\n";
+  CHECK(identifyPronomFile(dir / "lights.lp").puid == "x-fmt/111");
+  CHECK(identifyPronomFile(dir / "info.json").puid == "fmt/817");
+  CHECK(identifyPronomFile(dir / "viewer-data.js").puid == "x-fmt/423");
 }

@@ -32,7 +32,7 @@ TEST_CASE("summary: describes .ptm, .rti and .lp files, and reports truncation")
   CHECK(s.height == 3);
   CHECK(s.scale.back() == 0.5);
   CHECK(s.trailingBytes == 0);
-  CHECK_THAT(s.toText(), Catch::Contains("size: 4 x 3"));
+  CHECK_THAT(s.toText(), Catch::Contains(": PTM model ptm-lrgb, 4x3\n  PRONOM:    Polynomial Texture Map (fmt/519)\n"));
   CHECK_THAT(s.toJson(), Catch::Contains("\"basis\":\"ptm-lrgb\""));
 
   HshFile h;

@@ -12,6 +12,7 @@ Usage: ro_crate_check.py BAG CONTEXT_DIR
 - Every step of the carrier (read here with xml.etree) is a HowToStep of the main workflow; each
   step with a result has a CreateAction whose instrument is a SoftwareApplication with the step's
   version, and a ControlAction; every local reference resolves to an entity of the graph.
+- The root has a license (RO-Crate 1.1 requires it): an entity of the graph with a name.
 - The root conforms to the Process, Workflow and Provenance Run Crate profiles 0.5 and its
   mainEntity is a File typed ComputationalWorkflow.
 Prints one line per problem and exits 1, or prints a summary and exits 0.
@@ -88,6 +89,17 @@ def main():
     if root is None:
         print("no root data entity")
         return 1
+    # RO-Crate 1.1 requires a license on the root data entity (ro-crate-js: "licenseRequired"),
+    # an entity of the graph or a URI, the entity named.
+    licences = refs(root.get("license", [])) if isinstance(root.get("license"), (dict, list)) else \
+        ([root["license"]] if isinstance(root.get("license"), str) and root["license"] else [])
+    if not licences:
+        problems.append("the root has no license, which RO-Crate 1.1 requires (licenseRequired)")
+    for lic in licences:
+        if not (lic.startswith("http://") or lic.startswith("https://")) and lic not in by_id:
+            problems.append("the root's license %s is not an entity of the graph" % lic)
+        elif lic in by_id and not by_id[lic].get("name"):
+            problems.append("the licence entity %s has no name" % lic)
     profiles = set(refs(root.get("conformsTo", [])))
     for p in ("https://w3id.org/ro/wfrun/process/0.5", "https://w3id.org/ro/wfrun/workflow/0.5",
               "https://w3id.org/ro/wfrun/provenance/0.5"):
