@@ -2,6 +2,7 @@
 
 #include "core/base64.h"
 #include "core/text.h"
+#include "publish/viewer_parts.h"
 
 namespace surrogate::publish {
 
@@ -80,6 +81,11 @@ std::string basisLabel(const std::string& basis) {
 
 std::string viewerHtml(const WebDescription& description, const std::string& basis) {
   std::string page = kViewerTemplate;
+  // The disc first: the description's text, which may hold anything, comes in after it.
+  replaceOnce(page, "@DISC_STYLE@", kDiscStyle);
+  replaceOnce(page, "@SHADER_SCRIPT@", kShaderScript);
+  replaceOnce(page, "@DISC_SCRIPT@", kDiscScript);
+  replaceOnce(page, "@DISC@", discHtml(description));
   replaceOnce(page, "@TITLE@", escapeHtml(shownTitle(description) + " (" + basisLabel(basis) + ")"));
   replaceOnce(page, "@ABOUT@", aboutHtml(description, basis));
   return page;
@@ -127,13 +133,13 @@ const char* const kViewerTemplate = R"HTML(<!DOCTYPE html>
 :root { --ink:#1d1d22; --muted:#62636a; --line:#d6d6dc; --accent:#3446b8; --card:#fafafb; }
 body { margin:0; font:15px/1.45 system-ui, sans-serif; color:var(--ink); background:#fff; }
 main { display:flex; flex-wrap:wrap; gap:16px; padding:12px 16px; align-items:flex-start; }
-#stage { flex:1 1 480px; min-width:0; }
+#stage { flex:1 1 400px; min-width:0; }
 #view { display:block; width:100%; height:auto; max-height:calc(100vh - 90px); object-fit:contain; background:#000;
         border:1px solid var(--line); cursor:grab; touch-action:none; }
 #view.light { cursor:crosshair; }
 #side { flex:0 0 260px; }
-#pad { display:block; border:1px solid var(--line); border-radius:50%; background:var(--card); cursor:crosshair; touch-action:none; }
-#views { display:flex; gap:6px; margin:0 0 10px; }
+#bar { display:flex; flex-wrap:wrap; gap:6px 18px; margin:0 0 8px; align-items:center; }
+#views { display:flex; gap:6px; }
 #views button { font:inherit; padding:4px 10px; border:1px solid var(--line); border-radius:4px; background:var(--card); cursor:pointer; }
 #views button[aria-pressed="true"] { background:var(--accent); color:#fff; border-color:var(--accent); }
 #caption, #readout, #legend { color:var(--muted); margin:6px 0; font-variant-numeric:tabular-nums; }
@@ -142,34 +148,31 @@ header { padding:12px 16px 0; }
 h1 { font-size:1.35em; margin:0 0 4px; }
 #about p { margin:2px 0; color:var(--muted); }
 #about a { color:var(--accent); }
-#tools { display:flex; flex-wrap:wrap; gap:6px; margin:6px 0 0; align-items:center; }
+#tools { display:flex; flex-wrap:wrap; gap:6px; align-items:center; }
 #tools button { font:inherit; padding:3px 9px; border:1px solid var(--line); border-radius:4px; background:var(--card); cursor:pointer; }
-#tools button[aria-pressed="true"] { background:var(--accent); color:#fff; border-color:var(--accent); }
-</style>
+#tools button[aria-pressed="true"] { background:var(--accent); color:#fff; border-color:var(--accent); }@DISC_STYLE@</style>
 </head>
 <body>
 <header id="about">
 @ABOUT@
 </header>
 <main>
-  <div id="stage"><canvas id="view" width="1" height="1" aria-label="the relit model"></canvas>
-    <div id="tools" role="group" aria-label="picture">
+  <div id="stage">
+    <div id="bar"><div id="views" role="group" aria-label="view">
+      <button type="button" data-view="relight" aria-pressed="true">Relight</button>
+      <button type="button" data-view="normals" aria-pressed="false">Normals</button>
+      <button type="button" data-view="albedo" aria-pressed="false">Albedo</button>
+    </div><div id="tools" role="group" aria-label="picture">
       <span>Drag on the picture moves</span>
       <button type="button" data-drag="pan" aria-pressed="true">the picture</button>
       <button type="button" data-drag="light" aria-pressed="false">the light</button>
       <button type="button" id="reset">Reset zoom</button>
       <span id="zoom"></span>
-    </div>
+    </div></div>
+    <canvas id="view" width="1" height="1" aria-label="the relit model"></canvas>
     <p id="caption"></p><p id="message"></p></div>
   <div id="side">
-    <div id="views" role="group" aria-label="view">
-      <button type="button" data-view="relight" aria-pressed="true">Relight</button>
-      <button type="button" data-view="normals" aria-pressed="false">Normals</button>
-      <button type="button" data-view="albedo" aria-pressed="false">Albedo</button>
-    </div>
-    <canvas id="pad" width="240" height="240" aria-label="light direction: drag the light"></canvas>
-    <p id="readout"></p>
-    <p id="legend">Drag the disc to move the light: the centre is the camera's axis, the rim the horizon.
+    @DISC@    <p id="legend">Drag the disc to move the light: the centre is the camera's axis, the rim the horizon.
       On the picture: the wheel or a pinch zooms about the pointer, a drag pans (or moves the light, as
       chosen above; Shift+drag does the other). Normals: red = x (right), green = y (up), blue = z (towards you).</p>
   </div>
@@ -186,7 +189,7 @@ h1 { font-size:1.35em; margin:0 0 4px; }
   }
   window.addEventListener("error", function (e) { record(e.message || "script error"); });
   var degree = Math.PI / 180;
-
+@DISC_SCRIPT@
   // ?light=x,y,z&view=normals&test (or after #): a first view for links, and the test mode,
   // which records the pixels of every view on <body> as PNG data URLs.
   function settings() {
@@ -225,37 +228,7 @@ h1 { font-size:1.35em; margin:0 0 4px; }
     return hshBasis(l, info.nplanes / 3);
   }
 
-  var vertexSource = "#version 300 es\nin vec2 corner;\nvoid main() { gl_Position = vec4(corner, 0.0, 1.0); }\n";
-  // The canvas has the level's size; a canvas pixel shows the texel origin + p / zoom (p the
-  // pixel's centre from the top left, rows top-first as in the layers), read with texelFetch
-  // (no filtering): zoomed, each texel is relit as it is unzoomed, only larger. At zoom 1 and
-  // origin 0 one pixel is one texel. coefficient = (byte/255 - bias) * scale.
-  var fragmentSource = [
-    "#version 300 es",
-    "precision highp float; precision highp int; precision highp sampler2DArray;",
-    "uniform sampler2DArray layers;",
-    "uniform int mode;    // 0 relight, 1 show layer `shown` as a picture",
-    "uniform int shown, images, lrgb, width, height;",
-    "uniform vec2 origin;",
-    "uniform float zoom;",
-    "uniform float w[9];",
-    "uniform vec3 scale[9], bias[9];",
-    "out vec4 color;",
-    "vec3 coefficient(ivec2 t, int j) { return (texelFetch(layers, ivec3(t, j), 0).rgb - bias[j]) * scale[j]; }",
-    "void main() {",
-    "  vec2 p = vec2(gl_FragCoord.x, float(height) - gl_FragCoord.y);",
-    "  ivec2 t = ivec2(floor(origin + p / zoom));",
-    "  if (t.x < 0 || t.y < 0 || t.x >= width || t.y >= height) { color = vec4(0.0, 0.0, 0.0, 1.0); return; }",
-    "  if (mode == 1) { color = vec4(texelFetch(layers, ivec3(t, shown), 0).rgb, 1.0); return; }",
-    "  vec3 v = vec3(0.0);",
-    "  if (lrgb == 1) {",
-    "    float l = dot(coefficient(t, 1), vec3(w[0], w[1], w[2])) + dot(coefficient(t, 2), vec3(w[3], w[4], w[5]));",
-    "    v = coefficient(t, 0) * l;",
-    "  } else {",
-    "    for (int j = 0; j < images; ++j) v += coefficient(t, j) * w[j];",
-    "  }",
-    "  color = vec4(clamp(v, 0.0, 1.0), 1.0);",
-    "}"].join("\n");
+@SHADER_SCRIPT@
 
   function compile(gl, type, source) {
     var s = gl.createShader(type);
@@ -361,6 +334,7 @@ h1 { font-size:1.35em; margin:0 0 4px; }
     }
     if (options.view === "normals" || options.view === "albedo") view = options.view;
     canvas.width = data.width; canvas.height = data.height;
+    labelDisc(pad);
     document.getElementById("caption").textContent = (info.type === "ptm" ? "PTM " + info.colorspace.toUpperCase()
         : "HSH order " + Math.round(Math.sqrt(info.nplanes / 3))) + " model, " + info.width + "\u00d7" + info.height +
         (data.halvings === 0 ? "" : "; shown at " + data.width + "\u00d7" + data.height + ", halved " + data.halvings +
@@ -369,16 +343,9 @@ h1 { font-size:1.35em; margin:0 0 4px; }
       return { azimuth: Math.atan2(light[1], light[0]) / degree, elevation: Math.asin(Math.max(-1, Math.min(1, light[2]))) / degree };
     }
     function drawPad() {
-      var g = pad.getContext("2d"), cx = pad.width / 2, cy = pad.height / 2, r = pad.width / 2 - 12, a = angles();
-      g.clearRect(0, 0, pad.width, pad.height);
-      g.strokeStyle = "#c9c9d0";
-      [0, 30, 60].forEach(function (e) { g.beginPath(); g.arc(cx, cy, r * (90 - e) / 90, 0, 2 * Math.PI); g.stroke(); });
-      var d = r * (90 - a.elevation) / 90;
-      g.fillStyle = "#f0b400"; g.strokeStyle = "#222";
-      g.beginPath(); g.arc(cx + d * Math.cos(a.azimuth * degree), cy - d * Math.sin(a.azimuth * degree), 7, 0, 2 * Math.PI);
-      g.fill(); g.stroke();
-      document.getElementById("readout").textContent = "Light: azimuth " + a.azimuth.toFixed(1) + "\u00b0, elevation " +
-          a.elevation.toFixed(1) + "\u00b0 (x " + light[0].toFixed(3) + ", y " + light[1].toFixed(3) + ", z " + light[2].toFixed(3) + ")";
+      var a = angles();
+      drawDisc(pad, a);
+      describeLight(pad, a, light);
       document.getElementById("zoom").textContent = "zoom \u00d7" + camera.zoom.toFixed(2);
     }
     var pending = false;
@@ -428,7 +395,7 @@ h1 { font-size:1.35em; margin:0 0 4px; }
     // A pointer on the disc, or on the picture taken as the same disc round its centre.
     function setFrom(element, event) {
       var box = element.getBoundingClientRect();
-      var radius = element === pad ? (pad.width / 2 - 12) * box.width / pad.width : Math.min(box.width, box.height) / 2;
+      var radius = element === pad ? discRadius(pad) * box.width / pad.width : Math.min(box.width, box.height) / 2;
       var dx = event.clientX - (box.left + box.width / 2), dy = event.clientY - (box.top + box.height / 2);
       var f = Math.min(1, Math.hypot(dx, dy) / radius), a = angles();
       light = fromAngles(f > 0 ? Math.atan2(-dy, dx) / degree : a.azimuth, 90 * (1 - f));

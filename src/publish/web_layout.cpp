@@ -523,7 +523,7 @@ std::vector<PublishedModel> publish(const fs::path& source, const fs::path& out,
   if (capture) {
     const std::vector<CaptureModel> models = recordedModels(source);  // checks the carrier is there
     described.description =
-        webDescriptionOf(carrier::loadCarrier(source / "assembly-files" / "carrier.xml").header);
+        webDescriptionOf(carrier::loadCarrier(source / "assembly-files" / "carrier.xml"));
     for (const CaptureModel& m : models) {
       WebLayoutFiles layout = webLayoutOfFile(source / m.path, described);
       layout.model.source = m.path;

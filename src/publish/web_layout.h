@@ -22,6 +22,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,7 @@
 
 namespace surrogate::carrier {
 struct Header;
+struct Carrier;
 }
 
 namespace surrogate::publish {
@@ -51,10 +53,16 @@ struct WebDescription {
   std::vector<std::pair<std::string, std::string>> creators;  // name, role
   std::string rights;
   std::string license;  // a URI is shown as a link when it is http:// or https://
+  // The elevations of the photographed lights in degrees, lowest and highest, when known (the
+  // carrier's last light estimation): the viewer's disc shades them and says when the chosen
+  // light is outside them, where the relighting is extrapolated. A lone model file has none.
+  std::optional<std::pair<double, double>> lightElevationsDeg;
 };
 
 // The description of a capture from its carrier's header.
 WebDescription webDescriptionOf(const carrier::Header& header);
+// The same with the photographed lights' elevations the carrier records (web_description.cpp).
+WebDescription webDescriptionOf(const carrier::Carrier& carrier);
 
 struct PublishOptions {
   // JPEG quality 1..100 of the planes: lower gives smaller files and a larger error in the

@@ -47,14 +47,44 @@ std::string sectorPath(double e0, double e1, double a0, double a1) {
   return p.str();
 }
 
-// Elevation rings and azimuth spokes, with their labels.
-void drawGrid(std::ostringstream& s) {
+// A mark of the plot a label must not cover: a light's dot, a cross, a ring, a spoke's label.
+struct Mark {
+  double x, y, radius;
+};
+
+// Whether the box of an elevation label centred at (x, y) (11 px text, "el 60°": some 36 x 12
+// units, with a margin) touches a mark.
+bool covers(double x, double y, const Mark& m) {
+  const double halfWidth = 21, halfHeight = 8;
+  const double dx = std::max(0.0, std::abs(m.x - x) - halfWidth), dy = std::max(0.0, std::abs(m.y - y) - halfHeight);
+  return dx * dx + dy * dy < m.radius * m.radius;
+}
+
+// Elevation rings and azimuth spokes, with their labels. An elevation label goes just inside its
+// ring, between the 90 and 135 degree spokes when nothing is there, else at the nearest azimuth
+// where it covers none of `marks` (a light drawn over "el 60" hid the label).
+void drawGrid(std::ostringstream& s, std::vector<Mark> marks = {}) {
+  for (int a = -135; a <= 180; a += 45) {  // the spokes' labels, drawn below
+    double tx, ty;
+    project(-9, a, tx, ty);
+    marks.push_back({tx, ty, 12});
+  }
   for (double e : {0.0, 30.0, 60.0}) {
-    double x, y;
-    project(e, 112.5, x, y);  // labels between the 90 and 135 degree spokes
-    s << "<circle class=\"grid\" cx=\"" << kCentre << "\" cy=\"" << kCentre << "\" r=\""
-      << num(kRadius * (90 - e) / 90) << "\"/>";
-    s << "<text class=\"axis elevation\" text-anchor=\"middle\" x=\"" << num(x) << "\" y=\"" << num(y + 12)
+    const double ring = kRadius * (90 - e) / 90;
+    double x = 0, y = 0;
+    std::size_t fewest = marks.size() + 1;
+    for (int k = 0; k <= 48 && fewest > 0; ++k) {  // 112.5, 120, 105, 127.5, 97.5... degrees
+      const double az = 112.5 + (k % 2 ? 1 : -1) * 7.5 * ((k + 1) / 2);
+      double lx, ly;
+      project(e, az, lx, ly);
+      lx -= 9 * (lx - kCentre) / ring;
+      ly -= 9 * (ly - kCentre) / ring;
+      const std::size_t n = static_cast<std::size_t>(
+          std::count_if(marks.begin(), marks.end(), [&](const Mark& m) { return covers(lx, ly, m); }));
+      if (n < fewest) fewest = n, x = lx, y = ly;
+    }
+    s << "<circle class=\"grid\" cx=\"" << kCentre << "\" cy=\"" << kCentre << "\" r=\"" << num(ring) << "\"/>";
+    s << "<text class=\"axis elevation\" text-anchor=\"middle\" x=\"" << num(x) << "\" y=\"" << num(y + 4)
       << "\">el " << e << "\u00b0</text>\n";
   }
   s << "<circle class=\"grid raking\" cx=\"" << kCentre << "\" cy=\"" << kCentre << "\" r=\""
@@ -186,7 +216,18 @@ std::string hemisphereSvg(const std::vector<LightPoint>& lights, const Coverage&
     const double width = g.widthDeg() == 0 ? 360 : g.widthDeg();
     s << "<path class=\"gap\" d=\"" << sectorPath(0, 90, g.fromDeg, g.fromDeg + width) << "\"/>\n";
   }
-  drawGrid(s);
+  std::vector<Mark> marks;
+  for (const LightPoint& l : lights) {
+    double x, y;
+    project(l.elevationDeg, l.azimuthDeg, x, y);
+    marks.push_back({x, y, kLightDot + 1.5});
+  }
+  for (const PriorLightPoint& p : priorLights) {
+    double x, y;
+    project(p.elevationDeg, p.azimuthDeg, x, y);
+    marks.push_back({x, y, 6.5});
+  }
+  drawGrid(s, marks);
   // Each light's uncertainty, beneath the lights: a ring of its 95 % bound (the plot's radius is
   // 90 degrees of elevation, so the ring is exact along the elevation and close across it),
   // where it reaches beyond the light's dot (radius 6, 3.6 degrees).
@@ -245,7 +286,13 @@ std::string errorHemisphereSvg(const std::vector<ErrorPoint>& points, const std:
   s << "<svg class=\"error-plot\" id=\"" << escapeHtml(id) << "\" xmlns=\"http://www.w3.org/2000/svg\" "
        "viewBox=\"0 0 460 360\" width=\"460\" height=\"360\" role=\"img\" aria-label=\"The prior model's "
        "error at each photograph's light\">\n";
-  drawGrid(s);
+  std::vector<Mark> marks;
+  for (const ErrorPoint& p : points) {
+    double x, y;
+    project(p.elevationDeg, p.azimuthDeg, x, y);
+    marks.push_back({x, y, p.pictured ? 11.5 : 7.5});
+  }
+  drawGrid(s, marks);
   // The worst last, so that it is drawn over its neighbours.
   std::vector<const ErrorPoint*> order;
   for (const ErrorPoint& p : points) order.push_back(&p);

@@ -127,7 +127,7 @@ void WebCopyStage::run(const carrier::Step& step, pipeline::Context& ctx, carrie
   result.add("input").set("file", input->id).set("kind", o.model);
 
   publish::PublishOptions options;
-  options.description = publish::webDescriptionOf(ctx.carrier.header);
+  options.description = publish::webDescriptionOf(ctx.carrier);
   options.quality = o.quality;
   options.tiles = publish::parseTileLayout(o.tiles);
   options.tileSize = o.tileSize;

@@ -4,8 +4,10 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -45,6 +47,29 @@ inline BrowserRun runChromium(const std::string& chromium, const std::string& fl
   r.dom = bytesOf(out);
   r.log = bytesOf(err);
   return r;
+}
+
+// A copy of `page` beside it, named `name`, with `script` run first thing in <body>: for what the
+// page shows but does not record itself (where things are, what covers what). A script added at
+// the end could run after the page is done (the parser may yield between scripts); this one can
+// wrap document.body.setAttribute and measure when the page sets data-ready (probeOnReady).
+inline std::filesystem::path probedCopy(const std::filesystem::path& page, const std::string& name,
+                                        const std::string& script) {
+  std::string html = bytesOf(page);
+  const std::size_t open = html.find("<body"), end = html.find('>', open);
+  if (open == std::string::npos || end == std::string::npos) throw std::runtime_error(page.string() + " has no <body>");
+  html.insert(end + 1, "<script>\n" + script + "\n</script>\n");
+  const std::filesystem::path copy = page.parent_path() / name;
+  std::ofstream(copy, std::ios::binary) << html;
+  return copy;
+}
+
+// The JavaScript of a probe that calls `measure` (a JavaScript function expression) when the page
+// sets data-ready on <body>: in the same task, so before chromium dumps the page.
+inline std::string probeOnReady(const std::string& measure) {
+  return "(function () {\n  var body = document.body, set = body.setAttribute, measure = " + measure +
+         ";\n  body.setAttribute = function (name, value) {\n    if (name === \"data-ready\") measure();\n"
+         "    set.call(body, name, value);\n  };\n})();\n";
 }
 
 inline std::string fileUrl(const std::filesystem::path& page) {
