@@ -10,6 +10,7 @@
 #include "capture/capture.h"
 #include "capture/output_rule.h"
 #include "core/error.h"
+#include "core/sphere_reference.h"
 #include "core/text.h"
 #include "stages/frame_checks.h"
 
@@ -80,18 +81,17 @@ void checkSphere(const std::string& value) {
 void checkHighlight(const std::string& value) {
   const std::string option = "--highlight " + value;
   const auto eq = value.find('=');
-  if (eq == std::string::npos) usage(option, "needs the form IMAGE:SPHERE=X,Y (SPHERE from 0)");
+  if (eq == std::string::npos) usage(option, "needs the form IMAGE:sphereN=X,Y (sphere1 is the first sphere)");
   const std::string target = value.substr(0, eq);
   const auto colon = target.rfind(':');
   const std::string image = colon == std::string::npos ? target : target.substr(0, colon);
   if (image.empty())
-    usage(option, "names no image; give the form IMAGE:SPHERE=X,Y, e.g. IMG_0004:0=326,70");
+    usage(option, "names no image; give the form IMAGE:sphereN=X,Y, e.g. IMG_0004:sphere1=326,70");
   if (colon != std::string::npos) {
     const std::string sphere = target.substr(colon + 1);
-    if (sphere.empty() || sphere.size() > 6 ||
-        !std::all_of(sphere.begin(), sphere.end(), [](unsigned char c) { return std::isdigit(c); }))
-      usage(option, "SPHERE in IMAGE:SPHERE=X,Y must be a sphere's number (0 for the first), not \"" +
-                        sphere + "\"");
+    if (!sphereIndexOfReference(sphere))
+      usage(option, "the sphere in IMAGE:sphereN=X,Y must be sphere1 for the first sphere, sphere2 for the second "
+                    "(or its index from 0), not \"" + sphere + "\"");
   }
   const std::vector<double> v = parseNumberList(value.substr(eq + 1), 2, "--highlight");
   const std::string why = stages::highlightPointProblem(v[0], v[1]);

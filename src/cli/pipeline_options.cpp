@@ -8,6 +8,7 @@
 #include "carrier/carrier.h"
 #include "cli/option_checks.h"
 #include "core/error.h"
+#include "core/sphere_reference.h"
 #include "hrti/light_checks.h"
 #include "stages/learned_fit_stage.h"
 #include "stages/rti_fit_stage.h"
@@ -40,7 +41,7 @@ std::vector<OptionSpec> pipelineOptions(bool withFit) {
       {"raw", true, true, "LibRaw setting, e.g. demosaic=AHD, whiteBalance=camera", "NAME=VALUE"},
       {"sphere-roi", true, true, "search a sphere only in this region (one per sphere)", "X,Y,W,H"},
       {"sphere", true, true, "give a sphere's circle by hand instead of detecting it", "CX,CY,R"},
-      {"highlight", true, true, "give a highlight by hand: IMAGE:SPHERE=X,Y (sphere from 0)", "SPEC"},
+      {"highlight", true, true, "give a highlight by hand: IMAGE:sphereN=X,Y (sphere1 is the first sphere; a bare number counts from 0)", "SPEC"},
       {"highlight-threshold", true, false, "fraction of the brightest pixel (default 0.8)", "T"},
       {"light-model", true, false, "orthographic (default) or perspective", "MODEL"},
       {"focal-length", true, false, "lens focal length for the perspective model (default: EXIF)", "MM"},
@@ -50,8 +51,8 @@ std::vector<OptionSpec> pipelineOptions(bool withFit) {
       // The capture's memory: decisions recorded by earlier runs stand until withdrawn.
       {"lp", true, false, "dome capture: take the lights from this .lp file in the capture (none: back to the spheres)", "FILE.lp"},
       {"forget-exclusion", true, true, "withdraw a recorded exclusion (needs --reason after it)", "IMAGE"},
-      {"forget-sphere", true, true, "withdraw a sphere given by hand, by index from 0 (needs --reason)", "N"},
-      {"forget-highlight", true, true, "withdraw a highlight given by hand (needs --reason)", "IMAGE:SPHERE"},
+      {"forget-sphere", true, true, "withdraw a sphere given by hand: sphere1 is the first --sphere (a bare number counts from 0; needs --reason)", "sphereN"},
+      {"forget-highlight", true, true, "withdraw a highlight given by hand (needs --reason)", "IMAGE:sphereN"},
       {"reset", false, false, "withdraw every recorded processing decision (needs --reason after it)"},
       {"accept-changed", true, true, "accept that a recorded original changed or was removed (needs --reason)", "PATH"},
       {"accept-damaged", true, true, "decode an image although its decoder reports damaged data (needs --reason)", "IMAGE"},
@@ -120,6 +121,18 @@ std::vector<OptionSpec> runtimeOptions() {
 }
 
 namespace {
+
+// "IMAGE:sphereN" or "IMAGE:N" (index from 0) or "IMAGE" (the first sphere) as the carrier's
+// target "IMAGE:INDEX" (core/sphere_reference.h).
+std::string highlightTarget(const std::string& typed, const std::string& option) {
+  const auto colon = typed.rfind(':');
+  if (colon == std::string::npos) return typed + ":0";
+  const auto index = sphereIndexOfReference(typed.substr(colon + 1));
+  if (!index)
+    throw Error(ErrorKind::Usage, option, "command line",
+                "names no sphere after the colon: give IMAGE:sphere1 for the first sphere, IMAGE:sphere2 for the second");
+  return typed.substr(0, colon) + ":" + std::to_string(*index);
+}
 
 std::pair<std::string, std::string> splitKeyValue(const std::string& text, const std::string& option) {
   const auto eq = text.find('=');
@@ -362,9 +375,17 @@ run::RunRequest requestFrom(const Args& args) {
     }
     if (name == "forget-exclusion" || name == "forget-sphere" || name == "forget-highlight" ||
         name == "forget-damaged" || name == "forget-accept") {
+      // Spheres as typed (sphere1, or an index from 0), recorded as the carrier's index.
       std::string target = value;
-      if (name == "forget-highlight" && target.find(':') == std::string::npos) target += ":0";
-      if (name == "forget-sphere") parseNumberList(value, 1, "--forget-sphere");
+      if (name == "forget-highlight") target = highlightTarget(value, "--forget-highlight " + value);
+      if (name == "forget-sphere") {
+        const auto index = sphereIndexOfReference(value);
+        if (!index)
+          throw Error(ErrorKind::Usage, "--forget-sphere " + value, "command line",
+                      "names no sphere: give sphere1 for the first circle given by hand (--sphere), sphere2 for "
+                      "the second");
+        target = std::to_string(*index);
+      }
       r.withdrawals.push_back({name == "forget-exclusion" ? "exclude-image"
                                : name == "forget-sphere"  ? "manual-sphere"
                                : name == "forget-damaged" ? "accept-decoder-warning"
@@ -410,10 +431,9 @@ run::RunRequest requestFrom(const Args& args) {
     } else if (name == "highlight") {
       const auto eq = value.find('=');
       if (eq == std::string::npos)
-        throw Error(ErrorKind::Usage, "--highlight " + value, "command line", "needs the form IMAGE:SPHERE=X,Y");
+        throw Error(ErrorKind::Usage, "--highlight " + value, "command line", "needs the form IMAGE:sphereN=X,Y");
       parseNumberList(value.substr(eq + 1), 2, "--highlight");
-      std::string target = value.substr(0, eq);
-      if (target.find(':') == std::string::npos) target += ":0";
+      const std::string target = highlightTarget(value.substr(0, eq), "--highlight " + value);
       r.stageInterventions.push_back({stages::HighlightDetectionStage::kComponent,
                                       {"manual-highlight", target, value.substr(eq + 1), "", "", ""}});
       last = &r.stageInterventions.back().intervention;

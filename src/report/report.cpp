@@ -193,8 +193,8 @@ std::string detectionSection(const carrier::Carrier& c, const Pictures& pictures
       }
       s << (said.empty() ? std::string("its figures are not recorded.") : said) << "</li>";
     }
-    s << "</ul><p class=\"note\">Spheres are numbered from 1 on this page; the command line's "
-         "<code>--highlight IMAGE:SPHERE</code> and <code>--forget-sphere N</code> count them from 0.</p>";
+    s << "</ul><p class=\"note\">Spheres are numbered from 1, as the command line names them: "
+         "<code>--highlight IMAGE:sphere1=X,Y</code>, <code>--forget-sphere sphere1</code>.</p>";
   }
   s << lightChecksTable(c);
   auto imagePath = [&](const carrier::DataItem& d) {

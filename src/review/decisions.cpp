@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/sphere_reference.h"
 #include "core/text.h"
 
 namespace surrogate::review {
@@ -113,16 +114,17 @@ std::vector<std::string> argumentsFor(const std::string& applyJson) {
     reason(text(s, "reason", where, false));
   });
   eachOf(body, "forgetSpheres", [&](const json& s, const std::string& where) {
-    option("forget-sphere", std::to_string(index(s, "sphere", where)));
+    // Spheres as people name them, sphere1 for the first (core/sphere_reference.h).
+    option("forget-sphere", sphereReference(index(s, "sphere", where)));
     reason(text(s, "reason", where, true));
   });
   eachOf(body, "highlights", [&](const json& h, const std::string& where) {
-    option("highlight", text(h, "image", where, true) + ":" + std::to_string(index(h, "sphere", where)) + "=" +
+    option("highlight", text(h, "image", where, true) + ":" + sphereReference(index(h, "sphere", where)) + "=" +
                             coordinateText(number(h, "x", where)) + "," + coordinateText(number(h, "y", where)));
     reason(text(h, "reason", where, false));
   });
   eachOf(body, "forgetHighlights", [&](const json& h, const std::string& where) {
-    option("forget-highlight", text(h, "image", where, true) + ":" + std::to_string(index(h, "sphere", where)));
+    option("forget-highlight", text(h, "image", where, true) + ":" + sphereReference(index(h, "sphere", where)));
     reason(text(h, "reason", where, true));
   });
   // The colour chart: its corners marked on a frame, or no chart (stages/colour_chart_options.h).

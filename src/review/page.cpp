@@ -41,8 +41,7 @@ std::string pageHtml() {
     <p><button type="button" id="apply" class="primary" disabled>Apply</button>
        <button type="button" id="discard" disabled>Discard the changes</button></p>
     <p class="note">Apply records each change as a decision of the capture (who, when, why) and runs
-      what it needs again, exactly as this command would (its options count spheres from 0: sphere 1 is
-      <code>IMAGE:0</code> in <code>--highlight</code>, <code>0</code> in <code>--forget-sphere</code>):</p>
+      what it needs again, exactly as this command would:</p>
     <pre id="equivalent" class="mono"></pre>
     <div id="progress" hidden><progress id="progress-bar" max="1" value="0"></progress> <span id="progress-label"></span></div>
   </section>
@@ -61,7 +60,7 @@ std::string pageHtml() {
     <div id="description-shown"></div>
   </section>
   <section id="history-section"><h2>Runs</h2><div id="runs"></div>
-    <p class="note">Each run&rsquo;s notes as the record keeps them, in the command line&rsquo;s words (spheres from 0).</p></section>
+    <p class="note">Each run&rsquo;s notes as the record keeps them (records made before December 2026 count spheres from 0).</p></section>
 </aside>
 </main>
 <script src="/review.js"></script>

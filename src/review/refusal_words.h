@@ -2,8 +2,8 @@
 // the frame out), never the options a command line would take. A refusal the page has no words
 // of its own for is given in the run's (Error::text()).
 //
-// Spheres are numbered from 1 here, as everywhere a person reads on the page; the carrier and
-// the options (--highlight IMAGE:0=..., --forget-sphere 0) count them from 0.
+// Spheres are numbered from 1 here, as everywhere a person reads (the options name them
+// sphere1, sphere2: core/sphere_reference.h); the carrier counts them from 0.
 //
 //   answer["message"] = pageWords(e);
 #pragma once

@@ -119,18 +119,6 @@ json chartState(const carrier::Carrier& c, const carrier::Step* step) {
   return chart;
 }
 
-// A decision as the page words it: spheres from 1, as everywhere a person reads on the page; the
-// carrier's targets ("0", "IMG_0003:0") count from 0, as the options, and stay so in "target".
-std::string pageWhat(const carrier::DecisionSummary& d) {
-  const std::string& t = d.intervention.target;
-  const std::string sphere = d.intervention.kind == "manual-sphere" ? t
-                             : d.intervention.kind == "manual-highlight" ? t.substr(t.rfind(':') + 1) : "";
-  const auto at = d.what.find("sphere " + sphere + " ");
-  if (sphere.empty() || sphere.size() > 3 || sphere.find_first_not_of("0123456789") != std::string::npos || at == std::string::npos)
-    return d.what;
-  return d.what.substr(0, at + 7) + std::to_string(std::stoi(sphere) + 1) + d.what.substr(at + 7 + sphere.size());
-}
-
 }  // namespace
 
 CaptureState readCaptureState(const fs::path& captureArg, const std::string& who, int threads) {
@@ -251,7 +239,7 @@ CaptureState readCaptureState(const fs::path& captureArg, const std::string& who
       json j = intervention(d.intervention);
       j["step"] = d.step;
       j["component"] = d.component;
-      j["what"] = pageWhat(d);
+      j["what"] = d.what;  // spheres from 1, as carrier::interventionText words them
       decisions.push_back(j);
       if (d.intervention.kind == "exclude-image") {
         const auto it = byShot.find(shotOf(d.intervention.target));

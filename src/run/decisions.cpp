@@ -7,6 +7,7 @@
 
 #include "carrier/carrier.h"
 #include "core/error.h"
+#include "core/sphere_reference.h"
 #include "core/text.h"
 #include "stages/outputs.h"
 #include "run/plan.h"
@@ -69,10 +70,15 @@ std::optional<T> replaceOrAdd(std::vector<T>& list, const T& value, Same same) {
   return old;
 }
 
+// A decision's target as a person types it: spheres as sphereN (core/sphere_reference.h).
+std::string shownTarget(const std::string& kind, const std::string& target) {
+  return kind == "manual-sphere" || kind == "manual-highlight" ? personsSphereTarget(target) : target;
+}
+
 std::string describe(const carrier::Intervention& i) {
   std::string what = i.kind == "exclude-image"          ? "exclusion of " + i.target
-                     : i.kind == "manual-sphere"        ? "manual sphere " + i.target + " (" + i.value + ")"
-                     : i.kind == "manual-highlight"     ? "manual highlight " + i.target + " (" + i.value + ")"
+                     : i.kind == "manual-sphere"        ? "circle by hand of " + personsSphereTarget(i.target) + " (" + i.value + ")"
+                     : i.kind == "manual-highlight"     ? "highlight by hand " + personsSphereTarget(i.target) + " (" + i.value + ")"
                      : i.kind == "accept-decoder-warning" ? "accepted damage in " + i.target
                      : i.kind == stages::kAcceptCheck   ? "accepted check " + i.target
                                                         : i.kind + " " + i.target;
@@ -260,13 +266,14 @@ RunRequest applyDecisions(const RunRequest& standing, const RunRequest& given,
       std::string standingList;
       for (const Exclusion& e : r.exclusions) standingList += (standingList.empty() ? "" : ", ") + shotOf(e.image);
       for (const auto& i : r.stageInterventions)
-        if (i.intervention.kind == w.kind) standingList += (standingList.empty() ? "" : ", ") + i.intervention.target;
+        if (i.intervention.kind == w.kind)
+          standingList += (standingList.empty() ? "" : ", ") + shownTarget(w.kind, i.intervention.target);
       const std::string option = w.kind == "exclude-image"            ? "--forget-exclusion"
                                  : w.kind == "manual-sphere"          ? "--forget-sphere"
                                  : w.kind == "accept-decoder-warning" ? "--forget-damaged"
                                  : w.kind == stages::kAcceptCheck     ? "--forget-accept"
                                                                       : "--forget-highlight";
-      throw Error(ErrorKind::Usage, option + " " + w.target, "command line",
+      throw Error(ErrorKind::Usage, option + " " + shownTarget(w.kind, w.target), "command line",
                   "the capture's carrier holds no such decision (standing: " +
                       (standingList.empty() ? std::string("none") : standingList) +
                       "); see them with: surrogate info CAPTURE");

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/sphere_reference.h"
 #include "core/text.h"
 #include "stages/frame_checks.h"
 #include "stages/highlight_detection_stage.h"
@@ -98,17 +99,17 @@ void checkRequestAgainstFrame(const RunRequest& request, int width, int height) 
   // Highlights given by hand: target "IMAGE:SPHERE", value "x,y".
   for (const RunRequest::StageIntervention& s : request.stageInterventions) {
     if (s.component != HighlightDetectionStage::kComponent || s.intervention.kind != "manual-highlight") continue;
-    const std::string option = "--highlight " + s.intervention.target + "=" + s.intervention.value;
     const int sphere = sphereIndexOf(s.intervention.target);
-    if (sphere < 0) usage(option, "needs the form IMAGE:SPHERE=X,Y with SPHERE a number from 0");
+    const std::string option = "--highlight " + personsSphereTarget(s.intervention.target) + "=" + s.intervention.value;
+    if (sphere < 0) usage(option, "needs the form IMAGE:sphereN=X,Y (sphere1 is the first sphere)");
     const auto v = numbers(s.intervention.value, 2);
     if (!v) usage(option, "needs 2 comma-separated numbers X,Y (pixels)");
     std::optional<SphereCircle> circle;
     if (!circles.empty()) {
       if (sphere >= static_cast<int>(circles.size()))
-        usage(option, "names sphere " + std::to_string(sphere) + ", but the spheres are the " +
-                          std::to_string(circles.size()) + " circle(s) given by hand (--sphere), "
-                          "numbered from 0");
+        usage(option, "names sphere " + std::to_string(sphere + 1) + ", but only " + std::to_string(circles.size()) +
+                          " circle(s) are given by hand (--sphere): sphere1" +
+                          (circles.size() > 1 ? " to " + sphereReference(static_cast<int>(circles.size()) - 1) : ""));
       circle = circles[sphere];
     }
     const std::string why = highlightPointProblem((*v)[0], (*v)[1], width, height, circle);
@@ -190,9 +191,9 @@ void checkRequestNames(const RunRequest& request, const capture::CaptureLayout& 
     const std::string image = target.substr(0, target.rfind(':'));
     if (capture::findShotStem(layout, image)) continue;
     const std::optional<std::string> near = nearestImageName(image, layout);
-    usage("--highlight " + escapedText(target) + "=" + escapedText(s.intervention.value),
+    usage("--highlight " + escapedText(personsSphereTarget(target)) + "=" + escapedText(s.intervention.value),
           "names no image of the capture" + (near ? "; did you mean " + *near + "?" : std::string(".")) +
-              " Give the image as its file or shot name (case matters), e.g. IMG_0004:0=326,70");
+              " Give the image as its file or shot name (case matters), e.g. IMG_0004:sphere1=326,70");
   }
 }
 

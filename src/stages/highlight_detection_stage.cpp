@@ -1,5 +1,8 @@
 #include "stages/highlight_detection_stage.h"
 
+#include "carrier/advice.h"
+#include "core/sphere_reference.h"
+
 #include <algorithm>
 #include <cstdlib>
 
@@ -60,18 +63,18 @@ void refuseSphereWithoutHighlights(const carrier::Step& sphereStep, const hrti::
     if (i->target != std::to_string(k)) continue;
     throw hrti::HighlightRefusal(
         Error(ErrorKind::Input, "--sphere " + i->value, "highlight detection",
-              "the circle given by hand for sphere " + std::to_string(k) + " " + counted +
+              "the circle given by hand for sphere " + std::to_string(k + 1) + " " + counted +
                   ": it is probably not where the sphere is in the images. Give the sphere's circle "
                   "again, as it appears in the images, with --sphere CX,CY,R --reason \"...\", or "
-                  "withdraw it with --forget-sphere " + std::to_string(k) +
+                  "withdraw it with --forget-sphere " + sphereReference(static_cast<int>(k)) +
                   " --reason \"...\" to let Surrogate find the sphere. (If the circle is right, these "
                   "images show no highlight: leave them out with --exclude or give their highlights by "
                   "hand with --highlight.)"),
         hrti::HighlightRefusal::Subject::CircleByHand, k, refused, images);
   }
   throw hrti::HighlightRefusal(
-      Error(ErrorKind::Input, "sphere " + std::to_string(k) + " at " + circle, "highlight detection",
-            "the circle found for sphere " + std::to_string(k) + " " + counted +
+      Error(ErrorKind::Input, "sphere " + std::to_string(k + 1) + " at " + circle, "highlight detection",
+            "the circle found for sphere " + std::to_string(k + 1) + " " + counted +
                 ": it is probably not a sphere. Give the sphere's circle by hand with --sphere CX,CY,R "
                 "--reason \"...\", or restrict the search to the sphere with --sphere-roi X,Y,W,H. (If "
                 "the circle is right, these images show no highlight: leave them out with --exclude or "
@@ -202,27 +205,40 @@ void HighlightDetectionStage::run(const carrier::Step& step, pipeline::Context& 
           .set("flag", hrti::flagName(h.flag)).set("peak", h.peak).set("components", h.components)
           .set("confidence", h.confidence);
       if (!h.reason.empty()) item.set("reason", h.reason);
-      const std::string on = spheres->size() > 1 ? " on sphere " + std::to_string(k) : "";
+      // Spheres as people count them, from 1 (the overview files are highlights-sphere1.png...).
+      const std::string on = spheres->size() > 1 ? " on sphere " + std::to_string(k + 1) : " on the sphere";
+      const std::string overview = "look at it on the highlight overview (assembly-files/highlights-sphere" +
+                                   std::to_string(k + 1) + ".png); if the wrong spot was taken, place the highlight "
+                                   "in surrogate review (or with --highlight, see the user guide)";
       if (hrti::isUsable(h.flag)) {
         usable = true;
         if (h.flag == hrti::HighlightFlag::Multiple)
-          ctx.carrier.addLog("warning", step.id, in.relativePath + ": several strong highlights" + on +
-                             "; the one nearest the centre was used (confidence " + confidenceText(h.confidence) +
-                             "), check the highlight overview");
+          carrier::addWarning(ctx.carrier, step.id,
+                              {in.relativePath + ": several bright spots" + on +
+                                   "; the one nearest the sphere's centre was taken as the flash's highlight",
+                               carrier::Usable::WithCare,
+                               "if another spot was the flash, this photograph's light direction is wrong", overview,
+                               "confidence " + confidenceText(h.confidence)});
         else if (h.flag == hrti::HighlightFlag::Ok && h.confidence < 0.5)
-          ctx.carrier.addLog("warning", step.id, in.relativePath + ": the highlight" + on + " has confidence " +
-                             confidenceText(h.confidence) + " only; check it on the highlight overview");
+          carrier::addWarning(ctx.carrier, step.id,
+                              {in.relativePath + ": the highlight" + on + " is faint or unclear",
+                               carrier::Usable::WithCare, "this photograph's light direction may be off", overview,
+                               "confidence " + confidenceText(h.confidence) + ", below 0.5"});
       } else {
         refusedOn[k].push_back(in.stem);
-        why.push_back(std::string(hrti::flagName(h.flag)) + on + ": " + h.reason);
+        why.push_back(std::string(hrti::flagName(h.flag)) + (spheres->size() > 1 ? on : std::string()) + ": " + h.reason);
       }
     }
     if (!usable) {
       unusable.push_back(in.relativePath + " (" + listed(why, 2) + ")");
       unusableImages.push_back(&in);
     } else if (!why.empty()) {
-      ctx.carrier.addLog("warning", step.id, in.relativePath + ": no trustworthy highlight " + listed(why, 2) +
-                         "; its light comes from the other sphere(s)");
+      carrier::addWarning(ctx.carrier, step.id,
+                          {in.relativePath + ": no trustworthy highlight on one of the spheres",
+                           carrier::Usable::Yes, "its light direction comes from the other sphere(s)",
+                           "nothing, unless the overview shows a clear highlight there: then place it in surrogate "
+                           "review (or with --highlight)",
+                           listed(why, 2)});
     }
   }
   // Highlights labelled by the image's file name, as every table of the report names them.
@@ -262,7 +278,7 @@ void HighlightDetectionStage::run(const carrier::Step& step, pipeline::Context& 
                   " no trustworthy highlight on any sphere, so " + (one ? "its" : "their") +
                   " light direction cannot be measured: " + listedInFull(unusable, "; ") + ". Leave each out with "
                   "--exclude " + stem + " --reason \"...\", or give its highlight by hand with --highlight " +
-                  stem + ":0=X,Y --reason \"...\" (X,Y in pixels of the full frame)"),
+                  stem + ":sphere1=X,Y --reason \"...\" (X,Y in pixels of the full frame)"),
         hrti::HighlightRefusal::Subject::Frames, 0, frames, inputs->size());
   }
   ctx.put(kHighlights, highlights);

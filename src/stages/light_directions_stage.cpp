@@ -262,7 +262,7 @@ void LightDirectionsStage::run(const carrier::Step& step, pipeline::Context& ctx
       throwInputError((*inputs)[n].relativePath, "light directions",
                       "has no usable highlight on any sphere, so its light direction is unknown; "
                       "exclude it (--exclude " + (*inputs)[n].stem + " --reason ...) or give its "
-                      "highlight by hand (--highlight " + (*inputs)[n].stem + ":0=x,y --reason ...)");
+                      "highlight by hand (--highlight " + (*inputs)[n].stem + ":sphere1=x,y --reason ...)");
     }
     lights->push_back({sum[0] / norm, sum[1] / norm, sum[2] / norm});
     const double bound =

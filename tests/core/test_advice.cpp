@@ -17,3 +17,23 @@ TEST_CASE("advice reads what happened then usable or not then what to do then th
   CHECK(adviceText({"x", Usable::No, "the map is empty. ", "run again", "0 of 5"}) ==
         "x. Not usable: the map is empty. What to do: run again. (0 of 5)");
 }
+
+// How a sphere is named on the command line (src/core/sphere_reference.h).
+#include "core/sphere_reference.h"
+
+TEST_CASE("spheres are named sphere1 from 1 and a bare number keeps its index from 0", "[sphere-reference]") {
+  using surrogate::sphereIndexOfReference;
+  CHECK(sphereIndexOfReference("sphere1") == 0);
+  CHECK(sphereIndexOfReference("sphere2") == 1);
+  CHECK(sphereIndexOfReference("0") == 0);
+  CHECK(sphereIndexOfReference("1") == 1);
+  CHECK_FALSE(sphereIndexOfReference("sphere0"));
+  CHECK_FALSE(sphereIndexOfReference("sphere"));
+  CHECK_FALSE(sphereIndexOfReference("Sphere1"));
+  CHECK_FALSE(sphereIndexOfReference("-1"));
+  CHECK_FALSE(sphereIndexOfReference("1x"));
+  CHECK(surrogate::sphereReference(0) == "sphere1");
+  CHECK(surrogate::personsSphereTarget("IMG_0003:1") == "IMG_0003:sphere2");
+  CHECK(surrogate::personsSphereTarget("0") == "sphere1");
+  CHECK(surrogate::personsSphereTarget("IMG_0003") == "IMG_0003");
+}

@@ -158,7 +158,7 @@ TEST_CASE("info on a carrier lists decisions with what and who and when and why 
   CHECK_THAT(r.output, Contains("    exclude-image IMG_0003 (s1 CaptureIngest): IMG_0003 is left out of every step\n"
                                 "      by Ana Silva, "));
   CHECK_THAT(r.output, Contains(": the flash did not fire\n"));
-  CHECK_THAT(r.output, Contains("    manual-sphere 0 (s3 SphereDetection): circle of sphere 0 given by hand "
+  CHECK_THAT(r.output, Contains("    manual-sphere 0 (s3 SphereDetection): circle of sphere 1 given by hand "
                                 "(x,y,r 339,57,45)\n      by Ben Okafor, "));
   CHECK_THAT(r.output, Contains("  excluded images: IMG_0003\n"));
   CHECK_THAT(r.output, Contains("    s1 CaptureIngest v") && Contains(": completed in "));

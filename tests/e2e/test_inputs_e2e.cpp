@@ -101,7 +101,7 @@ TEST_CASE("a flat grey frame stops the run naming the image, and runs once it is
   uniformExport(capture, "IMG_0003", 128);
   const e2e::CommandResult r = e2e::surrogate("run " + e2e::quote(capture) + " --quiet --source export");
   requireRefused(r, {"jpeg-exports/IMG_0003.jpg", "flat", "no trustworthy highlight", "--exclude IMG_0003",
-                     "--highlight IMG_0003:0=X,Y"});
+                     "--highlight IMG_0003:sphere1=X,Y"});
   CHECK_THAT(r.output, !Catch::Contains("IMG_0004"));
   CHECK_FALSE(fs::exists(capture / "finished-files"));
   // The refused highlight is in the carrier with its flag, confidence 0 and the reason.
@@ -126,7 +126,7 @@ TEST_CASE("a saturated white frame stops the run, and runs with its highlight gi
   const fs::path capture = e2e::smallCapture(e2e::freshDir("inputs-white"));
   uniformExport(capture, "IMG_0005", 255);
   const e2e::CommandResult r = e2e::surrogate("run " + e2e::quote(capture) + " --quiet --source export --json");
-  requireRefused(r, {"IMG_0005", "saturated", "--exclude IMG_0005", "--highlight IMG_0005:0=X,Y"});
+  requireRefused(r, {"IMG_0005", "saturated", "--exclude IMG_0005", "--highlight IMG_0005:sphere1=X,Y"});
   CHECK_THAT(r.output, Catch::Contains("\"file\":\"jpeg-exports/IMG_0005.jpg\""));
 
   // With its highlight given, the white frame still cannot be fitted: the model misses it far
@@ -200,12 +200,12 @@ TEST_CASE("a circle given by hand away from the sphere stops the run naming --sp
   const fs::path capture = e2e::smallCapture(e2e::freshDir("inputs-wrong-sphere"));
   const e2e::CommandResult r =
       e2e::surrogate("run " + e2e::quote(capture) + " --quiet --sphere 60,240,40 --reason x --json");
-  requireRefused(r, {"--sphere 60,240,40", "no trustworthy highlight in", "--forget-sphere 0"});
+  requireRefused(r, {"--sphere 60,240,40", "no trustworthy highlight in", "--forget-sphere sphere1"});
   CHECK_THAT(r.output, Catch::Contains("\"file\":\"--sphere 60,240,40\""));
   CHECK_FALSE(fs::exists(capture / "finished-files"));
   // Given again where the sphere is, the capture runs.
   const e2e::CommandResult ok = e2e::surrogate("run " + e2e::quote(capture) +
-                                               " --quiet --forget-sphere 0 --reason \"typed the wrong corner\"");
+                                               " --quiet --forget-sphere sphere1 --reason \"typed the wrong corner\"");
   INFO(ok.output);
   CHECK(ok.exitCode == 0);
 }

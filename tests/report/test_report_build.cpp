@@ -614,7 +614,7 @@ TEST_CASE("the page opens with the summary and the relighting view, steps and mo
   CHECK_THAT(r.html, Catch::Contains("Fit: PTM (LRGB) <span class=\"note\">(step s3, RtiFit v1)</span>"));
   // Spheres counted from 1 in the table, and the page says so.
   CHECK_THAT(r.html, Catch::Contains("<tr><td>1</td><td class=\"num\">10, 20</td>"));
-  CHECK_THAT(r.html, Catch::Contains("Spheres are numbered from 1 on this page"));
+  CHECK_THAT(r.html, Catch::Contains("Spheres are numbered from 1, as the command line names them"));
   // The viewer holds the model at its own resolution.
   CHECK_THAT(r.html, Catch::Contains("\"model\":\"ptm\",\"basis\":\"ptm-lrgb\""));
   CHECK_THAT(r.html, Catch::Contains("\"width\":8,\"height\":6,\"originalWidth\":8,\"originalHeight\":6"));

@@ -31,7 +31,7 @@ TEST_CASE("review decisions: the chart comes after the highlights and before the
   const std::string body = R"({"exclude": [{"image": "IMG_0007", "reason": "dark"}],
                                "chart": {"none": true, "reason": "no chart"},
                                "highlights": [{"image": "IMG_0002", "sphere": 0, "x": 10, "y": 20}]})";
-  CHECK(argumentsFor(body) == Args{"--highlight", "IMG_0002:0=10,20", "--colour-chart", "none", "--reason", "no chart",
+  CHECK(argumentsFor(body) == Args{"--highlight", "IMG_0002:sphere1=10,20", "--colour-chart", "none", "--reason", "no chart",
                                    "--exclude", "IMG_0007", "--reason", "dark"});
 }
 

@@ -17,7 +17,7 @@ namespace {
 
 // As the stage words it for the command line.
 const Error kRunWords(ErrorKind::Input, "--sphere 300,80,45", "highlight detection",
-                      "the circle given by hand for sphere 0 ... withdraw it with --forget-sphere 0 --reason \"...\"");
+                      "the circle given by hand for sphere 1 ... withdraw it with --forget-sphere sphere1 --reason \"...\"");
 
 }  // namespace
 

@@ -174,7 +174,7 @@ TEST_CASE("review: Apply records what surrogate run records for the same options
       "--license", "https://creativecommons.org/licenses/by/4.0/",
       "--meta", "site=Abydos",
       "--sphere", tenths(cx) + "," + tenths(cy) + "," + tenths(r), "--reason", "the rim is half a pixel further out",
-      "--highlight", "IMG_0003:0=" + tenths(hx) + "," + tenths(hy),
+      "--highlight", "IMG_0003:sphere1=" + tenths(hx) + "," + tenths(hy),
       "--exclude", "IMG_0007", "--reason", "the flash did not fire",
       "--accept", "lights-clustered", "--reason", "the lights were checked on the stand",
   };

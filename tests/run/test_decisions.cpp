@@ -82,7 +82,7 @@ TEST_CASE("a new command adds to and overrides the standing decisions, and says 
   CHECK(*r.bases == std::vector<std::string>{"hsh3"});  // kept: not given
   CHECK(r.source == "export");
   bool replacedSphere = false;
-  for (const std::string& c : changes) replacedSphere = replacedSphere || c.find("replaced the manual sphere 0 (339,57,45") != std::string::npos;
+  for (const std::string& c : changes) replacedSphere = replacedSphere || c.find("replaced the circle by hand of sphere1 (339,57,45") != std::string::npos;
   CHECK(replacedSphere);
 }
 
@@ -133,7 +133,7 @@ TEST_CASE("a dome .lp with sphere decisions standing is refused, naming the conf
     FAIL("no error");
   } catch (const Error& e) {
     CHECK(e.kind() == ErrorKind::Usage);
-    CHECK_THAT(e.message(), Catch::Contains("manual sphere 0"));
+    CHECK_THAT(e.message(), Catch::Contains("circle by hand of sphere1"));
   }
 }
 

@@ -159,7 +159,7 @@ async function main() {
     // Within the 0.1-pixel rounding of the options and a pixel of the mouse's own rounding.
     assert.ok(Math.abs(circle[0] - moved.cx) < 1 && Math.abs(circle[1] - moved.cy) < 1 && Math.abs(circle[2] - moved.r) < 1,
               "the circle " + args[5] + " is where the drag put it: " + JSON.stringify(moved));
-    const hl = /^IMG_0003:0=([-0-9.]+),([-0-9.]+)$/.exec(args[9]);
+    const hl = /^IMG_0003:sphere1=([-0-9.]+),([-0-9.]+)$/.exec(args[9]);
     assert.ok(hl, args[9]);
     assert.ok(Math.abs(Number(hl[1]) - (h.x + 0.5)) < 1 && Math.abs(Number(hl[2]) - (h.y - 0.5)) < 1, "the highlight " + args[9]);
     assert.deepEqual([args[7], args[11]], ["the rim was cut by the frame", "a reflection was taken for the highlight"]);

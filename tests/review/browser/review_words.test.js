@@ -111,7 +111,7 @@ async function main() {
     assert.equal(recorded.outcome, "failed");
     assert.equal(recorded.arguments[0], "--operator");
     assert.equal(shown, "surrogate run " + quoted(capture) + " " + recorded.arguments.map(quoted).join(" "));
-    // The standing circle, sphere 1 for people; withdrawn as --forget-sphere 0 in the command.
+    // The standing circle, sphere 1 for people; withdrawn as --forget-sphere sphere1 in the command.
     const decision = await page.$eval('#decisions li[data-kind="manual-sphere"]', li => li.textContent);
     assert.match(decision, /circle of sphere 1 given by hand/);
     assert.doesNotMatch(decision, /sphere 0/);
@@ -123,7 +123,7 @@ async function main() {
     await page.type('#decisions li[data-kind="manual-sphere"] input', "it was not on the sphere");
     await page.click('#decisions li[data-kind="manual-sphere"] .inline-reason button');
     assert.match(await text("pending"), /withdraw the circle of sphere 1/);
-    await page.waitForFunction(() => document.getElementById("equivalent").textContent.includes("--forget-sphere 0 --reason"));
+    await page.waitForFunction(() => document.getElementById("equivalent").textContent.includes("--forget-sphere sphere1 --reason"));
     await page.click("#apply");
     await page.waitForFunction(() => document.body.getAttribute("data-applied") === "2" ||
                                /^(The run stopped|Not applied|Say why)/.test(document.getElementById("status").textContent), { timeout: 120000 });

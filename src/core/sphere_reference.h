@@ -1,0 +1,41 @@
+// How a person names a sphere on the command line: "sphere1" is the first sphere, counted
+// from 1 as the overview files (highlights-sphere1.png), the report, the review page and the
+// messages count them. A bare number is the index from 0 that the options have always taken
+// (kept so that existing scripts and recorded commands mean what they meant); the carrier
+// records that index.
+//
+//   sphereIndexOfReference("sphere2") == 1;  sphereIndexOfReference("1") == 1;
+//   sphereIndexOfReference("sphere0") == std::nullopt;  sphereReference(0) == "sphere1"
+#pragma once
+
+#include <optional>
+#include <string>
+
+namespace surrogate {
+
+// The index from 0 of "sphereN" (N from 1) or of a bare index; nullopt for anything else.
+inline std::optional<int> sphereIndexOfReference(const std::string& text) {
+  const bool named = text.rfind("sphere", 0) == 0;
+  const std::string digits = named ? text.substr(6) : text;
+  if (digits.empty() || digits.size() > 6) return std::nullopt;
+  for (char c : digits)
+    if (c < '0' || c > '9') return std::nullopt;
+  const int n = std::stoi(digits);
+  if (named && n < 1) return std::nullopt;
+  return named ? n - 1 : n;
+}
+
+// The name a person types for the sphere of this index: "sphere1" for 0.
+inline std::string sphereReference(int index) { return "sphere" + std::to_string(index + 1); }
+
+// A recorded sphere target ("0") or highlight target ("IMG_0003:0") as a person types it
+// ("sphere1", "IMG_0003:sphere1"); anything else as it is.
+inline std::string personsSphereTarget(const std::string& target) {
+  const auto colon = target.rfind(':');
+  const std::string head = colon == std::string::npos ? "" : target.substr(0, colon + 1);
+  const std::string tail = colon == std::string::npos ? target : target.substr(colon + 1);
+  if (tail.empty() || tail.size() > 6 || tail.find_first_not_of("0123456789") != std::string::npos) return target;
+  return head + sphereReference(std::stoi(tail));
+}
+
+}  // namespace surrogate
