@@ -56,6 +56,9 @@
   <xsl:param name="software-agent" select="'Surrogate'"/>
   <xsl:param name="previous-package-id" select="''"/>
   <xsl:param name="payload-uri" select="''"/>
+  <!-- The edition of these rules (src/mapping/mapping.h, kMappingEdition): 1 for packages made
+       before JSON and JavaScript files (data/ro-crate-metadata.json among them) had their formats. -->
+  <xsl:param name="mapping-edition" select="2"/>
 
   <xsl:variable name="carrier" select="/c:carrier"/>
   <xsl:variable name="payload" select="document($payload-uri)/payload/*"/>
@@ -1000,8 +1003,8 @@
       <xsl:when test="substring($lower, string-length($lower) - 3) = '.rti'">RTI</xsl:when>
       <xsl:when test="substring($lower, string-length($lower) - 2) = '.lp'">LP</xsl:when>
       <xsl:when test="substring($lower, string-length($lower) - 3) = '.txt'">TXT</xsl:when>
-      <xsl:when test="substring($lower, string-length($lower) - 4) = '.json'">JSON</xsl:when>
-      <xsl:when test="substring($lower, string-length($lower) - 2) = '.js'">JavaScript</xsl:when>
+      <xsl:when test="$mapping-edition &gt;= 2 and substring($lower, string-length($lower) - 4) = '.json'">JSON</xsl:when>
+      <xsl:when test="$mapping-edition &gt;= 2 and substring($lower, string-length($lower) - 2) = '.js'">JavaScript</xsl:when>
       <xsl:otherwise>unknown</xsl:otherwise>
     </xsl:choose>
   </xsl:template>
@@ -1069,7 +1072,7 @@
       <xsl:if test="not($rec) and $key = 'JSON'">
         <premis:formatNote>media type application/json</premis:formatNote>
       </xsl:if>
-      <xsl:if test="$puid = 'x-fmt/111' and $key = 'LP'">
+      <xsl:if test="$mapping-edition &gt;= 2 and $puid = 'x-fmt/111' and $key = 'LP'">
         <premis:formatNote>PRONOM has no entry for .lp light-position files; PRONOM's tools (Siegfried, fido) identify them as Plain Text File (x-fmt/111)</premis:formatNote>
       </xsl:if>
       <xsl:if test="$rec and $rec/@format != $name">

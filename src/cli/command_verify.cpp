@@ -246,10 +246,10 @@ int runCommandVerify(int argc, char** argv) {
        "failures (default: warnings, with the command to remove them)"},
       {"quiet", false, false, "no progress bar; print only the failed checks and the verdict line", "",
        OptionGroup::Output},
-      {"json", false, false, "print the report as JSON", "", OptionGroup::Output},
-      {"batch", true, false,
       {"verbose", false, false, "also say under each check what its failure means (invalid package, fixity "
                                 "failure, not reproduced) and its exit code", "", OptionGroup::Output},
+      {"json", false, false, "print the report as JSON", "", OptionGroup::Output},
+      {"batch", true, false,
        "verify every package of LIST (a text file, or - for standard input, one package a line), each in a "
        "process of its own, writing the ledger -o (as surrogate batch --do verify)",
        "LIST", OptionGroup::Input},
@@ -296,12 +296,12 @@ int runCommandVerify(int argc, char** argv) {
                   {4, "re-execution did not reproduce the recorded results"},
                   {5, kInternalError}}}))
     return 0;
-  if (args.has("batch")) return verifyBatch(args);
-  for (const char* name : {"o", "output", "jobs", "sample", "seed"})
   const Verbosity verbosity = verbosityOf(args);
   if (args.has("batch") && verbosity == Verbosity::Verbose)
     throw Error(ErrorKind::Usage, "--verbose", "command line",
                 "is not taken with --batch (each package's checks are in the ledger); verify one package to see them");
+  if (args.has("batch")) return verifyBatch(args);
+  for (const char* name : {"o", "output", "jobs", "sample", "seed"})
     if (args.has(name))
       throw Error(ErrorKind::Usage, std::string("--") + name, "command line", "goes with --batch LIST only");
   if (args.positional().size() != 1)

@@ -487,6 +487,7 @@ std::vector<std::pair<std::string, std::string>> metsParams(const PackageFacts& 
       {"software-agent", facts.softwareAgent.empty() ? "Surrogate" : facts.softwareAgent},
       {"previous-package-id", facts.previousPackageId},
       {"payload-uri", kPayloadUri},  // always: document('') would read the stylesheet
+      {"mapping-edition", std::to_string(facts.mappingEdition)},
   };
 }
 
@@ -515,7 +516,8 @@ std::string deriveRoCrate(const std::string& carrierXml, const CrateFacts& facts
   return transform(roCrateStylesheetPath(), carrierXml, source,
                    {{"package-id", facts.packageId},
                     {"packaging-time", facts.packagingTime},
-                    {"has-report", facts.hasReport ? "true" : ""}},
+                    {"has-report", facts.hasReport ? "true" : ""},
+                    {"mapping-edition", std::to_string(facts.mappingEdition)}},
                    nullptr);
 }
 

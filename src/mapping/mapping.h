@@ -48,6 +48,13 @@ struct PayloadFile {
 //                     sorted by path (byte order)
 //   previousPackageId <- bag-info "Surrogate-Previous-Package-Identifier" (absent: none)
 //   baseUri        <- bag-info "Surrogate-Base-URI" (absent: the default, urn: identifiers)
+// The edition of the mappings' rules (the stylesheets' parameter mapping-edition). 2 (issue
+// 56): the RO-Crate root always names a licence, mets.xml gives data/ro-crate-metadata.json and
+// other JSON and JavaScript their formats. 1: the packages made before. Packing writes the
+// current edition; the verifier accepts a package's metadata derived with either, as both say
+// only what the carrier says (docs/package.md, "Editions of the mappings").
+inline constexpr int kMappingEdition = 2;
+
 struct PackageFacts {
   std::string packageId;      // "urn:sha256:<carrier sha256>"
   std::string packagingTime;  // xs:dateTime (UTC, "...Z") of the packaging event
@@ -58,6 +65,7 @@ struct PackageFacts {
   // Where crm.rdf mints its node URIs (pack --base-uri); empty: under the capture identifier.
   std::string baseUri;
   std::vector<PayloadFile> payload;
+  int mappingEdition = kMappingEdition;
 };
 
 // The package facts crm.rdf depends on (PackageFacts less the payload, time and agent).
@@ -81,6 +89,7 @@ std::string deriveCrm(const std::string& carrierXml, const CrmFacts& facts,
 struct CrateFacts {
   std::string packageId, packagingTime;
   bool hasReport = false;
+  int mappingEdition = kMappingEdition;
 };
 
 // Carrier XML + facts -> RO-Crate 1.1 metadata, JSON-LD (xslt/carrier-to-ro-crate.xsl: the

@@ -156,6 +156,13 @@ void compareOutputFile(const carrier::DataItem& x, const carrier::DataItem& y,
   out.differences.push_back("output file " + fa->path + " " + how);
 }
 
+// Packages made before text had PUIDs (mappings/pronom.md, "Text, JSON and JavaScript")
+// record none for their .lp, JSON and JavaScript files; the bytes are compared by their hash,
+// so the identification a later release gives them is not a different result.
+bool laterTextIdentification(const std::string& recorded, const std::string& reproduced) {
+  return recorded.empty() && (reproduced == "x-fmt/111" || reproduced == "fmt/817" || reproduced == "x-fmt/423");
+}
+
 // The carrier's description of every file, as the re-executed steps record it again: what a
 // file is (role, format, media type, PRONOM id, what prior work says of its making), its camera
 // metadata, XMP, size in pixels and pairing. Bytes (size, SHA-256) of inputs are compared too;
@@ -214,7 +221,7 @@ StepComparison compareFileRecords(const carrier::Carrier& recorded, const carrie
     }
     for (const auto& [name, u, v] : fields) {
       ++out.compared;
-      if (u != v)
+      if (u != v && !(std::string(name) == "puid" && laterTextIdentification(u, v)))
         out.differences.push_back("file " + a.path + " @" + name + ": recorded \"" + u.substr(0, 120) +
                                   "\", reproduced \"" + v.substr(0, 120) + "\"");
     }

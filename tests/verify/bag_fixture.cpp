@@ -92,7 +92,7 @@ std::string bagInfoValue(const fs::path& bag, const std::string& label) {
   return "";
 }
 
-void writeMetadata(const fs::path& bag, const std::string& agent, const std::string& time) {
+void writeMetadata(const fs::path& bag, const std::string& agent, const std::string& time, int mappingEdition) {
   const std::string carrierXml = readText(bag / "data/assembly-files/carrier.xml");
   // The stylesheets, schemas and tables the verifier bundles, as `surrogate pack` copies them.
   for (const std::string& rel : surrogate::mapping::packagedResources())
@@ -107,6 +107,7 @@ void writeMetadata(const fs::path& bag, const std::string& agent, const std::str
   }
   facts.previousPackageId = bagInfoValue(bag, "Surrogate-Previous-Package-Identifier");
   facts.baseUri = bagInfoValue(bag, "Surrogate-Base-URI");
+  facts.mappingEdition = mappingEdition;
   writeText(bag / "metadata/crm.rdf", surrogate::mapping::deriveCrm(carrierXml, surrogate::mapping::crmFactsOf(facts)));
   writeText(bag / "metadata/mets.xml", surrogate::mapping::deriveMets(carrierXml, facts));
   for (const std::string& rel : surrogate::archive::bundledDocuments())
@@ -149,7 +150,7 @@ void rehashTagManifests(const fs::path& bag) {
   writeText(bag / "tagmanifest-sha512.txt", t512);
 }
 
-void rehashBag(const fs::path& bag, bool keepRoCrate) {
+void rehashBag(const fs::path& bag, bool keepRoCrate, int mappingEdition) {
   // The RO-Crate's metadata first: it is payload, in the manifests (a carrier that does not
   // derive gets none: the tests that break the carrier look at other checks).
   if (!keepRoCrate) {
@@ -162,6 +163,7 @@ void rehashBag(const fs::path& bag, bool keepRoCrate) {
       facts.packagingTime = time;
       std::error_code ec;
       facts.hasReport = fs::exists(bag / "data/finished-files/report.html", ec);
+      facts.mappingEdition = mappingEdition;
       writeText(bag / surrogate::mapping::kRoCratePath, surrogate::mapping::deriveRoCrate(carrierXml, facts));
     } catch (const std::exception&) {
     }
@@ -200,7 +202,7 @@ void rehashBag(const fs::path& bag, bool keepRoCrate) {
   for (const auto* list : {&labels.user, &labels.own})
     for (const auto& [label, value] : *list) info += label + ": " + value + "\n";
   writeText(bag / "bag-info.txt", info);
-  writeMetadata(bag, agent, time);
+  writeMetadata(bag, agent, time, mappingEdition);
   rehashTagManifests(bag);
 }
 

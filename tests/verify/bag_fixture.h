@@ -32,7 +32,9 @@ void makeBag(const std::filesystem::path& capture, const std::filesystem::path& 
 // content (after a test changed files "consistently"): what a forger who redoes every
 // derivable file would do. The bag's Bag-Software-Agent and packaging time are kept. With
 // `keepRoCrate`, data/ro-crate-metadata.json is left as it is (a forger who changed it).
-void rehashBag(const std::filesystem::path& bag, bool keepRoCrate = false);
+// `mappingEdition` (src/mapping/mapping.h): 1 writes the metadata as packages made before
+// issue 56 held it.
+void rehashBag(const std::filesystem::path& bag, bool keepRoCrate = false, int mappingEdition = 2);
 
 // A manifest path as RFC 8493 writes it: CR, LF and % percent-encoded.
 std::string escapedPath(const std::string& path);
