@@ -503,7 +503,9 @@ const char* const kReviewJs = R"JS(
       if (pending.accept[c.name] != null) cell.appendChild(el("span", { text: "to accept: \u201c" + pending.accept[c.name] + "\u201d" }));
       else if (c.status === "failed")
         cell.appendChild(withReason("Accept\u2026", "why the result is right", function (reason) { pending.accept[c.name] = reason; renderChecks(); renderPending(); }));
-      table.appendChild(el("tr", { "data-check": c.name }, el("td", {}, el("code", { text: c.name })),
+      var named = el("td", {}, el("code", { text: c.name }));
+      if (c.on) named.appendChild(el("div", { class: "note", text: c.on }));
+      table.appendChild(el("tr", { "data-check": c.name }, named,
                            el("td", { class: "status-" + c.status, text: c.status }), el("td", { text: c.detail }), cell));
     });
     box.appendChild(table);

@@ -18,6 +18,7 @@
 #include "report/embed.h"
 #include "report/hemisphere.h"
 #include "report/lights_section.h"
+#include "report/sections.h"
 #include "review/review.h"
 
 namespace surrogate::review {
@@ -217,7 +218,9 @@ CaptureState readCaptureState(const fs::path& captureArg, const std::string& who
                           {"status", k->get("status").value_or("")},
                           {"detail", k->get("detail").value_or("")},
                           {"step", r.step},
-                          {"component", step ? step->component : ""}});
+                          {"component", step ? step->component : ""},
+                          // What it checked, so that one check run after two fits reads as two.
+                          {"on", step ? report::stepTitle(*step) : ""}});
     }
 
     std::string fitLabel;

@@ -174,6 +174,25 @@ HeldPicture heldPicture(int width, int height, int channels, bool sixteenBit, in
 
 }  // namespace
 
+TEST_CASE("the same check after two fits names the fit each ran on") {
+  // residual-outlier runs after every fit: without the fit named, the table showed one check twice.
+  carrier::Carrier c = sampleCarrier();
+  carrier::Step& hsh = c.addStep("RtiFit", "1");
+  hsh.setParam("basis", "hsh2");
+  for (carrier::Result& r : c.data)
+    if (r.step == c.process[2].id) r.add("check").set("name", "residual-outlier").set("status", "passed").set("detail", "a");
+  carrier::Result hr;
+  hr.step = hsh.id;
+  hr.add("check").set("name", "residual-outlier").set("status", "passed").set("detail", "b");
+  c.data.push_back(hr);
+  MemorySource source(c);
+  ReportOptions options;
+  options.generatedAt = "2026-02-03T04:05:06Z";
+  const Report r = buildReport(source.carrier(), source, options);
+  CHECK_THAT(r.html, Catch::Contains("<td><code>residual-outlier</code></td><td>Fit: PTM (LRGB)</td><td>passed</td><td>a</td>"));
+  CHECK_THAT(r.html, Catch::Contains("<td><code>residual-outlier</code></td><td>Fit: HSH order 2</td><td>passed</td><td>b</td>"));
+}
+
 TEST_CASE("pictures given as display copies of their pixels make the page their PNG files make") {
   const std::map<std::string, HeldPicture> held = {
       {"assembly-files/spheres.png", heldPicture(1600, 1200, 3, false, 1)},

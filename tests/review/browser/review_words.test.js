@@ -128,6 +128,11 @@ async function main() {
     await page.waitForFunction(() => document.body.getAttribute("data-applied") === "2" ||
                                /^(The run stopped|Not applied|Say why)/.test(document.getElementById("status").textContent), { timeout: 120000 });
     assert.match(await status(), /^Applied: run r3 completed/);
+    // The residual check of each fit names the fit it ran on: two rows, two models.
+    const residual = await page.$$eval('#checks tr[data-check="residual-outlier"] td:first-child', tds => tds.map(td => td.textContent));
+    assert.equal(residual.length, 2);
+    assert.match(residual[0], /Fit: PTM/);
+    assert.match(residual[1], /Fit: HSH/);
 
     const errorsInPage = await page.$eval("body", b => b.getAttribute("data-errors"));
     assert.equal(errorsInPage, null, "script errors: " + errorsInPage);
