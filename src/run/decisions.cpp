@@ -356,7 +356,7 @@ RunRequest applyDecisions(const RunRequest& standing, const RunRequest& given,
              k.intervention.target == i.intervention.target;
     });
     if (old) changes.push_back("replaced the " + describe(old->intervention));
-    changes.push_back(i.intervention.kind + " " + i.intervention.target +
+    changes.push_back(i.intervention.kind + " " + shownTarget(i.intervention.kind, i.intervention.target) +
                       (i.intervention.value.empty() ? "" : " = " + i.intervention.value) + ": " +
                       i.intervention.reason);
   }

@@ -178,8 +178,8 @@ void HighlightDetectionStage::run(const carrier::Step& step, pipeline::Context& 
     const std::string why =
         highlightPointProblem(v[0], v[1], lum->width(), lum->height(), SphereCircle{on.cx, on.cy, on.r});
     if (!why.empty())
-      throw Error(ErrorKind::Input, "highlight of " + i->target + " given by hand (" + i->value + ")",
-                  "highlight detection", why + "; give it again with --highlight " + i->target + "=X,Y");
+      throw Error(ErrorKind::Input, "highlight of " + personsSphereTarget(i->target) + " given by hand (" + i->value + ")",
+                  "highlight detection", why + "; give it again with --highlight " + personsSphereTarget(i->target) + "=X,Y");
     hrti::Highlight& h = (*highlights)[image][sphere];
     h.x = v[0];
     h.y = v[1];
@@ -187,7 +187,7 @@ void HighlightDetectionStage::run(const carrier::Step& step, pipeline::Context& 
     h.confidence = 1;
     h.reason = "given by hand: " + i->reason;
     ctx.carrier.addLog("intervention", step.id,
-                       "highlight of " + i->target + " set by hand to " + i->value + ": " + i->reason, i->who);
+                       "highlight of " + personsSphereTarget(i->target) + " set by hand to " + i->value + ": " + i->reason, i->who);
   }
 
   // The record: every highlight with its flag, confidence and, when refused or doubtful, why.

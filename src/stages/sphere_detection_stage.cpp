@@ -6,6 +6,7 @@
 #include "capture/capture.h"
 #include "carrier/carrier.h"
 #include "core/error.h"
+#include "core/sphere_reference.h"
 #include "core/text.h"
 #include "hrti/drawing.h"
 #include "hrti/sphere_detection.h"
@@ -88,7 +89,7 @@ void SphereDetectionStage::run(const carrier::Step& step, pipeline::Context& ctx
       // a standing decision meets images of another size than it was given for.
       const std::string why = sphereCircleProblem(v[0], v[1], v[2], median->width(), median->height());
       if (!why.empty())
-        throw Error(ErrorKind::Input, "sphere " + i->target + " given by hand (" + i->value + ")",
+        throw Error(ErrorKind::Input, personsSphereTarget(i->target) + " given by hand (" + i->value + ")",
                     "sphere detection", why + "; give the sphere's circle again with --sphere CX,CY,R");
       hrti::DetectedSphere given{v[0], v[1], v[2], 1.0, 1.0, true};
       std::string fitted;
@@ -116,7 +117,7 @@ void SphereDetectionStage::run(const carrier::Step& step, pipeline::Context& ctx
       }
       spheres->push_back(given);
       ctx.carrier.addLog("intervention", step.id,
-                         "sphere " + i->target + " set by hand to " + i->value + ": " + i->reason + fitted, i->who);
+                         personsSphereTarget(i->target) + " set by hand to " + i->value + ": " + i->reason + fitted, i->who);
     }
   } else {
     ctx.progress("Sphere detection", 0.6);

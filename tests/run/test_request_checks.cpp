@@ -119,15 +119,16 @@ TEST_CASE("a sphere search region must lie wholly inside the frame") {
 }
 
 TEST_CASE("a highlight given by hand must be in the frame") {
+  // The refusals name the sphere as a person types it (IMG_0004:sphere1), whatever the form given.
   CHECK_NOTHROW(checkRequestAgainstFrame(withHighlight({}, "IMG_0004:0", "326,70"), kWidth, kHeight));
   CHECK_NOTHROW(checkRequestAgainstFrame(withHighlight({}, "IMG_0004:2", "399,299"), kWidth, kHeight));
 
-  CHECK_THAT(refusal(withHighlight({}, "IMG_0004:0", "400,70"), "--highlight IMG_0004:0=400,70"),
+  CHECK_THAT(refusal(withHighlight({}, "IMG_0004:0", "400,70"), "--highlight IMG_0004:sphere1=400,70"),
              Catch::Contains("X must be from 0 to 399"));
-  refusal(withHighlight({}, "IMG_0004:0", "10,900"), "--highlight IMG_0004:0=10,900");
-  refusal(withHighlight({}, "IMG_0004:0", "-1,70"), "--highlight IMG_0004:0=-1,70");
-  refusal(withHighlight({}, "IMG_0004:0", "inf,70"), "--highlight IMG_0004:0=inf,70");
-  refusal(withHighlight({}, "IMG_0004:0", "326"), "--highlight IMG_0004:0=326");
+  refusal(withHighlight({}, "IMG_0004:0", "10,900"), "--highlight IMG_0004:sphere1=10,900");
+  refusal(withHighlight({}, "IMG_0004:0", "-1,70"), "--highlight IMG_0004:sphere1=-1,70");
+  refusal(withHighlight({}, "IMG_0004:0", "inf,70"), "--highlight IMG_0004:sphere1=inf,70");
+  refusal(withHighlight({}, "IMG_0004:0", "326"), "--highlight IMG_0004:sphere1=326");
   refusal(withHighlight({}, "IMG_0004:x", "326,70"), "--highlight IMG_0004:x=326,70");
 }
 
@@ -138,11 +139,11 @@ TEST_CASE("a highlight on a sphere given by hand must lie on that circle and nam
   CHECK_NOTHROW(checkRequestAgainstFrame(withHighlight(sphere, "IMG_0004:0", "384,57"), kWidth, kHeight));
   CHECK_NOTHROW(checkRequestAgainstFrame(withHighlight(sphere, "IMG_0004:0", "384.4,57"), kWidth, kHeight));
 
-  CHECK_THAT(refusal(withHighlight(sphere, "IMG_0004:0", "100,200"), "--highlight IMG_0004:0=100,200"),
+  CHECK_THAT(refusal(withHighlight(sphere, "IMG_0004:0", "100,200"), "--highlight IMG_0004:sphere1=100,200"),
              Catch::Contains("339,57,45"));
-  refusal(withHighlight(sphere, "IMG_0004:0", "385,57"), "--highlight IMG_0004:0=385,57");
-  CHECK_THAT(refusal(withHighlight(sphere, "IMG_0004:1", "326,70"), "--highlight IMG_0004:1=326,70"),
-             Catch::Contains("sphere 1"));
+  refusal(withHighlight(sphere, "IMG_0004:0", "385,57"), "--highlight IMG_0004:sphere1=385,57");
+  CHECK_THAT(refusal(withHighlight(sphere, "IMG_0004:1", "326,70"), "--highlight IMG_0004:sphere2=326,70"),
+             Catch::Contains("names sphere 2, but only 1 circle(s) are given by hand"));
 }
 
 TEST_CASE("crop and grey-region rectangles in full-frame pixels must lie inside the frame") {
