@@ -89,7 +89,7 @@ TEST_CASE("describeCarrier gives the header, steps, decisions and runs as record
   CHECK(s.decisions[1].step == "s2");
   CHECK(s.decisions[1].intervention.who == "Ben Okafor");
   CHECK(s.decisions[1].what == "circle of sphere 1 given by hand (x,y,r 339,57,45)");
-  CHECK(s.decisions[2].what == "highlight of IMG_0002 on sphere 1 given by hand (x,y 12.3,30)");
+  CHECK(s.decisions[2].what == "highlight of IMG_0002 on sphere 2 given by hand (x,y 12.3,30)");
   REQUIRE(s.exclusions.size() == 1);
   CHECK(s.exclusions[0].intervention.target == "IMG_0003");
   CHECK(s.exclusions[0].intervention.reason == "no flash");

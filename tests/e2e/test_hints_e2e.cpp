@@ -189,7 +189,8 @@ TEST_CASE("an excluded name that differs only in case is refused with the file's
       e2e::surrogate("run " + e2e::quote(capture) + " --quiet --highlight img_0004:0=200,150 --reason 'by eye'");
   INFO(highlight.output);
   CHECK(highlight.exitCode == 2);
-  CHECK_THAT(highlight.output, Contains("--highlight img_0004:0=200,150: names no image of the capture; did you mean IMG_0004?"));
+  // The sphere named as people name it (the bare index 0 is the first sphere, sphere1).
+  CHECK_THAT(highlight.output, Contains("--highlight img_0004:sphere1=200,150: names no image of the capture; did you mean IMG_0004?"));
 
   // No failed run in the history: the carrier and every file are as they were, byte for byte.
   CHECK(e2e::bytesOf(capture / "assembly-files/carrier.xml") == carrierBefore);

@@ -89,7 +89,7 @@ TEST_CASE("a circle given by hand with a negative centre or not three numbers is
 
 TEST_CASE("a highlight given by hand with negative coordinates or a bad IMAGE:SPHERE is refused") {
   requireRefused("--highlight IMG_0004:0=-1,70", {"--highlight IMG_0004:0=-1,70", "negative"});
-  requireRefused("--highlight IMG_0004:x=326,70", {"--highlight IMG_0004:x=326,70", "SPHERE"});
+  requireRefused("--highlight IMG_0004:x=326,70", {"--highlight IMG_0004:x=326,70", "must be sphere1 for the first sphere"});
   requireRefused("--highlight :0=326,70", {"--highlight :0=326,70", "image"});
   requireRefused("--highlight IMG_0004:0=326", {"--highlight", "326"});
   requireRefused("--highlight IMG_0004:0=inf,70", {"--highlight", "inf,70"});
@@ -157,11 +157,11 @@ TEST_CASE("a sphere search region reaching outside the frame is refused") {
 }
 
 TEST_CASE("a highlight given by hand outside the frame or off its given circle is refused") {
-  requireRefused("--highlight IMG_0004:0=900,70 --reason typo", {"--highlight IMG_0004:0=900,70", "400x300"});
+  requireRefused("--highlight IMG_0004:0=900,70 --reason typo", {"--highlight IMG_0004:sphere1=900,70", "400x300"});
   requireRefused("--sphere 339,57,45 --reason moved --highlight IMG_0004:0=100,200 --reason typo",
-                 {"--highlight IMG_0004:0=100,200", "339,57,45"});
+                 {"--highlight IMG_0004:sphere1=100,200", "339,57,45"});
   requireRefused("--sphere 339,57,45 --reason moved --highlight IMG_0004:1=330,60 --reason typo",
-                 {"--highlight IMG_0004:1=330,60", "sphere 1"});
+                 {"--highlight IMG_0004:sphere2=330,60", "names sphere 2, but only 1 circle(s)"});
 }
 
 TEST_CASE("too few photographs for a basis: the message names the basis used and suggests one that fits") {
