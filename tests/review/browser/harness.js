@@ -78,4 +78,18 @@ function launchBrowser(work, extraArgs = []) {
   });
 }
 
-module.exports = { surrogateExe, generatorExe, run, workDir, startReview, launchBrowser };
+// A new page of the review at `address`, 1400x1000, every console error or warning and script
+// error pushed onto `problems` (with the response statuses of 400 and above when `responses`),
+// ready once the page says it is.
+async function openReview(browser, address, problems, responses = false) {
+  const page = await browser.newPage();
+  await page.setViewport({ width: 1400, height: 1000 });
+  page.on("console", m => { if (m.type() === "error" || m.type() === "warn") problems.push("console " + m.type() + ": " + m.text()); });
+  page.on("pageerror", e => problems.push("page error: " + e.message));
+  if (responses) page.on("response", r => { if (r.status() >= 400) problems.push(r.status() + ": " + r.url()); });
+  await page.goto(address, { waitUntil: "networkidle0" });
+  await page.waitForSelector("body[data-ready=true]");
+  return page;
+}
+
+module.exports = { surrogateExe, generatorExe, run, workDir, startReview, launchBrowser, openReview };

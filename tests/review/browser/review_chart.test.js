@@ -13,7 +13,7 @@ const assert = require("node:assert/strict");
 const fs = require("node:fs");
 const path = require("node:path");
 
-const { surrogateExe, generatorExe, run, workDir, startReview, launchBrowser } = require("./harness");
+const { surrogateExe, generatorExe, run, workDir, startReview, launchBrowser, openReview } = require("./harness");
 
 const work = workDir("surrogate-review-chart-");
 
@@ -34,13 +34,7 @@ async function main() {
   const browser = await launchBrowser(work);
   const problems = [];
   try {
-    const page = await browser.newPage();
-    await page.setViewport({ width: 1400, height: 1000 });
-    page.on("console", m => { if (m.type() === "error" || m.type() === "warn") problems.push("console " + m.type() + ": " + m.text()); });
-    page.on("pageerror", e => problems.push("page error: " + e.message));
-    page.on("response", r => { if (r.status() >= 400) problems.push(r.status() + ": " + r.url()); });
-    await page.goto(review.address, { waitUntil: "networkidle0" });
-    await page.waitForSelector("body[data-ready=true]");
+    const page = await openReview(browser, review.address, problems, true);
     const state = await page.evaluate(() => fetch("/api/state").then(r => r.json()));
     assert.equal(state.chart.outcome, "corrected");
     assert.equal(state.chart.method, "found");

@@ -14,7 +14,7 @@ const assert = require("node:assert/strict");
 const fs = require("node:fs");
 const path = require("node:path");
 
-const { generatorExe, run, workDir, startReview, launchBrowser } = require("./harness");
+const { generatorExe, run, workDir, startReview, launchBrowser, openReview } = require("./harness");
 
 const work = workDir("surrogate-review-words-");
 
@@ -31,12 +31,7 @@ async function main() {
   const browser = await launchBrowser(work);
   const problems = [];
   try {
-    const page = await browser.newPage();
-    await page.setViewport({ width: 1400, height: 1000 });
-    page.on("console", m => { if (m.type() === "error" || m.type() === "warn") problems.push("console " + m.type() + ": " + m.text()); });
-    page.on("pageerror", e => problems.push("page error: " + e.message));
-    await page.goto(review.address, { waitUntil: "networkidle0" });
-    await page.waitForSelector("body[data-ready=true]");
+    const page = await openReview(browser, review.address, problems);
     const text = id => page.$eval("#" + id, e => e.textContent);
     const pressed = id => page.$eval("#" + id, b => b.getAttribute("aria-pressed") + (b.disabled ? " disabled" : ""));
     const status = () => text("status");
