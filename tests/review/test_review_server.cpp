@@ -3,6 +3,8 @@
 // (the carrier of a copy of the capture run with the options, byte for byte apart from times).
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+
 #include <httplib.h>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -321,6 +323,38 @@ TEST_CASE("review: a capture a check stopped goes to a verified package without 
   const e2e::CommandResult verify = e2e::surrogate("verify " + e2e::quote(package) + " --quiet");
   INFO(verify.output);
   CHECK(verify.exitCode == 0);
+}
+
+TEST_CASE("review: --quiet prints the address alone and --verbose each step an Apply runs", "[review]") {
+  const fs::path dir = e2e::freshDir("review-verbosity");
+  const fs::path capture = e2e::smallCapture(dir, 8);
+  {
+    review_test::ReviewProcess quiet(capture, {"--quiet"}, dir / "quiet.log");
+    httplib::Client client = review_test::pageClient(quiet);
+    auto res = apply(client, {{"revision", "none"}}, quiet.port());
+    REQUIRE(res);
+    CHECK(res->status == 200);
+    CHECK(quiet.stop() == 0);
+    // One line: the address; no "applied, as:" line, no hint.
+    const std::string out = quiet.output();
+    INFO(out);
+    CHECK(std::count(out.begin(), out.end(), '\n') == 1);
+    CHECK(out.rfind("Review of ", 0) == 0);
+  }
+  review_test::ReviewProcess verbose(capture, {"--verbose"}, dir / "verbose.log");
+  httplib::Client client = review_test::pageClient(verbose);
+  const json state = stateOf(client);
+  auto res = apply(client,
+                   {{"revision", state["revision"]}, {"exclude", {{{"image", "IMG_0003"}, {"reason", "a test"}}}}},
+                   verbose.port());
+  REQUIRE(res);
+  CHECK(res->status == 200);
+  CHECK(verbose.stop() == 0);
+  const std::string out = verbose.output();
+  INFO(out);
+  CHECK_THAT(out, Catch::Contains("\n  running: "));
+  CHECK_THAT(out, Catch::Contains("applied, as: surrogate run "));
+  CHECK(e2e::surrogate("review " + e2e::quote(capture) + " --no-browser --quiet --verbose").exitCode == 2);
 }
 
 TEST_CASE("review: the revision is checked again under the lock, against the carrier's SHA-256", "[review]") {
