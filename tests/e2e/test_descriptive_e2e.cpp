@@ -75,6 +75,12 @@ TEST_CASE("a title, creator, rights, licence or --meta change alone runs no step
   const fs::path capture = e2e::smallCapture(e2e::freshDir("descriptive"), 8);
   runIn(capture, "--title \"Stela 12\"");
   const std::string firstXml = e2e::bytesOf(capture / "assembly-files/carrier.xml");
+  // The first run's change list states the title it was given (issue 56), as later runs do.
+  {
+    const carrier::Carrier first = carrier::loadCarrier(capture / "assembly-files/carrier.xml");
+    REQUIRE(first.header.runs.size() == 1);
+    CHECK(first.header.runs[0].notes == std::vector<std::string>{"title \"Stela 12\""});
+  }
   const auto firstResults = results(capture);
   REQUIRE(firstResults.count("finished-files/ptm-lrgb.ptm"));
 
