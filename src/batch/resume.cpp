@@ -75,10 +75,10 @@ bool lastFailed(const StepHistory& h, const std::string& step, std::string& why)
 }  // namespace
 
 bool runStillValid(const StepHistory& run, const FileState& carrier, std::string& why) {
-  const LedgerEntry* done = run.lastSuccess();
   if (lastFailed(run, "run", why)) return false;
+  const LedgerEntry* done = run.lastSuccess();  // null only when no attempt is recorded
   if (!done) {
-    why = run.attempts.empty() ? "no run recorded" : "its last run failed";
+    why = "no run recorded";
     return false;
   }
   if (!carrier.exists) {
@@ -93,10 +93,10 @@ bool runStillValid(const StepHistory& run, const FileState& carrier, std::string
 }
 
 bool packStillValid(const StepHistory& pack, const FileState& carrier, const FileState& package, std::string& why) {
-  const LedgerEntry* done = pack.lastSuccess();
   if (lastFailed(pack, "pack", why)) return false;
+  const LedgerEntry* done = pack.lastSuccess();  // null only when no attempt is recorded
   if (!done) {
-    why = pack.attempts.empty() ? "no pack recorded" : "its last pack failed";
+    why = "no pack recorded";
     return false;
   }
   if (!package.exists) {
@@ -115,14 +115,13 @@ bool packStillValid(const StepHistory& pack, const FileState& carrier, const Fil
 }
 
 bool verifyStillValid(const StepHistory& verify, const FileState& package, bool reexecute, std::string& why) {
+  if (lastFailed(verify, "verification", why)) return false;
+  // The last attempt succeeded (or there is none): without --reexecute it is the one.
   const LedgerEntry* done = nullptr;
   for (auto it = verify.attempts.rbegin(); it != verify.attempts.rend() && !done; ++it)
     if ((*it)->succeeded() && (!reexecute || (*it)->reexecuted)) done = *it;
-  if (lastFailed(verify, "verification", why)) return false;
   if (!done) {
-    why = verify.attempts.empty() ? "no verification recorded"
-          : reexecute             ? "no re-execution recorded as sound"
-                                  : "its last verification failed";
+    why = verify.attempts.empty() ? "no verification recorded" : "no re-execution recorded as sound";
     return false;
   }
   if (!package.exists) {

@@ -31,16 +31,12 @@ std::string interventionText(const Intervention& i) {
   if (i.kind == "exclude-image") return i.target + " is left out of every step";
   // Spheres counted from 1, as people count them (core/sphere_reference.h); the carrier's
   // targets count from 0.
-  const auto person = [](const std::string& index) {
-    const std::string typed = personsSphereTarget(index);
-    return typed.rfind("sphere", 0) == 0 ? typed.substr(6) : index;
-  };
   if (i.kind == "manual-sphere")
-    return "circle of sphere " + person(i.target) + " given by hand (x,y,r " + shownValue(i.value) + ")";
+    return "circle of sphere " + sphereNumberText(i.target) + " given by hand (x,y,r " + shownValue(i.value) + ")";
   if (i.kind == "manual-highlight") {
     const auto colon = i.target.rfind(':');
     const std::string image = i.target.substr(0, colon), sphere = colon == std::string::npos ? "" : i.target.substr(colon + 1);
-    return "highlight of " + image + (sphere.empty() ? "" : " on sphere " + person(sphere)) + " given by hand (x,y " +
+    return "highlight of " + image + (sphere.empty() ? "" : " on sphere " + sphereNumberText(sphere)) + " given by hand (x,y " +
            shownValue(i.value) + ")";
   }
   if (i.kind == "accept-changed-original") return "the changed " + i.target + " accepted as it is now";

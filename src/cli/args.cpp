@@ -33,12 +33,10 @@ std::optional<std::string> suggestionFor(const std::string& name, const std::vec
   return nearestName(name, names);
 }
 
-// "-o" as people type a one-letter option, "--output" for the others.
-std::string typedName(const std::string& name) { return name.size() == 1 ? "-" + name : "--" + name; }
-
 }  // namespace
 
-std::string optionName(const std::string& name) { return typedName(name); }
+// "-o" as people type a one-letter option, "--output" for the others.
+std::string optionName(const std::string& name) { return name.size() == 1 ? "-" + name : "--" + name; }
 
 Args::Args(int argc, char** argv, int first, std::vector<OptionSpec> specs) {
   bool optionsEnd = false;
@@ -80,7 +78,7 @@ Args::Args(int argc, char** argv, int first, std::vector<OptionSpec> specs) {
       const auto near = suggestionFor(name, specs);
       throw Error(ErrorKind::Usage, "", "command line",
                   "unknown option \"" + escapedText(typed) + "\"" +
-                      (near ? ": did you mean " + typedName(*near) + "?"
+                      (near ? ": did you mean " + optionName(*near) + "?"
                             : " (see --help)"));
     }
     if (spec->takesValue && !inlineValue) {
@@ -121,13 +119,13 @@ int Args::intValue(const std::string& name, int fallback) const {
     if (used == v->size()) return n;
   } catch (const std::exception&) {
   }
-  usage(typedName(name), "needs a whole number, not \"" + *v + "\"");
+  usage(optionName(name), "needs a whole number, not \"" + *v + "\"");
 }
 
 double Args::doubleValue(const std::string& name, double fallback) const {
   const auto v = value(name);
   if (!v) return fallback;
-  return parseNumberList(*v, 1, typedName(name))[0];
+  return parseNumberList(*v, 1, optionName(name))[0];
 }
 
 namespace {

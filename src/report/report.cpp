@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/resident.h"
+#include "core/sphere_reference.h"
 #include "core/version.h"
 #include "report/colour_section.h"
 #include "report/embed.h"
@@ -40,18 +41,6 @@ std::string numberOr(const carrier::DataItem& d, const char* name, int digits, c
 // records 1, which it did not earn), else the number.
 std::string confidenceText(const carrier::DataItem& highlight) {
   return highlight.get("flag").value_or("") == "manual" ? std::string("by hand") : numberOr(highlight, "confidence", 2);
-}
-
-// The carrier counts spheres from 0 (sphere/@index, highlight/@sphere); people and the file
-// names count from 1, and so does the page. Text that is not a number is shown as it is.
-std::string sphereNumber(const std::string& index) {
-  try {
-    std::size_t used = 0;
-    const int k = std::stoi(index, &used);
-    if (used == index.size() && k >= 0) return std::to_string(k + 1);
-  } catch (const std::exception&) {
-  }
-  return index;
 }
 
 // The pictures the page shows (overlays, overviews, normals, albedo, previews), each read,
@@ -169,14 +158,14 @@ std::string detectionSection(const carrier::Carrier& c, const Pictures& pictures
       // A sphere given by hand was not detected: its rim and highlight scores (recorded as 1)
       // measure nothing.
       const bool byHand = d->get("source").value_or("") == "manual";
-      s << "<tr><td>" << escapeHtml(sphereNumber(d->get("index").value_or(""))) << "</td><td class=\"num\">"
+      s << "<tr><td>" << escapeHtml(sphereNumberText(d->get("index").value_or(""))) << "</td><td class=\"num\">"
         << n("cx") << ", " << n("cy") << "</td><td class=\"num\">" << n("r") << "</td><td class=\"num\">"
         << (byHand ? "by hand" : n("confidence")) << "</td><td class=\"num\">" << (byHand ? "by hand" : n("evidence"))
         << "</td><td>" << escapeHtml(byHand ? std::string("given by hand") : d->get("source").value_or("")) << "</td></tr>";
     }
     s << "</table><ul>";
     for (const carrier::DataItem* d : spheres) {
-      s << "<li>Sphere " << escapeHtml(sphereNumber(d->get("index").value_or(""))) << ": ";
+      s << "<li>Sphere " << escapeHtml(sphereNumberText(d->get("index").value_or(""))) << ": ";
       if (d->get("source").value_or("") == "manual") {
         s << "given by hand; its circle is the one given, nothing was measured.</li>";
         continue;
@@ -206,7 +195,7 @@ std::string detectionSection(const carrier::Carrier& c, const Pictures& pictures
     for (const carrier::DataItem* d : flagged) {
       const std::string reason = d->get("reason").value_or("");
       s << "<li class=\"warning\"><code>" << escapeHtml(imagePath(*d)) << "</code>, sphere "
-        << escapeHtml(sphereNumber(d->get("sphere").value_or(""))) << ": " << escapeHtml(d->get("flag").value_or(""))
+        << escapeHtml(sphereNumberText(d->get("sphere").value_or(""))) << ": " << escapeHtml(d->get("flag").value_or(""))
         << ", confidence " << confidenceText(*d) << (reason.empty() ? "" : " \u2014 ")
         << escapeHtml(reason) << "</li>";
     }
@@ -220,7 +209,7 @@ std::string detectionSection(const carrier::Carrier& c, const Pictures& pictures
          "<th>x, y (px)</th><th>flag</th><th>confidence</th><th>reason</th></tr>";
     for (const carrier::DataItem* d : highlights)
       s << "<tr><td><code>" << escapeHtml(imagePath(*d)) << "</code></td><td class=\"num\">"
-        << escapeHtml(sphereNumber(d->get("sphere").value_or(""))) << "</td><td class=\"num\">" << numberOr(*d, "x", 2)
+        << escapeHtml(sphereNumberText(d->get("sphere").value_or(""))) << "</td><td class=\"num\">" << numberOr(*d, "x", 2)
         << ", " << numberOr(*d, "y", 2) << "</td><td>" << escapeHtml(d->get("flag").value_or(""))
         << "</td><td class=\"num\">" << confidenceText(*d) << "</td><td>"
         << escapeHtml(d->get("reason").value_or("")) << "</td></tr>";

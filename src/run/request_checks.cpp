@@ -1,7 +1,6 @@
 #include "run/request_checks.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cstdlib>
 #include <optional>
 #include <sstream>
@@ -58,12 +57,7 @@ std::optional<std::vector<double>> numbers(const std::string& text, std::size_t 
 // The sphere index of a highlight's target "IMAGE:SPHERE" (0 when absent), -1 when malformed.
 int sphereIndexOf(const std::string& target) {
   const auto colon = target.rfind(':');
-  if (colon == std::string::npos) return 0;
-  const std::string digits = target.substr(colon + 1);
-  if (digits.empty() || digits.size() > 6 ||
-      !std::all_of(digits.begin(), digits.end(), [](unsigned char c) { return std::isdigit(c); }))
-    return -1;
-  return std::atoi(digits.c_str());
+  return colon == std::string::npos ? 0 : bareSphereIndex(target.substr(colon + 1)).value_or(-1);
 }
 
 }  // namespace

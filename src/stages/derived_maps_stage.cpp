@@ -192,17 +192,16 @@ namespace {
 void logNormalFallback(pipeline::Context& ctx, const carrier::Step& step, const std::string& basis, int fallback,
                        double pixels) {
   const double fraction = fallback / pixels;
-  const std::string figure = std::to_string(fallback) + " pixels (" + fixedDecimals(100 * fraction, 2) + " %)";
   const bool ptm = basis.rfind("ptm", 0) == 0;
+  const std::string figure = std::to_string(fallback) + " pixels (" + fixedDecimals(100 * fraction, 2) + " %)" +
+                             (ptm ? " had no valid PTM maximum and took the least-squares Lambertian normal"
+                                  : " had no Lambertian normal and were left facing the camera");
   if (!(fraction > 0.05)) {
-    ctx.carrier.addLog("info", step.id,
-                       figure + (ptm ? " had no valid PTM maximum and took the least-squares Lambertian normal"
-                                     : " had no Lambertian normal and were left facing the camera"));
+    ctx.carrier.addLog("info", step.id, figure);
     return;
   }
   carrier::Advice a;
-  a.detail = figure + (ptm ? " had no valid PTM maximum and took the least-squares Lambertian normal"
-                           : " had no Lambertian normal and were left facing the camera");
+  a.detail = figure;
   if (ptm) {
     a.what = "In " + fixedDecimals(100 * fraction, 0) + " % of the picture the PTM has no single brightest light "
              "direction (usual in shadows, shiny or dark areas), so the normal map takes their direction from a "

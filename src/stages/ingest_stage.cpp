@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <optional>
 #include <set>
 #include <unordered_map>
 
@@ -52,7 +53,7 @@ const KnownFormat* byExtension(const std::string& ext) {
 // a PNG named .jpg is image/png. Camera raws other than DNG share the TIFF container, so their
 // extension names the camera format. Returns a warning when the name says another format than
 // the content.
-std::string setFormatIdentifiers(carrier::FileRecord& f, const fs::path& abs, bool isImage) {
+std::optional<carrier::Advice> setFormatIdentifiers(carrier::FileRecord& f, const fs::path& abs, bool isImage) {
   f.puid = formats::identifyPronomFile(abs).puid;
   const std::string ext = lowerCase(fs::path(f.path).extension().string());
   const KnownFormat* named = byExtension(ext);
@@ -68,11 +69,11 @@ std::string setFormatIdentifiers(carrier::FileRecord& f, const fs::path& abs, bo
   const KnownFormat* content = *contentExt ? byExtension(contentExt) : named;
   if (content) f.mediaType = content->mediaType;
   if (named && content && std::string(named->mediaType) != content->mediaType)
-    return carrier::adviceText({f.path + " is a " + f.format + " file named " + ext + ": it is recorded and read as " +
-                                    content->mediaType + " (from its content, not its name)",
-                                carrier::Usable::Yes, "the photograph is read correctly",
-                                "rename it to " + std::string(contentExt) + " so that other software opens it as what it is",
-                                ""});
+    return carrier::Advice{f.path + " is a " + f.format + " file named " + ext + ": it is recorded and read as " +
+                               content->mediaType + " (from its content, not its name)",
+                           carrier::Usable::Yes, "the photograph is read correctly",
+                           "rename it to " + std::string(contentExt) + " so that other software opens it as what it is",
+                           ""};
   return {};
 }
 
@@ -210,7 +211,7 @@ std::vector<PendingFile> pendingFiles(const capture::CaptureLayout& layout, cons
 // One file's record, with what went wrong reading it (logged as warnings, never fatal).
 struct ReadFile {
   carrier::FileRecord record;
-  std::string formatWarning;  // already in the words of carrier/advice.h
+  std::optional<carrier::Advice> formatWarning;
   std::string metadataWarning;
 };
 
@@ -234,11 +235,11 @@ ReadFile readFile(const PendingFile& p, const fs::path& capture) {
     f.mediaType = prior.mediaType;
     f.puid = formats::identifyPronomFile(abs).puid;
     if (!prior.warning.empty())
-      out.formatWarning = carrier::adviceText({prior.warning, carrier::Usable::Yes,
-                                               "the file is kept and packed as found; only what made it is not recorded",
-                                               "nothing, unless you need to know what made it: then check that it is "
-                                               "the file you meant to keep beside the capture",
-                                               ""});
+      out.formatWarning = carrier::Advice{prior.warning, carrier::Usable::Yes,
+                                          "the file is kept and packed as found; only what made it is not recorded",
+                                          "nothing, unless you need to know what made it: then check that it is the "
+                                          "file you meant to keep beside the capture",
+                                          ""};
     return out;
   }
   out.formatWarning = setFormatIdentifiers(f, abs, p.isImage);
@@ -283,7 +284,7 @@ void recordFiles(pipeline::Context& ctx, const carrier::Step& step, const std::v
   for (const ReadFile& r : read) records.push_back(r.record);
   ctx.carrier.putFiles(std::move(records));  // one pass: putFile per file was quadratic
   for (const ReadFile& r : read) {
-    if (!r.formatWarning.empty()) ctx.carrier.addLog("warning", step.id, r.formatWarning);  // adviceText's words
+    if (r.formatWarning) carrier::addWarning(ctx.carrier, step.id, *r.formatWarning);
     if (!r.metadataWarning.empty()) {
       const bool sidecar = r.record.role == "sidecar";
       carrier::addWarning(
