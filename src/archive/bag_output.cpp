@@ -321,9 +321,11 @@ void checkOutput(const fs::path& out, bool replace) {
                 "already exists; pack never replaces a package silently: give --force to replace "
                 "it, or choose another name");
   }
+  // An output that exists is one the output rule forbids (exit 1), for a bag folder as for an
+  // archive: two packs racing to one folder name then fail the same way whichever check sees it.
   if (format == BagFormat::Directory && fs::exists(out) &&
       !(fs::is_directory(out) && fs::is_empty(out))) {
-    throw Error(ErrorKind::Usage, shownName(out.string()), "packing",
+    throw Error(ErrorKind::Input, shownName(out.string()), "packing",
                 "already exists; remove it or choose another output name");
   }
   if (format != BagFormat::Directory && fs::is_directory(out)) {
