@@ -18,6 +18,7 @@
 
 #include "archive/archive_end.h"
 #include "archive/entry_checks.h"
+#include "archive/package.h"
 #include "archive/package_source.h"
 #include "core/error.h"
 
@@ -227,6 +228,12 @@ class ArchiveSource : public PackageSource {
 
 std::unique_ptr<PackageSource> openArchiveSource(const fs::path& file) {
   return std::make_unique<ArchiveSource>(file);
+}
+
+std::string libarchiveVersion() {
+  const std::string text = archive_version_string();  // "libarchive 3.6.2"
+  const auto space = text.rfind(' ');
+  return space == std::string::npos ? text : text.substr(space + 1);
 }
 
 }  // namespace surrogate::archive

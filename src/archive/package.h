@@ -146,4 +146,8 @@ struct PackResult {
 PackResult packCapture(const std::filesystem::path& capture, const std::filesystem::path& out,
                        const PackOptions& options = {});
 
+// The version of libarchive in use (the library linked, not the headers), e.g. "3.6.2": it
+// writes and reads every .tar and .zip package, so runs record it with the other libraries.
+std::string libarchiveVersion();
+
 }  // namespace surrogate::archive

@@ -397,8 +397,11 @@ Carrier parseCarrier(const std::string& xmlText, const std::string& source) {
 
 void saveCarrier(const Carrier& carrier, const std::filesystem::path& path) {
   const std::string text = toXml(carrier);
+  // Found before the try: a schema missing from the installation is the installation's fault
+  // (resourcePath says to reinstall), not a carrier that does not validate.
+  const std::filesystem::path schema = resourcePath("xsd/carrier.xsd");
   try {
-    xml::validateAgainstSchema(text, path.string(), resourcePath("xsd/carrier.xsd"));
+    xml::validateAgainstSchema(text, path.string(), schema);
   } catch (const Error& e) {
     // The program built this document: an invalid one is a bug, not the user's fault.
     throw Error(ErrorKind::Internal, path.string(), "carrier",

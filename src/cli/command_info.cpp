@@ -3,6 +3,7 @@
 // printed as text or JSON (info_carrier.cpp, info_folders.cpp, info_images.cpp).
 #include <filesystem>
 #include <iostream>
+#include <sstream>
 #include <system_error>
 
 #include "audit/rtibuilder_log.h"
@@ -11,6 +12,7 @@
 #include "cli/args.h"
 #include "cli/commands.h"
 #include "cli/info_print.h"
+#include "cli/version_text.h"
 #include "core/error.h"
 #include "core/text.h"
 #include "formats/summary.h"
@@ -65,11 +67,54 @@ void printRecordedFiles(const carrier::Carrier& c) {
     std::cout << "    " << escapedText(f.path) << "  " << f.role << ", " << f.size << " bytes, " << f.sha256 << "\n";
 }
 
+// Sends std::cout to `sink` for as long as it lives (restored on an exception too).
+class CoutTo {
+ public:
+  explicit CoutTo(std::ostream& sink) : previous_(std::cout.rdbuf(sink.rdbuf())) {}
+  ~CoutTo() { std::cout.rdbuf(previous_); }
+  CoutTo(const CoutTo&) = delete;
+  CoutTo& operator=(const CoutTo&) = delete;
+
+ private:
+  std::streambuf* previous_;
+};
+
+// What info prints for `path`, by its kind.
+void describe(const fs::path& path, const fs::file_status& st, const std::string& ext, bool json) {
+  std::error_code ec;
+  if (isPackage(path, st)) {
+    printPackage(path, json);
+  } else if (fs::is_directory(st) && isWebLayoutFolder(path)) {
+    printWebLayout(path / "info.json", json);
+  } else if (fs::is_directory(st)) {
+    if (fs::exists(path / capture::kAssemblyDir / "carrier.xml", ec) && !json) {
+      printCapture(path, false);
+      printCarrier(path / capture::kAssemblyDir / "carrier.xml", false);  // JSON: nested by printCapture
+    } else {
+      printCapture(path, json);
+    }
+  } else if (path.filename() == "info.json") {
+    printWebLayout(path, json);
+  } else if (ext == ".xml" && audit::looksLikeRtiBuilderLog(path)) {
+    const audit::RtiBuilderLog log = audit::readRtiBuilderLog(path);
+    std::cout << (json ? log.toJson() : log.toText()) << "\n";
+  } else if (ext == ".xml") {
+    printCarrier(path, json);
+  } else if (ext == ".xmp") {
+    printXmpSidecar(path, json);
+  } else if (ext == ".ptm" || ext == ".rti" || ext == ".lp") {
+    const formats::FileSummary s = formats::summarize(path);
+    std::cout << (json ? s.toJson() : s.toText()) << "\n";
+  } else {
+    printImage(path, json);
+  }
+}
 }  // namespace
 
 int runCommandInfo(int argc, char** argv) {
   const std::vector<OptionSpec> specs = {
-      {"json", false, false, "print as JSON", "", OptionGroup::Output},
+      {"json", false, false, "print as JSON (with Surrogate's version and its libraries' as \"version\")", "",
+       OptionGroup::Output},
       {"quiet", false, false, "print nothing but errors: the exit code says whether the file could be described",
        "", OptionGroup::Output},
       {"verbose", false, false, "of a capture or carrier, also every file the carrier records, with its role, size "
@@ -109,31 +154,19 @@ int runCommandInfo(int argc, char** argv) {
     throwInputError(path.string(), "info", "is a loop of symbolic links; give the file or folder itself");
   if (!fs::exists(st)) throwInputError(path.string(), "info", "does not exist");
   const std::string ext = lowerCase(path.extension().string());
-  if (isPackage(path, st)) {
-    printPackage(path, json);
-  } else if (fs::is_directory(st) && isWebLayoutFolder(path)) {
-    printWebLayout(path / "info.json", json);
-  } else if (fs::is_directory(st)) {
-    if (fs::exists(path / capture::kAssemblyDir / "carrier.xml", ec) && !json) {
-      printCapture(path, false);
-      printCarrier(path / capture::kAssemblyDir / "carrier.xml", false);  // JSON: nested by printCapture
-    } else {
-      printCapture(path, json);
+  if (json) {
+    // One JSON object, with the version of the program that read it (and its libraries, as
+    // every run records them) as "version": cli/version_text.h.
+    std::ostringstream object;
+    {
+      CoutTo capture(object);
+      describe(path, st, ext, true);
     }
-  } else if (path.filename() == "info.json") {
-    printWebLayout(path, json);
-  } else if (ext == ".xml" && audit::looksLikeRtiBuilderLog(path)) {
-    const audit::RtiBuilderLog log = audit::readRtiBuilderLog(path);
-    std::cout << (json ? log.toJson() : log.toText()) << "\n";
-  } else if (ext == ".xml") {
-    printCarrier(path, json);
-  } else if (ext == ".xmp") {
-    printXmpSidecar(path, json);
-  } else if (ext == ".ptm" || ext == ".rti" || ext == ".lp") {
-    const formats::FileSummary s = formats::summarize(path);
-    std::cout << (json ? s.toJson() : s.toText()) << "\n";
+    std::string text = object.str();
+    while (!text.empty() && text.back() == '\n') text.pop_back();
+    std::cout << withVersion(text) << "\n";
   } else {
-    printImage(path, json);
+    describe(path, st, ext, false);
   }
   if (verbosity == Verbosity::Verbose && !json) {
     const fs::path carrierFile = fs::is_directory(st) ? path / capture::kAssemblyDir / "carrier.xml" : path;

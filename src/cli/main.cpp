@@ -5,7 +5,8 @@
 //   2 bad usage (options), or an invalid package
 //   3 fixity failure (verify)
 //   4 not reproduced (verify --reexecute)
-//   5 internal error (a bug, or the environment: disk full, missing data files)
+//   5 internal error (a bug, or the environment: disk full); a data file missing from the
+//     installation is exit 1 (core/resources.h)
 #include <csignal>
 #include <exception>
 #include <iostream>
@@ -13,9 +14,11 @@
 #include <vector>
 
 #include "cli/commands.h"
+#include "cli/version_text.h"
 #include "core/error.h"
 #include "core/json.h"
 #include "core/resident.h"
+#include "core/resources.h"
 #include "core/text.h"
 #include "core/version.h"
 
@@ -68,6 +71,12 @@ int unknownCommand(const std::string& how, const std::string& name) {
   return static_cast<int>(ErrorKind::Usage);
 }
 
+bool asksForHelp(int argc, char** argv) {
+  for (int i = 2; i < argc; ++i)
+    if (std::string(argv[i]) == "--help" || std::string(argv[i]) == "-h") return true;
+  return false;
+}
+
 // surrogate help COMMAND: the command's own --help ("help help": the general help).
 int helpFor(const std::string& name) {
   if (name == "help") {
@@ -96,7 +105,7 @@ int main(int argc, char** argv) {
     return argc < 2 ? 2 : 0;
   }
   if (std::string(argv[1]) == "--version") {
-    std::cout << "surrogate " << surrogateVersion() << "\n";
+    std::cout << cli::versionText();
     return 0;
   }
   const std::string name = argv[1];
@@ -106,6 +115,9 @@ int main(int argc, char** argv) {
     if (name != c.name) continue;
     const int internal = static_cast<int>(ErrorKind::Internal);
     try {
+      // An installation missing a data file stops every command before it reads or writes
+      // anything, naming the file (core/resources.h); --help needs none.
+      if (!asksForHelp(argc, argv)) requireDataFiles();
       return c.run(argc - 1, argv + 1);
     } catch (const Error& e) {
       return fail(json, name, e.exitCode(), e.file(), e.step(), e.message(), e.text());

@@ -554,6 +554,10 @@ bool deriveMetsTo(std::string&& carrierXml, PackageFacts&& facts, const TextSink
                      sink, {}, &facts.payload, &carrierXml);
 }
 
-std::string libxsltVersion() { return xsltEngineVersion; }
+std::string libxsltVersion() {
+  // The library linked (xsltLibxsltVersion, e.g. 10135), written as its releases are: 1.1.35.
+  const int v = xsltLibxsltVersion;
+  return std::to_string(v / 10000) + "." + std::to_string(v / 100 % 100) + "." + std::to_string(v % 100);
+}
 
 }  // namespace surrogate::mapping

@@ -176,7 +176,7 @@ inline constexpr const char* kRoCratePath = "data/ro-crate-metadata.json";
 // metadata/<relative> in the bag. Sorted.
 std::vector<std::string> packagedResources();
 
-// libxslt's version, e.g. "1.1.35".
+// The version of the libxslt linked, e.g. "1.1.35".
 std::string libxsltVersion();
 
 }  // namespace surrogate::mapping

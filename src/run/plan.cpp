@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 
+#include "archive/package.h"
 #include "capture/capture.h"
 #include "capture/lock.h"
 #include "carrier/advice.h"
@@ -20,6 +21,7 @@
 #include "fit/learned.h"
 #include "image/decode.h"
 #include "image/write.h"
+#include "mapping/mapping.h"
 #include "meta/metadata.h"
 #include "pipeline/runner.h"
 #include "pipeline/stage.h"
@@ -49,6 +51,8 @@ std::vector<carrier::Software> softwareVersions() {
       {"OpenCV", image::opencvVersion(), "image filtering and resampling"},
       {"Exiv2", meta::exiv2Version(), "EXIF/XMP metadata"},
       {"libxml2", xml::libxml2Version(), "XML and schema validation"},
+      {"libxslt", mapping::libxsltVersion(), "the carrier's mappings to METS, CIDOC-CRM and RO-Crate"},
+      {"libarchive", archive::libarchiveVersion(), ".tar and .zip packages"},
       {"OpenSSL", opensslVersion(), "message digests"},
       {"Eigen", std::to_string(EIGEN_WORLD_VERSION) + "." + std::to_string(EIGEN_MAJOR_VERSION) +
                     "." + std::to_string(EIGEN_MINOR_VERSION),

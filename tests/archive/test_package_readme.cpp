@@ -187,6 +187,8 @@ TEST_CASE("the package's README says what the bag holds and how to check it with
       INFO(rel);
       REQUIRE(fs::is_regular_file(bag / "metadata" / rel));
       CHECK(slurp(bag / "metadata" / rel) == slurp(resourcePath(rel)));
+      // and installed with the program (SURROGATE_DATA_FILES, core/resources.h)
+      CHECK(std::count(dataFileNames().begin(), dataFileNames().end(), rel) == 1);
     }
     CHECK(readme.find("metadata/docs/formats.md") != std::string::npos);
     CHECK(readme.find("metadata/docs/carrier.md") != std::string::npos);

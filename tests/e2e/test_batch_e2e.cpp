@@ -55,10 +55,9 @@ std::size_t count(const std::vector<json>& lines, const std::string& capture, co
 std::string sha(const fs::path& p) { return surrogate::digestFile(p).sha256; }
 
 std::string version() {
-  std::string v = e2e::surrogate("--version").output;  // "surrogate 0.1.0\n"
-  v = v.substr(v.find(' ') + 1);
-  while (!v.empty() && v.back() == '\n') v.pop_back();
-  return v;
+  std::string v = e2e::surrogate("--version").output;  // "surrogate 0.1.0\n" and the libraries
+  v = v.substr(0, v.find('\n'));
+  return v.substr(v.find(' ') + 1);
 }
 
 // Processes whose command line names `text` (the jobs of a batch in a test's own folder).

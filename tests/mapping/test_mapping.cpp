@@ -2,8 +2,10 @@
 // rapper with the key classes and properties, deterministic output, safe processing.
 #include <catch2/catch.hpp>
 
+#include <libxslt/xsltconfig.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <cstdio>
@@ -13,6 +15,7 @@
 
 #include "carrier/carrier.h"
 #include "core/digest.h"
+#include "core/resources.h"
 #include "core/error.h"
 #include "mapping/mapping.h"
 #include "archival_checks.h"
@@ -270,12 +273,16 @@ TEST_CASE("a stylesheet cannot read local files or the network", "[mapping][safe
 }
 
 TEST_CASE("the stylesheets and schemas to ship are all installed", "[mapping]") {
+  // In the source tree, and in the list of data files the install rules install and an
+  // installed program checks for (SURROGATE_DATA_FILES, core/resources.h).
+  const std::vector<std::string>& installed = dataFileNames();
   for (const std::string& rel : mapping::packagedResources()) {
     INFO(rel);
     CHECK(fs::exists(std::string(SURROGATE_SOURCE_DIR) + "/" + rel));
+    CHECK(std::find(installed.begin(), installed.end(), rel) != installed.end());
   }
   CHECK(mapping::crmStylesheetPath().filename() == "carrier-to-crm.xsl");
-  CHECK_FALSE(mapping::libxsltVersion().empty());
+  CHECK(mapping::libxsltVersion() == LIBXSLT_DOTTED_VERSION);  // the headers built against
 }
 
 TEST_CASE("command runs become PREMIS events with their command line, outcome, notes and agents", "[mapping][mets][runs]") {
