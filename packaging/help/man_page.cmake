@@ -4,8 +4,9 @@
 #   roff/surrogate.1, roff/surrogate-COMMAND.1   the pages as roff, to read or check;
 #   man1/*.1.gz                                   the same, gzip -9n (Debian policy), installed;
 #   completions/surrogate                         the bash completion, installed.
-# The pages' date is SOURCE_DATE_EPOCH's when it is set, and none otherwise (never the day of the
-# build), so that two builds of the same source make the same files.
+# The pages' date is SOURCE_DATE_EPOCH's when it is set, else -DRELEASE_DATE (the version's date,
+# packaging/CMakeLists.txt), else none: never the day of the build, so that two builds of the same
+# source make the same files.
 
 cmake_minimum_required(VERSION 3.20)  # list() keeps the blank lines that separate the help's parts
 foreach(v SURROGATE VERSION OUT GZIP)
@@ -16,7 +17,7 @@ endforeach()
 include("${CMAKE_CURRENT_LIST_DIR}/help_text.cmake")
 include("${CMAKE_CURRENT_LIST_DIR}/command_page.cmake")
 
-set(date "")
+set(date "${RELEASE_DATE}")
 if(DEFINED ENV{SOURCE_DATE_EPOCH} AND NOT "$ENV{SOURCE_DATE_EPOCH}" STREQUAL "")
   string(TIMESTAMP date "%Y-%m-%d" UTC)  # CMake takes SOURCE_DATE_EPOCH as "now"
 endif()

@@ -1,7 +1,7 @@
 // The man pages the build makes from --help (packaging/help): one per command and surrogate.1,
 // compressed as Debian policy asks, each rendered as lintian renders it (`man --warnings ... -Z`)
 // without a warning, and showing every option, example and exit code its command's --help gives;
-// dated only by SOURCE_DATE_EPOCH, so that two builds make the same bytes.
+// dated by SOURCE_DATE_EPOCH or the version's date, never the build's, so two builds make the same bytes.
 #include <catch2/catch.hpp>
 
 #include <cstdlib>
@@ -131,7 +131,7 @@ TEST_CASE("the pages are gzip -9n: best compression, no name or time stored") {
   }
 }
 
-TEST_CASE("the pages are dated by SOURCE_DATE_EPOCH only and are the same bytes twice") {
+TEST_CASE("the pages are dated by SOURCE_DATE_EPOCH or the release date only and are the same bytes twice") {
   const fs::path dir = e2e::freshDir("help-pages-twice");
   const auto generate = [&](const std::string& out, const std::string& env) {
     return e2e::runShell(env + " " + e2e::quote(CMAKE_COMMAND) + " -DSURROGATE=" + e2e::quote(SURROGATE_EXE) +
@@ -141,6 +141,13 @@ TEST_CASE("the pages are dated by SOURCE_DATE_EPOCH only and are the same bytes 
   REQUIRE(generate("a", "SOURCE_DATE_EPOCH=1700000000").exitCode == 0);
   REQUIRE(generate("b", "SOURCE_DATE_EPOCH=1700000000").exitCode == 0);
   REQUIRE(generate("c", "env -u SOURCE_DATE_EPOCH").exitCode == 0);
+  // The version's date (packaging/CMakeLists.txt passes SURROGATE_RELEASE_DATE).
+  REQUIRE(e2e::runShell("env -u SOURCE_DATE_EPOCH " + e2e::quote(CMAKE_COMMAND) + " -DSURROGATE=" +
+                        e2e::quote(SURROGATE_EXE) + " -DVERSION=9.8.7 -DRELEASE_DATE=2025-01-02 -DGZIP=gzip -DOUT=" +
+                        e2e::quote(dir / "d") + " -P " + e2e::quote(HELP_SCRIPT))
+              .exitCode == 0);
+  CHECK(e2e::bytesOf(dir / "d" / "roff" / "surrogate-pack.1").find(".TH SURROGATE-PACK 1 \"2025-01-02\"") !=
+        std::string::npos);
   std::size_t compared = 0;
   for (const auto& entry : fs::directory_iterator(dir / "a" / "man1")) {
     INFO(entry.path().filename().string());
@@ -150,7 +157,7 @@ TEST_CASE("the pages are dated by SOURCE_DATE_EPOCH only and are the same bytes 
   CHECK(compared >= 13);
   const std::string dated = e2e::bytesOf(dir / "a" / "roff" / "surrogate-run.1");
   CHECK(dated.find(".TH SURROGATE-RUN 1 \"2023-11-14\" \"Surrogate 9.8.7\"") != std::string::npos);
-  // Without SOURCE_DATE_EPOCH, no date at all: never the day of the build.
+  // Without either, no date at all: never the day of the build.
   char today[16];
   const std::time_t now = std::time(nullptr);
   std::strftime(today, sizeof today, "%Y-%m-%d", std::gmtime(&now));
