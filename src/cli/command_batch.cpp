@@ -273,7 +273,7 @@ int runCommandBatch(int argc, char** argv) {
                       "invalid package"},
                   {3, "a verify step found a fixity failure"},
                   {4, "a verify --reexecute step did not reproduce the recorded results"},
-                  {5, "internal error: a bug, a broken installation, a crash, or a job stopped for passing its memory budget"}}}))
+                  {5, "internal error: a bug, a crash, or a job stopped for passing its memory budget"}}}))
     return 0;
   const auto ledger = outputOption(args);
   if (args.has("summary")) {

@@ -43,10 +43,11 @@ bool helpShown(const Args& args, const std::vector<OptionSpec>& specs, const Com
 std::vector<std::pair<int, std::string>> commonExitCodes(const std::string& success,
                                                          std::vector<std::pair<int, std::string>> more = {});
 // The meanings every --help gives these codes the same words: a write the system refused is
-// exit 1, with the file named (core/atomic_file.h); exit 5 is a bug, a broken installation or
-// memory, never the disk.
+// exit 1, with the file named (core/atomic_file.h), and so is a damaged installation (core/resources.h:
+// "reinstall Surrogate"); exit 5 is a bug or memory, never the disk.
 inline constexpr const char* kWriteRefused = "a write the system refused (disk full, read-only, no permission, a file-size limit)";
-inline constexpr const char* kInternalError = "internal error: a bug, a broken installation (missing data files), or out of memory";
+inline constexpr const char* kInternalError =
+    "internal error: a bug, or out of memory (a data file missing from the installation is exit 1: reinstall Surrogate)";
 inline constexpr const char* kChangedOriginal =
     "an original no longer matches the SHA-256 the carrier records (it is evidence: restore it, or accept the "
     "change with run --accept-changed PATH --reason WHY)";

@@ -342,12 +342,14 @@ Transformed runTransform(const std::filesystem::path& stylesheet, const std::str
   xml::checkWellFormed(styleText, stylesheet.string());
   xmlDocPtr styleDoc = xmlReadMemory(styleText.data(), static_cast<int>(styleText.size()),
                                      stylesheet.c_str(), nullptr, kParseOptions);
-  if (!styleDoc) throw Error(ErrorKind::Internal, stylesheet.string(), "metadata",
+  // A stylesheet of the installation damaged: the installation to repair, as a missing one
+  // (core/resources.h), exit 1.
+  if (!styleDoc) throw Error(ErrorKind::Input, stylesheet.string(), "metadata",
                              "the stylesheet is not well-formed; reinstall Surrogate");
   t.style.reset(xsltParseStylesheetDoc(styleDoc));
   if (!t.style) {
     xmlFreeDoc(styleDoc);
-    throw Error(ErrorKind::Internal, stylesheet.string(), "metadata",
+    throw Error(ErrorKind::Input, stylesheet.string(), "metadata",
                 "the stylesheet could not be compiled; reinstall Surrogate");
   }
 

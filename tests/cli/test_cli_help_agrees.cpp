@@ -23,7 +23,7 @@ namespace {
 
 // The codes each command returns. 3: run, lights and pack refuse a changed original, publish a
 // changed result, info, report and audit a damaged archive; 4: verify --reexecute and audit
-// (and batch, which runs verify); 5 is a bug, a broken installation or memory, for all.
+// (and batch, which runs verify); 5 is a bug or memory, for all (a damaged installation is 1).
 const std::map<std::string, std::set<int>> kExitCodes = {
     {"run", {0, 1, 2, 3, 5}},     {"pack", {0, 1, 2, 3, 5}},   {"lights", {0, 1, 2, 3, 5}},
     {"fit", {0, 1, 2, 5}},        {"render", {0, 1, 2, 5}},    {"publish", {0, 1, 2, 3, 5}},
