@@ -56,12 +56,12 @@ std::string versionJson() {
 }
 
 std::string withVersion(const std::string& objectJson) {
-  const auto open = objectJson.find('{');
-  if (open == std::string::npos) return objectJson;
-  const auto next = objectJson.find_first_not_of(" \n\t", open + 1);
-  const bool empty = next != std::string::npos && objectJson[next] == '}';
-  return objectJson.substr(0, open + 1) + "\"version\":" + versionJson() + (empty ? "" : ",") +
-         objectJson.substr(open + 1);
+  const auto close = objectJson.rfind('}');
+  if (close == std::string::npos) return objectJson;
+  const auto last = objectJson.find_last_not_of(" \n\t", close == 0 ? 0 : close - 1);
+  const bool empty = last == std::string::npos || objectJson[last] == '{';
+  return objectJson.substr(0, close) + (empty ? "" : ",") + "\"version\":" + versionJson() +
+         objectJson.substr(close);
 }
 
 }  // namespace surrogate::cli

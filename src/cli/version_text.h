@@ -14,7 +14,8 @@ std::string versionText();
 //  "libraries":[{"name":"LibRaw","version":"0.20.2","role":"camera raw decoding"},...]}
 std::string versionJson();
 
-// `objectJson` (one JSON object, as info prints) with "version": versionJson() as its first key.
+// `objectJson` (one JSON object, as info prints) with "version": versionJson() as its last key
+// (its first keys stay what scripts read first: "kind", ...).
 std::string withVersion(const std::string& objectJson);
 
 }  // namespace surrogate::cli

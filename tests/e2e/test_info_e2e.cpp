@@ -117,7 +117,7 @@ TEST_CASE("info describes an XMP sidecar as a sidecar") {
   CHECK_THAT(j.output, Contains("{\"kind\":\"xmp-sidecar\",\"bytes\":10715,\"software\":\"Adobe Photoshop CS Windows\""));
   // Its PRONOM format, from its bytes (mappings/pronom.md).
   CHECK_THAT(r.output, Contains("  PRONOM:      Extensible Metadata Platform Packet (fmt/570)\n"));
-  CHECK_THAT(j.output, Contains("\"puid\":\"fmt/570\",\"pronom\":\"Extensible Metadata Platform Packet (fmt/570)\"}"));
+  CHECK_THAT(j.output, Contains("\"puid\":\"fmt/570\",\"pronom\":\"Extensible Metadata Platform Packet (fmt/570)\",\"version\":{"));
 }
 
 TEST_CASE("info names an image's and a model's PRONOM format from their bytes") {
