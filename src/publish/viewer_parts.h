@@ -3,11 +3,12 @@
 //
 // The light disc (viewer_disc.cpp) shows the light's direction with its azimuths and elevation
 // rings labelled, shades the elevations the capture's lights were photographed at, and says in
-// words when the chosen light is outside them. The shaders (viewer_shader.cpp) relight the texels.
+// words when the chosen light is outside them. The shaders (web/shader.js) relight the texels.
 #pragma once
 
 #include <string>
 
+#include "publish/web_files.h"
 #include "publish/web_layout.h"
 
 namespace surrogate::publish {
@@ -23,7 +24,7 @@ extern const char* const kDiscStyle;
 // discRadius(pad), labelDisc(pad), drawDisc(pad, angles) and describeLight(pad, angles, light).
 extern const char* const kDiscScript;
 
-// The script's vertexSource and fragmentSource, GLSL ES 3.0 as JavaScript strings.
-extern const char* const kShaderScript;
+// The script's vertexSource and fragmentSource, GLSL ES 3.0 as JavaScript strings: web/shader.js,
+// kShaderScript in the generated publish/web_files.h.
 
 }  // namespace surrogate::publish

@@ -1,9 +1,4 @@
-// The published viewer's shaders (viewer_parts.h), a part of viewer.cpp's page script.
-#include "publish/viewer_parts.h"
 
-namespace surrogate::publish {
-
-const char* const kShaderScript = R"JS(
   var vertexSource = "#version 300 es\nin vec2 corner;\nvoid main() { gl_Position = vec4(corner, 0.0, 1.0); }\n";
   // The canvas has the level's size; a canvas pixel shows the texel origin + p / zoom (p the
   // pixel's centre from the top left, rows top-first as in the layers), read with texelFetch
@@ -35,6 +30,3 @@ const char* const kShaderScript = R"JS(
     "  }",
     "  color = vec4(clamp(v, 0.0, 1.0), 1.0);",
     "}"].join("\n");
-)JS";
-
-}  // namespace surrogate::publish
