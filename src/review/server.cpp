@@ -14,7 +14,6 @@
 #include "capture/capture.h"
 #include "capture/lock.h"
 #include "core/error.h"
-#include "report/page_assets.h"
 #include "review/access_key.h"
 #include "review/bounded_server.h"
 #include "review/decisions.h"
@@ -303,7 +302,7 @@ ReviewServer::ReviewServer(ReviewOptions options) : impl_(std::make_unique<Impl>
     res.set_content(pageHtml(), "text/html; charset=utf-8");
   });
   s.Get("/review.js", [](const httplib::Request&, httplib::Response& res) {
-    res.set_content(std::string(report::kPageErrorsJs) + kForgetKeyJs + kReviewJs, "text/javascript; charset=utf-8");
+    res.set_content(pageScript(), "text/javascript; charset=utf-8");
   });
   s.Get("/review.css", [](const httplib::Request&, httplib::Response& res) {
     res.set_content(pageCss(), "text/css; charset=utf-8");
