@@ -386,7 +386,8 @@ Report buildReport(const carrier::Carrier& c, const ReportSource& source, const 
        << verificationSection(options.verification) << filesSection(c) << "</div></main>\n<footer class=\"note\">Carrier created "
        << escapeHtml(c.header.created) << ", last changed " << escapeHtml(c.header.modified)
        << ". This page is a view of the carrier (assembly-files/carrier.xml), which is the record; the "
-          "report itself is not part of the recorded provenance.</footer>\n<script>" << kPageErrorsJs << kReportJs << "</script>\n</body></html>\n";
+          "report itself is not part of the recorded provenance.</footer>\n<script>" << kPageErrorsJs << kRelightModelJs
+       << kRelightViewJs << kReportJs << "</script>\n</body></html>\n";
   // The sections with pictures and models are megabytes: appended once each to a page of
   // the right size, not streamed.
   const std::string first = head.str(), last = tail.str();
