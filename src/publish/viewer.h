@@ -15,6 +15,10 @@
 // The page names what it shows (the capture's title, creators, rights and licence, and the
 // basis), escaped for HTML; it zooms and pans the picture (wheel, drag, pinch) and relights
 // the texels on screen, texel by texel, at any zoom.
+//
+// The page's code is web code in web/ (viewer.html, viewer.css, shader.js and viewer_*.js, one
+// concern a file; index.html for the index of several models), embedded at build time
+// (publish/web_files.h); viewer.cpp only fills in the description and the data.
 #pragma once
 
 #include <string>

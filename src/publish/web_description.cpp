@@ -1,5 +1,5 @@
 // webDescriptionOf(Carrier): the header's description and the range of elevations the capture's
-// lights were photographed at, which the viewer's disc shows (publish/viewer_disc.cpp).
+// lights were photographed at, which the viewer's disc shows (publish/web/viewer_disc.js).
 #include <algorithm>
 #include <cmath>
 

@@ -1,10 +1,13 @@
-
-  var vertexSource = "#version 300 es\nin vec2 corner;\nvoid main() { gl_Position = vec4(corner, 0.0, 1.0); }\n";
+// The published viewer's shaders, GLSL ES 3.0 as JavaScript strings (web/viewer_webgl.js compiles
+// them): a triangle that covers the canvas, and the relighting of the texel under each pixel.
+var surrogateViewer = surrogateViewer || {};
+surrogateViewer.shaders = {
+  vertex: "#version 300 es\nin vec2 corner;\nvoid main() { gl_Position = vec4(corner, 0.0, 1.0); }\n",
   // The canvas has the level's size; a canvas pixel shows the texel origin + p / zoom (p the
   // pixel's centre from the top left, rows top-first as in the layers), read with texelFetch
   // (no filtering): zoomed, each texel is relit as it is unzoomed, only larger. At zoom 1 and
   // origin 0 one pixel is one texel. coefficient = (byte/255 - bias) * scale.
-  var fragmentSource = [
+  fragment: [
     "#version 300 es",
     "precision highp float; precision highp int; precision highp sampler2DArray;",
     "uniform sampler2DArray layers;",
@@ -29,4 +32,5 @@
     "    for (int j = 0; j < images; ++j) v += coefficient(t, j) * w[j];",
     "  }",
     "  color = vec4(clamp(v, 0.0, 1.0), 1.0);",
-    "}"].join("\n");
+    "}"].join("\n"),
+};
