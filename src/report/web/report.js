@@ -1,8 +1,8 @@
 // The report page's script, its DOM side (report/page_assets.h says what it records on <body>):
-// the interactive relighting view from the JSON in <script id="relight-data"> when present, the
+// the interactive relighting view from the JSON block with id relight-data when present, the
 // difference pictures' zoom, the plotted lights' count and the layout the tests read. It runs
 // after page_errors.js (window.surrogateRecordError), relight_model.js and relight_view.js (the
-// arithmetic, unit-tested in Node), all in the page's one <script>.
+// arithmetic, unit-tested in Node), all in the page's one script element.
 /* global surrogateRelightModel, surrogateRelightView */
 (function () {
   "use strict";
