@@ -42,18 +42,20 @@ bool isWebLayoutFolder(const fs::path& path) {
          !fs::exists(path / "original-captures", ec) && !fs::exists(path / capture::kExportsDir, ec);
 }
 
-// Sends std::cout nowhere while it lives, when `active`.
-class NullOutput {
+// Sends std::cout to `sink` (nullptr: nowhere, for --quiet) while it lives, when `active`: restored
+// on an exception too, and the failure state that writing with no buffer sets cleared.
+class CoutTo {
  public:
-  explicit NullOutput(bool active) : saved_(active ? std::cout.rdbuf(nullptr) : nullptr), active_(active) {}
-  ~NullOutput() {
+  explicit CoutTo(std::streambuf* sink, bool active = true)
+      : saved_(active ? std::cout.rdbuf(sink) : nullptr), active_(active) {}
+  ~CoutTo() {
     if (active_) {
       std::cout.rdbuf(saved_);
       std::cout.clear();
     }
   }
-  NullOutput(const NullOutput&) = delete;
-  NullOutput& operator=(const NullOutput&) = delete;
+  CoutTo(const CoutTo&) = delete;
+  CoutTo& operator=(const CoutTo&) = delete;
 
  private:
   std::streambuf* saved_;
@@ -66,18 +68,6 @@ void printRecordedFiles(const carrier::Carrier& c) {
   for (const carrier::FileRecord& f : c.files)
     std::cout << "    " << escapedText(f.path) << "  " << f.role << ", " << f.size << " bytes, " << f.sha256 << "\n";
 }
-
-// Sends std::cout to `sink` for as long as it lives (restored on an exception too).
-class CoutTo {
- public:
-  explicit CoutTo(std::ostream& sink) : previous_(std::cout.rdbuf(sink.rdbuf())) {}
-  ~CoutTo() { std::cout.rdbuf(previous_); }
-  CoutTo(const CoutTo&) = delete;
-  CoutTo& operator=(const CoutTo&) = delete;
-
- private:
-  std::streambuf* previous_;
-};
 
 // What info prints for `path`, by its kind.
 void describe(const fs::path& path, const fs::file_status& st, const std::string& ext, bool json) {
@@ -146,7 +136,7 @@ int runCommandInfo(int argc, char** argv) {
   if (verbosity == Verbosity::Quiet && json)
     throw Error(ErrorKind::Usage, "--quiet", "command line", "does not go with --json: give one of them");
   // --quiet: everything is read and checked as without it; only what it prints is dropped.
-  NullOutput quiet(verbosity == Verbosity::Quiet);
+  CoutTo quiet(nullptr, verbosity == Verbosity::Quiet);
   // Error codes, not exceptions: a loop of symbolic links is the user's path, not a bug.
   std::error_code ec;
   const fs::file_status st = fs::status(path, ec);
@@ -159,7 +149,7 @@ int runCommandInfo(int argc, char** argv) {
     // every run records them) as "version": cli/version_text.h.
     std::ostringstream object;
     {
-      CoutTo capture(object);
+      CoutTo capture(object.rdbuf());
       describe(path, st, ext, true);
     }
     std::string text = object.str();
