@@ -18,15 +18,10 @@ fs::path executableDir() {
   return ec ? fs::path() : exe.parent_path();
 }
 
-// `inner` lies within `outer` (both made absolute and normal, compared element by element).
+// `inner` lies within `outer` (or is it): compared as written, both absolute.
 bool within(const fs::path& inner, const fs::path& outer) {
-  const fs::path a = inner.lexically_normal(), b = outer.lexically_normal();
-  auto i = a.begin();
-  for (auto j = b.begin(); j != b.end(); ++j, ++i) {
-    if (j->empty()) continue;  // the trailing "" of a path ending in '/'
-    if (i == a.end() || *i != *j) return false;
-  }
-  return true;
+  const fs::path relative = inner.lexically_relative(outer);
+  return !relative.empty() && *relative.begin() != "..";
 }
 
 struct DataFolder {
