@@ -99,9 +99,9 @@ function(roff_help_body out out_usage text)
   set(${out_usage} "${usage}" PARENT_SCOPE)
 endfunction()
 
-# surrogate-COMMAND.1 in `dir`, its NAME line saying `summary` (the command list's line).
-function(write_command_page dir command summary th)
-  help_run(text help "${command}")
+# surrogate-COMMAND.1 in `dir`, its NAME line saying `summary` (the command list's line), from
+# `text`, the command's --help.
+function(write_command_page dir command summary th text)
   roff_help_body(body usage "${text}")
   roff_synopsis(synopsis "${usage}" "${command}")
   roff_escape(what "${summary}")

@@ -3,7 +3,8 @@
 # --help lists, which of them take a value, and the choices of those whose value is written as
 # a|b|c. The script itself is surrogate.bash.in with those lists put in.
 
-# `file`: the completion for `commands`, `top` being `surrogate --help`'s text.
+# `file`: the completion for `commands`, `top` being `surrogate --help`'s text and help_COMMAND
+# (set by man_page.cmake) each command's.
 function(write_completion file commands top)
   list(JOIN commands " " COMMANDS)
   # The general options: --help and --version always (src/cli/main.cpp), and any --help lists.
@@ -14,8 +15,7 @@ function(write_completion file commands top)
   set(OPTION_CASES "")
   set(CHOICE_CASES "")
   foreach(name IN LISTS commands)
-    help_run(text help "${name}")
-    help_options(opts valued choices "${text}")
+    help_options(opts valued choices "${help_${name}}")  # man_page.cmake asked for it once
     if(NOT opts)
       message(FATAL_ERROR "`surrogate help ${name}` lists no option")
     endif()

@@ -25,8 +25,7 @@ set(th "\"${date}\" \"Surrogate ${VERSION}\" \"Surrogate manual\"")
 
 # surrogate.1: what the program is, its commands and exit codes from `surrogate --help`, and
 # where it finds its data files.
-function(write_main_page dir commands described)
-  help_run(text --help)
+function(write_main_page dir commands described text)
   help_lines(lines "${text}")
   list(GET lines 0 first)
   string(REGEX REPLACE "^surrogate [^:]*: " "" tagline "${first}")
@@ -105,15 +104,20 @@ function(write_main_page dir commands described)
   file(WRITE "${dir}/surrogate.1" "${roff}\n")
 endfunction()
 
+# Each help text is asked for once: `surrogate --help` in `top`, each command's in help_COMMAND,
+# which the pages and the completion read.
 help_run(top --help)
 help_commands(commands described "${top}")
+foreach(name IN LISTS commands)
+  help_run(help_${name} help "${name}")
+endforeach()
 file(REMOVE_RECURSE "${OUT}/roff" "${OUT}/man1")  # no page of a command that is gone
 file(MAKE_DIRECTORY "${OUT}/roff" "${OUT}/man1" "${OUT}/completions")
-write_main_page("${OUT}/roff" "${commands}" "${described}")
+write_main_page("${OUT}/roff" "${commands}" "${described}" "${top}")
 foreach(entry IN LISTS described)
   string(REGEX MATCH "^[^=]*" name "${entry}")
   string(REGEX REPLACE "^[^=]*=" "" what "${entry}")
-  write_command_page("${OUT}/roff" "${name}" "${what}" "${th}")
+  write_command_page("${OUT}/roff" "${name}" "${what}" "${th}" "${help_${name}}")
 endforeach()
 
 # gzip -9n: the best compression, and no file name or time stored in the .gz (reproducible).
