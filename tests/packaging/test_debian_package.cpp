@@ -50,12 +50,16 @@ fs::path unpacked(const std::string& name) {
   return root;
 }
 
+// What runs a command as the account `user` (a uid; "": the account running the test).
+std::string asUser(const std::string& user) {
+  return user.empty() ? "" : "setpriv --reuid=" + user + " --regid=" + user + " --clear-groups ";
+}
+
 // `program ARGS` run in `folder`, with no hint of where the data files are (as `user`, when given).
 e2e::CommandResult runIn(const fs::path& folder, const fs::path& program, const std::string& args,
                          const std::string& user = "") {
-  const std::string as = user.empty() ? "" : "setpriv --reuid=" + user + " --regid=" + user + " --clear-groups ";
   // HOME and TMPDIR of its own (the test run's TMPDIR is a folder only its owner may enter).
-  return runShell("cd " + quote(folder) + " && " + as + "env -u SURROGATE_RESOURCES HOME=" + quote(folder) +
+  return runShell("cd " + quote(folder) + " && " + asUser(user) + "env -u SURROGATE_RESOURCES HOME=" + quote(folder) +
                   " TMPDIR=" + quote(folder) + " " +
                   quote(program) + " " + args + " 2>&1");
 }
@@ -81,8 +85,7 @@ class UnprivilegedFolder {
   const std::string& user() const { return user_; }  // "" for the account running the test
   // `command` (a shell command line) in the folder, as the account.
   e2e::CommandResult run(const std::string& command) const {
-    const std::string as = user_.empty() ? "" : "setpriv --reuid=" + user_ + " --regid=" + user_ + " --clear-groups ";
-    return runShell("cd " + quote(path_) + " && " + as + "sh -c " + quote(command) + " 2>&1");
+    return runShell("cd " + quote(path_) + " && " + asUser(user_) + "sh -c " + quote(command) + " 2>&1");
   }
 
  private:
