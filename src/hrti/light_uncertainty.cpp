@@ -171,31 +171,78 @@ LightCovariance lightCovariance(const std::vector<SphereEvidence>& evidence, con
   return out;
 }
 
+namespace {
+
+constexpr int kRadiusSteps = 512;     // points of gaussianRadius's midpoint rule
+constexpr int kRadiusBisections = 60;  // its bisection steps
+
+// The midpoint rule's nodes u_i = -pi/2 + (i + 1/2) pi / n, the same for every covariance and
+// radius: their sines and cosines computed once (the same doubles each time, so the integral
+// is the same bits). `mirror[i]` is the node whose sine is -sin(u_i) and cosine cos(u_i) to the
+// bit, if any (u_{n-1-i}, where rounding allows): its term of the integrand is then the same
+// double, t sin u only changing sign, and is computed once.
+struct RadiusNodes {
+  double sinU[kRadiusSteps], cosU[kRadiusSteps];
+  int mirror[kRadiusSteps];
+};
+
+const RadiusNodes& radiusNodes() {
+  static const RadiusNodes nodes = [] {
+    RadiusNodes n{};
+    for (int i = 0; i < kRadiusSteps; ++i) {
+      const double u = -M_PI / 2 + (i + 0.5) * M_PI / kRadiusSteps;
+      n.sinU[i] = std::sin(u);
+      n.cosU[i] = std::cos(u);
+    }
+    for (int i = 0; i < kRadiusSteps; ++i) {
+      const int j = kRadiusSteps - 1 - i;
+      n.mirror[i] = j < i && n.sinU[j] == -n.sinU[i] && n.cosU[j] == n.cosU[i] ? j : -1;
+    }
+    return n;
+  }();
+  return nodes;
+}
+
+}  // namespace
+
 double gaussianRadius(const double c[2][2], double p) {
   // Along the eigenvectors (variances l1 >= l2): P(|X| <= t) = integral over x in [-t, t] of the
   // normal density of x (variance l1) times P(|Y| <= sqrt(t^2 - x^2)) = erf(sqrt(t^2 - x^2) /
   // sqrt(2 l2)); with x = t sin u the integrand is smooth (midpoint rule), and as l2 -> 0 it
-  // tends to erf(t / sqrt(2 l1)). Solved for t by bisection.
+  // tends to erf(t / sqrt(2 l1)). Solved for t by bisection. What does not depend on t (the
+  // nodes, the square roots) is computed once, as the same operations on the same operands:
+  // the radius is the same bits as when each step computed them (-ffp-contract=off,
+  // CMakeLists.txt).
   const double mean = (c[0][0] + c[1][1]) / 2;
   const double det = c[0][0] * c[1][1] - c[0][1] * c[1][0];
   const double diff = std::sqrt(std::max(0.0, mean * mean - det));
   const double l1 = mean + diff, l2 = std::max(0.0, mean - diff);
   if (!(l1 > 0)) return 0;
+  const RadiusNodes& nodes = radiusNodes();
+  const double twoL1 = 2 * l1, density = std::sqrt(2 * M_PI * l1);
+  const double acrossScale = l2 > 0 ? std::sqrt(2 * l2) : 0;
+  double term[kRadiusSteps];
   auto probability = [&](double t) {
-    constexpr int kSteps = 512;
     double sum = 0;
-    for (int i = 0; i < kSteps; ++i) {
-      const double u = -M_PI / 2 + (i + 0.5) * M_PI / kSteps;
-      const double x = t * std::sin(u), y = t * std::cos(u);
-      const double across = l2 > 0 ? std::erf(y / std::sqrt(2 * l2)) : 1.0;
-      sum += std::exp(-x * x / (2 * l1)) / std::sqrt(2 * M_PI * l1) * across * t * std::cos(u);
+    for (int i = 0; i < kRadiusSteps; ++i) {
+      if (nodes.mirror[i] >= 0) {
+        term[i] = term[nodes.mirror[i]];
+      } else {
+        const double x = t * nodes.sinU[i], y = t * nodes.cosU[i];
+        const double across = l2 > 0 ? std::erf(y / acrossScale) : 1.0;
+        term[i] = std::exp(-x * x / twoL1) / density * across * t * nodes.cosU[i];
+      }
+      sum += term[i];  // in node order, as before
     }
-    return sum * M_PI / kSteps;
+    return sum * M_PI / kRadiusSteps;
   };
   double lo = 0, hi = 4 * std::sqrt(l1 + l2);  // P(|X| <= 4 sqrt(trace)) > 0.999
-  for (int i = 0; i < 60; ++i) {
+  // Once lo and hi are neighbouring doubles the midpoint repeats: its probability is kept.
+  double lastMid = -1, lastProbability = 0;
+  for (int i = 0; i < kRadiusBisections; ++i) {
     const double mid = (lo + hi) / 2;
-    (probability(mid) < p ? lo : hi) = mid;
+    if (mid != lastMid) lastProbability = probability(mid), lastMid = mid;
+    (lastProbability < p ? lo : hi) = mid;
   }
   return hi;
 }
