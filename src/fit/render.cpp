@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <vector>
 
@@ -56,6 +57,36 @@ Image outputImage(int w, int h) {
 // The 8-bit value as a 16-bit sample: round(v) clamped to 0..255, times 257.
 std::uint16_t toSample(double v) { return static_cast<std::uint16_t>(detail::toByte(v) * 257); }
 
+// evaluatePtm(a, lu, lv) at one light as six terms, each a function of one coefficient's byte
+// alone (a_k is (byte - bias_k) scale_k, and the channels share bias and scale): tabulated for
+// the 256 byte values, a texel's value is six look-ups added in evaluatePtm's order, the same
+// double as evaluatePtm gives for its decoded coefficients (-ffp-contract=off, CMakeLists.txt),
+// without decoding six coefficients and multiplying them at every texel.
+class PtmTerms {
+ public:
+  PtmTerms(const formats::PtmFile& ptm, double lu, double lv) {
+    for (int b = 0; b < kByteValues; ++b) {
+      double a[6];
+      for (int k = 0; k < 6; ++k) a[k] = (b - ptm.bias[k]) * ptm.scale[k];  // PtmFile::coefficient
+      term_[0][b] = a[0] * lu * lu;
+      term_[1][b] = a[1] * lv * lv;
+      term_[2][b] = a[2] * lu * lv;
+      term_[3][b] = a[3] * lu;
+      term_[4][b] = a[4] * lv;
+      term_[5][b] = a[5];
+    }
+  }
+  // The value at the texel whose six coefficient bytes start at `bytes`.
+  double evaluate(const std::uint8_t* bytes) const {
+    return term_[0][bytes[0]] + term_[1][bytes[1]] + term_[2][bytes[2]] + term_[3][bytes[3]] +
+           term_[4][bytes[4]] + term_[5][bytes[5]];
+  }
+
+ private:
+  static constexpr int kByteValues = 256;
+  double term_[6][kByteValues];
+};
+
 void forRows(int height, int threads, const std::function<void(int)>& fn) {
   parallelFor(static_cast<std::size_t>(height), 8, effectiveThreads(threads),
               [&](std::size_t b, std::size_t e) {
@@ -72,16 +103,21 @@ Image render(const formats::PtmFile& ptm, const std::array<double, 3>& light,
   const bool gain = options.diffuseGain != 1.0;
   const double kd = options.specular ? options.kd : 1.0;
   Image out = outputImage(ptm.width, ptm.height);
+  const PtmTerms terms(ptm, lu, lv);  // without a gain the coefficients are the file's
+  const std::size_t plane = ptm.texels() * 6;  // bytes of one channel's coefficients
   forRows(ptm.height, options.threads, [&](int y) {
     for (int x = 0; x < ptm.width; ++x) {
       std::array<double, 3> n{0, 0, 1};
       if (gain || options.specular) n = ptmNormal(ptmLuminance(ptm, x, y));
       const double spec = options.specular ? specularTerm(n, l, options) : 0.0;
       double diffuse[3];
+      const std::uint8_t* bytes = &ptm.coefficients[(static_cast<std::size_t>(y) * ptm.width + x) * 6];
       for (int c = 0; c < (lrgb ? 1 : 3); ++c) {
-        PtmCoefficients a = ptmChannel(ptm, x, y, c);
-        if (gain) a = applyDiffuseGain(a, options.diffuseGain, n[0], n[1]);
-        diffuse[c] = evaluatePtm(a, lu, lv);
+        if (gain) {
+          diffuse[c] = evaluatePtm(applyDiffuseGain(ptmChannel(ptm, x, y, c), options.diffuseGain, n[0], n[1]), lu, lv);
+        } else {
+          diffuse[c] = terms.evaluate(bytes + c * plane);
+        }
       }
       for (int c = 0; c < 3; ++c) {
         const double d =
