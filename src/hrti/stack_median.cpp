@@ -33,6 +33,8 @@ std::uint16_t ranked(std::vector<std::uint16_t>& samples, int rank) {
 }
 
 using CompareExchanges = std::vector<std::pair<int, int>>;
+// The ranks wanted of each pixel's samples, each with where its values go (out[p] for pixel p).
+using Ranks = std::vector<std::pair<int, std::uint16_t*>>;
 
 // Batcher's merge-exchange sort (Knuth, The Art of Computer Programming, 5.2.2, Algorithm M) as
 // its list of compare-exchanges (i, j), i < j, each putting the smaller value at i: a fixed
@@ -57,13 +59,13 @@ CompareExchanges mergeExchangeSort(int n) {
 }
 
 #if defined(__x86_64__) && defined(__GNUC__)
-// The samples of rank `rank` of pixels [b, e) sixteen at a time (the 16-bit samples of one
+// The samples of each rank of `ranks` of pixels [b, e) sixteen at a time (the 16-bit samples of one
 // pixel in one lane of n registers, sorted by `sort`); returns the first pixel left for the
 // caller. The sort is exact, so this gives what nth_element gives; in a `perf` profile of `surrogate
 // lights` on 36 x 3000x2000 the medians went from 4.3 to 0.5 % of the samples.
-__attribute__((target("avx2"))) std::size_t rankedAvx2(const std::uint16_t* planes, int n, int rank, std::size_t plane,
-                                                       std::size_t b, std::size_t e, const CompareExchanges& sort,
-                                                       std::uint16_t* out) {
+__attribute__((target("avx2"))) std::size_t rankedAvx2(const std::uint16_t* planes, int n, const Ranks& ranks,
+                                                       std::size_t plane, std::size_t b, std::size_t e,
+                                                       const CompareExchanges& sort) {
   // The n registers' worth in memory of their alignment (a std::vector drops it).
   const std::unique_ptr<void, void (*)(void*)> block(std::aligned_alloc(32, sizeof(__m256i) * n), std::free);
   if (!block) throw std::bad_alloc();
@@ -77,15 +79,15 @@ __attribute__((target("avx2"))) std::size_t rankedAvx2(const std::uint16_t* plan
       v[j] = _mm256_max_epu16(v[i], v[j]);
       v[i] = low;
     }
-    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + p), v[rank]);
+    for (const auto& [rank, out] : ranks) _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + p), v[rank]);
   }
   return p;
 }
 #endif
 
 // out[p] = the sample of rank `rank` of planes[i * plane + p] over the n planes, for every
-// p < plane.
-void rankedOfPlanes(const std::uint16_t* planes, int n, int rank, std::size_t plane, int threads, std::uint16_t* out) {
+// p < plane and every (rank, out) of `ranks`.
+void rankedOfPlanes(const std::uint16_t* planes, int n, const Ranks& ranks, std::size_t plane, int threads) {
 #if defined(__x86_64__) && defined(__GNUC__)
   const bool avx2 = cpuHasAvx2() && n > 1;
 #else
@@ -95,12 +97,13 @@ void rankedOfPlanes(const std::uint16_t* planes, int n, int rank, std::size_t pl
   parallelFor(plane, 4096, effectiveThreads(threads), [&](std::size_t b, std::size_t e) {
     std::size_t p = b;
 #if defined(__x86_64__) && defined(__GNUC__)
-    if (avx2) p = rankedAvx2(planes, n, rank, plane, b, e, sort, out);
+    if (avx2) p = rankedAvx2(planes, n, ranks, plane, b, e, sort);
 #endif
     std::vector<std::uint16_t> samples(n);
     for (; p < e; ++p) {
       for (int i = 0; i < n; ++i) samples[i] = planes[i * plane + p];
-      out[p] = ranked(samples, rank);
+      // nth_element only reorders: the next rank is found as exactly among the reordered samples.
+      for (const auto& [rank, out] : ranks) out[p] = ranked(samples, rank);
     }
   });
 }
@@ -144,11 +147,24 @@ int StackMedian::factorFor(int width, int coarseWidth) {
 
 StackMedian::StackMedian(std::shared_ptr<const ImageStack> luminance, int coarseWidth, int threads,
                          std::size_t coarseBudget, double quantile)
-    : StackMedian(luminance, luminance.get(), coarseWidth, threads, coarseBudget, quantile) {}
+    : StackMedian(luminance, luminance.get(), coarseWidth, threads, quantile) {
+  computeCoarse({this}, coarseBudget);
+}
 
 StackMedian::StackMedian(const ImageStack& luminance, int coarseWidth, int threads, std::size_t coarseBudget,
                          double quantile)
-    : StackMedian(nullptr, &luminance, coarseWidth, threads, coarseBudget, quantile) {}
+    : StackMedian(nullptr, &luminance, coarseWidth, threads, quantile) {
+  computeCoarse({this}, coarseBudget);
+}
+
+std::pair<std::shared_ptr<StackMedian>, std::shared_ptr<StackMedian>> StackMedian::medianAnd(
+    std::shared_ptr<const ImageStack> luminance, double other, int coarseWidth, int threads, std::size_t coarseBudget) {
+  // Not make_shared: the constructor that leaves the coarse image to computeCoarse is private.
+  std::shared_ptr<StackMedian> median(new StackMedian(luminance, luminance.get(), coarseWidth, threads, 0.5));
+  std::shared_ptr<StackMedian> quantile(new StackMedian(luminance, luminance.get(), coarseWidth, threads, other));
+  computeCoarse({median.get(), quantile.get()}, coarseBudget);
+  return {median, quantile};
+}
 
 int StackMedian::rankFor(int n, double quantile) {
   if (!(quantile >= 0 && quantile <= 1))
@@ -157,7 +173,7 @@ int StackMedian::rankFor(int n, double quantile) {
 }
 
 StackMedian::StackMedian(std::shared_ptr<const ImageStack> owner, const ImageStack* luminance, int coarseWidth,
-                         int threads, std::size_t coarseBudget, double quantile)
+                         int threads, double quantile)
     : owner_(std::move(owner)),
       stack_(checked(luminance)),
       threads_(threads),
@@ -165,19 +181,23 @@ StackMedian::StackMedian(std::shared_ptr<const ImageStack> owner, const ImageSta
       factor_(factorFor(stack_.width(), coarseWidth)),
       tilesX_((stack_.width() + kTile - 1) / kTile),
       tilesY_((stack_.height() + kTile - 1) / kTile),
-      tiles_(std::size_t(tilesX_) * tilesY_) {
-  computeCoarse(coarseBudget);
-}
+      tiles_(std::size_t(tilesX_) * tilesY_) {}
 
 // Bands of coarse rows: every image's reduced band (each image reduced by one thread, into its
-// own plane), then the median of each coarse pixel over the planes.
-void StackMedian::computeCoarse(std::size_t coarseBudget) {
-  const int n = stack_.size(), w = width(), h = height(), f = factor_;
+// own plane), then each median's rank of each coarse pixel over the planes.
+void StackMedian::computeCoarse(const std::vector<StackMedian*>& medians, std::size_t coarseBudget) {
+  const StackMedian& first = *medians.front();
+  const ImageStack& stack = first.stack_;
+  const int n = stack.size(), w = first.width(), h = first.height(), f = first.factor_, threads = first.threads_;
   const int cw = (w + f - 1) / f, ch = (h + f - 1) / f;
-  coarse_ = Image(cw, ch, 1);
-  coarse_.transfer = transfer();
+  for (StackMedian* m : medians) {
+    if (&m->stack_ != &stack || m->factor_ != f || m->threads_ != threads)
+      throw Error(ErrorKind::Internal, "", kStep, "medians computed together must share their stack and reduction");
+    m->coarse_ = Image(cw, ch, 1);
+    m->coarse_.transfer = first.transfer();
+  }
   // A stack already in memory is read where it is: a copy of its rows would cost time for nothing.
-  const auto* held = dynamic_cast<const MemoryImageStack*>(&stack_);
+  const auto* held = dynamic_cast<const MemoryImageStack*>(&stack);
   const std::size_t perCoarseRow = std::size_t(n) * cw * sizeof(std::uint16_t);
   const int bandRows = static_cast<int>(std::clamp<std::size_t>(coarseBudget / perCoarseRow, 1, std::size_t(ch)));
   const int rowsPerRead = static_cast<int>(std::max<std::size_t>(1, kReadBytes / (std::size_t(f) * w * 2)));
@@ -187,7 +207,7 @@ void StackMedian::computeCoarse(std::size_t coarseBudget) {
   for (int cy0 = 0; cy0 < ch; cy0 += bandRows) {
     const int count = std::min(bandRows, ch - cy0);
     const std::size_t plane = std::size_t(count) * cw;
-    parallelFor(n, 1, effectiveThreads(threads_), [&](std::size_t b, std::size_t e) {
+    parallelFor(n, 1, effectiveThreads(threads), [&](std::size_t b, std::size_t e) {
       std::vector<std::uint16_t> rows(held ? 0 : std::size_t(rowsPerRead) * f * w);
       for (std::size_t i = b; i < e; ++i) {
         std::uint16_t* out = &reduced[i * plane];
@@ -197,16 +217,20 @@ void StackMedian::computeCoarse(std::size_t coarseBudget) {
           if (held)
             from = held->image(static_cast<int>(i)).pixels.data() + std::size_t(y0) * w;
           else
-            stack_.readRows(static_cast<int>(i), y0, y1, rows.data());
+            stack.readRows(static_cast<int>(i), y0, y1, rows.data());
           reduceRows(from, y0, y1, w, f, out + std::size_t(cy - cy0) * cw);
         }
         for (std::size_t p = 0; p < plane; ++p) sums[i] += out[p];
       }
     });
-    rankedOfPlanes(reduced.data(), n, rank_, plane, threads_, &coarse_.pixels[std::size_t(cy0) * cw]);
+    Ranks ranks;
+    for (StackMedian* m : medians) ranks.emplace_back(m->rank_, &m->coarse_.pixels[std::size_t(cy0) * cw]);
+    rankedOfPlanes(reduced.data(), n, ranks, plane, threads);
   }
-  imageMeans_.resize(n);
-  for (int i = 0; i < n; ++i) imageMeans_[i] = double(sums[i]) / (double(cw) * ch) / 65535.0;
+  for (StackMedian* m : medians) {
+    m->imageMeans_.resize(n);
+    for (int i = 0; i < n; ++i) m->imageMeans_[i] = double(sums[i]) / (double(cw) * ch) / 65535.0;
+  }
 }
 
 // Tiles firstTile..lastTile of one tile row: the tiles' window of every image (readWindow),
@@ -221,7 +245,7 @@ void StackMedian::computeTiles(int tileRow, int firstTile, int lastTile) const {
     for (std::size_t i = b; i < e; ++i) stack_.readWindow(static_cast<int>(i), x0, y0, x1, y1, &band[i * plane]);
   });
   std::vector<std::uint16_t> medians(plane);
-  rankedOfPlanes(band.data(), n, rank_, plane, threads_, medians.data());
+  rankedOfPlanes(band.data(), n, {{rank_, medians.data()}}, plane, threads_);
   for (int tx = firstTile; tx <= lastTile; ++tx) {
     std::vector<std::uint16_t>& tile = tiles_[std::size_t(tileRow) * tilesX_ + tx];
     if (!tile.empty()) continue;

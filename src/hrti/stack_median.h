@@ -30,6 +30,7 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <utility>
 #include <vector>
 
 #include "core/image.h"
@@ -57,6 +58,13 @@ class StackMedian {
   // The rank (0: the smallest) of quantile q among n samples: floor(q (n - 1)).
   static int rankFor(int n, double quantile);
 
+  // The median and the quantile `other` of one stack from a single reading of it: the same
+  // coarse images and windows as two StackMedians made one after the other, for half the
+  // reading and reducing (sphere detection needs both; the reading was a tenth of a run).
+  static std::pair<std::shared_ptr<StackMedian>, std::shared_ptr<StackMedian>> medianAnd(
+      std::shared_ptr<const ImageStack> luminance, double other, int coarseWidth, int threads,
+      std::size_t coarseBudget = kCoarseBudget);
+
   int width() const { return stack_.width(); }  // full resolution
   int height() const { return stack_.height(); }
   Transfer transfer() const { return stack_.transfer(); }
@@ -73,8 +81,10 @@ class StackMedian {
  private:
   // `owner` keeps `luminance` alive, or is empty when the caller does.
   StackMedian(std::shared_ptr<const ImageStack> owner, const ImageStack* luminance, int coarseWidth, int threads,
-              std::size_t coarseBudget, double quantile);
-  void computeCoarse(std::size_t coarseBudget);
+              double quantile);
+  // The coarse images of every median of `medians` (all of one stack, factor and thread count)
+  // from one reading of the stack.
+  static void computeCoarse(const std::vector<StackMedian*>& medians, std::size_t coarseBudget);
   void computeTiles(int tileRow, int firstTile, int lastTile) const;
 
   std::shared_ptr<const ImageStack> owner_;  // empty when the caller keeps the stack

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <tuple>
 
 #include "capture/capture.h"
 #include "carrier/carrier.h"
@@ -76,12 +78,20 @@ void SphereDetectionStage::run(const carrier::Step& step, pipeline::Context& ctx
   const auto lum = ctx.get<ImageStack>(kLuminanceStack);
   hrti::SphereDetectionOptions options = hrti::SphereDetectionOptions::fromParameters(parametersOf(step));
   options.threads = ctx.settings.threads;
-  // The reduced median of the stack is most of the work; the circle search follows it.
+  // The reduced median of the stack is most of the work; the circle search follows it. The
+  // search finds the rim in an upper quantile of the stack (hrti/sphere_detection.h), made in the
+  // same reading; with fewer than four images that is nearly the brightest, which keeps the
+  // highlights: the median then.
   ctx.progress("Sphere detection", 0);
-  auto median = std::make_shared<hrti::StackMedian>(lum, options.coarseWidth, ctx.settings.threads);
+  const auto manual = step.interventionsOfKind("manual-sphere");
+  std::shared_ptr<hrti::StackMedian> median, rim;
+  if (manual.empty() && lum->size() >= 4)
+    std::tie(median, rim) =
+        hrti::StackMedian::medianAnd(lum, hrti::kRimQuantile, options.coarseWidth, ctx.settings.threads);
+  else
+    median = std::make_shared<hrti::StackMedian>(lum, options.coarseWidth, ctx.settings.threads);
 
   auto spheres = std::make_shared<Spheres>();
-  const auto manual = step.interventionsOfKind("manual-sphere");
   if (!manual.empty()) {
     for (const carrier::Intervention* i : manual) {
       const std::vector<double> v = recordedNumbers(i->value, 3, "manual sphere");
@@ -122,15 +132,7 @@ void SphereDetectionStage::run(const carrier::Step& step, pipeline::Context& ctx
   } else {
     ctx.progress("Sphere detection", 0.6);
     try {
-      // The rim in an upper quantile of the stack (hrti/sphere_detection.h); with fewer than four
-      // images that is nearly the brightest, which keeps the highlights: the median then.
-      if (lum->size() >= 4) {
-        const hrti::StackMedian rim(lum, options.coarseWidth, ctx.settings.threads, hrti::StackMedian::kCoarseBudget,
-                                    hrti::kRimQuantile);
-        *spheres = hrti::detectSpheres(*median, rim, options);
-      } else {
-        *spheres = hrti::detectSpheres(*median, options);
-      }
+      *spheres = rim ? hrti::detectSpheres(*median, *rim, options) : hrti::detectSpheres(*median, options);
     } catch (const Error& e) {
       // Last in the list of what to do: a dome capture's own light file, when there is one.
       const std::string lp = lightFileInCapture(ctx.capture);

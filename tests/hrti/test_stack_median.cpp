@@ -3,6 +3,7 @@
 // stack is in memory (read where it is) or read by rows (a spilled stack), at 1 and 2 threads.
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <random>
 #include <vector>
 
@@ -159,4 +160,42 @@ TEST_CASE("a quantile's windows and reduced image are each pixel's sample of ran
   }
   CHECK(StackMedian::rankFor(12, 0.5) == 5);  // the lower median, as StackMedian's default
   CHECK_THROWS_AS(StackMedian::rankFor(12, 1.5), Error);
+}
+
+TEST_CASE("the median and another quantile from one reading are each pixel's samples of both ranks") {
+  const int w = 151, h = 97;  // blocks and tiles cut by both edges
+  for (int n : {1, 4, 13, 36}) {  // 36: a sorting network of many stages (AVX2); 13: a scalar tail
+    const std::vector<Image> images = noise(n, w, h, 23 + n);
+    const std::size_t middle = static_cast<std::size_t>(n - 1) / 2;
+    const std::size_t upper = static_cast<std::size_t>(std::floor(0.75 * (n - 1)));
+    std::vector<Image> reduced;
+    for (const Image& im : images) reduced.push_back(plainReduced(im, 3));
+    auto held = std::make_shared<MemoryImageStack>(images);
+    auto rows = std::make_shared<test::RowsOnlyStack>(*held);  // read by rows, as a spilled stack
+    for (std::shared_ptr<const ImageStack> stack : {std::shared_ptr<const ImageStack>(held),
+                                                   std::shared_ptr<const ImageStack>(rows)})
+      for (int threads : {1, 2})
+        for (std::size_t budget : {std::size_t(1), StackMedian::kCoarseBudget}) {  // one coarse row a band, or all
+          INFO(n << " images, " << threads << " threads, budget " << budget << (stack == held ? ", in memory" : ", by rows"));
+          const auto [median, quantile] = StackMedian::medianAnd(stack, 0.75, 50, threads, budget);
+          REQUIRE(median->factor() == 3);
+          REQUIRE(quantile->factor() == 3);
+          CHECK(median->coarse().pixels == plainRanked(reduced, middle).pixels);
+          CHECK(quantile->coarse().pixels == plainRanked(reduced, upper).pixels);
+          const hrti::Rect r{60, 0, 91, 40};
+          CHECK(median->window(r).pixels == crop(plainRanked(images, middle), r).pixels);
+          CHECK(quantile->window(r).pixels == crop(plainRanked(images, upper), r).pixels);
+          // Each image's mean of its reduced copy, as one median alone gives it.
+          std::vector<double> means;
+          for (const Image& im : reduced) {
+            double sum = 0;
+            for (std::uint16_t v : im.pixels) sum += v;
+            means.push_back(sum / double(im.pixels.size()) / 65535.0);
+          }
+          for (const auto& m : {median, quantile}) {
+            REQUIRE(m->imageMeans().size() == means.size());
+            for (std::size_t i = 0; i < means.size(); ++i) CHECK(m->imageMeans()[i] == Approx(means[i]).epsilon(1e-12));
+          }
+        }
+  }
 }
