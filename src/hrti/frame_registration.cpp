@@ -7,8 +7,17 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
+#include <memory>
+#include <new>
 
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#endif
+
+#include "core/cpu_features.h"
 #include "core/parallel.h"
+#include "hrti/merge_exchange.h"
 
 namespace surrogate::hrti {
 
@@ -31,6 +40,72 @@ cv::Mat reduced(const ImageStack& stack, int index, int f) {
     }
   }
   return out;
+}
+
+// Rows [b, e) of the per-pixel median of `frames`, each pixel's value of rank `rank`, from column
+// x0 on (columns before it done by the caller).
+void medianRows(const std::vector<cv::Mat>& frames, int rank, std::size_t b, std::size_t e, int x0, cv::Mat& median) {
+  std::vector<float> values(frames.size());
+  for (std::size_t y = b; y < e; ++y) {
+    float* out = median.ptr<float>(static_cast<int>(y));
+    for (int x = x0; x < median.cols; ++x) {
+      for (std::size_t i = 0; i < frames.size(); ++i) values[i] = frames[i].ptr<float>(static_cast<int>(y))[x];
+      std::nth_element(values.begin(), values.begin() + rank, values.end());
+      out[x] = values[static_cast<std::size_t>(rank)];
+    }
+  }
+}
+
+#if defined(__x86_64__) && defined(__GNUC__)
+// As medianRows, eight pixels at a time (the values of one pixel in one lane of n registers,
+// sorted by `sort`); returns the first column left for medianRows. Min and max only move values
+// (and the reduced values are finite, never NaN), so this is the value nth_element picks. In a
+// `perf` profile of `surrogate run` on 36 frames of 1200x800 the median went from 2.4 to 0.5 % of
+// the samples.
+__attribute__((target("avx2"))) int medianRowsAvx2(const std::vector<cv::Mat>& frames, int rank, std::size_t b,
+                                                   std::size_t e, const CompareExchanges& sort, cv::Mat& median) {
+  constexpr int kLanes = 8;
+  const int n = static_cast<int>(frames.size()), cols = median.cols / kLanes * kLanes;
+  // The n registers' worth in memory of their alignment (a std::vector drops it).
+  const std::unique_ptr<void, void (*)(void*)> block(std::aligned_alloc(32, sizeof(__m256) * n), std::free);
+  if (!block) throw std::bad_alloc();
+  __m256* v = static_cast<__m256*>(block.get());
+  for (std::size_t y = b; y < e; ++y) {
+    float* out = median.ptr<float>(static_cast<int>(y));
+    for (int x = 0; x < cols; x += kLanes) {
+      for (int i = 0; i < n; ++i)
+        v[i] = _mm256_loadu_ps(frames[static_cast<std::size_t>(i)].ptr<float>(static_cast<int>(y)) + x);
+      for (const auto& [i, j] : sort) {
+        const __m256 low = _mm256_min_ps(v[i], v[j]);
+        v[j] = _mm256_max_ps(v[i], v[j]);
+        v[i] = low;
+      }
+      _mm256_storeu_ps(out + x, v[rank]);
+    }
+  }
+  return cols;
+}
+#endif
+
+// The per-pixel median of the reduced frames (at least two, one size): the lower of the two
+// middle values.
+cv::Mat medianOf(const std::vector<cv::Mat>& frames, int workers) {
+  const int n = static_cast<int>(frames.size()), rank = (n - 1) / 2;
+  cv::Mat median(frames.front().rows, frames.front().cols, CV_32F);
+#if defined(__x86_64__) && defined(__GNUC__)
+  const bool avx2 = cpuHasAvx2();
+#else
+  const bool avx2 = false;
+#endif
+  const CompareExchanges sort = avx2 ? mergeExchangeSort(n) : CompareExchanges();
+  parallelFor(static_cast<std::size_t>(median.rows), 8, workers, [&](std::size_t b, std::size_t e) {
+    int x0 = 0;
+#if defined(__x86_64__) && defined(__GNUC__)
+    if (avx2) x0 = medianRowsAvx2(frames, rank, b, e, sort, median);
+#endif
+    medianRows(frames, rank, b, e, x0, median);
+  });
+  return median;
 }
 
 cv::Mat gradient(const cv::Mat& image) {
@@ -104,18 +179,7 @@ std::vector<FrameMotion> registerFrames(const ImageStack& stack, int threads) {
   parallelFor(static_cast<std::size_t>(n), 1, workers, [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) frames[i] = reduced(stack, static_cast<int>(i), f);
   });
-  // The per-pixel median of the reduced frames: the lower of the two middle values.
-  cv::Mat median(h, w, CV_32F);
-  parallelFor(static_cast<std::size_t>(h), 8, workers, [&](std::size_t b, std::size_t e) {
-    std::vector<float> values(static_cast<std::size_t>(n));
-    for (std::size_t y = b; y < e; ++y)
-      for (int x = 0; x < w; ++x) {
-        for (int i = 0; i < n; ++i)
-          values[static_cast<std::size_t>(i)] = frames[static_cast<std::size_t>(i)].at<float>(static_cast<int>(y), x);
-        std::nth_element(values.begin(), values.begin() + (n - 1) / 2, values.end());
-        median.at<float>(static_cast<int>(y), x) = values[static_cast<std::size_t>((n - 1) / 2)];
-      }
-  });
+  const cv::Mat median = medianOf(frames, workers);
   const cv::Mat reference = gradient(median);
   const int qw = w / 2, qh = h / 2;
   cv::Mat window;
