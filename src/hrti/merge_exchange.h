@@ -1,8 +1,8 @@
 // Batcher's merge-exchange sort (Knuth, The Art of Computer Programming, 5.2.2, Algorithm M) as
 // its list of compare-exchanges: a sorting network, the same fixed sequence for any n values, so
 // that it can sort the values of several pixels at once, one pixel in each lane of SIMD
-// registers (the reduced frames' median in hrti/frame_registration.cpp; hrti/stack_median.cpp
-// builds the same network for the stack's median). Only min and max move values, so the sorted
+// registers (the reduced frames' median in hrti/frame_registration.cpp, the stack's median and
+// quantiles in hrti/stack_median.cpp). Only min and max move values, so the sorted
 // values are exactly those std::sort or std::nth_element give.
 #pragma once
 

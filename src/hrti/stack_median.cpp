@@ -16,6 +16,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/resident.h"
+#include "hrti/merge_exchange.h"
 
 namespace surrogate::hrti {
 
@@ -32,31 +33,8 @@ std::uint16_t ranked(std::vector<std::uint16_t>& samples, int rank) {
   return *at;
 }
 
-using CompareExchanges = std::vector<std::pair<int, int>>;
 // The ranks wanted of each pixel's samples, each with where its values go (out[p] for pixel p).
 using Ranks = std::vector<std::pair<int, std::uint16_t*>>;
-
-// Batcher's merge-exchange sort (Knuth, The Art of Computer Programming, 5.2.2, Algorithm M) as
-// its list of compare-exchanges (i, j), i < j, each putting the smaller value at i: a fixed
-// sequence that sorts any n values, so that it can be applied to sixteen pixels at once.
-CompareExchanges mergeExchangeSort(int n) {
-  CompareExchanges pairs;
-  if (n < 2) return pairs;
-  int t = 0;
-  while ((1 << t) < n) ++t;
-  for (int p = 1 << (t - 1); p > 0; p >>= 1) {
-    int q = 1 << (t - 1), r = 0, d = p;
-    for (;;) {
-      for (int i = 0; i + d < n; ++i)
-        if ((i & p) == r) pairs.emplace_back(i, i + d);
-      if (q == p) break;
-      d = q - p;
-      q >>= 1;
-      r = p;
-    }
-  }
-  return pairs;
-}
 
 #if defined(__x86_64__) && defined(__GNUC__)
 // The samples of each rank of `ranks` of pixels [b, e) sixteen at a time (the 16-bit samples of one
