@@ -72,6 +72,28 @@ void rimSigmas(const CircleFit& fit, int rays, DetectedSphere& out) {
 // A ray whose rim point lies within this of the frame's edge (pixels) is not searched.
 constexpr double kFrameInset = 2;
 
+// The rays from the centre, and the step along each (pixels).
+constexpr int kRays = 360;
+constexpr double kStep = 0.25;
+
+// The rays' cosines and sines, computed once: every pass of every circle takes the same 360.
+const std::vector<double>& rayCos() {
+  static const std::vector<double> table = [] {
+    std::vector<double> v(kRays);
+    for (int k = 0; k < kRays; ++k) v[k] = std::cos(2 * M_PI * k / kRays);
+    return v;
+  }();
+  return table;
+}
+const std::vector<double>& raySin() {
+  static const std::vector<double> table = [] {
+    std::vector<double> v(kRays);
+    for (int k = 0; k < kRays; ++k) v[k] = std::sin(2 * M_PI * k / kRays);
+    return v;
+  }();
+  return table;
+}
+
 }  // namespace
 
 DetectedSphere refineRim(const StackMedian& median, double cx, double cy, double r, double margin, bool ofVisible) {
@@ -87,34 +109,37 @@ DetectedSphere refineRim(const StackMedian& median, double cx, double cy, double
     cv::Mat gx, gy;
     cv::Sobel(window, gx, CV_32F, 1, 0, 3);
     cv::Sobel(window, gy, CV_32F, 0, 1, 3);
-    auto sample = [&](const cv::Mat& m, double x, double y) {
+    // The radial derivative at (x, y): both gradients interpolated bilinearly at one place (NaN
+    // outside the window).
+    auto radial = [&](double x, double y, double ca, double sa) {
       x -= x0;
       y -= y0;
       const int ix = static_cast<int>(std::floor(x)), iy = static_cast<int>(std::floor(y));
-      if (ix < 0 || iy < 0 || ix + 1 >= m.cols || iy + 1 >= m.rows) return std::nan("");
+      if (ix < 0 || iy < 0 || ix + 1 >= gx.cols || iy + 1 >= gx.rows) return std::nan("");
       const double fx = x - ix, fy = y - iy;
-      return (m.at<float>(iy, ix) * (1 - fx) + m.at<float>(iy, ix + 1) * fx) * (1 - fy) +
-             (m.at<float>(iy + 1, ix) * (1 - fx) + m.at<float>(iy + 1, ix + 1) * fx) * fy;
+      const float* gx0 = gx.ptr<float>(iy) + ix;
+      const float* gx1 = gx.ptr<float>(iy + 1) + ix;
+      const float* gy0 = gy.ptr<float>(iy) + ix;
+      const float* gy1 = gy.ptr<float>(iy + 1) + ix;
+      const double vx = (gx0[0] * (1 - fx) + gx0[1] * fx) * (1 - fy) + (gx1[0] * (1 - fx) + gx1[1] * fx) * fy;
+      const double vy = (gy0[0] * (1 - fx) + gy0[1] * fx) * (1 - fy) + (gy1[0] * (1 - fx) + gy1[1] * fx) * fy;
+      return vx * ca + vy * sa;
     };
     std::vector<Point2> points;
     std::vector<double> strengths;
-    constexpr int kRays = 360;
-    constexpr double kStep = 0.25;
+    std::vector<double> profile;
     int visible = 0;
     for (int k = 0; k < kRays; ++k) {
-      const double a = 2 * M_PI * k / kRays, ca = std::cos(a), sa = std::sin(a);
+      const double ca = rayCos()[k], sa = raySin()[k];
       const double rimX = out.cx + out.r * ca, rimY = out.cy + out.r * sa;
       if (rimX < kFrameInset || rimY < kFrameInset || rimX > median.width() - 1 - kFrameInset ||
           rimY > median.height() - 1 - kFrameInset)
         continue;
       ++visible;
       double bestValue = -1, bestT = 0, before = 0, after = 0;
-      std::vector<double> profile;
-      for (double t = out.r - margin; t <= out.r + margin; t += kStep) {
-        const double x = out.cx + t * ca, y = out.cy + t * sa;
-        const double v = sample(gx, x, y) * ca + sample(gy, x, y) * sa;  // radial derivative
-        profile.push_back(v);
-      }
+      profile.clear();
+      for (double t = out.r - margin; t <= out.r + margin; t += kStep)
+        profile.push_back(radial(out.cx + t * ca, out.cy + t * sa, ca, sa));
       for (std::size_t i = 1; i + 1 < profile.size(); ++i) {
         if (std::isnan(profile[i])) continue;
         if (profile[i] > bestValue) {
