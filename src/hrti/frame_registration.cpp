@@ -18,6 +18,7 @@
 #include "core/cpu_features.h"
 #include "core/parallel.h"
 #include "hrti/merge_exchange.h"
+#include "hrti/phase_correlation.h"
 
 namespace surrogate::hrti {
 
@@ -192,24 +193,27 @@ std::vector<FrameMotion> registerFrames(const ImageStack& stack, int threads) {
   }
   // Each quarter's shift is that of its strongest edges: the point it applies to is the centroid
   // of the median's gradient there (weighted by the window), not the quarter's centre.
-  std::array<cv::Mat, 4> referenceQuarters;
+  // The median's quarters are every frame's reference: their spectra are computed once.
+  std::vector<PhaseReference> referenceQuarters;
   for (int q = 0; q < 4; ++q) {
-    referenceQuarters[q] = reference(quarters[q]).clone();
-    const cv::Mat weight = referenceQuarters[q].mul(window);
+    const cv::Mat quarter = reference(quarters[q]);
+    referenceQuarters.emplace_back(quarter, window);
+    const cv::Mat weight = quarter.mul(window);
     const cv::Moments m = cv::moments(weight);
     if (m.m00 > 0)
       centres[q] = {quarters[q].x + m.m10 / m.m00 - w / 2.0, quarters[q].y + m.m01 / m.m00 - h / 2.0};
   }
-  parallelFor(static_cast<std::size_t>(n), 1, workers, [&](std::size_t b, std::size_t e) {
+  std::vector<PhaseWorkspace> scratch(static_cast<std::size_t>(std::max(1, workers)));
+  parallelForWorkers(static_cast<std::size_t>(n), 1, workers, [&](int worker, std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) {
       const cv::Mat g = gradient(frames[i]);
       std::array<cv::Point2d, 4> shift;
       std::array<bool, 4> usable;
       std::array<double, 4> response;
       for (int q = 0; q < 4; ++q) {
-        // Both clones: with sizes the DFT takes as they are, phaseCorrelate multiplies its
-        // inputs by the window in place, which would change the shared reference.
-        shift[q] = cv::phaseCorrelate(referenceQuarters[q].clone(), g(quarters[q]).clone(), window, &response[q]);
+        const PhaseShift s = referenceQuarters[q].correlate(g(quarters[q]), scratch[static_cast<std::size_t>(worker)]);
+        shift[q] = s.shift;
+        response[q] = s.response;
         usable[q] = response[q] >= RegistrationLimits::kMinResponse;
       }
       // The quarters a motion is fitted to must, together, correlate clearly: three weak peaks

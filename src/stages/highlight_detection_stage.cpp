@@ -104,8 +104,12 @@ pipeline::StageInfo HighlightDetectionStage::info() {
   // 11: with the lights' distance stated (LightDirections' lightDistance), the faint rule brings
   //    each highlight's light to the sphere's median distance (a near flash on the far side of
   //    the frame gives a sphere less light, and was refused as faint)
+  // 12: frame-moved's phase correlations by hrti/phase_correlation.h (the median's spectra
+  //    computed once), not cv::phaseCorrelate: shifts and peaks differ in the last bits, and by
+  //    half a pixel where a quarter's padded width or height is odd (cv::phaseCorrelate's offset);
+  //    frame-moved's verdicts and pixels on the test captures unchanged
   pipeline::StageInfo info = pipeline::withOptions<hrti::HighlightOptions>(
-      {kComponent, "11",
+      {kComponent, "12",
        "Find the specular highlight on each sphere in each image: the peak of the image's rise "
        "above the stack's median, blurred; the centroid of its core, or the deepest point of its "
        "saturated plateau when clipped",
