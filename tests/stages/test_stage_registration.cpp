@@ -97,7 +97,7 @@ TEST_CASE("built-in stages keep their recorded names, versions and default param
   const auto& r = pipeline::StageRegistry::instance();
   // What existing carriers record: changing any of these makes old packages fail verification.
   const std::vector<std::pair<std::string, std::string>> versions = {
-      {"CaptureIngest", "3"}, {"ImageDecode", "3"}, {"SphereDetection", "9"}, {"HighlightDetection", "11"},
+      {"CaptureIngest", "3"}, {"ImageDecode", "3"}, {"SphereDetection", "9"}, {"HighlightDetection", "12"},
       {"LightDirections", "7"}, {"LightsFromFile", "4"}, {"WhiteBalance", "1"}, {"Crop", "1"},
       {"Resize", "1"}, {"RtiFit", "7"}, {"LearnedFit", "1"}, {"DerivedMaps", "5"}, {"WebCopy", "4"}, {"Audit", "7"},
       {"ColourCorrection", "1"}};
