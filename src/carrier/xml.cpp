@@ -6,7 +6,10 @@
 #include <libxml/xmlschemas.h>
 #include <libxml/xmlversion.h>
 
+#include <cstdint>
 #include <cstring>
+#include <filesystem>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -90,23 +93,49 @@ DocPtr parseSafely(const std::string& text, const std::string& source,
 
 namespace {
 
-// Validates a parsed document against the schema file `xsd`.
-void validateDocument(xmlDoc* doc, const std::string& source, const std::filesystem::path& xsd) {
+using SchemaPtr = std::shared_ptr<xmlSchema>;
+
+// The schema in the file `xsd`, parsed once per process while the file keeps its size and
+// modification time: `run` saves its carrier after every step, each save validated, and parsing
+// carrier.xsd again every time was about half of each save. A parsed schema is only read while
+// validating, so one may serve several validations at once (each with a context of its own).
+SchemaPtr loadSchema(const std::filesystem::path& xsd) {
+  struct Loaded {
+    std::uintmax_t size = 0;
+    std::filesystem::file_time_type modified;
+    SchemaPtr schema;
+  };
+  static std::mutex mutex;
+  static std::map<std::filesystem::path, Loaded> loaded;
+  std::error_code sizeError, timeError;
+  const std::uintmax_t size = std::filesystem::file_size(xsd, sizeError);
+  const auto modified = std::filesystem::last_write_time(xsd, timeError);
+  const bool stamped = !sizeError && !timeError;
+  std::lock_guard<std::mutex> lock(mutex);
+  const auto it = loaded.find(xsd);
+  if (stamped && it != loaded.end() && it->second.size == size && it->second.modified == modified)
+    return it->second.schema;
   ErrorCollector schemaErrors;
   xmlSchemaParserCtxtPtr pctxt = xmlSchemaNewParserCtxt(xsd.c_str());
   xmlSchemaSetParserStructuredErrors(pctxt, &ErrorCollector::collect, &schemaErrors);
-  xmlSchemaPtr schema = pctxt ? xmlSchemaParse(pctxt) : nullptr;
+  SchemaPtr schema(pctxt ? xmlSchemaParse(pctxt) : nullptr, xmlSchemaFree);
   xmlSchemaFreeParserCtxt(pctxt);
   if (!schema) {
     throw Error(ErrorKind::Internal, xsd.string(), "schema",
                 "the XML schema could not be loaded (" + schemaErrors.text + ")");
   }
+  if (stamped) loaded[xsd] = {size, modified, schema};
+  return schema;
+}
+
+// Validates a parsed document against the schema file `xsd`.
+void validateDocument(xmlDoc* doc, const std::string& source, const std::filesystem::path& xsd) {
+  const SchemaPtr schema = loadSchema(xsd);
   ErrorCollector errors;
-  xmlSchemaValidCtxtPtr vctxt = xmlSchemaNewValidCtxt(schema);
+  xmlSchemaValidCtxtPtr vctxt = xmlSchemaNewValidCtxt(schema.get());
   xmlSchemaSetValidStructuredErrors(vctxt, &ErrorCollector::collect, &errors);
   const int rc = xmlSchemaValidateDoc(vctxt, doc);
   xmlSchemaFreeValidCtxt(vctxt);
-  xmlSchemaFree(schema);
   if (rc != 0) {
     throwInputError(source, "schema validation",
                     "does not conform to " + xsd.filename().string() + " (" +

@@ -1,9 +1,16 @@
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
 #include <catch2/catch.hpp>
 
 #include "carrier/xml.h"
 #include "core/error.h"
 
 using namespace surrogate;
+namespace fs = std::filesystem;
 
 TEST_CASE("well-formed XML passes and broken XML names the document") {
   xml::checkWellFormed("<a><b/></a>", "ok.xml");
@@ -58,4 +65,23 @@ TEST_CASE("a document read whole keeps names, namespaces, prefixed attributes, t
   CHECK(root.child("none") == nullptr);
   CHECK_THROWS_AS(xml::readElementTree("<r><a/><a/><a/></r>", "many.xml", 3), Error);
   CHECK_THROWS_AS(xml::readElementTree("<!DOCTYPE a [<!ENTITY e \"x\">]><a>&e;</a>", "dtd.xml", 10), Error);
+}
+
+TEST_CASE("a schema is parsed once but read again when its file changes") {
+  const fs::path dir = fs::temp_directory_path() / ("surrogate-schema-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const fs::path xsd = dir / "s.xsd";
+  auto writeSchema = [&](const std::string& element) {
+    std::ofstream(xsd) << "<xs:schema xmlns:xs=\"http://www.w3.org/2001/XMLSchema\"><xs:element name=\"" << element
+                       << "\"/></xs:schema>";
+  };
+  writeSchema("a");
+  for (int i = 0; i < 3; ++i) xml::validateAgainstSchema("<a/>", "doc.xml", xsd);  // the same schema each time
+  CHECK_THROWS_AS(xml::validateAgainstSchema("<ab/>", "doc.xml", xsd), Error);
+  writeSchema("ab");  // another size: the file changed, and its new rules apply
+  xml::validateAgainstSchema("<ab/>", "doc.xml", xsd);
+  CHECK_THROWS_AS(xml::validateAgainstSchema("<a/>", "doc.xml", xsd), Error);
+  fs::remove(xsd);
+  CHECK_THROWS_AS(xml::validateAgainstSchema("<ab/>", "doc.xml", xsd), Error);  // gone: not served from memory
+  fs::remove_all(dir);
 }
