@@ -77,19 +77,17 @@ constexpr int kRays = 360;
 constexpr double kStep = 0.25;
 
 // The rays' cosines and sines, computed once: every pass of every circle takes the same 360.
-const std::vector<double>& rayCos() {
-  static const std::vector<double> table = [] {
-    std::vector<double> v(kRays);
-    for (int k = 0; k < kRays; ++k) v[k] = std::cos(2 * M_PI * k / kRays);
-    return v;
-  }();
-  return table;
-}
-const std::vector<double>& raySin() {
-  static const std::vector<double> table = [] {
-    std::vector<double> v(kRays);
-    for (int k = 0; k < kRays; ++k) v[k] = std::sin(2 * M_PI * k / kRays);
-    return v;
+struct RayDirections {
+  std::vector<double> cos, sin;
+};
+const RayDirections& rays() {
+  static const RayDirections table = [] {
+    RayDirections r{std::vector<double>(kRays), std::vector<double>(kRays)};
+    for (int k = 0; k < kRays; ++k) {
+      r.cos[k] = std::cos(2 * M_PI * k / kRays);
+      r.sin[k] = std::sin(2 * M_PI * k / kRays);
+    }
+    return r;
   }();
   return table;
 }
@@ -130,7 +128,7 @@ DetectedSphere refineRim(const StackMedian& median, double cx, double cy, double
     std::vector<double> profile;
     int visible = 0;
     for (int k = 0; k < kRays; ++k) {
-      const double ca = rayCos()[k], sa = raySin()[k];
+      const double ca = rays().cos[k], sa = rays().sin[k];
       const double rimX = out.cx + out.r * ca, rimY = out.cy + out.r * sa;
       if (rimX < kFrameInset || rimY < kFrameInset || rimX > median.width() - 1 - kFrameInset ||
           rimY > median.height() - 1 - kFrameInset)
