@@ -11,6 +11,7 @@
 #include "fit/basis.h"
 #include "fit/pseudo_inverse.h"
 #include "fit/row_kernels.h"
+#include "fit/near_srgb_blocks.h"
 #include "fit/srgb_falloff.h"
 
 namespace surrogate::fit {
@@ -59,6 +60,7 @@ struct Ctx {
   double* acc;          // 3 T x kBlock
   double* fp;           // N x kBlock, sRGB only: f_i^(1/2.4) (of what f holds)
   const double* pw;     // the table of rootWith (SrgbTables::root)
+  bool avx2;            // the sRGB blocks' AVX2 variant (near_srgb_blocks.h)
 };
 
 // The block [x0, x1) of cell c: fills t and, for every light, f, or `over` / f when `over` is not
@@ -80,11 +82,7 @@ SURROGATE_INLINE void blockFalloff(const Ctx& k, int c, int x0, int len, double 
       for (int b = 0; b < len; ++b) fi[b] = over / fi[b];
   }
   if (k.srgb)
-    for (int i = 0; i < k.n; ++i) {
-      const double* __restrict fi = k.f + i * kBlock;
-      double* __restrict pi = k.fp + i * kBlock;
-      for (int b = 0; b < len; ++b) pi[b] = rootWith(k.pw, fi[b]);
-    }
+    for (int i = 0; i < k.n; ++i) rootsBlock(k.avx2, k.pw, k.f + i * kBlock, k.fp + i * kBlock, len);
 }
 
 // The row's blocks, left to right, none across a node column: the one starting at x0 lies in
@@ -98,15 +96,6 @@ SURROGATE_INLINE void nextBlock(const Ctx& k, int x0, int* c, int* len) {
 #define NEAR_FOR_BLOCKS(k) \
   for (int x0 = 0, c = 0, len = 0; x0 < (k).w && (nextBlock((k), x0, &c, &len), true); x0 += len)
 
-// Four pixels at once: GCC's vector extension, each lane rounded as a double (no fused
-// multiply-add: -ffp-contract=off and no "fma" target), so a lane's value does not depend on
-// its neighbours or on the instruction set. The accumulators of a pixel group stay in registers
-// while every photograph is added, in photograph order.
-typedef double V __attribute__((vector_size(32), aligned(8)));
-constexpr int kLanes = 4;
-#define NEAR_LOAD(v, p) __builtin_memcpy(&(v), (p), sizeof(V))
-#define NEAR_STORE(p, v) __builtin_memcpy((p), &(v), sizeof(V))
-
 // The errors' two shared pieces: the photograph's Rec. 709 luminance at pixel b of a row
 // (0..255 units), and a row's squared errors added to a light's sum in pixel order.
 template <typename Sample>
@@ -118,52 +107,6 @@ SURROGATE_INLINE void addInOrder(const double* d2, int len, double* sum) {
   double err = *sum;
   for (int b = 0; b < len; ++b) err += d2[b];
   *sum = err;
-}
-
-// o[b] = scaledWith(sample b, fi[b], pi[b]) for the samples s[3 b] (one channel of a row),
-// four at a time above the toe (the same operations lane by lane as scaledWith's, so the same
-// bits), one at a time where a lane is in the toe.
-template <typename Sample>
-SURROGATE_INLINE void scaleSrgb(const Ctx& k, const Sample* s, const double* fi, const double* pi, double* o,
-                                int len) {
-  int b = 0;
-  for (; b + kLanes <= len; b += kLanes) {
-    const V v = V{static_cast<double>(sampleValue(s[3 * b])), static_cast<double>(sampleValue(s[3 * b + 3])),
-                  static_cast<double>(sampleValue(s[3 * b + 6])), static_cast<double>(sampleValue(s[3 * b + 9]))} *
-                (1.0 / 65535.0);
-    V p;
-    NEAR_LOAD(p, pi + b);
-    const V y = (v + 0.055) * p - 0.055;
-    const auto above = (v > kToe) & (y > kToe);
-    if (above[0] & above[1] & above[2] & above[3]) {
-      const V r = y * 65535.0;
-      NEAR_STORE(o + b, r);
-    } else {
-      for (int j = b; j < b + kLanes; ++j) o[j] = scaledWith(k.dec16, k.enc, sampleValue(s[3 * j]), fi[j], pi[j]);
-    }
-  }
-  for (; b < len; ++b) o[b] = scaledWith(k.dec16, k.enc, sampleValue(s[3 * b]), fi[b], pi[b]);
-}
-
-// m[b] = unscaledWith(m[b], gi[b], gp[b]) in place, four at a time above the toe (the same
-// operations lane by lane), one at a time where a lane is in the toe.
-SURROGATE_INLINE void unscaleSrgb(const Ctx& k, double* m, const double* gi, const double* gp, int len) {
-  int b = 0;
-  for (; b + kLanes <= len; b += kLanes) {
-    V v, p;
-    NEAR_LOAD(v, m + b);
-    NEAR_LOAD(p, gp + b);
-    v = v * (1.0 / 255.0);
-    const V y = (v + 0.055) * p - 0.055;
-    const auto above = (v > kToe) & (y > kToe);
-    if (above[0] & above[1] & above[2] & above[3]) {
-      const V r = 255.0 * y;
-      NEAR_STORE(m + b, r);
-    } else {
-      for (int j = b; j < b + kLanes; ++j) m[j] = unscaledWith(k.dec, k.enc, m[j], gi[j], gp[j]);
-    }
-  }
-  for (; b < len; ++b) m[b] = unscaledWith(k.dec, k.enc, m[b], gi[b], gp[b]);
 }
 
 // Fills f (and, for `samples`, fs: the fall-off-scaled samples in planes ch * n + i) for the
@@ -179,12 +122,11 @@ SURROGATE_INLINE int blockSamples(const Ctx& k, const Sample* const* images, int
     for (int b = len; b < up; ++b) fi[b] = 0.0;
     if (!samples) continue;
     const Sample* __restrict s = images[i] + 3 * static_cast<std::size_t>(x0);
+    double* const out[3] = {k.fs + i * kBlock, k.fs + (k.n + i) * kBlock, k.fs + (2 * k.n + i) * kBlock};
+    if (k.srgb) scaleSrgbBlock(k.avx2, k.dec16, k.enc, s, fi, k.fp + i * kBlock, out, len);
     for (int ch = 0; ch < 3; ++ch) {
-      double* __restrict o = k.fs + (ch * k.n + i) * kBlock;
-      const double* __restrict pi = k.fp + i * kBlock;
-      if (k.srgb)
-        scaleSrgb(k, s + ch, fi, pi, o, len);
-      else
+      double* __restrict o = out[ch];
+      if (!k.srgb)
         for (int b = 0; b < len; ++b) o[b] = fi[b] * sampleValue(s[3 * b + ch]);
       for (int b = len; b < up; ++b) o[b] = 0.0;
     }
@@ -200,7 +142,40 @@ SURROGATE_INLINE void fitChannelsBody(const Ctx& k, const Sample* const* images,
     const int up = blockSamples(k, images, c, x0, len, 0.0, true);
     const double* Rc = k.R + c * k.stride;
     const double* Dc = k.D + c * k.stride;
-    for (int j = 0; j < T; ++j) {
+    // Two terms at once: six sums in flight rather than three hide the additions' latency (each
+    // sum still adds the photographs in order).
+    int j = 0;
+    for (; j + 1 < T; j += 2) {
+      const double* __restrict p0 = Rc + j * n;
+      const double* __restrict d = Dc + j * n;
+      const double* __restrict q0 = p0 + n;
+      const double* __restrict e = d + n;
+      for (int b = 0; b < up; b += kLanes) {
+        V t, a0 = {}, a1 = {}, a2 = {}, b0 = {}, b1 = {}, b2 = {};
+        NEAR_LOAD(t, k.t + b);
+        for (int i = 0; i < n; ++i) {
+          const V pk = p0[i] + t * d[i];
+          const V qk = q0[i] + t * e[i];
+          V s0, s1, s2;
+          NEAR_LOAD(s0, k.fs + i * kBlock + b);
+          NEAR_LOAD(s1, k.fs + (n + i) * kBlock + b);
+          NEAR_LOAD(s2, k.fs + (2 * n + i) * kBlock + b);
+          a0 += pk * s0;
+          a1 += pk * s1;
+          a2 += pk * s2;
+          b0 += qk * s0;
+          b1 += qk * s1;
+          b2 += qk * s2;
+        }
+        NEAR_STORE(k.acc + (0 * T + j) * kBlock + b, a0);
+        NEAR_STORE(k.acc + (1 * T + j) * kBlock + b, a1);
+        NEAR_STORE(k.acc + (2 * T + j) * kBlock + b, a2);
+        NEAR_STORE(k.acc + (0 * T + j + 1) * kBlock + b, b0);
+        NEAR_STORE(k.acc + (1 * T + j + 1) * kBlock + b, b1);
+        NEAR_STORE(k.acc + (2 * T + j + 1) * kBlock + b, b2);
+      }
+    }
+    for (; j < T; ++j) {  // an odd count's last term
       const double* __restrict p0 = Rc + j * n;
       const double* __restrict d = Dc + j * n;
       for (int b = 0; b < up; b += kLanes) {
@@ -230,6 +205,29 @@ SURROGATE_INLINE void fitChannelsBody(const Ctx& k, const Sample* const* images,
   }
 }
 
+// Light i's squared luminance errors over the block, added to sqErr[i]: r holds the three
+// rendered channels (planes of kBlock) and is overwritten; d2 is kBlock of scratch.
+template <typename Sample>
+SURROGATE_INLINE void channelErrors(const Ctx& k, const Sample* const* images, int i, int x0, int len, double* r,
+                                    double* __restrict d2, double* sqErr) {
+  const Sample* __restrict s = images[i] + 3 * static_cast<std::size_t>(x0);
+  const double* __restrict gi = k.f + i * kBlock;
+  const double* __restrict gp = k.fp + i * kBlock;  // sRGB: gi^(1/2.4)
+  if (k.srgb)  // the fall-off undone on each channel (srgbUnscaled): then plain sums
+    for (int ch = 0; ch < 3; ++ch) unscaleSrgbBlock(k.avx2, k.dec, k.enc, r + ch * kBlock, gi, gp, len);
+  if (k.srgb && luminanceErrorsBlock(k.avx2, r, r + kBlock, r + 2 * kBlock, s, d2, len))
+    return addInOrder(d2, len, &sqErr[i]);
+  for (int b = 0; b < len; ++b) {
+    const double model =
+        k.srgb ? kLumR * clamp255(r[b]) + kLumG * clamp255(r[kBlock + b]) + kLumB * clamp255(r[2 * kBlock + b])
+               : kLumR * clamp255(r[b] * gi[b]) + kLumG * clamp255(r[kBlock + b] * gi[b]) +
+                     kLumB * clamp255(r[2 * kBlock + b] * gi[b]);
+    const double captured = capturedLuminance(s, b);
+    d2[b] = (model - captured) * (model - captured);
+  }
+  addInOrder(d2, len, &sqErr[i]);
+}
+
 template <typename Sample>
 SURROGATE_INLINE void errorsChannelsBody(const Ctx& k, const Sample* const* images, const double* decoded,
                                          double* sqErr) {
@@ -248,8 +246,40 @@ SURROGATE_INLINE void errorsChannelsBody(const Ctx& k, const Sample* const* imag
       }
     const double* Rc = k.R + c * k.stride + basisAt;
     const double* Dc = k.D + c * k.stride + basisAt;
-    double* __restrict r = k.fs;  // 3 x kBlock rendered, then kBlock squared errors
-    for (int i = 0; i < n; ++i) {
+    // Two lights at once (six sums in flight, each adding the terms in order): light i rendered
+    // in r's planes 0..2, light i + 1 in 3..5; the squared errors in pk.
+    double* __restrict r = k.fs;
+    double* __restrict q = r + 3 * kBlock;
+    int i = 0;
+    for (; i + 1 < n; i += 2) {
+      for (int b = 0; b < up; b += kLanes) {
+        V t, r0 = {}, r1 = {}, r2 = {}, q0 = {}, q1 = {}, q2 = {};
+        NEAR_LOAD(t, k.t + b);
+        for (int j = 0; j < T; ++j) {
+          const V bk = Rc[j * n + i] + t * Dc[j * n + i];
+          const V ck = Rc[j * n + i + 1] + t * Dc[j * n + i + 1];
+          V d0, d1, d2;
+          NEAR_LOAD(d0, dec + j * kBlock + b);
+          NEAR_LOAD(d1, dec + (T + j) * kBlock + b);
+          NEAR_LOAD(d2, dec + (2 * T + j) * kBlock + b);
+          r0 += bk * d0;
+          r1 += bk * d1;
+          r2 += bk * d2;
+          q0 += ck * d0;
+          q1 += ck * d1;
+          q2 += ck * d2;
+        }
+        NEAR_STORE(r + b, r0);
+        NEAR_STORE(r + kBlock + b, r1);
+        NEAR_STORE(r + 2 * kBlock + b, r2);
+        NEAR_STORE(q + b, q0);
+        NEAR_STORE(q + kBlock + b, q1);
+        NEAR_STORE(q + 2 * kBlock + b, q2);
+      }
+      channelErrors(k, images, i, x0, len, r, k.pk, sqErr);
+      channelErrors(k, images, i + 1, x0, len, q, k.pk, sqErr);
+    }
+    for (; i < n; ++i) {  // an odd count's last light
       for (int b = 0; b < up; b += kLanes) {
         V t, r0 = {}, r1 = {}, r2 = {};
         NEAR_LOAD(t, k.t + b);
@@ -267,21 +297,7 @@ SURROGATE_INLINE void errorsChannelsBody(const Ctx& k, const Sample* const* imag
         NEAR_STORE(r + kBlock + b, r1);
         NEAR_STORE(r + 2 * kBlock + b, r2);
       }
-      const Sample* __restrict s = images[i] + 3 * static_cast<std::size_t>(x0);
-      const double* __restrict gi = k.f + i * kBlock;
-      const double* __restrict gp = k.fp + i * kBlock;  // sRGB: gi^(1/2.4)
-      double* __restrict d2 = r + 3 * kBlock;
-      if (k.srgb)  // the fall-off undone on each channel (srgbUnscaled): then plain sums
-        for (int ch = 0; ch < 3; ++ch) unscaleSrgb(k, r + ch * kBlock, gi, gp, len);
-      for (int b = 0; b < len; ++b) {
-        const double model =
-            k.srgb ? kLumR * clamp255(r[b]) + kLumG * clamp255(r[kBlock + b]) + kLumB * clamp255(r[2 * kBlock + b])
-                   : kLumR * clamp255(r[b] * gi[b]) + kLumG * clamp255(r[kBlock + b] * gi[b]) +
-                         kLumB * clamp255(r[2 * kBlock + b] * gi[b]);
-        const double captured = capturedLuminance(s, b);
-        d2[b] = (model - captured) * (model - captured);
-      }
-      addInOrder(d2, len, &sqErr[i]);
+      channelErrors(k, images, i, x0, len, r, k.pk, sqErr);
     }
   }
 }
@@ -322,12 +338,68 @@ SURROGATE_INLINE void fitLrgbBody(const Ctx& k, const Sample* const* images, dou
   }
 }
 
+// The luminance of the block re-rendered at lights i .. i + L - 1 (lum, L planes of kBlock): L
+// sums in flight hide the additions' latency; each adds the six terms in order.
+template <int L>
+SURROGATE_INLINE void lrgbLuminance(const Ctx& k, const double* Rc, const double* Dc, const double* dec, int i,
+                                    int up, double* __restrict lum) {
+  const int n = k.n;
+  for (int b = 0; b < up; b += kLanes) {
+    V t, l[L];
+    NEAR_LOAD(t, k.t + b);
+    for (int q = 0; q < L; ++q) l[q] = V{};
+    for (int j = 0; j < 6; ++j) {
+      V dj;
+      NEAR_LOAD(dj, dec + j * kBlock + b);
+      for (int q = 0; q < L; ++q) l[q] += (Rc[j * n + i + q] + t * Dc[j * n + i + q]) * dj;
+    }
+    for (int q = 0; q < L; ++q) NEAR_STORE(lum + q * kBlock + b, l[q]);
+  }
+}
+
+// Light i's squared luminance errors over the block, added to sqErr[i]; d2 is 4 planes of
+// kBlock of scratch.
+template <typename Sample>
+SURROGATE_INLINE void lrgbErrors(const Ctx& k, const Sample* const* images, const double* __restrict cr,
+                                 const double* __restrict cg, const double* __restrict cb, int i, int x0, int len,
+                                 const double* __restrict lum, double* __restrict d2, double* sqErr) {
+  const Sample* __restrict s = images[i] + 3 * static_cast<std::size_t>(x0);
+  const double* __restrict gi = k.f + i * kBlock;
+  const double* __restrict gp = k.fp + i * kBlock;  // sRGB: gi^(1/2.4)
+  // sRGB: each channel's model value (its colour times L / 255), the fall-off undone, in
+  // three planes of the scratch after d2.
+  double* __restrict rgb = d2 + kBlock;
+  if (k.srgb) {
+    const double* colour[3] = {cr + x0, cg + x0, cb + x0};
+    for (int ch = 0; ch < 3; ++ch) {
+      double* m = rgb + ch * kBlock;
+      for (int b = 0; b < len; ++b) m[b] = colour[ch][b] * (lum[b] * (1.0 / 255.0));
+      unscaleSrgbBlock(k.avx2, k.dec, k.enc, m, gi, gp, len);
+    }
+    if (luminanceErrorsBlock(k.avx2, rgb, rgb + kBlock, rgb + 2 * kBlock, s, d2, len))
+      return addInOrder(d2, len, &sqErr[i]);
+  }
+  for (int b = 0; b < len; ++b) {
+    double model;
+    if (k.srgb) {
+      model = kLumR * clamp255(rgb[b]) + kLumG * clamp255(rgb[kBlock + b]) + kLumB * clamp255(rgb[2 * kBlock + b]);
+    } else {
+      const double l = lum[b] * gi[b];  // gi = 1 / (255 f)
+      model = kLumR * clamp255(cr[x0 + b] * l) + kLumG * clamp255(cg[x0 + b] * l) + kLumB * clamp255(cb[x0 + b] * l);
+    }
+    const double captured = capturedLuminance(s, b);
+    d2[b] = (model - captured) * (model - captured);
+  }
+  addInOrder(d2, len, &sqErr[i]);
+}
+
 template <typename Sample>
 SURROGATE_INLINE void errorsLrgbBody(const Ctx& k, const Sample* const* images, const double* __restrict cr,
                                      const double* __restrict cg, const double* __restrict cb, const double* decoded,
                                      double* sqErr) {
   const int n = k.n;
   const std::size_t basisAt = static_cast<std::size_t>(6) * n;
+  constexpr int kLights = 4;  // lights rendered at once
   NEAR_FOR_BLOCKS(k) {
     // gi = 1 / (255 f); sRGB: 1 / f, the model's value made first (its colour times L / 255).
     const int up = blockSamples(k, images, c, x0, len, k.srgb ? 1.0 : 1.0 / 255.0, false);
@@ -338,45 +410,18 @@ SURROGATE_INLINE void errorsLrgbBody(const Ctx& k, const Sample* const* images, 
     }
     const double* Rc = k.R + c * k.stride + basisAt;
     const double* Dc = k.D + c * k.stride + basisAt;
-    double* __restrict lum = k.pk;
+    // The scratch of the errors: fs's planes 0..3 (3 N >= 18 planes for 6 terms), the
+    // luminances after them.
     double* __restrict d2 = k.fs;
-    for (int i = 0; i < n; ++i) {
-      for (int b = 0; b < up; b += kLanes) {
-        V t, l = {};
-        NEAR_LOAD(t, k.t + b);
-        for (int j = 0; j < 6; ++j) {
-          V dj;
-          NEAR_LOAD(dj, dec + j * kBlock + b);
-          l += (Rc[j * n + i] + t * Dc[j * n + i]) * dj;
-        }
-        NEAR_STORE(lum + b, l);
-      }
-      const Sample* __restrict s = images[i] + 3 * static_cast<std::size_t>(x0);
-      const double* __restrict gi = k.f + i * kBlock;
-      const double* __restrict gp = k.fp + i * kBlock;  // sRGB: gi^(1/2.4)
-      // sRGB: each channel's model value (its colour times L / 255), the fall-off undone, in
-      // three planes of the scratch after d2.
-      double* __restrict rgb = d2 + kBlock;
-      if (k.srgb) {
-        const double* colour[3] = {cr + x0, cg + x0, cb + x0};
-        for (int ch = 0; ch < 3; ++ch) {
-          double* m = rgb + ch * kBlock;
-          for (int b = 0; b < len; ++b) m[b] = colour[ch][b] * (lum[b] * (1.0 / 255.0));
-          unscaleSrgb(k, m, gi, gp, len);
-        }
-      }
-      for (int b = 0; b < len; ++b) {
-        double model;
-        if (k.srgb) {
-          model = kLumR * clamp255(rgb[b]) + kLumG * clamp255(rgb[kBlock + b]) + kLumB * clamp255(rgb[2 * kBlock + b]);
-        } else {
-          const double l = lum[b] * gi[b];  // gi = 1 / (255 f)
-          model = kLumR * clamp255(cr[x0 + b] * l) + kLumG * clamp255(cg[x0 + b] * l) + kLumB * clamp255(cb[x0 + b] * l);
-        }
-        const double captured = capturedLuminance(s, b);
-        d2[b] = (model - captured) * (model - captured);
-      }
-      addInOrder(d2, len, &sqErr[i]);
+    double* __restrict lum = k.fs + 4 * kBlock;
+    int i = 0;
+    for (; i + kLights <= n; i += kLights) {
+      lrgbLuminance<kLights>(k, Rc, Dc, dec, i, up, lum);
+      for (int q = 0; q < kLights; ++q) lrgbErrors(k, images, cr, cg, cb, i + q, x0, len, lum + q * kBlock, d2, sqErr);
+    }
+    for (; i < n; ++i) {
+      lrgbLuminance<1>(k, Rc, Dc, dec, i, up, lum);
+      lrgbErrors(k, images, cr, cg, cb, i, x0, len, lum, d2, sqErr);
     }
   }
 }
@@ -480,6 +525,7 @@ NearModel::Row NearModel::startRow(int y, double* scratch, bool basis) const {
   k.acc = k.fs + static_cast<std::size_t>(3) * n_ * kBlock;
   k.fp = k.acc + static_cast<std::size_t>(3) * terms_ * kBlock;
   k.pw = tables.root.data();
+  k.avx2 = false;
   return r;
 }
 
@@ -496,6 +542,7 @@ std::vector<double> NearModel::pixelInverse(int x, int y) const {
 void NearModel::fitChannels(const RowView& row, double* acc, double* scratch, KernelIsa isa) const {
   Ctx k = startRow(row.y, scratch, false).ctx;
   k.w = row.width;
+  k.avx2 = useAvx2(isa);
   withSamples(row, [&](auto images) {
     if (useAvx2(isa)) fitChannelsAvx2(k, images, acc);
     else fitChannelsBase(k, images, acc);
@@ -506,6 +553,7 @@ void NearModel::errorsChannels(const RowView& row, const double* decoded, double
                                KernelIsa isa) const {
   Ctx k = startRow(row.y, scratch, true).ctx;
   k.w = row.width;
+  k.avx2 = useAvx2(isa);
   withSamples(row, [&](auto images) {
     if (useAvx2(isa)) errorsChannelsAvx2(k, images, decoded, sqErr);
     else errorsChannelsBase(k, images, decoded, sqErr);
@@ -515,6 +563,7 @@ void NearModel::errorsChannels(const RowView& row, const double* decoded, double
 void NearModel::fitLrgb(const RowView& row, double* acc, double* mean, double* scratch, KernelIsa isa) const {
   Ctx k = startRow(row.y, scratch, false).ctx;
   k.w = row.width;
+  k.avx2 = useAvx2(isa);
   withSamples(row, [&](auto images) {
     if (useAvx2(isa)) fitLrgbAvx2(k, images, acc, mean);
     else fitLrgbBase(k, images, acc, mean);
@@ -525,6 +574,7 @@ void NearModel::errorsLrgb(const RowView& row, const double* cr, const double* c
                            const double* decoded, double* scratch, double* sqErr, KernelIsa isa) const {
   Ctx k = startRow(row.y, scratch, true).ctx;
   k.w = row.width;
+  k.avx2 = useAvx2(isa);
   withSamples(row, [&](auto images) {
     if (useAvx2(isa)) errorsLrgbAvx2(k, images, cr, cg, cb, decoded, sqErr);
     else errorsLrgbBase(k, images, cr, cg, cb, decoded, sqErr);

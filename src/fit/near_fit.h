@@ -11,7 +11,9 @@
 // The fall-off factors f_i = ((X_i - x)^2 + (Y_i + y)^2 + Z_i^2) / r_i^2 are exact per pixel
 // and multiply the samples. Every value depends on (x, y) alone, so the result does not depend
 // on bands or threads. The loops are compiled twice (baseline and AVX2 without FMA, like
-// row_kernels.h) with the same operations in the same order, so both give the same bits.
+// row_kernels.h) with the same operations in the same order, so both give the same bits; the
+// sRGB fall-off's blocks have AVX2 variants of their own (near_srgb_blocks.h), lane by lane the
+// scalar operations.
 #pragma once
 
 #include <array>

@@ -400,13 +400,16 @@ TEST_CASE("fit near lights: bit-identical for 1 or 2 threads and any band height
 }
 
 TEST_CASE("fit near lights: the baseline and AVX2 kernels give the same bits, bytes as their 16-bit values") {
-  const Capture c = render(70, 9, 1.5, 24, 5);
+  // Linear and sRGB samples (the fall-off in linear light: near_srgb_blocks.h, its toe included).
+  for (const bool srgb : {false, true}) {
+  const Capture c = render(70, 9, 1.5, 24, 5, srgb);
   std::vector<KernelIsa> isas = {KernelIsa::Baseline};
   if (activeKernelIsa() == KernelIsa::Avx2) isas.push_back(KernelIsa::Avx2);
   const int w = c.w, n = 24;
   for (Basis b : {Basis::PtmLrgb, Basis::Hsh3}) {
     const int T = basisTerms(b);
-    const NearModel model(w, c.h, c.lights, c.near, b, 1.0 / 257.0, 4, 1);
+    const NearModel model(w, c.h, c.lights, c.near, b, 1.0 / 257.0, 4, 1,
+                          srgb ? Transfer::Srgb : Transfer::Linear);
     std::vector<double> scratch(model.scratchDoubles(w));
     for (int y = 0; y < c.h; ++y) {
       // The row as 16-bit samples, as bytes, and as the bytes' 16-bit values 257 b.
@@ -417,6 +420,9 @@ TEST_CASE("fit near lights: the baseline and AVX2 kernels give the same bits, by
       for (int i = 0; i < n; ++i) {
         const std::uint16_t* row = c.stack.heldRow(i, y);
         wide[i].assign(row, row + 3 * w);
+        // Some pixels darkened into the sRGB toe (encoded values under 0.04045), beside others.
+        for (int x = y % 3; srgb && x < w; x += 3)
+          for (int ch = 0; ch < 3; ++ch) wide[i][3 * x + ch] /= 24;
         for (std::uint16_t v : wide[i]) {
           bytes[i].push_back(static_cast<std::uint8_t>(v >> 8));
           widened[i].push_back(static_cast<std::uint16_t>(257 * (v >> 8)));
@@ -449,11 +455,13 @@ TEST_CASE("fit near lights: the baseline and AVX2 kernels give the same bits, by
       const std::vector<double> reference = run(views[0], KernelIsa::Baseline);
       const std::vector<double> widenedReference = run(views[1], KernelIsa::Baseline);
       for (KernelIsa isa : isas) {
-        INFO(basisName(b) << " row " << y << (isa == KernelIsa::Avx2 ? " avx2" : " baseline"));
+        INFO(basisName(b) << " row " << y << (isa == KernelIsa::Avx2 ? " avx2" : " baseline")
+                          << (srgb ? " srgb" : " linear"));
         CHECK(run(views[0], isa) == reference);
         CHECK(run(views[2], isa) == widenedReference);
       }
     }
+  }
   }
 }
 
