@@ -68,6 +68,10 @@ void ChannelFitter::measure(const RowView& row, double* scratch, double* lo, dou
     lo[k] = *std::min_element(a, a + m);
     hi[k] = *std::max_element(a, a + m);
   }
+  if (kept_) {
+    float* to = kept_ + static_cast<std::size_t>(row.y) * terms_ * m;
+    for (std::size_t j = 0; j < terms_ * m; ++j) to[j] = static_cast<float>(scratch[j]);
+  }
 }
 
 void ChannelFitter::quantise(const RowView& row, double* scratch, double* sqErr) const {
@@ -78,8 +82,13 @@ void ChannelFitter::quantise(const RowView& row, double* scratch, double* sqErr)
   auto* bytes = reinterpret_cast<std::uint8_t*>(block + static_cast<std::size_t>(n_) * kBlockSamples);
   // Rounded to float, as RtiFit version 2 kept them between the passes (fit.h).
   double* nearScratch = scratch + ownScratch(row.width);
-  fitRow(row, acc, block, nearScratch);
-  for (std::size_t j = 0; j < terms_ * m; ++j) acc[j] = static_cast<float>(acc[j]);
+  if (kept_) {
+    const float* from = kept_ + static_cast<std::size_t>(row.y) * terms_ * m;
+    for (std::size_t j = 0; j < terms_ * m; ++j) acc[j] = from[j];
+  } else {
+    fitRow(row, acc, block, nearScratch);
+    for (std::size_t j = 0; j < terms_ * m; ++j) acc[j] = static_cast<float>(acc[j]);
+  }
   for (int k = 0; k < terms_; ++k) {
     double* d = decoded + k * m;
     quantiseRow(k, row.y, acc + k * m, m, bytes, d);

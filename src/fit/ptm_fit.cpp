@@ -81,7 +81,15 @@ class LrgbFitter : public RowFitter {
     }
     const double* chroma = scratch + 6 * w;
     std::copy(chroma, chroma + 3 * w, out_->rgb.begin() + static_cast<std::size_t>(row.y) * w * 3);
+    if (kept_) {
+      float* to = kept_ + static_cast<std::size_t>(row.y) * 6 * w;
+      for (int j = 0; j < 6 * w; ++j) to[j] = static_cast<float>(scratch[j]);
+    }
   }
+
+  // Far lights only: the near model's errors read what its fit left in the scratch.
+  std::size_t keptPerRow(int width) const override { return near_ ? 0 : std::size_t(6) * width; }
+  void keep(float* rows) override { kept_ = rows; }
 
   void setRanges(const std::vector<double>& lo, const std::vector<double>& hi) override {
     for (int k = 0; k < 6; ++k) {
@@ -97,9 +105,17 @@ class LrgbFitter : public RowFitter {
     double* chroma = scratch + 6 * w;
     double* decoded = scratch + 13 * w;
     const std::size_t base = static_cast<std::size_t>(row.y) * w;
-    // Rounded to float, as RtiFit version 2 kept them between the passes (fit.h).
-    fitRow(row, scratch);
-    for (int j = 0; j < 6 * w; ++j) acc[j] = static_cast<float>(acc[j]);
+    // Rounded to float, as RtiFit version 2 kept them between the passes (fit.h). Kept, the
+    // colour bytes are those pass 1 stored, fitRow's chroma exactly (whole numbers).
+    if (kept_) {
+      const float* from = kept_ + base * 6;
+      for (int j = 0; j < 6 * w; ++j) acc[j] = from[j];
+      const std::uint8_t* stored = out_->rgb.data() + base * 3;
+      for (int j = 0; j < 3 * w; ++j) chroma[j] = stored[j];
+    } else {
+      fitRow(row, scratch);
+      for (int j = 0; j < 6 * w; ++j) acc[j] = static_cast<float>(acc[j]);
+    }
     // The bytes go where fitRow kept the sums (8w bytes), free until the errors are measured.
     auto* bytes = reinterpret_cast<std::uint8_t*>(scratch + 12 * w);
     for (int k = 0; k < 6; ++k) quantisePtm(acc + k * w, w, q_[k], bytes + k * w, decoded + k * w);
@@ -163,6 +179,7 @@ class LrgbFitter : public RowFitter {
   std::vector<double> p_, weight_, basis_;
   PtmQuantisation q_[6];
   const NearModel* near_ = nullptr;
+  float* kept_ = nullptr;  // pass 1's coefficients, rounded to float (RowFitter::keep)
 };
 
 // RGB: one polynomial per channel, coefficients in 0..255 units, scale/bias shared.

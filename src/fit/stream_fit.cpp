@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
+#include "core/resident.h"
 
 namespace surrogate::fit {
 
@@ -13,6 +14,8 @@ namespace {
 const char* const kStep = "fit";
 constexpr std::size_t kBandBytes = std::size_t(8) << 20;  // see streamFit
 constexpr int kHeldBands = 32;  // bands of a pass over images held in memory (see streamFit)
+// The most coefficients kept between the passes instead of fitting every row twice (fit.h).
+constexpr std::size_t kMaxKeptBytes = std::size_t(128) << 20;
 }  // namespace
 
 std::vector<std::array<double, 3>> checkedLights(const ImageStack& stack,
@@ -79,6 +82,14 @@ std::vector<double> streamFit(const ImageStack& stack, RowFitter& fitter,
   if (held) band = std::max(band, (h + kHeldBands - 1) / kHeldBands);
   const int bands = (h + band - 1) / band;
   std::vector<std::uint16_t> buffer(held ? 0 : static_cast<std::size_t>(n) * band * rowSamples);
+  // The coefficients kept between the passes, when the fitter can and they are small enough
+  // (kMaxKeptBytes) to fit beside the band within the budget.
+  const std::size_t keptBytes = static_cast<std::size_t>(h) * fitter.keptPerRow(w) * sizeof(float);
+  std::vector<float> kept;
+  if (keptBytes > 0 && keptBytes <= kMaxKeptBytes && keptBytes + bandBytes <= available) {
+    resizeResident(kept, keptBytes / sizeof(float));
+    fitter.keep(kept.data());
+  }
 
   auto readBand = [&](int y0, int y1) {
     if (held) return;
@@ -164,6 +175,7 @@ std::vector<double> streamFit(const ImageStack& stack, RowFitter& fitter,
     });
     report(0.5 + 0.5 * (bi + 1) / bands);
   }
+  fitter.keep(nullptr);
   if (passes) *passes = bands > 1 ? 2 : 1;
   std::vector<double> sqErr(n, 0.0);
   for (int y = 0; y < h; ++y)

@@ -41,6 +41,12 @@ class RowFitter {
   // result's row `row.y`, and writes sqErr[i] = sum over the row of the squared luminance
   // error at light i.
   virtual void quantise(const RowView& row, double* scratch, double* sqErr) const = 0;
+  // Coefficients one row keeps between the passes (0: the fitter cannot keep them). Given
+  // keep(rows), pass 1 stores each row's coefficients rounded to float at rows + y *
+  // keptPerRow(width), and pass 2 takes them from there instead of fitting the row again: the
+  // same floats, so the same bytes.
+  virtual std::size_t keptPerRow(int /*width*/) const { return 0; }
+  virtual void keep(float* /*rows*/) {}
 };
 
 // Validated light vectors, normalised, for a fit of `basis` (at least as many photographs as it

@@ -142,6 +142,7 @@ TEST_CASE("fit: HSH (4 and 9 terms) built from known coefficients is recovered")
 }
 
 TEST_CASE("fit: results are bit-identical for 1 or 2 threads and any memory budget") {
+  // The default budget keeps pass 1's coefficients for pass 2 (fit.h); the small ones fit twice.
   const auto lights = test::spreadLights(20);
   const auto truth = test::randomPtm(40, 33, 9);
   const auto stack = test::ptmImages(truth, lights);
