@@ -29,8 +29,7 @@ class ChannelFitter : public RowFitter {
   std::size_t scratchDoubles(int width) const override;
   void measure(const RowView& row, double* scratch, double* lo, double* hi) const override;
   void quantise(const RowView& row, double* scratch, double* sqErr) const override;
-  // Far lights only: the near model's errors read what its fit left in the scratch.
-  std::size_t keptPerRow(int width) const override { return near_ ? 0 : std::size_t(terms_) * width * 3; }
+  std::size_t keptPerRow(int width) const override { return std::size_t(terms_) * width * 3; }
   void keep(float* rows) override { kept_ = rows; }
   // Lights at known positions: the rows are fitted and measured by `near` (fit/near_fit.h).
   void useNear(const NearModel* near) { near_ = near; }

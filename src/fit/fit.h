@@ -39,10 +39,11 @@
 // and HSH: 648 MB for HSH of 36 x 3000x2000): the memory holding them had to be faulted in
 // page by page, which on the 2-core virtual machines Surrogate is measured on cost more than
 // fitting again (docs/developer-guide.md, "Benchmarks"), and it raised the peak by as much.
-// Small sets of coefficients are kept (at most 128 MiB, within the budget beside the band, far
-// lights only): pass 2 then takes pass 1's floats instead of fitting again, the same bytes. At
-// 36 x 1200x800 (23 MB for LRGB, 104 MB for HSH order 2) RtiFit took 0.180 -> 0.139 s and
-// 0.169 -> 0.152 s (medians of 7 alternating runs, 2 threads).
+// Small sets of coefficients are kept (at most 128 MiB, within the budget beside the band):
+// pass 2 then takes pass 1's floats instead of fitting again, the same bytes. At 36 x 1200x800
+// (23 MB for LRGB, 104 MB for HSH order 2) RtiFit took 0.180 -> 0.139 s and 0.169 -> 0.152 s
+// with far lights, 0.426 -> 0.386 s and 0.440 -> 0.346 s with near ones (medians of 7 and 5
+// alternating runs, 2 threads).
 // O(height * N) statistics come on top of the budget.
 //
 // Determinism: every pixel is computed by the same sequence of floating-point operations

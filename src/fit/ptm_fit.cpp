@@ -87,8 +87,7 @@ class LrgbFitter : public RowFitter {
     }
   }
 
-  // Far lights only: the near model's errors read what its fit left in the scratch.
-  std::size_t keptPerRow(int width) const override { return near_ ? 0 : std::size_t(6) * width; }
+  std::size_t keptPerRow(int width) const override { return std::size_t(6) * width; }
   void keep(float* rows) override { kept_ = rows; }
 
   void setRanges(const std::vector<double>& lo, const std::vector<double>& hi) override {
