@@ -169,7 +169,7 @@ int registrationFactor(int width) {
 
 double movedLimitPx(int width) { return RegistrationLimits::kMovedPx * registrationFactor(width); }
 
-std::vector<FrameMotion> registerFrames(const ImageStack& stack, int threads) {
+std::vector<FrameMotion> registerFrames(const ImageStack& stack, int threads, PhaseCorrelator correlator) {
   const int n = stack.size();
   std::vector<FrameMotion> out(static_cast<std::size_t>(std::max(0, n)));
   const int f = registrationFactor(stack.width());
@@ -195,9 +195,11 @@ std::vector<FrameMotion> registerFrames(const ImageStack& stack, int threads) {
   // of the median's gradient there (weighted by the window), not the quarter's centre.
   // The median's quarters are every frame's reference: their spectra are computed once.
   std::vector<PhaseReference> referenceQuarters;
+  std::array<cv::Mat, 4> openCvQuarters;  // PhaseCorrelator::OpenCv's references
   for (int q = 0; q < 4; ++q) {
     const cv::Mat quarter = reference(quarters[q]);
-    referenceQuarters.emplace_back(quarter, window);
+    if (correlator == PhaseCorrelator::Own) referenceQuarters.emplace_back(quarter, window);
+    else openCvQuarters[q] = quarter.clone();
     const cv::Mat weight = quarter.mul(window);
     const cv::Moments m = cv::moments(weight);
     if (m.m00 > 0)
@@ -211,9 +213,15 @@ std::vector<FrameMotion> registerFrames(const ImageStack& stack, int threads) {
       std::array<bool, 4> usable;
       std::array<double, 4> response;
       for (int q = 0; q < 4; ++q) {
-        const PhaseShift s = referenceQuarters[q].correlate(g(quarters[q]), scratch[static_cast<std::size_t>(worker)]);
-        shift[q] = s.shift;
-        response[q] = s.response;
+        if (correlator == PhaseCorrelator::Own) {
+          const PhaseShift s = referenceQuarters[q].correlate(g(quarters[q]), scratch[static_cast<std::size_t>(worker)]);
+          shift[q] = s.shift;
+          response[q] = s.response;
+        } else {
+          // Both clones: with sizes the DFT takes as they are, phaseCorrelate multiplies its
+          // inputs by the window in place, which would change the shared reference.
+          shift[q] = cv::phaseCorrelate(openCvQuarters[q].clone(), g(quarters[q]).clone(), window, &response[q]);
+        }
         usable[q] = response[q] >= RegistrationLimits::kMinResponse;
       }
       // The quarters a motion is fitted to must, together, correlate clearly: three weak peaks

@@ -58,9 +58,15 @@ struct FrameMotion {
   double largestPx = 0;     // the largest displacement at the quarters' centres, full resolution
 };
 
+// Which phase correlation measures the quarters' shifts: Surrogate's own (hrti/phase_correlation.h,
+// HighlightDetection version 12 on), or OpenCV's cv::phaseCorrelate, which records made with
+// HighlightDetection version 11 and earlier were measured with and are re-executed with.
+enum class PhaseCorrelator { Own, OpenCv };
+
 // Every frame of a one-channel stack against the stack's median. Fewer than three frames:
 // none measured.
-std::vector<FrameMotion> registerFrames(const ImageStack& luminance, int threads);
+std::vector<FrameMotion> registerFrames(const ImageStack& luminance, int threads,
+                                        PhaseCorrelator correlator = PhaseCorrelator::Own);
 
 // The reduction factor registerFrames uses for a frame `width` wide, and the limit in
 // full-resolution pixels beyond which a frame moved: kMovedPx reduced pixels.

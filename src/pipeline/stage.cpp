@@ -1,5 +1,7 @@
 #include "pipeline/stage.h"
 
+#include <algorithm>
+
 #include "core/error.h"
 
 namespace surrogate::pipeline {
@@ -37,6 +39,12 @@ const StageInfo* StageRegistry::info(const std::string& component) const {
   for (const Entry& e : entries_)
     if (e.info.component == component) return &e.info;
   return nullptr;
+}
+
+bool StageRegistry::runsAsRecorded(const std::string& component, const std::string& version) const {
+  const StageInfo* i = info(component);
+  if (!i) return false;
+  return version == i->version || std::find(i->alsoRuns.begin(), i->alsoRuns.end(), version) != i->alsoRuns.end();
 }
 
 bool StageRegistry::has(const std::string& component) const { return info(component) != nullptr; }

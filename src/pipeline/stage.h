@@ -62,6 +62,10 @@ struct StageInfo {
 
   std::string component;    // the carrier's step/@component: recorded, so never renamed
   std::string version;      // bumped whenever results change for the same inputs and parameters
+  // Older versions this build still runs as they ran, so that their records re-execute
+  // (`surrogate verify --reexecute`) with the results they recorded; the stage reads the step's
+  // version to choose. Empty: only `version`.
+  std::vector<std::string> alsoRuns;
   std::string description;  // one sentence for the carrier's <description>
   PlanSlot slot = PlanSlot::NotPlanned;
   // Recorded when the user gives none, so the carrier holds every value used: the options
@@ -151,6 +155,9 @@ class StageRegistry {
   bool has(const std::string& component) const;
   // The description of `component`, or null when this build does not have it.
   const StageInfo* info(const std::string& component) const;
+  // Whether this build runs `version` of `component` as that version ran: its current version
+  // or one of StageInfo::alsoRuns.
+  bool runsAsRecorded(const std::string& component, const std::string& version) const;
   // Every registered stage, in registration order.
   std::vector<const StageInfo*> stages() const;
   std::vector<std::string> components() const;

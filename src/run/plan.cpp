@@ -471,7 +471,7 @@ carrier::Carrier replayCarrier(const fs::path& captureRoot, const carrier::Carri
   c.process = recorded.process;
   for (const carrier::Step& s : c.process) {
     auto stage = pipeline::StageRegistry::instance().create(s.component);
-    if (stage->version() != s.version)
+    if (!pipeline::StageRegistry::instance().runsAsRecorded(s.component, s.version))
       carrier::addWarning(c, s.id,
                           {s.component + " is another version here than the one the record was made with",
                            carrier::Usable::WithCare, "its results may differ a little from the recorded ones",

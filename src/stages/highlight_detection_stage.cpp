@@ -33,6 +33,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// The last version that registered frames with cv::phaseCorrelate: its steps still run that way.
+constexpr const char* kOpenCvCorrelationVersion = "11";
+
 // The overview this stage writes for each sphere: named once, for the stage and for its
 // info() (with "*" for the sphere).
 std::string highlightOverview(const std::string& sphere) {
@@ -107,7 +110,8 @@ pipeline::StageInfo HighlightDetectionStage::info() {
   // 12: frame-moved's phase correlations by hrti/phase_correlation.h (the median's spectra
   //    computed once), not cv::phaseCorrelate: shifts and peaks differ in the last bits, and by
   //    half a pixel where a quarter's padded width or height is odd (cv::phaseCorrelate's offset);
-  //    frame-moved's verdicts and pixels on the test captures unchanged
+  //    frame-moved's verdicts and pixels on the test captures unchanged. Version 11 steps are
+  //    still run as they ran (cv::phaseCorrelate), so that records made before re-execute.
   pipeline::StageInfo info = pipeline::withOptions<hrti::HighlightOptions>(
       {kComponent, "12",
        "Find the specular highlight on each sphere in each image: the peak of the image's rise "
@@ -116,6 +120,7 @@ pipeline::StageInfo HighlightDetectionStage::info() {
        pipeline::PlanSlot::LightsFromSpheres});
   info.outputs = [](const carrier::Step&) { return std::vector<std::string>{highlightOverview("*")}; };
   info.reads = pipeline::alwaysReads({kLuminanceStack, kInputImages, kSpheres, kStackMedian});
+  info.alsoRuns = {kOpenCvCorrelationVersion};
   return info;
 }
 
@@ -165,7 +170,9 @@ void HighlightDetectionStage::run(const carrier::Step& step, pipeline::Context& 
   // Every frame registered to the stack (hrti/frame_registration.h): a frame that moved is named
   // as such before its highlight is judged, whatever its highlight looks like.
   std::vector<double> movedPx;
-  for (const hrti::FrameMotion& m : hrti::registerFrames(*lum, ctx.settings.threads))
+  const hrti::PhaseCorrelator correlator =
+      step.version == kOpenCvCorrelationVersion ? hrti::PhaseCorrelator::OpenCv : hrti::PhaseCorrelator::Own;
+  for (const hrti::FrameMotion& m : hrti::registerFrames(*lum, ctx.settings.threads, correlator))
     movedPx.push_back(m.measured ? m.largestPx : -1);
 
   // Manual highlights: target "IMAGE:SPHERE" (sphere index from 0), value "x,y".

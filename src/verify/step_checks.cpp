@@ -206,7 +206,7 @@ bool checkSteps(const carrier::Carrier& c, std::vector<Check>& checks) {
     }
     auto [it, fresh] = versions.emplace(step.component, "");
     if (fresh) it->second = registry.create(step.component)->version();
-    if (step.version != it->second)
+    if (!registry.runsAsRecorded(step.component, step.version))
       problems.push_back(name + ": version " + step.version.substr(0, 40) + " is recorded, this build has " +
                          step.component + " version " + it->second +
                          " only, whose results may differ; verify with the Surrogate that made it "

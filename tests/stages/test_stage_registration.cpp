@@ -106,7 +106,16 @@ TEST_CASE("built-in stages keep their recorded names, versions and default param
     REQUIRE(r.info(component));
     CHECK(r.info(component)->version == version);
     CHECK(r.create(component)->version() == version);
+    CHECK(r.runsAsRecorded(component, version));
   }
+  // Older versions still run as they ran: only HighlightDetection 11 (cv::phaseCorrelate).
+  for (const pipeline::StageInfo* info : r.stages())
+    CHECK(info->alsoRuns == (info->component == "HighlightDetection" ? std::vector<std::string>{"11"}
+                                                                      : std::vector<std::string>{}));
+  CHECK(r.runsAsRecorded("HighlightDetection", "11"));
+  CHECK_FALSE(r.runsAsRecorded("HighlightDetection", "10"));
+  CHECK_FALSE(r.runsAsRecorded("SphereDetection", "8"));
+  CHECK_FALSE(r.runsAsRecorded("NoSuchStage", "1"));
   CHECK(r.info("ColourCorrection")->defaults ==
         pipeline::Parameters{{"chart", "auto"}, {"corners", ""}, {"reference", "colorchecker-classic-2014"},
                              {"model", "matrix"}});

@@ -574,3 +574,24 @@ TEST_CASE("pack removes the partial output of a killed pack to the same name, an
   CHECK_FALSE(fs::exists(staleDir));
   CHECK_THAT(r.output, Contains("\"removedLeftovers\":[\"removed " + staleDir.string()));
 }
+
+TEST_CASE("a step of the version before re-executes as it ran; an older one is refused by name",
+          "[verify][faults]") {
+  // HighlightDetection 11 registered frames with cv::phaseCorrelate, 12 with Surrogate's own: a
+  // package made before still re-executes (its steps run as they ran), one of version 10 cannot.
+  for (const std::string version : {"11", "10"}) {
+    const fs::path bag = copyOfBag("version" + version);
+    replaceText(bag / "data/assembly-files/carrier.xml", "component=\"HighlightDetection\" version=\"12\"",
+                "component=\"HighlightDetection\" version=\"" + version + "\"");
+    rehashBag(bag);
+    const e2e::CommandResult r = verify(bag, "--reexecute --threads 1");
+    INFO(version << ": " << r.output);
+    if (version == "11") {
+      CHECK(r.exitCode == 0);
+      CHECK_THAT(r.output, Contains("SOUND"));
+    } else {
+      CHECK(r.exitCode == 2);
+      CHECK_THAT(r.output, Contains("version 10 is recorded, this build has HighlightDetection version 12"));
+    }
+  }
+}
