@@ -575,7 +575,7 @@ TEST_CASE("pack removes the partial output of a killed pack to the same name, an
   CHECK_THAT(r.output, Contains("\"removedLeftovers\":[\"removed " + staleDir.string()));
 }
 
-TEST_CASE("a step of the version before re-executes as it ran; an older one is refused by name",
+TEST_CASE("a step of the version before re-executes as it ran, an older one is refused by name",
           "[verify][faults]") {
   // HighlightDetection 11 registered frames with cv::phaseCorrelate, 12 with Surrogate's own: a
   // package made before still re-executes (its steps run as they ran), one of version 10 cannot.
