@@ -110,32 +110,39 @@ SURROGATE_NEAR_AVX2_BLOCK inline void rootsAvx2(const double* table, const doubl
   for (; b < len; ++b) fp[b] = rootWith(table, f[b]);
 }
 
+// The bytes of four interleaved 8-bit RGB pixels at s as three lanes of four doubles, channel
+// by channel: exactly twelve bytes read (a row may end there). fit/row_kernels.cpp's
+// channelsOfEight does the same for eight pixels into 16-bit lanes.
+SURROGATE_NEAR_AVX2_INLINE void channelsOfFour(const std::uint8_t* s, __m256d out[3]) {
+  const __m128i pick[3] = {_mm_setr_epi8(0, -1, -1, -1, 3, -1, -1, -1, 6, -1, -1, -1, 9, -1, -1, -1),
+                           _mm_setr_epi8(1, -1, -1, -1, 4, -1, -1, -1, 7, -1, -1, -1, 10, -1, -1, -1),
+                           _mm_setr_epi8(2, -1, -1, -1, 5, -1, -1, -1, 8, -1, -1, -1, 11, -1, -1, -1)};
+  std::uint64_t low;
+  std::uint32_t high;
+  std::memcpy(&low, s, sizeof low);
+  std::memcpy(&high, s + 8, sizeof high);
+  const __m128i bytes = _mm_insert_epi32(_mm_cvtsi64_si128(static_cast<long long>(low)), static_cast<int>(high), 2);
+  for (int ch = 0; ch < 3; ++ch) out[ch] = _mm256_cvtepi32_pd(_mm_shuffle_epi8(bytes, pick[ch]));
+}
+
 // out[ch][b] = scaledWith(the 16-bit value of channel ch of pixel b, fi[b], pi[b]) for the
 // interleaved 8-bit RGB row s, b < len.
 SURROGATE_NEAR_AVX2_BLOCK inline void scaleSrgbAvx2(const double* decode16, const double* encode,
                                                     const std::uint8_t* s, const double* fi, const double* pi,
                                                     double* const* out, int len) {
-  const __m128i pick[3] = {_mm_setr_epi8(0, -1, -1, -1, 3, -1, -1, -1, 6, -1, -1, -1, 9, -1, -1, -1),
-                           _mm_setr_epi8(1, -1, -1, -1, 4, -1, -1, -1, 7, -1, -1, -1, 10, -1, -1, -1),
-                           _mm_setr_epi8(2, -1, -1, -1, 5, -1, -1, -1, 8, -1, -1, -1, 11, -1, -1, -1)};
   const __m256d toe = _mm256_set1_pd(kToe), offset = _mm256_set1_pd(0.055);
   // The row's next block (the caller's next call for this photograph): dozens of photographs'
   // rows are more streams than the hardware prefetcher follows.
   for (int ahead = 0; ahead < 3 * len; ahead += 64) __builtin_prefetch(s + 3 * len + ahead);
   int b = 0;
   for (; b + 4 <= len; b += 4) {
-    // The four pixels' twelve bytes, read exactly (the row may end there).
-    std::uint64_t low;
-    std::uint32_t high;
-    std::memcpy(&low, s + 3 * b, sizeof low);
-    std::memcpy(&high, s + 3 * b + 8, sizeof high);
-    const __m128i bytes = _mm_insert_epi32(_mm_cvtsi64_si128(static_cast<long long>(low)), static_cast<int>(high), 2);
+    __m256d channel[3];
+    channelsOfFour(s + 3 * b, channel);
     const __m256d p = _mm256_loadu_pd(pi + b);
     for (int ch = 0; ch < 3; ++ch) {
       // sampleValue(byte) = 257 byte, exact as a double either way; then v = value / 65535.
-      const __m256d v = _mm256_mul_pd(
-          _mm256_mul_pd(_mm256_cvtepi32_pd(_mm_shuffle_epi8(bytes, pick[ch])), _mm256_set1_pd(257.0)),
-          _mm256_set1_pd(1.0 / 65535.0));
+      const __m256d v =
+          _mm256_mul_pd(_mm256_mul_pd(channel[ch], _mm256_set1_pd(257.0)), _mm256_set1_pd(1.0 / 65535.0));
       const __m256d y = _mm256_sub_pd(_mm256_mul_pd(_mm256_add_pd(v, offset), p), offset);
       const __m256d above = _mm256_and_pd(_mm256_cmp_pd(v, toe, _CMP_GT_OQ), _mm256_cmp_pd(y, toe, _CMP_GT_OQ));
       const __m256d fast = _mm256_mul_pd(y, _mm256_set1_pd(65535.0));
@@ -210,19 +217,11 @@ SURROGATE_NEAR_AVX2_INLINE __m256d clamp(__m256d v) {
 // the clamped channels r0, r1, r2; captured = that of the 8-bit RGB row s in 0..255 units.
 SURROGATE_NEAR_AVX2_BLOCK inline void luminanceErrorsAvx2(const double* r0, const double* r1, const double* r2,
                                                           const std::uint8_t* s, double* d2, int len) {
-  const __m128i pick[3] = {_mm_setr_epi8(0, -1, -1, -1, 3, -1, -1, -1, 6, -1, -1, -1, 9, -1, -1, -1),
-                           _mm_setr_epi8(1, -1, -1, -1, 4, -1, -1, -1, 7, -1, -1, -1, 10, -1, -1, -1),
-                           _mm_setr_epi8(2, -1, -1, -1, 5, -1, -1, -1, 8, -1, -1, -1, 11, -1, -1, -1)};
   int b = 0;
   for (; b + 4 <= len; b += 4) {
-    std::uint64_t low;
-    std::uint32_t high;
-    std::memcpy(&low, s + 3 * b, sizeof low);
-    std::memcpy(&high, s + 3 * b + 8, sizeof high);
-    const __m128i bytes = _mm_insert_epi32(_mm_cvtsi64_si128(static_cast<long long>(low)), static_cast<int>(high), 2);
     __m256d value[3];  // sampleValue: 257 byte, exact
-    for (int ch = 0; ch < 3; ++ch)
-      value[ch] = _mm256_mul_pd(_mm256_cvtepi32_pd(_mm_shuffle_epi8(bytes, pick[ch])), _mm256_set1_pd(257.0));
+    channelsOfFour(s + 3 * b, value);
+    for (int ch = 0; ch < 3; ++ch) value[ch] = _mm256_mul_pd(value[ch], _mm256_set1_pd(257.0));
     const __m256d model = _mm256_add_pd(
         _mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(kLumR), clamp(_mm256_loadu_pd(r0 + b))),
                       _mm256_mul_pd(_mm256_set1_pd(kLumG), clamp(_mm256_loadu_pd(r1 + b)))),
