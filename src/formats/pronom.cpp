@@ -5,12 +5,17 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <climits>
 #include <cstring>
 #include <functional>
 #include <set>
 #include <unordered_map>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "core/error.h"
 #include "core/text.h"
@@ -137,6 +142,37 @@ Part compile(const PronomPart& source) {
   return part;
 }
 
+// The first occurrence of `needle` (not empty) in the `size` bytes at `data`, or nullptr: what
+// memmem answers. Sequences PRONOM places anywhere in a file are sought through whole outputs
+// (a PNG's "acTL", fmt/935, through its 4.5 MB of compressed pixels), which glibc's memmem
+// read at about 1 GB/s; with SSE2, 16 places are tested at once on the needle's first and last
+// bytes and only places where both agree are compared whole (in compressed data, one place in
+// 65536), several times faster.
+const char* find(const char* data, std::size_t size, const std::string& needle) {
+  const std::size_t length = needle.size();
+  if (length > size) return nullptr;
+  std::size_t start = 0;
+#if defined(__SSE2__)
+  constexpr std::size_t kBlock = 16;
+  if (length >= 2) {
+    const __m128i first = _mm_set1_epi8(needle[0]), last = _mm_set1_epi8(needle[length - 1]);
+    // Places start .. start + 15, each needing its last byte at place + length - 1 < size.
+    for (; start + length - 1 + kBlock <= size; start += kBlock) {
+      const __m128i atFirst = _mm_loadu_si128(reinterpret_cast<const __m128i*>(data + start));
+      const __m128i atLast = _mm_loadu_si128(reinterpret_cast<const __m128i*>(data + start + length - 1));
+      auto mask = static_cast<unsigned>(
+          _mm_movemask_epi8(_mm_and_si128(_mm_cmpeq_epi8(atFirst, first), _mm_cmpeq_epi8(atLast, last))));
+      for (; mask != 0; mask &= mask - 1) {
+        const char* place = data + start + static_cast<std::size_t>(__builtin_ctz(mask));
+        if (std::memcmp(place + 1, needle.data() + 1, length - 2) == 0) return place;
+      }
+    }
+  }
+#endif
+  // The places too near the end for a whole block (or every place without SSE2).
+  return static_cast<const char*>(memmem(data + start, size - start, needle.data(), length));
+}
+
 const std::vector<Format>& formats() {
   static const std::vector<Format> kCompiled = [] {
     std::vector<Format> out;
@@ -151,6 +187,39 @@ const std::vector<Format>& formats() {
     return out;
   }();
   return kCompiled;
+}
+
+// The indices of formats() in the order identifyPronom tries them: a format before every format
+// it has priority over (the table's order otherwise; should priorities ever form a cycle, its
+// formats come last, in the table's order, which changes nothing but the time taken).
+const std::vector<std::size_t>& matchOrder() {
+  static const std::vector<std::size_t> kOrder = [] {
+    const std::vector<Format>& all = formats();
+    std::unordered_map<std::string, std::size_t> index;
+    for (std::size_t i = 0; i < all.size(); ++i) index.emplace(all[i].source->puid, i);
+    std::vector<int> winners(all.size(), 0);  // formats with priority over each, not yet placed
+    for (const Format& f : all)
+      for (const char* loser : f.source->priorityOver)
+        if (auto it = index.find(loser); it != index.end()) ++winners[it->second];
+    std::vector<std::size_t> order;
+    std::vector<bool> placed(all.size(), false);
+    for (bool progress = true; progress;) {
+      progress = false;
+      for (std::size_t i = 0; i < all.size(); ++i) {
+        if (placed[i] || winners[i] != 0) continue;
+        placed[i] = true;
+        progress = true;
+        order.push_back(i);
+        for (const char* loser : all[i].source->priorityOver)
+          if (auto it = index.find(loser); it != index.end()) --winners[it->second];
+        break;  // the first format free to go, in the table's order
+      }
+    }
+    for (std::size_t i = 0; i < all.size(); ++i)
+      if (!placed[i]) order.push_back(i);
+    return order;
+  }();
+  return kOrder;
 }
 
 using OnEnd = std::function<bool(std::int64_t)>;
@@ -182,10 +251,9 @@ class Bytes {
         start = std::max(from, k.searchedTo);
       }
     }
-    const void* hit = memmem(data_.data() + start, static_cast<std::size_t>(last + length - start), needle.data(),
-                             needle.size());
+    const char* hit = find(data_.data() + start, static_cast<std::size_t>(last + length - start), needle);
     k.from = from;
-    k.at = hit ? static_cast<const char*>(hit) - data_.data() : kNone;
+    k.at = hit ? hit - data_.data() : kNone;
     k.searchedTo = hit ? k.at : last + 1;
     return k.at;
   }
@@ -285,20 +353,31 @@ std::string PronomIdentity::describe() const {
 
 PronomIdentity identifyPronom(std::string_view data) {
   Bytes bytes(data);
-  std::vector<const PronomFormat*> matched;
-  for (const Format& f : formats())
+  const std::vector<Format>& all = formats();
+  // A format need not be matched when a format already matched has priority over it and over
+  // every format it has priority over: matching or not, it is set aside and sets aside nothing
+  // more, so the identification is the same. Formats are tried winners first (matchOrder) so
+  // that a PNG 1.2's iTXt match spares the whole-file searches for the chunks of PNG 1.1.
+  std::set<std::string> setAside;
+  std::vector<bool> matched(all.size(), false);
+  for (const std::size_t i : matchOrder()) {
+    const Format& f = all[i];
+    const auto isSetAside = [&](const char* puid) { return setAside.count(puid) != 0; };
+    if (isSetAside(f.source->puid) &&
+        std::all_of(f.source->priorityOver.begin(), f.source->priorityOver.end(), isSetAside))
+      continue;
     for (const auto& signature : f.signatures)
       if (matchParts(bytes, signature, 0, 0)) {
-        matched.push_back(f.source);
+        matched[i] = true;
+        for (const char* loser : f.source->priorityOver) setAside.insert(loser);
         break;
       }
-  std::set<std::string> setAside;
-  for (const PronomFormat* f : matched)
-    for (const char* loser : f->priorityOver) setAside.insert(loser);
+  }
   PronomIdentity id;
   const PronomFormat* only = nullptr;
-  for (const PronomFormat* f : matched) {
-    if (setAside.count(f->puid)) continue;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    const PronomFormat* f = all[i].source;
+    if (!matched[i] || setAside.count(f->puid)) continue;
     id.matches.push_back(f->puid);
     only = f;
   }

@@ -289,3 +289,33 @@ TEST_CASE("PRONOM: text, JSON and JavaScript get the PUIDs Siegfried and fido gi
   CHECK(identifyPronomFile(dir / "info.json").puid == "fmt/817");
   CHECK(identifyPronomFile(dir / "viewer-data.js").puid == "x-fmt/423");
 }
+
+TEST_CASE("PRONOM: a sequence sought anywhere is found at every place, up to the last bytes", "[formats][pronom]") {
+  // src/formats/pronom.cpp seeks such sequences 16 places at a time and skips PNG 1.1's
+  // searches once PNG 1.2 has matched: a chunk name at every offset of a long IDAT, across block
+  // edges and up to the IEND, must give what DROID's reading of the signatures gives.
+  const std::string head = hex("89504E470D0A1A0A0000000D49484452000000010000000108000000003A7E9B55");
+  const std::string tail = hex("0000000049454E44AE426082");
+  for (const std::string& chunk : {std::string("acTL"), std::string("sRGB"), std::string("iCCP")}) {
+    for (const bool itxt : {false, true}) {
+      const std::string start = head + (itxt ? hex("00000001") + "iTXt" + "x" + hex("00000000") : std::string());
+      for (std::size_t at = 0; at <= 40; ++at) {
+        std::string idat(40, '\x5A');  // near misses: the chunk's first and last bytes around it
+        idat[0] = chunk[0];
+        idat[39] = chunk[3];
+        idat.replace(at, std::min<std::size_t>(4, 40 - at), chunk.substr(0, std::min<std::size_t>(4, 40 - at)));
+        const std::string bytes = start + idat + tail;
+        INFO(chunk + (itxt ? " after iTXt" : "") + " at " + std::to_string(at));
+        CHECK(identifyPronom(bytes).matches == pronom_reference::identify(bytes));
+      }
+    }
+  }
+  // A chunk name only in a PNG's last bytes, past hundreds of blocks of compressed-like bytes.
+  std::string idat;
+  for (int i = 0; i < 100000; ++i) idat.push_back(static_cast<char>((i * 167 + 13) % 251));
+  for (const std::string& chunk : {std::string("acTL"), std::string("sPLT")}) {
+    const std::string bytes = head + hex("00000001") + "iTXt" + "x" + hex("00000000") + idat + chunk + tail;
+    INFO(chunk);
+    CHECK(identifyPronom(bytes).matches == pronom_reference::identify(bytes));
+  }
+}
