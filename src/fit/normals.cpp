@@ -77,16 +77,43 @@ std::array<double, 3> ptmNormal(const PtmCoefficients& a, bool* usedFallback) {
   return n;
 }
 
-Image normalMap(const formats::PtmFile& ptm, int* fallbackCount, int threads) {
-  Image out = normalImage(ptm.width, ptm.height);
-  const int fallbacks = forEachTexel(ptm.width, ptm.height, threads, [&](int x, int y) {
+namespace {
+// The normal map and the albedo of a PTM, either of them (nullptr: not made), in one pass: the
+// albedo is the model at the normal, so making both together finds each texel's normal once.
+int ptmMaps(const formats::PtmFile& ptm, Image* normals, Image* albedo, int threads) {
+  return forEachTexel(ptm.width, ptm.height, threads, [&](int x, int y) {
     bool fallback = false;
-    const auto n = ptmNormal(ptmLuminance(ptm, x, y), &fallback);
-    for (int c = 0; c < 3; ++c) out.at(x, y, c) = encodeUnit(n[c]);
+    const PtmCoefficients lum = ptmLuminance(ptm, x, y);
+    const auto n = ptmNormal(lum, &fallback);
+    if (normals)
+      for (int c = 0; c < 3; ++c) normals->at(x, y, c) = encodeUnit(n[c]);
+    if (albedo && ptm.format == formats::PtmFile::Format::Lrgb) {
+      const double l = evaluatePtm(lum, n[0], n[1]);
+      for (int c = 0; c < 3; ++c)
+        albedo->at(x, y, c) =
+            encodeByte(ptm.rgb[(static_cast<std::size_t>(y) * ptm.width + x) * 3 + c] * l / 255.0);
+    } else if (albedo) {
+      for (int c = 0; c < 3; ++c)
+        albedo->at(x, y, c) = encodeByte(evaluatePtm(ptmChannel(ptm, x, y, c), n[0], n[1]));
+    }
     return fallback ? 1 : 0;
   });
+}
+}  // namespace
+
+Image normalMap(const formats::PtmFile& ptm, int* fallbackCount, int threads) {
+  Image out = normalImage(ptm.width, ptm.height);
+  const int fallbacks = ptmMaps(ptm, &out, nullptr, threads);
   if (fallbackCount) *fallbackCount = fallbacks;
   return out;
+}
+
+void normalAndAlbedoMaps(const formats::PtmFile& ptm, Image* normals, Image* albedo, int* fallbackCount,
+                         int threads) {
+  *normals = normalImage(ptm.width, ptm.height);
+  *albedo = albedoImage(ptm.width, ptm.height);
+  const int fallbacks = ptmMaps(ptm, normals, albedo, threads);
+  if (fallbackCount) *fallbackCount = fallbacks;
 }
 
 Image normalMap(const formats::HshFile& hsh, int* fallbackCount, int threads) {
@@ -107,18 +134,7 @@ Image normalMap(const formats::HshFile& hsh, int* fallbackCount, int threads) {
 
 Image albedoMap(const formats::PtmFile& ptm, int threads) {
   Image out = albedoImage(ptm.width, ptm.height);
-  forEachTexel(ptm.width, ptm.height, threads, [&](int x, int y) {
-    const PtmCoefficients lum = ptmLuminance(ptm, x, y);
-    const auto n = ptmNormal(lum);
-    if (ptm.format == formats::PtmFile::Format::Lrgb) {
-      const double l = evaluatePtm(lum, n[0], n[1]);
-      for (int c = 0; c < 3; ++c)
-        out.at(x, y, c) = encodeByte(ptm.rgb[(static_cast<std::size_t>(y) * ptm.width + x) * 3 + c] * l / 255.0);
-    } else {
-      for (int c = 0; c < 3; ++c) out.at(x, y, c) = encodeByte(evaluatePtm(ptmChannel(ptm, x, y, c), n[0], n[1]));
-    }
-    return 0;
-  });
+  ptmMaps(ptm, nullptr, &out, threads);
   return out;
 }
 

@@ -62,6 +62,13 @@ class Relightable {
   virtual Image render(const std::array<double, 3>& light, const RenderOptions& options) const = 0;
   virtual Image normalMap(int* fallbackCount = nullptr, int threads = 0) const = 0;
   virtual Image albedoMap(int threads = 0) const = 0;
+  // Both maps, as normalMap and albedoMap make them; a PTM makes them in one pass (both pictures
+  // held at once), finding each texel's normal once.
+  virtual void normalAndAlbedoMaps(Image* normals, Image* albedo, int* fallbackCount = nullptr,
+                                   int threads = 0) const {
+    *normals = normalMap(fallbackCount, threads);
+    *albedo = albedoMap(threads);
+  }
 };
 
 // What `surrogate render` holds per texel beside the model: the rendered picture (16-bit RGB),

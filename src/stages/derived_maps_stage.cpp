@@ -107,6 +107,9 @@ class OverlappedPngWrites {
       finishOldest();
   }
 
+  // Whether files are written while the next picture is computed (else each before the next).
+  bool overlapped() const { return maxPending_ > 0; }
+
   // Waits for every pending write (rethrowing the first error) and records them in order.
   void finish() {
     while (!pending_.empty()) finishOldest();
@@ -237,13 +240,21 @@ void DerivedMapsStage::run(const carrier::Step& step, pipeline::Context& ctx, ca
   };
 
   int fallback = 0;
-  writes.add(model->normalMap(&fallback, ctx.settings.threads), finished(kNormalsFile), [&] {
+  // Normals and albedo made together (a PTM finds each texel's normal once for both) when the
+  // normals are written meanwhile anyway, which holds both pictures; with one thread, one by one.
+  Image normals, albedo;
+  if (writes.overlapped()) {
+    model->normalAndAlbedoMaps(&normals, &albedo, &fallback, ctx.settings.threads);
+  } else {
+    normals = model->normalMap(&fallback, ctx.settings.threads);
+  }
+  writes.add(std::move(normals), finished(kNormalsFile), [&] {
     record(kNormalsFile, "normals");
     result.add("value").set("name", "normalFallbackPixels").set("value", std::to_string(fallback));
     logNormalFallback(ctx, step, basis, fallback, double(model->width()) * model->height());
   });
-  writes.add(model->albedoMap(ctx.settings.threads), finished(kAlbedoFile),
-             [&] { record(kAlbedoFile, "albedo"); });
+  if (!writes.overlapped()) albedo = model->albedoMap(ctx.settings.threads);
+  writes.add(std::move(albedo), finished(kAlbedoFile), [&] { record(kAlbedoFile, "albedo"); });
   for (const Preview& p : kPreviews) {
     const double e = p.elevationDeg * M_PI / 180, a = p.azimuthDeg * M_PI / 180;
     fit::RenderOptions options;

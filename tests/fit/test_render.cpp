@@ -237,3 +237,68 @@ TEST_CASE("fit throughput (prints Mpixel-images/s)", "[.][bench]") {
     }
   }
 }
+
+TEST_CASE("render: the specular preview is the one std::pow gives, for any weights and exponent") {
+  // src/fit/render.cpp takes nh^e by repeated squaring and calls pow only where a sample is
+  // within a hair of a rounding step: every sample must be the one of the formula with pow.
+  for (const auto format : {formats::PtmFile::Format::Lrgb, formats::PtmFile::Format::Rgb}) {
+    formats::PtmFile ptm;
+    ptm.format = format;
+    ptm.width = 97;
+    ptm.height = 61;
+    ptm.scale = {0.9, 0.8, 0.7, 1.1, 1.2, 1.3};
+    ptm.bias = {200, 190, 128, 120, 130, 20};
+    const int channels = format == formats::PtmFile::Format::Lrgb ? 1 : 3;
+    std::uint32_t seed = 12345;
+    const auto next = [&seed] { return static_cast<std::uint8_t>((seed = seed * 1664525u + 1013904223u) >> 24); };
+    ptm.coefficients.resize(ptm.texels() * 6 * channels);
+    for (auto& b : ptm.coefficients) b = next();
+    if (channels == 1) {
+      ptm.rgb.resize(ptm.texels() * 3);
+      for (auto& b : ptm.rgb) b = next();
+    }
+    struct Case {
+      std::array<double, 3> light;
+      double kd, ks, exponent;
+    };
+    for (const Case& k : {Case{{0.6, 0.6, 0.3}, 0.7, 0.3, 40}, Case{{-0.2, 0.1, 1}, 0.5, 1.7, 1},
+                          Case{{0.9, -0.3, 0.1}, 0.7, 0.3, 64}, Case{{0.1, 0.4, 0.8}, 0.7, 0.3, 7},
+                          Case{{0.1, 0.4, 0.8}, 0.7, 0.3, 2.5}, Case{{0.3, 0.2, 0.9}, 0.7, 0.3, 65},
+                          Case{{0, 0, 1}, 1, 0, 40}, Case{{0, 0, -1}, 0.7, 0.3, 40}}) {
+      RenderOptions o;
+      o.specular = true;
+      o.kd = k.kd;
+      o.ks = k.ks;
+      o.specularExponent = k.exponent;
+      const Image r = render(ptm, k.light, o);
+      const double norm = std::sqrt(k.light[0] * k.light[0] + k.light[1] * k.light[1] + k.light[2] * k.light[2]);
+      const double lx = k.light[0] / norm, ly = k.light[1] / norm, lz = k.light[2] / norm;
+      const double h[3] = {lx, ly, lz + 1.0};
+      const double len = std::sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+      int differing = 0;
+      for (int y = 0; y < ptm.height; ++y)
+        for (int x = 0; x < ptm.width; ++x) {
+          PtmCoefficients lum{};
+          for (int c = 0; c < channels; ++c)
+            for (int t = 0; t < 6; ++t)
+              lum[t] += channels == 1 ? ptm.coefficient(x, y, t, 0) : ptm.coefficient(x, y, t, c) / 3.0;
+          const auto n = ptmNormal(lum);
+          const double nh = std::max(0.0, (n[0] * h[0] + n[1] * h[1] + n[2] * h[2]) / len);
+          const double spec = len == 0 ? 0 : o.ks * 255.0 * std::pow(nh, o.specularExponent);
+          for (int c = 0; c < 3; ++c) {
+            PtmCoefficients a;
+            for (int t = 0; t < 6; ++t) a[t] = ptm.coefficient(x, y, t, channels == 1 ? 0 : c);
+            const double diffuse = evaluatePtm(a, lx, ly);
+            const std::size_t texel = static_cast<std::size_t>(y) * ptm.width + x;
+            const double d = channels == 1 ? ptm.rgb[texel * 3 + c] * diffuse / 255.0 : diffuse;
+            const double v = o.kd * d + spec;
+            const double clamped = v > 0 ? std::min(v, 255.0) : 0.0;  // detail::toByte
+            const int rounded = static_cast<int>(clamped) + (clamped - static_cast<int>(clamped) >= 0.5 ? 1 : 0);
+            if (r.at(x, y, c) != rounded * 257) ++differing;
+          }
+        }
+      INFO("exponent " << k.exponent << ", ks " << k.ks);
+      CHECK(differing == 0);
+    }
+  }
+}
