@@ -174,6 +174,18 @@ Image render(const formats::PtmFile& ptm, const std::array<double, 3>& light,
   const Specular specular(options);
   const std::size_t plane = ptm.texels() * 6;  // bytes of one channel's coefficients
   forRows(ptm.height, options.threads, [&](int y) {
+    if (lrgb && !gain && !options.specular) {
+      // The plain LRGB picture, alone in a loop of its own (two of DerivedMaps' three previews):
+      // kd is 1 and there is no specular term, so the sample is toSample(d), as 1 * d + 0.0 is d.
+      const std::size_t row = static_cast<std::size_t>(y) * ptm.width;
+      const std::uint8_t* rgb = &ptm.rgb[row * 3];
+      std::uint16_t* samples = &out.pixels[row * 3];
+      for (int x = 0; x < ptm.width; ++x) {
+        const double diffuse = terms.evaluate(&ptm.coefficients[(row + x) * 6]);
+        for (int c = 0; c < 3; ++c) samples[x * 3 + c] = toSample(rgb[x * 3 + c] * diffuse / 255.0);
+      }
+      return;
+    }
     for (int x = 0; x < ptm.width; ++x) {
       std::array<double, 3> n{0, 0, 1};
       if (gain || options.specular) n = ptmNormal(ptmLuminance(ptm, x, y));
