@@ -11,6 +11,7 @@
 #include "capture/capture.h"
 #include "carrier/carrier.h"
 #include "core/error.h"
+#include "core/parallel.h"
 #include "core/text.h"
 #include "hrti/light_checks.h"
 #include "hrti/light_direction.h"
@@ -221,85 +222,106 @@ void LightDirectionsStage::run(const carrier::Step& step, pipeline::Context& ctx
   result.add("value").set("name", "model").set("value", model);
   const double diameter = options.sphereDiameterMm;
 
+  // Each image's light, its uncertainty (hrti/light_uncertainty.cpp: most of this step's time)
+  // and its position are independent of the others': measured in parallel, each written at its
+  // own index, then recorded in image order, so the results are the same at any thread count.
+  // An error is the first image's in order, as when they were measured one after another.
+  struct ImageLight {
+    std::vector<std::optional<std::array<double, 3>>> perSphere;
+    MeasuredLight measured;
+    std::string from;
+    double bound = 0;
+    std::optional<hrti::LightPosition> position;
+  };
+  std::vector<ImageLight> images(inputs->size());
+  const int threads = effectiveThreads(ctx.settings.threads);
+  parallelFor(inputs->size(), 1, threads, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t n = begin; n < end; ++n) {
+      ImageLight& image = images[n];
+      std::array<double, 3> sum{0, 0, 0};
+      std::string& from = image.from;
+      std::vector<hrti::SphereEvidence>& evidence = image.measured.evidence;
+      image.perSphere.resize(spheres->size());
+      for (std::size_t k = 0; k < spheres->size(); ++k) {
+        const hrti::Highlight& h = (*highlights)[n][k];
+        if (!hrti::isUsable(h.flag)) continue;
+        const hrti::LightDirection l =
+            model == "perspective" ? hrti::lightFromHighlightPerspective((*spheres)[k], h.x, h.y, *intrinsics)
+                                   : hrti::lightFromHighlight((*spheres)[k], h.x, h.y);
+        // Never a NaN in the record: a direction that is not a number comes from the values it
+        // was computed with (a lens so long the rays are parallel to machine precision).
+        if (!std::isfinite(l.x) || !std::isfinite(l.y) || !std::isfinite(l.z))
+          throw Error(ErrorKind::Input, (*inputs)[n].relativePath, "light directions",
+                      "the " + model + " light model gives no finite light direction for the highlight at (" +
+                          fixedDecimals(h.x, 2) + ", " + fixedDecimals(h.y, 2) + ") on sphere " + std::to_string(k) +
+                          (model == "perspective"
+                               ? " with focal length " + shown(intrinsics->focalLengthMm) +
+                                     " mm (focalLengthMm, --focal-length) and pixel pitch " +
+                                     shown(intrinsics->pixelPitchMm) +
+                                     " mm (pixelPitchMm, --pixel-pitch); check both"
+                               : std::string("; check the sphere's circle and the highlight")));
+        sum[0] += l.x;
+        sum[1] += l.y;
+        sum[2] += l.z;
+        image.perSphere[k] = std::array<double, 3>{l.x, l.y, l.z};
+        evidence.push_back({(*spheres)[k], h});
+        image.measured.perSphere.push_back({l.x, l.y, l.z});
+        image.measured.sphereNumbers.push_back(static_cast<int>(k));
+        from += (from.empty() ? "sphere " : ",") + std::to_string(k);
+      }
+      const double norm = std::sqrt(sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]);
+      if (from.empty() || norm == 0) {
+        throwInputError((*inputs)[n].relativePath, "light directions",
+                        "has no usable highlight on any sphere, so its light direction is unknown; "
+                        "exclude it (--exclude " + (*inputs)[n].stem + " --reason ...) or give its "
+                        "highlight by hand (--highlight " + (*inputs)[n].stem + ":sphere1=x,y --reason ...)");
+      }
+      image.measured.direction = {sum[0] / norm, sum[1] / norm, sum[2] / norm};
+      image.bound = hrti::lightUncertaintyDeg(evidence, model == "perspective" ? &*intrinsics : nullptr);
+
+      if (spheres->size() >= 2 && diameter > 0 && intrinsics) {
+        std::vector<hrti::SphereGeometry> geometry;
+        std::vector<hrti::Highlight> perSphere;
+        for (std::size_t k = 0; k < spheres->size(); ++k) {
+          if (!hrti::isUsable((*highlights)[n][k].flag)) continue;
+          geometry.push_back({(*spheres)[k], diameter});
+          perSphere.push_back((*highlights)[n][k]);
+        }
+        if (geometry.size() >= 2) {
+          const hrti::LightPosition p = hrti::lightPositionFromSpheres(geometry, perSphere, *intrinsics);
+          if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z) || !std::isfinite(p.residualMm))
+            throw Error(ErrorKind::Input, (*inputs)[n].relativePath, "light directions",
+                        "the light's position is not a finite point with sphere diameter " +
+                            shown(diameter) + " mm (sphereDiameterMm, --sphere-diameter), "
+                            "focal length " + shown(intrinsics->focalLengthMm) +
+                            " mm and pixel pitch " + shown(intrinsics->pixelPitchMm) +
+                            " mm; check these values");
+          image.position = p;
+        }
+      }
+    }
+  });
   auto lights = std::make_shared<Lights>();
   hrti::LightCheckInput checks;
   std::vector<MeasuredLight> measured(inputs->size());
   std::vector<std::string> sources;
   for (std::size_t n = 0; n < inputs->size(); ++n) {
-    std::array<double, 3> sum{0, 0, 0};
-    std::string from;
-    std::vector<hrti::SphereEvidence> evidence;
-    checks.perSphere.emplace_back(spheres->size());
-    for (std::size_t k = 0; k < spheres->size(); ++k) {
-      const hrti::Highlight& h = (*highlights)[n][k];
-      if (!hrti::isUsable(h.flag)) continue;
-      const hrti::LightDirection l =
-          model == "perspective" ? hrti::lightFromHighlightPerspective((*spheres)[k], h.x, h.y, *intrinsics)
-                                 : hrti::lightFromHighlight((*spheres)[k], h.x, h.y);
-      // Never a NaN in the record: a direction that is not a number comes from the values it
-      // was computed with (a lens so long the rays are parallel to machine precision).
-      if (!std::isfinite(l.x) || !std::isfinite(l.y) || !std::isfinite(l.z))
-        throw Error(ErrorKind::Input, (*inputs)[n].relativePath, "light directions",
-                    "the " + model + " light model gives no finite light direction for the highlight at (" +
-                        fixedDecimals(h.x, 2) + ", " + fixedDecimals(h.y, 2) + ") on sphere " + std::to_string(k) +
-                        (model == "perspective"
-                             ? " with focal length " + shown(intrinsics->focalLengthMm) +
-                                   " mm (focalLengthMm, --focal-length) and pixel pitch " +
-                                   shown(intrinsics->pixelPitchMm) +
-                                   " mm (pixelPitchMm, --pixel-pitch); check both"
-                             : std::string("; check the sphere's circle and the highlight")));
-      sum[0] += l.x;
-      sum[1] += l.y;
-      sum[2] += l.z;
-      checks.perSphere.back()[k] = std::array<double, 3>{l.x, l.y, l.z};
-      evidence.push_back({(*spheres)[k], h});
-      measured[n].perSphere.push_back({l.x, l.y, l.z});
-      measured[n].sphereNumbers.push_back(static_cast<int>(k));
-      from += (from.empty() ? "sphere " : ",") + std::to_string(k);
-    }
-    const double norm = std::sqrt(sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]);
-    if (from.empty() || norm == 0) {
-      throwInputError((*inputs)[n].relativePath, "light directions",
-                      "has no usable highlight on any sphere, so its light direction is unknown; "
-                      "exclude it (--exclude " + (*inputs)[n].stem + " --reason ...) or give its "
-                      "highlight by hand (--highlight " + (*inputs)[n].stem + ":sphere1=x,y --reason ...)");
-    }
-    lights->push_back({sum[0] / norm, sum[1] / norm, sum[2] / norm});
-    const double bound =
-        hrti::lightUncertaintyDeg(evidence, model == "perspective" ? &*intrinsics : nullptr);
-    checks.uncertaintyDeg.push_back(bound);
-    measured[n].direction = lights->back();
-    measured[n].evidence = evidence;
-    sources.push_back(from);
-
-    if (spheres->size() >= 2 && diameter > 0 && intrinsics) {
-      std::vector<hrti::SphereGeometry> geometry;
-      std::vector<hrti::Highlight> perSphere;
-      for (std::size_t k = 0; k < spheres->size(); ++k) {
-        if (!hrti::isUsable((*highlights)[n][k].flag)) continue;
-        geometry.push_back({(*spheres)[k], diameter});
-        perSphere.push_back((*highlights)[n][k]);
-      }
-      if (geometry.size() >= 2) {
-        const hrti::LightPosition p = hrti::lightPositionFromSpheres(geometry, perSphere, *intrinsics);
-        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z) || !std::isfinite(p.residualMm))
-          throw Error(ErrorKind::Input, (*inputs)[n].relativePath, "light directions",
-                      "the light's position is not a finite point with sphere diameter " +
-                          shown(diameter) + " mm (sphereDiameterMm, --sphere-diameter), "
-                          "focal length " + shown(intrinsics->focalLengthMm) +
-                          " mm and pixel pitch " + shown(intrinsics->pixelPitchMm) +
-                          " mm; check these values");
-        result.add("lightPosition").set("image", (*inputs)[n].fileId).set("x", p.x).set("y", p.y)
-            .set("z", p.z).set("residualMm", p.residualMm).set("nearParallel", p.nearParallel ? "true" : "false");
-      }
-    }
+    ImageLight& image = images[n];
+    checks.perSphere.push_back(std::move(image.perSphere));
+    lights->push_back(image.measured.direction);
+    checks.uncertaintyDeg.push_back(image.bound);
+    measured[n] = std::move(image.measured);
+    sources.push_back(std::move(image.from));
+    if (const auto& p = image.position)
+      result.add("lightPosition").set("image", (*inputs)[n].fileId).set("x", p->x).set("y", p->y)
+          .set("z", p->z).set("residualMm", p->residualMm).set("nearParallel", p->nearParallel ? "true" : "false");
   }
   // Where the lights were (light_places.h): a placed light's direction is the one from the
   // frame's centre, with its own bound.
   auto places = std::make_shared<LightPlaces>();
   {
     PlacedLights placed = placeLights(options, measured, *inputs, lum->width(), lum->height(), ctx.carrier,
-                                      step.id, result);
+                                      step.id, result, threads);
     for (std::size_t n = 0; n < inputs->size(); ++n) {
       (*lights)[n] = placed.directions[n];
       if (placed.uncertaintyDeg[n] >= 0) checks.uncertaintyDeg[n] = placed.uncertaintyDeg[n];

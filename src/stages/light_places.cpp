@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "core/parallel.h"
 #include "core/text.h"
 #include "hrti/light_position.h"
 
@@ -47,7 +48,7 @@ double statedWidths(const StatedDistance& d, const LightDirectionsOptions& optio
 
 PlacedLights placeLights(const LightDirectionsOptions& options, const std::vector<MeasuredLight>& measured,
                          const InputImages& inputs, int width, int height, carrier::Carrier& carrier,
-                         const std::string& stepId, carrier::Result& result) {
+                         const std::string& stepId, carrier::Result& result, int threads) {
   const StatedDistance stated = StatedDistance::parse(options.lightDistance, "lightDistance");
   const double widths = statedWidths(stated, options, measured, width);
   if (widths > 0 && widths < kMinLightDistanceWidths)
@@ -67,13 +68,17 @@ PlacedLights placeLights(const LightDirectionsOptions& options, const std::vecto
   // perspective model only a stated distance places the lights.
   std::vector<hrti::NearLightPosition> triangulated(measured.size());
   std::vector<double> placedWidths;
-  for (std::size_t n = 0; n < measured.size(); ++n) {
-    const MeasuredLight& m = measured[n];
-    if (stated.kind == StatedDistance::Kind::Infinity || options.model != "orthographic" || m.evidence.size() < 2)
-      continue;
-    triangulated[n] = hrti::positionFromSpheres(m.evidence, width, height, m.sphereNumbers);
-    if (triangulated[n].trusted) placedWidths.push_back(triangulated[n].distancePx / width);
-  }
+  // Each light on its own (its bound's gaussianRadius is most of the time), written at its index.
+  parallelFor(measured.size(), 1, threads, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t n = begin; n < end; ++n) {
+      const MeasuredLight& m = measured[n];
+      if (stated.kind == StatedDistance::Kind::Infinity || options.model != "orthographic" || m.evidence.size() < 2)
+        continue;
+      triangulated[n] = hrti::positionFromSpheres(m.evidence, width, height, m.sphereNumbers);
+    }
+  });
+  for (const hrti::NearLightPosition& p : triangulated)
+    if (p.trusted) placedWidths.push_back(p.distancePx / width);
   // Stated and measured both: the spheres' positions are used; a statement far from them is
   // worth a word (the wrong unit, or the dome's diameter given for its radius).
   if (widths > 0 && placedWidths.size() >= 3 && std::abs(median(placedWidths) / widths - 1) > 0.2)

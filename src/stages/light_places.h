@@ -39,9 +39,10 @@ struct PlacedLights {
 // Places every image's light and records it: a `nearLight` item per placed light, the stated
 // distance in frame widths (value lightDistanceWidths), and one log line saying how many lights
 // each way placed and why the others were not. Error(Usage) for a stated length without
-// --sphere-diameter, or a stated distance no light can have (closer than a sphere).
+// --sphere-diameter, or a stated distance no light can have (closer than a sphere). The lights
+// are triangulated on `threads` threads (the same results at any count).
 PlacedLights placeLights(const LightDirectionsOptions& options, const std::vector<MeasuredLight>& measured,
                          const InputImages& inputs, int width, int height, carrier::Carrier& carrier,
-                         const std::string& stepId, carrier::Result& result);
+                         const std::string& stepId, carrier::Result& result, int threads);
 
 }  // namespace surrogate::stages
