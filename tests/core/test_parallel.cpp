@@ -5,6 +5,7 @@
 #include <chrono>
 #include <numeric>
 #include <stdexcept>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -57,4 +58,51 @@ TEST_CASE("parallelForWorkers names each worker once: its chunks never run at th
     for (auto& c : chunksOf) total += c;
     CHECK(total == 167);  // ceil(500 / 3)
   }
+}
+
+TEST_CASE("parallelFor rethrows the first failing chunk's exception, after every chunk ran") {
+  std::atomic<int> ran{0};
+  try {
+    parallelFor(40, 1, 3, [&](std::size_t b, std::size_t) {
+      ++ran;
+      if (b == 7 || b == 30) throw std::runtime_error("chunk " + std::to_string(b));
+    });
+    FAIL("no exception");
+  } catch (const std::runtime_error& e) {
+    CHECK(std::string(e.what()) == "chunk 7");
+  }
+  CHECK(ran == 40);
+}
+
+TEST_CASE("parallelFor inside another's chunk, and on two threads at once, finishes") {
+  // The kept threads are busy with the outer loop: the inner loops must get threads of their own.
+  std::vector<std::atomic<int>> hits(64 * 50);
+  parallelFor(64, 1, 4, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i)
+      parallelFor(50, 4, 3, [&](std::size_t ib, std::size_t ie) {
+        for (std::size_t j = ib; j < ie; ++j) ++hits[i * 50 + j];
+      });
+  });
+  for (auto& h : hits) REQUIRE(h == 1);
+  std::vector<std::atomic<int>> other(2 * 2000);
+  std::vector<std::thread> callers;
+  for (int t = 0; t < 2; ++t)
+    callers.emplace_back([&, t] {
+      for (int round = 0; round < 50; ++round)
+        parallelForWorkers(2000, 16, 2, [&](int worker, std::size_t b, std::size_t e) {
+          if (worker < 0 || worker > 1) return;
+          for (std::size_t i = b; i < e; ++i) other[t * 2000 + i] += 1;
+        });
+    });
+  for (auto& c : callers) c.join();
+  for (auto& h : other) REQUIRE(h == 50);
+}
+
+TEST_CASE("parallelFor with one thread runs on the calling thread") {
+  const auto caller = std::this_thread::get_id();
+  std::atomic<int> elsewhere{0};
+  parallelFor(100, 1, 1, [&](std::size_t, std::size_t) {
+    if (std::this_thread::get_id() != caller) ++elsewhere;
+  });
+  CHECK(elsewhere == 0);
 }
