@@ -302,3 +302,58 @@ TEST_CASE("render: the specular preview is the one std::pow gives, for any weigh
     }
   }
 }
+
+TEST_CASE("normals: a PTM's normal and albedo maps, together or apart, are those of each texel's polynomial") {
+  // src/fit/normals.cpp makes both maps in one pass with its coefficients decoded by table.
+  for (const auto format : {formats::PtmFile::Format::Lrgb, formats::PtmFile::Format::Rgb}) {
+    formats::PtmFile ptm;
+    ptm.format = format;
+    ptm.width = 53;
+    ptm.height = 37;
+    ptm.scale = {0.5, 0.6, 0.7, 1.1, 1.2, 1.3};
+    ptm.bias = {180, 170, 128, 120, 130, 20};
+    const int channels = format == formats::PtmFile::Format::Lrgb ? 1 : 3;
+    std::uint32_t seed = 777;
+    const auto next = [&seed] { return static_cast<std::uint8_t>((seed = seed * 1664525u + 1013904223u) >> 24); };
+    ptm.coefficients.resize(ptm.texels() * 6 * channels);
+    for (auto& b : ptm.coefficients) b = next();
+    if (channels == 1) {
+      ptm.rgb.resize(ptm.texels() * 3);
+      for (auto& b : ptm.rgb) b = next();
+    }
+    int fallback = -1, fallbackTogether = -1;
+    const Image normals = normalMap(ptm, &fallback, 2), albedo = albedoMap(ptm, 2);
+    Image normalsTogether, albedoTogether;
+    normalAndAlbedoMaps(ptm, &normalsTogether, &albedoTogether, &fallbackTogether, 2);
+    CHECK(normalsTogether.pixels == normals.pixels);
+    CHECK(albedoTogether.pixels == albedo.pixels);
+    CHECK(fallbackTogether == fallback);
+    int expectedFallback = 0, differing = 0;
+    const auto encode = [](double v, double top) {  // detail::roundClamped
+      const double c = v > 0 ? std::min(v, top) : 0.0;
+      return static_cast<int>(c) + (c - static_cast<int>(c) >= 0.5 ? 1 : 0);
+    };
+    for (int y = 0; y < ptm.height; ++y)
+      for (int x = 0; x < ptm.width; ++x) {
+        PtmCoefficients lum{};
+        for (int c = 0; c < channels; ++c)
+          for (int t = 0; t < 6; ++t)
+            lum[t] += channels == 1 ? ptm.coefficient(x, y, t, 0) : ptm.coefficient(x, y, t, c) / 3.0;
+        bool usedFallback = false;
+        const auto n = ptmNormal(lum, &usedFallback);
+        expectedFallback += usedFallback ? 1 : 0;
+        for (int c = 0; c < 3; ++c) {
+          PtmCoefficients a;
+          for (int t = 0; t < 6; ++t) a[t] = ptm.coefficient(x, y, t, channels == 1 ? 0 : c);
+          const std::size_t texel = static_cast<std::size_t>(y) * ptm.width + x;
+          const double v = channels == 1 ? ptm.rgb[texel * 3 + c] * evaluatePtm(lum, n[0], n[1]) / 255.0
+                                         : evaluatePtm(a, n[0], n[1]);
+          if (normals.at(x, y, c) != encode((n[c] + 1.0) / 2.0 * 65535.0, 65535.0)) ++differing;
+          if (albedo.at(x, y, c) != encode(v, 255.0) * 257) ++differing;
+        }
+      }
+    CHECK(fallback == expectedFallback);
+    CHECK(fallback > 0);
+    CHECK(differing == 0);
+  }
+}
