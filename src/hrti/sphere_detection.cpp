@@ -34,6 +34,9 @@ constexpr double kMinEvidence = 0.5;
 constexpr double kEvidenceRadius = 100;
 // Distinct Hough candidates refined when searching the whole frame (plus four per octave).
 constexpr std::size_t kCandidates = 40;
+// Pixels beyond a circle's search margin that its rim refinement reads (hrti/rim_fit.cpp: the
+// window's own 3 or 4 pixels and the blur's reach of 4), with one to spare.
+constexpr double kRimReadMargin = 9;
 
 struct Candidate {
   double x = 0, y = 0, r = 0, score = -1;
@@ -54,28 +57,58 @@ Gradients gradients(const cv::Mat& coarse8) {
   return g;
 }
 
-// The circle Hough transform over `radiusList` (coarse pixels) inside `area`. Each radius
-// gets its own accumulator and yields its `perRadius` strongest local maxima (each found
-// maximum's neighbourhood of r/2 is cleared before the next). The candidates are returned
-// sorted by score (normalised by what a perfect circle of that radius reaches), ties in radius
-// order, so the result is
-// identical at any thread count.
-std::vector<Candidate> hough(const Gradients& g, cv::Rect area, const std::vector<int>& radiusList, int perRadius,
-                             int threads) {
+// std::lround(v) for |v| well inside the range of long, without the call into the maths library
+// (a fifth of the Hough transform's time): v - trunc(v) is exact, so the half is judged as
+// std::lround judges it.
+inline long roundHalfAway(double v) {
+  const long t = static_cast<long>(v);  // towards zero
+  const double f = v - static_cast<double>(t);
+  return f >= 0.5 ? t + 1 : f <= -0.5 ? t - 1 : t;
+}
+
+// The arc of votes around the gradient direction (step 3 above).
+constexpr double kArc[] = {-M_PI / 12, -M_PI / 24, 0, M_PI / 24, M_PI / 12};
+constexpr int kArcVotes = 5;
+
+// The accumulator value a perfect circle of radius r (unit edge strength) reaches at its
+// centre: each edge pixel's central vote lands there, the arc votes land 2 r sin(|phi|/2)
+// away and reach it only through the blur below (sigma 1). Dividing by this, not by the
+// circumference alone, keeps scores comparable across radii: otherwise the five votes of a
+// small circle pile up in one cell and a few pixels of any dark edge (a sphere's rim near
+// the frame) outscore the whole sphere (seen at 6000 px wide, radius 308 px).
+double perfectCircle(int r) {
+  double sum = 0;
+  for (int k = 0; k < kArcVotes; ++k) {
+    const double d = 2 * r * std::sin(std::abs(kArc[k]) / 2);
+    sum += std::exp(-d * d / 2);
+  }
+  return 2 * M_PI * r * sum;
+}
+
+// The edges of one Hough level that vote, and the area they vote in.
+struct Votes {
   struct Edge {
     float x, y, cosg, sing, weight;
   };
-  // The edges that vote: those above the 80th percentile of the area's gradients or a tenth of
-  // the strongest, whichever is lower (and at least 2 % of the strongest), each vote growing
-  // with the gradient up to its 97th percentile: a circle's score is then how much of its
-  // outline is a clear edge. The few very strong edges of the scene reflected in a sphere (a
-  // lamp) can neither outvote its fainter rim nor, through a floor set by them, silence it
-  // (a light probe); dense strong texture cannot either (stripes, where the 80th percentile
-  // alone silenced half a sphere's rim).
+  cv::Rect area;
+  std::vector<Edge> edges;
+};
+
+// The edges that vote: those above the 80th percentile of the area's gradients or a tenth of
+// the strongest, whichever is lower (and at least 2 % of the strongest), each vote growing
+// with the gradient up to its 97th percentile: a circle's score is then how much of its
+// outline is a clear edge. The few very strong edges of the scene reflected in a sphere (a
+// lamp) can neither outvote its fainter rim nor, through a floor set by them, silence it
+// (a light probe); dense strong texture cannot either (stripes, where the 80th percentile
+// alone silenced half a sphere's rim).
+Votes houghVotes(const Gradients& g, cv::Rect area) {
+  Votes v;
+  v.area = area;
   std::vector<float> strengths;
+  strengths.reserve(std::size_t(area.width) * area.height);
   for (int y = area.y; y < area.y + area.height; ++y)
     for (int x = area.x; x < area.x + area.width; ++x) strengths.push_back(g.mag.at<float>(y, x));
-  if (strengths.empty()) return {};
+  if (strengths.empty()) return v;
   auto percentile = [&](double p) {
     const auto q = strengths.begin() + static_cast<std::ptrdiff_t>((strengths.size() - 1) * p);
     std::nth_element(strengths.begin(), q, strengths.end());
@@ -84,76 +117,70 @@ std::vector<Candidate> hough(const Gradients& g, cv::Rect area, const std::vecto
   const float strongest = *std::max_element(strengths.begin(), strengths.end());
   const float cap = percentile(0.97);
   const float floor = std::max(std::min(percentile(0.80), 0.1f * strongest), 0.02f * strongest);
-  std::vector<Edge> edges;
   for (int y = area.y; y < area.y + area.height; ++y) {
     for (int x = area.x; x < area.x + area.width; ++x) {
       const float m = g.mag.at<float>(y, x);
       if (m < floor || !(m > 0)) continue;
-      edges.push_back({float(x), float(y), g.gx.at<float>(y, x) / m, g.gy.at<float>(y, x) / m,
-                       cap > 0 ? std::min(1.0f, m / cap) : 1.0f});
+      v.edges.push_back({float(x), float(y), g.gx.at<float>(y, x) / m, g.gy.at<float>(y, x) / m,
+                         cap > 0 ? std::min(1.0f, m / cap) : 1.0f});
     }
   }
-  if (edges.empty() || radiusList.empty()) return {};
-  static const double kArc[] = {-M_PI / 12, -M_PI / 24, 0, M_PI / 24, M_PI / 12};
-  double cosArc[5], sinArc[5];
-  for (int k = 0; k < 5; ++k) {
+  return v;
+}
+
+// The circle Hough transform of `votes` for radius r (coarse pixels of its level), in `acc`
+// (scratch of the area's size): the accumulator's `perRadius` strongest local maxima (each
+// found maximum's neighbourhood of r/2 cleared before the next), scored by what a perfect
+// circle of that radius reaches.
+std::vector<Candidate> houghRadius(const Votes& votes, int r, int perRadius, cv::Mat& acc) {
+  double cosArc[kArcVotes], sinArc[kArcVotes];
+  for (int k = 0; k < kArcVotes; ++k) {
     cosArc[k] = std::cos(kArc[k]);
     sinArc[k] = std::sin(kArc[k]);
   }
-  // The accumulator value a perfect circle of radius r (unit edge strength) reaches at its
-  // centre: each edge pixel's central vote lands there, the arc votes land 2 r sin(|phi|/2)
-  // away and reach it only through the blur below (sigma 1). Dividing by this, not by the
-  // circumference alone, keeps scores comparable across radii: otherwise the five votes of a
-  // small circle pile up in one cell and a few pixels of any dark edge (a sphere's rim near
-  // the frame) outscore the whole sphere (seen at 6000 px wide, radius 308 px).
-  auto perfectCircle = [&](int r) {
-    double sum = 0;
-    for (int k = 0; k < 5; ++k) {
-      const double d = 2 * r * std::sin(std::abs(kArc[k]) / 2);
-      sum += std::exp(-d * d / 2);
+  const cv::Rect& area = votes.area;
+  acc.create(area.height, area.width, CV_32F);
+  acc.setTo(0);
+  for (const Votes::Edge& ed : votes.edges) {
+    for (int k = 0; k < kArcVotes; ++k) {
+      // Rotate the gradient direction by the arc angle; step against it (into the dark).
+      const double dx = ed.cosg * cosArc[k] - ed.sing * sinArc[k];
+      const double dy = ed.sing * cosArc[k] + ed.cosg * sinArc[k];
+      const int cx = static_cast<int>(roundHalfAway(ed.x - r * dx)) - area.x;
+      const int cy = static_cast<int>(roundHalfAway(ed.y - r * dy)) - area.y;
+      if (cx >= 0 && cy >= 0 && cx < area.width && cy < area.height) acc.at<float>(cy, cx) += ed.weight;
     }
-    return 2 * M_PI * r * sum;
-  };
-  const int radii = static_cast<int>(radiusList.size());
-  std::vector<std::vector<Candidate>> perR(radii);
-  parallelFor(radii, 1, effectiveThreads(threads), [&](std::size_t b, std::size_t e) {
-    cv::Mat acc(area.height, area.width, CV_32F);
-    for (std::size_t ri = b; ri < e; ++ri) {
-      const int r = radiusList[ri];
-      acc.setTo(0);
-      for (const Edge& ed : edges) {
-        for (int k = 0; k < 5; ++k) {
-          // Rotate the gradient direction by the arc angle; step against it (into the dark).
-          const double dx = ed.cosg * cosArc[k] - ed.sing * sinArc[k];
-          const double dy = ed.sing * cosArc[k] + ed.cosg * sinArc[k];
-          const int cx = static_cast<int>(std::lround(ed.x - r * dx)) - area.x;
-          const int cy = static_cast<int>(std::lround(ed.y - r * dy)) - area.y;
-          if (cx >= 0 && cy >= 0 && cx < area.width && cy < area.height) acc.at<float>(cy, cx) += ed.weight;
-        }
-      }
-      cv::GaussianBlur(acc, acc, cv::Size(5, 5), 1.0);
-      AccumulatorPeaks peaks(acc);
-      for (int m = 0; m < perRadius; ++m) {
-        cv::Point at;
-        const double value = peaks.strongest(&at);
-        if (value <= 0) break;
-        perR[ri].push_back({double(at.x + area.x), double(at.y + area.y), double(r), value / perfectCircle(r)});
-        peaks.clearDisc(at, std::max(2, r / 2));
-      }
-    }
-  });
-  std::vector<Candidate> all;
-  for (const auto& list : perR) all.insert(all.end(), list.begin(), list.end());
-  std::stable_sort(all.begin(), all.end(), [](const Candidate& a, const Candidate& b) { return a.score > b.score; });
-  return all;
+  }
+  cv::GaussianBlur(acc, acc, cv::Size(5, 5), 1.0);
+  AccumulatorPeaks peaks(acc);
+  std::vector<Candidate> out;
+  for (int m = 0; m < perRadius; ++m) {
+    cv::Point at;
+    const double value = peaks.strongest(&at);
+    if (value <= 0) break;
+    out.push_back({double(at.x + area.x), double(at.y + area.y), double(r), value / perfectCircle(r)});
+    peaks.clearDisc(at, std::max(2, r / 2));
+  }
+  return out;
 }
 
 // The Hough transform at several scales: level l searches the radii of 24 to 48 of its own
 // pixels on the median reduced 2^l times (level 0 from r0), so that every radius is searched
-// on a few dozen accumulators of a size that suits it. Candidates in coarse pixels.
+// on a few dozen accumulators of a size that suits it. Candidates in coarse pixels, sorted by
+// score (ties in level, then radius order), so the result is identical at any thread count.
+// The levels' edges are found side by side, then every (level, radius) is one task of a
+// single parallel loop: level by level, the other core waited for each level's edges and for
+// its last radius.
 std::vector<Candidate> houghPyramid(const cv::Mat& coarse8, cv::Rect area, int r0, int r1, int perRadius,
                                     int threads) {
-  std::vector<Candidate> all;
+  struct Level {
+    cv::Mat image;
+    cv::Rect area;
+    int scale = 1;
+    std::vector<int> radii;
+    Votes votes;
+  };
+  std::vector<Level> levels;
   cv::Mat level = coarse8;
   for (int l = 0, scale = 1; r0 <= r1; ++l, scale *= 2) {
     const int top = r1 / scale < 48 || level.cols < 96 || level.rows < 96 ? r1 / scale : 47;
@@ -162,15 +189,9 @@ std::vector<Candidate> houghPyramid(const cv::Mat& coarse8, cv::Rect area, int r
       const cv::Rect a(area.x / scale, area.y / scale, std::max(1, area.width / scale), std::max(1, area.height / scale));
       const cv::Rect inLevel = a & cv::Rect(0, 0, level.cols, level.rows);
       if (inLevel.width >= 8 && inLevel.height >= 8) {
-        std::vector<int> radii;
-        for (int r = lo; r <= top; ++r) radii.push_back(r);
-        for (Candidate c : hough(gradients(level), inLevel, radii, perRadius, threads)) {
-          c.x = (c.x + 0.5) * scale - 0.5;
-          c.y = (c.y + 0.5) * scale - 0.5;
-          c.r *= scale;
-          c.level = scale;
-          all.push_back(c);
-        }
+        Level one{level, inLevel, scale, {}, {}};
+        for (int r = lo; r <= top; ++r) one.radii.push_back(r);
+        levels.push_back(std::move(one));
       }
     }
     if (top >= r1 / scale) break;
@@ -178,6 +199,38 @@ std::vector<Candidate> houghPyramid(const cv::Mat& coarse8, cv::Rect area, int r
     cv::Mat smaller;
     cv::resize(level, smaller, cv::Size((level.cols + 1) / 2, (level.rows + 1) / 2), 0, 0, cv::INTER_AREA);
     level = smaller;
+  }
+  const int workers = std::max(1, effectiveThreads(threads));
+  parallelFor(levels.size(), 1, workers, [&](std::size_t b, std::size_t e) {
+    for (std::size_t l = b; l < e; ++l) levels[l].votes = houghVotes(gradients(levels[l].image), levels[l].area);
+  });
+  struct Task {
+    std::size_t level;
+    int r;
+  };
+  std::vector<Task> tasks;
+  for (std::size_t l = 0; l < levels.size(); ++l)
+    if (!levels[l].votes.edges.empty())
+      for (int r : levels[l].radii) tasks.push_back({l, r});
+  std::vector<std::vector<Candidate>> found(tasks.size());
+  std::vector<std::vector<cv::Mat>> scratch(workers, std::vector<cv::Mat>(levels.size()));
+  parallelForWorkers(tasks.size(), 1, workers, [&](int worker, std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i)
+      found[i] = houghRadius(levels[tasks[i].level].votes, tasks[i].r, perRadius, scratch[worker][tasks[i].level]);
+  });
+  std::vector<Candidate> all;
+  for (std::size_t l = 0, i = 0; l < levels.size(); ++l) {
+    std::vector<Candidate> inLevel;
+    for (; i < tasks.size() && tasks[i].level == l; ++i) inLevel.insert(inLevel.end(), found[i].begin(), found[i].end());
+    std::stable_sort(inLevel.begin(), inLevel.end(), [](const Candidate& a, const Candidate& b) { return a.score > b.score; });
+    const int scale = levels[l].scale;
+    for (Candidate c : inLevel) {
+      c.x = (c.x + 0.5) * scale - 0.5;
+      c.y = (c.y + 0.5) * scale - 0.5;
+      c.r *= scale;
+      c.level = scale;
+      all.push_back(c);
+    }
   }
   std::stable_sort(all.begin(), all.end(), [](const Candidate& a, const Candidate& b) { return a.score > b.score; });
   return all;
@@ -435,6 +488,17 @@ std::vector<DetectedSphere> detectSpheres(const StackMedian& median, const Stack
     // The rims, each on a thread of its own: the refinements are independent and give the same
     // circles in any order.
     std::vector<Checked> checked(candidates.size());
+    // The full-resolution rim around every candidate's first pass made first, all tiles at once:
+    // made by each refinement in turn, under the median's lock, the other core mostly waited.
+    std::vector<Rect> around;
+    for (const Candidate& c : candidates) {
+      const Candidate f = toFull(c);
+      const double reach = f.r + 3 * scale * c.level + 4 + kRimReadMargin;
+      const int x0 = static_cast<int>(std::floor(f.x - reach)), y0 = static_cast<int>(std::floor(f.y - reach));
+      const int x1 = static_cast<int>(std::ceil(f.x + reach)), y1 = static_cast<int>(std::ceil(f.y + reach));
+      around.push_back({x0, y0, x1 - x0, y1 - y0});
+    }
+    rim.prepare(around);
     parallelFor(candidates.size(), 1, effectiveThreads(o.threads), [&](std::size_t b, std::size_t e) {
       for (std::size_t i = b; i < e; ++i) {
         const Candidate f = toFull(candidates[i]);

@@ -182,11 +182,18 @@ void StackMedian::computeCoarse(const std::vector<StackMedian*>& medians, std::s
   std::vector<std::uint16_t> reduced;
   resizeResident(reduced, std::size_t(n) * bandRows * cw);
   std::vector<std::uint64_t> sums(n, 0);  // integer sums: the same in any order
+  // Each worker's buffer of rows read at once, kept from band to band rather than made (and
+  // cleared) afresh for every image of every band.
+  const int workers = std::max(1, effectiveThreads(threads));
+  std::vector<std::vector<std::uint16_t>> workerRows(held ? 0 : workers);
+  const std::size_t rowsSize = std::size_t(std::min(rowsPerRead, bandRows)) * f * w;
   for (int cy0 = 0; cy0 < ch; cy0 += bandRows) {
     const int count = std::min(bandRows, ch - cy0);
     const std::size_t plane = std::size_t(count) * cw;
-    parallelFor(n, 1, effectiveThreads(threads), [&](std::size_t b, std::size_t e) {
-      std::vector<std::uint16_t> rows(held ? 0 : std::size_t(rowsPerRead) * f * w);
+    parallelForWorkers(n, 1, workers, [&](int worker, std::size_t b, std::size_t e) {
+      std::vector<std::uint16_t> none;
+      std::vector<std::uint16_t>& rows = held ? none : workerRows[worker];
+      if (!held && rows.size() < rowsSize) rows.resize(rowsSize);
       for (std::size_t i = b; i < e; ++i) {
         std::uint16_t* out = &reduced[i * plane];
         for (int cy = cy0; cy < cy0 + count; cy += rowsPerRead) {
@@ -213,17 +220,17 @@ void StackMedian::computeCoarse(const std::vector<StackMedian*>& medians, std::s
 
 // Tiles firstTile..lastTile of one tile row: the tiles' window of every image (readWindow),
 // then each pixel's median.
-void StackMedian::computeTiles(int tileRow, int firstTile, int lastTile) const {
+void StackMedian::computeTiles(int tileRow, int firstTile, int lastTile, int threads) const {
   const int n = stack_.size(), w = width();
   const int y0 = tileRow * kTile, y1 = std::min(height(), y0 + kTile), rows = y1 - y0;
   const int x0 = firstTile * kTile, x1 = std::min(w, (lastTile + 1) * kTile), span = x1 - x0;
   const std::size_t plane = std::size_t(rows) * span;
   std::vector<std::uint16_t> band(std::size_t(n) * plane);
-  parallelFor(n, 1, effectiveThreads(threads_), [&](std::size_t b, std::size_t e) {
+  parallelFor(n, 1, effectiveThreads(threads), [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) stack_.readWindow(static_cast<int>(i), x0, y0, x1, y1, &band[i * plane]);
   });
   std::vector<std::uint16_t> medians(plane);
-  rankedOfPlanes(band.data(), n, {{rank_, medians.data()}}, plane, threads_);
+  rankedOfPlanes(band.data(), n, {{rank_, medians.data()}}, plane, threads);
   for (int tx = firstTile; tx <= lastTile; ++tx) {
     std::vector<std::uint16_t>& tile = tiles_[std::size_t(tileRow) * tilesX_ + tx];
     if (!tile.empty()) continue;
@@ -252,7 +259,7 @@ Image StackMedian::window(const Rect& r) const {
         first = std::min(first, tx);
         last = tx;
       }
-    if (first <= last) computeTiles(ty, first, last);
+    if (first <= last) computeTiles(ty, first, last, threads_);
     for (int tx = tx0; tx <= tx1; ++tx) {
       const std::vector<std::uint16_t>& tile = tiles_[std::size_t(ty) * tilesX_ + tx];
       const int tileX = tx * kTile, tileY = ty * kTile, tw = std::min(width(), tileX + kTile) - tileX;
@@ -264,6 +271,39 @@ Image StackMedian::window(const Rect& r) const {
     }
   }
   return out;
+}
+
+void StackMedian::prepare(const std::vector<Rect>& rects) const {
+  std::vector<char> wanted(tiles_.size(), 0);
+  for (const Rect& r : rects) {
+    const int x0 = std::max(0, r.x), y0 = std::max(0, r.y);
+    const int x1 = std::min(width(), r.x + r.w), y1 = std::min(height(), r.y + r.h);
+    if (x1 <= x0 || y1 <= y0) continue;
+    for (int ty = y0 / kTile; ty <= (y1 - 1) / kTile; ++ty)
+      for (int tx = x0 / kTile; tx <= (x1 - 1) / kTile; ++tx) wanted[std::size_t(ty) * tilesX_ + tx] = 1;
+  }
+  std::lock_guard<std::mutex> lock(mutex_);
+  // Runs of at most kPrepareRun missing tiles of one row, each computed by one thread: every
+  // tile's median is its pixels' alone, so which thread computes it changes nothing.
+  constexpr int kPrepareRun = 4;
+  struct Run {
+    int row, first, last;
+  };
+  std::vector<Run> runs;
+  for (int ty = 0; ty < tilesY_; ++ty) {
+    for (int tx = 0; tx < tilesX_; ++tx) {
+      const std::size_t k = std::size_t(ty) * tilesX_ + tx;
+      if (!wanted[k] || !tiles_[k].empty()) continue;
+      if (!runs.empty() && runs.back().row == ty && runs.back().last == tx - 1 &&
+          runs.back().last - runs.back().first + 1 < kPrepareRun)
+        runs.back().last = tx;
+      else
+        runs.push_back({ty, tx, tx});
+    }
+  }
+  parallelFor(runs.size(), 1, effectiveThreads(threads_), [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) computeTiles(runs[i].row, runs[i].first, runs[i].last, 1);
+  });
 }
 
 }  // namespace surrogate::hrti
