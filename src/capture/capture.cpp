@@ -174,7 +174,7 @@ FolderScan scanFolder(const fs::path& dir, CaptureLayout& layout) {
     const std::string stem = p.stem().string();
     if (auto it = byStem.find(stem); it != byStem.end()) {
       throwInputError(rel, kStep,
-                      "has the same name as " + fs::relative(it->second, layout.root).generic_string() +
+                      "has the same name as " + relativeTo(it->second, layout.root) +
                           " (file stem \"" + stem + "\"): one shot can have only one file per "
                           "folder; move the extra file (e.g. a camera's RAW+JPEG twin) out of the "
                           "capture");
@@ -193,7 +193,10 @@ std::vector<ImageFile> probeAll(const std::vector<fs::path>& files, const fs::pa
     for (std::size_t i = b; i < e; ++i) {
       const image::ImageProbe probe = image::probeImage(files[i]);
       ImageFile& f = out[i];
-      f.relativePath = fs::relative(files[i], root).generic_string();
+      // Lexically: the file is root/folder/name and neither is a link (refused by the scan), so
+      // this is fs::relative's answer without its resolving of every folder above (a readlink
+      // per component, 20 a file).
+      f.relativePath = relativeTo(files[i], root);
       f.format = formatName(probe.kind, files[i]);
       f.cameraRaw = probe.kind == image::SourceKind::CameraRaw;
       f.width = probe.width;
