@@ -75,26 +75,6 @@ std::array<double, 3> ptmNormal(const PtmCoefficients& a, bool* usedFallback) {
 }
 
 namespace {
-// A PTM's coefficients decoded from their bytes, (byte - bias_k) scale_k as PtmFile::coefficient
-// gives them, tabulated for the 256 byte values of each of the six.
-class PtmDecoded {
- public:
-  explicit PtmDecoded(const formats::PtmFile& ptm) {
-    for (int k = 0; k < 6; ++k)
-      for (int b = 0; b < kByteValues; ++b) value_[k][b] = (b - ptm.bias[k]) * ptm.scale[k];
-  }
-  // The polynomial whose six bytes start at `bytes` (ptmChannel).
-  PtmCoefficients operator()(const std::uint8_t* bytes) const {
-    PtmCoefficients a;
-    for (int k = 0; k < 6; ++k) a[k] = value_[k][bytes[k]];
-    return a;
-  }
-
- private:
-  static constexpr int kByteValues = 256;
-  double value_[6][kByteValues];
-};
-
 // The normal map and the albedo of a PTM, either of them (nullptr: not made), in one pass: the
 // albedo is the model at the normal, so making both together finds each texel's normal once.
 // Rows are looped over here rather than through forEachTexel, and the coefficients decoded by
@@ -111,15 +91,7 @@ int ptmMaps(const formats::PtmFile& ptm, Image* normals, Image* albedo, int thre
       for (int x = 0; x < ptm.width; ++x) {
         const std::size_t texel = row + x;
         const std::uint8_t* bytes = &ptm.coefficients[texel * 6];
-        PtmCoefficients lum{};
-        if (lrgb) {
-          lum = decoded(bytes);
-        } else {
-          for (int c = 0; c < 3; ++c) {  // ptmLuminance: the mean of the channels, in their order
-            const PtmCoefficients ac = decoded(bytes + c * plane);
-            for (int k = 0; k < 6; ++k) lum[k] += ac[k] / 3.0;
-          }
-        }
+        const PtmCoefficients lum = ptmLuminance(ptm, decoded, bytes, plane);
         bool fallback = false;
         const auto n = ptmNormal(lum, &fallback);
         rowCounts[y] += fallback ? 1 : 0;

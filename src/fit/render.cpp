@@ -173,6 +173,7 @@ Image render(const formats::PtmFile& ptm, const std::array<double, 3>& light,
   const HalfVector half(l);
   const Specular specular(options);
   const std::size_t plane = ptm.texels() * 6;  // bytes of one channel's coefficients
+  const PtmDecoded decoded(ptm);
   forRows(ptm.height, options.threads, [&](int y) {
     if (lrgb && !gain && !options.specular) {
       // The plain LRGB picture, alone in a loop of its own (two of DerivedMaps' three previews):
@@ -188,9 +189,9 @@ Image render(const formats::PtmFile& ptm, const std::array<double, 3>& light,
     }
     for (int x = 0; x < ptm.width; ++x) {
       std::array<double, 3> n{0, 0, 1};
-      if (gain || options.specular) n = ptmNormal(ptmLuminance(ptm, x, y));
-      double diffuse[3];
       const std::uint8_t* bytes = &ptm.coefficients[(static_cast<std::size_t>(y) * ptm.width + x) * 6];
+      if (gain || options.specular) n = ptmNormal(ptmLuminance(ptm, decoded, bytes, plane));
+      double diffuse[3];
       for (int c = 0; c < (lrgb ? 1 : 3); ++c) {
         if (gain) {
           diffuse[c] = evaluatePtm(applyDiffuseGain(ptmChannel(ptm, x, y, c), options.diffuseGain, n[0], n[1]), lu, lv);
