@@ -243,6 +243,10 @@ Carrier parseCarrier(const std::string& xml, const std::string& source);
 // Serialises, validates against xsd/carrier.xsd (a failure is a bug: Error(Internal)) and
 // writes atomically.
 void saveCarrier(const Carrier& carrier, const std::filesystem::path& path);
+// saveCarrier's second half, for text toXml made: validates and writes atomically. Safe on
+// another thread than the one that goes on changing the carrier (pipeline/runner.cpp saves
+// after each step this way).
+void saveCarrierXml(const std::string& xml, const std::filesystem::path& path);
 // Reads and validates a carrier file; an invalid one gives Error(Input) with the schema's
 // complaint and line number.
 Carrier loadCarrier(const std::filesystem::path& path);

@@ -396,7 +396,10 @@ Carrier parseCarrier(const std::string& xmlText, const std::string& source) {
 }
 
 void saveCarrier(const Carrier& carrier, const std::filesystem::path& path) {
-  const std::string text = toXml(carrier);
+  saveCarrierXml(toXml(carrier), path);
+}
+
+void saveCarrierXml(const std::string& text, const std::filesystem::path& path) {
   // Found before the try: a schema missing from the installation is the installation's fault
   // (resourcePath says to reinstall), not a carrier that does not validate.
   const std::filesystem::path schema = resourcePath("xsd/carrier.xsd");

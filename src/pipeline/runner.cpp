@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdio>
 #include <exception>
+#include <future>
 #include <mutex>
 #include <set>
 #include <vector>
@@ -97,14 +98,49 @@ void releaseUnread(Context& context, const std::vector<carrier::Step>& later) {
     if (!read.count(key)) context.release(key);
 }
 
+// The carrier saved after each step without holding the next step up: the text is made at once
+// (the carrier changes as soon as the next step starts), then validated and written atomically
+// (fsync, rename) on a thread of its own while the next step runs: about 2 ms of CPU and 2 ms
+// of waiting for the disk per step on the machines this project measures on (perf, strace
+// -T). Saves happen in order, each after the one before it is on disk, so the carrier on disk
+// is always one the run saved; wait() (before the runner returns or saves a failure) leaves
+// none pending and rethrows a save's error.
+class CarrierSaver {
+ public:
+  explicit CarrierSaver(fs::path path) : path_(std::move(path)) {}
+  ~CarrierSaver() {
+    // Leaving by an exception: its error is the one reported, the save's is dropped.
+    if (pending_.valid()) try {
+        pending_.get();
+      } catch (...) {
+      }
+  }
+  CarrierSaver(const CarrierSaver&) = delete;
+  CarrierSaver& operator=(const CarrierSaver&) = delete;
+
+  void save(const carrier::Carrier& c) {
+    if (path_.empty()) return;
+    std::string text = carrier::toXml(c);
+    wait();
+    pending_ = std::async(std::launch::async, [this, text = std::move(text)] { carrier::saveCarrierXml(text, path_); });
+  }
+  void wait() {
+    if (pending_.valid()) pending_.get();
+  }
+
+ private:
+  fs::path path_;
+  std::future<void> pending_;
+};
+
 }  // namespace
 
 void runProcess(Context& context, const fs::path& carrierPath, std::size_t steps) {
   carrier::Carrier& c = context.carrier;
+  CarrierSaver saver(carrierPath);
   auto save = [&] {
-    if (carrierPath.empty()) return;
     c.header.modified = carrier::timestampNow();
-    carrier::saveCarrier(c, carrierPath);
+    saver.save(c);
   };
   // Copy the list: a stage may append files, never steps, but the reference must stay valid.
   std::vector<carrier::Step> list = c.process;
@@ -127,6 +163,7 @@ void runProcess(Context& context, const fs::path& carrierPath, std::size_t steps
       c.data.push_back(result);
       c.addLog("error", step.id, e.what());
       save();
+      saver.wait();
     };
     try {
       checkParameters(step);
@@ -153,6 +190,7 @@ void runProcess(Context& context, const fs::path& carrierPath, std::size_t steps
     save();
     releaseUnread(context, std::vector<carrier::Step>(list.begin() + k + 1, list.end()));
   }
+  saver.wait();
 }
 
 }  // namespace surrogate::pipeline

@@ -126,6 +126,58 @@ TEST_CASE("a failing step is recorded as failed in the saved carrier, and the er
   fs::remove_all(dir);
 }
 
+// Records, when it runs, the steps the carrier on disk holds results for: the saves after earlier
+// steps are written on a thread of their own (runner.cpp, CarrierSaver).
+class DiskReadingStage : public Stage {
+ public:
+  std::string component() const override { return "TestDiskReading"; }
+  std::string version() const override { return "1"; }
+  void run(const carrier::Step& step, Context&, carrier::Result& result) override {
+    const fs::path file = step.param("carrier", "");
+    const std::size_t onDisk = fs::exists(file) ? carrier::loadCarrier(file).data.size() : 0;
+    result.add("value").set("name", "onDisk").set("value", std::to_string(onDisk));
+  }
+};
+
+TEST_CASE("the carrier saved after each step is on disk, whole and last, when the runner returns") {
+  registerTestStages();
+  StageRegistry::instance().add("TestDiskReading", [] { return std::make_unique<DiskReadingStage>(); });
+  const fs::path dir = fs::temp_directory_path() / "surrogate-test-runner-saves";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  carrier::Carrier c = carrier::newCarrier("runner", {});
+  for (int k = 0; k < 12; ++k) c.addStep("TestDiskReading", "1").setParam("carrier", (dir / "carrier.xml").string());
+  Context ctx(dir, c, RunSettings{});
+  runProcess(ctx, dir / "carrier.xml");
+  const carrier::Carrier saved = carrier::loadCarrier(dir / "carrier.xml");
+  REQUIRE(saved.data.size() == 12);
+  CHECK(toXml(saved) == toXml(c));
+  // Each step saw a carrier the run saved: of the steps before it, all but at most the last.
+  for (int k = 0; k < 12; ++k) {
+    const double seen = c.data[static_cast<std::size_t>(k)].items[0].number("value");
+    CHECK(seen <= k);
+    CHECK(seen >= k - 1);
+  }
+  // No temporary file left beside it.
+  int files = 0;
+  for (const auto& e : fs::directory_iterator(dir)) files += e.is_regular_file();
+  CHECK(files == 1);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a carrier that cannot be saved stops the run with the save's error") {
+  registerTestStages();
+  const fs::path dir = fs::temp_directory_path() / "surrogate-test-runner-unsaved";
+  fs::remove_all(dir);
+  carrier::Carrier c = carrier::newCarrier("runner", {});
+  c.addStep("TestDoubling", "1");
+  c.addStep("TestDoubling", "1");
+  Context ctx(fs::temp_directory_path(), c, RunSettings{});
+  // The folder does not exist: the first save fails, on the saving thread.
+  CHECK_THROWS_AS(runProcess(ctx, dir / "carrier.xml"), Error);
+  CHECK_FALSE(fs::exists(dir / "carrier.xml"));
+}
+
 TEST_CASE("an unknown component in a carrier is refused by name") {
   carrier::Carrier c = carrier::newCarrier("runner", {});
   c.addStep("NoSuchStage", "1");
