@@ -2,6 +2,7 @@
 #include <memory>
 
 #include "core/error.h"
+#include "core/parallel.h"
 #include "core/resident.h"
 #include "fit/channel_fit.h"
 #include "fit/conditioning.h"
@@ -78,7 +79,7 @@ formats::HshFile fitHshSpaced(const ImageStack& stack, const std::vector<std::ar
   hsh.terms = terms;
   hsh.scale.assign(terms, 0.0f);
   hsh.bias.assign(terms, 0.0f);
-  resizeResident(hsh.coefficients, hsh.texels() * 3 * terms);
+  resizeResident(hsh.coefficients, hsh.texels() * 3 * terms, effectiveThreads(options.threads));
   std::vector<double> p = pinv.matrix;
   for (double& v : p) v /= 65535.0;  // 16-bit samples -> 0..1 units
   HshFitter fitter(std::move(p), design, n, terms, &hsh);

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "core/error.h"
+#include "core/parallel.h"
 #include "core/resident.h"
 #include "fit/channel_fit.h"
 #include "fit/conditioning.h"
@@ -245,16 +246,17 @@ formats::PtmFile fitPtmSpaced(const ImageStack& stack, const std::vector<std::ar
   ptm.height = stack.height();
   int passes = 0;
   std::vector<double> sqErr;
+  const int threads = effectiveThreads(options.threads);  // to back the model's memory
   if (options.basis == Basis::PtmLrgb) {
     ptm.format = formats::PtmFile::Format::Lrgb;
-    resizeResident(ptm.coefficients, ptm.texels() * 6);
-    resizeResident(ptm.rgb, ptm.texels() * 3);
+    resizeResident(ptm.coefficients, ptm.texels() * 6, threads);
+    resizeResident(ptm.rgb, ptm.texels() * 3, threads);
     LrgbFitter fitter(pinv.matrix, l, &ptm);
     fitter.useNear(near.get());
     sqErr = streamFit(stack, fitter, options, ptm.coefficients.size() + ptm.rgb.size() + nearBytes, &passes);
   } else {
     ptm.format = formats::PtmFile::Format::Rgb;
-    resizeResident(ptm.coefficients, ptm.texels() * 18);
+    resizeResident(ptm.coefficients, ptm.texels() * 18, threads);
     std::vector<double> p = pinv.matrix;
     for (double& v : p) v /= 257.0;  // 16-bit samples -> 0..255 units
     RgbPtmFitter fitter(std::move(p), design, n, &ptm);
