@@ -11,6 +11,8 @@
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <streambuf>
+#include <vector>
 
 #include "core/error.h"
 #include "core/resident.h"
@@ -33,6 +35,102 @@ void syncFile(const fs::path& path) {
   ::fsync(fd);
   ::close(fd);
 }
+// Bytes gathered before a write(2): a PTM comes a row (a few KB) at a time.
+constexpr std::size_t kBufferBytes = std::size_t{1} << 18;
+// Writeback is started after each this many bytes, so commit()'s fsync has about this much left
+// to wait for (the disk here takes about 1 ms a MB, the writer 3 ms a MB).
+constexpr off_t kWritebackStride = off_t{1} << 20;
+
+// A stream buffer over a new file that starts the disk's writeback of each stride as soon as
+// it is written (sync_file_range with SYNC_FILE_RANGE_WRITE only: nothing waited for, so what
+// the file holds on disk is promised by commit()'s fsync alone, as before). Keeps the first
+// error met, which close() returns.
+class WritebackBuffer : public std::streambuf {
+ public:
+  explicit WritebackBuffer(const fs::path& path) : buffer_(kBufferBytes) {
+    fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+    if (fd_ < 0) error_ = errno;
+    setp(buffer_.data(), buffer_.data() + buffer_.size());
+  }
+  ~WritebackBuffer() override {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  WritebackBuffer(const WritebackBuffer&) = delete;
+  WritebackBuffer& operator=(const WritebackBuffer&) = delete;
+
+  // Writes what is buffered and closes the file; the first error met, or 0.
+  int close() {
+    drain();
+    if (fd_ >= 0 && ::close(fd_) != 0 && !error_) error_ = errno;
+    fd_ = -1;
+    return error_;
+  }
+
+ protected:
+  std::streamsize xsputn(const char* s, std::streamsize n) override {
+    const auto size = static_cast<std::size_t>(n);
+    if (size > static_cast<std::size_t>(epptr() - pptr())) {
+      if (!drain()) return 0;
+      // As large as the buffer: straight to the file, no copy.
+      if (size >= buffer_.size()) return writeOut(s, size) ? n : 0;
+    }
+    std::memcpy(pptr(), s, size);
+    pbump(static_cast<int>(size));
+    return n;
+  }
+  int_type overflow(int_type c) override {
+    if (!drain()) return traits_type::eof();
+    if (!traits_type::eq_int_type(c, traits_type::eof())) {
+      *pptr() = traits_type::to_char_type(c);
+      pbump(1);
+    }
+    return traits_type::not_eof(c);
+  }
+  int sync() override { return drain() ? 0 : -1; }
+
+ private:
+  bool drain() {
+    const auto n = static_cast<std::size_t>(pptr() - pbase());
+    setp(buffer_.data(), buffer_.data() + buffer_.size());
+    return writeOut(buffer_.data(), n);
+  }
+  // All `n` bytes, a stride at most per write(2), so that the writeback of a large block starts
+  // while the rest of it is still being copied.
+  bool writeOut(const char* s, std::size_t n) {
+    while (n > 0 && !error_) {
+      const ssize_t w = ::write(fd_, s, std::min<std::size_t>(n, kWritebackStride));
+      if (w < 0 && errno == EINTR) continue;
+      if (w <= 0) {
+        error_ = w < 0 ? errno : EIO;
+        break;
+      }
+      s += w;
+      n -= static_cast<std::size_t>(w);
+      written_ += w;
+      if (written_ - started_ >= kWritebackStride) startWriteback();
+    }
+    return !error_;
+  }
+  // Whole pages only: a page still being filled would be written twice.
+  void startWriteback() {
+    static const off_t page = std::max<long>(::sysconf(_SC_PAGESIZE), 1);
+    const off_t end = written_ / page * page;
+    if (end <= started_) return;
+    // Only advice: a file system without it (EINVAL, ENOSYS) is synced by commit() alone. A
+    // disk that is full or failing is this write's error, as write(2)'s would be.
+    if (::sync_file_range(fd_, started_, end - started_, SYNC_FILE_RANGE_WRITE) != 0 &&
+        (errno == ENOSPC || errno == EDQUOT || errno == EIO)) {
+      error_ = errno;
+    }
+    started_ = end;
+  }
+
+  std::vector<char> buffer_;
+  int fd_ = -1;
+  int error_ = 0;
+  off_t written_ = 0;
+  off_t started_ = 0;
+};
 }  // namespace
 
 AtomicFile::AtomicFile(fs::path finalPath)
@@ -153,6 +251,16 @@ void writeTemporary(const AtomicFile& file, const std::string& content) {
   if (!f) throw writeError(file.finalPath(), "write", errno ? errno : EIO);
   f.close();
   if (!f) throw writeError(file.finalPath(), "write", errno ? errno : EIO);
+}
+
+void writeTemporary(const AtomicFile& file, const std::string& step,
+                    const std::function<void(std::ostream&)>& write) {
+  WritebackBuffer buffer(file.tempPath());
+  std::ostream out(&buffer);
+  write(out);
+  out.flush();
+  const int error = buffer.close();
+  if (error || !out) throw writeError(file.finalPath(), step, error ? error : EIO);
 }
 
 void writeFileAtomically(const fs::path& path, const std::string& content, const fs::path& tempFolder) {

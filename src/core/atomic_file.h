@@ -8,6 +8,8 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -63,6 +65,15 @@ Error writeError(const std::filesystem::path& path, const std::string& step, int
 // Writes `content` to `file`'s temporary file (not yet in place: commit() does that). Throws
 // Error naming the final path when the bytes cannot be written.
 void writeTemporary(const AtomicFile& file, const std::string& content);
+
+// Writes to `file`'s temporary file (not yet in place: commit() does that) whatever `write` puts
+// in the stream it is given, and closes it. Throws writeError(file.finalPath(), step, ...) when
+// the file cannot be opened or any byte cannot be written. Each few MB are handed to the disk
+// as soon as they are written (writeback started, not waited for), so that commit()'s fsync
+// of a large file waits for its last MB only, not for all of it (a fit's model of 8-12 MB: the
+// fsync was 8-10 ms with every core idle). The bytes are those `write` gave, in its order.
+void writeTemporary(const AtomicFile& file, const std::string& step,
+                    const std::function<void(std::ostream&)>& write);
 
 // Writes `content` to `path` atomically (temporary name, fsync, rename); the temporary file
 // goes in `tempFolder` when one is given (see AtomicFile).

@@ -1,9 +1,7 @@
 #include "formats/ptm.h"
 
-#include <cerrno>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <sstream>
 
 #include "core/atomic_file.h"
@@ -257,14 +255,7 @@ void writePtm(std::ostream& out, const PtmFile& ptm, const std::string& name) {
 void writePtm(const std::filesystem::path& path, const PtmFile& ptm) {
   validatePtm(ptm, path.string());
   AtomicFile file(path);
-  {
-    errno = 0;  // what the failing write sets, if one fails
-    std::ofstream out(file.tempPath(), std::ios::binary);
-    writePtm(out, ptm, path.string());
-    out.flush();
-    if (out) out.close();
-    if (!out) throw writeError(path, kWriteStep, errno ? errno : EIO);
-  }
+  writeTemporary(file, kWriteStep, [&](std::ostream& out) { writePtm(out, ptm, path.string()); });
   file.commit();
 }
 

@@ -1,10 +1,8 @@
 #include "formats/rti_hsh.h"
 
-#include <cerrno>
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <sstream>
 
 #include "core/atomic_file.h"
@@ -213,14 +211,7 @@ void writeRti(std::ostream& out, const HshFile& hsh, const std::string& name) {
 void writeRti(const std::filesystem::path& path, const HshFile& hsh) {
   validateHsh(hsh, path.string());
   AtomicFile file(path);
-  {
-    errno = 0;  // what the failing write sets, if one fails
-    std::ofstream out(file.tempPath(), std::ios::binary);
-    writeRti(out, hsh, path.string());
-    out.flush();
-    if (out) out.close();
-    if (!out) throw writeError(path, kWriteStep, errno ? errno : EIO);
-  }
+  writeTemporary(file, kWriteStep, [&](std::ostream& out) { writeRti(out, hsh, path.string()); });
   file.commit();
 }
 
