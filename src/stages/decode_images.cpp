@@ -130,9 +130,13 @@ DecodedStacks decodeImages(const std::vector<std::filesystem::path>& files,
 
   DecodedStacks out;
   out.images.resize(n);
-  // The stack is made when the first image gives its format. The others are decoded meanwhile
-  // (a camera raw image takes about 0.7 s at 6 Mpx, and waiting for the first one left a core
-  // idle) and wait for the stack only where they need it: for their slot, or to be stored.
+  // The stack is made when the first image gives its format: as soon as its decoder knows the
+  // layout (a JPEG's header; camera raw once demosaiced), or, for the decoders that ask for no
+  // destination (PNG, TIFF), once it is decoded. The others are decoded meanwhile (a camera raw
+  // image takes about 0.7 s at 6 Mpx, and waiting for the first one left a core idle) and wait
+  // for the stack only where they need it: for their slot, or to be stored.
+  const pipeline::DecodedStack::Placement placement =
+      inMemory ? pipeline::DecodedStack::Placement::Memory : pipeline::DecodedStack::Placement::TemporaryFile;
   std::shared_ptr<pipeline::DecodedStack> stack;
   std::mutex stackMutex;
   std::condition_variable stackMade;
@@ -149,7 +153,22 @@ DecodedStacks decodeImages(const std::vector<std::filesystem::path>& files,
     image::DecodeOptions options;
     options.acceptDamage = i < static_cast<int>(acceptDamage.size()) && acceptDamage[i];
     options.maxPixels = declared;  // all images are alike: a larger header is damaged
-    if (i > 0)  // straight into the stack's slot, when the image is as the first
+    if (i == 0)  // the stack made from its layout, and the first image decoded into its slot
+      options.destination = [&, n](int width, int height, int channels, int bytesPerSample,
+                                   Transfer transfer) -> std::uint8_t* {
+        std::shared_ptr<pipeline::DecodedStack> made = std::make_shared<pipeline::DecodedStack>(
+            n, pipeline::DecodedStack::Format{width, height, channels, bytesPerSample, transfer}, placement);
+        {
+          std::lock_guard<std::mutex> lock(stackMutex);
+          stack = made;
+          firstSettled = true;
+        }
+        stackMade.notify_all();
+        std::uint8_t* const slot = made->slot(0);  // nullptr in a temporary file: stored below
+        if (slot) makeResident(slot, static_cast<std::size_t>(made->imageBytes()));
+        return slot;
+      };
+    else  // straight into the stack's slot, when the image is as the first
       options.destination = [&awaitStack, i](int width, int height, int channels, int bytesPerSample,
                                              Transfer transfer) -> std::uint8_t* {
         const std::shared_ptr<pipeline::DecodedStack> made = awaitStack();
@@ -170,10 +189,9 @@ DecodedStacks decodeImages(const std::vector<std::filesystem::path>& files,
     d.transfer = pixels.transfer();
     d.pixelSha256 = pixelDigest(pixels);
     const pipeline::DecodedStack::Format format = formatOf(pixels);
-    if (i == 0) {
+    if (i == 0) {  // a decoder that asked for no destination: the stack from the decoded image
       std::lock_guard<std::mutex> lock(stackMutex);
-      stack = std::make_shared<pipeline::DecodedStack>(
-          n, format, inMemory ? pipeline::DecodedStack::Placement::Memory : pipeline::DecodedStack::Placement::TemporaryFile);
+      if (!stack) stack = std::make_shared<pipeline::DecodedStack>(n, format, placement);
     }
     const std::shared_ptr<pipeline::DecodedStack> made = i == 0 ? stack : awaitStack();
     if (!made) return;  // the first image failed: its error ends the step

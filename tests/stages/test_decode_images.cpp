@@ -11,6 +11,7 @@
 #include <fstream>
 #include <string>
 
+#include "../image/damage.h"
 #include "generator/capture_generator.h"
 #include "pipeline/decoded_stack.h"
 #include "image/write.h"
@@ -260,5 +261,37 @@ TEST_CASE("while the first image decodes the others decode too, and its failure 
     files = pngs("decode-all-sound", 5, 3, 8);
     const Decoded d = decodeUnder(files, std::size_t(2) << 30, threads);
     for (int i = 0; i < 5; ++i) CHECK(allRows(*d.stacks.rgb, i) == image::decodeImage(files[i], {}).pixels);
+  }
+}
+
+TEST_CASE("the first JPEG, decoded into the stack it makes, fails or is accepted as any other") {
+  // A JPEG's decoder asks for its destination once the header is read: the first image makes the
+  // stack then, and its damage, found later, is still the step's error (or, accepted, in its slot).
+  const std::vector<fs::path> sound = generatedJpegs();
+  const fs::path dir = fs::temp_directory_path() / "decode-first-jpeg-damaged";
+  fs::create_directories(dir);
+  std::vector<fs::path> files;
+  for (const fs::path& f : sound) {
+    files.push_back(dir / f.filename());
+    fs::copy_file(f, files.back(), fs::copy_options::overwrite_existing);
+  }
+  test::writeBytes(files[0], test::halfJpeg(test::readBytes(sound[0])));
+  for (const int threads : {1, 2}) {
+    INFO(threads << " threads");
+    pipeline::RunSettings run;
+    run.memoryBudget = std::size_t(2) << 30;
+    run.threads = threads;
+    try {
+      stages::decodeImages(files, image::RawDecodeSettings(), run);
+      FAIL("a first JPEG libjpeg reports damaged was decoded");
+    } catch (const image::DamagedImageError& e) {
+      CHECK(e.file() == files[0].string());
+    }
+    const stages::DecodedStacks d = stages::decodeImages(files, image::RawDecodeSettings(), run, {true});
+    image::DecodeOptions accept;
+    accept.acceptDamage = true;
+    CHECK_FALSE(d.images[0].report.decoderWarnings.empty());
+    for (int i = 0; i < kImages; ++i)
+      CHECK(allRows(*d.rgb, i) == image::decodeImage(files[i], {}, nullptr, accept).pixels);
   }
 }
