@@ -29,11 +29,16 @@ fs::path temporaryNameFor(const fs::path& finalPath, const fs::path& folder) {
   return folder / name.str();
 }
 
-void syncFile(const fs::path& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY);
-  if (fd < 0) return;
-  ::fsync(fd);
+// 0, or the errno of an fsync that failed: then the bytes may not all be on the disk (EIO, or
+// ENOSPC and EDQUOT on file systems that allocate at writeback, such as NFS), and the file must
+// not be renamed into place as if they were. A file system that cannot sync (EINVAL, EROFS) or
+// a file that cannot be opened for it counts as synced, as the write itself succeeded.
+int syncFile(const fs::path& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return 0;
+  const int error = ::fsync(fd) == 0 || errno == EINVAL || errno == EROFS ? 0 : errno;
   ::close(fd);
+  return error;
 }
 // Bytes gathered before a write(2): a PTM comes a row (a few KB) at a time.
 constexpr std::size_t kBufferBytes = std::size_t{1} << 18;
@@ -147,7 +152,8 @@ AtomicFile::~AtomicFile() {
 }
 
 void AtomicFile::commit() {
-  if (fs::is_regular_file(temp_)) syncFile(temp_);
+  if (fs::is_regular_file(temp_))
+    if (const int error = syncFile(temp_)) throw writeError(final_, "write", error);
   std::error_code ec;
   fs::rename(temp_, final_, ec);
   if (ec) throw writeError(final_, "write", ec.value());
@@ -157,7 +163,8 @@ void AtomicFile::commit() {
 void AtomicFile::commitWithoutReplacing() {
   std::error_code ec;
   const bool folder = fs::is_directory(temp_, ec);
-  if (!folder) syncFile(temp_);
+  if (!folder)
+    if (const int error = syncFile(temp_)) throw writeError(final_, "write", error);
   auto taken = [&] {
     return Error(ErrorKind::Input, final_.string(), "write",
                  "appeared while this was being written (another Surrogate writing to the same "
