@@ -27,18 +27,28 @@ namespace {
 constexpr double kSmoothSigma = 1.0;  // reduced pixels
 
 // Frame `index` reduced f times: the mean of the f pixels of each f x f block's middle row (the
-// right and bottom remainders left out), 0..1.
+// right and bottom remainders left out), 0..1. The f samples' sum is an integer, exact in double
+// whatever the order: summed as integers first, the division vectorises.
 cv::Mat reduced(const ImageStack& stack, int index, int f) {
   const int w = stack.width() / f, h = stack.height() / f;
   cv::Mat out(h, w, CV_32F);
   std::vector<std::uint16_t> row(static_cast<std::size_t>(stack.width()));
+  std::vector<std::int32_t> sums(static_cast<std::size_t>(w));
+  const double scale = 65535.0 * f;
   for (int y = 0; y < h; ++y) {
     stack.readWindow(index, 0, y * f + f / 2, w * f, y * f + f / 2 + 1, row.data());
-    for (int x = 0; x < w; ++x) {
-      double sum = 0;
-      for (int k = 0; k < f; ++k) sum += row[static_cast<std::size_t>(x * f + k)];
-      out.at<float>(y, x) = static_cast<float>(sum / (65535.0 * f));
+    const std::uint16_t* in = row.data();
+    if (f == 2) {
+      for (int x = 0; x < w; ++x) sums[static_cast<std::size_t>(x)] = in[2 * x] + in[2 * x + 1];
+    } else {
+      for (int x = 0; x < w; ++x) {
+        std::int32_t sum = 0;
+        for (int k = 0; k < f; ++k) sum += in[static_cast<std::size_t>(x * f + k)];
+        sums[static_cast<std::size_t>(x)] = sum;
+      }
     }
+    float* to = out.ptr<float>(y);
+    for (int x = 0; x < w; ++x) to[x] = static_cast<float>(sums[static_cast<std::size_t>(x)] / scale);
   }
   return out;
 }
@@ -109,15 +119,20 @@ cv::Mat medianOf(const std::vector<cv::Mat>& frames, int workers) {
   return median;
 }
 
-cv::Mat gradient(const cv::Mat& image) {
+// One thread's images of gradient(), reused from frame to frame (fresh ones each frame were
+// fresh pages each time).
+struct GradientBuffers {
+  cv::Mat smooth, gx, gy, magnitude;
+};
+
+const cv::Mat& gradient(const cv::Mat& image, GradientBuffers& b) {
   // Smoothed first: at full resolution (f = 1) a noisy or strongly compressed frame's gradient is
   // mostly noise, which pulls the correlation peak (a clean 480 px frame measured 4 px).
-  cv::Mat smooth, gx, gy, magnitude;
-  cv::GaussianBlur(image, smooth, cv::Size(0, 0), kSmoothSigma);
-  cv::Sobel(smooth, gx, CV_32F, 1, 0);
-  cv::Sobel(smooth, gy, CV_32F, 0, 1);
-  cv::magnitude(gx, gy, magnitude);
-  return magnitude;
+  cv::GaussianBlur(image, b.smooth, cv::Size(0, 0), kSmoothSigma);
+  cv::Sobel(b.smooth, b.gx, CV_32F, 1, 0);
+  cv::Sobel(b.smooth, b.gy, CV_32F, 0, 1);
+  cv::magnitude(b.gx, b.gy, b.magnitude);
+  return b.magnitude;
 }
 
 struct Fit {
@@ -181,7 +196,8 @@ std::vector<FrameMotion> registerFrames(const ImageStack& stack, int threads, Ph
     for (std::size_t i = b; i < e; ++i) frames[i] = reduced(stack, static_cast<int>(i), f);
   });
   const cv::Mat median = medianOf(frames, workers);
-  const cv::Mat reference = gradient(median);
+  GradientBuffers referenceBuffers;
+  const cv::Mat reference = gradient(median, referenceBuffers);
   const int qw = w / 2, qh = h / 2;
   cv::Mat window;
   cv::createHanningWindow(window, cv::Size(qw, qh), CV_32F);
@@ -206,9 +222,10 @@ std::vector<FrameMotion> registerFrames(const ImageStack& stack, int threads, Ph
       centres[q] = {quarters[q].x + m.m10 / m.m00 - w / 2.0, quarters[q].y + m.m01 / m.m00 - h / 2.0};
   }
   std::vector<PhaseWorkspace> scratch(static_cast<std::size_t>(std::max(1, workers)));
+  std::vector<GradientBuffers> buffers(scratch.size());
   parallelForWorkers(static_cast<std::size_t>(n), 1, workers, [&](int worker, std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) {
-      const cv::Mat g = gradient(frames[i]);
+      const cv::Mat& g = gradient(frames[i], buffers[static_cast<std::size_t>(worker)]);
       std::array<cv::Point2d, 4> shift;
       std::array<bool, 4> usable;
       std::array<double, 4> response;
