@@ -176,9 +176,16 @@ std::optional<PlateauCentre> plateauCentre(const cv::Mat& values, const cv::Mat&
   int largest = 1;
   for (int l = 2; l < count; ++l)
     if (stats.at<int>(l, cv::CC_STAT_AREA) > stats.at<int>(largest, cv::CC_STAT_AREA)) largest = l;
-  // Outside the window counts as outside the plateau.
+  // Outside the window counts as outside the plateau. Only the plateau's bounding box is
+  // transformed, with a ring of outside around it: a point of the plateau is nearer to that
+  // ring than to anything outside beyond it (the ring's point with the outside point's
+  // coordinates clamped to it is nearer along both axes), so the depths are those of the whole
+  // window's (exact squared distances, their square roots), at a fraction of its pixels.
+  // Positions below are the bordered window's, as when the whole window was transformed.
+  const cv::Rect box(stats.at<int>(largest, cv::CC_STAT_LEFT), stats.at<int>(largest, cv::CC_STAT_TOP),
+                     stats.at<int>(largest, cv::CC_STAT_WIDTH), stats.at<int>(largest, cv::CC_STAT_HEIGHT));
   cv::Mat plateau;
-  cv::copyMakeBorder(labels == largest, plateau, 1, 1, 1, 1, cv::BORDER_CONSTANT, 0);
+  cv::copyMakeBorder(labels(box) == largest, plateau, 1, 1, 1, 1, cv::BORDER_CONSTANT, 0);
   cv::Mat depth;
   cv::distanceTransform(plateau, depth, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
   double deepest = 0;
@@ -186,10 +193,11 @@ std::optional<PlateauCentre> plateauCentre(const cv::Mat& values, const cv::Mat&
   if (deepest < kMinPlateauDepth) return std::nullopt;
   const double floor = kPlateauTop * deepest;
   double sum = 0, sx = 0, sy = 0, n = 0, px = 0, py = 0, pxx = 0, pyy = 0, pxy = 0;
-  for (int y = 0; y < depth.rows; ++y)
-    for (int x = 0; x < depth.cols; ++x) {
-      const double d = depth.at<float>(y, x);
+  for (int by = 0; by < depth.rows; ++by)
+    for (int bx = 0; bx < depth.cols; ++bx) {
+      const double d = depth.at<float>(by, bx);
       if (d < floor) continue;
+      const int x = bx + box.x, y = by + box.y;
       sum += d - floor;
       sx += (d - floor) * x;
       sy += (d - floor) * y;
