@@ -108,7 +108,8 @@ cv::Mat medianOf(const std::vector<cv::Mat>& frames, int workers) {
 #else
   const bool avx2 = false;
 #endif
-  const CompareExchanges sort = avx2 ? mergeExchangeSort(n) : CompareExchanges();
+  // Only the compare-exchanges the middle value depends on.
+  const CompareExchanges sort = avx2 ? neededFor(mergeExchangeSort(n), n, rank) : CompareExchanges();
   parallelFor(static_cast<std::size_t>(median.rows), 8, workers, [&](std::size_t b, std::size_t e) {
     int x0 = 0;
 #if defined(__x86_64__) && defined(__GNUC__)
