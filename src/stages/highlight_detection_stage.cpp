@@ -5,12 +5,10 @@
 
 #include <algorithm>
 #include <cstdlib>
-#include <future>
 
 #include "capture/capture.h"
 #include "carrier/carrier.h"
 #include "core/error.h"
-#include "core/parallel.h"
 #include "core/text.h"
 #include "hrti/drawing.h"
 #include "hrti/frame_registration.h"
@@ -159,18 +157,6 @@ void HighlightDetectionStage::run(const carrier::Step& step, pipeline::Context& 
   const auto median = ctx.get<hrti::StackMedian>(kStackMedian);
   const hrti::HighlightOptions options = hrti::HighlightOptions::fromParameters(parametersOf(step));
   ctx.progress("Highlight detection", 0);
-  // Every frame registered to the stack (hrti/frame_registration.h): a frame that moved is named
-  // as such before its highlight is judged, whatever its highlight looks like. It needs no
-  // highlight, so it runs beside the search, the judging and the overview below (its own
-  // threads; the stack is read from several threads at once): each leaves the other's
-  // single-threaded stretches (its references; the overview's drawing and PNG) to the second
-  // core. With one thread asked for, it runs where its result is needed, on the stage's thread.
-  const hrti::PhaseCorrelator correlator =
-      step.version == kOpenCvCorrelationVersion ? hrti::PhaseCorrelator::OpenCv : hrti::PhaseCorrelator::Own;
-  const int threads = ctx.settings.threads;
-  std::future<std::vector<hrti::FrameMotion>> registration =
-      std::async(effectiveThreads(threads) > 1 ? std::launch::async : std::launch::deferred,
-                 [&lum, threads, correlator] { return hrti::registerFrames(*lum, threads, correlator); });
   auto highlights = std::make_shared<Highlights>(
       hrti::detectHighlights(*lum, *spheres, options, ctx.settings.threads, median.get()));
   // A spot that rises in the other images too, or is bright in most of them, is not this image's
@@ -181,6 +167,13 @@ void HighlightDetectionStage::run(const carrier::Step& step, pipeline::Context& 
     linearMeans.push_back(linearOf(m, median->transfer()));
   hrti::judgeAcrossImages(*lum, *median, *spheres, *highlights, linearMeans, ctx.settings.threads,
                           statedLightDistancePx(ctx.carrier, *spheres, lum->width()));
+  // Every frame registered to the stack (hrti/frame_registration.h): a frame that moved is named
+  // as such before its highlight is judged, whatever its highlight looks like.
+  std::vector<double> movedPx;
+  const hrti::PhaseCorrelator correlator =
+      step.version == kOpenCvCorrelationVersion ? hrti::PhaseCorrelator::OpenCv : hrti::PhaseCorrelator::Own;
+  for (const hrti::FrameMotion& m : hrti::registerFrames(*lum, ctx.settings.threads, correlator))
+    movedPx.push_back(m.measured ? m.largestPx : -1);
 
   // Manual highlights: target "IMAGE:SPHERE" (sphere index from 0), value "x,y".
   for (const carrier::Intervention* i : step.interventionsOfKind("manual-highlight")) {
@@ -279,9 +272,6 @@ void HighlightDetectionStage::run(const carrier::Step& step, pipeline::Context& 
   const carrier::Step* sphereStep = nullptr;
   for (const carrier::Step& s : ctx.carrier.process)
     if (s.component == SphereDetectionStage::kComponent) sphereStep = &s;
-  // The frames' registration, started above.
-  std::vector<double> movedPx;
-  for (const hrti::FrameMotion& m : registration.get()) movedPx.push_back(m.measured ? m.largestPx : -1);
   recordChecks(step, ctx, result, {hrti::frameMovedCheck(movedPx, hrti::movedLimitPx(lum->width()), imageLabels)},
                {"highlight detection", "the frames", "they do not show the same scene"},
                [&](const hrti::LightCheck& c) { return excludeImagesFix(c, imageLabels); });
