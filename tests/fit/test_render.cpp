@@ -238,25 +238,38 @@ TEST_CASE("fit throughput (prints Mpixel-images/s)", "[.][bench]") {
   }
 }
 
+namespace {
+
+// A PTM of the given size, scales and biases whose coefficient bytes (and, for LRGB, colour
+// bytes) come from a linear congruential sequence started at `seed`.
+formats::PtmFile randomPtm(formats::PtmFile::Format format, int width, int height, const std::array<double, 6>& scale,
+                           const std::array<int, 6>& bias, std::uint32_t seed) {
+  formats::PtmFile ptm;
+  ptm.format = format;
+  ptm.width = width;
+  ptm.height = height;
+  ptm.scale = scale;
+  ptm.bias = bias;
+  const int channels = format == formats::PtmFile::Format::Lrgb ? 1 : 3;
+  const auto next = [&seed] { return static_cast<std::uint8_t>((seed = seed * 1664525u + 1013904223u) >> 24); };
+  ptm.coefficients.resize(ptm.texels() * 6 * channels);
+  for (auto& b : ptm.coefficients) b = next();
+  if (channels == 1) {
+    ptm.rgb.resize(ptm.texels() * 3);
+    for (auto& b : ptm.rgb) b = next();
+  }
+  return ptm;
+}
+
+}  // namespace
+
 TEST_CASE("render: the specular preview is the one std::pow gives, for any weights and exponent") {
   // src/fit/render.cpp takes nh^e by repeated squaring and calls pow only where a sample is
   // within a hair of a rounding step: every sample must be the one of the formula with pow.
   for (const auto format : {formats::PtmFile::Format::Lrgb, formats::PtmFile::Format::Rgb}) {
-    formats::PtmFile ptm;
-    ptm.format = format;
-    ptm.width = 97;
-    ptm.height = 61;
-    ptm.scale = {0.9, 0.8, 0.7, 1.1, 1.2, 1.3};
-    ptm.bias = {200, 190, 128, 120, 130, 20};
+    const formats::PtmFile ptm = randomPtm(format, 97, 61, {0.9, 0.8, 0.7, 1.1, 1.2, 1.3},
+                                           {200, 190, 128, 120, 130, 20}, 12345);
     const int channels = format == formats::PtmFile::Format::Lrgb ? 1 : 3;
-    std::uint32_t seed = 12345;
-    const auto next = [&seed] { return static_cast<std::uint8_t>((seed = seed * 1664525u + 1013904223u) >> 24); };
-    ptm.coefficients.resize(ptm.texels() * 6 * channels);
-    for (auto& b : ptm.coefficients) b = next();
-    if (channels == 1) {
-      ptm.rgb.resize(ptm.texels() * 3);
-      for (auto& b : ptm.rgb) b = next();
-    }
     struct Case {
       std::array<double, 3> light;
       double kd, ks, exponent;
@@ -306,21 +319,9 @@ TEST_CASE("render: the specular preview is the one std::pow gives, for any weigh
 TEST_CASE("normals: a PTM's normal and albedo maps, together or apart, are those of each texel's polynomial") {
   // src/fit/normals.cpp makes both maps in one pass with its coefficients decoded by table.
   for (const auto format : {formats::PtmFile::Format::Lrgb, formats::PtmFile::Format::Rgb}) {
-    formats::PtmFile ptm;
-    ptm.format = format;
-    ptm.width = 53;
-    ptm.height = 37;
-    ptm.scale = {0.5, 0.6, 0.7, 1.1, 1.2, 1.3};
-    ptm.bias = {180, 170, 128, 120, 130, 20};
+    const formats::PtmFile ptm = randomPtm(format, 53, 37, {0.5, 0.6, 0.7, 1.1, 1.2, 1.3},
+                                           {180, 170, 128, 120, 130, 20}, 777);
     const int channels = format == formats::PtmFile::Format::Lrgb ? 1 : 3;
-    std::uint32_t seed = 777;
-    const auto next = [&seed] { return static_cast<std::uint8_t>((seed = seed * 1664525u + 1013904223u) >> 24); };
-    ptm.coefficients.resize(ptm.texels() * 6 * channels);
-    for (auto& b : ptm.coefficients) b = next();
-    if (channels == 1) {
-      ptm.rgb.resize(ptm.texels() * 3);
-      for (auto& b : ptm.rgb) b = next();
-    }
     int fallback = -1, fallbackTogether = -1;
     const Image normals = normalMap(ptm, &fallback, 2), albedo = albedoMap(ptm, 2);
     Image normalsTogether, albedoTogether;
