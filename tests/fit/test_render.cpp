@@ -261,6 +261,17 @@ formats::PtmFile randomPtm(formats::PtmFile::Format format, int width, int heigh
   return ptm;
 }
 
+// The luminance polynomial of texel (x, y), written out: an LRGB PTM's own, an RGB PTM's the
+// mean of its three channels' coefficients.
+PtmCoefficients luminanceOf(const formats::PtmFile& ptm, int x, int y) {
+  const int channels = ptm.format == formats::PtmFile::Format::Lrgb ? 1 : 3;
+  PtmCoefficients lum{};
+  for (int c = 0; c < channels; ++c)
+    for (int t = 0; t < 6; ++t)
+      lum[t] += channels == 1 ? ptm.coefficient(x, y, t, 0) : ptm.coefficient(x, y, t, c) / 3.0;
+  return lum;
+}
+
 }  // namespace
 
 TEST_CASE("render: the specular preview is the one std::pow gives, for any weights and exponent") {
@@ -291,11 +302,7 @@ TEST_CASE("render: the specular preview is the one std::pow gives, for any weigh
       int differing = 0;
       for (int y = 0; y < ptm.height; ++y)
         for (int x = 0; x < ptm.width; ++x) {
-          PtmCoefficients lum{};
-          for (int c = 0; c < channels; ++c)
-            for (int t = 0; t < 6; ++t)
-              lum[t] += channels == 1 ? ptm.coefficient(x, y, t, 0) : ptm.coefficient(x, y, t, c) / 3.0;
-          const auto n = ptmNormal(lum);
+          const auto n = ptmNormal(luminanceOf(ptm, x, y));
           const double nh = std::max(0.0, (n[0] * h[0] + n[1] * h[1] + n[2] * h[2]) / len);
           const double spec = len == 0 ? 0 : o.ks * 255.0 * std::pow(nh, o.specularExponent);
           for (int c = 0; c < 3; ++c) {
@@ -336,10 +343,7 @@ TEST_CASE("normals: a PTM's normal and albedo maps, together or apart, are those
     };
     for (int y = 0; y < ptm.height; ++y)
       for (int x = 0; x < ptm.width; ++x) {
-        PtmCoefficients lum{};
-        for (int c = 0; c < channels; ++c)
-          for (int t = 0; t < 6; ++t)
-            lum[t] += channels == 1 ? ptm.coefficient(x, y, t, 0) : ptm.coefficient(x, y, t, c) / 3.0;
+        const PtmCoefficients lum = luminanceOf(ptm, x, y);
         bool usedFallback = false;
         const auto n = ptmNormal(lum, &usedFallback);
         expectedFallback += usedFallback ? 1 : 0;
