@@ -134,10 +134,53 @@ SURROGATE_INLINE int blockSamples(const Ctx& k, const Sample* const* images, int
   return up;
 }
 
+// Terms j .. j + kTerms - 1 (one or two) of a block's coefficients into acc (planes ch * T +
+// term): for each term and channel, the sum over the photographs, in order, of the cell's
+// pseudo-inverse row interpolated at t (R + t D) times the channel's fall-off-scaled samples
+// (fs). The sums are named, not an array: as an array GCC kept them out of registers (the hsh2
+// near fit 0.26 -> 0.32 s).
+template <int kTerms>
+SURROGATE_INLINE void termSums(const Ctx& k, const double* Rc, const double* Dc, int j, int up) {
+  static_assert(kTerms == 1 || kTerms == 2, "one or two terms at a time");
+  const int n = k.n, T = k.terms;
+  const double* __restrict p0 = Rc + j * n;
+  const double* __restrict d = Dc + j * n;
+  const double* __restrict q0 = kTerms == 2 ? p0 + n : p0;  // the second term's (read for two)
+  const double* __restrict e = kTerms == 2 ? d + n : d;
+  for (int b = 0; b < up; b += kLanes) {
+    V t, a0 = {}, a1 = {}, a2 = {}, b0 = {}, b1 = {}, b2 = {};
+    NEAR_LOAD(t, k.t + b);
+    for (int i = 0; i < n; ++i) {
+      const V pk = p0[i] + t * d[i];
+      V s0, s1, s2;
+      NEAR_LOAD(s0, k.fs + i * kBlock + b);
+      NEAR_LOAD(s1, k.fs + (n + i) * kBlock + b);
+      NEAR_LOAD(s2, k.fs + (2 * n + i) * kBlock + b);
+      a0 += pk * s0;
+      a1 += pk * s1;
+      a2 += pk * s2;
+      if constexpr (kTerms == 2) {
+        const V qk = q0[i] + t * e[i];
+        b0 += qk * s0;
+        b1 += qk * s1;
+        b2 += qk * s2;
+      }
+    }
+    NEAR_STORE(k.acc + (0 * T + j) * kBlock + b, a0);
+    NEAR_STORE(k.acc + (1 * T + j) * kBlock + b, a1);
+    NEAR_STORE(k.acc + (2 * T + j) * kBlock + b, a2);
+    if constexpr (kTerms == 2) {
+      NEAR_STORE(k.acc + (0 * T + j + 1) * kBlock + b, b0);
+      NEAR_STORE(k.acc + (1 * T + j + 1) * kBlock + b, b1);
+      NEAR_STORE(k.acc + (2 * T + j + 1) * kBlock + b, b2);
+    }
+  }
+}
+
 template <typename Sample>
 SURROGATE_INLINE void fitChannelsBody(const Ctx& k, const Sample* const* images, double* out) {
   const std::size_t m = static_cast<std::size_t>(k.w) * 3;
-  const int n = k.n, T = k.terms;
+  const int T = k.terms;
   NEAR_FOR_BLOCKS(k) {
     const int up = blockSamples(k, images, c, x0, len, 0.0, true);
     const double* Rc = k.R + c * k.stride;
@@ -145,57 +188,8 @@ SURROGATE_INLINE void fitChannelsBody(const Ctx& k, const Sample* const* images,
     // Two terms at once: six sums in flight rather than three hide the additions' latency (each
     // sum still adds the photographs in order).
     int j = 0;
-    for (; j + 1 < T; j += 2) {
-      const double* __restrict p0 = Rc + j * n;
-      const double* __restrict d = Dc + j * n;
-      const double* __restrict q0 = p0 + n;
-      const double* __restrict e = d + n;
-      for (int b = 0; b < up; b += kLanes) {
-        V t, a0 = {}, a1 = {}, a2 = {}, b0 = {}, b1 = {}, b2 = {};
-        NEAR_LOAD(t, k.t + b);
-        for (int i = 0; i < n; ++i) {
-          const V pk = p0[i] + t * d[i];
-          const V qk = q0[i] + t * e[i];
-          V s0, s1, s2;
-          NEAR_LOAD(s0, k.fs + i * kBlock + b);
-          NEAR_LOAD(s1, k.fs + (n + i) * kBlock + b);
-          NEAR_LOAD(s2, k.fs + (2 * n + i) * kBlock + b);
-          a0 += pk * s0;
-          a1 += pk * s1;
-          a2 += pk * s2;
-          b0 += qk * s0;
-          b1 += qk * s1;
-          b2 += qk * s2;
-        }
-        NEAR_STORE(k.acc + (0 * T + j) * kBlock + b, a0);
-        NEAR_STORE(k.acc + (1 * T + j) * kBlock + b, a1);
-        NEAR_STORE(k.acc + (2 * T + j) * kBlock + b, a2);
-        NEAR_STORE(k.acc + (0 * T + j + 1) * kBlock + b, b0);
-        NEAR_STORE(k.acc + (1 * T + j + 1) * kBlock + b, b1);
-        NEAR_STORE(k.acc + (2 * T + j + 1) * kBlock + b, b2);
-      }
-    }
-    for (; j < T; ++j) {  // an odd count's last term
-      const double* __restrict p0 = Rc + j * n;
-      const double* __restrict d = Dc + j * n;
-      for (int b = 0; b < up; b += kLanes) {
-        V t, a0 = {}, a1 = {}, a2 = {};
-        NEAR_LOAD(t, k.t + b);
-        for (int i = 0; i < n; ++i) {
-          const V pk = p0[i] + t * d[i];
-          V s0, s1, s2;
-          NEAR_LOAD(s0, k.fs + i * kBlock + b);
-          NEAR_LOAD(s1, k.fs + (n + i) * kBlock + b);
-          NEAR_LOAD(s2, k.fs + (2 * n + i) * kBlock + b);
-          a0 += pk * s0;
-          a1 += pk * s1;
-          a2 += pk * s2;
-        }
-        NEAR_STORE(k.acc + (0 * T + j) * kBlock + b, a0);
-        NEAR_STORE(k.acc + (1 * T + j) * kBlock + b, a1);
-        NEAR_STORE(k.acc + (2 * T + j) * kBlock + b, a2);
-      }
-    }
+    for (; j + 1 < T; j += 2) termSums<2>(k, Rc, Dc, j, up);
+    if (j < T) termSums<1>(k, Rc, Dc, j, up);  // an odd count's last term
     for (int j = 0; j < T; ++j)
       for (int ch = 0; ch < 3; ++ch) {
         const double* a = k.acc + (ch * T + j) * kBlock;
@@ -228,6 +222,45 @@ SURROGATE_INLINE void channelErrors(const Ctx& k, const Sample* const* images, i
   addInOrder(d2, len, &sqErr[i]);
 }
 
+// Lights i .. i + kLights - 1 (one or two) rendered over a block: for each light and channel,
+// the sum over the terms, in order, of the cell's basis at the light interpolated at t (R + t D)
+// times the block's decoded coefficients (dec, planes ch * T + j), into r's three planes (the
+// second light into q's). Named sums, as termSums says why.
+template <int kLights>
+SURROGATE_INLINE void lightRenders(const Ctx& k, const double* Rc, const double* Dc, const double* dec, int i,
+                                   int up, double* __restrict r, double* __restrict q) {
+  static_assert(kLights == 1 || kLights == 2, "one or two lights at a time");
+  const int n = k.n, T = k.terms;
+  for (int b = 0; b < up; b += kLanes) {
+    V t, r0 = {}, r1 = {}, r2 = {}, q0 = {}, q1 = {}, q2 = {};
+    NEAR_LOAD(t, k.t + b);
+    for (int j = 0; j < T; ++j) {
+      const V bk = Rc[j * n + i] + t * Dc[j * n + i];
+      V d0, d1, d2;
+      NEAR_LOAD(d0, dec + j * kBlock + b);
+      NEAR_LOAD(d1, dec + (T + j) * kBlock + b);
+      NEAR_LOAD(d2, dec + (2 * T + j) * kBlock + b);
+      r0 += bk * d0;
+      r1 += bk * d1;
+      r2 += bk * d2;
+      if constexpr (kLights == 2) {
+        const V ck = Rc[j * n + i + 1] + t * Dc[j * n + i + 1];
+        q0 += ck * d0;
+        q1 += ck * d1;
+        q2 += ck * d2;
+      }
+    }
+    NEAR_STORE(r + b, r0);
+    NEAR_STORE(r + kBlock + b, r1);
+    NEAR_STORE(r + 2 * kBlock + b, r2);
+    if constexpr (kLights == 2) {
+      NEAR_STORE(q + b, q0);
+      NEAR_STORE(q + kBlock + b, q1);
+      NEAR_STORE(q + 2 * kBlock + b, q2);
+    }
+  }
+}
+
 template <typename Sample>
 SURROGATE_INLINE void errorsChannelsBody(const Ctx& k, const Sample* const* images, const double* decoded,
                                          double* sqErr) {
@@ -252,51 +285,12 @@ SURROGATE_INLINE void errorsChannelsBody(const Ctx& k, const Sample* const* imag
     double* __restrict q = r + 3 * kBlock;
     int i = 0;
     for (; i + 1 < n; i += 2) {
-      for (int b = 0; b < up; b += kLanes) {
-        V t, r0 = {}, r1 = {}, r2 = {}, q0 = {}, q1 = {}, q2 = {};
-        NEAR_LOAD(t, k.t + b);
-        for (int j = 0; j < T; ++j) {
-          const V bk = Rc[j * n + i] + t * Dc[j * n + i];
-          const V ck = Rc[j * n + i + 1] + t * Dc[j * n + i + 1];
-          V d0, d1, d2;
-          NEAR_LOAD(d0, dec + j * kBlock + b);
-          NEAR_LOAD(d1, dec + (T + j) * kBlock + b);
-          NEAR_LOAD(d2, dec + (2 * T + j) * kBlock + b);
-          r0 += bk * d0;
-          r1 += bk * d1;
-          r2 += bk * d2;
-          q0 += ck * d0;
-          q1 += ck * d1;
-          q2 += ck * d2;
-        }
-        NEAR_STORE(r + b, r0);
-        NEAR_STORE(r + kBlock + b, r1);
-        NEAR_STORE(r + 2 * kBlock + b, r2);
-        NEAR_STORE(q + b, q0);
-        NEAR_STORE(q + kBlock + b, q1);
-        NEAR_STORE(q + 2 * kBlock + b, q2);
-      }
+      lightRenders<2>(k, Rc, Dc, dec, i, up, r, q);
       channelErrors(k, images, i, x0, len, r, k.pk, sqErr);
       channelErrors(k, images, i + 1, x0, len, q, k.pk, sqErr);
     }
-    for (; i < n; ++i) {  // an odd count's last light
-      for (int b = 0; b < up; b += kLanes) {
-        V t, r0 = {}, r1 = {}, r2 = {};
-        NEAR_LOAD(t, k.t + b);
-        for (int j = 0; j < T; ++j) {
-          const V bk = Rc[j * n + i] + t * Dc[j * n + i];
-          V d0, d1, d2;
-          NEAR_LOAD(d0, dec + j * kBlock + b);
-          NEAR_LOAD(d1, dec + (T + j) * kBlock + b);
-          NEAR_LOAD(d2, dec + (2 * T + j) * kBlock + b);
-          r0 += bk * d0;
-          r1 += bk * d1;
-          r2 += bk * d2;
-        }
-        NEAR_STORE(r + b, r0);
-        NEAR_STORE(r + kBlock + b, r1);
-        NEAR_STORE(r + 2 * kBlock + b, r2);
-      }
+    if (i < n) {  // an odd count's last light
+      lightRenders<1>(k, Rc, Dc, dec, i, up, r, q);
       channelErrors(k, images, i, x0, len, r, k.pk, sqErr);
     }
   }
