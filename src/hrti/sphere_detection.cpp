@@ -15,6 +15,7 @@
 #include "hrti/accumulator_peaks.h"
 #include "hrti/circle_fit.h"
 #include "hrti/highlight_detection.h"
+#include "hrti/hough_votes.h"
 #include "hrti/rim_fit.h"
 #include "hrti/stack_median.h"
 
@@ -57,19 +58,6 @@ Gradients gradients(const cv::Mat& coarse8) {
   return g;
 }
 
-// std::lround(v) for |v| well inside the range of long, without the call into the maths library
-// (a fifth of the Hough transform's time): v - trunc(v) is exact, so the half is judged as
-// std::lround judges it.
-inline long roundHalfAway(double v) {
-  const long t = static_cast<long>(v);  // towards zero
-  const double f = v - static_cast<double>(t);
-  return f >= 0.5 ? t + 1 : f <= -0.5 ? t - 1 : t;
-}
-
-// The arc of votes around the gradient direction (step 3 above).
-constexpr double kArc[] = {-M_PI / 12, -M_PI / 24, 0, M_PI / 24, M_PI / 12};
-constexpr int kArcVotes = 5;
-
 // The accumulator value a perfect circle of radius r (unit edge strength) reaches at its
 // centre: each edge pixel's central vote lands there, the arc votes land 2 r sin(|phi|/2)
 // away and reach it only through the blur below (sigma 1). Dividing by this, not by the
@@ -87,11 +75,8 @@ double perfectCircle(int r) {
 
 // The edges of one Hough level that vote, and the area they vote in.
 struct Votes {
-  struct Edge {
-    float x, y, cosg, sing, weight;
-  };
   cv::Rect area;
-  std::vector<Edge> edges;
+  HoughEdges edges;
 };
 
 // The edges that vote: those above the 80th percentile of the area's gradients or a tenth of
@@ -121,8 +106,8 @@ Votes houghVotes(const Gradients& g, cv::Rect area) {
     for (int x = area.x; x < area.x + area.width; ++x) {
       const float m = g.mag.at<float>(y, x);
       if (m < floor || !(m > 0)) continue;
-      v.edges.push_back({float(x), float(y), g.gx.at<float>(y, x) / m, g.gy.at<float>(y, x) / m,
-                         cap > 0 ? std::min(1.0f, m / cap) : 1.0f});
+      v.edges.push_back(float(x), float(y), g.gx.at<float>(y, x) / m, g.gy.at<float>(y, x) / m,
+                        cap > 0 ? std::min(1.0f, m / cap) : 1.0f);
     }
   }
   return v;
@@ -133,24 +118,10 @@ Votes houghVotes(const Gradients& g, cv::Rect area) {
 // found maximum's neighbourhood of r/2 cleared before the next), scored by what a perfect
 // circle of that radius reaches.
 std::vector<Candidate> houghRadius(const Votes& votes, int r, int perRadius, cv::Mat& acc) {
-  double cosArc[kArcVotes], sinArc[kArcVotes];
-  for (int k = 0; k < kArcVotes; ++k) {
-    cosArc[k] = std::cos(kArc[k]);
-    sinArc[k] = std::sin(kArc[k]);
-  }
   const cv::Rect& area = votes.area;
   acc.create(area.height, area.width, CV_32F);
   acc.setTo(0);
-  for (const Votes::Edge& ed : votes.edges) {
-    for (int k = 0; k < kArcVotes; ++k) {
-      // Rotate the gradient direction by the arc angle; step against it (into the dark).
-      const double dx = ed.cosg * cosArc[k] - ed.sing * sinArc[k];
-      const double dy = ed.sing * cosArc[k] + ed.cosg * sinArc[k];
-      const int cx = static_cast<int>(roundHalfAway(ed.x - r * dx)) - area.x;
-      const int cy = static_cast<int>(roundHalfAway(ed.y - r * dy)) - area.y;
-      if (cx >= 0 && cy >= 0 && cx < area.width && cy < area.height) acc.at<float>(cy, cx) += ed.weight;
-    }
-  }
+  houghVote(votes.edges, r, {acc.ptr<float>(), area.x, area.y, area.width, area.height});
   cv::GaussianBlur(acc, acc, cv::Size(5, 5), 1.0);
   AccumulatorPeaks peaks(acc);
   std::vector<Candidate> out;
