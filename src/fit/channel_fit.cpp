@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 
+#include "fit/error_kernels.h"
 #include "fit/near_fit.h"
 #include "fit/row_kernels.h"
 
@@ -24,7 +25,9 @@ using Strided = Eigen::Map<RowMajor, 0, Eigen::OuterStride<>>;
 ChannelFitter::ChannelFitter(std::vector<double> p, std::vector<double> basisAtLights, int n,
                              int terms, double displayScale)
     : p_(std::move(p)), basis_(std::move(basisAtLights)), n_(n), terms_(terms),
-      displayScale_(displayScale) {}
+      displayScale_(displayScale) {
+  for (double b : basis_) basisF_.push_back(static_cast<float>(b));
+}
 
 std::size_t ChannelFitter::ownScratch(int width) const {
   const std::size_t row = static_cast<std::size_t>(width) * 3;
@@ -105,6 +108,7 @@ void ChannelFitter::measureError(const RowView& row, const double* decoded, doub
   const Eigen::Map<const RowMajor> basis(basis_.data(), n_, terms_);
   std::fill(sqErr, sqErr + n_, 0.0);
   if (near_) return near_->errorsChannels(row, decoded, nearScratch, sqErr);
+  if (errors_ == ErrorArithmetic::Single) return measureErrorSingle(row, decoded, sqErr);
   std::array<double, kBlockSamples / 3> d2;
   std::vector<const double*> decodedRows(terms_);
   for (int k = 0; k < terms_; ++k) decodedRows[k] = decoded + k * m;
@@ -125,6 +129,27 @@ void ChannelFitter::measureError(const RowView& row, const double* decoded, doub
       sqErr[i] = err;
     }
   }
+}
+
+// The errors in single precision (fit/error_kernels.h): the decoded coefficients copied to
+// float planes, one per term and channel, a row's at a time.
+void ChannelFitter::measureErrorSingle(const RowView& row, const double* decoded, double* sqErr) const {
+  const std::size_t w = static_cast<std::size_t>(row.width), m = 3 * w;
+  thread_local std::vector<float> copies;
+  thread_local std::vector<const float*> planes;
+  copies.resize(terms_ * m);
+  planes.resize(3 * static_cast<std::size_t>(terms_));
+  for (int k = 0; k < terms_; ++k)
+    for (int c = 0; c < 3; ++c) {
+      float* to = copies.data() + (3 * k + c) * w;
+      const double* from = decoded + k * m + c;
+      for (std::size_t x = 0; x < w; ++x) to[x] = static_cast<float>(from[3 * x]);
+      planes[3 * k + c] = to;
+    }
+  for (int i = 0; i < n_; ++i)
+    withSamples(row, [&](auto images) {
+      sqErr[i] = channelSquaredErrorSum(planes.data(), terms_, &basisF_[static_cast<std::size_t>(i) * terms_], images[i], w);
+    });
 }
 
 }  // namespace surrogate::fit

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "fit/fit.h"
 #include "fit/stream_fit.h"
 
 namespace surrogate::fit {
@@ -33,6 +34,7 @@ class ChannelFitter : public RowFitter {
   void keep(float* rows) override { kept_ = rows; }
   // Lights at known positions: the rows are fitted and measured by `near` (fit/near_fit.h).
   void useNear(const NearModel* near) { near_ = near; }
+  void measureErrorsIn(ErrorArithmetic errors) { errors_ = errors; }
 
  protected:
   // Quantises coefficient k of row y, a[j] for the m = 3 width samples (pixel j / 3, channel
@@ -46,11 +48,14 @@ class ChannelFitter : public RowFitter {
   void fitRow(const RowView& row, double* acc, double* block, double* nearScratch) const;
   void measureError(const RowView& row, const double* decoded, double* block, double* nearScratch,
                     double* sqErr) const;
+  void measureErrorSingle(const RowView& row, const double* decoded, double* sqErr) const;
   std::size_t ownScratch(int width) const;
   std::vector<double> p_, basis_;
+  std::vector<float> basisF_;  // basis_ rounded to float, for the single-precision errors
   int n_, terms_;
   double displayScale_;
   const NearModel* near_ = nullptr;
+  ErrorArithmetic errors_ = ErrorArithmetic::Single;
   float* kept_ = nullptr;  // pass 1's coefficients, rounded to float (RowFitter::keep)
 };
 

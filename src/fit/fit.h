@@ -90,6 +90,12 @@ namespace surrogate::fit {
 
 using Parameters = std::vector<std::pair<std::string, std::string>>;
 
+// How a fit adds up its errors (FitStatistics): in double precision, one squared error a pixel
+// added in pixel order (RtiFit version 7 and earlier, whose records still re-execute that way),
+// or in single precision summed in eight lanes (version 8 on; fit/error_kernels.h says exactly
+// how, and why).
+enum class ErrorArithmetic { Double, Single };
+
 struct FitOptions {
   // Recorded in the carrier (they change the result):
   Basis basis = Basis::PtmLrgb;  // which model and which file (.ptm or .rti)
@@ -97,6 +103,12 @@ struct FitOptions {
   // entry near, is every light at infinity: today's fit, the same bytes. Not in toParameters():
   // the stage records the positions itself.
   std::vector<NearLight> nearLights;
+
+  // How the statistics add up the errors (fit/error_kernels.h): chosen by the RtiFit step's
+  // version, never a parameter. Double reproduces the records of version 7 and earlier; the
+  // model files are the same either way. Lights at known positions measure in double whatever
+  // this says.
+  ErrorArithmetic errors = ErrorArithmetic::Single;
 
   // Not recorded (the result is bit-identical whatever their value):
   std::size_t memoryBudgetBytes = 2ull << 30;  // the output model plus the row bands; smaller = thinner bands

@@ -84,6 +84,7 @@ formats::HshFile fitHshSpaced(const ImageStack& stack, const std::vector<std::ar
   for (double& v : p) v /= 65535.0;  // 16-bit samples -> 0..1 units
   HshFitter fitter(std::move(p), design, n, terms, &hsh);
   fitter.useNear(near.get());
+  fitter.measureErrorsIn(options.errors);
   int passes = 0;
   const std::vector<double> sqErr =
       streamFit(stack, fitter, options, hsh.coefficients.size() + (near ? near->bytes() : 0), &passes);

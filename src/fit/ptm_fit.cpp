@@ -8,6 +8,7 @@
 #include "core/resident.h"
 #include "fit/channel_fit.h"
 #include "fit/conditioning.h"
+#include "fit/error_kernels.h"
 #include "fit/fit.h"
 #include "fit/near_fit.h"
 #include "fit/pseudo_inverse.h"
@@ -59,6 +60,7 @@ class LrgbFitter : public RowFitter {
       const auto w = ptmBasis(l[0], l[1]);
       basis_.insert(basis_.end(), w.begin(), w.end());
     }
+    for (double b : basis_) basisF_.push_back(static_cast<float>(b));
   }
 
   int ranges() const override { return 6; }
@@ -70,6 +72,7 @@ class LrgbFitter : public RowFitter {
   }
   // Lights at known positions: the rows are fitted and measured by `near` (fit/near_fit.h).
   void useNear(const NearModel* near) { near_ = near; }
+  void measureErrorsIn(ErrorArithmetic errors) { errors_ = errors; }
 
   // The stored colour bytes are final after pass 1: they are written to the result here.
   void measure(const RowView& row, double* scratch, double* lo, double* hi) const override {
@@ -126,6 +129,7 @@ class LrgbFitter : public RowFitter {
     double* planes = scratch + 9 * w;
     for (int x = 0; x < w; ++x)
       for (int c = 0; c < 3; ++c) planes[c * w + x] = chroma[3 * x + c];
+    if (!near_ && errors_ == ErrorArithmetic::Single) return measureSingle(row, planes, decoded, sqErr);
     double* d2 = scratch + 12 * w;  // where fitRow kept the sums
     if (near_) {
       std::fill(sqErr, sqErr + n_, 0.0);
@@ -174,11 +178,33 @@ class LrgbFitter : public RowFitter {
 
   static double* nearScratch(double* scratch, int w) { return scratch + 19 * std::size_t(w); }
 
+  // The errors in single precision (fit/error_kernels.h), from float copies of the decoded
+  // luminance coefficients and of the colour bytes (planes), a row's at a time.
+  void measureSingle(const RowView& row, const double* planes, const double* decoded, double* sqErr) const {
+    const std::size_t w = static_cast<std::size_t>(row.width);
+    thread_local std::vector<float> copies;
+    copies.resize(9 * w);
+    const float* lum[6];
+    const float* colour[3];
+    for (int k = 0; k < 9; ++k) {
+      const double* from = k < 6 ? decoded + k * w : planes + (k - 6) * w;
+      float* to = copies.data() + k * w;
+      for (std::size_t x = 0; x < w; ++x) to[x] = static_cast<float>(from[x]);
+      (k < 6 ? lum[k] : colour[k - 6]) = to;
+    }
+    for (int i = 0; i < n_; ++i)
+      withSamples(row, [&](auto images) {
+        sqErr[i] = lrgbSquaredErrorSum(lum, colour, &basisF_[static_cast<std::size_t>(i) * 6], images[i], w);
+      });
+  }
+
   int n_;
   formats::PtmFile* out_;
   std::vector<double> p_, weight_, basis_;
+  std::vector<float> basisF_;  // basis_ rounded to float, for the single-precision errors
   PtmQuantisation q_[6];
   const NearModel* near_ = nullptr;
+  ErrorArithmetic errors_ = ErrorArithmetic::Single;
   float* kept_ = nullptr;  // pass 1's coefficients, rounded to float (RowFitter::keep)
 };
 
@@ -253,6 +279,7 @@ formats::PtmFile fitPtmSpaced(const ImageStack& stack, const std::vector<std::ar
     resizeResident(ptm.rgb, ptm.texels() * 3, threads);
     LrgbFitter fitter(pinv.matrix, l, &ptm);
     fitter.useNear(near.get());
+    fitter.measureErrorsIn(options.errors);
     sqErr = streamFit(stack, fitter, options, ptm.coefficients.size() + ptm.rgb.size() + nearBytes, &passes);
   } else {
     ptm.format = formats::PtmFile::Format::Rgb;
@@ -261,6 +288,7 @@ formats::PtmFile fitPtmSpaced(const ImageStack& stack, const std::vector<std::ar
     for (double& v : p) v /= 257.0;  // 16-bit samples -> 0..255 units
     RgbPtmFitter fitter(std::move(p), design, n, &ptm);
     fitter.useNear(near.get());
+    fitter.measureErrorsIn(options.errors);
     sqErr = streamFit(stack, fitter, options, ptm.coefficients.size() + nearBytes, &passes);
   }
   const Conditioning& used = near ? near->conditioning() : conditioning;

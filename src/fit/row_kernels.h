@@ -2,7 +2,8 @@
 // (every photograph's samples into the six luminance coefficients and the mean colour), the
 // per-channel fits' block products, the quantisation of coefficients to bytes, and the error
 // measurement (re-rendering the stored model at a captured light and comparing Rec. 709
-// luminance with the photograph).
+// luminance with the photograph) as RtiFit version 7 and earlier made it, and lights at known
+// positions still do; version 8's is in single precision (fit/error_kernels.h).
 //
 // These loops are bound by arithmetic (division, for the errors: four per pixel and light for
 // LRGB), and the baseline x86-64 instruction set works on two doubles at once where AVX2 works

@@ -41,6 +41,8 @@ std::string defaultFitOutput(const std::string& basisText) {
 }
 
 namespace {
+// The last version that measured the fit error in double precision: its steps still do.
+constexpr const char* kDoubleErrorsVersion = "7";
 constexpr const char* kOutputParameter = "output";
 constexpr const char* kHoldoutParameter = "holdout";
 
@@ -176,9 +178,14 @@ pipeline::StageInfo RtiFitStage::info() {
       // brought to the frame centre's light by the inverse square of its distance
       // (fit/near_lights.h); lights at infinity give version 5's bytes. Version 7: parameter
       // holdout K > 0 also fits without K photographs and records the model's PSNR and SSIM at
-      // their lights (stages/held_out_record.h); the files are version 6's.
-      {kComponent, "7", "Least-squares fit of a per-pixel reflectance model over the light directions",
+      // their lights (stages/held_out_record.h); the files are version 6's. Version 8: with
+      // lights at infinity the fit error (rmse, psnr, each image's rmse) is measured in single
+      // precision and summed in eight lanes (fit/error_kernels.h): a third of the time, the
+      // values within about a millionth of version 7's; the files are version 7's, and steps of
+      // version 7 still measure as they did (kDoubleErrorsVersion).
+      {kComponent, "8", "Least-squares fit of a per-pixel reflectance model over the light directions",
        pipeline::PlanSlot::EachModel});
+  info.alsoRuns = {kDoubleErrorsVersion};
   info.forModel = [](const std::string& basis) { return RtiFitOptions::forBasis(basis).toParameters(); };
   // The learned bases (rbf, bln) are LearnedFit's (stages/learned_fit_stage.h).
   info.takesModel = [](const std::string& basis) { return !fit::isLearnedBasisName(basis); };
@@ -234,6 +241,7 @@ void RtiFitStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
   fit::FitOptions options = recorded.fit;
   options.threads = ctx.settings.threads;
   options.memoryBudgetBytes = ctx.settings.fitBudget();
+  options.errors = step.version == kDoubleErrorsVersion ? fit::ErrorArithmetic::Double : fit::ErrorArithmetic::Single;
   const std::string basis = fit::basisName(options.basis);
   const std::string label = "Fitting " + basis;
   options.progress = [&](double f) { ctx.progress(label, f); };

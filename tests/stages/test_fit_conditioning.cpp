@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <random>
 
 #include "carrier/carrier.h"
@@ -23,8 +25,10 @@ namespace {
 
 using Lights = std::vector<std::array<double, 3>>;
 
-// One RtiFit step of `basis` over a grey Lambertian relief under `lights`.
-carrier::Carrier fitOnce(const std::string& basis, const Lights& lights, const fs::path& root) {
+// One RtiFit step of `basis` over a grey Lambertian relief under `lights`, recorded as the
+// stage's version or as `version`.
+carrier::Carrier fitOnce(const std::string& basis, const Lights& lights, const fs::path& root,
+                         const std::string& version = "") {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(0, 1);
   const int w = 24, h = 16;
@@ -48,7 +52,8 @@ carrier::Carrier fitOnce(const std::string& basis, const Lights& lights, const f
   }
   stages::registerBuiltinStages();
   carrier::Carrier c = carrier::newCarrier("one fit", {});
-  carrier::Step& s = c.addStep("RtiFit", pipeline::StageRegistry::instance().create("RtiFit")->version());
+  carrier::Step& s =
+      c.addStep("RtiFit", version.empty() ? pipeline::StageRegistry::instance().create("RtiFit")->version() : version);
   s.setParam("basis", basis);
   fs::create_directories(root / "finished-files");
   pipeline::Context ctx(root, c, pipeline::RunSettings{});
@@ -107,5 +112,29 @@ TEST_CASE("RtiFit records no damping for lights spread over the hemisphere, only
     CHECK(valueOf(c, "lightMatrixCondition"));
     CHECK(valueOf(c, "psnr"));
     CHECK(warnings(c) == 0);
+  }
+}
+
+TEST_CASE("RtiFit steps of version 7 still measure the fit error in double precision, version 8 in single") {
+  // The same photographs fitted as each version: the same model file, errors apart by float's
+  // spacing (fit/error_kernels.h), and not the same bits: each version runs its own arithmetic.
+  const fs::path root = fs::temp_directory_path() / "fit-error-versions";
+  for (const std::string basis : {"ptm-lrgb", "hsh2"}) {
+    INFO(basis);
+    const fs::path model = root / "finished-files" / (basis + (basis == "hsh2" ? ".rti" : ".ptm"));
+    std::vector<std::string> files, rmse;
+    for (const char* version : {"7", "8"}) {
+      const carrier::Carrier c = fitOnce(basis, test::spiralLights(12, 20.0, 80.0), root, version);
+      REQUIRE(c.data.size() == 1);
+      CHECK(c.data[0].status == "completed");
+      std::ifstream in(model, std::ios::binary);
+      files.emplace_back(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+      REQUIRE(valueOf(c, "rmse"));
+      rmse.push_back(*valueOf(c, "rmse"));
+    }
+    CHECK_FALSE(files[0].empty());
+    CHECK(files[0] == files[1]);
+    CHECK(rmse[0] != rmse[1]);
+    CHECK(std::abs(std::stod(rmse[0]) - std::stod(rmse[1])) < 5e-5);
   }
 }

@@ -99,7 +99,7 @@ TEST_CASE("built-in stages keep their recorded names, versions and default param
   const std::vector<std::pair<std::string, std::string>> versions = {
       {"CaptureIngest", "3"}, {"ImageDecode", "3"}, {"SphereDetection", "9"}, {"HighlightDetection", "12"},
       {"LightDirections", "7"}, {"LightsFromFile", "4"}, {"WhiteBalance", "1"}, {"Crop", "1"},
-      {"Resize", "1"}, {"RtiFit", "7"}, {"LearnedFit", "1"}, {"DerivedMaps", "5"}, {"WebCopy", "4"}, {"Audit", "7"},
+      {"Resize", "1"}, {"RtiFit", "8"}, {"LearnedFit", "1"}, {"DerivedMaps", "5"}, {"WebCopy", "4"}, {"Audit", "7"},
       {"ColourCorrection", "1"}};
   for (const auto& [component, version] : versions) {
     INFO(component);
@@ -108,11 +108,15 @@ TEST_CASE("built-in stages keep their recorded names, versions and default param
     CHECK(r.create(component)->version() == version);
     CHECK(r.runsAsRecorded(component, version));
   }
-  // Older versions still run as they ran: only HighlightDetection 11 (cv::phaseCorrelate).
+  // Older versions still run as they ran: HighlightDetection 11 (cv::phaseCorrelate) and RtiFit 7
+  // (its errors in double precision).
   for (const pipeline::StageInfo* info : r.stages())
     CHECK(info->alsoRuns == (info->component == "HighlightDetection" ? std::vector<std::string>{"11"}
-                                                                      : std::vector<std::string>{}));
+                             : info->component == "RtiFit"           ? std::vector<std::string>{"7"}
+                                                                     : std::vector<std::string>{}));
   CHECK(r.runsAsRecorded("HighlightDetection", "11"));
+  CHECK(r.runsAsRecorded("RtiFit", "7"));
+  CHECK_FALSE(r.runsAsRecorded("RtiFit", "6"));
   CHECK_FALSE(r.runsAsRecorded("HighlightDetection", "10"));
   CHECK_FALSE(r.runsAsRecorded("SphereDetection", "8"));
   CHECK_FALSE(r.runsAsRecorded("NoSuchStage", "1"));
