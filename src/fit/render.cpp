@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <functional>
 #include <vector>
 
@@ -11,9 +12,15 @@
 #include "core/parallel.h"
 #include "fit/basis.h"
 #include "fit/lambert.h"
+#include "fit/normal_rows.h"
 #include "fit/normals.h"
 #include "fit/quantise.h"
+#include "fit/row_kernels.h"
 #include "fit/texel.h"
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#endif
 
 namespace surrogate::fit {
 
@@ -69,6 +76,11 @@ class Specular {
                        exponent_ == std::floor(exponent_)
                    ? static_cast<int>(exponent_)
                    : 0) {}
+
+  // The whole exponent taken by squaring (0: pow at every texel), the scale ks * 255 and the margin.
+  int whole() const { return whole_; }
+  double scale() const { return scale_; }
+  double margin() const { return margin_; }
 
   // The samples of one texel whose half-vector cosine is nh (HalfVector::cosine).
   class Texel {
@@ -153,6 +165,104 @@ class PtmTerms {
   double term_[6][kByteValues];
 };
 
+// The plain LRGB samples of a row, toSample(rgb * diffuse / 255) with `diffuse` given per sample
+// (each texel's value three times).
+void plainBody(const std::uint8_t* rgb, const double* diffuse, int count, std::uint16_t* samples) {
+  for (int i = 0; i < count; ++i) samples[i] = toSample(rgb[i] * diffuse[i] / 255.0);
+}
+#if defined(__x86_64__) && defined(__GNUC__)
+// plainBody on four samples at a time, the same operations on each value (no fused multiply-add):
+// detail::roundClamped as maxpd(v, 0) (v where 0 < v, else 0, NaN too), then minpd(., 255),
+// the whole part by truncation and one more where the rest is at least a half.
+__attribute__((target("avx2"))) void plainAvx2(const std::uint8_t* rgb, const double* diffuse, int count,
+                                               std::uint16_t* samples) {
+  const __m256d zero = _mm256_setzero_pd(), top = _mm256_set1_pd(255.0), half = _mm256_set1_pd(0.5),
+                one = _mm256_set1_pd(1.0), widen = _mm256_set1_pd(257.0);
+  int i = 0;
+  for (; i + 4 <= count; i += 4) {
+    std::int32_t four;
+    std::memcpy(&four, rgb + i, sizeof four);
+    const __m256d c = _mm256_cvtepi32_pd(_mm_cvtepu8_epi32(_mm_cvtsi32_si128(four)));
+    const __m256d v = _mm256_div_pd(_mm256_mul_pd(c, _mm256_loadu_pd(diffuse + i)), top);
+    const __m256d clamped = _mm256_min_pd(_mm256_max_pd(v, zero), top);
+    const __m256d whole = _mm256_cvtepi32_pd(_mm256_cvttpd_epi32(clamped));
+    const __m256d up = _mm256_and_pd(_mm256_cmp_pd(_mm256_sub_pd(clamped, whole), half, _CMP_GE_OQ), one);
+    const __m128i s = _mm256_cvttpd_epi32(_mm256_mul_pd(_mm256_add_pd(whole, up), widen));
+    _mm_storel_epi64(reinterpret_cast<__m128i*>(samples + i), _mm_packus_epi32(s, s));
+  }
+  plainBody(rgb + i, diffuse + i, count - i, samples + i);
+}
+#endif
+#if defined(__x86_64__) && defined(__GNUC__)
+// The specular LRGB samples of four texels at a time where Specular::Texel needs no pow: per
+// texel HalfVector::cosine, Specular's power by squaring and the two bytes of each sample, the
+// same operations on each value in the same order. done[x] is 1 for the texels written; the
+// others (a sample within the margin of a half, or the last texels) are left to Specular::Texel.
+struct SpecularRow {
+  const double* n[3];
+  const double* diffuse;     // the luminance L(lu, lv) of each texel
+  const std::uint8_t* rgb;   // the row's colours
+  std::uint16_t* samples;    // the row's samples
+  std::uint8_t* done;
+  int width;
+};
+__attribute__((target("avx2"))) inline __m256d byteOf(__m256d v) {
+  const __m256d clamped = _mm256_min_pd(_mm256_max_pd(v, _mm256_setzero_pd()), _mm256_set1_pd(255.0));
+  const __m256d whole = _mm256_cvtepi32_pd(_mm256_cvttpd_epi32(clamped));
+  return _mm256_add_pd(whole, _mm256_and_pd(_mm256_cmp_pd(_mm256_sub_pd(clamped, whole), _mm256_set1_pd(0.5), _CMP_GE_OQ),
+                                            _mm256_set1_pd(1.0)));
+}
+__attribute__((target("avx2"))) void specularAvx2(const SpecularRow& r, const HalfVector& half, const Specular& spec,
+                                                  double kd) {
+  const __m256d h0 = _mm256_set1_pd(half.h[0]), h1 = _mm256_set1_pd(half.h[1]), h2 = _mm256_set1_pd(half.h[2]),
+                length = _mm256_set1_pd(half.length), scale = _mm256_set1_pd(spec.scale()),
+                margin = _mm256_set1_pd(spec.margin()), kdv = _mm256_set1_pd(kd), range = _mm256_set1_pd(255.0),
+                widen = _mm256_set1_pd(257.0);
+  int x = 0;
+  for (; x + 4 <= r.width; x += 4) {
+    const __m256d dot = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(_mm256_loadu_pd(r.n[0] + x), h0),
+                                                    _mm256_mul_pd(_mm256_loadu_pd(r.n[1] + x), h1)),
+                                      _mm256_mul_pd(_mm256_loadu_pd(r.n[2] + x), h2));
+    const __m256d nh = _mm256_max_pd(_mm256_div_pd(dot, length), _mm256_setzero_pd());
+    __m256d result = _mm256_set1_pd(1.0), square = nh;
+    for (int e = spec.whole(); e > 0; e >>= 1) {
+      if (e & 1) result = _mm256_mul_pd(result, square);
+      if (e > 1) square = _mm256_mul_pd(square, square);
+    }
+    const __m256d term = _mm256_mul_pd(scale, result);
+    const __m256d below = _mm256_sub_pd(term, margin), above = _mm256_add_pd(term, margin);
+    const __m256d diffuse = _mm256_loadu_pd(r.diffuse + x);
+    const std::uint8_t* rgb = r.rgb + 3 * x;
+    __m256d same = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
+    __m128i out[3];
+    for (int c = 0; c < 3; ++c) {
+      const __m256d colour = _mm256_set_pd(rgb[9 + c], rgb[6 + c], rgb[3 + c], rgb[c]);
+      const __m256d kdd = _mm256_mul_pd(kdv, _mm256_div_pd(_mm256_mul_pd(colour, diffuse), range));
+      const __m256d lo = byteOf(_mm256_add_pd(kdd, below)), hi = byteOf(_mm256_add_pd(kdd, above));
+      same = _mm256_and_pd(same, _mm256_cmp_pd(lo, hi, _CMP_EQ_OQ));
+      out[c] = _mm256_cvttpd_epi32(_mm256_mul_pd(lo, widen));
+    }
+    const int sameBits = _mm256_movemask_pd(same);
+    alignas(16) std::int32_t v[3][4];
+    for (int c = 0; c < 3; ++c) _mm_store_si128(reinterpret_cast<__m128i*>(v[c]), out[c]);
+    for (int i = 0; i < 4; ++i) {
+      r.done[x + i] = (sameBits >> i) & 1;
+      if (!r.done[x + i]) continue;
+      for (int c = 0; c < 3; ++c) r.samples[(x + i) * 3 + c] = static_cast<std::uint16_t>(v[c][i]);
+    }
+  }
+  for (; x < r.width; ++x) r.done[x] = 0;
+}
+
+#endif
+
+void plainSamples(const std::uint8_t* rgb, const double* diffuse, int count, std::uint16_t* samples) {
+#if defined(__x86_64__) && defined(__GNUC__)
+  if (activeKernelIsa() == KernelIsa::Avx2) return plainAvx2(rgb, diffuse, count, samples);
+#endif
+  plainBody(rgb, diffuse, count, samples);
+}
+
 void forRows(int height, int threads, const std::function<void(int)>& fn) {
   parallelFor(static_cast<std::size_t>(height), 8, effectiveThreads(threads),
               [&](std::size_t b, std::size_t e) {
@@ -174,38 +284,65 @@ Image render(const formats::PtmFile& ptm, const std::array<double, 3>& light,
   const Specular specular(options);
   const std::size_t plane = ptm.texels() * 6;  // bytes of one channel's coefficients
   const PtmDecoded decoded(ptm);
-  forRows(ptm.height, options.threads, [&](int y) {
-    if (lrgb && !gain && !options.specular) {
+  const bool plain = lrgb && !gain && !options.specular;
+  // The specular LRGB picture four texels at a time (DerivedMaps' third preview) where its
+  // highlight is taken by squaring; the texels it leaves by the loop below.
+  bool vectorSpecular = false;
+#if defined(__x86_64__) && defined(__GNUC__)
+  vectorSpecular = lrgb && !gain && options.specular && specular.whole() != 0 && half.length != 0 &&
+                   activeKernelIsa() == KernelIsa::Avx2;
+#endif
+  parallelFor(static_cast<std::size_t>(ptm.height), 8, effectiveThreads(options.threads), [&](std::size_t b, std::size_t e) {
+    if (plain) {
       // The plain LRGB picture, alone in a loop of its own (two of DerivedMaps' three previews):
       // kd is 1 and there is no specular term, so the sample is toSample(d), as 1 * d + 0.0 is d.
-      const std::size_t row = static_cast<std::size_t>(y) * ptm.width;
-      const std::uint8_t* rgb = &ptm.rgb[row * 3];
-      std::uint16_t* samples = &out.pixels[row * 3];
-      for (int x = 0; x < ptm.width; ++x) {
-        const double diffuse = terms.evaluate(&ptm.coefficients[(row + x) * 6]);
-        for (int c = 0; c < 3; ++c) samples[x * 3 + c] = toSample(rgb[x * 3 + c] * diffuse / 255.0);
+      std::vector<double> diffuse(static_cast<std::size_t>(ptm.width) * 3);
+      for (std::size_t y = b; y < e; ++y) {
+        const std::size_t row = y * ptm.width;
+        for (int x = 0; x < ptm.width; ++x)
+          diffuse[x * 3] = diffuse[x * 3 + 1] = diffuse[x * 3 + 2] = terms.evaluate(&ptm.coefficients[(row + x) * 6]);
+        plainSamples(&ptm.rgb[row * 3], diffuse.data(), ptm.width * 3, &out.pixels[row * 3]);
       }
       return;
     }
-    for (int x = 0; x < ptm.width; ++x) {
-      std::array<double, 3> n{0, 0, 1};
-      const std::uint8_t* bytes = &ptm.coefficients[(static_cast<std::size_t>(y) * ptm.width + x) * 6];
-      if (gain || options.specular) n = ptmNormal(ptmLuminance(ptm, decoded, bytes, plane));
-      double diffuse[3];
-      for (int c = 0; c < (lrgb ? 1 : 3); ++c) {
-        if (gain) {
-          diffuse[c] = evaluatePtm(applyDiffuseGain(ptmChannel(ptm, x, y, c), options.diffuseGain, n[0], n[1]), lu, lv);
-        } else {
-          diffuse[c] = terms.evaluate(bytes + c * plane);
-        }
+    // The normals of a row at once where the gain or the highlight needs them (fit/normal_rows.h).
+    PtmNormalRow normalRow(gain || options.specular ? ptm.width : 0);
+    std::vector<double> diffuseRow;
+    std::vector<std::uint8_t> done(ptm.width, 0);
+    for (std::size_t yy = b; yy < e; ++yy) {
+      const int y = static_cast<int>(yy);
+      if (gain || options.specular) normalRow.fill(ptm, decoded, plane, y);
+      if (vectorSpecular) {
+        const std::size_t row = yy * ptm.width;
+        diffuseRow.resize(ptm.width);
+        for (int x = 0; x < ptm.width; ++x) diffuseRow[x] = terms.evaluate(&ptm.coefficients[(row + x) * 6]);
+        const SpecularRow r{{normalRow.n[0].data(), normalRow.n[1].data(), normalRow.n[2].data()},
+                            diffuseRow.data(), &ptm.rgb[row * 3], &out.pixels[row * 3], done.data(), ptm.width};
+#if defined(__x86_64__) && defined(__GNUC__)
+        specularAvx2(r, half, specular, kd);
+#endif
       }
-      // Without the specular term, the sum is kd * d + 0.0, the same byte as kd * d.
-      Specular::Texel spec(specular, options.specular ? half.cosine(n) : -1);
-      for (int c = 0; c < 3; ++c) {
-        const double d =
-            lrgb ? ptm.rgb[(static_cast<std::size_t>(y) * ptm.width + x) * 3 + c] * diffuse[0] / 255.0
-                 : diffuse[c];
-        out.at(x, y, c) = options.specular ? spec.sample(kd * d) : toSample(kd * d);
+      for (int x = 0; x < ptm.width; ++x) {
+        if (done[x]) continue;
+        std::array<double, 3> n{0, 0, 1};
+        const std::uint8_t* bytes = &ptm.coefficients[(static_cast<std::size_t>(y) * ptm.width + x) * 6];
+        if (gain || options.specular) n = {normalRow.n[0][x], normalRow.n[1][x], normalRow.n[2][x]};
+        double diffuse[3];
+        for (int c = 0; c < (lrgb ? 1 : 3); ++c) {
+          if (gain) {
+            diffuse[c] = evaluatePtm(applyDiffuseGain(ptmChannel(ptm, x, y, c), options.diffuseGain, n[0], n[1]), lu, lv);
+          } else {
+            diffuse[c] = terms.evaluate(bytes + c * plane);
+          }
+        }
+        // Without the specular term, the sum is kd * d + 0.0, the same byte as kd * d.
+        Specular::Texel spec(specular, options.specular ? half.cosine(n) : -1);
+        for (int c = 0; c < 3; ++c) {
+          const double d =
+              lrgb ? ptm.rgb[(static_cast<std::size_t>(y) * ptm.width + x) * 3 + c] * diffuse[0] / 255.0
+                   : diffuse[c];
+          out.at(x, y, c) = options.specular ? spec.sample(kd * d) : toSample(kd * d);
+        }
       }
     }
   });

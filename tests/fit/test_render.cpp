@@ -362,3 +362,27 @@ TEST_CASE("normals: a PTM's normal and albedo maps, together or apart, are those
     CHECK(differing == 0);
   }
 }
+
+TEST_CASE("render: the plain LRGB picture is each texel's colour times its luminance, at any width") {
+  // src/fit/render.cpp writes it four samples at a time (AVX2) and the rest one by one.
+  for (const int width : {1, 5, 97}) {
+    const formats::PtmFile ptm = randomPtm(formats::PtmFile::Format::Lrgb, width, 23, {0.9, 0.8, 0.7, 1.1, 1.2, 1.3},
+                                           {200, 190, 128, 120, 130, 20}, 4242);
+    const std::array<double, 3> light{0.6, -0.4, 0.5};
+    const double norm = std::sqrt(light[0] * light[0] + light[1] * light[1] + light[2] * light[2]);
+    const Image r = render(ptm, light, {});
+    int differing = 0;
+    for (int y = 0; y < ptm.height; ++y)
+      for (int x = 0; x < ptm.width; ++x) {
+        const double l = evaluatePtm(luminanceOf(ptm, x, y), light[0] / norm, light[1] / norm);
+        for (int c = 0; c < 3; ++c) {
+          const double v = ptm.rgb[(static_cast<std::size_t>(y) * ptm.width + x) * 3 + c] * l / 255.0;
+          const double clamped = v > 0 ? std::min(v, 255.0) : 0.0;  // detail::toByte
+          const int rounded = static_cast<int>(clamped) + (clamped - static_cast<int>(clamped) >= 0.5 ? 1 : 0);
+          if (r.at(x, y, c) != rounded * 257) ++differing;
+        }
+      }
+    INFO("width " << width);
+    CHECK(differing == 0);
+  }
+}
