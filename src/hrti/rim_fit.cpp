@@ -6,8 +6,13 @@
 #include <cmath>
 #include <vector>
 
+#include "core/cpu_features.h"
 #include "hrti/circle_fit.h"
 #include "hrti/stack_median.h"
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#endif
 
 namespace surrogate::hrti {
 
@@ -94,8 +99,98 @@ const RayDirections& rays() {
 
 }  // namespace
 
+namespace detail {
+
+void radialProfilePlain(const RimGradients& g, double cx, double cy, double ca, double sa, const double* ts,
+                        std::size_t n, double* out) {
+  for (std::size_t i = 0; i < n; ++i) {
+    const double x = cx + ts[i] * ca - g.x0, y = cy + ts[i] * sa - g.y0;
+    const int ix = static_cast<int>(std::floor(x)), iy = static_cast<int>(std::floor(y));
+    if (ix < 0 || iy < 0 || ix + 1 >= g.cols || iy + 1 >= g.rows) {
+      out[i] = std::nan("");
+      continue;
+    }
+    const double fx = x - ix, fy = y - iy;
+    const std::size_t at = static_cast<std::size_t>(iy) * g.cols + ix;
+    const float* gx0 = g.gx + at;
+    const float* gx1 = gx0 + g.cols;
+    const float* gy0 = g.gy + at;
+    const float* gy1 = gy0 + g.cols;
+    const double vx = (gx0[0] * (1 - fx) + gx0[1] * fx) * (1 - fy) + (gx1[0] * (1 - fx) + gx1[1] * fx) * fy;
+    const double vy = (gy0[0] * (1 - fx) + gy0[1] * fx) * (1 - fy) + (gy1[0] * (1 - fx) + gy1[1] * fx) * fy;
+    out[i] = vx * ca + vy * sa;
+  }
+}
+
+#if defined(__x86_64__) && defined(__GNUC__)
+// The bilinear interpolation of `p` at four places: the 2 x 2 pixels at00 .. at11 (floats from
+// p), the fractions fx, fy and their complements cfx = 1 - fx, cfy = 1 - fy, in the plain
+// variant's order.
+__attribute__((target("avx2"))) inline __m256d gathered4(const float* p, __m128i at) {
+  return _mm256_cvtps_pd(_mm_i32gather_ps(p, at, 4));
+}
+__attribute__((target("avx2"))) inline __m256d interpolated4(const float* p, __m128i at00, __m128i at01, __m128i at10,
+                                                             __m128i at11, __m256d fx, __m256d fy, __m256d cfx,
+                                                             __m256d cfy) {
+  const __m256d top = _mm256_add_pd(_mm256_mul_pd(gathered4(p, at00), cfx), _mm256_mul_pd(gathered4(p, at01), fx));
+  const __m256d bottom = _mm256_add_pd(_mm256_mul_pd(gathered4(p, at10), cfx), _mm256_mul_pd(gathered4(p, at11), fx));
+  return _mm256_add_pd(_mm256_mul_pd(top, cfy), _mm256_mul_pd(bottom, fy));
+}
+
+// Four distances at a time, the pixels gathered; "avx2" alone: the compiler may not fuse a
+// multiply and an add (that needs "fma"), so every product and sum rounds as in the plain
+// variant. floor(x) is the whole number the plain variant converts to int and back.
+__attribute__((target("avx2"))) void radialAvx2(const RimGradients& g, double cx, double cy, double ca, double sa,
+                                                const double* ts, std::size_t n, double* out) {
+  const __m256d vcx = _mm256_set1_pd(cx), vcy = _mm256_set1_pd(cy), vca = _mm256_set1_pd(ca), vsa = _mm256_set1_pd(sa);
+  const __m256d x0 = _mm256_set1_pd(g.x0), y0 = _mm256_set1_pd(g.y0), one = _mm256_set1_pd(1.0);
+  const __m256d nan = _mm256_set1_pd(std::nan(""));
+  const __m128i minusOne = _mm_set1_epi32(-1), cols = _mm_set1_epi32(g.cols);
+  const __m128i lastX = _mm_set1_epi32(g.cols - 1), lastY = _mm_set1_epi32(g.rows - 1);
+  std::size_t i = 0;
+  for (; i + 4 <= n; i += 4) {
+    const __m256d t = _mm256_loadu_pd(ts + i);
+    const __m256d x = _mm256_sub_pd(_mm256_add_pd(vcx, _mm256_mul_pd(t, vca)), x0);
+    const __m256d y = _mm256_sub_pd(_mm256_add_pd(vcy, _mm256_mul_pd(t, vsa)), y0);
+    const __m256d wx = _mm256_floor_pd(x), wy = _mm256_floor_pd(y);
+    const __m128i ix = _mm256_cvttpd_epi32(wx), iy = _mm256_cvttpd_epi32(wy);
+    const __m128i inside = _mm_and_si128(_mm_and_si128(_mm_cmpgt_epi32(ix, minusOne), _mm_cmpgt_epi32(iy, minusOne)),
+                                         _mm_and_si128(_mm_cmpgt_epi32(lastX, ix), _mm_cmpgt_epi32(lastY, iy)));
+    if (_mm_movemask_epi8(inside) == 0) {
+      _mm256_storeu_pd(out + i, nan);
+      continue;
+    }
+    // Outside the window the pixel (0, 0) is read, and its value replaced by NaN below.
+    const __m128i at00 = _mm_and_si128(inside, _mm_add_epi32(_mm_mullo_epi32(iy, cols), ix));
+    const __m128i at01 = _mm_add_epi32(at00, _mm_set1_epi32(1));
+    const __m128i at10 = _mm_add_epi32(at00, cols), at11 = _mm_add_epi32(at01, cols);
+    const __m256d fx = _mm256_sub_pd(x, wx), fy = _mm256_sub_pd(y, wy);
+    const __m256d cfx = _mm256_sub_pd(one, fx), cfy = _mm256_sub_pd(one, fy);  // 1 - fx, 1 - fy
+    const __m256d vx = interpolated4(g.gx, at00, at01, at10, at11, fx, fy, cfx, cfy);
+    const __m256d vy = interpolated4(g.gy, at00, at01, at10, at11, fx, fy, cfx, cfy);
+    const __m256d v = _mm256_add_pd(_mm256_mul_pd(vx, vca), _mm256_mul_pd(vy, vsa));
+    _mm256_storeu_pd(out + i, _mm256_blendv_pd(nan, v, _mm256_castsi256_pd(_mm256_cvtepi32_epi64(inside))));
+  }
+  radialProfilePlain(g, cx, cy, ca, sa, ts + i, n - i, out + i);
+}
+#endif
+
+bool radialProfileAvx2(const RimGradients& g, double cx, double cy, double ca, double sa, const double* ts,
+                       std::size_t n, double* out) {
+#if defined(__x86_64__) && defined(__GNUC__)
+  radialAvx2(g, cx, cy, ca, sa, ts, n, out);
+  return true;
+#else
+  (void)g, (void)cx, (void)cy, (void)ca, (void)sa, (void)ts, (void)n, (void)out;
+  return false;
+#endif
+}
+
+}  // namespace detail
+
 DetectedSphere refineRim(const StackMedian& median, double cx, double cy, double r, double margin, bool ofVisible) {
   DetectedSphere out{cx, cy, r, 0};
+  const bool avx2 = cpuHasAvx2();
   // Each pass searches the rim within `margin` of the last circle, the margin shrinking to 3 px.
   for (int pass = 0; pass < 3; ++pass) {
     const int x0 = std::max(0, static_cast<int>(out.cx - out.r - margin - 3));
@@ -107,25 +202,13 @@ DetectedSphere refineRim(const StackMedian& median, double cx, double cy, double
     cv::Mat gx, gy;
     cv::Sobel(window, gx, CV_32F, 1, 0, 3);
     cv::Sobel(window, gy, CV_32F, 0, 1, 3);
-    // The radial derivative at (x, y): both gradients interpolated bilinearly at one place (NaN
-    // outside the window).
-    auto radial = [&](double x, double y, double ca, double sa) {
-      x -= x0;
-      y -= y0;
-      const int ix = static_cast<int>(std::floor(x)), iy = static_cast<int>(std::floor(y));
-      if (ix < 0 || iy < 0 || ix + 1 >= gx.cols || iy + 1 >= gx.rows) return std::nan("");
-      const double fx = x - ix, fy = y - iy;
-      const float* gx0 = gx.ptr<float>(iy) + ix;
-      const float* gx1 = gx.ptr<float>(iy + 1) + ix;
-      const float* gy0 = gy.ptr<float>(iy) + ix;
-      const float* gy1 = gy.ptr<float>(iy + 1) + ix;
-      const double vx = (gx0[0] * (1 - fx) + gx0[1] * fx) * (1 - fy) + (gx1[0] * (1 - fx) + gx1[1] * fx) * fy;
-      const double vy = (gy0[0] * (1 - fx) + gy0[1] * fx) * (1 - fy) + (gy1[0] * (1 - fx) + gy1[1] * fx) * fy;
-      return vx * ca + vy * sa;
-    };
+    const detail::RimGradients grad{gx.ptr<float>(), gy.ptr<float>(), gx.cols, gx.rows, x0, y0};
+    // The distances along a ray, the same for every ray.
+    std::vector<double> ts;
+    for (double t = out.r - margin; t <= out.r + margin; t += kStep) ts.push_back(t);
     std::vector<Point2> points;
     std::vector<double> strengths;
-    std::vector<double> profile;
+    std::vector<double> profile(ts.size());
     int visible = 0;
     for (int k = 0; k < kRays; ++k) {
       const double ca = rays().cos[k], sa = rays().sin[k];
@@ -135,9 +218,8 @@ DetectedSphere refineRim(const StackMedian& median, double cx, double cy, double
         continue;
       ++visible;
       double bestValue = -1, bestT = 0, before = 0, after = 0;
-      profile.clear();
-      for (double t = out.r - margin; t <= out.r + margin; t += kStep)
-        profile.push_back(radial(out.cx + t * ca, out.cy + t * sa, ca, sa));
+      if (!avx2 || !detail::radialProfileAvx2(grad, out.cx, out.cy, ca, sa, ts.data(), ts.size(), profile.data()))
+        detail::radialProfilePlain(grad, out.cx, out.cy, ca, sa, ts.data(), ts.size(), profile.data());
       for (std::size_t i = 1; i + 1 < profile.size(); ++i) {
         if (std::isnan(profile[i])) continue;
         if (profile[i] > bestValue) {

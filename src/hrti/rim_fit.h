@@ -36,4 +36,21 @@ MedianWindow medianWindow(const StackMedian& median, int x0, int y0, int x1, int
 DetectedSphere refineRim(const StackMedian& median, double cx, double cy, double r, double margin,
                          bool ofVisible = false);
 
+namespace detail {
+// The gradients of the blurred median over a window whose pixel (0, 0) is the frame's (x0, y0),
+// `cols` floats a row.
+struct RimGradients {
+  const float *gx, *gy;
+  int cols, rows, x0, y0;
+};
+// The radial derivative along the ray from (cx, cy) in direction (ca, sa) at the distances
+// ts[0..n): both gradients interpolated bilinearly, NaN where the 2 x 2 pixels leave the window.
+// refineRim's profiles, in two variants for the test that compares them (the same bits):
+// radialProfileAvx2 returns false (and does nothing) where it is not compiled.
+void radialProfilePlain(const RimGradients& g, double cx, double cy, double ca, double sa, const double* ts,
+                        std::size_t n, double* out);
+bool radialProfileAvx2(const RimGradients& g, double cx, double cy, double ca, double sa, const double* ts,
+                       std::size_t n, double* out);
+}  // namespace detail
+
 }  // namespace surrogate::hrti
