@@ -199,3 +199,26 @@ TEST_CASE("the median and another quantile from one reading are each pixel's sam
         }
   }
 }
+
+TEST_CASE("the reduced image is each block's rounded mean at every factor, whole blocks and cut ones") {
+  // Factors 2 to 16 divide whole blocks by a count the compiler knows; 1 and 17 take the general
+  // division. Blocks of 65535 alone reach the largest sums; the frame cuts the last blocks.
+  for (int f : {1, 2, 3, 4, 5, 7, 8, 11, 16, 17}) {
+    const int w = 10 * f + 1, h = 5 * f + 1;  // ten whole blocks and one column a row
+    for (bool bright : {false, true}) {
+      std::vector<Image> images = noise(3, w, h, 300 + f);
+      if (bright)
+        for (Image& im : images) std::fill(im.pixels.begin(), im.pixels.end(), std::uint16_t(65535));
+      std::vector<Image> reduced;
+      for (const Image& im : images) reduced.push_back(plainReduced(im, f));
+      const MemoryImageStack held(images);
+      const test::RowsOnlyStack rows(held);
+      for (const ImageStack* stack : {static_cast<const ImageStack*>(&held), static_cast<const ImageStack*>(&rows)}) {
+        INFO("factor " << f << (bright ? ", all 65535" : ", noise"));
+        const StackMedian median(*stack, 10, 1);
+        REQUIRE(median.factor() == f);
+        CHECK(median.coarse().pixels == plainMedian(reduced).pixels);
+      }
+    }
+  }
+}
