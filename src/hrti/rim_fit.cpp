@@ -123,18 +123,23 @@ void radialProfilePlain(const RimGradients& g, double cx, double cy, double ca, 
 }
 
 #if defined(__x86_64__) && defined(__GNUC__)
-// The bilinear interpolation of `p` at four places: the 2 x 2 pixels at00 .. at11 (floats from
-// p), the fractions fx, fy and their complements cfx = 1 - fx, cfy = 1 - fy, in the plain
-// variant's order.
-__attribute__((target("avx2"))) inline __m256d gathered4(const float* p, __m128i at) {
-  return _mm256_cvtps_pd(_mm_i32gather_ps(p, at, 4));
+// The bilinear interpolation of `p` at four places: rows `top` and `top` + `cols` of the 2 x 2
+// pixels (each row's two floats gathered as one 8-byte element), the fractions fx, fy and their
+// complements cfx = 1 - fx, cfy = 1 - fy, in the plain variant's order.
+__attribute__((target("avx2"))) inline void gatheredPairs(const float* p, __m128i at, __m256d& left, __m256d& right) {
+  const __m256i pairs = _mm256_i32gather_epi64(reinterpret_cast<const long long*>(p), at, 4);
+  const __m256 split = _mm256_permutevar8x32_ps(_mm256_castsi256_ps(pairs), _mm256_setr_epi32(0, 2, 4, 6, 1, 3, 5, 7));
+  left = _mm256_cvtps_pd(_mm256_castps256_ps128(split));
+  right = _mm256_cvtps_pd(_mm256_extractf128_ps(split, 1));
 }
-__attribute__((target("avx2"))) inline __m256d interpolated4(const float* p, __m128i at00, __m128i at01, __m128i at10,
-                                                             __m128i at11, __m256d fx, __m256d fy, __m256d cfx,
-                                                             __m256d cfy) {
-  const __m256d top = _mm256_add_pd(_mm256_mul_pd(gathered4(p, at00), cfx), _mm256_mul_pd(gathered4(p, at01), fx));
-  const __m256d bottom = _mm256_add_pd(_mm256_mul_pd(gathered4(p, at10), cfx), _mm256_mul_pd(gathered4(p, at11), fx));
-  return _mm256_add_pd(_mm256_mul_pd(top, cfy), _mm256_mul_pd(bottom, fy));
+__attribute__((target("avx2"))) inline __m256d interpolated4(const float* p, __m128i top, __m128i cols, __m256d fx,
+                                                             __m256d fy, __m256d cfx, __m256d cfy) {
+  __m256d p00, p01, p10, p11;
+  gatheredPairs(p, top, p00, p01);
+  gatheredPairs(p, _mm_add_epi32(top, cols), p10, p11);
+  const __m256d upper = _mm256_add_pd(_mm256_mul_pd(p00, cfx), _mm256_mul_pd(p01, fx));
+  const __m256d lower = _mm256_add_pd(_mm256_mul_pd(p10, cfx), _mm256_mul_pd(p11, fx));
+  return _mm256_add_pd(_mm256_mul_pd(upper, cfy), _mm256_mul_pd(lower, fy));
 }
 
 // Four distances at a time, the pixels gathered; "avx2" alone: the compiler may not fuse a
@@ -162,12 +167,10 @@ __attribute__((target("avx2"))) void radialAvx2(const RimGradients& g, double cx
     }
     // Outside the window the pixel (0, 0) is read, and its value replaced by NaN below.
     const __m128i at00 = _mm_and_si128(inside, _mm_add_epi32(_mm_mullo_epi32(iy, cols), ix));
-    const __m128i at01 = _mm_add_epi32(at00, _mm_set1_epi32(1));
-    const __m128i at10 = _mm_add_epi32(at00, cols), at11 = _mm_add_epi32(at01, cols);
     const __m256d fx = _mm256_sub_pd(x, wx), fy = _mm256_sub_pd(y, wy);
     const __m256d cfx = _mm256_sub_pd(one, fx), cfy = _mm256_sub_pd(one, fy);  // 1 - fx, 1 - fy
-    const __m256d vx = interpolated4(g.gx, at00, at01, at10, at11, fx, fy, cfx, cfy);
-    const __m256d vy = interpolated4(g.gy, at00, at01, at10, at11, fx, fy, cfx, cfy);
+    const __m256d vx = interpolated4(g.gx, at00, cols, fx, fy, cfx, cfy);
+    const __m256d vy = interpolated4(g.gy, at00, cols, fx, fy, cfx, cfy);
     const __m256d v = _mm256_add_pd(_mm256_mul_pd(vx, vca), _mm256_mul_pd(vy, vsa));
     _mm256_storeu_pd(out + i, _mm256_blendv_pd(nan, v, _mm256_castsi256_pd(_mm256_cvtepi32_epi64(inside))));
   }
