@@ -37,13 +37,14 @@ namespace {
 // The Gaussian blur (sigma 1) of the full-resolution median over [x0, x1) x [y0, y1), as a
 // blur of the whole frame would give it there: the window is read with the kernel's reach
 // around it (OpenCV's kernel for sigma 1 on floats is 9 wide), and reflected only at the frame's
-// edges.
+// edges. A view into the blur of the larger window, not a copy: filters that read it must take
+// it as a whole image (cv::BORDER_ISOLATED), which gives a copy's values.
 cv::Mat blurredWindow(const StackMedian& median, int x0, int y0, int x1, int y1) {
   constexpr int kReach = 4;
   const MedianWindow padded = medianWindow(median, x0 - kReach, y0 - kReach, x1 + kReach, y1 + kReach);
   cv::Mat blurred;
   cv::GaussianBlur(padded.values, blurred, cv::Size(0, 0), 1.0);
-  return blurred(cv::Rect(x0 - padded.x0, y0 - padded.y0, x1 - x0, y1 - y0)).clone();
+  return blurred(cv::Rect(x0 - padded.x0, y0 - padded.y0, x1 - x0, y1 - y0));
 }
 
 // How far (pixels, or a share of the radius when more) an edge point may lie from the fitted
@@ -203,8 +204,8 @@ DetectedSphere refineRim(const StackMedian& median, double cx, double cy, double
     if (x1 - x0 < 8 || y1 - y0 < 8) return out;
     const cv::Mat window = blurredWindow(median, x0, y0, x1, y1);
     cv::Mat gx, gy;
-    cv::Sobel(window, gx, CV_32F, 1, 0, 3);
-    cv::Sobel(window, gy, CV_32F, 0, 1, 3);
+    cv::Sobel(window, gx, CV_32F, 1, 0, 3, 1, 0, cv::BORDER_REFLECT_101 | cv::BORDER_ISOLATED);
+    cv::Sobel(window, gy, CV_32F, 0, 1, 3, 1, 0, cv::BORDER_REFLECT_101 | cv::BORDER_ISOLATED);
     const detail::RimGradients grad{gx.ptr<float>(), gy.ptr<float>(), gx.cols, gx.rows, x0, y0};
     // The distances along a ray, the same for every ray.
     std::vector<double> ts;
