@@ -470,8 +470,15 @@ std::vector<DetectedSphere> detectSpheres(const StackMedian& median, const Stack
       around.push_back({x0, y0, x1 - x0, y1 - y0});
     }
     rim.prepare(around);
+    // The largest circles first (their windows cost most): the search's candidates end with the
+    // per-octave ones, the largest last, which one core refined alone while the other waited.
+    std::vector<std::size_t> order(candidates.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return candidates[a].r > candidates[b].r; });
     parallelFor(candidates.size(), 1, effectiveThreads(o.threads), [&](std::size_t b, std::size_t e) {
-      for (std::size_t i = b; i < e; ++i) {
+      for (std::size_t k = b; k < e; ++k) {
+        const std::size_t i = order[k];
         const Candidate f = toFull(candidates[i]);
         Checked& c = checked[i];
         c.s = refineRim(rim, f.x, f.y, f.r, 3 * scale * candidates[i].level + 4);
