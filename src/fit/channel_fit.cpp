@@ -66,11 +66,7 @@ void ChannelFitter::fitRow(const RowView& row, double* acc, double* block, doubl
 void ChannelFitter::measure(const RowView& row, double* scratch, double* lo, double* hi) const {
   const std::size_t m = static_cast<std::size_t>(row.width) * 3;
   fitRow(row, scratch, scratch + 2 * terms_ * m, scratch + ownScratch(row.width));
-  for (int k = 0; k < terms_; ++k) {
-    const double* a = scratch + k * m;
-    lo[k] = *std::min_element(a, a + m);
-    hi[k] = *std::max_element(a, a + m);
-  }
+  for (int k = 0; k < terms_; ++k) rangeOf(scratch + k * m, m, &lo[k], &hi[k]);
   if (kept_) {
     float* to = kept_ + static_cast<std::size_t>(row.y) * terms_ * m;
     for (std::size_t j = 0; j < terms_ * m; ++j) to[j] = static_cast<float>(scratch[j]);

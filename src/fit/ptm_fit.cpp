@@ -78,11 +78,7 @@ class LrgbFitter : public RowFitter {
   void measure(const RowView& row, double* scratch, double* lo, double* hi) const override {
     const int w = row.width;
     fitRow(row, scratch);
-    for (int k = 0; k < 6; ++k) {
-      const double* a = scratch + k * w;
-      lo[k] = *std::min_element(a, a + w);
-      hi[k] = *std::max_element(a, a + w);
-    }
+    for (int k = 0; k < 6; ++k) rangeOf(scratch + k * w, w, &lo[k], &hi[k]);
     const double* chroma = scratch + 6 * w;
     std::copy(chroma, chroma + 3 * w, out_->rgb.begin() + static_cast<std::size_t>(row.y) * w * 3);
     if (kept_) {

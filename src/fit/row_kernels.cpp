@@ -1,5 +1,7 @@
 #include "fit/row_kernels.h"
 
+#include <algorithm>
+
 #if defined(__x86_64__) && defined(__GNUC__)
 #include <immintrin.h>
 #endif
@@ -302,6 +304,50 @@ SURROGATE_AVX2_TARGET void accumulateAvx2(const Sample* const* images, int n, st
   accumulateBody(images, n, w, x, x1, p, weight, acc, mean, sum);
 }
 
+// The first element of a equal to zero (there is one: the extreme found was zero).
+inline double firstZero(const double* a, std::size_t count) {
+  std::size_t x = 0;
+  while (a[x] != 0.0 && x + 1 < count) ++x;
+  return a[x];
+}
+
+// rangeOf (row_kernels.h): per lane, min_pd(v, m) is v < m ? v : m and max_pd(v, m) is
+// v > m ? v : m, the standard algorithms' own steps; NaN anywhere sends the row to them.
+SURROGATE_AVX2_TARGET void rangeAvx2(const double* a, std::size_t count, double* lo, double* hi) {
+  __m256d mn0 = _mm256_set1_pd(a[0]), mn1 = mn0, mx0 = mn0, mx1 = mn0;
+  __m256d unordered = _mm256_setzero_pd();
+  std::size_t x = 0;
+  for (; x + 8 <= count; x += 8) {
+    const __m256d v0 = _mm256_loadu_pd(a + x), v1 = _mm256_loadu_pd(a + x + 4);
+    mn0 = _mm256_min_pd(v0, mn0);
+    mn1 = _mm256_min_pd(v1, mn1);
+    mx0 = _mm256_max_pd(v0, mx0);
+    mx1 = _mm256_max_pd(v1, mx1);
+    unordered = _mm256_or_pd(unordered, _mm256_cmp_pd(v0, v1, _CMP_UNORD_Q));
+  }
+  alignas(32) double low[4], high[4];
+  _mm256_store_pd(low, _mm256_min_pd(mn0, mn1));
+  _mm256_store_pd(high, _mm256_max_pd(mx0, mx1));
+  bool nan = _mm256_movemask_pd(unordered) != 0;
+  double l = low[0], h = high[0];
+  for (int u = 1; u < 4; ++u) {
+    l = low[u] < l ? low[u] : l;
+    h = high[u] > h ? high[u] : h;
+  }
+  for (; x < count; ++x) {
+    nan = nan || a[x] != a[x];
+    l = a[x] < l ? a[x] : l;
+    h = a[x] > h ? a[x] : h;
+  }
+  if (nan) {
+    *lo = *std::min_element(a, a + count);
+    *hi = *std::max_element(a, a + count);
+    return;
+  }
+  *lo = l == 0.0 ? firstZero(a, count) : l;
+  *hi = h == 0.0 ? firstZero(a, count) : h;
+}
+
 // G rows of m (G <= 4) over a whole block, eight samples at a time: 2G accumulators stay in
 // registers while the columns are run through once, each column's samples converted once for
 // all G rows.
@@ -343,6 +389,10 @@ SURROGATE_AVX2_TARGET void multiplyAvx2(const double* m, int rows, int cols, con
   }
 }
 #else
+void rangeAvx2(const double* a, std::size_t count, double* lo, double* hi) {
+  *lo = *std::min_element(a, a + count);
+  *hi = *std::max_element(a, a + count);
+}
 template <typename Sample>
 void lrgbAvx2(const double* cr, const double* cg, const double* cb, const double* decoded, std::size_t stride,
               const double* basis, const Sample* s, std::size_t pixels, double* d2) {
@@ -424,6 +474,12 @@ void squaredErrorsRgb(const double* rendered, const std::uint16_t* s, std::size_
 void squaredErrorsRgb(const double* rendered, const std::uint8_t* s, std::size_t pixels, double* d2,
                       KernelIsa isa) {
   squaredErrorsRgbOf(rendered, s, pixels, d2, isa);
+}
+
+void rangeOf(const double* a, std::size_t count, double* lo, double* hi, KernelIsa isa) {
+  if (isa == KernelIsa::Avx2) return rangeAvx2(a, count, lo, hi);
+  *lo = *std::min_element(a, a + count);
+  *hi = *std::max_element(a, a + count);
 }
 
 void quantisePtm(const double* a, std::size_t count, const PtmQuantisation& q, std::uint8_t* bytes, double* decoded,

@@ -90,6 +90,14 @@ void multiplyBlock(const double* m, int rows, int cols, const std::uint8_t* cons
 void multiplyBlock(const double* m, int rows, int cols, const double* const* src, std::size_t offset,
                    double* out, std::size_t outStride, KernelIsa isa = activeKernelIsa());
 
+// The range of a row of coefficients (count > 0): *lo = *std::min_element(a, a + count) and
+// *hi = *std::max_element(a, a + count), bit for bit. Without NaN the result is the first
+// element equal to the smallest (largest) value, and every element equal to it has its bits
+// unless it is zero (+0 and -0 compare equal): the AVX2 variant takes the extremes four lanes
+// at a time, then looks up the first zero where the extreme is zero, and leaves rows with NaN to
+// the standard algorithms, whose answer then depends on where the NaN stands.
+void rangeOf(const double* a, std::size_t count, double* lo, double* hi, KernelIsa isa = activeKernelIsa());
+
 // Quantisation of `count` coefficients (fit/quantise.h): bytes[j] = q.quantise(a[j]) and
 // decoded[j] = q.decode(bytes[j]).
 void quantisePtm(const double* a, std::size_t count, const PtmQuantisation& q, std::uint8_t* bytes, double* decoded,

@@ -367,3 +367,49 @@ TEST_CASE("every kernel gives the same bits for bytes as for their 16-bit values
     }
   }
 }
+
+TEST_CASE("the range kernel gives what std::min_element and std::max_element give, zeros and NaN included") {
+  std::mt19937 random(29);
+  std::uniform_real_distribution<double> value(-5.0, 5.0);
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  // Rows of every length to past two vector steps, then with signed zeros as the extremes
+  // (which zero comes first decides the bits), NaN at the start, inside and at the end, and
+  // infinities.
+  std::vector<std::vector<double>> rows;
+  for (std::size_t n = 1; n <= 21; ++n) {
+    std::vector<double> a(n);
+    for (auto& v : a) v = value(random);
+    rows.push_back(a);
+  }
+  for (const std::size_t n : {1u, 3u, 8u, 9u, 16u, 19u}) {
+    for (std::size_t at = 0; at < n; ++at)
+      for (const double z : {-0.0, 0.0}) {
+        std::vector<double> pos(n), neg(n);
+        for (std::size_t j = 0; j < n; ++j) {
+          pos[j] = 1.0 + static_cast<double>(j);
+          neg[j] = -pos[j];
+        }
+        pos[at] = neg[at] = z;
+        for (std::size_t j = at + 1; j < n; j += 3) pos[j] = neg[j] = (j % 2 ? 0.0 : -0.0);
+        rows.push_back(pos);
+        rows.push_back(neg);
+        std::vector<double> withNan = pos;
+        withNan[at] = nan;
+        rows.push_back(withNan);
+      }
+  }
+  rows.push_back({inf, -inf, 3.0, 0.0, -0.0, 1e300, -1e-300, 2.0, 5.0});
+  rows.push_back({-0.0, -0.0, 0.0, -0.0, 0.0, 0.0, -0.0, 0.0, 0.0, -0.0});
+  rows.push_back({0.0, -0.0, 0.0, -0.0, 0.0, 0.0, -0.0, 0.0, 0.0, -0.0, 0.0});
+  for (const KernelIsa isa : variants()) {
+    INFO("variant " << name(isa));
+    bool same = true;
+    for (const auto& a : rows) {
+      double lo = 7, hi = 7;
+      rangeOf(a.data(), a.size(), &lo, &hi, isa);
+      const double wantLo = *std::min_element(a.begin(), a.end()), wantHi = *std::max_element(a.begin(), a.end());
+      same = same && std::memcmp(&lo, &wantLo, sizeof lo) == 0 && std::memcmp(&hi, &wantHi, sizeof hi) == 0;
+    }
+    CHECK(same);
+  }
+}
