@@ -104,7 +104,7 @@ void ChannelFitter::measureError(const RowView& row, const double* decoded, doub
   const Eigen::Map<const RowMajor> basis(basis_.data(), n_, terms_);
   std::fill(sqErr, sqErr + n_, 0.0);
   if (near_) return near_->errorsChannels(row, decoded, nearScratch, sqErr);
-  if (errors_ == ErrorArithmetic::Single) return measureErrorSingle(row, decoded, sqErr);
+  if (errors_ == ErrorMeasure::Lanes) return measureErrorSingle(row, decoded, sqErr);
   std::array<double, kBlockSamples / 3> d2;
   std::vector<const double*> decodedRows(terms_);
   for (int k = 0; k < terms_; ++k) decodedRows[k] = decoded + k * m;

@@ -34,7 +34,7 @@ class ChannelFitter : public RowFitter {
   void keep(float* rows) override { kept_ = rows; }
   // Lights at known positions: the rows are fitted and measured by `near` (fit/near_fit.h).
   void useNear(const NearModel* near) { near_ = near; }
-  void measureErrorsIn(ErrorArithmetic errors) { errors_ = errors; }
+  void measureErrorsIn(ErrorMeasure errors) { errors_ = errors; }
 
  protected:
   // Quantises coefficient k of row y, a[j] for the m = 3 width samples (pixel j / 3, channel
@@ -55,7 +55,7 @@ class ChannelFitter : public RowFitter {
   int n_, terms_;
   double displayScale_;
   const NearModel* near_ = nullptr;
-  ErrorArithmetic errors_ = ErrorArithmetic::Single;
+  ErrorMeasure errors_ = ErrorMeasure::Lanes;
   float* kept_ = nullptr;  // pass 1's coefficients, rounded to float (RowFitter::keep)
 };
 

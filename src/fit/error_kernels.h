@@ -1,8 +1,7 @@
 // Private to src/fit: the fit error of a stored model at one captured light, in single
 // precision (RtiFit version 8 on; FitStatistics in fit/fit.h). Version 7 and earlier measured
 // it in double precision, one squared error a pixel added up in pixel order
-// (fit/row_kernels.h), and their records still re-execute that way (ErrorArithmetic::Double,
-// fit/fit.h).
+// (fit/row_kernels.h), and their records still re-execute that way (ErrorMeasure in fit/fit.h).
 //
 // Why single precision: re-rendering the model at every light and comparing it with the
 // photograph was half of each fit's time (36 x 1200x800: 53 of 107 ms for ptm-lrgb, 65 of

@@ -90,11 +90,16 @@ namespace surrogate::fit {
 
 using Parameters = std::vector<std::pair<std::string, std::string>>;
 
-// How a fit adds up its errors (FitStatistics): in double precision, one squared error a pixel
-// added in pixel order (RtiFit version 7 and earlier, whose records still re-execute that way),
-// or in single precision summed in eight lanes (version 8 on; fit/error_kernels.h says exactly
-// how, and why).
-enum class ErrorArithmetic { Double, Single };
+// How a fit measures its errors (FitStatistics), chosen by the RtiFit step's version:
+//   Serial  RtiFit version 7 and earlier, whose records still re-execute that way: in double
+//           precision, each light's squared errors added one pixel after the other;
+//   Lanes   version 8 on: the squares added in eight interleaved partial sums, which the
+//           processor adds side by side, combined pairwise. Lights at infinity also compare in
+//           single precision (fit/error_kernels.h says exactly how, and why); lights at known
+//           positions stay in double precision, the lanes over each block of their pixels
+//           (fit/near_fit.h).
+// The model files are the same either way.
+enum class ErrorMeasure { Serial, Lanes };
 
 struct FitOptions {
   // Recorded in the carrier (they change the result):
@@ -104,11 +109,9 @@ struct FitOptions {
   // the stage records the positions itself.
   std::vector<NearLight> nearLights;
 
-  // How the statistics add up the errors (fit/error_kernels.h): chosen by the RtiFit step's
-  // version, never a parameter. Double reproduces the records of version 7 and earlier; the
-  // model files are the same either way. Lights at known positions measure in double whatever
-  // this says.
-  ErrorArithmetic errors = ErrorArithmetic::Single;
+  // How the statistics are measured (above): chosen by the RtiFit step's version, never a
+  // parameter.
+  ErrorMeasure errors = ErrorMeasure::Lanes;
 
   // Not recorded (the result is bit-identical whatever their value):
   std::size_t memoryBudgetBytes = 2ull << 30;  // the output model plus the row bands; smaller = thinner bands

@@ -71,6 +71,7 @@ formats::HshFile fitHshSpaced(const ImageStack& stack, const std::vector<std::ar
     near = std::make_unique<NearModel>(
         stack.width(), stack.height(), l, options.nearLights, options.basis, 1.0 / 65535.0,
         spacing > 0 ? spacing : nearNodeSpacing(stack.width(), stack.height(), options.nearLights), options.threads, stack.transfer());
+    near->measureErrorsIn(options.errors);
   }
 
   formats::HshFile hsh;

@@ -61,6 +61,7 @@ struct Ctx {
   double* fp;           // N x kBlock, sRGB only: f_i^(1/2.4) (of what f holds)
   const double* pw;     // the table of rootWith (SrgbTables::root)
   bool avx2;            // the sRGB blocks' AVX2 variant (near_srgb_blocks.h)
+  bool lanes;           // errors summed in eight lanes per block (ErrorMeasure::Lanes, fit.h)
 };
 
 // The block [x0, x1) of cell c: fills t and, for every light, f, or `over` / f when `over` is not
@@ -103,10 +104,23 @@ SURROGATE_INLINE double capturedLuminance(const Sample* s, int b) {
   return (kLumR * sampleValue(s[3 * b]) + kLumG * sampleValue(s[3 * b + 1]) + kLumB * sampleValue(s[3 * b + 2])) *
          (1.0 / 257.0);
 }
-SURROGATE_INLINE void addInOrder(const double* d2, int len, double* sum) {
-  double err = *sum;
-  for (int b = 0; b < len; ++b) err += d2[b];
-  *sum = err;
+SURROGATE_INLINE void addInOrder(const Ctx& k, const double* d2, int len, double* sum) {
+  if (!k.lanes) {  // RtiFit version 7: one pixel after the other
+    double err = *sum;
+    for (int b = 0; b < len; ++b) err += d2[b];
+    *sum = err;
+    return;
+  }
+  // Version 8: pixel b of the block (below its last multiple of 8) into lane b mod 8, the lanes
+  // combined pairwise, the rest in order, then the block's sum added to the light's. Both
+  // variants compile this same code, so their sums stay the same bits.
+  double part[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+  int b = 0;
+  for (; b + 8 <= len; b += 8)
+    for (int j = 0; j < 8; ++j) part[j] += d2[b + j];
+  double err = ((part[0] + part[1]) + (part[2] + part[3])) + ((part[4] + part[5]) + (part[6] + part[7]));
+  for (; b < len; ++b) err += d2[b];
+  *sum += err;
 }
 
 // Fills f (and, for `samples`, fs: the fall-off-scaled samples in planes ch * n + i) for the
@@ -210,7 +224,7 @@ SURROGATE_INLINE void channelErrors(const Ctx& k, const Sample* const* images, i
   if (k.srgb)  // the fall-off undone on each channel (srgbUnscaled): then plain sums
     for (int ch = 0; ch < 3; ++ch) unscaleSrgbBlock(k.avx2, k.dec, k.enc, r + ch * kBlock, gi, gp, len);
   if (k.srgb && luminanceErrorsBlock(k.avx2, r, r + kBlock, r + 2 * kBlock, s, d2, len))
-    return addInOrder(d2, len, &sqErr[i]);
+    return addInOrder(k, d2, len, &sqErr[i]);
   for (int b = 0; b < len; ++b) {
     const double model =
         k.srgb ? kLumR * clamp255(r[b]) + kLumG * clamp255(r[kBlock + b]) + kLumB * clamp255(r[2 * kBlock + b])
@@ -219,7 +233,7 @@ SURROGATE_INLINE void channelErrors(const Ctx& k, const Sample* const* images, i
     const double captured = capturedLuminance(s, b);
     d2[b] = (model - captured) * (model - captured);
   }
-  addInOrder(d2, len, &sqErr[i]);
+  addInOrder(k, d2, len, &sqErr[i]);
 }
 
 // Lights i .. i + kLights - 1 (one or two) rendered over a block: for each light and channel,
@@ -371,7 +385,7 @@ SURROGATE_INLINE void lrgbErrors(const Ctx& k, const Sample* const* images, cons
       unscaleSrgbBlock(k.avx2, k.dec, k.enc, m, gi, gp, len);
     }
     if (luminanceErrorsBlock(k.avx2, rgb, rgb + kBlock, rgb + 2 * kBlock, s, d2, len))
-      return addInOrder(d2, len, &sqErr[i]);
+      return addInOrder(k, d2, len, &sqErr[i]);
   }
   for (int b = 0; b < len; ++b) {
     double model;
@@ -384,7 +398,7 @@ SURROGATE_INLINE void lrgbErrors(const Ctx& k, const Sample* const* images, cons
     const double captured = capturedLuminance(s, b);
     d2[b] = (model - captured) * (model - captured);
   }
-  addInOrder(d2, len, &sqErr[i]);
+  addInOrder(k, d2, len, &sqErr[i]);
 }
 
 template <typename Sample>
@@ -520,6 +534,7 @@ NearModel::Row NearModel::startRow(int y, double* scratch, bool basis) const {
   k.fp = k.acc + static_cast<std::size_t>(3) * terms_ * kBlock;
   k.pw = tables.root.data();
   k.avx2 = false;
+  k.lanes = errors_ == ErrorMeasure::Lanes;
   return r;
 }
 

@@ -57,7 +57,7 @@ class NearModel {
   // Per channel (PTM RGB, HSH): acc[k * 3w + 3x + c], the fitted coefficients of the row.
   // Each takes the kernel variant (row_kernels.h); both give the same bits.
   void fitChannels(const RowView& row, double* acc, double* scratch, KernelIsa isa = activeKernelIsa()) const;
-  // sqErr[i] += sum over the row (in pixel order) of the squared luminance error at light i of
+  // sqErr[i] += sum over the row (as measureErrorsIn says) of the squared luminance error at light i of
   // the decoded model (decoded[k * 3w + 3x + c], 0..255 units) re-rendered at the pixel's own
   // direction, divided by f_i, clamped to 0..255.
   void errorsChannels(const RowView& row, const double* decoded, double* scratch, double* sqErr,
@@ -66,6 +66,9 @@ class NearModel {
   void fitLrgb(const RowView& row, double* acc, double* mean, double* scratch,
                KernelIsa isa = activeKernelIsa()) const;
   // LRGB errors: the colour bytes in planes cr, cg, cb; decoded[k * w + x].
+  // How both add up a light's squares (fit.h): in pixel order (Serial, RtiFit version 7) or
+  // each block's in eight lanes (Lanes, the default).
+  void measureErrorsIn(ErrorMeasure errors) { errors_ = errors; }
   void errorsLrgb(const RowView& row, const double* cr, const double* cg, const double* cb,
                   const double* decoded, double* scratch, double* sqErr, KernelIsa isa = activeKernelIsa()) const;
 
@@ -79,6 +82,7 @@ class NearModel {
   std::vector<double> x_, yz_, inv_;   // per light: X, (Y, Z), 1 / r^2; inv_ = 0 for far lights
   std::vector<std::uint8_t> near_;
   bool srgb_ = false;
+  ErrorMeasure errors_ = ErrorMeasure::Lanes;
   Conditioning summary_;
 };
 

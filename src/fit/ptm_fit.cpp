@@ -72,7 +72,7 @@ class LrgbFitter : public RowFitter {
   }
   // Lights at known positions: the rows are fitted and measured by `near` (fit/near_fit.h).
   void useNear(const NearModel* near) { near_ = near; }
-  void measureErrorsIn(ErrorArithmetic errors) { errors_ = errors; }
+  void measureErrorsIn(ErrorMeasure errors) { errors_ = errors; }
 
   // The stored colour bytes are final after pass 1: they are written to the result here.
   void measure(const RowView& row, double* scratch, double* lo, double* hi) const override {
@@ -125,7 +125,7 @@ class LrgbFitter : public RowFitter {
     double* planes = scratch + 9 * w;
     for (int x = 0; x < w; ++x)
       for (int c = 0; c < 3; ++c) planes[c * w + x] = chroma[3 * x + c];
-    if (!near_ && errors_ == ErrorArithmetic::Single) return measureSingle(row, planes, decoded, sqErr);
+    if (!near_ && errors_ == ErrorMeasure::Lanes) return measureSingle(row, planes, decoded, sqErr);
     double* d2 = scratch + 12 * w;  // where fitRow kept the sums
     if (near_) {
       std::fill(sqErr, sqErr + n_, 0.0);
@@ -200,7 +200,7 @@ class LrgbFitter : public RowFitter {
   std::vector<float> basisF_;  // basis_ rounded to float, for the single-precision errors
   PtmQuantisation q_[6];
   const NearModel* near_ = nullptr;
-  ErrorArithmetic errors_ = ErrorArithmetic::Single;
+  ErrorMeasure errors_ = ErrorMeasure::Lanes;
   float* kept_ = nullptr;  // pass 1's coefficients, rounded to float (RowFitter::keep)
 };
 
@@ -260,6 +260,7 @@ formats::PtmFile fitPtmSpaced(const ImageStack& stack, const std::vector<std::ar
         stack.width(), stack.height(), l, options.nearLights, options.basis,
         options.basis == Basis::PtmLrgb ? 255.0 / 257.0 : 1.0 / 257.0,
         spacing > 0 ? spacing : nearNodeSpacing(stack.width(), stack.height(), options.nearLights), options.threads, stack.transfer());
+    near->measureErrorsIn(options.errors);
   }
   const std::size_t nearBytes = near ? near->bytes() : 0;
 

@@ -41,8 +41,9 @@ std::string defaultFitOutput(const std::string& basisText) {
 }
 
 namespace {
-// The last version that measured the fit error in double precision: its steps still do.
-constexpr const char* kDoubleErrorsVersion = "7";
+// The last version that added the fit error's squares one pixel after the other in double
+// precision: its steps still do.
+constexpr const char* kSerialErrorsVersion = "7";
 constexpr const char* kOutputParameter = "output";
 constexpr const char* kHoldoutParameter = "holdout";
 
@@ -178,14 +179,14 @@ pipeline::StageInfo RtiFitStage::info() {
       // brought to the frame centre's light by the inverse square of its distance
       // (fit/near_lights.h); lights at infinity give version 5's bytes. Version 7: parameter
       // holdout K > 0 also fits without K photographs and records the model's PSNR and SSIM at
-      // their lights (stages/held_out_record.h); the files are version 6's. Version 8: with
-      // lights at infinity the fit error (rmse, psnr, each image's rmse) is measured in single
-      // precision and summed in eight lanes (fit/error_kernels.h): a third of the time, the
-      // values within about a millionth of version 7's; the files are version 7's, and steps of
-      // version 7 still measure as they did (kDoubleErrorsVersion).
+      // their lights (stages/held_out_record.h); the files are version 6's. Version 8: the fit
+      // error (rmse, psnr, each image's rmse) adds its squares in eight lanes, and with lights
+      // at infinity compares in single precision (fit::ErrorMeasure, fit/error_kernels.h): the
+      // far errors in a third of the time, within a few 1e-5 levels of version 7's; the files
+      // are version 7's, and steps of version 7 still measure as they did (kSerialErrorsVersion).
       {kComponent, "8", "Least-squares fit of a per-pixel reflectance model over the light directions",
        pipeline::PlanSlot::EachModel});
-  info.alsoRuns = {kDoubleErrorsVersion};
+  info.alsoRuns = {kSerialErrorsVersion};
   info.forModel = [](const std::string& basis) { return RtiFitOptions::forBasis(basis).toParameters(); };
   // The learned bases (rbf, bln) are LearnedFit's (stages/learned_fit_stage.h).
   info.takesModel = [](const std::string& basis) { return !fit::isLearnedBasisName(basis); };
@@ -241,7 +242,7 @@ void RtiFitStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
   fit::FitOptions options = recorded.fit;
   options.threads = ctx.settings.threads;
   options.memoryBudgetBytes = ctx.settings.fitBudget();
-  options.errors = step.version == kDoubleErrorsVersion ? fit::ErrorArithmetic::Double : fit::ErrorArithmetic::Single;
+  options.errors = step.version == kSerialErrorsVersion ? fit::ErrorMeasure::Serial : fit::ErrorMeasure::Lanes;
   const std::string basis = fit::basisName(options.basis);
   const std::string label = "Fitting " + basis;
   options.progress = [&](double f) { ctx.progress(label, f); };

@@ -234,9 +234,9 @@ TEST_CASE("a fit's errors in single precision: the same model, its error within 
     options.basis = basis;
     options.threads = 2;
     FitStatistics single, twice;
-    options.errors = ErrorArithmetic::Single;
+    options.errors = ErrorMeasure::Lanes;
     const formats::PtmFile a = fitPtm(stack, lights, options, &single);
-    options.errors = ErrorArithmetic::Double;
+    options.errors = ErrorMeasure::Serial;
     const formats::PtmFile b = fitPtm(stack, lights, options, &twice);
     CHECK(a == b);  // how the error is summed changes no byte of the model
     const std::vector<double> exact = ptmRmse(a, stack, lights);
@@ -258,9 +258,9 @@ TEST_CASE("an HSH fit's errors in single precision stay within float's spacing o
     FitOptions options;
     options.basis = terms == 4 ? Basis::Hsh2 : Basis::Hsh3;
     FitStatistics single, twice;
-    options.errors = ErrorArithmetic::Single;
+    options.errors = ErrorMeasure::Lanes;
     const formats::HshFile a = fitHsh(stack, lights, options, &single);
-    options.errors = ErrorArithmetic::Double;
+    options.errors = ErrorMeasure::Serial;
     const formats::HshFile b = fitHsh(stack, lights, options, &twice);
     CHECK(a == b);
     REQUIRE(single.perImageRmse.size() == twice.perImageRmse.size());

@@ -475,7 +475,7 @@ TEST_CASE("fit near lights: none near is the far fit with the bytes it had befor
   // The statistics are in the digest: measured in double precision, as they were then (RtiFit
   // version 7; fit/error_kernels.h for version 8's).
   FitOptions far;
-  far.errors = ErrorArithmetic::Double;
+  far.errors = ErrorMeasure::Serial;
   FitOptions none = far;
   none.nearLights.assign(20, NearLight{});
   none.nearLights[2].position = {1, 2, 3};  // ignored: not near
@@ -483,6 +483,32 @@ TEST_CASE("fit near lights: none near is the far fit with the bytes it had befor
     INFO(basisName(b));
     CHECK(farDigest(b, far) == digest);
     CHECK(farDigest(b, none) == digest);
+  }
+}
+
+TEST_CASE("fit near lights: errors summed in lanes (RtiFit 8) or in pixel order (7), the same model") {
+  // Both in double precision; only the order of the additions differs, so the figures agree to
+  // rounding and the files are the same bytes. Linear and sRGB-encoded photographs.
+  for (bool srgb : {false, true}) {
+    const Capture c = render(61, 9, 1.5, 14, 0, srgb);
+    for (Basis b : {Basis::PtmLrgb, Basis::Hsh2}) {
+      INFO(basisName(b) << (srgb ? " srgb" : " linear"));
+      FitOptions o;
+      o.basis = b;
+      o.nearLights = c.near;
+      FitStatistics lanes, serial;
+      o.errors = ErrorMeasure::Lanes;
+      const auto ptmLanes = isPtm(b) ? fitPtm(c.stack, c.lights, o, &lanes) : formats::PtmFile{};
+      const auto hshLanes = isPtm(b) ? formats::HshFile{} : fitHsh(c.stack, c.lights, o, &lanes);
+      o.errors = ErrorMeasure::Serial;
+      const auto ptmSerial = isPtm(b) ? fitPtm(c.stack, c.lights, o, &serial) : formats::PtmFile{};
+      const auto hshSerial = isPtm(b) ? formats::HshFile{} : fitHsh(c.stack, c.lights, o, &serial);
+      CHECK(ptmLanes == ptmSerial);
+      CHECK(hshLanes == hshSerial);
+      REQUIRE(lanes.perImageRmse.size() == serial.perImageRmse.size());
+      for (std::size_t i = 0; i < lanes.perImageRmse.size(); ++i)
+        CHECK(std::abs(lanes.perImageRmse[i] / serial.perImageRmse[i] - 1) < 1e-12);
+    }
   }
 }
 
