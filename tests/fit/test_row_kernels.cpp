@@ -253,7 +253,7 @@ TEST_CASE("the block products add every column in order from zero, in every vari
   std::uniform_real_distribution<double> coefficient(-1.0, 1.0);
   const std::size_t offset = 3 * 97, width = offset + kProductBlock + 5;
   // The fits' shapes: T = 4, 6, 9 (16 for HSH of order 4) against N photographs, and back.
-  for (const int rows : {1, 2, 3, 4, 5, 6, 9, 16, 36}) {
+  for (const int rows : {1, 2, 3, 4, 5, 6, 7, 9, 12, 16, 36}) {
     for (const int cols : {1, 4, 6, 9, 16, 36, 37, 101, 300}) {
       INFO(rows << " x " << cols);
       std::vector<double> m(static_cast<std::size_t>(rows) * cols);
