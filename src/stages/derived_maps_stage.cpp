@@ -69,12 +69,11 @@ class OverlappedPngWrites {
       if (p.write.valid()) p.write.wait();  // an error is already on its way out; let the writes end
   }
 
-  // Writes `image` as the file `relativePath` (writePicture), then calls `record` (on this
-  // thread, after the previous records).
-  void add(Image image, std::string relativePath, std::function<void()> record) {
+  // Writes `image` as the file `relativePath` (writePicture), then calls `record` with what the
+  // write knows of the file (on this thread, after the previous records).
+  void add(Image image, std::string relativePath, std::function<void(const WrittenFile&)> record) {
     if (maxPending_ == 0) {
-      writePicture(ctx_, image, relativePath);
-      record();
+      record(writePicture(ctx_, image, relativePath));
       return;
     }
     {
@@ -98,7 +97,7 @@ class OverlappedPngWrites {
                                      // itself lives until its record is made, after the writes
                                      // before it (at 60 x 24 Mpx, each picture is 144 MB).
                                      const Image written = std::move(image);
-                                     writePicture(ctx_, written, path);
+                                     return writePicture(ctx_, written, path);
                                    }),
                         std::move(record)});
     // Records what is written, in order, up to the first write still running.
@@ -117,15 +116,14 @@ class OverlappedPngWrites {
 
  private:
   struct Pending {
-    std::future<void> write;
-    std::function<void()> record;
+    std::future<WrittenFile> write;
+    std::function<void(const WrittenFile&)> record;
   };
 
   void finishOldest() {
     Pending p = std::move(pending_.front());
     pending_.pop_front();
-    p.write.get();
-    p.record();
+    p.record(p.write.get());
   }
 
   const pipeline::Context& ctx_;
@@ -234,8 +232,8 @@ void DerivedMapsStage::run(const carrier::Step& step, pipeline::Context& ctx, ca
   const auto written = [&ctx, &pictures] { ctx.progress("Normals, albedo and previews", pictures++ / 5.0); };
   written();
   OverlappedPngWrites writes(ctx);
-  const auto record = [&](const std::string& name, const char* kind) {
-    recordOutput(ctx, step, result, finished(name), "result", "PNG", kind, "image/png");
+  const auto record = [&](const std::string& name, const WrittenFile& file, const char* kind) {
+    recordOutput(ctx, step, result, finished(name), file, "result", "PNG", kind, "image/png");
     written();
   };
 
@@ -248,20 +246,22 @@ void DerivedMapsStage::run(const carrier::Step& step, pipeline::Context& ctx, ca
   } else {
     normals = model->normalMap(&fallback, ctx.settings.threads);
   }
-  writes.add(std::move(normals), finished(kNormalsFile), [&] {
-    record(kNormalsFile, "normals");
+  writes.add(std::move(normals), finished(kNormalsFile), [&](const WrittenFile& file) {
+    record(kNormalsFile, file, "normals");
     result.add("value").set("name", "normalFallbackPixels").set("value", std::to_string(fallback));
     logNormalFallback(ctx, step, basis, fallback, double(model->width()) * model->height());
   });
   if (!writes.overlapped()) albedo = model->albedoMap(ctx.settings.threads);
-  writes.add(std::move(albedo), finished(kAlbedoFile), [&] { record(kAlbedoFile, "albedo"); });
+  writes.add(std::move(albedo), finished(kAlbedoFile),
+             [&](const WrittenFile& file) { record(kAlbedoFile, file, "albedo"); });
   for (const Preview& p : kPreviews) {
     const double e = p.elevationDeg * M_PI / 180, a = p.azimuthDeg * M_PI / 180;
     fit::RenderOptions options;
     options.specular = p.specular && basis.rfind("ptm", 0) == 0;
     options.threads = ctx.settings.threads;
     const std::array<double, 3> light{std::cos(e) * std::cos(a), std::cos(e) * std::sin(a), std::sin(e)};
-    writes.add(model->render(light, options), finished(p.name), [&record, &p] { record(p.name, "preview"); });
+    writes.add(model->render(light, options), finished(p.name),
+               [&record, &p](const WrittenFile& file) { record(p.name, file, "preview"); });
   }
   writes.finish();
 }

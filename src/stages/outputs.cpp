@@ -1,9 +1,10 @@
 #include "stages/outputs.h"
 
+#include "core/atomic_file.h"
 #include "core/digest.h"
 #include "core/error.h"
 #include "formats/pronom.h"
-#include "image/write.h"
+#include "image/png_encoder.h"
 
 namespace surrogate::stages {
 
@@ -19,6 +20,16 @@ std::string recordOutput(pipeline::Context& ctx, const carrier::Step& step,
                          carrier::Result& result, const std::string& relativePath,
                          const FileDigests& d, const std::string& role, const std::string& format,
                          const std::string& kind, const std::string& mediaType) {
+  WrittenFile written;
+  written.digests = d;
+  written.puid = formats::identifyPronomFile(ctx.outputPath(relativePath)).puid;  // from the bytes, as DROID
+  return recordOutput(ctx, step, result, relativePath, written, role, format, kind, mediaType);
+}
+
+std::string recordOutput(pipeline::Context& ctx, const carrier::Step& step,
+                         carrier::Result& result, const std::string& relativePath,
+                         const WrittenFile& written, const std::string& role, const std::string& format,
+                         const std::string& kind, const std::string& mediaType) {
   // The plan refuses this before any step runs (prior_work.h); a record of prior work is
   // never replaced by one of Surrogate's results.
   if (const carrier::FileRecord* before = ctx.carrier.findFileByPath(relativePath); before && before->role == "prior")
@@ -29,20 +40,27 @@ std::string recordOutput(pipeline::Context& ctx, const carrier::Step& step,
   carrier::FileRecord f;
   f.path = relativePath;
   f.role = role;
-  f.size = d.size;
-  f.sha256 = d.sha256;
+  f.size = written.digests.size;
+  f.sha256 = written.digests.sha256;
   f.format = format;
   f.mediaType = mediaType;
-  f.puid = formats::identifyPronomFile(ctx.outputPath(relativePath)).puid;  // from the bytes, as DROID
+  f.puid = written.puid;
   f.createdBy = step.id;
   const std::string id = ctx.carrier.putFile(std::move(f));
   result.add("output").set("file", id).set("kind", kind);
   return id;
 }
 
-void writePicture(const pipeline::Context& ctx, const Image& picture, const std::string& relativePath) {
-  image::writePng(picture, ctx.outputPath(relativePath));
+WrittenFile writePicture(const pipeline::Context& ctx, const Image& picture, const std::string& relativePath) {
+  const std::filesystem::path path = ctx.outputPath(relativePath);
+  const std::string bytes = image::encodePng(picture, path.string());
+  writeFileAtomically(path, bytes);
   if (ctx.settings.pictureWritten) ctx.settings.pictureWritten(relativePath, picture);
+  WrittenFile written;
+  written.digests.size = bytes.size();
+  written.digests.sha256 = sha256Hex(bytes);
+  written.puid = formats::identifyPronomNamed(bytes, path.filename().string()).puid;  // from the bytes, as DROID
+  return written;
 }
 
 std::string checkedOutputPath(const std::string& relativePath) {

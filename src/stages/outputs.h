@@ -26,10 +26,25 @@ std::string recordOutput(pipeline::Context& ctx, const carrier::Step& step,
                          const FileDigests& digests, const std::string& role, const std::string& format,
                          const std::string& kind, const std::string& mediaType = "");
 
-// Writes `picture` as the PNG file `relativePath` (image::writePng, under the context's output
-// folder) and hands it to ctx.settings.pictureWritten. Record it with recordOutput afterwards.
-// Safe to call from several threads at once for different files.
-void writePicture(const pipeline::Context& ctx, const Image& picture, const std::string& relativePath);
+// What a writer knows of a file it has just written from bytes in memory: their size and
+// SHA-256 and their PRONOM identifier, the same as digestFile and identifyPronomFile would find
+// in the file, without reading it back.
+struct WrittenFile {
+  FileDigests digests;
+  std::string puid;
+};
+
+// The same with what the writer knows of the file (writePicture's answer).
+std::string recordOutput(pipeline::Context& ctx, const carrier::Step& step,
+                         carrier::Result& result, const std::string& relativePath,
+                         const WrittenFile& written, const std::string& role, const std::string& format,
+                         const std::string& kind, const std::string& mediaType = "");
+
+// Writes `picture` as the PNG file `relativePath` (image::encodePng, written atomically under
+// the context's output folder) and hands it to ctx.settings.pictureWritten. Record it with
+// recordOutput afterwards, with the answer: the encoded bytes' digest and identification, taken
+// on the writing thread. Safe to call from several threads at once for different files.
+WrittenFile writePicture(const pipeline::Context& ctx, const Image& picture, const std::string& relativePath);
 
 // A file name from the carrier, checked before writing: relative, inside assembly-files/ or
 // finished-files/, no ".." (a re-executed carrier from elsewhere must not write anywhere else).

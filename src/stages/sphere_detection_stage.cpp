@@ -151,9 +151,9 @@ void SphereDetectionStage::run(const carrier::Step& step, pipeline::Context& ctx
   result.add("value").set("name", "spheres").set("value", std::to_string(spheres->size()));
 
   const std::string& overlay = kSphereOverlay;
-  writePicture(ctx, hrti::drawSphereOverlay(displayable(median->coarse(), *lum), *spheres, median->factor()),
-               overlay);
-  recordOutput(ctx, step, result, overlay, "assembly", "PNG", "sphere-overlay", "image/png");
+  const WrittenFile written = writePicture(
+      ctx, hrti::drawSphereOverlay(displayable(median->coarse(), *lum), *spheres, median->factor()), overlay);
+  recordOutput(ctx, step, result, overlay, written, "assembly", "PNG", "sphere-overlay", "image/png");
   ctx.put(kSpheres, spheres);
   ctx.put(kStackMedian, median);
   ctx.progress("Sphere detection", 1);
