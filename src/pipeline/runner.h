@@ -21,8 +21,13 @@
 
 namespace surrogate::pipeline {
 
+// Whether the carrier is saved after the last step too, or left to the caller, which records
+// more (the run's record) and saves it then: the same file written and flushed twice in a row
+// otherwise. A failure is saved either way.
+enum class LastSave { Runner, Caller };
+
 // Runs the first `steps` steps of the process list (all by default); the others keep no result.
 void runProcess(Context& context, const std::filesystem::path& carrierPath,
-                std::size_t steps = static_cast<std::size_t>(-1));
+                std::size_t steps = static_cast<std::size_t>(-1), LastSave last = LastSave::Runner);
 
 }  // namespace surrogate::pipeline

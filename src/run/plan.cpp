@@ -408,12 +408,18 @@ carrier::Carrier runCapture(const fs::path& captureArg, const RunRequest& reques
   pipeline::Context ctx(capture, c, s);
   ctx.outputRoot = staging;
   ctx.previous = previous ? &*previous : nullptr;
+  // The ingest takes the capture as scanned above rather than reading it all again, unless the
+  // output folders changed since (recoverRun finished a commit): then it scans.
+  if (outputFolderFiles == layout.outputFolderFiles)
+    ctx.put(stages::kScannedCapture, std::make_shared<const stages::ScannedCapture>(
+                                         stages::ScannedCapture{std::move(layout), merged.lp.value_or("")}));
   const std::size_t steps = request.lightsOnly ? lightStepCount(c) : c.process.size();
   const fs::path stagedCarrier = staging / capture::kCarrierPath;
   // The plan as made, for a failure's record: its decisions stand though its results are dropped.
   const std::vector<carrier::Step> planned = c.process;
   try {
-    pipeline::runProcess(ctx, stagedCarrier, steps);
+    // Saved once after the last step, below, with the run's record.
+    pipeline::runProcess(ctx, stagedCarrier, steps, pipeline::LastSave::Caller);
   } catch (const Error& e) {
     record.ended = carrier::timestampNow();
     record.outcome = "failed";

@@ -423,7 +423,12 @@ void IngestStage::run(const carrier::Step& step, pipeline::Context& ctx, carrier
   const int threads = effectiveThreads(ctx.settings.threads);
   const capture::Source source = capture::parseSource(step.param("source", "auto"));
   ctx.progress("Reading the capture", 0);
-  const capture::CaptureLayout layout = capture::scanCapture(ctx.capture, threads, step.param("lp", ""));
+  const std::string lp = step.param("lp", "");
+  const std::shared_ptr<const ScannedCapture> scanned =
+      ctx.has(kScannedCapture) ? ctx.get<const ScannedCapture>(kScannedCapture) : nullptr;
+  std::optional<capture::CaptureLayout> ownScan;
+  if (!scanned || scanned->lp != lp) ownScan = capture::scanCapture(ctx.capture, threads, lp);
+  const capture::CaptureLayout& layout = ownScan ? *ownScan : scanned->layout;
   const std::vector<PendingFile> pending = pendingFiles(layout, priorWorkOf(ctx, step, layout));
   recordFiles(ctx, step, pending, readFiles(pending, ctx, threads));
   logOtherFiles(ctx, step, layout);
