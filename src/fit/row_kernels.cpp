@@ -122,16 +122,6 @@ __attribute__((always_inline)) inline void multiplyBody(const double* m, int row
   }
 }
 
-// The plain copies of the compiler-vectorised bodies for AVX2 (SURROGATE_AVX2_TARGET:
-// fit/sample_lanes.h).
-SURROGATE_AVX2_TARGET void ptmAvx2(const double* a, std::size_t count, const PtmQuantisation& q, std::uint8_t* bytes,
-                                   double* decoded) {
-  quantiseBody(a, count, q, bytes, decoded);
-}
-SURROGATE_AVX2_TARGET void hshAvx2(const double* a, std::size_t count, const HshQuantisation& q, std::uint8_t* bytes,
-                                   double* decoded) {
-  quantiseBody(a, count, q, bytes, decoded);
-}
 
 // The LRGB accumulation and the block products, written with intrinsics: the accumulators stay
 // in registers while every photograph is added, where the compiled bodies load and store them
@@ -143,10 +133,8 @@ SURROGATE_AVX2_TARGET inline void loadEight(const std::uint16_t* s, __m256d* x0,
   *x0 = _mm256_cvtepi32_pd(_mm_cvtepu16_epi32(v));
   *x1 = _mm256_cvtepi32_pd(_mm_cvtepu16_epi32(_mm_srli_si128(v, 8)));
 }
-// Bytes I, I + Step, I + 2 Step and I + 3 Step of v as four 32-bit values 257 b: one byte
-// shuffle copies each byte b into the two low bytes of its lane, b + 256 b. Fewer vector
-// operations than widening, multiplying and splitting the halves, on the ports that the
-// products' multiplies and adds also use.
+// Bytes I + k Step (k < 4) of v as 32-bit values 257 b = b + 256 b, each byte copied into its
+// lane's two low bytes by one shuffle: fewer vector operations than widening and multiplying.
 template <int I, int Step>
 SURROGATE_AVX2_TARGET inline __m128i bytesTimes257(__m128i v) {
   return _mm_shuffle_epi8(v, _mm_setr_epi8(I, I, -1, -1, I + Step, I + Step, -1, -1, I + 2 * Step, I + 2 * Step, -1, -1,
@@ -280,10 +268,8 @@ SURROGATE_AVX2_TARGET void rgbAvx2(const double* p, const Sample* s, std::size_t
   rgbBody(p + 3 * x, s + 3 * x, pixels - x, d2 + x);
 }
 
-// How far ahead of the pixels being added the AVX2 accumulation asks for the photographs'
-// samples (prefetches change no value). A row of every photograph is read once per pass,
-// dozens of streams at once: in the pipeline's run the loads of the samples had taken a third
-// of the accumulation's time (perf annotate), and next to nothing with the prefetches.
+// How far ahead the AVX2 accumulation asks for the samples (which changes no value): in the
+// pipeline the loads of dozens of streams had taken a third of its time (perf annotate).
 constexpr std::size_t kPrefetchBytes = 256;
 
 // accumulateBody with the sums of eight pixels in twelve registers while every photograph is
@@ -374,10 +360,69 @@ SURROGATE_AVX2_TARGET void rangeAvx2(const double* a, std::size_t count, double*
   *hi = h == 0.0 ? firstZero(a, count) : h;
 }
 
+// detail::roundClamped(v, 255) (fit/quantise.h) on four values: min_pd is v < 255 ? v : 255,
+// masked by v > 0 (NaN gives 0); then truncation, plus 1 where the remainder is at least 0.5.
+SURROGATE_AVX2_TARGET inline __m128i roundClamped255(__m256d v) {
+  const __m256d c = _mm256_and_pd(_mm256_cmp_pd(v, _mm256_setzero_pd(), _CMP_GT_OQ),
+                                  _mm256_min_pd(v, _mm256_set1_pd(255.0)));
+  const __m128i whole = _mm256_cvttpd_epi32(c);
+  const __m256d up = _mm256_cmp_pd(_mm256_sub_pd(c, _mm256_cvtepi32_pd(whole)), _mm256_set1_pd(0.5), _CMP_GE_OQ);
+  return _mm_add_epi32(whole, _mm256_cvtpd_epi32(_mm256_and_pd(up, _mm256_set1_pd(1.0))));
+}
+
+// The quantisers sixteen coefficients at a time (the compiled body had spilled registers):
+// `value` gives toByte's argument for four; the bytes (0..255) pass the saturating packs. The
+// decoding follows in a loop of its own, which ran faster than inside this one.
+template <typename Value>
+SURROGATE_AVX2_TARGET inline std::size_t quantiseSixteen(const double* a, std::size_t count, Value value,
+                                                         std::uint8_t* bytes) {
+  std::size_t j = 0;
+  for (; j + 16 <= count; j += 16) {
+    __m128i q[4];
+    for (int u = 0; u < 4; ++u) q[u] = roundClamped255(value(_mm256_loadu_pd(a + j + 4 * u)));
+    const __m128i packed = _mm_packus_epi16(_mm_packs_epi32(q[0], q[1]), _mm_packs_epi32(q[2], q[3]));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(bytes + j), packed);
+  }
+  return j;
+}
+
+// PTM: byte = toByte(a / scale + bias), decoded (byte - bias) * scale (integers, then one
+// product), as PtmQuantisation does.
+SURROGATE_AVX2_TARGET void ptmAvx2(const double* a, std::size_t count, const PtmQuantisation& q, std::uint8_t* bytes,
+                                   double* decoded) {
+  const __m256d scale = _mm256_set1_pd(q.scale), bias = _mm256_set1_pd(static_cast<double>(q.bias));
+  const __m128i biasInt = _mm_set1_epi32(q.bias);
+  const std::size_t done = quantiseSixteen(
+      a, count, [&](__m256d v) SURROGATE_AVX2_TARGET { return _mm256_add_pd(_mm256_div_pd(v, scale), bias); },
+      bytes);
+  for (std::size_t j = 0; j < done; j += 16) {
+    __m128i b = _mm_loadu_si128(reinterpret_cast<const __m128i*>(bytes + j));
+    for (int u = 0; u < 4; ++u, b = _mm_srli_si128(b, 4))
+      _mm256_storeu_pd(decoded + j + 4 * u,
+                       _mm256_mul_pd(_mm256_cvtepi32_pd(_mm_sub_epi32(_mm_cvtepu8_epi32(b), biasInt)), scale));
+  }
+  quantiseBody(a + done, count - done, q, bytes + done, decoded + done);
+}
+
+// HSH: byte = toByte((a - bias) / scale * 255); the decoding's division by 255 once per byte
+// value, by q.decode itself into a table, not once per coefficient.
+SURROGATE_AVX2_TARGET void hshAvx2(const double* a, std::size_t count, const HshQuantisation& q, std::uint8_t* bytes,
+                                   double* decoded) {
+  if (q.scale == 0) return quantiseBody(a, count, q, bytes, decoded);
+  const __m256d scale = _mm256_set1_pd(static_cast<double>(q.scale));
+  const __m256d bias = _mm256_set1_pd(static_cast<double>(q.bias)), range = _mm256_set1_pd(255.0);
+  const auto value = [&](__m256d v) SURROGATE_AVX2_TARGET {
+    return _mm256_mul_pd(_mm256_div_pd(_mm256_sub_pd(v, bias), scale), range);
+  };
+  const std::size_t done = quantiseSixteen(a, count, value, bytes);
+  for (std::size_t j = done; j < count; ++j) bytes[j] = q.quantise(a[j]);
+  double table[256];
+  for (int b = 0; b < 256; ++b) table[b] = q.decode(static_cast<std::uint8_t>(b));
+  for (std::size_t j = 0; j < count; ++j) decoded[j] = table[bytes[j]];
+}
+
 // G rows of m (G <= kMaxRows) over a whole block, eight samples at a time: 2G accumulators
-// stay in registers while the columns are run through once, each column's samples converted
-// once for all G rows. Twelve accumulators, the eight samples and the broadcast factor fill 15
-// of the 16 registers.
+// (with the samples and a factor, 15 of 16 registers) while the columns are run through once.
 constexpr int kMaxRows = 6;
 template <int G, typename Sample>
 SURROGATE_AVX2_TARGET inline void multiplyRowsAvx2(const double* m, int cols, const Sample* const* src,
@@ -404,8 +449,7 @@ SURROGATE_AVX2_TARGET inline void multiplyRowsAvx2(const double* m, int cols, co
 template <typename Sample>
 SURROGATE_AVX2_TARGET void multiplyAvx2(const double* m, int rows, int cols, const Sample* const* src,
                                         std::size_t offset, double* out, std::size_t outStride) {
-  // The rows in as few groups as hold them, of near equal sizes (HSH's 9 as 5 + 4, not 4 + 4 +
-  // 1, whose one row's two sums would wait on the adds' latency at every column).
+  // Few groups of near equal sizes: HSH's 9 rows as 5 + 4 (one row alone waits on the adds).
   const int groups = (rows + kMaxRows - 1) / kMaxRows;
   for (int g = 0, r = 0; g < groups; ++g) {
     const int size = rows / groups + (g < rows % groups ? 1 : 0);
@@ -423,6 +467,12 @@ SURROGATE_AVX2_TARGET void multiplyAvx2(const double* m, int rows, int cols, con
   }
 }
 #else
+void ptmAvx2(const double* a, std::size_t count, const PtmQuantisation& q, std::uint8_t* bytes, double* decoded) {
+  quantiseBody(a, count, q, bytes, decoded);
+}
+void hshAvx2(const double* a, std::size_t count, const HshQuantisation& q, std::uint8_t* bytes, double* decoded) {
+  quantiseBody(a, count, q, bytes, decoded);
+}
 void rangeAvx2(const double* a, std::size_t count, double* lo, double* hi) {
   *lo = *std::min_element(a, a + count);
   *hi = *std::max_element(a, a + count);

@@ -8,8 +8,9 @@
 // These loops are bound by arithmetic (division, for the errors: four per pixel and light for
 // LRGB), and the baseline x86-64 instruction set works on two doubles at once where AVX2 works
 // on four. So each loop has two variants, for the baseline and for AVX2 without FMA (the same
-// body compiled twice, or, for the accumulation and the block products, an AVX2 variant written
-// with intrinsics), and the variant is chosen once at run time. Both evaluate the same IEEE-754 operations in the same
+// body compiled twice, or, for the accumulation, the block products, the ranges and the
+// quantisation, an AVX2 variant written with intrinsics), and the variant is chosen once at run
+// time. Both evaluate the same IEEE-754 operations in the same
 // order for each value (no fused multiply-add, no reassociation, sums over photographs in
 // photograph order), and the error kernels write one squared error per pixel, leaving the sum
 // over the row to the caller, in pixel order. The results are therefore bit-identical whichever
