@@ -10,7 +10,6 @@
 #include <cstdlib>
 #include <memory>
 #include <new>
-#include <optional>
 
 #if defined(__x86_64__) && defined(__GNUC__)
 #include <immintrin.h>
@@ -18,7 +17,6 @@
 
 #include "core/cpu_features.h"
 #include "core/parallel.h"
-#include "core/resident.h"
 #include "hrti/merge_exchange.h"
 #include "hrti/phase_correlation.h"
 
@@ -27,18 +25,15 @@ namespace surrogate::hrti {
 namespace {
 
 constexpr double kSmoothSigma = 1.0;  // reduced pixels
-constexpr std::size_t kHugePage = std::size_t(2) << 20;  // bytes: a transparent huge page
 
-// Frame `index` reduced f times into `out` (h x w, CV_32F, already allocated): the mean of the
-// f pixels of each f x f block's middle row (the right and bottom remainders left out), 0..1.
-// The f samples' sum is an integer, exact in double whatever the order: summed as integers
-// first, the division vectorises. `row` and `sums` are the calling thread's, reused from frame
-// to frame.
-void reduceInto(const ImageStack& stack, int index, int f, std::vector<std::uint16_t>& row,
-                std::vector<std::int32_t>& sums, cv::Mat& out) {
-  const int w = out.cols, h = out.rows;
-  row.resize(static_cast<std::size_t>(w) * f);
-  sums.resize(static_cast<std::size_t>(w));
+// Frame `index` reduced f times: the mean of the f pixels of each f x f block's middle row (the
+// right and bottom remainders left out), 0..1. The f samples' sum is an integer, exact in double
+// whatever the order: summed as integers first, the division vectorises.
+cv::Mat reduced(const ImageStack& stack, int index, int f) {
+  const int w = stack.width() / f, h = stack.height() / f;
+  cv::Mat out(h, w, CV_32F);
+  std::vector<std::uint16_t> row(static_cast<std::size_t>(stack.width()));
+  std::vector<std::int32_t> sums(static_cast<std::size_t>(w));
   const double scale = 65535.0 * f;
   for (int y = 0; y < h; ++y) {
     stack.readWindow(index, 0, y * f + f / 2, w * f, y * f + f / 2 + 1, row.data());
@@ -55,6 +50,7 @@ void reduceInto(const ImageStack& stack, int index, int f, std::vector<std::uint
     float* to = out.ptr<float>(y);
     for (int x = 0; x < w; ++x) to[x] = static_cast<float>(sums[static_cast<std::size_t>(x)] / scale);
   }
+  return out;
 }
 
 // Rows [b, e) of the per-pixel median of `frames`, each pixel's value of rank `rank`, from column
@@ -195,27 +191,10 @@ std::vector<FrameMotion> registerFrames(const ImageStack& stack, int threads, Ph
   const int f = registrationFactor(stack.width());
   const int w = stack.width() / f, h = stack.height() / f;
   if (n < 3 || stack.channels() != 1 || w < 16 || h < 16) return out;
-  const int workers = effectiveThreads(threads);
-  // The reduced frames (960 KB each at 1200x800) in one block backed up front, in huge pages
-  // and by all workers: as 36 separate images their 4 KiB pages were faulted in one by one
-  // (`surrogate run` on 36 x 1200x800: registerFrames' page faults, counted by `perf record -e
-  // page-faults`, about 5,000 as separate images, 650 with the block).
-  const std::size_t frameFloats = static_cast<std::size_t>(w) * h;
-  // From a huge page's boundary, whole huge pages, uninitialised (every value is written).
-  const std::size_t blockBytes = (frameFloats * sizeof(float) * static_cast<std::size_t>(n) + kHugePage - 1) /
-                                 kHugePage * kHugePage;
-  const std::unique_ptr<void, void (*)(void*)> block(std::aligned_alloc(kHugePage, blockBytes), std::free);
-  if (!block) throw std::bad_alloc();
-  makeResident(block.get(), blockBytes, workers);
-  float* const first = static_cast<float*>(block.get());
   std::vector<cv::Mat> frames(static_cast<std::size_t>(n));
-  for (std::size_t i = 0; i < frames.size(); ++i) frames[i] = cv::Mat(h, w, CV_32F, first + i * frameFloats);
-  const std::size_t scratchCount = static_cast<std::size_t>(std::max(1, workers));
-  std::vector<std::vector<std::uint16_t>> rows(scratchCount);
-  std::vector<std::vector<std::int32_t>> sums(scratchCount);
-  parallelForWorkers(static_cast<std::size_t>(n), 1, workers, [&](int worker, std::size_t b, std::size_t e) {
-    const auto k = static_cast<std::size_t>(worker);
-    for (std::size_t i = b; i < e; ++i) reduceInto(stack, static_cast<int>(i), f, rows[k], sums[k], frames[i]);
+  const int workers = effectiveThreads(threads);
+  parallelFor(static_cast<std::size_t>(n), 1, workers, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) frames[i] = reduced(stack, static_cast<int>(i), f);
   });
   const cv::Mat median = medianOf(frames, workers);
   GradientBuffers referenceBuffers;
@@ -232,21 +211,17 @@ std::vector<FrameMotion> registerFrames(const ImageStack& stack, int threads, Ph
   // Each quarter's shift is that of its strongest edges: the point it applies to is the centroid
   // of the median's gradient there (weighted by the window), not the quarter's centre.
   // The median's quarters are every frame's reference: their spectra are computed once.
-  // The four are independent: shared among the workers (on one thread they kept the other
-  // core waiting).
-  std::array<std::optional<PhaseReference>, 4> referenceQuarters;
+  std::vector<PhaseReference> referenceQuarters;
   std::array<cv::Mat, 4> openCvQuarters;  // PhaseCorrelator::OpenCv's references
-  parallelFor(4, 1, workers, [&](std::size_t b, std::size_t e) {
-    for (std::size_t q = b; q < e; ++q) {
-      const cv::Mat quarter = reference(quarters[q]);
-      if (correlator == PhaseCorrelator::Own) referenceQuarters[q].emplace(quarter, window);
-      else openCvQuarters[q] = quarter.clone();
-      const cv::Mat weight = quarter.mul(window);
-      const cv::Moments m = cv::moments(weight);
-      if (m.m00 > 0)
-        centres[q] = {quarters[q].x + m.m10 / m.m00 - w / 2.0, quarters[q].y + m.m01 / m.m00 - h / 2.0};
-    }
-  });
+  for (int q = 0; q < 4; ++q) {
+    const cv::Mat quarter = reference(quarters[q]);
+    if (correlator == PhaseCorrelator::Own) referenceQuarters.emplace_back(quarter, window);
+    else openCvQuarters[q] = quarter.clone();
+    const cv::Mat weight = quarter.mul(window);
+    const cv::Moments m = cv::moments(weight);
+    if (m.m00 > 0)
+      centres[q] = {quarters[q].x + m.m10 / m.m00 - w / 2.0, quarters[q].y + m.m01 / m.m00 - h / 2.0};
+  }
   std::vector<PhaseWorkspace> scratch(static_cast<std::size_t>(std::max(1, workers)));
   std::vector<GradientBuffers> buffers(scratch.size());
   parallelForWorkers(static_cast<std::size_t>(n), 1, workers, [&](int worker, std::size_t b, std::size_t e) {
@@ -257,7 +232,7 @@ std::vector<FrameMotion> registerFrames(const ImageStack& stack, int threads, Ph
       std::array<double, 4> response;
       for (int q = 0; q < 4; ++q) {
         if (correlator == PhaseCorrelator::Own) {
-          const PhaseShift s = referenceQuarters[q]->correlate(g(quarters[q]), scratch[static_cast<std::size_t>(worker)]);
+          const PhaseShift s = referenceQuarters[q].correlate(g(quarters[q]), scratch[static_cast<std::size_t>(worker)]);
           shift[q] = s.shift;
           response[q] = s.response;
         } else {

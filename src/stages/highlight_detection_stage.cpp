@@ -5,12 +5,10 @@
 
 #include <algorithm>
 #include <cstdlib>
-#include <future>
 
 #include "capture/capture.h"
 #include "carrier/carrier.h"
 #include "core/error.h"
-#include "core/parallel.h"
 #include "core/text.h"
 #include "hrti/drawing.h"
 #include "hrti/frame_registration.h"
@@ -170,16 +168,12 @@ void HighlightDetectionStage::run(const carrier::Step& step, pipeline::Context& 
   hrti::judgeAcrossImages(*lum, *median, *spheres, *highlights, linearMeans, ctx.settings.threads,
                           statedLightDistancePx(ctx.carrier, *spheres, lum->width()));
   // Every frame registered to the stack (hrti/frame_registration.h): a frame that moved is named
-  // as such before its highlight is judged, whatever its highlight looks like. Only the
-  // frame-moved check below reads the motions, so with more than one thread they are measured
-  // while this thread records the highlights and draws and writes the overviews (one thread's
-  // work, which kept the other core waiting); the motions do not depend on when they are measured.
+  // as such before its highlight is judged, whatever its highlight looks like.
+  std::vector<double> movedPx;
   const hrti::PhaseCorrelator correlator =
       step.version == kOpenCvCorrelationVersion ? hrti::PhaseCorrelator::OpenCv : hrti::PhaseCorrelator::Own;
-  const int threads = ctx.settings.threads;
-  std::future<std::vector<hrti::FrameMotion>> motions =
-      std::async(effectiveThreads(threads) > 1 ? std::launch::async : std::launch::deferred,
-                 [&lum, threads, correlator] { return hrti::registerFrames(*lum, threads, correlator); });
+  for (const hrti::FrameMotion& m : hrti::registerFrames(*lum, ctx.settings.threads, correlator))
+    movedPx.push_back(m.measured ? m.largestPx : -1);
 
   // Manual highlights: target "IMAGE:SPHERE" (sphere index from 0), value "x,y".
   for (const carrier::Intervention* i : step.interventionsOfKind("manual-highlight")) {
@@ -267,20 +261,17 @@ void HighlightDetectionStage::run(const carrier::Step& step, pipeline::Context& 
     std::vector<hrti::Highlight> perImage;
     for (const auto& row : *highlights) perImage.push_back(row[k]);
     const std::string overview = highlightOverview(std::to_string(k + 1));
-    const WrittenFile written =
-        writePicture(ctx,
-                     hrti::drawHighlightOverview(median->width(), median->height(), crop, (*spheres)[k], perImage,
-                                                 imageLabels),
-                     overview);
-    recordOutput(ctx, step, result, overview, written, "assembly", "PNG", "highlight-overview", "image/png");
+    writePicture(ctx,
+                 hrti::drawHighlightOverview(median->width(), median->height(), crop, (*spheres)[k], perImage,
+                                             imageLabels),
+                 overview);
+    recordOutput(ctx, step, result, overview, "assembly", "PNG", "highlight-overview", "image/png");
   }
 
   // Refused by default: never a confident light direction from a highlight that is not one.
   const carrier::Step* sphereStep = nullptr;
   for (const carrier::Step& s : ctx.carrier.process)
     if (s.component == SphereDetectionStage::kComponent) sphereStep = &s;
-  std::vector<double> movedPx;
-  for (const hrti::FrameMotion& m : motions.get()) movedPx.push_back(m.measured ? m.largestPx : -1);
   recordChecks(step, ctx, result, {hrti::frameMovedCheck(movedPx, hrti::movedLimitPx(lum->width()), imageLabels)},
                {"highlight detection", "the frames", "they do not show the same scene"},
                [&](const hrti::LightCheck& c) { return excludeImagesFix(c, imageLabels); });
