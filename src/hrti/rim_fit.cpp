@@ -34,17 +34,80 @@ MedianWindow medianWindow(const StackMedian& median, int x0, int y0, int x1, int
 
 namespace {
 
-// The Gaussian blur (sigma 1) of the full-resolution median over [x0, x1) x [y0, y1), as a
-// blur of the whole frame would give it there: the window is read with the kernel's reach
-// around it (OpenCV's kernel for sigma 1 on floats is 9 wide), and reflected only at the frame's
-// edges. A view into the blur of the larger window, not a copy: filters that read it must take
-// it as a whole image (cv::BORDER_ISOLATED), which gives a copy's values.
-cv::Mat blurredWindow(const StackMedian& median, int x0, int y0, int x1, int y1) {
-  constexpr int kReach = 4;
-  const MedianWindow padded = medianWindow(median, x0 - kReach, y0 - kReach, x1 + kReach, y1 + kReach);
+// The blur's reach (pixels): OpenCV's kernel for sigma 1 on floats is 9 wide.
+constexpr int kBlurReach = 4;
+// How far beyond the distances a pass samples its profiles depend on the median (pixels): a
+// sample interpolates the gradients of the 2 x 2 pixels around it (1 pixel), each the 3 x 3 Sobel
+// of the blurred median (1 more), each blurred over kBlurReach more: 6 pixels along each axis,
+// 6 sqrt 2 < 8.5 in any direction, with one to spare.
+constexpr double kProfileReach = 9.5;
+
+// The window whose gradients a pass over the circle (cx, cy, r) searched within `margin` reads:
+// rows [y0, y1) and columns [x0, x1) of the frame; none (false) when under 8 pixels wide or high.
+struct PassWindow {
+  int x0, y0, x1, y1;
+};
+bool passWindow(const StackMedian& median, double cx, double cy, double r, double margin, PassWindow& w) {
+  w.x0 = std::max(0, static_cast<int>(cx - r - margin - 3));
+  w.y0 = std::max(0, static_cast<int>(cy - r - margin - 3));
+  w.x1 = std::min(median.width(), static_cast<int>(cx + r + margin + 4));
+  w.y1 = std::min(median.height(), static_cast<int>(cy + r + margin + 4));
+  return w.x1 - w.x0 >= 8 && w.y1 - w.y0 >= 8;
+}
+
+// The window with the blur's reach around it, clipped to the frame: the median read.
+Rect paddedWindow(const StackMedian& median, const PassWindow& w) {
+  const int x0 = std::max(0, w.x0 - kBlurReach), y0 = std::max(0, w.y0 - kBlurReach);
+  const int x1 = std::min(median.width(), w.x1 + kBlurReach), y1 = std::min(median.height(), w.y1 + kBlurReach);
+  return {x0, y0, x1 - x0, y1 - y0};
+}
+
+// The parts of `padded` a pass reads (rimReads).
+std::vector<Rect> passReads(const Rect& padded, double cx, double cy, double r, double margin) {
+  // The distances from the centre the profiles sample: r - margin .. r + margin, or, when the
+  // margin exceeds the radius, from the centre itself (negative distances lie across it).
+  const double inner = std::max(0.0, r - margin) - kProfileReach, outer = r + margin + kProfileReach;
+  constexpr int kTile = StackMedian::kTile;
+  std::vector<Rect> reads;
+  const int xEnd = padded.x + padded.w, yEnd = padded.y + padded.h;
+  for (int ty = padded.y / kTile * kTile; ty < yEnd; ty += kTile) {
+    const int ay = std::max(padded.y, ty), by = std::min(yEnd, ty + kTile) - 1;  // rows, inclusive
+    const double nearY = std::clamp(cy, double(ay), double(by)) - cy, farY = std::max(cy - ay, by - cy);
+    bool open = false;  // whether the last tile of this row is read (then the next one extends it)
+    for (int tx = padded.x / kTile * kTile; tx < xEnd; tx += kTile) {
+      const int ax = std::max(padded.x, tx), bx = std::min(xEnd, tx + kTile) - 1;
+      const double nearX = std::clamp(cx, double(ax), double(bx)) - cx, farX = std::max(cx - ax, bx - cx);
+      const bool read = std::hypot(nearX, nearY) <= outer && std::hypot(farX, farY) >= inner;
+      if (read && open)
+        reads.back().w = bx + 1 - reads.back().x;
+      else if (read)
+        reads.push_back({ax, ay, bx + 1 - ax, by + 1 - ay});
+      open = read;
+    }
+  }
+  return reads;
+}
+
+// The Gaussian blur (sigma 1) of the full-resolution median over the pass window, as a blur of
+// the whole frame would give it there: the median is read with the blur's reach around it
+// (`padded`), and reflected only at the frame's edges. Only the parts `reads` are read, the rest
+// left 0: the pixels the profiles depend on lie in them, and any value elsewhere changes neither
+// those pixels' blur nor their gradients (the window's size, which decides how OpenCV's filters
+// run over it, stays the same). A view into the blur of the larger window, not a copy: filters
+// that read it must take it as a whole image (cv::BORDER_ISOLATED), which gives a copy's values.
+cv::Mat blurredWindow(const StackMedian& median, const PassWindow& w, const Rect& padded,
+                      const std::vector<Rect>& reads) {
+  cv::Mat values = cv::Mat::zeros(padded.h, padded.w, CV_32F);
+  for (const Rect& part : reads) {
+    const Image read = median.window(part);
+    for (int y = 0; y < part.h; ++y) {
+      float* row = values.ptr<float>(part.y - padded.y + y) + (part.x - padded.x);
+      for (int x = 0; x < part.w; ++x) row[x] = read.at(x, y) / 65535.0f;
+    }
+  }
   cv::Mat blurred;
-  cv::GaussianBlur(padded.values, blurred, cv::Size(0, 0), 1.0);
-  return blurred(cv::Rect(x0 - padded.x0, y0 - padded.y0, x1 - x0, y1 - y0));
+  cv::GaussianBlur(values, blurred, cv::Size(0, 0), 1.0);
+  return blurred(cv::Rect(w.x0 - padded.x, w.y0 - padded.y, w.x1 - w.x0, w.y1 - w.y0));
 }
 
 // How far (pixels, or a share of the radius when more) an edge point may lie from the fitted
@@ -192,21 +255,30 @@ bool radialProfileAvx2(const RimGradients& g, double cx, double cy, double ca, d
 
 }  // namespace detail
 
-DetectedSphere refineRim(const StackMedian& median, double cx, double cy, double r, double margin, bool ofVisible) {
+std::vector<Rect> rimReads(const StackMedian& median, double cx, double cy, double r, double margin) {
+  PassWindow w;
+  if (!passWindow(median, cx, cy, r, margin, w)) return {};
+  return passReads(paddedWindow(median, w), cx, cy, r, margin);
+}
+
+namespace {
+
+// refineRim; `whole`: each pass reads its whole window (detail::refineRimWholeWindow).
+DetectedSphere refine(const StackMedian& median, double cx, double cy, double r, double margin, bool ofVisible,
+                      bool whole) {
   DetectedSphere out{cx, cy, r, 0};
   const bool avx2 = cpuHasAvx2();
   // Each pass searches the rim within `margin` of the last circle, the margin shrinking to 3 px.
   for (int pass = 0; pass < 3; ++pass) {
-    const int x0 = std::max(0, static_cast<int>(out.cx - out.r - margin - 3));
-    const int y0 = std::max(0, static_cast<int>(out.cy - out.r - margin - 3));
-    const int x1 = std::min(median.width(), static_cast<int>(out.cx + out.r + margin + 4));
-    const int y1 = std::min(median.height(), static_cast<int>(out.cy + out.r + margin + 4));
-    if (x1 - x0 < 8 || y1 - y0 < 8) return out;
-    const cv::Mat window = blurredWindow(median, x0, y0, x1, y1);
+    PassWindow w;
+    if (!passWindow(median, out.cx, out.cy, out.r, margin, w)) return out;
+    const Rect padded = paddedWindow(median, w);
+    const cv::Mat window = blurredWindow(median, w, padded,
+                                         whole ? std::vector<Rect>{padded} : passReads(padded, out.cx, out.cy, out.r, margin));
     cv::Mat gx, gy;
     cv::Sobel(window, gx, CV_32F, 1, 0, 3, 1, 0, cv::BORDER_REFLECT_101 | cv::BORDER_ISOLATED);
     cv::Sobel(window, gy, CV_32F, 0, 1, 3, 1, 0, cv::BORDER_REFLECT_101 | cv::BORDER_ISOLATED);
-    const detail::RimGradients grad{gx.ptr<float>(), gy.ptr<float>(), gx.cols, gx.rows, x0, y0};
+    const detail::RimGradients grad{gx.ptr<float>(), gy.ptr<float>(), gx.cols, gx.rows, w.x0, w.y0};
     // The distances along a ray, the same for every ray.
     std::vector<double> ts;
     for (double t = out.r - margin; t <= out.r + margin; t += kStep) ts.push_back(t);
@@ -264,6 +336,17 @@ DetectedSphere refineRim(const StackMedian& median, double cx, double cy, double
     margin = std::max(3.0, margin / 3);
   }
   return out;
+}
+
+}  // namespace
+
+DetectedSphere refineRim(const StackMedian& median, double cx, double cy, double r, double margin, bool ofVisible) {
+  return refine(median, cx, cy, r, margin, ofVisible, false);
+}
+
+DetectedSphere detail::refineRimWholeWindow(const StackMedian& median, double cx, double cy, double r, double margin,
+                                            bool ofVisible) {
+  return refine(median, cx, cy, r, margin, ofVisible, true);
 }
 
 }  // namespace surrogate::hrti

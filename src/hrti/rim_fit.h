@@ -11,6 +11,8 @@
 
 #include <opencv2/core.hpp>
 
+#include <vector>
+
 #include "core/image.h"
 #include "hrti/sphere_detection.h"
 
@@ -36,6 +38,14 @@ MedianWindow medianWindow(const StackMedian& median, int x0, int y0, int x1, int
 DetectedSphere refineRim(const StackMedian& median, double cx, double cy, double r, double margin,
                          bool ofVisible = false);
 
+// The parts of the full-resolution median that refineRim's first pass over the circle
+// (cx, cy, r) searched within `margin` reads: of its window's 64 x 64 tiles (StackMedian::kTile)
+// those that reach the ring its profiles sample (with the blur's and the gradients' reach
+// around it), in runs along each row of tiles. The inside of a large circle and the corners of its
+// window are not read: the circle's refinement depends on no value there. For
+// StackMedian::prepare; later passes, on a circle moved by the fit, read what they need.
+std::vector<Rect> rimReads(const StackMedian& median, double cx, double cy, double r, double margin);
+
 namespace detail {
 // The gradients of the blurred median over a window whose pixel (0, 0) is the frame's (x0, y0),
 // `cols` floats a row.
@@ -51,6 +61,10 @@ void radialProfilePlain(const RimGradients& g, double cx, double cy, double ca, 
                         std::size_t n, double* out);
 bool radialProfileAvx2(const RimGradients& g, double cx, double cy, double ca, double sa, const double* ts,
                        std::size_t n, double* out);
+// refineRim reading the whole window of each pass, inside the ring too: what the tests compare
+// refineRim with (the same bits).
+DetectedSphere refineRimWholeWindow(const StackMedian& median, double cx, double cy, double r, double margin,
+                                    bool ofVisible = false);
 }  // namespace detail
 
 }  // namespace surrogate::hrti
