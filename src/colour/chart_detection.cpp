@@ -38,6 +38,19 @@ std::vector<float> encodedTable(Transfer transfer) {
 cv::Mat reducedBgr(const Image& im, const std::vector<float>& enc, int factor) {
   const int w = im.width / factor, h = im.height / factor, n = im.channels;
   cv::Mat out(h, w, CV_8UC3);
+  if (factor == 1) {
+    // Each pixel's own samples: the byte of every 16-bit value looked up, the same rounding of
+    // the same mean (a sum of one) as below, without a double sum per sample.
+    std::vector<std::uint8_t> byte(enc.size());
+    for (std::size_t v = 0; v < enc.size(); ++v) byte[v] = cv::saturate_cast<std::uint8_t>(static_cast<double>(enc[v]));
+    for (int y = 0; y < h; ++y) {
+      auto* row = out.ptr<std::uint8_t>(y);
+      const std::uint16_t* in = im.pixels.data() + static_cast<std::size_t>(y) * w * n;
+      for (int x = 0; x < w; ++x, in += n)
+        for (int c = 0; c < 3; ++c) row[3 * x + 2 - c] = byte[in[n == 3 ? c : 0]];
+    }
+    return out;
+  }
   for (int y = 0; y < h; ++y) {
     auto* row = out.ptr<std::uint8_t>(y);
     for (int x = 0; x < w; ++x) {
