@@ -82,8 +82,8 @@ SURROGATE_INLINE void blockFalloff(const Ctx& k, int c, int x0, int len, double 
     if (over != 0)
       for (int b = 0; b < len; ++b) fi[b] = over / fi[b];
   }
-  if (k.srgb)
-    for (int i = 0; i < k.n; ++i) rootsBlock(k.avx2, k.pw, k.f + i * kBlock, k.fp + i * kBlock, len);
+  // sRGB: the roots f^(1/2.4) are made light by light where they are used (scaleSrgbBlock, the
+  // errors' loops), for the square roots to overlap the other work.
 }
 
 // The row's blocks, left to right, none across a node column: the one starting at x0 lies in
@@ -137,7 +137,7 @@ SURROGATE_INLINE int blockSamples(const Ctx& k, const Sample* const* images, int
     if (!samples) continue;
     const Sample* __restrict s = images[i] + 3 * static_cast<std::size_t>(x0);
     double* const out[3] = {k.fs + i * kBlock, k.fs + (k.n + i) * kBlock, k.fs + (2 * k.n + i) * kBlock};
-    if (k.srgb) scaleSrgbBlock(k.avx2, k.dec16, k.enc, s, fi, k.fp + i * kBlock, out, len);
+    if (k.srgb) scaleSrgbBlock(k.avx2, k.dec16, k.enc, k.pw, s, fi, k.fp + i * kBlock, out, len);
     for (int ch = 0; ch < 3; ++ch) {
       double* __restrict o = out[ch];
       if (!k.srgb)
@@ -220,11 +220,14 @@ SURROGATE_INLINE void channelErrors(const Ctx& k, const Sample* const* images, i
                                     double* __restrict d2, double* sqErr) {
   const Sample* __restrict s = images[i] + 3 * static_cast<std::size_t>(x0);
   const double* __restrict gi = k.f + i * kBlock;
-  const double* __restrict gp = k.fp + i * kBlock;  // sRGB: gi^(1/2.4)
-  if (k.srgb)  // the fall-off undone on each channel (srgbUnscaled): then plain sums
-    for (int ch = 0; ch < 3; ++ch) unscaleSrgbBlock(k.avx2, k.dec, k.enc, r + ch * kBlock, gi, gp, len);
-  if (k.srgb && luminanceErrorsBlock(k.avx2, r, r + kBlock, r + 2 * kBlock, s, d2, len))
+  double* __restrict gp = k.fp + i * kBlock;  // sRGB: gi^(1/2.4)
+  const double* planes[3] = {r, r + kBlock, r + 2 * kBlock};
+  if (k.srgb && unscaledErrorsBlock(k.avx2, k.dec, k.enc, k.pw, planes, nullptr, gi, gp, s, d2, len))
     return addInOrder(k, d2, len, &sqErr[i]);
+  if (k.srgb) {  // the fall-off undone on each channel (srgbUnscaled): then plain sums
+    rootsBlock(k.avx2, k.pw, gi, gp, len);
+    for (int ch = 0; ch < 3; ++ch) unscaleSrgbBlock(k.avx2, k.dec, k.enc, r + ch * kBlock, gi, gp, len);
+  }
   for (int b = 0; b < len; ++b) {
     const double model =
         k.srgb ? kLumR * clamp255(r[b]) + kLumG * clamp255(r[kBlock + b]) + kLumB * clamp255(r[2 * kBlock + b])
@@ -373,19 +376,20 @@ SURROGATE_INLINE void lrgbErrors(const Ctx& k, const Sample* const* images, cons
                                  const double* __restrict lum, double* __restrict d2, double* sqErr) {
   const Sample* __restrict s = images[i] + 3 * static_cast<std::size_t>(x0);
   const double* __restrict gi = k.f + i * kBlock;
-  const double* __restrict gp = k.fp + i * kBlock;  // sRGB: gi^(1/2.4)
+  double* __restrict gp = k.fp + i * kBlock;  // sRGB: gi^(1/2.4)
   // sRGB: each channel's model value (its colour times L / 255), the fall-off undone, in
   // three planes of the scratch after d2.
   double* __restrict rgb = d2 + kBlock;
+  const double* colour[3] = {cr + x0, cg + x0, cb + x0};
+  if (k.srgb && unscaledErrorsBlock(k.avx2, k.dec, k.enc, k.pw, colour, lum, gi, gp, s, d2, len))
+    return addInOrder(k, d2, len, &sqErr[i]);
   if (k.srgb) {
-    const double* colour[3] = {cr + x0, cg + x0, cb + x0};
+    rootsBlock(k.avx2, k.pw, gi, gp, len);
     for (int ch = 0; ch < 3; ++ch) {
       double* m = rgb + ch * kBlock;
       for (int b = 0; b < len; ++b) m[b] = colour[ch][b] * (lum[b] * (1.0 / 255.0));
       unscaleSrgbBlock(k.avx2, k.dec, k.enc, m, gi, gp, len);
     }
-    if (luminanceErrorsBlock(k.avx2, rgb, rgb + kBlock, rgb + 2 * kBlock, s, d2, len))
-      return addInOrder(k, d2, len, &sqErr[i]);
   }
   for (int b = 0; b < len; ++b) {
     double model;

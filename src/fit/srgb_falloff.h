@@ -23,21 +23,35 @@ inline double srgbEncodeExact(double l) {  // linear -> encoded
 // enough to stay in the first-level cache: a 512 KB table read at random cost the fit as much as
 // its arithmetic. Encoding is tabulated against u = sqrt(L), where it is smooth enough for 4096
 // steps (interpolation error under 2e-6 of full scale); decoding against the encoded value.
+// The interpolated tables hold pairs (f_j, f_{j+1} - f_j), the difference made here as the
+// interpolation made it before: one 16-byte read a value, the same bits.
 constexpr int kTable = 4096;
 constexpr double kEncodeRangeU = 2.8284271247461903;  // sqrt(8): linear values up to 8 tabulated
 constexpr double kDecodeRange = 4.0;                   // encoded values (0..1 full scale) up to 4
 constexpr double kRootRangeU = 8.0;  // sqrt of the largest factor tabulated (64)
+inline std::vector<double> tablePairs(const std::vector<double>& f) {
+  std::vector<double> p(2 * f.size());
+  for (std::size_t j = 0; j < f.size(); ++j) {
+    p[2 * j] = f[j];
+    p[2 * j + 1] = j + 1 < f.size() ? f[j + 1] - f[j] : 0.0;
+  }
+  return p;
+}
 struct SrgbTables {
-  std::vector<double> decode16, encode, decode, root;
-  SrgbTables() : decode16(65536), encode(kTable + 1), decode(kTable + 1), root(kTable + 1) {
+  std::vector<double> decode16, encode, decode, root;  // the last three as pairs
+  SrgbTables() : decode16(65536) {
+    std::vector<double> e(kTable + 1), d(kTable + 1), r(kTable + 1);
     for (int v = 0; v < 65536; ++v) decode16[v] = srgbDecodeExact(v / 65535.0);
     for (int j = 0; j <= kTable; ++j) {
       const double u = kEncodeRangeU * j / kTable;
-      encode[j] = srgbEncodeExact(u * u);
-      decode[j] = srgbDecodeExact(kDecodeRange * j / kTable);
+      e[j] = srgbEncodeExact(u * u);
+      d[j] = srgbDecodeExact(kDecodeRange * j / kTable);
       const double w = kRootRangeU * j / kTable;
-      root[j] = std::pow(w * w, 1 / 2.4);
+      r[j] = std::pow(w * w, 1 / 2.4);
     }
+    encode = tablePairs(e);
+    decode = tablePairs(d);
+    root = tablePairs(r);
   }
 };
 inline const SrgbTables& srgbTables() {
@@ -45,12 +59,12 @@ inline const SrgbTables& srgbTables() {
   return tables;
 }
 
-// f(x) from a table of f at range * j / kTable, linearly interpolated (x in [0, range)).
-SURROGATE_FALLOFF_INLINE double interpolated(const double* table, double range, double x) {
+// f(x) from the pairs of f at range * j / kTable, linearly interpolated (x in [0, range)).
+SURROGATE_FALLOFF_INLINE double interpolated(const double* pairs, double range, double x) {
   const double at = x * (kTable / range);
   const int j = static_cast<int>(at);
   const double u = at - j;
-  return table[j] + u * (table[j + 1] - table[j]);
+  return pairs[2 * j] + u * pairs[2 * j + 1];
 }
 
 SURROGATE_FALLOFF_INLINE double encodeLinear(const double* encode, double l) {
