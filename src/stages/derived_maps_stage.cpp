@@ -51,12 +51,13 @@ std::string finished(const std::string& name) { return std::string(capture::kFin
 // map already uses every core, but libdeflate compresses one file on one core, and encoding is
 // most of the stage's time (the 16-bit normals of 3000x2000 take about 0.5 s). As many files are
 // encoded at once as there are threads, each on its own thread; the next picture is computed as
-// soon as any of them is done (waiting for the oldest, the normals, had left a core idle while
-// the smaller files behind it were long written). Each file's bytes come from its pixels alone,
+// soon as any of them is encoded (waiting for the oldest, the normals, had left a core idle while
+// the smaller files behind it were long written; waiting for a file's fsync as well left one idle
+// while the disk wrote it). Each file's bytes come from its pixels alone,
 // and the carrier records them on the caller's thread in the order given, so the files and the
 // carrier are the same at any thread count. Memory holds the pictures being encoded plus the one
-// being computed: three of the five with two threads (a written picture is let go of at once,
-// though its record waits for the writes before it). With one thread, each is written before
+// being computed: three of the five with two threads (an encoded picture is let go of at once,
+// its PNG bytes once on disk, though its record waits for the writes before it). With one thread, each is written before
 // the next is computed.
 class OverlappedPngWrites {
  public:
@@ -83,21 +84,31 @@ class OverlappedPngWrites {
     }
     pending_.push_back({std::async(std::launch::async,
                                    [this, image = std::move(image), path = std::move(relativePath)]() mutable {
-                                     // Counted out however the write ends, so that add() never
-                                     // waits for a write that has failed.
+                                     // Counted out once the picture is encoded, or however the
+                                     // write ends, so that add() never waits for a write that
+                                     // has failed.
                                      struct Ended {
                                        OverlappedPngWrites& writes;
-                                       ~Ended() {
+                                       bool counted = true;
+                                       void out() {
+                                         if (!counted) return;
+                                         counted = false;
                                          std::lock_guard<std::mutex> lock(writes.mutex_);
                                          --writes.writing_;
                                          writes.ended_.notify_all();
                                        }
+                                       ~Ended() { out(); }
                                      } ended{*this};
-                                     // The pixels let go of as soon as they are written: the task
+                                     // The pixels let go of as soon as they are encoded: the task
                                      // itself lives until its record is made, after the writes
-                                     // before it (at 60 x 24 Mpx, each picture is 144 MB).
-                                     const Image written = std::move(image);
-                                     return writePicture(ctx_, written, path);
+                                     // before it (at 60 x 24 Mpx, each picture is 144 MB). The
+                                     // next picture's encoding starts while this file waits for
+                                     // the disk (its fsync), which holds no core.
+                                     Image pixels = std::move(image);
+                                     return writePicture(ctx_, pixels, path, [&] {
+                                       pixels = Image();
+                                       ended.out();
+                                     });
                                    }),
                         std::move(record)});
     // Records what is written, in order, up to the first write still running.

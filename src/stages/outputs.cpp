@@ -51,11 +51,13 @@ std::string recordOutput(pipeline::Context& ctx, const carrier::Step& step,
   return id;
 }
 
-WrittenFile writePicture(const pipeline::Context& ctx, const Image& picture, const std::string& relativePath) {
+WrittenFile writePicture(const pipeline::Context& ctx, const Image& picture, const std::string& relativePath,
+                         const std::function<void()>& encoded) {
   const std::filesystem::path path = ctx.outputPath(relativePath);
   const std::string bytes = image::encodePng(picture, path.string());
-  writeFileAtomically(path, bytes);
   if (ctx.settings.pictureWritten) ctx.settings.pictureWritten(relativePath, picture);
+  if (encoded) encoded();
+  writeFileAtomically(path, bytes);
   WrittenFile written;
   written.digests.size = bytes.size();
   written.digests.sha256 = sha256Hex(bytes);

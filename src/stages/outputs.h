@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <string>
 
 #include "carrier/carrier.h"
@@ -44,7 +45,11 @@ std::string recordOutput(pipeline::Context& ctx, const carrier::Step& step,
 // the context's output folder) and hands it to ctx.settings.pictureWritten. Record it with
 // recordOutput afterwards, with the answer: the encoded bytes' digest and identification, taken
 // on the writing thread. Safe to call from several threads at once for different files.
-WrittenFile writePicture(const pipeline::Context& ctx, const Image& picture, const std::string& relativePath);
+// `encoded`, when given, is called once the bytes are made and `picture` is no longer read
+// (before the file goes to disk and its bytes are digested): a caller that encodes a few
+// pictures at a time can let go of the pixels and start the next one meanwhile.
+WrittenFile writePicture(const pipeline::Context& ctx, const Image& picture, const std::string& relativePath,
+                         const std::function<void()>& encoded = {});
 
 // A file name from the carrier, checked before writing: relative, inside assembly-files/ or
 // finished-files/, no ".." (a re-executed carrier from elsewhere must not write anywhere else).
