@@ -102,8 +102,12 @@ __attribute__((target("avx2"))) void unitCrossRowAvx2(const float* a, const floa
   for (; k + 4 <= 2 * pairs; k += 4)
     _mm_storeu_ps(out + k, unitCrossAvx2(_mm_loadu_ps(a + k), _mm_loadu_ps(b + k)));
   if (k < 2 * pairs) {
-    const auto two = [](const float* p) { return _mm_castpd_ps(_mm_load_sd(reinterpret_cast<const double*>(p))); };
-    _mm_store_sd(reinterpret_cast<double*>(out + k), _mm_castps_pd(unitCrossAvx2(two(a + k), two(b + k))));
+    // The last two floats as the low half of a vector: loadl/storel read and write 8 bytes at
+    // any alignment (a double's load and store there, as before, asked for 8-byte alignment).
+    const auto two = [](const float* p) {
+      return _mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p)));
+    };
+    _mm_storel_epi64(reinterpret_cast<__m128i*>(out + k), _mm_castps_si128(unitCrossAvx2(two(a + k), two(b + k))));
   }
 }
 #endif
