@@ -13,6 +13,7 @@
 #include "fit/normal_rows.h"
 #include "fit/quantise.h"
 #include "fit/row_kernels.h"
+#include "fit/sample_lanes.h"
 #include "fit/texel.h"
 
 #if defined(__x86_64__) && defined(__GNUC__)
@@ -148,15 +149,9 @@ int PtmNormalRow::fill(const formats::PtmFile& ptm, const PtmDecoded& decoded, s
 
 namespace {
 #if defined(__x86_64__) && defined(__GNUC__)
-// round(v) clamped to 0..top as detail::roundClamped, four at a time: maxpd(v, 0) is v where
-// 0 < v, else 0 (NaN too), then minpd(., top); the whole part and one more where the rest is at
-// least a half.
+// detail::roundClamped(v, top) of four values, as integers (fit/sample_lanes.h).
 __attribute__((target("avx2"))) inline __m128i roundClampedAvx2(__m256d v, __m256d top) {
-  const __m256d clamped = _mm256_min_pd(_mm256_max_pd(v, _mm256_setzero_pd()), top);
-  const __m256d whole = _mm256_cvtepi32_pd(_mm256_cvttpd_epi32(clamped));
-  const __m256d up = _mm256_and_pd(_mm256_cmp_pd(_mm256_sub_pd(clamped, whole), _mm256_set1_pd(0.5), _CMP_GE_OQ),
-                                   _mm256_set1_pd(1.0));
-  return _mm256_cvttpd_epi32(_mm256_add_pd(whole, up));
+  return _mm256_cvttpd_epi32(lanes::roundClampedFour(v, top));
 }
 
 // The normal samples (encodeUnit) and the LRGB albedo samples (encodeByte of colour * L(n) / 255)

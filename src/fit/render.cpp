@@ -16,6 +16,7 @@
 #include "fit/normals.h"
 #include "fit/quantise.h"
 #include "fit/row_kernels.h"
+#include "fit/sample_lanes.h"
 #include "fit/texel.h"
 
 #if defined(__x86_64__) && defined(__GNUC__)
@@ -171,23 +172,18 @@ void plainBody(const std::uint8_t* rgb, const double* diffuse, int count, std::u
   for (int i = 0; i < count; ++i) samples[i] = toSample(rgb[i] * diffuse[i] / 255.0);
 }
 #if defined(__x86_64__) && defined(__GNUC__)
-// plainBody on four samples at a time, the same operations on each value (no fused multiply-add):
-// detail::roundClamped as maxpd(v, 0) (v where 0 < v, else 0, NaN too), then minpd(., 255),
-// the whole part by truncation and one more where the rest is at least a half.
+// plainBody on four samples at a time, the same operations on each value (no fused multiply-add),
+// rounded as detail::roundClamped (lanes::roundClampedFour).
 __attribute__((target("avx2"))) void plainAvx2(const std::uint8_t* rgb, const double* diffuse, int count,
                                                std::uint16_t* samples) {
-  const __m256d zero = _mm256_setzero_pd(), top = _mm256_set1_pd(255.0), half = _mm256_set1_pd(0.5),
-                one = _mm256_set1_pd(1.0), widen = _mm256_set1_pd(257.0);
+  const __m256d top = _mm256_set1_pd(255.0), widen = _mm256_set1_pd(257.0);
   int i = 0;
   for (; i + 4 <= count; i += 4) {
     std::int32_t four;
     std::memcpy(&four, rgb + i, sizeof four);
     const __m256d c = _mm256_cvtepi32_pd(_mm_cvtepu8_epi32(_mm_cvtsi32_si128(four)));
     const __m256d v = _mm256_div_pd(_mm256_mul_pd(c, _mm256_loadu_pd(diffuse + i)), top);
-    const __m256d clamped = _mm256_min_pd(_mm256_max_pd(v, zero), top);
-    const __m256d whole = _mm256_cvtepi32_pd(_mm256_cvttpd_epi32(clamped));
-    const __m256d up = _mm256_and_pd(_mm256_cmp_pd(_mm256_sub_pd(clamped, whole), half, _CMP_GE_OQ), one);
-    const __m128i s = _mm256_cvttpd_epi32(_mm256_mul_pd(_mm256_add_pd(whole, up), widen));
+    const __m128i s = _mm256_cvttpd_epi32(_mm256_mul_pd(lanes::roundClampedFour(v, top), widen));
     _mm_storel_epi64(reinterpret_cast<__m128i*>(samples + i), _mm_packus_epi32(s, s));
   }
   plainBody(rgb + i, diffuse + i, count - i, samples + i);
@@ -207,10 +203,7 @@ struct SpecularRow {
   int width;
 };
 __attribute__((target("avx2"))) inline __m256d byteOf(__m256d v) {
-  const __m256d clamped = _mm256_min_pd(_mm256_max_pd(v, _mm256_setzero_pd()), _mm256_set1_pd(255.0));
-  const __m256d whole = _mm256_cvtepi32_pd(_mm256_cvttpd_epi32(clamped));
-  return _mm256_add_pd(whole, _mm256_and_pd(_mm256_cmp_pd(_mm256_sub_pd(clamped, whole), _mm256_set1_pd(0.5), _CMP_GE_OQ),
-                                            _mm256_set1_pd(1.0)));
+  return lanes::roundClampedFour(v, _mm256_set1_pd(255.0));
 }
 __attribute__((target("avx2"))) void specularAvx2(const SpecularRow& r, const HalfVector& half, const Specular& spec,
                                                   double kd) {

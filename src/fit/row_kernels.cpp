@@ -360,14 +360,9 @@ SURROGATE_AVX2_TARGET void rangeAvx2(const double* a, std::size_t count, double*
   *hi = h == 0.0 ? firstZero(a, count) : h;
 }
 
-// detail::roundClamped(v, 255) (fit/quantise.h) on four values: min_pd is v < 255 ? v : 255,
-// masked by v > 0 (NaN gives 0); then truncation, plus 1 where the remainder is at least 0.5.
+// detail::roundClamped(v, 255) (fit/quantise.h) on four values, as integers.
 SURROGATE_AVX2_TARGET inline __m128i roundClamped255(__m256d v) {
-  const __m256d c = _mm256_and_pd(_mm256_cmp_pd(v, _mm256_setzero_pd(), _CMP_GT_OQ),
-                                  _mm256_min_pd(v, _mm256_set1_pd(255.0)));
-  const __m128i whole = _mm256_cvttpd_epi32(c);
-  const __m256d up = _mm256_cmp_pd(_mm256_sub_pd(c, _mm256_cvtepi32_pd(whole)), _mm256_set1_pd(0.5), _CMP_GE_OQ);
-  return _mm_add_epi32(whole, _mm256_cvtpd_epi32(_mm256_and_pd(up, _mm256_set1_pd(1.0))));
+  return _mm256_cvttpd_epi32(lanes::roundClampedFour(v, _mm256_set1_pd(255.0)));
 }
 
 // The quantisers sixteen coefficients at a time (the compiled body had spilled registers):

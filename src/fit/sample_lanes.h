@@ -1,6 +1,7 @@
 // Private to src/fit: what the AVX2 variants of the per-pixel loops share (fit/row_kernels.h,
-// fit/error_kernels.h): the target attribute they are compiled with, and the parting of eight
-// interleaved RGB pixels into one lane per pixel for each channel.
+// fit/error_kernels.h, the maps and previews of fit/normals.cpp and fit/render.cpp): the target
+// attribute they are compiled with, the parting of eight interleaved RGB pixels into one lane per
+// pixel for each channel, and the rounding of doubles to whole numbers as fit/quantise.h rounds.
 //
 // SURROGATE_AVX2_TARGET marks a function compiled for AVX2 where the compiler can target it.
 // "avx2" alone: the compiler may not fuse a multiply and an add (that needs "fma"), so every
@@ -67,6 +68,17 @@ SURROGATE_AVX2_TARGET inline __m256i valuesOfEight(__m128i lanes, const std::uin
 }
 SURROGATE_AVX2_TARGET inline __m256i valuesOfEight(__m128i lanes, const std::uint8_t*) {
   return _mm256_mullo_epi32(_mm256_cvtepu8_epi32(lanes), _mm256_set1_epi32(257));
+}
+
+// detail::roundClamped(v, top) (fit/quantise.h) of four values, as doubles: maxpd(v, 0) is v
+// where 0 < v, else +0 (NaN and -0 too), minpd(., top) clamps; then the whole part by
+// truncation and one more where the rest is at least a half. The quantisation, the normal and
+// albedo maps and the previews round their values to integers through this.
+SURROGATE_AVX2_TARGET inline __m256d roundClampedFour(__m256d v, __m256d top) {
+  const __m256d clamped = _mm256_min_pd(_mm256_max_pd(v, _mm256_setzero_pd()), top);
+  const __m256d whole = _mm256_cvtepi32_pd(_mm256_cvttpd_epi32(clamped));
+  return _mm256_add_pd(whole, _mm256_and_pd(_mm256_cmp_pd(_mm256_sub_pd(clamped, whole), _mm256_set1_pd(0.5), _CMP_GE_OQ),
+                                            _mm256_set1_pd(1.0)));
 }
 #else
 constexpr bool kAvx2Compiled = false;
