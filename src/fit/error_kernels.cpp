@@ -20,8 +20,9 @@ inline float clampLevel(float v) {
   return 255.0f < low ? 255.0f : low;
 }
 
-inline float valueOf(std::uint16_t s) { return static_cast<float>(s); }
-inline float valueOf(std::uint8_t b) { return static_cast<float>(257u * b); }
+// A sample's 16-bit value (row_kernels.h sampleValue: bytes b as 257 b), exact as a float.
+template <typename Sample>
+inline float valueOf(Sample s) { return static_cast<float>(sampleValue(s)); }
 
 // d(x) of error_kernels.h for one pixel, from its three channel values v.
 template <typename Sample>

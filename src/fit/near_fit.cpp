@@ -98,13 +98,13 @@ SURROGATE_INLINE void nextBlock(const Ctx& k, int x0, int* c, int* len) {
   for (int x0 = 0, c = 0, len = 0; x0 < (k).w && (nextBlock((k), x0, &c, &len), true); x0 += len)
 
 // The errors' two shared pieces: the photograph's Rec. 709 luminance at pixel b of a row
-// (0..255 units), and a row's squared errors added to a light's sum in pixel order.
+// (0..255 units), and a block's squared errors added to a light's sum (as Ctx::lanes says).
 template <typename Sample>
 SURROGATE_INLINE double capturedLuminance(const Sample* s, int b) {
   return (kLumR * sampleValue(s[3 * b]) + kLumG * sampleValue(s[3 * b + 1]) + kLumB * sampleValue(s[3 * b + 2])) *
          (1.0 / 257.0);
 }
-SURROGATE_INLINE void addInOrder(const Ctx& k, const double* d2, int len, double* sum) {
+SURROGATE_INLINE void addBlockErrors(const Ctx& k, const double* d2, int len, double* sum) {
   if (!k.lanes) {  // RtiFit version 7: one pixel after the other
     double err = *sum;
     for (int b = 0; b < len; ++b) err += d2[b];
@@ -223,7 +223,7 @@ SURROGATE_INLINE void channelErrors(const Ctx& k, const Sample* const* images, i
   double* __restrict gp = k.fp + i * kBlock;  // sRGB: gi^(1/2.4)
   const double* planes[3] = {r, r + kBlock, r + 2 * kBlock};
   if (k.srgb && unscaledErrorsBlock(k.avx2, k.dec, k.enc, k.pw, planes, nullptr, gi, gp, s, d2, len))
-    return addInOrder(k, d2, len, &sqErr[i]);
+    return addBlockErrors(k, d2, len, &sqErr[i]);
   if (k.srgb) {  // the fall-off undone on each channel (srgbUnscaled): then plain sums
     rootsBlock(k.avx2, k.pw, gi, gp, len);
     for (int ch = 0; ch < 3; ++ch) unscaleSrgbBlock(k.avx2, k.dec, k.enc, r + ch * kBlock, gi, gp, len);
@@ -236,7 +236,7 @@ SURROGATE_INLINE void channelErrors(const Ctx& k, const Sample* const* images, i
     const double captured = capturedLuminance(s, b);
     d2[b] = (model - captured) * (model - captured);
   }
-  addInOrder(k, d2, len, &sqErr[i]);
+  addBlockErrors(k, d2, len, &sqErr[i]);
 }
 
 // Lights i .. i + kLights - 1 (one or two) rendered over a block: for each light and channel,
@@ -382,7 +382,7 @@ SURROGATE_INLINE void lrgbErrors(const Ctx& k, const Sample* const* images, cons
   double* __restrict rgb = d2 + kBlock;
   const double* colour[3] = {cr + x0, cg + x0, cb + x0};
   if (k.srgb && unscaledErrorsBlock(k.avx2, k.dec, k.enc, k.pw, colour, lum, gi, gp, s, d2, len))
-    return addInOrder(k, d2, len, &sqErr[i]);
+    return addBlockErrors(k, d2, len, &sqErr[i]);
   if (k.srgb) {
     rootsBlock(k.avx2, k.pw, gi, gp, len);
     for (int ch = 0; ch < 3; ++ch) {
@@ -402,7 +402,7 @@ SURROGATE_INLINE void lrgbErrors(const Ctx& k, const Sample* const* images, cons
     const double captured = capturedLuminance(s, b);
     d2[b] = (model - captured) * (model - captured);
   }
-  addInOrder(k, d2, len, &sqErr[i]);
+  addBlockErrors(k, d2, len, &sqErr[i]);
 }
 
 template <typename Sample>

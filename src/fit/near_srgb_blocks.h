@@ -194,15 +194,24 @@ SURROGATE_NEAR_AVX2_BLOCK inline void scaleSrgbAvx2(const double* decode16, cons
     for (int ch = 0; ch < 3; ++ch) out[ch][b] = scaledWith(decode16, encode, sampleValue(s[3 * b + ch]), fi[b], pi[b]);
 }
 
+// unscaledWith(m, g, p) of four values m above the toe, with p the root of g: 255 ((v + 0.055) p
+// - 0.055) for v = m / 255; *above is set in the lanes where v and that value both lie above the
+// toe (the others are unscaleFour's, on the tables).
+SURROGATE_NEAR_AVX2_INLINE __m256d unscaleAboveToe(__m256d m, __m256d p, __m256d* above) {
+  const __m256d toe = _mm256_set1_pd(kToe), offset = _mm256_set1_pd(0.055);
+  const __m256d v = _mm256_mul_pd(m, _mm256_set1_pd(1.0 / 255.0));
+  const __m256d y = _mm256_sub_pd(_mm256_mul_pd(_mm256_add_pd(v, offset), p), offset);
+  *above = _mm256_and_pd(_mm256_cmp_pd(v, toe, _CMP_GT_OQ), _mm256_cmp_pd(y, toe, _CMP_GT_OQ));
+  return _mm256_mul_pd(_mm256_set1_pd(255.0), y);
+}
+
 // unscaledWith(m, gi[b + j], gp[b + j]) for the four values m of lanes j.
 SURROGATE_NEAR_AVX2_INLINE __m256d unscaleFour(const double* decode, const double* encode, __m256d m, const double* gi,
                                                const double* gp, int b) {
-  const __m256d toe = _mm256_set1_pd(kToe), offset = _mm256_set1_pd(0.055);
-  const __m256d v = _mm256_mul_pd(m, _mm256_set1_pd(1.0 / 255.0));
-  const __m256d y = _mm256_sub_pd(_mm256_mul_pd(_mm256_add_pd(v, offset), _mm256_loadu_pd(gp + b)), offset);
-  const __m256d above = _mm256_and_pd(_mm256_cmp_pd(v, toe, _CMP_GT_OQ), _mm256_cmp_pd(y, toe, _CMP_GT_OQ));
-  const __m256d fast = _mm256_mul_pd(_mm256_set1_pd(255.0), y);
+  __m256d above;
+  const __m256d fast = unscaleAboveToe(m, _mm256_loadu_pd(gp + b), &above);
   if (_mm256_movemask_pd(above) == 0xF) return fast;
+  const __m256d v = _mm256_mul_pd(m, _mm256_set1_pd(1.0 / 255.0));
   // Lanes in the toe: 255 encodeLinear(decodeEncoded(v) g), both on their tables unless past them.
   const __m256d zero = _mm256_setzero_pd();
   const __m256d encoded =
@@ -278,7 +287,6 @@ SURROGATE_NEAR_AVX2_BLOCK inline void unscaledErrorsAvx2(const double* decode, c
                                                          const double* const* m, const double* lum, const double* gi,
                                                          double* gp, const std::uint8_t* s, double* d2, int len) {
   for (int ahead = 0; ahead < 3 * len; ahead += 64) __builtin_prefetch(s + 3 * len + ahead);
-  const __m256d toe = _mm256_set1_pd(kToe), offset = _mm256_set1_pd(0.055);
   int b = 0;
   for (; b + 4 <= len; b += 4) rootsOfFour(root, gi, gp, b);
   for (; b < len; ++b) gp[b] = rootWith(root, gi[b]);
@@ -289,10 +297,7 @@ SURROGATE_NEAR_AVX2_BLOCK inline void unscaledErrorsAvx2(const double* decode, c
     // unscaleFour's values above the toe, the three channels tested at once (the toe is rare).
     for (int ch = 0; ch < 3; ++ch) {
       given[ch] = lum ? _mm256_mul_pd(_mm256_loadu_pd(m[ch] + b), l) : _mm256_loadu_pd(m[ch] + b);
-      const __m256d v = _mm256_mul_pd(given[ch], _mm256_set1_pd(1.0 / 255.0));
-      const __m256d y = _mm256_sub_pd(_mm256_mul_pd(_mm256_add_pd(v, offset), p), offset);
-      above[ch] = _mm256_and_pd(_mm256_cmp_pd(v, toe, _CMP_GT_OQ), _mm256_cmp_pd(y, toe, _CMP_GT_OQ));
-      r[ch] = _mm256_mul_pd(_mm256_set1_pd(255.0), y);
+      r[ch] = unscaleAboveToe(given[ch], p, &above[ch]);
     }
     if (_mm256_movemask_pd(_mm256_and_pd(_mm256_and_pd(above[0], above[1]), above[2])) != 0xF)
       for (int ch = 0; ch < 3; ++ch) r[ch] = unscaleFour(decode, encode, given[ch], gi, gp, b);

@@ -16,10 +16,17 @@
 
 namespace surrogate::hrti {
 
-cv::Mat medianToFloat(const Image& im) {
-  cv::Mat m(im.height, im.width, CV_32F);
+namespace {
+// medianToFloat into `m` (im.height x im.width floats, possibly a view into a larger matrix).
+void medianToFloatInto(const Image& im, cv::Mat m) {
   for (int y = 0; y < im.height; ++y)
     for (int x = 0; x < im.width; ++x) m.at<float>(y, x) = im.at(x, y) / 65535.0f;
+}
+}  // namespace
+
+cv::Mat medianToFloat(const Image& im) {
+  cv::Mat m(im.height, im.width, CV_32F);
+  medianToFloatInto(im, m);
   return m;
 }
 
@@ -98,13 +105,8 @@ std::vector<Rect> passReads(const Rect& padded, double cx, double cy, double r, 
 cv::Mat blurredWindow(const StackMedian& median, const PassWindow& w, const Rect& padded,
                       const std::vector<Rect>& reads) {
   cv::Mat values = cv::Mat::zeros(padded.h, padded.w, CV_32F);
-  for (const Rect& part : reads) {
-    const Image read = median.window(part);
-    for (int y = 0; y < part.h; ++y) {
-      float* row = values.ptr<float>(part.y - padded.y + y) + (part.x - padded.x);
-      for (int x = 0; x < part.w; ++x) row[x] = read.at(x, y) / 65535.0f;
-    }
-  }
+  for (const Rect& part : reads)
+    medianToFloatInto(median.window(part), values(cv::Rect(part.x - padded.x, part.y - padded.y, part.w, part.h)));
   cv::Mat blurred;
   cv::GaussianBlur(values, blurred, cv::Size(0, 0), 1.0);
   return blurred(cv::Rect(w.x0 - padded.x, w.y0 - padded.y, w.x1 - w.x0, w.y1 - w.y0));

@@ -92,10 +92,6 @@ const ImageStack& checked(const ImageStack* stack) {
   return *stack;
 }
 
-// The block means of full-resolution rows [y0, y1) (whole blocks of `factor` rows, the last
-// one possibly partial) as coarse rows: each the rounded mean of its block's pixels. The
-// block's rows are added column by column first (a loop the compiler vectorises), then each
-// block's columns: integer sums, the same in any order.
 // The rounded means of `blocks` whole F x F blocks from their column sums: the count known to
 // the compiler, the division is a multiplication (a 64-bit division by a count known only at
 // run time took half of the reduction's time). 32-bit sums: F * F * 65535 + F * F / 2 < 2^32.
@@ -134,6 +130,10 @@ int wholeBlockMeans(const std::uint32_t* columns, int factor, int blocks, std::u
   }
 }
 
+// The block means of full-resolution rows [y0, y1) (whole blocks of `factor` rows, the last
+// one possibly partial) as coarse rows: each the rounded mean of its block's pixels. The
+// block's rows are added column by column first (a loop the compiler vectorises), then each
+// block's columns: integer sums, the same in any order.
 void reduceRows(const std::uint16_t* rows, int y0, int y1, int width, int factor, std::uint16_t* out) {
   const int coarseWidth = (width + factor - 1) / factor;
   std::vector<std::uint32_t> columns(width);  // at most kMaxFactor * 65535 each
