@@ -135,7 +135,7 @@ class CarrierSaver {
 
 }  // namespace
 
-void runProcess(Context& context, const fs::path& carrierPath, std::size_t steps, LastSave last) {
+void runProcess(Context& context, const fs::path& carrierPath, std::size_t steps, Saves saves) {
   carrier::Carrier& c = context.carrier;
   CarrierSaver saver(carrierPath);
   auto save = [&] {
@@ -187,7 +187,7 @@ void runProcess(Context& context, const fs::path& carrierPath, std::size_t steps
     char seconds[32];
     std::snprintf(seconds, sizeof seconds, "%.3f", c.data.back().seconds);
     c.addLog("timing", step.id, step.component + " completed in " + seconds + " s");
-    if (k + 1 < list.size() || last == LastSave::Runner) save();
+    if (saves == Saves::EachStep) save();
     releaseUnread(context, std::vector<carrier::Step>(list.begin() + k + 1, list.end()));
   }
   saver.wait();

@@ -2,9 +2,9 @@
 //
 // For each step in order: the registered component runs with the step's parameters; its
 // result (status, start and end times, duration) goes into the data section and a timing
-// entry into the log; the carrier is saved after each step (when a path is given), so a run
-// that fails leaves a carrier recording what was done and which step failed, never one that
-// looks complete. A save is validated and written while the next step runs (one at a time, in
+// entry into the log; the carrier is saved after each step (when a path is given; see Saves),
+// so a run that fails leaves a carrier recording what was done and which step failed, never one
+// that looks complete. A save is validated and written while the next step runs (one at a time, in
 // order); the runner returns, or throws, only once the last is on disk. After each step, the shared data that no later step reads (StageInfo::reads)
 // is let go: the decoded photographs are freed once the last fit has read them, not held
 // through the derived maps. Steps of a stage that declares no reads keep everything until
@@ -21,13 +21,15 @@
 
 namespace surrogate::pipeline {
 
-// Whether the carrier is saved after the last step too, or left to the caller, which records
-// more (the run's record) and saves it then: the same file written and flushed twice in a row
-// otherwise. A failure is saved either way.
-enum class LastSave { Runner, Caller };
+// Which saves the runner makes: after every step (a re-execution: the carrier on disk is the
+// record, and one that fails must say how far it got), or only a failed step's, the caller
+// saving the carrier once when all succeeded, with what it adds (run: its carrier is staged and
+// discarded unless the whole run succeeds, so a save between steps was read by nothing, and
+// cost about 2 ms of CPU each: the text made, validated, written and flushed).
+enum class Saves { EachStep, FailureOnly };
 
 // Runs the first `steps` steps of the process list (all by default); the others keep no result.
 void runProcess(Context& context, const std::filesystem::path& carrierPath,
-                std::size_t steps = static_cast<std::size_t>(-1), LastSave last = LastSave::Runner);
+                std::size_t steps = static_cast<std::size_t>(-1), Saves saves = Saves::EachStep);
 
 }  // namespace surrogate::pipeline

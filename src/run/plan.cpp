@@ -418,8 +418,9 @@ carrier::Carrier runCapture(const fs::path& captureArg, const RunRequest& reques
   // The plan as made, for a failure's record: its decisions stand though its results are dropped.
   const std::vector<carrier::Step> planned = c.process;
   try {
-    // Saved once after the last step, below, with the run's record.
-    pipeline::runProcess(ctx, stagedCarrier, steps, pipeline::LastSave::Caller);
+    // Saved once after the last step, below, with the run's record; by the runner only when a
+    // step fails.
+    pipeline::runProcess(ctx, stagedCarrier, steps, pipeline::Saves::FailureOnly);
   } catch (const Error& e) {
     record.ended = carrier::timestampNow();
     record.outcome = "failed";

@@ -165,6 +165,35 @@ TEST_CASE("the carrier saved after each step is on disk, whole and last, when th
   fs::remove_all(dir);
 }
 
+TEST_CASE("told to save only a failure, the runner writes no carrier for a run that succeeds, and the failed step's") {
+  registerTestStages();
+  StageRegistry::instance().add("TestDiskReading", [] { return std::make_unique<DiskReadingStage>(); });
+  const fs::path dir = fs::temp_directory_path() / "surrogate-test-runner-failure-only";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path file = dir / "carrier.xml";
+  carrier::Carrier ok = carrier::newCarrier("runner", {});
+  for (int k = 0; k < 3; ++k) ok.addStep("TestDiskReading", "1").setParam("carrier", file.string());
+  Context okCtx(dir, ok, RunSettings{});
+  runProcess(okCtx, file, static_cast<std::size_t>(-1), Saves::FailureOnly);
+  CHECK_FALSE(fs::exists(file));  // the caller saves it
+  REQUIRE(ok.data.size() == 3);
+  for (const carrier::Result& r : ok.data) CHECK(r.items[0].number("value") == 0);  // none on disk meanwhile
+
+  carrier::Carrier failing = carrier::newCarrier("runner", {});
+  failing.addStep("TestDoubling", "1");
+  failing.addStep("TestFailing", "1");
+  failing.addStep("TestDoubling", "1");
+  Context failingCtx(dir, failing, RunSettings{});
+  CHECK_THROWS_AS(runProcess(failingCtx, file, static_cast<std::size_t>(-1), Saves::FailureOnly), Error);
+  const carrier::Carrier saved = carrier::loadCarrier(file);
+  REQUIRE(saved.data.size() == 2);
+  CHECK(saved.data[0].status == "completed");
+  CHECK(saved.data[1].status == "failed");
+  CHECK(saved.findResult("s3") == nullptr);
+  fs::remove_all(dir);
+}
+
 TEST_CASE("a carrier that cannot be saved stops the run with the save's error") {
   registerTestStages();
   const fs::path dir = fs::temp_directory_path() / "surrogate-test-runner-unsaved";
