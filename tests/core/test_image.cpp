@@ -44,6 +44,23 @@ TEST_CASE("8-bit luminance: every colour against the integer Rec. 709 weights, i
   CHECK(out == expected);
 }
 
+TEST_CASE("8-bit luminance: every length and start, as the vector loop's blocks and tail divide them") {
+  // Blocks of sixteen pixels and a tail: lengths 0 to 49 from each of the first 17 pixels of a
+  // varied row, against the formula; the bytes after the last pixel are never read as pixels.
+  std::vector<std::uint8_t> rgb(3 * 80);
+  for (std::size_t k = 0; k < rgb.size(); ++k) rgb[k] = static_cast<std::uint8_t>((k * 97 + 13) ^ (k >> 3));
+  for (std::size_t start = 0; start < 17; ++start)
+    for (std::size_t count = 0; count < 50; ++count) {
+      std::vector<std::uint16_t> out(count + 1, 0xBEEF), expected(count + 1, 0xBEEF);
+      for (std::size_t i = 0; i < count; ++i) {
+        const std::uint8_t* p = &rgb[3 * (start + i)];
+        expected[i] = static_cast<std::uint16_t>((13933u * 257 * p[0] + 46871u * 257 * p[1] + 4732u * 257 * p[2] + 32768) / 65536);
+      }
+      surrogate::luminanceOfPixels(&rgb[3 * start], count, out.data());
+      CHECK(out == expected);  // out[count] untouched
+    }
+}
+
 #include "core/json.h"
 
 TEST_CASE("JsonWriter separates members and escapes control characters") {
