@@ -10,6 +10,8 @@
 #include <future>
 #include <mutex>
 #include <numeric>
+#include <thread>
+#include <vector>
 
 #include "capture/capture.h"
 #include "carrier/advice.h"
@@ -50,67 +52,55 @@ std::string finished(const std::string& name) { return std::string(capture::kFin
 // PNG files written on threads of their own while the next picture is computed: computing a
 // map already uses every core, but libdeflate compresses one file on one core, and encoding is
 // most of the stage's time (the 16-bit normals of 3000x2000 take about 0.5 s). As many files are
-// encoded at once as there are threads, each on its own thread; the next picture is computed as
-// soon as any of them is encoded (waiting for the oldest, the normals, had left a core idle while
-// the smaller files behind it were long written; waiting for a file's fsync as well left one idle
-// while the disk wrote it). Each file's bytes come from its pixels alone,
-// and the carrier records them on the caller's thread in the order given, so the files and the
-// carrier are the same at any thread count. Memory holds the pictures being encoded plus the one
-// being computed: three of the five with two threads (an encoded picture is let go of at once,
-// its PNG bytes once on disk, though its record waits for the writes before it). With one thread, each is written before
-// the next is computed.
+// encoded at once as there are threads, by encoders that take the pictures in the order given
+// (the normals, the longest to encode, first); the next picture is computed meanwhile, and is
+// queued for the first encoder free. The pictures are computed as fast as memory allows, not
+// one per file encoded: waiting for an encoder to be free before computing the next had left
+// a core idle while the last picture, computed late, was encoded alone (36 x 1200x800: the
+// stage's last third on one core). Memory holds the pictures queued and being encoded, up to
+// an eighth of what --memory leaves for streaming, and never fewer than the encoders take at
+// once: at 60 x 24 Mpx (pictures of 144 MB) the three of the five with two threads it held
+// before, at 1200x800 all five (17 MB). An encoded picture is let go of at once, its PNG bytes
+// once on disk (the next encoding starts while a file waits for the disk, its fsync, which
+// holds no core). Each file's bytes come from its pixels alone, and the carrier records them
+// on the caller's thread in the order given, so the files and the carrier are the same at any
+// thread count. With one thread, each is written before the next is computed.
 class OverlappedPngWrites {
  public:
   explicit OverlappedPngWrites(const pipeline::Context& ctx)
-      : ctx_(ctx), maxPending_(effectiveThreads(ctx.settings.threads) > 1 ? effectiveThreads(ctx.settings.threads) : 0) {}
+      : ctx_(ctx),
+        encoders_(effectiveThreads(ctx.settings.threads) > 1 ? effectiveThreads(ctx.settings.threads) : 0),
+        maxHeldBytes_(ctx.settings.streamingBudget() / 8) {}
   OverlappedPngWrites(const OverlappedPngWrites&) = delete;
   OverlappedPngWrites& operator=(const OverlappedPngWrites&) = delete;
-  ~OverlappedPngWrites() {
-    for (Pending& p : pending_)
-      if (p.write.valid()) p.write.wait();  // an error is already on its way out; let the writes end
-  }
+  // Leaving by an error: the pictures queued are not written, those being encoded are let end.
+  ~OverlappedPngWrites() { stop(); }
 
   // Writes `image` as the file `relativePath` (writePicture), then calls `record` with what the
   // write knows of the file (on this thread, after the previous records).
   void add(Image image, std::string relativePath, std::function<void(const WrittenFile&)> record) {
-    if (maxPending_ == 0) {
+    if (encoders_ == 0) {
       record(writePicture(ctx_, image, relativePath));
       return;
     }
+    auto job = std::make_unique<Job>();
+    job->bytes = image.pixels.size() * sizeof(image.pixels[0]);
+    job->image = std::move(image);
+    job->path = std::move(relativePath);
+    std::future<WrittenFile> written = job->result.get_future();
     {
       std::unique_lock<std::mutex> lock(mutex_);
-      ended_.wait(lock, [&] { return writing_ < maxPending_; });
-      ++writing_;
+      changed_.wait(lock, [&] {
+        return held_ < encoders_ || heldBytes_ + job->bytes <= maxHeldBytes_;
+      });
+      ++held_;
+      heldBytes_ += job->bytes;
+      queue_.push_back(std::move(job));
+      while (static_cast<int>(threads_.size()) < std::min<int>(encoders_, static_cast<int>(queue_.size()) + busy_))
+        threads_.emplace_back([this] { encode(); });
     }
-    pending_.push_back({std::async(std::launch::async,
-                                   [this, image = std::move(image), path = std::move(relativePath)]() mutable {
-                                     // Counted out once the picture is encoded, or however the
-                                     // write ends, so that add() never waits for a write that
-                                     // has failed.
-                                     struct Ended {
-                                       OverlappedPngWrites& writes;
-                                       bool counted = true;
-                                       void out() {
-                                         if (!counted) return;
-                                         counted = false;
-                                         std::lock_guard<std::mutex> lock(writes.mutex_);
-                                         --writes.writing_;
-                                         writes.ended_.notify_all();
-                                       }
-                                       ~Ended() { out(); }
-                                     } ended{*this};
-                                     // The pixels let go of as soon as they are encoded: the task
-                                     // itself lives until its record is made, after the writes
-                                     // before it (at 60 x 24 Mpx, each picture is 144 MB). The
-                                     // next picture's encoding starts while this file waits for
-                                     // the disk (its fsync), which holds no core.
-                                     Image pixels = std::move(image);
-                                     return writePicture(ctx_, pixels, path, [&] {
-                                       pixels = Image();
-                                       ended.out();
-                                     });
-                                   }),
-                        std::move(record)});
+    changed_.notify_all();
+    pending_.push_back({std::move(written), std::move(record)});
     // Records what is written, in order, up to the first write still running.
     while (!pending_.empty() &&
            pending_.front().write.wait_for(std::chrono::seconds(0)) == std::future_status::ready)
@@ -118,18 +108,75 @@ class OverlappedPngWrites {
   }
 
   // Whether files are written while the next picture is computed (else each before the next).
-  bool overlapped() const { return maxPending_ > 0; }
+  bool overlapped() const { return encoders_ > 0; }
 
   // Waits for every pending write (rethrowing the first error) and records them in order.
   void finish() {
     while (!pending_.empty()) finishOldest();
+    stop();
   }
 
  private:
+  struct Job {
+    Image image;
+    std::string path;
+    std::size_t bytes = 0;
+    std::promise<WrittenFile> result;
+  };
   struct Pending {
     std::future<WrittenFile> write;
     std::function<void(const WrittenFile&)> record;
   };
+
+  // An encoder: the queue's pictures in order until it is empty and stop() is called.
+  void encode() {
+    for (;;) {
+      std::unique_ptr<Job> job;
+      {
+        std::unique_lock<std::mutex> lock(mutex_);
+        changed_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
+        if (queue_.empty()) return;
+        job = std::move(queue_.front());
+        queue_.pop_front();
+        ++busy_;
+      }
+      // Counted out once the picture is encoded, or however the write ends, so that add()
+      // never waits for a write that has failed.
+      bool counted = true;
+      const auto out = [&] {
+        if (!counted) return;
+        counted = false;
+        job->image = Image();
+        {
+          std::lock_guard<std::mutex> lock(mutex_);
+          --held_;
+          heldBytes_ -= job->bytes;
+        }
+        changed_.notify_all();
+      };
+      try {
+        WrittenFile file = writePicture(ctx_, job->image, job->path, out);
+        out();
+        job->result.set_value(std::move(file));
+      } catch (...) {
+        out();
+        job->result.set_exception(std::current_exception());
+      }
+      std::lock_guard<std::mutex> lock(mutex_);
+      --busy_;
+    }
+  }
+
+  void stop() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stopping_ = true;
+      queue_.clear();  // their futures report a broken promise, which nothing waits for
+    }
+    changed_.notify_all();
+    for (std::thread& t : threads_) t.join();
+    threads_.clear();
+  }
 
   void finishOldest() {
     Pending p = std::move(pending_.front());
@@ -138,11 +185,17 @@ class OverlappedPngWrites {
   }
 
   const pipeline::Context& ctx_;
-  int maxPending_;  // files encoded at once; 0: write each file at once, on the caller's thread
-  std::deque<Pending> pending_;
+  const int encoders_;              // files encoded at once; 0: each written at once, on the caller's thread
+  const std::size_t maxHeldBytes_;  // pictures queued and being encoded, beyond `encoders_` of them
+  std::deque<Pending> pending_;     // the caller's: writes not yet recorded, in order
+  std::vector<std::thread> threads_;
   std::mutex mutex_;
-  std::condition_variable ended_;  // a write has ended
-  int writing_ = 0;                // writes running, under mutex_
+  std::condition_variable changed_;  // a picture queued or let go of, or stopping
+  std::deque<std::unique_ptr<Job>> queue_;  // under mutex_, as the counts below
+  int held_ = 0;                   // pictures queued or being encoded
+  std::size_t heldBytes_ = 0;
+  int busy_ = 0;                   // encoders with a picture
+  bool stopping_ = false;
 };
 }  // namespace
 
