@@ -18,8 +18,10 @@
 #include <vector>
 
 #include "carrier/carrier.h"
+#include "core/deferred_tasks.h"
 #include "core/error.h"
 #include "core/image.h"
+#include "core/parallel.h"
 
 namespace surrogate::formats {
 struct PtmFile;
@@ -106,7 +108,13 @@ class Context {
   // Lets go of the value under `key` (freed once nothing else holds it); the runner does this
   // when no later step reads it.
   void release(const std::string& key) {
-    if (blackboard_.erase(key)) released_.insert(key);
+    if (!blackboard_.erase(key)) return;
+    released_.insert(key);
+    for (const Deferred& d : deferred_)
+      if (std::none_of(d.holding.begin(), d.holding.end(), [&](const std::string& k) { return has(k); })) {
+        finishDeferred();
+        break;
+      }
   }
   std::vector<std::string> keys() const {
     std::vector<std::string> out;
@@ -118,7 +126,41 @@ class Context {
     if (settings.progress) settings.progress(label, fraction);
   }
 
+  // Work a step leaves for later (core/deferred_tasks.h), and `record`, which writes its
+  // results into the carrier: the step records a placeholder where each result goes, so that
+  // the carrier's text is the same whoever ran the work and when. Later steps run it beside a
+  // part of their own that keeps one thread busy (besideOneThread); the runner finishes and
+  // records it before it saves the carrier or returns, so no saved carrier lacks a result.
+  // `holding`: the keys whose data the work reads (it holds a reference): it is finished
+  // before the last of them is let go, so that the memory is freed when the runner frees it.
+  void defer(std::vector<std::function<void()>> tasks, std::function<void()> record,
+             std::vector<std::string> holding) {
+    deferred_.push_back({std::make_unique<DeferredTasks>(std::move(tasks)), std::move(record), std::move(holding)});
+  }
+  // Runs `work`, a part of a step that uses one thread (a library's search), with deferred work
+  // on another thread meanwhile; with one thread to run on (settings.threads), only `work`.
+  void besideOneThread(const std::function<void()>& work) {
+    if (deferred_.empty() || effectiveThreads(settings.threads) < 2) return work();
+    deferred_.front().work->besides(work);  // the oldest work: one other thread is all there is
+  }
+  // Finishes the deferred work on settings.threads threads and records it, in the order
+  // deferred; rethrows the first error.
+  void finishDeferred() {
+    std::vector<Deferred> all = std::move(deferred_);
+    deferred_.clear();
+    for (Deferred& d : all) {
+      d.work->finish(settings.threads);
+      d.record();
+    }
+  }
+
  private:
+  struct Deferred {
+    std::unique_ptr<DeferredTasks> work;
+    std::function<void()> record;
+    std::vector<std::string> holding;
+  };
+  std::vector<Deferred> deferred_;
   std::map<std::string, std::any> blackboard_;
   std::set<std::string> released_;  // keys let go of, for get's message
 };

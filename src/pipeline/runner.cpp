@@ -139,6 +139,7 @@ void runProcess(Context& context, const fs::path& carrierPath, std::size_t steps
   carrier::Carrier& c = context.carrier;
   CarrierSaver saver(carrierPath);
   auto save = [&] {
+    context.finishDeferred();
     c.header.modified = carrier::timestampNow();
     saver.save(c);
   };
@@ -162,6 +163,12 @@ void runProcess(Context& context, const fs::path& carrierPath, std::size_t steps
       result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       c.data.push_back(result);
       c.addLog("error", step.id, e.what());
+      // What earlier steps left for later is recorded as if they had done it; its own failure
+      // (it only computes) must not hide the step's.
+      try {
+        context.finishDeferred();
+      } catch (...) {
+      }
       save();
       saver.wait();
     };
@@ -190,6 +197,7 @@ void runProcess(Context& context, const fs::path& carrierPath, std::size_t steps
     if (saves == Saves::EachStep) save();
     releaseUnread(context, std::vector<carrier::Step>(list.begin() + k + 1, list.end()));
   }
+  context.finishDeferred();
   saver.wait();
 }
 

@@ -8,7 +8,9 @@
 // order); the runner returns, or throws, only once the last is on disk. After each step, the shared data that no later step reads (StageInfo::reads)
 // is let go: the decoded photographs are freed once the last fit has read them, not held
 // through the derived maps. Steps of a stage that declares no reads keep everything until
-// they have run.
+// they have run. Work a step left for later (Context::defer: the decoded images' pixel
+// digests) is finished and recorded before each save, before the data it reads is let go, and
+// before the runner returns.
 //
 //   Context ctx(capture, carrier, settings);
 //   runProcess(ctx, capture / "assembly-files/carrier.xml");

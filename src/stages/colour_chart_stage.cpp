@@ -177,7 +177,9 @@ void ColourChartStage::run(const carrier::Step& step, pipeline::Context& ctx, ca
     place = colour::chartFromCorners(corners, "--colour-chart " + options.chart + ":" + options.cornersText());
   } else {
     const Image full = readBand(*input, frame, 0, input->height());
-    const auto found = colour::findChart(full);
+    // mcc's search runs on one thread: work earlier steps left for later runs beside it.
+    std::optional<colour::ChartPlace> found;
+    ctx.besideOneThread([&] { found = colour::findChart(full); });
     std::string rejected;
     if (found) {
       rejected = notAChart(colour::readChart(full, *found));

@@ -23,12 +23,6 @@ namespace {
 
 constexpr const char* kStep = "image decode";
 
-std::string pixelDigest(const image::DecodedPixels& pixels) {
-  MultiDigest d({DigestAlgorithm::Sha256});
-  d.update(pixels.data(), pixels.bytes());
-  return d.hex(DigestAlgorithm::Sha256);
-}
-
 pipeline::DecodedStack::Format formatOf(const image::DecodedPixels& p) {
   return {p.width(), p.height(), p.channels(), p.bytesPerSample(), p.transfer()};
 }
@@ -95,6 +89,12 @@ void checkResources(const std::vector<std::filesystem::path>& files, const image
 
 }  // namespace
 
+std::string pixelDigest(const void* data, std::size_t bytes) {
+  MultiDigest d({DigestAlgorithm::Sha256});
+  d.update(data, bytes);
+  return d.hex(DigestAlgorithm::Sha256);
+}
+
 std::uint64_t residentBytesPerImage(std::uint64_t pixels) { return pixels * kResidentBytesPerPixel; }
 
 std::uint64_t storedBytesPerPixel(image::SourceKind kind) { return kind == image::SourceKind::Jpeg ? 3 : 6; }
@@ -117,7 +117,7 @@ DecodedStacks decodeImages(const std::vector<std::filesystem::path>& files,
                            const image::RawDecodeSettings& settings,
                            const pipeline::RunSettings& run,
                            const std::vector<bool>& acceptDamage,
-                           std::uint64_t laterBytesPerPixel) {
+                           std::uint64_t laterBytesPerPixel, bool digestsLater) {
   const int n = static_cast<int>(files.size());
   if (n == 0) throw Error(ErrorKind::Input, "", kStep, "there are no images to decode");
   // The headers first: nothing is decoded, or allocated for pixels, before the sizes they
@@ -187,13 +187,16 @@ DecodedStacks decodeImages(const std::vector<std::filesystem::path>& files,
     d.channels = pixels.channels();
     d.bitsPerSample = pixels.bitsPerSample();
     d.transfer = pixels.transfer();
-    d.pixelSha256 = pixelDigest(pixels);
     const pipeline::DecodedStack::Format format = formatOf(pixels);
     if (i == 0) {  // a decoder that asked for no destination: the stack from the decoded image
       std::lock_guard<std::mutex> lock(stackMutex);
       if (!stack) stack = std::make_shared<pipeline::DecodedStack>(n, format, placement);
     }
     const std::shared_ptr<pipeline::DecodedStack> made = i == 0 ? stack : awaitStack();
+    // Decoded into its slot, the bytes stay there as the decoder wrote them, for the caller.
+    const bool later = digestsLater && made && pixels.placed && pixels.placed == made->slot(i) &&
+                       pixels.bytes() == made->imageBytes();
+    if (!later) d.pixelSha256 = pixelDigest(pixels.data(), pixels.bytes());
     if (!made) return;  // the first image failed: its error ends the step
     if (!sameFormat(format, made->format())) {
       throwInputError(files[i].string(), kStep,

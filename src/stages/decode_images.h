@@ -40,9 +40,14 @@ struct DecodedImage {
   int width = 0, height = 0, channels = 0, bitsPerSample = 0;
   Transfer transfer = Transfer::Srgb;
   // SHA-256 of the decoded samples as the decoder gave them, before any conversion: one byte a
-  // sample for 8-bit sources, two (little-endian) for 16-bit ones and camera raw.
+  // sample for 8-bit sources, two (little-endian) for 16-bit ones and camera raw. Empty when
+  // left to the caller (decodeImages' digestsLater): the image was decoded into its slot of the
+  // stack in memory, where its bytes stay as the decoder wrote them (pixelDigest of the slot).
   std::string pixelSha256;
 };
+
+// The SHA-256 (hex) of `bytes` bytes of decoded samples, as DecodedImage::pixelSha256.
+std::string pixelDigest(const void* data, std::size_t bytes);
 
 struct DecodedStacks {
   std::shared_ptr<ImageStack> rgb;        // views of `decoded`
@@ -70,11 +75,14 @@ bool stackFitsInMemory(int count, std::uint64_t pixels, std::uint64_t bytesPerPi
 // `laterBytesPerPixel`: what the run holds per pixel after decoding besides the stacks' bands
 // (the fitted models the derived maps keep: modelBytesPerPixel); counted in the check against
 // --memory so that a run refused for its size is refused before anything is decoded.
+// `digestsLater`: the pixel digest of an image decoded into its slot of a stack in memory is
+// left to the caller (DecodedImage::pixelSha256 empty), which can take it later, where a core
+// is free; the others' are taken here.
 DecodedStacks decodeImages(const std::vector<std::filesystem::path>& files,
                            const image::RawDecodeSettings& settings,
                            const pipeline::RunSettings& run,
                            const std::vector<bool>& acceptDamage = {},
-                           std::uint64_t laterBytesPerPixel = 0);
+                           std::uint64_t laterBytesPerPixel = 0, bool digestsLater = false);
 
 // What decoding one image of `pixels` pixels holds in memory at once: the decoded image, a
 // 16-bit copy where the source is raw, and the decoder's working memory (measured: see

@@ -261,10 +261,13 @@ void HighlightDetectionStage::run(const carrier::Step& step, pipeline::Context& 
     std::vector<hrti::Highlight> perImage;
     for (const auto& row : *highlights) perImage.push_back(row[k]);
     const std::string overview = highlightOverview(std::to_string(k + 1));
-    writePicture(ctx,
-                 hrti::drawHighlightOverview(median->width(), median->height(), crop, (*spheres)[k], perImage,
-                                             imageLabels),
-                 overview);
+    // Drawn and encoded on one thread: work earlier steps left for later runs beside it.
+    ctx.besideOneThread([&] {
+      writePicture(ctx,
+                   hrti::drawHighlightOverview(median->width(), median->height(), crop, (*spheres)[k], perImage,
+                                               imageLabels),
+                   overview);
+    });
     recordOutput(ctx, step, result, overview, "assembly", "PNG", "highlight-overview", "image/png");
   }
 

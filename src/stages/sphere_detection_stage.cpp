@@ -151,8 +151,12 @@ void SphereDetectionStage::run(const carrier::Step& step, pipeline::Context& ctx
   result.add("value").set("name", "spheres").set("value", std::to_string(spheres->size()));
 
   const std::string& overlay = kSphereOverlay;
-  const WrittenFile written = writePicture(
-      ctx, hrti::drawSphereOverlay(displayable(median->coarse(), *lum), *spheres, median->factor()), overlay);
+  // Drawn and encoded on one thread: work earlier steps left for later runs beside it.
+  WrittenFile written;
+  ctx.besideOneThread([&] {
+    written = writePicture(
+        ctx, hrti::drawSphereOverlay(displayable(median->coarse(), *lum), *spheres, median->factor()), overlay);
+  });
   recordOutput(ctx, step, result, overlay, written, "assembly", "PNG", "sphere-overlay", "image/png");
   ctx.put(kSpheres, spheres);
   ctx.put(kStackMedian, median);

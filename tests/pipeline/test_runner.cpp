@@ -139,9 +139,17 @@ class DiskReadingStage : public Stage {
   }
 };
 
+void registerDiskReading() {
+  static const bool registered = [] {
+    StageRegistry::instance().add("TestDiskReading", [] { return std::make_unique<DiskReadingStage>(); });
+    return true;
+  }();
+  (void)registered;
+}
+
 TEST_CASE("the carrier saved after each step is on disk, whole and last, when the runner returns") {
   registerTestStages();
-  StageRegistry::instance().add("TestDiskReading", [] { return std::make_unique<DiskReadingStage>(); });
+  registerDiskReading();
   const fs::path dir = fs::temp_directory_path() / "surrogate-test-runner-saves";
   fs::remove_all(dir);
   fs::create_directories(dir);
@@ -167,7 +175,7 @@ TEST_CASE("the carrier saved after each step is on disk, whole and last, when th
 
 TEST_CASE("told to save only a failure, the runner writes no carrier for a run that succeeds, and the failed step's") {
   registerTestStages();
-  StageRegistry::instance().add("TestDiskReading", [] { return std::make_unique<DiskReadingStage>(); });
+  registerDiskReading();
   const fs::path dir = fs::temp_directory_path() / "surrogate-test-runner-failure-only";
   fs::remove_all(dir);
   fs::create_directories(dir);
@@ -191,6 +199,89 @@ TEST_CASE("told to save only a failure, the runner writes no carrier for a run t
   CHECK(saved.data[0].status == "completed");
   CHECK(saved.data[1].status == "failed");
   CHECK(saved.findResult("s3") == nullptr);
+  fs::remove_all(dir);
+}
+
+// Leaves a task for later that writes "done" into its own result once run, and records a
+// placeholder now; with "holding", it names the shared value the task reads.
+class DeferringStage : public Stage {
+ public:
+  std::string component() const override { return "TestDeferring"; }
+  std::string version() const override { return "1"; }
+  void run(const carrier::Step& step, Context& ctx, carrier::Result& result) override {
+    result.add("value").set("name", "deferred").set("value", "");
+    auto done = std::make_shared<std::string>();
+    ctx.put("held", std::make_shared<int>(1));
+    ctx.defer({[done] { *done = "done"; }},
+              [&carrier = ctx.carrier, id = step.id, done] {
+                for (carrier::Result& r : carrier.data)
+                  if (r.step == id) r.items.at(0).set("value", *done);
+              },
+              {"held"});
+  }
+};
+
+// Records whether the deferring step's result is filled in yet, as the carrier in memory holds it.
+class PeekingStage : public Stage {
+ public:
+  std::string component() const override { return "TestPeeking"; }
+  std::string version() const override { return "1"; }
+  void run(const carrier::Step&, Context& ctx, carrier::Result& result) override {
+    const carrier::Result* r = ctx.carrier.findResult("s1");
+    result.add("value").set("name", "seen").set("value", r ? *r->items.at(0).get("value") : "none");
+    if (ctx.has("held")) ctx.get<int>("held");
+  }
+};
+
+TEST_CASE("work a step defers is recorded before every save, before its data is let go, and at the end") {
+  registerTestStages();
+  static const bool registered = [] {
+    StageRegistry::instance().add("TestDeferring", [] { return std::make_unique<DeferringStage>(); });
+    StageInfo peeking("TestPeeking", "1", "reads what it is told to", PlanSlot::NotPlanned);
+    peeking.reads = [](const carrier::Step& step) {
+      return step.param("reads", "") == "yes" ? std::vector<std::string>{"held"} : std::vector<std::string>{};
+    };
+    StageRegistry::instance().add(peeking, [] { return std::make_unique<PeekingStage>(); });
+    return true;
+  }();
+  (void)registered;
+  const fs::path dir = fs::temp_directory_path() / "surrogate-test-runner-deferred";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const auto process = [](carrier::Carrier& c) {
+    c.addStep("TestDeferring", "1");
+    c.addStep("TestPeeking", "1").setParam("reads", "yes");
+    c.addStep("TestPeeking", "1").setParam("reads", "yes");
+    c.addStep("TestPeeking", "1");
+  };
+  SECTION("saved after each step: recorded before the first save") {
+    carrier::Carrier c = carrier::newCarrier("runner", {});
+    process(c);
+    Context ctx(dir, c, RunSettings{});
+    runProcess(ctx, dir / "carrier.xml");
+    CHECK(*c.data[1].items[0].get("value") == "done");
+    CHECK(*carrier::loadCarrier(dir / "carrier.xml").data[0].items[0].get("value") == "done");
+  }
+  SECTION("saved only on failure: left running until its data is let go (after step 3)") {
+    carrier::Carrier c = carrier::newCarrier("runner", {});
+    process(c);
+    RunSettings settings;
+    settings.threads = 2;
+    Context ctx(dir, c, settings);
+    runProcess(ctx, {}, static_cast<std::size_t>(-1), Saves::FailureOnly);
+    CHECK(*c.data[1].items[0].get("value") == "");      // step 2: not yet
+    CHECK(*c.data[2].items[0].get("value") == "");      // step 3 still reads "held"
+    CHECK(*c.data[3].items[0].get("value") == "done");  // let go of after step 3: recorded
+    CHECK(*c.data[0].items[0].get("value") == "done");
+  }
+  SECTION("a step that fails after it: recorded in the failure's save") {
+    carrier::Carrier c = carrier::newCarrier("runner", {});
+    c.addStep("TestDeferring", "1");
+    c.addStep("TestFailing", "1");
+    Context ctx(dir, c, RunSettings{});
+    CHECK_THROWS_AS(runProcess(ctx, dir / "carrier.xml", static_cast<std::size_t>(-1), Saves::FailureOnly), Error);
+    CHECK(*carrier::loadCarrier(dir / "carrier.xml").data[0].items[0].get("value") == "done");
+  }
   fs::remove_all(dir);
 }
 
