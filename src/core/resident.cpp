@@ -29,7 +29,16 @@ constexpr std::uintptr_t kHugePage = std::uintptr_t(2) << 20;  // x86-64's trans
 constexpr std::size_t kMinHugePagesPerThread = 4;
 }
 
-void makeResident(void* data, std::size_t bytes, int threads) {
+namespace {
+void backResident(void* data, std::size_t bytes, int threads, bool advise);
+}
+
+void makeResident(void* data, std::size_t bytes, int threads) { backResident(data, bytes, threads, true); }
+
+void makeResidentAdvised(void* data, std::size_t bytes, int threads) { backResident(data, bytes, threads, false); }
+
+namespace {
+void backResident(void* data, std::size_t bytes, int threads, bool advise) {
   // Below a megabyte the block most likely comes from memory the process already uses, and
   // the call would cost more than the faults it saves.
   if (bytes < (std::size_t(1) << 20)) return;
@@ -44,7 +53,8 @@ void makeResident(void* data, std::size_t bytes, int threads) {
   // pages, or with them set to "never"): 4 KiB pages, as before.
   const std::uintptr_t hugeBegin = (at + kHugePage - 1) / kHugePage * kHugePage;
   const std::uintptr_t hugeEnd = (at + bytes) / kHugePage * kHugePage;
-  if (hugeEnd > hugeBegin) (void)::madvise(reinterpret_cast<void*>(hugeBegin), hugeEnd - hugeBegin, MADV_HUGEPAGE);
+  if (advise && hugeEnd > hugeBegin)
+    (void)::madvise(reinterpret_cast<void*>(hugeBegin), hugeEnd - hugeBegin, MADV_HUGEPAGE);
   // EINVAL (an older kernel), ENOMEM, EFAULT: the pages are backed as they are written instead.
   const auto populate = [](std::uintptr_t from, std::uintptr_t to) {
     if (to > from) (void)::madvise(reinterpret_cast<void*>(from), to - from, MADV_POPULATE_WRITE);
@@ -80,6 +90,7 @@ void makeResident(void* data, std::size_t bytes, int threads) {
   share();
   for (std::thread& t : others) t.join();
 }
+}  // namespace
 
 void reuseFreedMemory() {
   ::mallopt(M_MMAP_MAX, 0);

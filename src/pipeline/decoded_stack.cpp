@@ -117,7 +117,7 @@ void DecodedStack::markStored(int index) {
 
 void DecodedStack::storeBytes(int index, const void* samples) {
   if (placement_ == Placement::Memory) {
-    makeResident(slot(index), static_cast<std::size_t>(imageBytes()));
+    makeResidentAdvised(slot(index), static_cast<std::size_t>(imageBytes()));
     std::memcpy(slot(index), samples, static_cast<std::size_t>(imageBytes()));
   } else {
     transferAll(::pwrite, fd_, static_cast<const char*>(samples), imageBytes(),

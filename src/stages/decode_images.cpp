@@ -165,7 +165,7 @@ DecodedStacks decodeImages(const std::vector<std::filesystem::path>& files,
         }
         stackMade.notify_all();
         std::uint8_t* const slot = made->slot(0);  // nullptr in a temporary file: stored below
-        if (slot) makeResident(slot, static_cast<std::size_t>(made->imageBytes()));
+        if (slot) makeResidentAdvised(slot, static_cast<std::size_t>(made->imageBytes()));
         return slot;
       };
     else  // straight into the stack's slot, when the image is as the first
@@ -178,7 +178,7 @@ DecodedStacks decodeImages(const std::vector<std::filesystem::path>& files,
                            f.height == height && f.channels == channels;
         if (!alike) return nullptr;
         // Backed in one call rather than a fault a page as libjpeg or LibRaw writes it.
-        makeResident(made->slot(i), static_cast<std::size_t>(made->imageBytes()));
+        makeResidentAdvised(made->slot(i), static_cast<std::size_t>(made->imageBytes()));
         return made->slot(i);
       };
     image::DecodedPixels pixels = image::decodePixels(files[i], settings, &d.report, options);

@@ -77,6 +77,36 @@ TEST_CASE("makeResident backs every whole page of the range, and no page outside
   CHECK(residentPages(m.bytesAt(1000 * kPage), 24 * kPage) == 0);
 }
 
+TEST_CASE("makeResidentAdvised backs a range as makeResident does, leaving its advice as it was") {
+  const std::size_t pages = 2048;  // 8 MiB: a whole huge page inside the range wherever it lies
+  Mapping m(pages * kPage);  // advised against huge pages: makeResident would advise them
+  m.bytesAt(100 * kPage)[7] = 42;
+  makeResidentAdvised(m.bytesAt(10 * kPage + kPage / 2), 1990 * kPage, 2);
+  if (kernelPopulates()) {
+    CHECK(residentPages(m.bytesAt(11 * kPage), 1989 * kPage) == 1989);
+    CHECK(residentPages(m.p, 11 * kPage) == 0);
+    CHECK(residentPages(m.bytesAt(2000 * kPage), 48 * kPage) == 0);
+  }
+  CHECK(m.bytesAt(100 * kPage)[7] == 42);
+  CHECK(m.bytesAt(500 * kPage)[0] == 0);
+  // The mapping's own advice stands: the smaps entry of the whole huge page inside the range
+  // (which makeResident advises) still says nohugepage ("nh").
+  const std::uintptr_t huge = std::uintptr_t(2) << 20;
+  const std::uintptr_t at = (reinterpret_cast<std::uintptr_t>(m.bytesAt(10 * kPage + kPage / 2)) + huge - 1) / huge * huge + huge / 2;
+  REQUIRE(at + huge / 2 <= reinterpret_cast<std::uintptr_t>(m.bytesAt(2000 * kPage)));
+  FILE* f = std::fopen("/proc/self/smaps", "r");
+  REQUIRE(f != nullptr);
+  char line[512];
+  bool inside = false, advisedAgainst = false;
+  while (std::fgets(line, sizeof line, f)) {
+    unsigned long from = 0, to = 0;
+    if (std::sscanf(line, "%lx-%lx ", &from, &to) == 2) inside = from <= at && at < to;
+    if (inside && std::string(line).rfind("VmFlags:", 0) == 0) advisedAgainst = std::string(line).find(" nh") != std::string::npos;
+  }
+  std::fclose(f);
+  CHECK(advisedAgainst);
+}
+
 TEST_CASE("makeResident leaves what is written as it was, and fresh pages zero") {
   const std::size_t pages = 512;
   Mapping m(pages * kPage);
