@@ -21,7 +21,7 @@ std::vector<std::function<void()>> counting(std::vector<std::atomic<int>>& runs,
     tasks.push_back([&runs, &onCaller, caller, k] {
       ++runs[k];
       if (std::this_thread::get_id() == caller) ++onCaller;
-      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
     });
   return tasks;
 }
@@ -29,18 +29,21 @@ std::vector<std::function<void()>> counting(std::vector<std::atomic<int>>& runs,
 }  // namespace
 
 TEST_CASE("deferred tasks run beside the caller's work on another thread, the rest at finish, each once") {
-  std::vector<std::atomic<int>> runs(40);
+  std::vector<std::atomic<int>> runs(100);
   std::atomic<int> onCaller{0};
   DeferredTasks tasks(counting(runs, onCaller, std::this_thread::get_id()));
   int besideRuns = 0;
   tasks.besides([&] {
-    // The caller's work: long enough for the other thread to run some tasks, not all.
-    std::this_thread::sleep_for(std::chrono::milliseconds(12));
+    // The caller's work ends once the other thread has run a task (at most 10 s on a loaded
+    // machine), long before it could run all 100 (2 ms each).
+    const auto start = std::chrono::steady_clock::now();
+    while (runs[0] == 0 && std::chrono::steady_clock::now() - start < std::chrono::seconds(10))
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
     for (const auto& r : runs) besideRuns += r.load();
   });
   CHECK(onCaller == 0);  // beside: none on the caller's thread
   CHECK(besideRuns > 0);
-  CHECK(besideRuns < 40);
+  CHECK(besideRuns < 100);
   tasks.finish(2);
   for (const auto& r : runs) CHECK(r == 1);
 }
