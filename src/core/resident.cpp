@@ -27,17 +27,8 @@ constexpr std::uintptr_t kHugePage = std::uintptr_t(2) << 20;  // x86-64's trans
 // as much as backing a fresh huge page, and memory that is already backed (freed and reused)
 // is walked at tens of gigabytes a second.
 constexpr std::size_t kMinHugePagesPerThread = 4;
-}
 
-namespace {
-void backResident(void* data, std::size_t bytes, int threads, bool advise);
-}
-
-void makeResident(void* data, std::size_t bytes, int threads) { backResident(data, bytes, threads, true); }
-
-void makeResidentAdvised(void* data, std::size_t bytes, int threads) { backResident(data, bytes, threads, false); }
-
-namespace {
+// makeResident, advising the whole huge pages as such first or (makeResidentAdvised) not.
 void backResident(void* data, std::size_t bytes, int threads, bool advise) {
   // Below a megabyte the block most likely comes from memory the process already uses, and
   // the call would cost more than the faults it saves.
@@ -91,6 +82,10 @@ void backResident(void* data, std::size_t bytes, int threads, bool advise) {
   for (std::thread& t : others) t.join();
 }
 }  // namespace
+
+void makeResident(void* data, std::size_t bytes, int threads) { backResident(data, bytes, threads, true); }
+
+void makeResidentAdvised(void* data, std::size_t bytes, int threads) { backResident(data, bytes, threads, false); }
 
 void reuseFreedMemory() {
   ::mallopt(M_MMAP_MAX, 0);

@@ -4,10 +4,10 @@
 // result (status, start and end times, duration) goes into the data section and a timing
 // entry into the log; the carrier is saved after each step (when a path is given; see Saves),
 // so a run that fails leaves a carrier recording what was done and which step failed, never one
-// that looks complete. A save is validated and written while the next step runs (one at a time, in
-// order); the runner returns, or throws, only once the last is on disk. After each step, the shared data that no later step reads (StageInfo::reads)
-// is let go: the decoded photographs are freed once the last fit has read them, not held
-// through the derived maps. Steps of a stage that declares no reads keep everything until
+// that looks complete. A save is validated and written while the next step runs (one at a
+// time, in order); the runner returns, or throws, only once the last is on disk. After each
+// step, the shared data that no later step reads (StageInfo::reads) is let go: the decoded
+// photographs are freed once the last fit has read them, not held through the derived maps. Steps of a stage that declares no reads keep everything until
 // they have run. Work a step left for later (Context::defer: the decoded images' pixel
 // digests) is finished and recorded before each save, before the data it reads is let go, and
 // before the runner returns.

@@ -262,13 +262,14 @@ void HighlightDetectionStage::run(const carrier::Step& step, pipeline::Context& 
     for (const auto& row : *highlights) perImage.push_back(row[k]);
     const std::string overview = highlightOverview(std::to_string(k + 1));
     // Drawn and encoded on one thread: work earlier steps left for later runs beside it.
+    WrittenFile written;
     ctx.besideOneThread([&] {
-      writePicture(ctx,
-                   hrti::drawHighlightOverview(median->width(), median->height(), crop, (*spheres)[k], perImage,
-                                               imageLabels),
-                   overview);
+      written = writePicture(ctx,
+                             hrti::drawHighlightOverview(median->width(), median->height(), crop, (*spheres)[k],
+                                                         perImage, imageLabels),
+                             overview);
     });
-    recordOutput(ctx, step, result, overview, "assembly", "PNG", "highlight-overview", "image/png");
+    recordOutput(ctx, step, result, overview, written, "assembly", "PNG", "highlight-overview", "image/png");
   }
 
   // Refused by default: never a confident light direction from a highlight that is not one.
